@@ -1,0 +1,80 @@
+"""First integrals found automatically: conjugate momenta and the energy (or Jacobi) integral.
+
+From L(q_i):  d/dt(∂T/∂q̇_i) = ∂T/∂q_i − ∂U/∂q_i + Q_i(nc).  So
+
+* when ∂T/∂q_i − ∂U/∂q_i + Q_i(nc) ≡ 0 — q_i is *cyclic* (∂L/∂q_i = 0) and no
+  non-conservative effort works on it — the momentum p_i = ∂T/∂q̇_i is constant
+  (the seed's K for ψ and H for φ);
+* with h = Σ q̇_i ∂L/∂q̇_i − L and L = T − U,  dh/dt = −∂L/∂t + Σ Q_i(nc) q̇_i, so when
+  L does not depend on t and the non-conservative efforts do no work, h is constant.
+  If T is homogeneous quadratic in q̇ (T = ½ q̇ᵀ M q̇) then h = T + U, the energy;
+  otherwise h = T2 − T0 + U, the Painlevé–Jacobi integral.
+
+"≡ 0" is decided by a randomized high-precision identity test (`_identity`), which
+does not miss zeros that only appear after simplification.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import symengine as se
+
+from .._identity import are_zero
+from ..dynamics import EquationsOfMotion
+
+__all__ = ["FirstIntegral", "first_integrals"]
+
+
+@dataclass(frozen=True, slots=True)
+class FirstIntegral:
+    """A quantity constant along every motion: ``expression`` = ``name`` (a constant)."""
+
+    name: str
+    kind: str  # "momentum", "energy" or "jacobi"
+    expression: se.Basic
+    reason: str
+    coordinate: str | None = None
+
+
+def first_integrals(eom: EquationsOfMotion) -> tuple[FirstIntegral, ...]:
+    """The first integrals of the motion that the structure of L guarantees.
+
+    Examples
+    --------
+    For the seed's top: K (ψ cyclic), H (φ cyclic) and the energy T + U.
+    """
+    kin = eom.kinematics
+    out: list[FirstIntegral] = []
+    residues = [eq.dT_dq - eq.dU_dq + eq.Q_nc for eq in eom.equations]
+    cyclic_tests = [eq.dT_dq - eq.dU_dq for eq in eom.equations]
+    zero = are_zero(residues + cyclic_tests)
+    n = len(residues)
+    for k, (coordinate, eq) in enumerate(zip(eom.model.coordinates, eom.equations)):
+        if not zero[k]:
+            continue
+        if zero[n + k]:
+            why = f"{coordinate.name} is cyclic: ∂L/∂{coordinate.name} = 0 and Q_{coordinate.name}(nc) = 0"
+        else:
+            why = f"∂T/∂{coordinate.name} − ∂U/∂{coordinate.name} + Q_{coordinate.name}(nc) = 0"
+        out.append(FirstIntegral(coordinate.momentum or f"p_{coordinate.name}", "momentum", eq.dT_dqd, why,
+                                 coordinate.name))
+
+    L = eom.T - eom.U
+    power_nc = se.Add(*(q * qd for q, qd in zip(eom.Q_nc, kin.qd)))
+    T2 = se.Rational(1, 2) * se.Add(*(eom.M[i][j] * kin.qd[i] * kin.qd[j]
+                                       for i in range(n) for j in range(n) if eom.M[i][j] != 0))
+    explicit_t, no_work, homogeneous = are_zero([L.diff(kin.t), power_nc, eom.T - T2])
+    if explicit_t and no_work:
+        condition = ("L does not depend on t explicitly" +
+                     (" and the system is conservative" if eom.conservative
+                      else " and the non-conservative efforts do no work"))
+        if homogeneous:
+            out.append(FirstIntegral("E", "energy", eom.T + eom.U,
+                                     f"energy integral T + U = cste: {condition}, T homogeneous quadratic in q̇"))
+        else:
+            T0 = eom.T.subs({qd: 0 for qd in kin.qd})
+            out.append(FirstIntegral("h", "jacobi", T2 - T0 + eom.U,
+                                     f"Painlevé–Jacobi integral T2 − T0 + U = cste: {condition}, "
+                                     "T not homogeneous in q̇"))
+    return tuple(out)

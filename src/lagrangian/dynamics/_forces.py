@@ -1,0 +1,158 @@
+"""Generalized forces Q_i of every given effort, by virtual power, load by load.
+
+P*(effort) = Σ_i Q_i q_i*  with the virtual velocity field V*(P) = Σ ∂OP/∂q_i q_i*:
+    force F at P:            Q_i = F · ∂OP/∂q_i
+    couple C on S (−C on S'): Q_i = C · (∂Ω(S/R0)/∂q̇_i − ∂Ω(S'/R0)/∂q̇_i)
+    gravity on S:            Q_i = m g · ∂OG/∂q_i
+    spring, damper A–B:      Q_i = f · ∂AB/∂q_i with f the force on B along AB
+
+A load is *conservative* when its Q_i are −∂U/∂q_i for some U(q, t); this is
+detected, not declared: each load proposes the potential of its physics (gravity
+U = −m g·OG, spring ½k(ℓ − ℓ0)², constant force −F·OP...) or, for couples and given
+generalized forces, a potential is sought by integration, and the identity
+Q_i + ∂U/∂q_i ≡ 0 is then verified for every i (so virtual power and −∂U/∂q check
+each other).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import symengine as se
+import sympy
+from symengine.lib.symengine_wrapper import sympy2symengine
+
+from .._identity import are_zero
+from ..kinematics import Kinematics
+from ..model import Damper, GeneralizedForce, Gravity, Load, PointForce, Potential, Spring, Torque, Vector
+
+__all__ = ["LoadForces", "generalized_forces"]
+
+#: Largest generalized force (in printed characters) handed to SymPy's integrator when
+#: seeking a potential: integration is the one slow tool here, so only small Q try it.
+MAX_INTEGRATION_CHARS = 2000
+
+
+@dataclass(frozen=True, slots=True)
+class LoadForces:
+    """What one load contributes: its Q_i, its virtual power, and its potential if it has one."""
+
+    name: str
+    kind: str
+    Q: tuple[se.Basic, ...]
+    virtual_power: se.Basic  # Σ Q_i q_i*
+    potential: se.Basic | None  # U with Q_i = −∂U/∂q_i, or None when not conservative
+    note: str
+
+
+def _dot_partials(kin: Kinematics, force: Vector, point: str) -> tuple[se.Basic, ...]:
+    return tuple(kin.frames.dot(force, v) for v in kin.partial_velocities(point))
+
+
+def _is_constant_vector(kin: Kinematics, v: Vector) -> bool:
+    """Constant in R0: no q, q̇, t in the components and every piece in a non-rotating frame."""
+    moving = set(kin.q) | set(kin.qd) | {kin.t}
+    return not (v.free_symbols() & moving) and all(kin.omega(f).is_zero() for f in v.frames)
+
+
+def _q_of(kin: Kinematics, load: Load) -> tuple[tuple[se.Basic, ...], se.Basic | None, str]:
+    """(Q, candidate potential, note) of one load."""
+    n = kin.n
+    zero = se.Integer(0)
+    if isinstance(load, Gravity):
+        names = load.on or tuple(b.name for b in kin.model.bodies) + tuple(p.name for p in kin.model.particles)
+        masses = {b.name: b.mass for b in kin.model.bodies} | {p.name: p.mass for p in kin.model.particles}
+        Q = [zero] * n
+        U = zero
+        for name in names:
+            weight = load.field * masses[name]
+            Q = [a + b for a, b in zip(Q, _dot_partials(kin, weight, name))]
+            U = U - kin.frames.dot(weight, kin.position(name))
+        potential = U if _is_constant_vector(kin, load.field) else None
+        return tuple(Q), potential, "P* = Σ m g·V*(G); U = −Σ m g·OG + cste"
+    if isinstance(load, PointForce):
+        Q = _dot_partials(kin, load.force, load.at)
+        potential = (-kin.frames.dot(load.force, kin.position(load.at))
+                     if _is_constant_vector(kin, load.force) else None)
+        return Q, potential, f"P* = F·V*({load.at})"
+    if isinstance(load, Torque):
+        on = kin.partial_omegas(kin.model.body(load.on).frame)
+        if load.reaction_on is None:
+            other = (Vector.zero(),) * n
+        elif load.reaction_on in {b.name for b in kin.model.bodies}:
+            other = kin.partial_omegas(kin.model.body(load.reaction_on).frame)
+        else:
+            other = kin.partial_omegas(load.reaction_on)
+        Q = tuple(kin.frames.dot(load.torque, a - b) for a, b in zip(on, other))
+        return Q, None, "P* = C·Ω*"
+    if isinstance(load, (Spring, Damper)):
+        a, b = load.ends
+        d = kin.position(b) - kin.position(a)
+        rel = tuple(vb - va for va, vb in zip(kin.partial_velocities(a), kin.partial_velocities(b)))
+        d_rel = tuple(kin.frames.dot(d, r) for r in rel)  # d · ∂AB/∂q_i
+        dd = kin.frames.dot(d, d)
+        if isinstance(load, Spring):
+            if load.rest_length == 0:
+                factor = -load.stiffness
+                potential = se.Rational(1, 2) * load.stiffness * dd
+            else:
+                length = se.sqrt(dd)
+                factor = -load.stiffness * (length - load.rest_length) / length
+                potential = se.Rational(1, 2) * load.stiffness * (length - load.rest_length) ** 2
+            return tuple(factor * x for x in d_rel), potential, f"tension k(ℓ − ℓ0) along {a}{b}"
+        rate = kin.frames.dot(d, kin.velocity(b) - kin.velocity(a))  # ℓ ℓ̇
+        factor = -load.coefficient * rate / dd
+        return tuple(factor * x for x in d_rel), None, f"force c ℓ̇ along {a}{b}, opposing the elongation rate"
+    if isinstance(load, Potential):
+        return tuple(-load.energy.diff(q) for q in kin.q), load.energy, "Q_i = −∂U/∂q_i"
+    if isinstance(load, GeneralizedForce):
+        comps = dict(load.components)
+        names = [c.name for c in kin.model.coordinates]
+        return tuple(comps.get(name, zero) for name in names), None, "given generalized force"
+    raise TypeError(f"unknown load type {type(load).__name__}")  # pragma: no cover
+
+
+def _find_potential(kin: Kinematics, Q: tuple[se.Basic, ...]) -> se.Basic | None:
+    """U(q) with Q_i = −∂U/∂q_i, when Q depends on q only and ∂Q_i/∂q_j = ∂Q_j/∂q_i."""
+    free = set().union(*(x.free_symbols for x in Q))
+    if free & (set(kin.qd) | set(kin.qdd) | {kin.t}):
+        return None
+    if all(x == 0 for x in Q):
+        return se.Integer(0)
+    n = kin.n
+    curl = [Q[i].diff(kin.q[j]) - Q[j].diff(kin.q[i]) for i in range(n) for j in range(i + 1, n)]
+    if not all(are_zero(curl)):
+        return None
+    if sum(len(str(x)) for x in Q) > MAX_INTEGRATION_CHARS:
+        return None
+    # U = −∫ Q_1 dq_1, then add whatever each later Q_i still needs (classic potential search).
+    U = sympy.Integer(0)
+    for qi, Qi in zip(kin.q, Q):
+        residue = sympy.expand(-Qi._sympy_() - sympy.diff(U, qi._sympy_()))
+        if residue == 0:
+            continue
+        part = sympy.integrate(residue, qi._sympy_())
+        if part.has(sympy.Integral):
+            return None
+        U = U + part
+    return sympy2symengine(U)
+
+
+def generalized_forces(kin: Kinematics) -> tuple[LoadForces, ...]:
+    """Q_i of every load of the model, by virtual power, with its potential when it has one."""
+    out = []
+    for load in kin.model.loads:
+        Q, candidate, note = _q_of(kin, load)
+        potential = candidate
+        if potential is not None and not all(are_zero([q + potential.diff(s) for q, s in zip(Q, kin.q)])):
+            potential = None  # e.g. a field that turns with time: no potential after all
+        if potential is None:
+            potential = _find_potential(kin, Q)
+            if potential is not None and not all(are_zero([q + potential.diff(s) for q, s in zip(Q, kin.q)])):
+                potential = None
+        if potential is not None and potential.free_symbols & set(kin.qd):
+            potential = None
+        power = se.Add(*(q * s for q, s in zip(Q, kin.q_star)))
+        out.append(LoadForces(load.name, type(load).__name__.lower(), Q, power, potential, note))
+    return tuple(out)
+

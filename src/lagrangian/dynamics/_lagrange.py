@@ -1,0 +1,176 @@
+"""The n Lagrange equations L(q_i) and the equations of motion M q̈ = F.
+
+Seed, section II:
+
+    L(q_i)   d/dt[∂T/∂q̇_i] − ∂T/∂q_i = −∂U_P/∂q_i + Q_i(non-conservative),   i = 1..n
+
+and, when every given effort derives from a potential and every constraint is
+perfect and principal (Remarque 2), with L = T − U_P:
+
+    L(q_i)   d/dt[∂L/∂q̇_i] − ∂L/∂q_i = 0.
+
+`derive` computes Γ_i twice: from T (the form shown to the user, term by term as
+in the seed) and from its definition ∫ γ·∂OP/∂q_i dm (the matrix form M q̈ = F used
+by numerics, see `_inertia`).  The two must agree; the test suite checks it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import symengine as se
+
+from ..errors import DerivationError
+from ..kinematics import Kinematics
+from ..model import Model
+from ._energy import KineticEnergyTerm, RigidInertia, kinetic_energy
+from ._forces import LoadForces, generalized_forces
+from ._inertia import mass_matrix_and_bias
+
+__all__ = ["LagrangeEquation", "EquationsOfMotion", "derive"]
+
+
+@dataclass(frozen=True, slots=True)
+class LagrangeEquation:
+    """L(q_i), with every term of the seed's layout.
+
+    ``lhs`` is Γ_i = d/dt(∂T/∂q̇_i) − ∂T/∂q_i and ``rhs`` is −∂U/∂q_i + Q_i(nc).
+    """
+
+    coordinate: str
+    dT_dqd: se.Basic  # ∂T/∂q̇_i
+    dT_dq: se.Basic  # ∂T/∂q_i
+    dU_dq: se.Basic  # ∂U_P/∂q_i
+    Q_nc: se.Basic  # Q_i of the non-conservative efforts
+    lhs: se.Basic  # Γ_i
+    rhs: se.Basic  # −∂U/∂q_i + Q_i(nc)
+
+
+@dataclass(frozen=True, slots=True)
+class EquationsOfMotion:
+    """Everything `derive` finds for a model, as values to print, inspect and reuse.
+
+    Attributes
+    ----------
+    model, kinematics : the input and its kinematics (Ω, V, γ, V*).
+    q, qd, qdd, t : coordinate symbols q_i, q̇_i, q̈_i and the time.
+    T_terms : T(Σ/R0) body by body, with the theorem used; ``T`` is their sum.
+    inertias : the inertia matrix each body's T uses.
+    loads : Q_i of every load by virtual power, with its potential if conservative.
+    U : U_P(Σ/R0), the sum of the potentials of the conservative loads.
+    conservative : every load derives from a potential (Remarque 2); then ``L`` = T − U.
+    equations : the n Lagrange equations L(q_i) (Remarque 1: as many as coordinates).
+    M, F : the matrix form M(q, t) q̈ = F(q, q̇, t); M is n×n symmetric.
+    """
+
+    model: Model
+    kinematics: Kinematics
+    T_terms: tuple[KineticEnergyTerm, ...]
+    inertias: dict[str, RigidInertia]
+    loads: tuple[LoadForces, ...]
+    equations: tuple[LagrangeEquation, ...]
+    M: tuple[tuple[se.Basic, ...], ...]
+    F: tuple[se.Basic, ...]
+
+    def __post_init__(self) -> None:
+        n = len(self.model.coordinates)
+        if len(self.M) != n or any(len(row) != n for row in self.M) or len(self.F) != n:
+            raise DerivationError(f"M must be {n}×{n} and F of length {n}, one per coordinate")
+        if len(self.equations) != n:
+            raise DerivationError("there must be as many Lagrange equations as coordinates (Remarque 1)")
+
+    @property
+    def q(self) -> tuple[se.Symbol, ...]:
+        return self.kinematics.q
+
+    @property
+    def qd(self) -> tuple[se.Symbol, ...]:
+        return self.kinematics.qd
+
+    @property
+    def qdd(self) -> tuple[se.Symbol, ...]:
+        return self.kinematics.qdd
+
+    @property
+    def t(self) -> se.Symbol:
+        return self.kinematics.t
+
+    @property
+    def coordinates(self) -> tuple[str, ...]:
+        return tuple(c.name for c in self.model.coordinates)
+
+    @property
+    def T(self) -> se.Basic:
+        """T(Σ/R0)."""
+        return se.Add(*(term.expression for term in self.T_terms))
+
+    @property
+    def U(self) -> se.Basic:
+        """U_P(Σ/R0), up to a constant: the sum of the potentials of the conservative loads."""
+        return se.Add(*(f.potential for f in self.loads if f.potential is not None))
+
+    @property
+    def conservative(self) -> bool:
+        """Remarque 2: every given effort derives from a potential (constraints are perfect and principal)."""
+        return all(f.potential is not None for f in self.loads)
+
+    @property
+    def L(self) -> se.Basic | None:
+        """The Lagrangian L = T − U_P when the system is conservative, else None."""
+        return self.T - self.U if self.conservative else None
+
+    @property
+    def Q_nc(self) -> tuple[se.Basic, ...]:
+        """Generalized forces of the non-conservative efforts, Σ over those loads."""
+        n = len(self.q)
+        return tuple(se.Add(*(f.Q[i] for f in self.loads if f.potential is None)) for i in range(n))
+
+    def equation(self, coordinate: str) -> LagrangeEquation:
+        for eq in self.equations:
+            if eq.coordinate == coordinate:
+                return eq
+        raise KeyError(coordinate)
+
+
+def lagrange_equations(kin: Kinematics, T: se.Basic, U: se.Basic,
+                       Q_nc: tuple[se.Basic, ...]) -> tuple[LagrangeEquation, ...]:
+    """L(q_i) from T, U and Q_nc:  d/dt(∂T/∂q̇_i) − ∂T/∂q_i = −∂U/∂q_i + Q_i(nc)."""
+    out = []
+    for c, q, qd, q_nc in zip(kin.model.coordinates, kin.q, kin.qd, Q_nc):
+        dT_dqd = T.diff(qd)
+        dT_dq = T.diff(q)
+        dU_dq = U.diff(q)
+        gamma = kin.d_dt(dT_dqd) - dT_dq
+        out.append(LagrangeEquation(c.name, dT_dqd, dT_dq, dU_dq, q_nc, gamma, -dU_dq + q_nc))
+    return tuple(out)
+
+
+def derive(model: Model) -> EquationsOfMotion:
+    """From a model to its Lagrange equations, following the seed's steps 2–6.
+
+    Parameters
+    ----------
+    model : a checked `Model` (`load_model`, `parse_model` or `ModelBuilder.build`).
+
+    Returns
+    -------
+    EquationsOfMotion
+        T, U, the Q_i of every load, the n equations L(q_i) and M q̈ = F.
+
+    Raises
+    ------
+    ModelError
+        For data only kinematics can check (non-physical inertia, a fixed point that moves).
+    """
+    kin = Kinematics(model)
+    T_terms, inertias = kinetic_energy(kin)
+    loads = generalized_forces(kin)
+    T = se.Add(*(term.expression for term in T_terms))
+    U = se.Add(*(f.potential for f in loads if f.potential is not None))
+    n = kin.n
+    Q_nc = tuple(se.Add(*(f.Q[i] for f in loads if f.potential is None)) for i in range(n))
+    equations = lagrange_equations(kin, T, U, Q_nc)
+    M, gamma0 = mass_matrix_and_bias(kin, inertias)
+    Q_total = tuple(se.Add(*(f.Q[i] for f in loads)) for i in range(n))
+    F = tuple(Q - g for Q, g in zip(Q_total, gamma0))
+    return EquationsOfMotion(model, kin, T_terms, inertias, loads, equations, M, F)

@@ -1,0 +1,105 @@
+"""Kinematics of a model: positions, velocities, accelerations, Ω, and the virtual velocity field.
+
+The virtual velocity field compatible with the principal constraints is
+V*(P) = Σ_i ∂OP/∂q_i q_i*  (seed, section I), and ∂OP/∂q_i = ∂V(P/R0)/∂q̇_i, so the
+*partial velocities* ∂V(P/R0)/∂q̇_i are the coefficients of the field.  Likewise the
+partial angular velocities ∂Ω(S/R0)/∂q̇_i give the virtual rotation rate Ω*(S).
+"""
+
+from __future__ import annotations
+
+import symengine as se
+
+from ..errors import KinematicsError
+from ..model import ORIGIN, TIME, Model, Point, Vector
+from ._frames import FrameTree
+from ._time import TimeDerivative
+
+__all__ = ["Kinematics"]
+
+
+class Kinematics:
+    """Everything kinematic about a `Model`, computed on demand and cached.
+
+    Attributes
+    ----------
+    q, qd, qdd : tuples of SymEngine symbols q_i, q̇_i, q̈_i in coordinate order.
+    t : the time symbol.
+    frames : the `FrameTree` (change of basis, Ω).
+    """
+
+    def __init__(self, model: Model) -> None:
+        self.model = model
+        self.q = tuple(c.symbol for c in model.coordinates)
+        self.qd = tuple(c.rate_symbol for c in model.coordinates)
+        self.qdd = tuple(c.acceleration_symbol for c in model.coordinates)
+        self.q_star = tuple(se.Symbol(c.name + "_star") for c in model.coordinates)
+        self.t = TIME
+        self.d_dt = TimeDerivative.of(self.q, self.qd, self.qdd, self.t)
+        self.frames = FrameTree(model, self.d_dt)
+        points: dict[str, Point] = {p.name: p for p in model.points}
+        points.update({b.name: Point(b.name, b.center) for b in model.bodies})
+        points.update({p.name: Point(p.name, p.position) for p in model.particles})
+        self._points = points
+        self._velocity: dict[str, Vector] = {}
+        self._acceleration: dict[tuple[str, bool], Vector] = {}
+        self._partials: dict[str, tuple[Vector, ...]] = {}
+        self._omega_partials: dict[str, tuple[Vector, ...]] = {}
+
+    @property
+    def n(self) -> int:
+        """Number of principal parameters (and of Lagrange equations, Remarque 1)."""
+        return len(self.q)
+
+    # -- points ------------------------------------------------------------------------------
+    def position(self, point: str) -> Vector:
+        """OP, the position of ``point`` from O (a body name means its centre of mass G)."""
+        try:
+            return self._points[point].position
+        except KeyError:
+            raise KinematicsError(f"unknown point `{point}`", fix="use a declared point, body or particle") from None
+
+    def velocity(self, point: str) -> Vector:
+        """V(P/R0) = d OP/dt relative to R0."""
+        if point not in self._velocity:
+            self._velocity[point] = self.frames.derivative(self.position(point))
+        return self._velocity[point]
+
+    def acceleration(self, point: str, *, accelerations: bool = True) -> Vector:
+        """γ(P/R0); with ``accelerations=False`` the part free of q̈ (the q̈ part is Σ ∂V/∂q̇_j q̈_j)."""
+        key = (point, accelerations)
+        if key not in self._acceleration:
+            self._acceleration[key] = self.frames.derivative(self.velocity(point), accelerations=accelerations)
+        return self._acceleration[key]
+
+    def partial_velocities(self, point: str) -> tuple[Vector, ...]:
+        """(∂OP/∂q_i)_i = (∂V(P/R0)/∂q̇_i)_i, the coefficients of V*(P)."""
+        if point not in self._partials:
+            v = self.velocity(point)
+            self._partials[point] = tuple(v.diff(qd) for qd in self.qd)
+        return self._partials[point]
+
+    def virtual_velocity(self, point: str) -> Vector:
+        """V*(P) = Σ_i ∂OP/∂q_i q_i*, with the virtual rates written ``<q>_star``."""
+        out = Vector.zero()
+        for partial, star in zip(self.partial_velocities(point), self.q_star):
+            out = out + partial * star
+        return out
+
+    def is_fixed(self, point: str) -> bool:
+        """True when V(P/R0) is identically zero."""
+        return point == ORIGIN or all(
+            se.expand(c) == 0 for comps in self.velocity(point).pieces.values() for c in comps
+        )
+
+    # -- rotation ----------------------------------------------------------------------------
+    def omega(self, frame: str) -> Vector:
+        """Ω(frame/R0) as the sum of the rotation rates of its chain."""
+        return self.frames.omega(frame)
+
+    def partial_omegas(self, frame: str) -> tuple[Vector, ...]:
+        """(∂Ω(frame/R0)/∂q̇_i)_i, the coefficients of the virtual rotation rate Ω*."""
+        if frame not in self._omega_partials:
+            w = self.omega(frame)
+            self._omega_partials[frame] = tuple(w.diff(qd) for qd in self.qd)
+        return self._omega_partials[frame]

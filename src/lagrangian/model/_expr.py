@@ -1,0 +1,300 @@
+"""The safe expression grammar of model files.
+
+Model files come from strangers, so their text is never evaluated: it is read by
+this small recursive-descent parser, which knows only numbers, declared names, the
+operators ``+ - * / ^ **``, parentheses, a fixed list of functions and the basis
+vectors ``R.x``, ``R.y``, ``R.z`` of declared frames.  Grammar (``^`` and ``**`` bind
+tighter than unary minus and associate to the right, so ``-x^2`` is ``-(x^2)``)::
+
+    expr    := term (('+' | '-') term)*
+    term    := unary (('*' | '/') unary)*
+    unary   := ('+' | '-') unary | power
+    power   := atom (('^' | '**') unary)?
+    atom    := NUMBER | NAME | NAME '.' AXIS | FUNC '(' expr ')' | '(' expr ')'
+
+Every value is either a scalar (a SymEngine expression) or a `Vector`; the parser
+checks the types (no vector in a sine, no product of two vectors) and reports each
+mistake with its column.  Decimal numbers are read exactly (``0.1`` is 1/10) so that
+symbolic results stay exact.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Collection, Mapping
+from dataclasses import dataclass
+from fractions import Fraction
+
+import symengine as se
+
+from ._vector import AXES, Vector
+
+__all__ = ["ExpressionError", "parse_expression", "FUNCTIONS"]
+
+#: The only functions a model file may call.
+FUNCTIONS: dict[str, Callable[[se.Basic], se.Basic]] = {
+    "sin": se.sin,
+    "cos": se.cos,
+    "tan": se.tan,
+    "asin": se.asin,
+    "acos": se.acos,
+    "atan": se.atan,
+    "sinh": se.sinh,
+    "cosh": se.cosh,
+    "tanh": se.tanh,
+    "exp": se.exp,
+    "log": se.log,
+    "sqrt": se.sqrt,
+    "abs": se.Abs,
+}
+
+#: Largest numeric exponent accepted (guards against `9^9^9` in untrusted files).
+MAX_EXPONENT = 1000
+
+#: Names with a fixed meaning in every model.
+CONSTANTS: dict[str, se.Basic] = {"pi": se.pi}
+
+_TOKEN = re.compile(
+    r"\s*(?:(?P<number>(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)"
+    r"|(?P<name>[A-Za-z_][A-Za-z0-9_]*)"
+    r"|(?P<op>\*\*|[-+*/^().,]))"
+)
+
+
+class ExpressionError(ValueError):
+    """A mistake in an expression, with the 1-based column it was found at."""
+
+    def __init__(self, message: str, column: int, *, symbol: str | None = None, fix: str | None = None):
+        super().__init__(message)
+        self.message = message
+        self.column = column
+        self.symbol = symbol
+        self.fix = fix
+
+
+@dataclass(frozen=True, slots=True)
+class _Token:
+    kind: str  # "number", "name", "op" or "end"
+    text: str
+    column: int  # 1-based
+
+
+def _tokenize(text: str) -> list[_Token]:
+    tokens: list[_Token] = []
+    pos = 0
+    while pos < len(text):
+        if text[pos:].strip() == "":
+            break
+        match = _TOKEN.match(text, pos)
+        if match is None or match.end() == pos:
+            col = pos + len(text[pos:]) - len(text[pos:].lstrip()) + 1
+            bad = text[col - 1]
+            raise ExpressionError(
+                f"unexpected character `{bad}`",
+                col,
+                fix="expressions may use numbers, declared names, + - * / ^ ** and parentheses",
+            )
+        kind = match.lastgroup or "op"
+        start = match.start(kind)
+        tokens.append(_Token(kind, match.group(kind), start + 1))
+        pos = match.end()
+    tokens.append(_Token("end", "", len(text) + 1))
+    return tokens
+
+
+class _Parser:
+    def __init__(self, text: str, names: Mapping[str, se.Basic], frames: Collection[str]):
+        self.text = text
+        self.names = names
+        self.frames = frames
+        self.tokens = _tokenize(text)
+        self.i = 0
+
+    # -- token helpers --------------------------------------------------------------
+    @property
+    def tok(self) -> _Token:
+        return self.tokens[self.i]
+
+    def _advance(self) -> _Token:
+        tok = self.tokens[self.i]
+        self.i += 1
+        return tok
+
+    def _expect(self, text: str) -> _Token:
+        if self.tok.text != text:
+            found = "the end of the expression" if self.tok.kind == "end" else f"`{self.tok.text}`"
+            raise ExpressionError(f"expected `{text}` but found {found}", self.tok.column)
+        return self._advance()
+
+    # -- grammar --------------------------------------------------------------------
+    def parse(self) -> se.Basic | Vector:
+        if self.tok.kind == "end":
+            raise ExpressionError("the expression is empty", 1, fix="write a number or an expression")
+        value = self.expr()
+        if self.tok.kind != "end":
+            raise ExpressionError(
+                f"unexpected `{self.tok.text}` after a complete expression",
+                self.tok.column,
+                fix="an operator such as `*` may be missing",
+            )
+        return value
+
+    def expr(self) -> se.Basic | Vector:
+        value = self.term()
+        while self.tok.text in ("+", "-"):
+            op = self._advance()
+            rhs = self.term()
+            value = self._combine(op, value, rhs)
+        return value
+
+    def term(self) -> se.Basic | Vector:
+        value = self.unary()
+        while self.tok.text in ("*", "/"):
+            op = self._advance()
+            rhs = self.unary()
+            value = self._combine(op, value, rhs)
+        return value
+
+    def unary(self) -> se.Basic | Vector:
+        if self.tok.text in ("+", "-"):
+            op = self._advance()
+            value = self.unary()
+            return -value if op.text == "-" else value
+        return self.power()
+
+    def power(self) -> se.Basic | Vector:
+        base = self.atom()
+        if self.tok.text in ("^", "**"):
+            op = self._advance()
+            exponent = self.unary()
+            if isinstance(base, Vector) or isinstance(exponent, Vector):
+                raise ExpressionError("a vector cannot be raised to a power", op.column,
+                                      fix="write the scalar expression, e.g. `l^2`, not a vector")
+            if exponent.is_Number and abs(float(exponent)) > MAX_EXPONENT:
+                # A stranger's `9^9^9` must not hang the parser on integer arithmetic.
+                raise ExpressionError(f"the exponent `{exponent}` is too large", op.column,
+                                      fix=f"exponents are limited to {MAX_EXPONENT} in absolute value")
+            return base**exponent
+        return base
+
+    def atom(self) -> se.Basic | Vector:
+        tok = self._advance()
+        if tok.kind == "number":
+            return _exact_number(tok.text)
+        if tok.text == "(":
+            value = self.expr()
+            self._expect(")")
+            return value
+        if tok.kind == "name":
+            if self.tok.text == "(":
+                return self._call(tok)
+            if self.tok.text == ".":
+                return self._basis_vector(tok)
+            if tok.text in self.names:
+                return self.names[tok.text]
+            if tok.text in CONSTANTS:
+                return CONSTANTS[tok.text]
+            if tok.text in self.frames:
+                raise ExpressionError(
+                    f"`{tok.text}` is a frame, not a scalar", tok.column, symbol=tok.text,
+                    fix=f"write one of its basis vectors, `{tok.text}.x`, `{tok.text}.y` or `{tok.text}.z`",
+                )
+            raise ExpressionError(
+                f"unknown symbol `{tok.text}`", tok.column, symbol=tok.text,
+                fix=f"declare `{tok.text}` under [parameters] or [coordinates], or correct its spelling",
+            )
+        found = "the end of the expression" if tok.kind == "end" else f"`{tok.text}`"
+        raise ExpressionError(f"expected a number, a name or `(` but found {found}", tok.column)
+
+    def _call(self, name: _Token) -> se.Basic:
+        fn = FUNCTIONS.get(name.text)
+        if fn is None:
+            raise ExpressionError(
+                f"unknown function `{name.text}`", name.column, symbol=name.text,
+                fix="the functions allowed are " + ", ".join(sorted(FUNCTIONS)),
+            )
+        self._expect("(")
+        arg = self.expr()
+        if self.tok.text == ",":
+            raise ExpressionError(f"`{name.text}` takes one argument", self.tok.column, symbol=name.text)
+        self._expect(")")
+        if isinstance(arg, Vector):
+            raise ExpressionError(f"`{name.text}` of a vector is not defined", name.column, symbol=name.text,
+                                  fix="apply functions to scalars only")
+        return fn(arg)
+
+    def _basis_vector(self, frame: _Token) -> Vector:
+        self._advance()  # the dot
+        axis = self._advance()
+        if frame.text not in self.frames:
+            raise ExpressionError(
+                f"unknown frame `{frame.text}` in `{frame.text}.{axis.text}`", frame.column, symbol=frame.text,
+                fix="declare the frame under [frames] (R0 is the Galilean frame), or correct its name",
+            )
+        if axis.text not in AXES:
+            raise ExpressionError(
+                f"`{axis.text}` is not an axis of frame `{frame.text}`", axis.column, symbol=axis.text,
+                fix=f"write `{frame.text}.x`, `{frame.text}.y` or `{frame.text}.z`",
+            )
+        return Vector.basis(frame.text, axis.text)
+
+    # -- typed arithmetic -------------------------------------------------------------
+    def _combine(self, op: _Token, lhs: se.Basic | Vector, rhs: se.Basic | Vector) -> se.Basic | Vector:
+        lv, rv = isinstance(lhs, Vector), isinstance(rhs, Vector)
+        if op.text in "+-":
+            if lv != rv:
+                raise ExpressionError(
+                    f"cannot {'add' if op.text == '+' else 'subtract'} a vector and a scalar", op.column,
+                    fix="every term of a vector expression must be a vector, e.g. `a*R.z`",
+                )
+            return lhs + rhs if op.text == "+" else lhs - rhs
+        if op.text == "*":
+            if lv and rv:
+                raise ExpressionError("the product of two vectors is not defined here", op.column,
+                                      fix="multiply each basis vector by a scalar, e.g. `l*sin(q)*R0.x`")
+            return lhs * rhs
+        # division
+        if rv:
+            raise ExpressionError("cannot divide by a vector", op.column)
+        return lhs / rhs
+
+
+def _exact_number(text: str) -> se.Basic:
+    value = Fraction(text)
+    if value.denominator == 1:
+        return se.Integer(value.numerator)
+    return se.Rational(value.numerator, value.denominator)
+
+
+def parse_expression(
+    text: str,
+    names: Mapping[str, se.Basic],
+    frames: Collection[str] = (),
+) -> se.Basic | Vector:
+    """Parse ``text`` into a SymEngine scalar or a `Vector`, without evaluating it.
+
+    Parameters
+    ----------
+    text : the expression, e.g. ``"a*R.z"`` or ``"m*g*l*(1 - cos(theta))"``.
+    names : the declared scalar names (parameters, coordinates, their rates, ``t``).
+    frames : the declared frame names, whose basis vectors ``F.x``, ``F.y``, ``F.z``
+        may be used.
+
+    Raises
+    ------
+    ExpressionError
+        With the 1-based column of the mistake and, when there is one, the symbol.
+
+    Examples
+    --------
+    >>> import symengine as se
+    >>> parse_expression("2^-1*a", {"a": se.Symbol("a")})
+    a/2
+    """
+    if not isinstance(text, str):
+        raise TypeError("parse_expression reads text only")
+    try:
+        return _Parser(text, names, frames).parse()
+    except RecursionError:
+        raise ExpressionError("the expression is nested too deeply", 1,
+                              fix="split it, or remove redundant parentheses") from None

@@ -1,0 +1,177 @@
+"""Vectors written in the bases of several frames, as the course writes them.
+
+A vector such as ``ψ̇ z0 + θ̇ u + φ̇ z`` is kept as a sum of *pieces*, one per frame,
+each holding the three components in that frame's basis.  Nothing is converted to a
+common basis until a dot or cross product needs it (that is the job of
+`lagrangian.kinematics`), which keeps expressions as short as the course's.
+
+Only the linear operations live here (sum, product by a scalar, component-wise
+derivative): they need no knowledge of how frames are oriented.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterator, Mapping
+from fractions import Fraction
+
+import symengine as se
+from symengine.lib.symengine_wrapper import sympy2symengine
+
+__all__ = ["Vector", "AXES", "as_expr"]
+
+#: Index of each axis letter in a frame's basis.
+AXES = {"x": 0, "y": 1, "z": 2}
+
+_ZERO = se.Integer(0)
+
+
+def as_expr(value: object) -> se.Basic:
+    """Turn a number or a SymPy/SymEngine object into a SymEngine expression.
+
+    Text is refused on purpose: model text is only ever read by the grammar in
+    `lagrangian.model.parse_expression`, never handed to a converter that could
+    evaluate it.
+    """
+    if isinstance(value, se.Basic):
+        return value
+    if isinstance(value, (str, bytes)):
+        raise TypeError(
+            "text is not an expression here; parse it with lagrangian.model.parse_expression"
+        )
+    if isinstance(value, bool):
+        raise TypeError("a boolean is not an expression")
+    if isinstance(value, int):
+        return se.Integer(value)
+    if isinstance(value, Fraction):
+        return se.Rational(value.numerator, value.denominator)
+    if isinstance(value, float):
+        return se.RealDouble(value)
+    if hasattr(value, "_sympy_") or type(value).__module__.startswith("sympy"):
+        return sympy2symengine(value)
+    raise TypeError(f"cannot use a {type(value).__name__} as an expression")
+
+
+class Vector:
+    """An immutable sum of pieces ``{frame name: (c_x, c_y, c_z)}``.
+
+    Examples
+    --------
+    >>> import symengine as se
+    >>> a = se.Symbol("a")
+    >>> v = Vector.basis("R", "z") * a
+    >>> (v + v).pieces
+    {'R': (0, 0, 2*a)}
+    """
+
+    __slots__ = ("_pieces",)
+
+    def __init__(self, pieces: Mapping[str, tuple[se.Basic, se.Basic, se.Basic]] | None = None):
+        cleaned: dict[str, tuple[se.Basic, se.Basic, se.Basic]] = {}
+        for frame, comps in (pieces or {}).items():
+            comps = tuple(as_expr(c) for c in comps)
+            if len(comps) != 3:
+                raise ValueError("a vector piece has exactly three components")
+            if any(c != 0 for c in comps):
+                cleaned[frame] = comps  # type: ignore[assignment]
+        object.__setattr__(self, "_pieces", cleaned)
+
+    def __setattr__(self, name: str, value: object) -> None:
+        raise AttributeError("Vector is immutable")
+
+    # -- construction -------------------------------------------------------------
+    @classmethod
+    def basis(cls, frame: str, axis: str) -> Vector:
+        """The unit vector ``frame.axis`` (axis is ``x``, ``y`` or ``z``)."""
+        comps = [_ZERO, _ZERO, _ZERO]
+        comps[AXES[axis]] = se.Integer(1)
+        return cls({frame: tuple(comps)})  # type: ignore[arg-type]
+
+    @classmethod
+    def zero(cls) -> Vector:
+        return cls()
+
+    # -- access ---------------------------------------------------------------------
+    @property
+    def pieces(self) -> dict[str, tuple[se.Basic, se.Basic, se.Basic]]:
+        """A copy of the pieces, frame name to its three components."""
+        return dict(self._pieces)
+
+    @property
+    def frames(self) -> tuple[str, ...]:
+        return tuple(self._pieces)
+
+    def __iter__(self) -> Iterator[tuple[str, tuple[se.Basic, se.Basic, se.Basic]]]:
+        return iter(self._pieces.items())
+
+    def is_zero(self) -> bool:
+        """Structural test: no piece has a non-zero component."""
+        return not self._pieces
+
+    def free_symbols(self) -> set[se.Symbol]:
+        out: set[se.Symbol] = set()
+        for comps in self._pieces.values():
+            for c in comps:
+                out |= c.free_symbols
+        return out
+
+    # -- linear algebra -------------------------------------------------------------
+    def __add__(self, other: Vector) -> Vector:
+        if not isinstance(other, Vector):
+            return NotImplemented
+        out = dict(self._pieces)
+        for frame, comps in other._pieces.items():
+            if frame in out:
+                out[frame] = tuple(a + b for a, b in zip(out[frame], comps))  # type: ignore[assignment]
+            else:
+                out[frame] = comps
+        return Vector(out)
+
+    def __neg__(self) -> Vector:
+        return self.map(lambda c: -c)
+
+    def __sub__(self, other: Vector) -> Vector:
+        if not isinstance(other, Vector):
+            return NotImplemented
+        return self + (-other)
+
+    def __mul__(self, scalar: object) -> Vector:
+        if isinstance(scalar, Vector):
+            return NotImplemented
+        s = as_expr(scalar)
+        return self.map(lambda c: s * c)
+
+    __rmul__ = __mul__
+
+    def __truediv__(self, scalar: object) -> Vector:
+        s = as_expr(scalar)
+        return self.map(lambda c: c / s)
+
+    def map(self, fn: Callable[[se.Basic], se.Basic]) -> Vector:
+        """Apply ``fn`` to every component, piece by piece."""
+        return Vector({f: tuple(fn(c) for c in comps) for f, comps in self._pieces.items()})  # type: ignore[misc]
+
+    def diff(self, symbol: se.Symbol) -> Vector:
+        """Component-wise partial derivative (the basis vectors are held fixed)."""
+        return self.map(lambda c: c.diff(symbol))
+
+    def subs(self, mapping: Mapping[se.Basic, se.Basic]) -> Vector:
+        return self.map(lambda c: c.subs(mapping))
+
+    # -- comparison and display -----------------------------------------------------
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Vector):
+            return NotImplemented
+        return self._pieces == other._pieces
+
+    def __hash__(self) -> int:
+        return hash(tuple(sorted((f, c) for f, c in self._pieces.items())))
+
+    def __repr__(self) -> str:
+        if not self._pieces:
+            return "0"
+        terms = []
+        for frame, comps in self._pieces.items():
+            for axis, c in zip("xyz", comps):
+                if c != 0:
+                    terms.append(f"({c})*{frame}.{axis}")
+        return " + ".join(terms)

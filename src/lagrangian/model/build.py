@@ -1,0 +1,594 @@
+"""The Python builder API: declare a system piece by piece, then `build` a checked `Model`.
+
+The TOML reader (`lagrangian.model.load_model`) goes through this same builder, so
+the two ways of describing a system accept and reject exactly the same things.
+Expressions may be given as text (read by the safe grammar of `_expr`, never
+evaluated) or as SymPy/SymEngine objects.
+
+Every check that can be made without kinematics is made here, with the file and
+line of the declaration when it came from a file: unknown and duplicated names,
+frame cycles and frames with two parents, points defined in terms of each other,
+bodies without inertia, unused coordinates, loads on unknown points.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import symengine as se
+
+from ..errors import ModelError
+from ._expr import CONSTANTS, FUNCTIONS, ExpressionError, parse_expression
+from ._vector import Vector, as_expr
+from .spec import (
+    GALILEAN_FRAME,
+    ORIGIN,
+    TIME,
+    Body,
+    Coordinate,
+    Damper,
+    Frame,
+    GeneralizedForce,
+    Gravity,
+    Inertia,
+    Load,
+    Location,
+    Model,
+    Parameter,
+    Particle,
+    Point,
+    PointForce,
+    Potential,
+    Rotation,
+    Spring,
+    Torque,
+)
+
+__all__ = ["ModelBuilder"]
+
+_RESERVED = {"t", *CONSTANTS, *FUNCTIONS, GALILEAN_FRAME, ORIGIN, "G"}
+
+
+@dataclass(frozen=True, slots=True)
+class _Raw:
+    """A declaration as given, with where it came from."""
+
+    kind: str
+    name: str
+    data: dict[str, Any]
+    location: Location
+
+
+def _default_axes(frame: str) -> tuple[str, str, str]:
+    # R0 -> x0 y0 z0, R1 -> x1 y1 z1, R -> x y z, S -> x_S y_S z_S (the seed's habit).
+    if frame == "R":
+        return ("x", "y", "z")
+    if frame.startswith("R") and frame[1:].isdigit():
+        return tuple(a + frame[1:] for a in "xyz")  # type: ignore[return-value]
+    return tuple(f"{a}_{frame}" for a in "xyz")  # type: ignore[return-value]
+
+
+class ModelBuilder:
+    """Declare a system in Python, then call `build`.
+
+    Examples
+    --------
+    >>> b = ModelBuilder("simple pendulum")
+    >>> b.parameter("m", 1.0); b.parameter("l", 0.5); b.parameter("g", 9.81)
+    >>> b.coordinate("theta", initial=0.3)
+    >>> b.frame("R1", "R0", rotation=("theta", "z"))
+    >>> b.particle("P", mass="m", position="l*R1.x")
+    >>> b.gravity("weight", "g*R0.x")
+    >>> b.build().coordinates[0].name
+    'theta'
+    """
+
+    def __init__(self, name: str = "model", description: str = "", *, source: str | None = None) -> None:
+        self.name = name
+        self.description = description
+        self.source = source
+        self._decl: list[_Raw] = []
+
+    # -- declarations -------------------------------------------------------------------
+    def _add(self, what: str, name: str, location: Location | None, **data: Any) -> None:
+        if not isinstance(name, str) or not name.isidentifier():
+            raise ModelError(f"`{name}` is not a valid {what} name", symbol=str(name),
+                             fix="use letters, digits and underscores, starting with a letter",
+                             **_loc(location or Location(self.source)))
+        self._decl.append(_Raw(what, name, data, location or Location(self.source)))
+
+    def parameter(self, name: str, value: float | None = None, *, unit: str | None = None,
+                  description: str | None = None, location: Location | None = None) -> None:
+        """Declare a parameter (a constant symbol), with an optional numeric value."""
+        self._add("parameter", name, location, value=value, unit=unit, description=description)
+
+    def coordinate(self, name: str, initial: float | None = None, rate: float | None = None, *,
+                   momentum: str | None = None, unit: str | None = None, description: str | None = None,
+                   location: Location | None = None) -> None:
+        """Declare a principal parameter q_i, with optional q_i(0), q̇_i(0) and a name for its momentum integral."""
+        self._add("coordinate", name, location, initial=initial, rate=rate, momentum=momentum,
+                  unit=unit, description=description)
+
+    def frame(self, name: str, parent: str | None = GALILEAN_FRAME, *,
+              rotation: tuple[Any, str] | Sequence[tuple[Any, str]] | None = None,
+              axes: Sequence[str] | None = None, location: Location | None = None) -> None:
+        """Declare a frame obtained from ``parent`` by one rotation ``(angle, axis)`` or a sequence of them.
+
+        Each rotation is about the axis (``"x"``, ``"y"`` or ``"z"``) of the frame before it,
+        as in the seed: R0 →(ψ, z0)→ R1 →(θ, u)→ R2 →(φ, z)→ R.
+        """
+        self._add("frame", name, location, parent=parent, rotation=rotation, axes=axes)
+
+    def point(self, name: str, position: Any, *, relative_to: str = ORIGIN,
+              location: Location | None = None) -> None:
+        """Declare a point by its position vector from ``relative_to`` (default O)."""
+        self._add("point", name, location, position=position, relative_to=relative_to)
+
+    def body(self, name: str, *, frame: str, mass: Any, center: Any, inertia: Mapping[str, Any] | None,
+             center_from: str = ORIGIN, fixed_point: str | None = None, location: Location | None = None) -> None:
+        """Declare a rigid body fixed to ``frame``.
+
+        ``inertia`` is ``{"at": point or "G", "frame": name, "diagonal": [I1, I2, I3]}`` or
+        with ``"matrix": [[...], [...], [...]]`` instead of ``"diagonal"``.
+        """
+        self._add("body", name, location, frame=frame, mass=mass, center=center, center_from=center_from,
+                  inertia=inertia, fixed_point=fixed_point)
+
+    def particle(self, name: str, *, mass: Any, position: Any, relative_to: str = ORIGIN,
+                 location: Location | None = None) -> None:
+        """Declare a point mass."""
+        self._add("particle", name, location, mass=mass, position=position, relative_to=relative_to)
+
+    def gravity(self, name: str, field: Any, *, on: Sequence[str] = (), location: Location | None = None) -> None:
+        """Uniform gravity g⃗ (e.g. ``"-g*R0.z"``) on the named bodies and particles (all when empty)."""
+        self._add("load", name, location, kind="gravity", field=field, on=tuple(on))
+
+    def force(self, name: str, force: Any, *, at: str, location: Location | None = None) -> None:
+        """A force F⃗ applied at point ``at`` (it may depend on q, q̇ and t)."""
+        self._add("load", name, location, kind="force", force=force, at=at)
+
+    def torque(self, name: str, torque: Any, *, on: str, reaction_on: str | None = None,
+               location: Location | None = None) -> None:
+        """A couple C⃗ on body ``on``; −C⃗ on ``reaction_on`` when given."""
+        self._add("load", name, location, kind="torque", torque=torque, on=on, reaction_on=reaction_on)
+
+    def spring(self, name: str, ends: Sequence[str], *, stiffness: Any, rest_length: Any = 0,
+               location: Location | None = None) -> None:
+        """A linear spring between two points."""
+        self._add("load", name, location, kind="spring", ends=tuple(ends), stiffness=stiffness,
+                  rest_length=rest_length)
+
+    def damper(self, name: str, ends: Sequence[str], *, coefficient: Any, location: Location | None = None) -> None:
+        """A linear viscous damper between two points."""
+        self._add("load", name, location, kind="damper", ends=tuple(ends), coefficient=coefficient)
+
+    def potential(self, name: str, energy: Any, *, location: Location | None = None) -> None:
+        """A given potential energy U(q, t)."""
+        self._add("load", name, location, kind="potential", energy=energy)
+
+    def generalized_force(self, name: str, components: Mapping[str, Any], *,
+                          location: Location | None = None) -> None:
+        """Given generalized-force components, e.g. ``{"theta": "-c*theta_dot"}``."""
+        self._add("load", name, location, kind="generalized_force", components=dict(components))
+
+    # -- build ----------------------------------------------------------------------------
+    def build(self) -> Model:
+        """Check every declaration and return the frozen `Model`.
+
+        Raises
+        ------
+        ModelError
+            Naming the file, line and symbol of the first problem found, and its fix.
+        """
+        return _Assembler(self).run()
+
+
+def _loc(location: Location) -> dict[str, Any]:
+    return {"file": location.file, "line": location.line}
+
+
+class _Assembler:
+    """Turns the raw declarations into a `Model`, one check at a time."""
+
+    def __init__(self, builder: ModelBuilder) -> None:
+        self.b = builder
+        self.decl = builder._decl
+        self.symbols: dict[str, se.Basic] = {"t": TIME}
+        self.frame_names: list[str] = [GALILEAN_FRAME]
+        self.locations: dict[tuple[str, str], Location] = {}
+
+    def of(self, kind: str) -> list[_Raw]:
+        return [d for d in self.decl if d.kind == kind]
+
+    def error(self, raw: _Raw | Location | None, message: str, *, fix: str | None = None,
+              symbol: str | None = None) -> ModelError:
+        loc = raw.location if isinstance(raw, _Raw) else (raw or Location(self.b.source))
+        return ModelError(message, fix=fix, symbol=symbol, **_loc(loc))
+
+    # -- expressions ------------------------------------------------------------------------
+    def expr(self, raw: _Raw, what: str, value: Any, *, vector: bool | None = False) -> Any:
+        """Parse ``value`` (text or object) as a scalar (vector=False) or vector (True)."""
+        if isinstance(value, str):
+            try:
+                parsed = parse_expression(value, self.symbols, self.frame_names)
+            except ExpressionError as exc:
+                column = f", column {exc.column}" if exc.column else ""
+                raise ModelError(
+                    f"in {what} of {raw.kind} `{raw.name}`: {exc.message} (in `{value}`{column})",
+                    fix=exc.fix, symbol=exc.symbol or raw.name, column=exc.column, **_loc(raw.location),
+                ) from None
+        elif isinstance(value, Vector):
+            parsed = value
+        else:
+            try:
+                parsed = as_expr(value)
+            except TypeError as exc:
+                raise self.error(raw, f"in {what} of {raw.kind} `{raw.name}`: {exc}") from None
+            unknown = {str(s) for s in parsed.free_symbols} - set(self.symbols)
+            if unknown:
+                name = sorted(unknown)[0]
+                raise self.error(raw, f"in {what} of {raw.kind} `{raw.name}`: unknown symbol `{name}`",
+                                 symbol=name, fix=f"declare `{name}` as a parameter or a coordinate")
+        if vector is True and not isinstance(parsed, Vector):
+            if parsed == 0:
+                return Vector.zero()
+            raise self.error(raw, f"{what} of {raw.kind} `{raw.name}` must be a vector, not the scalar `{value}`",
+                             fix="write it on basis vectors, e.g. `l*R1.x` or `-g*R0.z`", symbol=raw.name)
+        if vector is False and isinstance(parsed, Vector):
+            raise self.error(raw, f"{what} of {raw.kind} `{raw.name}` must be a scalar, not a vector",
+                             fix="remove the basis vectors (`R.x`, ...) from it", symbol=raw.name)
+        return parsed
+
+    # -- the stages of the build ---------------------------------------------------------------
+    def run(self) -> Model:
+        self.check_names()
+        parameters = self.parameters()
+        coordinates = self.coordinates()
+        frames = self.frames()
+        points = self.points()
+        bodies = self.bodies(points)
+        particles = self.particles(points)
+        all_points = {p.name: p for p in points}
+        all_points.update({b.name: Point(b.name, b.center) for b in bodies})
+        all_points.update({p.name: Point(p.name, p.position) for p in particles})
+        loads = self.loads(all_points, bodies, particles, coordinates)
+        model = Model(
+            name=self.b.name,
+            description=self.b.description,
+            parameters=parameters,
+            coordinates=coordinates,
+            frames=frames,
+            points=tuple(points),
+            bodies=bodies,
+            particles=particles,
+            loads=loads,
+            source=self.b.source,
+            locations=self.locations,
+        )
+        self.check_coordinates_used(model)
+        return model
+
+    def check_names(self) -> None:
+        seen: dict[str, _Raw] = {}
+        for raw in self.decl:
+            self.locations[(raw.kind, raw.name)] = raw.location
+            if raw.kind == "frame" and raw.name == GALILEAN_FRAME:
+                continue  # R0 may be re-declared to name its axes
+            names = [raw.name]
+            if raw.kind == "coordinate":
+                names += [raw.name + "_dot", raw.name + "_ddot"]
+            for name in names:
+                if raw.kind != "load" and name in _RESERVED:
+                    raise self.error(raw, f"`{name}` is a reserved name and cannot name a {raw.kind}",
+                                     symbol=name, fix="choose another name (t, pi, R0, O, G and the "
+                                     "function names are reserved)")
+                key = name if raw.kind != "load" else "load:" + name
+                if key in seen:
+                    first = seen[key]
+                    where = f" (first declared as a {first.kind}"
+                    where += f" at line {first.location.line})" if first.location.line else ")"
+                    if raw.kind == first.kind == "frame":
+                        msg = (f"frame `{name}` is defined twice{where}; a frame has exactly one parent")
+                    else:
+                        msg = f"the name `{name}` is declared twice{where}"
+                    raise self.error(raw, msg, symbol=name, fix="rename one of them")
+                seen[key] = raw
+
+    def parameters(self) -> tuple[Parameter, ...]:
+        out = []
+        for raw in self.of("parameter"):
+            value = raw.data["value"]
+            if value is not None and (isinstance(value, bool) or not isinstance(value, (int, float))):
+                raise self.error(raw, f"the value of parameter `{raw.name}` must be a number, not `{value}`",
+                                 symbol=raw.name, fix="write a number, or leave the value out to keep it symbolic")
+            out.append(Parameter(raw.name, None if value is None else float(value), raw.data["unit"],
+                                 raw.data["description"]))
+            self.symbols[raw.name] = se.Symbol(raw.name)
+        return tuple(out)
+
+    def coordinates(self) -> tuple[Coordinate, ...]:
+        out = []
+        for raw in self.of("coordinate"):
+            for key in ("initial", "rate"):
+                v = raw.data[key]
+                if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float))):
+                    raise self.error(raw, f"`{key}` of coordinate `{raw.name}` must be a number, not `{v}`",
+                                     symbol=raw.name)
+            c = Coordinate(raw.name, _float(raw.data["initial"]), _float(raw.data["rate"]),
+                           raw.data["momentum"], raw.data["unit"], raw.data["description"])
+            out.append(c)
+            self.symbols[c.name] = c.symbol
+            self.symbols[c.rate_symbol.name] = c.rate_symbol
+        if not out:
+            raise ModelError("the model declares no coordinate", file=self.b.source,
+                             fix="declare the principal parameters q_i under [coordinates]")
+        return tuple(out)
+
+    def frames(self) -> tuple[Frame, ...]:
+        raws = {r.name: r for r in self.of("frame")}
+        self.frame_names = [GALILEAN_FRAME, *[n for n in raws if n != GALILEAN_FRAME]]
+        root = raws.pop(GALILEAN_FRAME, None)
+        if root is not None and (root.data["parent"] not in (None, GALILEAN_FRAME) or root.data["rotation"]):
+            raise self.error(root, "R0 is the Galilean frame and has no parent or rotation",
+                             symbol=GALILEAN_FRAME, fix="only `axes` may be given for R0")
+        r0_axes = tuple(root.data["axes"]) if root is not None and root.data["axes"] else _default_axes("R0")
+        ordered: list[Frame] = [Frame(GALILEAN_FRAME, None, None, r0_axes)]  # type: ignore[arg-type]
+        done = {GALILEAN_FRAME}
+        state: dict[str, str] = {}
+
+        def visit(name: str, chain: list[str]) -> None:
+            if name in done:
+                return
+            raw = raws[name]
+            if state.get(name) == "visiting":
+                cycle = chain[chain.index(name):] + [name]
+                raise self.error(raw, "frames " + " → ".join(f"`{c}`" for c in cycle) + " form a cycle",
+                                 symbol=name, fix="every frame must descend from R0 through a chain of parents")
+            state[name] = "visiting"
+            parent = raw.data["parent"]
+            if parent is None:
+                raise self.error(raw, f"frame `{name}` has no parent", symbol=name,
+                                 fix='give it one with `from = "R0"` (or another frame)')
+            if parent not in raws and parent != GALILEAN_FRAME:
+                raise self.error(raw, f"frame `{name}` comes from unknown frame `{parent}`", symbol=parent,
+                                 fix="declare that frame, or correct the name; known frames: "
+                                 + ", ".join(self.frame_names))
+            visit(parent, chain + [name])
+            ordered.extend(self.rotation_chain(raw))
+            done.add(name)
+
+        for name in raws:
+            visit(name, [])
+        return tuple(ordered)
+
+    def rotation_chain(self, raw: _Raw) -> list[Frame]:
+        rot = raw.data["rotation"]
+        if rot is None:
+            steps: list[tuple[Any, str]] = [(0, "z")]  # a frame fixed to its parent
+        elif _is_single_rotation(rot):
+            steps = [tuple(rot)]  # type: ignore[list-item]
+        else:
+            steps = [tuple(s) for s in rot]  # type: ignore[misc]
+        axes = raw.data["axes"]
+        if axes is not None and (len(axes) != 3 or not all(isinstance(a, str) for a in axes)):
+            raise self.error(raw, f"`axes` of frame `{raw.name}` must list three names", symbol=raw.name,
+                             fix='e.g. axes = ["u", "w", "z"]')
+        frames = []
+        parent = raw.data["parent"]
+        for k, step in enumerate(steps):
+            if len(step) != 2 or not isinstance(step[1], str):
+                raise self.error(raw, f"rotation of frame `{raw.name}` must be [angle, axis]", symbol=raw.name,
+                                 fix='e.g. rotation = ["theta", "x"], or a list of such pairs')
+            angle, axis = step
+            if axis not in ("x", "y", "z"):
+                raise self.error(raw, f"rotation axis `{axis}` of frame `{raw.name}` is not x, y or z",
+                                 symbol=str(axis), fix="rotate about the parent's x, y or z axis")
+            angle_expr = self.expr(raw, "the rotation angle", angle)
+            last = k == len(steps) - 1
+            name = raw.name if last else f"_{raw.name}_{k + 1}"
+            frame_axes = tuple(axes) if (last and axes) else _default_axes(name)
+            frames.append(Frame(name, parent, Rotation(angle_expr, axis), frame_axes))  # type: ignore[arg-type]
+            parent = name
+        return frames
+
+    def points(self) -> list[Point]:
+        raws = {r.name: r for r in self.of("point")}
+        # Body centres and particles may serve as `relative_to` too; resolve those lazily.
+        resolved: dict[str, Point] = {ORIGIN: Point(ORIGIN, Vector.zero())}
+        visiting: set[str] = set()
+
+        def resolve(name: str, raw: _Raw) -> Point:
+            if name in resolved:
+                return resolved[name]
+            if name not in raws:
+                raise self.error(raw, f"unknown point `{name}`", symbol=name,
+                                 fix="declare it under [points], or use O, a body or a particle name")
+            if name in visiting:
+                raise self.error(raws[name], f"point `{name}` is defined in terms of itself", symbol=name,
+                                 fix="define at least one point of the chain from O")
+            visiting.add(name)
+            r = raws[name]
+            base = resolve(r.data["relative_to"], r)
+            offset = self.expr(r, "the position", r.data["position"], vector=True)
+            resolved[name] = Point(name, base.position + offset)
+            return resolved[name]
+
+        for name, raw in raws.items():
+            resolve(name, raw)
+        self._points = resolved
+        return list(resolved.values())
+
+    def _position(self, raw: _Raw, value: Any, relative_to: str, what: str) -> Vector:
+        base = self._points.get(relative_to)
+        if base is None:
+            raise self.error(raw, f"unknown point `{relative_to}` in {what} of {raw.kind} `{raw.name}`",
+                             symbol=relative_to, fix="declare it under [points] or use O")
+        return base.position + self.expr(raw, what, value, vector=True)
+
+    def bodies(self, points: list[Point]) -> tuple[Body, ...]:
+        out = []
+        for raw in self.of("body"):
+            d = raw.data
+            if d["frame"] not in self.frame_names:
+                raise self.error(raw, f"body `{raw.name}` is attached to unknown frame `{d['frame']}`",
+                                 symbol=str(d["frame"]), fix="declare the frame under [frames] first")
+            mass = self.expr(raw, "the mass", d["mass"])
+            center = self._position(raw, d["center"], d["center_from"], "the centre of mass")
+            inertia = self.inertia(raw, d["inertia"], d["frame"])
+            fixed = d["fixed_point"]
+            if fixed is not None and fixed not in self._points:
+                raise self.error(raw, f"fixed point `{fixed}` of body `{raw.name}` is not a declared point",
+                                 symbol=str(fixed), fix="declare it under [points] (O is predeclared)")
+            out.append(Body(raw.name, d["frame"], mass, center, inertia, fixed))
+        return tuple(out)
+
+    def inertia(self, raw: _Raw, spec: Mapping[str, Any] | None, body_frame: str) -> Inertia:
+        fix = ('give `inertia = { at = "G", frame = "' + body_frame + '", diagonal = ["A", "B", "C"] }`, '
+               "or declare a point mass under [particles]")
+        if not spec:
+            raise self.error(raw, f"body `{raw.name}` has no inertia", symbol=raw.name, fix=fix)
+        if not isinstance(spec, Mapping):
+            raise self.error(raw, f"`inertia` of body `{raw.name}` must be a table", symbol=raw.name, fix=fix)
+        unknown = set(spec) - {"at", "frame", "diagonal", "matrix"}
+        if unknown:
+            key = sorted(unknown)[0]
+            raise self.error(raw, f"unknown key `{key}` in the inertia of body `{raw.name}`", symbol=key,
+                             fix="the keys are at, frame, and diagonal or matrix")
+        at = spec.get("at", "G")
+        if at != "G" and at != raw.name and at not in self._points:
+            raise self.error(raw, f"inertia of body `{raw.name}` is given at unknown point `{at}`", symbol=str(at),
+                             fix='use "G" for the centre of mass, or a declared point such as "O"')
+        frame = spec.get("frame", body_frame)
+        if frame not in self.frame_names:
+            raise self.error(raw, f"inertia of body `{raw.name}` is given in unknown frame `{frame}`",
+                             symbol=str(frame), fix="use the body's frame or a declared frame")
+        if ("diagonal" in spec) == ("matrix" in spec):
+            raise self.error(raw, f"inertia of body `{raw.name}` needs exactly one of `diagonal` and `matrix`",
+                             symbol=raw.name, fix=fix)
+        zero = se.Integer(0)
+        if "diagonal" in spec:
+            diag = spec["diagonal"]
+            if not isinstance(diag, Sequence) or isinstance(diag, str) or len(diag) != 3:
+                raise self.error(raw, f"`diagonal` of the inertia of `{raw.name}` must list three moments",
+                                 symbol=raw.name, fix='e.g. diagonal = ["A", "A", "C"]')
+            d = [self.expr(raw, "the inertia", v) for v in diag]
+            matrix = ((d[0], zero, zero), (zero, d[1], zero), (zero, zero, d[2]))
+        else:
+            rows = spec["matrix"]
+            if (not isinstance(rows, Sequence) or len(rows) != 3
+                    or any(not isinstance(r, Sequence) or isinstance(r, str) or len(r) != 3 for r in rows)):
+                raise self.error(raw, f"`matrix` of the inertia of `{raw.name}` must be 3 rows of 3 entries",
+                                 symbol=raw.name)
+            matrix = tuple(tuple(self.expr(raw, "the inertia", v) for v in row) for row in rows)  # type: ignore[assignment]
+            for i in range(3):
+                for j in range(i + 1, 3):
+                    if (matrix[i][j] - matrix[j][i]).expand() != 0:
+                        raise self.error(raw, f"inertia matrix of body `{raw.name}` is not symmetric: entry "
+                                         f"({i + 1},{j + 1}) is `{matrix[i][j]}` but ({j + 1},{i + 1}) is "
+                                         f"`{matrix[j][i]}`", symbol=raw.name,
+                                         fix="an inertia matrix is symmetric; correct one of the two entries")
+        at_name = "G" if at == raw.name else at
+        return Inertia(at_name, frame, matrix)  # type: ignore[arg-type]
+
+    def particles(self, points: list[Point]) -> tuple[Particle, ...]:
+        out = []
+        for raw in self.of("particle"):
+            mass = self.expr(raw, "the mass", raw.data["mass"])
+            position = self._position(raw, raw.data["position"], raw.data["relative_to"], "the position")
+            out.append(Particle(raw.name, mass, position))
+        return tuple(out)
+
+    def loads(self, points: dict[str, Point], bodies: tuple[Body, ...], particles: tuple[Particle, ...],
+              coordinates: tuple[Coordinate, ...]) -> tuple[Load, ...]:
+        out: list[Load] = []
+        massive = {b.name for b in bodies} | {p.name for p in particles}
+        body_names = {b.name for b in bodies}
+
+        def need_point(raw: _Raw, name: Any) -> str:
+            if name not in points:
+                raise self.error(raw, f"load `{raw.name}` refers to unknown point `{name}`", symbol=str(name),
+                                 fix="use O, a declared point, a body name (its centre G) or a particle name")
+            return str(name)
+
+        for raw in self.of("load"):
+            d = raw.data
+            kind = d["kind"]
+            if kind == "gravity":
+                for n in d["on"]:
+                    if n not in massive:
+                        raise self.error(raw, f"gravity `{raw.name}` acts on unknown body or particle `{n}`",
+                                         symbol=str(n), fix="list body or particle names in `on`")
+                out.append(Gravity(raw.name, self.expr(raw, "the field", d["field"], vector=True), tuple(d["on"])))
+            elif kind == "force":
+                out.append(PointForce(raw.name, self.expr(raw, "the force", d["force"], vector=True),
+                                      need_point(raw, d["at"])))
+            elif kind == "torque":
+                for n in (d["on"], d["reaction_on"]):
+                    if n is not None and n not in body_names and not (n == d["reaction_on"] and n in self.frame_names):
+                        raise self.error(raw, f"torque `{raw.name}` acts on unknown body `{n}`", symbol=str(n),
+                                         fix="name a declared body")
+                out.append(Torque(raw.name, self.expr(raw, "the torque", d["torque"], vector=True), d["on"],
+                                  d["reaction_on"]))
+            elif kind in ("spring", "damper"):
+                ends = d["ends"]
+                if len(ends) != 2:
+                    raise self.error(raw, f"{kind} `{raw.name}` must join exactly two points", symbol=raw.name,
+                                     fix=f'e.g. {kind} = ["A", "B"]')
+                a, b = (need_point(raw, e) for e in ends)
+                if kind == "spring":
+                    out.append(Spring(raw.name, (a, b), self.expr(raw, "the stiffness", d["stiffness"]),
+                                      self.expr(raw, "the rest length", d["rest_length"])))
+                else:
+                    out.append(Damper(raw.name, (a, b), self.expr(raw, "the coefficient", d["coefficient"])))
+            elif kind == "potential":
+                out.append(Potential(raw.name, self.expr(raw, "the potential", d["energy"])))
+            elif kind == "generalized_force":
+                names = [c.name for c in coordinates]
+                comps = []
+                for q, value in d["components"].items():
+                    if q not in names:
+                        raise self.error(raw, f"generalized force `{raw.name}` has a component on `{q}`, "
+                                         "which is not a coordinate", symbol=str(q),
+                                         fix="use coordinate names: " + ", ".join(names))
+                    comps.append((q, self.expr(raw, f"the component on `{q}`", value)))
+                out.append(GeneralizedForce(raw.name, tuple(comps)))
+            else:  # pragma: no cover - the builder methods set `kind`
+                raise AssertionError(kind)
+        return tuple(out)
+
+    def check_coordinates_used(self, model: Model) -> None:
+        used: set[se.Basic] = set()
+        for frame in model.frames:
+            if frame.rotation is not None:
+                used |= frame.rotation.angle.free_symbols
+        for p in model.points:
+            used |= p.position.free_symbols()
+        for b in model.bodies:
+            used |= b.center.free_symbols()
+        for p in model.particles:
+            used |= p.position.free_symbols()
+        for load in model.loads:
+            if isinstance(load, Potential):
+                used |= load.energy.free_symbols
+            elif isinstance(load, GeneralizedForce):
+                for _, e in load.components:
+                    used |= e.free_symbols
+        for c in model.coordinates:
+            if c.symbol not in used:
+                raise ModelError(
+                    f"coordinate `{c.name}` is never used: no frame, point, body or load depends on it, "
+                    "so its Lagrange equation would read 0 = 0",
+                    symbol=c.name, fix="use it in a rotation or a position, or remove it",
+                    **_loc(model.where("coordinate", c.name)),
+                )
+
+
+def _is_single_rotation(rot: Any) -> bool:
+    return (isinstance(rot, Sequence) and not isinstance(rot, str) and len(rot) == 2
+            and isinstance(rot[1], str))
+
+
+def _float(v: Any) -> float | None:
+    return None if v is None else float(v)

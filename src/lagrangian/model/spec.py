@@ -1,0 +1,298 @@
+"""The model: frozen, validated data describing a mechanical system (Σ).
+
+These values hold no derivation.  They are what a model file or the Python
+`ModelBuilder` says, checked and with every expression already parsed into
+SymEngine, in the course's vocabulary: parameters, principal parameters
+(generalized coordinates q_i), frames given by chains of elementary rotations,
+points, rigid bodies, particles and loads ("efforts donnés").
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+import symengine as se
+
+from ._vector import Vector
+
+__all__ = [
+    "GALILEAN_FRAME",
+    "ORIGIN",
+    "TIME",
+    "Location",
+    "Parameter",
+    "Coordinate",
+    "Rotation",
+    "Frame",
+    "Point",
+    "Inertia",
+    "Body",
+    "Particle",
+    "Gravity",
+    "PointForce",
+    "Torque",
+    "Spring",
+    "Damper",
+    "Potential",
+    "GeneralizedForce",
+    "Load",
+    "Model",
+]
+
+#: Name of the Galilean reference frame R0, root of the frame tree.
+GALILEAN_FRAME = "R0"
+#: Name of the origin O of R0.
+ORIGIN = "O"
+#: The time t.
+TIME = se.Symbol("t")
+
+
+@dataclass(frozen=True, slots=True)
+class Location:
+    """Where something was declared: a file and a 1-based line (either may be unknown)."""
+
+    file: str | None = None
+    line: int | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Parameter:
+    """A constant of the problem (mass, length, inertia...), with an optional value."""
+
+    name: str
+    value: float | None = None
+    unit: str | None = None
+    description: str | None = None
+
+    @property
+    def symbol(self) -> se.Symbol:
+        return se.Symbol(self.name)
+
+
+@dataclass(frozen=True, slots=True)
+class Coordinate:
+    """A principal parameter q_i ("paramètre principal"), with q_i(0), q̇_i(0).
+
+    ``momentum`` names the first integral ∂T/∂q̇_i = cste when q_i turns out to be
+    cyclic (the seed calls those of ψ and φ ``K`` and ``H``).
+    """
+
+    name: str
+    initial: float | None = None
+    rate: float | None = None
+    momentum: str | None = None
+    unit: str | None = None
+    description: str | None = None
+
+    @property
+    def symbol(self) -> se.Symbol:
+        return se.Symbol(self.name)
+
+    @property
+    def rate_symbol(self) -> se.Symbol:
+        """q̇_i, spelled ``<name>_dot`` in expressions and in JSON."""
+        return se.Symbol(self.name + "_dot")
+
+    @property
+    def acceleration_symbol(self) -> se.Symbol:
+        """q̈_i, spelled ``<name>_ddot``."""
+        return se.Symbol(self.name + "_ddot")
+
+
+@dataclass(frozen=True, slots=True)
+class Rotation:
+    """An elementary rotation of ``angle`` about the parent frame's ``axis`` (x, y or z).
+
+    The child frame shares that axis with its parent, as in R0 →(ψ, z0)→ R1.
+    """
+
+    angle: se.Basic
+    axis: str
+
+    def __post_init__(self) -> None:
+        if self.axis not in ("x", "y", "z"):
+            raise ValueError(f"rotation axis must be x, y or z, not {self.axis!r}")
+
+
+@dataclass(frozen=True, slots=True)
+class Frame:
+    """A frame: its parent, the elementary rotation from it, and display names of its axes.
+
+    The Galilean frame R0 has no parent and no rotation.  A rotation sequence in a
+    model file becomes a chain of frames whose intermediate names start with ``_``.
+    """
+
+    name: str
+    parent: str | None
+    rotation: Rotation | None
+    axes: tuple[str, str, str]
+
+
+@dataclass(frozen=True, slots=True)
+class Point:
+    """A named point P with its position vector OP from the origin O of R0."""
+
+    name: str
+    position: Vector
+
+
+@dataclass(frozen=True, slots=True)
+class Inertia:
+    """Inertia matrix Π_P of a body at point ``at``, in the basis of ``frame``.
+
+    ``matrix[k][l]`` is the (k, l) entry of the operator, i.e. diagonal entries are
+    the moments of inertia and off-diagonal entries are minus the products of inertia.
+    ``at`` is a point name, or ``"G"`` for the centre of mass.
+    """
+
+    at: str
+    frame: str
+    matrix: tuple[tuple[se.Basic, se.Basic, se.Basic], ...]
+
+
+@dataclass(frozen=True, slots=True)
+class Body:
+    """A rigid body S attached to ``frame``, with mass m, centre of mass G (OG) and inertia."""
+
+    name: str
+    frame: str
+    mass: se.Basic
+    center: Vector
+    inertia: Inertia
+    fixed_point: str | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Particle:
+    """A point mass m at position OP."""
+
+    name: str
+    mass: se.Basic
+    position: Vector
+
+
+# -- loads ("efforts donnés") -------------------------------------------------------------
+@dataclass(frozen=True, slots=True)
+class Gravity:
+    """Uniform gravity g⃗ acting on ``on`` (body and particle names; all when empty)."""
+
+    name: str
+    field: Vector
+    on: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
+class PointForce:
+    """A force F⃗ applied at point ``at``; it may depend on q, q̇ and t."""
+
+    name: str
+    force: Vector
+    at: str
+
+
+@dataclass(frozen=True, slots=True)
+class Torque:
+    """A couple C⃗ on body ``on``; with ``reaction_on``, −C⃗ acts on that body (or frame)."""
+
+    name: str
+    torque: Vector
+    on: str
+    reaction_on: str | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Spring:
+    """A linear spring between two points: tension k(ℓ − ℓ0), potential ½k(ℓ − ℓ0)²."""
+
+    name: str
+    ends: tuple[str, str]
+    stiffness: se.Basic
+    rest_length: se.Basic
+
+
+@dataclass(frozen=True, slots=True)
+class Damper:
+    """A linear viscous damper between two points: force c ℓ̇ along the line."""
+
+    name: str
+    ends: tuple[str, str]
+    coefficient: se.Basic
+
+
+@dataclass(frozen=True, slots=True)
+class Potential:
+    """A given potential energy U(q, t) whose efforts are not otherwise described."""
+
+    name: str
+    energy: se.Basic
+
+
+@dataclass(frozen=True, slots=True)
+class GeneralizedForce:
+    """Given generalized-force components Q_i, coordinate name to expression."""
+
+    name: str
+    components: tuple[tuple[str, se.Basic], ...]
+
+
+Load = Gravity | PointForce | Torque | Spring | Damper | Potential | GeneralizedForce
+
+
+@dataclass(frozen=True, slots=True)
+class Model:
+    """A validated description of a system (Σ), ready for `lagrangian.derive`.
+
+    Build one with `load_model` (TOML file), `parse_model` (TOML text) or
+    `ModelBuilder` (Python).  ``frames`` starts with R0 and lists every parent before
+    its children; ``points`` starts with O.
+    """
+
+    name: str
+    description: str
+    parameters: tuple[Parameter, ...]
+    coordinates: tuple[Coordinate, ...]
+    frames: tuple[Frame, ...]
+    points: tuple[Point, ...]
+    bodies: tuple[Body, ...]
+    particles: tuple[Particle, ...]
+    loads: tuple[Load, ...]
+    source: str | None = None
+    locations: Mapping[tuple[str, str], Location] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        if not self.frames or self.frames[0].name != GALILEAN_FRAME:
+            raise ValueError("the first frame of a model must be the Galilean frame R0")
+        seen: set[str] = set()
+        for frame in self.frames:
+            if frame.parent is not None and frame.parent not in seen:
+                raise ValueError(f"frame {frame.name!r} is listed before its parent")
+            seen.add(frame.name)
+
+    # -- lookups ----------------------------------------------------------------------
+    def frame(self, name: str) -> Frame:
+        return _find(self.frames, name, "frame")
+
+    def point(self, name: str) -> Point:
+        return _find(self.points, name, "point")
+
+    def body(self, name: str) -> Body:
+        return _find(self.bodies, name, "body")
+
+    def coordinate(self, name: str) -> Coordinate:
+        return _find(self.coordinates, name, "coordinate")
+
+    @property
+    def parameter_values(self) -> dict[str, float | None]:
+        return {p.name: p.value for p in self.parameters}
+
+    def where(self, kind: str, name: str) -> Location:
+        """Where item ``name`` of ``kind`` (e.g. ``"body"``) was declared, if known."""
+        return self.locations.get((kind, name), Location(self.source, None))
+
+
+def _find(items: tuple, name: str, kind: str):  # type: ignore[no-untyped-def]
+    for item in items:
+        if item.name == name:
+            return item
+    raise KeyError(f"no {kind} named {name!r}")
