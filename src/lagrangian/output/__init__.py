@@ -1,0 +1,13 @@
+"""Stage 5 — output: the derivation in the course's notation, as text, LaTeX and JSON."""
+
+from ._course import CourseForm as CourseForm
+from ._course import course_form as course_form
+from ._json import SCHEMA_ID as SCHEMA_ID
+from ._json import SCHEMA_VERSION as SCHEMA_VERSION
+from ._json import derive_document as derive_document
+from ._latex import render_latex as render_latex
+from ._notation import Notation as Notation
+from ._text import render_text as render_text
+
+__all__ = ["CourseForm", "course_form", "SCHEMA_ID", "SCHEMA_VERSION", "derive_document", "render_latex",
+           "Notation", "render_text"]

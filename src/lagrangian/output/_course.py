@@ -1,0 +1,191 @@
+"""The derivation in the course's order and form, as data (steps of the "démarche d'application").
+
+`course_form` turns `EquationsOfMotion` and its first integrals into a `CourseForm`:
+plain SymPy expressions with labels, grouped by step, that the text, LaTeX and JSON
+renderers (and later the report) print without any further mathematics.  SymEngine
+results are converted to SymPy here, which also distributes numeric factors
+(−½(2a − 2b) becomes b − a): that is the only "simplification" applied, so the
+printed forms are those the derivation produced, term by term, as in the seed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import symengine as se
+import sympy
+
+from .._identity import are_zero
+from ..analysis import FirstIntegral
+from ..dynamics import EquationsOfMotion
+from ..model import Vector
+
+__all__ = ["CourseForm", "FrameStep", "VectorRow", "EquationRow", "LoadRow", "IntegralRow", "course_form"]
+
+
+def to_sympy(e: se.Basic) -> sympy.Basic:
+    """SymEngine → SymPy (a structural conversion; no text is parsed)."""
+    return e._sympy_() if hasattr(e, "_sympy_") else sympy.S(e)
+
+
+@dataclass(frozen=True, slots=True)
+class VectorRow:
+    """A vector as a list of (component, axis display name)."""
+
+    terms: tuple[tuple[sympy.Basic, str], ...]
+
+
+@dataclass(frozen=True, slots=True)
+class FrameStep:
+    name: str
+    parent: str
+    angle: sympy.Basic
+    axis: str  # display name of the rotation axis (shared by parent and child)
+    axes: tuple[str, str, str]
+    omega_chain: VectorRow  # Ω(F/R0) as the sum of rotation rates
+    omega_components: VectorRow | None  # Ω(F/R0) in the basis where a body's inertia is given
+    components_frame: str | None
+
+
+@dataclass(frozen=True, slots=True)
+class EnergyRow:
+    name: str
+    formula: str
+    expression: sympy.Basic
+
+
+@dataclass(frozen=True, slots=True)
+class LoadRow:
+    name: str
+    kind: str
+    conservative: bool
+    potential: sympy.Basic | None
+    Q: tuple[sympy.Basic, ...]
+    note: str
+
+
+@dataclass(frozen=True, slots=True)
+class EquationRow:
+    coordinate: str
+    dT_dqd: sympy.Basic
+    dT_dq: sympy.Basic
+    dU_dq: sympy.Basic
+    Q_nc: sympy.Basic
+    lhs: sympy.Basic
+    rhs: sympy.Basic
+    integral: str | None  # name of the momentum integral when d/dt(∂T/∂q̇) = 0
+    using_integrals: sympy.Basic | None  # lhs rewritten with the momentum integrals, when they appear in it
+
+
+@dataclass(frozen=True, slots=True)
+class IntegralRow:
+    """``expression`` = ``name`` (constant); ``parts`` is how to write it (T and U separately for E)."""
+
+    name: str
+    kind: str
+    expression: sympy.Basic
+    parts: tuple[sympy.Basic, ...]
+    reason: str
+    coordinate: str | None
+
+
+@dataclass(frozen=True, slots=True)
+class CourseForm:
+    """Every step of the derivation, ready to print."""
+
+    title: str
+    description: str
+    coordinates: tuple[str, ...]
+    parameters: tuple[str, ...]
+    frames: tuple[FrameStep, ...]
+    T: tuple[EnergyRow, ...]
+    T_total: sympy.Basic
+    U: tuple[EnergyRow, ...]
+    U_total: sympy.Basic
+    loads: tuple[LoadRow, ...]
+    conservative: bool
+    L: sympy.Basic | None
+    equations: tuple[EquationRow, ...]
+    integrals: tuple[IntegralRow, ...]
+    M: tuple[tuple[sympy.Basic, ...], ...]
+    F: tuple[sympy.Basic, ...]
+
+
+def _vector_row(eom: EquationsOfMotion, v: Vector) -> VectorRow:
+    terms = []
+    for frame, comps in v:
+        axes = eom.kinematics.frames.axes(frame)
+        for c, name in zip(comps, axes):
+            if c != 0:
+                terms.append((to_sympy(c), name))
+    return VectorRow(tuple(terms))
+
+
+def course_form(eom: EquationsOfMotion, integrals: tuple[FirstIntegral, ...]) -> CourseForm:
+    """Collect the derivation of ``eom`` in the course's order and notation."""
+    model = eom.model
+    kin = eom.kinematics
+    inertia_frame = {b.frame: eom.inertias[b.name].frame for b in model.bodies}
+    frames = []
+    for f in model.frames:
+        if f.parent is None or f.name.startswith("_"):
+            continue
+        rot = f.rotation
+        axis_name = f.axes["xyz".index(rot.axis)]  # type: ignore[union-attr]
+        basis = inertia_frame.get(f.name)
+        comps = None
+        if basis is not None:
+            comps = _vector_row(eom, Vector({basis: kin.frames.omega_in(f.name, basis)}))
+        frames.append(FrameStep(f.name, f.parent, to_sympy(rot.angle), axis_name, f.axes,  # type: ignore[union-attr]
+                                _vector_row(eom, kin.omega(f.name)), comps, basis))
+    T_rows = tuple(EnergyRow(t.name, t.formula, to_sympy(t.expression)) for t in eom.T_terms)
+    U_rows = tuple(EnergyRow(f.name, f.kind, to_sympy(f.potential)) for f in eom.loads if f.potential is not None)
+    loads = tuple(LoadRow(f.name, f.kind, f.potential is not None,
+                          None if f.potential is None else to_sympy(f.potential),
+                          tuple(to_sympy(q) for q in f.Q), f.note) for f in eom.loads)
+    by_coordinate = {i.coordinate: i.name for i in integrals if i.kind == "momentum"}
+    momenta = [(to_sympy(i.expression), sympy.Symbol(i.name)) for i in integrals if i.kind == "momentum"]
+    equations = []
+    for eq in eom.equations:
+        lhs = to_sympy(eq.lhs)
+        rewritten = None
+        if eq.coordinate not in by_coordinate:
+            # The seed's "ou encore, en tenant compte de L(φ)": A θ̈ − ... + H ψ̇ sinθ = m g a sinθ.
+            candidate = lhs
+            for p, name in momenta:
+                if isinstance(p, sympy.Mul):
+                    candidate = candidate.subs(p, name)
+            rewritten = candidate if candidate != lhs else None
+        equations.append(EquationRow(eq.coordinate, to_sympy(eq.dT_dqd), to_sympy(eq.dT_dq), to_sympy(eq.dU_dq),
+                                     to_sympy(eq.Q_nc), lhs, to_sympy(eq.rhs), by_coordinate.get(eq.coordinate),
+                                     rewritten))
+    equations = tuple(equations)
+    integral_rows = []
+    for i in integrals:
+        expr = to_sympy(i.expression)
+        # The energy is written T + U from the displayed T and U, as the seed writes it.
+        parts = (to_sympy(eom.T), to_sympy(eom.U)) if i.kind == "energy" else (expr,)
+        integral_rows.append(IntegralRow(i.name, i.kind, expr, tuple(p for p in parts if p != 0), i.reason,
+                                         i.coordinate))
+    T_total, U_total = to_sympy(eom.T), to_sympy(eom.U)
+    L = None
+    if eom.conservative:
+        L = T_total - U_total if not are_zero([eom.U])[0] else T_total
+    return CourseForm(
+        title=model.name,
+        description=model.description,
+        coordinates=eom.coordinates,
+        parameters=tuple(p.name for p in model.parameters),
+        frames=tuple(frames),
+        T=T_rows,
+        T_total=T_total,
+        U=U_rows,
+        U_total=U_total,
+        loads=loads,
+        conservative=eom.conservative,
+        L=L,
+        equations=equations,
+        integrals=tuple(integral_rows),
+        M=tuple(tuple(to_sympy(x) for x in row) for row in eom.M),
+        F=tuple(to_sympy(x) for x in eom.F),
+    )

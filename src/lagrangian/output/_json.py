@@ -1,0 +1,68 @@
+"""The ``derive --json`` document: a stable, versioned interface for other programs.
+
+Schema: ``derive.schema.json`` beside this module (JSON Schema draft 2020-12), and
+``docs/derive-json.md``.  Expressions are strings in SymPy's syntax
+(``A*psi_dot*sin(theta)**2``): ``q``, ``q_dot`` for q̇, ``q_ddot`` for q̈, ``t``, the
+parameter names, ``+ - * / **``, parentheses and the functions of the model grammar.
+``sympy.sympify`` reads them back (in the reader's program: they are our output).
+
+Versioning: ``version`` is an integer bumped on any incompatible change (a key
+removed or its meaning changed); keys may be added within a version.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import sympy
+
+from ._course import CourseForm
+
+__all__ = ["SCHEMA_ID", "SCHEMA_VERSION", "derive_document"]
+
+SCHEMA_ID = "lagrangian.derive"
+SCHEMA_VERSION = 1
+
+
+def _s(e: sympy.Basic) -> str:
+    return sympy.sstr(e, order="none")
+
+
+def derive_document(form: CourseForm, *, parameters: dict[str, float | None],
+                    initial: dict[str, dict[str, float | None]], source: str | None,
+                    package_version: str) -> dict[str, Any]:
+    """The JSON object printed by ``lagrangian derive --json``."""
+    q = list(form.coordinates)
+    return {
+        "schema": SCHEMA_ID,
+        "version": SCHEMA_VERSION,
+        "generator": f"lagrangian {package_version}",
+        "model": {"name": form.title, "description": form.description, "source": source},
+        "coordinates": q,
+        "rates": [c + "_dot" for c in q],
+        "accelerations": [c + "_ddot" for c in q],
+        "parameters": parameters,
+        "initial_conditions": initial,
+        "kinetic_energy": _s(form.T_total),
+        "potential_energy": _s(form.U_total),
+        "conservative": form.conservative,
+        "lagrangian": None if form.L is None else _s(form.L),
+        "generalized_forces": [
+            {"load": f.name, "kind": f.kind, "conservative": f.conservative,
+             "potential": None if f.potential is None else _s(f.potential),
+             "Q": {c: _s(x) for c, x in zip(q, f.Q)}}
+            for f in form.loads
+        ],
+        "equations": [
+            {"coordinate": e.coordinate, "lhs": _s(e.lhs), "rhs": _s(e.rhs),
+             "dT_dqdot": _s(e.dT_dqd), "dT_dq": _s(e.dT_dq), "dU_dq": _s(e.dU_dq), "Q_nonconservative": _s(e.Q_nc)}
+            for e in form.equations
+        ],
+        "mass_matrix": [[_s(x) for x in row] for row in form.M],
+        "forcing": [_s(x) for x in form.F],
+        "first_integrals": {i.name: _s(i.expression) for i in form.integrals},
+        "first_integral_details": [
+            {"name": i.name, "kind": i.kind, "coordinate": i.coordinate, "reason": i.reason}
+            for i in form.integrals
+        ],
+    }

@@ -1,0 +1,251 @@
+"""The course's notation: ψ̇ for psi_dot, φ for phi, A ψ̇² sinθ cosθ rather than A*psi_dot**2*sin(theta)*cos(theta).
+
+`Notation` renders a SymPy expression as terminal text or LaTeX with the factor and
+term order a teacher would write:
+
+* terms with a q̈ first, then by the first parameter they contain (in the order the
+  model declares parameters), then shortest first — so Γ_θ prints as
+  ``A θ̈ − A ψ̇² sinθ cosθ + C ψ̇ sinθ (φ̇ + ψ̇ cosθ)``;
+* factors: number, parameters (declaration order), rates, accelerations,
+  coordinates, sin, cos, other functions, then parenthesized sums;
+* a function of a single symbol loses its parentheses (sinθ), a power of a function
+  goes on the function (sin²θ), and one-half is written ½.
+
+Nothing here changes an expression's value: it only chooses how to write it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import sympy
+
+__all__ = ["Notation"]
+
+_GREEK = {
+    "alpha": ("α", r"\alpha"), "beta": ("β", r"\beta"), "gamma": ("γ", r"\gamma"), "delta": ("δ", r"\delta"),
+    "epsilon": ("ε", r"\varepsilon"), "zeta": ("ζ", r"\zeta"), "eta": ("η", r"\eta"), "theta": ("θ", r"\theta"),
+    "iota": ("ι", r"\iota"), "kappa": ("κ", r"\kappa"), "lambda": ("λ", r"\lambda"), "lam": ("λ", r"\lambda"),
+    "mu": ("μ", r"\mu"), "nu": ("ν", r"\nu"), "xi": ("ξ", r"\xi"), "rho": ("ρ", r"\rho"),
+    "sigma": ("σ", r"\sigma"), "tau": ("τ", r"\tau"), "phi": ("φ", r"\varphi"), "chi": ("χ", r"\chi"),
+    "psi": ("ψ", r"\psi"), "omega": ("ω", r"\omega"), "Gamma": ("Γ", r"\Gamma"), "Delta": ("Δ", r"\Delta"),
+    "Theta": ("Θ", r"\Theta"), "Lambda": ("Λ", r"\Lambda"), "Xi": ("Ξ", r"\Xi"), "Pi": ("Π", r"\Pi"),
+    "Sigma": ("Σ", r"\Sigma"), "Phi": ("Φ", r"\Phi"), "Psi": ("Ψ", r"\Psi"), "Omega": ("Ω", r"\Omega"),
+}
+_SUPERSCRIPT = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
+_FRACTIONS = {(1, 2): "½", (1, 3): "⅓", (2, 3): "⅔", (1, 4): "¼", (3, 4): "¾"}
+_FUNCTION_RANK = {"sin": 0, "cos": 1, "tan": 2}
+_LATEX_FUNCTIONS = {"sin", "cos", "tan", "sinh", "cosh", "tanh", "exp", "log", "arcsin", "arccos", "arctan"}
+_SYMPY_TO_NAME = {"asin": "arcsin", "acos": "arccos", "atan": "arctan"}
+
+
+def _split_name(name: str) -> tuple[str, str]:
+    """``theta_ddot`` → (``theta``, ``ddot``); ``l1`` → (``l1``, ``"")."""
+    for suffix in ("_ddot", "_dot", "_star"):
+        if name.endswith(suffix):
+            return name[: -len(suffix)], suffix[1:]
+    return name, ""
+
+
+def _base_text(name: str) -> str:
+    if name in _GREEK:
+        return _GREEK[name][0]
+    head = name.rstrip("0123456789")
+    if head in _GREEK and head != name:
+        return _GREEK[head][0] + name[len(head):]
+    return name
+
+
+def _base_latex(name: str) -> str:
+    if name in _GREEK:
+        return _GREEK[name][1]
+    if "_" in name:
+        head, _, tail = name.partition("_")
+        return f"{_base_latex(head)}_{{{tail}}}"
+    head = name.rstrip("0123456789")
+    if head and head != name:
+        return f"{_base_latex(head)}_{{{name[len(head):]}}}"
+    return name if len(name) == 1 else rf"\mathrm{{{name}}}"
+
+
+@dataclass
+class Notation:
+    """Renders expressions in the course's notation for one model.
+
+    Parameters
+    ----------
+    coordinates : coordinate names in model order.
+    parameters : parameter names in declaration order (sets the order of factors).
+    """
+
+    coordinates: Sequence[str] = ()
+    parameters: Sequence[str] = ()
+    _cache: dict[tuple[str, str], str] = field(default_factory=dict, repr=False)
+
+    # -- symbols ---------------------------------------------------------------------------
+    def symbol(self, name: str, latex: bool = False) -> str:
+        key = (name, "tex" if latex else "txt")
+        if key not in self._cache:
+            base, deco = _split_name(name)
+            if latex:
+                b = _base_latex(base)
+                out = {"dot": rf"\dot{{{b}}}", "ddot": rf"\ddot{{{b}}}", "star": rf"{b}^{{*}}", "": b}[deco]
+            else:
+                b = _base_text(base)
+                out = b + {"dot": "\u0307", "ddot": "\u0308", "star": "*", "": ""}[deco]
+            self._cache[key] = out
+        return self._cache[key]
+
+    # -- ordering --------------------------------------------------------------------------
+    def _factor_key(self, factor: sympy.Basic) -> tuple:
+        base = factor.base if isinstance(factor, sympy.Pow) else factor
+        if isinstance(base, sympy.Symbol):
+            name, deco = _split_name(base.name)
+            if base.name in self.parameters:
+                return (0, list(self.parameters).index(base.name), "")
+            if name in self.coordinates:
+                rank = {"dot": 1, "ddot": 2, "star": 3, "": 4}[deco]
+                return (rank, list(self.coordinates).index(name), "")
+            return (5, 0, base.name)
+        if isinstance(base, sympy.Function):
+            return (6, _FUNCTION_RANK.get(type(base).__name__, 9), str(base.args))
+        return (8, 0, str(base))
+
+    def _term_key(self, term: sympy.Basic) -> tuple:
+        factors = sympy.Mul.make_args(term)
+        names = {s.name for s in term.free_symbols}
+        has_qdd = any(n.endswith("_ddot") for n in names)
+        params = [list(self.parameters).index(n) for n in names if n in self.parameters]
+        count = sum(1 for f in factors if not f.is_Number)
+        coords = [list(self.coordinates).index(_split_name(n)[0]) for n in names
+                  if _split_name(n)[0] in self.coordinates]
+        return (0 if has_qdd else 1, min(params) if params else len(self.parameters), count,
+                min(coords) if coords else len(self.coordinates), sympy.default_sort_key(term))
+
+    # -- rendering ---------------------------------------------------------------------------
+    def text(self, expr: sympy.Basic) -> str:
+        """Terminal text, e.g. ``½ A (θ̇² + ψ̇² sin²θ)``."""
+        return self._render(sympy.sympify(expr), latex=False)
+
+    def latex(self, expr: sympy.Basic) -> str:
+        r"""LaTeX, e.g. ``\frac{1}{2} A \left(\dot{\theta}^{2} + \dot{\psi}^{2} \sin^{2}\theta\right)``."""
+        return self._render(sympy.sympify(expr), latex=True)
+
+    def _render(self, e: sympy.Basic, latex: bool) -> str:
+        if isinstance(e, sympy.Add):
+            return self._add(e, latex)
+        return self._signed(e, latex, first=True)
+
+    def _add(self, e: sympy.Add, latex: bool) -> str:
+        terms = sorted(e.args, key=self._term_key)
+        parts = [self._signed(terms[0], latex, first=True)]
+        for term in terms[1:]:
+            parts.append(self._signed(term, latex, first=False))
+        return "".join(parts)
+
+    def _signed(self, term: sympy.Basic, latex: bool, *, first: bool) -> str:
+        coeff, rest = term.as_coeff_Mul()
+        negative = coeff.is_negative if coeff.is_Number else False
+        if negative:
+            coeff = -coeff
+        body = self._product(coeff, rest, latex)
+        minus = "-" if latex else "−"
+        if first:
+            return (minus if negative else "") + body
+        return (f" {minus} " if negative else " + ") + body
+
+    def _product(self, coeff: sympy.Basic, rest: sympy.Basic, latex: bool) -> str:
+        num, den = [], []
+        for f in sympy.Mul.make_args(rest):
+            if f == 1:
+                continue
+            if isinstance(f, sympy.Pow) and f.exp.is_Number and f.exp.is_negative:
+                den.append(f.base if f.exp == -1 else sympy.Pow(f.base, -f.exp))
+            else:
+                num.append(f)
+        num.sort(key=self._factor_key)
+        den.sort(key=self._factor_key)
+        if isinstance(coeff, sympy.Rational) and coeff.q != 1 and not den:
+            p, q = int(coeff.p), int(coeff.q)
+            if latex:
+                c = rf"\frac{{{p}}}{{{q}}}"
+            else:
+                c = _FRACTIONS.get((p, q), f"{p}/{q}")
+            head = [c]
+        elif isinstance(coeff, sympy.Rational) and coeff.q != 1:
+            head = [self._number(sympy.Integer(coeff.p), latex)] if coeff.p != 1 else []
+            den.insert(0, sympy.Integer(coeff.q))
+        else:
+            head = [] if coeff == 1 else [self._number(coeff, latex)]
+        num_parts = head + [self._factor(f, latex) for f in num]
+        numerator = " ".join(num_parts) if num_parts else "1"
+        if not den:
+            return numerator
+        den_parts = [self._factor(f, latex) for f in den]
+        if latex:
+            return rf"\frac{{{numerator}}}{{{' '.join(den_parts)}}}"
+        denominator = den_parts[0] if len(den_parts) == 1 else "(" + " ".join(den_parts) + ")"
+        if len(num_parts) > 1 and any(" + " in p or " − " in p for p in num_parts):
+            numerator = numerator
+        return f"{numerator}/{denominator}"
+
+    def _number(self, n: sympy.Basic, latex: bool) -> str:
+        if isinstance(n, sympy.Float):
+            return f"{float(n):.12g}"
+        if n == sympy.pi:
+            return r"\pi" if latex else "π"
+        return str(n)
+
+    def _factor(self, f: sympy.Basic, latex: bool) -> str:
+        """One factor of a product: parenthesize sums."""
+        if isinstance(f, sympy.Add):
+            inner = self._add(f, latex)
+            return rf"\left({inner}\right)" if latex else f"({inner})"
+        return self._atom(f, latex)
+
+    def _atom(self, f: sympy.Basic, latex: bool) -> str:
+        if isinstance(f, sympy.Symbol):
+            return self.symbol(f.name, latex)
+        if f.is_Number or f == sympy.pi:
+            return self._number(f, latex)
+        if isinstance(f, sympy.Pow):
+            return self._power(f, latex)
+        if isinstance(f, sympy.Function):
+            return self._function(f, latex)
+        if isinstance(f, (sympy.Add, sympy.Mul)):
+            inner = self._render(f, latex)
+            return rf"\left({inner}\right)" if latex else f"({inner})"
+        return sympy.latex(f) if latex else str(f)
+
+    def _power(self, f: sympy.Pow, latex: bool) -> str:
+        base, exp = f.base, f.exp
+        if exp == sympy.Rational(1, 2):
+            inner = self._render(base, latex)
+            return rf"\sqrt{{{inner}}}" if latex else (f"√{inner}" if isinstance(base, sympy.Symbol) else f"√({inner})")
+        if isinstance(exp, sympy.Integer):
+            sup = rf"^{{{exp}}}" if latex else str(exp).translate(_SUPERSCRIPT)
+        else:
+            sup = rf"^{{{self._render(exp, latex)}}}" if latex else f"^({self._render(exp, False)})"
+        if isinstance(base, sympy.Function) and isinstance(exp, sympy.Integer) and exp > 0:
+            return self._function(base, latex, power=sup)
+        if isinstance(base, (sympy.Add, sympy.Mul, sympy.Pow)) or (base.is_Number and base < 0):
+            inner = self._render(base, latex)
+            return (rf"\left({inner}\right){sup}" if latex else f"({inner}){sup}")
+        return self._atom(base, latex) + sup
+
+    def _function(self, f: sympy.Function, latex: bool, power: str = "") -> str:
+        name = type(f).__name__
+        name = _SYMPY_TO_NAME.get(name, name)
+        if name == "Abs":
+            inner = self._render(f.args[0], latex)
+            return (rf"\left|{inner}\right|{power}" if latex else f"|{inner}|{power}")
+        args = f.args
+        simple = len(args) == 1 and isinstance(args[0], sympy.Symbol)
+        inner = ", ".join(self._render(a, latex) for a in args)
+        if latex:
+            head = rf"\{name}" if name in _LATEX_FUNCTIONS else rf"\operatorname{{{name}}}"
+            if name == "exp" and not power:
+                return rf"e^{{{inner}}}"
+            return f"{head}{power}{inner}" if simple else rf"{head}{power}\left({inner}\right)"
+        return f"{name}{power}{inner}" if simple else f"{name}{power}({inner})"
