@@ -40,6 +40,19 @@ _LATEX_FUNCTIONS = {"sin", "cos", "tan", "sinh", "cosh", "tanh", "exp", "log", "
 _SYMPY_TO_NAME = {"asin": "arcsin", "acos": "arccos", "atan": "arctan"}
 
 
+def _as_sympy(expr: object) -> sympy.Basic:
+    """A SymPy expression from a SymPy or SymEngine one, or a number (text is refused)."""
+    if isinstance(expr, sympy.Basic):
+        return expr
+    if hasattr(expr, "_sympy_"):
+        return expr._sympy_()
+    if isinstance(expr, int) and not isinstance(expr, bool):
+        return sympy.Integer(expr)
+    if isinstance(expr, float):
+        return sympy.Float(expr)
+    raise TypeError(f"cannot print a {type(expr).__name__} as an expression")
+
+
 def _split_name(name: str) -> tuple[str, str]:
     """``theta_ddot`` → (``theta``, ``ddot``); ``l1`` → (``l1``, ``"")."""
     for suffix in ("_ddot", "_dot", "_star"):
@@ -126,11 +139,11 @@ class Notation:
     # -- rendering ---------------------------------------------------------------------------
     def text(self, expr: sympy.Basic) -> str:
         """Terminal text, e.g. ``½ A (θ̇² + ψ̇² sin²θ)``."""
-        return self._render(sympy.sympify(expr), latex=False)
+        return self._render(_as_sympy(expr), latex=False)
 
     def latex(self, expr: sympy.Basic) -> str:
         r"""LaTeX, e.g. ``\frac{1}{2} A \left(\dot{\theta}^{2} + \dot{\psi}^{2} \sin^{2}\theta\right)``."""
-        return self._render(sympy.sympify(expr), latex=True)
+        return self._render(_as_sympy(expr), latex=True)
 
     def _render(self, e: sympy.Basic, latex: bool) -> str:
         if isinstance(e, sympy.Add):

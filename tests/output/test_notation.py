@@ -1,0 +1,45 @@
+"""The course's notation: the seed's top must print exactly as the seed writes it."""
+
+import sympy
+
+import lagrangian
+from lagrangian.output import Notation, course_form, render_latex, render_text
+
+
+def _form():
+    eom = lagrangian.derive(lagrangian.lagrange_top())
+    return course_form(eom, lagrangian.first_integrals(eom))
+
+
+def test_top_prints_like_the_seed():
+    text = render_text(_form())
+    # Seed, worked example (T, U, L(θ), K, H, energy integral), in our Unicode rendering.
+    for line in [
+        "T(S/R0) = ½ A (θ̇² + ψ̇² sin²θ) + ½ C (φ̇ + ψ̇ cosθ)²",
+        "weight: m g a cosθ",
+        "A θ̈ − A ψ̇² sinθ cosθ + C ψ̇ sinθ (φ̇ + ψ̇ cosθ) = m g a sinθ",
+        "A θ̈ − A ψ̇² sinθ cosθ + H ψ̇ sinθ = m g a sinθ",
+        "A ψ̇ sin²θ + C cosθ (φ̇ + ψ̇ cosθ) = K",
+        "C (φ̇ + ψ̇ cosθ) = H",
+        "½ A (θ̇² + ψ̇² sin²θ) + ½ C (φ̇ + ψ̇ cosθ)² + m g a cosθ = E",
+        "Ω(R/R0) = ψ̇ z0 + θ̇ u + φ̇ z = θ̇ u + ψ̇ sinθ w + (φ̇ + ψ̇ cosθ) z",
+    ]:
+        assert line in text, f"missing {line!r} in\n{text}"
+
+
+def test_latex_uses_dots_and_greek_letters():
+    tex = render_latex(_form())
+    assert r"\ddot{\theta}" in tex and r"\dot{\psi}" in tex and r"\varphi" in tex
+    math = tex.split(r"\par", 1)[1]  # after the model's own description
+    assert "psi_dot" not in math and "theta" not in math.replace(r"\theta", "")
+    assert tex.count(r"\begin{align*}") == tex.count(r"\end{align*}")
+
+
+def test_notation_orders_factors_and_terms():
+    n = Notation(coordinates=["x", "theta"], parameters=["m", "l", "g"])
+    x, th, xd, thdd, m, l, g = sympy.symbols("x theta x_dot theta_ddot m l g")
+    assert n.text(g * m * l * sympy.sin(th)) == "m l g sinθ"
+    assert n.text(-g * sympy.sin(th) + l * thdd) == "l θ̈ − g sinθ"
+    assert n.text(sympy.Rational(1, 2) * m * xd**2) == "½ m x\u0307²"
+    assert n.text(sympy.sin(th + x) ** 2) == "sin²(x + θ)"
+    assert n.latex(sympy.cos(th) ** 2 / l) == r"\frac{\cos^{2}\theta}{l}"
