@@ -98,6 +98,7 @@ class CourseForm:
     coordinates: tuple[str, ...]
     parameters: tuple[str, ...]
     frames: tuple[FrameStep, ...]
+    virtual_velocities: tuple[tuple[str, VectorRow], ...]  # V*(P) at the points that carry loads
     T: tuple[EnergyRow, ...]
     T_total: sympy.Basic
     U: tuple[EnergyRow, ...]
@@ -119,6 +120,31 @@ def _vector_row(eom: EquationsOfMotion, v: Vector) -> VectorRow:
             if c != 0:
                 terms.append((to_sympy(c), name))
     return VectorRow(tuple(terms))
+
+
+def _loaded_points(model) -> list[str]:  # type: ignore[no-untyped-def]
+    """The points where given efforts act, in order of first appearance."""
+    from ..model import Damper, Gravity, PointForce, Spring
+
+    out: list[str] = []
+    for load in model.loads:
+        if isinstance(load, Gravity):
+            names = load.on or tuple(b.name for b in model.bodies) + tuple(p.name for p in model.particles)
+        elif isinstance(load, PointForce):
+            names = (load.at,)
+        elif isinstance(load, (Spring, Damper)):
+            names = load.ends
+        else:
+            names = ()
+        out += [n for n in names if n not in out]
+    return out
+
+
+def _point_label(model, name: str) -> str:  # type: ignore[no-untyped-def]
+    """A body name stands for its centre of mass: G, or G_S when there are several bodies."""
+    if name in {b.name for b in model.bodies}:
+        return "G" if len(model.bodies) == 1 else f"G_{name}"
+    return name
 
 
 def course_form(eom: EquationsOfMotion, integrals: tuple[FirstIntegral, ...]) -> CourseForm:
@@ -171,12 +197,14 @@ def course_form(eom: EquationsOfMotion, integrals: tuple[FirstIntegral, ...]) ->
     L = None
     if eom.conservative:
         L = T_total - U_total if not are_zero([eom.U])[0] else T_total
+    virtual = tuple((_point_label(model, p), _vector_row(eom, kin.virtual_velocity(p))) for p in _loaded_points(model))
     return CourseForm(
         title=model.name,
         description=model.description,
         coordinates=eom.coordinates,
         parameters=tuple(p.name for p in model.parameters),
         frames=tuple(frames),
+        virtual_velocities=virtual,
         T=T_rows,
         T_total=T_total,
         U=U_rows,

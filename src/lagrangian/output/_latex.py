@@ -83,6 +83,11 @@ def render_latex(form: CourseForm) -> str:
             rows.append(text)
         out.append(r" \\".join(rows))
         out.append(r"\end{align*}")
+    if form.virtual_velocities:
+        out.append(r"\subsection*{Virtual velocity field}")
+        out.append(r"\begin{align*}")
+        out.append(r" \\".join(rf"\vec{{V}}^*({p}) &= {_vector(n, row)}" for p, row in form.virtual_velocities))
+        out.append(r"\end{align*}")
     out.append(r"\subsection*{Kinetic and potential energies}")
     out.append(r"\begin{align*}")
     rows = [rf"T({row.name}/R_0) &= {_FORMULA.get(row.formula, '')} = {n.latex(row.expression)}" for row in form.T]

@@ -86,6 +86,11 @@ def render_text(form: CourseForm) -> str:
                 if alt != _vector(n, f.omega_chain):
                     text += f" = {alt}"
             lines.append(text)
+    if form.virtual_velocities:
+        lines.append("")
+        lines.append("Virtual velocity field compatible with the principal constraints, V*(P) = Σ ∂OP/∂q_i q_i*:")
+        for point, row in form.virtual_velocities:
+            lines.append(f"  V*({point}) = {_vector(n, row)}")
     lines.append("")
     lines.append("Kinetic energy T(Σ/R0):")
     for row in form.T:
