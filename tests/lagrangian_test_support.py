@@ -1,0 +1,163 @@
+"""Shared helpers for the test suite: the example files, their derivations, safe state
+domains and numeric evaluation of engine expressions.
+
+`tests/conftest.py` puts this directory on ``sys.path`` so test modules can
+``import lagrangian_test_support``.
+"""
+
+from __future__ import annotations
+
+import functools
+import itertools
+import re
+from collections.abc import Sequence
+from pathlib import Path
+
+import numpy as np
+import symengine as se
+
+import lagrangian
+
+EXAMPLES_DIR = Path(__file__).resolve().parents[1] / "examples"
+
+#: Default range of a coordinate and of a rate in random states.
+DEFAULT_Q = (-2.5, 2.5)
+DEFAULT_QD = (-3.0, 3.0)
+
+#: Ranges that keep each example away from its coordinate singularities (Euler angles
+#: at theta = 0 or pi) and inside the domain where its closed forms hold (the cart's
+#: spring keeps a positive length while x > -l0).
+DOMAINS: dict[str, dict[str, tuple[float, float]]] = {
+    "lagrange_top.toml": {"theta": (0.3, 2.8), "phi_dot": (-60.0, 60.0)},
+    "spherical_pendulum.toml": {"theta": (0.3, 2.8)},
+    "cart_pendulum.toml": {"x": (-0.3, 0.6)},
+}
+
+
+def example_names() -> list[str]:
+    """File names of every example model, sorted."""
+    return sorted(p.name for p in EXAMPLES_DIR.glob("*.toml"))
+
+
+def example_text(name: str) -> str:
+    return (EXAMPLES_DIR / name).read_text(encoding="utf-8")
+
+
+@functools.cache
+def eom_of(name: str) -> lagrangian.EquationsOfMotion:
+    """The engine's derivation for one example file (cached)."""
+    return lagrangian.derive(lagrangian.load_model(EXAMPLES_DIR / name))
+
+
+@functools.cache
+def integrals_of(name: str) -> tuple[lagrangian.FirstIntegral, ...]:
+    return lagrangian.first_integrals(eom_of(name))
+
+
+def domain(name: str, symbol: str) -> tuple[float, float]:
+    spec = DOMAINS.get(name, {})
+    if symbol in spec:
+        return spec[symbol]
+    return DEFAULT_QD if symbol.endswith("_dot") else DEFAULT_Q
+
+
+def random_states(name: str, coordinates: Sequence[str], count: int, seed: int) -> list[dict[str, float]]:
+    """``count`` states {q: value, q_dot: value} inside the example's safe domain."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(count):
+        state = {}
+        for c in coordinates:
+            for s in (c, c + "_dot"):
+                lo, hi = domain(name, s)
+                state[s] = float(rng.uniform(lo, hi))
+        out.append(state)
+    return out
+
+
+def parameter_values(eom: lagrangian.EquationsOfMotion) -> dict[se.Symbol, float]:
+    values = {}
+    for p in eom.model.parameters:
+        assert p.value is not None, f"parameter {p.name} of {eom.model.name} has no value"
+        values[se.Symbol(p.name)] = p.value
+    return values
+
+
+def state_symbols(eom: lagrangian.EquationsOfMotion) -> list[se.Symbol]:
+    """Arguments of every numeric function here: q, q̇, q̈ (in coordinate order), then t."""
+    return [*eom.q, *eom.qd, *eom.qdd, eom.t]
+
+
+class Numeric:
+    """Numeric versions of engine expressions, parameters replaced by their values.
+
+    Call with a state dict {name: value}; absent q̈ and t default to 0.
+    """
+
+    def __init__(self, eom: lagrangian.EquationsOfMotion, exprs: Sequence[se.Basic]) -> None:
+        self.names = [str(s) for s in state_symbols(eom)]
+        values = parameter_values(eom)
+        subbed = [se.sympify(e).subs(values) for e in exprs]
+        leftover = set().union(*(e.free_symbols for e in subbed)) - set(state_symbols(eom)) if subbed else set()
+        assert not leftover, f"symbols without values: {leftover}"
+        self.n = len(subbed)
+        self._f = se.Lambdify(state_symbols(eom), subbed, real=True) if subbed else None
+
+    def __call__(self, state: dict[str, float]) -> np.ndarray:
+        if self._f is None:
+            return np.zeros(0)
+        args = [state.get(name, 0.0) for name in self.names]
+        return np.asarray(self._f(args), dtype=float).reshape(self.n)
+
+
+@functools.cache
+def numeric_eom(name: str) -> tuple[Numeric, Numeric]:
+    """(M, F) of an example as numeric functions (M flattened row by row)."""
+    eom = eom_of(name)
+    return Numeric(eom, [e for row in eom.M for e in row]), Numeric(eom, eom.F)
+
+
+def engine_qdd(name: str, state: dict[str, float]) -> np.ndarray:
+    """q̈ = M⁻¹F from the engine at ``state``."""
+    M, F = numeric_eom(name)
+    n = len(eom_of(name).q)
+    return np.linalg.solve(M(state).reshape(n, n), F(state))
+
+
+def with_accelerations(eom: lagrangian.EquationsOfMotion, state: dict[str, float],
+                       qdd: Sequence[float]) -> dict[str, float]:
+    out = dict(state)
+    out.update({str(s): float(v) for s, v in zip(eom.qdd, qdd)})
+    return out
+
+
+# -- model-file text manipulation ---------------------------------------------------------------
+_HEADER = re.compile(r"^\s*\[")
+
+
+def coordinate_entry_lines(text: str) -> list[int]:
+    """Indices (0-based) of the entry lines of the [coordinates] table of ``text``."""
+    lines = text.splitlines()
+    i = next(k for k, line in enumerate(lines) if line.strip() == "[coordinates]") + 1
+    entries = []
+    while i < len(lines) and not _HEADER.match(lines[i]):
+        if lines[i].strip() and not lines[i].lstrip().startswith("#"):
+            entries.append(i)
+        i += 1
+    return entries
+
+
+def permuted_coordinates(text: str, order: Sequence[int]) -> str:
+    """``text`` with the entries of its [coordinates] table listed in ``order``."""
+    lines = text.splitlines()
+    slots = coordinate_entry_lines(text)
+    assert sorted(order) == list(range(len(slots)))
+    entries = [lines[k] for k in slots]
+    for slot, k in zip(slots, order):
+        lines[slot] = entries[k]
+    return "\n".join(lines) + "\n"
+
+
+def other_orders(n: int) -> list[tuple[int, ...]]:
+    """Every ordering of n items except the identity."""
+    return [p for p in itertools.permutations(range(n)) if p != tuple(range(n))]
