@@ -22,7 +22,7 @@ import symengine as se
 from .._identity import are_zero
 from ..errors import ModelError
 from ..kinematics import Kinematics
-from ..model import Body
+from ..model import Body, Location
 
 __all__ = ["KineticEnergyTerm", "RigidInertia", "rigid_inertia", "kinetic_energy"]
 
@@ -72,24 +72,26 @@ def rigid_inertia(kin: Kinematics, body: Body) -> tuple[RigidInertia, Matrix3]:
     for the symmetric top) and that Π_G is physical for the parameter values given.
     """
     model = kin.model
-    loc = model.where("body", body.name)
+    where = model.where("body", body.name)
+    loc = where.of("inertia")  # errors about the inertia point at its line in the file
     inertia = body.inertia
     given: Matrix3 = inertia.matrix
     frame = inertia.frame
     if frame != body.frame:
         _check_invariant(kin, body, loc)
 
-    def gp_components(point: str) -> tuple[se.Basic, ...]:
+    def gp_components(point: str, loc: Location = loc) -> tuple[se.Basic, ...]:
         d = kin.position(point) - body.center  # GP
-        comps = kin.frames.express(d, frame)
-        moving = [c for c in comps if c.free_symbols & (set(kin.q) | {kin.t})]
-        if moving and not all(are_zero([se.diff(c, s) for c in comps for s in (*kin.q, kin.t)])):
+        # P must be a point of the body: GP constant in the body's own frame.
+        in_body = kin.frames.express(d, body.frame)
+        moving = [c for c in in_body if c.free_symbols & (set(kin.q) | {kin.t})]
+        if moving and not all(are_zero([se.diff(c, s) for c in in_body for s in (*kin.q, kin.t)])):
             raise ModelError(
-                f"point `{point}` moves relative to body `{body.name}` (GP has components {list(comps)} in "
-                f"`{frame}`), so the inertia of `{body.name}` cannot be given or taken there",
+                f"point `{point}` moves relative to body `{body.name}` (GP has components {list(in_body)} in "
+                f"`{body.frame}`), so the inertia of `{body.name}` cannot be given or taken there",
                 symbol=point, fix="give the inertia at G or at a point fixed in the body",
                 file=loc.file, line=loc.line)
-        return comps
+        return kin.frames.express(d, frame)
 
     if inertia.at == "G":
         pi_g = given
@@ -100,13 +102,16 @@ def rigid_inertia(kin: Kinematics, body: Body) -> tuple[RigidInertia, Matrix3]:
     if fixed is None:
         return RigidInertia(body.name, "G", frame, pi_g), pi_g
     if not kin.is_fixed(fixed):
+        velocity = kin.velocity(fixed)
         raise ModelError(
-            f"`{fixed}` is declared the fixed point of body `{body.name}` but V({fixed}/R0) is not zero",
+            f"`{fixed}` is declared the fixed point of body `{body.name}` but it moves: V({fixed}/R0) = "
+            f"{velocity} is not zero",
             symbol=fixed, fix="remove `fixed_point`, or define the point so that it does not move",
-            file=loc.file, line=loc.line)
+            file=where.file, line=where.of("fixed_point").line)
     if inertia.at == fixed:
         return RigidInertia(body.name, fixed, frame, given), pi_g
-    return RigidInertia(body.name, fixed, frame, _transport(pi_g, body.mass, gp_components(fixed), +1)), pi_g
+    moved = _transport(pi_g, body.mass, gp_components(fixed, where.of("fixed_point")), +1)
+    return RigidInertia(body.name, fixed, frame, moved), pi_g
 
 
 def _check_invariant(kin: Kinematics, body: Body, loc) -> None:  # type: ignore[no-untyped-def]

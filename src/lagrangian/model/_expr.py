@@ -50,6 +50,11 @@ FUNCTIONS: dict[str, Callable[[se.Basic], se.Basic]] = {
 
 #: Largest numeric exponent accepted (guards against `9^9^9` in untrusted files).
 MAX_EXPONENT = 1000
+#: Largest number of bits of a number a power may produce (about 10,000 decimal digits),
+#: so that `((9^999)^999)^999` is refused before it is computed.
+MAX_BITS = 33_000
+#: Longest number literal, in characters (`1e99999999` would take minutes to read exactly).
+MAX_LITERAL = 100
 
 #: Names with a fixed meaning in every model.
 CONSTANTS: dict[str, se.Basic] = {"pi": se.pi}
@@ -123,7 +128,8 @@ class _Parser:
     def _expect(self, text: str) -> _Token:
         if self.tok.text != text:
             found = "the end of the expression" if self.tok.kind == "end" else f"`{self.tok.text}`"
-            raise ExpressionError(f"expected `{text}` but found {found}", self.tok.column)
+            fix = "close every `(` with a `)`" if text == ")" else f"write `{text}` here"
+            raise ExpressionError(f"expected `{text}` but found {found}", self.tok.column, fix=fix)
         return self._advance()
 
     # -- grammar --------------------------------------------------------------------
@@ -170,17 +176,24 @@ class _Parser:
             if isinstance(base, Vector) or isinstance(exponent, Vector):
                 raise ExpressionError("a vector cannot be raised to a power", op.column,
                                       fix="write the scalar expression, e.g. `l^2`, not a vector")
-            if exponent.is_Number and abs(float(exponent)) > MAX_EXPONENT:
+            if exponent.is_Number:
                 # A stranger's `9^9^9` must not hang the parser on integer arithmetic.
-                raise ExpressionError(f"the exponent `{exponent}` is too large", op.column,
-                                      fix=f"exponents are limited to {MAX_EXPONENT} in absolute value")
+                if abs(float(exponent)) > MAX_EXPONENT:
+                    raise ExpressionError(f"the exponent `{_short(exponent)}` is too large", op.column,
+                                          fix=f"exponents are limited to {MAX_EXPONENT} in absolute value")
+                if _bits(base) * abs(exponent.get_num_den()[0] if exponent.is_Rational else 1) > MAX_BITS:
+                    raise ExpressionError(f"the power `{_short(base)}^{_short(exponent)}` is too large a number",
+                                          op.column, fix="write a smaller number, or keep it symbolic")
+                if base == 0 and exponent.is_negative:
+                    raise ExpressionError("division by zero: `0` raised to a negative power", op.column,
+                                          fix="correct the exponent or the base")
             return base**exponent
         return base
 
     def atom(self) -> se.Basic | Vector:
         tok = self._advance()
         if tok.kind == "number":
-            return _exact_number(tok.text)
+            return _exact_number(tok)
         if tok.text == "(":
             value = self.expr()
             self._expect(")")
@@ -204,7 +217,8 @@ class _Parser:
                 fix=f"declare `{tok.text}` under [parameters] or [coordinates], or correct its spelling",
             )
         found = "the end of the expression" if tok.kind == "end" else f"`{tok.text}`"
-        raise ExpressionError(f"expected a number, a name or `(` but found {found}", tok.column)
+        raise ExpressionError(f"expected a number, a name or `(` but found {found}", tok.column,
+                              fix="an operand may be missing, e.g. `a*` should be `a*b`")
 
     def _call(self, name: _Token) -> se.Basic:
         fn = FUNCTIONS.get(name.text)
@@ -216,24 +230,36 @@ class _Parser:
         self._expect("(")
         arg = self.expr()
         if self.tok.text == ",":
-            raise ExpressionError(f"`{name.text}` takes one argument", self.tok.column, symbol=name.text)
+            raise ExpressionError(f"`{name.text}` takes one argument", self.tok.column, symbol=name.text,
+                                  fix=f"write `{name.text}(x)` with a single argument")
         self._expect(")")
         if isinstance(arg, Vector):
             raise ExpressionError(f"`{name.text}` of a vector is not defined", name.column, symbol=name.text,
                                   fix="apply functions to scalars only")
-        return fn(arg)
+        value = fn(arg)
+        if value.has(se.zoo) or value.has(se.nan):
+            raise ExpressionError(f"`{name.text}({arg})` is not defined (it is infinite)", name.column,
+                                  symbol=name.text, fix="correct the argument")
+        return value
 
     def _basis_vector(self, frame: _Token) -> Vector:
         self._advance()  # the dot
         axis = self._advance()
         if frame.text not in self.frames:
+            if frame.text in self.names or frame.text in CONSTANTS:
+                raise ExpressionError(
+                    f"`{frame.text}` is a scalar, not a frame: only frames have basis vectors such as `R0.x`",
+                    frame.column, symbol=frame.text, fix=f"remove `.{axis.text}`, or name a declared frame",
+                )
             raise ExpressionError(
                 f"unknown frame `{frame.text}` in `{frame.text}.{axis.text}`", frame.column, symbol=frame.text,
                 fix="declare the frame under [frames] (R0 is the Galilean frame), or correct its name",
             )
         if axis.text not in AXES:
+            found = "nothing" if axis.kind == "end" else f"`{axis.text}`"
             raise ExpressionError(
-                f"`{axis.text}` is not an axis of frame `{frame.text}`", axis.column, symbol=axis.text,
+                f"frame `{frame.text}` has the axes x, y and z, but `{frame.text}.` is followed by {found}",
+                axis.column, symbol=axis.text or frame.text,
                 fix=f"write `{frame.text}.x`, `{frame.text}.y` or `{frame.text}.z`",
             )
         return Vector.basis(frame.text, axis.text)
@@ -255,15 +281,37 @@ class _Parser:
             return lhs * rhs
         # division
         if rv:
-            raise ExpressionError("cannot divide by a vector", op.column)
+            raise ExpressionError("cannot divide by a vector", op.column,
+                                  fix="divide by a scalar only, e.g. `(a*R.x)/2`")
+        if rhs == 0:
+            raise ExpressionError("division by zero", op.column, fix="correct the denominator")
         return lhs / rhs
 
 
-def _exact_number(text: str) -> se.Basic:
-    value = Fraction(text)
+def _exact_number(tok: _Token) -> se.Basic:
+    """The exact value of a number literal: ``0.1`` is 1/10, ``1e-3`` is 1/1000."""
+    exponent = tok.text.lower().partition("e")[2]
+    if len(tok.text) > MAX_LITERAL or (exponent and abs(int(exponent)) > MAX_EXPONENT):
+        raise ExpressionError(f"the number `{_short(tok.text)}` is too large or too long", tok.column,
+                              fix=f"numbers may have at most {MAX_LITERAL} characters and a power of ten "
+                              f"of at most {MAX_EXPONENT} in absolute value")
+    value = Fraction(tok.text)
     if value.denominator == 1:
         return se.Integer(value.numerator)
     return se.Rational(value.numerator, value.denominator)
+
+
+def _bits(value: se.Basic) -> int:
+    """The size in bits of the largest number in ``value`` (at least 1)."""
+    if value.is_Rational:
+        return max(1, *(abs(int(n)).bit_length() for n in value.get_num_den()))
+    return max((_bits(a) for a in value.args), default=1)
+
+
+def _short(value: object, width: int = 24) -> str:
+    """``value`` as text, cut in the middle when it is long (a huge number in a message)."""
+    text = str(value)
+    return text if len(text) <= width else f"{text[:10]}...{text[-10:]}"
 
 
 def parse_expression(
@@ -288,8 +336,9 @@ def parse_expression(
     Examples
     --------
     >>> import symengine as se
-    >>> parse_expression("2^-1*a", {"a": se.Symbol("a")})
-    a/2
+    >>> a = se.Symbol("a")
+    >>> parse_expression("2^-1*a", {"a": a}) == a / 2
+    True
     """
     if not isinstance(text, str):
         raise TypeError("parse_expression reads text only")

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import re
 import sys
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -70,34 +70,103 @@ def parse_model(text: str, *, source: str | None = None) -> Model:
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        msg = str(exc)
-        m = re.search(r"\(at line (\d+), column (\d+)\)", msg)
-        line = int(m.group(1)) if m else None
-        column = int(m.group(2)) if m else None
-        core = re.sub(r"\s*\(at line \d+, column \d+\)", "", msg)
-        fix = "correct the TOML syntax"
-        if "overwrite" in core.lower() or "duplicate" in core.lower():
-            fix = "each name may be declared once in a table (a frame has one parent)"
-        raise ModelError(f"TOML syntax error: {core}", file=source, line=line, column=column, fix=fix) from None
-    return _Reader(text, data, source).read()
+        raise _syntax_error(text, str(exc), source) from None
+    lines = text.splitlines()
+    try:
+        return _Reader(lines, data, source).read()
+    except ModelError as exc:
+        if exc.line is not None and exc.source_line is None and 0 < exc.line <= len(lines):
+            exc.source_line = lines[exc.line - 1]
+        raise
+
+
+def _syntax_error(text: str, msg: str, source: str | None) -> ModelError:
+    """A `ModelError` for tomllib's message ``msg``, naming the key declared twice when that is the problem."""
+    m = re.search(r"\(at line (\d+), column (\d+)\)", msg)
+    line = int(m.group(1)) if m else None
+    column = int(m.group(2)) if m else None
+    core = re.sub(r"\s*\(at line \d+, column \d+\)", "", msg)
+    lines = text.splitlines()
+    source_line = lines[line - 1] if line is not None and 0 < line <= len(lines) else None
+    where = dict(file=source, line=line, column=column, source_line=source_line)
+    # The key (or table) declared on the offending line, and where it was declared before.
+    path: tuple[str, ...] = ()
+    if line is not None:
+        for decl, number, _, inner in _declarations(lines[:line]):
+            if number == line and not inner:
+                path = decl
+    symbol = path[-1] if path else None
+    first = _first_lines(lines[: line - 1]).get(path, (None,))[0] if (path and line is not None) else None
+    inline = re.match(r"Duplicate inline table key '(.*)'", core)
+    if inline:
+        key = inline.group(1)
+        return ModelError(f"key `{key}` is given twice in the same inline table", symbol=key,
+                          fix=f"keep one `{key} = ...`", **where)
+    if first is not None and ("twice" in core or "overwrite" in core.lower() or "redefine" in core):
+        lines_text = f"lines {first} and {line}"
+        if len(path) == 2 and path[0] == "frames":
+            message = (f"frame `{symbol}` is defined twice ({lines_text}); a frame has exactly one parent, "
+                       "so it is declared once")
+            fix = f"keep a single definition of `{symbol}`, with its one parent (`from`) and its rotation"
+        else:
+            table = f"[{'.'.join(path[:-1])}]" if len(path) > 1 else "the file"
+            message = f"`{symbol}` is declared twice in {table} ({lines_text})"
+            fix = f"declare `{symbol}` once: remove or rename one of the two"
+        return ModelError(message, symbol=symbol, fix=fix, **where)
+    return ModelError(f"TOML syntax error: {core}", symbol=symbol,
+                      fix="correct the TOML syntax of this line (strings in quotes, `key = value`, "
+                      "tables as [name])", **where)
+
+
+_SINGULAR = {"parameters": "parameter", "coordinates": "coordinate", "frames": "frame", "points": "point",
+             "bodies": "body", "particles": "particle", "loads": "load"}
+#: TOML keys whose builder name differs, by table.
+_RENAME = {
+    "frames": {"from": "parent"},
+    "points": {"from": "relative_to"},
+    "particles": {"from": "relative_to"},
+    "loads": {"gravity": "field", "spring": "ends", "damper": "ends", "potential": "energy",
+              "generalized_force": "components"},
+}
 
 
 class _Reader:
-    def __init__(self, text: str, data: dict[str, Any], source: str | None) -> None:
-        self.lines = text.splitlines()
+    def __init__(self, lines: list[str], data: dict[str, Any], source: str | None) -> None:
+        self.lines = lines
         self.data = data
         self.source = source
-        self.index = _key_lines(self.lines)
+        self.index = _first_lines(self.lines)
 
     def at(self, *path: str) -> Location:
         """The line declaring ``path`` (the longest known prefix of it)."""
         for k in range(len(path), 0, -1):
-            line = self.index.get(tuple(path[:k]))
-            if line is not None:
-                return Location(self.source, line)
+            hit = self.index.get(tuple(path[:k]))
+            if hit is not None:
+                return Location(self.source, hit[0])
         return Location(self.source, None)
 
-    def fail(self, path: tuple[str, ...], message: str, *, fix: str | None = None, symbol: str | None = None) -> ModelError:
+    def located(self, table: str, name: str, value: Any, shorthand: str) -> Location:
+        """Where entry ``name`` of ``table`` is declared, with the line (and value column) of each of its keys."""
+        loc = self.at(table, name)
+        entries = value if isinstance(value, dict) else {shorthand: value}
+        rename = _RENAME.get(table, {})
+        keys = []
+        for key, v in entries.items():
+            path = (table, name, key) if isinstance(value, dict) else (table, name)
+            hit = self.index.get(path)
+            if hit is None:
+                continue
+            line, column = hit
+            text = self.lines[line - 1]
+            # The column is kept only where the file spells the string exactly (no escapes).
+            if not (column and isinstance(v, str) and text[column - 1:column - 1 + len(v)] == v
+                    and text[column - 1 + len(v):column + len(v)] == text[column - 2]):
+                column = 0
+            keys.append((rename.get(key, key), line, column))
+        return Location(loc.file, loc.line, tuple(keys))
+
+    def fail(self, path: tuple[str, ...], message: str, *, fix: str | None = None,
+             symbol: str | None = None) -> ModelError:
         loc = self.at(*path)
         return ModelError(message, fix=fix, symbol=symbol, file=loc.file, line=loc.line)
 
@@ -114,7 +183,7 @@ class _Reader:
         unknown = set(value) - allowed
         if unknown:
             key = sorted(unknown)[0]
-            raise self.fail((table, name, key), f"unknown key `{key}` in {table} `{name}`", symbol=key,
+            raise self.fail((table, name, key), f"unknown key `{key}` in {_SINGULAR[table]} `{name}`", symbol=key,
                             fix="the keys allowed here are " + ", ".join(sorted(allowed)))
         return value
 
@@ -124,27 +193,36 @@ class _Reader:
                 raise self.fail((key,), f"unknown table `[{key}]`", symbol=key,
                                 fix="the tables are " + ", ".join(f"[{t}]" for t in _TABLES))
         meta = self.table("model")
-        b = ModelBuilder(str(meta.get("name", Path(self.source).stem if self.source else "model")),
-                         str(meta.get("description", "")), source=self.source)
+        for key, value in meta.items():
+            if key not in ("name", "description"):
+                raise self.fail(("model", key), f"unknown key `{key}` in [model]", symbol=key,
+                                fix="the keys allowed in [model] are name and description")
+            if not isinstance(value, str):
+                raise self.fail(("model", key), f"`{key}` in [model] must be text, not `{value}`", symbol=key,
+                                fix=f'write it in quotes, e.g. {key} = "..."')
+        b = ModelBuilder(meta.get("name", Path(self.source).stem if self.source else "model"),
+                         meta.get("description", ""), source=self.source)
         for name, value in self.table("parameters").items():
             v = self.entry("parameters", name, value, {"value", "unit", "description"}, "value")
             b.parameter(name, v.get("value"), unit=v.get("unit"), description=v.get("description"),
-                        location=self.at("parameters", name))
+                        location=self.located("parameters", name, value, "value"))
         for name, value in self.table("coordinates").items():
             v = self.entry("coordinates", name, value,
                            {"initial", "rate", "momentum", "unit", "description"}, "initial")
             b.coordinate(name, v.get("initial"), v.get("rate"), momentum=v.get("momentum"), unit=v.get("unit"),
-                         description=v.get("description"), location=self.at("coordinates", name))
+                         description=v.get("description"),
+                         location=self.located("coordinates", name, value, "initial"))
         for name, value in self.table("frames").items():
             v = self.entry("frames", name, value, {"from", "rotation", "axes"}, "from")
             b.frame(name, v.get("from"), rotation=v.get("rotation"), axes=v.get("axes"),
-                    location=self.at("frames", name))
+                    location=self.located("frames", name, value, "from"))
         for name, value in self.table("points").items():
             v = self.entry("points", name, value, {"from", "position"}, "position")
             if "position" not in v:
                 raise self.fail(("points", name), f"point `{name}` has no position", symbol=name,
                                 fix='e.g. A = "l*R1.x" or A = { from = "B", position = "l*R1.x" }')
-            b.point(name, v["position"], relative_to=v.get("from", "O"), location=self.at("points", name))
+            b.point(name, v["position"], relative_to=v.get("from", "O"),
+                    location=self.located("points", name, value, "position"))
         for name, value in self.table("bodies").items():
             v = self.entry("bodies", name, value,
                            {"frame", "mass", "center", "center_from", "inertia", "fixed_point"}, "frame")
@@ -153,7 +231,8 @@ class _Reader:
                     raise self.fail(("bodies", name), f"body `{name}` has no `{key}`", symbol=name,
                                     fix=f"add `{key} = ...` to [bodies.{name}]")
             b.body(name, frame=v["frame"], mass=v["mass"], center=v["center"], center_from=v.get("center_from", "O"),
-                   inertia=v.get("inertia"), fixed_point=v.get("fixed_point"), location=self.at("bodies", name))
+                   inertia=v.get("inertia"), fixed_point=v.get("fixed_point"),
+                   location=self.located("bodies", name, value, "frame"))
         for name, value in self.table("particles").items():
             v = self.entry("particles", name, value, {"mass", "position", "from"}, "position")
             for key in ("mass", "position"):
@@ -161,13 +240,21 @@ class _Reader:
                     raise self.fail(("particles", name), f"particle `{name}` has no `{key}`", symbol=name,
                                     fix=f"add `{key} = ...` to [particles.{name}]")
             b.particle(name, mass=v["mass"], position=v["position"], relative_to=v.get("from", "O"),
-                       location=self.at("particles", name))
+                       location=self.located("particles", name, value, "position"))
         for name, value in self.table("loads").items():
             self.load(b, name, value)
         return b.build()
 
+    def names(self, load: str, key: str, value: Any) -> tuple[str, ...]:
+        """A name or a list of names (the ends of a spring, the bodies gravity acts on)."""
+        if isinstance(value, str):
+            return (value,)
+        if isinstance(value, list) and all(isinstance(v, str) for v in value):
+            return tuple(value)
+        raise self.fail(("loads", load, key), f"`{key}` of load `{load}` must be a name or a list of names, "
+                        f"not `{value}`", symbol=load, fix=f'e.g. {key} = ["A", "B"]')
+
     def load(self, b: ModelBuilder, name: str, value: Any) -> None:
-        where = self.at("loads", name)
         if not isinstance(value, dict):
             raise self.fail(("loads", name), f"load `{name}` must be a table", symbol=name,
                             fix='e.g. weight = { gravity = "-g*R0.z" }')
@@ -178,8 +265,9 @@ class _Reader:
                             fix='e.g. weight = { gravity = "-g*R0.z" }')
         kind = kinds[0]
         self.entry("loads", name, value, _LOAD_KINDS[kind], kind)
+        where = self.located("loads", name, value, kind)
         if kind == "gravity":
-            b.gravity(name, value["gravity"], on=_names(value.get("on", ())), location=where)
+            b.gravity(name, value["gravity"], on=self.names(name, "on", value.get("on", [])), location=where)
         elif kind == "force":
             if "at" not in value:
                 raise self.fail(("loads", name), f"force `{name}` has no point of application", symbol=name,
@@ -191,11 +279,12 @@ class _Reader:
                                 symbol=name, fix='add on = "S"')
             b.torque(name, value["torque"], on=value["on"], reaction_on=value.get("reaction_on"), location=where)
         elif kind == "spring":
-            b.spring(name, _names(value["spring"]), stiffness=_required(self, name, value, "stiffness"),
+            b.spring(name, self.names(name, kind, value["spring"]),
+                     stiffness=_required(self, name, value, "stiffness"),
                      rest_length=value.get("rest_length", 0), location=where)
         elif kind == "damper":
-            b.damper(name, _names(value["damper"]), coefficient=_required(self, name, value, "coefficient"),
-                     location=where)
+            b.damper(name, self.names(name, kind, value["damper"]),
+                     coefficient=_required(self, name, value, "coefficient"), location=where)
         elif kind == "potential":
             b.potential(name, value["potential"], location=where)
         else:
@@ -212,12 +301,6 @@ def _required(reader: _Reader, name: str, value: dict[str, Any], key: str) -> An
     return value[key]
 
 
-def _names(value: Any) -> tuple[str, ...]:
-    if isinstance(value, str):
-        return (value,)
-    return tuple(str(v) for v in value)
-
-
 _HEADER = re.compile(r"^\s*\[\[?\s*([^\]]+?)\s*\]\]?\s*(#.*)?$")
 _KEY = re.compile(r"^\s*((?:[A-Za-z0-9_\-]+|\"[^\"]*\"|'[^']*')(?:\s*\.\s*(?:[A-Za-z0-9_\-]+|\"[^\"]*\"|'[^']*'))*)\s*=")
 
@@ -227,25 +310,42 @@ def _split_key(key: str) -> tuple[str, ...]:
     return tuple(a or b or c for a, b, c in parts)
 
 
-def _key_lines(lines: list[str]) -> dict[tuple[str, ...], int]:
-    """Map each table header and ``key =`` line to its 1-based line number.
+def _value_column(line: str, end: int) -> int:
+    """1-based column of the first character of a one-line string value starting after ``end``, else 0."""
+    rest = line[end:]
+    start = end + len(rest) - len(rest.lstrip())
+    quote = line[start:start + 1]
+    if quote in ('"', "'") and line[start:start + 3] != quote * 3:
+        return start + 2
+    return 0
 
-    Keys inside inline tables are found too (``R1 = { from = "R0" }`` records both
-    ``frames.R1`` and ``frames.R1.from``) on the line where they appear.
+
+def _declarations(lines: list[str]) -> Iterator[tuple[tuple[str, ...], int, int, bool]]:
+    """Yield ``(path, line, value column, inner)`` for each table header and ``key =`` line.
+
+    Keys inside inline tables are found too (``R1 = { from = "R0" }`` yields both
+    ``frames.R1`` and ``frames.R1.from``, the latter with ``inner`` true) on the line
+    where they appear.
     """
-    index: dict[tuple[str, ...], int] = {}
     current: tuple[str, ...] = ()
     for number, line in enumerate(lines, start=1):
         header = _HEADER.match(line)
         if header:
             current = _split_key(header.group(1))
-            index.setdefault(current, number)
+            yield current, number, 0, False
             continue
         key = _KEY.match(line)
         if key:
             path = current + _split_key(key.group(1))
-            index.setdefault(path, number)
+            yield path, number, _value_column(line, key.end()), False
             # inline table keys on the same line
             for inner in re.finditer(r"[{,]\s*([A-Za-z0-9_\-]+)\s*=", line):
-                index.setdefault(path + (inner.group(1),), number)
+                yield path + (inner.group(1),), number, _value_column(line, inner.end()), True
+
+
+def _first_lines(lines: list[str]) -> dict[tuple[str, ...], tuple[int, int]]:
+    """Map each declared path to the 1-based line (and value column) of its first declaration."""
+    index: dict[tuple[str, ...], tuple[int, int]] = {}
+    for path, number, column, _ in _declarations(lines):
+        index.setdefault(path, (number, column))
     return index

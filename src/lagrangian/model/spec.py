@@ -50,10 +50,31 @@ TIME = se.Symbol("t")
 
 @dataclass(frozen=True, slots=True)
 class Location:
-    """Where something was declared: a file and a 1-based line (either may be unknown)."""
+    """Where something was declared: a file and a 1-based line (either may be unknown).
+
+    ``keys`` optionally records, for the declaration's keys (``"mass"``, ``"inertia"``,
+    ...), the line of each and the 1-based column where its text value starts (0 when
+    unknown), so that an error can point at the offending key rather than the table.
+    It plays no part in comparisons.
+    """
 
     file: str | None = None
     line: int | None = None
+    keys: tuple[tuple[str, int, int], ...] = field(default=(), compare=False, repr=False)
+
+    def of(self, key: str | None) -> Location:
+        """The location of ``key`` of this declaration (this location when unknown)."""
+        for name, line, _ in self.keys:
+            if name == key:
+                return Location(self.file, line)
+        return Location(self.file, self.line)
+
+    def value_column(self, key: str | None) -> int | None:
+        """The column where the text value of ``key`` starts in the file, when known."""
+        for name, _, column in self.keys:
+            if name == key:
+                return column or None
+        return None
 
 
 @dataclass(frozen=True, slots=True)
