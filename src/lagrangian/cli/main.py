@@ -78,7 +78,10 @@ def _report(error: LagrangianError) -> str:
         if error.file and error.line:
             try:
                 source = Path(error.file).read_text(encoding="utf-8").splitlines()[error.line - 1]
-                lines.append(f"  {error.line} | {source}")
+                gutter = f"  {error.line} | "
+                lines.append(gutter + source)
+                if error.column and 0 < error.column <= len(source) + 1:
+                    lines.append(" " * (len(gutter) + error.column - 1) + "^")
             except (OSError, IndexError, UnicodeDecodeError):
                 pass
     else:

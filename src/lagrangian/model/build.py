@@ -444,7 +444,8 @@ class _Assembler:
 
     def points(self) -> list[Point]:
         raws = {r.name: r for r in self.of("point")}
-        # Body centres and particles may serve as `relative_to` too; resolve those lazily.
+        # Declared points are resolved here; body centres and particles become available as
+        # `from` points once they are built (bodies first, then particles in file order).
         resolved: dict[str, Point] = {ORIGIN: Point(ORIGIN, Vector.zero())}
         chain: list[str] = []
 
@@ -477,7 +478,8 @@ class _Assembler:
         base = self._points.get(relative_to)
         if base is None:
             raise self.error(raw, f"unknown point `{relative_to}` in {what} of {raw.kind} `{raw.name}`",
-                             symbol=relative_to, fix="declare it under [points] or use O", key=from_key)
+                             symbol=relative_to, key=from_key,
+                             fix="declare it under [points], use O, or a body or particle declared before")
         return base.position + self.expr(raw, what, value, vector=True, key=key)
 
     def bodies(self, points: list[Point]) -> tuple[Body, ...]:
@@ -496,6 +498,7 @@ class _Assembler:
                                  symbol=str(fixed), fix="declare it under [points] (O is predeclared)",
                                  key="fixed_point")
             out.append(Body(raw.name, d["frame"], mass, center, inertia, fixed))
+            self._points.setdefault(raw.name, Point(raw.name, center))  # its centre, for later `from`
         return tuple(out)
 
     def inertia(self, raw: _Raw, spec: Mapping[str, Any] | None, body_frame: str) -> Inertia:
@@ -562,6 +565,7 @@ class _Assembler:
             position = self._position(raw, raw.data["position"], raw.data["relative_to"], "the position",
                                       "position", "relative_to")
             out.append(Particle(raw.name, mass, position))
+            self._points.setdefault(raw.name, Point(raw.name, position))  # for a later particle's `from`
         return tuple(out)
 
     def loads(self, points: dict[str, Point], bodies: tuple[Body, ...], particles: tuple[Particle, ...],
