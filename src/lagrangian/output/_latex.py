@@ -6,10 +6,9 @@ Time derivatives are dots (\dot{\theta}, \ddot{\theta}), angles are Greek letter
 
 from __future__ import annotations
 
-import sympy
 
-from ._course import CourseForm, VectorRow
-from ._notation import Notation
+from ._course import CourseForm
+from ._notation import _axis_latex
 from ._text import notation
 
 __all__ = ["render_latex"]
@@ -28,36 +27,6 @@ def _escape(text: str) -> str:
     return text
 
 
-def _axis(name: str) -> str:
-    head = name.rstrip("0123456789")
-    tail = name[len(head):]
-    return rf"\vec{{{head}}}" + (f"_{{{tail}}}" if tail else "")
-
-
-def _vector(n: Notation, row: VectorRow) -> str:
-    if not row.terms:
-        return r"\vec{0}"
-    out = ""
-    for k, (c, axis) in enumerate(row.terms):
-        text = n.latex(c)
-        negative = text.startswith("-") and not isinstance(c, sympy.Add)
-        if negative:
-            text = text[1:]
-        if isinstance(c, sympy.Add):
-            text = rf"\left({text}\right)"
-        term = _axis(axis) if text == "1" else rf"{text}\,{_axis(axis)}"
-        out += ("-" if negative else "") + term if k == 0 else (" - " if negative else " + ") + term
-    return out
-
-
-def _sum(n: Notation, parts: tuple[sympy.Basic, ...]) -> str:
-    out = ""
-    for k, p in enumerate(parts):
-        text = n.latex(p)
-        out = text if k == 0 else out + (" - " + text[1:] if text.startswith("-") else " + " + text)
-    return out or "0"
-
-
 def render_latex(form: CourseForm) -> str:
     """A standalone LaTeX document of the derivation."""
     n = notation(form)
@@ -74,19 +43,19 @@ def render_latex(form: CourseForm) -> str:
         out.append(r"\begin{align*}")
         rows = []
         for f in form.frames:
-            rows.append(rf"&{f.parent} \xrightarrow{{{n.latex(f.angle)},\ {_axis(f.axis)}}} {f.name}"
-                        rf"({', '.join(_axis(a) for a in f.axes)})")
+            rows.append(rf"&{f.parent} \xrightarrow{{{n.latex(f.angle)},\ {_axis_latex(f.axis)}}} {f.name}"
+                        rf"({', '.join(_axis_latex(a) for a in f.axes)})")
         for f in form.frames:
-            text = rf"\vec{{\Omega}}({f.name}/R_0) &= {_vector(n, f.omega_chain)}"
-            if f.omega_components is not None and _vector(n, f.omega_components) != _vector(n, f.omega_chain):
-                text += rf" \\ &= {_vector(n, f.omega_components)}"
+            text = rf"\vec{{\Omega}}({f.name}/R_0) &= {n.vector(f.omega_chain.terms, latex=True)}"
+            if f.omega_components is not None and n.vector(f.omega_components.terms, latex=True) != n.vector(f.omega_chain.terms, latex=True):
+                text += rf" \\ &= {n.vector(f.omega_components.terms, latex=True)}"
             rows.append(text)
         out.append(r" \\".join(rows))
         out.append(r"\end{align*}")
     if form.virtual_velocities:
         out.append(r"\subsection*{Virtual velocity field}")
         out.append(r"\begin{align*}")
-        out.append(r" \\".join(rf"\vec{{V}}^*({p}) &= {_vector(n, row)}" for p, row in form.virtual_velocities))
+        out.append(r" \\".join(rf"\vec{{V}}^*({p}) &= {n.vector(row.terms, latex=True)}" for p, row in form.virtual_velocities))
         out.append(r"\end{align*}")
     out.append(r"\subsection*{Kinetic and potential energies}")
     out.append(r"\begin{align*}")
@@ -127,7 +96,7 @@ def render_latex(form: CourseForm) -> str:
     out.append(r"\subsection*{First integrals}")
     if form.integrals:
         out.append(r"\begin{align*}")
-        out.append(r" \\".join(rf"{_sum(n, i.parts)} &= {i.name}" for i in form.integrals))
+        out.append(r" \\".join(rf"{n.sum(i.parts, latex=True)} &= {i.name}" for i in form.integrals))
         out.append(r"\end{align*}")
     else:
         out.append("None found.")

@@ -53,6 +53,12 @@ def _as_sympy(expr: object) -> sympy.Basic:
     raise TypeError(f"cannot print a {type(expr).__name__} as an expression")
 
 
+def _axis_latex(name: str) -> str:
+    head = name.rstrip("0123456789")
+    tail = name[len(head):]
+    return rf"\vec{{{head}}}" + (f"_{{{tail}}}" if tail else "")
+
+
 def _split_name(name: str) -> tuple[str, str]:
     """``theta_ddot`` → (``theta``, ``ddot``); ``l1`` → (``l1``, ``"")."""
     for suffix in ("_ddot", "_dot", "_star"):
@@ -144,6 +150,45 @@ class Notation:
     def latex(self, expr: sympy.Basic) -> str:
         r"""LaTeX, e.g. ``\frac{1}{2} A \left(\dot{\theta}^{2} + \dot{\psi}^{2} \sin^{2}\theta\right)``."""
         return self._render(_as_sympy(expr), latex=True)
+
+    def sum(self, parts: Sequence[sympy.Basic], latex: bool = False) -> str:
+        """``parts`` written one after the other with their signs (e.g. T then U in T + U)."""
+        minus = "-" if latex else "−"
+        out = ""
+        for k, p in enumerate(parts):
+            text = self._render(_as_sympy(p), latex)
+            if k == 0:
+                out = text
+            elif text.startswith(minus):
+                out += f" {minus} " + text[len(minus):]
+            else:
+                out += " + " + text
+        return out or "0"
+
+    def vector(self, terms: Sequence[tuple[sympy.Basic, str]], latex: bool = False) -> str:
+        r"""A vector from (component, axis name) pairs: ``θ̇ u + ψ̇ sinθ w + (φ̇ + ψ̇ cosθ) z``.
+
+        In LaTeX the axes carry arrows (``\vec{u}``); a digit suffix becomes a subscript (z0 → z_0).
+        """
+        if not terms:
+            return r"\vec{0}" if latex else "0"
+        minus = "-" if latex else "−"
+        out = ""
+        for k, (c, axis) in enumerate(terms):
+            c = _as_sympy(c)
+            if isinstance(c, sympy.Add):
+                body, negative = self._factor(c, latex), False
+            else:
+                body = self._render(c, latex)
+                negative = body.startswith(minus)
+                body = body[len(minus):] if negative else body
+            name = _axis_latex(axis) if latex else axis
+            term = name if body == "1" else (rf"{body}\,{name}" if latex else f"{body} {name}")
+            if k == 0:
+                out = (minus if negative else "") + term
+            else:
+                out += (f" {minus} " if negative else " + ") + term
+        return out
 
     def _render(self, e: sympy.Basic, latex: bool) -> str:
         if isinstance(e, sympy.Add):

@@ -4,9 +4,8 @@ from __future__ import annotations
 
 import re
 
-import sympy
 
-from ._course import CourseForm, VectorRow
+from ._course import CourseForm
 from ._notation import Notation
 
 __all__ = ["render_text"]
@@ -16,39 +15,6 @@ _FORMULA = {
     "König": "½ m V(G)² + ½ Ω·Π_G·Ω  (König)",
     "particle": "½ m V(P)²",
 }
-
-
-def _vector(n: Notation, row: VectorRow) -> str:
-    if not row.terms:
-        return "0"
-    parts = []
-    for k, (c, axis) in enumerate(row.terms):
-        text = n.text(c)
-        negative = text.startswith("−")
-        if negative:
-            text = text[1:]
-        if isinstance(c, sympy.Add):
-            text = f"({n.text(c)})"
-            negative = False
-        term = axis if text == "1" else f"{text} {axis}"
-        if k == 0:
-            parts.append(("−" if negative else "") + term)
-        else:
-            parts.append((" − " if negative else " + ") + term)
-    return "".join(parts)
-
-
-def _sum(n: Notation, parts: tuple[sympy.Basic, ...]) -> str:
-    out = ""
-    for k, p in enumerate(parts):
-        text = n.text(p)
-        if k == 0:
-            out = text
-        elif text.startswith("−"):
-            out += " − " + text[1:]
-        else:
-            out += " + " + text
-    return out or "0"
 
 
 def notation(form: CourseForm) -> Notation:
@@ -80,17 +46,17 @@ def render_text(form: CourseForm) -> str:
         for f in form.frames:
             lines.append(f"  {f.parent} --({n.text(f.angle)}, {f.axis})--> {f.name}({', '.join(f.axes)})")
         for f in form.frames:
-            text = f"  Ω({f.name}/R0) = {_vector(n, f.omega_chain)}"
+            text = f"  Ω({f.name}/R0) = {n.vector(f.omega_chain.terms)}"
             if f.omega_components is not None:
-                alt = _vector(n, f.omega_components)
-                if alt != _vector(n, f.omega_chain):
+                alt = n.vector(f.omega_components.terms)
+                if alt != n.vector(f.omega_chain.terms):
                     text += f" = {alt}"
             lines.append(text)
     if form.virtual_velocities:
         lines.append("")
         lines.append("Virtual velocity field compatible with the principal constraints, V*(P) = Σ ∂OP/∂q_i q_i*:")
         for point, row in form.virtual_velocities:
-            lines.append(f"  V*({point}) = {_vector(n, row)}")
+            lines.append(f"  V*({point}) = {n.vector(row.terms)}")
     lines.append("")
     lines.append("Kinetic energy T(Σ/R0):")
     for row in form.T:
@@ -124,13 +90,13 @@ def render_text(form: CourseForm) -> str:
             if eq.using_integrals is not None:
                 lines.append(f"        or, with the first integrals: {n.text(eq.using_integrals)} = {n.text(eq.rhs)}")
     if form.conservative and form.L is not None:
-        lines.append(f"  The system is conservative (Remarque 2): L = T − U_P = {_sum(n, (form.T_total, -form.U_total))}")
+        lines.append(f"  The system is conservative (Remarque 2): L = T − U_P = {n.sum((form.T_total, -form.U_total))}")
     lines.append("")
     lines.append("First integrals:")
     if not form.integrals:
         lines.append("  none found")
     for i in form.integrals:
-        lines.append(f"  {_sum(n, i.parts)} = {i.name}    ({greek(n, form, i.reason)})")
+        lines.append(f"  {n.sum(i.parts)} = {i.name}    ({greek(n, form, i.reason)})")
     lines.append("")
     lines.append("Matrix form M(q, t) q̈ = F(q, q̇, t):")
     for a, row in enumerate(form.M):
