@@ -21,17 +21,19 @@ from __future__ import annotations
 import symengine as se
 
 from ..kinematics import Kinematics
+from ..model._vector import is_structural_zero as _zero
 from ._energy import RigidInertia
 
 __all__ = ["mass_matrix_and_bias"]
 
 
 def _matvec(pi: tuple[tuple[se.Basic, ...], ...], w: tuple[se.Basic, ...]) -> tuple[se.Basic, ...]:
-    return tuple(se.Add(*(pi[k][m] * w[m] for m in range(3) if pi[k][m] != 0 and w[m] != 0)) for k in range(3))
+    return tuple(se.Add(*(pi[k][m] * w[m] for m in range(3) if not _zero(pi[k][m]) and not _zero(w[m])))
+                 for k in range(3))
 
 
 def _dot(a: tuple[se.Basic, ...], b: tuple[se.Basic, ...]) -> se.Basic:
-    return se.Add(*(x * y for x, y in zip(a, b) if x != 0 and y != 0))
+    return se.Add(*(x * y for x, y in zip(a, b) if not _zero(x) and not _zero(y)))
 
 
 def _cross(a: tuple[se.Basic, ...], b: tuple[se.Basic, ...]) -> tuple[se.Basic, ...]:
@@ -58,7 +60,7 @@ def mass_matrix_and_bias(
         V = [kin.frames.express(p, frame) for p in partials]
         acc0 = kin.frames.express(kin.acceleration(point, accelerations=False), frame)
         for i in range(n):
-            if all(c == 0 for c in V[i]):
+            if all(_zero(c) for c in V[i]):
                 continue
             g0[i].append(mass * _dot(V[i], acc0))
             for j in range(i, n):
@@ -77,7 +79,7 @@ def mass_matrix_and_bias(
         dsigma0 = tuple(a + b for a, b in zip(_matvec(pi, wdot0), _cross(wF, _matvec(pi, w))))
         pi_partial = [_matvec(pi, p) for p in partial]
         for i in range(n):
-            if all(c == 0 for c in partial[i]):
+            if all(_zero(c) for c in partial[i]):
                 continue
             g0[i].append(_dot(partial[i], dsigma0))
             for j in range(i, n):

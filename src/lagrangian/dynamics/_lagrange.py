@@ -29,6 +29,10 @@ from ._inertia import mass_matrix_and_bias
 
 __all__ = ["LagrangeEquation", "EquationsOfMotion", "derive"]
 
+#: Largest number of coordinates for which Γ_i = d/dt(∂T/∂q̇_i) − ∂T/∂q_i is grouped by
+#: q̈_j and q̇_j (see `lagrange_equations`).
+GROUPED_MAX_COORDINATES = 12
+
 
 @dataclass(frozen=True, slots=True)
 class LagrangeEquation:
@@ -134,14 +138,24 @@ class EquationsOfMotion:
 
 def lagrange_equations(kin: Kinematics, T: se.Basic, U: se.Basic,
                        Q_nc: tuple[se.Basic, ...]) -> tuple[LagrangeEquation, ...]:
-    """L(q_i) from T, U and Q_nc:  d/dt(∂T/∂q̇_i) − ∂T/∂q_i = −∂U/∂q_i + Q_i(nc)."""
+    """L(q_i) from T, U and Q_nc:  d/dt(∂T/∂q̇_i) − ∂T/∂q_i = −∂U/∂q_i + Q_i(nc).
+
+    Up to `GROUPED_MAX_COORDINATES` coordinates, d/dt(∂T/∂q̇_i) is written grouped by the
+    q̈_j and q̇_j, as the course collects terms (``kin.d_dt``).  Grouping costs 2n passes
+    over each ∂T/∂q̇_i, O(n⁴) in all for an n-link chain (a second for 40 links), so
+    beyond that d/dt is taken by the chain rule with the work on shared subexpressions
+    done once (``kin.d_dt.many``): the same functions, with products left as products.
+    """
+    dT_dqd = [T.diff(qd) for qd in kin.qd]
+    if kin.n <= GROUPED_MAX_COORDINATES:
+        rates = [kin.d_dt(f) for f in dT_dqd]
+    else:
+        rates = list(kin.d_dt.many(dT_dqd))
     out = []
-    for c, q, qd, q_nc in zip(kin.model.coordinates, kin.q, kin.qd, Q_nc):
-        dT_dqd = T.diff(qd)
+    for c, q, p, rate, q_nc in zip(kin.model.coordinates, kin.q, dT_dqd, rates, Q_nc):
         dT_dq = T.diff(q)
         dU_dq = U.diff(q)
-        gamma = kin.d_dt(dT_dqd) - dT_dq
-        out.append(LagrangeEquation(c.name, dT_dqd, dT_dq, dU_dq, q_nc, gamma, -dU_dq + q_nc))
+        out.append(LagrangeEquation(c.name, p, dT_dq, dU_dq, q_nc, rate - dT_dq, -dU_dq + q_nc))
     return tuple(out)
 
 

@@ -18,12 +18,14 @@ from functools import lru_cache
 import symengine as se
 
 from ..model import GALILEAN_FRAME, Model, Vector
-from ..model._vector import AXES
+from ..model._vector import AXES, is_structural_zero
 from ._time import TimeDerivative
 
 __all__ = ["FrameTree"]
 
 Components = tuple[se.Basic, se.Basic, se.Basic]
+
+_ZERO = se.Integer(0)
 
 
 def _rotate(axis: int, angle: se.Basic, v: Components) -> Components:
@@ -31,7 +33,7 @@ def _rotate(axis: int, angle: se.Basic, v: Components) -> Components:
 
     The child is the parent turned by ``angle`` about their common ``axis``.
     """
-    if angle == 0:
+    if is_structural_zero(angle):
         return v
     c, s = se.cos(angle), se.sin(angle)
     i, j = (axis + 1) % 3, (axis + 2) % 3
@@ -86,7 +88,7 @@ class FrameTree:
                 merged[-1] = (axis, merged[-1][1] + angle)
             else:
                 merged.append((axis, angle))
-        return tuple((ax, an) for ax, an in merged if an != 0)
+        return tuple((ax, an) for ax, an in merged if not is_structural_zero(an))
 
     def convert(self, comps: Components, src: str, dst: str) -> Components:
         """Components in ``dst`` of the vector whose components in ``src`` are ``comps``."""
@@ -98,11 +100,13 @@ class FrameTree:
 
     def express(self, v: Vector, frame: str) -> Components:
         """The three components of ``v`` in the basis of ``frame``."""
-        total = [se.Integer(0)] * 3
+        total: Components | None = None
         for src, comps in v:
             conv = self.convert(comps, src, frame)
-            total = [a + b for a, b in zip(total, conv)]
-        return tuple(total)  # type: ignore[return-value]
+            total = conv if total is None else (total[0] + conv[0], total[1] + conv[1], total[2] + conv[2])
+        if total is None:
+            return (_ZERO, _ZERO, _ZERO)
+        return total
 
     def lift(self, v: Vector) -> Vector:
         """The same vector with each piece moved to the highest frame where its components are unchanged.
@@ -111,16 +115,16 @@ class FrameTree:
         when R comes from R2 by a rotation about z): differentiating it there gives the
         short expressions a student writes, with no angle of the final rotation in them.
         """
-        out = Vector.zero()
+        out: dict[str, Components] = {}
         for frame, comps in v:
             f = self.frames[frame]
             while f.parent is not None:
                 k = AXES[f.rotation.axis]  # type: ignore[union-attr]
-                if any(comps[i] != 0 for i in range(3) if i != k):
+                if any(not is_structural_zero(comps[i]) for i in range(3) if i != k):
                     break
                 f = self.frames[f.parent]
-            out = out + Vector({f.name: comps})
-        return out
+            _accumulate(out, f.name, comps)
+        return Vector._trusted(out)
 
     def best_frame(self, *vectors: Vector) -> str:
         """A frame in which to compute products of ``vectors``: the deepest one they use."""
@@ -169,12 +173,31 @@ class FrameTree:
 
         (Formule de dérivation vectorielle: each piece is differentiated in its own frame.)
         """
-        out = Vector.zero()
+        out: dict[str, Components] = {}
         for frame, comps in self.lift(v):
             own = tuple(self.d_dt(c, accelerations=accelerations) for c in comps)
             transport = _cross(self.omega_in(frame, frame), comps)
-            out = out + Vector({frame: tuple(a + b for a, b in zip(own, transport))})  # type: ignore[misc]
-        return out
+            _accumulate(out, frame, tuple(a + b for a, b in zip(own, transport)))  # type: ignore[arg-type]
+        return Vector._trusted(out)
+
+
+def _accumulate(out: dict[str, Components], frame: str, comps: Components) -> None:
+    """``out += Vector({frame: comps})`` on a dict of pieces, with `Vector.__add__`'s piece order.
+
+    A zero piece is not added, and a piece that sums to zero leaves the dict (a later piece
+    in that frame then goes to the end), exactly as the sum of Vectors would do.
+    """
+    if all(is_structural_zero(c) for c in comps):
+        return
+    old = out.get(frame)
+    if old is None:
+        out[frame] = comps
+        return
+    total = (old[0] + comps[0], old[1] + comps[1], old[2] + comps[2])
+    if all(is_structural_zero(c) for c in total):
+        del out[frame]
+    else:
+        out[frame] = total
 
 
 def _cross(a: Components, b: Components) -> Components:

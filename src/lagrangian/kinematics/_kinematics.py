@@ -17,6 +17,8 @@ from ._time import TimeDerivative
 
 __all__ = ["Kinematics"]
 
+_ZERO = se.Integer(0)
+
 
 class Kinematics:
     """Everything kinematic about a `Model`, computed on demand and cached.
@@ -45,6 +47,7 @@ class Kinematics:
         self._acceleration: dict[tuple[str, bool], Vector] = {}
         self._partials: dict[str, tuple[Vector, ...]] = {}
         self._omega_partials: dict[str, tuple[Vector, ...]] = {}
+        self._rate_index = {qd: i for i, qd in enumerate(self.qd)}
 
     @property
     def n(self) -> int:
@@ -75,9 +78,21 @@ class Kinematics:
     def partial_velocities(self, point: str) -> tuple[Vector, ...]:
         """(∂OP/∂q_i)_i = (∂V(P/R0)/∂q̇_i)_i, the coefficients of V*(P)."""
         if point not in self._partials:
-            v = self.velocity(point)
-            self._partials[point] = tuple(v.diff(qd) for qd in self.qd)
+            self._partials[point] = self._rate_partials(self.velocity(point))
         return self._partials[point]
+
+    def _rate_partials(self, v: Vector) -> tuple[Vector, ...]:
+        """(v.diff(q̇_i))_i, differentiating each component only by the rates it holds."""
+        index = self._rate_index
+        pieces: list[dict[str, list[se.Basic]]] = [{} for _ in self.qd]
+        for frame, comps in v:
+            for axis, c in enumerate(comps):
+                for s in c.free_symbols:
+                    i = index.get(s)
+                    if i is not None:
+                        pieces[i].setdefault(frame, [_ZERO, _ZERO, _ZERO])[axis] = c.diff(s)
+        # Pieces keep v's frame order: `setdefault` meets the frames in that order.
+        return tuple(Vector._trusted({f: tuple(c) for f, c in p.items()}) for p in pieces)  # type: ignore[misc]
 
     def virtual_velocity(self, point: str) -> Vector:
         """V*(P) = Σ_i ∂OP/∂q_i q_i*, with the virtual rates written ``<q>_star``."""
@@ -100,6 +115,5 @@ class Kinematics:
     def partial_omegas(self, frame: str) -> tuple[Vector, ...]:
         """(∂Ω(frame/R0)/∂q̇_i)_i, the coefficients of the virtual rotation rate Ω*."""
         if frame not in self._omega_partials:
-            w = self.omega(frame)
-            self._omega_partials[frame] = tuple(w.diff(qd) for qd in self.qd)
+            self._omega_partials[frame] = self._rate_partials(self.omega(frame))
         return self._omega_partials[frame]
