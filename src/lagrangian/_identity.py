@@ -28,6 +28,7 @@ ZERO_THRESHOLD = 1e-60
 #: Number of random points an expression must vanish at.
 SAMPLES = 2
 _SEED = 20261122
+_ZERO_TYPE = type(se.Integer(0))
 
 
 def _points(symbols: Sequence[se.Symbol], count: int, rng: random.Random) -> list[dict[se.Basic, se.Basic]]:
@@ -52,7 +53,9 @@ def _magnitude(value: se.Basic) -> float | None:
 def are_zero(exprs: Iterable[se.Basic]) -> list[bool]:
     """For each expression, whether it is identically zero (see the module docstring)."""
     exprs = list(exprs)
-    result = [e == 0 for e in exprs]
+    # A structural zero first: SymEngine's 0 is a singleton of its own class (a type test
+    # is some 40 times cheaper than `e == 0`, which converts the 0 on each call).
+    result = [type(e) is _ZERO_TYPE or (not isinstance(e, se.Basic) and e == 0) for e in exprs]
     pending = [i for i, done in enumerate(result) if not done]
     if not pending:
         return result

@@ -32,6 +32,8 @@ __all__ = ["LoadForces", "generalized_forces"]
 #: seeking a potential: integration is the one slow tool here, so only small Q try it.
 MAX_INTEGRATION_CHARS = 2000
 
+_ZERO = se.Integer(0)
+
 
 @dataclass(frozen=True, slots=True)
 class LoadForces:
@@ -58,7 +60,7 @@ def _is_constant_vector(kin: Kinematics, v: Vector) -> bool:
 def _q_of(kin: Kinematics, load: Load) -> tuple[tuple[se.Basic, ...], se.Basic | None, str]:
     """(Q, candidate potential, note) of one load."""
     n = kin.n
-    zero = se.Integer(0)
+    zero = _ZERO
     if isinstance(load, Gravity):
         names = load.on or tuple(b.name for b in kin.model.bodies) + tuple(p.name for p in kin.model.particles)
         masses = {b.name: b.mass for b in kin.model.bodies} | {p.name: p.mass for p in kin.model.particles}

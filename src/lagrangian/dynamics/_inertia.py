@@ -88,7 +88,8 @@ def mass_matrix_and_bias(
     for particle in kin.model.particles:
         translational(particle.name, particle.mass)
 
-    matrix = [[se.Integer(0)] * n for _ in range(n)]
+    zero = se.Integer(0)
+    matrix = [[zero] * n for _ in range(n)]
     for i in range(n):
         for j in range(i, n):
             matrix[i][j] = matrix[j][i] = se.Add(*M[i][j])

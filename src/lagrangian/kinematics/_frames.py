@@ -13,8 +13,6 @@ common ancestor and merges consecutive rotations about the same axis (R_z(α)R_z
 
 from __future__ import annotations
 
-from functools import lru_cache
-
 import symengine as se
 
 from ..model import GALILEAN_FRAME, Model, Vector
@@ -26,20 +24,27 @@ __all__ = ["FrameTree"]
 Components = tuple[se.Basic, se.Basic, se.Basic]
 
 _ZERO = se.Integer(0)
+_ZERO_TYPE = type(_ZERO)
 
 
-def _rotate(axis: int, angle: se.Basic, v: Components) -> Components:
+def _turn(axis: int, c: se.Basic, s: se.Basic, v: Components) -> Components:
     """Components in the parent of a vector with components ``v`` in the child.
 
-    The child is the parent turned by ``angle`` about their common ``axis``.
+    The child is the parent turned about their common ``axis`` by the angle whose cosine
+    and sine are ``c`` and ``s``; products with a zero component are not formed.
     """
-    if is_structural_zero(angle):
-        return v
-    c, s = se.cos(angle), se.sin(angle)
     i, j = (axis + 1) % 3, (axis + 2) % 3
+    vi, vj = v[i], v[j]
+    zi, zj = is_structural_zero(vi), is_structural_zero(vj)
+    if zi and zj:
+        return v
     out = list(v)
-    out[i] = c * v[i] - s * v[j]
-    out[j] = s * v[i] + c * v[j]
+    if zj:
+        out[i], out[j] = c * vi, s * vi
+    elif zi:
+        out[i], out[j] = -s * vj, c * vj
+    else:
+        out[i], out[j] = c * vi - s * vj, s * vi + c * vj
     return tuple(out)  # type: ignore[return-value]
 
 
@@ -52,7 +57,7 @@ class FrameTree:
         self._depth = {}
         for f in model.frames:  # parents come first
             self._depth[f.name] = 0 if f.parent is None else self._depth[f.parent] + 1
-        self._path = lru_cache(maxsize=None)(self._path_uncached)
+        self._paths: dict[tuple[str, str], tuple[tuple[int, se.Basic, se.Basic], ...]] = {}
         self._omega: dict[str, Vector] = {}
         self._omega_in: dict[tuple[str, str], Components] = {}
 
@@ -60,8 +65,8 @@ class FrameTree:
         return self.frames[frame].axes
 
     # -- change of basis -------------------------------------------------------------------
-    def _path_uncached(self, src: str, dst: str) -> tuple[tuple[int, se.Basic], ...]:
-        """Rotations (axis, angle) that take components in ``src`` to components in ``dst``."""
+    def _path_uncached(self, src: str, dst: str) -> tuple[tuple[int, se.Basic, se.Basic], ...]:
+        """Rotations (axis, cos angle, sin angle) that take components in ``src`` to components in ``dst``."""
         up, down = [], []
         a, b = src, dst
         while self._depth[a] > self._depth[b]:
@@ -88,14 +93,18 @@ class FrameTree:
                 merged[-1] = (axis, merged[-1][1] + angle)
             else:
                 merged.append((axis, angle))
-        return tuple((ax, an) for ax, an in merged if not is_structural_zero(an))
+        # Each rotation with its cosine and sine, made once per path.
+        return tuple((ax, se.cos(an), se.sin(an)) for ax, an in merged if not is_structural_zero(an))
 
     def convert(self, comps: Components, src: str, dst: str) -> Components:
         """Components in ``dst`` of the vector whose components in ``src`` are ``comps``."""
         if src == dst:
             return comps
-        for axis, angle in self._path(src, dst):
-            comps = _rotate(axis, angle, comps)
+        path = self._paths.get((src, dst))
+        if path is None:
+            path = self._paths[(src, dst)] = self._path_uncached(src, dst)
+        for axis, c, s in path:
+            comps = _turn(axis, c, s, comps)
         return comps
 
     def express(self, v: Vector, frame: str) -> Components:
@@ -103,7 +112,7 @@ class FrameTree:
         total: Components | None = None
         for src, comps in v:
             conv = self.convert(comps, src, frame)
-            total = conv if total is None else (total[0] + conv[0], total[1] + conv[1], total[2] + conv[2])
+            total = conv if total is None else _add3(total, conv)
         if total is None:
             return (_ZERO, _ZERO, _ZERO)
         return total
@@ -116,29 +125,49 @@ class FrameTree:
         short expressions a student writes, with no angle of the final rotation in them.
         """
         out: dict[str, Components] = {}
+        moved = False
         for frame, comps in v:
             f = self.frames[frame]
             while f.parent is not None:
                 k = AXES[f.rotation.axis]  # type: ignore[union-attr]
-                if any(not is_structural_zero(comps[i]) for i in range(3) if i != k):
+                if any(type(comps[i]) is not _ZERO_TYPE for i in range(3) if i != k):
                     break
                 f = self.frames[f.parent]
+                moved = True
             _accumulate(out, f.name, comps)
-        return Vector._trusted(out)
+        return Vector._trusted(out) if moved else v
 
     def best_frame(self, *vectors: Vector) -> str:
         """A frame in which to compute products of ``vectors``: the deepest one they use."""
-        frames = [f for v in vectors for f in v.frames]
-        if not frames:
+        # The most used frame, the deepest among equals, the first met among those
+        # (what max(frames, key=(count, depth)) gives on the list of their frames).
+        if len(vectors) == 2:
+            # The common case dot(u, v) of two one-piece vectors: the deeper frame, u's among equals.
+            fu, fv = vectors[0].frames, vectors[1].frames
+            if len(fu) == 1 and len(fv) == 1:
+                a, b = fu[0], fv[0]
+                return b if a != b and self._depth[b] > self._depth[a] else a
+        counts: dict[str, int] = {}
+        for v in vectors:
+            for f in v.frames:
+                counts[f] = counts.get(f, 0) + 1
+        if not counts:
             return GALILEAN_FRAME
-        return max(frames, key=lambda f: (frames.count(f), self._depth[f]))
+        depth = self._depth
+        best, best_key = GALILEAN_FRAME, (-1, -1)
+        for f, count in counts.items():
+            key = (count, depth[f])
+            if key > best_key:
+                best, best_key = f, key
+        return best
 
     def dot(self, u: Vector, v: Vector, frame: str | None = None) -> se.Basic:
         if u.is_zero() or v.is_zero():
-            return se.Integer(0)
+            return _ZERO
         frame = frame or self.best_frame(u, v)
-        a, b = self.express(u, frame), self.express(v, frame)
-        return se.Add(*(x * y for x, y in zip(a, b)))
+        a = self.express(u, frame)
+        b = a if v is u else self.express(v, frame)
+        return se.Add(*[x * y for x, y in zip(a, b) if type(x) is not _ZERO_TYPE and type(y) is not _ZERO_TYPE])
 
     def cross(self, u: Vector, v: Vector, frame: str | None = None) -> Vector:
         if u.is_zero() or v.is_zero():
@@ -156,7 +185,9 @@ class FrameTree:
             else:
                 rot = f.rotation
                 rate = self.d_dt(rot.angle, accelerations=False)  # type: ignore[union-attr]
-                own = Vector.basis(frame, rot.axis) * rate  # type: ignore[union-attr]
+                comps = [_ZERO, _ZERO, _ZERO]
+                comps[AXES[rot.axis]] = rate  # type: ignore[union-attr]
+                own = Vector._trusted({frame: tuple(comps)})  # rate × (frame.axis)
                 self._omega[frame] = self.omega(f.parent) + own
         return self._omega[frame]
 
@@ -174,10 +205,11 @@ class FrameTree:
         (Formule de dérivation vectorielle: each piece is differentiated in its own frame.)
         """
         out: dict[str, Components] = {}
+        d_dt = self.d_dt
         for frame, comps in self.lift(v):
-            own = tuple(self.d_dt(c, accelerations=accelerations) for c in comps)
-            transport = _cross(self.omega_in(frame, frame), comps)
-            _accumulate(out, frame, tuple(a + b for a, b in zip(own, transport)))  # type: ignore[arg-type]
+            own = (d_dt(comps[0], accelerations=accelerations), d_dt(comps[1], accelerations=accelerations),
+                   d_dt(comps[2], accelerations=accelerations))
+            _accumulate(out, frame, _add3(own, _cross(self.omega_in(frame, frame), comps)))
         return Vector._trusted(out)
 
 
@@ -187,18 +219,39 @@ def _accumulate(out: dict[str, Components], frame: str, comps: Components) -> No
     A zero piece is not added, and a piece that sums to zero leaves the dict (a later piece
     in that frame then goes to the end), exactly as the sum of Vectors would do.
     """
-    if all(is_structural_zero(c) for c in comps):
+    if type(comps[0]) is _ZERO_TYPE and type(comps[1]) is _ZERO_TYPE and type(comps[2]) is _ZERO_TYPE:
         return
     old = out.get(frame)
     if old is None:
         out[frame] = comps
         return
-    total = (old[0] + comps[0], old[1] + comps[1], old[2] + comps[2])
-    if all(is_structural_zero(c) for c in total):
+    total = _add3(old, comps)
+    if type(total[0]) is _ZERO_TYPE and type(total[1]) is _ZERO_TYPE and type(total[2]) is _ZERO_TYPE:
         del out[frame]
     else:
         out[frame] = total
 
 
+def _add3(a: Components, b: Components) -> Components:
+    """a + b component-wise, adding nothing to a zero (x + 0 is x: the same expressions)."""
+    return tuple(y if type(x) is _ZERO_TYPE else x if type(y) is _ZERO_TYPE else x + y  # type: ignore[return-value]
+                 for x, y in zip(a, b))
+
+
 def _cross(a: Components, b: Components) -> Components:
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+    """a ∧ b, forming no product with a zero factor (the same expressions, fewer operations)."""
+    nz_a = [type(x) is not _ZERO_TYPE for x in a]
+    nz_b = [type(x) is not _ZERO_TYPE for x in b]
+    out = []
+    for i, j, k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
+        plus = nz_a[j] and nz_b[k]
+        minus = nz_a[k] and nz_b[j]
+        if plus and minus:
+            out.append(a[j] * b[k] - a[k] * b[j])
+        elif plus:
+            out.append(a[j] * b[k])
+        elif minus:
+            out.append(-(a[k] * b[j]))
+        else:
+            out.append(_ZERO)
+    return tuple(out)  # type: ignore[return-value]

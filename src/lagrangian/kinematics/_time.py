@@ -40,9 +40,11 @@ class TimeDerivative:
 
     def __call__(self, f: se.Basic, *, accelerations: bool = True) -> se.Basic:
         """df/dt; with ``accelerations=False``, the part of it without q̈ (used for M q̈ = F)."""
+        if f.is_Number:
+            return _ZERO
         free = f.free_symbols
         if not free:
-            return se.Integer(0)
+            return _ZERO
         terms = []
         for q, qd, qdd in zip(self.q, self.qd, self.qdd):
             if q in free:
@@ -51,7 +53,7 @@ class TimeDerivative:
                 terms.append(f.diff(qd) * qdd)
         if self.t in free:
             terms.append(f.diff(self.t))
-        return se.Add(*terms) if terms else se.Integer(0)
+        return se.Add(*terms) if terms else _ZERO
 
     def many(self, exprs: Iterable[se.Basic], *, accelerations: bool = True) -> tuple[se.Basic, ...]:
         """df/dt of each f of ``exprs`` by the chain rule, sharing the work on common subexpressions.
@@ -61,7 +63,7 @@ class TimeDerivative:
         any other node (sin u, √u is a power, abs u...) goes to ``self`` (grouped form), so
         the result is the same function as ``self(f)``, in a form that keeps the products.
         """
-        zero, one = se.Integer(0), se.Integer(1)
+        zero, one = _ZERO, se.Integer(1)
         rate: dict[se.Basic, se.Basic] = {self.t: one}
         for q, qd, qdd in zip(self.q, self.qd, self.qdd):
             rate[q] = qd
@@ -99,4 +101,5 @@ class TimeDerivative:
         return tuple(d(f) for f in exprs)
 
 
-_ZERO_TYPE = type(se.Integer(0))
+_ZERO = se.Integer(0)
+_ZERO_TYPE = type(_ZERO)

@@ -110,8 +110,9 @@ class Vector:
         are dropped all the same.
         """
         v = object.__new__(cls)
+        z = _ZERO_TYPE
         object.__setattr__(v, "_pieces", {f: c for f, c in pieces.items()
-                                          if any(type(x) is not _ZERO_TYPE for x in c)})
+                                          if not (type(c[0]) is z and type(c[1]) is z and type(c[2]) is z)})
         return v
 
     # -- access ---------------------------------------------------------------------
