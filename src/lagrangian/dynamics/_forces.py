@@ -25,6 +25,7 @@ from symengine.lib.symengine_wrapper import sympy2symengine
 from .._identity import are_zero
 from ..kinematics import Kinematics
 from ..model import Damper, GeneralizedForce, Gravity, Load, PointForce, Potential, Spring, Torque, Vector
+from ..model._vector import sum_of
 
 __all__ = ["LoadForces", "generalized_forces"]
 
@@ -33,6 +34,7 @@ __all__ = ["LoadForces", "generalized_forces"]
 MAX_INTEGRATION_CHARS = 2000
 
 _ZERO = se.Integer(0)
+_ZERO_TYPE = type(_ZERO)
 
 
 @dataclass(frozen=True, slots=True)
@@ -53,8 +55,10 @@ def _dot_partials(kin: Kinematics, force: Vector, point: str) -> tuple[se.Basic,
 
 def _is_constant_vector(kin: Kinematics, v: Vector) -> bool:
     """Constant in R0: no q, q̇, t in the components and every piece in a non-rotating frame."""
-    moving = set(kin.q) | set(kin.qd) | {kin.t}
-    return not (v.free_symbols() & moving) and all(kin.omega(f).is_zero() for f in v.frames)
+    free = v.free_symbols()
+    if kin.t in free or any(s in free for s in kin.q) or any(s in free for s in kin.qd):
+        return False
+    return all(kin.omega(f).is_zero() for f in v.frames)
 
 
 def _q_of(kin: Kinematics, load: Load) -> tuple[tuple[se.Basic, ...], se.Basic | None, str]:
@@ -64,14 +68,15 @@ def _q_of(kin: Kinematics, load: Load) -> tuple[tuple[se.Basic, ...], se.Basic |
     if isinstance(load, Gravity):
         names = load.on or tuple(b.name for b in kin.model.bodies) + tuple(p.name for p in kin.model.particles)
         masses = {b.name: b.mass for b in kin.model.bodies} | {p.name: p.mass for p in kin.model.particles}
-        Q = [zero] * n
-        U = zero
+        Q_terms: list[list[se.Basic]] = [[] for _ in range(n)]
+        U_terms = []
         for name in names:
             weight = load.field * masses[name]
-            Q = [a + b for a, b in zip(Q, _dot_partials(kin, weight, name))]
-            U = U - kin.frames.dot(weight, kin.position(name))
-        potential = U if _is_constant_vector(kin, load.field) else None
-        return tuple(Q), potential, "P* = Σ m g·V*(G); U = −Σ m g·OG + cste"
+            for terms, x in zip(Q_terms, _dot_partials(kin, weight, name)):
+                terms.append(x)
+            U_terms.append(-kin.frames.dot(weight, kin.position(name)))
+        potential = sum_of(U_terms) if _is_constant_vector(kin, load.field) else None
+        return tuple(sum_of(terms) for terms in Q_terms), potential, "P* = Σ m g·V*(G); U = −Σ m g·OG + cste"
     if isinstance(load, PointForce):
         Q = _dot_partials(kin, load.force, load.at)
         potential = (-kin.frames.dot(load.force, kin.position(load.at))
@@ -140,21 +145,29 @@ def _find_potential(kin: Kinematics, Q: tuple[se.Basic, ...]) -> se.Basic | None
     return sympy2symengine(U)
 
 
+def _derives_from(kin: Kinematics, Q: tuple[se.Basic, ...], potential: se.Basic) -> bool:
+    """Q_i + ∂U/∂q_i ≡ 0 for every i (a structural zero needs no identity test)."""
+    residues = [q + potential.diff(s) for q, s in zip(Q, kin.q)]
+    if all(type(r) is _ZERO_TYPE for r in residues):
+        return True
+    return all(are_zero(residues))
+
+
 def generalized_forces(kin: Kinematics) -> tuple[LoadForces, ...]:
     """Q_i of every load of the model, by virtual power, with its potential when it has one."""
     out = []
     for load in kin.model.loads:
         Q, candidate, note = _q_of(kin, load)
         potential = candidate
-        if potential is not None and not all(are_zero([q + potential.diff(s) for q, s in zip(Q, kin.q)])):
+        if potential is not None and not _derives_from(kin, Q, potential):
             potential = None  # e.g. a field that turns with time: no potential after all
         if potential is None:
             potential = _find_potential(kin, Q)
-            if potential is not None and not all(are_zero([q + potential.diff(s) for q, s in zip(Q, kin.q)])):
+            if potential is not None and not _derives_from(kin, Q, potential):
                 potential = None
         if potential is not None and potential.free_symbols & set(kin.qd):
             potential = None
-        power = se.Add(*(q * s for q, s in zip(Q, kin.q_star)))
+        power = sum_of([q * s for q, s in zip(Q, kin.q_star) if type(q) is not _ZERO_TYPE])
         out.append(LoadForces(load.name, type(load).__name__.lower(), Q, power, potential, note))
     return tuple(out)
 

@@ -22,6 +22,7 @@ import symengine as se
 
 from ..kinematics import Kinematics
 from ..model._vector import is_structural_zero as _zero
+from ..model._vector import sum_of
 from ._energy import RigidInertia
 
 __all__ = ["mass_matrix_and_bias"]
@@ -33,7 +34,7 @@ def _matvec(pi: tuple[tuple[se.Basic, ...], ...], w: tuple[se.Basic, ...]) -> tu
 
 
 def _dot(a: tuple[se.Basic, ...], b: tuple[se.Basic, ...]) -> se.Basic:
-    return se.Add(*(x * y for x, y in zip(a, b) if not _zero(x) and not _zero(y)))
+    return sum_of([x * y for x, y in zip(a, b) if not _zero(x) and not _zero(y)])
 
 
 def _cross(a: tuple[se.Basic, ...], b: tuple[se.Basic, ...]) -> tuple[se.Basic, ...]:
@@ -92,5 +93,5 @@ def mass_matrix_and_bias(
     matrix = [[zero] * n for _ in range(n)]
     for i in range(n):
         for j in range(i, n):
-            matrix[i][j] = matrix[j][i] = se.Add(*M[i][j])
-    return tuple(tuple(r) for r in matrix), tuple(se.Add(*terms) for terms in g0)
+            matrix[i][j] = matrix[j][i] = sum_of(M[i][j])
+    return tuple(tuple(r) for r in matrix), tuple(sum_of(terms) for terms in g0)

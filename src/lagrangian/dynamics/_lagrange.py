@@ -23,6 +23,7 @@ import symengine as se
 from ..errors import DerivationError
 from ..kinematics import Kinematics
 from ..model import Model
+from ..model._vector import sum_of
 from ._energy import KineticEnergyTerm, RigidInertia, kinetic_energy
 from ._forces import LoadForces, generalized_forces
 from ._inertia import mass_matrix_and_bias
@@ -32,6 +33,8 @@ __all__ = ["LagrangeEquation", "EquationsOfMotion", "derive"]
 #: Largest number of coordinates for which Γ_i = d/dt(∂T/∂q̇_i) − ∂T/∂q_i is grouped by
 #: q̈_j and q̇_j (see `lagrange_equations`).
 GROUPED_MAX_COORDINATES = 12
+
+_ZERO_TYPE = type(se.Integer(0))
 
 
 @dataclass(frozen=True, slots=True)
@@ -155,7 +158,9 @@ def lagrange_equations(kin: Kinematics, T: se.Basic, U: se.Basic,
     for c, q, p, rate, q_nc in zip(kin.model.coordinates, kin.q, dT_dqd, rates, Q_nc):
         dT_dq = T.diff(q)
         dU_dq = U.diff(q)
-        out.append(LagrangeEquation(c.name, p, dT_dq, dU_dq, q_nc, rate - dT_dq, -dU_dq + q_nc))
+        lhs = rate if type(dT_dq) is _ZERO_TYPE else rate - dT_dq
+        rhs = -dU_dq if type(q_nc) is _ZERO_TYPE else -dU_dq + q_nc
+        out.append(LagrangeEquation(c.name, p, dT_dq, dU_dq, q_nc, lhs, rhs))
     return tuple(out)
 
 
@@ -179,12 +184,12 @@ def derive(model: Model) -> EquationsOfMotion:
     kin = Kinematics(model)
     T_terms, inertias = kinetic_energy(kin)
     loads = generalized_forces(kin)
-    T = se.Add(*(term.expression for term in T_terms))
-    U = se.Add(*(f.potential for f in loads if f.potential is not None))
+    T = sum_of([term.expression for term in T_terms])
+    U = sum_of([f.potential for f in loads if f.potential is not None])
     n = kin.n
-    Q_nc = tuple(se.Add(*(f.Q[i] for f in loads if f.potential is None)) for i in range(n))
+    Q_nc = tuple(sum_of([f.Q[i] for f in loads if f.potential is None]) for i in range(n))
     equations = lagrange_equations(kin, T, U, Q_nc)
     M, gamma0 = mass_matrix_and_bias(kin, inertias)
-    Q_total = tuple(se.Add(*(f.Q[i] for f in loads)) for i in range(n))
-    F = tuple(Q - g for Q, g in zip(Q_total, gamma0))
+    Q_total = tuple(sum_of([f.Q[i] for f in loads]) for i in range(n))
+    F = tuple(Q if type(g) is _ZERO_TYPE else Q - g for Q, g in zip(Q_total, gamma0))
     return EquationsOfMotion(model, kin, T_terms, inertias, loads, equations, M, F)

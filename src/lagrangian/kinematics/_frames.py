@@ -16,7 +16,7 @@ from __future__ import annotations
 import symengine as se
 
 from ..model import GALILEAN_FRAME, Model, Vector
-from ..model._vector import AXES, is_structural_zero
+from ..model._vector import AXES, is_structural_zero, sum_of
 from ._time import TimeDerivative
 
 __all__ = ["FrameTree"]
@@ -167,7 +167,7 @@ class FrameTree:
         frame = frame or self.best_frame(u, v)
         a = self.express(u, frame)
         b = a if v is u else self.express(v, frame)
-        return se.Add(*[x * y for x, y in zip(a, b) if type(x) is not _ZERO_TYPE and type(y) is not _ZERO_TYPE])
+        return sum_of([x * y for x, y in zip(a, b) if type(x) is not _ZERO_TYPE and type(y) is not _ZERO_TYPE])
 
     def cross(self, u: Vector, v: Vector, frame: str | None = None) -> Vector:
         if u.is_zero() or v.is_zero():
@@ -188,7 +188,8 @@ class FrameTree:
                 comps = [_ZERO, _ZERO, _ZERO]
                 comps[AXES[rot.axis]] = rate  # type: ignore[union-attr]
                 own = Vector._trusted({frame: tuple(comps)})  # rate × (frame.axis)
-                self._omega[frame] = self.omega(f.parent) + own
+                parent = self.omega(f.parent)
+                self._omega[frame] = own if parent.is_zero() else parent + own
         return self._omega[frame]
 
     def omega_in(self, frame: str, basis: str) -> Components:

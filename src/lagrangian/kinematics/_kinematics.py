@@ -18,6 +18,7 @@ from ._time import TimeDerivative
 __all__ = ["Kinematics"]
 
 _ZERO = se.Integer(0)
+_ZERO_TYPE = type(_ZERO)
 
 
 class Kinematics:
@@ -87,6 +88,8 @@ class Kinematics:
         pieces: list[dict[str, list[se.Basic]]] = [{} for _ in self.qd]
         for frame, comps in v:
             for axis, c in enumerate(comps):
+                if type(c) is _ZERO_TYPE:
+                    continue
                 for s in c.free_symbols:
                     i = index.get(s)
                     if i is not None:

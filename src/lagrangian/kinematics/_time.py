@@ -22,6 +22,8 @@ from dataclasses import dataclass
 
 import symengine as se
 
+from ..model._vector import sum_of
+
 __all__ = ["TimeDerivative"]
 
 
@@ -53,7 +55,7 @@ class TimeDerivative:
                 terms.append(f.diff(qd) * qdd)
         if self.t in free:
             terms.append(f.diff(self.t))
-        return se.Add(*terms) if terms else _ZERO
+        return sum_of(terms)
 
     def many(self, exprs: Iterable[se.Basic], *, accelerations: bool = True) -> tuple[se.Basic, ...]:
         """df/dt of each f of ``exprs`` by the chain rule, sharing the work on common subexpressions.
@@ -80,7 +82,7 @@ class TimeDerivative:
             if f.is_Symbol:
                 out = rate.get(f, zero)
             elif f.is_Add:
-                out = se.Add(*[d(a) for a in f.args])
+                out = sum_of([d(a) for a in f.args])
             elif f.is_Mul:
                 args = f.args
                 terms = []
@@ -88,7 +90,7 @@ class TimeDerivative:
                     da = d(a)
                     if type(da) is not _ZERO_TYPE:
                         terms.append(se.Mul(*args[:k], *args[k + 1:], da))
-                out = se.Add(*terms)
+                out = sum_of(terms)
             elif f.is_Pow and (f.args[1].is_Number or not (f.args[1].free_symbols & moving)):
                 base, exponent = f.args
                 db = d(base)

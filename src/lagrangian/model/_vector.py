@@ -17,7 +17,7 @@ from fractions import Fraction
 import symengine as se
 from symengine.lib.symengine_wrapper import sympy2symengine
 
-__all__ = ["Vector", "AXES", "as_expr", "is_structural_zero"]
+__all__ = ["Vector", "AXES", "as_expr", "is_structural_zero", "sum_of"]
 
 #: Index of each axis letter in a frame's basis.
 AXES = {"x": 0, "y": 1, "z": 2}
@@ -34,6 +34,13 @@ def is_structural_zero(expr: se.Basic) -> bool:
     structural: ``0.0`` and ``x - x + 0.0`` are not zero here, ``x - x`` is.
     """
     return type(expr) is _ZERO_TYPE
+
+
+def sum_of(terms: list[se.Basic]) -> se.Basic:
+    """``se.Add(*terms)``, with no call into SymEngine for zero or one term (the same result)."""
+    if len(terms) > 1:
+        return se.Add(*terms)
+    return terms[0] if terms else _ZERO
 
 
 def as_expr(value: object) -> se.Basic:
@@ -163,7 +170,9 @@ class Vector:
         if isinstance(scalar, Vector):
             return NotImplemented
         s = as_expr(scalar)
-        return self._map(lambda c: s * c)
+        z = _ZERO_TYPE
+        return Vector._trusted({f: tuple(c if type(c) is z else s * c for c in comps)  # type: ignore[misc]
+                                for f, comps in self._pieces.items()})
 
     __rmul__ = __mul__
 
