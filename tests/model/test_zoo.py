@@ -79,3 +79,18 @@ def test_lagrange_equations_agree_with_the_matrix_form() -> None:
         m_qdd = se.Add(*(eom.M[i][j] * eom.qdd[j] for j in range(3)))
         residues.append((eq.lhs - eq.rhs) - (m_qdd - eom.F[i]))
     assert all(are_zero(residues))
+
+
+def test_long_chain_lagrange_equations_agree_with_the_matrix_form() -> None:
+    # Beyond 12 coordinates d/dt(∂T/∂q̇_i) is taken by the shared chain rule (`TimeDerivative.many`)
+    # instead of being grouped by q̈_j, q̇_j: the equations must stay the same functions.
+    from lagrangian.dynamics._lagrange import GROUPED_MAX_COORDINATES
+
+    n = GROUPED_MAX_COORDINATES + 1
+    eom = lagrangian.derive(planar_chain(n))
+    residues = []
+    for i, eq in enumerate(eom.equations):
+        m_qdd = se.Add(*(eom.M[i][j] * eom.qdd[j] for j in range(n)))
+        residues.append((eq.lhs - eq.rhs) - (m_qdd - eom.F[i]))
+        residues.append(eq.lhs - (eom.kinematics.d_dt(eq.dT_dqd) - eq.dT_dq))
+    assert all(are_zero(residues))

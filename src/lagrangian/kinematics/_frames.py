@@ -208,9 +208,8 @@ class FrameTree:
         out: dict[str, Components] = {}
         d_dt = self.d_dt
         for frame, comps in self.lift(v):
-            own = (d_dt(comps[0], accelerations=accelerations), d_dt(comps[1], accelerations=accelerations),
-                   d_dt(comps[2], accelerations=accelerations))
-            _accumulate(out, frame, _add3(own, _cross(self.omega_in(frame, frame), comps)))
+            own = tuple(c if type(c) is _ZERO_TYPE else d_dt(c, accelerations=accelerations) for c in comps)
+            _accumulate(out, frame, _add3(own, _cross(self.omega_in(frame, frame), comps)))  # type: ignore[arg-type]
         return Vector._trusted(out)
 
 
