@@ -65,7 +65,9 @@ def mass_matrix_and_bias(
                 continue
             g0[i].append(mass * _dot(V[i], acc0))
             for j in range(i, n):
-                M[i][j].append(mass * _dot(V[i], V[j]))
+                # Each pair in the frame that suits it: two partial velocities written in
+                # the same frame need no change of basis (l² rather than l²(sin² + cos²)).
+                M[i][j].append(mass * kin.frames.dot(partials[i], partials[j]))
 
     for body in kin.model.bodies:
         used = inertias[body.name]
