@@ -23,9 +23,38 @@ from ..model import Vector
 __all__ = ["CourseForm", "FrameStep", "VectorRow", "EquationRow", "LoadRow", "IntegralRow", "course_form"]
 
 
+#: Largest expression (SymPy operation count) for which an expanded, trigonometrically
+#: simplified form is tried; beyond it the derivation's own form is printed as it is.
+TIDY_MAX_OPS = 40
+
+
 def to_sympy(e: se.Basic) -> sympy.Basic:
-    """SymEngine → SymPy (a structural conversion; no text is parsed)."""
-    return e._sympy_() if hasattr(e, "_sympy_") else sympy.S(e)
+    """SymEngine → SymPy (a structural conversion; no text is parsed), in its shortest form.
+
+    The derivation's own form is kept unless expanding and applying the trigonometric
+    identities gives a strictly shorter expression: the seed's ½A(θ̇² + ψ̇² sin²θ) stays,
+    while a pendulum on a cart's ½m((ẋ cosθ − lθ̇)² + ẋ² sin²θ) becomes ½m(ẋ² − 2lẋθ̇ cosθ + l²θ̇²).
+    Only small expressions are tried (`TIDY_MAX_OPS`): simplification only where it pays.
+    """
+    expr = e._sympy_() if hasattr(e, "_sympy_") else sympy.S(e)
+    ops = sympy.count_ops(expr)
+    if ops == 0 or ops > TIDY_MAX_OPS or not expr.has(sympy.sin, sympy.cos):
+        return expr
+    expanded = sympy.expand(expr)
+    # sin²x = 1 − cos²x, then expand again: a cheap, exact stand-in for trigsimp (which
+    # costs a hundred times more) that removes the sin² + cos² pairs of rotating bases.
+    rewritten = sympy.expand(expanded.replace(_is_sine_power, _as_cosines))
+    best = min((rewritten, expanded), key=sympy.count_ops)
+    return best if sympy.count_ops(best) < ops else expr
+
+
+def _is_sine_power(x: sympy.Basic) -> bool:
+    return x.is_Pow and isinstance(x.base, sympy.sin) and x.exp.is_Integer and x.exp >= 2
+
+
+def _as_cosines(x: sympy.Pow) -> sympy.Basic:
+    angle, k = x.base.args[0], int(x.exp)
+    return (1 - sympy.cos(angle) ** 2) ** (k // 2) * sympy.sin(angle) ** (k % 2)
 
 
 @dataclass(frozen=True, slots=True)
