@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from .analysis import FirstIntegral, first_integrals
 from .dynamics import EquationsOfMotion, LagrangeEquation, derive
-from .errors import DerivationError, KinematicsError, LagrangianError, ModelError
+from .errors import DerivationError, KinematicsError, LagrangianError, ModelError, OutputError, SimulationError
 from .kinematics import Kinematics
 from .model import ModelBuilder, load_model, parse_model
 from .model.spec import Model
@@ -43,6 +43,8 @@ __all__ = [
     "ModelError",
     "KinematicsError",
     "DerivationError",
+    "SimulationError",
+    "OutputError",
 ]
 
 

@@ -13,11 +13,20 @@ __all__ = [
     "ModelError",
     "KinematicsError",
     "DerivationError",
+    "SimulationError",
+    "OutputError",
 ]
 
 
 class LagrangianError(Exception):
-    """Base class of every error `lagrangian` raises on purpose."""
+    """Base class of every error `lagrangian` raises on purpose.
+
+    ``exit_code`` is what the command line returns for it: 2 for a bad model or a
+    derivation that cannot be done, 3 for an output that cannot be written, 4 for a
+    simulation that cannot go on.
+    """
+
+    exit_code = 2
 
     def __init__(self, message: str, *, fix: str | None = None) -> None:
         super().__init__(message)
@@ -72,3 +81,26 @@ class KinematicsError(LagrangianError):
 
 class DerivationError(LagrangianError):
     """The equations of motion cannot be formed (e.g. a singular mass matrix)."""
+
+
+class SimulationError(LagrangianError):
+    """A simulation cannot start or go on: missing value, bad initial state, singular M, step underflow.
+
+    Attributes
+    ----------
+    t : the time reached when it stopped, when it had started.
+    state : the state (q, q̇) at that time, when known.
+    """
+
+    exit_code = 4
+
+    def __init__(self, message: str, *, fix: str | None = None, t: float | None = None, state=None) -> None:
+        super().__init__(message, fix=fix)
+        self.t = t
+        self.state = state
+
+
+class OutputError(LagrangianError):
+    """An output file cannot be written; whatever was there before is left as it was."""
+
+    exit_code = 3

@@ -7,17 +7,26 @@ from __future__ import annotations
 
 import os
 import tempfile
+from collections.abc import Callable
 from pathlib import Path
+from typing import BinaryIO
 
-__all__ = ["write_atomic"]
+from ..errors import OutputError
+
+__all__ = ["write_atomic", "write_atomic_with", "write_output"]
 
 
-def write_atomic(path: str | Path, text: str) -> None:
+def write_atomic_with(path: str | Path, writer: Callable[[BinaryIO], None]) -> None:
+    """Call ``writer(handle)`` on a temporary binary file beside ``path``, then move it over ``path``.
+
+    Raises `OSError` (and removes the temporary file) when anything fails; ``path`` is
+    then exactly as it was before.
+    """
     path = Path(path)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent or ".")
     try:
-        with os.fdopen(fd, "w", encoding="utf-8") as handle:
-            handle.write(text)
+        with os.fdopen(fd, "wb") as handle:
+            writer(handle)
             handle.flush()
             os.fsync(handle.fileno())
         os.replace(tmp, path)
@@ -27,3 +36,21 @@ def write_atomic(path: str | Path, text: str) -> None:
         except FileNotFoundError:
             pass
         raise
+
+
+def write_atomic(path: str | Path, data: str | bytes) -> None:
+    """Write text (UTF-8) or bytes to ``path`` atomically."""
+    payload = data.encode("utf-8") if isinstance(data, str) else data
+    write_atomic_with(path, lambda handle: handle.write(payload))
+
+
+def write_output(path: str | Path, data: str | bytes | Callable[[BinaryIO], None]) -> None:
+    """`write_atomic` for the command line: an `OSError` becomes an `OutputError` (exit code 3)."""
+    try:
+        if callable(data):
+            write_atomic_with(path, data)
+        else:
+            write_atomic(path, data)
+    except OSError as exc:
+        raise OutputError(f"Cannot write `{path}`: {exc.strerror or exc}.",
+                          fix="check that the folder exists and is writable; the old file, if any, is unchanged") from exc
