@@ -1,47 +1,15 @@
-"""Write a file atomically: a temporary file in the same folder, then `os.replace`.
-
-A failed or interrupted write never leaves a half-written file over an older one.
-"""
+"""The command line's file writing: atomic, and an `OSError` becomes an `OutputError`."""
 
 from __future__ import annotations
 
-import os
-import tempfile
 from collections.abc import Callable
 from pathlib import Path
 from typing import BinaryIO
 
+from .._atomic import write_atomic, write_atomic_with
 from ..errors import OutputError
 
 __all__ = ["write_atomic", "write_atomic_with", "write_output"]
-
-
-def write_atomic_with(path: str | Path, writer: Callable[[BinaryIO], None]) -> None:
-    """Call ``writer(handle)`` on a temporary binary file beside ``path``, then move it over ``path``.
-
-    Raises `OSError` (and removes the temporary file) when anything fails; ``path`` is
-    then exactly as it was before.
-    """
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent or ".")
-    try:
-        with os.fdopen(fd, "wb") as handle:
-            writer(handle)
-            handle.flush()
-            os.fsync(handle.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except FileNotFoundError:
-            pass
-        raise
-
-
-def write_atomic(path: str | Path, data: str | bytes) -> None:
-    """Write text (UTF-8) or bytes to ``path`` atomically."""
-    payload = data.encode("utf-8") if isinstance(data, str) else data
-    write_atomic_with(path, lambda handle: handle.write(payload))
 
 
 def write_output(path: str | Path, data: str | bytes | Callable[[BinaryIO], None]) -> None:

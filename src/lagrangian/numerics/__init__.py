@@ -1,0 +1,16 @@
+"""Numerics: the equations of motion as compiled code, integrators, simulation results.
+
+``compile_system(eom)`` → `CompiledSystem` (M, F, q̈, monitors, events; C or SymEngine);
+``simulate(model_or_eom, t_end, ...)`` → `Trajectory`.
+"""
+
+from ._simulate import METHODS as METHODS
+from ._simulate import EventSpec as EventSpec
+from ._simulate import initial_state as initial_state
+from ._simulate import simulate as simulate
+from ._system import CompiledSystem as CompiledSystem
+from ._system import compile_system as compile_system
+from ._trajectory import Event as Event
+from ._trajectory import Trajectory as Trajectory
+
+__all__ = ["simulate", "EventSpec", "initial_state", "METHODS", "CompiledSystem", "compile_system", "Trajectory", "Event"]

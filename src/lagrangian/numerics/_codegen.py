@@ -1,0 +1,169 @@
+"""From the equations of motion to one C file: the model's M, F, monitors and events.
+
+The generated functions evaluate M(q, t) and F(q, q̇, t) of M q̈ = F (never M⁻¹), the
+first integrals and T, U as monitors, the event functions, and, for the symplectic
+integrator, Hamilton's form p = ∂T/∂q̇ = M q̇ + b, ṗ = ∂T/∂q − ∂U/∂q + Q(nc).  Each
+function shares its common subexpressions (SymEngine's ``cse``).  The model-independent
+integrators (`_integrators.c`) are appended, so a whole run is one C call.
+
+Parameter values are an input array, not constants folded into the code: changing
+``m`` or ``g`` (``--set g=1.62``) reuses the compiled library.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from collections.abc import Sequence
+from dataclasses import dataclass
+from importlib import resources
+
+import numpy as np
+import symengine as se
+
+from ..dynamics import EquationsOfMotion
+from ..errors import DerivationError
+from ._cprint import c_block
+
+__all__ = ["GeneratedSource", "generate_c", "monitor_expressions"]
+
+
+@dataclass(frozen=True)
+class GeneratedSource:
+    """The C source of a model, and the order of everything it reads and writes.
+
+    Attributes
+    ----------
+    source : the complete translation unit.
+    key : SHA-256 of ``source`` (the compile cache's key).
+    n : number of coordinates; the state is y = (q_1..q_n, q̇_1..q̇_n).
+    parameters : parameter names, in the order of the ``p`` array.
+    monitors : monitor names (first integrals, then ``T`` and ``U``).
+    events : event names, in the order of the event functions.
+    """
+
+    source: str
+    key: str
+    n: int
+    parameters: tuple[str, ...]
+    monitors: tuple[str, ...]
+    events: tuple[str, ...]
+
+
+def monitor_expressions(eom: EquationsOfMotion, integrals: Sequence) -> list[tuple[str, se.Basic]]:
+    """(name, expression) of each first integral, then T and U (under other names if taken)."""
+    out = [(fi.name, fi.expression) for fi in integrals]
+    taken = {name for name, _ in out}
+    for name, expr in (("T", eom.T), ("U", eom.U)):
+        out.append((name if name not in taken else f"{name}_total", expr))
+    return out
+
+
+def _coefficients() -> dict[str, str]:
+    """DOP853's tableau as C initialisers, from SciPy's own coefficient module."""
+    from scipy.integrate._ivp import dop853_coefficients as c
+
+    def init(a: np.ndarray) -> str:
+        if a.ndim == 1:
+            return "{" + ", ".join(repr(float(x)) for x in a) + "}"
+        return "{" + ", ".join(init(row) for row in a) + "}"
+
+    stages, ext = c.N_STAGES, c.N_STAGES_EXTENDED
+    return {
+        "LG_DOP_STAGES": str(stages),
+        "LG_DOP_STAGES_EXT": str(ext),
+        "LG_DOP_POWER": str(c.INTERPOLATOR_POWER),
+        "LG_DOP_A": init(np.asarray(c.A, dtype=float)[:ext, :ext]),
+        "LG_DOP_B": init(np.asarray(c.B, dtype=float)),
+        "LG_DOP_C": init(np.asarray(c.C, dtype=float)[:ext]),
+        "LG_DOP_E3": init(np.asarray(c.E3, dtype=float)),
+        "LG_DOP_E5": init(np.asarray(c.E5, dtype=float)),
+        "LG_DOP_D": init(np.asarray(c.D, dtype=float)),
+    }
+
+
+def generate_c(
+    eom: EquationsOfMotion,
+    integrals: Sequence = (),
+    events: Sequence[tuple[str, se.Basic]] = (),
+) -> GeneratedSource:
+    """Generate the C translation unit of ``eom``.
+
+    Parameters
+    ----------
+    eom : the equations of motion (`lagrangian.derive`).
+    integrals : the first integrals to monitor (`lagrangian.first_integrals`).
+    events : (name, g) pairs; an event occurs where g(t, q, q̇) changes sign.
+
+    Raises
+    ------
+    DerivationError
+        When an expression holds a symbol that is neither a coordinate, a rate, a
+        parameter nor t (it would have no value at run time).
+    """
+    n = len(eom.q)
+    params = tuple(p.name for p in eom.model.parameters)
+    # Every free symbol gets a private name: `_y3` is y[3], `_p1` is p[1], `_t` is t.
+    private: dict[se.Basic, se.Symbol] = {}
+    header: dict[str, str] = {}
+    for i, s in enumerate((*eom.q, *eom.qd)):
+        private[s] = se.Symbol(f"_y{i}")
+        header[f"_y{i}"] = f"y[{i}]"
+    for k, name in enumerate(params):
+        private[se.Symbol(name)] = se.Symbol(f"_p{k}")
+        header[f"_p{k}"] = f"p[{k}]"
+    private[eom.t] = se.Symbol("_t")
+    header["_t"] = "t"
+    names = {sym: str(sym) for sym in private.values()}
+
+    def rename(expr: se.Basic, what: str) -> se.Basic:
+        expr = expr if isinstance(expr, se.Basic) else se.Integer(0) + expr
+        unknown = [s for s in expr.free_symbols if s not in private]
+        if unknown:
+            raise DerivationError(
+                f"{what} contains `{unknown[0]}`, which is neither a coordinate, a rate, a parameter nor t.",
+                fix="declare it as a parameter of the model")
+        return expr.xreplace(private)
+
+    def function(signature: str, outputs: list[tuple[str, se.Basic]], what: str) -> str:
+        body = c_block([(target, rename(e, what)) for target, e in outputs], names)
+        # Every input gets a local; the compiler drops the unused ones.
+        decls = [f"    const double {c} = {v}; (void){c};" for c, v in header.items()]
+        return signature + " {\n" + "\n".join([*decls, *body]) + "\n}\n"
+
+    M_out = [(f"M[{i * n + j}]", eom.M[i][j]) for i in range(n) for j in range(n)]
+    F_out = [(f"F[{i}]", eom.F[i]) for i in range(n)]
+    monitors = monitor_expressions(eom, integrals)
+    zero = se.Integer(0)
+    rates_zero = {s: zero for s in eom.qd}
+    b = [se.diff(eom.T, s).xreplace(rates_zero) for s in eom.qd]
+    g = [eq.dT_dq - eq.dU_dq + eq.Q_nc for eq in eom.equations]
+
+    parts = [
+        "/* Generated by lagrangian from the equations of motion of "
+        f"`{eom.model.name}`. Do not edit. */",
+        f"#define LG_N {n}",
+        f"#define LG_NM {len(monitors)}",
+        f"#define LG_NE {len(events)}",
+        *(f"#define {k} {v}" for k, v in _coefficients().items()),
+        "#include <math.h>",
+        function("static void lg_mass_forces(double t, const double *y, const double *p, double *M, double *F)",
+                 M_out + F_out, "M q'' = F"),
+        function("static void lg_monitors(double t, const double *y, const double *p, double *out)",
+                 [(f"out[{k}]", e) for k, (_, e) in enumerate(monitors)], "a first integral"),
+        function("static void lg_events(double t, const double *y, const double *p, double *g)",
+                 [(f"g[{k}]", e) for k, (_, e) in enumerate(events)], "an event function"),
+        function("static void lg_hamilton_mass(double t, const double *y, const double *p, double *M, double *b)",
+                 M_out + [(f"b[{i}]", e) for i, e in enumerate(b)], "dT/dq'"),
+        function("static void lg_hamilton_force(double t, const double *y, const double *p, double *g)",
+                 [(f"g[{i}]", e) for i, e in enumerate(g)], "dT/dq - dU/dq + Q"),
+        resources.files(__package__).joinpath("_integrators.c").read_text(encoding="utf-8"),
+    ]
+    source = "\n".join(parts)
+    return GeneratedSource(
+        source=source,
+        key=hashlib.sha256(source.encode("utf-8")).hexdigest(),
+        n=n,
+        parameters=params,
+        monitors=tuple(name for name, _ in monitors),
+        events=tuple(name for name, _ in events),
+    )

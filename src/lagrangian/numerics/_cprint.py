@@ -1,0 +1,97 @@
+"""SymEngine expressions → C99 source, with common subexpressions shared.
+
+SymEngine's own ``ccode`` prints ``pow(x, 3)`` (a libm call in the hot loop) and large
+integers as C integer literals that overflow; this printer writes small integer powers as
+products, every number as a double literal, and only the functions a model can contain
+(`lagrangian.model._expr.FUNCTIONS` and what differentiation makes of them).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import symengine as se
+
+__all__ = ["c_block", "c_expression"]
+
+_FUNCTIONS = {
+    "sin": "sin", "cos": "cos", "tan": "tan", "asin": "asin", "acos": "acos", "atan": "atan",
+    "sinh": "sinh", "cosh": "cosh", "tanh": "tanh", "exp": "exp", "log": "log", "Abs": "fabs",
+}
+
+
+def _number(value: float) -> str:
+    text = repr(float(value))
+    if text in ("inf", "-inf", "nan"):
+        raise ValueError(f"the expression contains the non-finite number {text}")
+    return text if any(ch in text for ch in ".en") else text + ".0"
+
+
+def c_expression(expr: se.Basic, names: Mapping[se.Basic, str]) -> str:
+    """C text of one expression; ``names`` maps each free symbol to its C name."""
+    if expr in names:
+        return names[expr]
+    if expr.is_Number:
+        value = float(expr)  # a complex number raises here: it has no place in M or F
+        return f"({_number(value)})" if value < 0 else _number(value)
+    if expr == se.pi:
+        return "3.141592653589793"
+    if expr == se.E:
+        return "2.718281828459045"
+    if expr.is_Symbol:
+        raise KeyError(f"no C name for the symbol `{expr}`")
+    if isinstance(expr, se.Add):
+        return "(" + " + ".join(c_expression(a, names) for a in expr.args) + ")"
+    if isinstance(expr, se.Mul):
+        num, den = [], []
+        for factor in expr.args:
+            if isinstance(factor, se.Pow) and factor.args[1].is_Number and factor.args[1] < 0:
+                den.append(c_expression(factor.args[0] ** (-factor.args[1]), names))
+            else:
+                num.append(c_expression(factor, names))
+        text = "*".join(num) if num else "1.0"
+        return f"({text}/({'*'.join(den)}))" if den else f"({text})"
+    if isinstance(expr, se.Pow):
+        base, exponent = expr.args
+        b = c_expression(base, names)
+        if isinstance(exponent, se.Integer):
+            k = int(exponent)
+            if 1 <= k <= 6:
+                return "(" + "*".join([b] * k) + ")"
+            if -6 <= k <= -1:
+                return "(1.0/(" + "*".join([b] * -k) + "))"
+            return f"pow({b}, {_number(k)})"
+        if exponent == se.Rational(1, 2):
+            return f"sqrt({b})"
+        if exponent == se.Rational(-1, 2):
+            return f"(1.0/sqrt({b}))"
+        if exponent == se.Rational(3, 2):
+            return f"({b}*sqrt({b}))"
+        return f"pow({b}, {c_expression(exponent, names)})"
+    name = type(expr).__name__
+    if name in _FUNCTIONS and len(expr.args) == 1:
+        return f"{_FUNCTIONS[name]}({c_expression(expr.args[0], names)})"
+    if name == "Sign":
+        x = c_expression(expr.args[0], names)
+        return f"(({x}) > 0.0 ? 1.0 : (({x}) < 0.0 ? -1.0 : 0.0))"
+    raise ValueError(f"cannot generate C for `{expr}` ({name}); the numeric code supports "
+                     f"{', '.join(sorted(_FUNCTIONS))}, powers and sign")
+
+
+def c_block(outputs: Sequence[tuple[str, se.Basic]], names: Mapping[se.Basic, str]) -> list[str]:
+    """Statements assigning each ``(target, expression)``, common subexpressions computed once.
+
+    The subexpressions come from SymEngine's ``cse``; they become ``const double`` locals
+    named ``x0, x1, ...``.  The free symbols of the expressions must already be the
+    caller's own, named with a leading underscore, so that the two sets cannot clash.
+    """
+    exprs = [e if isinstance(e, se.Basic) else se.RealDouble(float(e)) for _, e in outputs]
+    replacements, reduced = se.cse(exprs) if exprs else ([], [])
+    local = dict(names)
+    lines = []
+    for sym, value in replacements:
+        lines.append(f"    const double {sym} = {c_expression(value, local)};")
+        local[sym] = str(sym)
+    for (target, _), value in zip(outputs, reduced):
+        lines.append(f"    {target} = {c_expression(value, local)};")
+    return lines

@@ -1,0 +1,520 @@
+/* lagrangian: the model-independent half of a compiled system.
+ *
+ * This file is appended, once per model, to the generated model code, which defines
+ *   LG_N (n coordinates), LG_NM (monitors), LG_NE (event functions), and
+ *   lg_mass_forces(t, y, p, M, F)      M (n x n, row-major) and F of  M q'' = F
+ *   lg_monitors(t, y, p, out)          first integrals, T, U
+ *   lg_events(t, y, p, g)              event functions g_k(t, y)
+ *   lg_hamilton_mass(t, y, p, M, b)    M and b = dT/dq' at q' = 0 (only q is read from y)
+ *   lg_hamilton_force(t, y, p, g)      g = dT/dq - dU/dq + Q(nc)
+ * with y = (q_1..q_n, q'_1..q'_n) and p the parameter values.  Nothing here calls
+ * back into Python: a whole integration runs in C, which is what makes a 10^4-step run
+ * cost milliseconds rather than the ~100 ms that Python's per-call overhead would add.
+ *
+ * Integrators:
+ *   lg_dop853  Dormand & Prince's explicit Runge-Kutta 8(5,3) with step-size control and
+ *              the 7th-order dense output (Hairer, Norsett & Wanner, Solving ODEs I,
+ *              Sec. II.5 and II.6), transcribed from SciPy's DOP853 (same coefficients,
+ *              emitted from scipy.integrate._ivp.dop853_coefficients, same error norm
+ *              and step-size rule), so the two can be checked against each other.
+ *   lg_gauss   the 2-stage Gauss-Legendre collocation method (order 4) applied to
+ *              Hamilton's equations in (q, p), p = dT/dq': symplectic, so the energy of a
+ *              conservative system oscillates without drifting on long runs
+ *              (Hairer, Lubich & Wanner, Geometric Numerical Integration, Sec. II.1, VI.4).
+ *
+ * Status codes (the Python side turns them into messages):
+ *   0 reached t_stop   1 mass matrix singular   2 non-finite state   3 step size underflow
+ *   4 terminal event   5 too many steps         6 implicit stage did not converge
+ */
+#include <math.h>
+#include <string.h>
+
+#define LG_NY (2 * LG_N)
+
+enum { LG_DONE = 0, LG_SINGULAR = 1, LG_NONFINITE = 2, LG_UNDERFLOW = 3, LG_EVENT = 4,
+       LG_MAXSTEPS = 5, LG_NOCONVERGE = 6 };
+
+/* Control block shared with Python (doubles, so one array carries it):
+ * [0] t  [1] h (0: choose)  [2] rtol  [3] atol  [4] max_step  [5] nfev  [6] accepted steps
+ * [7] rejected steps  [8] fixed step (0: adaptive)  [9] max steps  [10] events found
+ * [11] event capacity  [12] worst relative pivot seen (Cholesky) */
+enum { C_T, C_H, C_RTOL, C_ATOL, C_MAXSTEP, C_NFEV, C_STEPS, C_REJECTED, C_FIXED, C_MAXSTEPS, C_NEV,
+       C_EVCAP, C_PIVOT, C_SIZE };
+
+/* Solve M x = F in place (F becomes x) by Cholesky: M is symmetric positive definite
+ * wherever the coordinates are regular, and a pivot that collapses relative to its
+ * diagonal entry is exactly how a singular configuration (e.g. theta = 0 in Euler
+ * angles) shows itself. */
+static int lg_cholesky_solve(double *M, double *F, double *worst)
+{
+    const int n = LG_N;
+    for (int j = 0; j < n; ++j) {
+        double d = M[j * n + j];
+        const double diag = fabs(d);
+        for (int k = 0; k < j; ++k) d -= M[j * n + k] * M[j * n + k];
+        if (!(d > 1e-13 * diag) || diag == 0.0) return LG_SINGULAR;
+        if (d / diag < *worst) *worst = d / diag;
+        d = sqrt(d);
+        M[j * n + j] = d;
+        for (int i = j + 1; i < n; ++i) {
+            double s = M[i * n + j];
+            for (int k = 0; k < j; ++k) s -= M[i * n + k] * M[j * n + k];
+            M[i * n + j] = s / d;
+        }
+    }
+    for (int i = 0; i < n; ++i) {
+        double s = F[i];
+        for (int k = 0; k < i; ++k) s -= M[i * n + k] * F[k];
+        F[i] = s / M[i * n + i];
+    }
+    for (int i = n - 1; i >= 0; --i) {
+        double s = F[i];
+        for (int k = i + 1; k < n; ++k) s -= M[k * n + i] * F[k];
+        F[i] = s / M[i * n + i];
+    }
+    return LG_DONE;
+}
+
+/* y' = (q', q'') with q'' from M q'' = F, never from a symbolic inverse. */
+static int lg_rhs(double t, const double *y, const double *p, double *dy, double *worst)
+{
+    double M[LG_N * LG_N], F[LG_N];
+    lg_mass_forces(t, y, p, M, F);
+    int status = lg_cholesky_solve(M, F, worst);
+    if (status) return status;
+    for (int i = 0; i < LG_N; ++i) {
+        dy[i] = y[LG_N + i];
+        dy[LG_N + i] = F[i];
+        if (!isfinite(F[i]) || !isfinite(dy[i])) return LG_NONFINITE;
+    }
+    return LG_DONE;
+}
+
+/* ---- batched evaluation, for benchmarks, monitors and vectorised use ---------------- */
+
+int lg_eval_rhs(int count, const double *t, const double *Y, const double *p, double *dY)
+{
+    double worst = 1.0;
+    for (int k = 0; k < count; ++k) {
+        int status = lg_rhs(t[k], Y + (long)k * LG_NY, p, dY + (long)k * LG_NY, &worst);
+        if (status) return status;
+    }
+    return LG_DONE;
+}
+
+void lg_eval_mass_forces(int count, const double *t, const double *Y, const double *p, double *M, double *F)
+{
+    for (int k = 0; k < count; ++k)
+        lg_mass_forces(t[k], Y + (long)k * LG_NY, p, M + (long)k * LG_N * LG_N, F + (long)k * LG_N);
+}
+
+void lg_eval_monitors(int count, const double *t, const double *Y, const double *p, double *out)
+{
+    for (int k = 0; k < count; ++k)
+        lg_monitors(t[k], Y + (long)k * LG_NY, p, out + (long)k * (LG_NM > 0 ? LG_NM : 1));
+}
+
+void lg_eval_events(int count, const double *t, const double *Y, const double *p, double *out)
+{
+    for (int k = 0; k < count; ++k)
+        lg_events(t[k], Y + (long)k * LG_NY, p, out + (long)k * (LG_NE > 0 ? LG_NE : 1));
+}
+
+int lg_dimensions(int *out)
+{
+    out[0] = LG_N;
+    out[1] = LG_NM;
+    out[2] = LG_NE;
+    return 0;
+}
+
+/* ---- event location, shared by both integrators -------------------------------------
+ * Between two accepted steps the solution is a known polynomial (dense output); an event
+ * g_k = 0 is a sign change of g_k along it, located by the Illinois variant of regula
+ * falsi to 4 ulp of t. */
+typedef void (*lg_interp_fn)(const void *ctx, double t, double *y);
+
+static double lg_locate(const void *ctx, lg_interp_fn interp, const double *p, int k,
+                        double ta, double ga, double tb, double gb, double *y)
+{
+    double g[LG_NE > 0 ? LG_NE : 1];
+    int side = 0;
+    for (int it = 0; it < 200 && fabs(tb - ta) > 4e-16 * fmax(fabs(ta), fabs(tb)) + 1e-300; ++it) {
+        double tm = (ta * gb - tb * ga) / (gb - ga);
+        if (!(tm > fmin(ta, tb) && tm < fmax(ta, tb))) tm = 0.5 * (ta + tb);
+        interp(ctx, tm, y);
+        lg_events(tm, y, p, g);
+        if (g[k] == 0.0) { ta = tb = tm; break; }
+        if ((g[k] > 0) == (gb > 0)) {
+            tb = tm; gb = g[k];
+            if (side == -1) ga *= 0.5;
+            side = -1;
+        } else {
+            ta = tm; ga = g[k];
+            if (side == 1) gb *= 0.5;
+            side = 1;
+        }
+    }
+    const double tr = (fabs(ga) < fabs(gb)) ? ta : tb;
+    interp(ctx, tr, y);
+    return tr;
+}
+
+/* After a step from (t0, g0) to (t1, g1): record events; return 1 when a terminal one fired
+ * (then ctl[C_T] and y are moved back to it). ev_dir: +1 rising only, -1 falling, 0 both. */
+static int lg_check_events(const void *ctx, lg_interp_fn interp, const double *p, double *ctl,
+                           const int *ev_dir, const int *ev_terminal, double *ev_out,
+                           double t0, const double *g0, double t1, const double *g1, double *y_new)
+{
+    int fired_terminal = 0;
+    double t_first = t1;
+    double y_tmp[LG_NY];
+    for (int k = 0; k < LG_NE; ++k) {
+        const int up = g0[k] < 0 && g1[k] >= 0, down = g0[k] > 0 && g1[k] <= 0;
+        if (!((up && ev_dir[k] >= 0) || (down && ev_dir[k] <= 0))) continue;
+        double te = lg_locate(ctx, interp, p, k, t0, g0[k], t1, g1[k], y_tmp);
+        int slot = (int)ctl[C_NEV];
+        if (slot < (int)ctl[C_EVCAP]) {
+            double *row = ev_out + (long)slot * (2 + LG_NY);
+            row[0] = k;
+            row[1] = te;
+            memcpy(row + 2, y_tmp, sizeof y_tmp);
+            ctl[C_NEV] = slot + 1;
+        }
+        if (ev_terminal[k] && te <= t_first) {
+            fired_terminal = 1;
+            t_first = te;
+            memcpy(y_new, y_tmp, sizeof y_tmp);
+        }
+    }
+    if (fired_terminal) ctl[C_T] = t_first;
+    return fired_terminal;
+}
+
+/* ---- DOP853 -------------------------------------------------------------------------- */
+
+typedef struct {
+    double t_old, h;
+    double y_old[LG_NY];
+    double F[LG_DOP_POWER][LG_NY];
+} lg_dop_dense;
+
+/* y(t) on the last step: SciPy's Dop853DenseOutput, a Horner scheme in x and 1 - x. */
+static void lg_dop_interp(const void *ctx, double t, double *y)
+{
+    const lg_dop_dense *d = (const lg_dop_dense *)ctx;
+    const double x = (t - d->t_old) / d->h;
+    for (int j = 0; j < LG_NY; ++j) {
+        double s = 0.0;
+        for (int i = 0; i < LG_DOP_POWER; ++i) {
+            s += d->F[LG_DOP_POWER - 1 - i][j];
+            s *= (i % 2 == 0) ? x : 1.0 - x;
+        }
+        y[j] = d->y_old[j] + s;
+    }
+}
+
+static double lg_rms(const double *v, const double *scale)
+{
+    double s = 0.0;
+    for (int j = 0; j < LG_NY; ++j) s += (v[j] / scale[j]) * (v[j] / scale[j]);
+    return sqrt(s / LG_NY);
+}
+
+/* Integrate from ctl[C_T] to t_stop, writing y at each t_out[*i_out..] <= t_stop into
+ * Y_out.  Re-entrant: Python calls it chunk by chunk (for progress reports) with the
+ * same ctl, y and i_out. */
+int lg_dop853(double *ctl, double *y, const double *p, const double *t_out, int n_out, int *i_out,
+              double *Y_out, double t_stop, const int *ev_dir, const int *ev_terminal, double *ev_out)
+{
+    static const double A[LG_DOP_STAGES_EXT][LG_DOP_STAGES_EXT] = LG_DOP_A;
+    static const double B[LG_DOP_STAGES] = LG_DOP_B;
+    static const double C[LG_DOP_STAGES_EXT] = LG_DOP_C;
+    static const double E3[LG_DOP_STAGES + 1] = LG_DOP_E3;
+    static const double E5[LG_DOP_STAGES + 1] = LG_DOP_E5;
+    static const double D[LG_DOP_POWER - 3][LG_DOP_STAGES_EXT] = LG_DOP_D;
+
+    double K[LG_DOP_STAGES_EXT][LG_NY];
+    double y_new[LG_NY], y_stage[LG_NY], scale[LG_NY], err5[LG_NY], err3[LG_NY];
+    double g0[LG_NE > 0 ? LG_NE : 1], g1[LG_NE > 0 ? LG_NE : 1];
+    lg_dop_dense dense;
+    double t = ctl[C_T];
+    const double rtol = ctl[C_RTOL], atol = ctl[C_ATOL], max_step = ctl[C_MAXSTEP];
+    const int fixed = ctl[C_FIXED] != 0.0;
+    int status;
+
+    if (t >= t_stop) return LG_DONE;
+    status = lg_rhs(t, y, p, K[0], &ctl[C_PIVOT]);
+    ctl[C_NFEV] += 1;
+    if (status) return status;
+    if (LG_NE > 0) lg_events(t, y, p, g0);
+    while (*i_out < n_out && t_out[*i_out] <= t) {   /* outputs at the start time */
+        memcpy(Y_out + (long)(*i_out) * LG_NY, y, sizeof y_new);
+        ++*i_out;
+    }
+
+    double h_abs = ctl[C_H];
+    if (h_abs <= 0.0) {   /* Hairer's starting step, as in SciPy's select_initial_step */
+        double d0, d1, d2, h0, h1;
+        for (int j = 0; j < LG_NY; ++j) scale[j] = atol + fabs(y[j]) * rtol;
+        d0 = lg_rms(y, scale);
+        d1 = lg_rms(K[0], scale);
+        h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
+        h0 = fmin(h0, t_stop - t);
+        for (int j = 0; j < LG_NY; ++j) y_stage[j] = y[j] + h0 * K[0][j];
+        status = lg_rhs(t + h0, y_stage, p, K[1], &ctl[C_PIVOT]);
+        ctl[C_NFEV] += 1;
+        if (status) return status;
+        for (int j = 0; j < LG_NY; ++j) err5[j] = K[1][j] - K[0][j];
+        d2 = lg_rms(err5, scale) / h0;
+        h1 = (fmax(d1, d2) <= 1e-15) ? fmax(1e-6, h0 * 1e-3) : pow(0.01 / fmax(d1, d2), 1.0 / 9.0);
+        h_abs = fmin(100 * h0, h1);
+    }
+
+    while (t < t_stop) {
+        if (ctl[C_STEPS] >= ctl[C_MAXSTEPS]) { ctl[C_T] = t; ctl[C_H] = h_abs; return LG_MAXSTEPS; }
+        const double min_step = 10 * fabs(nextafter(t, INFINITY) - t);
+        if (h_abs > max_step) h_abs = max_step;
+        if (!fixed && h_abs < min_step) h_abs = min_step;
+        int rejected = 0;
+        double h, t_new;
+        for (;;) {
+            if (!fixed && h_abs < min_step) { ctl[C_T] = t; ctl[C_H] = h_abs; return LG_UNDERFLOW; }
+            t_new = t + h_abs;
+            if (t_new > t_stop) t_new = t_stop;
+            h = t_new - t;
+            for (int s = 1; s < LG_DOP_STAGES; ++s) {
+                for (int j = 0; j < LG_NY; ++j) {
+                    double acc = 0.0;
+                    for (int r = 0; r < s; ++r) acc += A[s][r] * K[r][j];
+                    y_stage[j] = y[j] + h * acc;
+                }
+                status = lg_rhs(t + C[s] * h, y_stage, p, K[s], &ctl[C_PIVOT]);
+                ctl[C_NFEV] += 1;
+                if (status) { ctl[C_T] = t; ctl[C_H] = h_abs; return status; }
+            }
+            for (int j = 0; j < LG_NY; ++j) {
+                double acc = 0.0;
+                for (int r = 0; r < LG_DOP_STAGES; ++r) acc += B[r] * K[r][j];
+                y_new[j] = y[j] + h * acc;
+            }
+            status = lg_rhs(t_new, y_new, p, K[LG_DOP_STAGES], &ctl[C_PIVOT]);
+            ctl[C_NFEV] += 1;
+            if (status) { ctl[C_T] = t; ctl[C_H] = h_abs; return status; }
+            if (fixed) break;
+            for (int j = 0; j < LG_NY; ++j) {
+                scale[j] = atol + fmax(fabs(y[j]), fabs(y_new[j])) * rtol;
+                double a5 = 0.0, a3 = 0.0;
+                for (int r = 0; r <= LG_DOP_STAGES; ++r) { a5 += E5[r] * K[r][j]; a3 += E3[r] * K[r][j]; }
+                err5[j] = a5 / scale[j];
+                err3[j] = a3 / scale[j];
+            }
+            double n5 = 0.0, n3 = 0.0, error_norm;
+            for (int j = 0; j < LG_NY; ++j) { n5 += err5[j] * err5[j]; n3 += err3[j] * err3[j]; }
+            error_norm = (n5 == 0.0 && n3 == 0.0) ? 0.0 : fabs(h) * n5 / sqrt((n5 + 0.01 * n3) * LG_NY);
+            if (error_norm < 1.0) {
+                double factor = (error_norm == 0.0) ? 10.0 : fmin(10.0, 0.9 * pow(error_norm, -1.0 / 8.0));
+                if (rejected) factor = fmin(1.0, factor);
+                h_abs *= factor;
+                break;
+            }
+            h_abs *= fmax(0.2, 0.9 * pow(error_norm, -1.0 / 8.0));
+            rejected = 1;
+            ctl[C_REJECTED] += 1;
+        }
+        ctl[C_STEPS] += 1;
+
+        const int need_dense = (*i_out < n_out && t_out[*i_out] <= t_new) || LG_NE > 0;
+        if (need_dense) {
+            /* three extra stages, then the interpolation coefficients (SciPy's
+             * DOP853._dense_output_impl). */
+            for (int s = LG_DOP_STAGES + 1; s < LG_DOP_STAGES_EXT; ++s) {
+                for (int j = 0; j < LG_NY; ++j) {
+                    double acc = 0.0;
+                    for (int r = 0; r < s; ++r) acc += A[s][r] * K[r][j];
+                    y_stage[j] = y[j] + h * acc;
+                }
+                status = lg_rhs(t + C[s] * h, y_stage, p, K[s], &ctl[C_PIVOT]);
+                ctl[C_NFEV] += 1;
+                if (status) { ctl[C_T] = t; ctl[C_H] = h_abs; return status; }
+            }
+            dense.t_old = t;
+            dense.h = h;
+            for (int j = 0; j < LG_NY; ++j) {
+                const double dy = y_new[j] - y[j];
+                dense.y_old[j] = y[j];
+                dense.F[0][j] = dy;
+                dense.F[1][j] = h * K[0][j] - dy;
+                dense.F[2][j] = 2 * dy - h * (K[LG_DOP_STAGES][j] + K[0][j]);
+                for (int i = 0; i < LG_DOP_POWER - 3; ++i) {
+                    double acc = 0.0;
+                    for (int r = 0; r < LG_DOP_STAGES_EXT; ++r) acc += D[i][r] * K[r][j];
+                    dense.F[3 + i][j] = h * acc;
+                }
+            }
+        }
+        int terminal = 0;
+        if (LG_NE > 0) {
+            lg_events(t_new, y_new, p, g1);
+            terminal = lg_check_events(&dense, lg_dop_interp, p, ctl, ev_dir, ev_terminal, ev_out,
+                                       t, g0, t_new, g1, y_new);
+            if (terminal) t_new = ctl[C_T];
+            memcpy(g0, g1, sizeof g0);
+        }
+        while (*i_out < n_out && t_out[*i_out] <= t_new) {
+            double *row = Y_out + (long)(*i_out) * LG_NY;
+            if (t_out[*i_out] == t_new && !terminal) memcpy(row, y_new, sizeof y_new);
+            else lg_dop_interp(&dense, t_out[*i_out], row);
+            ++*i_out;
+        }
+        t = t_new;
+        memcpy(y, y_new, sizeof y_new);
+        memcpy(K[0], K[LG_DOP_STAGES], sizeof K[0]);
+        ctl[C_T] = t;
+        ctl[C_H] = h_abs;
+        if (terminal) return LG_EVENT;
+    }
+    return LG_DONE;
+}
+
+/* ---- Gauss-Legendre in (q, p) -------------------------------------------------------- */
+
+/* z = (q, p) -> z' = (q', p'): q' from M q' = p - b, p' = dT/dq - dU/dq + Q(nc) at (q, q'). */
+static int lg_hamilton_rhs(double t, const double *z, const double *p, double *dz, double *qd_out, double *worst)
+{
+    double M[LG_N * LG_N], b[LG_N], g[LG_N], qd[LG_N], y[LG_NY];
+    lg_hamilton_mass(t, z, p, M, b);
+    for (int i = 0; i < LG_N; ++i) qd[i] = z[LG_N + i] - b[i];
+    int status = lg_cholesky_solve(M, qd, worst);
+    if (status) return status;
+    for (int i = 0; i < LG_N; ++i) { y[i] = z[i]; y[LG_N + i] = qd[i]; }
+    lg_hamilton_force(t, y, p, g);
+    for (int i = 0; i < LG_N; ++i) {
+        dz[i] = qd[i];
+        dz[LG_N + i] = g[i];
+        if (!isfinite(qd[i]) || !isfinite(g[i])) return LG_NONFINITE;
+    }
+    if (qd_out) memcpy(qd_out, qd, sizeof qd);
+    return LG_DONE;
+}
+
+/* (q, q') -> (q, p) with p = M q' + b. */
+static void lg_to_momenta(double t, const double *y, const double *p, double *z)
+{
+    double M[LG_N * LG_N], b[LG_N];
+    lg_hamilton_mass(t, y, p, M, b);
+    for (int i = 0; i < LG_N; ++i) {
+        double s = b[i];
+        for (int k = 0; k < LG_N; ++k) s += M[i * LG_N + k] * y[LG_N + k];
+        z[i] = y[i];
+        z[LG_N + i] = s;
+    }
+}
+
+typedef struct {
+    double t0, h;
+    double y0[LG_NY], dy0[LG_NY], y1[LG_NY], dy1[LG_NY];
+} lg_hermite;
+
+/* Cubic Hermite interpolation of (q, q') between two steps: order 4, as the method. */
+static void lg_hermite_interp(const void *ctx, double t, double *y)
+{
+    const lg_hermite *d = (const lg_hermite *)ctx;
+    const double s = (t - d->t0) / d->h, s2 = s * s, s3 = s2 * s;
+    const double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
+    for (int j = 0; j < LG_NY; ++j)
+        y[j] = h00 * d->y0[j] + h10 * d->h * d->dy0[j] + h01 * d->y1[j] + h11 * d->h * d->dy1[j];
+}
+
+/* Fixed step ctl[C_H]; step k ends at t0 + k h exactly (no accumulated round-off), so an
+ * output grid that is a multiple of h is hit without interpolation.  ctl[C_RTOL] is the
+ * tolerance of the fixed-point iteration of the stages. */
+int lg_gauss(double *ctl, double *y, const double *p, const double *t_out, int n_out, int *i_out,
+             double *Y_out, double t_stop, const int *ev_dir, const int *ev_terminal, double *ev_out,
+             double t_origin)
+{
+    static const double r3 = 1.7320508075688772935;   /* sqrt(3) */
+    const double a11 = 0.25, a12 = 0.25 - r3 / 6, a21 = 0.25 + r3 / 6, a22 = 0.25;
+    const double c1 = 0.5 - r3 / 6, c2 = 0.5 + r3 / 6;
+    const double h = ctl[C_H], tol = ctl[C_RTOL];
+    double z[LG_NY], k1[LG_NY], k2[LG_NY], z1[LG_NY], z2[LG_NY], n1[LG_NY], n2[LG_NY], qd[LG_N];
+    double g0[LG_NE > 0 ? LG_NE : 1], g1[LG_NE > 0 ? LG_NE : 1];
+    lg_hermite herm;
+    double t = ctl[C_T];
+    int status;
+
+    if (t >= t_stop) return LG_DONE;
+    lg_to_momenta(t, y, p, z);
+    status = lg_hamilton_rhs(t, z, p, k1, NULL, &ctl[C_PIVOT]);
+    ctl[C_NFEV] += 1;
+    if (status) return status;
+    memcpy(k2, k1, sizeof k1);
+    if (LG_NE > 0) lg_events(t, y, p, g0);
+    while (*i_out < n_out && t_out[*i_out] <= t) {
+        memcpy(Y_out + (long)(*i_out) * LG_NY, y, sizeof z);
+        ++*i_out;
+    }
+    while (t < t_stop) {
+        if (ctl[C_STEPS] >= ctl[C_MAXSTEPS]) return LG_MAXSTEPS;
+        const double k_index = floor((t - t_origin) / h + 0.5) + 1.0;
+        double t_new = t_origin + k_index * h;
+        if (t_new > t_stop) t_new = t_stop;
+        const double hh = t_new - t;
+        /* stages by fixed-point iteration, started from the last step's slopes */
+        int converged = 0;
+        for (int it = 0; it < 100; ++it) {
+            for (int j = 0; j < LG_NY; ++j) {
+                z1[j] = z[j] + hh * (a11 * k1[j] + a12 * k2[j]);
+                z2[j] = z[j] + hh * (a21 * k1[j] + a22 * k2[j]);
+            }
+            status = lg_hamilton_rhs(t + c1 * hh, z1, p, n1, NULL, &ctl[C_PIVOT]);
+            if (!status) status = lg_hamilton_rhs(t + c2 * hh, z2, p, n2, NULL, &ctl[C_PIVOT]);
+            ctl[C_NFEV] += 2;
+            if (status) { ctl[C_T] = t; return status; }
+            double change = 0.0;
+            for (int j = 0; j < LG_NY; ++j) {
+                const double sc = tol * (1.0 + fabs(z[j]));
+                change = fmax(change, fabs(hh * (n1[j] - k1[j])) / sc);
+                change = fmax(change, fabs(hh * (n2[j] - k2[j])) / sc);
+            }
+            memcpy(k1, n1, sizeof k1);
+            memcpy(k2, n2, sizeof k2);
+            if (change <= 1.0) { converged = 1; break; }
+        }
+        if (!converged) { ctl[C_T] = t; return LG_NOCONVERGE; }
+        for (int j = 0; j < LG_NY; ++j) herm.y0[j] = y[j];
+        /* y'(t) before the step, for the interpolant */
+        status = lg_rhs(t, y, p, herm.dy0, &ctl[C_PIVOT]);
+        if (status) { ctl[C_T] = t; return status; }
+        for (int j = 0; j < LG_NY; ++j) z[j] += hh * 0.5 * (k1[j] + k2[j]);
+        status = lg_hamilton_rhs(t_new, z, p, n1, qd, &ctl[C_PIVOT]);
+        ctl[C_NFEV] += 2;
+        if (status) { ctl[C_T] = t; return status; }
+        for (int i = 0; i < LG_N; ++i) { y[i] = z[i]; y[LG_N + i] = qd[i]; }
+        status = lg_rhs(t_new, y, p, herm.dy1, &ctl[C_PIVOT]);
+        if (status) { ctl[C_T] = t; return status; }
+        memcpy(herm.y1, y, sizeof herm.y1);
+        herm.t0 = t;
+        herm.h = hh;
+        ctl[C_STEPS] += 1;
+        int terminal = 0;
+        if (LG_NE > 0) {
+            double y_event[LG_NY];
+            lg_events(t_new, y, p, g1);
+            terminal = lg_check_events(&herm, lg_hermite_interp, p, ctl, ev_dir, ev_terminal, ev_out,
+                                       t, g0, t_new, g1, y_event);
+            if (terminal) { t_new = ctl[C_T]; memcpy(y, y_event, sizeof y_event); }
+            memcpy(g0, g1, sizeof g0);
+        }
+        while (*i_out < n_out && t_out[*i_out] <= t_new) {
+            double *row = Y_out + (long)(*i_out) * LG_NY;
+            if (t_out[*i_out] == t_new) memcpy(row, y, sizeof z);
+            else lg_hermite_interp(&herm, t_out[*i_out], row);
+            ++*i_out;
+        }
+        t = t_new;
+        ctl[C_T] = t;
+        if (terminal) return LG_EVENT;
+    }
+    return LG_DONE;
+}

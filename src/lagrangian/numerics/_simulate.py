@@ -1,0 +1,391 @@
+"""`simulate`: integrate M q̈ = F from the model's initial state, with conservation monitors.
+
+The run itself happens in compiled C (`_integrators.c`): Python sets it up, calls it once
+(or once per progress chunk), and turns the preallocated output arrays into a
+`Trajectory`.  Memory is the output grid, whatever the number of steps.
+
+Methods
+-------
+``"dop853"`` (default)
+    Adaptive explicit Runge–Kutta 8(5,3) with 7th-order dense output (Hairer, Nørsett &
+    Wanner), the algorithm of SciPy's ``DOP853`` run in C.  With ``dt`` it takes fixed steps.
+``"gauss-legendre"``
+    Fixed-step 2-stage Gauss–Legendre (order 4) on Hamilton's equations in (q, p):
+    symplectic, for long conservative runs whose energy must not drift.
+``"RK45"``, ``"RK23"``, ``"DOP853"``, ``"Radau"``, ``"BDF"``, ``"LSODA"``
+    SciPy's ``solve_ivp`` with that method, driven by the compiled right-hand side.
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import symengine as se
+
+from ..dynamics import EquationsOfMotion, derive
+from ..errors import ModelError, SimulationError
+from ..model import load_model
+from ..model._expr import ExpressionError, parse_expression
+from ..model.spec import Model
+from ._system import CompiledSystem, _ptr
+from ._trajectory import Event, Trajectory
+
+__all__ = ["simulate", "EventSpec", "initial_state", "METHODS"]
+
+BUILTIN = ("dop853", "gauss-legendre")
+SCIPY = ("RK45", "RK23", "DOP853", "Radau", "BDF", "LSODA")
+METHODS = BUILTIN + SCIPY
+
+_STATUS = {
+    1: "the mass matrix M became singular",
+    2: "the state stopped being finite (overflow)",
+    3: "the step size fell below the resolution of t (step size underflow)",
+    5: "the maximum number of steps was reached",
+    6: "the implicit stages of the Gauss-Legendre step did not converge",
+}
+
+
+@dataclass(frozen=True)
+class EventSpec:
+    """An event: the times where ``expression`` g(t, q, q̇) crosses zero.
+
+    ``expression`` is text in the model's grammar (``"theta_dot"``, ``"theta - 0.3"``) or
+    a SymEngine expression.  ``direction``: +1 only rising crossings, −1 only falling,
+    0 both.  A ``terminal`` event stops the run at its first occurrence.
+    """
+
+    name: str
+    expression: str | se.Basic
+    direction: int = 0
+    terminal: bool = False
+
+
+def _names(eom: EquationsOfMotion) -> dict[str, se.Basic]:
+    names: dict[str, se.Basic] = {"t": eom.t}
+    for c, q, qd in zip(eom.model.coordinates, eom.q, eom.qd):
+        names[c.name] = q
+        names[c.name + "_dot"] = qd
+    for p in eom.model.parameters:
+        names[p.name] = se.Symbol(p.name)
+    return names
+
+
+def _event_expressions(eom: EquationsOfMotion, events: Sequence[EventSpec | str]) -> list[EventSpec]:
+    specs = []
+    names = _names(eom)
+    for ev in events:
+        spec = EventSpec(ev, ev) if isinstance(ev, str) else ev
+        expr = spec.expression
+        if isinstance(expr, str):
+            try:
+                expr = parse_expression(expr, names)
+            except ExpressionError as exc:
+                raise ModelError(f"In the event `{spec.name}`: {exc.message}", fix=exc.fix,
+                                 symbol=exc.symbol) from None
+            if not isinstance(expr, se.Basic) or hasattr(expr, "components"):
+                raise ModelError(f"The event `{spec.name}` must be a scalar expression.",
+                                 fix="write a scalar such as `theta_dot` or `theta - 0.3`")
+        if spec.direction not in (-1, 0, 1):
+            raise ValueError("EventSpec.direction must be -1, 0 or 1")
+        specs.append(EventSpec(spec.name, expr, spec.direction, spec.terminal))
+    return specs
+
+
+def initial_state(eom: EquationsOfMotion, initial: Mapping[str, float] | None = None) -> np.ndarray:
+    """y(t0) = (q(t0), q̇(t0)) from the model's ``initial``/``rate`` values and the overrides.
+
+    ``initial`` maps a coordinate name to q_i(t0) and ``<name>_dot`` to q̇_i(t0).
+
+    Raises
+    ------
+    SimulationError
+        For an unknown name, a missing value or a value that is not finite.
+    """
+    initial = dict(initial or {})
+    coords = eom.model.coordinates
+    known = [c.name for c in coords] + [c.name + "_dot" for c in coords]
+    unknown = sorted(set(initial) - set(known))
+    if unknown:
+        raise SimulationError(f"`{unknown[0]}` is neither a coordinate nor a coordinate's rate.",
+                              fix="initial values can be given for " + ", ".join(known))
+    y = np.empty(2 * len(coords))
+    for i, c in enumerate(coords):
+        for k, (key, value, what) in enumerate(((c.name, c.initial, "initial"), (c.name + "_dot", c.rate, "rate"))):
+            v = initial.get(key, value)
+            if v is None:
+                raise SimulationError(
+                    f"The coordinate `{c.name}` has no initial {'value' if k == 0 else 'rate'}.",
+                    fix=f"give it in the model file (`{c.name} = {{ {what} = ... }}` under [coordinates]) "
+                        f"or on the command line (`--set {key}=...`)")
+            v = float(v)
+            if not np.isfinite(v):
+                raise SimulationError(f"The initial value of `{key}` is {v}, not a finite number.",
+                                      fix=f"give `{key}` a finite value")
+            y[i + k * len(coords)] = v
+    return y
+
+
+def _state_text(system: CompiledSystem, y: np.ndarray) -> str:
+    return ", ".join(f"{name} = {v:.6g}" for name, v in zip(system.coordinates, y[: system.n]))
+
+
+def _singularity(system: CompiledSystem, t: float, y: np.ndarray, p: np.ndarray, where: str) -> SimulationError:
+    """Explain a singular M: which rates its null vector mixes, so the user sees why."""
+    M, _ = system.mass_forces(t, y, p)
+    w, v = np.linalg.eigh(0.5 * (M + M.T))
+    null = v[:, 0]
+    parts = [f"{c:+.2f} {name}_dot" for c, name in zip(null, system.coordinates) if abs(c) > 0.1]
+    involved = [name for c, name in zip(null, system.coordinates) if abs(c) > 0.1]
+    return SimulationError(
+        f"The mass matrix M is singular {where} (t = {t:.9g}, {_state_text(system, y)}; smallest "
+        f"eigenvalue {w[0]:.3g}, largest {w[-1]:.3g}): the motion along ({' '.join(parts)}) has no inertia, so "
+        f"the rates {', '.join(involved)} are not independent there. The coordinates are singular at this "
+        f"configuration (as Euler angles are when two rotation axes align, theta = 0 or pi), and q'' is "
+        f"not defined.",
+        fix="start away from this configuration, or describe the system with coordinates that are regular "
+            "there (e.g. rotate the reference frame so the motion stays away from the singular angle)",
+        t=t, state=y.copy())
+
+
+def _output_times(t_start: float, t_end: float, n_out: int | None, t_eval) -> np.ndarray:
+    if not (np.isfinite(t_start) and np.isfinite(t_end)) or not t_end > t_start:
+        raise SimulationError(f"The time span [{t_start}, {t_end}] is not increasing.",
+                              fix="give an end time greater than the start time (e.g. --t-end 10)")
+    if t_eval is not None:
+        t_out = np.ascontiguousarray(t_eval, dtype=float)
+        if t_out.ndim != 1 or len(t_out) == 0 or np.any(np.diff(t_out) <= 0) or t_out[0] < t_start \
+                or t_out[-1] > t_end:
+            raise SimulationError("The output times must be increasing and lie within [t_start, t_end].",
+                                  fix="pass a sorted t_eval inside the time span")
+        return t_out
+    n_out = 1001 if n_out is None else int(n_out)
+    if n_out < 2:
+        raise SimulationError(f"n_out = {n_out}: at least 2 output times are needed.", fix="use n_out >= 2")
+    return np.linspace(t_start, t_end, n_out)
+
+
+def _progress_bar(fraction: float, t: float) -> None:
+    width = 30
+    done = int(width * fraction)
+    sys.stderr.write(f"\r  [{'#' * done}{'.' * (width - done)}] {100 * fraction:5.1f} %  t = {t:.6g}")
+    if fraction >= 1.0:
+        sys.stderr.write("\n")
+    sys.stderr.flush()
+
+
+def _resolve(source, events: Sequence[EventSpec], backend: str) -> CompiledSystem:
+    if isinstance(source, CompiledSystem):
+        if not events and not source.events:
+            return source
+        eom = source.eom
+    elif isinstance(source, EquationsOfMotion):
+        eom = source
+    elif isinstance(source, Model):
+        eom = derive(source)
+    elif isinstance(source, (str, Path)):
+        eom = derive(load_model(source))
+    else:
+        raise TypeError("simulate() takes a model file, a Model, an EquationsOfMotion or a CompiledSystem")
+    return CompiledSystem(eom, events=[(e.name, e.expression) for e in _event_expressions(eom, events)],
+                          backend=backend)
+
+
+def simulate(
+    source,
+    t_end: float,
+    *,
+    t_start: float = 0.0,
+    initial: Mapping[str, float] | None = None,
+    parameters: Mapping[str, float] | None = None,
+    method: str = "dop853",
+    rtol: float = 1e-10,
+    atol: float = 1e-10,
+    dt: float | None = None,
+    max_step: float | None = None,
+    n_out: int | None = None,
+    t_eval=None,
+    events: Sequence[EventSpec | str] = (),
+    tolerance: float | None = None,
+    max_steps: int = 100_000_000,
+    progress: bool | Callable[[float, float], None] = False,
+    backend: str = "auto",
+) -> Trajectory:
+    """Integrate the equations of motion from t_start to t_end.
+
+    Parameters
+    ----------
+    source : a model file path, a `Model`, an `EquationsOfMotion` or a `CompiledSystem`.
+    t_end, t_start : the time span (must increase).
+    initial : overrides of q_i(t0) (``"theta": 0.3``) and q̇_i(t0) (``"phi_dot": 80``).
+    parameters : overrides of the parameter values (``"g": 1.62``).
+    method : ``"dop853"``, ``"gauss-legendre"`` or a SciPy method name (module docstring).
+    rtol, atol : local error tolerances of the adaptive methods.
+    dt : fixed step (required sense for ``"gauss-legendre"``, default: 1/10 of the output
+        spacing; with ``"dop853"`` it switches to fixed steps).
+    n_out, t_eval : the output grid (default 1001 evenly spaced times).
+    events : `EventSpec` items or expression strings; each crossing is recorded.
+    tolerance : drift tolerance of the first integrals; a larger drift adds a warning.
+    progress : True for a progress bar on standard error, or a callable(fraction, t).
+
+    Returns
+    -------
+    Trajectory
+        With the drift of every first integral (``trajectory.drift_summary()``).
+
+    Raises
+    ------
+    SimulationError
+        Missing or non-finite values, a time span that does not increase, a singular mass
+        matrix (before or during the run: never a silent NaN), step-size underflow.
+    """
+    if method not in METHODS:
+        raise SimulationError(f"Unknown method `{method}`.", fix="use one of " + ", ".join(METHODS))
+    specs = [EventSpec(e, e) if isinstance(e, str) else e for e in events]
+    system = _resolve(source, specs, backend)
+    if method in BUILTIN and system.backend != "c":
+        raise SimulationError(f"The method `{method}` runs in compiled C, and no C compiler was found.",
+                              fix="install a C compiler (e.g. gcc), or use a SciPy method such as method='DOP853'")
+    p = system.parameter_vector(parameters)
+    y0 = initial_state(system.eom, initial)
+    t_out = _output_times(float(t_start), float(t_end), n_out, t_eval)
+    if not (rtol > 0 and atol > 0):
+        raise SimulationError("rtol and atol must be positive.", fix="e.g. rtol=1e-10, atol=1e-10")
+
+    # A singular M at the start is reported before anything runs.
+    M, _ = system.mass_forces(t_start, y0, p)
+    w = np.linalg.eigvalsh(0.5 * (M + M.T))
+    if not w[0] > 1e-12 * max(abs(w[-1]), 1e-300):
+        raise _singularity(system, t_start, y0, p, "at the initial state")
+
+    if method in SCIPY:
+        t_o, Y, evs, nfev, steps, code = _run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol,
+                                                    max_step, specs)
+        status = "completed" if code == 0 else "stopped by a terminal event"
+    else:
+        t_o, Y, evs, nfev, steps, status = _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol,
+                                                        atol, dt, max_step, max_steps, specs, progress)
+    return _trajectory(system, p, t_o, Y, evs, method, steps, nfev, tolerance, status)
+
+
+def _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, max_step, max_steps, specs,
+                 progress):
+    if dt is not None and not dt > 0:
+        raise SimulationError(f"dt = {dt} must be positive.", fix="give a positive step, e.g. dt=1e-3")
+    n2 = 2 * system.n
+    ctl = np.zeros(13)
+    ctl[0] = t_start
+    ctl[2], ctl[3] = rtol, atol
+    ctl[4] = np.inf if max_step is None else float(max_step)
+    ctl[9] = float(max_steps)
+    ctl[12] = 1.0
+    if method == "gauss-legendre":
+        spacing = np.min(np.diff(t_out)) if len(t_out) > 1 else t_end - t_start
+        if dt is None:
+            dt = spacing / 10
+        uniform = len(t_out) > 1 and np.allclose(np.diff(t_out), spacing, rtol=1e-12, atol=0)
+        h = spacing / np.ceil(spacing / dt - 1e-9) if uniform and abs(t_out[0] - t_start) < 1e-15 else dt
+        ctl[1] = h
+        ctl[2] = 1e-14  # stage iteration tolerance: converged to round-off, so symplecticity holds
+    elif dt is not None:
+        ctl[1], ctl[8] = float(dt), 1.0
+    y = y0.copy()
+    Y = np.full((len(t_out), n2), np.nan)
+    i_out = np.zeros(1, dtype=np.intc)
+    ev_dir = np.array([e.direction for e in specs] or [0], dtype=np.intc)
+    ev_term = np.array([int(e.terminal) for e in specs] or [0], dtype=np.intc)
+    capacity = 100_000 if specs else 1
+    ctl[11] = capacity
+    ev_out = np.zeros((capacity, 2 + n2))
+    lib = system._lib
+    chunks = np.linspace(t_start, t_end, 101)[1:] if progress else [t_end]
+    report = _progress_bar if progress is True else progress
+    code = 0
+    for t_stop in chunks:
+        if method == "dop853":
+            code = lib.lg_dop853(_ptr(ctl), _ptr(y), _ptr(p), _ptr(t_out), len(t_out), _ptr(i_out), _ptr(Y),
+                                 float(t_stop), _ptr(ev_dir), _ptr(ev_term), _ptr(ev_out))
+        else:
+            code = lib.lg_gauss(_ptr(ctl), _ptr(y), _ptr(p), _ptr(t_out), len(t_out), _ptr(i_out), _ptr(Y),
+                                float(t_stop), _ptr(ev_dir), _ptr(ev_term), _ptr(ev_out), float(t_start))
+        if report:
+            report(min(1.0, (ctl[0] - t_start) / (t_end - t_start)), ctl[0])
+        if code != 0:
+            break
+    if report and code != 0:
+        sys.stderr.write("\n")
+    n_ev = int(min(ctl[10], capacity))
+    evs = [(specs[int(r[0])].name, r[1], r[2:]) for r in ev_out[:n_ev]]
+    if code in (0, 4):
+        m = int(i_out[0])
+        return t_out[:m], Y[:m], evs, int(ctl[5]), int(ctl[6]), "completed" if code == 0 else \
+            "stopped by a terminal event"
+    t_fail = float(ctl[0])
+    if code == 1:
+        raise _singularity(system, t_fail, y, p, "during the integration")
+    raise SimulationError(
+        f"The integration stopped at t = {t_fail:.9g} ({_state_text(system, y)}): {_STATUS[code]}.",
+        fix={3: "the equations may be stiff or singular there: try method='Radau', or check the model",
+             5: "raise max_steps, or shorten the time span",
+             6: "use a smaller dt"}.get(code, "check the model and the initial state"),
+        t=t_fail, state=y.copy())
+
+
+def _run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol, max_step, specs):
+    from scipy.integrate import solve_ivp
+
+    def fun(t, y):
+        return system.rhs(t, y, p)
+
+    def make_event(k, spec):
+        def g(t, y):
+            return float(system.event_values(t, y, p)[k])
+        g.direction = spec.direction
+        g.terminal = spec.terminal
+        return g
+
+    try:
+        sol = solve_ivp(fun, (t_start, t_end), y0, method=method, t_eval=t_out, rtol=rtol, atol=atol,
+                        max_step=np.inf if max_step is None else max_step,
+                        events=[make_event(k, s) for k, s in enumerate(specs)] or None)
+    except SimulationError as exc:
+        raise SimulationError(f"{exc.message} (during SciPy's {method} integration)", fix=exc.fix) from None
+    if sol.status < 0:
+        raise SimulationError(f"SciPy's {method} stopped at t = {sol.t[-1] if len(sol.t) else t_start:.9g}: "
+                              f"{sol.message}", fix="loosen the tolerances or try another method")
+    evs = []
+    for k, spec in enumerate(specs):
+        for te, ye in zip(sol.t_events[k], sol.y_events[k]):
+            evs.append((spec.name, float(te), ye))
+    evs.sort(key=lambda e: e[1])
+    return sol.t, np.ascontiguousarray(sol.y.T), evs, int(sol.nfev), len(sol.t), sol.status
+
+
+def _trajectory(system, p, t, Y, evs, method, steps, nfev, tolerance, status) -> Trajectory:
+    n = system.n
+    Y = np.ascontiguousarray(Y)
+    qdd = system.rhs(t, Y, p)[:, n:] if len(t) else np.zeros((0, n))
+    values = system.monitor_values(t, Y, p) if len(t) else np.zeros((0, len(system.monitors)))
+    monitors = {name: values[:, k].copy() for k, name in enumerate(system.monitors)}
+    drift = {}
+    for name in system.integrals:
+        series = monitors[name]
+        ref = series[0]
+        # Relative to the initial value; absolute when that is 0 (e.g. K = 0 for a top
+        # launched with no angular momentum about z0).
+        drift[name] = float(np.max(np.abs(series - ref)) / (abs(ref) if ref != 0 else 1.0)) if len(series) else 0.0
+    warnings = tuple(
+        f"{name} drifted by {drift[name]:.2e} (relative), more than the tolerance {tolerance:.1e}"
+        for name in system.integrals if tolerance is not None and drift[name] > tolerance)
+    events = tuple(Event(name, float(te), np.array(ye[:n]), np.array(ye[n:])) for name, te, ye in evs)
+    return Trajectory(
+        model_name=system.eom.model.name,
+        coordinates=tuple(system.coordinates),
+        parameters=dict(zip(system.parameters, map(float, p))),
+        t=np.asarray(t, dtype=float), q=Y[:, :n].copy(), qd=Y[:, n:].copy(), qdd=qdd,
+        monitors=monitors, integrals=tuple(system.integrals), drift=drift, method=method, steps=steps,
+        rhs_calls=nfev, tolerance=tolerance, warnings=warnings, events=events, status=status,
+    )
