@@ -4,6 +4,7 @@
 ``simulate(model_or_eom, t_end, ...)`` → `Trajectory`.
 """
 
+from ._files import save_trajectory as save_trajectory
 from ._simulate import METHODS as METHODS
 from ._simulate import EventSpec as EventSpec
 from ._simulate import initial_state as initial_state
@@ -13,4 +14,4 @@ from ._system import compile_system as compile_system
 from ._trajectory import Event as Event
 from ._trajectory import Trajectory as Trajectory
 
-__all__ = ["simulate", "EventSpec", "initial_state", "METHODS", "CompiledSystem", "compile_system", "Trajectory", "Event"]
+__all__ = ["simulate", "save_trajectory", "EventSpec", "initial_state", "METHODS", "CompiledSystem", "compile_system", "Trajectory", "Event"]

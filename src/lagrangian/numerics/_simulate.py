@@ -140,12 +140,16 @@ def _singularity(system: CompiledSystem, t: float, y: np.ndarray, p: np.ndarray,
     null = v[:, 0]
     parts = [f"{c:+.2f} {name}_dot" for c, name in zip(null, system.coordinates) if abs(c) > 0.1]
     involved = [name for c, name in zip(null, system.coordinates) if abs(c) > 0.1]
+    if len(involved) == 1:
+        why = f"M has (almost) no inertia along {involved[0]}, so {involved[0]}_ddot is not defined there."
+    else:
+        why = (f"the motion along ({' '.join(parts)}) has no inertia, so the rates "
+               f"{', '.join(n + '_dot' for n in involved)} are not independent there and q'' is not defined. "
+               f"The coordinates are singular at this configuration, as Euler angles are when two rotation "
+               f"axes align (theta = 0 or pi).")
     return SimulationError(
         f"The mass matrix M is singular {where} (t = {t:.9g}, {_state_text(system, y)}; smallest "
-        f"eigenvalue {w[0]:.3g}, largest {w[-1]:.3g}): the motion along ({' '.join(parts)}) has no inertia, so "
-        f"the rates {', '.join(involved)} are not independent there. The coordinates are singular at this "
-        f"configuration (as Euler angles are when two rotation axes align, theta = 0 or pi), and q'' is "
-        f"not defined.",
+        f"eigenvalue {w[0]:.3g}, largest {w[-1]:.3g}): {why}",
         fix="start away from this configuration, or describe the system with coordinates that are regular "
             "there (e.g. rotate the reference frame so the motion stays away from the singular angle)",
         t=t, state=y.copy())
@@ -179,7 +183,7 @@ def _progress_bar(fraction: float, t: float) -> None:
 
 def _resolve(source, events: Sequence[EventSpec], backend: str) -> CompiledSystem:
     if isinstance(source, CompiledSystem):
-        if not events and not source.events:
+        if not events:
             return source
         eom = source.eom
     elif isinstance(source, EquationsOfMotion):
@@ -246,6 +250,8 @@ def simulate(
         raise SimulationError(f"Unknown method `{method}`.", fix="use one of " + ", ".join(METHODS))
     specs = [EventSpec(e, e) if isinstance(e, str) else e for e in events]
     system = _resolve(source, specs, backend)
+    if not specs:  # events compiled into the system: both directions, none terminal
+        specs = [EventSpec(name, name) for name in system.events]
     if method in BUILTIN and system.backend != "c":
         raise SimulationError(f"The method `{method}` runs in compiled C, and no C compiler was found.",
                               fix="install a C compiler (e.g. gcc), or use a SciPy method such as method='DOP853'")
@@ -324,7 +330,7 @@ def _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, m
         return t_out[:m], Y[:m], evs, int(ctl[5]), int(ctl[6]), "completed" if code == 0 else \
             "stopped by a terminal event"
     t_fail = float(ctl[0])
-    if code == 1:
+    if code == 1 or (code in (2, 3) and _collapsed(system, t_start, y0, t_fail, y, p)):
         raise _singularity(system, t_fail, y, p, "during the integration")
     raise SimulationError(
         f"The integration stopped at t = {t_fail:.9g} ({_state_text(system, y)}): {_STATUS[code]}.",
@@ -332,6 +338,14 @@ def _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, m
              5: "raise max_steps, or shorten the time span",
              6: "use a smaller dt"}.get(code, "check the model and the initial state"),
         t=t_fail, state=y.copy())
+
+
+def _collapsed(system, t0, y0, t, y, p) -> bool:
+    """Whether M lost (almost) all its inertia in some direction since the start: then a
+    step-size underflow or an overflow is the singularity showing, and is reported as one."""
+    w0 = np.linalg.eigvalsh(system.mass_forces(t0, y0, p)[0])
+    w = np.linalg.eigvalsh(system.mass_forces(t, y, p)[0])
+    return bool(w[0] < 1e-8 * w0[-1])
 
 
 def _run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol, max_step, specs):
