@@ -16,6 +16,12 @@ from typing import BinaryIO
 __all__ = ["write_atomic", "write_atomic_with"]
 
 
+def _umask() -> int:
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
 def write_atomic_with(path: str | Path, writer: Callable[[BinaryIO], None]) -> None:
     """Call ``writer(handle)`` on a temporary binary file beside ``path``, then move it over ``path``.
 
@@ -25,6 +31,8 @@ def write_atomic_with(path: str | Path, writer: Callable[[BinaryIO], None]) -> N
     path = Path(path)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent or ".")
     try:
+        # mkstemp makes the file private (0600); give it the mode a plain open() would.
+        os.chmod(tmp, path.stat().st_mode & 0o7777 if path.exists() else 0o666 & ~_umask())
         with os.fdopen(fd, "wb") as handle:
             writer(handle)
             handle.flush()

@@ -271,10 +271,20 @@ def simulate(
         t_o, Y, evs, nfev, steps, code = _run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol,
                                                     max_step, specs)
         status = "completed" if code == 0 else "stopped by a terminal event"
+        conditioning = _pivot(system, t_o, Y, p)
     else:
-        t_o, Y, evs, nfev, steps, status = _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol,
-                                                        atol, dt, max_step, max_steps, specs, progress)
-    return _trajectory(system, p, t_o, Y, evs, method, steps, nfev, tolerance, status)
+        t_o, Y, evs, nfev, steps, status, conditioning = _run_builtin(
+            system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, max_step, max_steps, specs, progress)
+    return _trajectory(system, p, t_o, Y, evs, method, steps, nfev, tolerance, status, conditioning)
+
+
+def _pivot(system, t, Y, p) -> float:
+    """Smallest relative Cholesky pivot of M over the given states (as the C code tracks it)."""
+    M, _ = system.mass_forces(t, Y, p)
+    M = np.atleast_3d(M) if M.ndim == 2 else M
+    diag = np.abs(np.diagonal(M, axis1=-2, axis2=-1))
+    L = np.linalg.cholesky(M)
+    return float(np.min(np.diagonal(L, axis1=-2, axis2=-1) ** 2 / diag)) if len(M) else 1.0
 
 
 def _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, max_step, max_steps, specs,
@@ -328,7 +338,7 @@ def _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, m
     if code in (0, 4):
         m = int(i_out[0])
         return t_out[:m], Y[:m], evs, int(ctl[5]), int(ctl[6]), "completed" if code == 0 else \
-            "stopped by a terminal event"
+            "stopped by a terminal event", float(ctl[12])
     t_fail = float(ctl[0])
     if code == 1 or (code in (2, 3) and _collapsed(system, t_start, y0, t_fail, y, p)):
         raise _singularity(system, t_fail, y, p, "during the integration")
@@ -378,7 +388,7 @@ def _run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol, max_ste
     return sol.t, np.ascontiguousarray(sol.y.T), evs, int(sol.nfev), len(sol.t), sol.status
 
 
-def _trajectory(system, p, t, Y, evs, method, steps, nfev, tolerance, status) -> Trajectory:
+def _trajectory(system, p, t, Y, evs, method, steps, nfev, tolerance, status, conditioning) -> Trajectory:
     n = system.n
     Y = np.ascontiguousarray(Y)
     qdd = system.rhs(t, Y, p)[:, n:] if len(t) else np.zeros((0, n))
@@ -394,6 +404,10 @@ def _trajectory(system, p, t, Y, evs, method, steps, nfev, tolerance, status) ->
     warnings = tuple(
         f"{name} drifted by {drift[name]:.2e} (relative), more than the tolerance {tolerance:.1e}"
         for name in system.integrals if tolerance is not None and drift[name] > tolerance)
+    if conditioning < 1e-6:
+        warnings += (f"the motion passed close to a singular configuration of the coordinates (M's smallest "
+                     f"relative pivot fell to {conditioning:.1e}): accuracy may be lost there; check the drift "
+                     f"of the first integrals, or choose coordinates that are regular along this motion",)
     events = tuple(Event(name, float(te), np.array(ye[:n]), np.array(ye[n:])) for name, te, ye in evs)
     return Trajectory(
         model_name=system.eom.model.name,
@@ -402,4 +416,5 @@ def _trajectory(system, p, t, Y, evs, method, steps, nfev, tolerance, status) ->
         t=np.asarray(t, dtype=float), q=Y[:, :n].copy(), qd=Y[:, n:].copy(), qdd=qdd,
         monitors=monitors, integrals=tuple(system.integrals), drift=drift, method=method, steps=steps,
         rhs_calls=nfev, tolerance=tolerance, warnings=warnings, events=events, status=status,
+        conditioning=conditioning,
     )

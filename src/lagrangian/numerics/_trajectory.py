@@ -44,6 +44,8 @@ class Trajectory:
     integrals : names of the monitors that are first integrals (their drift is reported).
     tolerance : the drift tolerance asked for; `warnings` lists the integrals that exceeded it.
     events : the events that occurred, in time order.
+    conditioning : the smallest relative pivot of M met during the run (1 for a diagonal
+        M, 0 at a singular configuration); below 1e-6 a warning says accuracy may be lost.
     """
 
     model_name: str
@@ -63,6 +65,7 @@ class Trajectory:
     warnings: tuple[str, ...] = ()
     events: tuple[Event, ...] = ()
     status: str = "completed"
+    conditioning: float = 1.0
     extra: Mapping[str, np.ndarray] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
@@ -98,7 +101,7 @@ class Trajectory:
 
     def table(self) -> np.ndarray:
         """All columns as one (N, k) array, in the order of `columns`."""
-        return np.column_stack([self.column(name) for name in self.columns()])
+        return np.column_stack([self.column(name) for name in self.columns()]) + 0.0  # no "-0" in files
 
     def drift_summary(self) -> str:
         """E.g. ``"E relative drift 3.1e-12, K 1.0e-13, H 0"``."""
