@@ -104,3 +104,9 @@ class OutputError(LagrangianError):
     """An output file cannot be written; whatever was there before is left as it was."""
 
     exit_code = 3
+
+
+class VerificationError(LagrangianError):
+    """A cross-check failed: the Lagrange equations disagree with the Newton–Euler theorems."""
+
+    exit_code = 5

@@ -1,6 +1,18 @@
-"""Stage 4 — analysis of the equations: first integrals."""
+"""Stage 4 — analysis of the equations: first integrals, the Newton–Euler cross-check, reactions."""
 
 from ._integrals import FirstIntegral as FirstIntegral
 from ._integrals import first_integrals as first_integrals
+from ._newton_euler import CoordinateCheck as CoordinateCheck
+from ._newton_euler import ElementTheorems as ElementTheorems
+from ._newton_euler import Verification as Verification
+from ._newton_euler import verify as verify
+from ._reactions import Reaction as Reaction
+from ._reactions import ReactionHistory as ReactionHistory
+from ._reactions import TrajectoryResiduals as TrajectoryResiduals
+from ._reactions import check_trajectory as check_trajectory
+from ._reactions import reaction_history as reaction_history
+from ._reactions import reactions as reactions
 
-__all__ = ["FirstIntegral", "first_integrals"]
+__all__ = ["FirstIntegral", "first_integrals", "CoordinateCheck", "ElementTheorems", "Verification", "verify",
+           "Reaction", "ReactionHistory", "TrajectoryResiduals", "check_trajectory", "reaction_history",
+           "reactions"]

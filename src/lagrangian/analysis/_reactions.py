@@ -1,0 +1,355 @@
+"""Constraint reactions from the vector theorems, and the Newton–Euler check along a trajectory.
+
+What the given efforts leave of the resultant theorem is the resultant of the constraint
+actions: for the top, m γ(G/R0) = P + R_O gives R_O = m γ(G/R0) − P.  Inside a system,
+a body also receives the actions of its neighbours (joints, rods), which only the whole
+connected group sums away (action and reaction), so reactions are reported per *group*:
+elements whose motions share a coordinate are linked by constraints, and for a group
+
+    R = Σ_group m γ(G) − Σ_group F_given,       M_A = Σ_group δ_A − Σ_group M_A(given)
+
+is the resultant and moment at A of what the ground exerts on it — always well defined.
+When exactly one body of the group has a fixed point O (it is *pinned*), R is the
+reaction R_O of that pin (the model declares no other contact with the ground) and M_O the
+moment the pin transmits: it has no component along the axes the pin lets the body turn
+about (∂Ω/∂q̇_i: the joint is perfect), so a ball joint (three free axes, the top)
+transmits none, and a hinge only the components across its axis.
+
+`check_trajectory` evaluates, at the states of a trajectory (q̈ from the trajectory), the
+projected theorems of `verify` and the vector theorems with these reactions, with
+SymEngine's LLVM-compiled `Lambdify`.
+"""
+
+from __future__ import annotations
+
+import random
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import symengine as se
+
+from ..dynamics import EquationsOfMotion
+from ..errors import SimulationError
+from ..model import GALILEAN_FRAME, ORIGIN, Vector
+from ._newton_euler import Verification, verify
+
+__all__ = ["Reaction", "reactions", "ReactionHistory", "reaction_history", "TrajectoryResiduals",
+           "check_trajectory"]
+
+#: Largest number of frames tried when choosing where a reaction's formula reads shortest.
+MAX_DISPLAY_FRAMES = 12
+#: Relative size below which a singular value of the free axes counts as zero (rank test).
+RANK_RTOL = 1e-9
+
+
+@dataclass(frozen=True, slots=True)
+class Reaction:
+    """The resultant (and moment) of the ground's constraint actions on a group of elements.
+
+    Attributes
+    ----------
+    name : ``"R_O"`` for the pin at O of a pinned group, else ``"R(→C+P)"``.
+    point : where ``moment`` is taken: the pin, or O.
+    pinned : the pinned body, or None.
+    elements : the bodies and particles of the group.
+    force : R = Σ m γ(G/R0) − Σ F_given, a symbolic vector (q, q̇, q̈, t).
+    moment : M = Σ δ_point − Σ M_point(given).
+    free_axes : directions the pin lets its body turn about (∂Ω/∂q̇_i), in R0 order of q.
+    free_rotations : how many of them are independent (3: a ball joint).
+    frame : the frame in which ``force_components`` are written (the shortest formula).
+    force_components : R in the basis of ``frame``.
+    """
+
+    name: str
+    point: str
+    pinned: str | None
+    elements: tuple[str, ...]
+    force: Vector
+    moment: Vector
+    free_axes: tuple[Vector, ...]
+    free_rotations: int
+    frame: str
+    force_components: tuple[se.Basic, se.Basic, se.Basic]
+
+    @property
+    def transmits_moment(self) -> bool:
+        """False for a pin that lets its body turn about every axis (a ball joint)."""
+        return not (self.pinned is not None and self.free_rotations == 3)
+
+
+def _groups(v: Verification) -> list[list[int]]:
+    """Indices of the elements of each group linked by shared coordinates (union–find)."""
+    kin = v.eom.kinematics
+    coordinate_of = {s: k for k, s in enumerate(kin.q)} | {s: k for k, s in enumerate(kin.qd)}
+    parent = list(range(len(v.theorems)))
+
+    def root(a: int) -> int:
+        while parent[a] != a:
+            parent[a] = parent[parent[a]]
+            a = parent[a]
+        return a
+
+    owner: dict[int, int] = {}
+    for e, th in enumerate(v.theorems):
+        # The rates in V(G) and Ω: the coordinates that move the element (an angle may sit
+        # in a frame's rotation, never in the components of OG).
+        free = kin.velocity(th.name).free_symbols() | kin.position(th.name).free_symbols()
+        if th.kind == "body":
+            free |= kin.omega(kin.model.body(th.name).frame).free_symbols()
+        for s in free:
+            k = coordinate_of.get(s)
+            if k is None:
+                continue
+            if k in owner:
+                parent[root(e)] = root(owner[k])
+            else:
+                owner[k] = e
+    out: dict[int, list[int]] = {}
+    for e in range(len(v.theorems)):
+        out.setdefault(root(e), []).append(e)
+    return list(out.values())
+
+
+def _rank(kin, vectors: Sequence[Vector]) -> int:  # type: ignore[no-untyped-def]
+    """Number of independent vectors at a random configuration (numeric)."""
+    if not vectors:
+        return 0
+    comps = [kin.frames.express(w, GALILEAN_FRAME) for w in vectors]
+    symbols = sorted(set().union(*(c.free_symbols for row in comps for c in row)), key=str)
+    rng = random.Random(11)
+    point = {s: se.RealDouble(rng.uniform(0.3, 1.7)) for s in symbols}
+    matrix = np.array([[float(c.subs(point)) for c in row] for row in comps], dtype=float)
+    s = np.linalg.svd(matrix, compute_uv=False)
+    return int(np.sum(s > RANK_RTOL * max(s[0], 1e-300)))
+
+
+def _shortest_frame(kin, v: Vector) -> tuple[str, tuple[se.Basic, se.Basic, se.Basic]]:  # type: ignore[no-untyped-def]
+    names = [f.name for f in kin.model.frames if not f.name.startswith("_")]
+    if len(names) > MAX_DISPLAY_FRAMES:
+        names = [GALILEAN_FRAME]
+    best = None
+    for name in names:
+        comps = kin.frames.express(v, name)
+        size = sum(len(str(se.expand(c))) for c in comps)
+        if best is None or size < best[0]:
+            best = (size, name, comps)
+    return best[1], best[2]  # type: ignore[index]
+
+
+def reactions(source: Verification | EquationsOfMotion) -> tuple[Reaction, ...]:
+    """The reactions of the ground on each group of linked elements (see the module docstring).
+
+    Examples
+    --------
+    >>> import lagrangian
+    >>> [r.name for r in reactions(lagrangian.derive(lagrangian.lagrange_top()))]
+    ['R_O']
+    """
+    v = source if isinstance(source, Verification) else verify(source)
+    kin = v.eom.kinematics
+    model = kin.model
+    out = []
+    for group in _groups(v):
+        elements = [v.theorems[e] for e in group]
+        pins = [th for th in elements if th.kind == "body" and model.body(th.name).fixed_point is not None]
+        point = pins[0].point if len(pins) == 1 else ORIGIN
+        force, moment = Vector.zero(), Vector.zero()
+        for th in elements:
+            r = th.constraint_force
+            force = force + r
+            arm = kin.position(th.point) - kin.position(point)  # A P_E: δ_A = δ_P + AP ∧ m γ(G)
+            moment = moment + th.constraint_moment
+            if not arm.is_zero() and not r.is_zero():
+                moment = moment + kin.frames.cross(arm, r)
+        names = tuple(th.name for th in elements)
+        if len(pins) == 1:
+            pinned = pins[0].name
+            axes = tuple(w for w in kin.partial_omegas(model.body(pinned).frame) if not w.is_zero())
+            name = f"R_{point}"
+        else:
+            pinned, axes = None, ()
+            name = "R(→" + "+".join(names) + ")"
+        frame, comps = _shortest_frame(kin, force)
+        out.append(Reaction(name, point, pinned, names, force, moment, axes, _rank(kin, axes), frame, comps))
+    return tuple(out)
+
+
+# -- numbers along a trajectory ------------------------------------------------------------------
+class _Numeric:
+    """Expressions of (q, q̇, q̈, t) as one LLVM-compiled function of the trajectory's states."""
+
+    def __init__(self, eom: EquationsOfMotion, parameters: Mapping[str, float], exprs: Sequence[se.Basic]) -> None:
+        values = {se.Symbol(k): float(x) for k, x in parameters.items()}
+        args = [*eom.q, *eom.qd, *eom.qdd, eom.t]
+        subbed = [se.sympify(e).subs(values) for e in exprs]
+        left = set().union(*(e.free_symbols for e in subbed)) - set(args) if subbed else set()
+        if left:
+            names = ", ".join(sorted(f"`{s}`" for s in map(str, left)))
+            raise SimulationError(f"The parameters {names} have no value in the trajectory.",
+                                  fix="simulate with a value for each parameter (parameters={...})")
+        self.size = len(subbed)
+        self._f = se.Lambdify(args, subbed, backend="llvm", cse=True) if subbed else None
+
+    def __call__(self, states: np.ndarray) -> np.ndarray:
+        if self._f is None:
+            return np.zeros((len(states), 0))
+        return np.asarray(self._f(states), dtype=float).reshape(len(states), self.size)
+
+
+def _states(trajectory) -> np.ndarray:  # type: ignore[no-untyped-def]
+    return np.column_stack([trajectory.q, trajectory.qd, trajectory.qdd, trajectory.t])
+
+
+def _r0(kin, v: Vector) -> list[se.Basic]:  # type: ignore[no-untyped-def]
+    return list(kin.frames.express(v, GALILEAN_FRAME))
+
+
+@dataclass(frozen=True)
+class ReactionHistory:
+    """A reaction along a trajectory: ``force`` and ``moment`` (at ``point``), shape (N, 3), in R0 components."""
+
+    name: str
+    point: str
+    t: np.ndarray
+    force: np.ndarray
+    moment: np.ndarray
+
+
+def reaction_history(source: Verification | EquationsOfMotion, trajectory) -> dict[str, ReactionHistory]:  # type: ignore[no-untyped-def]
+    """Every reaction of `reactions` evaluated at the trajectory's states (q̈ from the trajectory)."""
+    v = source if isinstance(source, Verification) else verify(source)
+    _check_coordinates(v, trajectory)
+    kin = v.eom.kinematics
+    out = {}
+    states = _states(trajectory)
+    for r in reactions(v):
+        values = _Numeric(v.eom, trajectory.parameters, _r0(kin, r.force) + _r0(kin, r.moment))(states)
+        out[r.name] = ReactionHistory(r.name, r.point, trajectory.t, values[:, :3], values[:, 3:])
+    return out
+
+
+@dataclass(frozen=True)
+class TrajectoryResiduals:
+    """Newton–Euler residuals at the states of a trajectory, relative to the size of their terms.
+
+    Attributes
+    ----------
+    t : (N,) times.
+    coordinates : names of q_i.
+    projections : (N, n) |Σ m γ·∂V/∂q̇_i + δ·∂Ω/∂q̇_i − (efforts)| over Σ of the terms' sizes.
+    reactions : name → `ReactionHistory` (R and M in R0 components).
+    resultant : name → (N,) relative residual of Σ m γ(G) = Σ F_given + R, with R from its formula.
+    moment : name → (N,) relative residual of the moment theorem at the pin with R, along the axes
+        the pin leaves free (all three for a ball joint: δ_O = M_O(given), the seed's equation).
+    """
+
+    t: np.ndarray
+    coordinates: tuple[str, ...]
+    projections: np.ndarray
+    reactions: Mapping[str, ReactionHistory]
+    resultant: Mapping[str, np.ndarray]
+    moment: Mapping[str, np.ndarray]
+
+    @property
+    def max_relative(self) -> float:
+        """The largest relative residual of all."""
+        values = [float(np.max(self.projections, initial=0.0))]
+        values += [float(np.max(a, initial=0.0)) for a in (*self.resultant.values(), *self.moment.values())]
+        return max(values)
+
+    def worst(self) -> tuple[str, float]:
+        """The check with the largest relative residual and that residual."""
+        items = [(f"L({c})", float(np.max(self.projections[:, k], initial=0.0)))
+                 for k, c in enumerate(self.coordinates)]
+        items += [(f"resultant theorem with {k}", float(np.max(a, initial=0.0))) for k, a in self.resultant.items()]
+        items += [(f"moment theorem with {k}", float(np.max(a, initial=0.0))) for k, a in self.moment.items()]
+        return max(items, key=lambda kv: kv[1])
+
+
+def _check_coordinates(v: Verification, trajectory) -> None:  # type: ignore[no-untyped-def]
+    if tuple(trajectory.coordinates) != v.eom.coordinates:
+        raise SimulationError(
+            f"The trajectory's coordinates {list(trajectory.coordinates)} are not those of the model "
+            f"{list(v.eom.coordinates)}.", fix="check it against the model it was simulated from")
+
+
+def _norms(a: np.ndarray) -> np.ndarray:
+    """Euclidean norms of consecutive 3-vectors: (N, 3k) → (N, k)."""
+    return np.linalg.norm(a.reshape(len(a), -1, 3), axis=2)
+
+
+def check_trajectory(source: Verification | EquationsOfMotion, trajectory) -> TrajectoryResiduals:  # type: ignore[no-untyped-def]
+    """The Newton–Euler theorems evaluated along ``trajectory`` (residuals ≈ rounding, ≤ 1e-9 relative).
+
+    Each residual is divided by the sum of the sizes of the terms it balances (|m γ||∂V| +
+    |δ||∂Ω| + |F||∂V| + |M||∂Ω| for a projection), so it measures the cancellation, not
+    the motion's scale.  Vectors are evaluated in R0 components from one compiled function.
+    """
+    v = source if isinstance(source, Verification) else verify(source)
+    _check_coordinates(v, trajectory)
+    eom, kin = v.eom, v.eom.kinematics
+    model = kin.model
+    n = kin.n
+    exprs: list[se.Basic] = []
+    for th in v.theorems:  # per element: m γ, F, δ_P, M_P (R0 components)
+        for vec in (th.mass_acceleration, th.force, th.dynamic_moment, th.moment):
+            exprs += _r0(kin, vec)
+    for th in v.theorems:  # per element and coordinate: ∂V(P)/∂q̇_i, ∂Ω/∂q̇_i
+        dw = kin.partial_omegas(model.body(th.name).frame) if th.kind == "body" else (Vector.zero(),) * n
+        for dv, w in zip(kin.partial_velocities(th.point), dw):
+            exprs += _r0(kin, dv) + _r0(kin, w)
+    exprs += list(v.virtual_power)
+    all_reactions = reactions(v)
+    for r in all_reactions:
+        exprs += _r0(kin, r.force) + _r0(kin, r.moment)
+        exprs += [c for th_name in r.elements for c in _r0(kin, kin.position(v.element(th_name).point)
+                                                          - kin.position(r.point))]
+        exprs += [c for w in r.free_axes for c in _r0(kin, w)]
+    values = _Numeric(eom, trajectory.parameters, exprs)(_states(trajectory))
+    N, E = len(values), len(v.theorems)
+    element_vectors = values[:, :12 * E].reshape(N, E, 4, 3)
+    at = 12 * E
+    partial = values[:, at:at + 6 * E * n].reshape(N, E, n, 2, 3)
+    at += 6 * E * n
+    extra = values[:, at:at + n]
+    at += n
+    m_gamma, force, delta, moment = (element_vectors[:, :, k, :] for k in range(4))
+    dv, dw = partial[:, :, :, 0, :], partial[:, :, :, 1, :]
+    dyn = np.einsum("nej,neij->ni", m_gamma, dv) + np.einsum("nej,neij->ni", delta, dw)
+    given = np.einsum("nej,neij->ni", force, dv) + np.einsum("nej,neij->ni", moment, dw) + extra
+    norm = np.linalg.norm
+    scale = (np.einsum("ne,nei->ni", norm(m_gamma, axis=2) + norm(force, axis=2), norm(dv, axis=3))
+             + np.einsum("ne,nei->ni", norm(delta, axis=2) + norm(moment, axis=2), norm(dw, axis=3))
+             + np.abs(extra))
+    projections = np.abs(dyn - given) / np.maximum(scale, np.finfo(float).tiny)
+    histories, resultant, moment_res = {}, {}, {}
+    index = {th.name: e for e, th in enumerate(v.theorems)}
+    for r in all_reactions:
+        k = len(r.elements)
+        block = values[:, at:at + 6 + 3 * k + 3 * len(r.free_axes)]
+        at += block.shape[1]
+        R, M = block[:, :3], block[:, 3:6]
+        arms = block[:, 6:6 + 3 * k].reshape(N, k, 3)
+        axes = block[:, 6 + 3 * k:].reshape(N, len(r.free_axes), 3)
+        histories[r.name] = ReactionHistory(r.name, r.point, trajectory.t, R, M)
+        members = [index[name] for name in r.elements]
+        sum_mg = m_gamma[:, members].sum(axis=1)
+        sum_f = force[:, members].sum(axis=1)
+        size = norm(sum_mg, axis=1) + norm(sum_f, axis=1) + norm(R, axis=1)
+        resultant[r.name] = norm(sum_mg - sum_f - R, axis=1) / np.maximum(size, np.finfo(float).tiny)
+        if r.pinned is None or not r.free_axes:
+            continue
+        # Moment theorem at the pin for the group, with R applied there (no arm): δ = M(given) + M_joint,
+        # M_joint across the free axes only; the residual is what lies along them.
+        arm_terms = np.cross(arms, m_gamma[:, members] - force[:, members])
+        total = delta[:, members].sum(axis=1) - moment[:, members].sum(axis=1) + arm_terms.sum(axis=1)
+        along = np.zeros_like(total)
+        for j in range(N):
+            u, s, _ = np.linalg.svd(axes[j].T, full_matrices=False)
+            basis = u[:, s > RANK_RTOL * max(s[0], 1e-300)] if len(s) else u[:, :0]
+            along[j] = basis @ (basis.T @ total[j])
+        m_size = (norm(delta[:, members], axis=2).sum(axis=1) + norm(moment[:, members], axis=2).sum(axis=1)
+                  + norm(arms, axis=2).sum(axis=1) * (norm(sum_mg, axis=1) + norm(sum_f, axis=1)))
+        moment_res[r.name] = norm(along, axis=1) / np.maximum(m_size, np.finfo(float).tiny)
+    return TrajectoryResiduals(trajectory.t, eom.coordinates, projections, histories, resultant, moment_res)

@@ -1,0 +1,208 @@
+"""``lagrangian verify [MODEL.toml] [--simulate T_END] [--set NAME=VALUE ...] [-o FILE]``.
+
+Checks every Lagrange equation L(q_i) against the Newton–Euler theorems projected on the
+directions of q_i, prints the reactions of the constraints, and with ``--simulate``
+evaluates the same theorems along a simulated motion.  A failed check raises
+`VerificationError` (exit code 5) with the failing equation in the message.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+import numpy as np
+import sympy
+
+from ..analysis import Verification, check_trajectory, reactions, verify
+from ..analysis._reactions import Reaction
+from ..dynamics import derive
+from ..errors import SimulationError, VerificationError
+from ..model import Vector, load_model
+from ..model.zoo import lagrange_top
+from ..output import Notation
+from ..output._course import to_sympy
+
+__all__ = ["register", "run", "TOLERANCE"]
+
+SUMMARY = "check the Lagrange equations against the Newton–Euler theorems (symbolically,\n" \
+          "and along a simulated motion with --simulate); print the constraint reactions"
+
+#: Largest relative residual accepted along a trajectory: the theorems hold exactly, so
+#: what is left is rounding in the evaluation (about 1e-15 relative).
+TOLERANCE = 1e-9
+
+
+def _float(text: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"`{text}` is not a number") from None
+
+
+def _setting(text: str) -> tuple[str, float]:
+    name, sep, value = text.partition("=")
+    if not sep or not name.strip():
+        raise argparse.ArgumentTypeError(f"`{text}` is not NAME=VALUE (e.g. theta=0.3, phi_dot=80, g=1.62)")
+    return name.strip(), _float(value.strip())
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    v = sub.add_parser(
+        "verify", help="check the Lagrange equations by Newton-Euler",
+        description="Project the resultant and moment theorems of every body on the directions of each "
+                    "coordinate (the partial velocities) and show that they give the Lagrange equations "
+                    "L(q_i), term for term; print the constraint reactions from the resultant theorem. With "
+                    "--simulate, also evaluate the theorems along a simulated motion.",
+    )
+    v.add_argument("model", nargs="?", help="model file (TOML); default: the seed's Lagrange top")
+    v.add_argument("--simulate", type=_float, metavar="T_END", default=None,
+                   help="also check along a motion simulated from t = 0 to T_END")
+    v.add_argument("--set", type=_setting, action="append", default=[], metavar="NAME=VALUE",
+                   help="with --simulate: a parameter value or an initial value (theta=0.3, phi_dot=80)")
+    v.add_argument("--n-out", type=int, default=201, metavar="N", help="states checked with --simulate (default 201)")
+    v.add_argument("-o", "--output", metavar="FILE", help="write the report to FILE (atomically)")
+    v.set_defaults(run=run)
+
+
+class _Printer:
+    """Expressions and vectors of one model in the course's notation."""
+
+    def __init__(self, v: Verification) -> None:
+        model = v.eom.model
+        self.kin = v.eom.kinematics
+        self.notation = Notation([c.name for c in model.coordinates], [p.name for p in model.parameters])
+
+    def expr(self, e) -> str:  # type: ignore[no-untyped-def]
+        return self.notation.text(to_sympy(e))
+
+    def vector(self, v: Vector, frame: str | None = None) -> str:
+        pieces = [(frame, self.kin.frames.express(v, frame))] if frame else list(self.kin.frames.lift(v))
+        terms = []
+        for f, comps in pieces:
+            for c, axis in zip(comps, self.kin.frames.axes(f)):
+                c = to_sympy(c)
+                if c != 0:
+                    terms.append((c, axis))
+        return self.notation.vector(terms) if terms else "0"
+
+    def axes(self, frame: str) -> str:
+        return ", ".join(self.kin.frames.axes(frame))
+
+
+def _symbolic_report(v: Verification, p: _Printer) -> list[str]:
+    model = v.eom.model
+    lines = [f"Newton–Euler check of {model.name} (R0 Galilean)", "",
+             "Vector theorems, body by body (R = constraint actions on it, M_P their moment):"]
+    for th in v.theorems:
+        efforts = " + ".join(th.efforts) if th.efforts else "0"
+        if th.kind == "particle":
+            lines.append(f"  {th.name} (particle): m γ({th.name}/R0) = {efforts} + R")
+            continue
+        at = th.point if th.point != th.name else "G"
+        lines.append(f"  {th.name} (body, moments at {at}): m γ(G/R0) = {efforts} + R;  "
+                     f"δ_{at}({th.name}/R0) = M_{at}({efforts}) + M_{at}")
+        lines.append(f"      σ_{at}({th.name}/R0) = Π_{at}·Ω = {p.vector(th.angular_momentum)}")
+    lines += ["", "Each L(q_i) is those theorems projected on the directions of q_i (∂V/∂q̇_i, ∂Ω/∂q̇_i). "
+              "The constraints are perfect:", "their actions do no virtual work and drop out of every projection."]
+    if v.virtual_power_loads:
+        lines.append("Taken by their generalized forces (no force form): " + ", ".join(v.virtual_power_loads) + ".")
+    lines.append("")
+    for c in v.checks:
+        q = p.notation.symbol(c.coordinate)
+        direction = p.vector(c.direction) if c.direction is not None and c.axis is None else None
+        mark = "✓" if c.agrees else "✗"
+        lines.append(f"  L({q}) ⇔ {c.describe(direction)}:")
+        lines.append(f"      {p.expr(c.newton_euler)} = {p.expr(c.newton_euler_efforts)} {mark}")
+        if not c.lhs_agrees:
+            lines.append(f"      ✗ but Γ_{q} = {p.expr(c.lagrange)}")
+        if not c.rhs_agrees:
+            lines.append(f"      ✗ but −∂U/∂{q} + Q_{q} = {p.expr(c.lagrange_efforts)}")
+    return lines
+
+
+def _reaction_report(v: Verification, rs: tuple[Reaction, ...], p: _Printer) -> list[str]:
+    lines = ["", "Constraint reactions (resultant theorem: what the given efforts leave of Σ m γ(G/R0)):"]
+    for r in rs:
+        members = " + ".join(r.elements)
+        masses = " + ".join(f"m γ({'G' if len(r.elements) == 1 and v.element(n).kind == 'body' else n}/R0)"
+                            if len(r.elements) == 1 else f"m γ(G_{n}/R0)" for n in r.elements)
+        forces = sorted({load for n in r.elements for load in v.element(n).efforts})
+        if r.pinned is not None:
+            lines.append(f"  {r.name}, the reaction of the fixed point {r.point} on {members}:")
+        else:
+            lines.append(f"  {r.name}, the resultant of the ground's constraint actions on {members}:")
+        lines.append(f"      {r.name} = {masses} − ({' + '.join(forces) or '0'})")
+        lines.append(f"          = {p.vector(r.force, r.frame)}    (in {r.frame}: {p.axes(r.frame)})")
+        if r.pinned is None:
+            continue
+        if not r.transmits_moment:
+            lines.append(f"      M_{r.point} = 0: {r.point} lets {r.pinned} turn about every axis (a ball joint), "
+                         "so the moment theorem at it holds with the reaction's moment alone, which is zero.")
+        else:
+            lines.append(f"      the joint at {r.point} also transmits the part of M_{r.point} = Σ δ_{r.point} − "
+                         f"Σ M_{r.point}(given) across its {r.free_rotations} free axis(es).")
+    return lines
+
+
+def _settings(v: Verification, settings: list[tuple[str, float]]) -> tuple[dict[str, float], dict[str, float]]:
+    model = v.eom.model
+    parameters = {p.name for p in model.parameters}
+    params, initial = {}, {}
+    for name, value in settings:
+        (params if name in parameters else initial)[name] = value
+    return params, initial
+
+
+def _numeric_report(v: Verification, args: argparse.Namespace) -> list[str]:
+    from ..numerics import simulate  # numerics only when asked for (it compiles C)
+
+    parameters, initial = _settings(v, args.set)
+    traj = simulate(v.eom, args.simulate, initial=initial, parameters=parameters, n_out=args.n_out)
+    res = check_trajectory(v, traj)
+    lines = ["", f"Along a simulated motion (t from {traj.t[0]:g} to {traj.t[-1]:g}, {len(traj.t)} states, "
+             f"q̈ from the trajectory), largest relative residuals:"]
+    for k, c in enumerate(res.coordinates):
+        lines.append(f"  L({c}) projected: {np.max(res.projections[:, k], initial=0.0):.1e}")
+    for name, values in res.resultant.items():
+        lines.append(f"  Σ m γ(G) = Σ F + {name}: {np.max(values, initial=0.0):.1e}")
+    for name, values in res.moment.items():
+        lines.append(f"  moment theorem at the pin with {name}, on its free axes: {np.max(values, initial=0.0):.1e}")
+    for name, h in res.reactions.items():
+        size = np.linalg.norm(h.force, axis=1)
+        k = int(np.argmax(size))
+        lines.append(f"  {name}(t) in R0: at t = {h.t[0]:g}: ({', '.join(f'{x:.6g}' for x in h.force[0])}); "
+                     f"largest |{name}| = {size[k]:.6g} at t = {h.t[k]:.6g}")
+    what, worst = res.worst()
+    if not worst <= TOLERANCE:
+        raise VerificationError(
+            f"Along the simulated motion, {what} is off by {worst:.3g} (relative), more than {TOLERANCE:g}.",
+            fix="the Lagrange equations and the Newton–Euler theorems disagree numerically; check the model's "
+                "loads and inertia, and report it if the model is right")
+    lines.append(f"  all within {TOLERANCE:g} ✓")
+    return lines
+
+
+def run(args: argparse.Namespace) -> str:
+    model = load_model(args.model) if args.model else lagrange_top()
+    v = verify(derive(model))
+    p = _Printer(v)
+    lines = _symbolic_report(v, p)
+    failed = [c for c in v.checks if not c.agrees]
+    if failed:
+        c = failed[0]
+        side, ours, theirs = (("left side", c.newton_euler, c.lagrange) if not c.lhs_agrees
+                              else ("right side", c.newton_euler_efforts, c.lagrange_efforts))
+        raise VerificationError(
+            f"L({c.coordinate}) does not agree with the {c.describe()}: its {side} is "
+            f"`{p.expr(theirs)}`, the theorems give `{p.expr(ours)}` "
+            f"(difference `{p.expr(sympy.expand(to_sympy(ours - theirs)))}`)"
+            + (f"; {len(failed) - 1} other equation(s) disagree too." if len(failed) > 1 else "."),
+            fix="the derivation or the model's loads are inconsistent; report it with the model file")
+    lines += _reaction_report(v, reactions(v), p)
+    if args.simulate is not None:
+        lines += _numeric_report(v, args)
+    elif args.set:
+        raise SimulationError("`--set` gives values for a simulation, and none was asked for.",
+                              fix="add `--simulate T_END`, or leave out `--set`")
+    lines += ["", f"All {len(v.checks)} Lagrange equations agree with the Newton–Euler theorems ✓"]
+    return "\n".join(lines) + "\n"
