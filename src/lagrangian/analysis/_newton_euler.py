@@ -44,7 +44,8 @@ from .._identity import are_zero
 from ..dynamics import EquationsOfMotion
 from ..dynamics._energy import rigid_inertia
 from ..kinematics import Kinematics
-from ..model import ORIGIN, Damper, GeneralizedForce, Gravity, PointForce, Potential, Spring, Torque, Vector
+from ..model import (ORIGIN, Body, Damper, GeneralizedForce, Gravity, Particle, PointForce, Potential, Spring, Torque,
+                     Vector)
 from ..model._vector import sum_of
 
 __all__ = ["EffortsOnElement", "ElementTheorems", "CoordinateCheck", "Verification", "verify"]
@@ -161,7 +162,7 @@ def _matvec(matrix: tuple[tuple[se.Basic, ...], ...], w: tuple[se.Basic, ...]) -
                  for k in range(3))
 
 
-def _body_theorems(kin: Kinematics, body, efforts: EffortsOnElement) -> ElementTheorems:  # type: ignore[no-untyped-def]
+def _body_theorems(kin: Kinematics, body: Body, efforts: EffortsOnElement) -> ElementTheorems:
     frames = kin.frames
     m_gamma = kin.acceleration(body.name) * body.mass
     point = body.fixed_point or body.name
@@ -183,7 +184,7 @@ def _body_theorems(kin: Kinematics, body, efforts: EffortsOnElement) -> ElementT
                            efforts.moment, efforts.loads)
 
 
-def _particle_theorems(kin: Kinematics, particle, efforts: EffortsOnElement) -> ElementTheorems:  # type: ignore[no-untyped-def]
+def _particle_theorems(kin: Kinematics, particle: Particle, efforts: EffortsOnElement) -> ElementTheorems:
     m_gamma = kin.acceleration(particle.name) * particle.mass
     return ElementTheorems(particle.name, "particle", particle.name, particle.mass, m_gamma, Vector.zero(),
                            Vector.zero(), efforts.force, Vector.zero(), efforts.loads)
@@ -226,7 +227,8 @@ def _unit_axis(kin: Kinematics, v: Vector) -> str | None:
     return None
 
 
-def _describe(kin: Kinematics, i: int, moving: list[tuple[str, Vector, Vector | None]]):  # type: ignore[no-untyped-def]
+def _describe(kin: Kinematics, i: int,
+              moving: list[tuple[str, Vector, Vector | None]]) -> tuple[str, str | None, Vector | None]:
     """(theorem, point, direction) for coordinate i, from the partial velocities of the elements.
 
     ``moving`` holds, for each element that moves with q_i, (name, ∂V(G)/∂q̇_i, ∂Ω/∂q̇_i or

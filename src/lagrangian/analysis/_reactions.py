@@ -25,14 +25,19 @@ from __future__ import annotations
 import random
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 import symengine as se
 
 from ..dynamics import EquationsOfMotion
 from ..errors import SimulationError
+from ..kinematics import Kinematics
 from ..model import GALILEAN_FRAME, ORIGIN, Vector
 from ._newton_euler import Verification, verify
+
+if TYPE_CHECKING:  # numerics comes after analysis: for annotations only
+    from ..numerics import Trajectory
 
 __all__ = ["Reaction", "reactions", "ReactionHistory", "reaction_history", "TrajectoryResiduals",
            "check_trajectory"]
@@ -111,7 +116,7 @@ def _groups(v: Verification) -> list[list[int]]:
     return list(out.values())
 
 
-def _rank(kin, vectors: Sequence[Vector]) -> int:  # type: ignore[no-untyped-def]
+def _rank(kin: Kinematics, vectors: Sequence[Vector]) -> int:
     """Number of independent vectors at a random configuration (numeric)."""
     if not vectors:
         return 0
@@ -124,17 +129,16 @@ def _rank(kin, vectors: Sequence[Vector]) -> int:  # type: ignore[no-untyped-def
     return int(np.sum(s > RANK_RTOL * max(s[0], 1e-300)))
 
 
-def _shortest_frame(kin, v: Vector) -> tuple[str, tuple[se.Basic, se.Basic, se.Basic]]:  # type: ignore[no-untyped-def]
+def _shortest_frame(kin: Kinematics, v: Vector) -> tuple[str, tuple[se.Basic, se.Basic, se.Basic]]:
     names = [f.name for f in kin.model.frames if not f.name.startswith("_")]
     if len(names) > MAX_DISPLAY_FRAMES:
         names = [GALILEAN_FRAME]
-    best = None
+    sizes = []
     for name in names:
         comps = kin.frames.express(v, name)
-        size = sum(len(str(se.expand(c))) for c in comps)
-        if best is None or size < best[0]:
-            best = (size, name, comps)
-    return best[1], best[2]  # type: ignore[index]
+        sizes.append((sum(len(str(se.expand(c))) for c in comps), name, comps))
+    _, name, comps = min(sizes, key=lambda item: item[0])  # the first among equals
+    return name, comps
 
 
 def reactions(source: Verification | EquationsOfMotion) -> tuple[Reaction, ...]:
@@ -197,11 +201,11 @@ class _Numeric:
         return np.asarray(self._f(states), dtype=float).reshape(len(states), self.size)
 
 
-def _states(trajectory) -> np.ndarray:  # type: ignore[no-untyped-def]
+def _states(trajectory: Trajectory) -> np.ndarray:
     return np.column_stack([trajectory.q, trajectory.qd, trajectory.qdd, trajectory.t])
 
 
-def _r0(kin, v: Vector) -> list[se.Basic]:  # type: ignore[no-untyped-def]
+def _r0(kin: Kinematics, v: Vector) -> list[se.Basic]:
     return list(kin.frames.express(v, GALILEAN_FRAME))
 
 
@@ -216,7 +220,8 @@ class ReactionHistory:
     moment: np.ndarray
 
 
-def reaction_history(source: Verification | EquationsOfMotion, trajectory) -> dict[str, ReactionHistory]:  # type: ignore[no-untyped-def]
+def reaction_history(source: Verification | EquationsOfMotion,
+                     trajectory: Trajectory) -> dict[str, ReactionHistory]:
     """Every reaction of `reactions` evaluated at the trajectory's states (q̈ from the trajectory)."""
     v = source if isinstance(source, Verification) else verify(source)
     _check_coordinates(v, trajectory)
@@ -267,7 +272,7 @@ class TrajectoryResiduals:
         return max(items, key=lambda kv: kv[1])
 
 
-def _check_coordinates(v: Verification, trajectory) -> None:  # type: ignore[no-untyped-def]
+def _check_coordinates(v: Verification, trajectory: Trajectory) -> None:
     if tuple(trajectory.coordinates) != v.eom.coordinates:
         raise SimulationError(
             f"The trajectory's coordinates {list(trajectory.coordinates)} are not those of the model "
@@ -279,7 +284,7 @@ def _norms(a: np.ndarray) -> np.ndarray:
     return np.linalg.norm(a.reshape(len(a), -1, 3), axis=2)
 
 
-def check_trajectory(source: Verification | EquationsOfMotion, trajectory) -> TrajectoryResiduals:  # type: ignore[no-untyped-def]
+def check_trajectory(source: Verification | EquationsOfMotion, trajectory: Trajectory) -> TrajectoryResiduals:
     """The Newton–Euler theorems evaluated along ``trajectory`` (residuals ≈ rounding, ≤ 1e-9 relative).
 
     Each residual is divided by the sum of the sizes of the terms it balances (|m γ||∂V| +

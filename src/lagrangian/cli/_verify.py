@@ -11,13 +11,13 @@ from __future__ import annotations
 import argparse
 
 import numpy as np
+import symengine as se
 import sympy
 
-from ..analysis import Verification, check_trajectory, reactions, verify
-from ..analysis._reactions import Reaction
+from ..analysis import Reaction, Verification, check_trajectory, reactions, verify
 from ..dynamics import derive
 from ..errors import SimulationError, VerificationError
-from ..model import Vector, load_model
+from ..model import Torque, Vector, load_model
 from ..model.zoo import lagrange_top
 from ..output import Notation
 from ..output._course import to_sympy
@@ -30,6 +30,8 @@ SUMMARY = "check the Lagrange equations against the Newton–Euler theorems (sym
 #: Largest relative residual accepted along a trajectory: the theorems hold exactly, so
 #: what is left is rounding in the evaluation (about 1e-15 relative).
 TOLERANCE = 1e-9
+#: Longest expression printed in full (characters); longer ones are summarized by their size.
+MAX_PRINTED = 1500
 
 
 def _float(text: str) -> float:
@@ -72,8 +74,14 @@ class _Printer:
         self.kin = v.eom.kinematics
         self.notation = Notation([c.name for c in model.coordinates], [p.name for p in model.parameters])
 
-    def expr(self, e) -> str:  # type: ignore[no-untyped-def]
-        return self.notation.text(to_sympy(e))
+    def expr(self, e: se.Basic, *, full: bool = False) -> str:
+        return self._short(self.notation.text(to_sympy(e)), full)
+
+    @staticmethod
+    def _short(text: str, full: bool = False) -> str:
+        if full or len(text) <= MAX_PRINTED:
+            return text
+        return f"[{len(text)} characters; `lagrangian.analysis.verify` holds the expression]"
 
     def vector(self, v: Vector, frame: str | None = None) -> str:
         pieces = [(frame, self.kin.frames.express(v, frame))] if frame else list(self.kin.frames.lift(v))
@@ -83,7 +91,7 @@ class _Printer:
                 c = to_sympy(c)
                 if c != 0:
                     terms.append((c, axis))
-        return self.notation.vector(terms) if terms else "0"
+        return self._short(self.notation.vector(terms)) if terms else "0"
 
     def axes(self, frame: str) -> str:
         return ", ".join(self.kin.frames.axes(frame))
@@ -96,11 +104,11 @@ def _symbolic_report(v: Verification, p: _Printer) -> list[str]:
     for th in v.theorems:
         efforts = " + ".join(th.efforts) if th.efforts else "0"
         if th.kind == "particle":
-            lines.append(f"  {th.name} (particle): m γ({th.name}/R0) = {efforts} + R")
+            lines.append(f"  {th.name} (particle): {p.expr(th.mass)} γ({th.name}/R0) = {efforts} + R")
             continue
         at = th.point if th.point != th.name else "G"
-        lines.append(f"  {th.name} (body, moments at {at}): m γ(G/R0) = {efforts} + R;  "
-                     f"δ_{at}({th.name}/R0) = M_{at}({efforts}) + M_{at}")
+        lines.append(f"  {th.name} (body, moments at {at}): {p.expr(th.mass)} γ(G/R0) = {efforts} + R;  "
+                     f"δ_{at}({th.name}/R0) = M_{at}({efforts}) + M_{at}(R)")
         lines.append(f"      σ_{at}({th.name}/R0) = Π_{at}·Ω = {p.vector(th.angular_momentum)}")
     lines += ["", "Each L(q_i) is those theorems projected on the directions of q_i (∂V/∂q̇_i, ∂Ω/∂q̇_i). "
               "The constraints are perfect:", "their actions do no virtual work and drop out of every projection."]
@@ -124,9 +132,9 @@ def _reaction_report(v: Verification, rs: tuple[Reaction, ...], p: _Printer) -> 
     lines = ["", "Constraint reactions (resultant theorem: what the given efforts leave of Σ m γ(G/R0)):"]
     for r in rs:
         members = " + ".join(r.elements)
-        masses = " + ".join(f"m γ({'G' if len(r.elements) == 1 and v.element(n).kind == 'body' else n}/R0)"
-                            if len(r.elements) == 1 else f"m γ(G_{n}/R0)" for n in r.elements)
-        forces = sorted({load for n in r.elements for load in v.element(n).efforts})
+        masses = " + ".join(_mass_acceleration(v, p, n, alone=len(r.elements) == 1) for n in r.elements)
+        couples = {load.name for load in v.eom.model.loads if isinstance(load, Torque)}
+        forces = sorted({load for n in r.elements for load in v.element(n).efforts} - couples)
         if r.pinned is not None:
             lines.append(f"  {r.name}, the reaction of the fixed point {r.point} on {members}:")
         else:
@@ -139,9 +147,35 @@ def _reaction_report(v: Verification, rs: tuple[Reaction, ...], p: _Printer) -> 
             lines.append(f"      M_{r.point} = 0: {r.point} lets {r.pinned} turn about every axis (a ball joint), "
                          "so the moment theorem at it holds with the reaction's moment alone, which is zero.")
         else:
-            lines.append(f"      the joint at {r.point} also transmits the part of M_{r.point} = Σ δ_{r.point} − "
-                         f"Σ M_{r.point}(given) across its {r.free_rotations} free axis(es).")
+            o = r.point
+            lines.append(f"      M_{o} = Σ δ_{o} − Σ M_{o}(given), the moment the joint transmits, has no "
+                         f"component along the {r.free_rotations} axis(es) it lets {r.pinned} turn about "
+                         "(a perfect joint)" + _across(r, p))
     return lines
+
+
+def _mass_acceleration(v: Verification, p: _Printer, name: str, *, alone: bool) -> str:
+    """``m γ(G/R0)`` for a lone body, ``m1 γ(G_S1/R0)`` in a group, ``m γ(P/R0)`` for a particle."""
+    th = v.element(name)
+    point = name if th.kind == "particle" else ("G" if alone else f"G_{name}")
+    return f"{p.expr(th.mass)} γ({point}/R0)"
+
+
+def _across(r: Reaction, p: _Printer) -> str:
+    """``"; across x0: ..."`` when the free axes are one basis vector (a hinge), else ``"."``."""
+    kin = p.kin
+    axes = [list(kin.frames.lift(w)) for w in r.free_axes]
+    first = axes[0]
+    if r.free_rotations != 1 or len(first) != 1 or any(a != first for a in axes):
+        return "."
+    frame, comps = first[0]
+    nonzero = [k for k, x in enumerate(comps) if x != 0]
+    if len(nonzero) != 1:
+        return "."
+    k = nonzero[0]
+    moment = list(kin.frames.express(r.moment, frame))
+    moment[k] = se.Integer(0)
+    return f"; across {kin.frames.axes(frame)[k]}: {p.vector(Vector({frame: tuple(moment)}))}."
 
 
 def _settings(v: Verification, settings: list[tuple[str, float]]) -> tuple[dict[str, float], dict[str, float]]:
@@ -153,7 +187,7 @@ def _settings(v: Verification, settings: list[tuple[str, float]]) -> tuple[dict[
     return params, initial
 
 
-def _numeric_report(v: Verification, args: argparse.Namespace) -> list[str]:
+def _numeric_report(v: Verification, args: argparse.Namespace, p: _Printer) -> list[str]:
     from ..numerics import simulate  # numerics only when asked for (it compiles C)
 
     parameters, initial = _settings(v, args.set)
@@ -162,7 +196,7 @@ def _numeric_report(v: Verification, args: argparse.Namespace) -> list[str]:
     lines = ["", f"Along a simulated motion (t from {traj.t[0]:g} to {traj.t[-1]:g}, {len(traj.t)} states, "
              f"q̈ from the trajectory), largest relative residuals:"]
     for k, c in enumerate(res.coordinates):
-        lines.append(f"  L({c}) projected: {np.max(res.projections[:, k], initial=0.0):.1e}")
+        lines.append(f"  L({p.notation.symbol(c)}) projected: {np.max(res.projections[:, k], initial=0.0):.1e}")
     for name, values in res.resultant.items():
         lines.append(f"  Σ m γ(G) = Σ F + {name}: {np.max(values, initial=0.0):.1e}")
     for name, values in res.moment.items():
@@ -200,7 +234,7 @@ def run(args: argparse.Namespace) -> str:
             fix="the derivation or the model's loads are inconsistent; report it with the model file")
     lines += _reaction_report(v, reactions(v), p)
     if args.simulate is not None:
-        lines += _numeric_report(v, args)
+        lines += _numeric_report(v, args, p)
     elif args.set:
         raise SimulationError("`--set` gives values for a simulation, and none was asked for.",
                               fix="add `--simulate T_END`, or leave out `--set`")
