@@ -58,6 +58,84 @@ def monitor_expressions(eom: EquationsOfMotion, integrals: Sequence) -> list[tup
     return out
 
 
+def expand_angle_sums(exprs: Sequence[se.Basic], angles: Sequence[se.Symbol]) -> list[se.Basic]:
+    """Rewrite sin/cos of sums of coordinates by the addition formulas.
+
+    cos(θ_i − θ_j) = cos θ_i cos θ_j + sin θ_i sin θ_j, and so on recursively: an n-link
+    chain's M then needs 2n trigonometric calls instead of one per pair (i, j), and
+    ``cse`` shares the products.  Only arguments that are sums of ±coordinates (at most
+    six terms) are rewritten; anything else (2θ, θ + Ω t) is left as it is.
+    """
+    angle_set = set(angles)
+    memo: dict[se.Basic, se.Basic] = {}
+
+    def split(arg: se.Basic):
+        if not isinstance(arg, se.Add):
+            return None
+        terms = []
+        for term in arg.args:
+            if term in angle_set:
+                terms.append((1, term))
+            elif isinstance(term, se.Mul) and len(term.args) == 2 and term.args[0] == -1 \
+                    and term.args[1] in angle_set:
+                terms.append((-1, term.args[1]))
+            else:
+                return None
+        return sorted(terms, key=lambda t: angles.index(t[1])) if 2 <= len(terms) <= 6 else None
+
+    def sc(sign: int, angle: se.Basic, rest: list) -> tuple[se.Basic, se.Basic]:
+        s1, c1 = sign * se.sin(angle), se.cos(angle)
+        if not rest:
+            return s1, c1
+        s2, c2 = sc(rest[0][0], rest[0][1], rest[1:])
+        key = tuple((sign, angle), ) + tuple(rest)
+        if key not in memo:
+            memo[key] = (s1 * c2 + c1 * s2, c1 * c2 - s1 * s2)
+        return memo[key]
+
+    mapping = {}
+    for expr in exprs:
+        for atom in expr.atoms(se.sin, se.cos):
+            terms = split(atom.args[0])
+            if terms is None:
+                continue
+            sin_sum, cos_sum = sc(terms[0][0], terms[0][1], terms[1:])
+            mapping[atom] = sin_sum if isinstance(atom, se.sin) else cos_sum
+    return [e.xreplace(mapping) if mapping else e for e in exprs]
+
+
+def _smaller(a: se.Basic, b: se.Basic) -> se.Basic:
+    return b if se.count_ops(b) < se.count_ops(a) else a
+
+
+def collect_by_state(exprs: Sequence[se.Basic], state: Sequence[se.Symbol]) -> list[se.Basic]:
+    """Group each sum's terms by their state-dependent factor, summing the constant coefficients.
+
+    M of an n-link chain comes out of the virtual-power route as Σ over bodies of
+    m_k (∂V_k/∂q̇_i · ∂V_k/∂q̇_j): O(n³) terms sharing O(n²) distinct functions of q.
+    Writing it Σ_g (Σ_k m_k l_i l_j) g(q) makes the per-state cost O(n²): the coefficient
+    sums hold only parameters, and `cse` computes each once.
+    """
+    state_set = set(state)
+    out = []
+    for expr in exprs:
+        if not isinstance(expr, se.Add):
+            out.append(expr)
+            continue
+        groups: dict[se.Basic, list[se.Basic]] = {}
+        for term in expr.args:
+            factors = term.args if isinstance(term, se.Mul) else (term,)
+            const = [f for f in factors if not (f.free_symbols & state_set)]
+            var = [f for f in factors if f.free_symbols & state_set]
+            key = se.Mul(*var) if var else se.Integer(1)
+            groups.setdefault(key, []).append(se.Mul(*const) if const else se.Integer(1))
+        if len(groups) == len(expr.args):
+            out.append(expr)
+        else:
+            out.append(se.Add(*(se.Add(*coeffs) * key for key, coeffs in groups.items())))
+    return out
+
+
 def _coefficients() -> dict[str, str]:
     """DOP853's tableau as C initialisers, from SciPy's own coefficient module."""
     from scipy.integrate._ivp import dop853_coefficients as c
@@ -130,8 +208,14 @@ def generate_c(
         decls = [f"    const double {c} = {v}; (void){c};" for c, v in header.items()]
         return signature + " {\n" + "\n".join([*decls, *body]) + "\n}\n"
 
-    M_out = [(f"M[{i * n + j}]", eom.M[i][j]) for i in range(n) for j in range(n)]
-    F_out = [(f"F[{i}]", eom.F[i]) for i in range(n)]
+    state = (*eom.q, *eom.qd)
+    # M's entries are sums over bodies of one function of q each: collect them.  F keeps
+    # the nested form of the derivation, which shares more than its expansion would.
+    M_flat = [_smaller(e, collect_by_state([se.expand(e)], state)[0])
+              for e in [eom.M[i][j] for i in range(n) for j in range(n)]] + list(eom.F)
+    M_flat = expand_angle_sums(M_flat, eom.q)
+    M_out = [(f"M[{k}]", e) for k, e in enumerate(M_flat[: n * n])]
+    F_out = [(f"F[{i}]", e) for i, e in enumerate(M_flat[n * n:])]
     monitors = monitor_expressions(eom, integrals)
     zero = se.Integer(0)
     rates_zero = {s: zero for s in eom.qd}
