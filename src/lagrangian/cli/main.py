@@ -25,7 +25,7 @@ from ._atomic import write_output
 __all__ = ["main", "entrypoint"]
 
 # The commands, in the order `--help` lists them; each name is a module `cli/_<name>.py`.
-COMMANDS = ("derive", "verify", "analyse")
+COMMANDS = ("derive", "simulate", "verify", "analyse")
 
 
 def _commands() -> list:

@@ -1,0 +1,109 @@
+"""``lagrangian simulate MODEL.toml --t-end 10 [--set NAME=VALUE ...] [--out traj.csv|traj.npz] [--plot DIR]``."""
+
+from __future__ import annotations
+
+import argparse
+import io
+import sys
+import time
+
+from ..dynamics import derive
+from ..errors import SimulationError
+from ..model import load_model
+from ..model.zoo import lagrange_top
+from ..numerics import METHODS, EventSpec, compile_system, save_trajectory, simulate
+from ._settings import add_set_option, parse_settings
+
+__all__ = ["register"]
+
+SUMMARY = "simulate a model from its initial state; report the drift of every first integral\n" \
+          "(CSV or NPZ output, plots and an animation with --plot DIR)"
+
+
+def _float(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"`{text}` is not a number") from None
+    return value
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    s = sub.add_parser(
+        "simulate", help="integrate the equations of motion",
+        description="Integrate M q'' = F from the model's initial state (compiled C, no Python per step) and "
+                    "report the conservation of every first integral. The trajectory (t, q, q', q'', the first "
+                    "integrals, T, U) goes to --out, or as CSV to standard output.",
+    )
+    s.add_argument("model", nargs="?", help="model file (TOML); default: the seed's Lagrange top")
+    s.add_argument("--t-end", type=_float, default=10.0, metavar="T", help="end time (default 10)")
+    s.add_argument("--t-start", type=_float, default=0.0, metavar="T0", help="start time (default 0)")
+    add_set_option(s)
+    s.add_argument("--method", choices=METHODS, default="dop853",
+                   help="dop853 (adaptive, default), gauss-legendre (fixed step, symplectic) or a SciPy method")
+    s.add_argument("--rtol", type=_float, default=1e-10, help="relative tolerance (default 1e-10)")
+    s.add_argument("--atol", type=_float, default=1e-10, help="absolute tolerance (default 1e-10)")
+    s.add_argument("--dt", type=_float, default=None, help="fixed step (gauss-legendre; dop853 fixed-step)")
+    s.add_argument("--n-out", type=int, default=1001, metavar="N", help="number of output times (default 1001)")
+    s.add_argument("--event", action="append", default=[], metavar="EXPR",
+                   help="record the times where EXPR crosses zero, e.g. --event theta_dot (repeatable)")
+    s.add_argument("--stop-when", action="append", default=[], metavar="EXPR",
+                   help="stop at the first zero crossing of EXPR, e.g. --stop-when 'theta - 1.2'")
+    s.add_argument("--tolerance", type=_float, default=None, metavar="TOL",
+                   help="warn when a first integral drifts by more than TOL (relative)")
+    s.add_argument("-o", "--out", metavar="FILE", help="write the trajectory to FILE (.csv or .npz), atomically")
+    s.add_argument("--plot", metavar="DIR", help="write plots and an animation into DIR")
+    s.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
+                   help="show a progress bar (default: when standard error is a terminal)")
+    s.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> str:
+    model = load_model(args.model) if args.model else lagrange_top()
+    parameters, initial = parse_settings(args.set, model)
+    eom = derive(model)
+    events = [EventSpec(text, text) for text in args.event]
+    events += [EventSpec(f"stop: {text}", text, terminal=True) for text in args.stop_when]
+    system = eom if events else compile_system(eom)   # simulate compiles the events in
+    progress = sys.stderr.isatty() if args.progress is None else args.progress
+    start = time.perf_counter()
+    traj = simulate(system, args.t_end, t_start=args.t_start, initial=initial,
+                    parameters=parameters, method=args.method, rtol=args.rtol, atol=args.atol, dt=args.dt,
+                    n_out=args.n_out, events=events, tolerance=args.tolerance, progress=progress)
+    elapsed = time.perf_counter() - start
+    lines = [
+        f"{model.name}: t from {traj.t[0]:g} to {traj.t[-1]:g} with {traj.method}, {traj.steps} steps, "
+        f"{traj.rhs_calls} right-hand-side calls, {elapsed * 1e3:.1f} ms",
+        "conservation: " + (traj.drift_summary() or "no first integral to monitor"),
+    ]
+    lines += [f"warning: {w}" for w in traj.warnings]
+    if traj.events:
+        lines.append(f"events: {len(traj.events)} — " + ", ".join(f"{e.name} at t = {e.t:.9g}" for e in traj.events[:8])
+                     + (" ..." if len(traj.events) > 8 else ""))
+    if traj.status != "completed":
+        lines.append(f"status: {traj.status}")
+    written = []
+    if args.out:
+        written.append(str(save_trajectory(traj, args.out)))
+    if args.plot:
+        written += [str(p) for p in _plots(traj, eom, args.plot)]
+    if written:
+        lines.append("wrote " + ", ".join(written))
+    summary = "\n".join(lines) + "\n"
+    if args.out or args.plot:
+        return summary
+    # No file asked for: the table goes to standard output, the summary to standard error.
+    sys.stderr.write(summary)
+    text = io.StringIO()
+    text.write(",".join(traj.columns()) + "\n")
+    for row in traj.table():
+        text.write(",".join(f"{v:.17g}" for v in row) + "\n")
+    return text.getvalue()
+
+
+def _plots(traj, eom, directory: str) -> list:
+    try:
+        from ..plotting import save_plots
+    except ImportError as exc:  # matplotlib missing: the plotting package says how to install it
+        raise SimulationError(f"Plots need matplotlib ({exc}).", fix="pip install 'lagrangian[plot]'") from None
+    return save_plots(traj, eom, directory)

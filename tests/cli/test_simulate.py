@@ -1,0 +1,76 @@
+"""`lagrangian simulate`, in-process: output files, --set, events, errors and exit codes."""
+
+import numpy as np
+import pytest
+
+from lagrangian.cli.main import main
+from lagrangian_test_support import EXAMPLES_DIR
+
+
+def test_top_to_csv_reports_conservation_and_applies_settings(tmp_path, capsys):
+    out = tmp_path / "top.csv"
+    assert main(["simulate", "--t-end", "1", "--set", "theta=0.3", "--set", "phi_dot=80", "--set", "g=1.62",
+                 "--n-out", "101", "-o", str(out)]) == 0
+    summary = capsys.readouterr().out
+    assert "conservation: K relative drift" in summary and "E " in summary and f"wrote {out}" in summary
+    lines = out.read_text().splitlines()
+    header = next(line for line in lines if not line.startswith("#"))
+    assert header.split(",")[:4] == ["t", "psi", "theta", "phi"]
+    data = np.loadtxt(out, delimiter=",", comments="#", skiprows=lines.index(header) + 1)
+    columns = header.split(",")
+    assert data.shape == (101, len(columns))
+    assert data[0, columns.index("theta")] == 0.3 and data[0, columns.index("phi_dot")] == 80.0
+    assert "g = 1.62" in out.read_text()
+    E = data[:, columns.index("E")]
+    assert np.ptp(E) <= 1e-9 * abs(E[0])
+
+
+def test_npz_output_and_csv_to_stdout(tmp_path, capsys):
+    out = tmp_path / "pendulum.npz"
+    model = str(EXAMPLES_DIR / "simple_pendulum.toml")
+    assert main(["simulate", model, "--t-end", "0.5", "--n-out", "11", "-o", str(out)]) == 0
+    data = np.load(out)
+    assert data["q"].shape == (11, 1) and data["t"][-1] == 0.5 and "monitor_E" in data
+    capsys.readouterr()
+    assert main(["simulate", model, "--t-end", "0.5", "--n-out", "3"]) == 0
+    captured = capsys.readouterr()
+    assert captured.out.splitlines()[0].startswith("t,theta,theta_dot,theta_ddot")
+    assert len(captured.out.splitlines()) == 4
+    assert "conservation:" in captured.err
+
+
+def test_events_and_stop_when(capsys, tmp_path):
+    assert main(["simulate", "--t-end", "5", "--event", "theta_dot", "--stop-when", "t - 0.3",
+                 "-o", str(tmp_path / "a.csv")]) == 0
+    out = capsys.readouterr().out
+    assert "events:" in out and "stop: t - 0.3 at t = 0.3" in out and "stopped by a terminal event" in out
+
+
+@pytest.mark.parametrize("argv, code, message", [
+    (["--set", "theta=0"], 4, "singular at the initial state"),
+    (["--t-end", "-1"], 4, "not increasing"),
+    (["--set", "omega=1"], 2, "`omega`"),
+    (["--set", "theta=abc"], 2, "not a number"),
+    (["--event", "import os"], 2, "event"),
+])
+def test_bad_input_exits_non_zero_and_keeps_the_old_output(tmp_path, capsys, argv, code, message):
+    out = tmp_path / "keep.csv"
+    out.write_text("precious\n")
+    assert main(["simulate", "--t-end", "1", *argv, "-o", str(out)]) == code
+    err = capsys.readouterr().err
+    assert message in err and "tip:" in err and "Traceback" not in err
+    assert out.read_text() == "precious\n"
+
+
+def test_parameter_without_value(tmp_path, capsys):
+    model = tmp_path / "p.toml"
+    model.write_text((EXAMPLES_DIR / "simple_pendulum.toml").read_text().replace("l = { value = 0.5,", "l = {"))
+    assert main(["simulate", str(model), "--t-end", "1"]) == 4
+    assert "`l` has no value" in capsys.readouterr().err
+    assert main(["simulate", str(model), "--t-end", "0.1", "--set", "l=0.5", "-o", str(tmp_path / "x.npz")]) == 0
+
+
+def test_unwritable_output_is_exit_3(tmp_path, capsys):
+    assert main(["simulate", "--t-end", "0.1", "-o", str(tmp_path / "missing" / "x.csv")]) == 3
+    assert main(["simulate", "--t-end", "0.1", "-o", str(tmp_path / "x.txt")]) == 3
+    assert ".csv" in capsys.readouterr().err
