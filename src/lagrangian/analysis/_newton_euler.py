@@ -51,6 +51,9 @@ from ..model._vector import sum_of
 __all__ = ["EffortsOnElement", "ElementTheorems", "CoordinateCheck", "Verification", "verify"]
 
 _ZERO = se.Integer(0)
+#: Relative size (to the terms of a sum) above which a double-precision value is surely not
+#: rounding noise, so an identity can be rejected before the exact test of `are_zero`.
+QUICK_REJECT = 1e-8
 
 
 @dataclass(frozen=True, slots=True)
@@ -92,7 +95,8 @@ class CoordinateCheck:
     ``theorem`` is ``"moment"`` (at ``point``, projected on ``direction``), ``"resultant"``
     (projected on ``direction``) or ``"virtual power"`` (projected on the partial velocities
     and angular velocities of q_i, when no single axis or direction describes them).
-    ``axis`` is the display name of ``direction`` when it is a unit basis vector (``"u"``).
+    ``axis`` is the display name of ``direction`` when it is a unit basis vector (``"u"``);
+    ``point`` is a point or particle name, or ``G_<body>`` for a body's centre of mass.
     """
 
     coordinate: str
@@ -202,10 +206,12 @@ def _vanish(exprs: list[se.Basic]) -> bool:
     for e in exprs:
         try:
             value = abs(complex(e.subs(point)))
+            terms = e.args if e.is_Add else (e,)
+            scale = sum(abs(complex(t.subs(point))) for t in terms)
         except (TypeError, RuntimeError, ValueError):
             continue
-        if value > 1e-6:  # far above rounding at this size: certainly not zero
-            return False
+        if value > QUICK_REJECT * scale and value > QUICK_REJECT:
+            return False  # eight orders above double rounding: certainly not zero
     return all(are_zero(exprs))
 
 
@@ -251,6 +257,7 @@ def _describe(kin: Kinematics, i: int,
                   *(p.name for p in model.points), *(p.name for p in model.particles),
                   *(b.name for b in model.bodies)]
     points = list(dict.fromkeys(candidates))
+    bodies = {b.name for b in model.bodies}
     for e in axes:
         body_terms = [r for _, _, w in moving if w is not None for r in _same(kin, w, e)]
         if not _vanish(body_terms):
@@ -261,7 +268,7 @@ def _describe(kin: Kinematics, i: int,
                 ag = kin.position(name) - kin.position(a)
                 residues += _same(kin, dv, frames.cross(e, ag) if not ag.is_zero() else Vector.zero())
             if _vanish(residues):
-                return "moment", a, e
+                return "moment", (f"G_{a}" if a in bodies else a), e
     if not omegas:
         first = moving[0][1]
         if all(w is None or w.is_zero() for _, _, w in moving) and _vanish(

@@ -34,6 +34,7 @@ from ..dynamics import EquationsOfMotion
 from ..errors import SimulationError
 from ..kinematics import Kinematics
 from ..model import GALILEAN_FRAME, ORIGIN, Vector
+from ..model._vector import as_expr
 from ._newton_euler import Verification, verify
 
 if TYPE_CHECKING:  # numerics comes after analysis: for annotations only
@@ -186,7 +187,7 @@ class _Numeric:
     def __init__(self, eom: EquationsOfMotion, parameters: Mapping[str, float], exprs: Sequence[se.Basic]) -> None:
         values = {se.Symbol(k): float(x) for k, x in parameters.items()}
         args = [*eom.q, *eom.qd, *eom.qdd, eom.t]
-        subbed = [se.sympify(e).subs(values) for e in exprs]
+        subbed = [as_expr(e).subs(values) for e in exprs]
         left = set().union(*(e.free_symbols for e in subbed)) - set(args) if subbed else set()
         if left:
             names = ", ".join(sorted(f"`{s}`" for s in map(str, left)))
