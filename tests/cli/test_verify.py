@@ -63,12 +63,12 @@ def test_a_wrong_equation_fails_with_exit_code_5(monkeypatch, capsys) -> None:
 
 
 def test_set_without_simulate_is_refused(capsys) -> None:
-    assert main(["verify", "--set", "theta=0.3"]) == 4
+    assert main(["verify", "--set", "theta=0.3"]) == 2
     assert "--simulate" in capsys.readouterr().err
 
 
 def test_an_unknown_setting_is_refused(capsys) -> None:
-    assert main(["verify", "--simulate", "0.1", "--set", "nope=1"]) == 4
+    assert main(["verify", "--simulate", "0.1", "--set", "nope=1"]) == 2
     assert "`nope`" in capsys.readouterr().err
 
 

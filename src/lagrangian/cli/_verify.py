@@ -16,11 +16,12 @@ import sympy
 
 from ..analysis import Reaction, Verification, check_trajectory, reactions, verify
 from ..dynamics import derive
-from ..errors import SimulationError, VerificationError
+from ..errors import VerificationError
 from ..model import Torque, Vector, load_model
 from ..model.zoo import lagrange_top
 from ..output import Notation
 from ..output._course import to_sympy
+from ._settings import SettingError, add_set_option, parse_settings
 
 __all__ = ["register", "run", "TOLERANCE"]
 
@@ -41,13 +42,6 @@ def _float(text: str) -> float:
         raise argparse.ArgumentTypeError(f"`{text}` is not a number") from None
 
 
-def _setting(text: str) -> tuple[str, float]:
-    name, sep, value = text.partition("=")
-    if not sep or not name.strip():
-        raise argparse.ArgumentTypeError(f"`{text}` is not NAME=VALUE (e.g. theta=0.3, phi_dot=80, g=1.62)")
-    return name.strip(), _float(value.strip())
-
-
 def register(sub: argparse._SubParsersAction) -> None:
     v = sub.add_parser(
         "verify", help="check the Lagrange equations by Newton-Euler",
@@ -58,9 +52,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     v.add_argument("model", nargs="?", help="model file (TOML); default: the seed's Lagrange top")
     v.add_argument("--simulate", type=_float, metavar="T_END", default=None,
-                   help="also check along a motion simulated from t = 0 to T_END")
-    v.add_argument("--set", type=_setting, action="append", default=[], metavar="NAME=VALUE",
-                   help="with --simulate: a parameter value or an initial value (theta=0.3, phi_dot=80)")
+                   help="also check along a motion simulated from t = 0 to T_END (--set changes its values)")
+    add_set_option(v)
     v.add_argument("--n-out", type=int, default=201, metavar="N", help="states checked with --simulate (default 201)")
     v.add_argument("-o", "--output", metavar="FILE", help="write the report to FILE (atomically)")
     v.set_defaults(run=run)
@@ -178,19 +171,10 @@ def _across(r: Reaction, p: _Printer) -> str:
     return f"; across {kin.frames.axes(frame)[k]}: {p.vector(Vector({frame: tuple(moment)}))}."
 
 
-def _settings(v: Verification, settings: list[tuple[str, float]]) -> tuple[dict[str, float], dict[str, float]]:
-    model = v.eom.model
-    parameters = {p.name for p in model.parameters}
-    params, initial = {}, {}
-    for name, value in settings:
-        (params if name in parameters else initial)[name] = value
-    return params, initial
-
-
 def _numeric_report(v: Verification, args: argparse.Namespace, p: _Printer) -> list[str]:
     from ..numerics import simulate  # numerics only when asked for (it compiles C)
 
-    parameters, initial = _settings(v, args.set)
+    parameters, initial = parse_settings(args.set, v.eom.model)
     traj = simulate(v.eom, args.simulate, initial=initial, parameters=parameters, n_out=args.n_out)
     res = check_trajectory(v, traj)
     lines = ["", f"Along a simulated motion (t from {traj.t[0]:g} to {traj.t[-1]:g}, {len(traj.t)} states, "
@@ -218,6 +202,10 @@ def _numeric_report(v: Verification, args: argparse.Namespace, p: _Printer) -> l
 
 def run(args: argparse.Namespace) -> str:
     model = load_model(args.model) if args.model else lagrange_top()
+    parse_settings(args.set, model)  # bad names and values are reported before any work
+    if args.set and args.simulate is None:
+        raise SettingError("`--set` gives values for a simulation, and none was asked for.",
+                           fix="add `--simulate T_END`, or leave out `--set`")
     v = verify(derive(model))
     p = _Printer(v)
     lines = _symbolic_report(v, p)
@@ -235,8 +223,5 @@ def run(args: argparse.Namespace) -> str:
     lines += _reaction_report(v, reactions(v), p)
     if args.simulate is not None:
         lines += _numeric_report(v, args, p)
-    elif args.set:
-        raise SimulationError("`--set` gives values for a simulation, and none was asked for.",
-                              fix="add `--simulate T_END`, or leave out `--set`")
     lines += ["", f"All {len(v.checks)} Lagrange equations agree with the Newton–Euler theorems ✓"]
     return "\n".join(lines) + "\n"
