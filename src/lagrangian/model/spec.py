@@ -36,8 +36,14 @@ __all__ = [
     "Damper",
     "Potential",
     "GeneralizedForce",
+    "Dissipation",
+    "JointDamper",
+    "CoulombFriction",
+    "Reference",
     "Load",
     "Model",
+    "Constraint",
+    "ReactionSpec",
 ]
 
 #: Name of the Galilean reference frame R0, root of the frame tree.
@@ -257,7 +263,64 @@ class GeneralizedForce:
     components: tuple[tuple[str, se.Basic], ...]
 
 
-Load = Gravity | PointForce | Torque | Spring | Damper | Potential | GeneralizedForce
+@dataclass(frozen=True, slots=True)
+class Dissipation:
+    """A Rayleigh dissipation function D(q, q̇, t): Q_i = −∂D/∂q̇_i (e.g. D = ½ c ẋ²)."""
+
+    name: str
+    function: se.Basic
+
+
+@dataclass(frozen=True, slots=True)
+class JointDamper:
+    """Viscous friction at the joint between ``bodies`` (S1, S2): the couple −c Ω(S2/S1) on S2, +c Ω(S2/S1) on S1.
+
+    Each of S1, S2 is a body or a frame; D = ½ c |Ω(S2/S1)|² is its dissipation function.
+    """
+
+    name: str
+    bodies: tuple[str, str]
+    coefficient: se.Basic
+
+
+@dataclass(frozen=True, slots=True)
+class CoulombFriction:
+    """Dry (Coulomb) friction at a sliding contact point ``at``: |T| ≤ f N, T opposite to the sliding velocity.
+
+    The sliding velocity is v_s = V(at) − ``surface_velocity`` (projected on the tangent
+    plane when the surface's unit ``normal`` is given); the friction force is the
+    regularised T = −f N v_s / √(|v_s|² + ε²), ε = ``regularization`` (a velocity).
+    ``normal_force`` N is given (known from the given forces, e.g. m g cos α).
+    """
+
+    name: str
+    at: str
+    coefficient: se.Basic
+    normal_force: se.Basic
+    surface_velocity: Vector
+    normal: Vector | None
+    regularization: se.Basic
+
+
+Load = (Gravity | PointForce | Torque | Spring | Damper | Potential | GeneralizedForce | Dissipation | JointDamper
+        | CoulombFriction)
+
+
+@dataclass(frozen=True, slots=True)
+class Reference:
+    """The equations are written relative to frame ``frame`` (R) of origin ``origin`` (O') — seed, Remarque 3.
+
+    R's rotation from R0 and the position OO' are prescribed functions of t (checked when
+    the model is built); the engine then adds the Coriolis and entrainment inertial forces.
+    """
+
+    frame: str
+    origin: str = ORIGIN
+
+    @property
+    def is_galilean_frame(self) -> bool:
+        """R is R0 itself and O' is O: no inertial force at all."""
+        return self.frame == GALILEAN_FRAME and self.origin == ORIGIN
 
 
 @dataclass(frozen=True, slots=True)
@@ -280,6 +343,9 @@ class Model:
     loads: tuple[Load, ...]
     source: str | None = None
     locations: Mapping[tuple[str, str], Location] = field(default_factory=dict)
+    reference: Reference | None = None  # None: the equations are written in R0
+    #: Declared constraints, principal or complementary (`lagrangian.model._constraints`).
+    constraints: tuple[Constraint, ...] = ()
 
     def __post_init__(self) -> None:
         if not self.frames or self.frames[0].name != GALILEAN_FRAME:
@@ -317,3 +383,7 @@ def _find(items: tuple, name: str, kind: str):  # type: ignore[no-untyped-def]
         if item.name == name:
             return item
     raise KeyError(f"no {kind} named {name!r}")
+
+
+# Declared after `Model`: `_constraints` imports this module's constants.
+from ._constraints import Constraint, ReactionSpec  # noqa: E402
