@@ -35,7 +35,6 @@ import symengine as se
 
 from ..errors import ModelError
 from ._vector import Vector
-from .spec import GALILEAN_FRAME
 
 if TYPE_CHECKING:  # pragma: no cover
     from .build import ModelBuilder
@@ -43,6 +42,8 @@ if TYPE_CHECKING:  # pragma: no cover
 __all__ = ["Constraint", "ReactionSpec", "FORMS", "HOLONOMIC", "NONHOLONOMIC", "read_constraint",
            "build_constraints"]
 
+#: Name of the Galilean frame R0 (`spec.GALILEAN_FRAME`; `spec` imports this module, so it is not imported here).
+GALILEAN_FRAME = "R0"
 HOLONOMIC = "holonomic"
 NONHOLONOMIC = "nonholonomic"
 #: The forms a constraint may take, and the kind (holonomic or not) of each.

@@ -29,12 +29,14 @@ if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
+from ._constraints import read_constraint
 from .build import ModelBuilder
 from .spec import Location, Model
 
 __all__ = ["load_model", "parse_model"]
 
-_TABLES = ("model", "parameters", "coordinates", "frames", "points", "bodies", "particles", "loads")
+_TABLES = ("model", "parameters", "coordinates", "frames", "points", "bodies", "particles", "loads",
+           "constraints")
 _LOAD_KINDS = {
     "gravity": {"gravity", "on"},
     "force": {"force", "at"},
@@ -119,7 +121,7 @@ def _syntax_error(text: str, msg: str, source: str | None) -> ModelError:
 
 
 _SINGULAR = {"parameters": "parameter", "coordinates": "coordinate", "frames": "frame", "points": "point",
-             "bodies": "body", "particles": "particle", "loads": "load"}
+             "bodies": "body", "particles": "particle", "loads": "load", "constraints": "constraint"}
 #: TOML keys whose builder name differs, by table.
 _RENAME = {
     "frames": {"from": "parent"},
@@ -243,6 +245,8 @@ class _Reader:
                        location=self.located("particles", name, value, "position"))
         for name, value in self.table("loads").items():
             self.load(b, name, value)
+        for name, value in self.table("constraints").items():
+            read_constraint(self, b, name, value)
         return b.build()
 
     def names(self, load: str, key: str, value: Any) -> tuple[str, ...]:

@@ -22,6 +22,7 @@ import symengine as se
 
 from ..errors import ModelError
 from ._expr import CONSTANTS, FUNCTIONS, ExpressionError, parse_expression
+from ._constraints import build_constraints
 from ._vector import Vector, as_expr
 from .spec import (
     GALILEAN_FRAME,
@@ -174,6 +175,17 @@ class ModelBuilder:
         """Given generalized-force components, e.g. ``{"theta": "-c*theta_dot"}``."""
         self._add("load", name, location, kind="generalized_force", components=dict(components))
 
+    def constraint(self, name: str, form: str, value: Any, *, on: str | None = None, frame: str = GALILEAN_FRAME,
+                   principal: bool = False, reaction: Mapping[str, Any] | None = None,
+                   description: str | None = None, location: Location | None = None) -> None:
+        """A constraint kept complementary (with a multiplier), or declared ``principal``.
+
+        ``form`` is ``"holonomic"``, ``"nonholonomic"``, ``"no_slip"`` or ``"coincide"``; see
+        `lagrangian.model._constraints` and ``docs/constraints.md``.
+        """
+        self._add("constraint", name, location, form=form, value=value, on=on, frame=frame, principal=principal,
+                  reaction=reaction, description=description)
+
     # -- build ----------------------------------------------------------------------------
     def build(self) -> Model:
         """Check every declaration and return the frozen `Model`.
@@ -264,6 +276,8 @@ class _Assembler:
         all_points.update({b.name: Point(b.name, b.center) for b in bodies})
         all_points.update({p.name: Point(p.name, p.position) for p in particles})
         loads = self.loads(all_points, bodies, particles, coordinates)
+        constraints = build_constraints(self, self.of("constraint"), coordinates, all_points,
+                                        [b.name for b in bodies])
         model = Model(
             name=self.b.name,
             description=self.b.description,
@@ -276,6 +290,7 @@ class _Assembler:
             loads=loads,
             source=self.b.source,
             locations=self.locations,
+            constraints=constraints,
         )
         self.check_coordinates_used(model)
         return model
@@ -290,11 +305,11 @@ class _Assembler:
             if raw.kind == "coordinate":
                 names += [raw.name + "_dot", raw.name + "_ddot"]
             for name in names:
-                if raw.kind != "load" and name in _RESERVED:
+                if raw.kind not in ("load", "constraint") and name in _RESERVED:
                     raise self.error(raw, f"`{name}` is a reserved name and cannot name a {raw.kind}",
                                      symbol=name, fix="choose another name (t, pi, R0, O, G and the "
                                      "function names are reserved)")
-                key = name if raw.kind != "load" else "load:" + name
+                key = name if raw.kind not in ("load", "constraint") else f"{raw.kind}:{name}"
                 if key in seen:
                     first = seen[key]
                     where = f" (first declared as a {first.kind}"

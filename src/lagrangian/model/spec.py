@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 import symengine as se
 
+from ._constraints import Constraint, ReactionSpec
 from ._vector import Vector
 
 __all__ = [
@@ -383,7 +384,3 @@ def _find(items: tuple, name: str, kind: str):  # type: ignore[no-untyped-def]
         if item.name == name:
             return item
     raise KeyError(f"no {kind} named {name!r}")
-
-
-# Declared after `Model`: `_constraints` imports this module's constants.
-from ._constraints import Constraint, ReactionSpec  # noqa: E402
