@@ -484,9 +484,9 @@ def test_toml_error_in_a_header(tmp_path: Path) -> None:
 
 
 def test_unknown_table(tmp_path: Path) -> None:
-    text = TOP + "\n[constraints]\nrolling = true\n"
+    text = TOP + "\n[joints]\nrolling = true\n"
     err, path = error_of(tmp_path, text)
-    check(err, path, line_of(text, "[constraints]"), "constraints", "unknown table `[constraints]`")
+    check(err, path, line_of(text, "[joints]"), "joints", "unknown table `[joints]`")
     assert "[parameters]" in err.fix
 
 
