@@ -23,6 +23,8 @@ import symengine as se
 from ..errors import ModelError
 from ._expr import CONSTANTS, FUNCTIONS, ExpressionError, parse_expression
 from ._constraints import build_constraints
+from ._friction import DEFAULT_REGULARIZATION, FRICTION_KINDS, build_friction_load
+from ._reference import check_reference
 from ._vector import Vector, as_expr
 from .spec import (
     GALILEAN_FRAME,
@@ -43,6 +45,7 @@ from .spec import (
     Point,
     PointForce,
     Potential,
+    Reference,
     Rotation,
     Spring,
     Torque,
@@ -92,6 +95,7 @@ class ModelBuilder:
         self.description = description
         self.source = source
         self._decl: list[_Raw] = []
+        self._reference: tuple[Any, Any, Location] | None = None  # (R, O', where): see `reference`
 
     # -- declarations -------------------------------------------------------------------
     def _add(self, what: str, name: str, location: Location | None, **data: Any) -> None:
@@ -174,6 +178,30 @@ class ModelBuilder:
                           location: Location | None = None) -> None:
         """Given generalized-force components, e.g. ``{"theta": "-c*theta_dot"}``."""
         self._add("load", name, location, kind="generalized_force", components=dict(components))
+
+    def dissipation(self, name: str, function: Any, *, location: Location | None = None) -> None:
+        """A Rayleigh dissipation function D(q, q̇, t): Q_i = −∂D/∂q̇_i (e.g. ``"1/2*c*x_dot^2"``)."""
+        self._add("load", name, location, kind="dissipation", function=function)
+
+    def joint_damper(self, name: str, bodies: Sequence[str], *, coefficient: Any,
+                     location: Location | None = None) -> None:
+        """Viscous friction in the joint between ``bodies`` (S1, S2): couple −c Ω(S2/S1) on S2, +c Ω(S2/S1) on S1."""
+        self._add("load", name, location, kind="joint_damper", bodies=tuple(bodies), coefficient=coefficient)
+
+    def coulomb_friction(self, name: str, at: str, *, coefficient: Any, normal_force: Any, surface_velocity: Any = 0,
+                         normal: Any = None, regularization: Any = DEFAULT_REGULARIZATION,
+                         location: Location | None = None) -> None:
+        """Dry friction at the sliding contact point ``at``: T = −f N v_s/√(|v_s|² + ε²), N given."""
+        self._add("load", name, location, kind="coulomb", at=at, coefficient=coefficient, normal_force=normal_force,
+                  surface_velocity=surface_velocity, normal=normal, regularization=regularization)
+
+    def reference(self, frame: str, *, origin: str = ORIGIN, location: Location | None = None) -> None:
+        """Write the equations relative to ``frame`` (R) of origin ``origin`` (O'), not R0 (seed, Remarque 3).
+
+        R's rotation from R0 and the position of O' must depend on t only; the inertial
+        forces of Coriolis and of entrainment are then added to the given efforts.
+        """
+        self._reference = (frame, origin, location or Location(self.source))
 
     def constraint(self, name: str, form: str, value: Any, *, on: str | None = None, frame: str = GALILEAN_FRAME,
                    principal: bool = False, reaction: Mapping[str, Any] | None = None,
@@ -291,6 +319,7 @@ class _Assembler:
             source=self.b.source,
             locations=self.locations,
             constraints=constraints,
+            reference=self.reference(all_points, frames, coordinates, loads),
         )
         self.check_coordinates_used(model)
         return model
@@ -642,9 +671,21 @@ class _Assembler:
                                          fix="use coordinate names: " + ", ".join(names), key="components")
                     comps.append((q, self.expr(raw, f"the component on `{q}`", value, key="components")))
                 out.append(GeneralizedForce(raw.name, tuple(comps)))
+            elif kind in FRICTION_KINDS:
+                out.append(build_friction_load(self, raw, points, body_names))
             else:  # pragma: no cover - the builder methods set `kind`
                 raise AssertionError(kind)
         return tuple(out)
+
+    def reference(self, points: dict[str, Point], frames: tuple[Frame, ...], coordinates: tuple[Coordinate, ...],
+                  loads: tuple[Load, ...]) -> Reference | None:
+        """The checked reference frame, or None for R0 (see `lagrangian.model._reference`)."""
+        if self.b._reference is None:
+            return None
+        frame, origin, where = self.b._reference
+        symbols = {c.name: c.symbol for c in coordinates} | {c.rate_symbol.name: c.rate_symbol for c in coordinates}
+        return check_reference(frame, origin, where, frames=frames, points=points, coordinates=symbols,
+                               load_names=[load.name for load in loads])
 
     def check_coordinates_used(self, model: Model) -> None:
         used: set[se.Basic] = set()
