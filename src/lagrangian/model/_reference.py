@@ -63,26 +63,39 @@ def check_reference(frame: Any, origin: Any, location: Location, *, frames: Sequ
         return ModelError(message, fix=fix, symbol=symbol, file=where.file, line=where.line)
 
     by_name = {f.name: f for f in frames}
+
+    def turning(name: str) -> tuple[str, str] | None:
+        """(coordinate, frame) when the chain of rotations from R0 to ``name`` depends on a coordinate."""
+        step: Frame | None = by_name[name]
+        while step is not None and step.rotation is not None:
+            moving = _moving(step.rotation.angle.free_symbols, coordinates)
+            if moving is not None:
+                return moving, step.name
+            step = by_name.get(step.parent) if step.parent is not None else None
+        return None
+
     if not isinstance(frame, str) or frame not in by_name or frame.startswith("_"):
         known = ", ".join(f.name for f in frames if not f.name.startswith("_"))
         raise fail(f"the reference frame `{frame}` is not a declared frame, so its motion relative to R0 is "
                    "undefined", "frame", str(frame),
                    f"declare it under [frames] with a rotation from R0 that depends on t only "
                    f"(e.g. rotation = [\"Omega*t\", \"z\"]), or use one of: {known}")
-    step: Frame | None = by_name[frame]
-    while step is not None and step.rotation is not None:
-        moving = _moving(step.rotation.angle.free_symbols, coordinates)
-        if moving is not None:
-            link = "" if step.name == frame else f" (through frame `{step.name}`)"
-            raise fail(f"the reference frame `{frame}` turns with coordinate `{moving}`{link}: the motion of a "
-                       "reference frame relative to R0 must be prescribed, a function of t only", "frame", moving,
-                       "write the equations in a frame whose rotation from R0 is given (e.g. [\"Omega*t\", \"z\"]); "
-                       "a frame that moves with the coordinates belongs to the system, not to the reference")
-        step = by_name.get(step.parent) if step.parent is not None else None
+    found = turning(frame)
+    if found is not None:
+        moving, through = found
+        link = "" if through == frame else f" (through frame `{through.lstrip('_')}`)"
+        raise fail(f"the reference frame `{frame}` turns with coordinate `{moving}`{link}: the motion of a "
+                   "reference frame relative to R0 must be prescribed, a function of t only", "frame", moving,
+                   "write the equations in a frame whose rotation from R0 is given (e.g. [\"Omega*t\", \"z\"]); "
+                   "a frame that moves with the coordinates belongs to the system, not to the reference")
     if not isinstance(origin, str) or origin not in points:
         raise fail(f"the origin `{origin}` of the reference frame `{frame}` is not a declared point", "origin",
                    str(origin), "declare it under [points] with a position that depends on t only, or use O")
-    moving = _moving(points[origin].position.free_symbols(), coordinates)
+    position = points[origin].position
+    moving = _moving(position.free_symbols(), coordinates)
+    for piece in position.frames:
+        found = turning(piece) if moving is None else None
+        moving = found[0] if found is not None else moving
     if moving is not None:
         raise fail(f"the origin `{origin}` of the reference frame `{frame}` moves with coordinate `{moving}`: "
                    "the motion of O' relative to R0 must be prescribed, a function of t only", "origin", moving,

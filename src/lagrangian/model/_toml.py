@@ -30,13 +30,15 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 from ._constraints import read_constraint
+from ._friction import FRICTION_KINDS, TOML_KEYS, declare_from_toml
+from ._reference import read_reference
 from .build import ModelBuilder
 from .spec import Location, Model
 
 __all__ = ["load_model", "parse_model"]
 
 _TABLES = ("model", "parameters", "coordinates", "frames", "points", "bodies", "particles", "loads",
-           "constraints")
+           "constraints", "reference")
 _LOAD_KINDS = {
     "gravity": {"gravity", "on"},
     "force": {"force", "at"},
@@ -45,6 +47,7 @@ _LOAD_KINDS = {
     "damper": {"damper", "coefficient"},
     "potential": {"potential"},
     "generalized_force": {"generalized_force"},
+    **TOML_KEYS,  # dissipation, joint_damper, coulomb (`_friction`)
 }
 
 
@@ -128,7 +131,8 @@ _RENAME = {
     "points": {"from": "relative_to"},
     "particles": {"from": "relative_to"},
     "loads": {"gravity": "field", "spring": "ends", "damper": "ends", "potential": "energy",
-              "generalized_force": "components"},
+              "generalized_force": "components", "dissipation": "function", "joint_damper": "bodies",
+              "coulomb": "at"},
 }
 
 
@@ -247,6 +251,9 @@ class _Reader:
             self.load(b, name, value)
         for name, value in self.table("constraints").items():
             read_constraint(self, b, name, value)
+        if "reference" in self.data:
+            frame, origin, where = read_reference(self.data["reference"], self.index, self.source)
+            b.reference(frame, origin=origin, location=where)
         return b.build()
 
     def names(self, load: str, key: str, value: Any) -> tuple[str, ...]:
@@ -291,6 +298,8 @@ class _Reader:
                      coefficient=_required(self, name, value, "coefficient"), location=where)
         elif kind == "potential":
             b.potential(name, value["potential"], location=where)
+        elif kind in FRICTION_KINDS:
+            declare_from_toml(self, b, name, value, kind, where)
         else:
             comps = value["generalized_force"]
             if not isinstance(comps, Mapping):
