@@ -45,8 +45,11 @@ __all__ = ["TopAnalysis", "TopForm", "NutationCubic", "Nutation", "SleepingTop",
 #: |ψ̇| at a turning angle below this fraction of the larger one counts as zero (a cusp):
 #: the turning angles are found to ~1e-15, so a true zero shows as ~1e-15 relative.
 CUSP_TOLERANCE = 1e-8
-#: Turning angles closer than this (relative) are one circle: steady precession.
-STEADY_TOLERANCE = 1e-10
+#: det M_cc below this fraction of the product of its diagonal (its Hadamard bound) at θ0:
+#: the cyclic momenta do not determine the rates there (a sleeping position, θ0 = 0 or π).
+SINGULAR_RTOL = 1e-12
+#: Safety factor on the rounding noise of E − U_eff (a few ulps of the level per evaluation).
+NOISE_ULPS = 64
 
 
 @dataclass(frozen=True, slots=True)
@@ -85,7 +88,8 @@ class Nutation:
     turning_rates: tuple[float, float]  # precession rate at θ1 and at θ2
     apex_curve: str  # "waves", "loops", "cusps", "circle" (steady precession) or "plane"
     apex_reason: str
-    steady: bool
+    steady: bool  # θ1 = θ2 to the resolution of E − U_eff: a circle
+    method: str  # "quadrature" or "small oscillations" (nutation too small for quadrature)
 
 
 @dataclass(frozen=True, slots=True)
@@ -370,6 +374,41 @@ def _steady(red: CyclicReduction, numbers: dict[se.Basic, float], theta0: float)
     return SteadyPrecession(theta0, (values[0], values[1]))
 
 
+def _nutation(red: CyclicReduction, curve: Curve, slopes: Curve, level: float, theta0: float,
+              rate0: float) -> Nutation:
+    """θ1, θ2, the period and mean rates, the apex curve.
+
+    E − U_eff(θ) is known to about ε = NOISE_ULPS·eps·|E|.  Turning angles closer than
+    the width 2 sqrt(2ε/U_eff'') of that noise are one circle (steady precession).  For a
+    half-width Δ below (ε/U_eff'')^¼ the quadrature's noise, ~ε/(U_eff'' Δ²), would exceed
+    the error O(Δ²) of the small-oscillation limit T = 2π sqrt(a/U_eff''), ⟨ċ⟩ = ċ(θ̄), which is
+    used instead; both errors are then below about sqrt(ε/U_eff'') (~1e-7 relative).
+    """
+    def gap(x: float) -> float:
+        return level - curve.scalar(x)
+
+    lo, hi = turning_points(gap, slopes.scalar, theta0, rate0, angle=red.angle, name=red.coordinate)
+    mid, half = 0.5 * (lo + hi), 0.5 * (hi - lo)
+    stiffness = float(slopes(np.array([mid]))[0, 1])
+    noise = NOISE_ULPS * np.finfo(float).eps * max(abs(level), np.finfo(float).tiny)
+    steady = stiffness > 0 and half <= math.sqrt(2 * noise / stiffness)
+    ip = red.cyclic.index(red.precession)
+    if stiffness > 0 and half <= (noise / stiffness) ** 0.25:
+        values = curve(np.array([theta0 if steady else mid]))[0]  # a circle stays at θ0
+        period = 2 * math.pi * math.sqrt(values[1] / stiffness)
+        means = {c: float(values[2 + k]) for k, c in enumerate(red.cyclic)}
+        method = "small oscillations"
+    else:
+        totals = well_integrals(curve, level, lo, hi)
+        period = float(totals[0])
+        means = {c: float(totals[1 + k] / period) for k, c in enumerate(red.cyclic)}
+        method = "quadrature"
+    ends = curve(np.array([lo, hi]))
+    turning = (float(ends[0, 2 + ip]), float(ends[1, 2 + ip]))
+    kind, reason = _apex(red.precession, turning, steady)
+    return Nutation(lo, hi, period, means, turning, kind, reason, steady, method)
+
+
 def analyse_top(eom: EquationsOfMotion, *, parameters: Mapping[str, float] | None = None,
                 initial: Mapping[str, float] | None = None) -> TopAnalysis:
     """Analyse a heavy symmetric top (or any model with one remaining and the other coordinates cyclic).
@@ -408,7 +447,7 @@ def analyse_top(eom: EquationsOfMotion, *, parameters: Mapping[str, float] | Non
     constants = {}
     for name, symbol, expr in zip(red.momenta, red.momentum_symbols, red.momentum_expressions):
         constants[name] = numbers[symbol] = float(expr.subs(at_start))
-    constants[red.energy_name] = E = float(red.energy_expression.subs(at_start))
+    constants[red.energy_name] = float(red.energy_expression.subs(at_start))
     th, theta0, rate0 = red.symbol, state[red.coordinate], state[red.coordinate + "_dot"]
     order = [red.momentum_of(red.precession)] + [s for s in red.momentum_symbols if s != red.momentum_of(red.precession)]
     U_sym = tidy(red.effective_potential, order)
@@ -424,31 +463,15 @@ def analyse_top(eom: EquationsOfMotion, *, parameters: Mapping[str, float] | Non
     top = _top_form(red, eom, numbers)
     notes: list[str] = []
     nutation = cubic = None
-    if abs(float(red.determinant.subs({**numbers, th: theta0}))) < 1e-14 * (1 + abs(float(red.inertia.subs(
-            {**numbers, th: theta0})))):
+    at0 = {**numbers, th: theta0}
+    hadamard = math.prod(abs(float(red.block[i][i].subs(at0))) for i in range(len(red.cyclic)))
+    if abs(float(red.determinant.subs(at0))) <= SINGULAR_RTOL * hadamard:
         notes.append(f"{red.coordinate}(0) = {theta0:g} is a sleeping position (det M_cc = 0): the Euler angles "
                      "are singular there and there is no nutation to describe; see the sleeping-top criterion.")
     else:
-        def gap(x: float) -> float:
-            return level - curve.scalar(x)
-        slope_curve = Curve(th, [U_var.diff(th).subs(numbers), U_var.diff(th).diff(th).subs(numbers)])
-        lo, hi = turning_points(gap, slope_curve.scalar, theta0, rate0, angle=red.angle, name=red.coordinate)
-        steady = hi - lo <= STEADY_TOLERANCE * max(1.0, abs(theta0))
+        nutation = _nutation(red, curve, Curve(th, [U_var.diff(th).subs(numbers), U_var.diff(th).diff(th).subs(numbers)]),
+                             level, theta0, rate0)
         ip = red.cyclic.index(red.precession)
-        if steady:
-            mid = 0.5 * (lo + hi)
-            stiffness = float(slope_curve(np.array([mid]))[0, 1])
-            values = curve(np.array([mid]))[0]
-            period = 2 * math.pi * math.sqrt(values[1] / stiffness) if stiffness > 0 else math.inf
-            means = {c: float(values[2 + k]) for k, c in enumerate(red.cyclic)}
-        else:
-            totals = well_integrals(curve, level, lo, hi)
-            period = float(totals[0])
-            means = {c: float(totals[1 + k] / period) for k, c in enumerate(red.cyclic)}
-        ends = curve(np.array([lo, hi]))
-        turning = (float(ends[0, 2 + ip]), float(ends[1, 2 + ip]))
-        kind, reason = _apex(red.precession, turning, steady)
-        nutation = Nutation(lo, hi, period, means, turning, kind, reason, steady)
         if top is not None:
             ih = red.cyclic.index(red.spin) if red.spin else None
             cubic = _cubic(top, constants[red.momenta[ip]], 0.0 if ih is None else constants[red.momenta[ih]],
