@@ -15,6 +15,7 @@ __all__ = [
     "DerivationError",
     "SimulationError",
     "OutputError",
+    "VerificationError",
 ]
 
 

@@ -7,7 +7,8 @@ Each command lives in its own module ``cli/_<command>.py`` with a ``SUMMARY`` li
 files return a short summary.
 
 Exit codes: 0 success, 1 usage error (argparse), 2 bad model or derivation error,
-3 output file could not be written, 4 simulation could not start or go on.
+3 output file could not be written, 4 simulation could not start or go on, 5 a cross-check
+(Newton–Euler against Lagrange) failed.
 """
 
 from __future__ import annotations
