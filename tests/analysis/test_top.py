@@ -182,7 +182,7 @@ def test_sleeping_top_criterion_both_sides(top, factor):
     init = {"theta": 0.01, "phi_dot": omega}
     an = analyse_top(top, initial=init)
     upright = next(s for s in an.sleeping if s.theta == 0.0)
-    H = C * omega * math.cos(0.0) + 0 * 0.01  # ψ̇0 = 0: H = C φ̇0, the spin is ω = H/C = φ̇0
+    H = C * omega  # ψ̇0 = 0: H = C (φ̇0 + ψ̇0 cosθ0) = C φ̇0, so the spin ω = H/C is φ̇0
     assert upright.spin == pytest.approx(omega, rel=1e-14)
     assert upright.criterion == pytest.approx(((C * omega) ** 2, 4 * A * MGA), rel=1e-14)
     assert upright.stiffness_value == pytest.approx(H**2 / (4 * A) - MGA, rel=1e-12)  # U_eff''(0) with K = H
@@ -205,6 +205,15 @@ def test_a_sleeping_start_has_no_nutation(top):
     assert an.sleeping[0].stable is True
     with pytest.raises(AnalysisError, match="no nutation"):
         an.period
+
+
+def test_a_top_swinging_through_the_vertical_has_no_nutation(top):
+    # No spin, no precession (K = H = 0): a compound pendulum whose axis passes θ = π, where
+    # the Euler angles are singular; the cubic would still give u = −1 as a "root".
+    an = analyse_top(top, initial={"phi_dot": 0.0})
+    assert an.constants["K"] == an.constants["H"] == 0.0
+    assert an.nutation is None and an.cubic is None and "passes through 3.14159" in an.notes[0]
+    assert an.steady.rates is None  # A cosθ ψ̇² + m g a = 0 has no real root for θ < π/2
 
 
 def test_spherical_pendulum_same_structure_one_cyclic():

@@ -38,7 +38,7 @@ from ..errors import LagrangianError
 from ..model.spec import GALILEAN_FRAME
 from ._integrals import first_integrals
 
-__all__ = ["AnalysisError", "StructureError", "CyclicReduction", "reduce_cyclic", "tidy", "Curve",
+__all__ = ["AnalysisError", "StructureError", "SingularPassage", "CyclicReduction", "reduce_cyclic", "tidy", "Curve",
            "EffectivePotential", "turning_points", "well_integrals"]
 
 
@@ -48,6 +48,10 @@ class AnalysisError(LagrangianError):
 
 class StructureError(AnalysisError):
     """The model lacks the structure an analysis needs (e.g. cyclic coordinates, an energy integral)."""
+
+
+class SingularPassage(AnalysisError):
+    """The remaining coordinate runs through a value where the coordinates are singular (θ = 0 or π)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -321,6 +325,8 @@ class EffectivePotential:
         return f"EffectivePotential({self.expression})"
 
 
+Gap = Callable[[npt.ArrayLike], "float | np.ndarray"]
+
 #: Offsets from θ0 scanned for the first sign change of E − U_eff: fine near θ0 (small
 #: nutations of a fast top), then every π/2048 up to π, then growing (non-angle coordinates).
 _SCAN = np.concatenate([np.geomspace(1e-10, np.pi / 2048, 40, endpoint=False),
@@ -330,11 +336,11 @@ _SCAN = np.concatenate([np.geomspace(1e-10, np.pi / 2048, 40, endpoint=False),
 _BISECTIONS = 200
 
 
-def _turning_point(gap: Callable[[float], float], start: float, direction: int, angle: bool, name: str) -> float:
+def _turning_point(gap: Gap, start: float, direction: int, angle: bool, name: str) -> float:
     """The first θ from ``start`` in ``direction`` where the kinetic part E − U_eff(θ) reaches 0."""
     offsets = _SCAN[_SCAN <= 2 * np.pi] if angle else _SCAN
     xs = start + direction * offsets
-    values = np.array([gap(x) for x in xs])
+    values = np.asarray(gap(xs), dtype=float)
     bad = np.flatnonzero(~(values > 0))
     if len(bad) == 0:
         raise AnalysisError(
@@ -356,18 +362,20 @@ def _turning_point(gap: Callable[[float], float], start: float, direction: int, 
             if np.isfinite(gap(outer)):
                 break
         if not np.isfinite(gap(outer)):
-            raise AnalysisError(
+            raise SingularPassage(
                 f"{name} reaches {outer:.9g}, where U_eff is singular, with {name}_dot ≠ 0: the coordinates "
                 f"are singular there (for Euler angles, the axis passes through the vertical).",
                 fix="analyse an initial state for which the axis does not pass through the singular direction")
     if gap(outer) == 0.0:
         return outer
-    return float(optimize.brentq(gap, inner, outer, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200))
+    return float(optimize.brentq(lambda x: float(gap(x)), inner, outer, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200))
 
 
-def turning_points(gap: Callable[[float], float], slope: Callable[[float], float], theta0: float, rate0: float,
+def turning_points(gap: Gap, slope: Callable[[float], float], theta0: float, rate0: float,
                    *, angle: bool, name: str = "theta") -> tuple[float, float]:
     """θ1 ≤ θ2, the roots of E − U_eff(θ) = 0 that bracket θ0 (``gap`` = E − U_eff, ``slope`` = U_eff').
+
+    ``gap`` takes a float or an array (the scan outwards from θ0 evaluates it on a grid).
 
     With θ̇0 = 0, θ0 is itself a turning angle (exactly, since E = U_eff(θ0) by
     construction); the side the motion goes to is where U_eff decreases.

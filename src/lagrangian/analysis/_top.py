@@ -27,17 +27,18 @@ stable when U_eff''(θ_s) > 0; for the top at θ = 0 this is C²ω² > 4 A m g a
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 import symengine as se
 from scipy import special
 
 from .._identity import are_zero
 from ..dynamics import EquationsOfMotion
-from ._effective_potential import (AnalysisError, CyclicReduction, Curve, EffectivePotential, StructureError,
-                                   reduce_cyclic, tidy, turning_points, well_integrals)
+from ._effective_potential import (AnalysisError, CyclicReduction, Curve, EffectivePotential, SingularPassage,
+                                   StructureError, reduce_cyclic, tidy, turning_points, well_integrals)
 
 __all__ = ["TopAnalysis", "TopForm", "NutationCubic", "Nutation", "SleepingTop", "SteadyPrecession",
            "analyse_top", "AnalysisError", "StructureError"]
@@ -277,23 +278,22 @@ def _cubic(top: TopForm, K: float, H: float, theta0: float, rate0: float) -> Nut
     return NutationCubic(coefficients, Ep, roots, (lo, hi), angles[0], angles[1], float(period), modulus)
 
 
-def _apex(prec: str, rates: tuple[float, float], steady: bool) -> tuple[str, str]:
+def _apex(prec: str, coordinate: str, rates: tuple[float, float], steady: bool) -> tuple[str, str]:
     r1, r2 = rates
+    t1, t2 = coordinate + "1", coordinate + "2"
     scale = max(abs(r1), abs(r2))
     dot = prec + "_dot"
     if steady:
-        return "circle", f"θ stays at one angle (steady precession, {dot} = {r1:.6g}): the apex draws a circle"
+        return "circle", f"{coordinate} stays at one angle (steady precession, {dot} = {r1:.6g}): the apex draws a circle"
     if scale == 0.0:
         return "plane", f"{dot} = 0 all along: the axis swings in a fixed vertical plane"
-    for k, r in ((1, r1), (2, r2)):
+    values = f"{dot}({t1}) = {r1:.6g}, {dot}({t2}) = {r2:.6g}"
+    for t, r in ((t1, r1), (t2, r2)):
         if abs(r) <= CUSP_TOLERANCE * scale:
-            return "cusps", (f"{dot} vanishes at θ{k} ({dot}(θ1) = {r1:.6g}, {dot}(θ2) = {r2:.6g}): the apex stops "
-                             f"on that circle and draws cusps")
+            return "cusps", f"{dot} vanishes at {t} ({values}): the apex stops on that circle and draws cusps"
     if r1 * r2 < 0:
-        return "loops", (f"{dot} changes sign between the turning angles ({dot}(θ1) = {r1:.6g}, "
-                         f"{dot}(θ2) = {r2:.6g}): the apex draws loops")
-    return "waves", (f"{dot} keeps one sign ({dot}(θ1) = {r1:.6g}, {dot}(θ2) = {r2:.6g}): the apex draws "
-                     "waves between the two circles")
+        return "loops", f"{dot} changes sign between {t1} and {t2} ({values}): the apex draws loops"
+    return "waves", f"{dot} keeps one sign ({values}): the apex draws waves between the two circles"
 
 
 def _taylor(expr: se.Basic, x: se.Symbol, at: se.Basic, order: int) -> list[se.Basic]:
@@ -374,6 +374,14 @@ def _steady(red: CyclicReduction, numbers: dict[se.Basic, float], theta0: float)
     return SteadyPrecession(theta0, (values[0], values[1]))
 
 
+def _singular_angles(red: CyclicReduction) -> tuple[float, ...]:
+    """θ = 0 and/or π when det M_cc vanishes there identically (the axis along the vertical)."""
+    if not red.angle:
+        return ()
+    return tuple(v for v, at in ((0.0, se.Integer(0)), (math.pi, se.pi))
+                 if are_zero([red.determinant.subs({red.symbol: at})])[0])
+
+
 def _nutation(red: CyclicReduction, curve: Curve, slopes: Curve, level: float, theta0: float,
               rate0: float) -> Nutation:
     """θ1, θ2, the period and mean rates, the apex curve.
@@ -384,10 +392,20 @@ def _nutation(red: CyclicReduction, curve: Curve, slopes: Curve, level: float, t
     the error O(Δ²) of the small-oscillation limit T = 2π sqrt(a/U_eff''), ⟨ċ⟩ = ċ(θ̄), which is
     used instead; both errors are then below about sqrt(ε/U_eff'') (~1e-7 relative).
     """
-    def gap(x: float) -> float:
-        return level - curve.scalar(x)
+    def gap(x: npt.ArrayLike) -> float | np.ndarray:
+        values = level - curve(x)[..., 0]
+        return float(values) if values.ndim == 0 else values
 
     lo, hi = turning_points(gap, slopes.scalar, theta0, rate0, angle=red.angle, name=red.coordinate)
+    for base in _singular_angles(red):  # e.g. K = H = 0: the axis swings through the vertical
+        k = math.floor((lo - base) / (2 * math.pi)) + 1
+        if base + 2 * math.pi * k < hi:
+            value = base + 2 * math.pi * k
+            raise SingularPassage(
+                f"{red.coordinate} passes through {value:.6g}, where det M_cc = 0 (the axis along the vertical): "
+                f"there the Euler angles are singular and {red.coordinate} does not nutate between two turning "
+                "angles, so the nutation analysis does not apply.",
+                fix="give the top some spin or precession (K ≠ ±H) so that the axis avoids the vertical")
     mid, half = 0.5 * (lo + hi), 0.5 * (hi - lo)
     stiffness = float(slopes(np.array([mid]))[0, 1])
     noise = NOISE_ULPS * np.finfo(float).eps * max(abs(level), np.finfo(float).tiny)
@@ -405,7 +423,7 @@ def _nutation(red: CyclicReduction, curve: Curve, slopes: Curve, level: float, t
         method = "quadrature"
     ends = curve(np.array([lo, hi]))
     turning = (float(ends[0, 2 + ip]), float(ends[1, 2 + ip]))
-    kind, reason = _apex(red.precession, turning, steady)
+    kind, reason = _apex(red.precession, red.coordinate, turning, steady)
     return Nutation(lo, hi, period, means, turning, kind, reason, steady, method)
 
 
@@ -469,10 +487,13 @@ def analyse_top(eom: EquationsOfMotion, *, parameters: Mapping[str, float] | Non
         notes.append(f"{red.coordinate}(0) = {theta0:g} is a sleeping position (det M_cc = 0): the Euler angles "
                      "are singular there and there is no nutation to describe; see the sleeping-top criterion.")
     else:
-        nutation = _nutation(red, curve, Curve(th, [U_var.diff(th).subs(numbers), U_var.diff(th).diff(th).subs(numbers)]),
-                             level, theta0, rate0)
+        slopes = Curve(th, [U_var.diff(th).subs(numbers), U_var.diff(th).diff(th).subs(numbers)])
+        try:
+            nutation = _nutation(red, curve, slopes, level, theta0, rate0)
+        except SingularPassage as exc:
+            notes.append(exc.message)
         ip = red.cyclic.index(red.precession)
-        if top is not None:
+        if top is not None and nutation is not None:
             ih = red.cyclic.index(red.spin) if red.spin else None
             cubic = _cubic(top, constants[red.momenta[ip]], 0.0 if ih is None else constants[red.momenta[ih]],
                            theta0, rate0)

@@ -87,7 +87,7 @@ def _nutation_block(n: Notation, an: TopAnalysis) -> list[str]:
     th, E = n.symbol(red.coordinate), red.energy_name
     nut = an.nutation
     if nut is None:
-        return [""] + [_names_in_greek(n, (red.coordinate,), an.notes[0])]
+        return ["", _names_in_greek(n, red.cyclic + (red.coordinate,), an.notes[0])]
     lines = ["", f"Turning angles ({'U_eff'}({th}) = {E}):",
              f"  {th}1 = {_angle(nut.theta1)}", f"  {th}2 = {_angle(nut.theta2)}"]
     if an.cubic is not None:
@@ -166,6 +166,7 @@ def _text(n: Notation, expr, red) -> str:  # type: ignore[no-untyped-def]
 
 def _names_in_greek(n: Notation, coordinates: tuple[str, ...], text: str) -> str:
     for name in coordinates:
+        text = re.sub(rf"(?<![A-Za-z0-9_]){re.escape(name)}([12])(?![A-Za-z0-9])", n.symbol(name) + r"\1", text)
         text = re.sub(rf"(?<![A-Za-z0-9_]){re.escape(name)}(?![A-Za-z0-9])", n.symbol(name), text)
     return text
 
