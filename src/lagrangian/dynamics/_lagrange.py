@@ -24,6 +24,7 @@ from ..errors import DerivationError
 from ..kinematics import Kinematics
 from ..model import Model
 from ..model._vector import sum_of
+from ._constraints import ConstraintReaction, ConstraintRow, complementary_constraints
 from ._energy import KineticEnergyTerm, RigidInertia, kinetic_energy
 from ._forces import LoadForces, generalized_forces
 from ._inertia import mass_matrix_and_bias
@@ -41,7 +42,8 @@ _ZERO_TYPE = type(se.Integer(0))
 class LagrangeEquation:
     """L(q_i), with every term of the seed's layout.
 
-    ``lhs`` is Γ_i = d/dt(∂T/∂q̇_i) − ∂T/∂q_i and ``rhs`` is −∂U/∂q_i + Q_i(nc).
+    ``lhs`` is Γ_i = d/dt(∂T/∂q̇_i) − ∂T/∂q_i and ``rhs`` is −∂U/∂q_i + Q_i(nc), plus
+    ``multiplier_terms`` Σ_k λ_k A_ki when the model keeps constraints complementary.
     """
 
     coordinate: str
@@ -50,7 +52,8 @@ class LagrangeEquation:
     dU_dq: se.Basic  # ∂U_P/∂q_i
     Q_nc: se.Basic  # Q_i of the non-conservative efforts
     lhs: se.Basic  # Γ_i
-    rhs: se.Basic  # −∂U/∂q_i + Q_i(nc)
+    rhs: se.Basic  # −∂U/∂q_i + Q_i(nc) (+ Σ_k λ_k A_ki)
+    multiplier_terms: se.Basic = se.Integer(0)  # Σ_k λ_k A_ki of the complementary constraints
 
 
 @dataclass(frozen=True, slots=True)
@@ -68,6 +71,9 @@ class EquationsOfMotion:
     conservative : every load derives from a potential (Remarque 2); then ``L`` = T − U.
     equations : the n Lagrange equations L(q_i) (Remarque 1: as many as coordinates).
     M, F : the matrix form M(q, t) q̈ = F(q, q̇, t); M is n×n symmetric.
+    constraints : the rows of the complementary constraints (step 7), each ``expression = 0``
+        with its multiplier λ_k; then M q̈ = F + Aᵀλ and A q̈ + c = 0 (`dynamics._constraints`).
+    reactions : per complementary constraint, the force/moment its multipliers stand for.
     """
 
     model: Model
@@ -78,11 +84,17 @@ class EquationsOfMotion:
     equations: tuple[LagrangeEquation, ...]
     M: tuple[tuple[se.Basic, ...], ...]
     F: tuple[se.Basic, ...]
+    constraints: tuple[ConstraintRow, ...] = ()
+    reactions: tuple[ConstraintReaction, ...] = ()
 
     def __post_init__(self) -> None:
         n = len(self.model.coordinates)
         if len(self.M) != n or any(len(row) != n for row in self.M) or len(self.F) != n:
             raise DerivationError(f"M must be {n}×{n} and F of length {n}, one per coordinate")
+        if any(len(row.coefficients) != n for row in self.constraints):
+            raise DerivationError(f"each constraint row must have {n} coefficients A_ki, one per coordinate")
+        if len({row.multiplier for row in self.constraints}) != len(self.constraints):
+            raise DerivationError("each complementary constraint row must have its own multiplier")
         if len(self.equations) != n:
             raise DerivationError("there must be as many Lagrange equations as coordinates (Remarque 1)")
 
@@ -131,6 +143,16 @@ class EquationsOfMotion:
         """Generalized forces of the non-conservative efforts, Σ over those loads."""
         n = len(self.q)
         return tuple(se.Add(*(f.Q[i] for f in self.loads if f.potential is None)) for i in range(n))
+
+    @property
+    def multipliers(self) -> tuple[se.Symbol, ...]:
+        """λ_k of the complementary constraint rows (empty without complementary constraints)."""
+        return tuple(row.multiplier for row in self.constraints)
+
+    @property
+    def A(self) -> tuple[tuple[se.Basic, ...], ...]:
+        """The m×n matrix A of the complementary rows A q̇ + b = 0."""
+        return tuple(row.coefficients for row in self.constraints)
 
     def equation(self, coordinate: str) -> LagrangeEquation:
         for eq in self.equations:
@@ -192,4 +214,8 @@ def derive(model: Model) -> EquationsOfMotion:
     M, gamma0 = mass_matrix_and_bias(kin, inertias)
     Q_total = tuple(sum_of([f.Q[i] for f in loads]) for i in range(n))
     F = tuple(Q if type(g) is _ZERO_TYPE else Q - g for Q, g in zip(Q_total, gamma0))
-    return EquationsOfMotion(model, kin, T_terms, inertias, loads, equations, M, F)
+    rows: tuple[ConstraintRow, ...] = ()
+    reactions: tuple[ConstraintReaction, ...] = ()
+    if model.constraints:  # step 7: the complementary equations, and λ_k A_ki in each L(q_i)
+        equations, rows, reactions = complementary_constraints(kin, equations)
+    return EquationsOfMotion(model, kin, T_terms, inertias, loads, equations, M, F, rows, reactions)

@@ -1,0 +1,404 @@
+"""Complementary constraints: multipliers in L(q_i), the complementary equations, the reactions.
+
+Seed, steps 1 and 7: a constraint kept *complementary* is not eliminated by the choice of
+the q_i; its reaction then stays in the Lagrange equations as a non-conservative effort
+("Q_i(nc) ... de tous les efforts ... de liaison"), and the constraint itself is written
+next to them.  With each scalar row k written at velocity level as
+
+    Σ_i A_ki(q, t) q̇_i + b_k(q, t) = 0       (holonomic f_k(q, t) = 0: A_ki = ∂f_k/∂q_i, b_k = ∂f_k/∂t)
+
+and the reaction perfect (its virtual power vanishes for every virtual velocity field
+compatible with the constraint, A q* = 0), its generalized force is Σ_k λ_k A_ki, so
+
+    L(q_i)   d/dt[∂T/∂q̇_i] − ∂T/∂q_i = −∂U/∂q_i + Q_i(nc) + Σ_k λ_k A_ki
+
+with one unknown multiplier λ_k per row.  **Sign convention**: λ_k multiplies +A_ki,
+i.e. the reaction's virtual power is Σ_k λ_k (Σ_i A_ki q_i*); a reaction force is what
+the constraint exerts *on* the body (on the point named first).  Differentiating each
+row once more (holonomic rows twice in all) gives A q̈ + c = 0 with c = Ȧ q̇ + ḃ, so
+M q̈ = F + Aᵀ λ and A q̈ = −c determine q̈ and λ together (`multiplier_formulas`,
+`lagrangian.numerics` along a motion).
+
+The reaction is turned into physical efforts: a ``no_slip`` row k along axis e_k of
+its frame is exactly the virtual power of the force λ_k e_k at the contact point, and
+so is a ``coincide`` row (on the constraint manifold); for a scalar constraint with
+``reaction = { force_at = "P", moment_on = "S" }`` the force R at P and moment C on S
+are solved from  R·∂V(P)/∂q̇_i + C·∂Ω(S)/∂q̇_i = Σ_k λ_k A_ki  for every i.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import random
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import symengine as se
+
+from .._identity import are_zero
+from ..errors import DerivationError, ModelError
+from ..kinematics import Kinematics
+from ..model import GALILEAN_FRAME, Constraint, Vector
+from ..model._vector import sum_of
+
+__all__ = ["ConstraintRow", "ConstraintReaction", "complementary_constraints", "multiplier_symbol",
+           "admissible_integrals", "multiplier_formulas", "MULTIPLIER_PREFIX"]
+
+#: Multipliers are named ``lambda_<row>`` (λ_length, λ_rolling_x0, ...).
+MULTIPLIER_PREFIX = "lambda_"
+#: Relative size below which a singular value counts as zero in the rank tests.
+RANK_RTOL = 1e-9
+#: Largest n + m for which `multiplier_formulas` solves for λ symbolically.
+FORMULA_MAX_SIZE = 6
+
+_ZERO = se.Integer(0)
+_ZERO_TYPE = type(_ZERO)
+
+
+@dataclass(frozen=True, slots=True)
+class ConstraintRow:
+    """One scalar complementary constraint, with its multiplier λ_k.
+
+    Attributes
+    ----------
+    name : the row's name: the constraint's, or ``<constraint>_<axis>`` for a vector constraint.
+    constraint : the declaration it comes from.
+    kind : ``"holonomic"`` (``expression`` is f(q, t)) or ``"nonholonomic"`` (a·q̇ + b).
+    expression : the complementary equation of step 7 is ``expression = 0``.
+    coefficients : A_k1..A_kn (∂f/∂q_i, or the coefficient of q̇_i).
+    b : ∂f/∂t, or the part of a nonholonomic row free of rates.
+    multiplier : λ_k.
+    velocity : A_k q̇ + b_k (for a holonomic row, df_k/dt).
+    bias : c_k, the q̈-free part of d/dt(velocity): the rows hold A q̈ + c = 0 along a motion.
+    """
+
+    name: str
+    constraint: str
+    kind: str
+    expression: se.Basic
+    coefficients: tuple[se.Basic, ...]
+    b: se.Basic
+    multiplier: se.Symbol
+    velocity: se.Basic
+    bias: se.Basic
+
+
+@dataclass(frozen=True, slots=True)
+class ConstraintReaction:
+    """The effort a complementary constraint exerts, in terms of its multipliers.
+
+    Attributes
+    ----------
+    constraint : the declaration's name.
+    point : where ``force`` acts (on the body or particle it belongs to), or None.
+    body : the body ``moment`` acts on, or None.
+    counter_point : a point that receives −``force`` (the second point of a ``coincide``
+        constraint when it moves), or None.
+    frame : the basis of ``force_components`` and ``moment_components``.
+    force, moment : vectors, linear in the multipliers (zero when not carried).
+    generalized : Σ_k λ_k A_ki, its generalized force on each coordinate (always given).
+    note : how it was found, and where it holds.
+    """
+
+    constraint: str
+    point: str | None
+    body: str | None
+    counter_point: str | None
+    frame: str
+    force: Vector
+    moment: Vector
+    force_components: tuple[se.Basic, se.Basic, se.Basic]
+    moment_components: tuple[se.Basic, se.Basic, se.Basic]
+    generalized: tuple[se.Basic, ...]
+    note: str
+
+    @property
+    def physical(self) -> bool:
+        """True when the reaction is known as a force and/or a moment (not only as generalized forces)."""
+        return self.point is not None or self.body is not None
+
+
+def multiplier_symbol(row: str) -> se.Symbol:
+    """λ of the row named ``row``."""
+    return se.Symbol(MULTIPLIER_PREFIX + row)
+
+
+# -- rows ------------------------------------------------------------------------------------------
+def _error(kin: Kinematics, c: Constraint, message: str, fix: str, key: str | None = None) -> ModelError:
+    loc = kin.model.where("constraint", c.name).of(key or c.form)
+    return ModelError(message, fix=fix, symbol=c.name, file=loc.file, line=loc.line)
+
+
+def _axis_names(kin: Kinematics, frame: str) -> tuple[str, str, str]:
+    return kin.frames.axes(frame)
+
+
+def _raw_rows(kin: Kinematics, c: Constraint) -> list[tuple[str, int | None, se.Basic]]:
+    """(row name, axis index or None, expression) for every scalar row, zero rows included."""
+    if c.form == "no_slip":
+        body = kin.model.body(c.body)  # type: ignore[arg-type]
+        GI = kin.position(c.points[0]) - kin.position(body.name)
+        value: se.Basic | Vector = kin.velocity(body.name) + kin.frames.cross(kin.omega(body.frame), GI)
+    elif c.form == "coincide":
+        value = kin.position(c.points[0]) - kin.position(c.points[1])
+    else:
+        value = c.expression  # type: ignore[assignment]
+    if not isinstance(value, Vector):
+        return [(c.name, None, value)]
+    comps = kin.frames.express(value, c.frame)
+    axes = _axis_names(kin, c.frame)
+    return [(f"{c.name}_{axes[k]}", k, comps[k]) for k in range(3)]
+
+
+def _row(kin: Kinematics, c: Constraint, name: str, expr: se.Basic) -> ConstraintRow:
+    if c.kind == "holonomic":
+        A = tuple(expr.diff(q) for q in kin.q)
+        b = expr.diff(kin.t)
+        velocity = kin.d_dt(expr, accelerations=False)
+    else:
+        A = tuple(expr.diff(qd) for qd in kin.qd)
+        b = expr.xreplace({qd: _ZERO for qd in kin.qd})
+        velocity = expr
+    bias = kin.d_dt(velocity, accelerations=False)
+    return ConstraintRow(name, c.name, c.kind, expr, A, b, multiplier_symbol(name), velocity, bias)
+
+
+def _rows_of(kin: Kinematics, c: Constraint) -> tuple[list[ConstraintRow], list[int | None]]:
+    raw = _raw_rows(kin, c)
+    zero = are_zero([e for _, _, e in raw])
+    if c.principal:
+        left = [name for (name, _, e), z in zip(raw, zero) if not z]
+        if left:
+            expr = next(e for (name, _, e), z in zip(raw, zero) if not z)
+            raise _error(kin, c, f"constraint `{c.name}` is declared principal, but the coordinates do not satisfy it: "
+                         f"`{left[0]}` = `{expr}` is not identically zero",
+                         fix="make it complementary (remove `principal = true`): it then gets a multiplier; or "
+                             "choose coordinates that satisfy it", key="principal")
+        return [], []
+    kept = [(name, axis, e) for (name, axis, e), z in zip(raw, zero) if not z]
+    if not kept:
+        raise _error(kin, c, f"complementary constraint `{c.name}` is identically satisfied by the coordinates, so "
+                     "it has no multiplier and no reaction to find",
+                     fix="declare it principal (`principal = true`), or remove it")
+    rows = [_row(kin, c, name, e) for name, _, e in kept]
+    for row in rows:
+        if all(are_zero(row.coefficients)):
+            raise _error(kin, c, f"constraint row `{row.name}` = `{row.expression}` involves no coordinate "
+                         f"{'' if c.kind == 'holonomic' else 'rate '}, so it cannot be satisfied by the motion",
+                         fix="check the expression: it must involve the coordinates "
+                             + ("(f(q, t) = 0)" if c.kind == "holonomic" else "through their rates (a·q̇ + b = 0)"))
+    return rows, [axis for _, axis, _ in kept]
+
+
+# -- reactions ------------------------------------------------------------------------------------
+def _random_values(symbols: set[se.Basic], model_values: dict[str, float | None], seed: int) -> dict[se.Basic, float]:
+    rng = random.Random(seed)
+    out = {}
+    for s in sorted(symbols, key=str):
+        v = model_values.get(str(s))
+        out[s] = float(v) if v is not None else rng.uniform(0.3, 1.7)
+    return out
+
+
+def _numeric(matrix: Sequence[Sequence[se.Basic]], values: dict[se.Basic, float]) -> np.ndarray:
+    sub = {k: se.RealDouble(v) for k, v in values.items()}
+    return np.array([[complex(e.xreplace(sub)).real for e in row] for row in matrix], dtype=float)
+
+
+def _solve_reaction(kin: Kinematics, c: Constraint, rows: list[ConstraintRow],
+                    generalized: tuple[se.Basic, ...]) -> tuple[Vector, Vector, str]:
+    """Force at ``force_at`` and moment on ``moment_on`` whose virtual power is Σ_i Q_i q_i* (module docstring)."""
+    spec = c.reaction
+    assert spec is not None
+    frame = spec.frame
+    columns: list[tuple[str, int, tuple[se.Basic, ...]]] = []  # (force|moment, axis, J[:, column])
+    if spec.force_at is not None:
+        partials = [kin.frames.express(v, frame) for v in kin.partial_velocities(spec.force_at)]
+        columns += [("force", k, tuple(p[k] for p in partials)) for k in range(3)]
+    if spec.moment_on is not None:
+        partials = [kin.frames.express(w, frame) for w in kin.partial_omegas(kin.model.body(spec.moment_on).frame)]
+        columns += [("moment", k, tuple(p[k] for p in partials)) for k in range(3)]
+    n = kin.n
+    J = [[col[2][i] for col in columns] for i in range(n)]
+    symbols = set().union(*(e.free_symbols for row in J for e in row), *(g.free_symbols for g in generalized))
+    values = _random_values(symbols, kin.model.parameter_values, seed=7)
+    Jn = _numeric(J, values)
+    # Independent columns (greedy), then as many independent rows among them.
+    chosen_cols: list[int] = []
+    for j in range(len(columns)):
+        trial = Jn[:, chosen_cols + [j]]
+        if np.linalg.matrix_rank(trial, tol=RANK_RTOL * max(1.0, np.abs(Jn).max())) == len(chosen_cols) + 1:
+            chosen_cols.append(j)
+    chosen_rows: list[int] = []
+    for i in range(n):
+        trial = Jn[np.ix_(chosen_rows + [i], chosen_cols)]
+        if np.linalg.matrix_rank(trial, tol=RANK_RTOL * max(1.0, np.abs(Jn).max())) == len(chosen_rows) + 1:
+            chosen_rows.append(i)
+    r = len(chosen_cols)
+    solution = [_ZERO] * len(columns)
+    if r:
+        K = se.DenseMatrix([[J[i][j] for j in chosen_cols] for i in chosen_rows])
+        rhs = se.DenseMatrix([[generalized[i]] for i in chosen_rows])
+        x = K.LUsolve(rhs)
+        for k, j in enumerate(chosen_cols):
+            solution[j] = se.expand(x[k, 0]) if len(str(x[k, 0])) < 400 else x[k, 0]
+    residues = [sum_of([J[i][j] * solution[j] for j in range(len(columns)) if type(solution[j]) is not _ZERO_TYPE])
+                - generalized[i] for i in range(n)]
+    if not all(are_zero(residues)):
+        where = " and ".join(x for x in (spec.force_at and f"a force at `{spec.force_at}`",
+                                          spec.moment_on and f"a moment on `{spec.moment_on}`") if x)
+        raise _error(kin, c, f"the reaction of constraint `{c.name}` cannot be {where}: no such effort has the "
+                     "virtual power Σ_k λ_k ∂f_k/∂q_i q_i* of the constraint",
+                     fix="name the point where the reaction acts (force_at) and/or the body it turns (moment_on), "
+                         "or leave `reaction` out to get the generalized forces only", key="reaction")
+    force = [_ZERO, _ZERO, _ZERO]
+    moment = [_ZERO, _ZERO, _ZERO]
+    for (what, k, _), value in zip(columns, solution):
+        (force if what == "force" else moment)[k] = value
+    free = len(columns) - r
+    note = ("solved from R·∂V/∂q̇_i + C·∂Ω/∂q̇_i = Σ_k λ_k A_ki"
+            + (f"; {free} component(s) do no virtual work, are not determined by the equations and are set to 0"
+               if free else ""))
+    return Vector({frame: tuple(force)}), Vector({frame: tuple(moment)}), note  # type: ignore[arg-type]
+
+
+def _reaction(kin: Kinematics, c: Constraint, rows: list[ConstraintRow], axes: list[int | None]) -> ConstraintReaction:
+    n = kin.n
+    generalized = tuple(sum_of([r.multiplier * r.coefficients[i] for r in rows
+                                if type(r.coefficients[i]) is not _ZERO_TYPE]) for i in range(n))
+    zero3 = (_ZERO, _ZERO, _ZERO)
+    if c.form in ("no_slip", "coincide"):
+        comps = [_ZERO, _ZERO, _ZERO]
+        for row, axis in zip(rows, axes):
+            comps[axis] = row.multiplier  # type: ignore[index]
+        force = Vector({c.frame: tuple(comps)})  # type: ignore[arg-type]
+        counter = None
+        if c.form == "no_slip":
+            note = (f"force on `{c.body}` at the contact point `{c.points[0]}`: row k is the virtual power of "
+                    "λ_k e_k there, exactly")
+            point = c.points[0]
+        else:
+            point = c.points[0]
+            counter = None if kin.is_fixed(c.points[1]) else c.points[1]
+            note = (f"force at `{point}`" + (f", and its opposite at `{counter}`" if counter else "")
+                    + "; exact where the constraint holds")
+        return ConstraintReaction(c.name, point, None, counter, c.frame, force, Vector.zero(),
+                                  tuple(comps), zero3, generalized, note)  # type: ignore[arg-type]
+    if c.reaction is None:
+        return ConstraintReaction(c.name, None, None, None, GALILEAN_FRAME, Vector.zero(), Vector.zero(), zero3,
+                                  zero3, generalized, "generalized forces Σ_k λ_k A_ki only (no `reaction` declared)")
+    force, moment, note = _solve_reaction(kin, c, rows, generalized)
+    frame = c.reaction.frame
+    return ConstraintReaction(c.name, c.reaction.force_at, c.reaction.moment_on, None, frame, force, moment,
+                              kin.frames.express(force, frame), kin.frames.express(moment, frame), generalized, note)
+
+
+# -- redundancy --------------------------------------------------------------------------------------
+def _check_rank(kin: Kinematics, rows: list[ConstraintRow], constraints: dict[str, Constraint]) -> None:
+    """Rows whose coefficients are combinations of earlier ones, at a generic state: a `ModelError` naming them."""
+    A = [list(r.coefficients) for r in rows]
+    symbols = set().union(*(e.free_symbols for row in A for e in row))
+    An = _numeric(A, _random_values(symbols, kin.model.parameter_values, seed=3))
+    scale = max(1.0, float(np.abs(An).max()))
+    kept: list[int] = []
+    for k, row in enumerate(rows):
+        if np.linalg.matrix_rank(An[kept + [k]], tol=RANK_RTOL * scale) == len(kept) + 1:
+            kept.append(k)
+            continue
+        others = ", ".join(f"`{rows[j].name}`" for j in kept)
+        raise _error(kin, constraints[row.constraint],
+                     f"the complementary constraints are redundant: row `{row.name}` is a combination of {others} "
+                     f"(the Jacobian A of the {len(rows)} rows has rank < {len(rows)} at a generic state), so their "
+                     "multipliers are not determined",
+                     fix=f"remove `{row.constraint}` (or the row it repeats), or declare one of them principal")
+
+
+# -- the entry point -------------------------------------------------------------------------------
+def complementary_constraints(kin: Kinematics, equations: tuple) -> tuple[tuple, tuple[ConstraintRow, ...],  # type: ignore[type-arg]
+                                                                          tuple[ConstraintReaction, ...]]:
+    """The rows, the reactions, and ``equations`` with Σ_k λ_k A_ki added to each right-hand side.
+
+    Raises
+    ------
+    ModelError
+        A principal constraint the coordinates do not satisfy, a complementary one they
+        satisfy identically, a row that involves no coordinate, redundant rows, a declared
+        reaction that no force at that point (or moment on that body) can carry, or a
+        multiplier name already taken.
+    """
+    rows: list[ConstraintRow] = []
+    reactions: list[ConstraintReaction] = []
+    by_name = {c.name: c for c in kin.model.constraints}
+    for c in kin.model.constraints:
+        own, axes = _rows_of(kin, c)
+        if not own:
+            continue
+        rows += own
+        reactions.append(_reaction(kin, c, own, axes))
+    if not rows:
+        return equations, (), ()
+    taken = {p.name for p in kin.model.parameters} | {str(s) for s in (*kin.q, *kin.qd, *kin.qdd)}
+    for r in rows:
+        if r.multiplier.name in taken:
+            raise _error(kin, by_name[r.constraint], f"the multiplier `{r.multiplier.name}` of constraint row "
+                         f"`{r.name}` has the name of a parameter or coordinate", fix="rename one of them")
+    _check_rank(kin, rows, by_name)
+    out = []
+    for i, eq in enumerate(equations):
+        terms = sum_of([r.multiplier * r.coefficients[i] for r in rows if type(r.coefficients[i]) is not _ZERO_TYPE])
+        out.append(dataclasses.replace(eq, multiplier_terms=terms, rhs=eq.rhs + terms)
+                   if type(terms) is not _ZERO_TYPE else eq)
+    return tuple(out), tuple(rows), tuple(reactions)
+
+
+# -- consequences -------------------------------------------------------------------------------------
+def admissible_integrals(eom, integrals: Sequence) -> tuple:  # type: ignore[no-untyped-def]
+    """The first integrals that survive the complementary constraints' reactions.
+
+    p_i = ∂T/∂q̇_i stays constant only if no reaction works on q_i (A_ki ≡ 0 for every
+    row k); the energy (or Jacobi) integral only if the reactions do no work on the real
+    motion: their power Σ_k λ_k (A_k q̇) = −Σ_k λ_k b_k vanishes when every b_k ≡ 0
+    (time-independent, homogeneous constraints).
+    """
+    rows = eom.constraints
+    if not rows:
+        return tuple(integrals)
+    n = len(eom.q)
+    column_zero = are_zero([r.coefficients[i] for i in range(n) for r in rows])
+    m = len(rows)
+    free = [all(column_zero[i * m:(i + 1) * m]) for i in range(n)]
+    b_zero = all(are_zero([r.b for r in rows]))
+    out = []
+    for fi in integrals:
+        if fi.kind == "momentum":
+            if free[eom.coordinates.index(fi.coordinate)]:
+                out.append(fi)
+        elif b_zero:
+            out.append(fi)
+    return tuple(out)
+
+
+def multiplier_formulas(eom) -> tuple[se.Basic, ...] | None:  # type: ignore[no-untyped-def]
+    """λ(q, q̇, t) in closed form, from M q̈ = F + Aᵀλ and A q̈ + c = 0 (None when too large).
+
+    λ = (A M⁻¹ Aᵀ)⁻¹ (−c − A M⁻¹ F): solved symbolically only while n + m ≤
+    `FORMULA_MAX_SIZE`; larger systems get their multipliers numerically along a motion.
+    """
+    rows = eom.constraints
+    n, m = len(eom.q), len(rows)
+    if not m or n + m > FORMULA_MAX_SIZE:
+        return None
+    M = se.DenseMatrix([list(r) for r in eom.M])
+    A = se.DenseMatrix([list(r.coefficients) for r in rows])
+    F = se.DenseMatrix([[f] for f in eom.F])
+    c = se.DenseMatrix([[r.bias] for r in rows])
+    try:
+        X = M.LUsolve(A.T)  # M⁻¹ Aᵀ
+        y = M.LUsolve(F)    # M⁻¹ F
+        S = A * X
+        lam = S.LUsolve(-c - A * y)
+    except (RuntimeError, ValueError, ZeroDivisionError) as exc:  # pragma: no cover - singular symbolic pivots
+        raise DerivationError(f"the multipliers could not be solved for symbolically: {exc}",
+                              fix="use their values along a simulation") from None
+    return tuple(lam[k, 0] for k in range(m))
