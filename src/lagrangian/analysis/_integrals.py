@@ -22,6 +22,7 @@ import symengine as se
 
 from .._identity import are_zero
 from ..dynamics import EquationsOfMotion
+from ..dynamics._constraints import admissible_integrals
 
 __all__ = ["FirstIntegral", "first_integrals"]
 
@@ -77,4 +78,5 @@ def first_integrals(eom: EquationsOfMotion) -> tuple[FirstIntegral, ...]:
             out.append(FirstIntegral("h", "jacobi", T2 - T0 + eom.U,
                                      f"Painlevé–Jacobi integral T2 − T0 + U = cste: {condition}, "
                                      "T not homogeneous in q̇"))
-    return tuple(out)
+    # Reactions of complementary constraints may work on q_i or on the motion (docs/constraints.md).
+    return admissible_integrals(eom, out)
