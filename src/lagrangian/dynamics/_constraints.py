@@ -373,9 +373,11 @@ def admissible_integrals(eom, integrals: Sequence) -> tuple:  # type: ignore[no-
     for fi in integrals:
         if fi.kind == "momentum":
             if free[eom.coordinates.index(fi.coordinate)]:
-                out.append(fi)
+                why = f"; no complementary constraint acts on {fi.coordinate} (A_k,{fi.coordinate} = 0)"
+                out.append(dataclasses.replace(fi, reason=fi.reason + why))
         elif b_zero:
-            out.append(fi)
+            why = "; the reactions of the complementary constraints do no work (b_k = 0: Σ_k λ_k A_k q̇ = 0)"
+            out.append(dataclasses.replace(fi, reason=fi.reason + why))
     return tuple(out)
 
 
