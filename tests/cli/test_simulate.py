@@ -74,3 +74,22 @@ def test_unwritable_output_is_exit_3(tmp_path, capsys):
     assert main(["simulate", "--t-end", "0.1", "-o", str(tmp_path / "missing" / "x.csv")]) == 3
     assert main(["simulate", "--t-end", "0.1", "-o", str(tmp_path / "x.txt")]) == 3
     assert ".csv" in capsys.readouterr().err
+
+
+def test_reaction_columns_hold_the_rod_tension(tmp_path, capsys):
+    # Simple pendulum released at rest from θ0: the rod's pull on P is m g cos θ0 at t = 0
+    # (no centripetal part yet), directed from P to O.
+    out = tmp_path / "p.csv"
+    assert main(["simulate", str(EXAMPLES_DIR / "simple_pendulum.toml"), "--t-end", "0.2", "--n-out", "3",
+                 "-o", str(out)]) == 0
+    lines = out.read_text().splitlines()
+    header = next(line for line in lines if not line.startswith("#")).split(",")
+    row = [float(v) for v in lines[lines.index(",".join(header)) + 1].split(",")]
+    force = np.array([row[header.index(f"R_to_P_{axis}")] for axis in ("x0", "y0", "z0")])
+    m, g, l, theta0 = 1.0, 9.81, 0.5, 0.5
+    assert np.linalg.norm(force) == pytest.approx(m * g * np.cos(theta0), rel=1e-12)
+    P = l * np.array([0.0, np.sin(theta0), -np.cos(theta0)])
+    assert np.dot(force, -P) > 0    # pulls towards O
+    assert main(["simulate", str(EXAMPLES_DIR / "simple_pendulum.toml"), "--t-end", "0.2", "--no-reactions",
+                 "-o", str(out)]) == 0
+    assert "R_to_P" not in out.read_text()

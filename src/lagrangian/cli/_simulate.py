@@ -53,6 +53,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="warn when a first integral drifts by more than TOL (relative)")
     s.add_argument("-o", "--out", metavar="FILE", help="write the trajectory to FILE (.csv or .npz), atomically")
     s.add_argument("--plot", metavar="DIR", help="write plots and an animation into DIR")
+    s.add_argument("--reactions", action=argparse.BooleanOptionalAction, default=True,
+                   help="add the constraint reactions (e.g. R_O from m γ(G) = P + R_O) as columns R_O_x0... "
+                        "(R0 components; default: on)")
     s.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                    help="show a progress bar (default: when standard error is a terminal)")
     s.set_defaults(run=run)
@@ -71,6 +74,8 @@ def run(args: argparse.Namespace) -> str:
                     parameters=parameters, method=args.method, rtol=args.rtol, atol=args.atol, dt=args.dt,
                     n_out=args.n_out, events=events, tolerance=args.tolerance, progress=progress)
     elapsed = time.perf_counter() - start
+    if args.reactions:
+        traj = _with_reactions(traj, eom)
     lines = [
         f"{model.name}: t from {traj.t[0]:g} to {traj.t[-1]:g} with {traj.method}, {traj.steps} steps, "
         f"{traj.rhs_calls} right-hand-side calls, {elapsed * 1e3:.1f} ms",
@@ -99,6 +104,24 @@ def run(args: argparse.Namespace) -> str:
     for row in traj.table():
         text.write(",".join(f"{v:.17g}" for v in row) + "\n")
     return text.getvalue()
+
+
+def _with_reactions(traj, eom):
+    """The trajectory with each reaction's force (and transmitted moment) as extra columns."""
+    from dataclasses import replace
+
+    from ..analysis import reaction_history
+
+    axes = [a for a in (eom.model.frames[0].axes or ("x0", "y0", "z0"))]
+    extra = dict(traj.extra)
+    for name, history in reaction_history(eom, traj).items():
+        label = "".join(ch if ch.isalnum() or ch == "_" else "_" for ch in name.replace("→", "to_")).strip("_")
+        for k, axis in enumerate(axes):
+            extra[f"{label}_{axis}"] = history.force[:, k]
+        if abs(history.moment).max(initial=0.0) > 1e-9 * (abs(history.force).max(initial=0.0) + 1e-300):
+            for k, axis in enumerate(axes):
+                extra[f"M_{label}_{axis}"] = history.moment[:, k]
+    return replace(traj, extra=extra)
 
 
 def _plots(traj, eom, directory: str) -> list:
