@@ -156,8 +156,8 @@ class TopAnalysis:
 
     def _nutation(self) -> Nutation:
         if self.nutation is None:
-            raise AnalysisError("There is no nutation to describe: the initial state is a sleeping position.",
-                                fix="start with the axis away from θ = 0 or π")
+            raise AnalysisError(f"There is no nutation to describe: {self.notes[0]}",
+                                fix="start with the axis away from θ = 0 or π, and with K ≠ ±H")
         return self.nutation
 
 
@@ -166,8 +166,8 @@ def _values(eom: EquationsOfMotion, parameters: Mapping[str, float] | None,
     given = dict(parameters or {})
     known = [p.name for p in eom.model.parameters]
     state_names = list(eom.coordinates) + [c + "_dot" for c in eom.coordinates]
-    for name, names, what in ((given, known, "parameter"), (dict(initial or {}), state_names, "coordinate or rate")):
-        unknown = sorted(set(name) - set(names))
+    for values, names, what in ((given, known, "parameter"), (dict(initial or {}), state_names, "coordinate or rate")):
+        unknown = sorted(set(values) - set(names))
         if unknown:
             raise AnalysisError(f"`{unknown[0]}` is not a {what} of `{eom.model.name}`.",
                                 fix="known names: " + ", ".join(names))
