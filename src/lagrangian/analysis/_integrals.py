@@ -22,6 +22,7 @@ import symengine as se
 
 from .._identity import are_zero
 from ..dynamics import EquationsOfMotion
+from ..dynamics._inertial import rotating_frame
 from ..dynamics._constraints import admissible_integrals
 
 __all__ = ["FirstIntegral", "first_integrals"]
@@ -70,7 +71,11 @@ def first_integrals(eom: EquationsOfMotion) -> tuple[FirstIntegral, ...]:
         condition = ("L does not depend on t explicitly" +
                      (" and the system is conservative" if eom.conservative
                       else " and the non-conservative efforts do no work"))
-        if homogeneous:
+        if homogeneous and rotating_frame(eom):  # seed, Remarque 3: energy relative to R, U with entrainment
+            out.append(FirstIntegral("h", "jacobi", eom.T + eom.U,
+                                     f"Jacobi integral T(Σ/R) + U = cste in the rotating frame R, U including the "
+                                     f"potential of the entrainment inertial forces: {condition}"))
+        elif homogeneous:
             out.append(FirstIntegral("E", "energy", eom.T + eom.U,
                                      f"energy integral T + U = cste: {condition}, T homogeneous quadratic in q̇"))
         else:

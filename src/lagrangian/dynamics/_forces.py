@@ -26,6 +26,7 @@ from .._identity import are_zero
 from ..kinematics import Kinematics
 from ..model import Damper, GeneralizedForce, Gravity, Load, PointForce, Potential, Spring, Torque, Vector
 from ..model._vector import sum_of
+from ._friction import FRICTION_LOADS, friction_q
 
 __all__ = ["LoadForces", "generalized_forces"]
 
@@ -116,6 +117,8 @@ def _q_of(kin: Kinematics, load: Load) -> tuple[tuple[se.Basic, ...], se.Basic |
         comps = dict(load.components)
         names = [c.name for c in kin.model.coordinates]
         return tuple(comps.get(name, zero) for name in names), None, "given generalized force"
+    if isinstance(load, FRICTION_LOADS):  # dissipation, joint damper, Coulomb friction (`_friction`)
+        return friction_q(kin, load)
     raise TypeError(f"unknown load type {type(load).__name__}")  # pragma: no cover
 
 

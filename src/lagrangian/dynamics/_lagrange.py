@@ -28,6 +28,7 @@ from ._constraints import ConstraintReaction, ConstraintRow, complementary_const
 from ._energy import KineticEnergyTerm, RigidInertia, kinetic_energy
 from ._forces import LoadForces, generalized_forces
 from ._inertia import mass_matrix_and_bias
+from ._inertial import inertial_forces, reference_kinematics
 
 __all__ = ["LagrangeEquation", "EquationsOfMotion", "derive"]
 
@@ -203,9 +204,9 @@ def derive(model: Model) -> EquationsOfMotion:
     ModelError
         For data only kinematics can check (non-physical inertia, a fixed point that moves).
     """
-    kin = Kinematics(model)
+    kin = reference_kinematics(model)  # relative to R0, or to the model's [reference] frame R (Remarque 3)
     T_terms, inertias = kinetic_energy(kin)
-    loads = generalized_forces(kin)
+    loads = generalized_forces(kin) + inertial_forces(kin)  # + Coriolis and entrainment when R is not R0
     T = sum_of([term.expression for term in T_terms])
     U = sum_of([f.potential for f in loads if f.potential is not None])
     n = kin.n
