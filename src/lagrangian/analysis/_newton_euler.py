@@ -43,9 +43,11 @@ import symengine as se
 from .._identity import are_zero
 from ..dynamics import EquationsOfMotion
 from ..dynamics._energy import rigid_inertia
+from ..dynamics._friction import friction_efforts
+from ..dynamics._inertial import RelativeKinematics, inertial_torsors
 from ..kinematics import Kinematics
-from ..model import (ORIGIN, Body, Damper, GeneralizedForce, Gravity, Particle, PointForce, Potential, Spring, Torque,
-                     Vector)
+from ..model import (ORIGIN, Body, CoulombFriction, Damper, Dissipation, GeneralizedForce, Gravity, JointDamper, Particle,
+                     PointForce, Potential, Spring, Torque, Vector)
 from ..model._vector import sum_of
 
 __all__ = ["EffortsOnElement", "ElementTheorems", "CoordinateCheck", "Verification", "verify"]
@@ -401,10 +403,18 @@ def given_efforts(eom: EquationsOfMotion) -> tuple[tuple[EffortsOnElement, ...],
                 factor = -load.coefficient * kin.frames.dot(ab, kin.velocity(b) - kin.velocity(a)) / ab2
             acc.add_force(load.name, ab * factor, b)
             acc.add_force(load.name, ab * (-factor), a)
-        elif isinstance(load, (Potential, GeneralizedForce)):
+        elif isinstance(load, (JointDamper, CoulombFriction)):  # couples of a joint, a friction force (issue 5)
+            for what, vector, where in friction_efforts(kin, load) or ():
+                (acc.add_force if what == "force" else acc.add_couple)(load.name, vector, where)
+        elif isinstance(load, (Potential, GeneralizedForce, Dissipation)):
             q = next(f.Q for f in eom.loads if f.name == load.name)
             acc.power = [p + x for p, x in zip(acc.power, q)]
             acc._note_power(load.name)
+    # In a non-Galilean frame R: the Coriolis and entrainment torsors at each centre of mass (Remarque 3).
+    for torsor in inertial_torsors(kin) if isinstance(kin, RelativeKinematics) else ():
+        acc.add_force(torsor.load, torsor.force, torsor.element)
+        if not torsor.moment.is_zero():
+            acc.add_couple(torsor.load, torsor.moment, torsor.element)
     efforts = tuple(EffortsOnElement(name, acc.point[name], acc.force[name], acc.moment[name],
                                      tuple(acc.loads[name])) for name in acc.point)
     return efforts, tuple(acc.power), tuple(acc.by_power)

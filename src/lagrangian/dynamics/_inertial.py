@@ -240,7 +240,8 @@ def inertial_forces(kin: Kinematics) -> tuple[LoadForces, ...]:
 
     Returns
     -------
-    Two `LoadForces`, kinds ``"inertial: Coriolis"`` and ``"inertial: entrainment"``: Q_i
+    Up to two `LoadForces`, kinds ``"inertial: Coriolis"`` (when R turns relative to R0) and
+    ``"inertial: entrainment"`` (when R turns or O' accelerates): Q_i
     by virtual power of the torsors of `inertial_torsors`; entrainment with its potential
     when it has one (checked: Q_i ≡ −∂U_e/∂q_i), Coriolis never (its Q_i depend on q̇).
     """
@@ -249,7 +250,12 @@ def inertial_forces(kin: Kinematics) -> tuple[LoadForces, ...]:
     torsors = inertial_torsors(kin)
     star = kin.q_star
     out = []
-    for name in (CORIOLIS, ENTRAINMENT):
+    rotating = not kin.frame_omega.is_zero()
+    # A frame in translation has no Coriolis force; one in uniform translation, no inertial force at all.
+    present = [CORIOLIS] if rotating else []
+    if rotating or not kin.origin_acceleration.is_zero():
+        present.append(ENTRAINMENT)
+    for name in present:
         mine = [t for t in torsors if t.load == name]
         Q = _generalized(kin, mine)
         power = sum_of([q * s for q, s in zip(Q, star) if not is_structural_zero(q)])
