@@ -31,6 +31,7 @@ from ..errors import ModelError, SimulationError
 from ..model import load_model
 from ..model._expr import ExpressionError, parse_expression
 from ..model.spec import Model
+from ._dae import ConstrainedSystem, constrained_source, simulate_dae
 from ._system import CompiledSystem, _ptr
 from ._trajectory import Event, Trajectory
 
@@ -246,6 +247,13 @@ def simulate(
         Missing or non-finite values, a time span that does not increase, a singular mass
         matrix (before or during the run: never a silent NaN), step-size underflow.
     """
+    # Complementary constraints make it a differential-algebraic system: `_dae` integrates it.
+    source, constrained = constrained_source(source)
+    if constrained is not None:
+        return simulate_dae(source if isinstance(source, ConstrainedSystem) else constrained, t_end,
+                            t_start=t_start, initial=initial, parameters=parameters, method=method, rtol=rtol,
+                            atol=atol, dt=dt, max_step=max_step, n_out=n_out, t_eval=t_eval, events=events,
+                            tolerance=tolerance, max_steps=max_steps, progress=progress, backend=backend)
     if method not in METHODS:
         raise SimulationError(f"Unknown method `{method}`.", fix="use one of " + ", ".join(METHODS))
     specs = [EventSpec(e, e) if isinstance(e, str) else e for e in events]
