@@ -42,9 +42,14 @@ def _cross(a: tuple[se.Basic, ...], b: tuple[se.Basic, ...]) -> tuple[se.Basic, 
 
 
 def mass_matrix_and_bias(
-    kin: Kinematics, inertias: dict[str, RigidInertia]
+    kin: Kinematics, inertias: dict[str, RigidInertia], *, share=None,
 ) -> tuple[tuple[tuple[se.Basic, ...], ...], tuple[se.Basic, ...]]:
     """M(q, t) and Γ⁰(q, q̇, t) such that Γ = M q̈ + Γ⁰.
+
+    ``share``, when given, is called on each body's γ⁰(G) and dσ⁰/dt (3-tuples of
+    components) and returns what Γ⁰ is built from — code generation passes a function
+    that names them, so each is computed once and not once per coordinate (an n-link
+    chain's Γ⁰ then costs O(n²) rather than O(n³) operations).
 
     Returns
     -------
@@ -60,6 +65,8 @@ def mass_matrix_and_bias(
         frame = kin.frames.best_frame(*partials, kin.velocity(point))
         V = [kin.frames.express(p, frame) for p in partials]
         acc0 = kin.frames.express(kin.acceleration(point, accelerations=False), frame)
+        if share is not None:
+            acc0 = share(acc0)
         for i in range(n):
             if all(_zero(c) for c in V[i]):
                 continue
@@ -80,6 +87,8 @@ def mass_matrix_and_bias(
         partial = [kin.frames.express(p, F) for p in kin.partial_omegas(body.frame)]
         wdot0 = tuple(kin.d_dt(c, accelerations=False) for c in w)
         dsigma0 = tuple(a + b for a, b in zip(_matvec(pi, wdot0), _cross(wF, _matvec(pi, w))))
+        if share is not None:
+            dsigma0 = share(dsigma0)
         pi_partial = [_matvec(pi, p) for p in partial]
         for i in range(n):
             if all(_zero(c) for c in partial[i]):

@@ -13,6 +13,7 @@ Parameter values are an input array, not constants folded into the code: changin
 from __future__ import annotations
 
 import hashlib
+import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 from importlib import resources
@@ -39,6 +40,7 @@ class GeneratedSource:
     parameters : parameter names, in the order of the ``p`` array.
     monitors : monitor names (first integrals, then ``T`` and ``U``).
     events : event names, in the order of the event functions.
+    constants : how many precomputed constants follow the parameters in ``p``.
     """
 
     source: str
@@ -47,6 +49,7 @@ class GeneratedSource:
     parameters: tuple[str, ...]
     monitors: tuple[str, ...]
     events: tuple[str, ...]
+    constants: int = 0
 
 
 def monitor_expressions(eom: EquationsOfMotion, integrals: Sequence) -> list[tuple[str, se.Basic]]:
@@ -136,6 +139,69 @@ def collect_by_state(exprs: Sequence[se.Basic], state: Sequence[se.Symbol]) -> l
     return out
 
 
+class _Hoist:
+    """Lift the parameter-only parts of expressions out of the per-state code.
+
+    ``(m2 + m3 + m4) l1 l2 cos(θ1 − θ2)`` becomes ``_k7 cos(θ1 − θ2)`` with ``_k7`` computed
+    once per parameter set (`lg_constants`), not at every state: for an n-link chain this
+    removes the O(n³) coefficient arithmetic from M.
+    """
+
+    def __init__(self, parameters: Sequence[se.Symbol]) -> None:
+        self.parameters = set(parameters)
+        self.constants: dict[se.Basic, se.Symbol] = {}
+
+    def _const(self, expr: se.Basic) -> se.Basic:
+        if expr.is_Number or expr.is_Symbol:
+            return expr
+        if expr not in self.constants:
+            self.constants[expr] = se.Symbol(f"_k{len(self.constants)}")
+        return self.constants[expr]
+
+    def __call__(self, expr: se.Basic) -> se.Basic:
+        free = expr.free_symbols
+        if free <= self.parameters:
+            return self._const(expr)
+        if isinstance(expr, (se.Add, se.Mul)):
+            fixed = [a for a in expr.args if a.free_symbols <= self.parameters]
+            varying = [self(a) for a in expr.args if not a.free_symbols <= self.parameters]
+            op = se.Add if isinstance(expr, se.Add) else se.Mul
+            if len(fixed) >= 2 or (fixed and not (fixed[0].is_Number or fixed[0].is_Symbol)):
+                fixed = [self._const(op(*fixed))]
+            return op(*fixed, *varying)
+        if expr.args:
+            return expr.func(*(self(a) for a in expr.args))
+        return expr
+
+
+def _shared_bias(eom: EquationsOfMotion) -> tuple[list[tuple[se.Symbol, se.Basic]], list[se.Basic]]:
+    """F = Q − Γ⁰ with each body's γ⁰(G) and dσ⁰/dt named once (see `mass_matrix_and_bias`).
+
+    Returns the named components (symbol, expression) and F written with them; falls back
+    to ``eom.F`` when the equations carry more than that (e.g. terms the loads do not hold).
+    """
+    from ..dynamics._inertia import mass_matrix_and_bias
+
+    shared: list[tuple[se.Symbol, se.Basic]] = []
+
+    def share(components):
+        out = []
+        for c in components:
+            if c == 0 or c.is_Number or c.is_Symbol or se.count_ops(c) < 4:
+                out.append(c)
+            else:
+                sym = se.Dummy(f"shared{len(shared)}")
+                shared.append((sym, c))
+                out.append(sym)
+        return tuple(out)
+
+    n = len(eom.q)
+    _, gamma0 = mass_matrix_and_bias(eom.kinematics, eom.inertias, share=share)
+    Q = [se.Add(*(load.Q[i] for load in eom.loads)) for i in range(n)]
+    F = [q - g for q, g in zip(Q, gamma0)]
+    return shared, F
+
+
 def _coefficients() -> dict[str, str]:
     """DOP853's tableau as C initialisers, from SciPy's own coefficient module."""
     from scipy.integrate._ivp import dop853_coefficients as c
@@ -202,20 +268,37 @@ def generate_c(
                 fix="declare it as a parameter of the model")
         return expr.xreplace(private)
 
-    def function(signature: str, outputs: list[tuple[str, se.Basic]], what: str) -> str:
-        body = c_block([(target, rename(e, what)) for target, e in outputs], names)
-        # Every input gets a local; the compiler drops the unused ones.
-        decls = [f"    const double {c} = {v}; (void){c};" for c, v in header.items()]
+    def function(signature: str, outputs, what: str) -> str:
+        # `outputs` is one list of (target, expression), or several computed in turn
+        # (the first defining names the next use).
+        stages = outputs if outputs and isinstance(outputs[0], list) else [outputs]
+        body = [line for k, stage in enumerate(stages)
+                for line in c_block([(tg, rename(e, what)) for tg, e in stage], names, prefix="xyz"[k])]
+        used = set(re.findall(r"\b_[ypkt]\w*", "\n".join(body)))
+        decls = [f"    const double {c} = {v};" for c, v in header.items() if c in used]
+        decls.append("    (void)t; (void)y; (void)p;")
         return signature + " {\n" + "\n".join([*decls, *body]) + "\n}\n"
 
     state = (*eom.q, *eom.qd)
     # M's entries are sums over bodies of one function of q each: collect them.  F keeps
     # the nested form of the derivation, which shares more than its expansion would.
     M_flat = [_smaller(e, collect_by_state([se.expand(e)], state)[0])
-              for e in [eom.M[i][j] for i in range(n) for j in range(n)]] + list(eom.F)
-    M_flat = expand_angle_sums(M_flat, eom.q)
-    M_out = [(f"M[{k}]", e) for k, e in enumerate(M_flat[: n * n])]
-    F_out = [(f"F[{i}]", e) for i, e in enumerate(M_flat[n * n:])]
+              for e in [eom.M[i][j] for i in range(n) for j in range(n)]]
+    shared, F = _shared_bias(eom)
+    for k, (sym, _) in enumerate(shared):
+        private[sym] = se.Symbol(f"_s{k}")
+    names = {sym: str(sym) for sym in private.values()}
+    flat = expand_angle_sums(M_flat + list(F) + [e for _, e in shared], eom.q)
+    hoist = _Hoist([se.Symbol(name) for name in params])
+    flat = [hoist(e) for e in flat]
+    for k, (expr, sym) in enumerate(hoist.constants.items()):
+        private[sym] = sym
+        header[str(sym)] = f"p[{len(params) + k}]"
+    names = {sym: str(sym) for sym in private.values()}
+    M_out = [(f"M[{k}]", e) for k, e in enumerate(flat[: n * n])]
+    F_out = [(f"F[{i}]", e) for i, e in enumerate(flat[n * n: n * n + n])]
+    S_out = [(f"const double _s{k}", e) for k, e in enumerate(flat[n * n + n:])]
+    constants = [(f"k[{j}]", expr) for j, expr in enumerate(hoist.constants)]
     monitors = monitor_expressions(eom, integrals)
     zero = se.Integer(0)
     rates_zero = {s: zero for s in eom.qd}
@@ -228,10 +311,15 @@ def generate_c(
         f"#define LG_N {n}",
         f"#define LG_NM {len(monitors)}",
         f"#define LG_NE {len(events)}",
+        f"#define LG_NP {len(params)}",
+        f"#define LG_NK {len(constants)}",
         *(f"#define {k} {v}" for k, v in _coefficients().items()),
         "#include <math.h>",
+        "/* The parameter-only subexpressions, p[LG_NP + j] = k[j], computed once per parameter set. */",
+        function("void lg_constants(const double *p, double *k)", constants, "a constant").replace(
+            " {\n", " {\n    const double t = 0.0; const double *y = 0;\n", 1),  # neither is read
         function("static void lg_mass_forces(double t, const double *y, const double *p, double *M, double *F)",
-                 M_out + F_out, "M q'' = F"),
+                 [S_out, M_out + F_out], "M q'' = F"),
         function("static void lg_monitors(double t, const double *y, const double *p, double *out)",
                  [(f"out[{k}]", e) for k, (_, e) in enumerate(monitors)], "a first integral"),
         function("static void lg_events(double t, const double *y, const double *p, double *g)",
@@ -250,4 +338,5 @@ def generate_c(
         parameters=params,
         monitors=tuple(name for name, _ in monitors),
         events=tuple(name for name, _ in events),
+        constants=len(constants),
     )

@@ -78,20 +78,20 @@ def c_expression(expr: se.Basic, names: Mapping[se.Basic, str]) -> str:
                      f"{', '.join(sorted(_FUNCTIONS))}, powers and sign")
 
 
-def c_block(outputs: Sequence[tuple[str, se.Basic]], names: Mapping[se.Basic, str]) -> list[str]:
+def c_block(outputs: Sequence[tuple[str, se.Basic]], names: Mapping[se.Basic, str], prefix: str = "x") -> list[str]:
     """Statements assigning each ``(target, expression)``, common subexpressions computed once.
 
     The subexpressions come from SymEngine's ``cse``; they become ``const double`` locals
-    named ``x0, x1, ...``.  The free symbols of the expressions must already be the
+    named ``<prefix>0, <prefix>1, ...`` (blocks in one function need distinct prefixes).  The free symbols of the expressions must already be the
     caller's own, named with a leading underscore, so that the two sets cannot clash.
     """
     exprs = [e if isinstance(e, se.Basic) else se.RealDouble(float(e)) for _, e in outputs]
     replacements, reduced = se.cse(exprs) if exprs else ([], [])
     local = dict(names)
     lines = []
-    for sym, value in replacements:
-        lines.append(f"    const double {sym} = {c_expression(value, local)};")
-        local[sym] = str(sym)
+    for k, (sym, value) in enumerate(replacements):
+        lines.append(f"    const double {prefix}{k} = {c_expression(value, local)};")
+        local[sym] = f"{prefix}{k}"
     for (target, _), value in zip(outputs, reduced):
         lines.append(f"    {target} = {c_expression(value, local)};")
     return lines

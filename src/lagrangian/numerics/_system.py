@@ -34,6 +34,7 @@ _SIGNATURES = {
     "lg_eval_monitors": (None, [ctypes.c_int, _P, _P, _P, _P]),
     "lg_eval_events": (None, [ctypes.c_int, _P, _P, _P, _P]),
     "lg_dimensions": (ctypes.c_int, [_P]),
+    "lg_constants": (None, [_P, _P]),
     "lg_dop853": (ctypes.c_int, [_P, _P, _P, _P, ctypes.c_int, _P, _P, ctypes.c_double, _P, _P, _P]),
     "lg_gauss": (ctypes.c_int, [_P, _P, _P, _P, ctypes.c_int, _P, _P, ctypes.c_double, _P, _P, _P,
                                 ctypes.c_double]),
@@ -75,6 +76,7 @@ class CompiledSystem:
         if backend == "c":
             generated = generate_c(eom, self.first_integrals, self._events)
             self.source = generated.source
+            self._constants = generated.constants
             self._lib = compile_library(generated.source, generated.key)
             for name, (restype, argtypes) in _SIGNATURES.items():
                 fn = getattr(self._lib, name)
@@ -85,6 +87,7 @@ class CompiledSystem:
         else:
             self.source = None
             self._lib = None
+            self._constants = 0
             self._lambdify()
         self._t1 = np.zeros(1)
 
@@ -118,6 +121,12 @@ class CompiledSystem:
                 raise SimulationError(f"The parameter `{name}` = {value} is not a finite number.",
                                       fix=f"give `{name}` a finite value")
             out[k] = value
+        if self._constants:
+            # The parameter-only subexpressions of M and F follow the values (`_codegen._Hoist`).
+            extended = np.empty(len(out) + self._constants)
+            extended[: len(out)] = out
+            self._lib.lg_constants(_ptr(extended), _ptr(extended[len(out):]))
+            return extended
         return out
 
     # -- evaluators (single state or batch) ---------------------------------------------
