@@ -1,0 +1,165 @@
+"""Every figure of a run in one call: `save_plots` (what ``lagrangian simulate --plot DIR`` runs).
+
+Each file is written atomically (a temporary file beside it, then `os.replace`), so a
+failure leaves any older file of that name as it was.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .._atomic import write_atomic_with
+from ..dynamics import EquationsOfMotion
+from ..errors import LagrangianError, OutputError
+from ..numerics import Trajectory
+from ._animation import FORMATS, animate
+from ._apex import plot_apex_sphere, plot_nutation
+from ._geometry import apex_path
+from ._reaction import plot_reaction, reaction_stem, reactions_along
+from ._series import plot_drift, plot_phase, plot_time_series
+
+__all__ = ["KINDS", "plot_trajectory", "applicable_kinds", "figure_name", "save_plots", "save_figure"]
+
+#: Every kind of figure, in the order `save_plots` writes them.
+KINDS = ("time_series", "phase", "apex_sphere", "nutation", "drift", "reaction")
+#: Image formats matplotlib's Agg canvas writes without extra software.
+IMAGE_FORMATS = ("png", "svg", "pdf", "jpg", "jpeg", "eps", "ps", "webp", "tif", "tiff")
+#: Smallest singular value (relative) of the axis tip's positions for the axis to turn in 3D
+#: rather than in one plane through O (a great circle: a planar pendulum's rod).
+GREAT_CIRCLE = 1e-9
+
+_PLOTTERS: dict[str, Callable[..., Any]] = {
+    "time_series": plot_time_series,
+    "phase": plot_phase,
+    "apex_sphere": plot_apex_sphere,
+    "nutation": plot_nutation,
+    "drift": plot_drift,
+    "reaction": plot_reaction,
+}
+
+
+def plot_trajectory(trajectory: Trajectory, eom: EquationsOfMotion, kind: str = "time_series",
+                    **options: Any) -> Any:
+    """The figure ``kind`` (one of `KINDS`) of a simulated motion.
+
+    ``options`` go to the figure's function: ``ax=`` (``apex_sphere``, ``reaction``),
+    ``fig=`` (the others), ``body=`` and ``axis=`` (``apex_sphere``, ``nutation``).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import lagrangian
+    >>> from lagrangian.numerics import simulate
+    >>> eom = lagrangian.derive(lagrangian.lagrange_top())
+    >>> fig = plot_trajectory(simulate(eom, 0.5, n_out=51), eom, "nutation")
+    >>> len(fig.axes)
+    2
+    """
+    if kind not in _PLOTTERS:
+        raise OutputError(f"Unknown figure `{kind}`.", fix="choose one of " + ", ".join(KINDS))
+    return _PLOTTERS[kind](trajectory, eom, **options)
+
+
+def _turns_in_3d(trajectory: Trajectory, eom: EquationsOfMotion) -> bool:
+    tip = apex_path(trajectory, eom)
+    s = np.linalg.svd(tip, compute_uv=False)
+    return bool(s[0] > 0 and s[-1] > GREAT_CIRCLE * s[0])
+
+
+def applicable_kinds(trajectory: Trajectory, eom: EquationsOfMotion) -> tuple[str, ...]:
+    """The figures that say something for this model and run.
+
+    The apex figures need a rigid body whose axis turns in 3D (the top; not a planar
+    pendulum, whose rods stay on a great circle); the reaction needs every load in force
+    form (`reactions_along`).
+    """
+    kinds = ["time_series", "phase"]
+    if eom.model.bodies and len(trajectory.t) >= 3 and _turns_in_3d(trajectory, eom):
+        kinds += ["apex_sphere", "nutation"]
+    kinds.append("drift")
+    try:
+        reactions_along(trajectory, eom)
+        kinds.append("reaction")
+    except LagrangianError:
+        pass
+    return tuple(kinds)
+
+
+def figure_name(kind: str, eom: EquationsOfMotion) -> str:
+    """The file stem of a figure: ``time_series``, ..., ``reaction_O`` when held at O."""
+    return reaction_stem(eom) if kind == "reaction" else kind
+
+
+def save_figure(fig: Any, path: str | Path, *, dpi: float = 110) -> Path:
+    """Write ``fig`` to ``path`` atomically, in the format of its suffix."""
+    path = Path(path)
+    fmt = path.suffix.lstrip(".").lower()
+    if fmt not in IMAGE_FORMATS:
+        raise OutputError(f"`{path.name}`: unknown image format `{fmt}`.", fix="use one of " + ", ".join(IMAGE_FORMATS))
+    try:
+        write_atomic_with(path, lambda handle: fig.savefig(handle, format=fmt, dpi=dpi))
+    except OSError as exc:
+        raise OutputError(f"Cannot write the figure `{path}`: {exc.strerror or exc}.",
+                          fix="check that the folder exists and is writable; any older file is unchanged") from None
+    return path
+
+
+def save_plots(trajectory: Trajectory, eom: EquationsOfMotion, directory: str | Path, *, animation: bool = True,
+               formats: Sequence[str] = ("png",), kinds: Sequence[str] | None = None, frames: int = 100,
+               fps: float = 25.0, animation_format: str = "gif", dpi: float = 110) -> list[Path]:
+    """Write every applicable figure of a run, and an animation, into ``directory``.
+
+    Parameters
+    ----------
+    trajectory, eom : the run (`lagrangian.numerics.simulate`) and its equations.
+    directory : created when missing.
+    animation : also write ``animation.gif`` (or ``.mp4``, ``animation_format``).
+    formats : image formats of each figure (``"png"``, ``"svg"``, ``"pdf"``...).
+    kinds : the figures to write (default: `applicable_kinds`).
+    frames, fps : the animation's frame count and rate.
+
+    Returns
+    -------
+    list of Path
+        Files written, in order: ``time_series``, ``phase``, ``apex_sphere``, ``nutation``,
+        ``drift``, ``reaction_O`` (each in every format), then ``animation.gif``.
+
+    Raises
+    ------
+    OutputError
+        A folder or file that cannot be written (older files are left intact), an unknown
+        format or kind, or matplotlib missing (``pip install 'lagrangian[plot]'``).
+    """
+    formats = [f.lower().lstrip(".") for f in formats]
+    for fmt in formats:
+        if fmt not in IMAGE_FORMATS:
+            raise OutputError(f"Unknown image format `{fmt}`.", fix="use one of " + ", ".join(IMAGE_FORMATS))
+    suffix = "." + animation_format.lower().lstrip(".")
+    if animation and suffix not in FORMATS:
+        raise OutputError(f"Unknown animation format `{animation_format}`.", fix="use gif (or mp4 with ffmpeg)")
+    chosen = tuple(kinds) if kinds is not None else applicable_kinds(trajectory, eom)
+    for kind in chosen:
+        if kind not in KINDS:
+            raise OutputError(f"Unknown figure `{kind}`.", fix="choose among " + ", ".join(KINDS))
+    directory = Path(directory)
+    try:
+        directory.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise OutputError(f"Cannot create the folder `{directory}` for the plots: {exc.strerror or exc}.",
+                          fix="choose a folder you can write to") from None
+    written: list[Path] = []
+    for kind in chosen:
+        fig = plot_trajectory(trajectory, eom, kind)
+        stem = figure_name(kind, eom)
+        for fmt in formats:
+            written.append(save_figure(fig, directory / f"{stem}.{fmt}", dpi=dpi))
+    if animation:
+        written.append(animate(trajectory, eom, directory / f"animation{suffix}", frames=frames, fps=fps))
+    return written
