@@ -2,27 +2,31 @@
 
 The pipeline, one stage per subpackage (imports flow one way)::
 
-    model  →  kinematics  →  dynamics  →  analysis  →  output  →  cli
-    (spec)    (Ω, V, V*)     (T, U, Q,     (first       (text, LaTeX,
-                              L(q_i), M,F)  integrals)    JSON)
+    model  →  kinematics  →  dynamics  →  analysis  →  numerics  →  output/plotting  →  cli
+    (spec)    (Ω, V, V*)     (T, U, Q,     (first        (C code,     (text, LaTeX, JSON,
+                              L(q_i), M,F)  integrals,    integrators,  report, plots)
+                                            Newton–Euler, simulate)
+                                            top analysis)
 
 Typical use::
 
     import lagrangian
     model = lagrangian.load_model("examples/lagrange_top.toml")
     eom = lagrangian.derive(model)
-    print(lagrangian.render_text(eom))
+    traj = lagrangian.simulate(eom, 10.0)        # compiled C, DOP853
+    print(traj.drift_summary())                  # K, H, E conservation
 """
 
 from __future__ import annotations
 
-from .analysis import FirstIntegral, first_integrals
+from .analysis import FirstIntegral, TopAnalysis, Verification, analyse_top, first_integrals, verify
 from .dynamics import EquationsOfMotion, LagrangeEquation, derive
-from .errors import DerivationError, KinematicsError, LagrangianError, ModelError, OutputError, SimulationError
+from .errors import DerivationError, KinematicsError, LagrangianError, ModelError, OutputError, SimulationError, VerificationError
 from .kinematics import Kinematics
 from .model import ModelBuilder, load_model, parse_model
 from .model.spec import Model
 from .model.zoo import lagrange_top
+from .numerics import CompiledSystem, EventSpec, Trajectory, compile_system, save_trajectory, simulate
 
 __version__ = "0.1.0"
 
@@ -39,12 +43,23 @@ __all__ = [
     "LagrangeEquation",
     "first_integrals",
     "FirstIntegral",
+    "verify",
+    "Verification",
+    "analyse_top",
+    "TopAnalysis",
+    "compile_system",
+    "CompiledSystem",
+    "simulate",
+    "EventSpec",
+    "Trajectory",
+    "save_trajectory",
     "LagrangianError",
     "ModelError",
     "KinematicsError",
     "DerivationError",
     "SimulationError",
     "OutputError",
+    "VerificationError",
 ]
 
 

@@ -1,5 +1,9 @@
 """Stage 4 — analysis of the equations: first integrals, the Newton–Euler cross-check, reactions."""
 
+from ._effective_potential import AnalysisError as AnalysisError
+from ._effective_potential import CyclicReduction as CyclicReduction
+from ._effective_potential import StructureError as StructureError
+from ._effective_potential import reduce_cyclic as reduce_cyclic
 from ._integrals import FirstIntegral as FirstIntegral
 from ._integrals import first_integrals as first_integrals
 from ._newton_euler import CoordinateCheck as CoordinateCheck
@@ -12,7 +16,10 @@ from ._reactions import TrajectoryResiduals as TrajectoryResiduals
 from ._reactions import check_trajectory as check_trajectory
 from ._reactions import reaction_history as reaction_history
 from ._reactions import reactions as reactions
+from ._top import TopAnalysis as TopAnalysis
+from ._top import analyse_top as analyse_top
 
 __all__ = ["FirstIntegral", "first_integrals", "CoordinateCheck", "ElementTheorems", "Verification", "verify",
            "Reaction", "ReactionHistory", "TrajectoryResiduals", "check_trajectory", "reaction_history",
-           "reactions"]
+           "reactions", "analyse_top", "TopAnalysis", "reduce_cyclic", "CyclicReduction", "AnalysisError",
+           "StructureError"]

@@ -9,7 +9,7 @@ import re
 import sympy
 
 from ..analysis import first_integrals
-from ..analysis._top import TopAnalysis, analyse_top
+from ..analysis import TopAnalysis, analyse_top
 from ..dynamics import EquationsOfMotion, derive
 from ..model import load_model
 from ..model.zoo import lagrange_top
