@@ -18,7 +18,7 @@ from ..dynamics import EquationsOfMotion
 from ..errors import LagrangianError
 from ..numerics import Trajectory
 from ._geometry import apex_path, axis_angles, default_axis
-from ._mpl import new_figure
+from ._mpl import new_figure, suptitle
 
 __all__ = ["TurningAngles", "turning_angles", "plot_apex_sphere", "plot_nutation"]
 
@@ -156,5 +156,5 @@ def plot_nutation(trajectory: Trajectory, eom: EquationsOfMotion, *, body: str |
     flat.grid(True, alpha=0.3)
     flat.legend(loc="best", fontsize="small")
     flat.set_title(angles.caption, fontsize="medium")
-    fig.suptitle(f"{trajectory.model_name}: nutation, {_axis_title(eom, body, axis)}")
+    suptitle(fig, f"{trajectory.model_name}: nutation, {_axis_title(eom, body, axis)}")
     return fig

@@ -9,7 +9,7 @@ import numpy as np
 from ..dynamics import EquationsOfMotion
 from ..numerics import Trajectory
 from ._labels import label, symbol
-from ._mpl import new_figure
+from ._mpl import new_figure, suptitle
 
 __all__ = ["plot_time_series", "plot_phase", "plot_drift", "relative_drift"]
 
@@ -39,7 +39,7 @@ def plot_time_series(trajectory: Trajectory, eom: EquationsOfMotion, *, fig: Any
         axes[-1, k].set_xlabel("t (s)")
     axes[0, 0].set_title("coordinates $q_i(t)$")
     axes[0, 1].set_title(r"rates $\dot{q}_i(t)$")
-    fig.suptitle(f"{trajectory.model_name}: time series")
+    suptitle(fig, f"{trajectory.model_name}: time series")
     return fig
 
 
@@ -69,7 +69,7 @@ def plot_phase(trajectory: Trajectory, eom: EquationsOfMotion, *, fig: Any = Non
     for j in range(n, rows * cols):
         axes[j // cols, j % cols].set_visible(False)
     axes[0, 0].legend(loc="best", fontsize="small")
-    fig.suptitle(f"{trajectory.model_name}: phase portraits")
+    suptitle(fig, f"{trajectory.model_name}: phase portraits")
     return fig
 
 
@@ -130,5 +130,5 @@ def plot_drift(trajectory: Trajectory, eom: EquationsOfMotion | None = None, *, 
             ax.axhline(tol, color="r", ls="--", lw=0.8)
         ax.set_title(f"relative drift of the first integrals ({trajectory.method})")
     axes[-1].set_xlabel("t (s)")
-    fig.suptitle(f"{trajectory.model_name}: conservation")
+    suptitle(fig, f"{trajectory.model_name}: conservation")
     return fig
