@@ -42,6 +42,7 @@ import symengine as se
 
 from .._identity import are_zero
 from ..dynamics import EquationsOfMotion
+from ..dynamics._constraints import reaction_efforts
 from ..dynamics._energy import rigid_inertia
 from ..dynamics._friction import friction_efforts
 from ..dynamics._inertial import RelativeKinematics, inertial_torsors
@@ -410,6 +411,21 @@ def given_efforts(eom: EquationsOfMotion) -> tuple[tuple[EffortsOnElement, ...],
             q = next(f.Q for f in eom.loads if f.name == load.name)
             acc.power = [p + x for p, x in zip(acc.power, q)]
             acc._note_power(load.name)
+    # Complementary constraints (issue 5): their reactions, linear in the multipliers λ_k, are
+    # efforts like the given ones here (the virtual field is not compatible with them).
+    for load, what, value, at, owner in reaction_efforts(eom):
+        if what == "power":
+            acc.power = [p + x for p, x in zip(acc.power, value)]  # type: ignore[call-overload]
+            acc._note_power(load)
+        elif what == "couple":
+            acc.add_couple(load, value, owner)  # type: ignore[arg-type]
+        elif owner is None:
+            acc.add_force(load, value, at)  # type: ignore[arg-type]
+        else:  # on the material point of `owner` at the contact `at` (rolling without slipping)
+            acc.force[owner] = acc.force[owner] + value  # type: ignore[operator]
+            arm = kin.position(at) - kin.position(acc.point[owner])  # type: ignore[arg-type]
+            acc.moment[owner] = acc.moment[owner] + kin.frames.cross(arm, value)  # type: ignore[arg-type]
+            acc._note(owner, load)
     # In a non-Galilean frame R: the Coriolis and entrainment torsors at each centre of mass (Remarque 3).
     for torsor in inertial_torsors(kin) if isinstance(kin, RelativeKinematics) else ():
         acc.add_force(torsor.load, torsor.force, torsor.element)

@@ -43,7 +43,7 @@ from ..model import GALILEAN_FRAME, Constraint, Vector
 from ..model._vector import sum_of
 
 __all__ = ["ConstraintRow", "ConstraintReaction", "complementary_constraints", "multiplier_symbol",
-           "admissible_integrals", "multiplier_formulas", "MULTIPLIER_PREFIX"]
+           "admissible_integrals", "multiplier_formulas", "reaction_efforts", "MULTIPLIER_PREFIX"]
 
 #: Multipliers are named ``lambda_<row>`` (λ_length, λ_rolling_x0, ...).
 MULTIPLIER_PREFIX = "lambda_"
@@ -138,8 +138,11 @@ def _raw_rows(kin: Kinematics, c: Constraint) -> list[tuple[str, int | None, se.
     """(row name, axis index or None, expression) for every scalar row, zero rows included."""
     if c.form == "no_slip":
         body = kin.model.body(c.body)  # type: ignore[arg-type]
-        GI = kin.position(c.points[0]) - kin.position(body.name)
-        value: se.Basic | Vector = kin.velocity(body.name) + kin.frames.cross(kin.omega(body.frame), GI)
+        # Each vector lifted to the highest frame where it reads the same (φ̇ y2 = φ̇ y1 about a
+        # common axis), so that Ω ∧ GI is formed where it is shortest: −r φ̇ x1, not r φ̇ (sin²φ + cos²φ).
+        lift = kin.frames.lift
+        GI = lift(kin.position(c.points[0]) - kin.position(body.name))
+        value: se.Basic | Vector = kin.velocity(body.name) + kin.frames.cross(lift(kin.omega(body.frame)), GI, c.frame)
     elif c.form == "coincide":
         value = kin.position(c.points[0]) - kin.position(c.points[1])
     else:
@@ -404,3 +407,28 @@ def multiplier_formulas(eom) -> tuple[se.Basic, ...] | None:  # type: ignore[no-
         raise DerivationError(f"the multipliers could not be solved for symbolically: {exc}",
                               fix="use their values along a simulation") from None
     return tuple(lam[k, 0] for k in range(m))
+
+
+def reaction_efforts(eom) -> list[tuple[str, str, object, str | None, str | None]]:  # type: ignore[no-untyped-def]
+    """The complementary reactions as efforts on the system, for the Newton–Euler theorems.
+
+    Items ``(constraint, what, value, at, owner)``: ``what`` is ``"force"`` (``value`` a
+    `Vector` applied at point ``at``; ``owner`` the body whose material point receives it at a
+    rolling contact, else None: the point's carrier), ``"couple"`` (on body ``owner``) or
+    ``"power"`` (``value`` the generalized forces Σ_k λ_k A_ki, for a reaction with no
+    physical form).
+    """
+    out: list[tuple[str, str, object, str | None, str | None]] = []
+    forms = {c.name: c for c in eom.model.constraints}
+    for r in eom.reactions:
+        if not r.physical:
+            out.append((r.constraint, "power", r.generalized, None, None))
+            continue
+        if r.point is not None and not r.force.is_zero():
+            c = forms[r.constraint]
+            out.append((r.constraint, "force", r.force, r.point, c.body if c.form == "no_slip" else None))
+            if r.counter_point is not None:
+                out.append((r.constraint, "force", -r.force, r.counter_point, None))
+        if r.body is not None and not r.moment.is_zero():
+            out.append((r.constraint, "couple", r.moment, None, r.body))
+    return out
