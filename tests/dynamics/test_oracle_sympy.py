@@ -117,12 +117,78 @@ def lagrange_top() -> Oracle:
     return [psi, theta, phi], S.kinetic_energy(N), [(G, -m * g * N.z)], N
 
 
+# -- issue 5: the same motions described in R0, with the prescribed motions written out -----------
+def bead_rotating_hoop() -> Oracle:
+    # The engine writes it in the hoop's frame R1 (inertial forces); the oracle in R0, where R1
+    # is a frame turned by the prescribed angle Omega t.
+    m, R, g, Omega = _params("m R g Omega")
+    theta = me.dynamicsymbols("theta")
+    t = me.dynamicsymbols._t
+    N = me.ReferenceFrame("N")
+    R1 = N.orientnew("R1", "Axis", (Omega * t, N.z))
+    R2 = R1.orientnew("R2", "Axis", (theta, R1.y))
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    P = O.locatenew("P", -R * R2.z)
+    P.v2pt_theory(O, N, R2)
+    return [theta], me.Particle("bead", P, m).kinetic_energy(N), [(P, -m * g * N.z)], N
+
+
+def foucault_pendulum() -> Oracle:
+    # The engine writes it in the Earth's frame E; the oracle in R0, E turning as Omega t.
+    m, l, g, Omega, lam = _params("m l g Omega lambda")
+    alpha, beta = me.dynamicsymbols("alpha beta")
+    t = me.dynamicsymbols._t
+    N = me.ReferenceFrame("N")
+    E = N.orientnew("E", "Axis", (Omega * t, N.z))
+    L = E.orientnew("L", "Axis", (sp.pi / 2 - lam, E.y))
+    R1 = L.orientnew("R1", "Axis", (alpha, L.x))
+    R2 = R1.orientnew("R2", "Axis", (beta, R1.y))
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    P = O.locatenew("P", -l * R2.z)
+    P.v2pt_theory(O, N, R2)
+    return [alpha, beta], me.Particle("bob", P, m).kinetic_energy(N), [(P, -m * g * L.z)], N
+
+
+def kapitza_pendulum() -> Oracle:
+    m, l, g, a, nu = _params("m l g a nu")
+    theta = me.dynamicsymbols("theta")
+    t = me.dynamicsymbols._t
+    N = me.ReferenceFrame("N")
+    R1 = N.orientnew("R1", "Axis", (theta, N.x))
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    A = O.locatenew("A", a * sp.cos(nu * t) * N.z)
+    A.set_vel(N, A.pos_from(O).dt(N))
+    P = A.locatenew("P", -l * R1.z)
+    P.v2pt_theory(A, N, R1)
+    return [theta], me.Particle("bob", P, m).kinetic_energy(N), [(P, -m * g * N.z)], N
+
+
+def block_on_belt() -> Oracle:
+    m, k, f, g, v_b, eps = _params("m k f g v_b eps")
+    x = me.dynamicsymbols("x")
+    N = me.ReferenceFrame("N")
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    B = O.locatenew("B", x * N.x)
+    B.set_vel(N, x.diff() * N.x)
+    slip = x.diff() - v_b  # sliding velocity on the belt, regularised Coulomb law
+    friction = -f * m * g * slip / sp.sqrt(slip**2 + eps**2) * N.x
+    return [x], me.Particle("block", B, m).kinetic_energy(N), [(B, -m * g * N.z - k * x * N.x + friction)], N
+
+
 ORACLES: dict[str, Callable[[], Oracle]] = {
     "simple_pendulum.toml": simple_pendulum,
     "spherical_pendulum.toml": spherical_pendulum,
     "double_pendulum.toml": double_pendulum,
     "cart_pendulum.toml": cart_pendulum,
     "lagrange_top.toml": lagrange_top,
+    "bead_rotating_hoop.toml": bead_rotating_hoop,
+    "foucault_pendulum.toml": foucault_pendulum,
+    "kapitza_pendulum.toml": kapitza_pendulum,
+    "block_on_belt.toml": block_on_belt,
 }
 
 
@@ -146,19 +212,20 @@ def oracle_qdd(name: str) -> Callable[[dict[str, float]], np.ndarray]:
     qds = sp.symbols([n + "_dot" for n in names])
     to_symbols = {qi.diff(t): s for qi, s in zip(q, qds)}
     to_symbols_q = {qi: s for qi, s in zip(q, qs)}
+    ts = sp.Symbol("t")  # prescribed motions depend on the time
     data = tomllib.loads((EXAMPLES_DIR / name).read_text(encoding="utf-8"))
     values = {sp.Symbol(k): (v["value"] if isinstance(v, dict) else v) for k, v in data["parameters"].items()}
 
     def numeric(expr: sp.Matrix) -> Callable:
-        expr = expr.xreplace(to_symbols).xreplace(to_symbols_q).subs(values)
-        assert expr.free_symbols <= set(qs) | set(qds), expr.free_symbols
-        return sp.lambdify([*qs, *qds], expr, modules="numpy")
+        expr = expr.xreplace(to_symbols).xreplace(to_symbols_q).xreplace({t: ts}).subs(values)
+        assert expr.free_symbols <= set(qs) | set(qds) | {ts}, expr.free_symbols
+        return sp.lambdify([*qs, *qds, ts], expr, modules="numpy")
 
     M = numeric(method.mass_matrix)
     f = numeric(method.forcing)
 
     def qdd(state: dict[str, float]) -> np.ndarray:
-        args = [state[n] for n in names] + [state[n + "_dot"] for n in names]
+        args = [state[n] for n in names] + [state[n + "_dot"] for n in names] + [state["t"]]
         return np.linalg.solve(np.asarray(M(*args), dtype=float), np.asarray(f(*args), dtype=float).ravel())
 
     return qdd
@@ -170,7 +237,9 @@ def test_accelerations_match_sympy_mechanics(name: str) -> None:
     eom = eom_of(name)
     assert list(eom.coordinates) == [str(qi.func) for qi in ORACLES[name]()[0]], "coordinate order differs"
     oracle = oracle_qdd(name)
-    for state in random_states(name, eom.coordinates, STATES, seed=20240601):
+    times = np.random.default_rng(20240602).uniform(0.0, 10.0, STATES)
+    for state, t in zip(random_states(name, eom.coordinates, STATES, seed=20240601), times):
+        state["t"] = float(t)  # examples with prescribed motions depend on t
         ours = engine_qdd(name, state)
         theirs = oracle(state)
         assert np.allclose(ours, theirs, rtol=RTOL, atol=RTOL * max(1.0, float(np.max(np.abs(theirs))))), (
