@@ -1,6 +1,6 @@
 """Properties every derivation must have, checked with Hypothesis at random states of every example.
 
-* T = ½ q̇ᵀ M q̇ (the examples' constraints do not depend on time);
+* T = ½ q̇ᵀ M q̇ + T1 + T0 (T2 = ½ q̇ᵀ M q̇; T1 and T0 vanish unless a constraint depends on t);
 * M is symmetric positive definite;
 * each conservative load's Q_i (virtual power) is −∂U/∂q_i, with U computed here from
   the positions alone (gravity: U = −Σ m g·OG; spring: U = ½ k (ℓ − ℓ0)²);
@@ -65,16 +65,20 @@ def _energy_and_quadratic_form(name: str) -> Numeric:
     eom = eom_of(name)
     n = len(eom.q)
     quadratic = se.Rational(1, 2) * se.Add(*(eom.qd[i] * eom.M[i][j] * eom.qd[j] for i in range(n) for j in range(n)))
-    return Numeric(eom, [eom.T, quadratic])
+    # T1 + T0 from T alone: its value and slope at q̇ = 0 (both zero when no constraint moves with t).
+    rest = eom.T.subs({qd: 0 for qd in eom.qd})
+    rest += se.Add(*(eom.T.diff(qd).subs({r: 0 for r in eom.qd}) * qd for qd in eom.qd))
+    return Numeric(eom, [eom.T, quadratic, rest])
 
 
 @pytest.mark.parametrize("name", EXAMPLES)
 @given(data=st.data())
 def test_kinetic_energy_is_half_qdot_M_qdot(name: str, data: st.DataObject) -> None:
     state = data.draw(states(name))
-    T, quadratic = _energy_and_quadratic_form(name)(state)
+    state["t"] = data.draw(st.floats(0.0, 10.0))  # prescribed motions (Kapitza's pivot) depend on t
+    T, quadratic, rest = _energy_and_quadratic_form(name)(state)
     assert T >= 0.0
-    assert abs(T - quadratic) <= RTOL * max(1.0, abs(T)), (T, quadratic)
+    assert abs(T - quadratic - rest) <= RTOL * max(1.0, abs(T)), (T, quadratic, rest)
 
 
 @pytest.mark.parametrize("name", EXAMPLES)
@@ -267,7 +271,13 @@ EXPECTED_INTEGRALS = {
     "double_pendulum.toml": {"E"},
     "cart_pendulum.toml": {"E"},
     "lagrange_top.toml": {"K", "H", "E"},
+    "bead_rotating_hoop.toml": {"h"},  # Jacobi: energy in the hoop's frame, with the entrainment potential
+    "foucault_pendulum.toml": {"h"},
+    "kapitza_pendulum.toml": set(),  # L depends on t
+    "block_on_belt.toml": set(),  # the belt's friction works
 }
+#: The examples that have first integrals to check along the motion.
+WITH_INTEGRALS = [name for name in EXAMPLES if EXPECTED_INTEGRALS.get(name, True)]
 
 
 def test_expected_first_integrals_of_each_example() -> None:
@@ -290,7 +300,7 @@ def _integral_rates(name: str) -> tuple[list[str], Numeric]:
     return names, Numeric(eom, exprs)
 
 
-@pytest.mark.parametrize("name", EXAMPLES)
+@pytest.mark.parametrize("name", WITH_INTEGRALS)
 @given(data=st.data())
 def test_first_integrals_are_constant_along_the_motion(name: str, data: st.DataObject) -> None:
     eom = eom_of(name)
@@ -304,7 +314,7 @@ def test_first_integrals_are_constant_along_the_motion(name: str, data: st.DataO
         assert abs(rate) <= RTOL * _scale(row), f"d{integral}/dt = {rate} (terms {row})"
 
 
-@pytest.mark.parametrize("name", EXAMPLES)
+@pytest.mark.parametrize("name", WITH_INTEGRALS)
 def test_first_integrals_are_not_trivially_constant(name: str) -> None:
     """Guard for the test above: each integral does change along a wrong motion (q̈ = M⁻¹F + 1)."""
     eom = eom_of(name)
