@@ -136,7 +136,7 @@ def bead_rotating_hoop() -> Oracle:
 
 def foucault_pendulum() -> Oracle:
     # The engine writes it in the Earth's frame E; the oracle in R0, E turning as Omega t.
-    m, l, g, Omega, lam = _params("m l g Omega lambda")
+    m, l, g, Omega, lam = _params("m l g Omega lat")
     alpha, beta = me.dynamicsymbols("alpha beta")
     t = me.dynamicsymbols._t
     N = me.ReferenceFrame("N")
