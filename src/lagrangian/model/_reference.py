@@ -41,7 +41,7 @@ def _moving(expr_symbols: set[se.Basic], coordinates: Mapping[str, se.Basic]) ->
 
 def check_reference(frame: Any, origin: Any, location: Location, *, frames: Sequence[Frame],
                     points: Mapping[str, Point], coordinates: Mapping[str, se.Basic],
-                    load_names: Sequence[str]) -> Reference:
+                    loads: Mapping[str, Location]) -> Reference:
     """Check a declared reference frame and return it.
 
     Parameters
@@ -50,7 +50,7 @@ def check_reference(frame: Any, origin: Any, location: Location, *, frames: Sequ
     location : where ``[reference]`` was declared (with the lines of ``frame`` and ``origin``).
     frames, points : the model's frames (parents first) and declared points (O included).
     coordinates : every coordinate and rate symbol by name (``theta``, ``theta_dot``).
-    load_names : the model's load names (the inertial loads' names must be free).
+    loads : where each load of the model is declared (the inertial loads' names must be free).
 
     Raises
     ------
@@ -101,10 +101,11 @@ def check_reference(frame: Any, origin: Any, location: Location, *, frames: Sequ
                    "the motion of O' relative to R0 must be prescribed, a function of t only", "origin", moving,
                    "choose an origin whose position OO' depends on t and the parameters only")
     for name in INERTIAL_LOAD_NAMES:
-        if name in load_names:
-            raise fail(f"a load is named `{name}`, the name of the inertial load that the reference frame "
-                       f"`{frame}` adds", "frame", name, f"rename that load (`{name}` is reserved when "
-                       "[reference] is given)")
+        if name in loads:
+            where = loads[name]
+            raise ModelError(f"a load is named `{name}`, the name of the inertial load that the reference frame "
+                             f"`{frame}` adds", symbol=name, file=where.file, line=where.line,
+                             fix=f"rename that load (`{name}` is reserved when [reference] is given)")
     return Reference(frame, origin)
 
 

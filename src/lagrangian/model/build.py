@@ -319,7 +319,7 @@ class _Assembler:
             source=self.b.source,
             locations=self.locations,
             constraints=constraints,
-            reference=self.reference(all_points, frames, coordinates, loads),
+            reference=self.reference(all_points, frames, coordinates),
         )
         self.check_coordinates_used(model)
         return model
@@ -677,15 +677,15 @@ class _Assembler:
                 raise AssertionError(kind)
         return tuple(out)
 
-    def reference(self, points: dict[str, Point], frames: tuple[Frame, ...], coordinates: tuple[Coordinate, ...],
-                  loads: tuple[Load, ...]) -> Reference | None:
+    def reference(self, points: dict[str, Point], frames: tuple[Frame, ...],
+                  coordinates: tuple[Coordinate, ...]) -> Reference | None:
         """The checked reference frame, or None for R0 (see `lagrangian.model._reference`)."""
         if self.b._reference is None:
             return None
         frame, origin, where = self.b._reference
         symbols = {c.name: c.symbol for c in coordinates} | {c.rate_symbol.name: c.rate_symbol for c in coordinates}
         return check_reference(frame, origin, where, frames=frames, points=points, coordinates=symbols,
-                               load_names=[load.name for load in loads])
+                               loads={raw.name: raw.location for raw in self.of("load")})
 
     def check_coordinates_used(self, model: Model) -> None:
         used: set[se.Basic] = set()
