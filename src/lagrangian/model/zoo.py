@@ -8,7 +8,7 @@ from ._toml import parse_model
 from .build import ModelBuilder
 from .spec import Model
 
-__all__ = ["lagrange_top", "LAGRANGE_TOP_TOML", "planar_chain"]
+__all__ = ["lagrange_top", "LAGRANGE_TOP_TOML", "planar_chain", "spatial_chain"]
 
 
 def _read(name: str) -> str:
@@ -72,4 +72,63 @@ def planar_chain(n: int) -> Model:
         position += f"{' + ' if k > 1 else ''}l{k}*R{k}.x"
         b.particle(f"P{k}", mass=f"m{k}", position=position)
     b.gravity("weight", "g*R0.x")
+    return b.build()
+
+
+
+def spatial_chain(n: int) -> Model:
+    """The 3D n-link pendulum: uniform thin rods joined end to end by ball joints.
+
+    Rod k (mass m_k, length l_k, uniform and thin) joins P_{k-1} to P_k (P_0 = O, a fixed
+    point); gravity is ``-g*R0.z``.  Each rod's direction is given by two **absolute**
+    angles, measured from the fixed frame R0 as in `planar_chain`::
+
+        S<k> = R0 rotated by (alpha<k>, x0),   R<k> = S<k> rotated by (beta<k>, y),
+
+    and the rod lies along −R<k>.z, the unit vector
+    d_k = (−sin β_k, sin α_k cos β_k, −cos α_k cos β_k) in R0::
+
+        OP_k = −l_1 R1.z − ... − l_k Rk.z,   OG_k = OP_{k−1} − (l_k/2) Rk.z.
+
+    The inertia of rod k at G_k in R<k> is diag(m_k l_k²/12, m_k l_k²/12, 0): a thin rod
+    has none about its own axis, so T and U depend only on the directions d_k and their
+    rates, and the same system is described by a robot arm of universal joints (relative
+    angles, e.g. Pinocchio's ``JointModelRX`` then ``JointModelRY`` per link) in other
+    coordinates.  Absolute angles keep M_ij a short function of the angles of rods i
+    and j (relative angles make every entry depend on all the angles before: the
+    expressions of a 10-link chain run to millions of terms).  The angles are singular
+    where cos β_k = 0 (rod k along ±x0: gimbal lock).
+
+    Parameters ``m<k>`` = 1 kg, ``l<k>`` = 1 m and ``g`` = 9.81 m/s² have values; the
+    chain starts at rest with α_k(0) = 0.4 rad and β_k(0) = 0.2 rad.
+
+    Examples
+    --------
+    >>> [c.name for c in spatial_chain(2).coordinates]
+    ['alpha1', 'beta1', 'alpha2', 'beta2']
+    """
+    if isinstance(n, bool) or not isinstance(n, int) or n < 1:
+        raise ValueError(f"a spatial chain needs a positive whole number of links, not {n!r}")
+    b = ModelBuilder(f"spatial {n}-link pendulum",
+                     f"3D pendulum of {n} uniform thin rods joined by ball joints, absolute angles")
+    b.parameter("g", 9.81, unit="m/s^2", description="gravitational acceleration (along -z0)")
+    for k in range(1, n + 1):
+        b.parameter(f"m{k}", 1.0, unit="kg", description=f"mass of rod {k}")
+        b.parameter(f"l{k}", 1.0, unit="m", description=f"length of rod {k}, P{k - 1}P{k}")
+    for k in range(1, n + 1):
+        b.coordinate(f"alpha{k}", initial=0.4, rate=0.0, unit="rad",
+                     description=f"rotation of rod {k}'s direction about x0")
+        b.coordinate(f"beta{k}", initial=0.2, rate=0.0, unit="rad",
+                     description=f"rotation of rod {k}'s direction about the y-axis of S{k}")
+    b.frame("R0", None, axes=("x0", "y0", "z0"))
+    for k in range(1, n + 1):
+        b.frame(f"S{k}", "R0", rotation=(f"alpha{k}", "x"))
+        b.frame(f"R{k}", f"S{k}", rotation=(f"beta{k}", "y"))
+    for k in range(1, n + 1):
+        start = "O" if k == 1 else f"P{k - 1}"
+        b.point(f"P{k}", f"-l{k}*R{k}.z", relative_to=start)
+        rod = f"m{k}*l{k}^2/12"
+        b.body(f"rod{k}", frame=f"R{k}", mass=f"m{k}", center=f"-l{k}/2*R{k}.z", center_from=start,
+               inertia={"at": "G", "frame": f"R{k}", "diagonal": [rod, rod, "0"]})
+    b.gravity("weight", "-g*R0.z")
     return b.build()
