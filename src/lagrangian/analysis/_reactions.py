@@ -186,7 +186,7 @@ class _Numeric:
 
     def __init__(self, eom: EquationsOfMotion, parameters: Mapping[str, float], exprs: Sequence[se.Basic]) -> None:
         values = {se.Symbol(k): float(x) for k, x in parameters.items()}
-        args = [*eom.q, *eom.qd, *eom.qdd, eom.t]
+        args = [*eom.q, *eom.qd, *eom.qdd, eom.t, *eom.multipliers]
         subbed = [as_expr(e).subs(values) for e in exprs]
         left = set().union(*(e.free_symbols for e in subbed)) - set(args) if subbed else set()
         if left:
@@ -202,8 +202,14 @@ class _Numeric:
         return np.asarray(self._f(states), dtype=float).reshape(len(states), self.size)
 
 
-def _states(trajectory: Trajectory) -> np.ndarray:
-    return np.column_stack([trajectory.q, trajectory.qd, trajectory.qdd, trajectory.t])
+def _states(trajectory: Trajectory, eom: EquationsOfMotion) -> np.ndarray:
+    # With complementary constraints, the multipliers λ_k are columns of the trajectory too.
+    missing = [s.name for s in eom.multipliers if s.name not in trajectory.extra]
+    if missing:
+        raise SimulationError(f"The trajectory has no values of the multiplier `{missing[0]}`.",
+                              fix="simulate the model with its complementary constraints (lagrangian.simulate)")
+    lam = [trajectory.extra[s.name] for s in eom.multipliers]
+    return np.column_stack([trajectory.q, trajectory.qd, trajectory.qdd, trajectory.t, *lam])
 
 
 def _r0(kin: Kinematics, v: Vector) -> list[se.Basic]:
@@ -228,7 +234,7 @@ def reaction_history(source: Verification | EquationsOfMotion,
     _check_coordinates(v, trajectory)
     kin = v.eom.kinematics
     out = {}
-    states = _states(trajectory)
+    states = _states(trajectory, v.eom)
     for r in reactions(v):
         values = _Numeric(v.eom, trajectory.parameters, _r0(kin, r.force) + _r0(kin, r.moment))(states)
         out[r.name] = ReactionHistory(r.name, r.point, trajectory.t, values[:, :3], values[:, 3:])
@@ -312,7 +318,7 @@ def check_trajectory(source: Verification | EquationsOfMotion, trajectory: Traje
         exprs += [c for th_name in r.elements for c in _r0(kin, kin.position(v.element(th_name).point)
                                                           - kin.position(r.point))]
         exprs += [c for w in r.free_axes for c in _r0(kin, w)]
-    values = _Numeric(eom, trajectory.parameters, exprs)(_states(trajectory))
+    values = _Numeric(eom, trajectory.parameters, exprs)(_states(trajectory, eom))
     N, E = len(values), len(v.theorems)
     element_vectors = values[:, :12 * E].reshape(N, E, 4, 3)
     at = 12 * E
