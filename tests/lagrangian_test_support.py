@@ -31,6 +31,7 @@ DOMAINS: dict[str, dict[str, tuple[float, float]]] = {
     "lagrange_top.toml": {"theta": (0.3, 2.8), "phi_dot": (-60.0, 60.0)},
     "spherical_pendulum.toml": {"theta": (0.3, 2.8)},
     "cart_pendulum.toml": {"x": (-0.3, 0.6)},
+    "top_reaction.toml": {"theta": (0.3, 2.8), "phi_dot": (-60.0, 60.0)},
 }
 
 
@@ -84,14 +85,15 @@ def parameter_values(eom: lagrangian.EquationsOfMotion) -> dict[se.Symbol, float
 
 
 def state_symbols(eom: lagrangian.EquationsOfMotion) -> list[se.Symbol]:
-    """Arguments of every numeric function here: q, q̇, q̈ (in coordinate order), then t."""
-    return [*eom.q, *eom.qd, *eom.qdd, eom.t]
+    """Arguments of every numeric function here: q, q̇, q̈ (in coordinate order), t, then the
+    multipliers λ_k of the complementary constraints (none for most models)."""
+    return [*eom.q, *eom.qd, *eom.qdd, eom.t, *eom.multipliers]
 
 
 class Numeric:
     """Numeric versions of engine expressions, parameters replaced by their values.
 
-    Call with a state dict {name: value}; absent q̈ and t default to 0.
+    Call with a state dict {name: value}; absent q̈, t and multipliers λ default to 0.
     """
 
     def __init__(self, eom: lagrangian.EquationsOfMotion, exprs: Sequence[se.Basic]) -> None:
@@ -158,6 +160,16 @@ def permuted_coordinates(text: str, order: Sequence[int]) -> str:
     return "\n".join(lines) + "\n"
 
 
+#: Beyond this many items, `other_orders` samples the orderings (6! = 720 derivations is too many).
+MAX_ALL_ORDERS = 4
+
+
 def other_orders(n: int) -> list[tuple[int, ...]]:
-    """Every ordering of n items except the identity."""
-    return [p for p in itertools.permutations(range(n)) if p != tuple(range(n))]
+    """Every ordering of n items except the identity (for n > `MAX_ALL_ORDERS`: the reversal,
+    the cyclic shifts and two interleavings, which move every item)."""
+    if n <= MAX_ALL_ORDERS:
+        return [p for p in itertools.permutations(range(n)) if p != tuple(range(n))]
+    orders = [tuple(reversed(range(n)))]
+    orders += [tuple((k + s) % n for k in range(n)) for s in range(1, n)]
+    orders += [tuple(range(1, n, 2)) + tuple(range(0, n, 2)), tuple(range(0, n, 2))[::-1] + tuple(range(1, n, 2))]
+    return list(dict.fromkeys(o for o in orders if o != tuple(range(n))))

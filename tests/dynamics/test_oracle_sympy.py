@@ -179,7 +179,62 @@ def block_on_belt() -> Oracle:
     return [x], me.Particle("block", B, m).kinetic_energy(N), [(B, -m * g * N.z - k * x * N.x + friction)], N
 
 
+# -- examples with complementary constraints (issue 5): the oracle is the unconstrained system
+# (M q̈ = F without the multiplier terms); tests/dynamics/test_constraints.py checks the
+# constrained accelerations and the multipliers against LagrangesMethod/KanesMethod with the
+# same constraints.
+def pendulum_tension() -> Oracle:
+    m, g = _params("m g")
+    x, y = me.dynamicsymbols("x y")
+    N = me.ReferenceFrame("N")
+    P = me.Point("P")
+    P.set_vel(N, x.diff() * N.x + y.diff() * N.y)
+    bob = me.Particle("bob", P, m)
+    return [x, y], bob.kinetic_energy(N), [(P, -m * g * N.y)], N
+
+
+def rolling_disk_incline() -> Oracle:
+    m, r, g, alpha = _params("m r g alpha")
+    x, phi = me.dynamicsymbols("x phi")
+    N = me.ReferenceFrame("N")
+    R1 = N.orientnew("R1", "Axis", (alpha, N.y))
+    R2 = R1.orientnew("R2", "Axis", (phi, R1.y))
+    G = me.Point("G")
+    G.set_vel(N, x.diff() * R1.x)
+    disk = me.RigidBody("S", G, R2, m, (me.inertia(R2, m * r**2 / 4, m * r**2 / 2, m * r**2 / 4), G))
+    return [x, phi], disk.kinetic_energy(N), [(G, -m * g * N.z)], N
+
+
+def rolling_coin() -> Oracle:
+    m, r, g = _params("m r g")
+    x, y, psi, phi = me.dynamicsymbols("x y psi phi")
+    N = me.ReferenceFrame("N")
+    R1 = N.orientnew("R1", "Axis", (psi, N.z))
+    R2 = R1.orientnew("R2", "Axis", (phi, R1.y))
+    G = me.Point("G")
+    G.set_vel(N, x.diff() * N.x + y.diff() * N.y)
+    coin = me.RigidBody("S", G, R2, m, (me.inertia(R2, m * r**2 / 4, m * r**2 / 2, m * r**2 / 4), G))
+    return [x, y, psi, phi], coin.kinetic_energy(N), [(G, -m * g * N.z)], N
+
+
+def top_reaction() -> Oracle:
+    m, g, a, A, C = _params("m g a A C")
+    xG, yG, zG, psi, theta, phi = me.dynamicsymbols("xG yG zG psi theta phi")
+    N = me.ReferenceFrame("N")
+    R1 = N.orientnew("R1", "Axis", (psi, N.z))
+    R2 = R1.orientnew("R2", "Axis", (theta, R1.x))
+    R = R2.orientnew("R", "Axis", (phi, R2.z))
+    G = me.Point("G")
+    G.set_vel(N, xG.diff() * N.x + yG.diff() * N.y + zG.diff() * N.z)
+    S = me.RigidBody("S", G, R, m, (me.inertia(R2, A - m * a**2, A - m * a**2, C), G))
+    return [xG, yG, zG, psi, theta, phi], S.kinetic_energy(N), [(G, -m * g * N.z)], N
+
+
 ORACLES: dict[str, Callable[[], Oracle]] = {
+    "pendulum_tension.toml": pendulum_tension,
+    "rolling_disk_incline.toml": rolling_disk_incline,
+    "rolling_coin.toml": rolling_coin,
+    "top_reaction.toml": top_reaction,
     "simple_pendulum.toml": simple_pendulum,
     "spherical_pendulum.toml": spherical_pendulum,
     "double_pendulum.toml": double_pendulum,
