@@ -7,7 +7,12 @@ from ._json import SCHEMA_VERSION as SCHEMA_VERSION
 from ._json import derive_document as derive_document
 from ._latex import render_latex as render_latex
 from ._notation import Notation as Notation
+from ._report import FORMATS as FORMATS
+from ._report import Report as Report
+from ._report import ReportFigure as ReportFigure
+from ._report import format_for as format_for
+from ._report import report as report
 from ._text import render_text as render_text
 
 __all__ = ["CourseForm", "course_form", "SCHEMA_ID", "SCHEMA_VERSION", "derive_document", "render_latex",
-           "Notation", "render_text"]
+           "Notation", "render_text", "Report", "ReportFigure", "report", "FORMATS", "format_for"]

@@ -10,6 +10,7 @@ printed forms are those the derivation produced, term by term, as in the seed.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import symengine as se
@@ -141,13 +142,17 @@ class CourseForm:
     F: tuple[sympy.Basic, ...]
 
 
-def _vector_row(eom: EquationsOfMotion, v: Vector) -> VectorRow:
+#: How an engine expression becomes the printed SymPy expression (`to_sympy` by default).
+Converter = Callable[[se.Basic], sympy.Basic]
+
+
+def _vector_row(eom: EquationsOfMotion, v: Vector, convert: Converter = to_sympy) -> VectorRow:
     terms = []
     for frame, comps in v:
         axes = eom.kinematics.frames.axes(frame)
         for c, name in zip(comps, axes):
             if c != 0:
-                terms.append((to_sympy(c), name))
+                terms.append((convert(c), name))
     return VectorRow(tuple(terms))
 
 
@@ -176,8 +181,15 @@ def _point_label(model, name: str) -> str:  # type: ignore[no-untyped-def]
     return name
 
 
-def course_form(eom: EquationsOfMotion, integrals: tuple[FirstIntegral, ...]) -> CourseForm:
-    """Collect the derivation of ``eom`` in the course's order and notation."""
+def course_form(eom: EquationsOfMotion, integrals: tuple[FirstIntegral, ...], *,
+                convert: Converter = to_sympy) -> CourseForm:
+    """Collect the derivation of ``eom`` in the course's order and notation.
+
+    ``convert`` turns each engine expression into the SymPy expression that is printed
+    (`to_sympy` by default).  The report passes one that stands a summary in for an
+    expression too long to print (`lagrangian.output._report_size`), so that a 40-link
+    chain is collected in a fraction of a second rather than converted in full.
+    """
     model = eom.model
     kin = eom.kinematics
     inertia_frame = {b.frame: eom.inertias[b.name].frame for b in model.bodies}
@@ -190,19 +202,19 @@ def course_form(eom: EquationsOfMotion, integrals: tuple[FirstIntegral, ...]) ->
         basis = inertia_frame.get(f.name)
         comps = None
         if basis is not None:
-            comps = _vector_row(eom, Vector({basis: kin.frames.omega_in(f.name, basis)}))
-        frames.append(FrameStep(f.name, f.parent, to_sympy(rot.angle), axis_name, f.axes,  # type: ignore[union-attr]
-                                _vector_row(eom, kin.omega(f.name)), comps, basis))
-    T_rows = tuple(EnergyRow(t.name, t.formula, to_sympy(t.expression)) for t in eom.T_terms)
-    U_rows = tuple(EnergyRow(f.name, f.kind, to_sympy(f.potential)) for f in eom.loads if f.potential is not None)
+            comps = _vector_row(eom, Vector({basis: kin.frames.omega_in(f.name, basis)}), convert)
+        frames.append(FrameStep(f.name, f.parent, convert(rot.angle), axis_name, f.axes,  # type: ignore[union-attr]
+                                _vector_row(eom, kin.omega(f.name), convert), comps, basis))
+    T_rows = tuple(EnergyRow(t.name, t.formula, convert(t.expression)) for t in eom.T_terms)
+    U_rows = tuple(EnergyRow(f.name, f.kind, convert(f.potential)) for f in eom.loads if f.potential is not None)
     loads = tuple(LoadRow(f.name, f.kind, f.potential is not None,
-                          None if f.potential is None else to_sympy(f.potential),
-                          tuple(to_sympy(q) for q in f.Q), f.note) for f in eom.loads)
+                          None if f.potential is None else convert(f.potential),
+                          tuple(convert(q) for q in f.Q), f.note) for f in eom.loads)
     by_coordinate = {i.coordinate: i.name for i in integrals if i.kind == "momentum"}
-    momenta = [(to_sympy(i.expression), sympy.Symbol(i.name)) for i in integrals if i.kind == "momentum"]
+    momenta = [(convert(i.expression), sympy.Symbol(i.name)) for i in integrals if i.kind == "momentum"]
     equations = []
     for eq in eom.equations:
-        lhs = to_sympy(eq.lhs)
+        lhs = convert(eq.lhs)
         rewritten = None
         if eq.coordinate not in by_coordinate:
             # The seed's "ou encore, en tenant compte de L(φ)": A θ̈ − ... + H ψ̇ sinθ = m g a sinθ.
@@ -211,22 +223,22 @@ def course_form(eom: EquationsOfMotion, integrals: tuple[FirstIntegral, ...]) ->
                 if isinstance(p, sympy.Mul):
                     candidate = candidate.subs(p, name)
             rewritten = candidate if candidate != lhs else None
-        equations.append(EquationRow(eq.coordinate, to_sympy(eq.dT_dqd), to_sympy(eq.dT_dq), to_sympy(eq.dU_dq),
-                                     to_sympy(eq.Q_nc), lhs, to_sympy(eq.rhs), by_coordinate.get(eq.coordinate),
+        equations.append(EquationRow(eq.coordinate, convert(eq.dT_dqd), convert(eq.dT_dq), convert(eq.dU_dq),
+                                     convert(eq.Q_nc), lhs, convert(eq.rhs), by_coordinate.get(eq.coordinate),
                                      rewritten))
     equations = tuple(equations)
     integral_rows = []
     for i in integrals:
-        expr = to_sympy(i.expression)
+        expr = convert(i.expression)
         # The energy is written T + U from the displayed T and U, as the seed writes it.
-        parts = (to_sympy(eom.T), to_sympy(eom.U)) if i.kind == "energy" else (expr,)
+        parts = (convert(eom.T), convert(eom.U)) if i.kind == "energy" else (expr,)
         integral_rows.append(IntegralRow(i.name, i.kind, expr, tuple(p for p in parts if p != 0), i.reason,
                                          i.coordinate))
-    T_total, U_total = to_sympy(eom.T), to_sympy(eom.U)
+    T_total, U_total = convert(eom.T), convert(eom.U)
     L = None
     if eom.conservative:
         L = T_total - U_total if not are_zero([eom.U])[0] else T_total
-    virtual = tuple((_point_label(model, p), _vector_row(eom, kin.virtual_velocity(p))) for p in _loaded_points(model))
+    virtual = tuple((_point_label(model, p), _vector_row(eom, kin.virtual_velocity(p), convert)) for p in _loaded_points(model))
     return CourseForm(
         title=model.name,
         description=model.description,
@@ -243,6 +255,6 @@ def course_form(eom: EquationsOfMotion, integrals: tuple[FirstIntegral, ...]) ->
         L=L,
         equations=equations,
         integrals=tuple(integral_rows),
-        M=tuple(tuple(to_sympy(x) for x in row) for row in eom.M),
-        F=tuple(to_sympy(x) for x in eom.F),
+        M=tuple(tuple(convert(x) for x in row) for row in eom.M),
+        F=tuple(convert(x) for x in eom.F),
     )

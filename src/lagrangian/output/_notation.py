@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 
 import sympy
 
-__all__ = ["Notation"]
+__all__ = ["Notation", "Opaque"]
 
 _GREEK = {
     "alpha": ("α", r"\alpha"), "beta": ("β", r"\beta"), "gamma": ("γ", r"\gamma"), "delta": ("δ", r"\delta"),
@@ -81,11 +81,25 @@ def _base_latex(name: str) -> str:
         return _GREEK[name][1]
     if "_" in name:
         head, _, tail = name.partition("_")
-        return f"{_base_latex(head)}_{{{tail}}}"
+        return f"{_base_latex(head)}_{{{_base_latex(tail) if tail else tail}}}"
     head = name.rstrip("0123456789")
     if head and head != name:
         return f"{_base_latex(head)}_{{{name[len(head):]}}}"
     return name if len(name) == 1 else rf"\mathrm{{{name}}}"
+
+
+class Opaque(sympy.Dummy):
+    """A stand-in that prints as given: ``text`` in terminal text, ``latex`` in LaTeX.
+
+    It behaves as a symbol in every SymPy operation; the report uses it for an expression
+    too long to print, shown as a summary such as ⟨812 terms⟩.
+    """
+
+    def __new__(cls, text: str, latex: str) -> Opaque:
+        obj = super().__new__(cls, "opaque")
+        obj.text_form = text
+        obj.latex_form = latex
+        return obj
 
 
 @dataclass
@@ -117,7 +131,18 @@ class Notation:
         return self._cache[key]
 
     # -- ordering --------------------------------------------------------------------------
-    def _factor_key(self, factor: sympy.Basic) -> tuple:
+    def _sort_factors(self, factors: list[sympy.Basic]) -> None:
+        """Sort ``factors`` by `_factor_key`, in place.
+
+        The key of a parenthesized sum holds its printed text, which is slow to make for a long
+        sum; it only matters when two such factors are compared, so it is made only then.
+        """
+        if sum(1 for f in factors if self._factor_key(f, text=False)[0] == 8) > 1:
+            factors.sort(key=self._factor_key)
+        else:
+            factors.sort(key=lambda f: self._factor_key(f, text=False))
+
+    def _factor_key(self, factor: sympy.Basic, text: bool = True) -> tuple:
         base = factor.base if isinstance(factor, sympy.Pow) else factor
         if isinstance(base, sympy.Symbol):
             name, deco = _split_name(base.name)
@@ -129,7 +154,7 @@ class Notation:
             return (5, 0, base.name)
         if isinstance(base, sympy.Function):
             return (6, _FUNCTION_RANK.get(type(base).__name__, 9), str(base.args))
-        return (8, 0, str(base))
+        return (8, 0, str(base) if text else "")
 
     def _term_key(self, term: sympy.Basic) -> tuple:
         factors = sympy.Mul.make_args(term)
@@ -164,6 +189,20 @@ class Notation:
             else:
                 out += " + " + text
         return out or "0"
+
+    def terms(self, expr: sympy.Basic, latex: bool = False) -> list[str]:
+        """The terms of a sum as `text` / `latex` write them, in the same order, each with its sign.
+
+        The first term carries a sign only when negative; the others start with ``+`` or
+        ``−`` (``-`` in LaTeX).  Joined with spaces they give the rendering of ``expr``;
+        the report cuts long sums into lines with them.
+        """
+        e = _as_sympy(expr)
+        if not isinstance(e, sympy.Add):
+            return [self._render(e, latex)]
+        ordered = sorted(e.args, key=self._term_key)
+        return [self._signed(ordered[0], latex, first=True)] + [
+            self._signed(term, latex, first=False).strip() for term in ordered[1:]]
 
     def vector(self, terms: Sequence[tuple[sympy.Basic, str]], latex: bool = False) -> str:
         r"""A vector from (component, axis name) pairs: ``θ̇ u + ψ̇ sinθ w + (φ̇ + ψ̇ cosθ) z``.
@@ -222,8 +261,8 @@ class Notation:
                 den.append(f.base if f.exp == -1 else sympy.Pow(f.base, -f.exp))
             else:
                 num.append(f)
-        num.sort(key=self._factor_key)
-        den.sort(key=self._factor_key)
+        self._sort_factors(num)
+        self._sort_factors(den)
         if isinstance(coeff, sympy.Rational) and coeff.q != 1 and not den:
             p, q = int(coeff.p), int(coeff.q)
             if latex:
@@ -263,6 +302,8 @@ class Notation:
         return self._atom(f, latex)
 
     def _atom(self, f: sympy.Basic, latex: bool) -> str:
+        if isinstance(f, Opaque):
+            return f.latex_form if latex else f.text_form
         if isinstance(f, sympy.Symbol):
             return self.symbol(f.name, latex)
         if f.is_Number or f == sympy.pi:

@@ -1,0 +1,80 @@
+"""``lagrangian report [MODEL.toml] [--lang fr|en] [--format html|tex|md] [--simulate T_END] [-o FILE]``.
+
+The derivation step by step, in the order of the course's "démarche d'application"
+(`lagrangian.output.report`).  The format is ``--format``, else the suffix of ``-o FILE``,
+else Markdown.  The Newton–Euler cross-check is included up to `VERIFY_AUTO_MAX`
+coordinates (``--verify`` / ``--no-verify`` decide otherwise); ``--simulate T_END`` adds the
+figures of a simulated motion (matplotlib needed).
+"""
+
+from __future__ import annotations
+
+import argparse
+
+from ..dynamics import derive
+from ..errors import SimulationError
+from ..model import load_model
+from ..model.zoo import lagrange_top
+from ..output import format_for, report
+from ._settings import add_set_option, parse_settings
+
+__all__ = ["register", "run", "VERIFY_AUTO_MAX"]
+
+SUMMARY = "write the derivation step by step, as the course does it (constraints, parameters,\n" \
+          "V*, T and U, Q_i, L(q_i), integrals, Newton–Euler check), in HTML, LaTeX or Markdown"
+
+#: Largest number of coordinates for which the Newton–Euler check runs unless asked not to
+#: (it takes about 30 s for a 40-link chain, where the rest of the report takes a few seconds).
+VERIFY_AUTO_MAX = 12
+
+
+def _float(text: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"`{text}` is not a number") from None
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    r = sub.add_parser(
+        "report", help="write the step-by-step derivation (HTML, LaTeX or Markdown)",
+        description="Write the derivation of a model in the order of the course's 'démarche d'application': "
+                    "the principal constraints and why they are perfect, the principal parameters, the virtual "
+                    "velocity field, T and U_P with their formulas, each Q_i by virtual power, each L(q_i) with "
+                    "its partial derivatives, the complementary equations, the first integrals and the "
+                    "Newton-Euler cross-check. HTML is one offline page (MathML); LaTeX compiles with pdflatex; "
+                    "Markdown uses $...$ mathematics.",
+    )
+    r.add_argument("model", nargs="?", help="model file (TOML); default: the seed's Lagrange top")
+    r.add_argument("--lang", choices=("fr", "en"), default="fr", help="language (default: fr, the course's)")
+    r.add_argument("--format", choices=("html", "tex", "md"), default=None,
+                   help="output format (default: from the suffix of -o, else md)")
+    r.add_argument("--verify", action=argparse.BooleanOptionalAction, default=None,
+                   help=f"include the Newton-Euler cross-check (default: up to {VERIFY_AUTO_MAX} coordinates)")
+    r.add_argument("--simulate", type=_float, metavar="T_END", default=None,
+                   help="add the figures of a motion simulated from the model's initial state to T_END")
+    add_set_option(r)
+    r.add_argument("-o", "--output", metavar="FILE", help="write to FILE (atomically) instead of standard output")
+    r.set_defaults(run=run)
+
+
+def _figures(eom, t_end: float, settings: list[str]) -> list:  # type: ignore[no-untyped-def]
+    from ..numerics import simulate
+    from ..plotting import applicable_kinds, plot_trajectory
+
+    parameters, initial = parse_settings(settings, eom.model)
+    missing = [c.name for c in eom.model.coordinates if c.initial is None and c.name not in (initial or {})]
+    if missing:
+        raise SimulationError(f"Cannot simulate: coordinate `{missing[0]}` has no initial value.",
+                              fix=f"give it one in the model file, or --set {missing[0]}=VALUE")
+    traj = simulate(eom, t_end, initial=initial, parameters=parameters, n_out=801)
+    return [plot_trajectory(traj, eom, kind) for kind in applicable_kinds(traj, eom)]
+
+
+def run(args: argparse.Namespace) -> str:
+    model = load_model(args.model) if args.model else lagrange_top()
+    eom = derive(model)
+    fmt = args.format or (format_for(args.output) if args.output else "md")
+    check = args.verify if args.verify is not None else len(eom.coordinates) <= VERIFY_AUTO_MAX
+    figures = _figures(eom, args.simulate, args.set) if args.simulate is not None else []
+    return report(eom, lang=args.lang, verification=check, figures=figures).render(fmt)

@@ -1,0 +1,205 @@
+"""The step-by-step derivation report: `report(model)` → a `Report` in HTML, LaTeX or Markdown.
+
+The report follows the seed's "Démarche d'application" for any model, in French (the
+course's words and notation) or in English:
+
+1. the principal constraints, classified (holonomic, time-dependent, perfect and why,
+   principal or complementary);
+2. the n principal parameters and the n Lagrange equations (Remarque 1);
+3. the rotation chain, the inertia matrices, Ω of each body and the virtual velocity field
+   V*(P) = Σ ∂OP/∂q_i q_i* at the loaded points;
+4. T(Σ/R0) and U_P(Σ/R0) with the formulas they come from;
+5. the generalized forces Q_i, load by load, by virtual power;
+6. ∂T/∂q̇_i, ∂T/∂q_i, ∂U_P/∂q_i, Q_i and L(q_i) for each coordinate (L = T − U_P when
+   the system is conservative);
+7. the complementary equations;
+
+then the first integrals, the Newton–Euler cross-check (``verification``), the simulation's
+figures (``figures``) and the matrix form M q̈ = F.  Everything is computed by the engine;
+this module only arranges and writes it.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+import sys
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from .. import _atomic
+from ..analysis import FirstIntegral, Verification, first_integrals, verify
+from ..dynamics import EquationsOfMotion, derive
+from ..errors import OutputError
+from ..model import Model, load_model
+from ._report_build import Context
+from ._report_doc import Document
+from ._report_equations import integrals_section, step6, step7
+from ._report_extras import ReportFigure, check_section, matrix_section, notes_section, simulation_section
+from ._report_forces import step5
+from ._report_html import render_html
+from ._report_kinematics import step3, step4
+from ._report_md import display_math, render_markdown
+from ._report_setup import step1, step2, system_section
+from ._report_tex import render_tex
+
+__all__ = ["Report", "ReportFigure", "report", "FORMATS", "format_for"]
+
+#: The formats, by name, and the file suffixes that select them.
+FORMATS = {"html": (".html", ".htm"), "tex": (".tex", ".latex"), "md": (".md", ".markdown")}
+
+
+def format_for(path: str | os.PathLike[str], default: str = "md") -> str:
+    """The format a file name asks for by its suffix (``default`` when it says nothing)."""
+    suffix = Path(path).suffix.lower()
+    for name, suffixes in FORMATS.items():
+        if suffix in suffixes:
+            return name
+    return default
+
+
+def _footer() -> str:
+    from .. import __version__
+
+    return f"lagrangian {__version__}"
+
+
+@dataclass(frozen=True)
+class Report:
+    """A derivation report: ``document`` holds its content; `html`, `latex` and `markdown` write it.
+
+    In Jupyter the report displays itself (``_repr_html_``).
+    """
+
+    document: Document
+    eom: EquationsOfMotion = field(repr=False)
+
+    def html(self) -> str:
+        """One self-contained HTML page (MathML, images inline): opens offline in any browser."""
+        return render_html(self.document, footer=_footer())
+
+    def latex(self, figure_files: Sequence[str] | None = None) -> str:
+        """A LaTeX document; ``figure_files`` name the PNG files of the figures (see `save`)."""
+        return render_tex(self.document, footer=_footer(), figures=figure_files)
+
+    def markdown(self) -> str:
+        """Markdown with ``$...$`` mathematics."""
+        return render_markdown(self.document, footer=_footer())
+
+    def render(self, format: str) -> str:
+        """The report in ``format``: ``"html"``, ``"tex"`` or ``"md"``."""
+        if format == "html":
+            return self.html()
+        if format == "tex":
+            return self.latex()
+        if format == "md":
+            return self.markdown()
+        raise OutputError(f"Unknown report format `{format}`.", fix="use html, tex or md")
+
+    def save(self, path: str | os.PathLike[str], format: str | None = None) -> Path:
+        """Write the report to ``path`` atomically (format from the suffix unless given).
+
+        A LaTeX report with figures also writes them, as ``<name>-figure-<k>.png`` beside it.
+        A failure leaves any older file at ``path`` as it was.
+        """
+        path = Path(path)
+        fmt = format or format_for(path)
+        try:
+            if fmt == "tex":
+                images = [b for s in self.document.sections for b in s.blocks if type(b).__name__ == "Image"]
+                names = [f"{path.stem}-figure-{k}.png" for k in range(1, len(images) + 1)]
+                for name, image in zip(names, images):
+                    _atomic.write_atomic(path.with_name(name), image.png)  # type: ignore[attr-defined]
+                text = self.latex(names)
+            else:
+                text = self.render(fmt)
+            _atomic.write_atomic(path, text)
+        except OSError as exc:
+            raise OutputError(f"Cannot write `{path}`: {exc.strerror or exc}.",
+                              fix="check that the folder exists and is writable; the old file, if any, is "
+                                  "unchanged") from exc
+        return path
+
+    # -- Jupyter --------------------------------------------------------------------------------
+    def _repr_html_(self) -> str:
+        return render_html(self.document, footer=_footer(), fragment=True)
+
+    def _repr_markdown_(self) -> str:
+        return self.markdown()
+
+    def _repr_latex_(self) -> str:
+        """The Lagrange equations alone, as display math (what a LaTeX-only front end can show)."""
+        from ._report_doc import Display
+
+        blocks = self.document.section("step6").blocks
+        return "\n".join(display_math(eq) for b in blocks if isinstance(b, Display) for eq in b.equations)
+
+
+def _figure(item: Any) -> ReportFigure:
+    """A `ReportFigure` from one, from PNG bytes, from a matplotlib figure, or from (caption, one of those)."""
+    if isinstance(item, ReportFigure):
+        return item
+    if isinstance(item, tuple) and len(item) == 2 and isinstance(item[0], str):
+        inner = _figure(item[1])
+        return ReportFigure(inner.png, item[0])
+    if isinstance(item, (bytes, bytearray)):
+        return ReportFigure(bytes(item), "")
+    mpl = sys.modules.get("matplotlib.figure")
+    if mpl is not None and isinstance(item, mpl.Figure):
+        buffer = io.BytesIO()
+        item.savefig(buffer, format="png", dpi=110)
+        suptitle = item._suptitle.get_text() if item._suptitle is not None else ""
+        return ReportFigure(buffer.getvalue(), suptitle)
+    raise TypeError(f"a report figure is a ReportFigure, PNG bytes, a matplotlib Figure or (caption, figure), "
+                    f"not {type(item).__name__}")
+
+
+def report(model: Model | EquationsOfMotion | str | os.PathLike[str], *, lang: str = "fr",
+           verification: Verification | bool | None = None, figures: Sequence[Any] = (),
+           integrals: Sequence[FirstIntegral] | None = None) -> Report:
+    r"""The step-by-step derivation of ``model`` in the course's order, ready to write as HTML, LaTeX or Markdown.
+
+    Parameters
+    ----------
+    model : a model file, a `Model`, or its derivation (`lagrangian.derive`).
+    lang : ``"fr"`` (the course's French) or ``"en"``.
+    verification : the Newton–Euler cross-check to include: a `Verification`
+        (`lagrangian.analysis.verify`), ``True`` to compute it, or None to leave it out.
+    figures : figures to include (a simulation's plots): `ReportFigure`, PNG bytes, matplotlib
+        figures, or ``(caption, figure)`` pairs.
+    integrals : the first integrals (default: `lagrangian.first_integrals`).
+
+    Returns
+    -------
+    Report
+        With ``html()``, ``latex()``, ``markdown()`` and ``save(path)``.
+
+    Examples
+    --------
+    >>> import lagrangian
+    >>> r = report(lagrangian.lagrange_top())
+    >>> "\\frac{d}{dt}" in r.markdown() and "K" in r.markdown()
+    True
+    """
+    if isinstance(model, EquationsOfMotion):
+        eom = model
+    else:
+        eom = derive(load_model(model) if isinstance(model, (str, os.PathLike)) else model)
+    found = tuple(integrals) if integrals is not None else first_integrals(eom)
+    c = Context(eom, found, lang)
+    checked = verify(eom) if verification is True else (verification or None)
+    pictures = [_figure(f) for f in figures]
+    sections = [system_section(c), step1(c), step2(c), step3(c), step4(c), step5(c), step6(c), step7(c),
+                integrals_section(c)]
+    if checked is not None:
+        sections.append(check_section(c, checked))
+    if pictures:
+        sections.append(simulation_section(c, pictures))
+    sections.append(matrix_section(c))
+    notes = notes_section(c)
+    if notes is not None:
+        sections.insert(1, notes)
+    title = c.w.text("title", name=eom.model.name)
+    return Report(Document(lang, title, eom.model.description, tuple(sections)), eom)

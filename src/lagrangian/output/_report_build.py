@@ -1,0 +1,199 @@
+"""What every part of the report shares: the derivation, its course form, the words, the notation.
+
+`Context` holds them for one report, with the few ways the report writes things: engine
+expressions in LaTeX (through the `SizeGate`, so that long ones are summarized), names of
+bodies, points and frames, vectors, and displayed equations (cut into lines, folded when
+long).
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+
+import symengine as se
+import sympy
+
+from ..analysis import FirstIntegral
+from ..dynamics import EquationsOfMotion
+from ..model import GALILEAN_FRAME, ORIGIN, Vector
+from ._course import CourseForm, _vector_row, course_form
+from ._notation import Notation, _axis_latex, _base_latex
+from ._report_constraints import Joint, joints
+from ._report_doc import Block, Display, Equation, Fold, Math
+from . import _report_size
+from ._report_size import FOLD_LINES, SizeGate, visible_width, wrap, wrap_latex, wrap_many
+from ._report_words import Words
+from ._text import notation
+
+__all__ = ["Context", "tex_name", "tex_text"]
+
+
+def tex_text(name: str) -> str:
+    """A load or constraint name as text inside math: ``\\text{weight}``, ``my_load`` → ``\\text{my}\\_\\text{load}``.
+
+    (``\\_`` inside ``\\text`` is not understood by every converter to MathML; between two
+    ``\\text`` it is, and LaTeX accepts it in math mode.)
+    """
+    clean = re.sub(r"[\\{}$&#%^~]", "", name)
+    return r"\_".join(rf"\text{{{part}}}" for part in clean.split("_") if part) or r"\text{?}"
+
+
+def tex_name(name: str) -> str:
+    """LaTeX of a body, point or frame name: S1 → S_{1}, G_S1 → G_{S_{1}}, an inner frame _S_2 → S''."""
+    if name.startswith("_"):
+        head, _, k = name[1:].rpartition("_")
+        return tex_name(head) + "'" * int(k) if k.isdigit() else tex_name(name[1:])
+    head, sep, tail = name.partition("_")
+    if sep and head and tail:
+        return f"{tex_name(head)}_{{{tex_name(tail)}}}"
+    return _base_latex(name)
+
+
+class Context:
+    """One report in the making: the derivation and how to write it in one language."""
+
+    def __init__(self, eom: EquationsOfMotion, integrals: tuple[FirstIntegral, ...], lang: str) -> None:
+        self.eom = eom
+        self.model = eom.model
+        self.kin = eom.kinematics
+        self.integrals = integrals
+        self.w = Words(lang)
+        self.lang = lang
+        self.gate = SizeGate(self.w.text("terms"), self.w.text("long expression"))
+        self.form: CourseForm = course_form(eom, integrals, convert=self.gate)
+        self.n: Notation = notation(self.form)
+        reference = self.model.reference
+        relative = reference is not None and not reference.is_galilean_frame
+        self.ref = reference.frame if relative else GALILEAN_FRAME  # type: ignore[union-attr]
+        self.origin = reference.origin if relative else ORIGIN  # type: ignore[union-attr]
+        self.joints: tuple[Joint, ...] = joints(eom)
+        self.bodies = {b.name for b in self.model.bodies}
+
+    # -- words and names ---------------------------------------------------------------------------
+    @property
+    def R(self) -> str:
+        """LaTeX of the frame the equations are written in: R_{0} (or R)."""
+        return tex_name(self.ref)
+
+    def name(self, name: str) -> str:
+        return tex_name(name)
+
+    def m(self, latex: str) -> Math:
+        return Math(latex)
+
+    def point_label(self, name: str) -> str:
+        """A body stands for its centre of mass: G, or G_{S_1} when there are several bodies."""
+        if name in self.bodies:
+            return "G" if len(self.model.bodies) == 1 else f"G_{{{tex_name(name)}}}"
+        return tex_name(name)
+
+    def element(self, name: str) -> str:
+        """LaTeX of a body or particle in a formula: S, S_{1}, P."""
+        return tex_name(name)
+
+    # -- expressions ------------------------------------------------------------------------------
+    def sym(self, name: str, deco: str = "") -> str:
+        """q_i, q̇_i (``deco="dot"``), q̈_i or q_i* (``"star"``) of a coordinate, or a parameter, in LaTeX."""
+        return self.n.symbol(name + (f"_{deco}" if deco else ""), latex=True)
+
+    def ex(self, e: se.Basic) -> sympy.Basic:
+        """An engine expression as the report prints it (a summary when too long)."""
+        return self.gate(e)
+
+    def tex(self, e: se.Basic | sympy.Basic) -> str:
+        return self.n.latex(e if isinstance(e, sympy.Basic) else self.gate(e))
+
+    def terms(self, v: Vector) -> tuple[tuple[sympy.Basic, str], ...]:
+        """A vector as (component, axis name) terms, components as printed."""
+        return _vector_row(self.eom, v, self.gate).terms
+
+    def vector(self, v: Vector) -> str:
+        """A vector in the course's form, ``a \\psi^{*} \\sin\\theta\\,\\vec{u} - a \\theta^{*}\\,\\vec{w}``."""
+        return self.n.vector(_vector_row(self.eom, v, self.gate).terms, latex=True)
+
+    def short_vector(self, v: Vector, width: int = 48) -> str:
+        """A vector written in full, or as its first and last terms around ⋯ when wider than ``width``."""
+        terms = self.terms(v)
+        full = self.n.vector(terms, latex=True)
+        if visible_width(full) <= width or len(terms) < 3:
+            return full
+        last = self.n.vector([terms[-1]], latex=True)
+        last = "- " + last[1:].lstrip() if last.startswith("-") else "+ " + last
+        return f"{self.n.vector([terms[0]], latex=True)} + \\cdots {last}"
+
+    def vector_equation(self, head: str, terms: Sequence[tuple[sympy.Basic, str]]) -> Equation:
+        """``head`` then a vector given by (component, axis) terms, cut between terms when too wide."""
+        pieces = []
+        for k, term in enumerate(terms):
+            t = self.n.vector([term], latex=True)
+            if k:
+                t = "- " + t[1:].lstrip() if t.startswith("-") else "+ " + t
+            pieces.append(t)
+        return wrap_many(head, pieces or [r"\vec{0}"], " ")
+
+    def axis(self, name: str) -> str:
+        return _axis_latex(name)
+
+    def basis(self, frame: str) -> str:
+        return "(" + ", ".join(_axis_latex(a) for a in self.kin.frames.axes(frame)) + ")"
+
+    def is_zero(self, e: se.Basic | sympy.Basic) -> bool:
+        return e == 0
+
+    # -- displayed equations -------------------------------------------------------------------------
+    def equation(self, head: str, expr: sympy.Basic, tail: str = "") -> Equation:
+        return wrap(self.n, head, expr, tail)
+
+    def relation(self, head: str, left: sympy.Basic, right: sympy.Basic, tail: str = "") -> Equation:
+        """``head left = right tail``, each side cut into lines when too wide."""
+        lhs = self.n.latex(left)
+        rhs = self.n.latex(right)
+        whole = wrap_latex(head, f"{lhs} = {rhs}", tail)
+        if len(whole.lines) == 1:
+            return whole
+        first = wrap_latex(head, lhs)
+        second = wrap_latex("= ", rhs, tail)
+        if visible_width(first.lines[-1] + " " + second.lines[0]) <= _report_size.LINE_WIDTH:
+            return Equation(first.lines[:-1] + (first.lines[-1] + " " + second.lines[0],) + second.lines[1:])
+        return Equation(first.lines + second.lines)
+
+    def show(self, equations: Sequence[Equation], label: str) -> list[Block]:
+        """Equations as displayed blocks; one longer than `FOLD_LINES` lines is shown by its start and folded."""
+        out: list[Block] = []
+        pending: list[Equation] = []
+        for eq in equations:
+            if len(eq.lines) <= FOLD_LINES:
+                pending.append(eq)
+                continue
+            if pending:
+                out.append(Display(tuple(pending)))
+                pending = []
+            out.append(Display((Equation((eq.lines[0] + r" \;\cdots",)),)))
+            out.append(Fold(self.w.text("show full", label=label, k=str(len(eq.lines))), (Display((eq,)),)))
+        if pending:
+            out.append(Display(tuple(pending)))
+        return out
+
+    def many(self, blocks: list[Block], count: int, label: str, limit: int = 12) -> list[Block]:
+        """``blocks`` as they are, or folded when they list more than ``limit`` items."""
+        if count <= limit:
+            return blocks
+        return [Fold(self.w.text("show all", label=label, k=str(count)), tuple(blocks))]
+
+    # -- values at t = 0 ----------------------------------------------------------------------------
+    def initial_value(self, e: se.Basic) -> float | None:
+        """``e`` at t = 0 with the model's parameter values and initial conditions, when all are given."""
+        values: dict[se.Basic, se.Basic] = {self.kin.t: se.Integer(0)}
+        for p in self.model.parameters:
+            if p.value is not None:
+                values[p.symbol] = se.Float(p.value)
+        for c in self.model.coordinates:
+            if c.initial is not None:
+                values[c.symbol] = se.Float(c.initial)
+            if c.rate is not None:
+                values[c.rate_symbol] = se.Float(c.rate)
+        try:
+            return float(e.xreplace(values))
+        except (TypeError, RuntimeError, ValueError):
+            return None

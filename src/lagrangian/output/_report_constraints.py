@@ -1,0 +1,288 @@
+"""Step 1 of the report: the constraints that the model's parameterization takes as principal.
+
+A model does not list its constraints: it places every body and particle as a function of
+the principal parameters q_i (and of t), which *is* the choice of principal constraints
+(seed, "Démarche d'application", step 1).  This module reads them back, element by
+element, in the order of the model:
+
+* the element's *support* is the earlier element whose parameters are a largest proper
+  subset of its own (or the fixed frame R0), and its *new* parameters d are the others;
+  the constraint then removes 6 − d (a body) or 3 − d (a particle) degrees of freedom;
+* a body with a fixed point X is "X point fixe" (three rotations left: the seed's top) or
+  a pivot about the axis of its one rotation; a body that shares a point A with its
+  support and turns about one axis relative to it is a pivot of axis (A, e); three
+  rotations, a ball joint;
+* a particle at constant distance from a point X of its support hangs from a massless rod
+  (or taut string) XP; a component of XP along an axis of R0 that stays constant keeps it
+  in a plane; two such components put it on a line (a rail).
+
+Anything else is reported as "the placement of E" with its count.  Every constraint here
+is holonomic (the model gives positions, not velocity relations), principal, and perfect:
+no friction is modelled, so no constraint effort enters a Q_i.  Complementary constraints
+and their multipliers are not in the engine yet (issue 5); `Joint.principal` is there for
+them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import symengine as se
+
+from .._identity import are_zero
+from ..dynamics import EquationsOfMotion
+from ..model import GALILEAN_FRAME, ORIGIN, Vector
+from ..model._vector import AXES
+
+__all__ = ["Joint", "joints", "degrees_of_freedom"]
+
+
+@dataclass(frozen=True, slots=True)
+class Joint:
+    """One principal constraint, as the report states it.
+
+    ``kind`` is ``"fixed point"``, ``"pivot"``, ``"ball joint"``, ``"rod"``, ``"line"``,
+    ``"plane"`` or ``"placement"`` (none of those shapes).  ``support`` is the element it
+    ties ``element`` to (None: the fixed frame R0); ``point`` is the fixed point, the
+    joint's centre or the rod's anchor; ``axis`` the pivot axis or the rail's direction
+    (a display name such as ``"x0"``); ``normals`` the axes of R0 along which the element
+    keeps a constant offset from ``point`` (planes); ``length`` the rod's length |XP|.  ``rotation`` is the virtual rotation
+    relative to the support, Ω*(E) − Ω*(support), and ``star`` the q_i* it uses.
+    """
+
+    kind: str
+    element: str
+    is_body: bool
+    support: str | None
+    point: str | None
+    axis: str | None
+    normals: tuple[str, ...]
+    length: se.Basic | None
+    equations: int
+    coordinates: tuple[str, ...]
+    time_dependent: bool
+    rotation: Vector | None = None
+    holonomic: bool = True
+    principal: bool = True
+    perfect: bool = True
+
+
+def _free(e: se.Basic) -> set[se.Basic]:
+    return set(e.free_symbols)
+
+
+def _constant(kin, exprs: list[se.Basic]) -> list[bool]:  # type: ignore[no-untyped-def]
+    """Which expressions are free of q and t *as functions* (∂/∂q_i ≡ 0 and ∂/∂t ≡ 0)."""
+    moving = set(kin.q) | {kin.t}
+    out: list[bool | None] = []
+    tests: list[se.Basic] = []
+    where: list[tuple[int, int]] = []
+    for k, e in enumerate(exprs):
+        hit = _free(e) & moving
+        if not hit:
+            out.append(True)
+            continue
+        out.append(None)
+        start = len(tests)
+        tests += [e.diff(s) for s in hit]
+        where.append((k, start))
+    if tests:
+        zero = are_zero(tests)
+        bounds = [start for _, start in where] + [len(tests)]
+        for (k, start), stop in zip(where, bounds[1:]):
+            out[k] = all(zero[start:stop])
+    return [bool(x) for x in out]
+
+
+class _Reader:
+    """The elements of a model with their parameters, frames and points, for `joints`."""
+
+    def __init__(self, eom: EquationsOfMotion) -> None:
+        self.eom = eom
+        self.kin = eom.kinematics
+        model = eom.model
+        self.model = model
+        self.frames = {f.name: f for f in model.frames}
+        # Constraints are stated relative to the frame the equations are written in (R0, or R).
+        self.base = model.reference.frame if model.reference is not None else GALILEAN_FRAME
+        q_names = {c.symbol: c.name for c in model.coordinates}
+        self.q_names = q_names
+        self.elements: list[tuple[str, bool]] = ([(b.name, True) for b in model.bodies]
+                                                 + [(p.name, False) for p in model.particles])
+        self.coords: dict[str, frozenset[str]] = {}
+        self.timed: dict[str, bool] = {}
+        for name, is_body in self.elements:
+            position = self.kin.position(name)
+            symbols = set(position.free_symbols())
+            frames = set(position.frames) | ({self.model.body(name).frame} if is_body else set())
+            for top in frames:
+                for frame in self.chain(top):
+                    symbols |= _free(self.frames[frame].rotation.angle)  # type: ignore[union-attr]
+            self.coords[name] = frozenset(q_names[s] for s in symbols if s in q_names)
+            self.timed[name] = self.kin.t in symbols
+
+    def chain(self, frame: str, stop: str | None = None) -> list[str]:
+        """Frames from just below ``stop`` (the base frame) down to ``frame``; empty if ``stop`` is not an ancestor."""
+        if stop is None:
+            below_base = self.chain(frame, self.base) if self.base != GALILEAN_FRAME else []
+            if below_base or frame == self.base:
+                return below_base
+            stop = GALILEAN_FRAME
+        out = []
+        f = frame
+        while f != stop:
+            out.append(f)
+            parent = self.frames[f].parent
+            if parent is None:
+                return []
+            f = parent
+        return out[::-1]
+
+    def frame_of(self, element: str | None) -> str:
+        if element is None:
+            return self.base
+        for b in self.model.bodies:
+            if b.name == element:
+                return b.frame
+        return GALILEAN_FRAME
+
+    def support(self, name: str) -> str | None:
+        """The earlier element whose parameters are the largest proper subset of ``name``'s."""
+        mine = self.coords[name]
+        best, size = None, 0
+        for other, _ in self.elements:
+            if other == name:
+                continue
+            theirs = self.coords[other]
+            if theirs < mine and len(theirs) > size:
+                best, size = other, len(theirs)
+        return best
+
+    def fixed_in(self, point: str, element: str | None) -> bool:
+        """Whether ``point`` is a point of ``element`` (of R0 when None)."""
+        kin = self.kin
+        if element is None:
+            return kin.is_fixed(point)
+        d = kin.position(point) - kin.position(element)
+        if element not in {b.name for b in self.model.bodies}:
+            return d.is_zero() or all(_constant(kin, list(kin.frames.express(d, self.base))))
+        comps = kin.frames.express(d, self.frame_of(element))
+        return all(_constant(kin, list(comps)))
+
+    def moves_with_q(self, point: str) -> bool:
+        """Whether ``point``'s position depends on a principal parameter (through its frames too)."""
+        position = self.kin.position(point)
+        symbols = set(position.free_symbols())
+        for top in position.frames:
+            for frame in self.chain(top):
+                symbols |= _free(self.frames[frame].rotation.angle)  # type: ignore[union-attr]
+        return bool(symbols & set(self.q_names))
+
+    def points(self) -> list[str]:
+        return [ORIGIN] + [p.name for p in self.model.points if p.name != ORIGIN]
+
+    def rotations(self, element: str, support: str | None) -> list[tuple[str, str]] | None:
+        """(frame, axis display name) of each rotation with a q_i between support and element."""
+        path = self.chain(self.frame_of(element), self.frame_of(support))
+        if not path and self.frame_of(element) != self.frame_of(support):
+            return None
+        out = []
+        for f in path:
+            rot = self.frames[f].rotation
+            if _free(rot.angle) & set(self.q_names):  # type: ignore[union-attr]
+                out.append((f, self.frames[f].axes[AXES[rot.axis]]))  # type: ignore[union-attr]
+        return out
+
+
+def _body_joint(r: _Reader, name: str, support: str | None, new: tuple[str, ...]) -> Joint:
+    kin = r.kin
+    body = r.model.body(name)
+    timed = r.timed[name]
+    rotations = r.rotations(name, support)
+    candidates = [body.fixed_point] if body.fixed_point else [p for p in r.points()
+                                                               if r.fixed_in(p, support) and r.fixed_in(p, name)]
+    if rotations is not None and candidates and len(rotations) == len(new) and rotations and not timed:
+        point = candidates[0]
+        rel = tuple(a - b for a, b in zip(kin.partial_omegas(body.frame),
+                                         kin.partial_omegas(r.frame_of(support))))
+        rotation = Vector.zero()
+        for part, star in zip(rel, kin.q_star):
+            rotation = rotation + part * star
+        if len(rotations) == 1:
+            return Joint("pivot", name, True, support, point, rotations[0][1], (), None, 5, new, timed, rotation)
+        kind = "fixed point" if body.fixed_point and support is None else "ball joint"
+        if len(rotations) == 3:
+            return Joint(kind, name, True, support, point, None, (), None, 3, new, timed, rotation)
+    return Joint("placement", name, True, support, None, None, (), None, 6 - len(new), new, timed)
+
+
+def _particle_joint(r: _Reader, name: str, support: str | None, new: tuple[str, ...]) -> Joint:
+    kin = r.kin
+    timed = r.timed[name]
+    wanted = 3 - len(new)
+    if support is None:
+        # Fixed points first, then points moved by a prescribed motion (the Kapitza pendulum's pivot).
+        q = set(kin.q)
+        anchors = sorted((p for p in r.points() if not (kin.position(p).free_symbols() & q)
+                          and not r.moves_with_q(p)), key=lambda p: not kin.is_fixed(p))
+    elif support in {p.name for p in r.model.particles}:
+        anchors = [support]
+    else:
+        anchors = [p for p in r.points() if r.fixed_in(p, support)] + [support]
+    axes = r.frames[r.base].axes
+    for anchor in anchors:
+        d = kin.position(name) - kin.position(anchor)
+        comps = list(kin.frames.express(d, r.base))
+        squared = kin.frames.dot(d, d)
+        *flat, rigid = _constant(kin, comps + [squared])
+        normals = tuple(axes[k] for k in range(3) if flat[k])
+        if rigid and len(normals) <= 1 and 1 + len(normals) == wanted:
+            # |XP|² is constant as a function: its value at q = 0, t = 0 is its simplest form (l² rather
+            # than l² cos²θ + l² sin²θ).
+            at_zero = se.expand(squared.xreplace({s: se.Integer(0) for s in (*kin.q, kin.t)}))
+            length = _root(at_zero if at_zero != 0 else squared)
+            return Joint("rod", name, False, support, anchor, None, normals, length, wanted, new, timed)
+        if len(normals) == 2 and wanted == 2:
+            direction = next(axes[k] for k in range(3) if not flat[k])
+            return Joint("line", name, False, support, anchor, direction, normals, None, 2, new, timed)
+        if len(normals) == 1 and wanted == 1:
+            return Joint("plane", name, False, support, anchor, None, normals, None, 1, new, timed)
+    return Joint("placement", name, False, support, None, None, (), None, wanted, new, timed)
+
+
+def _root(squared: se.Basic) -> se.Basic:
+    """√(X²) = X for a length (lengths are positive): l² → l, l1² l2² → l1 l2, else the square root."""
+    factors = squared.args if isinstance(squared, se.Mul) else (squared,)
+    if all(isinstance(f, se.Pow) and f.args[1] == 2 for f in factors):
+        return se.Mul(*(f.args[0] for f in factors))
+    return se.sqrt(squared)
+
+
+def joints(eom: EquationsOfMotion) -> tuple[Joint, ...]:
+    """The principal constraints of a model, one per body or particle, in model order."""
+    r = _Reader(eom)
+    order = [c.name for c in eom.model.coordinates]
+    out = []
+    for name, is_body in r.elements:
+        support = r.support(name)
+        base = r.coords[support] if support is not None else frozenset()
+        new = tuple(c for c in order if c in r.coords[name] - base)
+        joint = (_body_joint if is_body else _particle_joint)(r, name, support, new)
+        if joint.equations > 0:  # a free element (six or three parameters of its own) has no constraint
+            out.append(joint)
+    return tuple(out)
+
+
+def degrees_of_freedom(eom: EquationsOfMotion, found: tuple[Joint, ...]) -> tuple[int, int, int] | None:
+    """(6 × bodies + 3 × particles, constraint equations, n) when they balance, else None.
+
+    They balance when each principal parameter is new for exactly one element: then the
+    count 6 N_S + 3 N_P − (equations) = n of the course holds.
+    """
+    n = len(eom.coordinates)
+    news = [c for j in found for c in j.coordinates]
+    if sorted(news) != sorted(eom.coordinates):
+        return None
+    free = 6 * len(eom.model.bodies) + 3 * len(eom.model.particles)
+    total = sum(j.equations for j in found)
+    return (free, total, n) if free - total == n else None

@@ -1,0 +1,146 @@
+"""The report as a document: sections of paragraphs, equations, lists, tables, folds and images.
+
+The report's content is built once, in one language, as these frozen values (math as
+LaTeX strings written by `Notation`); the HTML, LaTeX and Markdown renderers only lay
+them out.  So the three formats always say the same thing, and tests can read the
+content without parsing any output.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+__all__ = ["Math", "Run", "Runs", "Para", "Equation", "Display", "Items", "Table", "Fold", "Image", "Block",
+           "Section", "Document", "walk", "math_of"]
+
+
+@dataclass(frozen=True, slots=True)
+class Math:
+    """A piece of mathematics, in LaTeX (``\\dot{\\theta}``); inline in a paragraph."""
+
+    latex: str
+
+
+#: A paragraph is a sequence of runs: plain text and inline mathematics.
+Run = str | Math
+Runs = tuple[Run, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class Para:
+    """A paragraph; ``style`` is ``""``, ``"remark"`` (Remarque 1, 2...) or ``"note"``."""
+
+    runs: Runs
+    style: str = ""
+
+
+@dataclass(frozen=True, slots=True)
+class Equation:
+    """One displayed equation, written on one line or, when long, on several.
+
+    ``lines[0]`` holds the left-hand side and the start of the right-hand side; each
+    further line continues it (it starts with ``+``, ``-`` or ``=``).
+    """
+
+    lines: tuple[str, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class Display:
+    """Equations displayed one under the other."""
+
+    equations: tuple[Equation, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class Items:
+    """A bulleted list."""
+
+    items: tuple[Runs, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class Table:
+    """A table with a header row; every cell is a sequence of runs."""
+
+    header: tuple[Runs, ...]
+    rows: tuple[tuple[Runs, ...], ...]
+
+
+@dataclass(frozen=True, slots=True)
+class Fold:
+    """Content shown on demand (``<details>`` in HTML and Markdown; printed in full in LaTeX)."""
+
+    summary: str
+    blocks: tuple[Block, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class Image:
+    """A PNG image with its caption."""
+
+    png: bytes
+    caption: Runs
+    alt: str
+
+
+Block = Para | Display | Items | Table | Fold | Image
+
+
+@dataclass(frozen=True, slots=True)
+class Section:
+    """A numbered step of the démarche (``key`` ``"step1"``...) or another part of the report."""
+
+    key: str
+    title: str
+    blocks: tuple[Block, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class Document:
+    """The whole report: ``lang`` is ``"fr"`` or ``"en"``."""
+
+    lang: str
+    title: str
+    subtitle: str
+    sections: tuple[Section, ...]
+
+    def section(self, key: str) -> Section:
+        for s in self.sections:
+            if s.key == key:
+                return s
+        raise KeyError(key)
+
+
+def walk(blocks: tuple[Block, ...]) -> Iterator[Block]:
+    """Every block, the contents of folds included, in order."""
+    for b in blocks:
+        yield b
+        if isinstance(b, Fold):
+            yield from walk(b.blocks)
+
+
+def math_of(blocks: tuple[Block, ...]) -> list[str]:
+    """The LaTeX of every piece of mathematics in ``blocks`` (inline and displayed, folds included)."""
+    out: list[str] = []
+
+    def runs(rs: Runs) -> None:
+        out.extend(r.latex for r in rs if isinstance(r, Math))
+
+    for b in walk(blocks):
+        if isinstance(b, Para):
+            runs(b.runs)
+        elif isinstance(b, Display):
+            for eq in b.equations:
+                out.extend(eq.lines)
+        elif isinstance(b, Items):
+            for item in b.items:
+                runs(item)
+        elif isinstance(b, Table):
+            for row in (b.header, *b.rows):
+                for cell in row:
+                    runs(cell)
+        elif isinstance(b, Image):
+            runs(b.caption)
+    return out

@@ -1,0 +1,168 @@
+"""Step 5: the generalized forces Q_i of every given effort, by virtual power, load by load.
+
+Seed, section II: P*(effort) = Σ_i Q_i q_i* in the virtual velocity field compatible with
+the principal constraints.  Every component is shown, the vanishing ones with the reason
+they vanish (the point does not move with q_i, or the force is orthogonal to ∂OP/∂q_i);
+a conservative effort is then taken through U_P (Q_i = −∂U_P/∂q_i, checked by the engine),
+and the perfect constraints contribute nothing.
+"""
+
+from __future__ import annotations
+
+from ..dynamics import LoadForces
+from ..model import (CoulombFriction, Damper, Dissipation, GeneralizedForce, Gravity, JointDamper, PointForce, Potential,
+                     Spring, Torque)
+from ._report_build import Context, tex_text
+from ._report_doc import Block, Display, Items, Math, Para, Runs, Section
+from ._report_size import wrap_many
+
+__all__ = ["step5"]
+
+
+def _elements(c: Context, load: Gravity) -> tuple[str, ...]:
+    return load.on or tuple(b.name for b in c.model.bodies) + tuple(p.name for p in c.model.particles)
+
+
+def _mass(c: Context, name: str) -> str:
+    for b in c.model.bodies:
+        if b.name == name:
+            return c.tex(b.mass)
+    return c.tex(next(p.mass for p in c.model.particles if p.name == name))
+
+
+def _formula(c: Context, f: LoadForces, load: object) -> tuple[str, str]:
+    """(P* as the course writes it, what the title adds: the effort itself)."""
+    R = c.R
+    if isinstance(load, Gravity):
+        names = _elements(c, load)
+        extra = rf"\vec{{g}} = {c.vector(load.field)}"
+        if len(names) <= 3:
+            return " + ".join(rf"{_mass(c, x)}\,\vec{{g}}\cdot\vec{{V}}^{{*}}({c.point_label(x)})" for x in names), extra
+        return r"\sum_{k} m_{k}\,\vec{g}\cdot\vec{V}^{*}(G_{k})", extra
+    if isinstance(load, PointForce):
+        return rf"\vec{{F}}\cdot\vec{{V}}^{{*}}({c.point_label(load.at)})", rf"\vec{{F}} = {c.vector(load.force)}"
+    if isinstance(load, Torque):
+        on = rf"\vec{{\Omega}}^{{*}}({c.element(load.on)}/{R})"
+        extra = rf"\vec{{C}} = {c.vector(load.torque)}"
+        if load.reaction_on is None:
+            return rf"\vec{{C}}\cdot{on}", extra
+        return rf"\vec{{C}}\cdot\left({on} - \vec{{\Omega}}^{{*}}({c.element(load.reaction_on)}/{R})\right)", extra
+    if isinstance(load, (Spring, Damper)):
+        a, b = (c.point_label(p) for p in load.ends)
+        rel = rf"\vec{{u}}_{{{a}{b}}}\cdot\left(\vec{{V}}^{{*}}({b}) - \vec{{V}}^{{*}}({a})\right)"
+        ell = rf"\ell = \left\|\overrightarrow{{{a}{b}}}\right\|"
+        if isinstance(load, Spring):
+            return rf"-{c.tex(load.stiffness)} \left(\ell - {c.tex(load.rest_length)}\right) {rel}", ell
+        return rf"-{c.tex(load.coefficient)}\,\dot{{\ell}}\,{rel}", ell
+    if isinstance(load, Potential):
+        return r"-\sum_{i} \frac{\partial U}{\partial q_i}\, q_i^{*}", rf"U = {c.tex(load.energy)}"
+    if isinstance(load, Dissipation):
+        return r"-\sum_{i} \frac{\partial D}{\partial \dot{q}_i}\, q_i^{*}", rf"D = {c.tex(load.function)}"
+    if isinstance(load, JointDamper):
+        s1, s2 = (c.element(x) for x in load.bodies)
+        return (rf"-{c.tex(load.coefficient)}\,\vec{{\Omega}}({s2}/{s1})\cdot\left(\vec{{\Omega}}^{{*}}({s2}/{R}) - "
+                rf"\vec{{\Omega}}^{{*}}({s1}/{R})\right)", "")
+    if isinstance(load, CoulombFriction):
+        return (rf"\vec{{T}}\cdot\vec{{V}}^{{*}}({c.point_label(load.at)})",
+                r"\vec{T} = -f N\,\vec{v}_s / \sqrt{\|\vec{v}_s\|^{2} + \varepsilon^{2}}")
+    if isinstance(load, GeneralizedForce):
+        return r"\sum_{i} Q_i\, q_i^{*}", ""
+    if f.kind == "inertial: Coriolis":
+        return (rf"-\int_{{\Sigma}} 2\,\left(\vec{{\Omega}}({R}/R_{{0}})\wedge\vec{{V}}(P/{R})\right)\cdot\vec{{V}}^{{*}}(P)"
+                r"\,dm", "")
+    if f.kind == "inertial: entrainment":
+        return r"-\int_{\Sigma} \vec{\gamma}_{e}(P)\cdot\vec{V}^{*}(P)\,dm", ""
+    return "", ""
+
+
+def _partial(q: str, of: str) -> str:
+    return rf"\frac{{\partial {of}}}{{\partial {q}}}"
+
+
+def _why_zero(c: Context, f: LoadForces, load: object, i: int) -> Runs:
+    """Why Q_i of this load is zero."""
+    w, kin = c.w, c.kin
+    name = c.eom.coordinates[i]
+    q = c.sym(name)
+    O = c.name(c.origin)
+    points: tuple[str, ...] = ()
+    if isinstance(load, Gravity):
+        points = _elements(c, load)
+    elif isinstance(load, PointForce):
+        points = (load.at,)
+    elif isinstance(load, CoulombFriction):
+        points = (load.at,)
+    if points:
+        still = [p for p in points if kin.partial_velocities(p)[i].is_zero()]
+        if len(still) == len(points):
+            labels = w.join([Math(c.point_label(p)) for p in points])
+            d = w.join([Math(_partial(q, rf"\overrightarrow{{{O}{c.point_label(p)}}}") + r" = \vec{0}")
+                        for p in points])
+            return w("point still", P=labels, q=Math(q), d=d)
+        if len(points) == 1:
+            return w("orthogonal", d=Math(_partial(q, rf"\overrightarrow{{{O}{c.point_label(points[0])}}}")))
+        return (w.text("cancel"),)
+    if isinstance(load, (Spring, Damper)):
+        a, b = load.ends
+        AB = rf"\overrightarrow{{{c.point_label(a)}{c.point_label(b)}}}"
+        if (kin.partial_velocities(b)[i] - kin.partial_velocities(a)[i]).is_zero():
+            return w("length still", AB=Math(rf"\left\|{AB}\right\|"), q=Math(q))
+        return w("orthogonal", d=Math(_partial(q, AB)))
+    if isinstance(load, (Torque, JointDamper)):
+        bodies = (load.on, load.reaction_on) if isinstance(load, Torque) else load.bodies
+        frames = [c.model.body(x).frame if x in c.bodies else x for x in bodies if x is not None]
+        moving = [x for x in frames if not kin.partial_omegas(x)[i].is_zero()]
+        if not moving:
+            return w("no rotation", S=w.join([Math(c.element(x)) for x in bodies if x is not None]), q=Math(q))
+        return w("couple orthogonal", d=Math(rf"\frac{{\partial \vec{{\Omega}}}}{{\partial {c.sym(name, 'dot')}}}"))
+    if isinstance(load, Potential):
+        return w("U still", U=Math("U"), q=Math(q))
+    if isinstance(load, Dissipation):
+        return w("U still", U=Math("D"), q=Math(c.sym(name, "dot")))
+    if isinstance(load, GeneralizedForce):
+        return w("not given", q=Math(q))
+    return (w.text("cancel"),)
+
+
+def _q_list(c: Context, values: list[str]) -> list[str]:
+    return [rf"Q_{{{c.sym(q)}}} = {v}" for q, v in zip(c.eom.coordinates, values)]
+
+
+def step5(c: Context) -> Section:
+    w = c.w
+    blocks: list[Block] = [Para(w("virtual power intro", P=Math(r"P^{*} = \sum_{i=1}^{n} Q_i\, q_i^{*}"),
+                                  Q=Math("Q_i")))]
+    if not c.eom.loads:
+        blocks.append(Para(w("no loads")))
+    spec = {x.name: x for x in c.model.loads}
+    for f, row in zip(c.eom.loads, c.form.loads):
+        load = spec.get(f.name)
+        formula, extra = _formula(c, f, load)
+        kind = w.text(f"kind {f.kind}") if w.has(f"kind {f.kind}") else f.kind
+        blocks.append(Para(w("load title", name=f.name, kind=kind, extra=(", ", Math(extra)) if extra else "")))
+        head = rf"P^{{*}}({tex_text(f.name)}) = " + (f"{formula} = " if formula else "")
+        equations = [c.equation(head, c.ex(f.virtual_power))]
+        equations.append(wrap_many(r"\Rightarrow\quad ", _q_list(c, [c.n.latex(x) for x in row.Q]), r",\quad "))
+        blocks += c.show(equations, f.name)
+        zeros = [i for i, x in enumerate(row.Q) if x == 0]
+        if zeros and len(zeros) < len(row.Q):
+            items = tuple(w("zero because", Q=Math(rf"Q_{{{c.sym(c.eom.coordinates[i])}}} = 0"),
+                            why=_why_zero(c, f, load, i)) for i in zeros)
+            blocks += c.many([Items(items)], len(items), f.name)
+        i_math = Math("i")
+        if f.potential is not None:
+            blocks.append(Para(w("derives", name=f.name, Q=Math(r"Q_i = -\frac{\partial U}{\partial q_i}"), i=i_math,
+                                 UP=Math(rf"U_P(\Sigma/{c.R})"))))
+        else:
+            blocks.append(Para(w("not conservative", name=f.name, Q=Math(r"Q_i")), style="note"))
+    blocks.append(Para(w("perfect no Q")))
+    if c.eom.constraints:
+        blocks.append(Para(w("complementary Q", Q=Math(r"\sum_{k} \lambda_{k} A_{ki}"))))
+    blocks.append(Para(w("nc total")))
+    values = [c.n.latex(eq.Q_nc) for eq in c.form.equations]
+    if all(v == "0" for v in values):
+        line = " = ".join(rf"Q_{{{c.sym(q)}}}" for q in c.eom.coordinates) + " = 0"
+        blocks.append(Display((wrap_many("", [line], ""),)))
+    else:
+        blocks += c.show([wrap_many("", _q_list(c, values), r",\quad ")], "Q")
+    return Section("step5", w.text("step5"), tuple(blocks))

@@ -1,0 +1,121 @@
+"""The report as one self-contained HTML page: MathML from LaTeX (latex2mathml), images as data: URIs.
+
+Nothing is fetched: no script, no web font, no CDN.  MathML is rendered natively by current
+browsers (MathML Core: Chromium 109+, Firefox, Safari), so the page reads offline.
+"""
+
+from __future__ import annotations
+
+import base64
+import functools
+import html
+import re
+
+from latex2mathml.converter import convert
+
+from ..errors import OutputError
+from ._report_doc import Block, Display, Document, Fold, Image, Items, Math, Para, Runs, Section, Table
+
+__all__ = ["render_html"]
+
+_CSS = """
+.lagrangian-report { font-family: "Latin Modern Roman", "Cambria", "Georgia", serif; line-height: 1.5;
+  max-width: 58em; margin: 0 auto; padding: 1em 1.5em; color: #1d1d1f; background: #fff; }
+.lagrangian-report math { font-family: "Latin Modern Math", "STIX Two Math", "Cambria Math", math; font-size: 1.05em; }
+.lagrangian-report h1 { font-size: 1.7em; margin-bottom: 0.2em; }
+.lagrangian-report .subtitle { font-style: italic; margin-top: 0; color: #444; }
+.lagrangian-report h2 { font-size: 1.3em; border-bottom: 1px solid #ccc; margin-top: 1.6em; padding-bottom: 0.2em; }
+.lagrangian-report nav ol { columns: 2; font-size: 0.95em; }
+.lagrangian-report .display { margin: 0.6em 0 0.8em 1.5em; overflow-x: auto; }
+.lagrangian-report .eq { margin: 0.35em 0; }
+.lagrangian-report .eq math[display="block"] { margin: 0.15em 0; }
+.lagrangian-report .eq.multi { display: flex; flex-direction: column; align-items: center; }
+.lagrangian-report .eq.multi > div { width: 100%; max-width: 50em; }
+.lagrangian-report .eq.multi math[display="block"] { width: fit-content; margin-left: 0; }
+.lagrangian-report .eq.multi .cont math[display="block"] { margin-left: 3em; }
+.lagrangian-report .remark { font-style: italic; }
+.lagrangian-report .note { color: #555; font-size: 0.95em; }
+.lagrangian-report table { border-collapse: collapse; margin: 0.5em 0 1em 0; }
+.lagrangian-report th, .lagrangian-report td { border: 1px solid #ccc; padding: 0.2em 0.6em; text-align: left; }
+.lagrangian-report details { margin: 0.4em 0 0.8em 0; }
+.lagrangian-report summary { cursor: pointer; color: #1a4f8b; }
+.lagrangian-report figure { margin: 1em 0; }
+.lagrangian-report figure img { max-width: 100%; }
+.lagrangian-report figcaption { font-size: 0.95em; color: #333; }
+.lagrangian-report footer { margin-top: 2em; font-size: 0.85em; color: #777; }
+"""
+
+
+@functools.lru_cache(maxsize=4096)
+def _mathml(latex: str, display: str) -> str:
+    try:
+        out = convert(_spaced(latex), display=display)
+    except Exception as exc:  # latex2mathml raises assorted errors on input it does not know
+        raise OutputError(f"Cannot convert `{latex[:120]}` to MathML: {exc}.",
+                          fix="report this model to the lagrangian developers; --format tex or md still works") from None
+    return out.replace(' xmlns="http://www.w3.org/1998/Math/MathML"', "", 1)
+
+
+#: Function names that LaTeX spaces from the factor before them (\\mathop) and latex2mathml does not.
+_FUNCTION_AFTER_FACTOR = re.compile(r"([A-Za-z0-9}\)\]])\s+\\(sin|cos|tan|sinh|cosh|tanh|exp|log|arcsin|arccos|arctan)"
+                                    r"(?![A-Za-z])")
+
+
+def _spaced(latex: str) -> str:
+    """``a \\sin\\theta`` → ``a\\,\\sin\\theta``: the thin space LaTeX puts before an operator name."""
+    return _FUNCTION_AFTER_FACTOR.sub(r"\1\\,\\\2", latex)
+
+
+def _runs(runs: Runs) -> str:
+    return "".join(_mathml(r.latex, "inline") if isinstance(r, Math) else html.escape(r) for r in runs)
+
+
+def _block(b: Block) -> str:
+    if isinstance(b, Para):
+        cls = f' class="{b.style}"' if b.style else ""
+        return f"<p{cls}>{_runs(b.runs)}</p>"
+    if isinstance(b, Display):
+        eqs = []
+        for eq in b.equations:
+            lines = "".join(f'<div class="{"cont" if k else "first"}">{_mathml(line, "block")}</div>'
+                            for k, line in enumerate(eq.lines))
+            eqs.append(f'<div class="eq{" multi" if len(eq.lines) > 1 else ""}">{lines}</div>')
+        return f'<div class="display">{"".join(eqs)}</div>'
+    if isinstance(b, Items):
+        return "<ul>" + "".join(f"<li>{_runs(item)}</li>" for item in b.items) + "</ul>"
+    if isinstance(b, Table):
+        head = "".join(f"<th>{_runs(cell)}</th>" for cell in b.header)
+        body = "".join("<tr>" + "".join(f"<td>{_runs(cell)}</td>" for cell in row) + "</tr>" for row in b.rows)
+        return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+    if isinstance(b, Fold):
+        inner = "".join(_block(x) for x in b.blocks)
+        return f"<details><summary>{html.escape(b.summary)}</summary>{inner}</details>"
+    if isinstance(b, Image):
+        data = base64.b64encode(b.png).decode("ascii")
+        return (f'<figure><img src="data:image/png;base64,{data}" alt="{html.escape(b.alt, quote=True)}">'
+                f"<figcaption>{_runs(b.caption)}</figcaption></figure>")
+    raise TypeError(f"unknown block {type(b).__name__}")  # pragma: no cover
+
+
+def _section(s: Section) -> str:
+    return f'<section id="{s.key}"><h2>{html.escape(s.title)}</h2>' + "".join(_block(b) for b in s.blocks) + "</section>"
+
+
+def _body(doc: Document, footer: str) -> str:
+    toc = "".join(f'<li><a href="#{s.key}">{html.escape(s.title)}</a></li>' for s in doc.sections)
+    subtitle = f'<p class="subtitle">{html.escape(doc.subtitle)}</p>' if doc.subtitle else ""
+    return (f'<div class="lagrangian-report"><h1>{html.escape(doc.title)}</h1>{subtitle}'
+            f"<nav><ol>{toc}</ol></nav>" + "".join(_section(s) for s in doc.sections)
+            + f"<footer>{html.escape(footer)}</footer></div>")
+
+
+def render_html(doc: Document, *, footer: str = "", fragment: bool = False) -> str:
+    """The report as a complete HTML page, or (``fragment=True``) as a ``<div>`` with its style for a notebook."""
+    body = _body(doc, footer)
+    if fragment:
+        return f"<style>{_CSS}</style>{body}"
+    return ("<!DOCTYPE html>\n"
+            f'<html lang="{doc.lang}"><head><meta charset="utf-8">'
+            '<meta name="viewport" content="width=device-width, initial-scale=1">'
+            f"<title>{html.escape(doc.title)}</title><style>{_CSS}</style></head>"
+            f"<body>{body}</body></html>\n")

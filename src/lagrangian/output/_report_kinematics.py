@@ -1,0 +1,265 @@
+"""Step 3 (frames, Ω, inertia, the virtual velocity field) and step 4 (T and U_P with their formulas).
+
+Seed, worked example:
+
+    R0(O; x0, y0, z0) fixe →(ψ, Oz0) R1(O; u, v, z0) →(θ, Ou) R2(O; u, w, z) →(φ, Oz) R(O; x, y, z) lié à (S)
+    Ω(S/R0) = ψ̇ z0 + θ̇ u + φ̇ z = θ̇ u + ψ̇ sinθ w + (φ̇ + ψ̇ cosθ) z
+    T(S/R0) = ½ Ω(S/R0)·[Π_O(S)·Ω(S/R0)] = ½ A [θ̇² + ψ̇² sin²θ] + ½ C (φ̇ + ψ̇ cosθ)²
+    U_P(S/R0) = + m g OG·z0 + cste = m g a cosθ + cste
+"""
+
+from __future__ import annotations
+
+from ..model import Gravity, JointDamper, PointForce, Potential, Spring, Torque, Vector
+from ._report_build import Context, tex_text
+from ._report_doc import Block, Display, Equation, Math, Para, Section
+from ._report_size import visible_width, wrap_many
+
+#: The seed writes Ω(S/R0) = ψ̇ z0 + θ̇ u + φ̇ z = θ̇ u + ψ̇ sinθ w + (φ̇ + ψ̇ cosθ) z on one line; so do we up to this width.
+LINE_WIDTH_OMEGA = 80
+from ._report_setup import _frame_with_axes
+
+__all__ = ["step3", "step4"]
+
+
+# -- step 3 ---------------------------------------------------------------------------------------
+def _origins(c: Context) -> dict[str, str]:
+    """The origin of each frame when the constraints fix it: O for R0 and the top's R1, R2, R; A for a hinge at A."""
+    frames = {f.name: f for f in c.model.frames}
+    out = {c.ref: c.origin}
+    for j in c.joints:
+        if j.kind not in ("fixed point", "pivot", "ball joint") or j.point is None:
+            continue
+        stop = c.ref if j.support is None else c.model.body(j.support).frame
+        f = c.model.body(j.element).frame
+        while f != stop and f in frames and frames[f].parent is not None:
+            out.setdefault(f, j.point)
+            f = frames[f].parent  # type: ignore[assignment]
+    return out
+
+
+def _chains(c: Context) -> list[Equation]:
+    frames = c.model.frames
+    children: dict[str, list[str]] = {}
+    for f in frames:
+        if f.parent is not None:
+            children.setdefault(f.parent, []).append(f.name)
+    by_name = {f.name: f for f in frames}
+    origins = _origins(c)
+    owner = {b.frame: b.name for b in c.model.bodies}
+    w = c.w
+
+    def label(name: str) -> str:
+        text = _frame_with_axes(c, name, origins.get(name))
+        if name == "R0":
+            return text + rf"\ \text{{{w.text('fixed')}}}"
+        if name in owner:
+            return text + rf"\ \text{{{w.text('attached')}}}\ ({c.element(owner[name])})"
+        return text
+
+    def arrow(name: str) -> str:
+        rot = by_name[name].rotation
+        axis = by_name[name].axes["xyz".index(rot.axis)]  # type: ignore[union-attr]
+        origin = origins.get(name)
+        where = (c.name(origin) if origin else "") + c.axis(axis)
+        return rf"\xrightarrow{{{c.tex(rot.angle)},\ {where}}}"  # type: ignore[union-attr]
+
+    lines: list[Equation] = []
+
+    def walk(start: str, pieces: list[str]) -> None:
+        kids = children.get(start, [])
+        if not kids:
+            lines.append(wrap_many("", pieces, " "))
+            return
+        for k, child in enumerate(kids):
+            head = pieces if k == 0 else [label(start)]
+            walk(child, head + [arrow(child), label(child)])
+
+    walk("R0", [label("R0")])
+    return [eq for eq in lines if len(eq.lines[0]) > len(label("R0"))] if len(lines) > 0 else []
+
+
+def _inertia(c: Context) -> list[Block]:
+    w, out = c.w, []
+    origins = _origins(c)
+    for b in c.model.bodies:
+        used = c.eom.inertias[b.name]
+        S = Math(c.element(b.name))
+        P = c.point_label(b.name) if used.point == "G" else c.point_label(used.point)
+        matrix = used.matrix
+        diagonal = all(matrix[i][j] == 0 for i in range(3) for j in range(3) if i != j)
+        F = Math(_frame_with_axes(c, used.frame, origins.get(used.frame)))
+        huygens: tuple = ()
+        if b.inertia.at != used.point:
+            given = c.point_label(b.name) if b.inertia.at == "G" else c.point_label(b.inertia.at)
+            huygens = w("huygens", A=Math(given), P=Math(P))
+        if diagonal:
+            runs = w("principal frame", F=F, S=S, P=Math(P), huygens=huygens)
+        else:
+            runs = w("inertia frame", P=Math(P), S=S, basis=Math(c.basis(used.frame)), F=Math(c.name(used.frame)),
+                     huygens=huygens)
+        rows = r" \\ ".join(" & ".join(c.tex(x) for x in row) for row in matrix)
+        out.append(Para(runs))
+        out.append(Display((Equation((rf"\Pi_{{{P}}}({c.element(b.name)}) = \begin{{bmatrix}} {rows} \end{{bmatrix}}",)),)))
+    return out
+
+
+def _omegas(c: Context) -> list[Equation]:
+    steps = {f.name: f for f in c.form.frames}
+    out = []
+    for b in c.model.bodies:
+        f = steps.get(b.frame)
+        if f is None:
+            continue
+        chain = c.n.vector(f.omega_chain.terms, latex=True)
+        text = rf"\vec{{\Omega}}({c.element(b.name)}/{c.R}) = {chain}"
+        if f.omega_components is not None:
+            alt = c.n.vector(f.omega_components.terms, latex=True)
+            if alt != chain:
+                joined = f"{text} = {alt}"
+                out.append(Equation((joined,)) if visible_width(joined) <= LINE_WIDTH_OMEGA else Equation((text, f"= {alt}")))
+                continue
+        out.append(Equation((text,)))
+    return out
+
+
+def _torqued(c: Context) -> list[str]:
+    out: list[str] = []
+    for load in c.model.loads:
+        names = (load.on, load.reaction_on) if isinstance(load, Torque) else (
+            load.bodies if isinstance(load, JointDamper) else ())
+        out += [n for n in names if n is not None and n in c.bodies and n not in out]
+    return out
+
+
+def step3(c: Context) -> Section:
+    w, blocks = c.w, []
+    chains = _chains(c)
+    if chains:
+        blocks.append(Para(w("frames")))
+        blocks += c.many([Display(tuple(chains))], len(chains), w.text("frames").rstrip(" :"))
+    blocks += c.many(_inertia(c), len(c.model.bodies), "Π", limit=6)
+    omegas = _omegas(c)
+    if omegas:
+        blocks += c.many([Display(tuple(omegas))], len(omegas), w.text("angular velocities").rstrip(" :"))
+    field = Math(r"\vec{V}^{*}(P) = \sum_{i=1}^{n} \frac{\partial \overrightarrow{OP}}{\partial q_i}\, q_i^{*}")
+    rows = [c.vector_equation(rf"\vec{{V}}^{{*}}({c.name(p)}) = ", v.terms) for p, v in c.form.virtual_velocities]
+    blocks.append(Para(w("virtual field", field=field)))
+    if rows:
+        blocks += c.many(c.show(rows, r"V*"), len(rows), "V*")
+    rotating = _torqued(c)
+    if rotating:
+        blocks.append(Para(w("virtual rotation")))
+        eqs = []
+        for name in rotating:
+            body = c.model.body(name)
+            v = Vector.zero()
+            for part, star in zip(c.kin.partial_omegas(body.frame), c.kin.q_star):
+                v = v + part * star
+            eqs.append(Equation((rf"\vec{{\Omega}}^{{*}}({c.element(name)}/{c.R}) = {c.vector(v)}",)))
+        blocks.append(Display(tuple(eqs)))
+    return Section("step3", w.text("step3"), tuple(blocks))
+
+
+# -- step 4 ---------------------------------------------------------------------------------------
+_T_FORMULA = {
+    "fixed point": r"\frac{{1}}{{2}}\,\vec{{\Omega}}({S}/{R})\cdot\left[\Pi_{{{P}}}({S})\cdot\vec{{\Omega}}({S}/{R})\right]",
+    "König": (r"\frac{{1}}{{2}} {m}\,\vec{{V}}^{{2}}({G}/{R}) + \frac{{1}}{{2}}\,\vec{{\Omega}}({S}/{R})\cdot"
+              r"\left[\Pi_{{{G}}}({S})\cdot\vec{{\Omega}}({S}/{R})\right]"),
+    "particle": r"\frac{{1}}{{2}} {m}\,\vec{{V}}^{{2}}({S}/{R})",
+}
+
+
+def _kinetic(c: Context) -> list[Block]:
+    rows = []
+    for term, shown in zip(c.eom.T_terms, c.form.T):
+        S = c.element(term.name)
+        mass = next((b.mass for b in c.model.bodies if b.name == term.name),
+                    next((p.mass for p in c.model.particles if p.name == term.name), None))
+        P = c.point_label(term.inertia.point) if term.inertia is not None and term.inertia.point != "G" else ""
+        formula = _T_FORMULA.get(term.formula, "").format(S=S, R=c.R, P=P, G=c.point_label(term.name),
+                                                          m=c.tex(mass) if mass is not None else "m")
+        head = rf"T({S}/{c.R}) = " + (f"{formula} = " if formula else "")
+        rows.append(c.equation(head, shown.expression))
+    blocks = c.many(c.show(rows, "T"), len(rows), "T")
+    if len(rows) > 1:
+        names = [rf"T({c.element(t.name)}/{c.R})" for t in c.eom.T_terms]
+        total = " + ".join(names) if len(names) <= 4 else rf"\sum_{{k}} T(S_{{k}}/{c.R})"
+        blocks += c.show([c.equation(rf"T(\Sigma/{c.R}) = {total} = ", c.form.T_total)], "T")
+    return blocks
+
+
+def _gravity_formula(c: Context, load: Gravity) -> str:
+    names = load.on or tuple(b.name for b in c.model.bodies) + tuple(p.name for p in c.model.particles)
+    masses = {b.name: b.mass for b in c.model.bodies} | {p.name: p.mass for p in c.model.particles}
+    pieces = [(f, k, x) for f, comps in c.kin.frames.lift(load.field) for k, x in enumerate(comps) if x != 0]
+    O = c.name(c.origin)
+    if len(pieces) == 1 and len(names) <= 3:
+        frame, k, comp = pieces[0]
+        axis = c.axis(c.kin.frames.axes(frame)[k])
+        terms = []
+        for name in names:
+            coeff = c.tex(-comp * masses[name])
+            terms.append(rf"{coeff}\,\overrightarrow{{{O}{c.point_label(name)}}}\cdot{axis}")
+        text = terms[0]
+        for t in terms[1:]:
+            text += f" - {t[1:]}" if t.startswith("-") else f" + {t}"
+        return text
+    if len(names) == 1:
+        return rf"-{c.tex(masses[names[0]])}\,\vec{{g}}\cdot\overrightarrow{{{O}{c.point_label(names[0])}}}"
+    return rf"-\sum_{{k}} m_{{k}}\,\vec{{g}}\cdot\overrightarrow{{{O}G_{{k}}}}"
+
+
+def _potential_formula(c: Context, kind: str, name: str) -> str:
+    load = next((x for x in c.model.loads if x.name == name), None)
+    if isinstance(load, Gravity):
+        return _gravity_formula(c, load)
+    if isinstance(load, Spring):
+        a, b = (c.point_label(p) for p in load.ends)
+        ell = rf"\left\|\overrightarrow{{{a}{b}}}\right\|"
+        if load.rest_length == 0:
+            return rf"\frac{{1}}{{2}} {c.tex(load.stiffness)}\,{ell}^{{2}}"
+        return rf"\frac{{1}}{{2}} {c.tex(load.stiffness)} \left({ell} - {c.tex(load.rest_length)}\right)^{{2}}"
+    if isinstance(load, PointForce):
+        return rf"-\vec{{F}}\cdot\overrightarrow{{{c.name(c.origin)}{c.point_label(load.at)}}}"
+    if isinstance(load, Potential):
+        return ""
+    if kind == "inertial: entrainment":
+        return (r"\sum m\,\vec{\gamma}(O'/R_{0})\cdot\overrightarrow{O'G} - \frac{1}{2}\,\vec{\Omega}(R/R_{0})\cdot"
+                r"\Pi_{O'}\cdot\vec{\Omega}(R/R_{0})")
+    return ""
+
+
+def _potential(c: Context) -> list[Block]:
+    w = c.w
+    cste = rf" + \text{{{w.text('cste')}}}"
+    loads = [(f, row) for f, row in zip((f for f in c.eom.loads if f.potential is not None), c.form.U)]
+    if not loads:
+        return [Para(w("no potential", U=Math(rf"U_P(\Sigma/{c.R}) = 0")))]
+    elements = len(c.model.bodies) + len(c.model.particles)
+    single = len(loads) == 1 and elements == 1
+    rows = []
+    for f, row in loads:
+        if single:
+            only = (c.model.bodies[0].name if c.model.bodies else c.model.particles[0].name)
+            label = rf"U_P({c.element(only)}/{c.R})"
+        else:
+            label = rf"U_P({tex_text(f.name)})"
+        formula = _potential_formula(c, f.kind, f.name)
+        head = f"{label} = " + (f"{formula}{cste} = " if formula else "")
+        rows.append(c.equation(head, row.expression, cste))
+    blocks: list[Block] = []
+    if not single:
+        blocks.append(Para(w("potential of")))
+    blocks += c.show(rows, "U_P")
+    if len(rows) > 1:
+        blocks += c.show([c.equation(rf"U_P(\Sigma/{c.R}) = ", c.form.U_total, cste)], "U_P")
+    return blocks
+
+
+def step4(c: Context) -> Section:
+    blocks: list[Block] = [Para(c.w("energies", R=Math(c.R)))]
+    blocks += _kinetic(c)
+    blocks += _potential(c)
+    return Section("step4", c.w.text("step4"), tuple(blocks))
+

@@ -1,0 +1,271 @@
+"""The system, step 1 (the principal constraints, classified) and step 2 (the principal parameters).
+
+Seed, "Démarche d'application", steps 1 and 2, and the worked example: « La seule liaison
+est la liaison "O point fixe" … Elle est holonome, indépendante du temps et principale.
+Elle est parfaite car la puissance virtuelle de la réaction R_O en O est nulle … On a donc
+3 paramètres principaux qui sont les angles d'Euler ψ, θ et φ de (S). »
+"""
+
+from __future__ import annotations
+
+from ..model import Constraint, Vector
+from ._report_build import Context
+from ._report_constraints import Joint, degrees_of_freedom
+from ._report_doc import Block, Display, Equation, Items, Math, Para, Runs, Section, Table
+
+__all__ = ["system_section", "step1", "step2"]
+
+
+def _frame_with_axes(c: Context, frame: str, origin: str | None) -> str:
+    axes = ", ".join(c.axis(a) for a in c.kin.frames.axes(frame))
+    return f"{c.name(frame)}({c.name(origin)};\\ {axes})" if origin else f"{c.name(frame)}({axes})"
+
+
+def system_section(c: Context) -> Section:
+    w, model = c.w, c.model
+    blocks: list[Block] = [Para(w("galilean", R0=Math(_frame_with_axes(c, "R0", "O"))))]
+    if c.ref != "R0":
+        blocks.append(Para(w("reference", R=Math(_frame_with_axes(c, c.ref, c.origin)))))
+    items: list[Runs] = []
+    origin = c.name(c.origin)
+    for b in model.bodies:
+        G = c.point_label(b.name)
+        OG = Math(rf"\overrightarrow{{{origin}{G}}} = {c.short_vector(c.kin.position(b.name))}")
+        items.append(w("body item", S=Math(c.element(b.name)), m=Math(c.tex(b.mass)), G=Math(G), OG=OG))
+    for p in model.particles:
+        OP = Math(rf"\overrightarrow{{{origin}{c.element(p.name)}}} = {c.short_vector(c.kin.position(p.name))}")
+        items.append(w("particle item", P=Math(c.element(p.name)), m=Math(c.tex(p.mass)), OP=OP))
+    if items:
+        blocks.append(Para(w("constituents")))
+        blocks += c.many([Items(tuple(items))], len(items), w.text("constituents").rstrip(" :"))
+    if model.parameters:
+        rows = tuple((( Math(c.sym(p.name)),), ("" if p.value is None else w.number(p.value),), (p.unit or "",),
+                      (p.description or "",)) for p in model.parameters)
+        header = tuple((w.text(k),) for k in ("col symbol", "col value", "col unit", "col description"))
+        blocks.append(Para(w("parameters")))
+        blocks += c.many([Table(header, rows)], len(rows), w.text("parameters").rstrip(" :"))
+    return Section("system", w.text("system"), tuple(blocks))
+
+
+# -- step 1 ---------------------------------------------------------------------------------------
+def _count(c: Context, k: int) -> str:
+    return c.w.text("equation count") if k == 1 else c.w.text("equations count", k=str(k))
+
+
+def _length(c: Context, j: Joint) -> str:
+    return c.tex(j.length)  # type: ignore[arg-type]
+
+
+def _vstar(c: Context, point: str, anchor: str | None) -> str:
+    """V*(P), or V*(P) − V*(X) when the anchor X moves."""
+    own = rf"\vec{{V}}^{{*}}({c.point_label(point)})"
+    if anchor is None or c.kin.is_fixed(anchor):
+        return own
+    return rf"\left({own} - \vec{{V}}^{{*}}({c.point_label(anchor)})\right)"
+
+
+def _joint_name(c: Context, j: Joint) -> Runs:
+    w = c.w
+    S = Math(c.element(j.element))
+    X = Math(c.point_label(j.point)) if j.point else None
+    if j.kind == "fixed point":
+        return w("fixed point", X=X, S=S)  # type: ignore[arg-type]
+    if j.kind == "pivot":
+        axis = Math(rf"({c.point_label(j.point)},\ {c.axis(j.axis)})")  # type: ignore[arg-type]
+        if j.support is None:
+            return w("pivot R0", axis=axis, S=S, R0=Math(c.R))
+        return w("pivot", axis=axis, S=S, S2=Math(c.element(j.support)))
+    if j.kind == "ball joint":
+        other = Math(c.R) if j.support is None else Math(f"({c.element(j.support)})")
+        return w("ball joint", X=X, S=S, other=other)  # type: ignore[arg-type]
+    if j.kind == "rod":
+        XP = Math(rf"\left\|\overrightarrow{{{c.point_label(j.point)}{c.element(j.element)}}}\right\| = "  # type: ignore[arg-type]
+                  + _length(c, j))
+        if j.normals:
+            return w("rod plane", XP=XP, P=S, X=X, n=Math(c.axis(j.normals[0])))  # type: ignore[arg-type]
+        return w("rod", XP=XP)
+    if j.kind == "line":
+        line = Math(rf"({c.point_label(j.point)},\ {c.axis(j.axis)})")  # type: ignore[arg-type]
+        return w("line", P=S, line=line)
+    if j.kind == "plane":
+        return w("plane", P=S, X=X, n=Math(c.axis(j.normals[0])))  # type: ignore[arg-type]
+    return w("placement", E=S)
+
+
+def _perfect(c: Context, j: Joint) -> list[Block]:
+    """Why the constraint is perfect: its virtual power is zero (seed: « Elle est parfaite car … »)."""
+    w, R = c.w, c.R
+    X = c.point_label(j.point) if j.point else ""
+    since, because, et = (rf"\quad\text{{{w.text(k)}}}\quad" for k in ("since", "because", "et"))
+    if j.kind == "fixed point":
+        axes = c.kin.frames.axes(c.ref)
+        RX = rf"\vec{{R}}_{{{X}}}"
+        comps = " + ".join(rf"R_{{n{k + 1}}}\,{c.axis(a)}" for k, a in enumerate(axes))
+        eq = Equation((rf"{RX} = {comps} \;\Rightarrow\; P^{{*}}_{{{RX}}} = {RX}\cdot\vec{{V}}^{{*}}({X}) = 0",
+                       rf"{because} \vec{{V}}^{{*}}({X}) = \vec{{0}} {since} \vec{{V}}({X}/{R}) = \vec{{0}}"))
+        return [Para(w("perfect fixed point", R=Math(RX), X=Math(X))), Display((eq,))]
+    if j.kind in ("pivot", "ball joint"):
+        S = c.element(j.element)
+        rotation = c.vector(j.rotation) if j.rotation is not None else ""
+        MX = rf"\vec{{M}}_{{{X}}}"
+        if j.kind == "ball joint":
+            return [Para(w("perfect ball", X=Math(X)))]
+        friction = Math(rf"{MX}\cdot{c.axis(j.axis)} = 0")  # type: ignore[arg-type]
+        if j.support is None:
+            eq = Equation((rf"P^{{*}} = \vec{{R}}_{{{X}}}\cdot\vec{{V}}^{{*}}({X}) + {MX}\cdot\vec{{\Omega}}^{{*}}({S}/{R})"
+                           rf" = 0 {because} \vec{{V}}^{{*}}({X}) = \vec{{0}} {et} "
+                           rf"\vec{{\Omega}}^{{*}}({S}/{R}) = {rotation}",))
+            return [Para(w("perfect pivot", MX=friction)), Display((eq,))]
+        S1 = c.element(j.support)
+        eq = Equation((rf"P^{{*}} = \vec{{R}}\cdot\left(\vec{{V}}^{{*}}({X}\in {S}) - \vec{{V}}^{{*}}({X}\in {S1})\right)"
+                       rf" + {MX}\cdot\left(\vec{{\Omega}}^{{*}}({S}/{R}) - \vec{{\Omega}}^{{*}}({S1}/{R})\right)",
+                       rf"= {MX}\cdot {rotation} = 0"))
+        return [Para(w("perfect joint", MX=friction, X=Math(X))), Display((eq,))]
+    if j.kind == "rod":
+        P = c.element(j.element)
+        XP = rf"\overrightarrow{{{X}{P}}}"
+        v = _vstar(c, j.element, j.point)
+        dirs = [Math(XP)] + [Math(c.axis(a)) for a in j.normals]
+        conditions = [rf"{XP}\cdot{v} = 0"] + [rf"{c.axis(a)}\cdot{v} = 0" for a in j.normals]
+        return [Para(w("perfect rod", P=Math(P), dirs=w.join(dirs), XP2=Math(rf"{XP}^{{2}}"))),
+                Display((Equation((r",\qquad ".join(conditions),)),))]
+    if j.kind in ("line", "plane"):
+        where = w.text("the line") if j.kind == "line" else w.text("the plane")
+        return [Para(w("perfect smooth", where=where, V=Math(_vstar(c, j.element, j.point))))]
+    return [Para(w("perfect assumed"))]
+
+
+def _classify(c: Context, holonomic: bool, timed: bool, principal: Runs, one: bool) -> Runs:
+    w = c.w
+    a = w.text("holonomic" if holonomic else "nonholonomic")
+    b = w.text("rheonomic" if timed else "scleronomic")
+    if one:
+        return w("classified one", a=a, b=b, c=principal)
+    return w("classified", a=a, b=b, c=principal)
+
+
+def _declared(c: Context, con: Constraint, one: bool) -> list[Block]:
+    """A constraint of the model's [constraints] table: its equation, its kind, principal or complementary."""
+    w, kin = c.w, c.kin
+    rows = [r for r in c.eom.constraints if r.constraint == con.name]
+    shown = [Equation((rf"{c.tex(r.expression)} = 0",)) for r in rows]
+    if not shown and con.expression is not None and not isinstance(con.expression, Vector):
+        shown = [Equation((rf"{c.tex(con.expression)} = 0",))]
+    description = f" ({con.description})" if con.description else ""
+    equation = Math(r"\quad".join(e.lines[0] for e in shown)) if len(shown) == 1 else ""
+    if con.form == "no_slip":
+        head = w("no slip", S=Math(c.element(con.body or "")), I=Math(c.point_label(con.points[0])),
+                 equation=Math(rf"\vec{{V}}({c.point_label(con.points[0])}\in {c.element(con.body or '')}/{c.R})"
+                               r" = \vec{0}"))
+    elif con.form == "coincide":
+        head = w("coincide", P=Math(c.point_label(con.points[0])), Q=Math(c.point_label(con.points[1])),
+                 equation=Math(rf"\overrightarrow{{{c.point_label(con.points[1])}{c.point_label(con.points[0])}}}"
+                               r" = \vec{0}"))
+    else:
+        head = w("declared", name=con.name, description=description, equation=equation)
+    timed = any(r.b != 0 for r in rows) or any(kin.t in r.expression.free_symbols for r in rows)
+    if con.principal:
+        status: Runs = (w.text("principal declared"),)
+    else:
+        status = w("complementary", lam=Math(", ".join(c.tex(r.multiplier) for r in rows)))
+    blocks: list[Block] = [Para(_capitalize(head) + (".",))]
+    if len(shown) > 1 or (con.form in ("no_slip", "coincide") and shown):
+        blocks.append(Display(tuple(shown)))
+    blocks.append(Para(_classify(c, con.kind == "holonomic", timed, status, True)))
+    if not con.principal:
+        Q = ", ".join(rf"Q_{{{c.sym(q)}}} = {c.tex(sum(r.multiplier * r.coefficients[i] for r in rows))}"
+                      for i, q in enumerate(c.eom.coordinates)
+                      if any(r.coefficients[i] != 0 for r in rows))
+        blocks.append(Para(w("perfect complementary", Q=Math(Q or "0"))))
+        for reaction in c.eom.reactions:
+            if reaction.constraint == con.name and reaction.point is not None and not reaction.force.is_zero():
+                blocks.append(Para(w("reaction is", E=Math(c.point_label(reaction.point)),
+                                     R=Math(rf"\vec{{R}} = {c.vector(reaction.force)}"))))
+    else:
+        blocks.append(Para(w("perfect assumed")))
+    return blocks
+
+
+def _capitalize(runs: Runs) -> Runs:
+    if runs and isinstance(runs[0], str) and runs[0]:
+        return (runs[0][0].upper() + runs[0][1:],) + runs[1:]
+    return runs
+
+
+def step1(c: Context) -> Section:
+    w = c.w
+    declared = list(c.model.constraints)
+    total = len(c.joints) + len(declared)
+    one = total == 1
+    blocks: list[Block] = []
+    if total > 1:
+        blocks.append(Para(w("constraints")))
+    for j in c.joints:
+        name = _joint_name(c, j)
+        count = _count(c, j.equations)
+        classification = _classify(c, j.holonomic, j.time_dependent, (w.text("principal"),), one)
+        if one:
+            blocks.append(Para(w("only constraint", c=name + (f" ({count})",))))
+            blocks.append(Para(classification))
+        else:
+            blocks.append(Para(_capitalize(name) + (f" ({count}) : " if c.lang == "fr" else f" ({count}): ",)
+                               + classification + (".",)))
+        blocks += _perfect(c, j)
+    for con in declared:
+        blocks += _declared(c, con, one)
+    dof = degrees_of_freedom(c.eom, c.joints)
+    if dof is not None and c.joints:
+        free, used, n = dof
+        parts = []
+        if c.model.bodies:
+            parts.append(rf"6 \times {len(c.model.bodies)}")
+        if c.model.particles:
+            parts.append(rf"3 \times {len(c.model.particles)}")
+        blocks.append(Para(w("dof", count=Math(" + ".join(parts) + rf" - {used} = {n}"))))
+    return Section("step1", w.text("step1"), tuple(blocks))
+
+
+# -- step 2 ---------------------------------------------------------------------------------------
+def _euler_body(c: Context) -> str | None:
+    """The body whose three rotations from R0 are the Euler angles (z, x, z) of the three coordinates."""
+    q = {s: name for s, name in zip(c.eom.q, c.eom.coordinates)}
+    if len(q) != 3:
+        return None
+    frames = {f.name: f for f in c.model.frames}
+    for b in c.model.bodies:
+        chain, f = [], frames[b.frame]
+        while f.parent is not None:
+            chain.append(f)
+            f = frames[f.parent]
+        chain.reverse()
+        if [x.rotation.axis for x in chain] == ["z", "x", "z"] and {  # type: ignore[union-attr]
+                x.rotation.angle for x in chain} == set(q):  # type: ignore[union-attr]
+            return b.name
+    return None
+
+
+def step2(c: Context) -> Section:
+    w = c.w
+    names = c.eom.coordinates
+    symbols = [Math(c.sym(q)) for q in names]
+    n = Math(str(len(names)))
+    euler = _euler_body(c)
+    if len(names) == 1:
+        blocks: list[Block] = [Para(w("one param", q=symbols[0]))]
+    elif euler is not None:
+        blocks = [Para(w("n params euler", n=n, list=w.join(symbols), S=Math(c.element(euler))))]
+    else:
+        blocks = [Para(w("n params", n=n, list=w.join(symbols)))]
+    header = tuple((w.text(k),) for k in ("col symbol", "col description", "col initial", "col rate"))
+    rows = []
+    for coord in c.model.coordinates:
+        rows.append(((Math(c.sym(coord.name)),), (coord.description or "",),
+                     ("" if coord.initial is None else w.number(coord.initial),),
+                     ("" if coord.rate is None else w.number(coord.rate),)))
+    blocks += c.many([Table(header, tuple(rows))], len(rows), w.text("step2"))
+    m = len(c.eom.constraints)
+    if m:
+        blocks.append(Para(w("remark 1 lambda", n=Math(str(len(names))), m=Math(str(m))), style="remark"))
+    else:
+        blocks.append(Para(w("remark 1", n=Math(str(len(names)))), style="remark"))
+    return Section("step2", w.text("step2"), tuple(blocks))

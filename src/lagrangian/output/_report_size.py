@@ -1,0 +1,265 @@
+"""Long expressions in the report: summarized, cut into lines, or folded.
+
+Three sizes, so that a 40-link chain is reported in seconds and stays readable:
+
+* an engine expression of more than `MAX_OPS` operations (SymEngine's ``count_ops``, about
+  six characters each), or met once `BUDGET` operations have been converted, is not
+  converted at all: a `Summary` stands in for it, printed ⟨812 terms⟩ (the JSON of
+  ``lagrangian derive --json`` has it in full);
+* a displayed sum wider than `LINE_WIDTH` is cut into lines between its terms;
+* an equation of more than `FOLD_LINES` lines is shown by its first line, with the
+  whole of it folded (``<details>`` in HTML and Markdown).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+import symengine as se
+import sympy
+
+from ..model._vector import as_expr
+from ._course import to_sympy
+from ._notation import Notation, Opaque
+from ._report_doc import Equation
+
+__all__ = ["Summary", "SizeGate", "visible_width", "wrap", "wrap_latex", "wrap_many", "split_top", "MAX_OPS",
+           "BUDGET", "LINE_WIDTH", "FOLD_LINES"]
+
+#: Largest expression (operations, `symengine.count_ops`) converted and printed in full.
+MAX_OPS = 300
+#: Operations converted in all before every further long expression is summarized: printing
+#: costs about 0.3 ms per operation, so this bounds a report's printing to a few seconds.
+BUDGET = 2000
+#: Expressions of at most this many operations are always converted (they cost nothing).
+SMALL_OPS = 40
+#: Widest displayed line, in visible characters, before a sum is cut between its terms.
+LINE_WIDTH = 64
+#: Most lines an equation shows before it is folded.
+FOLD_LINES = 8
+
+
+class Summary(Opaque):
+    """An expression too long to print, standing in as ⟨812 terms⟩; ``source`` is the engine's expression."""
+
+    def __new__(cls, source: se.Basic, terms_word: str, long_word: str) -> Summary:
+        count = len(source.args) if isinstance(source, se.Add) else 0
+        if count:
+            text, latex = f"⟨{count} {terms_word}⟩", rf"\langle {count}\ \text{{{terms_word}}} \rangle"
+        else:
+            text, latex = f"⟨{long_word}⟩", rf"\langle \text{{{long_word}}} \rangle"
+        obj = super().__new__(cls, text, latex)
+        obj.source = source
+        obj.terms = count
+        return obj
+
+
+@dataclass
+class SizeGate:
+    """The converter the report hands to `course_form`: `to_sympy`, or a `Summary` for what is too long."""
+
+    terms_word: str
+    long_word: str
+    max_ops: int = MAX_OPS
+    budget: int = BUDGET
+    used: int = 0
+    summaries: list[Summary] = field(default_factory=list)
+    _cache: dict[se.Basic, sympy.Basic] = field(default_factory=dict)
+
+    def __call__(self, e: se.Basic) -> sympy.Basic:
+        e = as_expr(e)
+        hit = self._cache.get(e)
+        if hit is not None:
+            return hit
+        ops = se.count_ops(e)
+        if ops <= SMALL_OPS or (ops <= self.max_ops and self.used + ops <= self.budget):
+            self.used += ops
+            out = to_sympy(e)
+        else:
+            out = Summary(e, self.terms_word, self.long_word)
+            self.summaries.append(out)
+        self._cache[e] = out
+        return out
+
+
+_ZERO_WIDTH = {"left", "right", "dot", "ddot", "vec", "overrightarrow", "text", "mathrm", "operatorname",
+               "displaystyle", "begin", "end"}
+_SPACES = {",": 0.3, ";": 0.3, ":": 0.3, "!": 0.0, " ": 0.3, "quad": 2.0, "qquad": 4.0}
+_COMMAND = re.compile(r"\\([A-Za-z]+|.)")
+_FUNCTIONS = {"sin", "cos", "tan", "sinh", "cosh", "tanh", "exp", "log", "arcsin", "arccos", "arctan"}
+
+
+def _group(s: str, i: int) -> tuple[str, int]:
+    """The braced group starting at ``s[i]`` (or the single character there) and the index after it."""
+    if i >= len(s):
+        return "", i
+    if s[i] != "{":
+        if s[i] == "\\":
+            m = _COMMAND.match(s, i)
+            return (m.group(0), m.end()) if m else (s[i], i + 1)
+        return s[i], i + 1
+    depth, j = 0, i
+    while j < len(s):
+        if s[j] == "{" and (j == 0 or s[j - 1] != "\\"):
+            depth += 1
+        elif s[j] == "}" and s[j - 1] != "\\":
+            depth -= 1
+            if depth == 0:
+                return s[i + 1:j], j + 1
+        j += 1
+    return s[i + 1:], len(s)
+
+
+def _width(s: str) -> float:
+    total, i = 0.0, 0
+    while i < len(s):
+        ch = s[i]
+        if ch == "\\":
+            m = _COMMAND.match(s, i)
+            name = m.group(1) if m else ch
+            i = m.end() if m else i + 1
+            if name in ("frac", "tfrac", "dfrac"):
+                num, i = _group(s, i)
+                den, i = _group(s, i)
+                total += max(_width(num), _width(den)) + 0.4
+            elif name in _SPACES:
+                total += _SPACES[name]
+            elif name in _FUNCTIONS:
+                total += 3.3
+            elif name not in _ZERO_WIDTH:
+                total += 1
+        elif ch in "_^":
+            group, i = _group(s, i + 1)
+            total += 0.6 * _width(group)
+        elif ch in "{} ":
+            i += 1
+        elif ch in "+-=<>,;":
+            total += 1.8 if ch in "+-=<>" else 1.2
+            i += 1
+        else:
+            total += 1
+            i += 1
+    return total
+
+
+def visible_width(latex: str) -> int:
+    """About how many characters wide ``latex`` prints (a fraction as wide as its wider part, indices smaller)."""
+    return round(_width(latex))
+
+
+def _scan(s: str) -> list[tuple[int, int]]:
+    """(index, depth before it) for every character, depth counting braces and \\left ... \\right."""
+    out, depth, i = [], 0, 0
+    while i < len(s):
+        out.append((i, depth))
+        if s.startswith(r"\left", i) and not s[i + 5:i + 6].isalpha():
+            depth += 1
+            i += 5
+            continue
+        if s.startswith(r"\right", i) and not s[i + 6:i + 7].isalpha():
+            depth -= 1
+            i += 6
+            continue
+        if s[i] == "\\":
+            i += 2
+            continue
+        if s[i] == "{":
+            depth += 1
+        elif s[i] == "}":
+            depth -= 1
+        i += 1
+    return out
+
+
+def split_top(s: str) -> list[str]:
+    """The top-level terms of a LaTeX sum, ``"a + b - c"`` → ``["a", "+ b", "- c"]``."""
+    pieces, start = [], 0
+    for i, depth in _scan(s):
+        if depth == 0 and i > start and (s.startswith(" + ", i) or s.startswith(" - ", i)):
+            pieces.append(s[start:i].strip())
+            start = i + 1
+    pieces.append(s[start:].strip())
+    return [p for p in pieces if p]
+
+
+def _outer_paren(s: str) -> tuple[int, int] | None:
+    """Start of the first top-level ``\\left(`` of ``s`` and the end of its matching ``\\right)``."""
+    open_at = None
+    for i, depth in _scan(s):
+        if open_at is None and depth == 0 and s.startswith(r"\left(", i):
+            open_at = i
+        elif open_at is not None and depth == 1 and s.startswith(r"\right)", i):
+            return open_at, i + len(r"\right)")
+    return None
+
+
+def _atoms(piece: str, width: int, depth: int = 0) -> list[tuple[str, int]]:
+    """``piece`` as (text, depth after it) atoms: a piece too wide is opened at its first parenthesized sum."""
+    if visible_width(piece) <= width:
+        return [(piece, depth)]
+    where = _outer_paren(piece)
+    if where is None:
+        return [(piece, depth)]
+    start, end = where
+    inner = split_top(piece[start + len(r"\left("):end - len(r"\right)")])
+    if len(inner) < 2:
+        return [(piece, depth)]
+    out: list[tuple[str, int]] = []
+    for k, term in enumerate(inner):
+        out += _atoms(term, width, depth + 1)
+    first, d = out[0]
+    out[0] = (piece[:start] + r"\left(" + first, d)
+    last, _ = out[-1]
+    out[-1] = (last + r"\right)" + piece[end:], depth)
+    return out
+
+
+def _lay_out(head: str, atoms: list[tuple[str, int]], tail: str, width: int) -> Equation:
+    """Atoms filled into lines; a line that ends inside parentheses is closed by ``\\right.`` and reopened."""
+    lines: list[str] = []
+    if visible_width(head) > width // 2 and head.rstrip().endswith("=") and atoms and \
+            visible_width(head + atoms[0][0]) > width:
+        lines.append(head.rstrip()[:-1].rstrip())
+        head = "= "
+    current, depth, empty = head, 0, True
+    for text, after in atoms:
+        candidate = f"{current} {text}" if not empty and current.strip() else current + text
+        if not empty and visible_width(candidate + tail) > width:
+            lines.append(current + r" \right." * depth)
+            current = r"\left. " * depth + text
+        else:
+            current = candidate
+        depth, empty = after, False
+    lines.append(current + tail)
+    return Equation(tuple(line.strip() for line in lines))
+
+
+def wrap_latex(head: str, body: str, tail: str = "", width: int | None = None) -> Equation:
+    """``head body tail`` as an `Equation`, cut into lines between the terms of ``body`` when too wide."""
+    width = width or LINE_WIDTH
+    if visible_width(head + body + tail) <= width:
+        return Equation((f"{head}{body}{tail}",))
+    atoms = [a for term in split_top(body) for a in _atoms(term, width)]
+    return _lay_out(head, atoms, tail, width)
+
+
+def wrap(n: Notation, head: str, expr: sympy.Basic, tail: str = "", width: int | None = None) -> Equation:
+    """``head expr tail`` (``head`` ends with the relation, ``L = ``), cut into lines when too wide."""
+    return wrap_latex(head, n.latex(expr), tail, width)
+
+
+def wrap_many(head: str, pieces: list[str], sep: str, width: int | None = None) -> Equation:
+    """``head`` then ``pieces`` joined by ``sep``, cut between (and if need be inside) pieces when too wide."""
+    width = width or LINE_WIDTH
+    joined = head + sep.join(pieces)
+    if visible_width(joined) <= width:
+        return Equation((joined,))
+    atoms: list[tuple[str, int]] = []
+    for k, piece in enumerate(pieces):
+        mine = [a for term in split_top(piece) for a in _atoms(term, width)]
+        if k < len(pieces) - 1:
+            text, d = mine[-1]
+            mine[-1] = (text + sep.rstrip(), d)
+        atoms += mine
+    return _lay_out(head, atoms, "", width)

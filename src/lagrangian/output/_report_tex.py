@@ -1,0 +1,118 @@
+"""The report as a LaTeX document that ``pdflatex`` compiles (packages of a basic TeX Live only).
+
+Long equations are ``align*`` blocks that may break across pages (``\\allowdisplaybreaks``);
+folded content is printed in full; figures are ``\\includegraphics`` of PNG files written
+beside the ``.tex`` file (`Report.save`), or a note when there are none.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from ._report_doc import Block, Display, Document, Fold, Image, Items, Math, Para, Runs, Section, Table
+
+__all__ = ["render_tex"]
+
+_PREAMBLE = r"""\documentclass[a4paper,11pt]{article}
+\usepackage[T1]{fontenc}
+\usepackage[utf8]{inputenc}
+\IfFileExists{lmodern.sty}{\usepackage{lmodern}}{}
+\usepackage{amsmath,amssymb}
+\usepackage[margin=2cm]{geometry}
+\usepackage{graphicx}
+\usepackage{longtable}
+\allowdisplaybreaks
+\setlength{\parindent}{0pt}
+\setlength{\parskip}{0.5em}
+"""
+
+_ESCAPES = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_", "{": r"\{",
+            "}": r"\}", "~": r"\textasciitilde{}", "^": r"\^{}"}
+# Characters that T1 + utf8 do not know, written as LaTeX (what a model's description may hold).
+_UNICODE = {"Σ": r"\ensuremath{\Sigma}", "Ω": r"\ensuremath{\Omega}", "Π": r"\ensuremath{\Pi}", "·": r"\ensuremath{\cdot}",
+            "−": "-", "→": r"\ensuremath{\to}", "⇒": r"\ensuremath{\Rightarrow}", "≤": r"\ensuremath{\le}",
+            "≥": r"\ensuremath{\ge}", "≈": r"\ensuremath{\approx}", "²": r"\textsuperscript{2}", "³": r"\textsuperscript{3}",
+            "½": r"\ensuremath{\tfrac{1}{2}}", "×": r"\ensuremath{\times}", "∂": r"\ensuremath{\partial}",
+            "⟨": r"\ensuremath{\langle}", "⟩": r"\ensuremath{\rangle}", "—": "---", "–": "--", "…": r"\dots{}",
+            "✓": r"\ensuremath{\checkmark}", "\u0307": "", "\u0308": ""}
+_GREEK = {"α": "alpha", "β": "beta", "γ": "gamma", "δ": "delta", "ε": "varepsilon", "ζ": "zeta", "η": "eta",
+          "θ": "theta", "ι": "iota", "κ": "kappa", "λ": "lambda", "μ": "mu", "ν": "nu", "ξ": "xi", "π": "pi",
+          "ρ": "rho", "σ": "sigma", "τ": "tau", "φ": "varphi", "χ": "chi", "ψ": "psi", "ω": "omega",
+          "Γ": "Gamma", "Δ": "Delta", "Θ": "Theta", "Λ": "Lambda", "Ξ": "Xi", "Φ": "Phi", "Ψ": "Psi"}
+#: Highest code point written as is (Latin-1 and Latin Extended-A, which T1 covers, with the quotes below).
+_LATIN = 0x17F
+_QUOTES = "‘’“”«»"
+
+
+def _char(ch: str) -> str:
+    if ch in _ESCAPES:
+        return _ESCAPES[ch]
+    if ch in _UNICODE:
+        return _UNICODE[ch]
+    if ch in _GREEK:
+        return rf"\ensuremath{{\{_GREEK[ch]}}}"
+    if ord(ch) <= _LATIN or ch in _QUOTES:
+        return ch
+    return "?"
+
+
+def escape(text: str) -> str:
+    return "".join(_char(ch) for ch in text)
+
+
+def _runs(runs: Runs) -> str:
+    return "".join(rf"\({r.latex}\)" if isinstance(r, Math) else escape(r) for r in runs)
+
+
+def _block(b: Block, figures: Sequence[str] | None, counter: list[int]) -> str:
+    if isinstance(b, Para):
+        text = _runs(b.runs)
+        if b.style == "remark":
+            return rf"\textit{{{text}}}" + "\n"
+        if b.style == "note":
+            return rf"{{\small {text}}}" + "\n"
+        return text + "\n"
+    if isinstance(b, Display):
+        out = []
+        for eq in b.equations:
+            if len(eq.lines) == 1:
+                out.append(rf"\[ {eq.lines[0]} \]")
+            else:
+                rows = [f"& {eq.lines[0]}"] + [rf"&\quad {line}" for line in eq.lines[1:]]
+                out.append("\\begin{align*}\n" + " \\\\\n".join(rows) + "\n\\end{align*}")
+        return "\n".join(out) + "\n"
+    if isinstance(b, Items):
+        return "\\begin{itemize}\n" + "\n".join(rf"\item {_runs(i)}" for i in b.items) + "\n\\end{itemize}\n"
+    if isinstance(b, Table):
+        cols = "l" * len(b.header)
+        head = " & ".join(_runs(c) for c in b.header) + r" \\ \hline"
+        body = "\n".join(" & ".join(_runs(c) for c in row) + r" \\" for row in b.rows)
+        return f"\\begin{{longtable}}{{{cols}}}\n\\hline\n{head}\n\\endhead\n{body}\n\\hline\n\\end{{longtable}}\n"
+    if isinstance(b, Fold):
+        return "".join(_block(x, figures, counter) for x in b.blocks)
+    if isinstance(b, Image):
+        counter[0] += 1
+        caption = _runs(b.caption)
+        if figures is not None and counter[0] <= len(figures):
+            return ("\\begin{figure}[htbp]\\centering\n"
+                    rf"\includegraphics[width=\linewidth]{{{figures[counter[0] - 1]}}}" "\n"
+                    rf"\par{{\small {caption}}}" "\n\\end{figure}\n")
+        return rf"\fbox{{\parbox{{0.9\linewidth}}{{{caption}}}}}" + "\n"
+    raise TypeError(f"unknown block {type(b).__name__}")  # pragma: no cover
+
+
+def _section(s: Section, figures: Sequence[str] | None, counter: list[int]) -> str:
+    return rf"\section*{{{escape(s.title)}}}" + "\n" + "\n".join(_block(b, figures, counter) for b in s.blocks)
+
+
+def render_tex(doc: Document, *, footer: str = "", figures: Sequence[str] | None = None) -> str:
+    """A standalone LaTeX document; ``figures`` are the file names of the report's images, in order."""
+    counter = [0]
+    parts = [_PREAMBLE, r"\begin{document}", rf"\begin{{center}}{{\LARGE {escape(doc.title)}}}\end{{center}}"]
+    if doc.subtitle:
+        parts.append(rf"\begin{{center}}\textit{{{escape(doc.subtitle)}}}\end{{center}}")
+    parts += [_section(s, figures, counter) for s in doc.sections]
+    if footer:
+        parts.append(rf"\vfill{{\footnotesize {escape(footer)}}}")
+    parts.append(r"\end{document}")
+    return "\n".join(parts) + "\n"

@@ -1,0 +1,354 @@
+"""The report's words, in French (the course's vocabulary) and in English.
+
+Every sentence of the report is a template here, with ``{name}`` slots filled by text or
+by mathematics (`Math`), so that the builders hold no language at all.  The French is
+the seed's: paramètres principaux, liaisons principales, champ de vitesses virtuelles
+compatible, puissance virtuelle, composantes généralisées, intégrale première,
+énergie cinétique T(Σ/R0), énergie potentielle U_P(Σ/R0).
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+
+from ._report_doc import Math, Run, Runs
+
+__all__ = ["Words", "LANGUAGES"]
+
+LANGUAGES = ("fr", "en")
+
+_PHRASES: dict[str, tuple[str, str]] = {
+    # -- titles ---------------------------------------------------------------------------------
+    "title": ("Équations de Lagrange — {name}", "Lagrange's equations — {name}"),
+    "system": ("Le système étudié", "The system"),
+    "step1": ("1. Choix des liaisons principales", "1. Choice of the principal constraints"),
+    "step2": ("2. Paramètres principaux", "2. Principal parameters"),
+    "step3": ("3. Champ de vitesses virtuelles compatible avec les liaisons principales",
+              "3. Virtual velocity field compatible with the principal constraints"),
+    "step4": ("4. Énergies cinétique et potentielle", "4. Kinetic and potential energies"),
+    "step5": ("5. Composantes généralisées des efforts", "5. Generalized forces"),
+    "step6": ("6. Équations de Lagrange", "6. Lagrange's equations"),
+    "step7": ("7. Équations de liaison complémentaires", "7. Complementary constraint equations"),
+    "integrals": ("Intégrales premières", "First integrals"),
+    "check": ("Vérification par les théorèmes généraux (Remarque 4)",
+              "Cross-check with the Newton–Euler theorems (Remarque 4)"),
+    "simulation": ("Simulation", "Simulation"),
+    "matrix": ("Annexe : forme matricielle", "Appendix: matrix form"),
+    # -- the system -------------------------------------------------------------------------------
+    "galilean": ("{R0} est un repère galiléen.", "{R0} is a Galilean frame."),
+    "reference": ("Les équations sont écrites par rapport au repère {R}, qui n'est pas galiléen : aux efforts "
+                  "donnés s'ajoutent les efforts d'inertie de Coriolis et d'entraînement (Remarque 3).",
+                  "The equations are written relative to the frame {R}, which is not Galilean: the Coriolis "
+                  "and entrainment inertial forces are added to the given efforts (Remarque 3)."),
+    "constituents": ("(Σ) est formé de :", "(Σ) is made of:"),
+    "body item": ("le solide ({S}) : masse {m}, centre d'inertie {G}, {OG}",
+                  "the rigid body ({S}): mass {m}, centre of mass {G}, {OG}"),
+    "particle item": ("le point matériel {P} : masse {m}, {OP}", "the particle {P}: mass {m}, {OP}"),
+    "parameters": ("Constantes du problème :", "Constants of the problem:"),
+    "col symbol": ("symbole", "symbol"),
+    "col value": ("valeur", "value"),
+    "col unit": ("unité", "unit"),
+    "col description": ("description", "description"),
+    "col initial": ("valeur initiale", "initial value"),
+    "col rate": ("vitesse initiale", "initial rate"),
+    # -- step 1 ---------------------------------------------------------------------------------
+    "only constraint": ("La seule liaison est {c}.", "The only constraint is {c}."),
+    "constraints": ("Les liaisons sont :", "The constraints are:"),
+    "fixed point": ("la liaison « {X} point fixe » de ({S})", "the constraint “{X} fixed point” of ({S})"),
+    "pivot R0": ("la liaison pivot d'axe {axis} de ({S}) par rapport à {R0}",
+                 "the hinge (revolute joint) of axis {axis} of ({S}) relative to {R0}"),
+    "pivot": ("la liaison pivot d'axe {axis} entre ({S}) et ({S2})",
+              "the hinge (revolute joint) of axis {axis} between ({S}) and ({S2})"),
+    "ball joint": ("la liaison rotule de centre {X} entre ({S}) et {other}",
+                   "the ball joint of centre {X} between ({S}) and {other}"),
+    "rod": ("la liaison qui maintient {XP} (tige de masse négligeable, fil tendu...)",
+            "the constraint that keeps {XP} (a massless rod, a taut string...)"),
+    "rod plane": ("la liaison qui maintient {XP} (tige de masse négligeable, fil tendu...), {P} restant dans le "
+                  "plan passant par {X} et normal à {n}",
+                  "the constraint that keeps {XP} (a massless rod, a taut string...), {P} staying in the plane "
+                  "through {X} normal to {n}"),
+    "line": ("la liaison glissière de {P} sur la droite {line}", "the slider of {P} along the line {line}"),
+    "plane": ("la liaison de {P} avec le plan passant par {X} et normal à {n}",
+              "the constraint keeping {P} in the plane through {X} normal to {n}"),
+    "placement": ("la liaison qui place {E} en fonction des paramètres principaux",
+                  "the constraint that places {E} as a function of the principal parameters"),
+    "declared": ("la liaison « {name} »{description} : {equation}", "the constraint “{name}”{description}: {equation}"),
+    "no slip": ("le roulement sans glissement de ({S}) en {I} : {equation}",
+                "rolling without slipping of ({S}) at {I}: {equation}"),
+    "coincide": ("la liaison qui maintient {P} en {Q} : {equation}", "the constraint that keeps {P} at {Q}: {equation}"),
+    "equations count": ("{k} équations scalaires", "{k} scalar equations"),
+    "equation count": ("1 équation scalaire", "1 scalar equation"),
+    "holonomic": ("holonome", "holonomic"),
+    "nonholonomic": ("non holonome (elle porte sur les vitesses)", "nonholonomic (a relation between velocities)"),
+    "scleronomic": ("indépendante du temps", "time-independent"),
+    "rheonomic": ("dépendante du temps", "time-dependent"),
+    "principal": ("principale", "principal"),
+    "principal declared": ("principale (le choix des paramètres la satisfait déjà)",
+                           "principal (the choice of parameters already satisfies it)"),
+    "complementary": ("complémentaire : elle est gardée comme équation (étape 7), avec le multiplicateur {lam}",
+                      "complementary: it is kept as an equation (step 7), with the multiplier {lam}"),
+    "classified one": ("Elle est {a}, {b} et {c}.", "It is {a}, {b} and {c}."),
+    "classified": ("{a}, {b}, {c}", "{a}, {b}, {c}"),
+    "perfect fixed point": ("Elle est parfaite car la puissance virtuelle de la réaction {R} en {X} est nulle ; "
+                            "en effet :", "It is perfect: the virtual power of the reaction {R} at {X} is zero, as"),
+    "because": ("car", "because"),
+    "since": ("puisque", "since"),
+    "and": ("et", "and"),
+    "perfect pivot": ("Elle est parfaite (sans frottement, {MX}) : la puissance virtuelle des actions de liaison "
+                      "est nulle,", "It is perfect (frictionless, {MX}): the virtual power of the constraint "
+                      "actions is zero,"),
+    "perfect joint": ("Elle est parfaite (sans frottement, {MX}) : les actions mutuelles de liaison, opposées, ont "
+                      "une puissance virtuelle nulle, {X} étant commun aux deux solides,",
+                      "It is perfect (frictionless, {MX}): the mutual constraint actions, opposite, have zero "
+                      "virtual power, {X} being common to both bodies,"),
+    "perfect ball": ("Elle est parfaite : les actions mutuelles de liaison se réduisent à une force en {X}, point "
+                     "commun aux deux solides, de puissance virtuelle nulle.",
+                     "It is perfect: the mutual constraint actions reduce to a force at {X}, a point common to "
+                     "both bodies, whose virtual power is zero."),
+    "perfect rod": ("Elle est parfaite (sans frottement) : la réaction sur {P} n'a de composante que selon {dirs}, "
+                    "directions orthogonales à son champ de vitesses virtuelles puisque {XP2} est constant :",
+                    "It is perfect (frictionless): the reaction on {P} only has components along {dirs}, "
+                    "directions orthogonal to its virtual velocity field since {XP2} is constant:"),
+    "perfect smooth": ("Elle est parfaite (contact sans frottement) : la réaction est normale à {where}, qui contient "
+                       "{V}.", "It is perfect (frictionless contact): the reaction is normal to {where}, which "
+                       "contains {V}."),
+    "the plane": ("ce plan", "that plane"),
+    "the line": ("cette droite", "that line"),
+    "perfect assumed": ("Elle est supposée parfaite (sans frottement) : ses efforts n'entrent dans aucune "
+                        "composante généralisée.", "It is assumed perfect (frictionless): its efforts enter no "
+                        "generalized force."),
+    "perfect complementary": ("Elle est parfaite : sa réaction a une puissance virtuelle nulle dans tout champ "
+                              "compatible avec elle, et ses composantes généralisées sont {Q}.",
+                              "It is perfect: its reaction has zero virtual power in every virtual field "
+                              "compatible with it, and its generalized forces are {Q}."),
+    "reaction is": ("Sa réaction sur {E} est {R}.", "Its reaction on {E} is {R}."),
+    "dof": ("Bilan des degrés de liberté : {count} paramètres principaux.",
+            "Degrees of freedom: {count} principal parameters."),
+    "time dep note": ("(le temps y figure explicitement)", "(the time appears in it explicitly)"),
+    # -- step 2 -----------------------------------------------------------------------------------
+    "n params": ("On a donc {n} paramètres principaux : {list}.", "Hence {n} principal parameters: {list}."),
+    "n params euler": ("On a donc {n} paramètres principaux qui sont les angles d'Euler {list} de ({S}).",
+                       "Hence {n} principal parameters, the Euler angles {list} of ({S})."),
+    "one param": ("On a donc un seul paramètre principal, {q}.", "Hence a single principal parameter, {q}."),
+    "remark 1": ("Remarque 1 : il y a autant d'équations de Lagrange que de paramètres principaux, soit {n}.",
+                 "Remarque 1: there are as many Lagrange equations as principal parameters, that is {n}."),
+    "remark 1 lambda": ("Remarque 1 : il y a autant d'équations de Lagrange que de paramètres principaux, soit {n} ; "
+                        "s'y ajoutent les {m} équations de liaison complémentaires (étape 7), pour les {m} "
+                        "multiplicateurs.", "Remarque 1: there are as many Lagrange equations as principal "
+                        "parameters, that is {n}; the {m} complementary constraint equations (step 7) are added, "
+                        "for the {m} multipliers."),
+    # -- step 3 -----------------------------------------------------------------------------------
+    "frames": ("Repères et rotations :", "Frames and rotations:"),
+    "fixed": ("fixe", "fixed"),
+    "attached": ("lié à", "attached to"),
+    "principal frame": ("{F} est un repère principal d'inertie de ({S}) ; la matrice principale d'inertie en {P} "
+                        "de ({S}){huygens} est", "{F} is a principal frame of inertia of ({S}); the principal "
+                        "inertia matrix of ({S}) at {P}{huygens} is"),
+    "inertia frame": ("La matrice d'inertie en {P} de ({S}), dans la base {basis} de {F}{huygens}, est",
+                      "The inertia matrix of ({S}) at {P}, in the basis {basis} of {F}{huygens}, is"),
+    "huygens": (", transportée de {A} en {P} par le théorème de Huygens,",
+                ", moved from {A} to {P} by the parallel-axis theorem,"),
+    "angular velocities": ("Vecteurs rotation :", "Angular velocities:"),
+    "virtual field": ("Le champ de vitesses virtuelles compatible avec les liaisons principales est {field} ; aux "
+                      "points où s'appliquent les efforts donnés :", "The virtual velocity field compatible with "
+                      "the principal constraints is {field}; at the points where the given efforts act:"),
+    "virtual rotation": ("Vecteur rotation virtuel des solides qui portent des couples :",
+                         "Virtual angular velocity of the bodies that bear couples:"),
+    # -- step 4 -----------------------------------------------------------------------------------
+    "energies": ("Les énergies cinétique et potentielle compatibles de (Σ) par rapport à {R} sont :",
+                 "The kinetic and potential energies of (Σ) relative to {R} are:"),
+    "koenig": ("(théorème de König)", "(König's theorem)"),
+    "no potential": ("Aucun effort donné ne dérive d'une énergie potentielle : {U}.",
+                     "No given effort derives from a potential energy: {U}."),
+    "potential of": ("Énergie potentielle de chaque effort conservatif :", "Potential energy of each conservative effort:"),
+    "cste": ("cste", "const"),
+    # -- step 5 -----------------------------------------------------------------------------------
+    "virtual power intro": ("La puissance virtuelle de chaque effort donné, dans le champ de vitesses virtuelles "
+                            "compatible, s'écrit {P}, dont les coefficients sont les composantes généralisées {Q} :",
+                            "The virtual power of each given effort in the compatible virtual velocity field is "
+                            "{P}; its coefficients are the generalized forces {Q}:"),
+    "zero because": ("{Q} car {why}", "{Q} because {why}"),
+    "point still": ("{P} ne bouge pas quand {q} varie : {d}", "{P} does not move when {q} varies: {d}"),
+    "orthogonal": ("la force est orthogonale à {d}", "the force is orthogonal to {d}"),
+    "no rotation": ("{S} ne tourne pas quand {q} varie", "{S} does not turn when {q} varies"),
+    "couple orthogonal": ("le couple est orthogonal à {d}", "the couple is orthogonal to {d}"),
+    "length still": ("la longueur {AB} ne dépend pas de {q}", "the length {AB} does not depend on {q}"),
+    "U still": ("{U} ne dépend pas de {q}", "{U} does not depend on {q}"),
+    "not given": ("aucune composante n'est donnée sur {q}", "no component is given on {q}"),
+    "cancel": ("les contributions se compensent", "the contributions cancel"),
+    "derives": ("« {name} » dérive d'une énergie potentielle : {Q} pour tout {i} (vérifié) ; il est pris en compte "
+                "par {UP} à l'étape 6.", "“{name}” derives from a potential energy: {Q} for every {i} (checked); "
+                "it enters through {UP} in step 6."),
+    "not conservative": ("« {name} » ne dérive pas d'une énergie potentielle : ses composantes généralisées "
+                         "figurent dans {Q}.", "“{name}” does not derive from a potential energy: its generalized "
+                         "forces enter {Q}."),
+    "load title": ("« {name} » ({kind}{extra}) :", "“{name}” ({kind}{extra}):"),
+    "kind gravity": ("pesanteur", "gravity"),
+    "kind pointforce": ("force", "force"),
+    "kind torque": ("couple", "couple"),
+    "kind spring": ("ressort", "spring"),
+    "kind damper": ("amortisseur visqueux", "viscous damper"),
+    "kind potential": ("énergie potentielle donnée", "given potential energy"),
+    "kind generalizedforce": ("composantes généralisées données", "given generalized forces"),
+    "kind dissipation": ("fonction de dissipation de Rayleigh", "Rayleigh dissipation function"),
+    "kind jointdamper": ("frottement visqueux dans une liaison", "viscous friction in a joint"),
+    "kind coulombfriction": ("frottement de Coulomb", "Coulomb friction"),
+    "kind inertial: Coriolis": ("effort d'inertie de Coriolis", "Coriolis inertial force"),
+    "kind inertial: entrainment": ("effort d'inertie d'entraînement", "entrainment inertial force"),
+    "perfect no Q": ("Les liaisons principales étant parfaites, la puissance virtuelle de leurs efforts est nulle : "
+                     "ils n'apparaissent dans aucune composante généralisée.",
+                     "The principal constraints being perfect, the virtual power of their efforts is zero: they "
+                     "appear in no generalized force."),
+    "complementary Q": ("Les réactions des liaisons complémentaires ont pour composantes généralisées {Q} "
+                        "(étape 7).", "The reactions of the complementary constraints have the generalized "
+                        "forces {Q} (step 7)."),
+    "nc total": ("Composantes généralisées des efforts non conservatifs :", "Generalized forces of the "
+                 "non-conservative efforts:"),
+    "no loads": ("Aucun effort donné.", "No given effort."),
+    # -- step 6 -----------------------------------------------------------------------------------
+    "lagrange n": ("Les {n} équations de Lagrange sont :", "The {n} Lagrange equations are:"),
+    "lagrange one": ("L'équation de Lagrange est :", "The Lagrange equation is:"),
+    "et": ("et", "and"),
+    "constant": ("constante", "constant"),
+    "first integral K": ("intégrale première du mouvement, dans laquelle {K}.",
+                         "a first integral of the motion, in which {K}."),
+    "with values": ("{value} avec les valeurs initiales du modèle", "{value} with the model's initial values"),
+    "using integrals": ("ou encore, en tenant compte de {eqs} :", "or, using {eqs}:"),
+    "conservative": ("Le système (Σ) est conservatif par rapport à {R} (Remarque 2) : tous les efforts donnés "
+                     "dérivent d'une énergie potentielle et toutes les liaisons sont parfaites et principales. Avec "
+                     "le lagrangien {L}, les équations s'écrivent", "The system (Σ) is conservative relative to "
+                     "{R} (Remarque 2): every given effort derives from a potential energy and every constraint "
+                     "is perfect and principal. With the Lagrangian {L}, the equations read"),
+    "not conservative system": ("Le système n'est pas conservatif : {names} ne dérive(nt) pas d'une énergie "
+                                "potentielle.", "The system is not conservative: {names} do(es) not derive from "
+                                "a potential energy."),
+    "with multipliers": ("Les liaisons complémentaires ajoutent {sum} au second membre (étape 7).",
+                         "The complementary constraints add {sum} to the right-hand side (step 7)."),
+    # -- step 7 -----------------------------------------------------------------------------------
+    "no complementary": ("Toutes les liaisons ont été prises principales : il n'y a pas d'équation de liaison "
+                         "complémentaire, et les {n} équations de Lagrange déterminent le mouvement.",
+                         "Every constraint was taken principal: there is no complementary constraint equation, "
+                         "and the {n} Lagrange equations determine the motion."),
+    "complementary rows": ("Les équations de liaison complémentaires complètent le système ; avec les {n} équations "
+                           "de Lagrange, elles déterminent les {n} paramètres et les {m} multiplicateurs {lams} :",
+                           "The complementary constraint equations complete the system; with the {n} Lagrange "
+                           "equations they determine the {n} parameters and the {m} multipliers {lams}:"),
+    "reaction of": ("Réaction de « {name} » sur {E} :", "Reaction of “{name}” on {E}:"),
+    # -- integrals --------------------------------------------------------------------------------
+    "cyclic": ("{q} est un paramètre cyclique : {why}, donc {eq} s'intègre :", "{q} is cyclic: {why}, so {eq} "
+               "integrates:"),
+    "momentum": ("{why}, donc {eq} s'intègre :", "{why}, so {eq} integrates:"),
+    "energy integral": ("{L} ne dépend pas explicitement du temps et {cond} ; {T} étant une forme quadratique "
+                        "homogène des vitesses, l'intégrale première de l'énergie s'écrit :",
+                        "{L} does not depend on the time explicitly and {cond}; {T} being a homogeneous "
+                        "quadratic form of the rates, the energy integral reads:"),
+    "jacobi integral": ("{L} ne dépend pas explicitement du temps et {cond} ; {T} n'étant pas homogène en vitesses, "
+                        "l'intégrale première de Painlevé–Jacobi s'écrit :", "{L} does not depend on the time "
+                        "explicitly and {cond}; {T} not being homogeneous in the rates, the Painlevé–Jacobi "
+                        "integral reads:"),
+    "cond conservative": ("le système est conservatif", "the system is conservative"),
+    "cond no work": ("les efforts non conservatifs ne travaillent pas", "the non-conservative efforts do no work"),
+    "replace": ("L'équation de Lagrange relative à {q} peut être remplacée par l'intégrale première de l'énergie.",
+                "The Lagrange equation of {q} may be replaced by the energy integral."),
+    "replace one": ("L'intégrale première de l'énergie peut remplacer l'une des équations {eqs}.",
+                    "The energy integral may replace one of the equations {eqs}."),
+    "no integral": ("Aucune intégrale première n'apparaît : aucun paramètre n'est cyclique, et {why}.",
+                    "No first integral appears: no parameter is cyclic, and {why}."),
+    "why time": ("le lagrangien dépend explicitement du temps", "the Lagrangian depends on the time explicitly"),
+    "why work": ("des efforts non conservatifs travaillent", "non-conservative efforts do work"),
+    "why constraints": ("les réactions des liaisons complémentaires travaillent",
+                        "the reactions of the complementary constraints do work"),
+    # -- the Newton–Euler check -------------------------------------------------------------------
+    "check intro": ("Ces équations de Lagrange peuvent être retrouvées en appliquant les théorèmes généraux à chaque "
+                    "constituant de (Σ) par rapport à {R0} galiléen, projetés sur les directions associées à chaque "
+                    "paramètre (Remarque 4) :", "These Lagrange equations can be found again by applying the "
+                    "general theorems to each part of (Σ) relative to the Galilean {R0}, projected on the "
+                    "directions that go with each parameter (Remarque 4):"),
+    "moment theorem": ("Théorème du moment dynamique en {P} de ({S}) :", "Moment theorem at {P} for ({S}):"),
+    "resultant theorem": ("Théorème de la résultante dynamique pour {P} :", "Resultant theorem for {P}:"),
+    "by moment": ("{eq} par projection du théorème du moment dynamique en {P}{of} sur {e} :",
+                  "{eq} by projecting the moment theorem at {P}{of} on {e}:"),
+    "by resultant": ("{eq} par projection du théorème de la résultante dynamique{of} sur {e} :",
+                     "{eq} by projecting the resultant theorem{of} on {e}:"),
+    "by power": ("{eq} par projection des théorèmes{of} sur les vitesses partielles de {q} (puissance virtuelle) :",
+                 "{eq} by projecting the theorems{of} on the partial velocities of {q} (virtual power):"),
+    "of": (" de {names}", " of {names}"),
+    "check failed": ("Désaccord : la projection ne redonne pas {eq}.", "Disagreement: the projection does not give "
+                     "{eq} back."),
+    "constraint actions": ("liaisons", "constraints"),
+    "notes": ("Expressions longues", "Long expressions"),
+    "perfect drop": ("Les liaisons étant parfaites, leurs actions disparaissent de chaque projection.",
+                     "The constraints being perfect, their actions drop out of every projection."),
+    # -- simulation, appendix, sizes --------------------------------------------------------------
+    "figure": ("Figure {k} : {caption}", "Figure {k}: {caption}"),
+    "matrix large": ("Les équations de Lagrange s'écrivent {form} ; la matrice {n} a {k} coefficients non nuls "
+                     "(triangle supérieur), trop pour les écrire ici : la commande {cmd} les donne, avec F.",
+                     "The Lagrange equations read {form}; the {n} matrix has {k} nonzero entries (upper "
+                     "triangle), too many to print here: the command {cmd} gives them, with F."),
+    "matrix intro": ("Les équations de Lagrange s'écrivent {form}, avec :", "The Lagrange equations read {form}, with:"),
+    "show full": ("{label} : {k} lignes — afficher en entier", "{label}: {k} lines — show in full"),
+    "show all": ("{label} — afficher ({k})", "{label} — show ({k})"),
+    "terms": ("termes", "terms"),
+    "long expression": ("expression longue", "long expression"),
+    "summaries": ("{sample} : expression trop longue pour être écrite ici ; la commande {cmd} (ou la fonction "
+                  "{fn}) la donne en entier.", "{sample}: an expression too long to print here; the command "
+                  "{cmd} (or the function {fn}) gives it in full."),
+}
+
+
+class Words:
+    """The phrases of one language: ``w("key", name=value, ...)`` gives runs, ``w.text`` plain text."""
+
+    def __init__(self, lang: str) -> None:
+        if lang not in LANGUAGES:
+            raise ValueError(f"language must be one of {', '.join(LANGUAGES)}, not {lang!r}")
+        self.lang = lang
+        self._index = LANGUAGES.index(lang)
+
+    def has(self, key: str) -> bool:
+        return key in _PHRASES
+
+    def template(self, key: str) -> str:
+        return _PHRASES[key][self._index]
+
+    def text(self, key: str, **values: str) -> str:
+        return self.template(key).format(**values)
+
+    def __call__(self, key: str, **values: Run | Runs) -> Runs:
+        """The phrase ``key`` as runs, each ``{slot}`` replaced by text, `Math` or runs."""
+        out: list[Run] = []
+        for k, piece in enumerate(re.split(r"\{(\w+)\}", self.template(key))):
+            if k % 2 == 0:
+                if piece:
+                    out.append(piece)
+                continue
+            value = values[piece]
+            out.extend(value if isinstance(value, tuple) else (value,))
+        return _merge(out)
+
+    def join(self, items: Sequence[Run | Runs]) -> Runs:
+        """``a, b et c`` / ``a, b and c``."""
+        parts: list[Run] = []
+        last = " " + self.template("and") + " "
+        for k, item in enumerate(items):
+            if k:
+                parts.append(last if k == len(items) - 1 else ", ")
+            parts.extend(item if isinstance(item, tuple) else (item,))
+        return _merge(parts)
+
+    def number(self, value: float) -> str:
+        """A number as this language writes it (decimal comma in French)."""
+        text = f"{value:.6g}"
+        return text.replace(".", ",") if self.lang == "fr" else text
+
+
+def _merge(runs: Sequence[Run]) -> Runs:
+    """Adjacent text runs joined into one."""
+    out: list[Run] = []
+    for r in runs:
+        if isinstance(r, str) and out and isinstance(out[-1], str):
+            out[-1] = out[-1] + r
+        elif r != "":
+            out.append(r)
+    return tuple(out)
