@@ -260,13 +260,12 @@ def test_model_without_constraints_is_unchanged() -> None:
 
 # -- principal constraints -----------------------------------------------------------------------------------------
 def test_principal_constraint_satisfied_by_the_coordinates_gets_no_multiplier() -> None:
-    text = model_text("simple_pendulum.toml") + '\n[constraints]\nrod = { holonomic = "P", principal = true }\n'
-    with pytest.raises(ModelError):  # P is not a name of the expression grammar
-        derive_text(text)
-    text = model_text("simple_pendulum.toml") + ('\n[constraints]\n'
-                                                 'plane = { holonomic = "0*l + 0", principal = true }\n')
+    # OP = l, written with the coordinate θ: satisfied through sin² + cos² = 1 (step 1, principal).
+    text = model_text("simple_pendulum.toml") + (
+        '\n[constraints]\nrod = { holonomic = "(l*sin(theta))^2 + (l*cos(theta))^2 - l^2", principal = true }\n')
     eom = derive_text(text)
-    assert eom.constraints == () and eom.model.constraints[0].principal
+    assert eom.constraints == () and eom.reactions == ()
+    assert eom.model.constraints[0].principal and eom.model.constraints[0].kind == "holonomic"
 
 
 def test_principal_no_slip_is_checked() -> None:
