@@ -4,7 +4,7 @@ PYTHON ?= python3
 VENV ?= .venv
 PY := $(VENV)/bin/python
 
-.PHONY: demo test bench clean
+.PHONY: demo test bench clean browser
 
 $(VENV)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -15,8 +15,24 @@ $(VENV)/.installed: pyproject.toml
 demo: $(VENV)/.installed   ## derive the seed's Lagrange top
 	$(VENV)/bin/lagrangian derive
 
-test: $(VENV)/.installed   ## run the test suite
+test: $(VENV)/.installed browser   ## run the test suite
 	$(PY) -m pytest src tests
+
+# The HTML report's tests open the page in a headless browser (Debian's chromium). Install it when it
+# is missing and we are root with apt-get; otherwise say so: those tests are then skipped, the build goes on.
+browser:
+	@if command -v chromium >/dev/null 2>&1 || command -v chromium-browser >/dev/null 2>&1 \
+	    || command -v google-chrome >/dev/null 2>&1; then :; \
+	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	    echo "installing chromium (headless browser for the HTML report tests)..."; \
+	    (DEBIAN_FRONTEND=noninteractive apt-get install -y -q chromium >/dev/null 2>&1 \
+	     || (apt-get update -q >/dev/null 2>&1 \
+	         && DEBIAN_FRONTEND=noninteractive apt-get install -y -q chromium >/dev/null 2>&1)) \
+	    || echo "note: chromium could not be installed; the HTML report's browser tests will be skipped"; \
+	else \
+	    echo "note: chromium is not installed (installing it needs root and apt-get);" \
+	         "the HTML report's browser tests will be skipped"; \
+	fi
 
 bench: $(VENV)/.installed   ## derivation benchmark against SymPy's LagrangesMethod (slow: minutes)
 	$(PY) benchmarks/derive_vs_sympy.py

@@ -1,0 +1,131 @@
+"""The HTML report in a real browser: headless Chromium (Debian's ``chromium``; ``make test`` installs it).
+
+Checked: the page loads with no console message and no failed resource, every equation
+is laid out as MathML (the browser's ``display: math`` or ``block math``, a box of
+nonzero size), no LaTeX is left in the visible text, every image decodes, and a screenshot
+is taken.  Skipped, with the reason, where no Chromium can be found.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import lagrangian
+from lagrangian.model.zoo import planar_chain
+from lagrangian.output import ReportFigure, report
+from lagrangian.output._report_doc import math_of
+from lagrangian_test_support import EXAMPLES_DIR
+
+CHROMIUM = next((p for p in map(shutil.which, ("chromium", "chromium-browser", "google-chrome", "chrome")) if p), None)
+pytestmark = pytest.mark.skipif(
+    CHROMIUM is None, reason="no headless Chromium on this machine (`make test` installs Debian's chromium as root)")
+
+#: Seconds Chromium may take to load and lay out a page (a cold start on a busy machine).
+BROWSER_SECONDS = 120
+
+# Run after the page has loaded: open every <details>, then measure every <math> and image.
+_PROBE = """
+<script>
+window.__errors = [];
+window.addEventListener('error', e => window.__errors.push(String(e.message || (e.target && e.target.outerHTML))), true);
+window.addEventListener('load', () => {
+  document.querySelectorAll('details').forEach(d => { d.open = true; });
+  const maths = Array.from(document.querySelectorAll('math'));
+  const bad = maths.filter(m => {
+    const r = m.getBoundingClientRect();
+    const display = getComputedStyle(m).display;
+    return !['math', 'inline math', 'block math'].includes(display) || r.width <= 0 || r.height <= 0;
+  }).map(m => m.outerHTML.slice(0, 200));
+  const images = Array.from(document.images).map(i => i.complete && i.naturalWidth > 0);
+  const probe = document.createElement('pre');
+  probe.id = 'probe';
+  probe.textContent = JSON.stringify({errors: window.__errors, maths: maths.length, bad: bad, images: images,
+                                      text: document.body.innerText});
+  document.body.appendChild(probe);
+});
+</script>
+"""
+
+
+def _chromium(tmp_path: Path, *args: str) -> subprocess.CompletedProcess:
+    profile = tmp_path / "chromium-profile"
+    command = [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
+               "--disable-component-update", "--disable-sync", "--no-first-run", "--hide-scrollbars",
+               f"--user-data-dir={profile}", "--enable-logging=stderr", "--v=0", *args]
+    return subprocess.run(command, capture_output=True, text=True, timeout=BROWSER_SECONDS)  # type: ignore[arg-type]
+
+
+def _console(stderr: str) -> list[str]:
+    return [line for line in stderr.splitlines() if ":CONSOLE" in line]
+
+
+def _check_page(html: str, expected_math: int, tmp_path: Path, images: int = 0) -> dict:
+    page = tmp_path / "report.html"
+    page.write_text(html, encoding="utf-8")
+    # The page with a probe script added at its end (the script itself logs nothing): the page must load
+    # with no console message and no failed resource, every equation laid out as MathML, no LaTeX left.
+    probed = tmp_path / "probed.html"
+    probed.write_text(html.replace("</body>", _PROBE + "</body>"), encoding="utf-8")
+    run = _chromium(tmp_path, "--virtual-time-budget=10000", "--dump-dom", probed.as_uri())
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert _console(run.stderr) == [], _console(run.stderr)
+    found = re.search(r'<pre id="probe">(.*?)</pre>', run.stdout, re.S)
+    assert found, run.stdout[-2000:]
+    result = json.loads(found.group(1).replace("&lt;", "<").replace("&gt;", ">").replace("&quot;", '"')
+                        .replace("&amp;", "&"))
+    assert result["errors"] == []
+    assert result["maths"] == expected_math
+    assert result["bad"] == []
+    assert result["images"] == [True] * images
+    for raw in (r"\frac", r"\dot", r"\vec", r"\left", r"\text", "$", "^{", "_{"):
+        assert raw not in result["text"], raw
+    return result
+
+
+def _screenshot(html_path: Path, tmp_path: Path) -> Path:
+    shot = tmp_path / "report.png"
+    run = _chromium(tmp_path, "--window-size=1100,3000", f"--screenshot={shot}", html_path.as_uri())
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert shot.read_bytes().startswith(b"\x89PNG\r\n\x1a\n") and shot.stat().st_size > 10_000
+    import matplotlib.image
+
+    pixels = matplotlib.image.imread(shot)
+    assert pixels.std() > 0.01  # not a blank page
+    return shot
+
+
+def _math_count(r) -> int:
+    return sum(len(math_of(s.blocks)) for s in r.document.sections)
+
+
+def test_top_in_french_renders_in_a_browser(tmp_path):
+    import matplotlib.figure
+    from io import BytesIO
+
+    fig = matplotlib.figure.Figure(figsize=(3, 2))
+    fig.add_subplot().plot(np.sin(np.linspace(0, 6, 50)))
+    buffer = BytesIO()
+    fig.savefig(buffer, format="png")
+    r = report(lagrangian.lagrange_top(), lang="fr", verification=True,
+               figures=[ReportFigure(buffer.getvalue(), "θ(t)")])
+    result = _check_page(r.html(), _math_count(r), tmp_path, images=1)
+    assert "Équations de Lagrange" in result["text"] and "angles d'Euler" in result["text"]
+    _screenshot(tmp_path / "report.html", tmp_path)
+
+
+@pytest.mark.parametrize("name", ["double_pendulum.toml", "pendulum_tension.toml"])
+def test_other_models_render_in_a_browser(name, tmp_path):
+    r = report(EXAMPLES_DIR / name, lang="en", verification=True)
+    _check_page(r.html(), _math_count(r), tmp_path)
+
+
+def test_a_40_link_chain_renders_in_a_browser(tmp_path):
+    r = report(lagrangian.derive(planar_chain(40)), lang="fr")
+    _check_page(r.html(), _math_count(r), tmp_path)
