@@ -40,7 +40,7 @@ def run(args: argparse.Namespace) -> str:
     if args.json:
         initial = {c.name: {"value": c.initial, "rate": c.rate} for c in model.coordinates}
         doc = derive_document(form, parameters=model.parameter_values, initial=initial, source=model.source,
-                              package_version=__version__)
+                              package_version=__version__, eom=eom)
         return json.dumps(doc, indent=2, ensure_ascii=False) + "\n"
     if args.latex:
         return render_latex(form)

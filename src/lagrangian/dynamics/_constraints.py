@@ -43,7 +43,8 @@ from ..model import GALILEAN_FRAME, Constraint, Vector
 from ..model._vector import sum_of
 
 __all__ = ["ConstraintRow", "ConstraintReaction", "complementary_constraints", "multiplier_symbol",
-           "admissible_integrals", "multiplier_formulas", "reaction_efforts", "MULTIPLIER_PREFIX"]
+           "admissible_integrals", "multiplier_formulas", "reaction_efforts", "ConstraintInfo",
+           "describe_constraints", "MULTIPLIER_PREFIX"]
 
 #: Multipliers are named ``lambda_<row>`` (λ_length, λ_rolling_x0, ...).
 MULTIPLIER_PREFIX = "lambda_"
@@ -432,3 +433,52 @@ def reaction_efforts(eom) -> list[tuple[str, str, object, str | None, str | None
         if r.body is not None and not r.moment.is_zero():
             out.append((r.constraint, "couple", r.moment, None, r.body))
     return out
+
+
+# -- plain data for reports and JSON (steps 1 and 7) -------------------------------------------------------
+@dataclass(frozen=True, slots=True)
+class ConstraintInfo:
+    """One declared constraint as the report shows it in steps 1 and 7.
+
+    Attributes
+    ----------
+    name, form, kind, description : as declared (kind ``"holonomic"`` or ``"nonholonomic"``).
+    role : ``"principal"`` (eliminated by the choice of coordinates; checked, no multiplier)
+        or ``"complementary"`` (rows with multipliers, written after the Lagrange equations).
+    statement : the relation as the derivation sees it: f(q, t) or a·q̇ + b (scalar), or the
+        vector that must vanish (V(I ∈ S/R0) for ``no_slip``, OP − OQ for ``coincide``).
+    frame : the basis of the rows of a vector constraint (None for a scalar one).
+    rows : its complementary rows (empty when principal).
+    reaction : the reaction its multipliers stand for (None when principal).
+    """
+
+    name: str
+    role: str
+    form: str
+    kind: str
+    description: str | None
+    statement: se.Basic | Vector
+    frame: str | None
+    rows: tuple[ConstraintRow, ...]
+    reaction: ConstraintReaction | None
+
+
+def describe_constraints(eom) -> tuple[ConstraintInfo, ...]:  # type: ignore[no-untyped-def]
+    """Every declared constraint of ``eom.model``, principal and complementary, as `ConstraintInfo`."""
+    kin = eom.kinematics
+    out = []
+    for c in eom.model.constraints:
+        raw = _raw_rows(kin, c)
+        if len(raw) == 1 and raw[0][1] is None:
+            statement: se.Basic | Vector = raw[0][2]
+            frame = None
+        else:
+            comps = [_ZERO, _ZERO, _ZERO]
+            for _, axis, e in raw:
+                comps[axis] = e  # type: ignore[index]
+            statement, frame = Vector({c.frame: tuple(comps)}), c.frame  # type: ignore[arg-type]
+        rows = tuple(r for r in eom.constraints if r.constraint == c.name)
+        reaction = next((r for r in eom.reactions if r.constraint == c.name), None)
+        out.append(ConstraintInfo(c.name, "principal" if c.principal else "complementary", c.form, c.kind,
+                                  c.description, statement, frame, rows, reaction))
+    return tuple(out)

@@ -16,6 +16,8 @@ from typing import Any
 
 import sympy
 
+from ..dynamics import EquationsOfMotion
+from ._constraints_json import constraints_section
 from ._course import CourseForm
 
 __all__ = ["SCHEMA_ID", "SCHEMA_VERSION", "derive_document"]
@@ -30,10 +32,14 @@ def _s(e: sympy.Basic) -> str:
 
 def derive_document(form: CourseForm, *, parameters: dict[str, float | None],
                     initial: dict[str, dict[str, float | None]], source: str | None,
-                    package_version: str) -> dict[str, Any]:
-    """The JSON object printed by ``lagrangian derive --json``."""
+                    package_version: str, eom: EquationsOfMotion | None = None) -> dict[str, Any]:
+    """The JSON object printed by ``lagrangian derive --json``.
+
+    With ``eom`` whose model declares constraints, the optional keys ``constraints``,
+    ``multipliers`` and ``multiplier_terms`` are added (`_constraints_json`).
+    """
     q = list(form.coordinates)
-    return {
+    doc = {
         "schema": SCHEMA_ID,
         "version": SCHEMA_VERSION,
         "generator": f"lagrangian {package_version}",
@@ -66,3 +72,6 @@ def derive_document(form: CourseForm, *, parameters: dict[str, float | None],
             for i in form.integrals
         ],
     }
+    if eom is not None:
+        doc.update(constraints_section(eom))
+    return doc

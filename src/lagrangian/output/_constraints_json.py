@@ -1,0 +1,58 @@
+"""The ``constraints`` section of the ``derive --json`` document (steps 1 and 7 as data).
+
+Present only when the model declares constraints (``[constraints]``); see
+``docs/derive-json.md`` for the keys and ``docs/constraints.md`` for the conventions
+(λ_k multiplies +A_ki; a reaction force is what the constraint exerts on the body).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import sympy
+
+from ..dynamics import EquationsOfMotion
+from ..dynamics._constraints import describe_constraints
+from ..model import Vector
+from ._course import to_sympy
+
+__all__ = ["constraints_section"]
+
+
+def _s(e: Any) -> str:
+    return sympy.sstr(to_sympy(e), order="none")
+
+
+def _vector(eom: EquationsOfMotion, v: Vector, frame: str) -> list[str]:
+    return [_s(c) for c in eom.kinematics.frames.express(v, frame)]
+
+
+def constraints_section(eom: EquationsOfMotion) -> dict[str, Any]:
+    """``{"constraints": [...], "multipliers": [...], "multiplier_terms": [...]}`` for ``eom``, or ``{}``."""
+    if not eom.model.constraints:
+        return {}
+    q = eom.coordinates
+    items = []
+    for info in describe_constraints(eom):
+        statement = (_vector(eom, info.statement, info.frame) if isinstance(info.statement, Vector)
+                     else _s(info.statement))
+        rows = [{"name": r.name, "equation": _s(r.expression), "multiplier": r.multiplier.name,
+                 "coefficients": {c: _s(a) for c, a in zip(q, r.coefficients)}, "b": _s(r.b),
+                 "velocity": _s(r.velocity), "acceleration_bias": _s(r.bias)} for r in info.rows]
+        reaction = None
+        if info.reaction is not None:
+            r = info.reaction
+            reaction = {
+                "point": r.point, "body": r.body, "counter_point": r.counter_point, "frame": r.frame,
+                "force": [_s(c) for c in r.force_components] if r.point is not None else None,
+                "moment": [_s(c) for c in r.moment_components] if r.body is not None else None,
+                "generalized": {c: _s(g) for c, g in zip(q, r.generalized)}, "note": r.note,
+            }
+        items.append({"name": info.name, "role": info.role, "form": info.form, "kind": info.kind,
+                      "description": info.description, "frame": info.frame, "statement": statement,
+                      "rows": rows, "reaction": reaction})
+    return {
+        "constraints": items,
+        "multipliers": [m.name for m in eom.multipliers],
+        "multiplier_terms": [_s(eq.multiplier_terms) for eq in eom.equations],
+    }
