@@ -12,7 +12,7 @@ from lagrangian.numerics import simulate
 #: (t_end, n_out) of each example's run: long enough for a full nutation period of the top
 #: (about 0.29 s) and a swing of the pendulums, short enough to stay fast.
 RUNS = {"lagrange_top.toml": (1.0, 2001)}
-DEFAULT_RUN = (1.0, 201)
+DEFAULT_RUN = (0.5, 101)
 
 
 @functools.cache

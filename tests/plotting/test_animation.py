@@ -37,18 +37,40 @@ def test_gif_frames_differ_even_for_a_system_at_rest(run, tmp_path):
 
 def test_planar_motion_is_drawn_in_its_plane(run):
     eom, traj = run("simple_pendulum.toml")
-    times = np.linspace(0, traj.t[-1], 9)
-    scene = build_scene(traj, eom, times)
+    scene = build_scene(traj, eom, traj.t[::10])
     assert scene.dimension == 2
     assert scene.plane_names == ("y0", "z0")  # z0 up, against gravity
     (name, rod), = scene.lines
     assert name == "OP"
     op = point_positions(traj, eom, ["P"])["P"]
-    l = traj.parameters["l"]
-    np.testing.assert_allclose(np.linalg.norm(rod[:, 1] - rod[:, 0], axis=1), l, atol=1e-12)
-    np.testing.assert_allclose(rod[:, 1], np.column_stack([np.interp(times, traj.t, op[:, k]) for k in (1, 2)]),
-                               atol=1e-6)  # interpolated q, not interpolated positions
+    np.testing.assert_allclose(rod[:, 1], op[::10, 1:], rtol=0, atol=1e-15)
     np.testing.assert_array_equal(scene.fixed, [[0.0, 0.0]])
+
+
+def test_frames_between_samples_interpolate_q_not_positions(run):
+    # Linear interpolation of positions would shorten the rod between samples; of θ, it keeps |OP| = l.
+    eom, traj = run("simple_pendulum.toml")
+    times = (traj.t[:-1:7] + traj.t[1::7]) / 2
+    (_, rod), = build_scene(traj, eom, times).lines
+    np.testing.assert_allclose(np.linalg.norm(rod[:, 1] - rod[:, 0], axis=1), traj.parameters["l"], atol=1e-12)
+    theta = np.interp(times, traj.t, traj.column("theta"))
+    l = traj.parameters["l"]
+    np.testing.assert_allclose(rod[:, 1], np.column_stack([l * np.sin(theta), -l * np.cos(theta)]), atol=1e-12)
+
+
+def test_a_wheel_is_drawn_as_its_disk(run):
+    # The coin rolls upright: its disk, of radius r = |GI| (I the contact point), is across its axle y1.
+    eom, traj = run("rolling_coin.toml")
+    scene = build_scene(traj, eom, traj.t[::20])
+    assert scene.dimension == 3
+    (disk,) = scene.disks
+    (_, g), = scene.lines
+    g = g[:, 0]
+    r = traj.parameters["r"]
+    np.testing.assert_allclose(np.linalg.norm(disk - g[:, None, :], axis=2), r, atol=1e-12)
+    psi = traj.column("psi")[::20]
+    axle = np.column_stack([-np.sin(psi), np.cos(psi), 0 * psi])  # y1
+    np.testing.assert_allclose(np.einsum("fmj,fj->fm", disk - g[:, None, :], axle), 0.0, atol=1e-12)
 
 
 def test_double_pendulum_rods_go_through_their_hinges(run):

@@ -24,7 +24,7 @@ from ..model import GALILEAN_FRAME, Vector
 from ..numerics import Trajectory
 
 __all__ = ["Samples", "parameter_values", "evaluate", "in_R0", "point_positions", "frame_basis",
-           "default_axis", "apex_path", "axis_angles", "constant_in"]
+           "default_axis", "symmetry_axis", "apex_path", "axis_angles", "constant_in"]
 
 
 @dataclass(frozen=True)
@@ -120,7 +120,8 @@ def default_axis(eom: EquationsOfMotion, body: str | None = None) -> tuple[str, 
     """(body, axis letter) whose tip `apex_path` follows by default.
 
     The body: the first one with a fixed point, else the first body.  The axis: the axis of
-    the body's frame that carries G from its fixed point (the top: OG = a z, so z), else z.
+    the body's frame that carries G from its fixed point (the top: OG = a z, so z), else its
+    axis of symmetry (`symmetry_axis`: a coin's axle), else z.
     """
     bodies = eom.model.bodies
     if not bodies:
@@ -138,7 +139,28 @@ def default_axis(eom: EquationsOfMotion, body: str | None = None) -> tuple[str, 
         nonzero = [i for i, c in enumerate(comps) if not _is_zero(c)]
         if len(nonzero) == 1:
             return b.name, "xyz"[nonzero[0]]
-    return b.name, "z"
+    return b.name, symmetry_axis(eom, b.name) or "z"
+
+
+def symmetry_axis(eom: EquationsOfMotion, body: str) -> str | None:
+    """The axis (x, y or z) of the body's frame with the one distinct principal moment, if any.
+
+    The inertia must be diagonal with two equal moments (A, A, C: the axis of C), and that
+    axis of the inertia's frame must be the same axis of the body's frame (R2.z = R.z for
+    the top, whose R turns from R2 about z).
+    """
+    b = eom.model.body(body)
+    m = b.inertia.matrix
+    if any(not _is_zero(m[i][j]) for i in range(3) for j in range(3) if i != j):
+        return None
+    d = [m[k][k] for k in range(3)]
+    for k in range(3):
+        i, j = [x for x in range(3) if x != k]
+        if _is_zero(d[i] - d[j]) and not _is_zero(d[k] - d[i]):
+            comps = eom.kinematics.frames.express(Vector.basis(b.inertia.frame, "xyz"[k]), b.frame)
+            if all(_is_zero(c - (1 if n == k else 0)) for n, c in enumerate(comps)):
+                return "xyz"[k]
+    return None
 
 
 def _is_zero(expr: se.Basic) -> bool:

@@ -22,7 +22,7 @@ import numpy as np
 from ..dynamics import EquationsOfMotion
 from ..model import GALILEAN_FRAME, Damper, Gravity, Spring
 from ..numerics import Trajectory
-from ._geometry import Samples, constant_in, frame_basis, in_R0, parameter_values, point_positions
+from ._geometry import Samples, constant_in, frame_basis, in_R0, parameter_values, point_positions, symmetry_axis
 
 __all__ = ["Scene", "build_scene", "PLANAR"]
 
@@ -122,9 +122,16 @@ def _plane(points: np.ndarray, gravity: np.ndarray | None,
     """The page's axes (2 × 3) when every point lies in one plane, else None."""
     centred = points - points.mean(axis=0)
     _, s, vt = np.linalg.svd(centred, full_matrices=False)
-    if s[0] == 0 or s[-1] > PLANAR * s[0]:
+    if s[-1] > PLANAR * s[0]:
         return None
     normal = vt[2]
+    if s[1] <= PLANAR * s[0]:  # all on one line (or one point): the plane holding it and gravity
+        line = vt[0] if s[0] > 0 else np.eye(3)[0]
+        across = np.cross(line, gravity) if gravity is not None else np.zeros(3)
+        if np.linalg.norm(across) < 1e-9:
+            e = np.eye(3)[int(np.argmin(np.abs(line)))]
+            across = e - (e @ line) * line
+        normal = across / np.linalg.norm(across)
     k = int(np.argmax(np.abs(normal)))
     if abs(abs(normal[k]) - 1) < 1e-9:  # a plane of R0's axes: use them exactly
         normal = np.eye(3)[k]
@@ -132,7 +139,11 @@ def _plane(points: np.ndarray, gravity: np.ndarray | None,
         up = -gravity
     else:
         others = [i for i in range(3) if i != k]
-        up = np.eye(3)[others[1]] if abs(abs(normal[k]) - 1) < 1e-9 else vt[1]
+        guess = np.eye(3)[others[1]] if abs(abs(normal[k]) - 1) < 1e-9 else vt[1]
+        up = guess - (guess @ normal) * normal
+        if np.linalg.norm(up) < 1e-9:
+            up = np.cross(normal, vt[0])
+        up = up / np.linalg.norm(up)
     right = np.cross(up, normal)
     j = int(np.argmax(np.abs(right)))
     if right[j] < 0:
@@ -153,7 +164,9 @@ def build_scene(trajectory: Trajectory, eom: EquationsOfMotion, times: np.ndarra
     lines: list[tuple[str, np.ndarray]] = []
     dots: list[tuple[str, np.ndarray]] = []
     axes, disks, spokes = [], [], []
+    wheels: list[bool] = []  # a wheel's disk is the body itself; an anchored body's disk only shows its spin
     attached_to = {body.name: _attached(eom, body) for body in model.bodies}
+    full = point_positions(trajectory, eom, names)  # the whole run: constant distances are checked on it
     for body in model.bodies:
         attached = attached_to[body.name]
         anchor = body.fixed_point or (min(attached, key=lambda p: np.linalg.norm(pos[p][0] - pos[body.name][0]))
@@ -163,22 +176,30 @@ def build_scene(trajectory: Trajectory, eom: EquationsOfMotion, times: np.ndarra
         g = pos[body.name]
         size = max(float(np.max(np.linalg.norm(pos[p] - g, axis=1))) for p in chain) if len(chain) > 1 else 0.0
         basis = frame_basis(trajectory, eom, body.frame, samples)
+        radius = None
+        if anchor != body.name:  # a disk across the axis anchor → G (the top's OG)
+            normal, radius = _unit(g - pos[anchor]), DISK_RADIUS * size
+        else:  # a wheel: a disk across its axis of symmetry, out to a point it keeps touching (a contact)
+            k = "xyz".index(symmetry_axis(eom, body.name) or "z")
+            normal = basis[:, k]
+            reach = [d for p in model.points if (d := constant_in(full, p.name, body.name)) is not None]
+            if symmetry_axis(eom, body.name) and reach:
+                radius = min(reach)
+                size = radius
         if size == 0.0:
             size = 0.1 * max(float(np.max(np.abs(g))), 1.0)
         ends = g[:, None, :] + AXIS_LENGTH * size * basis  # (F, 3, 3)
         axes.append(np.stack([np.broadcast_to(g[:, None, :], ends.shape), ends], axis=2))
-        if anchor != body.name:
-            n = _unit(g - pos[anchor])
-            k = int(np.argmin(np.abs(np.einsum("fkj,fj->fk", basis, n)).mean(axis=0)))
-            e1 = _unit(basis[:, k] - np.sum(basis[:, k] * n, axis=1, keepdims=True) * n)
-            e2 = np.cross(n, e1)
+        if radius:
+            k = int(np.argmin(np.abs(np.einsum("fkj,fj->fk", basis, normal)).mean(axis=0)))
+            e1 = _unit(basis[:, k] - np.sum(basis[:, k] * normal, axis=1, keepdims=True) * normal)
+            e2 = np.cross(normal, e1)
             s = np.linspace(0, 2 * np.pi, 49)
-            r = DISK_RADIUS * size
-            disks.append(g[:, None, :] + r * (np.cos(s)[None, :, None] * e1[:, None, :]
-                                              + np.sin(s)[None, :, None] * e2[:, None, :]))
-            spokes.append(np.stack([g, g + r * e1], axis=1))
+            disks.append(g[:, None, :] + radius * (np.cos(s)[None, :, None] * e1[:, None, :]
+                                                   + np.sin(s)[None, :, None] * e2[:, None, :]))
+            spokes.append(np.stack([g, g + radius * e1], axis=1))
+            wheels.append(anchor == body.name)
     # Particles, and a rod to the nearest partner at constant distance (checked on the full run).
-    full = point_positions(trajectory, eom, names)
     candidates = [p.name for p in model.points] + [b.name for b in model.bodies]
     pivots: list[str] = []
     for particle in model.particles:
@@ -209,8 +230,13 @@ def build_scene(trajectory: Trajectory, eom: EquationsOfMotion, times: np.ndarra
     plane_names = ("", "")
     if view != "3d":
         cloud = np.concatenate([a.reshape(-1, 3) for _, a in lines] + [a for _, a in dots]
-                               + [a.reshape(-1, 3) for a in springs] + [fixed.reshape(-1, 3)])
-        found = _plane(cloud, _gravity_direction(trajectory, eom), axis_names)
+                               + [a.reshape(-1, 3) for a in springs] + [fixed.reshape(-1, 3)]
+                               + [a.reshape(-1, 3) for a, w in zip(disks, wheels) if w])
+        decorated = np.concatenate([cloud] + [a.reshape(-1, 3) for a in (*disks, *spokes)])
+        gravity = _gravity_direction(trajectory, eom)
+        # The plane of everything, else the plane of the bodies' lines, wheels and particles
+        # (a double pendulum: the disks across its rods are dropped).
+        found = _plane(decorated, gravity, axis_names) or _plane(cloud, gravity, axis_names)
         if found is not None:
             plane, plane_names = found
         elif view == "2d":
@@ -223,6 +249,15 @@ def build_scene(trajectory: Trajectory, eom: EquationsOfMotion, times: np.ndarra
     def flat(a: np.ndarray) -> np.ndarray:
         return a @ plane.T
 
+    normal = np.cross(plane[0], plane[1])
+    origin = cloud[0]
+    scale = max(float(np.ptp(cloud, axis=0).max()), 1e-300)
+
+    def in_plane(a: np.ndarray) -> bool:
+        return bool(np.max(np.abs((a.reshape(-1, 3) - origin) @ normal)) <= PLANAR * 1e3 * scale)
+
+    kept = [(d, sp) for d, sp in zip(disks, spokes) if in_plane(d) and in_plane(sp)]
     return Scene(samples.t, tuple((n, flat(a)) for n, a in lines), tuple((n, flat(a)) for n, a in dots),
                  tuple(flat(a) for a in springs), flat(fixed) if fixed.size else np.zeros((0, 2)),
+                 disks=tuple(flat(d) for d, _ in kept), spokes=tuple(flat(sp) for _, sp in kept),
                  plane=plane, plane_names=plane_names, trails=tuple(flat(a) for a in trails), axis_names=axis_names)
