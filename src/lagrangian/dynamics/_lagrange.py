@@ -131,8 +131,9 @@ class EquationsOfMotion:
 
     @property
     def conservative(self) -> bool:
-        """Remarque 2: every given effort derives from a potential (constraints are perfect and principal)."""
-        return all(f.potential is not None for f in self.loads)
+        """Remarque 2: every given effort derives from a potential and every constraint is perfect and
+        principal (a complementary constraint's reaction is a non-conservative effort of the seed's Q_i(nc))."""
+        return all(f.potential is not None for f in self.loads) and not self.constraints
 
     @property
     def L(self) -> se.Basic | None:
