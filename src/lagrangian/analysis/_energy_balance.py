@@ -104,8 +104,7 @@ def _prescribed_motion_power(eom: EquationsOfMotion) -> se.Basic | None:
     t1_zero, t0_zero, explicit_zero = are_zero([T1, T0, dT_dt])
     if t1_zero and t0_zero and explicit_zero:
         return None
-    K = (0 if t1_zero else T1) + (0 if t0_zero else 2 * T0)
-    K = se.sympify(K)
+    K = sum_of(([] if t1_zero else [T1]) + ([] if t0_zero else [2 * T0]))
     rate = sum_of([K.diff(q) * qd for q, qd in zip(kin.q, kin.qd)] + [K.diff(kin.t)])
     by_acceleration = [K.diff(qd) for qd in kin.qd]
     if not all(are_zero(by_acceleration)):
