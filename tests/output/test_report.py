@@ -138,12 +138,12 @@ def test_report_equations_are_the_engines(name, lang):
         if row.integral is None:
             expected.append(n.latex(row.lhs) + " = " + n.latex(row.rhs))
         else:  # the seed's d/dt[∂T/∂q̇] = 0 ⇒ ∂T/∂q̇ = K
-            expected.append(n.latex(row.dT_dqd) + f" = {row.integral}")
+            expected.append(n.latex(row.dT_dqd) + " = " + n.symbol(row.integral, latex=True))
         if row.using_integrals is not None:
             expected.append(n.latex(row.using_integrals) + " = " + n.latex(row.rhs))
     expected += [n.latex(t.expression) for t in form.T] + [n.latex(u.expression) for u in form.U]
     expected += [n.latex(q) for load in form.loads for q in load.Q]
-    expected += [n.sum(i.parts, latex=True) + f" = {i.name}" for i in form.integrals]
+    expected += [n.sum(i.parts, latex=True) + " = " + n.symbol(i.name, latex=True) for i in form.integrals]
     expected += [n.latex(x) for row in form.M for x in row if x != 0] + [n.latex(f) for f in form.F]
     for e in expected:
         assert _norm(e) in shown, f"{name}: {e!r} is not in the report"

@@ -21,7 +21,7 @@ from .._identity import are_zero
 from ._course import EquationRow, IntegralRow
 from ._report_build import Context
 from ._report_doc import Block, Display, Equation, Math, Para, Runs, Section
-from ._report_size import LINE_WIDTH, visible_width, wrap_many
+from ._report_size import visible_width, wrap_many
 
 __all__ = ["step6", "step7", "integrals_section", "ordered_equations"]
 
@@ -65,15 +65,15 @@ def _lagrange(c: Context, row: EquationRow) -> list[Block]:
     q = row.coordinate
     blocks: list[Block] = c.show(_partials(c, row), f"L({q})")
     if row.integral is not None:
+        K = c.n.symbol(row.integral, latex=True)
         p = c.n.latex(row.dT_dqd)
         if visible_width(p) > 50:
             p = _dT(c, q, "dot")
         constant = rf"\quad\text{{{w.text('constant')}}}"
         blocks.append(Display((Equation((rf"\frac{{d}}{{dt}}\left[{p}\right] = 0 \quad\Rightarrow\quad {p} = "
-                                         rf"{row.integral}{constant}",)),)))
-        K = Math(rf"{row.integral} = \left[{p}\right]_{{t = 0}}")
-        blocks.append(Para(w("first integral K", K=K)[:-1]
-                           + _value(c, row.integral, c.eom.equation(q).dT_dqd) + (".",)))
+                                         rf"{K}{constant}",)),)))
+        blocks.append(Para(w("first integral K", K=Math(rf"{K} = \left[{p}\right]_{{t = 0}}"))[:-1]
+                           + _value(c, K, c.eom.equation(q).dT_dqd) + (".",)))
         return blocks
     blocks += c.show([c.relation(r"\Rightarrow\quad ", row.lhs, row.rhs)], f"L({q})")
     if row.using_integrals is not None:
@@ -118,7 +118,10 @@ def step7(c: Context) -> Section:
     if not rows:
         return Section("step7", w.text("step7"), (Para(w("no complementary", n=Math(str(n)))),))
     lams = Math(", ".join(c.tex(r.multiplier) for r in rows))
-    blocks: list[Block] = [Para(w("complementary rows", n=Math(str(n)), m=Math(str(len(rows))), lams=lams))]
+    if len(rows) == 1:
+        blocks: list[Block] = [Para(w("complementary row", n=Math(str(n)), lams=lams))]
+    else:
+        blocks = [Para(w("complementary rows", n=Math(str(n)), m=Math(str(len(rows))), lams=lams))]
     blocks += c.show([c.equation("", c.ex(r.expression), " = 0") for r in rows], "7")
     for reaction in c.eom.reactions:
         if not reaction.physical:
@@ -163,7 +166,8 @@ def _momentum(c: Context, row: IntegralRow) -> list[Block]:
         why = (Math(rf"\frac{{\partial T}}{{\partial {c.sym(q)}}} - \frac{{\partial U_P}}{{\partial {c.sym(q)}}}"
                     rf" + Q_{{{c.sym(q)}}} = 0"),)
         head = w("momentum", why=why, eq=Lq)
-    return [Para(head)] + c.show([c.equation("", row.expression, f" = {row.name}")], row.name)
+    name = c.n.symbol(row.name, latex=True)
+    return [Para(head)] + c.show([c.equation("", row.expression, f" = {name}")], row.name)
 
 
 def _energy(c: Context, row: IntegralRow) -> list[Block]:
@@ -171,14 +175,15 @@ def _energy(c: Context, row: IntegralRow) -> list[Block]:
     cond = w.text("cond conservative" if c.form.conservative else "cond no work")
     key = "energy integral" if row.kind == "energy" else "jacobi integral"
     blocks: list[Block] = [Para(w(key, L=Math("L"), cond=cond, T=Math(rf"T(\Sigma/{c.R})")))]
+    name = c.n.symbol(row.name, latex=True)
     if row.kind == "energy":
         head = rf"T(\Sigma/{c.R}) + U_P(\Sigma/{c.R}) = "
-        blocks += c.show([_sum_equation(c, head, row.parts, f" = {row.name}")], row.name)
+        blocks += c.show([_sum_equation(c, head, row.parts, f" = {name}")], row.name)
     else:
-        blocks += c.show([c.equation(r"T_2 - T_0 + U_P = ", row.expression, f" = {row.name}")], row.name)
+        blocks += c.show([c.equation(r"T_2 - T_0 + U_P = ", row.expression, f" = {name}")], row.name)
     source = next((i.expression for i in c.integrals if i.name == row.name), None)
     if source is not None:
-        value = _value(c, row.name, source)
+        value = _value(c, name, source)
         if value:
             blocks.append(Para(value[1:-1] + (".",)))
     others = [r.coordinate for r in c.form.equations if r.integral is None]

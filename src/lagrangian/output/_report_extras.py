@@ -43,7 +43,7 @@ def check_section(c: Context, v: Verification) -> Section:
                                              rf" + \vec{{R}}(\text{{{liaisons}}})",)),)))
             continue
         S = c.element(th.name)
-        P = c.point_label(th.name) if th.point == th.name else c.point_label(th.point)
+        P = _point(c, th.point, th.name)
         moments = " + ".join(rf"\vec{{M}}_{{{P}}}({tex_text(e)})" for e in th.efforts) or r"\vec{0}"
         blocks.append(Para(w("moment theorem", P=Math(P), S=Math(S))))
         sigma = c.vector_equation(rf"\vec{{\sigma}}_{{{P}}}({S}/R_{{0}}) = \Pi_{{{P}}}({S})\cdot\vec{{\Omega}}({S}/R_{{0}}) = ",
@@ -63,7 +63,7 @@ def check_section(c: Context, v: Verification) -> Section:
         else:
             direction = Math(r"\vec{e}")
         if check.theorem == "moment":
-            P = c.point_label(check.point) if check.point else "G"
+            P = _point(c, check.point, check.elements[0] if check.elements else "")
             head = w("by moment", eq=eq, P=Math(P), of=of, e=direction)
         elif check.theorem == "resultant":
             head = w("by resultant", eq=eq, of=of, e=direction)
@@ -76,6 +76,15 @@ def check_section(c: Context, v: Verification) -> Section:
         if not check.agrees:
             blocks.append(Para(w("check failed", eq=eq), style="note"))
     return Section("check", w.text("check"), tuple(blocks))
+
+
+def _point(c: Context, point: str | None, body: str) -> str:
+    """The moment point of a theorem: a body's name, or ``G_<body>``, stands for its centre of mass."""
+    if point is None or point == body:
+        return c.point_label(body) if body in c.bodies else "G"
+    if point.startswith("G_") and point[2:] in c.bodies:
+        return c.point_label(point[2:])
+    return c.point_label(point)
 
 
 def simulation_section(c: Context, figures: Sequence[ReportFigure]) -> Section:

@@ -26,7 +26,7 @@ __all__ = ["step3", "step4"]
 def _origins(c: Context) -> dict[str, str]:
     """The origin of each frame when the constraints fix it: O for R0 and the top's R1, R2, R; A for a hinge at A."""
     frames = {f.name: f for f in c.model.frames}
-    out = {c.ref: c.origin}
+    out = {"R0": "O", c.ref: c.origin}
     for j in c.joints:
         if j.kind not in ("fixed point", "pivot", "ball joint") or j.point is None:
             continue

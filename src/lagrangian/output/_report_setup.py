@@ -167,7 +167,8 @@ def _declared(c: Context, con: Constraint, one: bool) -> list[Block]:
     if con.principal:
         status: Runs = (w.text("principal declared"),)
     else:
-        status = w("complementary", lam=Math(", ".join(c.tex(r.multiplier) for r in rows)))
+        key = "complementary" if len(rows) == 1 else "complementary many"
+        status = w(key, lam=Math(", ".join(c.tex(r.multiplier) for r in rows)))
     blocks: list[Block] = [Para(_capitalize(head) + (".",))]
     if len(shown) > 1 or (con.form in ("no_slip", "coincide") and shown):
         blocks.append(Display(tuple(shown)))
@@ -221,7 +222,7 @@ def step1(c: Context) -> Section:
             parts.append(rf"6 \times {len(c.model.bodies)}")
         if c.model.particles:
             parts.append(rf"3 \times {len(c.model.particles)}")
-        blocks.append(Para(w("dof", count=Math(" + ".join(parts) + rf" - {used} = {n}"))))
+        blocks.append(Para(w("dof" if n > 1 else "dof one", count=Math(" + ".join(parts) + rf" - {used} = {n}"))))
     return Section("step1", w.text("step1"), tuple(blocks))
 
 
@@ -264,7 +265,9 @@ def step2(c: Context) -> Section:
                      ("" if coord.rate is None else w.number(coord.rate),)))
     blocks += c.many([Table(header, tuple(rows))], len(rows), w.text("step2"))
     m = len(c.eom.constraints)
-    if m:
+    if m == 1:
+        blocks.append(Para(w("remark 1 lambda one", n=Math(str(len(names)))), style="remark"))
+    elif m:
         blocks.append(Para(w("remark 1 lambda", n=Math(str(len(names))), m=Math(str(m))), style="remark"))
     else:
         blocks.append(Para(w("remark 1", n=Math(str(len(names)))), style="remark"))

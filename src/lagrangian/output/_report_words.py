@@ -88,6 +88,8 @@ _PHRASES: dict[str, tuple[str, str]] = {
                            "principal (the choice of parameters already satisfies it)"),
     "complementary": ("complémentaire : elle est gardée comme équation (étape 7), avec le multiplicateur {lam}",
                       "complementary: it is kept as an equation (step 7), with the multiplier {lam}"),
+    "complementary many": ("complémentaire : elle est gardée comme équations (étape 7), avec les multiplicateurs {lam}",
+                           "complementary: it is kept as equations (step 7), with the multipliers {lam}"),
     "classified one": ("Elle est {a}, {b} et {c}.", "It is {a}, {b} and {c}."),
     "classified": ("{a}, {b}, {c}", "{a}, {b}, {c}"),
     "perfect fixed point": ("Elle est parfaite car la puissance virtuelle de la réaction {R} en {X} est nulle ; "
@@ -125,6 +127,8 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "reaction is": ("Sa réaction sur {E} est {R}.", "Its reaction on {E} is {R}."),
     "dof": ("Bilan des degrés de liberté : {count} paramètres principaux.",
             "Degrees of freedom: {count} principal parameters."),
+    "dof one": ("Bilan des degrés de liberté : {count} paramètre principal.",
+                "Degrees of freedom: {count} principal parameter."),
     "time dep note": ("(le temps y figure explicitement)", "(the time appears in it explicitly)"),
     # -- step 2 -----------------------------------------------------------------------------------
     "n params": ("On a donc {n} paramètres principaux : {list}.", "Hence {n} principal parameters: {list}."),
@@ -138,6 +142,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
                         "multiplicateurs.", "Remarque 1: there are as many Lagrange equations as principal "
                         "parameters, that is {n}; the {m} complementary constraint equations (step 7) are added, "
                         "for the {m} multipliers."),
+    "remark 1 lambda one": ("Remarque 1 : il y a autant d'équations de Lagrange que de paramètres principaux, soit "
+                            "{n} ; s'y ajoute l'équation de liaison complémentaire (étape 7), pour le multiplicateur.",
+                            "Remarque 1: there are as many Lagrange equations as principal parameters, that is {n}; "
+                            "the complementary constraint equation (step 7) is added, for the multiplier."),
     # -- step 3 -----------------------------------------------------------------------------------
     "frames": ("Repères et rotations :", "Frames and rotations:"),
     "fixed": ("fixe", "fixed"),
@@ -234,6 +242,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
                            "de Lagrange, elles déterminent les {n} paramètres et les {m} multiplicateurs {lams} :",
                            "The complementary constraint equations complete the system; with the {n} Lagrange "
                            "equations they determine the {n} parameters and the {m} multipliers {lams}:"),
+    "complementary row": ("L'équation de liaison complémentaire complète le système ; avec les {n} équations de "
+                          "Lagrange, elle détermine les {n} paramètres et le multiplicateur {lams} :",
+                          "The complementary constraint equation completes the system; with the {n} Lagrange "
+                          "equations it determines the {n} parameters and the multiplier {lams}:"),
     "reaction of": ("Réaction de « {name} » sur {E} :", "Reaction of “{name}” on {E}:"),
     # -- integrals --------------------------------------------------------------------------------
     "cyclic": ("{q} est un paramètre cyclique : {why}, donc {eq} s'intègre :", "{q} is cyclic: {why}, so {eq} "
