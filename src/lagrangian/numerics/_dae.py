@@ -47,6 +47,7 @@ from ..model.spec import Model
 from ._codegen import monitor_expressions
 from ._codegen_dae import generate_dae_c
 from ._compile import compile_library, compiler
+from ._projection import check_initial, project, project_many
 from ._trajectory import Event, Trajectory
 
 __all__ = ["ConstrainedSystem", "simulate_dae", "constrained_source", "STABILIZATIONS", "reaction_columns"]
@@ -57,10 +58,6 @@ EXPLICIT = {"dop853": "DOP853", "DOP853": "DOP853", "RK45": "RK45", "RK23": "RK2
 IMPLICIT = ("Radau", "BDF", "LSODA")
 #: Default Baumgarte rates (α, β), in 1/time.
 BAUMGARTE = (5.0, 5.0)
-#: Largest constraint residual accepted at the initial state (absolute).
-CONSISTENCY_TOL = 1e-8
-#: Newton iterations allowed for one projection onto f(q, t) = 0.
-PROJECTION_ITERATIONS = 8
 
 _P = ctypes.c_void_p
 _SIGNATURES = {
@@ -266,102 +263,6 @@ class ConstrainedSystem:
         self._se_reac = make([eom.t, *eom.q, *eom.qd, *eom.multipliers, *params], [e for _, e in reaction_items])
 
 
-# -- projection onto the constraint manifold ----------------------------------------------------------
-def _project_many(system: ConstrainedSystem, t, Y: np.ndarray, p: np.ndarray, tol: float) -> tuple[np.ndarray, bool]:  # type: ignore[no-untyped-def]
-    """States (N, 2n) moved onto f(q, t) = 0 and A q̇ + b = 0 along the metric of M (module docstring)."""
-    n = system.n
-    Y = np.array(Y, dtype=float).reshape(-1, 2 * n)
-    hol = system.holonomic
-    changed = False
-    if hol.any():
-        for _ in range(PROJECTION_ITERATIONS):
-            M, _, A, _, _, f = system.parts(t, Y, p)
-            fh = f[:, hol]
-            bad = np.max(np.abs(fh), axis=1) > tol
-            if not bad.any():
-                break
-            Ah = A[bad][:, hol]
-            X = np.linalg.solve(M[bad], np.swapaxes(Ah, 1, 2))  # M⁻¹ A_hᵀ
-            Y[bad, :n] -= (X @ np.linalg.solve(Ah @ X, fh[bad][..., None]))[..., 0]
-            changed = True
-        else:
-            k = int(np.argmax(np.max(np.abs(fh), axis=1)))
-            t_k = float(np.broadcast_to(t, (len(Y),))[k])
-            raise SimulationError(
-                f"The projection onto the constraints did not converge at t = {t_k:.9g} (residual "
-                f"{np.max(np.abs(fh)):.3g}).", fix="lower rtol/atol or max_step, so that the steps stay small "
-                "enough for the constraints to be restored", t=t_k, state=Y[k].copy())
-    M, _, A, _, g, _ = system.parts(t, Y, p)
-    bad = np.max(np.abs(g), axis=1) > tol
-    if bad.any():
-        X = np.linalg.solve(M[bad], np.swapaxes(A[bad], 1, 2))
-        Y[bad, n:] -= (X @ np.linalg.solve(A[bad] @ X, g[bad][..., None]))[..., 0]
-        changed = True
-    return Y, changed
-
-
-def _project(system: ConstrainedSystem, t: float, y: np.ndarray, p: np.ndarray, tol: float) -> tuple[np.ndarray, bool]:
-    """One state (2n,) projected (`_project_many`)."""
-    Y, changed = _project_many(system, t, y, p, tol)
-    return Y[0], changed
-
-
-# -- checks of the initial state ----------------------------------------------------------------------
-def _where(eom: EquationsOfMotion, row: str) -> str:
-    name = next(r.constraint for r in eom.constraints if r.name == row)
-    loc = eom.model.where("constraint", name)
-    return f" (declared at {loc.file}:{loc.line})" if loc.file and loc.line else ""
-
-
-def _check_initial(system: ConstrainedSystem, t0: float, y0: np.ndarray, p: np.ndarray) -> None:
-    eom = system.eom
-    n = system.n
-    M, _, A, _, g, f = system.parts(t0, y0, p)
-    w = np.linalg.eigvalsh(0.5 * (M + M.T))
-    if not w[0] > 1e-12 * max(abs(w[-1]), 1e-300):
-        raise SimulationError(f"The mass matrix M is singular at the initial state (smallest eigenvalue {w[0]:.3g}).",
-                              fix="start away from this configuration, or choose coordinates regular there")
-    # Redundant rows at this state: each row must add to the rank of A M⁻¹ Aᵀ.
-    Wt = np.linalg.solve(M, A.T)
-    scale = max(1.0, float(np.max(np.abs(A))))
-    kept: list[int] = []
-    for k in range(system.m):
-        idx = kept + [k]
-        S = A[idx] @ Wt[:, idx]
-        if np.linalg.matrix_rank(S, tol=1e-9 * scale * scale / max(w[-1], 1e-300)) == len(idx):
-            kept.append(k)
-            continue
-        names = ", ".join(f"`{system.rows[j]}`" for j in kept)
-        raise SimulationError(
-            f"The constraint row `{system.rows[k]}`{_where(eom, system.rows[k])} is redundant at the initial state: "
-            f"its Jacobian row is a combination of those of {names}, so the multipliers are not determined there.",
-            fix="start from another state, or remove the repeated constraint (or make it principal)")
-    bad_f = [k for k in range(system.m) if system.holonomic[k] and abs(f[k]) > CONSISTENCY_TOL]
-    bad_g = [k for k in range(system.m) if abs(g[k]) > CONSISTENCY_TOL]
-    if not bad_f and not bad_g:
-        return
-    fixed, _ = _project(system, t0, y0, p, tol=1e-14)
-    if bad_f:
-        k = bad_f[0]
-        changes = [f"{c} = {fixed[i]:.15g}" for i, c in enumerate(system.coordinates) if abs(fixed[i] - y0[i]) > 1e-15]
-        row = eom.constraints[k]
-        raise SimulationError(
-            f"The initial state violates the holonomic constraint `{row.name}`{_where(eom, row.name)}: "
-            f"`{row.expression}` = {f[k]:.6g} at t = {t0:g}, not 0.",
-            fix="give initial values that satisfy it, e.g. the nearest such state: " + ", ".join(changes),
-            t=t0, state=y0.copy())
-    k = bad_g[0]
-    changes = [f"{c}_dot = {fixed[n + i]:.15g}" for i, c in enumerate(system.coordinates)
-               if abs(fixed[n + i] - y0[n + i]) > 1e-15]
-    row = eom.constraints[k]
-    what = "the time derivative of the holonomic" if row.kind == "holonomic" else "the nonholonomic"
-    raise SimulationError(
-        f"The initial rates violate {what} constraint `{row.name}`{_where(eom, row.name)}: "
-        f"`{row.velocity}` = {g[k]:.6g} at t = {t0:g}, not 0.",
-        fix="give initial rates that satisfy it, e.g. the nearest ones: " + ", ".join(changes),
-        t=t0, state=y0.copy())
-
-
 # -- the run ---------------------------------------------------------------------------------------------
 def constrained_source(source):  # type: ignore[no-untyped-def]
     """(source, eom): the equations when ``source`` keeps constraints complementary, else (source, None).
@@ -450,8 +351,8 @@ def simulate_dae(
         stabilization = "projection" if method in EXPLICIT else "baumgarte"
     if stabilization not in STABILIZATIONS:
         raise SimulationError(f"Unknown stabilization `{stabilization}`.", fix="use " + ", ".join(STABILIZATIONS))
-    project = stabilization in ("projection", "both")
-    if project and method not in EXPLICIT:
+    projecting = stabilization in ("projection", "both")
+    if projecting and method not in EXPLICIT:
         raise SimulationError(f"The projection onto the constraints needs an explicit method, not `{method}`.",
                               fix="use method='dop853', or stabilization='baumgarte' with this method")
     if not (rtol > 0 and atol > 0):
@@ -461,7 +362,7 @@ def simulate_dae(
     p = system.parameter_vector(parameters)
     y0 = initial_state(eom, initial)
     t_out = _output_times(float(t_start), float(t_end), n_out, t_eval)
-    _check_initial(system, float(t_start), y0, p)
+    check_initial(system, float(t_start), y0, p)
     specs = _event_expressions(eom, [e for e in events])
     event_fn = None
     if specs:
@@ -506,15 +407,15 @@ def simulate_dae(
                                   fix="raise max_steps, or shorten the time span", t=solver.t, state=solver.y)
         t_old, t_new = solver.t_old, solver.t
         dense = solver.dense_output()
-        if project:
-            y_new, changed = _project(system, t_new, solver.y, p, tol)
+        if projecting:
+            y_new, changed = project(system, t_new, solver.y, p, tol)
             if changed:
                 solver.y = y_new
                 solver.f = fun(t_new, y_new)  # the first stage of the next step (FSAL)
 
         def state(t: float) -> np.ndarray:
             y = dense(t) if t < t_new else solver.y.copy()
-            return _project(system, t, y, p, tol)[0] if project else y
+            return project(system, t, y, p, tol)[0] if projecting else y
 
         def raw_state(t: float) -> np.ndarray:  # projected with all the outputs at the end
             return dense(t) if t < t_new else solver.y.copy()
@@ -544,8 +445,8 @@ def simulate_dae(
             evs = [e for e in evs if e[1] <= t_stop]
             break
     evs.sort(key=lambda e: e[1])
-    if project and i_out:
-        Y[:i_out] = _project_many(system, t_out[:i_out], Y[:i_out], p, tol)[0]
+    if projecting and i_out:
+        Y[:i_out] = project_many(system, t_out[:i_out], Y[:i_out], p, tol)[0]
     return _trajectory(system, p, t_out[:i_out], Y[:i_out], stab, evs, method, stabilization, steps, calls[0],
                        tolerance, status)
 

@@ -1,0 +1,126 @@
+"""Projection onto the constraint manifold, and the checks of the initial state of a constrained run.
+
+Coordinate projection (Hairer, Lubich & Wanner, *Geometric Numerical Integration*, IV.4;
+Hairer & Wanner, *Solving ODEs II*, VII.2): q is moved onto f(q, t) = 0 by Newton steps,
+then q̇ onto A q̇ + b = 0, both along the kinetic-energy metric (the smallest change of
+T-weighted position and velocity):
+
+    Δq = −M⁻¹A_hᵀ (A_h M⁻¹ A_hᵀ)⁻¹ f,        Δq̇ = −M⁻¹Aᵀ (A M⁻¹ Aᵀ)⁻¹ (A q̇ + b).
+
+The velocity step is exact (the rows are linear in q̇); the position one converges
+quadratically from a state within a step's error of the manifold.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..dynamics import EquationsOfMotion
+from ..errors import SimulationError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ._dae import ConstrainedSystem
+
+__all__ = ["project", "project_many", "check_initial", "CONSISTENCY_TOL", "PROJECTION_ITERATIONS"]
+
+#: Largest constraint residual accepted at the initial state (absolute).
+CONSISTENCY_TOL = 1e-8
+#: Newton iterations allowed for one projection onto f(q, t) = 0.
+PROJECTION_ITERATIONS = 8
+
+
+def project_many(system: ConstrainedSystem, t, Y: np.ndarray, p: np.ndarray, tol: float) -> tuple[np.ndarray, bool]:  # type: ignore[no-untyped-def]
+    """States (N, 2n) moved onto f(q, t) = 0 and A q̇ + b = 0 along the metric of M (module docstring)."""
+    n = system.n
+    Y = np.array(Y, dtype=float).reshape(-1, 2 * n)
+    hol = system.holonomic
+    changed = False
+    if hol.any():
+        for _ in range(PROJECTION_ITERATIONS):
+            M, _, A, _, _, f = system.parts(t, Y, p)
+            fh = f[:, hol]
+            bad = np.max(np.abs(fh), axis=1) > tol
+            if not bad.any():
+                break
+            Ah = A[bad][:, hol]
+            X = np.linalg.solve(M[bad], np.swapaxes(Ah, 1, 2))  # M⁻¹ A_hᵀ
+            Y[bad, :n] -= (X @ np.linalg.solve(Ah @ X, fh[bad][..., None]))[..., 0]
+            changed = True
+        else:
+            k = int(np.argmax(np.max(np.abs(fh), axis=1)))
+            t_k = float(np.broadcast_to(t, (len(Y),))[k])
+            raise SimulationError(
+                f"The projection onto the constraints did not converge at t = {t_k:.9g} (residual "
+                f"{np.max(np.abs(fh)):.3g}).", fix="lower rtol/atol or max_step, so that the steps stay small "
+                "enough for the constraints to be restored", t=t_k, state=Y[k].copy())
+    M, _, A, _, g, _ = system.parts(t, Y, p)
+    bad = np.max(np.abs(g), axis=1) > tol
+    if bad.any():
+        X = np.linalg.solve(M[bad], np.swapaxes(A[bad], 1, 2))
+        Y[bad, n:] -= (X @ np.linalg.solve(A[bad] @ X, g[bad][..., None]))[..., 0]
+        changed = True
+    return Y, changed
+
+
+def project(system: ConstrainedSystem, t: float, y: np.ndarray, p: np.ndarray, tol: float) -> tuple[np.ndarray, bool]:
+    """One state (2n,) projected (`project_many`)."""
+    Y, changed = project_many(system, t, y, p, tol)
+    return Y[0], changed
+
+
+# -- checks of the initial state ----------------------------------------------------------------------
+def _where(eom: EquationsOfMotion, row: str) -> str:
+    name = next(r.constraint for r in eom.constraints if r.name == row)
+    loc = eom.model.where("constraint", name)
+    return f" (declared at {loc.file}:{loc.line})" if loc.file and loc.line else ""
+
+
+def check_initial(system: ConstrainedSystem, t0: float, y0: np.ndarray, p: np.ndarray) -> None:
+    eom = system.eom
+    n = system.n
+    M, _, A, _, g, f = system.parts(t0, y0, p)
+    w = np.linalg.eigvalsh(0.5 * (M + M.T))
+    if not w[0] > 1e-12 * max(abs(w[-1]), 1e-300):
+        raise SimulationError(f"The mass matrix M is singular at the initial state (smallest eigenvalue {w[0]:.3g}).",
+                              fix="start away from this configuration, or choose coordinates regular there")
+    # Redundant rows at this state: each row must add to the rank of A M⁻¹ Aᵀ.
+    Wt = np.linalg.solve(M, A.T)
+    scale = max(1.0, float(np.max(np.abs(A))))
+    kept: list[int] = []
+    for k in range(system.m):
+        idx = kept + [k]
+        S = A[idx] @ Wt[:, idx]
+        if np.linalg.matrix_rank(S, tol=1e-9 * scale * scale / max(w[-1], 1e-300)) == len(idx):
+            kept.append(k)
+            continue
+        names = ", ".join(f"`{system.rows[j]}`" for j in kept)
+        raise SimulationError(
+            f"The constraint row `{system.rows[k]}`{_where(eom, system.rows[k])} is redundant at the initial state: "
+            f"its Jacobian row is a combination of those of {names}, so the multipliers are not determined there.",
+            fix="start from another state, or remove the repeated constraint (or make it principal)")
+    bad_f = [k for k in range(system.m) if system.holonomic[k] and abs(f[k]) > CONSISTENCY_TOL]
+    bad_g = [k for k in range(system.m) if abs(g[k]) > CONSISTENCY_TOL]
+    if not bad_f and not bad_g:
+        return
+    fixed, _ = project(system, t0, y0, p, tol=1e-14)
+    if bad_f:
+        k = bad_f[0]
+        changes = [f"{c} = {fixed[i]:.15g}" for i, c in enumerate(system.coordinates) if abs(fixed[i] - y0[i]) > 1e-15]
+        row = eom.constraints[k]
+        raise SimulationError(
+            f"The initial state violates the holonomic constraint `{row.name}`{_where(eom, row.name)}: "
+            f"`{row.expression}` = {f[k]:.6g} at t = {t0:g}, not 0.",
+            fix="give initial values that satisfy it, e.g. the nearest such state: " + ", ".join(changes),
+            t=t0, state=y0.copy())
+    k = bad_g[0]
+    changes = [f"{c}_dot = {fixed[n + i]:.15g}" for i, c in enumerate(system.coordinates)
+               if abs(fixed[n + i] - y0[n + i]) > 1e-15]
+    row = eom.constraints[k]
+    what = "the time derivative of the holonomic" if row.kind == "holonomic" else "the nonholonomic"
+    raise SimulationError(
+        f"The initial rates violate {what} constraint `{row.name}`{_where(eom, row.name)}: "
+        f"`{row.velocity}` = {g[k]:.6g} at t = {t0:g}, not 0.",
+        fix="give initial rates that satisfy it, e.g. the nearest ones: " + ", ".join(changes),
+        t=t0, state=y0.copy())
