@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from lagrangian_test_support import EXAMPLES_DIR
 
 import lagrangian
@@ -183,3 +185,19 @@ def test_parameters_and_initial_overrides(pendulum) -> None:
     # Tension at rest at the start: m g cos θ0 with the new g.
     R = np.hypot(slow.extra["R_length_x0"][0], slow.extra["R_length_y0"][0])
     assert R == pytest.approx(1.62 * np.cos(0.5), rel=1e-9)
+
+
+@settings(max_examples=10)
+@given(theta0=st.floats(-2.5, 2.5), rate=st.floats(-4.0, 4.0))
+def test_property_drift_stays_bounded_and_tension_holds(pendulum, theta0: float, rate: float) -> None:
+    """From any consistent state (θ0, θ̇0): constraints kept to 1e-3 atol, T = m(g cos θ + l θ̇²)."""
+    l, g = 0.5, 9.81
+    initial = {"x": l * np.sin(theta0), "y": -l * np.cos(theta0),
+               "x_dot": l * np.cos(theta0) * rate, "y_dot": l * np.sin(theta0) * rate}
+    traj = simulate_dae(pendulum, 1.0, initial=initial, n_out=21)
+    assert traj.drift["drift_length"] <= 1e-13 and traj.drift["drift_length_dot"] <= 1e-13
+    x, y = traj.q.T
+    theta = np.arctan2(x, -y)
+    theta_dot = (x * traj.qd[:, 1] - y * traj.qd[:, 0]) / l**2
+    assert np.allclose(-2 * l * traj.extra["lambda_length"], g * np.cos(theta) + l * theta_dot**2,
+                       rtol=1e-8, atol=1e-8)
