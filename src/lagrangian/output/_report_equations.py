@@ -107,7 +107,8 @@ def step6(c: Context) -> Section:
     else:
         names = [f"« {f.name} »" if c.lang == "fr" else f"“{f.name}”" for f in c.eom.loads if f.potential is None]
         if names:
-            blocks.append(Para(w("not conservative system", names=w.join(names))))
+            key = "not conservative system" if len(names) == 1 else "not conservative systems"
+            blocks.append(Para(w(key, names=w.join(names))))
     return Section("step6", w.text("step6"), tuple(blocks))
 
 

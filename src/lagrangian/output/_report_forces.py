@@ -9,6 +9,7 @@ and the perfect constraints contribute nothing.
 
 from __future__ import annotations
 
+from .._identity import are_zero
 from ..dynamics import LoadForces
 from ..model import (CoulombFriction, Damper, Dissipation, GeneralizedForce, Gravity, JointDamper, PointForce, Potential,
                      Spring, Torque)
@@ -17,6 +18,9 @@ from ._report_doc import Block, Display, Items, Math, Para, Runs, Section
 from ._report_size import wrap_many
 
 __all__ = ["step5"]
+
+#: Most coordinates for which each vanishing Q_i is explained (beyond, the list would drown the rest).
+ZERO_REASONS_MAX = 12
 
 
 def _elements(c: Context, load: Gravity) -> tuple[str, ...]:
@@ -52,6 +56,8 @@ def _formula(c: Context, f: LoadForces, load: object) -> tuple[str, str]:
         rel = rf"\vec{{u}}_{{{a}{b}}}\cdot\left(\vec{{V}}^{{*}}({b}) - \vec{{V}}^{{*}}({a})\right)"
         ell = rf"\ell = \left\|\overrightarrow{{{a}{b}}}\right\|"
         if isinstance(load, Spring):
+            if load.rest_length == 0:
+                return rf"-{c.tex(load.stiffness)}\,\ell\, {rel}", ell
             return rf"-{c.tex(load.stiffness)} \left(\ell - {c.tex(load.rest_length)}\right) {rel}", ell
         return rf"-{c.tex(load.coefficient)}\,\dot{{\ell}}\,{rel}", ell
     if isinstance(load, Potential):
@@ -98,9 +104,12 @@ def _why_zero(c: Context, f: LoadForces, load: object, i: int) -> Runs:
             labels = w.join([Math(c.point_label(p)) for p in points])
             d = w.join([Math(_partial(q, rf"\overrightarrow{{{O}{c.point_label(p)}}}") + r" = \vec{0}")
                         for p in points])
-            return w("point still", P=labels, q=Math(q), d=d)
-        if len(points) == 1:
-            return w("orthogonal", d=Math(_partial(q, rf"\overrightarrow{{{O}{c.point_label(points[0])}}}")))
+            return w("point still" if len(points) == 1 else "points still", P=labels, q=Math(q), d=d)
+        moving = [p for p in points if p not in still]
+        force = load.field if isinstance(load, Gravity) else load.force if isinstance(load, PointForce) else None
+        if force is not None and all(are_zero([kin.frames.dot(force, kin.partial_velocities(p)[i]) for p in moving])):
+            return w("orthogonal", d=w.join([Math(_partial(q, rf"\overrightarrow{{{O}{c.point_label(p)}}}"))
+                                             for p in moving]))
         return (w.text("cancel"),)
     if isinstance(load, (Spring, Damper)):
         a, b = load.ends
@@ -145,7 +154,7 @@ def step5(c: Context) -> Section:
         equations.append(wrap_many(r"\Rightarrow\quad ", _q_list(c, [c.n.latex(x) for x in row.Q]), r",\quad "))
         blocks += c.show(equations, f.name)
         zeros = [i for i, x in enumerate(row.Q) if x == 0]
-        if zeros and len(zeros) < len(row.Q):
+        if zeros and len(row.Q) <= ZERO_REASONS_MAX:
             items = tuple(w("zero because", Q=Math(rf"Q_{{{c.sym(c.eom.coordinates[i])}}} = 0"),
                             why=_why_zero(c, f, load, i)) for i in zeros)
             blocks += c.many([Items(items)], len(items), f.name)

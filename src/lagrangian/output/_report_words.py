@@ -178,6 +178,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
                             "{P}; its coefficients are the generalized forces {Q}:"),
     "zero because": ("{Q} car {why}", "{Q} because {why}"),
     "point still": ("{P} ne bouge pas quand {q} varie : {d}", "{P} does not move when {q} varies: {d}"),
+    "points still": ("{P} ne bougent pas quand {q} varie : {d}", "{P} do not move when {q} varies: {d}"),
     "orthogonal": ("la force est orthogonale à {d}", "the force is orthogonal to {d}"),
     "no rotation": ("{S} ne tourne pas quand {q} varie", "{S} does not turn when {q} varies"),
     "couple orthogonal": ("le couple est orthogonal à {d}", "the couple is orthogonal to {d}"),
@@ -228,9 +229,12 @@ _PHRASES: dict[str, tuple[str, str]] = {
                      "le lagrangien {L}, les équations s'écrivent", "The system (Σ) is conservative relative to "
                      "{R} (Remarque 2): every given effort derives from a potential energy and every constraint "
                      "is perfect and principal. With the Lagrangian {L}, the equations read"),
-    "not conservative system": ("Le système n'est pas conservatif : {names} ne dérive(nt) pas d'une énergie "
-                                "potentielle.", "The system is not conservative: {names} do(es) not derive from "
-                                "a potential energy."),
+    "not conservative system": ("Le système n'est pas conservatif : {names} ne dérive pas d'une énergie "
+                                "potentielle.", "The system is not conservative: {names} does not derive from a "
+                                "potential energy."),
+    "not conservative systems": ("Le système n'est pas conservatif : {names} ne dérivent pas d'une énergie "
+                                 "potentielle.", "The system is not conservative: {names} do not derive from a "
+                                 "potential energy."),
     "with multipliers": ("Les liaisons complémentaires ajoutent {sum} au second membre (étape 7).",
                          "The complementary constraints add {sum} to the right-hand side (step 7)."),
     # -- step 7 -----------------------------------------------------------------------------------
