@@ -11,9 +11,12 @@ from __future__ import annotations
 from ..model import Constraint, Vector
 from ._report_build import Context
 from ._report_constraints import Joint, degrees_of_freedom
-from ._report_doc import Block, Display, Equation, Items, Math, Para, Runs, Section, Table
+from ._report_doc import Block, Display, Equation, Fold, Items, Math, Para, Runs, Section, Table
 
 __all__ = ["system_section", "step1", "step2"]
+
+#: Constraints written out in step 1 before the others are folded (a chain has one per link).
+SHOWN_CONSTRAINTS = 4
 
 
 def _frame_with_axes(c: Context, frame: str, origin: str | None) -> str:
@@ -198,22 +201,23 @@ def step1(c: Context) -> Section:
     declared = list(c.model.constraints)
     total = len(c.joints) + len(declared)
     one = total == 1
-    blocks: list[Block] = []
-    if total > 1:
-        blocks.append(Para(w("constraints")))
+    groups: list[list[Block]] = []
     for j in c.joints:
         name = _joint_name(c, j)
         count = _count(c, j.equations)
         classification = _classify(c, j.holonomic, j.time_dependent, (w.text("principal"),), one)
         if one:
-            blocks.append(Para(w("only constraint", c=name + (f" ({count})",))))
-            blocks.append(Para(classification))
+            group: list[Block] = [Para(w("only constraint", c=name + (f" ({count})",))), Para(classification)]
         else:
-            blocks.append(Para(_capitalize(name) + (f" ({count}) : " if c.lang == "fr" else f" ({count}): ",)
-                               + classification + (".",)))
-        blocks += _perfect(c, j)
-    for con in declared:
-        blocks += _declared(c, con, one)
+            group = [Para(_capitalize(name) + (f" ({count}) : " if c.lang == "fr" else f" ({count}): ",)
+                          + classification + (".",))]
+        groups.append(group + _perfect(c, j))
+    groups += [_declared(c, con, one) for con in declared]
+    head: list[Block] = [Para(w("constraints"))] if total > 1 else []
+    blocks: list[Block] = head + [b for g in groups[:SHOWN_CONSTRAINTS] for b in g]
+    if len(groups) > SHOWN_CONSTRAINTS:
+        rest = [b for g in groups[SHOWN_CONSTRAINTS:] for b in g]
+        blocks.append(Fold(w.text("show more", k=str(len(groups) - SHOWN_CONSTRAINTS)), tuple(rest)))
     dof = degrees_of_freedom(c.eom, c.joints)
     if dof is not None and c.joints:
         free, used, n = dof

@@ -304,6 +304,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
                      "triangle), too many to print here: the command {cmd} gives them, with F."),
     "matrix intro": ("Les équations de Lagrange s'écrivent {form}, avec :", "The Lagrange equations read {form}, with:"),
     "show full": ("{label} : {k} lignes — afficher en entier", "{label}: {k} lines — show in full"),
+    "show more": ("les {k} autres liaisons — afficher", "the {k} other constraints — show"),
     "show all": ("{label} — afficher ({k})", "{label} — show ({k})"),
     "terms": ("termes", "terms"),
     "long expression": ("expression longue", "long expression"),
