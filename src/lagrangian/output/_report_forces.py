@@ -14,7 +14,7 @@ from ..dynamics import LoadForces
 from ..model import (CoulombFriction, Damper, Dissipation, GeneralizedForce, Gravity, JointDamper, PointForce, Potential,
                      Spring, Torque)
 from ._report_build import Context, tex_text
-from ._report_doc import Block, Display, Items, Math, Para, Runs, Section
+from ._report_doc import Block, Display, Equation, Items, Math, Para, Runs, Section
 from ._report_size import wrap_many
 
 __all__ = ["step5"]
@@ -169,9 +169,11 @@ def step5(c: Context) -> Section:
         blocks.append(Para(w("complementary Q", Q=Math(r"\sum_{k} \lambda_{k} A_{ki}"))))
     blocks.append(Para(w("nc total")))
     values = [c.n.latex(eq.Q_nc) for eq in c.form.equations]
-    if all(v == "0" for v in values):
+    if all(v == "0" for v in values) and len(values) > ZERO_REASONS_MAX:
+        blocks.append(Display((Equation((r"Q_i = 0 \qquad i = 1, \dots, n",)),)))
+    elif all(v == "0" for v in values):
         line = " = ".join(rf"Q_{{{c.sym(q)}}}" for q in c.eom.coordinates) + " = 0"
-        blocks.append(Display((wrap_many("", [line], ""),)))
+        blocks.append(Display((Equation((line,)),)))
     else:
         blocks += c.show([wrap_many("", _q_list(c, values), r",\quad ")], "Q")
     return Section("step5", w.text("step5"), tuple(blocks))

@@ -44,7 +44,7 @@ class Summary(Opaque):
     """An expression too long to print, standing in as ⟨812 terms⟩; ``source`` is the engine's expression."""
 
     def __new__(cls, source: se.Basic, terms_word: str, long_word: str) -> Summary:
-        count = len(source.args) if isinstance(source, se.Add) else 0
+        count = _terms(source)
         if count:
             text, latex = f"⟨{count} {terms_word}⟩", rf"\langle {count}\ \text{{{terms_word}}} \rangle"
         else:
@@ -53,6 +53,18 @@ class Summary(Opaque):
         obj.source = source
         obj.terms = count
         return obj
+
+
+def _terms(e: se.Basic) -> int:
+    """Terms of a sum, also under a numeric factor (−(a + b + c) has 3); 0 for anything else."""
+    if isinstance(e, se.Add):
+        return len(e.args)
+    if isinstance(e, se.Mul):
+        args = e.args
+        sums = [a for a in args if isinstance(a, se.Add)]
+        if len(sums) == 1 and all(a.is_Number for a in args if not isinstance(a, se.Add)):
+            return len(sums[0].args)
+    return 0
 
 
 @dataclass
