@@ -67,7 +67,8 @@ def run(args: argparse.Namespace) -> str:
     eom = derive(model)
     events = [EventSpec(text, text) for text in args.event]
     events += [EventSpec(f"stop: {text}", text, terminal=True) for text in args.stop_when]
-    system = eom if events else compile_system(eom)   # simulate compiles the events in
+    # simulate compiles events in, and sends constrained models to its DAE path
+    system = eom if events or eom.constraints else compile_system(eom)
     progress = sys.stderr.isatty() if args.progress is None else args.progress
     start = time.perf_counter()
     traj = simulate(system, args.t_end, t_start=args.t_start, initial=initial,
@@ -81,6 +82,10 @@ def run(args: argparse.Namespace) -> str:
         f"{traj.rhs_calls} right-hand-side calls, {elapsed * 1e3:.1f} ms",
         "conservation: " + (traj.drift_summary() or "no first integral to monitor"),
     ]
+    constraint = {k[len("drift_"):]: v for k, v in traj.drift.items() if k.startswith("drift_")}
+    if constraint:
+        lines.append("constraint drift (max residual): "
+                     + ", ".join(f"{name} {value:.1e}" for name, value in constraint.items()))
     lines += [f"warning: {w}" for w in traj.warnings]
     if traj.events:
         lines.append(f"events: {len(traj.events)} — " + ", ".join(f"{e.name} at t = {e.t:.9g}" for e in traj.events[:8])
