@@ -26,6 +26,7 @@ from .kinematics import Kinematics
 from .model import ModelBuilder, load_model, parse_model
 from .model.spec import Model
 from .model.zoo import lagrange_top
+from .output import Report, report
 from .numerics import CompiledSystem, EventSpec, Trajectory, compile_system, save_trajectory, simulate
 
 __version__ = "0.1.0"
@@ -53,6 +54,8 @@ __all__ = [
     "EventSpec",
     "Trajectory",
     "save_trajectory",
+    "report",
+    "Report",
     "LagrangianError",
     "ModelError",
     "KinematicsError",
