@@ -186,6 +186,20 @@ frame = "T"
     assert is_zero(eom.F[0] / eom.M[0][0] - galilean.F[0] / galilean.M[0][0])
 
 
+def test_foucault_in_the_earths_frame_is_foucault_in_R0() -> None:
+    text = (EXAMPLES_DIR / "foucault_pendulum.toml").read_text()
+    relative = derive(text)
+    galilean = derive(text.replace("[reference]", "").replace('frame = "E"   #', "#"))
+    assert galilean.model.reference is None and relative.model.reference.frame == "E"
+    states = random_states(2)
+    ours, theirs = accelerations(relative, states), accelerations(galilean, states)
+    assert np.allclose(ours, theirs, rtol=1e-10, atol=1e-10 * np.max(np.abs(theirs))), (ours, theirs)
+    # In R0 the weight turns with the Earth and T has T1, T0: the Jacobi integral T2 − T0 + U there is
+    # the energy T(P/E) + U_weight + U_entrainment in E.
+    [h_rel], [h_gal] = lagrangian.first_integrals(relative), lagrangian.first_integrals(galilean)
+    assert h_rel.kind == h_gal.kind == "jacobi" and is_zero(h_rel.expression - h_gal.expression)
+
+
 def test_foucault_coriolis_works_virtually_and_not_really() -> None:
     eom = lagrangian.derive(lagrangian.load_model(EXAMPLES_DIR / "foucault_pendulum.toml"))
     coriolis = next(f for f in eom.loads if f.kind == "inertial: Coriolis")
