@@ -57,7 +57,7 @@ frame = "S"
 mass = "m"
 center_from = "A"
 center = "L*S.z"
-inertia = { at = "G", frame = "S", matrix = [["0.05", "0.01", "0.0"], ["0.01", "0.07", "0.02"], ["0.0", "0.02", "0.09"]] }
+inertia = { at = "G", frame = "S", matrix = [["0.05", "0.01", "0"], ["0.01", "0.07", "0.02"], ["0", "0.02", "0.09"]] }
 
 [particles.P]
 mass = "mp"
@@ -296,7 +296,8 @@ def test_reference_errors_name_the_line(old: str, new: str, needle: str, words: 
 def test_a_frame_turned_through_a_coordinate_is_named() -> None:
     text = BASE.replace('R2 = { from = "R1", rotation = ["theta", "y"], axes = ["x2", "y1", "z2"] }',
                         'R2 = { from = "R1", rotation = ["theta", "y"], axes = ["x2", "y1", "z2"] }\n'
-                        'R3 = { from = "R2", rotation = ["Omega*t", "z"] }').replace('frame = "R1"   #', 'frame = "R3"   #')
+                        'R3 = { from = "R2", rotation = ["Omega*t", "z"] }')
+    text = text.replace('frame = "R1"   #', 'frame = "R3"   #')
     error = _error(text)
     assert "through frame `R2`" in error.message and error.symbol == "theta"
 
