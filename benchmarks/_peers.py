@@ -166,7 +166,8 @@ def lambdify_peer(system: SympySystem, p: np.ndarray):
 
 
 # -- PyDy ------------------------------------------------------------------------------------------
-def pydy_peer(system: SympySystem, p: np.ndarray, *, generator: str, symbolic_lu: bool = False):
+def pydy_peer(system: SympySystem, p: np.ndarray, *, generator: str, symbolic_lu: bool = False,
+              tmp_dir: str | None = None):
     """PyDy's generated right-hand side, as single(q, u) -> q̈; raises when it cannot be built.
 
     ``generator`` is "cython" or "lambdify"; ``symbolic_lu`` asks PyDy to solve M u̇ = F
@@ -176,9 +177,8 @@ def pydy_peer(system: SympySystem, p: np.ndarray, *, generator: str, symbolic_lu
 
     n = len(system.q)
     kw: dict = {}
-    if generator == "cython":
-        tmp = tempfile.mkdtemp(prefix="pydy_bench_")
-        kw["tmp_dir"] = tmp
+    if generator == "cython":  # its build files go to tmp_dir (the caller removes it), not the cwd
+        kw["tmp_dir"] = tempfile.mkdtemp(prefix="pydy_", dir=tmp_dir)
     if symbolic_lu:
         kw["linear_sys_solver"] = "sympy"
     rhs = generate_ode_function(system.F, system.q, system.u, system.constants, mass_matrix=system.M,
@@ -312,7 +312,8 @@ def universal_to_ours(q: np.ndarray, v: np.ndarray, a: np.ndarray | None = None)
         wd = wd_s + bedd * ax2 + np.cross(w_s, bed * ax2)
         R = Rs @ _ry(be)
         d = R @ mz
-        (qa, qb), (va, vb), (aa, ab) = _direction_angles(d, np.cross(w, d), np.cross(wd, d) + np.cross(w, np.cross(w, d)))
+        dd, ddd = np.cross(w, d), np.cross(wd, d) + np.cross(w, np.cross(w, d))
+        (qa, qb), (va, vb), (aa, ab) = _direction_angles(d, dd, ddd)
         out_q += [qa, qb]
         out_v += [va, vb]
         out_a += [aa, ab]

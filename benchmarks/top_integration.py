@@ -105,8 +105,8 @@ def main(argv: list[str] | None = None) -> int:
     t_sci, c_sci, sol_sci = best_of(max(1, min(args.repeat, 3)), lambda: run_scipy(ours_rhs))
     Y_ours = np.column_stack([traj.q, traj.qd])
     rows = [
-        ("ours: simulate(method='dop853'), C", t_ours, c_ours, traj.rhs_calls, traj.steps, energy_drift(system, p, traj.t, Y_ours),
-         0.0),
+        ("ours: simulate(method='dop853'), C", t_ours, c_ours, traj.rhs_calls, traj.steps,
+         energy_drift(system, p, traj.t, Y_ours), 0.0),
         ("SciPy DOP853 + SymPy lambdify rhs", t_lam, c_lam, sol_lam.nfev, len(sol_lam.t),
          energy_drift(system, p, sol_lam.t, sol_lam.y.T), float(np.max(np.abs(sol_lam.y.T - Y_ours)))),
         ("SciPy DOP853 + our compiled rhs", t_sci, c_sci, sol_sci.nfev, len(sol_sci.t),

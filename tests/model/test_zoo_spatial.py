@@ -143,8 +143,9 @@ def test_two_rods_agree_with_pinocchio_aba() -> None:
             sa, ca, sb, cb = np.sin(al), np.cos(al), np.sin(be), np.cos(be)
             da, db = np.array([0.0, ca * cb, sa * cb]), np.array([-cb, -sa * sb, ca * sb])
             ad, bd = dd @ da / cb**2, dd @ db
-            curvature = (np.array([0.0, -sa * cb, ca * cb]) * ad * ad + 2 * np.array([0.0, -ca * sb, -sa * sb]) * ad * bd
-                         + np.array([sb, -sa * cb, ca * cb]) * bd * bd)
+            d_aa, d_ab, d_bb = (np.array([0.0, -sa * cb, ca * cb]), np.array([0.0, -ca * sb, -sa * sb]),
+                                np.array([sb, -sa * cb, ca * cb]))
+            curvature = d_aa * ad * ad + 2 * d_ab * ad * bd + d_bb * bd * bd
             angles += [al, be]
             rates += [ad, bd]
             accelerations += [(ddd - curvature) @ da / cb**2, (ddd - curvature) @ db]
