@@ -59,6 +59,15 @@ SYSTEMS: dict[str, tuple[str, int, Callable]] = {
 }
 
 
+def _caller_kind(system) -> str:
+    return "ctypes" if "rhs_c" not in vars(system) else "vectorcall"
+
+
+def _empty_call(t, y, p, out) -> int:
+    """The timing floor: what the harness pays for a call that does nothing."""
+    return 0
+
+
 # -- timing --------------------------------------------------------------------------------------
 def per_call(fn: Callable, rows: list[tuple], budget: float = BUDGET_S) -> float:
     """Seconds per call of ``fn(*row)``, the rows taken in turn: the minimum over timing blocks."""
@@ -158,7 +167,7 @@ def run_system(name: str, args, rng: np.random.Generator, peers: dict[str, objec
     out = np.empty(2 * n)
     rows = [(0.0, Yo[k], p, out) for k in range(len(Yo))]
     us_ours = per_call(system.rhs_c, rows) * 1e6
-    result.single.append(Row("ours: rhs_c (compiled C, ctypes)", us_ours, 0.0,
+    result.single.append(Row(f"ours: rhs_c (compiled C, {_caller_kind(system)})", us_ours, 0.0,
                              f"derive {_fmt_s(t1 - t0)} + compile {_fmt_s(t2 - t1)}"))
 
     # -- SymPy KanesMethod + lambdify
@@ -219,12 +228,11 @@ def run_system(name: str, args, rng: np.random.Generator, peers: dict[str, objec
     # -- ours again, after the peers: the better of the two timings (the first may meet a busier machine)
     result.single[0].us = min(result.single[0].us, per_call(system.rhs_c, rows) * 1e6)
 
-    # -- where our single-state time goes
+    # -- where our single-state time goes: the same C through ctypes, for contrast
     lib = system._lib
-    t_arr = np.zeros(1)
-    ptrs = [(1, t_arr.ctypes.data, Yo[k].ctypes.data, p.ctypes.data, out.ctypes.data) for k in range(len(Yo))]
-    result.overhead["call with preset pointers"] = per_call(lib.lg_eval_rhs, ptrs) * 1e6
-    result.overhead["one .ctypes.data"] = per_call(lambda a: a.ctypes.data, [(Yo[k],) for k in range(len(Yo))]) * 1e6
+    by_ctypes = type(system).rhs_c.__get__(system)
+    result.overhead["through ctypes"] = per_call(by_ctypes, rows) * 1e6
+    result.overhead["empty call"] = per_call(_empty_call, rows) * 1e6
 
     # -- batches
     count = args.batch
@@ -293,9 +301,8 @@ def print_result(res: Result) -> None:
         print(f"  {row.label:<46} {_us(row.us):>9} {ratio:>10} {diff:>16}  {row.setup}")
     o = res.overhead
     print(f"  where ours' {_us(ours)} µs per single state go: C evaluation {_us(o['C evaluation'])} µs (its cost "
-          f"per state in a batch); lg_eval_rhs called through ctypes with preset integer pointers "
-          f"{_us(o['call with preset pointers'])} µs; each of the 4 `.ctypes.data` of rhs_c "
-          f"{_us(o['one .ctypes.data'])} µs")
+          f"per state in a batch); this harness's loop calling an empty Python function "
+          f"{_us(o['empty call'])} µs; the same C through ctypes (the fallback) {_us(o['through ctypes'])} µs")
 
 
 def main(argv: list[str] | None = None) -> int:
