@@ -48,6 +48,8 @@ enum { C_T, C_H, C_RTOL, C_ATOL, C_MAXSTEP, C_NFEV, C_STEPS, C_REJECTED, C_FIXED
 static int lg_cholesky_solve(double *M, double *F, double *worst)
 {
     const int n = LG_N;
+    double inv[LG_N]; /* 1/L_jj: one division per column, the rest multiplications (divisions
+                         are latency-bound and made half the solve's time for n = 10) */
     for (int j = 0; j < n; ++j) {
         double d = M[j * n + j];
         const double diag = fabs(d);
@@ -56,21 +58,23 @@ static int lg_cholesky_solve(double *M, double *F, double *worst)
         if (d / diag < *worst) *worst = d / diag;
         d = sqrt(d);
         M[j * n + j] = d;
+        const double r = 1.0 / d;
+        inv[j] = r;
         for (int i = j + 1; i < n; ++i) {
             double s = M[i * n + j];
             for (int k = 0; k < j; ++k) s -= M[i * n + k] * M[j * n + k];
-            M[i * n + j] = s / d;
+            M[i * n + j] = s * r;
         }
     }
     for (int i = 0; i < n; ++i) {
         double s = F[i];
         for (int k = 0; k < i; ++k) s -= M[i * n + k] * F[k];
-        F[i] = s / M[i * n + i];
+        F[i] = s * inv[i];
     }
     for (int i = n - 1; i >= 0; --i) {
         double s = F[i];
         for (int k = i + 1; k < n; ++k) s -= M[k * n + i] * F[k];
-        F[i] = s / M[i * n + i];
+        F[i] = s * inv[i];
     }
     return LG_DONE;
 }
