@@ -101,3 +101,36 @@ def test_parse_settings_splits_parameters_and_initial_values():
         parse_settings(["g=1", "g=2"], model)
     with pytest.raises(SettingError, match="not a number"):
         parse_settings(["g=2*pi"], model)  # no expression evaluation
+
+
+def test_simulate_checks_the_analysis_against_the_motion(capsys):
+    """θ1, θ2, T and ⟨ψ̇⟩ read off a simulation (events θ̇ = 0) agree with the analysis to 1e-8."""
+    assert main(["analyse", "--set", "phi_dot=80", "--set", "theta_dot=1", "--simulate", "3"]) == 0
+    out = capsys.readouterr().out
+    assert "Check against a simulation" in out
+    rows = re.findall(r"^  (.+?): analysis (\S+) \S+; simulation (.+?)  \(largest difference (\S+)\)$", out, re.M)
+    assert [r[0] for r in rows] == ["θ1", "θ2", "nutation period", "mean ⟨ψ̇⟩"]
+    for name, value, sims, diff in rows:
+        sims = [float(x) for x in sims.split(", ")]
+        assert len(sims) >= 2, name
+        assert float(diff) < 1e-8, (name, diff)
+
+
+def test_simulation_check_is_independent_of_the_analysis():
+    """A wrong analysis value shows up as a large difference (the check reads the motion only)."""
+    from dataclasses import replace
+
+    from lagrangian.cli._analyse import simulation_check
+
+    eom = lagrangian.derive(lagrangian.lagrange_top())
+    an = analyse_top(eom)
+    good = simulation_check(eom, an, periods=2.5)
+    assert max(row[3] for row in good.rows) < 1e-8
+    wrong = replace(an, nutation=replace(an.nutation, theta2=an.nutation.theta2 + 1e-3))
+    rows = {row[0]: row for row in simulation_check(eom, wrong, periods=2.5).rows}
+    assert rows["theta2"][3] == pytest.approx(1e-3, rel=1e-6)
+
+
+def test_simulate_needs_a_positive_number_of_periods(capsys):
+    assert main(["analyse", "--simulate", "-1"]) != 0
+    assert "must be positive" in capsys.readouterr().err

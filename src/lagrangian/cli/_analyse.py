@@ -5,18 +5,20 @@ from __future__ import annotations
 import argparse
 import math
 import re
+from dataclasses import dataclass
 
 import sympy
 
 from ..analysis import first_integrals
 from ..analysis import TopAnalysis, analyse_top
 from ..dynamics import EquationsOfMotion, derive
+from ..errors import SimulationError
 from ..model import load_model
 from ..model.zoo import lagrange_top
 from ..output import Notation
 from ._settings import add_set_option, parse_settings
 
-__all__ = ["register", "run", "render_analysis"]
+__all__ = ["register", "run", "render_analysis", "SimulationCheck", "simulation_check", "render_check"]
 
 DOT = "\u0307"  # combining dot above: psi_dot → ψ̇
 
@@ -33,6 +35,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "sleeping-top criterion and the steady precession rates, with the model's values.")
     p.add_argument("model", nargs="?", help="model file (TOML); default: the seed's Lagrange top")
     add_set_option(p)
+    p.add_argument("--simulate", metavar="PERIODS", type=float, nargs="?", const=3.0,
+                   help="check θ1, θ2, the nutation period and the mean precession against a simulation over "
+                        "PERIODS nutation periods (default 3), the turning points located as events θ̇ = 0")
     p.add_argument("-o", "--output", metavar="FILE", help="write to FILE (atomically) instead of standard output")
     p.set_defaults(run=run)
 
@@ -41,7 +46,75 @@ def run(args: argparse.Namespace) -> str:
     model = load_model(args.model) if args.model else lagrange_top()
     parameters, initial = parse_settings(args.set, model)
     eom = derive(model)
-    return render_analysis(analyse_top(eom, parameters=parameters, initial=initial), eom)
+    analysis = analyse_top(eom, parameters=parameters, initial=initial)
+    text = render_analysis(analysis, eom)
+    if args.simulate is not None:
+        if not (math.isfinite(args.simulate) and args.simulate > 0):
+            raise SimulationError(f"--simulate {args.simulate:g}: the number of nutation periods must be positive.",
+                                  fix="e.g. --simulate 3")
+        text += render_check(simulation_check(eom, analysis, periods=args.simulate), eom)
+    return text
+
+
+@dataclass(frozen=True)
+class SimulationCheck:
+    """The analysis's numbers next to the same numbers read off a simulated motion.
+
+    ``rows``: (name, analysis value, simulated values, largest difference, unit);
+    ``t_end``: the simulated time; ``note``: why nothing could be compared, if so.
+    """
+
+    rows: tuple[tuple[str, float, tuple[float, ...], float, str], ...]
+    t_end: float
+    note: str = ""
+
+
+def simulation_check(eom: EquationsOfMotion, an: TopAnalysis, *, periods: float = 3.0,
+                     rtol: float = 1e-12) -> SimulationCheck:
+    """Simulate ``periods`` nutation periods and read θ1, θ2, T and ⟨ψ̇⟩ off the motion.
+
+    The turning points are events q̇ = 0 of the remaining coordinate (rising: θ1, falling:
+    θ2), located by the integrator's dense output; the period is the time between two
+    θ1's; the mean precession is the precession angle gained over one period divided by it.
+    Independent of the analysis: nothing but the equations of motion and the initial state.
+    """
+    from ..numerics import EventSpec, simulate  # numerics comes after analysis: imported only here
+
+    red = an.reduction
+    nut = an.nutation
+    if nut is None or nut.steady:
+        return SimulationCheck((), 0.0, "no nutation to compare (steady motion or no turning angles)")
+    rate = red.coordinate + "_dot"
+    t_end = periods * nut.period
+    run = simulate(eom, t_end, initial=an.initial, parameters=an.parameters, rtol=rtol, atol=rtol, n_out=2,
+                   events=[EventSpec("low", rate, direction=1), EventSpec("high", rate, direction=-1)])
+    i, j = run.coordinates.index(red.coordinate), run.coordinates.index(red.precession)
+    lows = [(e.t, e.q[i], e.q[j]) for e in run.events if e.name == "low"]
+    highs = [e.q[i] for e in run.events if e.name == "high"]
+    th = [(f"{red.coordinate}1", nut.theta1, tuple(q for _, q, _ in lows), "rad"),
+          (f"{red.coordinate}2", nut.theta2, tuple(highs), "rad")]
+    periods_sim = tuple(b[0] - a[0] for a, b in zip(lows, lows[1:]))
+    th.append(("nutation period", nut.period, periods_sim, "s"))
+    mean = tuple((b[2] - a[2]) / (b[0] - a[0]) for a, b in zip(lows, lows[1:]))
+    th.append((f"mean ⟨{red.precession}_dot⟩", nut.mean_rates[red.precession], mean, "rad/s"))
+    rows = tuple((name, value, sims, max((abs(x - value) for x in sims), default=math.nan), unit)
+                 for name, value, sims, unit in th)
+    note = "" if periods_sim else "fewer than two turning points were reached: simulate more periods"
+    return SimulationCheck(rows, t_end, note)
+
+
+def render_check(check: SimulationCheck, eom: EquationsOfMotion) -> str:
+    """The comparison as text: analysis value, simulated values, largest difference."""
+    n = Notation(eom.coordinates, [p.name for p in eom.model.parameters])
+    lines = ["", f"Check against a simulation (DOP853, rtol = atol = 1e-12, t from 0 to {_num(check.t_end)} s; "
+                 "turning points located as events):"]
+    if check.note:
+        lines.append(f"  {check.note}")
+    for name, value, sims, diff, unit in check.rows:
+        shown = _names_in_greek(n, eom.coordinates, name).replace("_dot", DOT)
+        got = ", ".join(_num(x) for x in sims) or "none"
+        lines.append(f"  {shown}: analysis {_num(value)} {unit}; simulation {got}  (largest difference {diff:.1e})")
+    return "\n".join(lines) + "\n"
 
 
 def _num(x: float) -> str:
