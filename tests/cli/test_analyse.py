@@ -120,7 +120,7 @@ def test_simulation_check_is_independent_of_the_analysis():
     """A wrong analysis value shows up as a large difference (the check reads the motion only)."""
     from dataclasses import replace
 
-    from lagrangian.cli._analyse import simulation_check
+    from lagrangian.numerics import simulation_check
 
     eom = lagrangian.derive(lagrangian.lagrange_top())
     an = analyse_top(eom)

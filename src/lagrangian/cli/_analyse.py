@@ -5,7 +5,6 @@ from __future__ import annotations
 import argparse
 import math
 import re
-from dataclasses import dataclass
 
 import sympy
 
@@ -13,12 +12,13 @@ from ..analysis import first_integrals
 from ..analysis import TopAnalysis, analyse_top
 from ..dynamics import EquationsOfMotion, derive
 from ..errors import SimulationError
+from ..numerics import SimulationCheck, simulation_check
 from ..model import load_model
 from ..model.zoo import lagrange_top
 from ..output import Notation
 from ._settings import add_set_option, parse_settings
 
-__all__ = ["register", "run", "render_analysis", "SimulationCheck", "simulation_check", "render_check"]
+__all__ = ["register", "run", "render_analysis", "render_check"]
 
 DOT = "\u0307"  # combining dot above: psi_dot → ψ̇
 
@@ -54,53 +54,6 @@ def run(args: argparse.Namespace) -> str:
                                   fix="e.g. --simulate 3")
         text += render_check(simulation_check(eom, analysis, periods=args.simulate), eom)
     return text
-
-
-@dataclass(frozen=True)
-class SimulationCheck:
-    """The analysis's numbers next to the same numbers read off a simulated motion.
-
-    ``rows``: (name, analysis value, simulated values, largest difference, unit);
-    ``t_end``: the simulated time; ``note``: why nothing could be compared, if so.
-    """
-
-    rows: tuple[tuple[str, float, tuple[float, ...], float, str], ...]
-    t_end: float
-    note: str = ""
-
-
-def simulation_check(eom: EquationsOfMotion, an: TopAnalysis, *, periods: float = 3.0,
-                     rtol: float = 1e-12) -> SimulationCheck:
-    """Simulate ``periods`` nutation periods and read θ1, θ2, T and ⟨ψ̇⟩ off the motion.
-
-    The turning points are events q̇ = 0 of the remaining coordinate (rising: θ1, falling:
-    θ2), located by the integrator's dense output; the period is the time between two
-    θ1's; the mean precession is the precession angle gained over one period divided by it.
-    Independent of the analysis: nothing but the equations of motion and the initial state.
-    """
-    from ..numerics import EventSpec, simulate  # numerics comes after analysis: imported only here
-
-    red = an.reduction
-    nut = an.nutation
-    if nut is None or nut.steady:
-        return SimulationCheck((), 0.0, "no nutation to compare (steady motion or no turning angles)")
-    rate = red.coordinate + "_dot"
-    t_end = periods * nut.period
-    run = simulate(eom, t_end, initial=an.initial, parameters=an.parameters, rtol=rtol, atol=rtol, n_out=2,
-                   events=[EventSpec("low", rate, direction=1), EventSpec("high", rate, direction=-1)])
-    i, j = run.coordinates.index(red.coordinate), run.coordinates.index(red.precession)
-    lows = [(e.t, e.q[i], e.q[j]) for e in run.events if e.name == "low"]
-    highs = [e.q[i] for e in run.events if e.name == "high"]
-    th = [(f"{red.coordinate}1", nut.theta1, tuple(q for _, q, _ in lows), "rad"),
-          (f"{red.coordinate}2", nut.theta2, tuple(highs), "rad")]
-    periods_sim = tuple(b[0] - a[0] for a, b in zip(lows, lows[1:]))
-    th.append(("nutation period", nut.period, periods_sim, "s"))
-    mean = tuple((b[2] - a[2]) / (b[0] - a[0]) for a, b in zip(lows, lows[1:]))
-    th.append((f"mean ⟨{red.precession}_dot⟩", nut.mean_rates[red.precession], mean, "rad/s"))
-    rows = tuple((name, value, sims, max((abs(x - value) for x in sims), default=math.nan), unit)
-                 for name, value, sims, unit in th)
-    note = "" if periods_sim else "fewer than two turning points were reached: simulate more periods"
-    return SimulationCheck(rows, t_end, note)
 
 
 def render_check(check: SimulationCheck, eom: EquationsOfMotion) -> str:
