@@ -11,7 +11,10 @@ from ._simulate import initial_state as initial_state
 from ._simulate import simulate as simulate
 from ._system import CompiledSystem as CompiledSystem
 from ._system import compile_system as compile_system
+from ._top_check import SimulationCheck as SimulationCheck
+from ._top_check import simulation_check as simulation_check
 from ._trajectory import Event as Event
 from ._trajectory import Trajectory as Trajectory
 
-__all__ = ["simulate", "save_trajectory", "EventSpec", "initial_state", "METHODS", "CompiledSystem", "compile_system", "Trajectory", "Event"]
+__all__ = ["simulate", "save_trajectory", "EventSpec", "initial_state", "METHODS", "CompiledSystem", "compile_system", "Trajectory", "Event",
+           "SimulationCheck", "simulation_check"]
