@@ -1,9 +1,13 @@
-"""Stage 4 — analysis of the equations: first integrals, the Newton–Euler cross-check, reactions."""
+"""Stage 4 — analysis of the equations: first integrals, the energy balance, the Newton–Euler cross-check,
+reactions."""
 
 from ._effective_potential import AnalysisError as AnalysisError
 from ._effective_potential import CyclicReduction as CyclicReduction
 from ._effective_potential import StructureError as StructureError
 from ._effective_potential import reduce_cyclic as reduce_cyclic
+from ._energy_balance import EnergyBalance as EnergyBalance
+from ._energy_balance import PowerTerm as PowerTerm
+from ._energy_balance import energy_balance as energy_balance
 from ._integrals import FirstIntegral as FirstIntegral
 from ._integrals import first_integrals as first_integrals
 from ._newton_euler import CoordinateCheck as CoordinateCheck
@@ -22,4 +26,4 @@ from ._top import analyse_top as analyse_top
 __all__ = ["FirstIntegral", "first_integrals", "CoordinateCheck", "ElementTheorems", "Verification", "verify",
            "Reaction", "ReactionHistory", "TrajectoryResiduals", "check_trajectory", "reaction_history",
            "reactions", "analyse_top", "TopAnalysis", "reduce_cyclic", "CyclicReduction", "AnalysisError",
-           "StructureError"]
+           "StructureError", "EnergyBalance", "PowerTerm", "energy_balance"]

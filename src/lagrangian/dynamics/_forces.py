@@ -55,11 +55,24 @@ def _dot_partials(kin: Kinematics, force: Vector, point: str) -> tuple[se.Basic,
 
 
 def _is_constant_vector(kin: Kinematics, v: Vector) -> bool:
-    """Constant in R0: no q, q̇, t in the components and every piece in a non-rotating frame."""
+    """Constant in R0 or in the frame the equations are written in: no q, q̇, t in the
+    components, and every piece in frames that do not turn relative to R0 (or all of them
+    fixed in the reference frame R).
+
+    Such a field F gives the candidate potential U = −F·O'P, which may depend on t through
+    the motion of R relative to R0 (a field fixed in R0 seen from a tumbling frame: U(q, t));
+    the candidate is then checked (`_derives_from`) like every other.
+    """
     free = v.free_symbols()
     if kin.t in free or any(s in free for s in kin.q) or any(s in free for s in kin.qd):
         return False
-    return all(kin.omega(f).is_zero() for f in v.frames)
+    if all(kin.omega(f).is_zero() for f in v.frames):  # fixed in the frame of the equations
+        return True
+    from ._inertial import RelativeFrameTree  # late: `_inertial` builds on this module
+
+    if isinstance(kin.frames, RelativeFrameTree):  # fixed in R0, seen from a moving R
+        return all(kin.frames.absolute.omega(f).is_zero() for f in v.frames)
+    return False
 
 
 def _q_of(kin: Kinematics, load: Load) -> tuple[tuple[se.Basic, ...], se.Basic | None, str]:
@@ -163,7 +176,7 @@ def generalized_forces(kin: Kinematics) -> tuple[LoadForces, ...]:
         Q, candidate, note = _q_of(kin, load)
         potential = candidate
         if potential is not None and not _derives_from(kin, Q, potential):
-            potential = None  # e.g. a field that turns with time: no potential after all
+            potential = None  # e.g. a field that depends on q: no potential after all
         if potential is None:
             potential = _find_potential(kin, Q)
             if potential is not None and not _derives_from(kin, Q, potential):
