@@ -22,8 +22,8 @@ __all__ = ["register", "run", "render_analysis", "render_check"]
 
 DOT = "\u0307"  # combining dot above: psi_dot → ψ̇
 
-SUMMARY = "analyse a heavy symmetric top (or any model with one coordinate left once the cyclic\n" \
-          "ones are eliminated): U_eff, turning angles, nutation period, precession, apex curve"
+SUMMARY = "analyse a heavy symmetric top (or any model whose coordinates are all cyclic but one):\n" \
+          "U_eff, turning angles, nutation period, precession, apex curve; --simulate checks them"
 
 
 def register(sub: argparse._SubParsersAction) -> None:
