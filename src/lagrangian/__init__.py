@@ -19,7 +19,8 @@ Typical use::
 
 from __future__ import annotations
 
-from .analysis import FirstIntegral, TopAnalysis, Verification, analyse_top, first_integrals, verify
+from .analysis import (EnergyBalance, FirstIntegral, TopAnalysis, Verification, analyse_top, energy_balance,
+                       first_integrals, verify)
 from .dynamics import EquationsOfMotion, LagrangeEquation, derive
 from .errors import DerivationError, KinematicsError, LagrangianError, ModelError, OutputError, SimulationError, VerificationError
 from .kinematics import Kinematics
@@ -44,6 +45,8 @@ __all__ = [
     "LagrangeEquation",
     "first_integrals",
     "FirstIntegral",
+    "energy_balance",
+    "EnergyBalance",
     "verify",
     "Verification",
     "analyse_top",

@@ -1,4 +1,4 @@
-"""The energy balance dE/dt = P_nc (`lagrangian.analysis._energy_balance`).
+"""The energy balance dE/dt = P_nc (`lagrangian.analysis.energy_balance`).
 
 Three independent checks of the power P_nc the module returns:
 
@@ -6,7 +6,8 @@ Three independent checks of the power P_nc the module returns:
    identically zero (`is_zero`), for every example and for damped, driven and rheonomic
    models;
 2. numerically, at random states of every example (complementary multipliers λ drawn at
-   random too: the balance holds for any λ, their power being a term of its own);
+   random too: the balance holds for any λ, their power being a term of its own; the rates
+   projected onto the complementary rows A q̇ + b = 0, where that power is −Σ λ_k b_k);
 3. along simulated motions, E(t) − E(0) equals ∫ P_nc dt (Simpson's rule on the output grid).
 
 Closed forms pin the individual terms: the power of a hoop driven at Ω is
@@ -25,7 +26,8 @@ from scipy.integrate import cumulative_simpson
 
 import lagrangian
 from lagrangian._identity import is_zero
-from lagrangian.analysis._energy_balance import accelerations, energy_balance
+from lagrangian.analysis import energy_balance
+from lagrangian.analysis._energy_balance import accelerations
 from lagrangian.numerics import simulate
 
 DAMPED_PENDULUM = (EXAMPLES_DIR / "double_pendulum.toml").read_text().replace(
@@ -66,6 +68,21 @@ def test_dE_dt_along_the_equations_is_P_nc(name: str) -> None:
 
 
 # -- 2. numerically, every example ----------------------------------------------------------------
+def _admissible(eom: lagrangian.EquationsOfMotion, values: dict, point: list[float]) -> list[float]:
+    """``point`` (q, q̇, t, λ) with q̇ projected onto A q̇ + b = 0: the reactions' power is −Σ λ_k b_k only
+    on the motions that satisfy the complementary rows (A and b depend on q and t only)."""
+    n = len(eom.q)
+    if not eom.constraints:
+        return point
+    rows = [[a.subs(values) for a in row.coefficients] + [row.b.subs(values)] for row in eom.constraints]
+    f = se.Lambdify([*eom.q, *eom.qd, eom.t], [x for row in rows for x in row], real=True)
+    Ab = np.asarray(f(point[:2 * n + 1]), dtype=float).reshape(len(rows), n + 1)
+    A, b = Ab[:, :n], Ab[:, n]
+    qd = np.asarray(point[n:2 * n])
+    qd = qd - A.T @ np.linalg.solve(A @ A.T, A @ qd + b)
+    return point[:n] + list(qd) + point[2 * n:]
+
+
 @pytest.mark.parametrize("name", example_names())
 def test_balance_holds_at_random_states_of_every_example(name: str) -> None:
     eom = eom_of(name)
@@ -82,6 +99,7 @@ def test_balance_holds_at_random_states_of_every_example(name: str) -> None:
     for state in random_states(name, eom.coordinates, 4, seed=12):
         t, mult = rng.uniform(0, 5), rng.uniform(-2, 2, len(lam))
         point = [state[c] for c in eom.coordinates] + [state[c + "_dot"] for c in eom.coordinates] + [t, *mult]
+        point = _admissible(eom, values, point)
         v = np.asarray(f(point), dtype=float).ravel()
         M, F = v[:n * n].reshape(n, n), v[n * n:n * n + n]
         dq, dqd, dt = v[n * n + n:n * n + 2 * n], v[n * n + 2 * n:n * n + 3 * n], v[n * n + 3 * n]
@@ -167,3 +185,29 @@ def test_no_energy_integral_where_the_balance_is_not_zero(name: str) -> None:
     eom = eom_of(name)
     assert not energy_balance(eom).conserved
     assert not any(i.kind == "energy" for i in lagrangian.first_integrals(eom))
+
+
+# -- complementary constraints: their reactions' real power is −Σ λ_k b_k ---------------------------
+@pytest.mark.parametrize("name", ["pendulum_tension.toml", "rolling_disk_incline.toml", "top_reaction.toml"])
+def test_scleronomic_reactions_do_no_work_and_E_is_conserved(name: str) -> None:
+    """The balance agrees with `first_integrals`: b_k ≡ 0, so the reaction's power is 0 and E is offered."""
+    eom = eom_of(name)
+    balance = energy_balance(eom)
+    assert balance.conserved and is_zero(balance.P_nc)
+    assert all(t.power == 0 and "does no work" in t.note for t in balance.terms if t.kind == "constraint")
+    assert any(i.kind == "energy" for i in lagrangian.first_integrals(eom))
+
+
+def test_a_rheonomic_constraint_reaction_works() -> None:
+    """A rod whose length l(t) = l0 + a sin(νt) is kept as a complementary row: b = −2 l l̇, power −λ b."""
+    text = (EXAMPLES_DIR / "pendulum_tension.toml").read_text()
+    assert "x^2 + y^2 - l^2" in text
+    text = text.replace("x^2 + y^2 - l^2", "x^2 + y^2 - (l + a*sin(nu*t))^2").replace(
+        "[parameters]", "[parameters]\na = 0.05\nnu = 3.0")
+    eom = lagrangian.derive(lagrangian.parse_model(text))
+    balance = energy_balance(eom)
+    (row,) = eom.constraints
+    (term,) = [t for t in balance.terms if t.kind == "constraint"]
+    l, a, nu, t = (se.Symbol(s) for s in ("l", "a", "nu", "t"))
+    assert is_zero(term.power - row.multiplier * 2 * (l + a * se.sin(nu * t)) * a * nu * se.cos(nu * t))
+    assert not balance.conserved

@@ -8,7 +8,7 @@ degree 2, 1, 0 in q̇):
 
 so that along every motion
 
-    dE/dt = Σ_loads Σ_i Q_i q̇_i  +  Σ ∂U/∂t  +  [d/dt(T1 + 2 T0) − ∂T/∂t]  +  Σ_k λ_k A_k·q̇
+    dE/dt = Σ_loads Σ_i Q_i q̇_i  +  Σ ∂U/∂t  +  [d/dt(T1 + 2 T0) − ∂T/∂t]  −  Σ_k λ_k b_k
 
 * the first sum is the real power of each non-conservative effort (friction, dampers,
   driving forces, Coriolis forces — zero for those);
@@ -17,8 +17,11 @@ so that along every motion
 * the bracket is the real power of the constraint efforts that impose a prescribed motion
   (rheonomic constraints: a pivot moved by hand, a frame turned at a given rate); it is
   zero when the constraints do not depend on t (then T = T2);
-* the last sum is the power of the reactions of complementary constraints (multipliers
-  λ_k, rows A_k of ``eom.constraints``), zero when those constraints do not depend on t.
+* the last sum is the real power of the reactions of complementary constraints
+  (multipliers λ_k, rows A_k q̇ + b_k = 0 of ``eom.constraints``): Σ_k λ_k A_k·q̇, which
+  along every motion that satisfies the constraints is −Σ_k λ_k b_k — zero for a
+  constraint that does not depend on t (b_k ≡ 0: a scleronomic reaction does no real
+  power, as `first_integrals` assumes when it offers E).
 
 The bracket holds q̈ (through dT1/dt); it is replaced by M⁻¹(F + Aᵀλ), so every term is a
 function of q, q̇, t (and λ).  When P_nc ≡ 0 — and only then — E is constant: this is the
@@ -45,7 +48,7 @@ class PowerTerm:
     ``kind`` is ``"load"`` (real power Σ Q_i q̇_i of a non-conservative load, ``name`` being
     the load), ``"explicit time"`` (∂U/∂t of a conservative load), ``"prescribed motion"``
     (power of the constraints that impose a motion depending on t) or ``"constraint"``
-    (power λ_k A_k·q̇ of a complementary constraint's reaction).
+    (real power −λ_k b_k = λ_k A_k·q̇ of a complementary constraint's reaction).
     """
 
     name: str
@@ -151,10 +154,11 @@ def energy_balance(eom: EquationsOfMotion) -> EnergyBalance:
         terms.append(PowerTerm("prescribed motion", "prescribed motion", prescribed,
                                "d/dt(T1 + 2 T0) − ∂T/∂t: real power of the constraint efforts that impose a "
                                "motion depending on t (rheonomic constraints)"))
-    for row in eom.constraints:
-        power = row.multiplier * sum_of([a * qd for a, qd in zip(row.coefficients, kin.qd)
-                                         if not is_structural_zero(a)])
+    for row, b_zero in zip(eom.constraints, are_zero([row.b for row in eom.constraints])):
+        # λ_k A_k·q̇ = −λ_k b_k on the motions that satisfy the row (A_k q̇ + b_k = 0).
+        power = se.Integer(0) if b_zero else -row.multiplier * row.b
         terms.append(PowerTerm(f"λ ({row.name})", "constraint", power,
-                               f"power λ_k A_k·q̇ of the reaction of complementary constraint `{row.name}`"))
+                               f"real power λ_k A_k·q̇ = −λ_k b_k of the reaction of complementary constraint "
+                               f"`{row.name}`" + (": b_k = 0, it does no work" if b_zero else "")))
     P_nc = sum_of([t.power for t in terms if not is_structural_zero(t.power)])
     return EnergyBalance(eom.T + eom.U, tuple(terms), P_nc, are_zero([P_nc])[0])
