@@ -50,6 +50,8 @@ __all__ = ["ConstraintRow", "ConstraintReaction", "complementary_constraints", "
 MULTIPLIER_PREFIX = "lambda_"
 #: Relative size below which a singular value counts as zero in the rank tests.
 RANK_RTOL = 1e-9
+#: Relative size above which a row's coefficient in a dependency Σ_j c_j A_j = 0 is not noise.
+DEPENDENCE_RTOL = 1e-6
 #: Largest n + m for which `multiplier_formulas` solves for λ symbolically.
 FORMULA_MAX_SIZE = 6
 
@@ -300,7 +302,12 @@ def _reaction(kin: Kinematics, c: Constraint, rows: list[ConstraintRow], axes: l
 
 # -- redundancy --------------------------------------------------------------------------------------
 def _check_rank(kin: Kinematics, rows: list[ConstraintRow], constraints: dict[str, Constraint]) -> None:
-    """Rows whose coefficients are combinations of earlier ones, at a generic state: a `ModelError` naming them."""
+    """Rows whose coefficients are combinations of earlier ones, at a generic state: a `ModelError` naming them.
+
+    The rows named are the minimal dependent set: those with a non-negligible coefficient in
+    the one combination Σ_j c_j A_j = 0 of the first dependent row with the independent rows
+    before it (the left null vector of that block of A, from its SVD).
+    """
     A = [list(r.coefficients) for r in rows]
     symbols = set().union(*(e.free_symbols for row in A for e in row))
     An = _numeric(A, _random_values(symbols, kin.model.parameter_values, seed=3))
@@ -310,12 +317,19 @@ def _check_rank(kin: Kinematics, rows: list[ConstraintRow], constraints: dict[st
         if np.linalg.matrix_rank(An[kept + [k]], tol=RANK_RTOL * scale) == len(kept) + 1:
             kept.append(k)
             continue
-        others = ", ".join(f"`{rows[j].name}`" for j in kept)
+        # The block has rank len(kept): its left null space is one direction, U's last column.
+        U, _, _ = np.linalg.svd(An[kept + [k]])
+        c = U[:, -1]
+        involved = [j for j, cj in zip(kept, c[:-1]) if abs(cj) > DEPENDENCE_RTOL * abs(c).max()]
+        others = ", ".join(f"`{rows[j].name}`" for j in involved)
+        what = f"is a combination of {others} only" if involved else "vanishes"
+        names = [f"`{row.constraint}`"] + list(dict.fromkeys(f"`{rows[j].constraint}`" for j in involved))
         raise _error(kin, constraints[row.constraint],
-                     f"the complementary constraints are redundant: row `{row.name}` is a combination of {others} "
+                     f"the complementary constraints are redundant: row `{row.name}` {what} "
                      f"(the Jacobian A of the {len(rows)} rows has rank < {len(rows)} at a generic state), so their "
                      "multipliers are not determined",
-                     fix=f"remove `{row.constraint}` (or the row it repeats), or declare one of them principal")
+                     fix=f"remove `{row.constraint}` (or the row it repeats), or declare one of "
+                         f"{', '.join(dict.fromkeys(names))} principal")
 
 
 # -- the entry point -------------------------------------------------------------------------------
@@ -390,6 +404,13 @@ def multiplier_formulas(eom) -> tuple[se.Basic, ...] | None:  # type: ignore[no-
 
     λ = (A M⁻¹ Aᵀ)⁻¹ (−c − A M⁻¹ F): solved symbolically only while n + m ≤
     `FORMULA_MAX_SIZE`; larger systems get their multipliers numerically along a motion.
+    Public as ``lagrangian.dynamics.multiplier_formulas``; λ_k multiplies +A_ki (the pendulum
+    in Cartesian coordinates: the rod's tension is −2 l λ, docs/constraints.md).
+
+    Returns
+    -------
+    One formula per row of ``eom.constraints`` (in that order), or None without complementary
+    rows or beyond `FORMULA_MAX_SIZE`.
     """
     rows = eom.constraints
     n, m = len(eom.q), len(rows)
