@@ -71,3 +71,40 @@ def test_a_failed_write_leaves_the_old_report(tmp_path, monkeypatch, capsys):
     assert "No space left" in capsys.readouterr().err
     assert out.read_text(encoding="utf-8") == "the previous report"
     assert [p.name for p in Path(tmp_path).iterdir()] == ["report.md"]
+
+
+def test_simulate_to_tex_writes_the_figures_beside_it_with_french_captions(tmp_path):
+    """-o top.tex goes through Report.save: PNG files beside it, \\includegraphics, captions in French."""
+    out = tmp_path / "top.tex"
+    assert main(["report", "--simulate", "1", "--set", "theta=0.5", "-o", str(out)]) == 0
+    tex = out.read_text(encoding="utf-8")
+    pngs = sorted(p.name for p in tmp_path.glob("top-figure-*.png"))
+    assert len(pngs) == 6 and all((tmp_path / p).read_bytes().startswith(b"\x89PNG") for p in pngs)
+    assert tex.count(r"\includegraphics") == 6 and r"\fbox" not in tex and r"\usepackage{graphicx}" in tex
+    assert "Trajectoire de l'apex sur la sphère unité" in tex and "Réaction R\\_O(t)" in tex
+    assert "Figure 3 : }" not in tex and "Figure 6 : }" not in tex
+
+
+def test_markdown_output_refers_to_figure_files(tmp_path):
+    out = tmp_path / "top.md"
+    assert main(["report", "--no-verify", "--simulate", "0.5", "-o", str(out)]) == 0
+    md = out.read_text(encoding="utf-8")
+    assert "data:image" not in md
+    pngs = sorted(p.name for p in tmp_path.glob("top-figure-*.png"))
+    assert pngs and all(f"]({name})" in md for name in pngs)
+
+
+def test_set_changes_the_values_shown_without_simulate(capsys):
+    assert main(["report", "--no-verify", "--set", "g=1.62", "--set", "theta=0.5"]) == 0
+    out = capsys.readouterr().out
+    assert "| $`g`$ | 1,62 |" in out and "| 9,81 |" not in out
+    assert "0,5" in out
+
+
+def test_zoo_models_by_name(capsys):
+    assert main(["report", "zoo:planar_chain:3", "--lang", "en", "--no-verify"]) == 0
+    out = capsys.readouterr().out
+    assert r"\theta_{3}" in out
+    for bad in ("zoo:nothing", "zoo:planar_chain", "zoo:planar_chain:x", "zoo:lagrange_top:3"):
+        assert main(["report", bad]) == 2
+        assert "zoo" in capsys.readouterr().err

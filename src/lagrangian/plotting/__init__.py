@@ -27,6 +27,7 @@ from ._reaction import plot_reaction as plot_reaction
 from ._reaction import reactions_along as reactions_along
 from ._save import KINDS as KINDS
 from ._save import applicable_kinds as applicable_kinds
+from ._save import figure_caption as figure_caption
 from ._save import plot_trajectory as plot_trajectory
 from ._save import save_figure as save_figure
 from ._save import save_plots as save_plots
@@ -35,7 +36,7 @@ from ._series import plot_phase as plot_phase
 from ._series import plot_time_series as plot_time_series
 from ._series import relative_drift as relative_drift
 
-__all__ = ["save_plots", "plot_trajectory", "applicable_kinds", "KINDS", "animate", "save_figure",
+__all__ = ["save_plots", "plot_trajectory", "applicable_kinds", "figure_caption", "KINDS", "animate", "save_figure",
            "plot_time_series", "plot_phase", "plot_drift", "relative_drift", "plot_apex_sphere", "plot_nutation",
            "apex_path", "axis_angles", "turning_angles", "TurningAngles", "plot_reaction", "reactions_along",
            "MissingPlotDependency"]

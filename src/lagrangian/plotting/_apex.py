@@ -18,6 +18,7 @@ from ..dynamics import EquationsOfMotion
 from ..errors import LagrangianError
 from ..numerics import Trajectory
 from ._geometry import apex_path, axis_angles, default_axis
+from ._labels import words
 from ._mpl import new_figure, suptitle
 
 __all__ = ["TurningAngles", "turning_angles", "plot_apex_sphere", "plot_nutation"]
@@ -37,9 +38,11 @@ class TurningAngles:
 
     @property
     def caption(self) -> str:
-        if self.source == "analysis":
-            return r"$\theta_1$, $\theta_2$: roots of the cubic in $u = \cos\theta$"
-        return r"$\theta_1$, $\theta_2$: extreme $\theta$ of the simulation"
+        return self.caption_in("en")
+
+    def caption_in(self, lang: str) -> str:
+        """Where θ1 and θ2 come from, in ``lang``."""
+        return words(lang)["roots" if self.source == "analysis" else "extremes"]
 
 
 def _analysed(trajectory: Trajectory, eom: EquationsOfMotion, theta: np.ndarray) -> TurningAngles | None:
@@ -74,13 +77,13 @@ def turning_angles(trajectory: Trajectory, eom: EquationsOfMotion, theta: np.nda
     return TurningAngles(float(np.min(theta)), float(np.max(theta)), "simulation")
 
 
-def _axis_title(eom: EquationsOfMotion, body: str | None, axis: str | None) -> str:
+def _axis_title(eom: EquationsOfMotion, body: str | None, axis: str | None, lang: str = "en") -> str:
     name, default = default_axis(eom, body)
-    return f"tip of the axis {axis or default} of {name}"
+    return words(lang)["tip"].format(axis=axis or default, body=name)
 
 
 def plot_apex_sphere(trajectory: Trajectory, eom: EquationsOfMotion, *, body: str | None = None,
-                     axis: str | None = None, ax: Any = None) -> Any:
+                     axis: str | None = None, ax: Any = None, lang: str = "en") -> Any:
     """The tip of a body axis on a wireframe unit sphere, in 3D, with the θ1 and θ2 circles.
 
     Returns
@@ -88,6 +91,7 @@ def plot_apex_sphere(trajectory: Trajectory, eom: EquationsOfMotion, *, body: st
     matplotlib.figure.Figure
         Its 3D axes hold the path as the first line whose data are the tip's (x0, y0, z0).
     """
+    w = words(lang)
     tip = apex_path(trajectory, eom, body, axis)
     _, theta = axis_angles(tip)
     angles = turning_angles(trajectory, eom, theta)
@@ -96,7 +100,7 @@ def plot_apex_sphere(trajectory: Trajectory, eom: EquationsOfMotion, *, body: st
         ax = fig.add_subplot(projection="3d")
     else:
         fig = ax.figure
-    ax.plot(tip[:, 0], tip[:, 1], tip[:, 2], color="C3", lw=1.2, label="tip path", zorder=5)
+    ax.plot(tip[:, 0], tip[:, 1], tip[:, 2], color="C3", lw=1.2, label=w["tip path"], zorder=5)
     u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 37), np.linspace(0, np.pi, 19))
     ax.plot_wireframe(np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v), color="0.75", lw=0.4,
                       rstride=1, cstride=1)
@@ -117,14 +121,14 @@ def plot_apex_sphere(trajectory: Trajectory, eom: EquationsOfMotion, *, body: st
     ax.set_zlabel("$z_0$")
     ax.view_init(elev=25, azim=-60)
     ax.legend(loc="upper left", fontsize="small")
-    ax.set_title(f"{_axis_title(eom, body, axis)} on the unit sphere\n"
-                 rf"circles $\theta_1$ = {angles.theta1:.4g}, $\theta_2$ = {angles.theta2:.4g} rad "
-                 f"({'analysis' if angles.source == 'analysis' else 'simulation'})", fontsize="medium")
+    ax.set_title(w["sphere"].format(tip=_axis_title(eom, body, axis, lang)) + "\n"
+                 + w["circles"].format(t1=angles.theta1, t2=angles.theta2)
+                 + f" ({w['analysis' if angles.source == 'analysis' else 'simulation']})", fontsize="medium")
     return fig
 
 
 def plot_nutation(trajectory: Trajectory, eom: EquationsOfMotion, *, body: str | None = None,
-                  axis: str | None = None, fig: Any = None) -> Any:
+                  axis: str | None = None, fig: Any = None, lang: str = "en") -> Any:
     """The classic nutation figure: the tip seen from above z0 (polar: radius θ, angle ψ − 90°),
     and θ against ψ, each with the θ1 and θ2 circles (lines).
 
@@ -133,6 +137,7 @@ def plot_nutation(trajectory: Trajectory, eom: EquationsOfMotion, *, body: str |
     matplotlib.figure.Figure
         Axes 0 (polar): first line = (ψ − π/2, θ in degrees); axes 1: first line = (ψ, θ), degrees.
     """
+    w = words(lang)
     tip = apex_path(trajectory, eom, body, axis)
     psi, theta = axis_angles(tip)
     angles = turning_angles(trajectory, eom, theta)
@@ -148,13 +153,14 @@ def plot_nutation(trajectory: Trajectory, eom: EquationsOfMotion, *, body: str |
         flat.axhline(deg(value), ls=style, color="C0", lw=1.0, label=f"{name} = {deg(value):.4g}°")
     top = min(180.0, 1.15 * max(deg(angles.theta2), float(deg(theta).max()) if len(theta) else 0.0))
     polar.set_rlim(0, max(top, 1e-3))
-    polar.set_title(r"seen from above $z_0$: radius $\theta$ (°), angle $\psi - 90°$", fontsize="medium")
+    polar.set_title(w["above"], fontsize="medium")
     polar.legend(loc="lower left", fontsize="small", bbox_to_anchor=(-0.1, -0.12))
-    flat.set_xlabel(r"$\psi$ of the axis (°)")
-    flat.set_ylabel(r"$\theta$ of the axis (°)")
+    flat.set_xlabel(w["psi axis"])
+    flat.set_ylabel(w["theta axis"])
     flat.invert_yaxis()  # θ grows downwards from z0, as on the sphere seen from the side
     flat.grid(True, alpha=0.3)
     flat.legend(loc="best", fontsize="small")
-    flat.set_title(angles.caption, fontsize="medium")
-    suptitle(fig, f"{trajectory.model_name}: nutation, {_axis_title(eom, body, axis)}")
+    flat.set_title(angles.caption_in(lang), fontsize="medium")
+    sep = " : " if lang == "fr" else ": "
+    suptitle(fig, trajectory.model_name + sep + w["nutation"].format(tip=_axis_title(eom, body, axis, lang)))
     return fig

@@ -23,6 +23,7 @@ from ..errors import OutputError
 from ..model import GALILEAN_FRAME, Gravity, Vector
 from ..numerics import Trajectory
 from ._geometry import Samples, evaluate, in_R0
+from ._labels import words
 from ._mpl import new_figure
 
 __all__ = ["reactions_along", "reaction_stem", "weight", "plot_reaction"]
@@ -83,7 +84,7 @@ def _axis_tex(name: str) -> str:
     return head + (f"_{{{tail}}}" if tail else "")
 
 
-def plot_reaction(trajectory: Trajectory, eom: EquationsOfMotion, *, ax: Any = None) -> Any:
+def plot_reaction(trajectory: Trajectory, eom: EquationsOfMotion, *, ax: Any = None, lang: str = "en") -> Any:
     """R(t) on (x0, y0, z0) and |R| for each reaction, with the weight's magnitude |P| for scale.
 
     Returns
@@ -91,6 +92,7 @@ def plot_reaction(trajectory: Trajectory, eom: EquationsOfMotion, *, ax: Any = N
     matplotlib.figure.Figure
         Its axes hold, for each reaction in turn, R·x0, R·y0, R·z0 and |R| as lines.
     """
+    w = words(lang)
     history = reactions_along(trajectory, eom)
     if ax is None:
         fig = new_figure(8.0, 4.2, margins=(0.75, 0.15, 0.5, 0.4))
@@ -109,12 +111,14 @@ def plot_reaction(trajectory: Trajectory, eom: EquationsOfMotion, *, ax: Any = N
     if p is not None:
         ax.axhline(float(np.linalg.norm(p)), color="0.5", ls=":", lw=1.0, label=r"$|P| = |\sum m\,g|$")
     ax.set_xlabel("t (s)")
-    ax.set_ylabel("force")
+    ax.set_ylabel(w["force"])
     ax.grid(True, alpha=0.3)
     ax.legend(loc="best", fontsize="small", ncols=2)
     pins = [r for r in history.values() if r.name.startswith("R_")]
-    where = (f"reaction at the fixed point {pins[0].point}" if len(pins) == len(history) == 1
-             else "reaction of the ground")
-    ax.set_title(rf"{trajectory.model_name}: {where}, $R = \sum m\,\gamma(G) - \sum F_{{\mathrm{{given}}}}$",
+    where = (w["reaction at"].format(point=pins[0].point) if len(pins) == len(history) == 1
+             else w["reaction ground"])
+    sep = " : " if lang == "fr" else ": "
+    given = w["given"]
+    ax.set_title(rf"{trajectory.model_name}{sep}{where}, $R = \sum m\,\gamma(G) - \sum F_{{\mathrm{{{given}}}}}$",
                  fontsize="medium")
     return fig

@@ -19,10 +19,12 @@ from ..numerics import Trajectory
 from ._animation import FORMATS, animate
 from ._apex import plot_apex_sphere, plot_nutation
 from ._geometry import apex_path
+from ._labels import words
 from ._reaction import plot_reaction, reaction_stem, reactions_along
 from ._series import plot_drift, plot_phase, plot_time_series
 
-__all__ = ["KINDS", "plot_trajectory", "applicable_kinds", "figure_name", "save_plots", "save_figure"]
+__all__ = ["KINDS", "plot_trajectory", "applicable_kinds", "figure_name", "figure_caption", "save_plots",
+           "save_figure"]
 
 #: Every kind of figure, in the order `save_plots` writes them.
 KINDS = ("time_series", "phase", "apex_sphere", "nutation", "drift", "reaction")
@@ -47,7 +49,8 @@ def plot_trajectory(trajectory: Trajectory, eom: EquationsOfMotion, kind: str = 
     """The figure ``kind`` (one of `KINDS`) of a simulated motion.
 
     ``options`` go to the figure's function: ``ax=`` (``apex_sphere``, ``reaction``),
-    ``fig=`` (the others), ``body=`` and ``axis=`` (``apex_sphere``, ``nutation``).
+    ``fig=`` (the others), ``body=`` and ``axis=`` (``apex_sphere``, ``nutation``), ``lang=``
+    (``"en"``, the default, or ``"fr"``: the titles in the course's French).
 
     Returns
     -------
@@ -95,6 +98,22 @@ def applicable_kinds(trajectory: Trajectory, eom: EquationsOfMotion) -> tuple[st
 def figure_name(kind: str, eom: EquationsOfMotion) -> str:
     """The file stem of a figure: ``time_series``, ..., ``reaction_O`` when held at O."""
     return reaction_stem(eom) if kind == "reaction" else kind
+
+
+def figure_caption(kind: str, eom: EquationsOfMotion, lang: str = "en") -> str:
+    """A caption for the figure ``kind`` in ``lang`` (``"fr"``: the course's words), e.g. "Réaction R_O(t)".
+
+    Examples
+    --------
+    >>> import lagrangian
+    >>> figure_caption("apex_sphere", lagrangian.derive(lagrangian.lagrange_top()), "fr")
+    "Trajectoire de l'apex sur la sphère unité"
+    """
+    if kind not in _PLOTTERS:
+        raise OutputError(f"Unknown figure `{kind}`.", fix="choose one of " + ", ".join(KINDS))
+    stem = reaction_stem(eom)
+    name = stem[0].upper() + stem[len("reaction"):] if stem.startswith("reaction_") else "R"
+    return words(lang)[f"caption {kind}"].format(name=name)
 
 
 def save_figure(fig: Any, path: str | Path, *, dpi: float = 110) -> Path:

@@ -8,7 +8,7 @@ import numpy as np
 
 from ..dynamics import EquationsOfMotion
 from ..numerics import Trajectory
-from ._labels import label, symbol
+from ._labels import label, symbol, words
 from ._mpl import new_figure, suptitle
 
 __all__ = ["plot_time_series", "plot_phase", "plot_drift", "relative_drift"]
@@ -17,7 +17,12 @@ __all__ = ["plot_time_series", "plot_phase", "plot_drift", "relative_drift"]
 ROW_HEIGHT = 1.7
 
 
-def plot_time_series(trajectory: Trajectory, eom: EquationsOfMotion, *, fig: Any = None) -> Any:
+def _title(model: str, what: str, lang: str) -> str:
+    """``model: what``, with the space French puts before a colon."""
+    return f"{model} : {what}" if lang == "fr" else f"{model}: {what}"
+
+
+def plot_time_series(trajectory: Trajectory, eom: EquationsOfMotion, *, fig: Any = None, lang: str = "en") -> Any:
     """q_i(t) (left) and q̇_i(t) (right), one row per coordinate.
 
     Returns
@@ -37,13 +42,14 @@ def plot_time_series(trajectory: Trajectory, eom: EquationsOfMotion, *, fig: Any
             ax.grid(True, alpha=0.3)
     for k in range(2):
         axes[-1, k].set_xlabel("t (s)")
-    axes[0, 0].set_title("coordinates $q_i(t)$")
-    axes[0, 1].set_title(r"rates $\dot{q}_i(t)$")
-    suptitle(fig, f"{trajectory.model_name}: time series")
+    w = words(lang)
+    axes[0, 0].set_title(w["coordinates"])
+    axes[0, 1].set_title(w["rates"])
+    suptitle(fig, _title(trajectory.model_name, w["time series"], lang))
     return fig
 
 
-def plot_phase(trajectory: Trajectory, eom: EquationsOfMotion, *, fig: Any = None) -> Any:
+def plot_phase(trajectory: Trajectory, eom: EquationsOfMotion, *, fig: Any = None, lang: str = "en") -> Any:
     """Phase portraits (q_i, q̇_i), one panel per coordinate; the start is marked by a dot.
 
     Returns
@@ -69,23 +75,20 @@ def plot_phase(trajectory: Trajectory, eom: EquationsOfMotion, *, fig: Any = Non
     for j in range(n, rows * cols):
         axes[j // cols, j % cols].set_visible(False)
     axes[0, 0].legend(loc="best", fontsize="small")
-    suptitle(fig, f"{trajectory.model_name}: phase portraits")
+    suptitle(fig, _title(trajectory.model_name, words(lang)["phase"], lang))
     return fig
 
 
 def relative_drift(trajectory: Trajectory, name: str) -> np.ndarray:
-    """|I(t) − I(t0)| / |I(t0)| (absolute when I(t0) = 0), shape (N,).
+    """|I(t) − I(t0)| / S, shape (N,), S the physical scale of the integral (`Trajectory.scales`).
 
     Its maximum is ``trajectory.drift[name]``, the conservation monitor of the run.
     """
-    series = np.asarray(trajectory.monitors[name], dtype=float)
-    if len(series) == 0:
-        return series
-    ref = series[0]
-    return np.abs(series - ref) / (abs(ref) if ref != 0 else 1.0)
+    return trajectory.relative_drift(name)
 
 
-def plot_drift(trajectory: Trajectory, eom: EquationsOfMotion | None = None, *, fig: Any = None) -> Any:
+def plot_drift(trajectory: Trajectory, eom: EquationsOfMotion | None = None, *, fig: Any = None,
+               lang: str = "en") -> Any:
     """Energy exchange (T, U, E) on top, and the relative drift of every first integral below (log scale).
 
     A drift that is exactly zero at every sample (a first integral conserved to the last
@@ -97,6 +100,7 @@ def plot_drift(trajectory: Trajectory, eom: EquationsOfMotion | None = None, *, 
         Axes 0: the energies; axes 1 (when the model has first integrals): one line per
         integral whose y-data are `relative_drift` (zeros left out).
     """
+    w = words(lang)
     integrals = trajectory.integrals
     rows = 2 if integrals else 1
     fig = fig or new_figure(8.0, 2.8 * rows + 0.6, margins=(1.0, 0.15, 0.5, 0.6), hspace=0.3)
@@ -107,10 +111,10 @@ def plot_drift(trajectory: Trajectory, eom: EquationsOfMotion | None = None, *, 
         if name in trajectory.monitors:
             shown = symbol(eom, name) if eom is not None else name
             ax.plot(t, trajectory.monitors[name], lw=1.2, label=shown)
-    ax.set_ylabel("energy")
+    ax.set_ylabel(w["energy"])
     ax.grid(True, alpha=0.3)
     ax.legend(loc="best", fontsize="small")
-    ax.set_title("kinetic energy $T$, potential energy $U$" + (", $E = T + U$" if "E" in trajectory.monitors else ""))
+    ax.set_title(w["energies"] + (w["energies E"] if "E" in trajectory.monitors else ""))
     if integrals:
         ax = axes[1]
         for name in integrals:
@@ -120,7 +124,7 @@ def plot_drift(trajectory: Trajectory, eom: EquationsOfMotion | None = None, *, 
                 ax.semilogy(t, np.where(d > 0, d, np.nan), lw=1.0,
                             label=f"{shown}: max {trajectory.drift.get(name, d.max()):.1e}")
             else:
-                ax.plot([], [], lw=1.0, label=f"{shown}: 0 (exact)")
+                ax.plot([], [], lw=1.0, label=f"{shown}: {w['exact']}")
         ax.set_yscale("log")
         ax.set_ylabel(r"$|I(t) - I(t_0)| \,/\, |I(t_0)|$")
         ax.grid(True, which="both", alpha=0.3)
@@ -128,7 +132,7 @@ def plot_drift(trajectory: Trajectory, eom: EquationsOfMotion | None = None, *, 
         tol = trajectory.tolerance
         if tol is not None:
             ax.axhline(tol, color="r", ls="--", lw=0.8)
-        ax.set_title(f"relative drift of the first integrals ({trajectory.method})")
+        ax.set_title(w["drift"].format(method=trajectory.method))
     axes[-1].set_xlabel("t (s)")
-    suptitle(fig, f"{trajectory.model_name}: conservation")
+    suptitle(fig, _title(trajectory.model_name, w["conservation"], lang))
     return fig
