@@ -43,3 +43,22 @@ def test_notation_orders_factors_and_terms():
     assert n.text(sympy.Rational(1, 2) * m * xd**2) == "½ m x\u0307²"
     assert n.text(sympy.sin(th + x) ** 2) == "sin²(x + θ)"
     assert n.latex(sympy.cos(th) ** 2 / l) == r"\frac{\cos^{2}\theta}{l}"
+
+
+def test_the_dot_goes_on_the_letter_not_on_its_index():
+    n = Notation(["theta1", "x2"])
+    assert n.latex(sympy.Symbol("theta1_dot")) == r"\dot{\theta}_{1}"
+    assert n.latex(sympy.Symbol("theta1_ddot")) == r"\ddot{\theta}_{1}"
+    assert n.latex(sympy.Symbol("x2_dot")) == r"\dot{x}_{2}"
+    assert n.text(sympy.Symbol("theta1_dot")) == "θ̇1"
+    assert n.latex(sympy.Symbol("theta_dot")) == r"\dot{\theta}"
+
+
+def test_a_function_is_set_apart_from_a_word_or_latin_argument():
+    lat, x1, theta = sympy.symbols("lat x_1 theta")
+    n = Notation(["lat"], ["g"])
+    assert n.latex(sympy.cos(lat)) == r"\cos\,\mathrm{lat}"
+    assert n.latex(sympy.Symbol("g") * sympy.sin(lat) ** 2) == r"g \sin^{2}\,\mathrm{lat}"
+    assert n.text(sympy.cos(lat)) == "cos lat" and n.text(sympy.sin(lat) ** 2) == "sin² lat"
+    assert n.latex(sympy.cos(x1)) == r"\cos x_{1}"  # not the unknown command \cosx
+    assert n.latex(sympy.cos(theta)) == r"\cos\theta" and n.text(sympy.cos(theta)) == "cosθ"

@@ -88,6 +88,26 @@ def _base_latex(name: str) -> str:
     return name if len(name) == 1 else rf"\mathrm{{{name}}}"
 
 
+def _split_index(latex: str) -> tuple[str, str]:
+    """``\\theta_{1}`` → (``\\theta``, ``_{1}``): a symbol and its index (``""`` when it has none)."""
+    depth = 0
+    for i, ch in enumerate(latex):
+        if ch == "{":
+            depth += 1
+        elif ch == "}":
+            depth -= 1
+        elif ch == "_" and depth == 0 and i > 0:
+            return latex[:i], latex[i:]
+    return latex, ""
+
+
+def _wordlike(name: str) -> bool:
+    """A symbol written as a word (``lat``, ``phi0`` is not): a function before it needs a space."""
+    base, _ = _split_name(name)
+    head = base.partition("_")[0].rstrip("0123456789")
+    return len(head) > 1 and head not in _GREEK
+
+
 class Opaque(sympy.Dummy):
     """A stand-in that prints as given: ``text`` in terminal text, ``latex`` in LaTeX.
 
@@ -123,10 +143,15 @@ class Notation:
             base, deco = _split_name(name)
             if latex:
                 b = _base_latex(base)
-                out = {"dot": rf"\dot{{{b}}}", "ddot": rf"\ddot{{{b}}}", "star": rf"{b}^{{*}}", "": b}[deco]
+                # The dot goes over the letter, the index after it: \dot{\theta}_{1}, not \dot{\theta_{1}}.
+                head, sub = _split_index(b)
+                out = {"dot": rf"\dot{{{head}}}{sub}", "ddot": rf"\ddot{{{head}}}{sub}", "star": rf"{b}^{{*}}",
+                       "": b}[deco]
             else:
                 b = _base_text(base)
-                out = b + {"dot": "\u0307", "ddot": "\u0308", "star": "*", "": ""}[deco]
+                head = b.rstrip("0123456789")  # θ̇1: the dot on the letter, not on the index
+                out = head + {"dot": "\u0307", "ddot": "\u0308", "star": "", "": ""}[deco] + b[len(head):] + \
+                    ("*" if deco == "star" else "")
             self._cache[key] = out
         return self._cache[key]
 
@@ -341,10 +366,15 @@ class Notation:
             return (rf"\left|{inner}\right|{power}" if latex else f"|{inner}|{power}")
         args = f.args
         simple = len(args) == 1 and isinstance(args[0], sympy.Symbol)
+        # cos lat, not coslat: a symbol written as a word is set apart from the function's name.
+        gap = (r"\," if latex else " ") if simple and _wordlike(args[0].name) else ""
+        if simple and not gap and self.symbol(args[0].name, latex)[:1].isascii() and \
+                self.symbol(args[0].name, latex)[:1].isalpha():
+            gap = " "  # \cos x_{1}, not the unknown command \cosx; cos x in text
         inner = ", ".join(self._render(a, latex) for a in args)
         if latex:
             head = rf"\{name}" if name in _LATEX_FUNCTIONS else rf"\operatorname{{{name}}}"
             if name == "exp" and not power:
                 return rf"e^{{{inner}}}"
-            return f"{head}{power}{inner}" if simple else rf"{head}{power}\left({inner}\right)"
-        return f"{name}{power}{inner}" if simple else f"{name}{power}({inner})"
+            return f"{head}{power}{gap}{inner}" if simple else rf"{head}{power}\left({inner}\right)"
+        return f"{name}{power}{gap}{inner}" if simple else f"{name}{power}({inner})"
