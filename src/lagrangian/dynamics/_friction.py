@@ -20,19 +20,29 @@ as Radau).  N is given by the user from the normal equation when it is known fro
 forces (a block on a plane: N = m g cos α); a normal reaction that must be solved for (a
 multiplier of a complementary constraint) is not supported by this load.
 
+With ε = 0 (``regularization = 0``) the law is the exact T = −f N v_s/|v_s|, undefined at
+v_s = 0: the derivation writes it as it is, and simulation switches between a sliding model
+and a stuck one by events (`lagrangian.numerics._stickslip`).  That needs one sliding
+direction, v_s = w e with e a unit axis of one of the model's frames: `sliding_direction`
+finds it.
+
 All velocities here are relative to the frame the equations are written in (R0 or R).
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import symengine as se
 
+from .._identity import are_zero
+from ..errors import ModelError
 from ..kinematics import Kinematics
 from ..model import CoulombFriction, Dissipation, JointDamper, Vector
 from ..model._vector import is_structural_zero
 
 __all__ = ["FRICTION_LOADS", "friction_q", "friction_efforts", "sliding_velocity", "friction_force",
-           "dissipation_function"]
+           "dissipation_function", "sliding_direction", "SlidingDirection"]
 
 #: The load types whose generalized forces are computed here.
 FRICTION_LOADS = (Dissipation, JointDamper, CoulombFriction)
@@ -60,8 +70,56 @@ def sliding_velocity(kin: Kinematics, load: CoulombFriction) -> Vector:
     return v
 
 
+@dataclass(frozen=True, slots=True)
+class SlidingDirection:
+    """v_s = w e at a contact with one sliding direction: e = ``frame``.``axis``, w = v_s·e (affine in q̇)."""
+
+    frame: str
+    axis: str
+    speed: se.Basic
+
+    @property
+    def vector(self) -> Vector:
+        """The unit vector e."""
+        return Vector.basis(self.frame, self.axis)
+
+    @property
+    def label(self) -> str:
+        """E.g. ``"I.x"``."""
+        return f"{self.frame}.{self.axis}"
+
+
+def sliding_direction(kin: Kinematics, load: CoulombFriction) -> SlidingDirection:
+    """The axis e of a frame along which v_s always lies, and w = v_s·e.
+
+    The frames are tried in the model's order (R0 first); the first one in which two of
+    v_s's three components vanish identically gives e.  A contact whose v_s turns in every
+    frame (a puck sliding freely on a plane) has no such axis.
+
+    Raises
+    ------
+    ModelError
+        When v_s is identically zero, or has no fixed direction in any frame.
+    """
+    v = sliding_velocity(kin, load)
+    for frame in kin.frames.frames:
+        comps = [se.expand(c) for c in kin.frames.express(v, frame)]
+        live = [k for k, zero in enumerate(are_zero(comps)) if not zero]
+        if not live:
+            raise ModelError(f"The sliding velocity of the Coulomb contact `{load.name}` at `{load.at}` is "
+                             "identically zero, so it never slides.",
+                             fix="check the point, the surface velocity and the normal, or remove the load")
+        if len(live) == 1:
+            return SlidingDirection(frame, "xyz"[live[0]], comps[live[0]])
+    raise ModelError(f"The sliding velocity of the Coulomb contact `{load.name}` at `{load.at}` has no fixed "
+                     "direction in any frame of the model; the exact stick/slip law (regularization = 0) "
+                     "handles one sliding direction only.",
+                     fix="use the regularised law (give regularization a positive speed, e.g. 1e-3), or add a "
+                         "frame one of whose axes carries the sliding velocity")
+
+
 def friction_force(kin: Kinematics, load: CoulombFriction) -> Vector:
-    """T = −f N v_s / √(|v_s|² + ε²), the regularised Coulomb force at the contact point."""
+    """T = −f N v_s / √(|v_s|² + ε²), the regularised Coulomb force at the contact point (exact for ε = 0)."""
     v = sliding_velocity(kin, load)
     speed2 = kin.frames.dot(v, v)
     return v * (-load.coefficient * load.normal_force / se.sqrt(speed2 + load.regularization ** 2))
@@ -81,6 +139,9 @@ def friction_q(kin: Kinematics, load: Dissipation | JointDamper | CoulombFrictio
                          f"Q_i = −∂D/∂q̇_i with D = ½ c |Ω({s2}/{s1})|²")
     force = friction_force(kin, load)
     Q = tuple(kin.frames.dot(force, v) for v in kin.partial_velocities(load.at))
+    if load.exact:
+        return Q, None, (f"Coulomb friction at {load.at}: T = −f N v_s/|v_s| while sliding, |T| ≤ f_s N while "
+                         "stuck, N given (exact stick/slip: switched by events in simulation)")
     return Q, None, (f"Coulomb friction at {load.at}: T = −f N v_s/√(|v_s|² + ε²), |T| ≤ f N, "
                      "N given (regularised stick/slip)")
 

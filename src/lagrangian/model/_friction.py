@@ -9,9 +9,10 @@ Three load kinds beyond the given forces of `spec` (seed: Q_i(non-conservative) 
     viscous friction in the joint between two bodies (or a body and a frame): the couple
     −c Ω(S2/S1) on S2 and its opposite on S1.
 ``coulomb = "P", coefficient = "f", normal_force = "N"`` (and optionally
-``surface_velocity``, ``normal``, ``regularization``)
+``surface_velocity``, ``normal``, ``regularization``, ``static_coefficient``)
     dry friction at the contact point P sliding on a surface: |T| ≤ f N, T against the
-    sliding velocity.  N must be *known* from the given forces (a block on a plane:
+    sliding velocity; regularised unless ``regularization = 0`` (exact stick/slip in
+    simulation, sticking while |T| ≤ f_s N, f_s = ``static_coefficient``, default f).  N must be *known* from the given forces (a block on a plane:
     m g cos α); a normal reaction that needs a multiplier is outside this load.
 
 Here they are read and checked (names, expressions, the file and line of each mistake);
@@ -39,7 +40,8 @@ FRICTION_KINDS = ("dissipation", "joint_damper", "coulomb")
 TOML_KEYS = {
     "dissipation": {"dissipation"},
     "joint_damper": {"joint_damper", "coefficient"},
-    "coulomb": {"coulomb", "coefficient", "normal_force", "surface_velocity", "normal", "regularization"},
+    "coulomb": {"coulomb", "coefficient", "normal_force", "surface_velocity", "normal", "regularization",
+                "static_coefficient"},
 }
 #: Default ε of the regularised Coulomb law T = −f N v/√(v² + ε²): a sliding speed (model
 #: units, 1 mm/s in SI) below which the contact behaves as a very stiff viscous one.
@@ -77,6 +79,7 @@ def build_friction_load(asm: _Assembler, raw: _Raw, points: Mapping[str, Point],
         raise asm.error(raw, f"Coulomb friction `{raw.name}` acts at unknown point `{at}`", symbol=str(at), key="at",
                         fix="use a declared point, a body name (its centre G) or a particle name")
     normal = d["normal"]
+    static = d.get("static_coefficient")
     return CoulombFriction(
         raw.name, at,
         asm.expr(raw, "the friction coefficient", d["coefficient"], key="coefficient"),
@@ -84,6 +87,8 @@ def build_friction_load(asm: _Assembler, raw: _Raw, points: Mapping[str, Point],
         asm.expr(raw, "the surface velocity", d["surface_velocity"], vector=True, key="surface_velocity"),
         None if normal is None else asm.expr(raw, "the normal", normal, vector=True, key="normal"),
         asm.expr(raw, "the regularization", d["regularization"], key="regularization"),
+        None if static is None else asm.expr(raw, "the static friction coefficient", static,
+                                             key="static_coefficient"),
     )
 
 
@@ -104,5 +109,6 @@ def declare_from_toml(reader: _Reader, b: ModelBuilder, name: str, value: dict[s
         b.coulomb_friction(name, value["coulomb"], coefficient=need("coefficient"),
                            normal_force=need("normal_force"), surface_velocity=value.get("surface_velocity", 0),
                            normal=value.get("normal"),
-                           regularization=value.get("regularization", DEFAULT_REGULARIZATION), location=where)
+                           regularization=value.get("regularization", DEFAULT_REGULARIZATION),
+                           static_coefficient=value.get("static_coefficient"), location=where)
 

@@ -190,10 +190,15 @@ class ModelBuilder:
 
     def coulomb_friction(self, name: str, at: str, *, coefficient: Any, normal_force: Any, surface_velocity: Any = 0,
                          normal: Any = None, regularization: Any = DEFAULT_REGULARIZATION,
-                         location: Location | None = None) -> None:
-        """Dry friction at the sliding contact point ``at``: T = −f N v_s/√(|v_s|² + ε²), N given."""
+                         static_coefficient: Any = None, location: Location | None = None) -> None:
+        """Dry friction at the sliding contact point ``at``: T = −f N v_s/√(|v_s|² + ε²), N given.
+
+        ``regularization=0`` asks for the exact law with stick/slip by events in simulation,
+        ``static_coefficient`` f_s ≥ f bounding the reaction while stuck (default f).
+        """
         self._add("load", name, location, kind="coulomb", at=at, coefficient=coefficient, normal_force=normal_force,
-                  surface_velocity=surface_velocity, normal=normal, regularization=regularization)
+                  surface_velocity=surface_velocity, normal=normal, regularization=regularization,
+                  static_coefficient=static_coefficient)
 
     def reference(self, frame: str, *, origin: str = ORIGIN, location: Location | None = None) -> None:
         """Write the equations relative to ``frame`` (R) of origin ``origin`` (O'), not R0 (seed, Remarque 3).

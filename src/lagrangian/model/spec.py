@@ -290,7 +290,11 @@ class CoulombFriction:
 
     The sliding velocity is v_s = V(at) − ``surface_velocity`` (projected on the tangent
     plane when the surface's unit ``normal`` is given); the friction force is the
-    regularised T = −f N v_s / √(|v_s|² + ε²), ε = ``regularization`` (a velocity).
+    regularised T = −f N v_s / √(|v_s|² + ε²), ε = ``regularization`` (a velocity).  With
+    ε = 0 (a literal zero) it is the exact law T = −f N v_s/|v_s|, and `simulate` switches
+    between sliding and sticking by events (`lagrangian.numerics._stickslip`); the contact
+    then sticks while the tangential reaction it needs stays within f_s N,
+    f_s = ``static_coefficient`` (≥ f; None: f_s = f).
     ``normal_force`` N is given (known from the given forces, e.g. m g cos α).
     """
 
@@ -301,6 +305,12 @@ class CoulombFriction:
     surface_velocity: Vector
     normal: Vector | None
     regularization: se.Basic
+    static_coefficient: se.Basic | None = None
+
+    @property
+    def exact(self) -> bool:
+        """Whether this is the exact (unregularised) law, ε = 0: stick/slip by events in simulation."""
+        return bool(self.regularization == 0)
 
 
 Load = (Gravity | PointForce | Torque | Spring | Damper | Potential | GeneralizedForce | Dissipation | JointDamper

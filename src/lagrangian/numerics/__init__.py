@@ -9,6 +9,7 @@ from ._simulate import METHODS as METHODS
 from ._simulate import EventSpec as EventSpec
 from ._simulate import initial_state as initial_state
 from ._simulate import simulate as simulate
+from ._stickslip import simulate_stick_slip as simulate_stick_slip
 from ._system import CompiledSystem as CompiledSystem
 from ._system import compile_system as compile_system
 from ._top_check import SimulationCheck as SimulationCheck
@@ -16,5 +17,5 @@ from ._top_check import simulation_check as simulation_check
 from ._trajectory import Event as Event
 from ._trajectory import Trajectory as Trajectory
 
-__all__ = ["simulate", "save_trajectory", "EventSpec", "initial_state", "METHODS", "CompiledSystem", "compile_system", "Trajectory", "Event",
+__all__ = ["simulate", "simulate_stick_slip", "save_trajectory", "EventSpec", "initial_state", "METHODS", "CompiledSystem", "compile_system", "Trajectory", "Event",
            "SimulationCheck", "simulation_check"]

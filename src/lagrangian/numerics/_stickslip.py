@@ -1,0 +1,396 @@
+"""Exact Coulomb friction in simulation: sliding and sticking phases switched by events.
+
+A `CoulombFriction` load declared with ``regularization = 0`` is the exact law
+(Coulomb; e.g. Pfeiffer & Glocker, *Multibody Dynamics with Unilateral Contacts*, ch. 7):
+
+* **slip** with direction s = ±1: v_s = w e with s w > 0, and T = −s f N e (exact, constant
+  direction during the phase);
+* **stick**: w = 0 is added as a complementary nonholonomic constraint (A q̇ + b = 0 with
+  A_i = ∂w/∂q̇_i = e·∂V(P)/∂q̇_i); its multiplier λ is the tangential reaction along e, and the
+  contact stays stuck while |λ| ≤ f_s N.
+
+e is an axis of one of the model's frames along which the sliding velocity always lies
+(`lagrangian.dynamics._friction.sliding_direction`); a contact without one is refused.  Each
+mode is a model of its own — `dataclasses.replace` of the frozen `Model`, the friction load
+replaced by the force −s f N e at the contact point or by the constraint — derived and
+compiled once, then integrated by `simulate` (slip) or `simulate_dae` (stick) up to a
+terminal event:
+
+* in slip, s w falling through 0: the contact stops sliding.  The stuck model's λ at that
+  state decides: |λ| ≤ f_s N sticks, otherwise it slides on in the direction s = −sign λ
+  (a block launched up a steep incline slides back down);
+* in stick, λ − f_s N rising through 0 (slip with s = −1) or λ + f_s N falling through 0
+  (s = +1): the reaction needed exceeds what dry friction can give.  λ(q, q̇, t) is the
+  closed form of `multiplier_formulas` (models with n + m ≤ 6).
+
+The segments are joined into one `Trajectory` on the requested output grid, with the
+extra columns ``mode_<load>`` (s = ±1 sliding, 0 stuck), ``friction_<load>`` (T·e: −s f N
+or λ), ``sliding_<load>`` (w); the switches are events named ``stick_<load>`` and
+``slip_<load>``.  The monitors T, U (U without friction) are those of the stuck model,
+and the first integrals kept are the momenta that hold in every mode (friction does
+no work on a coordinate with A_i ≡ 0).  N stays a given expression.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import symengine as se
+
+from ..analysis import first_integrals
+from ..dynamics import EquationsOfMotion, derive
+from ..dynamics._constraints import multiplier_formulas
+from ..dynamics._friction import SlidingDirection, sliding_direction
+from ..errors import ModelError, SimulationError
+from ..model import CoulombFriction, load_model
+from ..model._constraints import Constraint
+from ..model.spec import Model, PointForce
+from ._dae import BAUMGARTE, ConstrainedSystem, simulate_dae
+from ._trajectory import Event, Trajectory
+
+__all__ = ["exact_contact", "exact_contact_model", "simulate_stick_slip", "StickSlipSystem"]
+
+#: The name of the terminal event that ends a phase (never a user's: not an identifier).
+SWITCH = "~switch"
+#: Consecutive phases shorter than this (relative to max(1, |t|)) before the run is refused.
+ZENO_LENGTH, ZENO_COUNT = 1e-12, 20
+#: |w| at or below this at the start counts as not sliding (model velocity units).
+REST_SPEED = 1e-12
+
+
+def exact_contact(model: Model) -> CoulombFriction | None:
+    """The model's exact Coulomb contact (``regularization = 0``), or None.
+
+    Raises
+    ------
+    ModelError
+        When the model has more than one.
+    """
+    exact = [load for load in model.loads if isinstance(load, CoulombFriction) and load.exact]
+    if len(exact) > 1:
+        raise ModelError(f"The model has {len(exact)} exact Coulomb contacts ("
+                         + ", ".join(f"`{c.name}`" for c in exact) + "); stick/slip simulation handles one.",
+                         symbol=exact[1].name,
+                         fix="give the other contacts a positive regularization (e.g. 1e-3)")
+    return exact[0] if exact else None
+
+
+def exact_contact_model(source) -> Model | None:  # type: ignore[no-untyped-def]
+    """The `Model` of ``source`` (a path, `Model`, equations or compiled system) when it has an exact contact."""
+    if isinstance(source, (str, Path)):
+        model = load_model(source)
+    elif isinstance(source, Model):
+        model = source
+    elif isinstance(getattr(source, "eom", None), EquationsOfMotion):
+        model = source.eom.model
+    elif isinstance(source, EquationsOfMotion):
+        model = source.model
+    else:
+        return None
+    return model if exact_contact(model) is not None else None
+
+
+class StickSlipSystem:
+    """The three modes of a model with one exact Coulomb contact, each derived and compiled once.
+
+    Attributes
+    ----------
+    model : the model; ``load`` : its exact contact; ``direction`` : e and w (`SlidingDirection`).
+    stuck : the `ConstrainedSystem` of the stuck mode (row ``row``).
+    """
+
+    def __init__(self, model: Model, *, backend: str = "auto") -> None:
+        load = exact_contact(model)
+        if load is None:
+            raise ModelError("The model has no exact Coulomb contact (regularization = 0).",
+                             fix="use lagrangian.simulate")
+        self.model, self.load, self.backend = model, load, backend
+        eom = derive(model)
+        self.direction: SlidingDirection = sliding_direction(eom.kinematics, load)
+        self.row = f"stick_{load.name}"
+        others = tuple(x for x in model.loads if x is not load)
+        stuck = replace(model, loads=others, constraints=model.constraints + (
+            Constraint(self.row, "nonholonomic", self.direction.speed,
+                       description=f"the contact `{load.name}` sticks: v_s·{self.direction.label} = 0"),))
+        self.stuck_eom = derive(stuck)
+        self.stuck = ConstrainedSystem(self.stuck_eom, backend=backend)
+        self.k_row = self.stuck.rows.index(self.row)
+        lam = multiplier_formulas(self.stuck_eom)
+        if lam is None:
+            raise SimulationError(f"The stuck contact `{load.name}` makes a system too large ({self.stuck.n} "
+                                  f"coordinates, {self.stuck.m} constraint rows) for the closed-form multiplier "
+                                  "that the stick/slip events need.",
+                                  fix="use the regularised law (a positive regularization) for this model")
+        eq = self.stuck_eom
+        params = [se.Symbol(name) for name in self.stuck.parameters]
+        f_s = load.static_coefficient if load.static_coefficient is not None else load.coefficient
+        self.args = [eq.t, *eq.q, *eq.qd, *params]
+        self.symbols = {"lam": lam[self.k_row], "f": load.coefficient, "f_s": f_s, "N": load.normal_force}
+        self._numeric = se.Lambdify(self.args, [load.coefficient, f_s, load.normal_force], cse=True)
+        self._slip: dict[int, EquationsOfMotion] = {}
+        self._slip_models = {s: replace(model, loads=others + (
+            PointForce(load.name, self.direction.vector * (-s * load.coefficient * load.normal_force), load.at),))
+            for s in (1, -1)}
+
+    def slip_eom(self, s: int) -> EquationsOfMotion:
+        """The equations while sliding in direction s e (T = −s f N e), derived once."""
+        if s not in self._slip:
+            self._slip[s] = derive(self._slip_models[s])
+        return self._slip[s]
+
+    def coefficients(self, t: float, y: np.ndarray, p: np.ndarray) -> tuple[float, float, float]:
+        """(f, f_s, N) at a state."""
+        f, f_s, N = np.asarray(self._numeric(np.concatenate([[t], y, p])), dtype=float).ravel()
+        return float(f), float(f_s), float(N)
+
+    def speed(self, t: float, y: np.ndarray, p: np.ndarray) -> float:
+        """w = v_s·e at a state."""
+        return float(self.stuck.parts(t, y, p)[4][self.k_row])
+
+    def reaction(self, t: float, y: np.ndarray, p: np.ndarray) -> float:
+        """λ: the tangential reaction along e that keeps the contact stuck at this state."""
+        return float(self.stuck.rhs(t, y, p)[1][self.k_row])
+
+    def onto_stick(self, t: float, y: np.ndarray, p: np.ndarray) -> np.ndarray:
+        """q̇ moved onto A q̇ + b = 0 (every row) along the metric of M: Δq̇ = −M⁻¹Aᵀ(A M⁻¹ Aᵀ)⁻¹ g."""
+        n = self.stuck.n
+        M, _, A, _, g, _ = self.stuck.parts(t, y, p)
+        X = np.linalg.solve(M, A.T)
+        out = y.copy()
+        out[n:] -= X @ np.linalg.solve(A @ X, g)
+        return out
+
+    def decide(self, t: float, y: np.ndarray, p: np.ndarray) -> int:
+        """The mode at a state: s = ±1 sliding, 0 stuck (module docstring)."""
+        f, f_s, N = self.coefficients(t, y, p)
+        if not (np.isfinite(N) and N >= 0):
+            raise SimulationError(f"The normal force of the contact `{self.load.name}` is N = {N:.6g} at "
+                                  f"t = {t:.9g}: it must be a finite value ≥ 0 (a negative N would pull).",
+                                  fix="check the normal_force expression, or stop the run before contact is lost",
+                                  t=t, state=y.copy())
+        if not 0 <= f <= f_s:
+            raise SimulationError(f"The friction coefficients of `{self.load.name}` are f = {f:.6g}, "
+                                  f"f_s = {f_s:.6g}: 0 ≤ f ≤ f_s is needed.",
+                                  fix="give static_coefficient at least the (kinetic) coefficient")
+        w = self.speed(t, y, p)
+        if abs(w) > REST_SPEED:
+            return 1 if w > 0 else -1
+        lam = self.reaction(t, y, p)
+        if abs(lam) <= f_s * N:
+            return 0
+        return -1 if lam > 0 else 1
+
+
+_SYSTEMS: dict[int, tuple[Model, str, StickSlipSystem]] = {}
+
+
+def _system(model: Model, backend: str) -> StickSlipSystem:
+    """One `StickSlipSystem` per model object and backend (its modes derived and compiled once)."""
+    hit = _SYSTEMS.get(id(model))
+    if hit is not None and hit[0] is model and hit[1] == backend:
+        return hit[2]
+    system = StickSlipSystem(model, backend=backend)
+    if len(_SYSTEMS) > 16:
+        _SYSTEMS.clear()
+    _SYSTEMS[id(model)] = (model, backend, system)
+    return system
+
+
+def _grid(t_start: float, t_end: float, n_out: int | None, t_eval) -> np.ndarray:  # type: ignore[no-untyped-def]
+    if not (np.isfinite(t_start) and np.isfinite(t_end)) or not t_end > t_start:
+        raise SimulationError(f"The time span [{t_start}, {t_end}] is not increasing.",
+                              fix="give an end time greater than the start time (e.g. --t-end 10)")
+    if t_eval is not None:
+        grid = np.ascontiguousarray(t_eval, dtype=float)
+        if grid.ndim != 1 or len(grid) == 0 or np.any(np.diff(grid) <= 0) or grid[0] < t_start or grid[-1] > t_end:
+            raise SimulationError("The output times must be increasing and lie within [t_start, t_end].",
+                                  fix="pass a sorted t_eval inside the time span")
+        return grid
+    n_out = 1001 if n_out is None else int(n_out)
+    if n_out < 2:
+        raise SimulationError(f"n_out = {n_out}: at least 2 output times are needed.", fix="use n_out >= 2")
+    return np.linspace(t_start, t_end, n_out)
+
+
+def simulate_stick_slip(
+    source,  # type: ignore[no-untyped-def]
+    t_end: float,
+    *,
+    t_start: float = 0.0,
+    initial: Mapping[str, float] | None = None,
+    parameters: Mapping[str, float] | None = None,
+    method: str = "dop853",
+    rtol: float = 1e-10,
+    atol: float = 1e-10,
+    dt: float | None = None,
+    max_step: float | None = None,
+    n_out: int | None = None,
+    t_eval=None,  # type: ignore[no-untyped-def]
+    events: Sequence = (),
+    tolerance: float | None = None,
+    max_steps: int = 100_000_000,
+    progress: bool | Callable[[float, float], None] = False,
+    backend: str = "auto",
+    stabilization: str | None = None,
+    baumgarte: tuple[float, float] = BAUMGARTE,
+    max_switches: int = 100_000,
+) -> Trajectory:
+    """Integrate a model with one exact Coulomb contact, switching between slip and stick (module docstring).
+
+    Parameters
+    ----------
+    source : a model file, a `Model`, or its equations, whose contact has ``regularization = 0``.
+    t_end, t_start, initial, parameters, method, rtol, atol, max_step, n_out, t_eval, events,
+    tolerance, max_steps, progress, backend : as for `simulate` (``dt`` and ``gauss-legendre``
+        are refused: the phases end at events, not on a fixed grid).
+    stabilization, baumgarte : the drift control of the stuck phases (`simulate_dae`).
+    max_switches : the most phases a run may have.
+
+    Returns
+    -------
+    Trajectory
+        On the requested grid, with the extra columns ``mode_<load>``, ``friction_<load>``,
+        ``sliding_<load>`` and the switching events ``stick_<load>``, ``slip_<load>``.
+
+    Raises
+    ------
+    ModelError
+        No single exact contact, or no fixed sliding direction.
+    SimulationError
+        As `simulate`; also a negative N, f > f_s, an endless chattering of short phases.
+    """
+    from ._simulate import EventSpec, initial_state, simulate
+
+    model = exact_contact_model(source) if not isinstance(source, Model) else source
+    if model is None or exact_contact(model) is None:
+        raise ModelError("The model has no exact Coulomb contact (regularization = 0).", fix="use lagrangian.simulate")
+    if dt is not None or method == "gauss-legendre":
+        raise SimulationError("Stick/slip phases end at events, so fixed steps (dt, gauss-legendre) are not available.",
+                              fix="use an adaptive method such as method='dop853', bounded with max_step if needed")
+    system = _system(model, backend)
+    load, name = system.load, system.load.name
+    grid = _grid(float(t_start), float(t_end), n_out, t_eval)
+    p = system.stuck.parameter_vector(parameters)
+    coords = system.stuck.coordinates
+    n = len(coords)
+    y = initial_state(system.stuck_eom, initial)
+    t = float(t_start)
+    mode = system.decide(t, y, p)
+    user = [EventSpec(e, e) if isinstance(e, str) else e for e in events]
+    lam, f_s, N = system.symbols["lam"], system.symbols["f_s"], system.symbols["N"]
+    w = system.direction.speed
+    common = dict(parameters=parameters, method=method, rtol=rtol, atol=atol, max_step=max_step,
+                  tolerance=tolerance, max_steps=max_steps, backend=backend)
+    pieces: list[tuple[int, Trajectory]] = []
+    switches: list[Event] = []
+    user_events: list[Event] = []
+    status, short = "completed", 0
+    while True:
+        if mode == 0:
+            y = system.onto_stick(t, y, p)
+        later = grid[grid > t]
+        t_seg = np.concatenate([[t], later])
+        start = {c: float(v) for c, v in zip(coords, y[:n])} | {c + "_dot": float(v) for c, v in zip(coords, y[n:])}
+        if mode == 0:
+            ends = [EventSpec(SWITCH + "-", lam - f_s * N, 1, True), EventSpec(SWITCH + "+", lam + f_s * N, -1, True)]
+            piece = simulate_dae(system.stuck, float(t_end), t_start=t, initial=start, t_eval=t_seg,
+                                 events=ends + user, stabilization=stabilization, baumgarte=baumgarte,
+                                 progress=False, **common)  # type: ignore[arg-type]
+        else:
+            ends = [EventSpec(SWITCH, mode * w, -1, True)]
+            piece = simulate(system.slip_eom(mode), float(t_end), t_start=t, initial=start, t_eval=t_seg,
+                             events=ends + user, progress=False, **common)  # type: ignore[arg-type]
+        pieces.append((mode, piece))
+        if progress:
+            (_bar if progress is True else progress)(min(1.0, (piece.t[-1] - t_start) / (t_end - t_start)),
+                                                     float(piece.t[-1]))
+        user_events += [e for e in piece.events if not e.name.startswith(SWITCH)]
+        stop = [e for e in piece.events if e.name.startswith(SWITCH)]
+        if piece.status == "completed" or not stop:
+            status = piece.status
+            break
+        event = stop[-1]
+        t_new, y = float(event.t), np.concatenate([event.q, event.qd])
+        if mode == 0:  # the reaction needed left [−f_s N, f_s N]: it slides against it
+            mode = 1 if event.name.endswith("+") else -1
+        else:  # w = 0 (to a few ulp): the stuck model's reaction decides
+            y = system.onto_stick(t_new, y, p)
+            mode = system.decide(t_new, y, p)
+        short = short + 1 if t_new - t <= ZENO_LENGTH * max(1.0, abs(t)) else 0
+        if short >= ZENO_COUNT or len(pieces) >= max_switches:
+            raise SimulationError(f"The contact `{name}` switched between sticking and sliding {len(pieces)} times, "
+                                  f"the last {short} within {ZENO_LENGTH:g} s of each other, by t = {t_new:.9g}.",
+                                  fix="check the friction coefficients and N, or raise max_switches",
+                                  t=t_new, state=y.copy())
+        switches.append(Event(("stick_" if mode == 0 else "slip_") + name, t_new, y[:n].copy(), y[n:].copy()))
+        t = t_new
+        if t >= t_end:
+            break
+    return _join(system, p, grid, pieces, switches, user_events, status, method, tolerance)
+
+
+def _bar(fraction: float, t: float) -> None:
+    from ._simulate import _progress_bar
+
+    _progress_bar(fraction, t)
+
+
+def _join(system: StickSlipSystem, p: np.ndarray, grid: np.ndarray, pieces: list[tuple[int, Trajectory]],  # noqa: PLR0913
+          switches: list[Event], user_events: list[Event], status: str, method: str,
+          tolerance: float | None) -> Trajectory:
+    """One trajectory on ``grid`` from the phases (module docstring)."""
+    wanted = set(grid.tolist())
+    T, Q, QD, QDD, MODE, FRIC = [], [], [], [], [], []
+    last = -np.inf
+    warnings: list[str] = []
+    for mode, piece in pieces:
+        keep = np.array([t > last and t in wanted for t in piece.t], dtype=bool)
+        if keep.any():
+            last = float(piece.t[keep][-1])
+        T.append(piece.t[keep])
+        Q.append(piece.q[keep])
+        QD.append(piece.qd[keep])
+        QDD.append(piece.qdd[keep])
+        MODE.append(np.full(int(keep.sum()), float(mode)))
+        if mode == 0:
+            FRIC.append(piece.extra[f"lambda_{system.row}"][keep])
+        else:
+            Y = np.column_stack([piece.q[keep], piece.qd[keep]])
+            values = [system.coefficients(t, yy, p) for t, yy in zip(piece.t[keep], Y)]
+            FRIC.append(np.array([-mode * f * N for f, _, N in values]))
+        warnings += [w for w in piece.warnings if " drifted by " not in w and w not in warnings]
+    t = np.concatenate(T)
+    q, qd, qdd = np.concatenate(Q), np.concatenate(QD), np.concatenate(QDD)
+    Y = np.column_stack([q, qd])
+    stuck = system.stuck
+    values = stuck.monitor_values(t, Y, p) if len(t) else np.zeros((0, len(stuck.monitors)))
+    g = stuck.parts(t, Y, p)[4] if len(t) else np.zeros((0, stuck.m))
+    momenta = {fi.name for fi in first_integrals(system.stuck_eom) if fi.kind == "momentum"}
+    monitors = {k: values[:, i].copy() for i, k in enumerate(stuck.monitors)
+                if not k.startswith("drift_") and (k in momenta or k in ("T", "U"))}
+    integrals = tuple(k for k in stuck.integrals if k in momenta)
+    drift = {}
+    for k in integrals:
+        series = monitors[k]
+        ref = series[0] if len(series) else 0.0
+        drift[k] = float(np.max(np.abs(series - ref)) / (abs(ref) if ref != 0 else 1.0)) if len(series) else 0.0
+    mode = np.concatenate(MODE)
+    name = system.load.name
+    for i, row in enumerate(stuck.rows):
+        series = g[:, i] if row != system.row else g[mode == 0, i]
+        drift[f"drift_{row}_dot"] = float(np.max(np.abs(series), initial=0.0))
+    warnings += [f"{k} drifted by {drift[k]:.2e} (relative), more than the tolerance {tolerance:.1e}"
+                 for k in integrals if tolerance is not None and drift[k] > tolerance]
+    extra = {f"mode_{name}": mode, f"friction_{name}": np.concatenate(FRIC), f"sliding_{name}": g[:, system.k_row].copy()}
+    first = pieces[0][1]
+    return Trajectory(
+        model_name=system.model.name, coordinates=tuple(stuck.coordinates), parameters=dict(first.parameters),
+        t=t, q=q, qd=qd, qdd=qdd, monitors=monitors, integrals=integrals, drift=drift,
+        method=f"{first.method.split(' + ')[0]} + stick/slip", steps=sum(x.steps for _, x in pieces),
+        rhs_calls=sum(x.rhs_calls for _, x in pieces), tolerance=tolerance, warnings=tuple(warnings),
+        events=tuple(sorted(switches + user_events, key=lambda e: e.t)), status=status,
+        conditioning=min(x.conditioning for _, x in pieces), extra=extra,
+    )
