@@ -79,6 +79,22 @@ class Context:
     def name(self, name: str) -> str:
         return tex_name(name)
 
+    def load_name(self, name: str) -> str:
+        """A load's name in the report's language (the engine's and usual names translated)."""
+        return self.w.load(name)
+
+    def load_tex(self, name: str) -> str:
+        """A load's name as text inside math, in the report's language: ``\\text{poids}``."""
+        return tex_text(self.w.load(name))
+
+    def Q_nc(self, q: str) -> str:
+        """Q_{q, nc}: the generalized force of the non-conservative efforts (seed: Q_{i efforts nonconservatifs})."""
+        return rf"Q_{{{self.sym(q)},\,\mathrm{{nc}}}}"
+
+    def Q_of(self, q: str, load: str) -> str:
+        """Q_q(load): the generalized force of one load."""
+        return rf"Q_{{{self.sym(q)}}}({self.load_tex(load)})"
+
     def m(self, latex: str) -> Math:
         return Math(latex)
 

@@ -16,11 +16,13 @@ element, in the order of the model:
   (or taut string) XP; a component of XP along an axis of R0 that stays constant keeps it
   in a plane; two such components put it on a line (a rail).
 
-Anything else is reported as "the placement of E" with its count.  Every constraint here
-is holonomic (the model gives positions, not velocity relations), principal, and perfect:
-no friction is modelled, so no constraint effort enters a Q_i.  Complementary constraints
-and their multipliers are not in the engine yet (issue 5); `Joint.principal` is there for
-them.
+A body whose centre keeps constant components along axes of a fixed frame and that turns
+about fewer than three axes (a coin kept upright on a plane, a disk on an incline) is a
+"body plane": the report writes those components and the rotations left.  Anything else is
+reported as "the placement of E" with its count.  Every constraint here is holonomic (the
+model gives positions, not velocity relations) and principal; it is perfect unless a
+Coulomb friction load acts at the element or a joint damper acts across it (then
+``losses`` names them: their virtual power is not zero and they enter Q_i(nc)).
 """
 
 from __future__ import annotations
@@ -64,7 +66,17 @@ class Joint:
     rotation: Vector | None = None
     holonomic: bool = True
     principal: bool = True
-    perfect: bool = True
+    #: (load name, "coulomb" or "damper") of the loads that make it not perfect.
+    losses: tuple[tuple[str, str], ...] = ()
+    #: For a "body plane": the frame whose axes ``normals`` are, the constant components of OG
+    #: along them, and the axes the body may still turn about.
+    frame: str | None = None
+    offsets: tuple[se.Basic, ...] = ()
+    turns: tuple[str, ...] = ()
+
+    @property
+    def perfect(self) -> bool:
+        return not self.losses
 
 
 def _free(e: se.Basic) -> set[se.Basic]:
@@ -213,7 +225,37 @@ def _body_joint(r: _Reader, name: str, support: str | None, new: tuple[str, ...]
         kind = "fixed point" if body.fixed_point and support is None else "ball joint"
         if len(rotations) == 3:
             return Joint(kind, name, True, support, point, None, (), None, 3, new, timed, rotation)
+    if support is None and rotations is not None and not timed and len(rotations) < 3:
+        found = _body_plane(r, name, len(new), len(rotations))
+        if found is not None:
+            frame, normals, offsets = found
+            return Joint("body plane", name, True, None, None, None, normals, None, 6 - len(new), new, timed,
+                         frame=frame, offsets=offsets, turns=tuple(axis for _, axis in rotations))
     return Joint("placement", name, True, support, None, None, (), None, 6 - len(new), new, timed)
+
+
+def _fixed_frames(r: _Reader) -> list[str]:
+    """The base frame, then the frames turned from it by constant angles (an incline's frame)."""
+    moving = set(r.kin.q) | {r.kin.t}
+    out = [r.base]
+    for f in r.model.frames:
+        path = r.chain(f.name, r.base)
+        if path and all(not (_free(r.frames[x].rotation.angle) & moving) for x in path):  # type: ignore[union-attr]
+            out.append(f.name)
+    return out
+
+
+def _body_plane(r: _Reader, name: str, new: int, turns: int) -> tuple[str, tuple[str, ...], tuple[se.Basic, ...]] | None:
+    """(frame, axes, values) with OG·axis = value constant, when they and the blocked rotations count 6 − new."""
+    kin = r.kin
+    d = kin.position(name) - kin.position(ORIGIN)
+    for frame in _fixed_frames(r):
+        comps = list(kin.frames.express(d, frame))
+        flat = _constant(kin, comps)
+        normals = tuple(r.frames[frame].axes[k] for k in range(3) if flat[k])
+        if normals and len(normals) + (3 - turns) == 6 - new:
+            return frame, normals, tuple(se.expand(comps[k]) for k in range(3) if flat[k])
+    return None
 
 
 def _particle_joint(r: _Reader, name: str, support: str | None, new: tuple[str, ...]) -> Joint:
@@ -269,8 +311,29 @@ def joints(eom: EquationsOfMotion) -> tuple[Joint, ...]:
         new = tuple(c for c in order if c in r.coords[name] - base)
         joint = (_body_joint if is_body else _particle_joint)(r, name, support, new)
         if joint.equations > 0:  # a free element (six or three parameters of its own) has no constraint
-            out.append(joint)
+            out.append(_with_losses(r, joint))
     return tuple(out)
+
+
+def _with_losses(r: _Reader, joint: Joint) -> Joint:
+    """The joint with the friction loads that act in it: Coulomb friction at the element, a damper across it."""
+    from dataclasses import replace
+
+    from ..model import CoulombFriction, JointDamper
+
+    losses: list[tuple[str, str]] = []
+    points = {p.name for p in r.model.points}
+    for load in r.model.loads:
+        if isinstance(load, CoulombFriction):
+            at_element = load.at == joint.element or (
+                joint.is_body and load.at in points and r.fixed_in(load.at, joint.element))
+            if at_element:
+                losses.append((load.name, "coulomb"))
+        elif isinstance(load, JointDamper):
+            ends = {r.frame_of(x) if x in {b.name for b in r.model.bodies} else x for x in load.bodies}
+            if joint.is_body and ends == {r.frame_of(joint.element), r.frame_of(joint.support)}:
+                losses.append((load.name, "damper"))
+    return replace(joint, losses=tuple(losses)) if losses else joint
 
 
 def degrees_of_freedom(eom: EquationsOfMotion, found: tuple[Joint, ...]) -> tuple[int, int, int] | None:

@@ -14,6 +14,8 @@ then θ), since the others are then written with those integrals.
 
 from __future__ import annotations
 
+import re
+
 import symengine as se
 import sympy
 
@@ -21,6 +23,9 @@ from .._identity import are_zero
 from ._course import EquationRow, IntegralRow
 from ._report_build import Context
 from ._report_doc import Block, Display, Equation, Math, Para, Runs, Section
+from ..model import ORIGIN
+from ._report_constraints import _root
+from ._report_forces import MULTIPLIER_SUM
 from ._report_size import visible_width, wrap_many
 
 __all__ = ["step6", "step7", "integrals_section", "ordered_equations"]
@@ -49,10 +54,10 @@ def _partials(c: Context, row: EquationRow) -> list[Equation]:
     q = row.coordinate
     label = rf"L({c.sym(q)})\quad "
     parts = [(_dT(c, q, "dot") + " = ", row.dT_dqd), (_dT(c, q) + " = ", row.dT_dq),
-             (_dT(c, q, U=True) + " = ", row.dU_dq), (rf"Q_{{{c.sym(q)}}} = ", row.Q_nc)]
+             (_dT(c, q, U=True) + " = ", row.dU_dq), (c.Q_nc(q) + " = ", row.Q_nc)]
     multiplier = c.eom.equation(q).multiplier_terms
     if multiplier != 0:
-        parts.append((rf"\sum_{{k}} \lambda_{{k}} A_{{k{c.sym(q)}}} = ", c.ex(multiplier)))
+        parts.append((rf"\sum_{{k}} \lambda_{{k}}\, a_{{k,{c.sym(q)}}} = ", c.ex(multiplier)))
     pieces = [head + c.n.latex(e) for head, e in parts]
     # The seed's layout: "… ; ∂U_P/∂q_i = … et Q_i = …", cut into lines (inside a piece if need be).
     last = pieces.pop()
@@ -72,7 +77,8 @@ def _lagrange(c: Context, row: EquationRow) -> list[Block]:
         constant = rf"\quad\text{{{w.text('constant')}}}"
         blocks.append(Display((Equation((rf"\frac{{d}}{{dt}}\left[{p}\right] = 0 \quad\Rightarrow\quad {p} = "
                                          rf"{K}{constant}",)),)))
-        blocks.append(Para(w("first integral K", K=Math(rf"{K} = \left[{p}\right]_{{t = 0}}"))[:-1]
+        at = rf"\text{{{w.text('at t0')}}}\ t = 0"
+        blocks.append(Para(w("first integral K", K=Math(rf"{K} = \left[{p}\right]_{{{at}}}"))[:-1]
                            + _value(c, K, c.eom.equation(q).dT_dqd) + (".",)))
         return blocks
     blocks += c.show([c.relation(r"\Rightarrow\quad ", row.lhs, row.rhs)], f"L({q})")
@@ -86,17 +92,20 @@ def _lagrange(c: Context, row: EquationRow) -> list[Block]:
 
 def step6(c: Context) -> Section:
     w = c.w
-    lam = r" + \sum_{k} \lambda_{k} A_{ki}" if c.eom.constraints else ""
+    lam = rf" + {MULTIPLIER_SUM}" if c.eom.constraints else ""
     general = (rf"L(q_i)\quad \frac{{d}}{{dt}}\left[\frac{{\partial T(\Sigma/{c.R})}}{{\partial \dot{{q}}_i}}\right] - "
                rf"\frac{{\partial T(\Sigma/{c.R})}}{{\partial q_i}} = -\frac{{\partial U_P(\Sigma/{c.R})}}{{\partial q_i}}"
-               rf" + Q_i{lam} \qquad i = 1, \dots, n")
+               rf" + Q_{{i,\,\mathrm{{nc}}}}{lam} \qquad i = 1, \dots, n")
     n = len(c.form.equations)
     blocks: list[Block] = [Display((Equation((general,)),))]
+    if c.eom.constraints:
+        blocks.append(Para(w("multiplier def", lam=Math(r"\lambda_{k}"), a=Math(r"a_{k,i}"),
+                             f=Math(r"\frac{\partial f_{k}}{\partial q_i}"))))
     blocks.append(Para(w("lagrange n", n=Math(str(n))) if n > 1 else w("lagrange one")))
     for row in ordered_equations(c):
         blocks += _lagrange(c, row)
     if c.eom.constraints:
-        blocks.append(Para(w("with multipliers", sum=Math(r"\sum_{k} \lambda_{k} A_{ki}"))))
+        blocks.append(Para(w("with multipliers", sum=Math(MULTIPLIER_SUM))))
     if c.form.conservative and c.form.L is not None:
         L = Math(rf"L(\Sigma/{c.R}) = T(\Sigma/{c.R}) - U_P(\Sigma/{c.R})")
         blocks.append(Para(w("conservative", R=Math(c.R), L=L)))
@@ -105,7 +114,8 @@ def step6(c: Context) -> Section:
         blocks.append(Display((Equation((r"L(q_i)\quad \frac{d}{dt}\left[\frac{\partial L}{\partial \dot{q}_i}\right]"
                                          r" - \frac{\partial L}{\partial q_i} = 0 \qquad i = 1, \dots, n",)),)))
     else:
-        names = [f"« {f.name} »" if c.lang == "fr" else f"“{f.name}”" for f in c.eom.loads if f.potential is None]
+        names = [f"« {c.load_name(f.name)} »" if c.lang == "fr" else f"“{c.load_name(f.name)}”"
+                 for f in c.eom.loads if f.potential is None]
         if names:
             key = "not conservative system" if len(names) == 1 else "not conservative systems"
             blocks.append(Para(w(key, names=w.join(names))))
@@ -124,6 +134,11 @@ def step7(c: Context) -> Section:
     else:
         blocks = [Para(w("complementary rows", n=Math(str(n)), m=Math(str(len(rows))), lams=lams))]
     blocks += c.show([c.equation("", c.ex(r.expression), " = 0") for r in rows], "7")
+    formulas = _multipliers(c)
+    if formulas is not None:
+        blocks.append(Para(w("multipliers are" if len(rows) > 1 else "multiplier is")))
+        blocks += c.show([c.equation(f"{c.tex(r.multiplier)} = ", _simple(c, f)) for r, f in zip(rows, formulas)],
+                         "λ")
     for reaction in c.eom.reactions:
         if not reaction.physical:
             continue
@@ -136,7 +151,96 @@ def step7(c: Context) -> Section:
             eqs.append(c.vector_equation(r"\vec{M} = ", c.terms(reaction.moment)))
         if eqs:
             blocks.append(Display(tuple(eqs)))
+        if formulas is not None:
+            blocks += _tension(c, reaction, formulas)
     return Section("step7", w.text("step7"), tuple(blocks))
+
+
+def _multipliers(c: Context) -> tuple[se.Basic, ...] | None:
+    """λ_k(q, q̇, t) solved from the Lagrange equations and the constraint equations differentiated."""
+    from ..dynamics._constraints import multiplier_formulas
+    from ..errors import DerivationError
+
+    try:
+        return multiplier_formulas(c.eom)  # type: ignore[no-any-return]
+    except DerivationError:
+        return None
+
+
+#: Largest expression (operations) that the report simplifies with SymPy before printing it.
+SIMPLIFY_MAX_OPS = 120
+
+
+def _simple(c: Context, e: se.Basic) -> sympy.Basic:
+    shown = c.ex(e)
+    if isinstance(shown, sympy.Basic) and sympy.count_ops(shown) <= SIMPLIFY_MAX_OPS:
+        return sympy.factor(sympy.simplify(shown))
+    return shown
+
+
+def _tension(c: Context, reaction, formulas: tuple[se.Basic, ...]) -> list[Block]:  # type: ignore[no-untyped-def]
+    """A rod's tension N = −R·XP/|XP| when the constraint is |XP|² − L² = 0 and R is along XP (pendulum_tension).
+
+    With XP in a vertical plane whose coordinates are two of the q_i, it is also written with the
+    angle θ of XP from the descending vertical: x = L sin θ, y = −L cos θ (seed's notation).
+    """
+    from ..model import Gravity
+
+    w, kin = c.w, c.kin
+    rows = [r for r in c.eom.constraints if r.constraint == reaction.constraint]
+    if reaction.point is None or len(rows) != 1 or rows[0].kind != "holonomic":
+        return []
+    d = kin.position(reaction.point) - kin.position(ORIGIN)
+    squared = kin.frames.dot(d, d)
+    L2 = se.expand(squared - rows[0].expression)
+    moving = set(kin.q) | set(kin.qd) | {kin.t}
+    if L2.free_symbols & moving or L2 == 0:
+        return []
+    parallel = kin.frames.cross(reaction.force, d)
+    if not all(are_zero(list(kin.frames.express(parallel, c.ref)))):
+        return []
+    values = {r.multiplier: f for r, f in zip(c.eom.constraints, formulas)}
+    L = _root(L2)
+    N = (-kin.frames.dot(reaction.force, d) / L).xreplace(values)
+    X, P = c.name(c.origin), c.point_label(reaction.point)
+    head = rf"N = -\vec{{R}}\cdot\frac{{\overrightarrow{{{X}{P}}}}}{{{c.tex(L)}}} = "
+    blocks: list[Block] = [Para(w("tension", P=Math(P), X=Math(X)))]
+    blocks += c.show([c.equation(head, _simple(c, N))], "N")
+    # The angle of XP from the descending vertical, when XP = x e1 + y e2 with e2 the ascending vertical.
+    axes = kin.frames.axes(c.ref)
+    comps = list(kin.frames.express(d, c.ref))
+    gravity = [x for x in c.model.loads if isinstance(x, Gravity)]
+    if len(gravity) != 1:
+        return blocks
+    g = list(kin.frames.express(gravity[0].field, c.ref))
+    up = [k for k in range(3) if g[k] != 0]
+    used = [k for k in range(3) if comps[k] != 0]
+    q = list(kin.q)
+    if len(up) != 1 or len(used) != 2 or up[0] not in used or not all(comps[k] in q for k in used):
+        return blocks
+    v = up[0]
+    h = next(k for k in used if k != v)
+    theta, theta_dot = sympy.Symbol("theta"), sympy.Symbol("theta_dot")
+    Ls = sympy.sympify(str(L))
+    x, y = sympy.Symbol(str(comps[h])), sympy.Symbol(str(comps[v]))
+    xd, yd = (sympy.Symbol(str(kin.qd[q.index(comps[k])])) for k in (h, v))
+    polar = {x: Ls * sympy.sin(theta), y: -Ls * sympy.cos(theta), xd: Ls * sympy.cos(theta) * theta_dot,
+             yd: Ls * sympy.sin(theta) * theta_dot}
+    try:
+        N_theta = sympy.factor(sympy.trigsimp(sympy.sympify(str(N)).subs(polar)))
+    except (sympy.SympifyError, TypeError, ValueError):
+        return blocks
+    if N_theta.free_symbols & {x, y, xd, yd}:
+        return blocks
+    names = {theta: r"\theta", theta_dot: r"\dot{\theta}"}
+    for s in N_theta.free_symbols - {theta, theta_dot}:
+        names[s] = c.tex(se.Symbol(str(s)))
+    latex = re.sub(r"\\(sin|cos)\{\\left\(\\theta \\right\)\}", r"\\\1\\theta", sympy.latex(N_theta, symbol_names=names))
+    sub = rf"{c.tex(comps[h])} = {c.tex(L)} \sin\theta,\quad {c.tex(comps[v])} = -{c.tex(L)} \cos\theta"
+    blocks.append(Para(w("tension angle", sub=Math(sub), theta=Math(r"\theta"), XP=Math(rf"\overrightarrow{{{X}{P}}}"),
+                         e=Math(c.axis(axes[v])))))
+    blocks.append(Display((Equation((f"N = {latex}",)),)))
+    return blocks
 
 
 # -- first integrals --------------------------------------------------------------------------------
@@ -161,30 +265,50 @@ def _momentum(c: Context, row: IntegralRow) -> list[Block]:
     cyclic = are_zero([eq.dT_dq - eq.dU_dq])[0]
     Lq = Math(rf"L({c.sym(q)})")
     if cyclic:
-        why = w.join([Math(rf"\frac{{\partial L}}{{\partial {c.sym(q)}}} = 0"), Math(rf"Q_{{{c.sym(q)}}} = 0")])
+        why = w.join([Math(rf"\frac{{\partial L}}{{\partial {c.sym(q)}}} = 0"), Math(f"{c.Q_nc(q)} = 0")])
         head = w("cyclic", q=Math(c.sym(q)), why=why, eq=Lq)
     else:
         why = (Math(rf"\frac{{\partial T}}{{\partial {c.sym(q)}}} - \frac{{\partial U_P}}{{\partial {c.sym(q)}}}"
-                    rf" + Q_{{{c.sym(q)}}} = 0"),)
+                    rf" + {c.Q_nc(q)} = 0"),)
         head = w("momentum", why=why, eq=Lq)
     name = c.n.symbol(row.name, latex=True)
     return [Para(head)] + c.show([c.equation("", row.expression, f" = {name}")], row.name)
 
 
+def _homogeneous(c: Context) -> bool:
+    """T = T_2: T(Σ/R) is a homogeneous quadratic form of the q̇_i."""
+    kin, n = c.kin, len(c.eom.q)
+    T2 = se.Rational(1, 2) * se.Add(*(c.eom.M[i][j] * kin.qd[i] * kin.qd[j] for i in range(n) for j in range(n)
+                                       if c.eom.M[i][j] != 0))
+    return bool(are_zero([c.eom.T - T2])[0])
+
+
 def _energy(c: Context, row: IntegralRow) -> list[Block]:
     w = c.w
     cond = w.text("cond conservative" if c.form.conservative else "cond no work")
-    key = "energy integral" if row.kind == "energy" else "jacobi integral"
-    blocks: list[Block] = [Para(w(key, L=Math("L"), cond=cond, T=Math(rf"T(\Sigma/{c.R})")))]
-    name = c.n.symbol(row.name, latex=True)
+    T, U = Math(rf"T(\Sigma/{c.R})"), Math(rf"U_P(\Sigma/{c.R})")
+    cste = rf"\text{{{w.text('cste')}}}"
     if row.kind == "energy":
+        blocks: list[Block] = [Para(w("energy integral", L=Math("L"), cond=cond, T=T))]
         head = rf"T(\Sigma/{c.R}) + U_P(\Sigma/{c.R}) = "
-        blocks += c.show([_sum_equation(c, head, row.parts, f" = {name}")], row.name)
+        blocks += c.show([_sum_equation(c, head, row.parts, f" = {cste}")], row.name)
+    elif _homogeneous(c):
+        # Seed, Remarque 3: in the moving frame R, U_P holds the entrainment potential; T(Σ/R) = T_2.
+        blocks = [Para(w("jacobi moving", L=Math("L"), cond=cond, T=T, U=U, R=Math(c.R), R0=Math("R_{0}"),
+                         E=Math(r"E = T(\Sigma/R_{0}) + U"), T2=Math(rf"T(\Sigma/{c.R}) = T_2")))]
+        head = rf"h = T(\Sigma/{c.R}) + U_P(\Sigma/{c.R}) = "
+        blocks += c.show([_sum_equation(c, head, row.parts, f" = {cste}") if row.parts
+                          else c.equation(head, row.expression, f" = {cste}")], row.name)
     else:
-        blocks += c.show([c.equation(r"T_2 - T_0 + U_P = ", row.expression, f" = {name}")], row.name)
+        blocks = [Para(w("jacobi integral", L=Math("L"), cond=cond, T=T,
+                         parts=Math(rf"T(\Sigma/{c.R}) = T_2 + T_1 + T_0"),
+                         E=Math(rf"T(\Sigma/{c.R}) + U_P(\Sigma/{c.R})")))]
+        blocks += c.show([c.equation(rf"h = T_2 - T_0 + U_P(\Sigma/{c.R}) = ", row.expression, f" = {cste}")],
+                         row.name)
     source = next((i.expression for i in c.integrals if i.name == row.name), None)
     if source is not None:
-        value = _value(c, name, source)
+        name = c.n.symbol(row.name, latex=True)
+        value = _value(c, cste if row.kind == "energy" else name, source)
         if value:
             blocks.append(Para(value[1:-1] + (".",)))
     others = [r.coordinate for r in c.form.equations if r.integral is None]
@@ -211,4 +335,35 @@ def integrals_section(c: Context) -> Section:
         if timed and no_work and c.eom.constraints:
             why.append(w.text("why constraints"))
         blocks.append(Para(w("no integral", why=" ; ".join(why) if c.lang == "fr" else "; ".join(why))))
+        blocks += _balance(c)
     return Section("integrals", w.text("integrals"), tuple(blocks))
+
+
+def _balance(c: Context) -> list[Block]:
+    """dE/dt = P_nc term by term, E = T + U_P, when no energy integral holds (friction, driving, prescribed motion)."""
+    from ..analysis._energy_balance import energy_balance
+
+    w = c.w
+    try:
+        balance = energy_balance(c.eom)
+    except (ValueError, RuntimeError, ZeroDivisionError):  # pragma: no cover - a singular symbolic solve
+        return []
+    terms = [t for t in balance.terms if t.power != 0]
+    if balance.conserved or not terms:
+        return []
+    labels = []
+    for t in terms:
+        if t.kind == "load":
+            labels.append(rf"P({c.load_tex(t.name)})")
+        elif t.kind == "prescribed motion":
+            labels.append(rf"P(\text{{{w.text('prescribed')}}})")
+        elif t.kind == "explicit time":
+            labels.append(r"\frac{\partial U_P}{\partial t}")
+        else:
+            labels.append(rf"P(\text{{{w.text('reaction')}}}\ {c.tex(next((r.multiplier for r in c.eom.constraints if t.name.endswith(f'({r.name})')), se.Symbol('lambda')))})")
+    E = rf"E = T(\Sigma/{c.R}) + U_P(\Sigma/{c.R})"
+    blocks: list[Block] = [Para(w("balance", E=Math(E)))]
+    eqs = [Equation((r"\frac{dE}{dt} = " + " + ".join(labels),))]
+    eqs += [c.equation(f"{label} = ", _simple(c, t.power)) for label, t in zip(labels, terms)]
+    blocks += c.show(eqs, "dE/dt")
+    return blocks

@@ -19,6 +19,10 @@ from ._report_size import wrap_many
 
 __all__ = ["step5"]
 
+#: The generalized forces of the complementary reactions: λ_k the multiplier of constraint k, a_{k,i} the
+#: coefficient of q̇_i in its equation (∂f_k/∂q_i for a holonomic f_k = 0).  Not A_{ki}: A is a moment of inertia.
+MULTIPLIER_SUM = r"\sum_{k} \lambda_{k}\, a_{k,i}"
+
 #: Most coordinates for which each vanishing Q_i is explained (beyond, the list would drown the rest).
 ZERO_REASONS_MAX = 12
 
@@ -130,11 +134,41 @@ def _why_zero(c: Context, f: LoadForces, load: object, i: int) -> Runs:
         return w("U still", U=Math("D"), q=Math(c.sym(name, "dot")))
     if isinstance(load, GeneralizedForce):
         return w("not given", q=Math(q))
+    if f.kind.startswith("inertial"):
+        return _why_inertial(c, f, i)
     return (w.text("cancel"),)
 
 
-def _q_list(c: Context, values: list[str]) -> list[str]:
-    return [rf"Q_{{{c.sym(q)}}} = {v}" for q, v in zip(c.eom.coordinates, values)]
+def _why_inertial(c: Context, f: LoadForces, i: int) -> Runs:
+    """Q_i of an inertial load is zero: its force on each element is orthogonal to ∂OP/∂q_i (Coriolis on a hoop)."""
+    from ..dynamics._inertial import inertial_torsors
+
+    w, kin = c.w, c.kin
+    q = c.sym(c.eom.coordinates[i])
+    O = c.name(c.origin)
+    mine = [t for t in inertial_torsors(kin) if t.load == f.name]  # type: ignore[arg-type]
+    if not mine:
+        return (w.text("cancel"),)
+    frames = {b.name: b.frame for b in c.model.bodies}
+    still = [t for t in mine if kin.partial_velocities(t.element)[i].is_zero()
+             and (t.element not in frames or kin.partial_omegas(frames[t.element])[i].is_zero())]
+    if len(still) == len(mine):
+        labels = w.join([Math(c.point_label(t.element)) for t in mine])
+        d = w.join([Math(_partial(q, rf"\overrightarrow{{{O}{c.point_label(t.element)}}}") + r" = \vec{0}")
+                    for t in mine])
+        return w("point still" if len(mine) == 1 else "points still", P=labels, q=Math(q), d=d)
+    tests = [kin.frames.dot(t.force, kin.partial_velocities(t.element)[i]) for t in mine]
+    tests += [kin.frames.dot(t.moment, kin.partial_omegas(frames[t.element])[i]) for t in mine if t.element in frames]
+    if all(are_zero(tests)):
+        d = w.join([Math(_partial(q, rf"\overrightarrow{{{O}{c.point_label(t.element)}}}")) for t in mine])
+        return w("orthogonal", d=d)
+    return (w.text("cancel"),)
+
+
+def _q_list(c: Context, values: list[str], load: str | None = None) -> list[str]:
+    """``Q_q(load) = …`` for one load, ``Q_{q, nc} = …`` for the non-conservative total."""
+    return [(c.Q_of(q, load) if load is not None else c.Q_nc(q)) + f" = {v}"
+            for q, v in zip(c.eom.coordinates, values)]
 
 
 def step5(c: Context) -> Section:
@@ -148,31 +182,36 @@ def step5(c: Context) -> Section:
         load = spec.get(f.name)
         formula, extra = _formula(c, f, load)
         kind = w.text(f"kind {f.kind}") if w.has(f"kind {f.kind}") else f.kind
-        blocks.append(Para(w("load title", name=f.name, kind=kind, extra=(", ", Math(extra)) if extra else "")))
-        head = rf"P^{{*}}({tex_text(f.name)}) = " + (f"{formula} = " if formula else "")
+        name = c.load_name(f.name)
+        blocks.append(Para(w("load title", name=name, kind=kind, extra=(", ", Math(extra)) if extra else "")))
+        head = rf"P^{{*}}({c.load_tex(f.name)}) = " + (f"{formula} = " if formula else "")
         equations = [c.equation(head, c.ex(f.virtual_power))]
-        equations.append(wrap_many(r"\Rightarrow\quad ", _q_list(c, [c.n.latex(x) for x in row.Q]), r",\quad "))
-        blocks += c.show(equations, f.name)
+        equations.append(wrap_many(r"\Rightarrow\quad ", _q_list(c, [c.n.latex(x) for x in row.Q], f.name),
+                                   r",\quad "))
+        blocks += c.show(equations, name)
         zeros = [i for i, x in enumerate(row.Q) if x == 0]
         if zeros and len(row.Q) <= ZERO_REASONS_MAX:
-            items = tuple(w("zero because", Q=Math(rf"Q_{{{c.sym(c.eom.coordinates[i])}}} = 0"),
+            items = tuple(w("zero because", Q=Math(f"{c.Q_of(c.eom.coordinates[i], f.name)} = 0"),
                             why=_why_zero(c, f, load, i)) for i in zeros)
             blocks += c.many([Items(items)], len(items), f.name)
         i_math = Math("i")
         if f.potential is not None:
-            blocks.append(Para(w("derives", name=f.name, Q=Math(r"Q_i = -\frac{\partial U}{\partial q_i}"), i=i_math,
+            blocks.append(Para(w("derives", name=name, Q=Math(rf"Q_i({c.load_tex(f.name)}) = "
+                                                             r"-\frac{\partial U}{\partial q_i}"), i=i_math,
                                  UP=Math(rf"U_P(\Sigma/{c.R})"))))
         else:
-            blocks.append(Para(w("not conservative", name=f.name, Q=Math(r"Q_i")), style="note"))
-    blocks.append(Para(w("perfect no Q")))
+            blocks.append(Para(w("not conservative", name=name, Q=Math(r"Q_{i,\,\mathrm{nc}}")), style="note"))
+    lossy = [j for j in c.joints if not j.perfect]
+    blocks.append(Para(w("perfect no Q" if not lossy else "perfect no Q but")))
     if c.eom.constraints:
-        blocks.append(Para(w("complementary Q", Q=Math(r"\sum_{k} \lambda_{k} A_{ki}"))))
+        blocks.append(Para(w("complementary Q", Q=Math(MULTIPLIER_SUM), lam=Math(r"\lambda_{k}"),
+                             a=Math(r"a_{k,i}"), f=Math(r"\frac{\partial f_{k}}{\partial q_i}"))))
     blocks.append(Para(w("nc total")))
     values = [c.n.latex(eq.Q_nc) for eq in c.form.equations]
     if all(v == "0" for v in values) and len(values) > ZERO_REASONS_MAX:
-        blocks.append(Display((Equation((r"Q_i = 0 \qquad i = 1, \dots, n",)),)))
+        blocks.append(Display((Equation((r"Q_{i,\,\mathrm{nc}} = 0 \qquad i = 1, \dots, n",)),)))
     elif all(v == "0" for v in values):
-        line = " = ".join(rf"Q_{{{c.sym(q)}}}" for q in c.eom.coordinates) + " = 0"
+        line = " = ".join(c.Q_nc(q) for q in c.eom.coordinates) + " = 0"
         blocks.append(Display((Equation((line,)),)))
     else:
         blocks += c.show([wrap_many("", _q_list(c, values), r",\quad ")], "Q")

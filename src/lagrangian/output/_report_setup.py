@@ -72,7 +72,8 @@ def _joint_name(c: Context, j: Joint) -> Runs:
     S = Math(c.element(j.element))
     X = Math(c.point_label(j.point)) if j.point else None
     if j.kind == "fixed point":
-        return w("fixed point", X=X, S=S)  # type: ignore[arg-type]
+        # Seed: « la liaison "O point fixe" : x = y = z = 0 » (the coordinates of the point of (S) at O).
+        return w("fixed point", X=X, S=S, xyz=Math("x = y = z = 0"))  # type: ignore[arg-type]
     if j.kind == "pivot":
         axis = Math(rf"({c.point_label(j.point)},\ {c.axis(j.axis)})")  # type: ignore[arg-type]
         if j.support is None:
@@ -84,20 +85,48 @@ def _joint_name(c: Context, j: Joint) -> Runs:
     if j.kind == "rod":
         XP = Math(rf"\left\|\overrightarrow{{{c.point_label(j.point)}{c.element(j.element)}}}\right\| = "  # type: ignore[arg-type]
                   + _length(c, j))
-        if j.normals:
-            return w("rod plane", XP=XP, P=S, X=X, n=Math(c.axis(j.normals[0])))  # type: ignore[arg-type]
-        return w("rod", XP=XP)
+        if j.normals:  # a circle: a pendulum's rod as well as a bead's hoop, so no word on what realizes it
+            return w("rod plane", XP=XP, what="", P=S, X=X, n=Math(c.axis(j.normals[0])))  # type: ignore[arg-type]
+        return w("rod", XP=XP, what=w.text("rod what"))
     if j.kind == "line":
         line = Math(rf"({c.point_label(j.point)},\ {c.axis(j.axis)})")  # type: ignore[arg-type]
         return w("line", P=S, line=line)
     if j.kind == "plane":
         return w("plane", P=S, X=X, n=Math(c.axis(j.normals[0])))  # type: ignore[arg-type]
+    if j.kind == "body plane":
+        return w("body plane", cond=_offsets(c, j), S=S, rot=_turns(c, j))
     return w("placement", E=S)
+
+
+def _offsets(c: Context, j: Joint) -> Runs:
+    """``OG·z0 = r`` (and ``OG·y0 = 0``): the constant components of a "body plane"."""
+    OG = rf"\overrightarrow{{{c.name(c.origin)}{c.point_label(j.element)}}}"
+    return c.w.join([Math(rf"{OG}\cdot{c.axis(a)} = {c.tex(v)}") for a, v in zip(j.normals, j.offsets)])
+
+
+def _turns(c: Context, j: Joint) -> Runs:
+    axes = c.w.join([Math(c.axis(a)) for a in j.turns])
+    return c.w("rotation about" if len(j.turns) == 1 else "rotations about", axes=axes)
+
+
+def _losses(c: Context, j: Joint) -> list[Block]:
+    """Why a constraint with friction is not perfect (its virtual power is not zero)."""
+    w = c.w
+    why = []
+    for name, kind in j.losses:
+        if kind == "coulomb":
+            why.append(w("why coulomb", name=w.load(name), P=Math(c.point_label(j.element))))
+        else:
+            why.append(w("why damper", name=w.load(name)))
+    Q = Math(rf"Q_{{i}}^{{\mathrm{{nc}}}}")
+    return [Para(w("not perfect", why=w.join(why), Q=Q))]
 
 
 def _perfect(c: Context, j: Joint) -> list[Block]:
     """Why the constraint is perfect: its virtual power is zero (seed: « Elle est parfaite car … »)."""
     w, R = c.w, c.R
+    if not j.perfect:
+        return _losses(c, j)
     X = c.point_label(j.point) if j.point else ""
     since, because, et = (rf"\quad\text{{{w.text(k)}}}\quad" for k in ("since", "because", "et"))
     if j.kind == "fixed point":
@@ -130,11 +159,17 @@ def _perfect(c: Context, j: Joint) -> list[Block]:
         v = _vstar(c, j.element, j.point)
         dirs = [Math(XP)] + [Math(c.axis(a)) for a in j.normals]
         conditions = [rf"{XP}\cdot{v} = 0"] + [rf"{c.axis(a)}\cdot{v} = 0" for a in j.normals]
-        return [Para(w("perfect rod", P=Math(P), dirs=w.join(dirs), XP2=Math(rf"{XP}^{{2}}"))),
+        orth = w.text("orth one" if len(dirs) == 1 else "orth many")
+        return [Para(w("perfect rod", P=Math(P), dirs=w.join(dirs), orth=orth, XP2=Math(rf"{XP}^{{2}}"))),
                 Display((Equation((r",\qquad ".join(conditions),)),))]
     if j.kind in ("line", "plane"):
         where = w.text("the line") if j.kind == "line" else w.text("the plane")
         return [Para(w("perfect smooth", where=where, V=Math(_vstar(c, j.element, j.point))))]
+    if j.kind == "body plane":
+        G = c.point_label(j.element)
+        n = w.join([Math(c.axis(a)) for a in j.normals])
+        cond = w.join([Math(rf"{c.axis(a)}\cdot\vec{{V}}^{{*}}({G}) = 0") for a in j.normals])
+        return [Para(w("perfect body plane", n=n, cond=cond))]
     return [Para(w("perfect assumed"))]
 
 
@@ -180,7 +215,13 @@ def _declared(c: Context, con: Constraint, one: bool) -> list[Block]:
         Q = ", ".join(rf"Q_{{{c.sym(q)}}} = {c.tex(sum(r.multiplier * r.coefficients[i] for r in rows))}"
                       for i, q in enumerate(c.eom.coordinates)
                       if any(r.coefficients[i] != 0 for r in rows))
-        blocks.append(Para(w("perfect complementary", Q=Math(Q or "0"))))
+        if con.form == "no_slip":
+            I, S = c.point_label(con.points[0]), c.element(con.body or "")
+            P = Math(rf"P^{{*}} = \vec{{R}}_{{{I}}}\cdot\vec{{V}}^{{*}}({I}\in {S}) = 0"
+                     rf"\quad\text{{{w.text('because')}}}\quad \vec{{V}}^{{*}}({I}\in {S}) = \vec{{0}}")
+            blocks.append(Para(w("perfect no slip", I=Math(I), P=P, Q=Math(Q or "0"))))
+        else:
+            blocks.append(Para(w("perfect complementary", Q=Math(Q or "0"))))
         for reaction in c.eom.reactions:
             if reaction.constraint == con.name and reaction.point is not None and not reaction.force.is_zero():
                 blocks.append(Para(w("reaction is", E=Math(c.point_label(reaction.point)),

@@ -32,7 +32,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "step7": ("7. Équations de liaison complémentaires", "7. Complementary constraint equations"),
     "integrals": ("Intégrales premières", "First integrals"),
     "check": ("Vérification par les théorèmes généraux (Remarque 4)",
-              "Cross-check with the Newton–Euler theorems (Remarque 4)"),
+              "Cross-check with the Newton–Euler theorems (Remark 4 of the course)"),
     "simulation": ("Simulation", "Simulation"),
     "matrix": ("Annexe : forme matricielle", "Appendix: matrix form"),
     # -- the system -------------------------------------------------------------------------------
@@ -40,7 +40,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "reference": ("Les équations sont écrites par rapport au repère {R}, qui n'est pas galiléen : aux efforts "
                   "donnés s'ajoutent les efforts d'inertie de Coriolis et d'entraînement (Remarque 3).",
                   "The equations are written relative to the frame {R}, which is not Galilean: the Coriolis "
-                  "and entrainment inertial forces are added to the given efforts (Remarque 3)."),
+                  "and transport inertial forces are added to the applied forces (Remark 3 of the course)."),
     "constituents": ("(Σ) est formé de :", "(Σ) is made of:"),
     "body item": ("le solide ({S}) : masse {m}, centre d'inertie {G}, {OG}",
                   "the rigid body ({S}): mass {m}, centre of mass {G}, {OG}"),
@@ -55,26 +55,40 @@ _PHRASES: dict[str, tuple[str, str]] = {
     # -- step 1 ---------------------------------------------------------------------------------
     "only constraint": ("La seule liaison est {c}.", "The only constraint is {c}."),
     "constraints": ("Les liaisons sont :", "The constraints are:"),
-    "fixed point": ("la liaison « {X} point fixe » de ({S})", "the constraint “{X} fixed point” of ({S})"),
+    "fixed point": ("la liaison « {X} point fixe » de ({S}) : {xyz}", "the fixed-point constraint at {X} of ({S}): {xyz}"),
     "pivot R0": ("la liaison pivot d'axe {axis} de ({S}) par rapport à {R0}",
                  "the hinge (revolute joint) of axis {axis} of ({S}) relative to {R0}"),
     "pivot": ("la liaison pivot d'axe {axis} entre ({S}) et ({S2})",
               "the hinge (revolute joint) of axis {axis} between ({S}) and ({S2})"),
     "ball joint": ("la liaison rotule de centre {X} entre ({S}) et {other}",
                    "the ball joint of centre {X} between ({S}) and {other}"),
-    "rod": ("la liaison qui maintient {XP} (tige de masse négligeable, fil tendu...)",
-            "the constraint that keeps {XP} (a massless rod, a taut string...)"),
-    "rod plane": ("la liaison qui maintient {XP} (tige de masse négligeable, fil tendu...), {P} restant dans le "
-                  "plan passant par {X} et normal à {n}",
-                  "the constraint that keeps {XP} (a massless rod, a taut string...), {P} staying in the plane "
-                  "through {X} normal to {n}"),
+    "rod": ("la liaison qui maintient {XP}{what}", "the constraint that keeps {XP}{what}"),
+    "rod plane": ("la liaison qui maintient {XP}{what}, {P} restant dans le plan passant par {X} et normal à {n}",
+                  "the constraint that keeps {XP}{what}, {P} staying in the plane through {X} normal to {n}"),
+    "rod what": (" (tige de masse négligeable, fil tendu...)", " (a massless rod, a taut string...)"),
+    "body plane": ("la liaison qui impose {cond} et ne laisse à ({S}) que {rot}",
+                   "the constraint that imposes {cond} and leaves ({S}) only {rot}"),
+    "rotations about": ("les rotations autour de {axes}", "the rotations about {axes}"),
+    "rotation about": ("la rotation autour de {axes}", "the rotation about {axes}"),
+    "perfect body plane": ("Elle est supposée parfaite (sans frottement) : ses actions se réduisent à une force "
+                           "selon {n} et à un couple orthogonal aux rotations permises, de puissance virtuelle nulle "
+                           "puisque {cond}.",
+                           "It is assumed perfect (frictionless): its actions reduce to a force along {n} and a "
+                           "couple orthogonal to the allowed rotations, whose virtual power is zero since {cond}."),
+    "not perfect": ("Elle n'est pas parfaite : la puissance virtuelle de ses efforts n'est pas nulle ({why}) ; "
+                    "ils figurent dans {Q} (étape 5).",
+                    "It is not perfect: the virtual power of its forces is not zero ({why}); they enter {Q} "
+                    "(step 5)."),
+    "why coulomb": ("frottement de Coulomb « {name} » en {P}, opposé au glissement",
+                    "Coulomb friction “{name}” at {P}, opposing the sliding"),
+    "why damper": ("amortissement visqueux « {name} » dans la liaison", "viscous damping “{name}” in the joint"),
     "line": ("la liaison glissière de {P} sur la droite {line}", "the slider of {P} along the line {line}"),
     "plane": ("la liaison de {P} avec le plan passant par {X} et normal à {n}",
               "the constraint keeping {P} in the plane through {X} normal to {n}"),
     "placement": ("la liaison qui place {E} en fonction des paramètres principaux",
                   "the constraint that places {E} as a function of the principal parameters"),
     "declared": ("la liaison « {name} »{description} : {equation}", "the constraint “{name}”{description}: {equation}"),
-    "no slip": ("le roulement sans glissement de ({S}) en {I} : {equation}",
+    "no slip": ("la liaison de roulement sans glissement de ({S}) en {I} : {equation}",
                 "rolling without slipping of ({S}) at {I}: {equation}"),
     "coincide": ("la liaison qui maintient {P} en {Q} : {equation}", "the constraint that keeps {P} at {Q}: {equation}"),
     "equations count": ("{k} équations scalaires", "{k} scalar equations"),
@@ -88,8 +102,8 @@ _PHRASES: dict[str, tuple[str, str]] = {
                            "principal (the choice of parameters already satisfies it)"),
     "complementary": ("complémentaire : elle est gardée comme équation (étape 7), avec le multiplicateur {lam}",
                       "complementary: it is kept as an equation (step 7), with the multiplier {lam}"),
-    "complementary many": ("complémentaire : elle est gardée comme équations (étape 7), avec les multiplicateurs {lam}",
-                           "complementary: it is kept as equations (step 7), with the multipliers {lam}"),
+    "complementary many": ("complémentaire : ses équations sont gardées (étape 7), avec les multiplicateurs {lam}",
+                           "complementary: its equations are kept (step 7), with the multipliers {lam}"),
     "classified one": ("Elle est {a}, {b} et {c}.", "It is {a}, {b} and {c}."),
     "classified": ("{a}, {b}, {c}", "{a}, {b}, {c}"),
     "perfect fixed point": ("Elle est parfaite car la puissance virtuelle de la réaction {R} en {X} est nulle ; "
@@ -109,21 +123,27 @@ _PHRASES: dict[str, tuple[str, str]] = {
                      "It is perfect: the mutual constraint actions reduce to a force at {X}, a point common to "
                      "both bodies, whose virtual power is zero."),
     "perfect rod": ("Elle est parfaite (sans frottement) : la réaction sur {P} n'a de composante que selon {dirs}, "
-                    "directions orthogonales à son champ de vitesses virtuelles puisque {XP2} est constant :",
+                    "{orth} à son champ de vitesses virtuelles puisque {XP2} est constant :",
                     "It is perfect (frictionless): the reaction on {P} only has components along {dirs}, "
-                    "directions orthogonal to its virtual velocity field since {XP2} is constant:"),
+                    "{orth} to its virtual velocity field since {XP2} is constant:"),
+    "orth one": ("direction orthogonale", "a direction orthogonal"),
+    "orth many": ("directions orthogonales", "directions orthogonal"),
     "perfect smooth": ("Elle est parfaite (contact sans frottement) : la réaction est normale à {where}, qui contient "
                        "{V}.", "It is perfect (frictionless contact): the reaction is normal to {where}, which "
                        "contains {V}."),
     "the plane": ("ce plan", "that plane"),
     "the line": ("cette droite", "that line"),
     "perfect assumed": ("Elle est supposée parfaite (sans frottement) : ses efforts n'entrent dans aucune "
-                        "composante généralisée.", "It is assumed perfect (frictionless): its efforts enter no "
+                        "composante généralisée.", "It is assumed perfect (frictionless): its forces enter no "
                         "generalized force."),
     "perfect complementary": ("Elle est parfaite : sa réaction a une puissance virtuelle nulle dans tout champ "
                               "compatible avec elle, et ses composantes généralisées sont {Q}.",
                               "It is perfect: its reaction has zero virtual power in every virtual field "
                               "compatible with it, and its generalized forces are {Q}."),
+    "perfect no slip": ("Elle est parfaite car la puissance virtuelle de la réaction en {I} est nulle dans tout "
+                        "champ compatible avec elle : {P}. Ses composantes généralisées sont {Q}.",
+                        "It is perfect because the virtual power of the reaction at {I} is zero in every virtual "
+                        "field compatible with it: {P}. Its generalized forces are {Q}."),
     "reaction is": ("Sa réaction sur {E} est {R}.", "Its reaction on {E} is {R}."),
     "dof": ("Bilan des degrés de liberté : {count} paramètres principaux.",
             "Degrees of freedom: {count} principal parameters."),
@@ -136,15 +156,15 @@ _PHRASES: dict[str, tuple[str, str]] = {
                        "Hence {n} principal parameters, the Euler angles {list} of ({S})."),
     "one param": ("On a donc un seul paramètre principal, {q}.", "Hence a single principal parameter, {q}."),
     "remark 1": ("Remarque 1 : il y a autant d'équations de Lagrange que de paramètres principaux, soit {n}.",
-                 "Remarque 1: there are as many Lagrange equations as principal parameters, that is {n}."),
+                 "Remark 1 (course): there are as many Lagrange equations as principal parameters, that is {n}."),
     "remark 1 lambda": ("Remarque 1 : il y a autant d'équations de Lagrange que de paramètres principaux, soit {n} ; "
                         "s'y ajoutent les {m} équations de liaison complémentaires (étape 7), pour les {m} "
-                        "multiplicateurs.", "Remarque 1: there are as many Lagrange equations as principal "
+                        "multiplicateurs.", "Remark 1 (course): there are as many Lagrange equations as principal "
                         "parameters, that is {n}; the {m} complementary constraint equations (step 7) are added, "
                         "for the {m} multipliers."),
     "remark 1 lambda one": ("Remarque 1 : il y a autant d'équations de Lagrange que de paramètres principaux, soit "
                             "{n} ; s'y ajoute l'équation de liaison complémentaire (étape 7), pour le multiplicateur.",
-                            "Remarque 1: there are as many Lagrange equations as principal parameters, that is {n}; "
+                            "Remark 1 (course): there are as many Lagrange equations as principal parameters, that is {n}; "
                             "the complementary constraint equation (step 7) is added, for the multiplier."),
     # -- step 3 -----------------------------------------------------------------------------------
     "frames": ("Repères et rotations :", "Frames and rotations:"),
@@ -160,7 +180,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "angular velocities": ("Vecteurs rotation :", "Angular velocities:"),
     "virtual field": ("Le champ de vitesses virtuelles compatible avec les liaisons principales est {field} ; aux "
                       "points où s'appliquent les efforts donnés :", "The virtual velocity field compatible with "
-                      "the principal constraints is {field}; at the points where the given efforts act:"),
+                      "the principal constraints is {field}; at the points where the applied forces act:"),
     "virtual rotation": ("Vecteur rotation virtuel des solides qui portent des couples :",
                          "Virtual angular velocity of the bodies that bear couples:"),
     # -- step 4 -----------------------------------------------------------------------------------
@@ -168,13 +188,13 @@ _PHRASES: dict[str, tuple[str, str]] = {
                  "The kinetic and potential energies of (Σ) relative to {R} are:"),
     "koenig": ("(théorème de König)", "(König's theorem)"),
     "no potential": ("Aucun effort donné ne dérive d'une énergie potentielle : {U}.",
-                     "No given effort derives from a potential energy: {U}."),
-    "potential of": ("Énergie potentielle de chaque effort conservatif :", "Potential energy of each conservative effort:"),
+                     "No applied force derives from a potential energy: {U}."),
+    "potential of": ("Énergie potentielle de chaque effort conservatif :", "Potential energy of each conservative force:"),
     "cste": ("cste", "const"),
     # -- step 5 -----------------------------------------------------------------------------------
     "virtual power intro": ("La puissance virtuelle de chaque effort donné, dans le champ de vitesses virtuelles "
                             "compatible, s'écrit {P}, dont les coefficients sont les composantes généralisées {Q} :",
-                            "The virtual power of each given effort in the compatible virtual velocity field is "
+                            "The virtual power of each applied force in the compatible virtual velocity field is "
                             "{P}; its coefficients are the generalized forces {Q}:"),
     "zero because": ("{Q} car {why}", "{Q} because {why}"),
     "point still": ("{P} ne bouge pas quand {q} varie : {d}", "{P} does not move when {q} varies: {d}"),
@@ -204,17 +224,29 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "kind jointdamper": ("frottement visqueux dans une liaison", "viscous friction in a joint"),
     "kind coulombfriction": ("frottement de Coulomb", "Coulomb friction"),
     "kind inertial: Coriolis": ("effort d'inertie de Coriolis", "Coriolis inertial force"),
-    "kind inertial: entrainment": ("effort d'inertie d'entraînement", "entrainment inertial force"),
+    "kind inertial: entrainment": ("effort d'inertie d'entraînement", "transport inertial force"),
     "perfect no Q": ("Les liaisons principales étant parfaites, la puissance virtuelle de leurs efforts est nulle : "
                      "ils n'apparaissent dans aucune composante généralisée.",
-                     "The principal constraints being perfect, the virtual power of their efforts is zero: they "
+                     "The principal constraints being perfect, the virtual power of their forces is zero: they "
                      "appear in no generalized force."),
-    "complementary Q": ("Les réactions des liaisons complémentaires ont pour composantes généralisées {Q} "
-                        "(étape 7).", "The reactions of the complementary constraints have the generalized "
-                        "forces {Q} (step 7)."),
+    "complementary Q": ("Les réactions des liaisons complémentaires ont pour composantes généralisées {Q} (étape "
+                        "7), où {lam} est le multiplicateur de la liaison complémentaire k et {a} le coefficient de "
+                        "la vitesse q̇_i dans son équation ({f} pour une liaison holonome f_k = 0).",
+                        "The reactions of the complementary constraints have the generalized forces {Q} (step 7), "
+                        "where {lam} is the multiplier of complementary constraint k and {a} the coefficient of "
+                        "the rate q̇_i in its equation ({f} for a holonomic constraint f_k = 0)."),
+    "perfect no Q but": ("Les autres liaisons principales étant parfaites, la puissance virtuelle de leurs efforts "
+                         "est nulle ; les efforts des liaisons non parfaites (frottement) sont ceux des efforts "
+                         "non conservatifs ci-dessus.", "The other principal constraints being perfect, the "
+                         "virtual power of their forces is zero; the forces of the constraints that are not "
+                         "perfect (friction) are among the non-conservative forces above."),
+    "multiplier def": ("où {lam} est le multiplicateur de la liaison complémentaire k et {a} le coefficient de q̇_i "
+                       "dans son équation ({f} pour une liaison holonome f_k = 0).",
+                       "where {lam} is the multiplier of complementary constraint k and {a} the coefficient of "
+                       "q̇_i in its equation ({f} for a holonomic constraint f_k = 0)."),
     "nc total": ("Composantes généralisées des efforts non conservatifs :", "Generalized forces of the "
-                 "non-conservative efforts:"),
-    "no loads": ("Aucun effort donné.", "No given effort."),
+                 "non-conservative forces:"),
+    "no loads": ("Aucun effort donné.", "No applied force."),
     # -- step 6 -----------------------------------------------------------------------------------
     "lagrange n": ("Les {n} équations de Lagrange sont :", "The {n} Lagrange equations are:"),
     "lagrange one": ("L'équation de Lagrange est :", "The Lagrange equation is:"),
@@ -227,7 +259,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "conservative": ("Le système (Σ) est conservatif par rapport à {R} (Remarque 2) : tous les efforts donnés "
                      "dérivent d'une énergie potentielle et toutes les liaisons sont parfaites et principales. Avec "
                      "le lagrangien {L}, les équations s'écrivent", "The system (Σ) is conservative relative to "
-                     "{R} (Remarque 2): every given effort derives from a potential energy and every constraint "
+                     "{R} (Remark 2 of the course): every applied force derives from a potential energy and every constraint "
                      "is perfect and principal. With the Lagrangian {L}, the equations read"),
     "not conservative system": ("Le système n'est pas conservatif : {names} ne dérive pas d'une énergie "
                                 "potentielle.", "The system is not conservative: {names} does not derive from a "
@@ -251,6 +283,19 @@ _PHRASES: dict[str, tuple[str, str]] = {
                           "The complementary constraint equation completes the system; with the {n} Lagrange "
                           "equations it determines the {n} parameters and the multiplier {lams}:"),
     "reaction of": ("Réaction de « {name} » sur {E} :", "Reaction of “{name}” on {E}:"),
+    "multipliers are": ("En éliminant les accélérations entre les équations de Lagrange et les équations de liaison "
+                        "dérivées par rapport au temps, les multiplicateurs valent :",
+                        "Eliminating the accelerations between the Lagrange equations and the constraint equations "
+                        "differentiated with respect to time, the multipliers are:"),
+    "tension": ("Tension de la liaison (positive quand elle tire {P} vers {X}) :",
+                "Tension of the constraint (positive when it pulls {P} towards {X}):"),
+    "tension angle": ("soit, en posant {sub} ({theta} angle de {XP} avec la verticale descendante, opposée à {e}) :",
+                      "that is, with {sub} ({theta} the angle of {XP} from the descending vertical, opposite to "
+                      "{e}):"),
+    "multiplier is": ("En éliminant les accélérations entre les équations de Lagrange et l'équation de liaison "
+                      "dérivée par rapport au temps, le multiplicateur vaut :",
+                      "Eliminating the accelerations between the Lagrange equations and the constraint equation "
+                      "differentiated with respect to time, the multiplier is:"),
     # -- integrals --------------------------------------------------------------------------------
     "cyclic": ("{q} est un paramètre cyclique : {why}, donc {eq} s'intègre :", "{q} is cyclic: {why}, so {eq} "
                "integrates:"),
@@ -259,12 +304,30 @@ _PHRASES: dict[str, tuple[str, str]] = {
                         "homogène des vitesses, l'intégrale première de l'énergie s'écrit :",
                         "{L} does not depend on the time explicitly and {cond}; {T} being a homogeneous "
                         "quadratic form of the rates, the energy integral reads:"),
-    "jacobi integral": ("{L} ne dépend pas explicitement du temps et {cond} ; {T} n'étant pas homogène en vitesses, "
-                        "l'intégrale première de Painlevé–Jacobi s'écrit :", "{L} does not depend on the time "
-                        "explicitly and {cond}; {T} not being homogeneous in the rates, the Painlevé–Jacobi "
-                        "integral reads:"),
+    "jacobi integral": ("{L} ne dépend pas explicitement du temps et {cond}. Écrivons {parts}, où T_2, T_1 et T_0 "
+                        "sont les parties de {T} de degré 2, 1 et 0 par rapport aux vitesses q̇_i : T_1 ou T_0 "
+                        "n'étant pas nul, {E} n'est pas conservée, mais l'intégrale première de Painlevé–Jacobi "
+                        "l'est :", "{L} does not depend on the time explicitly and {cond}. Write {parts}, where "
+                        "T_2, T_1 and T_0 are the parts of {T} of degree 2, 1 and 0 in the rates q̇_i: T_1 or T_0 "
+                        "not being zero, {E} is not conserved, but the Painlevé–Jacobi integral is:"),
+    "jacobi moving": ("{L} ne dépend pas explicitement du temps et {cond}. Les équations étant écrites dans le "
+                      "repère {R}, entraîné par rapport à {R0} par un mouvement imposé, {T2} est une forme quadratique "
+                      "homogène des vitesses et {U} contient l'énergie potentielle des efforts d'inertie "
+                      "d'entraînement (Remarque 3) : l'intégrale première est celle de Painlevé–Jacobi, et non "
+                      "l'énergie mécanique {E} dans le repère galiléen, que le mouvement imposé fait varier :",
+                      "{L} does not depend on the time explicitly and {cond}. The equations being written in the "
+                      "frame {R}, driven relative to {R0} by a prescribed motion, {T2} is a homogeneous quadratic "
+                      "form of the rates and {U} holds the potential energy of the transport inertial forces "
+                      "(Remark 3 of the course): the first integral is the Painlevé–Jacobi one, not the mechanical "
+                      "energy {E} in the Galilean frame, which the prescribed motion changes:"),
+    "at t0": ("à", "at"),
+    "prescribed": ("mouvement imposé", "prescribed motion"),
+    "reaction": ("réaction", "reaction"),
+    "balance": ("L'énergie {E} n'est donc pas conservée ; le théorème de l'énergie cinétique donne sa variation, "
+                "terme par terme :", "The energy {E} is therefore not conserved; the work–energy theorem gives "
+                "its rate, term by term:"),
     "cond conservative": ("le système est conservatif", "the system is conservative"),
-    "cond no work": ("les efforts non conservatifs ne travaillent pas", "the non-conservative efforts do no work"),
+    "cond no work": ("les efforts non conservatifs ne travaillent pas", "the non-conservative forces do no work"),
     "replace": ("L'équation de Lagrange relative à {q} peut être remplacée par l'intégrale première de l'énergie.",
                 "The Lagrange equation of {q} may be replaced by the energy integral."),
     "replace one": ("L'intégrale première de l'énergie peut remplacer l'une des équations {eqs}.",
@@ -272,19 +335,19 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "no integral": ("Aucune intégrale première n'apparaît : aucun paramètre n'est cyclique, et {why}.",
                     "No first integral appears: no parameter is cyclic, and {why}."),
     "why time": ("le lagrangien dépend explicitement du temps", "the Lagrangian depends on the time explicitly"),
-    "why work": ("des efforts non conservatifs travaillent", "non-conservative efforts do work"),
+    "why work": ("des efforts non conservatifs travaillent", "non-conservative forces do work"),
     "why constraints": ("les réactions des liaisons complémentaires travaillent",
                         "the reactions of the complementary constraints do work"),
     # -- the Newton–Euler check -------------------------------------------------------------------
     "check intro": ("Ces équations de Lagrange peuvent être retrouvées en appliquant les théorèmes généraux à chaque "
                     "constituant de (Σ) par rapport à {R0} galiléen, projetés sur les directions associées à chaque "
-                    "paramètre (Remarque 4) :", "These Lagrange equations can be found again by applying the "
-                    "general theorems to each part of (Σ) relative to the Galilean {R0}, projected on the "
-                    "directions that go with each parameter (Remarque 4):"),
-    "moment theorem": ("Théorème du moment dynamique en {P} de ({S}) :", "Moment theorem at {P} for ({S}):"),
+                    "paramètre :", "These Lagrange equations can be found again by applying the "
+                    "Newton–Euler theorems to each part of (Σ) relative to the Galilean {R0}, projected on the "
+                    "directions that go with each parameter:"),
+    "moment theorem": ("Théorème du moment dynamique en {P} de ({S}) :", "Moment (angular momentum) theorem at {P} for ({S}):"),
     "resultant theorem": ("Théorème de la résultante dynamique pour {P} :", "Resultant theorem for {P}:"),
     "by moment": ("{eq} par projection du théorème du moment dynamique en {P}{of} sur {e} :",
-                  "{eq} by projecting the moment theorem at {P}{of} on {e}:"),
+                  "{eq} by projecting the moment (angular momentum) theorem at {P}{of} on {e}:"),
     "by resultant": ("{eq} par projection du théorème de la résultante dynamique{of} sur {e} :",
                      "{eq} by projecting the resultant theorem{of} on {e}:"),
     "by power": ("{eq} par projection des théorèmes{of} sur les vitesses partielles de {q} (puissance virtuelle) :",
@@ -296,6 +359,20 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "notes": ("Expressions longues", "Long expressions"),
     "perfect drop": ("Les liaisons étant parfaites, leurs actions disparaissent de chaque projection.",
                      "The constraints being perfect, their actions drop out of every projection."),
+    "perfect drop principal": ("Les liaisons principales étant parfaites, leurs actions disparaissent de chaque "
+                               "projection ; celles des liaisons complémentaires y restent, par les multiplicateurs.",
+                               "The principal constraints being perfect, their actions drop out of every "
+                               "projection; those of the complementary constraints stay, through the multipliers."),
+    "drop not perfect": ("Les actions des liaisons parfaites disparaissent de chaque projection ; celles des "
+                         "liaisons non parfaites y restent, avec les efforts donnés.",
+                         "The actions of the perfect constraints drop out of every projection; those of the "
+                         "constraints that are not perfect stay, with the applied forces."),
+    "top moment": ("{R0} étant galiléen, le théorème du moment dynamique en {O} de ({S}) par rapport à {R0} "
+                   "s'écrit :", "{R0} being Galilean, the moment (angular momentum) theorem at {O} for ({S}) "
+                   "relative to {R0} reads:"),
+    "fixed point moment": ("La réaction {R} s'applique en {O} : son moment en {O} est nul, {OO}.",
+                           "The reaction {R} acts at {O}: its moment at {O} is zero, {OO}."),
+    "whole system": ("(Σ)", "(Σ)"),
     # -- simulation, appendix, sizes --------------------------------------------------------------
     "figure": ("Figure {k} : {caption}", "Figure {k}: {caption}"),
     "matrix large": ("Les équations de Lagrange s'écrivent {form} ; la matrice {n} a {k} coefficients non nuls "
@@ -311,6 +388,22 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "summaries": ("{sample} : expression trop longue pour être écrite ici ; la commande {cmd} (ou la fonction "
                   "{fn}) la donne en entier.", "{sample}: an expression too long to print here; the command "
                   "{cmd} (or the function {fn}) gives it in full."),
+}
+
+
+#: The engine's own load names (the inertial forces) and the usual names of the examples and the
+#: zoo, as each language writes them; any other name is the user's and is kept as it is.
+_LOAD_NAMES: dict[str, tuple[str, str]] = {
+    "weight": ("poids", "weight"),
+    "gravity": ("pesanteur", "gravity"),
+    "Coriolis": ("Coriolis", "Coriolis"),
+    "entrainment": ("entraînement", "transport"),
+    "spring": ("ressort", "spring"),
+    "damper": ("amortisseur", "damper"),
+    "friction": ("frottement", "friction"),
+    "drag": ("traînée", "drag"),
+    "torque": ("couple", "torque"),
+    "motor": ("moteur", "motor"),
 }
 
 
@@ -354,10 +447,24 @@ class Words:
             parts.extend(item if isinstance(item, tuple) else (item,))
         return _merge(parts)
 
+    def load(self, name: str) -> str:
+        """A load's name as this language writes it: the engine's and the usual ones translated, the user's kept."""
+        pair = _LOAD_NAMES.get(name)
+        return pair[self._index] if pair is not None else name
+
     def number(self, value: float) -> str:
-        """A number as this language writes it (decimal comma in French)."""
+        """A number as this language writes it (decimal comma in French, 5·10⁻⁵ rather than 5e-05)."""
         text = f"{value:.6g}"
+        mantissa, e, exponent = text.partition("e")
+        if e:
+            power = str(int(exponent)).translate(_SUPERSCRIPTS)
+            text = ("" if mantissa in ("1", "-1") else mantissa + "·") + "10" + power
+            if mantissa == "-1":
+                text = "-" + text
         return text.replace(".", ",") if self.lang == "fr" else text
+
+
+_SUPERSCRIPTS = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 
 
 def _merge(runs: Sequence[Run]) -> Runs:
