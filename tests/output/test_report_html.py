@@ -9,6 +9,7 @@ is taken.  Skipped, with the reason, where no Chromium can be found.
 from __future__ import annotations
 
 import json
+import os
 import re
 import shutil
 import subprocess
@@ -44,10 +45,38 @@ window.addEventListener('load', () => {
     return !['math', 'inline math', 'block math'].includes(display) || r.width <= 0 || r.height <= 0;
   }).map(m => m.outerHTML.slice(0, 200));
   const images = Array.from(document.images).map(i => i.complete && i.naturalWidth > 0);
+  const box = e => e.getBoundingClientRect();
+  const where = e => (e.closest('math') || e).outerHTML.slice(0, 300);
+  // A labelled arrow (R0 -psi-> R1): the label above the arrow, neither over the frames on either
+  // side (the arrow keeps its length, as \\overset{label}{\\longrightarrow} does in LaTeX).
+  const arrows = [];
+  document.querySelectorAll('mover').forEach(m => {
+    const [base, over] = m.children;
+    if (!base || !over) return;
+    if (base.tagName === 'mo' && /[\u2190-\u21ff\u27f5-\u27ff]/.test(base.textContent)) {
+      const a = box(base), l = box(over), r = box(m);
+      const next = m.nextElementSibling, prev = m.previousElementSibling;
+      if (l.bottom > a.top + 0.5 * a.height) arrows.push(['label over the arrow', l.bottom, a.top, where(m)]);
+      if (next && box(next).left < r.right - 1) arrows.push(['overlaps the next', r.right, box(next).left, where(m)]);
+      if (prev && box(prev).right > r.left + 1) arrows.push(['overlaps the previous', box(prev).right, r.left, where(m)]);
+    }
+    // An arrow over several letters (the vector OG) spans them.
+    if (over.tagName === 'mo' && base.children.length > 1 && box(over).width < 0.9 * box(base).width)
+      arrows.push(['short arrow over', box(over).width, box(base).width, where(m)]);
+  });
+  // Brackets around a matrix (the inertia matrix) as tall as it.
+  const fences = [];
+  document.querySelectorAll('mtable').forEach(t => {
+    const open = t.previousElementSibling, close = t.nextElementSibling;
+    [open, close].forEach(f => {
+      if (f && f.tagName === 'mo' && box(f).height < 0.9 * box(t).height)
+        fences.push([f.textContent, box(f).height, box(t).height, where(t)]);
+    });
+  });
   const probe = document.createElement('pre');
   probe.id = 'probe';
   probe.textContent = JSON.stringify({errors: window.__errors, maths: maths.length, bad: bad, images: images,
-                                      text: document.body.innerText});
+                                      arrows: arrows, fences: fences, text: document.body.innerText});
   document.body.appendChild(probe);
 });
 </script>
@@ -84,12 +113,18 @@ def _check_page(html: str, expected_math: int, tmp_path: Path, images: int = 0) 
     assert result["maths"] == expected_math
     assert result["bad"] == []
     assert result["images"] == [True] * images
+    assert result["arrows"] == [], result["arrows"][:5]
+    assert result["fences"] == [], result["fences"][:5]
+    # latex2mathml's \xrightarrow: an <mpadded> pulled up over the arrow (negative height / offset).
+    assert not re.search(r'<mpadded[^>]*="-', html)
     for raw in (r"\frac", r"\dot", r"\vec", r"\left", r"\text", "$", "^{", "_{"):
         assert raw not in result["text"], raw
     return result
 
 
 def _screenshot(html_path: Path, tmp_path: Path) -> Path:
+    """A screenshot of the page, kept in ``tmp_path`` (pytest keeps the last runs' folders) and copied to
+    ``$LAGRANGIAN_TEST_ARTIFACTS`` when set, for a person to look at."""
     shot = tmp_path / "report.png"
     run = _chromium(tmp_path, "--window-size=1100,3000", f"--screenshot={shot}", html_path.as_uri())
     assert run.returncode == 0, run.stderr[-2000:]
@@ -98,6 +133,10 @@ def _screenshot(html_path: Path, tmp_path: Path) -> Path:
 
     pixels = matplotlib.image.imread(shot)
     assert pixels.std() > 0.01  # not a blank page
+    artifacts = os.environ.get("LAGRANGIAN_TEST_ARTIFACTS")
+    if artifacts:
+        Path(artifacts).mkdir(parents=True, exist_ok=True)
+        shutil.copy(shot, Path(artifacts) / f"{html_path.stem}-{tmp_path.name}.png")
     return shot
 
 

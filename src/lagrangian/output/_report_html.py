@@ -21,7 +21,8 @@ __all__ = ["render_html"]
 _CSS = """
 .lagrangian-report { font-family: "Latin Modern Roman", "Cambria", "Georgia", serif; line-height: 1.5;
   max-width: 58em; margin: 0 auto; padding: 1em 1.5em; color: #1d1d1f; background: #fff; }
-.lagrangian-report math { font-family: "Latin Modern Math", "STIX Two Math", "Cambria Math", math; font-size: 1.05em; }
+.lagrangian-report math { font-family: "DejaVu Math TeX Gyre", "STIX Two Math", "Latin Modern Math", "Cambria Math",
+  "TeX Gyre Termes Math", "Libertinus Math", math; font-size: 1.05em; }
 .lagrangian-report h1 { font-size: 1.7em; margin-bottom: 0.2em; }
 .lagrangian-report .subtitle { font-style: italic; margin-top: 0; color: #444; }
 .lagrangian-report h2 { font-size: 1.3em; border-bottom: 1px solid #ccc; margin-top: 1.6em; padding-bottom: 0.2em; }
@@ -49,11 +50,65 @@ _CSS = """
 @functools.lru_cache(maxsize=4096)
 def _mathml(latex: str, display: str) -> str:
     try:
-        out = convert(_spaced(latex), display=display)
+        out = convert(_spaced(_arrows(latex)), display=display)
     except Exception as exc:  # latex2mathml raises assorted errors on input it does not know
         raise OutputError(f"Cannot convert `{latex[:120]}` to MathML: {exc}.",
                           fix="report this model to the lagrangian developers; --format tex or md still works") from None
-    return out.replace(' xmlns="http://www.w3.org/1998/Math/MathML"', "", 1)
+    return _stretchy(out.replace(' xmlns="http://www.w3.org/1998/Math/MathML"', "", 1))
+
+
+def _braced(s: str, i: int) -> int:
+    """Index after the braced group that opens at ``s[i]`` (``len(s)`` when it is not closed)."""
+    depth = 0
+    for j in range(i, len(s)):
+        if s[j] == "{" and s[j - 1] != "\\":
+            depth += 1
+        elif s[j] == "}" and s[j - 1] != "\\":
+            depth -= 1
+            if depth == 0:
+                return j + 1
+    return len(s)
+
+
+def _arrows(latex: str) -> str:
+    r"""``\xrightarrow{ψ, Oz0}`` → ``\overset{\;ψ, Oz0\;}{\longrightarrow}``.
+
+    latex2mathml writes ``\xrightarrow`` with an ``<mpadded>`` of negative height and offset,
+    which Chromium draws over the arrow and the next frame; an arrow under its label
+    (`_stretchy` makes it stretch to the label's width) is what LaTeX draws.
+    """
+    out, start = [], 0
+    while (i := latex.find(r"\xrightarrow{", start)) >= 0:
+        open_at = i + len(r"\xrightarrow")
+        end = _braced(latex, open_at)
+        out.append(latex[start:i] + rf"\overset{{\;{latex[open_at + 1:end - 1]}\;}}{{\longrightarrow}}")
+        start = end
+    return "".join(out) + latex[start:]
+
+
+#: The long arrow latex2mathml writes as an ``<mi>`` base of ``\\overset``.
+_OVERSET_ARROW = "<mover><mrow><mi>&#x027F6;</mi></mrow>"
+#: An arrow over several letters (``\\overrightarrow{OG}``): its base and the arrow.
+_OVER_ARROW = re.compile(r"<mover><mrow>((?:(?!</?mover>).)*?)</mrow><mo>(&#x02192;|&#x02190;|&#x02194;)</mo></mover>")
+#: Width of a letter (or an index's digit, with the script's space) over the width of the arrow glyph
+#: (about 0.87 em over 0.79 em).
+_LETTER_PER_ARROW = 1.1
+_DIGITS = re.compile(r"<mn>([^<]*)</mn>")
+
+
+def _over_arrow(m: re.Match[str]) -> str:
+    """The arrow over ``OG`` widened to span it (a CSS scale: Chromium does not stretch it, math font or not)."""
+    inner, arrow = m.group(1), m.group(2)
+    letters = inner.count("<mi>") + inner.count("<mi ") + sum(len(d) for d in _DIGITS.findall(inner))
+    style = f' style="transform: scaleX({_LETTER_PER_ARROW * letters:.2f})"' if letters >= 2 else ""
+    return f'<mover><mrow>{inner}</mrow><mo stretchy="true"{style}>{arrow}</mo></mover>'
+
+
+def _stretchy(mathml: str) -> str:
+    r"""The arrow of ``\overset{label}{\longrightarrow}`` as an operator, and the arrow above ``\overrightarrow{OG}``
+    as wide as ``OG``."""
+    mathml = mathml.replace(_OVERSET_ARROW, '<mover><mo stretchy="true">&#x027F6;</mo>')
+    return _OVER_ARROW.sub(_over_arrow, mathml)
 
 
 #: Function names that LaTeX spaces from the factor before them (\\mathop) and latex2mathml does not.
