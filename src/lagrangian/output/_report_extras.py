@@ -12,7 +12,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from ..analysis import Verification
-from ._report_build import Context, tex_text
+from ._report_build import Context
 from ._report_doc import Block, Display, Equation, Image, Math, Para, Runs, Section
 
 __all__ = ["ReportFigure", "check_section", "simulation_section", "matrix_section", "notes_section"]
@@ -31,30 +31,33 @@ class ReportFigure:
 
 
 def check_section(c: Context, v: Verification) -> Section:
-    w = c.w
-    blocks: list[Block] = [Para(w("check intro", R0=Math("R_{0}")))]
+    """Each L(q_i) as the projection of a Newton–Euler theorem, the theorem stated just before its first use.
+
+    The theorems are written in the frame of the equations (R0, or R with the inertial forces);
+    a theorem is stated for the very point and elements its projections use.
+    """
+    w, R = c.w, c.R
+    moving = c.ref != "R0"
+    blocks: list[Block] = [Para(w("check intro moving" if moving else "check intro", R0=Math(R)))]
     liaisons = w.text("constraint actions")
-    for th in v.theorems:
-        efforts = " + ".join(rf"\vec{{F}}({tex_text(e)})" for e in th.efforts) or r"\vec{0}"
-        if th.kind == "particle":
-            P = c.element(th.name)
-            blocks.append(Para(w("resultant theorem", P=Math(P))))
-            blocks.append(Display((Equation((rf"{c.tex(th.mass)}\,\vec{{\gamma}}({P}/R_{{0}}) = {efforts}"
-                                             rf" + \vec{{R}}(\text{{{liaisons}}})",)),)))
-            continue
-        S = c.element(th.name)
-        P = _point(c, th.point, th.name)
-        moments = " + ".join(rf"\vec{{M}}_{{{P}}}({tex_text(e)})" for e in th.efforts) or r"\vec{0}"
-        blocks.append(Para(w("moment theorem", P=Math(P), S=Math(S))))
-        sigma = c.vector_equation(rf"\vec{{\sigma}}_{{{P}}}({S}/R_{{0}}) = \Pi_{{{P}}}({S})\cdot\vec{{\Omega}}({S}/R_{{0}}) = ",
-                                  c.terms(th.angular_momentum))
-        blocks.append(Display((Equation((rf"\vec{{\delta}}_{{{P}}}({S}/R_{{0}}) = \frac{{d}}{{dt}}\left[\vec{{\sigma}}_"
-                                         rf"{{{P}}}({S}/R_{{0}})\right]_{{R_{{0}}}} = {moments} + \vec{{M}}_{{{P}}}"
-                                         rf"(\text{{{liaisons}}})",)), sigma)))
-    blocks.append(Para(w("perfect drop")))
+    stated: set[tuple[str, str, tuple[str, ...]]] = set()
+    theorems = {(th.name, th.point): th for th in v.theorems}
+    lambdas = {r.multiplier for r in c.eom.constraints}
+    with_lambda = any(set(ch.newton_euler_efforts.free_symbols) & lambdas for ch in v.checks)
+    lossy = any(not j.perfect for j in c.joints)
+    # A fixed point's reaction drops out of the moment at that point for its own reason (OO ∧ R_O = 0, said there).
+    fixed_only = bool(c.joints) and all(j.kind == "fixed point" for j in c.joints) and not c.eom.constraints
+    if not fixed_only:
+        blocks.append(Para(w("drop not perfect" if lossy else "perfect drop principal" if with_lambda
+                             else "perfect drop")))
     for check in v.checks:
         q = c.sym(check.coordinate)
         eq = Math(rf"L({q})")
+        names = check.elements or tuple(th.name for th in v.theorems)
+        key = (check.theorem, check.point or "", tuple(names))
+        if check.theorem in ("moment", "resultant") and key not in stated:
+            stated.add(key)
+            blocks += _theorem(c, check.theorem, check.point, names, theorems, liaisons)
         of: Runs = () if check.whole_system else w("of", names=w.join([Math(c.element(e)) for e in check.elements]))
         if check.axis is not None:
             direction = Math(c.axis(check.axis))
@@ -76,6 +79,61 @@ def check_section(c: Context, v: Verification) -> Section:
         if not check.agrees:
             blocks.append(Para(w("check failed", eq=eq), style="note"))
     return Section("check", w.text("check"), tuple(blocks))
+
+
+def _theorem(c: Context, kind: str, point: str | None, names: tuple[str, ...], theorems: dict,  # type: ignore[type-arg]
+             liaisons: str) -> list[Block]:
+    """The statement of the resultant or moment theorem for ``names`` (at ``point``), in the frame R."""
+    w, R = c.w, c.R
+    elements = w.join([Math(f"({c.element(e)})" if e in c.bodies else c.element(e)) for e in names])
+    label = names[0] if len(names) == 1 else r"\Sigma"
+    E = c.element(label) if len(names) == 1 else label
+    efforts = sorted({e for th in theorems.values() if th.name in names for e in th.efforts})
+    if kind == "resultant":
+        masses = [th.mass for th in theorems.values() if th.name in names]
+        G = c.point_label(names[0]) if len(names) == 1 else "G"
+        m = c.tex(masses[0]) if len(masses) == 1 else r"\sum m"
+        forces = " + ".join(rf"\vec{{F}}({c.load_tex(e)})" for e in efforts) or r"\vec{0}"
+        return [Para(w("resultant theorem", P=elements)),
+                Display((Equation((rf"{m}\,\vec{{\gamma}}({G}/{R}) = {forces} + \vec{{R}}(\text{{{liaisons}}})",)),))]
+    P = _point(c, point, names[0])
+    moments = " + ".join(rf"\vec{{M}}_{{{P}}}({c.load_tex(e)})" for e in efforts) or r"\vec{0}"
+    fixed = next((j for j in c.joints if j.kind == "fixed point" and j.support is None and names == (j.element,)
+                  and j.point is not None and c.point_label(j.point) == P), None)
+    th = theorems.get((names[0], point)) if len(names) == 1 else None
+    out: list[Block] = []
+    if fixed is not None and th is not None and c.ref == "R0":
+        # The seed: δ_O = d/dt[σ_O]_{R0} = M_O(P) + M_O(R_O) = OG∧P + OO∧R_O, soit d/dt[σ_O]_{R0} = OG∧P.
+        out.append(Para(w("top moment", R0=Math(R), O=Math(P), S=Math(E))))
+        arms, named = [], []
+        for load in efforts:
+            spec = next((x for x in c.model.loads if x.name == load), None)
+            from ..model import Gravity
+
+            if isinstance(spec, Gravity):
+                arms.append(rf"\overrightarrow{{{P}{c.point_label(names[0])}}}\wedge\vec{{P}}")
+                named.append(rf"\vec{{M}}_{{{P}}}(\vec{{P}})")
+            else:
+                arms.append(rf"\vec{{M}}_{{{P}}}({c.load_tex(load)})")
+                named.append(arms[-1])
+        RO = rf"\vec{{R}}_{{{P}}}"
+        dsigma = rf"\frac{{d}}{{dt}}\left[\vec{{\sigma}}_{{{P}}}({E}/{R})\right]_{{{R}}}"
+        first = (rf"\vec{{\delta}}_{{{P}}}({E}/{R}) = {dsigma} = " + " + ".join(named + [rf"\vec{{M}}_{{{P}}}({RO})"])
+                 + " = " + " + ".join(arms + [rf"\overrightarrow{{{P}{P}}}\wedge{RO}"]))
+        sigma = c.vector_equation(rf"\vec{{\sigma}}_{{{P}}}({E}/{R}) = \Pi_{{{P}}}({E})\cdot\vec{{\Omega}}({E}/{R}) = ",
+                                  c.terms(th.angular_momentum))
+        out.append(Display((Equation((first,)), sigma)))
+        out.append(Para(w("fixed point moment", R=Math(RO), O=Math(P), OO=Math(rf"\overrightarrow{{{P}{P}}}\wedge{RO} = \vec{{0}}"))))
+        out.append(Display((Equation((rf"{dsigma} = " + (" + ".join(arms) or r"\vec{0}"),)),)))
+        return out
+    out.append(Para(w("moment theorem", P=Math(P), S=elements)))
+    rows = [Equation((rf"\vec{{\delta}}_{{{P}}}({E}/{R}) = \frac{{d}}{{dt}}\left[\vec{{\sigma}}_{{{P}}}({E}/{R})\right]_{{{R}}}"
+                      rf" = {moments} + \vec{{M}}_{{{P}}}(\text{{{liaisons}}})",))]
+    if th is not None and th.kind == "body":
+        rows.append(c.vector_equation(rf"\vec{{\sigma}}_{{{P}}}({E}/{R}) = \Pi_{{{P}}}({E})\cdot\vec{{\Omega}}({E}/{R}) = ",
+                                      c.terms(th.angular_momentum)))
+    out.append(Display(tuple(rows)))
+    return out
 
 
 def _point(c: Context, point: str | None, body: str) -> str:

@@ -13,7 +13,7 @@ from .._identity import are_zero
 from ..dynamics import LoadForces
 from ..model import (CoulombFriction, Damper, Dissipation, GeneralizedForce, Gravity, JointDamper, PointForce, Potential,
                      Spring, Torque)
-from ._report_build import Context, tex_text
+from ._report_build import Context
 from ._report_doc import Block, Display, Equation, Items, Math, Para, Runs, Section
 from ._report_size import wrap_many
 

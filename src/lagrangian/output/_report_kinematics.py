@@ -11,7 +11,7 @@ Seed, worked example:
 from __future__ import annotations
 
 from ..model import Gravity, JointDamper, PointForce, Potential, Spring, Torque, Vector
-from ._report_build import Context, tex_text
+from ._report_build import Context
 from ._report_doc import Block, Display, Equation, Math, Para, Section
 from ._report_size import visible_width, wrap_many
 
@@ -244,7 +244,7 @@ def _potential(c: Context) -> list[Block]:
             only = (c.model.bodies[0].name if c.model.bodies else c.model.particles[0].name)
             label = rf"U_P({c.element(only)}/{c.R})"
         else:
-            label = rf"U_P({tex_text(f.name)})"
+            label = rf"U_P({c.load_tex(f.name)})"
         formula = _potential_formula(c, f.kind, f.name)
         head = f"{label} = " + (f"{formula}{cste} = " if formula else "")
         rows.append(c.equation(head, row.expression, cste))

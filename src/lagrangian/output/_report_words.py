@@ -344,7 +344,13 @@ _PHRASES: dict[str, tuple[str, str]] = {
                     "paramètre :", "These Lagrange equations can be found again by applying the "
                     "Newton–Euler theorems to each part of (Σ) relative to the Galilean {R0}, projected on the "
                     "directions that go with each parameter:"),
-    "moment theorem": ("Théorème du moment dynamique en {P} de ({S}) :", "Moment (angular momentum) theorem at {P} for ({S}):"),
+    "check intro moving": ("Ces équations de Lagrange peuvent être retrouvées en appliquant les théorèmes généraux par "
+                           "rapport à {R0}, non galiléen, en ajoutant aux efforts donnés les efforts d'inertie de "
+                           "Coriolis et d'entraînement, projetés sur les directions associées à chaque paramètre :",
+                           "These Lagrange equations can be found again by applying the Newton–Euler theorems "
+                           "relative to {R0}, which is not Galilean, the Coriolis and transport inertial forces being "
+                           "added to the applied forces, projected on the directions that go with each parameter:"),
+    "moment theorem": ("Théorème du moment dynamique en {P} de {S} :", "Moment (angular momentum) theorem at {P} for {S}:"),
     "resultant theorem": ("Théorème de la résultante dynamique pour {P} :", "Resultant theorem for {P}:"),
     "by moment": ("{eq} par projection du théorème du moment dynamique en {P}{of} sur {e} :",
                   "{eq} by projecting the moment (angular momentum) theorem at {P}{of} on {e}:"),
