@@ -21,10 +21,18 @@ _PREAMBLE = r"""\documentclass[a4paper,11pt]{article}
 \usepackage[margin=2cm]{geometry}
 \usepackage{graphicx}
 \usepackage{longtable}
+\usepackage{array}
 \allowdisplaybreaks
 \setlength{\parindent}{0pt}
 \setlength{\parskip}{0.5em}
 """
+#: French: babel's French where it is installed (texlive-lang-french), else French spacing only.
+_FRENCH = r"""\IfFileExists{french.ldf}{\usepackage[french]{babel}}{\frenchspacing}
+"""
+#: A table whose cells hold more characters than this in a row gets wrapping p{} columns.
+TABLE_CHARS = 70
+#: Narrowest p{} column, in characters (a header word such as « symbole » and the column's padding).
+MIN_COLUMN = 12
 
 _ESCAPES = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_", "{": r"\{",
             "}": r"\}", "~": r"\textasciitilde{}", "^": r"\^{}"}
@@ -64,6 +72,25 @@ def _runs(runs: Runs) -> str:
     return "".join(rf"\({r.latex}\)" if isinstance(r, Math) else escape(r) for r in runs)
 
 
+def _columns(t: Table) -> str:
+    """``lll`` for a narrow table; p{} columns sharing the line, by their widest cell, for a wide one."""
+    rows = (t.header, *t.rows)
+    widest = [max(_visible(row[k]) for row in rows if k < len(row)) for k in range(len(t.header))]
+    if sum(widest) <= TABLE_CHARS:
+        return "l" * len(widest)
+    shares = [max(w, MIN_COLUMN) for w in widest]
+    total = sum(shares)
+    return "".join(rf">{{\raggedright\arraybackslash}}p{{\dimexpr {share / total:.3f}\linewidth - 2\tabcolsep\relax}}"
+                   for share in shares)
+
+
+def _visible(runs: Runs) -> int:
+    """About how many characters a cell prints."""
+    from ._report_size import visible_width
+
+    return sum(visible_width(r.latex) if isinstance(r, Math) else len(r) for r in runs)
+
+
 def _block(b: Block, figures: Sequence[str] | None, counter: list[int]) -> str:
     if isinstance(b, Para):
         text = _runs(b.runs)
@@ -84,7 +111,7 @@ def _block(b: Block, figures: Sequence[str] | None, counter: list[int]) -> str:
     if isinstance(b, Items):
         return "\\begin{itemize}\n" + "\n".join(rf"\item {_runs(i)}" for i in b.items) + "\n\\end{itemize}\n"
     if isinstance(b, Table):
-        cols = "l" * len(b.header)
+        cols = _columns(b)
         head = " & ".join(_runs(c) for c in b.header) + r" \\ \hline"
         body = "\n".join(" & ".join(_runs(c) for c in row) + r" \\" for row in b.rows)
         return f"\\begin{{longtable}}{{{cols}}}\n\\hline\n{head}\n\\endhead\n{body}\n\\hline\n\\end{{longtable}}\n"
@@ -108,7 +135,7 @@ def _section(s: Section, figures: Sequence[str] | None, counter: list[int]) -> s
 def render_tex(doc: Document, *, footer: str = "", figures: Sequence[str] | None = None) -> str:
     """A standalone LaTeX document; ``figures`` are the file names of the report's images, in order."""
     counter = [0]
-    parts = [_PREAMBLE, r"\begin{document}", rf"\begin{{center}}{{\LARGE {escape(doc.title)}}}\end{{center}}"]
+    parts = [_PREAMBLE + (_FRENCH if doc.lang == "fr" else ""), r"\begin{document}", rf"\begin{{center}}{{\LARGE {escape(doc.title)}}}\end{{center}}"]
     if doc.subtitle:
         parts.append(rf"\begin{{center}}\textit{{{escape(doc.subtitle)}}}\end{{center}}")
     parts += [_section(s, figures, counter) for s in doc.sections]
