@@ -142,7 +142,7 @@ def energy_balance(eom: EquationsOfMotion) -> EnergyBalance:
             power = sum_of([Q * qd for Q, qd in zip(f.Q, kin.qd) if not is_structural_zero(Q)])
             works = not are_zero([power])[0]
             terms.append(PowerTerm(f.name, "load", power if works else se.Integer(0),
-                                   f"real power Σ Q_i q̇_i of {f.kind} `{f.name}`"
+                                   f"real power Σ Q_i q̇_i of `{f.name}`"
                                    + ("" if works else ": it does no work")))
         else:
             explicit = f.potential.diff(kin.t)

@@ -11,6 +11,7 @@ from ..dynamics import derive
 from ..model import load_model
 from ..model.zoo import lagrange_top
 from ..output import course_form, derive_document, render_latex, render_text
+from ..output._text import supplement
 
 __all__ = ["register"]
 
@@ -42,6 +43,7 @@ def run(args: argparse.Namespace) -> str:
         doc = derive_document(form, parameters=model.parameter_values, initial=initial, source=model.source,
                               package_version=__version__, eom=eom)
         return json.dumps(doc, indent=2, ensure_ascii=False) + "\n"
+    extra = supplement(eom, form)
     if args.latex:
-        return render_latex(form)
-    return render_text(form)
+        return render_latex(form, extra)
+    return render_text(form, extra)

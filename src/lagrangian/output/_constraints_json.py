@@ -11,7 +11,7 @@ from typing import Any
 
 import sympy
 
-from ..dynamics import EquationsOfMotion
+from ..dynamics import EquationsOfMotion, multiplier_formulas
 from ..dynamics._constraints import describe_constraints
 from ..model import Vector
 from ._course import to_sympy
@@ -23,19 +23,28 @@ def _s(e: Any) -> str:
     return sympy.sstr(to_sympy(e), order="none")
 
 
-def _vector(eom: EquationsOfMotion, v: Vector, frame: str) -> list[str]:
-    return [_s(c) for c in eom.kinematics.frames.express(v, frame)]
+def _declared(e: Any) -> str:
+    """A principal constraint as declared: `to_sympy`'s tidying would make it 0 (the coordinates satisfy it)."""
+    return sympy.sstr(e._sympy_() if hasattr(e, "_sympy_") else sympy.S(e), order="none")
+
+
+def _vector(eom: EquationsOfMotion, v: Vector, frame: str, text=_s) -> list[str]:  # type: ignore[no-untyped-def]
+    return [text(c) for c in eom.kinematics.frames.express(v, frame)]
 
 
 def constraints_section(eom: EquationsOfMotion) -> dict[str, Any]:
-    """``{"constraints": [...], "multipliers": [...], "multiplier_terms": [...]}`` for ``eom``, or ``{}``."""
+    """``{"constraints": [...], "multipliers": [...], "multiplier_terms": [...]}`` for ``eom``, or ``{}``.
+
+    With ``"multiplier_formulas"`` (λ_k → λ(q, q̇, t)) when `multiplier_formulas` solves them.
+    """
     if not eom.model.constraints:
         return {}
     q = eom.coordinates
     items = []
     for info in describe_constraints(eom):
-        statement = (_vector(eom, info.statement, info.frame) if isinstance(info.statement, Vector)
-                     else _s(info.statement))
+        text = _declared if info.role == "principal" else _s
+        statement = (_vector(eom, info.statement, info.frame, text) if isinstance(info.statement, Vector)
+                     else text(info.statement))
         rows = [{"name": r.name, "equation": _s(r.expression), "multiplier": r.multiplier.name,
                  "coefficients": {c: _s(a) for c, a in zip(q, r.coefficients)}, "b": _s(r.b),
                  "velocity": _s(r.velocity), "acceleration_bias": _s(r.bias)} for r in info.rows]
@@ -51,8 +60,12 @@ def constraints_section(eom: EquationsOfMotion) -> dict[str, Any]:
         items.append({"name": info.name, "role": info.role, "form": info.form, "kind": info.kind,
                       "description": info.description, "frame": info.frame, "statement": statement,
                       "rows": rows, "reaction": reaction})
-    return {
+    out = {
         "constraints": items,
         "multipliers": [m.name for m in eom.multipliers],
         "multiplier_terms": [_s(eq.multiplier_terms) for eq in eom.equations],
     }
+    formulas = multiplier_formulas(eom) if eom.constraints else None
+    if formulas is not None:
+        out["multiplier_formulas"] = {m.name: _s(f) for m, f in zip(eom.multipliers, formulas)}
+    return out

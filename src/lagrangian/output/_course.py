@@ -19,9 +19,10 @@ import sympy
 from .._identity import are_zero
 from ..analysis import FirstIntegral
 from ..dynamics import EquationsOfMotion
-from ..model import Vector
+from ..model import GALILEAN_FRAME, ORIGIN, Vector
 
-__all__ = ["CourseForm", "FrameStep", "VectorRow", "EquationRow", "LoadRow", "IntegralRow", "course_form"]
+__all__ = ["CourseForm", "FrameStep", "VectorRow", "EquationRow", "LoadRow", "IntegralRow", "course_form",
+           "reference_label"]
 
 
 #: Largest expression (SymPy operation count) for which an expanded, trigonometrically
@@ -140,6 +141,17 @@ class CourseForm:
     integrals: tuple[IntegralRow, ...]
     M: tuple[tuple[sympy.Basic, ...], ...]
     F: tuple[sympy.Basic, ...]
+    #: The frame the equations are written in, as labels print it: T(Σ/R), Ω(F/R) (R0, or the
+    #: model's [reference] frame, with its origin when it is not O: ``R0(A)``).
+    reference: str = GALILEAN_FRAME
+
+
+def reference_label(model) -> str:  # type: ignore[no-untyped-def]
+    """The name of the frame the equations of ``model`` are written in: R0, R1, or ``R0(A)`` (origin A ≠ O)."""
+    ref = model.reference
+    if ref is None or ref.is_galilean_frame:
+        return GALILEAN_FRAME
+    return ref.frame if ref.origin == ORIGIN else f"{ref.frame}({ref.origin})"
 
 
 #: How an engine expression becomes the printed SymPy expression (`to_sympy` by default).
@@ -257,4 +269,5 @@ def course_form(eom: EquationsOfMotion, integrals: tuple[FirstIntegral, ...], *,
         integrals=tuple(integral_rows),
         M=tuple(tuple(convert(x) for x in row) for row in eom.M),
         F=tuple(convert(x) for x in eom.F),
+        reference=reference_label(model),
     )

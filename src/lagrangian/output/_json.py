@@ -16,9 +16,10 @@ from typing import Any
 
 import sympy
 
+from ..analysis import energy_balance
 from ..dynamics import EquationsOfMotion
 from ._constraints_json import constraints_section
-from ._course import CourseForm
+from ._course import CourseForm, to_sympy
 
 __all__ = ["SCHEMA_ID", "SCHEMA_VERSION", "derive_document"]
 
@@ -36,7 +37,9 @@ def derive_document(form: CourseForm, *, parameters: dict[str, float | None],
     """The JSON object printed by ``lagrangian derive --json``.
 
     With ``eom`` whose model declares constraints, the optional keys ``constraints``,
-    ``multipliers`` and ``multiplier_terms`` are added (`_constraints_json`).
+    ``multipliers``, ``multiplier_terms`` and ``multiplier_formulas`` are added
+    (`_constraints_json`); ``reference`` when the equations are written in a non-Galilean
+    frame; ``energy_balance`` when no energy (or Jacobi) integral holds.
     """
     q = list(form.coordinates)
     doc = {
@@ -56,7 +59,7 @@ def derive_document(form: CourseForm, *, parameters: dict[str, float | None],
         "generalized_forces": [
             {"load": f.name, "kind": f.kind, "conservative": f.conservative,
              "potential": None if f.potential is None else _s(f.potential),
-             "Q": {c: _s(x) for c, x in zip(q, f.Q)}}
+             "Q": {c: _s(x) for c, x in zip(q, f.Q)}, "note": f.note}
             for f in form.loads
         ],
         "equations": [
@@ -74,4 +77,17 @@ def derive_document(form: CourseForm, *, parameters: dict[str, float | None],
     }
     if eom is not None:
         doc.update(constraints_section(eom))
+        ref = eom.model.reference
+        if ref is not None and not ref.is_galilean_frame:
+            doc["reference"] = {"frame": ref.frame, "origin": ref.origin}
+        if not any(i.kind in ("energy", "jacobi") for i in form.integrals):
+            doc["energy_balance"] = _balance(eom)
     return doc
+
+
+def _balance(eom: EquationsOfMotion) -> dict[str, Any]:
+    """dE/dt = P(non-conservative) term by term (`lagrangian.analysis.energy_balance`)."""
+    b = energy_balance(eom)
+    return {"energy": _s(to_sympy(b.E)), "power": _s(to_sympy(b.P_nc)), "conserved": b.conserved,
+            "terms": [{"name": t.name, "kind": t.kind, "power": _s(to_sympy(t.power)), "note": t.note}
+                      for t in b.terms]}

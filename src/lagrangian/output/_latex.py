@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from ._course import CourseForm
 from ._notation import _axis_latex
-from ._text import notation
+from ._text import Supplement, kind_words, notation, power_label
 
 __all__ = ["render_latex"]
 
@@ -27,9 +27,70 @@ def _escape(text: str) -> str:
     return text
 
 
-def render_latex(form: CourseForm) -> str:
-    """A standalone LaTeX document of the derivation."""
+def _frame(name: str) -> str:
+    """R0 → R_0; other frame names as written (R1, R0(A))."""
+    return "R_0" if name == "R0" else _escape(name)
+
+
+def _constraints_latex(n, extra: Supplement) -> list[str]:  # type: ignore[no-untyped-def]
+    out = [r"\subsection*{Constraints (step 1)}", r"\begin{itemize}"]
+    for c in extra.constraints:
+        if c.axes is None:
+            statement = f"${n.latex(c.statement[0])} = 0$"
+        else:
+            statement = ", ".join(f"${n.latex(x)} = 0$ (${_axis_latex(a)}$)" for x, a in zip(c.statement, c.axes)
+                                  if x != 0) or "$0 = 0$"
+        mult = (": multipliers $" + ", ".join(n.latex(_lam(row[1])) for row in c.rows) + "$") if c.rows else ""
+        out.append(rf"\item \texttt{{{_escape(c.name)}}} ({c.role}, {_escape(c.form.replace('_', ' '))}): "
+                   f"{statement}{mult}")
+    out.append(r"\end{itemize}")
+    return out
+
+
+def _lam(name: str):  # type: ignore[no-untyped-def]
+    import sympy
+
+    return sympy.Symbol(name)
+
+
+def _step7_latex(n, form: CourseForm, extra: Supplement) -> list[str]:  # type: ignore[no-untyped-def]
+    q = [n.symbol(c, latex=True) for c in form.coordinates]
+    out = [r"\subsection*{Complementary equations (step 7), multipliers and reactions}", r"\begin{align*}"]
+    rows = [rf"{n.latex(eq)} &= 0 && \text{{{_escape(row)}}}" for c in extra.constraints for row, _, eq in c.rows]
+    for name, formula in extra.multipliers:
+        value = n.latex(formula) if formula is not None else r"\text{(solved along a motion)}"
+        rows.append(rf"{n.latex(_lam(name))} &= {value}")
+    for r in extra.reactions:
+        label = rf"&& \text{{reaction of {_escape(r.constraint)}}}"
+        if r.force is not None:
+            rows.append(rf"\vec{{R}}({r.point}) &= {n.vector(r.force.terms, latex=True) if r.force.terms else '0'} {label}")
+        if r.moment is not None:
+            rows.append(rf"\vec{{C}}({_escape(r.body or '')}) &= "
+                        rf"{n.vector(r.moment.terms, latex=True) if r.moment.terms else '0'} {label}")
+        if r.force is None and r.moment is None:
+            rows.append("& " + r",\quad ".join(rf"Q_{{{qn}}} = {n.latex(g)}" for qn, g in zip(q, r.generalized))
+                        + label)
+    out.append(r" \\".join(rows))
+    out.append(r"\end{align*}")
+    return out
+
+
+def _balance_latex(n, extra: Supplement) -> list[str]:  # type: ignore[no-untyped-def]
+    assert extra.balance is not None and extra.power is not None
+    out = [r"\subsection*{Energy balance}",
+           r"No energy integral: with $E = T + U_P$, $\frac{dE}{dt} = P(\text{non-conservative})$, term by term:",
+           r"\begin{align*}"]
+    rows = [rf"&\text{{{_escape(power_label(t))}}}: & {n.latex(t.power)}" for t in extra.balance]
+    rows.append(rf"&\frac{{dE}}{{dt}} = & {n.latex(extra.power)}")
+    out.append(r" \\".join(rows))
+    out.append(r"\end{align*}")
+    return out
+
+
+def render_latex(form: CourseForm, extra: Supplement | None = None) -> str:
+    """A standalone LaTeX document of the derivation; ``extra`` adds steps 1 and 7 and the energy balance."""
     n = notation(form)
+    ref = _frame(form.reference)
     sym = lambda name: n.symbol(name, latex=True)  # noqa: E731
     out = [r"\documentclass[a4paper]{article}", r"\usepackage[utf8]{inputenc}", r"\usepackage{amsmath,amssymb}",
            r"\usepackage[margin=2cm]{geometry}", r"\allowdisplaybreaks", r"\begin{document}",
@@ -38,6 +99,11 @@ def render_latex(form: CourseForm) -> str:
         out.append(_escape(form.description) + r"\par")
     q = [sym(c) for c in form.coordinates]
     out.append(rf"Principal parameters ($n = {len(q)}$, hence ${len(q)}$ Lagrange equations): $" + ", ".join(q) + "$.")
+    if form.reference != "R0":
+        out.append(rf"The equations are written relative to ${ref}$, which is not Galilean (Remarque 3): "
+                   rf"$T(\Sigma/{ref})$, and the Coriolis and entrainment inertial forces among the loads.")
+    if extra is not None and extra.constraints:
+        out += _constraints_latex(n, extra)
     if form.frames:
         out.append(r"\subsection*{Frames and angular velocities}")
         out.append(r"\begin{align*}")
@@ -46,7 +112,11 @@ def render_latex(form: CourseForm) -> str:
             rows.append(rf"&{f.parent} \xrightarrow{{{n.latex(f.angle)},\ {_axis_latex(f.axis)}}} {f.name}"
                         rf"({', '.join(_axis_latex(a) for a in f.axes)})")
         for f in form.frames:
-            text = rf"\vec{{\Omega}}({f.name}/R_0) &= {n.vector(f.omega_chain.terms, latex=True)}"
+            if f.name == form.reference and extra is not None and extra.reference_omega is not None:
+                rows.append(rf"\vec{{\Omega}}({f.name}/R_0) &= {n.vector(extra.reference_omega.terms, latex=True)}"
+                            r" \quad\text{(prescribed)}")
+                continue
+            text = rf"\vec{{\Omega}}({f.name}/{ref}) &= {n.vector(f.omega_chain.terms, latex=True)}"
             if f.omega_components is not None and n.vector(f.omega_components.terms, latex=True) != n.vector(f.omega_chain.terms, latex=True):
                 text += rf" \\ &= {n.vector(f.omega_components.terms, latex=True)}"
             rows.append(text)
@@ -59,7 +129,7 @@ def render_latex(form: CourseForm) -> str:
         out.append(r"\end{align*}")
     out.append(r"\subsection*{Kinetic and potential energies}")
     out.append(r"\begin{align*}")
-    rows = [rf"T({row.name}/R_0) &= {_FORMULA.get(row.formula, '')} = {n.latex(row.expression)}" for row in form.T]
+    rows = [rf"T({row.name}/{ref}) &= {_FORMULA.get(row.formula, '')} = {n.latex(row.expression)}" for row in form.T]
     rows += [rf"U_P(\text{{{_escape(row.name)}}}) &= {n.latex(row.expression)} + \text{{cste}}" for row in form.U]
     out.append(r" \\".join(rows))
     out.append(r"\end{align*}")
@@ -70,7 +140,7 @@ def render_latex(form: CourseForm) -> str:
         for load in form.loads:
             comps = r",\quad ".join(rf"Q_{{{qn}}} = {n.latex(Q)}" for qn, Q in zip(q, load.Q))
             tag = "conservative" if load.conservative else "non-conservative"
-            rows.append(rf"&\text{{{_escape(load.name)} ({tag})}}: & {comps}")
+            rows.append(rf"&\text{{{_escape(load.name)} ({_escape(kind_words(load.kind))}, {tag})}}: & {comps}")
         out.append(r" \\".join(rows))
         out.append(r"\end{align*}")
     out.append(r"\subsection*{Lagrange equations}")
@@ -93,6 +163,8 @@ def render_latex(form: CourseForm) -> str:
     if form.conservative and form.L is not None:
         out.append(r"The system is conservative (Remarque 2): $L = T - U_P$ and "
                    r"$\frac{d}{dt}\frac{\partial L}{\partial \dot q_i} - \frac{\partial L}{\partial q_i} = 0$.")
+    if extra is not None and extra.multipliers:
+        out += _step7_latex(n, form, extra)
     out.append(r"\subsection*{First integrals}")
     if form.integrals:
         out.append(r"\begin{align*}")
@@ -100,6 +172,8 @@ def render_latex(form: CourseForm) -> str:
         out.append(r"\end{align*}")
     else:
         out.append("None found.")
+    if extra is not None and extra.balance is not None:
+        out += _balance_latex(n, extra)
     out.append(r"\subsection*{Matrix form $M(q,t)\,\ddot q = F(q,\dot q,t)$}")
     out.append(r"\begin{align*}")
     rows = []

@@ -1,14 +1,26 @@
-"""Terminal text of a derivation, in the order of the course's "démarche d'application"."""
+"""Terminal text of a derivation, in the order of the course's "démarche d'application".
+
+`render_text` prints a `CourseForm`; with a `Supplement` (`supplement(eom, form)`, what
+``lagrangian derive`` passes) it adds the constraints of step 1, the complementary
+equations of step 7 with the multipliers λ_k and the reactions they stand for, and the
+energy balance dE/dt = P(non-conservative) when no energy integral holds.
+"""
 
 from __future__ import annotations
 
 import re
+from dataclasses import dataclass
 
+import sympy
 
-from ._course import CourseForm
+from ..analysis import energy_balance
+from ..dynamics import EquationsOfMotion, multiplier_formulas
+from ..dynamics._constraints import FORMULA_MAX_SIZE, describe_constraints
+from ..model import Vector
+from ._course import CourseForm, VectorRow, _vector_row, to_sympy
 from ._notation import Notation
 
-__all__ = ["render_text"]
+__all__ = ["render_text", "Supplement", "supplement", "kind_words", "power_label", "notation", "greek"]
 
 _FORMULA = {
     "fixed point": "½ Ω·Π_{P}·Ω",
@@ -16,7 +28,153 @@ _FORMULA = {
     "particle": "½ m V(P)²",
 }
 
+#: Longest dE/dt = P_nc printed whole above its terms (characters).
+MAX_SUM_CHARS = 120
 
+#: Load kinds (the engine's lower-cased class names) as words.
+_KIND_WORDS = {"pointforce": "point force", "jointdamper": "joint damper", "generalizedforce": "generalized force",
+               "coulombfriction": "Coulomb friction"}
+
+
+def kind_words(kind: str) -> str:
+    """A load kind as printed: ``jointdamper`` → ``joint damper``, ``pointforce`` → ``point force``."""
+    return _KIND_WORDS.get(kind, kind)
+
+
+# -- what derive shows beyond the course form ---------------------------------------------------------
+@dataclass(frozen=True, slots=True)
+class PowerRow:
+    """One term of dE/dt = P(non-conservative): ``power`` with its ``name``, ``kind`` and ``note``."""
+
+    name: str
+    kind: str
+    power: sympy.Basic
+    note: str
+
+
+@dataclass(frozen=True, slots=True)
+class ConstraintLine:
+    """A declared constraint (step 1) and, when complementary, its rows (step 7).
+
+    ``statement`` is f (one expression) or the three components, in ``axes``, of the vector
+    that vanishes; a principal constraint's is the declared relation, not simplified (after
+    substitution of the coordinates it is identically zero).  ``rows`` are (row, multiplier,
+    equation = 0).
+    """
+
+    name: str
+    role: str
+    form: str
+    kind: str
+    statement: tuple[sympy.Basic, ...]
+    axes: tuple[str, ...] | None
+    rows: tuple[tuple[str, str, sympy.Basic], ...]
+
+
+@dataclass(frozen=True, slots=True)
+class ReactionLine:
+    """The effort a complementary constraint exerts, in its multipliers (what ``eom.reactions`` says)."""
+
+    constraint: str
+    point: str | None
+    body: str | None
+    counter_point: str | None
+    frame: str
+    force: VectorRow | None
+    moment: VectorRow | None
+    generalized: tuple[sympy.Basic, ...]
+    note: str
+
+
+@dataclass(frozen=True, slots=True)
+class Supplement:
+    """What ``derive`` prints besides the `CourseForm`.
+
+    Attributes
+    ----------
+    reference_omega : Ω(R/R0) of the reference frame R, when the equations are written in a
+        frame R that turns (None otherwise).
+    constraints : every declared constraint (steps 1 and 7).
+    multipliers : (λ_k, its formula λ(q, q̇, t), or None when not solved symbolically).
+    reactions : the reactions of the complementary constraints.
+    balance : the terms of dE/dt = P(non-conservative), E = T + U, when no energy (or Jacobi)
+        integral holds; None otherwise.  ``power`` is their sum.
+    """
+
+    reference_omega: VectorRow | None
+    constraints: tuple[ConstraintLine, ...]
+    multipliers: tuple[tuple[str, sympy.Basic | None], ...]
+    reactions: tuple[ReactionLine, ...]
+    balance: tuple[PowerRow, ...] | None
+    power: sympy.Basic | None
+
+
+#: Largest expression (SymPy operation count) that `_shortest` tries to cancel and factor.
+SHORTEN_MAX_OPS = 120
+
+
+def _shortest(e: object) -> sympy.Basic:
+    """`to_sympy`, then cancelled and factored when that is shorter: λ = m (g y − ẋ² − ẏ²)/(2 (x² + y²))."""
+    expr = to_sympy(e)  # type: ignore[arg-type]
+    if sympy.count_ops(expr) > SHORTEN_MAX_OPS:
+        return expr
+    cancelled = sympy.cancel(expr)
+    candidates = [expr, cancelled, sympy.factor(cancelled), to_sympy(sympy.expand(cancelled))]
+    return min(candidates, key=sympy.count_ops)
+
+
+def _declared(e: object) -> sympy.Basic:
+    """The relation as the derivation holds it, without `to_sympy`'s tidying (which would make it 0)."""
+    return e._sympy_() if hasattr(e, "_sympy_") else sympy.S(e)  # type: ignore[union-attr]
+
+
+def _constraint_lines(eom: EquationsOfMotion) -> tuple[ConstraintLine, ...]:
+    out = []
+    for info in describe_constraints(eom):
+        principal = info.role == "principal"
+        convert = _declared if principal else to_sympy
+        if isinstance(info.statement, Vector):
+            comps = eom.kinematics.frames.express(info.statement, info.frame)
+            statement = tuple(convert(c) for c in comps)
+            axes: tuple[str, ...] | None = eom.kinematics.frames.axes(info.frame)
+        else:
+            statement, axes = (convert(info.statement),), None
+        rows = tuple((r.name, r.multiplier.name, to_sympy(r.expression)) for r in info.rows)
+        out.append(ConstraintLine(info.name, info.role, info.form, info.kind, statement, axes, rows))
+    return tuple(out)
+
+
+def _reaction_lines(eom: EquationsOfMotion) -> tuple[ReactionLine, ...]:
+    out = []
+    for r in eom.reactions:
+        force = _vector_row(eom, Vector({r.frame: r.force_components})) if r.point is not None else None
+        moment = _vector_row(eom, Vector({r.frame: r.moment_components})) if r.body is not None else None
+        out.append(ReactionLine(r.constraint, r.point, r.body, r.counter_point, r.frame, force, moment,
+                                tuple(to_sympy(g) for g in r.generalized), r.note))
+    return tuple(out)
+
+
+def supplement(eom: EquationsOfMotion, form: CourseForm) -> Supplement:
+    """Collect what ``derive`` prints besides ``form`` (see `Supplement`)."""
+    kin = eom.kinematics
+    omega = getattr(kin, "frame_omega", None)  # Ω(R/R0) of a RelativeKinematics
+    reference_omega = _vector_row(eom, omega) if isinstance(omega, Vector) and not omega.is_zero() else None
+    formulas = multiplier_formulas(eom) if eom.constraints else None
+    multipliers = tuple((m.name, None if formulas is None else _shortest(f))
+                        for m, f in zip(eom.multipliers, formulas or (None,) * len(eom.multipliers)))
+    balance: tuple[PowerRow, ...] | None = None
+    power = None
+    if not any(i.kind in ("energy", "jacobi") for i in form.integrals):
+        b = energy_balance(eom)
+        kinds = {f.name: kind_words(f.kind) for f in eom.loads}
+        balance = tuple(PowerRow(t.name, kinds[t.name] if t.kind == "load" else t.kind, _shortest(t.power), t.note)
+                        for t in b.terms)
+        power = _shortest(b.P_nc)
+    return Supplement(reference_omega, _constraint_lines(eom) if eom.model.constraints else (), multipliers,
+                      _reaction_lines(eom), balance, power)
+
+
+# -- text -----------------------------------------------------------------------------------------------
 def notation(form: CourseForm) -> Notation:
     """The notation of a derivation; first-integral constants (K, H) order like parameters."""
     return Notation(form.coordinates, form.parameters + tuple(i.name for i in form.integrals))
@@ -29,10 +187,84 @@ def greek(n: Notation, form: CourseForm, sentence: str) -> str:
     return sentence
 
 
-def render_text(form: CourseForm) -> str:
-    """The derivation as plain Unicode text (ψ̇, θ̈, sin²θ...)."""
+def _statement(n: Notation, line: ConstraintLine) -> str:
+    if line.axes is None:
+        return f"{n.text(line.statement[0])} = 0"
+    return "; ".join(f"{n.text(c)} = 0 ({axis})" for c, axis in zip(line.statement, line.axes) if c != 0) or "0 = 0"
+
+
+def _constraints_text(n: Notation, extra: Supplement) -> list[str]:
+    lines = ["", "Constraints (step 1: principal ones are satisfied by the choice of the q_i; complementary ones "
+             "keep a multiplier λ_k):"]
+    for c in extra.constraints:
+        head = f"  {c.name} ({c.role}, {c.form.replace('_', ' ')}): {_statement(n, c)}"
+        if c.role == "complementary":
+            head += "    λ: " + ", ".join(row[1] for row in c.rows)
+        lines.append(head)
+    return lines
+
+
+def _step7_text(n: Notation, form: CourseForm, extra: Supplement) -> list[str]:
+    q = [n.symbol(c) for c in form.coordinates]
+    lines = ["", "Complementary equations (step 7), multipliers and reactions (λ_k multiplies +A_ki; a reaction "
+             "is what the constraint exerts on the body):"]
+    for c in extra.constraints:
+        for row, _, equation in c.rows:
+            lines.append(f"  {n.text(equation)} = 0    [{row}]")
+    unsolved = [name for name, formula in extra.multipliers if formula is None]
+    for name, formula in extra.multipliers:
+        if formula is not None:
+            lines.append(f"  {name} = {n.text(formula)}")
+    if unsolved:
+        lines.append(f"  {', '.join(unsolved)}: not solved symbolically (n + m > {FORMULA_MAX_SIZE}); "
+                     "`lagrangian simulate` gives them along a motion")
+    for r in extra.reactions:
+        parts = []
+        if r.force is not None:
+            parts.append(f"force at {r.point}: R = {n.vector(r.force.terms) if r.force.terms else '0'}"
+                         + (f" (−R at {r.counter_point})" if r.counter_point else ""))
+        if r.moment is not None:
+            parts.append(f"moment on {r.body}: C = {n.vector(r.moment.terms) if r.moment.terms else '0'}")
+        if not parts:
+            parts.append(";  ".join(f"Q_{qn} = {n.text(g)}" for qn, g in zip(q, r.generalized)))
+        lines.append(f"  reaction of {r.constraint}: " + ";  ".join(parts))
+    return lines
+
+
+def power_label(t: PowerRow) -> str:
+    """``hinge (joint damper)``, ``∂U/∂t (weight)``, ``prescribed motion``, ``λ (length), reaction``."""
+    if t.kind in ("explicit time", "prescribed motion"):
+        return t.name
+    return f"{t.name}, reaction" if t.kind == "constraint" else f"{t.name} ({t.kind})"
+
+
+def _balance_text(n: Notation, extra: Supplement) -> list[str]:
+    assert extra.balance is not None and extra.power is not None
+    total = n.text(extra.power)
+    lines = ["", "Energy balance (no energy integral), E = T + U_P:  dE/dt = P(non-conservative)"
+             + (f" = {total}" if len(total) <= MAX_SUM_CHARS or len(extra.balance) < 2 else "") + ", term by term:"]
+    for t in extra.balance:
+        lines.append(f"  {power_label(t)}: {n.text(t.power)}")
+    if not extra.balance:
+        lines.append("  none: P(non-conservative) ≡ 0")
+    return lines
+
+
+def _multipliers_readable(text: str, extra: Supplement | None) -> str:
+    """λ_length rather than lambda_length."""
+    if extra is None:
+        return text
+    for name, _ in extra.multipliers:
+        text = re.sub(rf"(?<![A-Za-z0-9_]){re.escape(name)}(?![A-Za-z0-9_])", "λ_" + name.removeprefix("lambda_"),
+                      text)
+    return text
+
+
+def render_text(form: CourseForm, extra: Supplement | None = None) -> str:
+    """The derivation as plain Unicode text (ψ̇, θ̈, sin²θ...); ``extra`` adds steps 1 and 7 and the energy balance."""
     n = notation(form)
     q = [n.symbol(c) for c in form.coordinates]
+    ref = form.reference
     lines = [form.title]
     if form.description:
         lines.append(form.description)
@@ -40,13 +272,21 @@ def render_text(form: CourseForm) -> str:
     count = len(form.coordinates)
     lines.append(f"Principal parameters (n = {count}, hence {count} Lagrange equation{'s' * (count > 1)}): "
                  + ", ".join(q))
+    if ref != "R0":
+        lines.append(f"The equations are written relative to {ref}, which is not Galilean (Remarque 3): T(Σ/{ref}), "
+                     "and the Coriolis and entrainment inertial forces among the loads.")
+    if extra is not None and extra.constraints:
+        lines += _constraints_text(n, extra)
     if form.frames:
         lines.append("")
-        lines.append("Frames (R0 is Galilean) and angular velocities:")
+        lines.append("Frames (R0 is Galilean) and angular velocities" + (f" relative to {ref}:" if ref != "R0" else ":"))
         for f in form.frames:
             lines.append(f"  {f.parent} --({n.text(f.angle)}, {f.axis})--> {f.name}({', '.join(f.axes)})")
         for f in form.frames:
-            text = f"  Ω({f.name}/R0) = {n.vector(f.omega_chain.terms)}"
+            if f.name == ref and extra is not None and extra.reference_omega is not None:
+                lines.append(f"  Ω({f.name}/R0) = {n.vector(extra.reference_omega.terms)}    (prescribed)")
+                continue
+            text = f"  Ω({f.name}/{ref}) = {n.vector(f.omega_chain.terms)}"
             if f.omega_components is not None:
                 alt = n.vector(f.omega_components.terms)
                 if alt != n.vector(f.omega_chain.terms):
@@ -58,10 +298,10 @@ def render_text(form: CourseForm) -> str:
         for point, row in form.virtual_velocities:
             lines.append(f"  V*({point}) = {n.vector(row.terms)}")
     lines.append("")
-    lines.append("Kinetic energy T(Σ/R0):")
+    lines.append(f"Kinetic energy T(Σ/{ref}):")
     for row in form.T:
-        lines.append(f"  T({row.name}/R0) = {n.text(row.expression)}    [{row.formula}]")
-    lines.append("Potential energy U_P(Σ/R0) (+ cste):")
+        lines.append(f"  T({row.name}/{ref}) = {n.text(row.expression)}    [{row.formula}]")
+    lines.append(f"Potential energy U_P(Σ/{ref}) (+ cste):")
     if form.U:
         for row in form.U:
             lines.append(f"  {row.name}: {n.text(row.expression)}")
@@ -72,11 +312,14 @@ def render_text(form: CourseForm) -> str:
     for load in form.loads:
         tag = "conservative, Q_i = −∂U/∂q_i" if load.conservative else "non-conservative"
         comps = ";  ".join(f"Q_{qn} = {n.text(Q)}" for qn, Q in zip(q, load.Q))
-        lines.append(f"  {load.name} ({load.kind}, {tag}): {comps}")
+        lines.append(f"  {load.name} ({kind_words(load.kind)}, {tag}): {comps}")
+        if extra is not None and load.note:
+            lines.append(f"      {greek(n, form, load.note)}")
     if not form.loads:
         lines.append("  none")
     lines.append("")
-    lines.append("Lagrange equations  d/dt(∂T/∂q̇_i) − ∂T/∂q_i = −∂U/∂q_i + Q_i(nc):")
+    lines.append("Lagrange equations  d/dt(∂T/∂q̇_i) − ∂T/∂q_i = −∂U/∂q_i + Q_i(nc)"
+                 + (" + Σ_k λ_k A_ki:" if extra is not None and extra.multipliers else ":"))
     for eq in form.equations:
         qn = n.symbol(eq.coordinate)
         qd = n.symbol(eq.coordinate + "_dot")
@@ -91,12 +334,16 @@ def render_text(form: CourseForm) -> str:
                 lines.append(f"        or, with the first integrals: {n.text(eq.using_integrals)} = {n.text(eq.rhs)}")
     if form.conservative and form.L is not None:
         lines.append(f"  The system is conservative (Remarque 2): L = T − U_P = {n.sum((form.T_total, -form.U_total))}")
+    if extra is not None and extra.multipliers:
+        lines += _step7_text(n, form, extra)
     lines.append("")
     lines.append("First integrals:")
     if not form.integrals:
         lines.append("  none found")
     for i in form.integrals:
         lines.append(f"  {n.sum(i.parts)} = {i.name}    ({greek(n, form, i.reason)})")
+    if extra is not None and extra.balance is not None:
+        lines += _balance_text(n, extra)
     lines.append("")
     lines.append("Matrix form M(q, t) q̈ = F(q, q̇, t):")
     for a, row in enumerate(form.M):
@@ -105,4 +352,4 @@ def render_text(form: CourseForm) -> str:
                 lines.append(f"  M[{q[a]},{q[b]}] = {n.text(entry)}")
     for a, f in enumerate(form.F):
         lines.append(f"  F[{q[a]}] = {n.text(f)}")
-    return "\n".join(lines) + "\n"
+    return _multipliers_readable("\n".join(lines) + "\n", extra)
