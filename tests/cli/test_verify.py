@@ -77,3 +77,12 @@ def test_report_to_a_file(tmp_path: Path, capsys) -> None:
     assert main(["verify", str(ROOT / "examples/simple_pendulum.toml"), "-o", str(target)]) == 0
     assert capsys.readouterr().out == ""
     assert "L(θ) ⇔ moment theorem at O projected on x0" in target.read_text(encoding="utf-8")
+
+
+def test_labels_in_a_rotating_reference_frame(capsys) -> None:
+    """With inertial loads the theorems are written relative to R: γ(P/R), not γ(P/R0)."""
+    assert main(["verify", str(ROOT / "examples/bead_rotating_hoop.toml")]) == 0
+    out = capsys.readouterr().out
+    assert "m γ(P/R1) = weight + Coriolis + entrainment + R" in out
+    assert "R(→P) = m γ(P/R1) − (Coriolis + entrainment + weight)" in out
+    assert "γ(P/R0)" not in out and "(R0 Galilean)" not in out and "relative to R1, not Galilean" in out

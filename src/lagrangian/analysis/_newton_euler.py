@@ -12,6 +12,12 @@ components differentiated in the frame where Π is constant, plus Ω(F/R0) ∧ �
 inertia is not given at P, σ_G = Π_G · Ω and δ_P = δ_G + PG ∧ m γ(G).  A particle has
 only the resultant theorem.
 
+When the model writes its equations relative to a non-Galilean reference frame R
+(``[reference]``, seed Remarque 3), the kinematics are relative to R: the same theorems hold
+with γ(G/R), σ_P(S/R), δ_P(S/R), the Coriolis and entrainment inertial torsors being among the
+efforts (`dynamics._inertial.inertial_torsors`); the labels then read R for R0
+(``lagrangian verify``: m γ(P/R) = weight + Coriolis + entrainment + R).
+
 Remarque 4 says the Lagrange equation of q_i is a combination of those theorems,
 projected on the axes that go with q_i.  The combination is the virtual power of each
 torsor for the field V* = ∂V/∂q̇_i (the partial velocities):
@@ -73,9 +79,9 @@ class ElementTheorems:
     kind: str  # "body" or "particle"
     point: str
     mass: se.Basic
-    mass_acceleration: Vector  # m γ(G/R0)
-    angular_momentum: Vector  # σ_P(S/R0) = Π_P·Ω (zero for a particle)
-    dynamic_moment: Vector  # δ_P(S/R0) = dσ_P/dt|R0
+    mass_acceleration: Vector  # m γ(G/R0) (γ(G/R) in a reference frame R)
+    angular_momentum: Vector  # σ_P(S/R0) = Π_P·Ω (zero for a particle; relative to R in a frame R)
+    dynamic_moment: Vector  # δ_P(S/R0) = dσ_P/dt|R0 (|R in a frame R)
     force: Vector  # Σ given forces on the element
     moment: Vector  # Σ M_P of the given efforts on the element
     efforts: tuple[str, ...]  # names of the loads acting on it

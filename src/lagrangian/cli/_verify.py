@@ -20,7 +20,7 @@ from ..errors import VerificationError
 from ..model import Torque, Vector, load_model
 from ..model.zoo import lagrange_top
 from ..output import Notation
-from ..output._course import to_sympy
+from ..output._course import reference_label, to_sympy
 from ._settings import SettingError, add_set_option, parse_settings
 
 __all__ = ["register", "run", "TOLERANCE"]
@@ -66,6 +66,8 @@ class _Printer:
         model = v.eom.model
         self.kin = v.eom.kinematics
         self.notation = Notation([c.name for c in model.coordinates], [p.name for p in model.parameters])
+        #: The frame the theorems are written in: R0, or the reference frame R (with the inertial loads).
+        self.frame = reference_label(model)
 
     def expr(self, e: se.Basic, *, full: bool = False) -> str:
         return self._short(self.notation.text(to_sympy(e)), full)
@@ -92,17 +94,20 @@ class _Printer:
 
 def _symbolic_report(v: Verification, p: _Printer) -> list[str]:
     model = v.eom.model
-    lines = [f"Newton–Euler check of {model.name} (R0 Galilean)", "",
+    f = p.frame
+    where = ("R0 Galilean" if f == "R0" else
+             f"relative to {f}, not Galilean: the Coriolis and entrainment inertial efforts are among the loads")
+    lines = [f"Newton–Euler check of {model.name} ({where})", "",
              "Vector theorems, body by body (R = constraint actions on it, M_P their moment):"]
     for th in v.theorems:
         efforts = " + ".join(th.efforts) if th.efforts else "0"
         if th.kind == "particle":
-            lines.append(f"  {th.name} (particle): {p.expr(th.mass)} γ({th.name}/R0) = {efforts} + R")
+            lines.append(f"  {th.name} (particle): {p.expr(th.mass)} γ({th.name}/{f}) = {efforts} + R")
             continue
         at = th.point if th.point != th.name else "G"
-        lines.append(f"  {th.name} (body, moments at {at}): {p.expr(th.mass)} γ(G/R0) = {efforts} + R;  "
-                     f"δ_{at}({th.name}/R0) = M_{at}({efforts}) + M_{at}(R)")
-        lines.append(f"      σ_{at}({th.name}/R0) = Π_{at}·Ω = {p.vector(th.angular_momentum)}")
+        lines.append(f"  {th.name} (body, moments at {at}): {p.expr(th.mass)} γ(G/{f}) = {efforts} + R;  "
+                     f"δ_{at}({th.name}/{f}) = M_{at}({efforts}) + M_{at}(R)")
+        lines.append(f"      σ_{at}({th.name}/{f}) = Π_{at}·Ω = {p.vector(th.angular_momentum)}")
     lines += ["", "Each L(q_i) is those theorems projected on the directions of q_i (∂V/∂q̇_i, ∂Ω/∂q̇_i). "
               "The constraints are perfect:", "their actions do no virtual work and drop out of every projection."]
     if v.virtual_power_loads:
@@ -122,7 +127,7 @@ def _symbolic_report(v: Verification, p: _Printer) -> list[str]:
 
 
 def _reaction_report(v: Verification, rs: tuple[Reaction, ...], p: _Printer) -> list[str]:
-    lines = ["", "Constraint reactions (resultant theorem: what the given efforts leave of Σ m γ(G/R0)):"]
+    lines = ["", f"Constraint reactions (resultant theorem: what the given efforts leave of Σ m γ(G/{p.frame})):"]
     for r in rs:
         members = " + ".join(r.elements)
         masses = " + ".join(_mass_acceleration(v, p, n, alone=len(r.elements) == 1) for n in r.elements)
@@ -148,10 +153,11 @@ def _reaction_report(v: Verification, rs: tuple[Reaction, ...], p: _Printer) -> 
 
 
 def _mass_acceleration(v: Verification, p: _Printer, name: str, *, alone: bool) -> str:
-    """``m γ(G/R0)`` for a lone body, ``m1 γ(G_S1/R0)`` in a group, ``m γ(P/R0)`` for a particle."""
+    """``m γ(G/R0)`` for a lone body, ``m1 γ(G_S1/R0)`` in a group, ``m γ(P/R0)`` for a particle (R for R0
+    when the equations are written in a reference frame R)."""
     th = v.element(name)
     point = name if th.kind == "particle" else ("G" if alone else f"G_{name}")
-    return f"{p.expr(th.mass)} γ({point}/R0)"
+    return f"{p.expr(th.mass)} γ({point}/{p.frame})"
 
 
 def _across(r: Reaction, p: _Printer) -> str:
