@@ -230,6 +230,19 @@ def top_reaction() -> Oracle:
     return [xG, yG, zG, psi, theta, phi], S.kinetic_energy(N), [(G, -m * g * N.z)], N
 
 
+def block_on_incline() -> Oracle:
+    m, g, alpha, f = _params("m g alpha f")
+    x = me.dynamicsymbols("x")
+    N = me.ReferenceFrame("N")
+    slope = N.orientnew("slope", "Axis", [alpha, N.y])  # slope.x points down the incline
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    B = O.locatenew("B", x * slope.x)
+    B.set_vel(N, x.diff() * slope.x)
+    friction = -f * m * g * sp.cos(alpha) * x.diff() / sp.sqrt(x.diff() ** 2) * slope.x  # exact Coulomb law
+    return [x], me.Particle("block", B, m).kinetic_energy(N), [(B, -m * g * N.z + friction)], N
+
+
 ORACLES: dict[str, Callable[[], Oracle]] = {
     "pendulum_tension.toml": pendulum_tension,
     "rolling_disk_incline.toml": rolling_disk_incline,
@@ -243,6 +256,7 @@ ORACLES: dict[str, Callable[[], Oracle]] = {
     "bead_rotating_hoop.toml": bead_rotating_hoop,
     "foucault_pendulum.toml": foucault_pendulum,
     "kapitza_pendulum.toml": kapitza_pendulum,
+    "block_on_incline.toml": block_on_incline,
     "block_on_belt.toml": block_on_belt,
 }
 
