@@ -4,9 +4,12 @@
 ``simulate(model_or_eom, t_end, ...)`` → `Trajectory`.
 """
 
+from ._dae import STABILIZATIONS as STABILIZATIONS
+from ._files import check_output_path as check_output_path
 from ._files import save_trajectory as save_trajectory
 from ._simulate import METHODS as METHODS
 from ._simulate import EventSpec as EventSpec
+from ._simulate import default_tolerance as default_tolerance
 from ._simulate import initial_state as initial_state
 from ._simulate import simulate as simulate
 from ._stickslip import simulate_stick_slip as simulate_stick_slip
@@ -17,5 +20,6 @@ from ._top_check import simulation_check as simulation_check
 from ._trajectory import Event as Event
 from ._trajectory import Trajectory as Trajectory
 
-__all__ = ["simulate", "simulate_stick_slip", "save_trajectory", "EventSpec", "initial_state", "METHODS", "CompiledSystem", "compile_system", "Trajectory", "Event",
+__all__ = ["simulate", "simulate_stick_slip", "save_trajectory", "check_output_path", "EventSpec", "initial_state", "METHODS",
+           "STABILIZATIONS", "default_tolerance", "CompiledSystem", "compile_system", "Trajectory", "Event",
            "SimulationCheck", "simulation_check"]

@@ -48,7 +48,7 @@ from ._codegen import monitor_expressions
 from ._codegen_dae import generate_dae_c
 from ._compile import compile_library, compiler
 from ._projection import check_initial, project, project_many
-from ._trajectory import Event, Trajectory
+from ._trajectory import Event, Trajectory, conservation
 
 __all__ = ["ConstrainedSystem", "simulate_dae", "constrained_source", "STABILIZATIONS", "reaction_columns"]
 
@@ -334,7 +334,8 @@ def simulate_dae(
     """
     from scipy import integrate
 
-    from ._simulate import _event_expressions, _output_times, _progress_bar, initial_state
+    from ._simulate import _event_expressions, _output_times, _progress_bar, check_options, default_tolerance, \
+        initial_state
 
     source, eom = constrained_source(source)
     if eom is None:
@@ -355,13 +356,18 @@ def simulate_dae(
     if projecting and method not in EXPLICIT:
         raise SimulationError(f"The projection onto the constraints needs an explicit method, not `{method}`.",
                               fix="use method='dop853', or stabilization='baumgarte' with this method")
-    if not (rtol > 0 and atol > 0):
-        raise SimulationError("rtol and atol must be positive.", fix="e.g. rtol=1e-10, atol=1e-10")
+    check_options(rtol, atol, tolerance)
+    # The default tolerance applies to the first integrals; the constraint residuals are
+    # checked only against a tolerance asked for.
+    residual_tolerance = tolerance
+    if tolerance is None:
+        tolerance = default_tolerance(method, rtol)
     stab = np.array(baumgarte if stabilization in ("baumgarte", "both") else (0.0, 0.0), dtype=float)
     system = source if isinstance(source, ConstrainedSystem) else ConstrainedSystem(eom, backend=backend)
     p = system.parameter_vector(parameters)
     y0 = initial_state(eom, initial)
-    t_out = _output_times(float(t_start), float(t_end), n_out, t_eval)
+    t_out = _output_times(float(t_start), float(t_end), n_out, t_eval,
+                          4 * system.n + 3 * system.m + len(system.monitors) + len(system.reactions) + 1)
     check_initial(system, float(t_start), y0, p)
     specs = _event_expressions(eom, [e for e in events])
     event_fn = None
@@ -448,16 +454,23 @@ def simulate_dae(
     if projecting and i_out:
         Y[:i_out] = project_many(system, t_out[:i_out], Y[:i_out], p, tol)[0]
     return _trajectory(system, p, t_out[:i_out], Y[:i_out], stab, evs, method, stabilization, steps, calls[0],
-                       tolerance, status)
+                       tolerance, status, residual_tolerance=residual_tolerance)
 
 
 def _trajectory(system: ConstrainedSystem, p, t, Y, stab, evs, method, stabilization, steps, nfev,  # type: ignore[no-untyped-def]
-                tolerance, status) -> Trajectory:
+                tolerance, status, *, residual_tolerance: float | None = None) -> Trajectory:
+    """The `Trajectory` of a run; ``tolerance`` for the first integrals, ``residual_tolerance``
+    (default ``tolerance``) for the constraint residuals."""
+    from ._simulate import momenta
+
+    if residual_tolerance is None:
+        residual_tolerance = tolerance
     n = system.n
     Y = np.ascontiguousarray(Y)
+    M = None
     if len(t):
         dY, LAM = system.rhs(t, Y, p, stab)
-        _, _, _, _, g, f = system.parts(t, Y, p)
+        M, _, _, _, g, f = system.parts(t, Y, p)
         values = system.monitor_values(t, Y, p)
         reactions = system.reaction_values(t, Y, LAM, p)
     else:
@@ -465,11 +478,8 @@ def _trajectory(system: ConstrainedSystem, p, t, Y, stab, evs, method, stabiliza
         g = f = np.zeros((0, system.m))
         values, reactions = np.zeros((0, len(system.monitors))), np.zeros((0, len(system.reactions)))
     monitors = {name: values[:, k].copy() for k, name in enumerate(system.monitors)}
-    drift = {}
-    for name in system.integrals:
-        series = monitors[name]
-        ref = series[0] if len(series) else 0.0
-        drift[name] = float(np.max(np.abs(series - ref)) / (abs(ref) if ref != 0 else 1.0)) if len(series) else 0.0
+    drift, scales = conservation(monitors, system.integrals, momenta=momenta(system.eom, system.integrals),
+                                 M=None if M is None else np.asarray(M).reshape(len(t), n, n), qd=Y[:, n:])
     constraint_drift = {}
     for k, row in enumerate(system.rows):
         if system.holonomic[k]:
@@ -481,8 +491,9 @@ def _trajectory(system: ConstrainedSystem, p, t, Y, stab, evs, method, stabiliza
         f"{name} drifted by {drift[name]:.2e} (relative), more than the tolerance {tolerance:.1e}"
         for name in system.integrals if tolerance is not None and drift[name] > tolerance)
     warnings += tuple(
-        f"the constraint residual {name} reached {drift[name]:.2e}, more than the tolerance {tolerance:.1e}"
-        for name in constraint_drift if tolerance is not None and drift[name] > tolerance)
+        f"the constraint residual {name} reached {drift[name]:.2e}, more than the tolerance "
+        f"{residual_tolerance:.1e}"
+        for name in constraint_drift if residual_tolerance is not None and drift[name] > residual_tolerance)
     extra = {f"lambda_{row}": LAM[:, k].copy() for k, row in enumerate(system.rows)}
     extra.update({name: reactions[:, k].copy() for k, name in enumerate(system.reactions)})
     events = tuple(Event(name, te, np.array(ye[:n]), np.array(ye[n:])) for name, te, ye in evs)
@@ -493,5 +504,5 @@ def _trajectory(system: ConstrainedSystem, p, t, Y, stab, evs, method, stabiliza
         t=np.asarray(t, dtype=float), q=Y[:, :n].copy(), qd=Y[:, n:].copy(), qdd=dY[:, n:].copy(),
         monitors=monitors, integrals=tuple(system.integrals), drift=drift,
         method=f"{label} + {stabilization}", steps=steps, rhs_calls=nfev, tolerance=tolerance, warnings=warnings,
-        events=events, status=status, conditioning=system.worst_pivot, extra=extra,
+        events=events, status=status, conditioning=system.worst_pivot, extra=extra, scales=scales,
     )

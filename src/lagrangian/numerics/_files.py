@@ -3,7 +3,9 @@
 CSV starts with ``#`` comment lines (model, method, parameters, drift of the first
 integrals), then a header row with `Trajectory.columns` and one row per output time,
 every number with 17 significant digits so that nothing is lost on reading back.
-NPZ holds ``t``, ``q``, ``qd``, ``qdd``, one ``monitor_<name>`` array per monitor,
+NPZ holds every column the CSV has: ``t``, ``q``, ``qd``, ``qdd``, one ``monitor_<name>``
+array per monitor, one ``extra_<name>`` array per extra column (reactions ``R_O_x0``...,
+multipliers), ``table`` — all of them as one (N, k) array, in the order of ``columns`` —
 ``columns`` and a ``metadata`` JSON string.
 """
 
@@ -19,7 +21,7 @@ from .._atomic import write_atomic_with
 from ..errors import OutputError
 from ._trajectory import Trajectory
 
-__all__ = ["save_trajectory", "FORMATS"]
+__all__ = ["save_trajectory", "check_output_path", "FORMATS"]
 
 FORMATS = (".csv", ".npz")
 
@@ -34,6 +36,27 @@ def _metadata(traj: Trajectory) -> dict:
     }
 
 
+def check_output_path(path: str | Path) -> Path:
+    """Check, before a run, that ``path`` can take a trajectory: a known suffix, an existing folder.
+
+    Raises
+    ------
+    OutputError
+        For another suffix, a missing folder, or a path that is a folder.
+    """
+    path = Path(path)
+    if path.suffix.lower() not in FORMATS:
+        raise OutputError(f"Cannot tell the format of `{path}` from its suffix `{path.suffix}`.",
+                          fix="name the output file `.csv` (a table) or `.npz` (NumPy arrays)")
+    if path.is_dir():
+        raise OutputError(f"`{path}` is a folder, not a file.", fix="give a file name, e.g. traj.csv")
+    folder = path.parent
+    if not folder.is_dir():
+        raise OutputError(f"Cannot write `{path}`: the folder `{folder}` does not exist.",
+                          fix="create the folder first, or write elsewhere")
+    return path
+
+
 def save_trajectory(traj: Trajectory, path: str | Path) -> Path:
     """Write ``traj`` to ``path`` (``.csv`` or ``.npz``); an older file there is replaced only on success.
 
@@ -45,8 +68,7 @@ def save_trajectory(traj: Trajectory, path: str | Path) -> Path:
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in FORMATS:
-        raise OutputError(f"Cannot tell the format of `{path}` from its suffix `{path.suffix}`.",
-                          fix="name the output file `.csv` (a table) or `.npz` (NumPy arrays)")
+        check_output_path(path)
     if suffix == ".csv":
         meta = _metadata(traj)
         header = "\n".join([
@@ -71,6 +93,8 @@ def save_trajectory(traj: Trajectory, path: str | Path) -> Path:
             arrays = {"t": traj.t, "q": traj.q, "qd": traj.qd, "qdd": traj.qdd,
                       "columns": np.array(traj.columns()), "metadata": np.array(json.dumps(_metadata(traj)))}
             arrays.update({f"monitor_{name}": values for name, values in traj.monitors.items()})
+            arrays.update({f"extra_{name}": np.asarray(values) for name, values in traj.extra.items()})
+            arrays["table"] = traj.table()
             np.savez(handle, **arrays)
     try:
         write_atomic_with(path, writer)

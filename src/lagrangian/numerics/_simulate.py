@@ -1,8 +1,10 @@
 """`simulate`: integrate M q̈ = F from the model's initial state, with conservation monitors.
 
-The run itself happens in compiled C (`_integrators.c`): Python sets it up, calls it once
-(or once per progress chunk), and turns the preallocated output arrays into a
-`Trajectory`.  Memory is the output grid, whatever the number of steps.
+The run itself happens in compiled C (`_integrators.c`): Python sets it up, calls it once,
+and turns the preallocated output arrays into a `Trajectory`.  Memory is the output grid,
+whatever the number of steps.  A progress bar is drawn by a second thread that reads the
+time the C loop reached (ctypes releases the GIL during the call), so the run is the same,
+bit for bit, with or without it.
 
 Methods
 -------
@@ -18,7 +20,11 @@ Methods
 
 from __future__ import annotations
 
+import math
+import os
 import sys
+import threading
+import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -31,15 +37,25 @@ from ..errors import ModelError, SimulationError
 from ..model import load_model
 from ..model._expr import ExpressionError, parse_expression
 from ..model.spec import Model
-from ._dae import ConstrainedSystem, constrained_source, simulate_dae
+from ._dae import BAUMGARTE, ConstrainedSystem, constrained_source, simulate_dae
 from ._system import CompiledSystem, _ptr
-from ._trajectory import Event, Trajectory
+from ._trajectory import Event, Trajectory, conservation
 
-__all__ = ["simulate", "EventSpec", "initial_state", "METHODS"]
+__all__ = ["simulate", "EventSpec", "initial_state", "METHODS", "default_tolerance"]
 
 BUILTIN = ("dop853", "gauss-legendre")
 SCIPY = ("RK45", "RK23", "DOP853", "Radau", "BDF", "LSODA")
 METHODS = BUILTIN + SCIPY
+
+#: Smallest rtol, about 50 machine epsilons: a tighter local tolerance than this cannot be met by
+#: a step in double precision (SciPy clips rtol at 100 epsilons; the built-in DOP853 still
+#: converges at 1e-14).
+RTOL_MIN = 1e-14
+#: The drift tolerance when none is given: adaptive methods warn above min(1e3 rtol, 1e-6);
+#: the symplectic method (no rtol) above 1e-6.
+DEFAULT_TOLERANCE_FACTOR, DEFAULT_TOLERANCE_CAP = 1e3, 1e-6
+#: Largest output the arrays of a run may take (bytes): at most this, or a quarter of the memory.
+OUTPUT_MEMORY_CAP = 8 * 2**30
 
 _STATUS = {
     1: "the mass matrix M became singular",
@@ -156,8 +172,47 @@ def _singularity(system: CompiledSystem, t: float, y: np.ndarray, p: np.ndarray,
         t=t, state=y.copy())
 
 
-def _output_times(t_start: float, t_end: float, n_out: int | None, t_eval) -> np.ndarray:
-    if not (np.isfinite(t_start) and np.isfinite(t_end)) or not t_end > t_start:
+def default_tolerance(method: str, rtol: float) -> float:
+    """The drift above which a first integral gets a warning when no ``tolerance`` is given.
+
+    min(1e3 rtol, 1e-6) for the adaptive methods (a drift a thousand times the local
+    tolerance, or above a millionth, is accuracy lost, not round-off); 1e-6 for
+    ``gauss-legendre``, whose energy error depends on dt, not on rtol.
+    """
+    if method == "gauss-legendre":
+        return DEFAULT_TOLERANCE_CAP
+    return min(DEFAULT_TOLERANCE_FACTOR * rtol, DEFAULT_TOLERANCE_CAP)
+
+
+def check_options(rtol: float, atol: float, tolerance: float | None) -> None:
+    """Refuse tolerances that cannot work, before anything is compiled or run."""
+    if not (rtol > 0 and atol > 0) or not (math.isfinite(rtol) and math.isfinite(atol)):
+        raise SimulationError(f"rtol = {rtol:g} and atol = {atol:g}: both must be positive finite numbers.",
+                              fix="e.g. rtol=1e-10, atol=1e-10")
+    if rtol < RTOL_MIN:
+        raise SimulationError(f"rtol = {rtol:g} is below {RTOL_MIN:.0e}, about 50 machine epsilons: no step of a "
+                              f"double-precision integrator can be that accurate, so the step size would shrink "
+                              f"to nothing.", fix=f"use rtol >= {RTOL_MIN:.0e} (e.g. 1e-13)")
+    if tolerance is not None and not (tolerance > 0 and not math.isnan(tolerance)):
+        raise SimulationError(f"The drift tolerance {tolerance:g} must be a positive number.",
+                              fix="e.g. tolerance=1e-9 (--tolerance 1e-9), or leave it out for the default")
+
+
+def _memory_limit() -> float:
+    try:
+        physical = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (ValueError, OSError, AttributeError):
+        physical = 4 * OUTPUT_MEMORY_CAP
+    return min(OUTPUT_MEMORY_CAP, physical / 4)
+
+
+def _output_times(t_start: float, t_end: float, n_out: int | None, t_eval, width: int = 16) -> np.ndarray:
+    """The output grid; ``width``: numbers stored per output time (to refuse a grid too big for memory)."""
+    for name, value in (("start", t_start), ("end", t_end)):
+        if not np.isfinite(value):
+            raise SimulationError(f"The {name} time {value} is not finite.",
+                                  fix=f"give a finite {name} time (e.g. --t-end 10)")
+    if not t_end > t_start:
         raise SimulationError(f"The time span [{t_start}, {t_end}] is not increasing.",
                               fix="give an end time greater than the start time (e.g. --t-end 10)")
     if t_eval is not None:
@@ -170,7 +225,73 @@ def _output_times(t_start: float, t_end: float, n_out: int | None, t_eval) -> np
     n_out = 1001 if n_out is None else int(n_out)
     if n_out < 2:
         raise SimulationError(f"n_out = {n_out}: at least 2 output times are needed.", fix="use n_out >= 2")
+    # The state, q'', the monitors and the columns, each as float64, and a copy of them for the output.
+    need = 2 * 8 * n_out * max(int(width), 1)
+    limit = _memory_limit()
+    if need > limit:
+        most = int(limit // (2 * 8 * max(int(width), 1)))
+        raise SimulationError(f"n_out = {n_out} output times would take about {need / 2**30:.1f} GiB of memory "
+                              f"(more than the {limit / 2**30:.1f} GiB allowed).",
+                              fix=f"use fewer output times (at most about {most}); the steps are not limited "
+                                  f"by n_out, only what is stored")
     return np.linspace(t_start, t_end, n_out)
+
+
+class _Reporter:
+    """Progress reports at most every ``period`` seconds, and one at the end (fraction 1 when done)."""
+
+    def __init__(self, report: Callable[[float, float], None], t_start: float, t_end: float,
+                 period: float = 0.1) -> None:
+        self.report, self.t_start, self.span, self.period = report, t_start, t_end - t_start, period
+        self.last = -math.inf
+        self.fraction = -1.0
+
+    def fraction_at(self, t: float) -> float:
+        return min(1.0, max(0.0, (t - self.t_start) / self.span))
+
+    def update(self, t: float) -> None:
+        now = time.monotonic()
+        fraction = self.fraction_at(t)
+        if now - self.last >= self.period and fraction > self.fraction and fraction < 1.0:
+            self.last, self.fraction = now, fraction
+            self.report(fraction, t)
+
+    def finish(self, t: float, completed: bool) -> None:
+        fraction = 1.0 if completed else self.fraction_at(t)
+        if fraction >= self.fraction:
+            self.report(fraction, t)
+        if fraction < 1.0 and self.report is _progress_bar:
+            sys.stderr.write("\n")
+
+
+class _Watch:
+    """Polls the time a C run has reached (``ctl[0]``), from a second thread, for the progress."""
+
+    def __init__(self, reporter: _Reporter | None, ctl: np.ndarray) -> None:
+        self.reporter, self.ctl = reporter, ctl
+        self.stop = threading.Event()
+        self.thread = None
+
+    def __enter__(self) -> _Watch:
+        if self.reporter is not None:
+            self.thread = threading.Thread(target=self._poll, daemon=True)
+            self.thread.start()
+        return self
+
+    def _poll(self) -> None:
+        while not self.stop.wait(self.reporter.period):
+            self.reporter.update(float(self.ctl[0]))
+
+    def __exit__(self, *exc) -> None:
+        self.stop.set()
+        if self.thread is not None:
+            self.thread.join()
+
+
+def _reporter(progress, t_start: float, t_end: float) -> _Reporter | None:
+    if not progress:
+        return None
+    return _Reporter(_progress_bar if progress is True else progress, t_start, t_end)
 
 
 def _progress_bar(fraction: float, t: float) -> None:
@@ -218,6 +339,8 @@ def simulate(
     max_steps: int = 100_000_000,
     progress: bool | Callable[[float, float], None] = False,
     backend: str = "auto",
+    stabilization: str | None = None,
+    baumgarte: tuple[float, float] = BAUMGARTE,
 ) -> Trajectory:
     """Integrate the equations of motion from t_start to t_end.
 
@@ -229,12 +352,20 @@ def simulate(
     parameters : overrides of the parameter values (``"g": 1.62``).
     method : ``"dop853"``, ``"gauss-legendre"`` or a SciPy method name (module docstring).
     rtol, atol : local error tolerances of the adaptive methods.
-    dt : fixed step (required sense for ``"gauss-legendre"``, default: 1/10 of the output
-        spacing; with ``"dop853"`` it switches to fixed steps).
+    dt : fixed step. ``"gauss-legendre"``: default 1/10 of the output spacing; a dt smaller
+        than the spacing is rounded down so that a whole number of steps fills it, a larger
+        one is used as it is (the outputs are interpolated between steps). With ``"dop853"``
+        it switches to fixed steps.
     n_out, t_eval : the output grid (default 1001 evenly spaced times).
     events : `EventSpec` items or expression strings; each crossing is recorded.
     tolerance : drift tolerance of the first integrals; a larger drift adds a warning.
-    progress : True for a progress bar on standard error, or a callable(fraction, t).
+        Default: `default_tolerance` (min(1e3 rtol, 1e-6); 1e-6 for ``gauss-legendre``).
+    progress : True for a progress bar on standard error, or a callable(fraction, t),
+        called at most every 0.1 s (from a second thread for the built-in methods) and
+        once at the end. The result does not depend on it.
+    stabilization, baumgarte : for models with complementary constraints only, how the
+        drift from the constraints is controlled (``"projection"``, ``"baumgarte"``,
+        ``"both"``, ``"none"``) and Baumgarte's rates (α, β); see `numerics._dae`.
 
     Returns
     -------
@@ -244,18 +375,27 @@ def simulate(
     Raises
     ------
     SimulationError
-        Missing or non-finite values, a time span that does not increase, a singular mass
-        matrix (before or during the run: never a silent NaN), step-size underflow.
+        Missing or non-finite values, a time span that does not increase or is not finite,
+        tolerances that cannot be met, an output grid too large for memory, a singular mass
+        matrix (before or during the run: never a silent NaN), step-size underflow, overflow.
     """
+    check_options(rtol, atol, tolerance)
     # Complementary constraints make it a differential-algebraic system: `_dae` integrates it.
     source, constrained = constrained_source(source)
     if constrained is not None:
         return simulate_dae(source if isinstance(source, ConstrainedSystem) else constrained, t_end,
                             t_start=t_start, initial=initial, parameters=parameters, method=method, rtol=rtol,
                             atol=atol, dt=dt, max_step=max_step, n_out=n_out, t_eval=t_eval, events=events,
-                            tolerance=tolerance, max_steps=max_steps, progress=progress, backend=backend)
+                            tolerance=tolerance, max_steps=max_steps, progress=progress, backend=backend,
+                            stabilization=stabilization, baumgarte=baumgarte)
+    if stabilization is not None:
+        raise SimulationError(f"stabilization={stabilization!r} applies to models with complementary constraints, "
+                              "and this one keeps none complementary.",
+                              fix="leave the stabilization out (its coordinates are all principal)")
     if method not in METHODS:
         raise SimulationError(f"Unknown method `{method}`.", fix="use one of " + ", ".join(METHODS))
+    if tolerance is None:
+        tolerance = default_tolerance(method, rtol)
     specs = [EventSpec(e, e) if isinstance(e, str) else e for e in events]
     system = _resolve(source, specs, backend)
     if not specs:  # events compiled into the system: both directions, none terminal
@@ -265,9 +405,7 @@ def simulate(
                               fix="install a C compiler (e.g. gcc), or use a SciPy method such as method='DOP853'")
     p = system.parameter_vector(parameters)
     y0 = initial_state(system.eom, initial)
-    t_out = _output_times(float(t_start), float(t_end), n_out, t_eval)
-    if not (rtol > 0 and atol > 0):
-        raise SimulationError("rtol and atol must be positive.", fix="e.g. rtol=1e-10, atol=1e-10")
+    t_out = _output_times(float(t_start), float(t_end), n_out, t_eval, 4 * system.n + len(system.monitors) + 1)
 
     # A singular M at the start is reported before anything runs.
     M, _ = system.mass_forces(t_start, y0, p)
@@ -277,7 +415,7 @@ def simulate(
 
     if method in SCIPY:
         t_o, Y, evs, nfev, steps, code = _run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol,
-                                                    max_step, specs)
+                                                    max_step, specs, progress)
         status = "completed" if code == 0 else "stopped by a terminal event"
         conditioning = _pivot(system, t_o, Y, p)
     else:
@@ -311,7 +449,10 @@ def _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, m
         if dt is None:
             dt = spacing / 10
         uniform = len(t_out) > 1 and np.allclose(np.diff(t_out), spacing, rtol=1e-12, atol=0)
-        h = spacing / np.ceil(spacing / dt - 1e-9) if uniform and abs(t_out[0] - t_start) < 1e-15 else dt
+        # A dt below the output spacing is rounded down so that whole steps fill it (the outputs
+        # fall on steps); a larger one is honoured, the outputs interpolated between steps.
+        h = spacing / np.ceil(spacing / dt - 1e-9) \
+            if uniform and abs(t_out[0] - t_start) < 1e-15 and dt <= spacing else dt
         ctl[1] = h
         ctl[2] = 1e-14  # stage iteration tolerance: converged to round-off, so symplecticity holds
     elif dt is not None:
@@ -325,22 +466,18 @@ def _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, m
     ctl[11] = capacity
     ev_out = np.zeros((capacity, 2 + n2))
     lib = system._lib
-    chunks = np.linspace(t_start, t_end, 101)[1:] if progress else [t_end]
-    report = _progress_bar if progress is True else progress
-    code = 0
-    for t_stop in chunks:
+    reporter = _reporter(progress, t_start, t_end)
+    # One call for the whole run, whether or not progress is shown: a chunked run would cut a
+    # step at each chunk's end, and the result would depend on the progress bar.
+    with _Watch(reporter, ctl):
         if method == "dop853":
             code = lib.lg_dop853(_ptr(ctl), _ptr(y), _ptr(p), _ptr(t_out), len(t_out), _ptr(i_out), _ptr(Y),
-                                 float(t_stop), _ptr(ev_dir), _ptr(ev_term), _ptr(ev_out))
+                                 float(t_end), _ptr(ev_dir), _ptr(ev_term), _ptr(ev_out))
         else:
             code = lib.lg_gauss(_ptr(ctl), _ptr(y), _ptr(p), _ptr(t_out), len(t_out), _ptr(i_out), _ptr(Y),
-                                float(t_stop), _ptr(ev_dir), _ptr(ev_term), _ptr(ev_out), float(t_start))
-        if report:
-            report(min(1.0, (ctl[0] - t_start) / (t_end - t_start)), ctl[0])
-        if code != 0:
-            break
-    if report and code != 0:
-        sys.stderr.write("\n")
+                                float(t_end), _ptr(ev_dir), _ptr(ev_term), _ptr(ev_out), float(t_start))
+    if reporter:
+        reporter.finish(float(ctl[0]), code in (0, 4))
     n_ev = int(min(ctl[10], capacity))
     evs = [(specs[int(r[0])].name, r[1], r[2:]) for r in ev_out[:n_ev]]
     if code in (0, 4):
@@ -366,7 +503,30 @@ def _collapsed(system, t0, y0, t, y, p) -> bool:
     return bool(w[0] < 1e-8 * w0[-1])
 
 
-def _run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol, max_step, specs):
+def _counting_solver(method: str, count: dict, reporter: _Reporter | None) -> type:
+    """SciPy's solver class for ``method``, counting its accepted steps (and reporting progress)."""
+    import scipy.integrate
+
+    base = getattr(scipy.integrate, method)
+
+    class Counted(base):  # type: ignore[misc, valid-type]
+        def __init__(self, *args, **kwargs) -> None:
+            super().__init__(*args, **kwargs)
+            count["solver"] = self
+
+        def _step_impl(self):  # type: ignore[no-untyped-def]
+            success, message = super()._step_impl()
+            if success:
+                count["steps"] += 1
+                if reporter is not None:
+                    reporter.update(self.t)
+            return success, message
+
+    Counted.__name__ = Counted.__qualname__ = base.__name__
+    return Counted
+
+
+def _run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol, max_step, specs, progress=False):
     from scipy.integrate import solve_ivp
 
     def fun(t, y):
@@ -379,12 +539,36 @@ def _run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol, max_ste
         g.terminal = spec.terminal
         return g
 
+    count: dict = {"steps": 0, "solver": None}
+    reporter = _reporter(progress, t_start, t_end)
+
+    def reached() -> float:
+        return float(count["solver"].t) if count["solver"] is not None else float(t_start)
+
     try:
-        sol = solve_ivp(fun, (t_start, t_end), y0, method=method, t_eval=t_out, rtol=rtol, atol=atol,
-                        max_step=np.inf if max_step is None else max_step,
-                        events=[make_event(k, s) for k, s in enumerate(specs)] or None)
+        # A failure is raised as a SimulationError below; NumPy's floating-point warnings on the way add nothing.
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            sol = solve_ivp(fun, (t_start, t_end), y0, method=_counting_solver(method, count, reporter),
+                            t_eval=t_out, rtol=rtol, atol=atol, max_step=np.inf if max_step is None else max_step,
+                            events=[make_event(k, s) for k, s in enumerate(specs)] or None)
     except SimulationError as exc:
-        raise SimulationError(f"{exc.message} (during SciPy's {method} integration)", fix=exc.fix) from None
+        if reporter:
+            reporter.finish(reached(), False)
+        raise SimulationError(f"{exc.message} (during SciPy's {method} integration)", fix=exc.fix, t=exc.t,
+                              state=exc.state) from None
+    except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
+        # e.g. "array must not contain infs or NaNs" from the linear algebra of an implicit method
+        # whose error weights atol + rtol |y| underflow, or a blow-up of the state.
+        if reporter:
+            reporter.finish(reached(), False)
+        t_fail = reached()
+        raise SimulationError(
+            f"SciPy's {method} failed at t = {t_fail:.9g}: {exc} (rtol = {rtol:g}, atol = {atol:g}).",
+            fix="use tolerances the method can meet (atol no smaller than about 1e-15 times the size of the state, "
+                "rtol >= 1e-13), or try method='dop853'; if the state grows without bound, check the model",
+            t=t_fail) from None
+    if reporter:
+        reporter.finish(reached(), sol.status >= 0)
     if sol.status < 0:
         raise SimulationError(f"SciPy's {method} stopped at t = {sol.t[-1] if len(sol.t) else t_start:.9g}: "
                               f"{sol.message}", fix="loosen the tolerances or try another method")
@@ -393,7 +577,7 @@ def _run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol, max_ste
         for te, ye in zip(sol.t_events[k], sol.y_events[k]):
             evs.append((spec.name, float(te), ye))
     evs.sort(key=lambda e: e[1])
-    return sol.t, np.ascontiguousarray(sol.y.T), evs, int(sol.nfev), len(sol.t), sol.status
+    return sol.t, np.ascontiguousarray(sol.y.T), evs, int(sol.nfev), int(count["steps"]), sol.status
 
 
 def _trajectory(system, p, t, Y, evs, method, steps, nfev, tolerance, status, conditioning) -> Trajectory:
@@ -402,13 +586,9 @@ def _trajectory(system, p, t, Y, evs, method, steps, nfev, tolerance, status, co
     qdd = system.rhs(t, Y, p)[:, n:] if len(t) else np.zeros((0, n))
     values = system.monitor_values(t, Y, p) if len(t) else np.zeros((0, len(system.monitors)))
     monitors = {name: values[:, k].copy() for k, name in enumerate(system.monitors)}
-    drift = {}
-    for name in system.integrals:
-        series = monitors[name]
-        ref = series[0]
-        # Relative to the initial value; absolute when that is 0 (e.g. K = 0 for a top
-        # launched with no angular momentum about z0).
-        drift[name] = float(np.max(np.abs(series - ref)) / (abs(ref) if ref != 0 else 1.0)) if len(series) else 0.0
+    M = system.mass_forces(t, Y, p)[0].reshape(len(t), n, n) if len(t) else None
+    drift, scales = conservation(monitors, system.integrals, momenta=momenta(system.eom, system.integrals), M=M,
+                                 qd=Y[:, n:])
     warnings = tuple(
         f"{name} drifted by {drift[name]:.2e} (relative), more than the tolerance {tolerance:.1e}"
         for name in system.integrals if tolerance is not None and drift[name] > tolerance)
@@ -424,5 +604,11 @@ def _trajectory(system, p, t, Y, evs, method, steps, nfev, tolerance, status, co
         t=np.asarray(t, dtype=float), q=Y[:, :n].copy(), qd=Y[:, n:].copy(), qdd=qdd,
         monitors=monitors, integrals=tuple(system.integrals), drift=drift, method=method, steps=steps,
         rhs_calls=nfev, tolerance=tolerance, warnings=warnings, events=events, status=status,
-        conditioning=conditioning,
+        conditioning=conditioning, scales=scales,
     )
+
+
+def momenta(eom: EquationsOfMotion, integrals: Sequence[str]) -> dict[str, int]:
+    """Integral name → index of the coordinate whose momentum ∂T/∂q̇_k it is (the others are energy-like)."""
+    names = {(c.momentum or f"p_{c.name}"): k for k, c in enumerate(eom.model.coordinates)}
+    return {name: names[name] for name in integrals if name in names}

@@ -150,19 +150,20 @@ class CompiledSystem:
         Raises
         ------
         SimulationError
-            When M is singular (or not positive definite) at one of the states.
+            When M is singular (or not positive definite) at one of the states, or when a
+            state or q̈ is not finite (the solution overflowed: a blow-up).
         """
         T, Y, single = self._batch(t, y, 2 * self.n)
         out = np.empty_like(Y)
         if self._lib is not None:
             status = self._lib.lg_eval_rhs(len(Y), _ptr(T), _ptr(Y), _ptr(p), _ptr(out))
             if status:
-                raise SimulationError(
-                    "The mass matrix M is singular at one of the given states, so q'' is not defined there.",
-                    fix="check the state, or see `CompiledSystem.mass_matrix`")
+                raise _rhs_failure(status, T, Y)
         else:
             M, F = self.mass_forces(T, Y, p)
             out[:, : self.n] = Y[:, self.n:]
+            if not np.all(np.isfinite(Y)):
+                raise _rhs_failure(2, T, Y)
             try:
                 out[:, self.n:] = np.linalg.solve(M, F[..., None])[..., 0]
             except np.linalg.LinAlgError as exc:
@@ -228,6 +229,24 @@ class CompiledSystem:
         self._se_mf = make([eom.M[i][j] for i in range(n) for j in range(n)] + list(eom.F))
         self._se_mon = make([e for _, e in monitor_expressions(eom, self.first_integrals)])
         self._se_ev = make([e for _, e in self._events])
+
+
+def _rhs_failure(status: int, T: np.ndarray, Y: np.ndarray) -> SimulationError:
+    """The error of a failed q̈: a state that is not finite is a blow-up, not a singular M."""
+    bad = ~np.all(np.isfinite(Y), axis=1)
+    if bad.any():
+        k = int(np.argmax(bad))
+        return SimulationError(
+            f"The solution overflowed (blow-up) at t = {T[k]:.9g}: the state holds non-finite numbers, so q'' "
+            "cannot be computed there.",
+            fix="the motion grows without bound: check the parameters and the initial state, shorten the time "
+                "span, or tighten the tolerances", t=float(T[k]), state=Y[k].copy())
+    if status == 2:
+        return SimulationError("q'' is not finite at one of the given states (overflow in M q'' = F).",
+                               fix="check the state and the parameters")
+    return SimulationError(
+        "The mass matrix M is singular at one of the given states, so q'' is not defined there.",
+        fix="check the state, or see `CompiledSystem.mass_forces`")
 
 
 def compile_system(eom: EquationsOfMotion, *, events: Sequence[tuple[str, se.Basic]] = (),
