@@ -93,3 +93,85 @@ def test_reaction_columns_hold_the_rod_tension(tmp_path, capsys):
     assert main(["simulate", str(EXAMPLES_DIR / "simple_pendulum.toml"), "--t-end", "0.2", "--no-reactions",
                  "-o", str(out)]) == 0
     assert "R_to_P" not in out.read_text()
+
+
+# -- the audit of `simulate`: bare --plot, checks before the run, validation, MP4, stabilization --------
+
+PENDULUM_FILE = str(EXAMPLES_DIR / "simple_pendulum.toml")
+
+
+def test_bare_plot_writes_into_the_model_stem_folder(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert main(["simulate", PENDULUM_FILE, "--t-end", "0.2", "--n-out", "11", "--animation", "none",
+                 "--plot"]) == 0
+    out = capsys.readouterr().out
+    assert (tmp_path / "simple_pendulum_plots" / "time_series.png").is_file()
+    assert "files in simple_pendulum_plots/" in out
+    assert not list((tmp_path / "simple_pendulum_plots").glob("animation*"))
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--plot", "{file}"], "is a file, not a folder"),
+    (["--plot", "{dir}", "--animation", "mp4"], "needs ffmpeg"),
+])
+def test_plot_problems_are_found_before_the_run(tmp_path, capsys, monkeypatch, argv, message):
+    from lagrangian.cli import _simulate
+
+    monkeypatch.setattr(_simulate, "_ffmpeg", lambda: None)
+    out = tmp_path / "keep.csv"
+    out.write_text("precious\n")
+    blocker = tmp_path / "blocker"
+    blocker.write_text("a file\n")
+    argv = [a.format(file=blocker, dir=tmp_path / "figs") for a in argv]
+    assert main(["simulate", PENDULUM_FILE, "--t-end", "0.2", "-o", str(out), *argv]) == 3
+    captured = capsys.readouterr()
+    assert message in captured.err and "conservation" not in captured.out + captured.err
+    assert out.read_text() == "precious\n" and blocker.read_text() == "a file\n"
+
+
+def test_output_suffix_and_folder_are_checked_before_the_run(tmp_path, capsys):
+    assert main(["simulate", PENDULUM_FILE, "--t-end", "0.2", "-o", str(tmp_path / "x.txt")]) == 3
+    assert main(["simulate", PENDULUM_FILE, "--t-end", "0.2", "-o", str(tmp_path / "no" / "x.csv")]) == 3
+    captured = capsys.readouterr()
+    assert "conservation" not in captured.out + captured.err and "does not exist" in captured.err
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--tolerance", "0"], "positive"),
+    (["--rtol", "1e-300"], "below 1e-14"),
+    (["--t-end", "inf"], "not finite"),
+    (["--t-end", "nan"], "not finite"),
+    (["--n-out", "100000000"], "GiB"),
+    (["--method", "Radau", "--rtol", "1e-13", "--atol", "1e-300"], "SciPy's Radau failed at t ="),
+])
+def test_bad_numbers_exit_4_with_a_message_and_keep_the_old_output(tmp_path, capsys, argv, message):
+    out = tmp_path / "keep.npz"
+    out.write_bytes(b"precious")
+    assert main(["simulate", "--t-end", "1", *argv, "-o", str(out)]) == 4
+    err = capsys.readouterr().err
+    assert message in err and "tip:" in err and "Traceback" not in err
+    assert out.read_bytes() == b"precious"
+
+
+def test_horizontal_pendulum_drift_is_small_and_not_flagged(capsys, tmp_path):
+    assert main(["simulate", PENDULUM_FILE, "--set", "theta=1.5707963267948966", "-o",
+                 str(tmp_path / "p.csv")]) == 0
+    out = capsys.readouterr().out
+    drift = float(out.split("E relative drift ")[1].split()[0].rstrip(","))
+    assert drift < 1e-8 and "warning" not in out
+
+
+def test_scipy_steps_are_the_integrators_not_the_output_points(capsys, tmp_path):
+    assert main(["simulate", "--t-end", "1", "--method", "RK45", "--n-out", "11", "-o", str(tmp_path / "a.csv")]) == 0
+    out = capsys.readouterr().out
+    steps = int(out.split(" steps,")[0].rsplit(" ", 1)[1])
+    assert steps > 11
+
+
+def test_stabilization_flag_reaches_the_dae(capsys, tmp_path):
+    model = str(EXAMPLES_DIR / "pendulum_tension.toml")
+    assert main(["simulate", model, "--t-end", "0.2", "--n-out", "11", "--stabilization", "baumgarte",
+                 "-o", str(tmp_path / "a.csv")]) == 0
+    assert "dop853 + baumgarte" in capsys.readouterr().out
+    assert main(["simulate", PENDULUM_FILE, "--t-end", "0.2", "--stabilization", "both"]) == 4
+    assert "complementary" in capsys.readouterr().err

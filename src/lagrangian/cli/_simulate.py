@@ -1,23 +1,30 @@
-"""``lagrangian simulate MODEL.toml --t-end 10 [--set NAME=VALUE ...] [--out traj.csv|traj.npz] [--plot DIR]``."""
+"""``lagrangian simulate MODEL.toml --t-end 10 [--set NAME=VALUE ...] [--out traj.csv|traj.npz] [--plot [DIR]]``.
+
+Everything that can be checked before the run is (the output's suffix and folder, the plot
+folder, ffmpeg for an MP4), so that a bad option never costs a run or an older file.
+"""
 
 from __future__ import annotations
 
 import argparse
 import io
+import shutil
 import sys
 import time
+from pathlib import Path
 
 from ..dynamics import derive
-from ..errors import SimulationError
+from ..errors import OutputError, SimulationError
 from ..model import load_model
 from ..model.zoo import lagrange_top
-from ..numerics import METHODS, EventSpec, compile_system, save_trajectory, simulate
+from ..numerics import METHODS, STABILIZATIONS, EventSpec, check_output_path, compile_system, save_trajectory, \
+    simulate
 from ._settings import add_set_option, parse_settings
 
 __all__ = ["register"]
 
 SUMMARY = "simulate a model from its initial state; report the drift of every first integral\n" \
-          "(CSV or NPZ output, plots and an animation with --plot DIR)"
+          "(CSV or NPZ output, plots and an animation with --plot [DIR])"
 
 
 def _float(text: str) -> float:
@@ -43,16 +50,28 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="dop853 (adaptive, default), gauss-legendre (fixed step, symplectic) or a SciPy method")
     s.add_argument("--rtol", type=_float, default=1e-10, help="relative tolerance (default 1e-10)")
     s.add_argument("--atol", type=_float, default=1e-10, help="absolute tolerance (default 1e-10)")
-    s.add_argument("--dt", type=_float, default=None, help="fixed step (gauss-legendre; dop853 fixed-step)")
-    s.add_argument("--n-out", type=int, default=1001, metavar="N", help="number of output times (default 1001)")
+    s.add_argument("--dt", type=_float, default=None,
+                   help="fixed step (gauss-legendre: default 1/10 of the output spacing, rounded down to divide it "
+                        "when smaller, used as given when larger; dop853: fixed steps)")
+    s.add_argument("--n-out", type=int, default=1001, metavar="N",
+                   help="number of output times (default 1001; refused when it would not fit in memory)")
     s.add_argument("--event", action="append", default=[], metavar="EXPR",
                    help="record the times where EXPR crosses zero, e.g. --event theta_dot (repeatable)")
     s.add_argument("--stop-when", action="append", default=[], metavar="EXPR",
                    help="stop at the first zero crossing of EXPR, e.g. --stop-when 'theta - 1.2'")
     s.add_argument("--tolerance", type=_float, default=None, metavar="TOL",
-                   help="warn when a first integral drifts by more than TOL (relative)")
+                   help="warn when a first integral drifts by more than TOL (relative, > 0; default "
+                        "min(1e3 rtol, 1e-6), 1e-6 for gauss-legendre)")
+    s.add_argument("--stabilization", choices=STABILIZATIONS, default=None,
+                   help="models with complementary constraints: how the constraint drift is controlled "
+                        "(default projection with explicit methods, baumgarte with Radau, BDF, LSODA)")
     s.add_argument("-o", "--out", metavar="FILE", help="write the trajectory to FILE (.csv or .npz), atomically")
-    s.add_argument("--plot", metavar="DIR", help="write plots and an animation into DIR")
+    s.add_argument("--plot", metavar="DIR", nargs="?", const="",
+                   help="write plots and an animation into DIR (default: MODEL_plots/ after the model file's "
+                        "stem, or plots/ for the built-in top); put a bare --plot after the model file")
+    s.add_argument("--animation", choices=("gif", "mp4", "none"), default="gif",
+                   help="the animation --plot writes (default gif; mp4 needs ffmpeg, found on the PATH or "
+                        "through the imageio-ffmpeg package)")
     s.add_argument("--reactions", action=argparse.BooleanOptionalAction, default=True,
                    help="add the constraint reactions (e.g. R_O from m γ(G) = P + R_O) as columns R_O_x0... "
                         "(R0 components; default: on)")
@@ -61,9 +80,60 @@ def register(sub: argparse._SubParsersAction) -> None:
     s.set_defaults(run=run)
 
 
+def plot_folder(args: argparse.Namespace) -> Path | None:
+    """The --plot folder: DIR, or ``<model stem>_plots`` (``plots`` for the built-in top) for a bare --plot."""
+    if args.plot is None:
+        return None
+    if args.plot:
+        return Path(args.plot)
+    return Path(f"{Path(args.model).stem}_plots") if args.model else Path("plots")
+
+
+def _ffmpeg() -> str | None:
+    """An ffmpeg executable: matplotlib's setting or the PATH, else the imageio-ffmpeg package's (when installed)."""
+    import matplotlib
+
+    found = shutil.which(matplotlib.rcParams["animation.ffmpeg_path"]) or shutil.which("ffmpeg")
+    if found:
+        return found
+    try:
+        import imageio_ffmpeg
+    except ImportError:
+        return None
+    try:
+        return imageio_ffmpeg.get_ffmpeg_exe()
+    except (RuntimeError, OSError):
+        return None
+
+
+def _check_outputs(args: argparse.Namespace, plots: Path | None) -> None:
+    """Refuse, before the run, the outputs that would fail after it."""
+    if args.out:
+        check_output_path(args.out)
+    if plots is None:
+        return
+    if plots.exists() and not plots.is_dir():
+        raise OutputError(f"`--plot {plots}`: `{plots}` is a file, not a folder.",
+                          fix="give a folder for the plots (a bare --plot goes after the model file)")
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError as exc:
+        raise SimulationError(f"Plots need matplotlib ({exc}).", fix="pip install 'lagrangian[plot]'") from None
+    if args.animation == "mp4":
+        ffmpeg = _ffmpeg()
+        if ffmpeg is None:
+            raise OutputError("Writing an MP4 needs ffmpeg, which is not installed.",
+                              fix="install ffmpeg (or `pip install imageio-ffmpeg`), or use --animation gif")
+        import matplotlib
+
+        matplotlib.rcParams["animation.ffmpeg_path"] = ffmpeg
+
+
 def run(args: argparse.Namespace) -> str:
     model = load_model(args.model) if args.model else lagrange_top()
     parameters, initial = parse_settings(args.set, model)
+    plots = plot_folder(args)
+    _check_outputs(args, plots)
     eom = derive(model)
     events = [EventSpec(text, text) for text in args.event]
     events += [EventSpec(f"stop: {text}", text, terminal=True) for text in args.stop_when]
@@ -73,7 +143,8 @@ def run(args: argparse.Namespace) -> str:
     start = time.perf_counter()
     traj = simulate(system, args.t_end, t_start=args.t_start, initial=initial,
                     parameters=parameters, method=args.method, rtol=args.rtol, atol=args.atol, dt=args.dt,
-                    n_out=args.n_out, events=events, tolerance=args.tolerance, progress=progress)
+                    n_out=args.n_out, events=events, tolerance=args.tolerance, progress=progress,
+                    stabilization=args.stabilization)
     elapsed = time.perf_counter() - start
     if args.reactions:
         traj = _with_reactions(traj, eom)
@@ -95,12 +166,14 @@ def run(args: argparse.Namespace) -> str:
     written = []
     if args.out:
         written.append(str(save_trajectory(traj, args.out)))
-    if args.plot:
-        written += [str(p) for p in _plots(traj, eom, args.plot)]
+    if plots is not None:
+        figures = _plots(traj, eom, plots, args.animation)
+        lines.append(f"plots: {len(figures)} files in {plots}/")
+        written += [str(p) for p in figures]
     if written:
         lines.append("wrote " + ", ".join(written))
     summary = "\n".join(lines) + "\n"
-    if args.out or args.plot:
+    if args.out or plots is not None:
         return summary
     # No file asked for: the table goes to standard output, the summary to standard error.
     sys.stderr.write(summary)
@@ -129,9 +202,11 @@ def _with_reactions(traj, eom):
     return replace(traj, extra=extra)
 
 
-def _plots(traj, eom, directory: str) -> list:
+def _plots(traj, eom, directory: Path, animation: str) -> list:
     try:
         from ..plotting import save_plots
     except ImportError as exc:  # matplotlib missing: the plotting package says how to install it
         raise SimulationError(f"Plots need matplotlib ({exc}).", fix="pip install 'lagrangian[plot]'") from None
-    return save_plots(traj, eom, directory)
+    if animation == "none":
+        return save_plots(traj, eom, directory, animation=False)
+    return save_plots(traj, eom, directory, animation_format=animation)
