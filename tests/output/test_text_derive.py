@@ -75,6 +75,7 @@ def test_energy_balance_kinds_and_notes_of_a_damped_driven_pendulum(capsys, tmp_
     tex = derive(capsys, written(tmp_path, DAMPED), "--latex")
     assert r"\subsection*{Energy balance}" in tex and "joint damper" in tex
     assert tex.count(r"\begin{align*}") == tex.count(r"\end{align*}")
+    assert tex.isascii()  # pdflatex with inputenc: ∂U/∂t and λ are written as math, not as characters
 
 
 @pytest.mark.parametrize("name", ["simple_pendulum.toml", "lagrange_top.toml", "pendulum_tension.toml"])

@@ -6,6 +6,7 @@ Time derivatives are dots (\dot{\theta}, \ddot{\theta}), angles are Greek letter
 
 from __future__ import annotations
 
+import re
 
 from ._course import CourseForm
 from ._notation import _axis_latex
@@ -75,12 +76,23 @@ def _step7_latex(n, form: CourseForm, extra: Supplement) -> list[str]:  # type: 
     return out
 
 
+def _power_label(t) -> str:  # type: ignore[no-untyped-def]
+    """The label of a term of the balance in LaTeX (no Unicode: ∂U/∂t and λ are written as math)."""
+    inner = re.search(r"\((.*)\)$", t.name)
+    of = _escape(inner.group(1)) if inner else _escape(t.name)
+    if t.kind == "explicit time":
+        return rf"\frac{{\partial U}}{{\partial t}}\ (\text{{{of}}})"
+    if t.kind == "constraint":
+        return rf"\text{{reaction of {of}}}"
+    return rf"\text{{{_escape(power_label(t))}}}"
+
+
 def _balance_latex(n, extra: Supplement) -> list[str]:  # type: ignore[no-untyped-def]
     assert extra.balance is not None and extra.power is not None
     out = [r"\subsection*{Energy balance}",
            r"No energy integral: with $E = T + U_P$, $\frac{dE}{dt} = P(\text{non-conservative})$, term by term:",
            r"\begin{align*}"]
-    rows = [rf"&\text{{{_escape(power_label(t))}}}: & {n.latex(t.power)}" for t in extra.balance]
+    rows = [rf"&{_power_label(t)}: & {n.latex(t.power)}" for t in extra.balance]
     rows.append(rf"&\frac{{dE}}{{dt}} = & {n.latex(extra.power)}")
     out.append(r" \\".join(rows))
     out.append(r"\end{align*}")

@@ -16,6 +16,7 @@ import sympy
 from ..analysis import energy_balance
 from ..dynamics import EquationsOfMotion, multiplier_formulas
 from ..dynamics._constraints import FORMULA_MAX_SIZE, describe_constraints
+from ..dynamics._inertial import RelativeKinematics
 from ..model import Vector
 from ._course import CourseForm, VectorRow, _vector_row, to_sympy
 from ._notation import Notation
@@ -157,8 +158,8 @@ def _reaction_lines(eom: EquationsOfMotion) -> tuple[ReactionLine, ...]:
 def supplement(eom: EquationsOfMotion, form: CourseForm) -> Supplement:
     """Collect what ``derive`` prints besides ``form`` (see `Supplement`)."""
     kin = eom.kinematics
-    omega = getattr(kin, "frame_omega", None)  # Ω(R/R0) of a RelativeKinematics
-    reference_omega = _vector_row(eom, omega) if isinstance(omega, Vector) and not omega.is_zero() else None
+    reference_omega = (_vector_row(eom, kin.frame_omega)
+                       if isinstance(kin, RelativeKinematics) and not kin.frame_omega.is_zero() else None)
     formulas = multiplier_formulas(eom) if eom.constraints else None
     multipliers = tuple((m.name, None if formulas is None else _shortest(f))
                         for m, f in zip(eom.multipliers, formulas or (None,) * len(eom.multipliers)))
