@@ -64,7 +64,8 @@ def _step7_latex(n, form: CourseForm, extra: Supplement) -> list[str]:  # type: 
     for r in extra.reactions:
         label = rf"&& \text{{reaction of {_escape(r.constraint)}}}"
         if r.force is not None:
-            rows.append(rf"\vec{{R}}({r.point}) &= {n.vector(r.force.terms, latex=True) if r.force.terms else '0'} {label}")
+            force = n.vector(r.force.terms, latex=True) if r.force.terms else "0"
+            rows.append(rf"\vec{{R}}({r.point}) &= {force} {label}")
         if r.moment is not None:
             rows.append(rf"\vec{{C}}({_escape(r.body or '')}) &= "
                         rf"{n.vector(r.moment.terms, latex=True) if r.moment.terms else '0'} {label}")

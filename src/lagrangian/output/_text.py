@@ -280,7 +280,8 @@ def render_text(form: CourseForm, extra: Supplement | None = None) -> str:
         lines += _constraints_text(n, extra)
     if form.frames:
         lines.append("")
-        lines.append("Frames (R0 is Galilean) and angular velocities" + (f" relative to {ref}:" if ref != "R0" else ":"))
+        relative = f" relative to {ref}:" if ref != "R0" else ":"
+        lines.append("Frames (R0 is Galilean) and angular velocities" + relative)
         for f in form.frames:
             lines.append(f"  {f.parent} --({n.text(f.angle)}, {f.axis})--> {f.name}({', '.join(f.axes)})")
         for f in form.frames:
