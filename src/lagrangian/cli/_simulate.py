@@ -188,18 +188,11 @@ def _with_reactions(traj, eom):
     """The trajectory with each reaction's force (and transmitted moment) as extra columns."""
     from dataclasses import replace
 
-    from ..analysis import reaction_history
+    from ..numerics import reaction_columns_along
 
-    axes = [a for a in (eom.model.frames[0].axes or ("x0", "y0", "z0"))]
-    extra = dict(traj.extra)
-    for name, history in reaction_history(eom, traj).items():
-        label = "".join(ch if ch.isalnum() or ch == "_" else "_" for ch in name.replace("→", "to_")).strip("_")
-        for k, axis in enumerate(axes):
-            extra[f"{label}_{axis}"] = history.force[:, k]
-        if abs(history.moment).max(initial=0.0) > 1e-9 * (abs(history.force).max(initial=0.0) + 1e-300):
-            for k, axis in enumerate(axes):
-                extra[f"M_{label}_{axis}"] = history.moment[:, k]
-    return replace(traj, extra=extra)
+    if traj.method.endswith("stick/slip"):  # computed phase by phase, each with its own model
+        return traj
+    return replace(traj, extra={**traj.extra, **reaction_columns_along(eom, traj)})
 
 
 def _plots(traj, eom, directory: Path, animation: str) -> list:

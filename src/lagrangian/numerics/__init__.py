@@ -15,6 +15,7 @@ from ._simulate import simulate as simulate
 from ._stickslip import simulate_stick_slip as simulate_stick_slip
 from ._system import CompiledSystem as CompiledSystem
 from ._system import compile_system as compile_system
+from ._reaction_columns import reaction_columns_along as reaction_columns_along
 from ._top_check import SimulationCheck as SimulationCheck
 from ._top_check import simulation_check as simulation_check
 from ._trajectory import Event as Event
@@ -22,4 +23,4 @@ from ._trajectory import Trajectory as Trajectory
 
 __all__ = ["simulate", "simulate_stick_slip", "save_trajectory", "check_output_path", "EventSpec", "initial_state", "METHODS",
            "STABILIZATIONS", "default_tolerance", "CompiledSystem", "compile_system", "Trajectory", "Event",
-           "SimulationCheck", "simulation_check"]
+           "SimulationCheck", "simulation_check", "reaction_columns_along"]

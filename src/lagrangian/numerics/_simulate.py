@@ -380,6 +380,15 @@ def simulate(
         matrix (before or during the run: never a silent NaN), step-size underflow, overflow.
     """
     check_options(rtol, atol, tolerance)
+    from ._stickslip import exact_contact_model, simulate_stick_slip  # late: `_stickslip` imports this module
+
+    exact = exact_contact_model(source)
+    if exact is not None:  # an exact Coulomb contact (regularization = 0): stick/slip phases by events
+        return simulate_stick_slip(exact, t_end, t_start=t_start, initial=initial, parameters=parameters,
+                                   method=method, rtol=rtol, atol=atol, dt=dt, max_step=max_step, n_out=n_out,
+                                   t_eval=t_eval, events=events, tolerance=tolerance, max_steps=max_steps,
+                                   progress=progress, backend=backend, stabilization=stabilization,
+                                   baumgarte=baumgarte)
     # Complementary constraints make it a differential-algebraic system: `_dae` integrates it.
     source, constrained = constrained_source(source)
     if constrained is not None:

@@ -46,10 +46,11 @@ from ..dynamics._constraints import multiplier_formulas
 from ..dynamics._friction import SlidingDirection, sliding_direction
 from ..errors import ModelError, SimulationError
 from ..model import CoulombFriction, load_model
-from ..model._constraints import Constraint
+from ..model._constraints import Constraint, ReactionSpec
 from ..model.spec import Model, PointForce
 from ._dae import BAUMGARTE, ConstrainedSystem, simulate_dae
-from ._trajectory import Event, Trajectory
+from ._reaction_columns import reaction_columns_along
+from ._trajectory import Event, Trajectory, conservation
 
 __all__ = ["exact_contact", "exact_contact_model", "simulate_stick_slip", "StickSlipSystem"]
 
@@ -113,7 +114,7 @@ class StickSlipSystem:
         self.row = f"stick_{load.name}"
         others = tuple(x for x in model.loads if x is not load)
         stuck = replace(model, loads=others, constraints=model.constraints + (
-            Constraint(self.row, "nonholonomic", self.direction.speed,
+            Constraint(self.row, "nonholonomic", self.direction.speed, reaction=ReactionSpec(force_at=load.at, frame=self.direction.frame),
                        description=f"the contact `{load.name}` sticks: v_s·{self.direction.label} = 0"),))
         self.stuck_eom = derive(stuck)
         self.stuck = ConstrainedSystem(self.stuck_eom, backend=backend)
@@ -344,6 +345,7 @@ def _join(system: StickSlipSystem, p: np.ndarray, grid: np.ndarray, pieces: list
     """One trajectory on ``grid`` from the phases (module docstring)."""
     wanted = set(grid.tolist())
     T, Q, QD, QDD, MODE, FRIC = [], [], [], [], [], []
+    REACT: list[dict[str, np.ndarray]] = []
     last = -np.inf
     warnings: list[str] = []
     for mode, piece in pieces:
@@ -355,6 +357,10 @@ def _join(system: StickSlipSystem, p: np.ndarray, grid: np.ndarray, pieces: list
         QD.append(piece.qd[keep])
         QDD.append(piece.qdd[keep])
         MODE.append(np.full(int(keep.sum()), float(mode)))
+        # The principal constraints' reactions, each phase with its own model (while it sticks,
+        # the friction is the stuck model's multiplier; while it slides, a given force).
+        phase_eom = system.stuck_eom if mode == 0 else system.slip_eom(mode)
+        REACT.append({k: v[keep] for k, v in reaction_columns_along(phase_eom, piece).items()})
         if mode == 0:
             FRIC.append(piece.extra[f"lambda_{system.row}"][keep])
         else:
@@ -366,17 +372,18 @@ def _join(system: StickSlipSystem, p: np.ndarray, grid: np.ndarray, pieces: list
     q, qd, qdd = np.concatenate(Q), np.concatenate(QD), np.concatenate(QDD)
     Y = np.column_stack([q, qd])
     stuck = system.stuck
+    from ._simulate import momenta as momentum_index  # late: `_simulate` imports this module
+
     values = stuck.monitor_values(t, Y, p) if len(t) else np.zeros((0, len(stuck.monitors)))
-    g = stuck.parts(t, Y, p)[4] if len(t) else np.zeros((0, stuck.m))
+    n = len(stuck.coordinates)
+    M, g = stuck.parts(t, Y, p)[0::4] if len(t) else (None, np.zeros((0, stuck.m)))
     momenta = {fi.name for fi in first_integrals(system.stuck_eom) if fi.kind == "momentum"}
     monitors = {k: values[:, i].copy() for i, k in enumerate(stuck.monitors)
                 if not k.startswith("drift_") and (k in momenta or k in ("T", "U"))}
     integrals = tuple(k for k in stuck.integrals if k in momenta)
-    drift = {}
-    for k in integrals:
-        series = monitors[k]
-        ref = series[0] if len(series) else 0.0
-        drift[k] = float(np.max(np.abs(series - ref)) / (abs(ref) if ref != 0 else 1.0)) if len(series) else 0.0
+    # The same drift as every other run (`_trajectory.conservation`): relative to a physical scale.
+    drift, scales = conservation(monitors, integrals, momenta=momentum_index(system.stuck_eom, integrals),
+                                 M=None if M is None else np.asarray(M).reshape(len(t), n, n), qd=qd)
     mode = np.concatenate(MODE)
     name = system.load.name
     for i, row in enumerate(stuck.rows):
@@ -385,6 +392,8 @@ def _join(system: StickSlipSystem, p: np.ndarray, grid: np.ndarray, pieces: list
     warnings += [f"{k} drifted by {drift[k]:.2e} (relative), more than the tolerance {tolerance:.1e}"
                  for k in integrals if tolerance is not None and drift[k] > tolerance]
     extra = {f"mode_{name}": mode, f"friction_{name}": np.concatenate(FRIC), f"sliding_{name}": g[:, system.k_row].copy()}
+    labels = [k for k in REACT[0] if all(k in r for r in REACT)] if REACT else []
+    extra |= {k: np.concatenate([r[k] for r in REACT]) for k in labels}
     first = pieces[0][1]
     return Trajectory(
         model_name=system.model.name, coordinates=tuple(stuck.coordinates), parameters=dict(first.parameters),
@@ -392,5 +401,5 @@ def _join(system: StickSlipSystem, p: np.ndarray, grid: np.ndarray, pieces: list
         method=f"{first.method.split(' + ')[0]} + stick/slip", steps=sum(x.steps for _, x in pieces),
         rhs_calls=sum(x.rhs_calls for _, x in pieces), tolerance=tolerance, warnings=tuple(warnings),
         events=tuple(sorted(switches + user_events, key=lambda e: e.t)), status=status,
-        conditioning=min(x.conditioning for _, x in pieces), extra=extra,
+        conditioning=min(x.conditioning for _, x in pieces), extra=extra, scales=scales,
     )

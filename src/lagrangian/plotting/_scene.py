@@ -191,7 +191,10 @@ def build_scene(trajectory: Trajectory, eom: EquationsOfMotion, times: np.ndarra
         ends = g[:, None, :] + AXIS_LENGTH * size * basis  # (F, 3, 3)
         axes.append(np.stack([np.broadcast_to(g[:, None, :], ends.shape), ends], axis=2))
         if radius:
-            k = int(np.argmin(np.abs(np.einsum("fkj,fj->fk", basis, normal)).mean(axis=0)))
+            # The body axis most across the normal; among equals (x and y of a top, both exactly ⊥ z,
+            # differing in rounding only) the first, so the spoke is x whatever the rounding.
+            tilt = np.abs(np.einsum("fkj,fj->fk", basis, normal)).mean(axis=0)
+            k = int(np.flatnonzero(tilt <= tilt.min() + 1e-9)[0])
             e1 = _unit(basis[:, k] - np.sum(basis[:, k] * normal, axis=1, keepdims=True) * normal)
             e2 = np.cross(normal, e1)
             s = np.linspace(0, 2 * np.pi, 49)
