@@ -101,10 +101,15 @@ def test_the_tops_residuals_are_rounding(top) -> None:
     assert set(res.moment) == {"R_O"} and np.max(res.moment["R_O"]) <= 1e-9
 
 
+#: Examples checked over a shorter span: the block on the incline sticks at t ≈ 0.207 s, after
+#: which its motion is the stuck model's (its reactions are checked in test_stick_slip.py).
+SPANS = {"block_on_incline.toml": 0.2}
+
+
 @pytest.mark.parametrize("name", example_names())
 def test_every_example_checks_along_its_motion(name: str) -> None:
     eom = load(name)
-    res = check_trajectory(eom, simulate(eom, 1.0, n_out=101))
+    res = check_trajectory(eom, simulate(eom, SPANS.get(name, 1.0), n_out=101))
     assert res.max_relative <= 1e-9, res.worst()
 
 
