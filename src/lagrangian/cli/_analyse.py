@@ -13,10 +13,9 @@ from ..analysis import TopAnalysis, analyse_top
 from ..dynamics import EquationsOfMotion, derive
 from ..errors import SimulationError
 from ..numerics import SimulationCheck, simulation_check
-from ..model import load_model
-from ..model.zoo import lagrange_top
 from ..output import Notation
 from ._settings import add_set_option, parse_settings
+from ._source import MODEL_HELP, load_source
 
 __all__ = ["register", "run", "render_analysis", "render_check"]
 
@@ -33,7 +32,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "E = ½ a(θ) θ̇² + U_eff(θ), then give the turning angles θ1, θ2, the nutation period, "
                     "the mean precession rate, the type of the apex curve (waves, loops, cusps), the "
                     "sleeping-top criterion and the steady precession rates, with the model's values.")
-    p.add_argument("model", nargs="?", help="model file (TOML); default: the seed's Lagrange top")
+    p.add_argument("model", nargs="?", help=MODEL_HELP)
     add_set_option(p)
     p.add_argument("--simulate", metavar="PERIODS", type=float, nargs="?", const=3.0,
                    help="check θ1, θ2, the nutation period and the mean precession against a simulation over "
@@ -43,7 +42,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> str:
-    model = load_model(args.model) if args.model else lagrange_top()
+    model = load_source(args.model)
     parameters, initial = parse_settings(args.set, model)
     eom = derive(model)
     analysis = analyse_top(eom, parameters=parameters, initial=initial)

@@ -8,9 +8,8 @@ import json
 from .. import __version__
 from ..analysis import first_integrals
 from ..dynamics import derive
-from ..model import load_model
-from ..model.zoo import lagrange_top
 from ..output import course_form, derive_document, render_latex, render_text
+from ._source import MODEL_HELP, load_source
 from ..output._text import supplement
 
 __all__ = ["register"]
@@ -25,7 +24,7 @@ def register(sub: argparse._SubParsersAction) -> None:
         description="Derive T, U, the generalized forces, the Lagrange equations L(q_i), the first integrals "
                     "and the matrix form M q'' = F of a model, and print them in the course's notation.",
     )
-    d.add_argument("model", nargs="?", help="model file (TOML); default: the seed's Lagrange top")
+    d.add_argument("model", nargs="?", help=MODEL_HELP)
     fmt = d.add_mutually_exclusive_group()
     fmt.add_argument("--latex", action="store_true", help="print a LaTeX document instead of text")
     fmt.add_argument("--json", action="store_true",
@@ -35,7 +34,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> str:
-    model = load_model(args.model) if args.model else lagrange_top()
+    model = load_source(args.model)
     eom = derive(model)
     form = course_form(eom, first_integrals(eom))
     if args.json:

@@ -15,11 +15,10 @@ from pathlib import Path
 
 from ..dynamics import derive
 from ..errors import OutputError, SimulationError
-from ..model import load_model
-from ..model.zoo import lagrange_top
 from ..numerics import METHODS, STABILIZATIONS, EventSpec, check_output_path, compile_system, save_trajectory, \
     simulate
 from ._settings import add_set_option, parse_settings
+from ._source import MODEL_HELP, load_source
 
 __all__ = ["register"]
 
@@ -42,7 +41,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "report the conservation of every first integral. The trajectory (t, q, q', q'', the first "
                     "integrals, T, U) goes to --out, or as CSV to standard output.",
     )
-    s.add_argument("model", nargs="?", help="model file (TOML); default: the seed's Lagrange top")
+    s.add_argument("model", nargs="?", help=MODEL_HELP)
     s.add_argument("--t-end", type=_float, default=10.0, metavar="T", help="end time (default 10)")
     s.add_argument("--t-start", type=_float, default=0.0, metavar="T0", help="start time (default 0)")
     add_set_option(s)
@@ -130,7 +129,7 @@ def _check_outputs(args: argparse.Namespace, plots: Path | None) -> None:
 
 
 def run(args: argparse.Namespace) -> str:
-    model = load_model(args.model) if args.model else lagrange_top()
+    model = load_source(args.model)
     parameters, initial = parse_settings(args.set, model)
     plots = plot_folder(args)
     _check_outputs(args, plots)

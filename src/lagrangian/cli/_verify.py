@@ -17,11 +17,11 @@ import sympy
 from ..analysis import Reaction, Verification, check_trajectory, reactions, verify
 from ..dynamics import derive
 from ..errors import VerificationError
-from ..model import Torque, Vector, load_model
-from ..model.zoo import lagrange_top
+from ..model import Torque, Vector
 from ..output import Notation
 from ..output._course import reference_label, to_sympy
 from ._settings import SettingError, add_set_option, parse_settings
+from ._source import MODEL_HELP, load_source
 
 __all__ = ["register", "run", "TOLERANCE"]
 
@@ -50,7 +50,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "L(q_i), term for term; print the constraint reactions from the resultant theorem. With "
                     "--simulate, also evaluate the theorems along a simulated motion.",
     )
-    v.add_argument("model", nargs="?", help="model file (TOML); default: the seed's Lagrange top")
+    v.add_argument("model", nargs="?", help=MODEL_HELP)
     v.add_argument("--simulate", type=_float, metavar="T_END", default=None,
                    help="also check along a motion simulated from t = 0 to T_END (--set changes its values)")
     add_set_option(v)
@@ -207,7 +207,7 @@ def _numeric_report(v: Verification, args: argparse.Namespace, p: _Printer) -> l
 
 
 def run(args: argparse.Namespace) -> str:
-    model = load_model(args.model) if args.model else lagrange_top()
+    model = load_source(args.model)
     parse_settings(args.set, model)  # bad names and values are reported before any work
     if args.set and args.simulate is None:
         raise SettingError("`--set` gives values for a simulation, and none was asked for.",

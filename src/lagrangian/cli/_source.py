@@ -1,0 +1,47 @@
+"""The model a command works on: a model file, a zoo model by name, or the seed's top.
+
+Every command takes the same MODEL argument: a TOML file, ``zoo:NAME[:N]`` for a model of
+`lagrangian.model.zoo` (``zoo:lagrange_top``, ``zoo:planar_chain:40``,
+``zoo:spatial_chain:5``), or nothing for the course's heavy symmetric top.
+"""
+
+from __future__ import annotations
+
+from ..errors import ModelError
+from ..model import load_model, zoo
+from ..model.spec import Model
+
+__all__ = ["ZOO", "MODEL_HELP", "load_source"]
+
+#: The zoo's models that ``zoo:NAME[:N]`` names, and whether they take a size N.
+ZOO = {"lagrange_top": (zoo.lagrange_top, False), "planar_chain": (zoo.planar_chain, True),
+       "spatial_chain": (zoo.spatial_chain, True)}
+
+MODEL_HELP = ("model file (TOML), or a zoo model by name: zoo:lagrange_top, zoo:planar_chain:N, "
+              "zoo:spatial_chain:N; default: the seed's Lagrange top")
+
+
+def _zoo_model(name: str) -> Model:
+    """``zoo:planar_chain:40`` → ``lagrangian.model.zoo.planar_chain(40)``."""
+    _, _, rest = name.partition(":")
+    key, _, size = rest.partition(":")
+    known = ", ".join(f"zoo:{k}:N" if sized else f"zoo:{k}" for k, (_, sized) in ZOO.items())
+    if key not in ZOO:
+        raise ModelError(f"`{name}`: the zoo has no model `{key}`.", fix=f"use one of {known}")
+    make, sized = ZOO[key]
+    if not sized:
+        if size:
+            raise ModelError(f"`{name}`: `{key}` takes no size.", fix=f"write zoo:{key}")
+        return make()  # type: ignore[call-arg]
+    if not size.isdigit() or int(size) < 1:
+        raise ModelError(f"`{name}`: `{key}` needs a number of links N ≥ 1.", fix=f"write e.g. zoo:{key}:3")
+    return make(int(size))  # type: ignore[call-arg]
+
+
+def load_source(name: str | None) -> Model:
+    """The model named on the command line (module docstring)."""
+    if not name:
+        return zoo.lagrange_top()
+    if name.startswith("zoo:"):
+        return _zoo_model(name)
+    return load_model(name)
