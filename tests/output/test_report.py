@@ -207,7 +207,9 @@ def test_a_40_link_chain_is_quick_and_summarized():
     assert "lagrangian derive --json" in _text(r) and summaries
     # A summary states the engine's own number of terms.
     raw = "\n".join(x for s in r.document.sections for x in math_of(s.blocks))
-    assert rf"T(\Sigma/R_{{0}}) = \sum_{{k}} T(S_{{k}}/R_{{0}}) = \langle {len(eom.T.args)}\ \text{{termes}} \rangle" in raw
+    # (T(Σ/R0) is the first summary written in full: it refers to its full form, A.1.)
+    assert rf"T(\Sigma/R_{{0}}) = \sum_{{k}} T(S_{{k}}/R_{{0}}) = \langle {len(eom.T.args)}\ \text{{termes (voir A.1)}} \rangle" \
+        in raw
     # No displayed line is left very long: they are cut or folded.
     for s in r.document.sections:
         for b in walk(s.blocks):

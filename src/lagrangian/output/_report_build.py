@@ -22,6 +22,7 @@ from ._notation import Notation, _axis_latex, _base_latex
 from ._report_constraints import Joint, joints
 from ._report_doc import Block, Display, Equation, Fold, Math
 from . import _report_size
+from ._report_full import FullFormBook
 from ._report_size import FOLD_LINES, SizeGate, visible_width, wrap, wrap_latex, wrap_many
 from ._report_words import Words
 from ._text import notation
@@ -63,6 +64,7 @@ class Context:
         self.gate = SizeGate(self.w.text("terms"), self.w.text("long expression"))
         self.form: CourseForm = course_form(eom, integrals, convert=self.gate)
         self.n: Notation = notation(self.form)
+        self.book = FullFormBook(self.n, self.w.text("see"))
         reference = self.model.reference
         relative = reference is not None and not reference.is_galilean_frame
         self.ref = reference.frame if relative else GALILEAN_FRAME  # type: ignore[union-attr]
@@ -156,6 +158,21 @@ class Context:
 
     def is_zero(self, e: se.Basic | sympy.Basic) -> bool:
         return e == 0
+
+    @property
+    def derive_command(self) -> str:
+        """The command that prints every equation in full: ``lagrangian derive MODEL --json``."""
+        import shlex
+
+        source = self.model.source
+        return f"lagrangian derive {shlex.quote(str(source)) if source else 'MODEL.toml'} --json"
+
+    def full(self, parts: Sequence[tuple[str, sympy.Basic]], label: str) -> list[Block]:
+        """The full forms of the summaries in ``parts`` ((head, expression) pairs), to go under their equation.
+
+        Call it before writing the equation: the summaries it numbers print as ⟨41 terms (see A.3)⟩.
+        """
+        return self.book.blocks(parts, label, self.w)
 
     # -- displayed equations -------------------------------------------------------------------------
     def equation(self, head: str, expr: sympy.Basic, tail: str = "") -> Equation:

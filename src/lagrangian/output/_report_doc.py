@@ -11,7 +11,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 from dataclasses import dataclass
 
-__all__ = ["Math", "Run", "Runs", "Para", "Equation", "Display", "Items", "Table", "Fold", "Image", "Block",
+__all__ = ["Math", "Run", "Runs", "Para", "Equation", "Display", "Items", "Table", "Fold", "FullForms", "Image", "Block",
            "Section", "Document", "walk", "math_of"]
 
 
@@ -77,6 +77,19 @@ class Fold:
 
 
 @dataclass(frozen=True, slots=True)
+class FullForms:
+    """Expressions summarized above as ⟨41 terms (see A.3)⟩, written in full: ``forms`` are (``"A.3"``, equation).
+
+    Folded under their equation in HTML and Markdown (``summary`` is the fold's label); gathered in an
+    appendix in LaTeX under ``title``, where the summaries refer to them by number.
+    """
+
+    title: str
+    summary: str
+    forms: tuple[tuple[str, Equation], ...]
+
+
+@dataclass(frozen=True, slots=True)
 class Image:
     """A PNG image with its caption."""
 
@@ -85,7 +98,7 @@ class Image:
     alt: str
 
 
-Block = Para | Display | Items | Table | Fold | Image
+Block = Para | Display | Items | Table | Fold | FullForms | Image
 
 
 @dataclass(frozen=True, slots=True)
@@ -133,6 +146,9 @@ def math_of(blocks: tuple[Block, ...]) -> list[str]:
             runs(b.runs)
         elif isinstance(b, Display):
             for eq in b.equations:
+                out.extend(eq.lines)
+        elif isinstance(b, FullForms):
+            for _, eq in b.forms:
                 out.extend(eq.lines)
         elif isinstance(b, Items):
             for item in b.items:

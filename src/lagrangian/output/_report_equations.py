@@ -28,7 +28,7 @@ from ._report_constraints import _root
 from ._report_forces import MULTIPLIER_SUM
 from ._report_size import visible_width, wrap_many
 
-__all__ = ["step6", "step7", "integrals_section", "ordered_equations"]
+__all__ = ["step6", "step7", "integrals_section", "ordered_equations", "left_out_note"]
 
 
 def ordered_equations(c: Context) -> list[EquationRow]:
@@ -49,8 +49,9 @@ def _value(c: Context, name: str, expr_engine: se.Basic) -> Runs:
     return (" (",) + c.w("with values", value=(Math(name), f" ≈ {c.w.number(value)}")) + (")",)
 
 
-def _partials(c: Context, row: EquationRow) -> list[Equation]:
-    """The seed's first line of L(q_i): ∂T/∂q̇_i = … ; ∂T/∂q_i = … ; ∂U_P/∂q_i = … et Q_i = …"""
+def _partials(c: Context, row: EquationRow) -> tuple[list[Equation], list[Block]]:
+    """The seed's first line of L(q_i): ∂T/∂q̇_i = … ; ∂T/∂q_i = … ; ∂U_P/∂q_i = … et Q_i = …, with the
+    full forms of its summaries."""
     q = row.coordinate
     label = rf"L({c.sym(q)})\quad "
     parts = [(_dT(c, q, "dot") + " = ", row.dT_dqd), (_dT(c, q) + " = ", row.dT_dq),
@@ -58,17 +59,26 @@ def _partials(c: Context, row: EquationRow) -> list[Equation]:
     multiplier = c.eom.equation(q).multiplier_terms
     if multiplier != 0:
         parts.append((rf"\sum_{{k}} \lambda_{{k}}\, a_{{k,{c.sym(q)}}} = ", c.ex(multiplier)))
+    full = c.full(parts, f"L({c.n.symbol(q)})")
     pieces = [head + c.n.latex(e) for head, e in parts]
     # The seed's layout: "… ; ∂U_P/∂q_i = … et Q_i = …", cut into lines (inside a piece if need be).
     last = pieces.pop()
     pieces[-1] += rf"\quad\text{{{c.w.text('et')}}}\quad " + last
-    return [wrap_many(label, pieces, r";\quad ")]
+    return [wrap_many(label, pieces, r";\quad ")], full
+
+
+def _sides(c: Context, q: str) -> list[str]:
+    """What the two sides of L(q_i) are, as heads of their full forms: d/dt[∂T/∂q̇] − ∂T/∂q = and −∂U_P/∂q + Q = ."""
+    lam = rf" + \sum_{{k}} \lambda_{{k}}\, a_{{k,{c.sym(q)}}}" if c.eom.equation(q).multiplier_terms != 0 else ""
+    return [rf"\frac{{d}}{{dt}}\left[{_dT(c, q, 'dot')}\right] - {_dT(c, q)} = ",
+            rf"-{_dT(c, q, U=True)} + {c.Q_nc(q)}{lam} = "]
 
 
 def _lagrange(c: Context, row: EquationRow) -> list[Block]:
     w = c.w
     q = row.coordinate
-    blocks: list[Block] = c.show(_partials(c, row), f"L({q})")
+    partials, full = _partials(c, row)
+    blocks: list[Block] = c.show(partials, f"L({q})") + full
     if row.integral is not None:
         K = c.n.symbol(row.integral, latex=True)
         p = c.n.latex(row.dT_dqd)
@@ -81,12 +91,15 @@ def _lagrange(c: Context, row: EquationRow) -> list[Block]:
         blocks.append(Para(w("first integral K", K=Math(rf"{K} = \left[{p}\right]_{{{at}}}"))[:-1]
                            + _value(c, K, c.eom.equation(q).dT_dqd) + (".",)))
         return blocks
-    blocks += c.show([c.relation(r"\Rightarrow\quad ", row.lhs, row.rhs)], f"L({q})")
+    lhs_head, rhs_head = _sides(c, q)
+    full = c.full([(lhs_head, row.lhs), (rhs_head, row.rhs)], f"L({c.n.symbol(q)})")
+    blocks += c.show([c.relation(r"\Rightarrow\quad ", row.lhs, row.rhs)], f"L({q})") + full
     if row.using_integrals is not None:
         used = {str(s) for s in row.using_integrals.free_symbols}
         eqs = [Math(rf"L({c.sym(r.coordinate)})") for r in c.form.equations if r.integral in used]
         blocks.append(Para(w("using integrals", eqs=w.join(eqs) if eqs else Math(r"\dots"))))
-        blocks += c.show([c.relation("", row.using_integrals, row.rhs)], f"L({q})")
+        full = c.full([(lhs_head, row.using_integrals)], f"L({c.n.symbol(q)})")
+        blocks += c.show([c.relation("", row.using_integrals, row.rhs)], f"L({q})") + full
     return blocks
 
 
@@ -106,6 +119,9 @@ def step6(c: Context) -> Section:
         blocks += _lagrange(c, row)
     if c.eom.constraints:
         blocks.append(Para(w("with multipliers", sum=Math(MULTIPLIER_SUM))))
+    left = [s for s in c.book.left_out if s.reference is None]
+    if left:
+        blocks.append(Para(left_out_note(c, left), style="note"))
     if c.form.conservative and c.form.L is not None:
         L = Math(rf"L(\Sigma/{c.R}) = T(\Sigma/{c.R}) - U_P(\Sigma/{c.R})")
         blocks.append(Para(w("conservative", R=Math(c.R), L=L)))
@@ -120,6 +136,13 @@ def step6(c: Context) -> Section:
             key = "not conservative system" if len(names) == 1 else "not conservative systems"
             blocks.append(Para(w(key, names=w.join(names))))
     return Section("step6", w.text("step6"), tuple(blocks))
+
+
+def left_out_note(c: Context, left: list) -> Runs:  # type: ignore[type-arg]
+    """The note on the summaries whose full forms the budget left out, and where to find them."""
+    budget = f"{c.book.budget:,}".replace(",", " " if c.lang == "fr" else ",")
+    return c.w("full forms left", budget=budget, k=str(len(left)),
+               sample=Math(left[0].plain_latex), cmd=c.derive_command, fn="lagrangian.derive")
 
 
 def step7(c: Context) -> Section:

@@ -181,6 +181,18 @@ def notes_section(c: Context) -> Section | None:
     """A note on the expressions summarized as ⟨N terms⟩, when there are any."""
     if not c.gate.summaries:
         return None
-    sample = Math(c.gate.summaries[0].latex_form)
-    text = c.w("summaries", sample=sample, cmd="lagrangian derive --json", fn="lagrangian.derive")
-    return Section("notes", c.w.text("notes"), (Para(text, style="note"),))
+    from ._report_equations import left_out_note
+
+    blocks: list[Block] = []
+    numbered = c.book.numbered
+    if numbered:
+        refs = numbered[0].reference if len(numbered) == 1 else \
+            c.w.text("refs", first=numbered[0].reference, last=numbered[-1].reference)
+        blocks.append(Para(c.w("full forms note", sample=Math(numbered[0].latex_form), refs=refs), style="note"))
+    left = [s for s in c.gate.summaries if s.reference is None]
+    if left and c.book.left_out:
+        blocks.append(Para(left_out_note(c, left), style="note"))
+    elif left:
+        blocks.append(Para(c.w("summaries", sample=Math(left[0].plain_latex), cmd=c.derive_command,
+                               fn="lagrangian.derive"), style="note"))
+    return Section("notes", c.w.text("notes"), tuple(blocks))

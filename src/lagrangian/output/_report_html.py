@@ -14,7 +14,7 @@ import re
 from latex2mathml.converter import convert
 
 from ..errors import OutputError
-from ._report_doc import Block, Display, Document, Fold, Image, Items, Math, Para, Runs, Section, Table
+from ._report_doc import Block, Display, Document, Fold, FullForms, Image, Items, Math, Para, Runs, Section, Table
 
 __all__ = ["render_html"]
 
@@ -40,6 +40,9 @@ _CSS = """
 .lagrangian-report th, .lagrangian-report td { border: 1px solid #ccc; padding: 0.2em 0.6em; text-align: left; }
 .lagrangian-report details { margin: 0.4em 0 0.8em 0; }
 .lagrangian-report summary { cursor: pointer; color: #1a4f8b; }
+.lagrangian-report .full-form .ref { margin: 0.5em 0 0 0; font-weight: bold; }
+.lagrangian-report .full-form .display { margin: 0.2em 0 0.6em 0.5em; }
+.lagrangian-report .full-form .eq.multi .cont math[display="block"] { margin-left: 1.5em; }
 .lagrangian-report figure { margin: 1em 0; }
 .lagrangian-report figure img { max-width: 100%; }
 .lagrangian-report figcaption { font-size: 0.95em; color: #333; }
@@ -145,6 +148,10 @@ def _block(b: Block) -> str:
     if isinstance(b, Fold):
         inner = "".join(_block(x) for x in b.blocks)
         return f"<details><summary>{html.escape(b.summary)}</summary>{inner}</details>"
+    if isinstance(b, FullForms):
+        forms = "".join(f'<div class="full-form"><p class="ref">{html.escape(ref)}</p>{_block(Display((eq,)))}</div>'
+                        for ref, eq in b.forms)
+        return f'<details class="full"><summary>{html.escape(b.summary)}</summary>{forms}</details>'
     if isinstance(b, Image):
         data = base64.b64encode(b.png).decode("ascii")
         return (f'<figure><img src="data:image/png;base64,{data}" alt="{html.escape(b.alt, quote=True)}">'

@@ -171,6 +171,8 @@ _T_FORMULA = {
 
 
 def _kinetic(c: Context) -> list[Block]:
+    # One element: its T is T(Σ/R), whose full form (when summarized) goes under it; numbered before it is written.
+    single = c.full([(rf"T(\Sigma/{c.R}) = ", c.form.T[0].expression)], f"T(Σ/{c.ref})") if len(c.form.T) == 1 else []
     rows = []
     for term, shown in zip(c.eom.T_terms, c.form.T):
         S = c.element(term.name)
@@ -181,11 +183,13 @@ def _kinetic(c: Context) -> list[Block]:
                                                           m=c.tex(mass) if mass is not None else "m")
         head = rf"T({S}/{c.R}) = " + (f"{formula} = " if formula else "")
         rows.append(c.equation(head, shown.expression))
-    blocks = c.many(c.show(rows, "T"), len(rows), "T")
+    blocks = c.many(c.show(rows, "T"), len(rows), "T") + single
     if len(rows) > 1:
+        head = rf"T(\Sigma/{c.R}) = "
         names = [rf"T({c.element(t.name)}/{c.R})" for t in c.eom.T_terms]
         total = " + ".join(names) if len(names) <= 4 else rf"\sum_{{k}} T(S_{{k}}/{c.R})"
-        blocks += c.show([c.equation(rf"T(\Sigma/{c.R}) = {total} = ", c.form.T_total)], "T")
+        full = c.full([(head, c.form.T_total)], f"T(Σ/{c.ref})")
+        blocks += c.show([c.equation(rf"{head}{total} = ", c.form.T_total)], "T") + full
     return blocks
 
 
@@ -236,6 +240,8 @@ def _potential(c: Context) -> list[Block]:
     loads = [(f, row) for f, row in zip((f for f in c.eom.loads if f.potential is not None), c.form.U)]
     if not loads:
         return [Para(w("no potential", U=Math(rf"U_P(\Sigma/{c.R}) = 0")))]
+    head = rf"U_P(\Sigma/{c.R}) = "
+    alone = c.full([(head, loads[0][1].expression)], f"U_P(Σ/{c.ref})") if len(loads) == 1 else []
     elements = len(c.model.bodies) + len(c.model.particles)
     single = len(loads) == 1 and elements == 1
     rows = []
@@ -251,9 +257,10 @@ def _potential(c: Context) -> list[Block]:
     blocks: list[Block] = []
     if not single:
         blocks.append(Para(w("potential of")))
-    blocks += c.show(rows, "U_P")
+    blocks += c.show(rows, "U_P") + alone
     if len(rows) > 1:
-        blocks += c.show([c.equation(rf"U_P(\Sigma/{c.R}) = ", c.form.U_total, cste)], "U_P")
+        full = c.full([(head, c.form.U_total)], f"U_P(Σ/{c.ref})")
+        blocks += c.show([c.equation(head, c.form.U_total, cste)], "U_P") + full
     return blocks
 
 

@@ -14,7 +14,8 @@ import re
 from collections.abc import Sequence
 from urllib.parse import quote
 
-from ._report_doc import Block, Display, Document, Equation, Fold, Image, Items, Math, Para, Runs, Section, Table
+from ._report_doc import (Block, Display, Document, Equation, Fold, FullForms, Image, Items, Math, Para, Runs, Section,
+                          Table)
 
 __all__ = ["render_markdown", "display_math", "fenced_math", "inline_math"]
 
@@ -49,6 +50,16 @@ def fenced_math(eq: Equation) -> str:
     return f"```math\n{_aligned(eq)}\n```"
 
 
+#: Most lines of one ```` ```math ```` block of a full form (a longer one is cut into several: the sites'
+#: math renderers refuse very large expressions).
+CHUNK_LINES = 24
+
+
+def _chunks(eq: Equation) -> list[tuple[str, ...]]:
+    """A long equation's lines in blocks of at most `CHUNK_LINES` (each further block continues the sum)."""
+    return [eq.lines[k:k + CHUNK_LINES] for k in range(0, len(eq.lines), CHUNK_LINES)]
+
+
 def display_math(eq: Equation) -> str:
     """One displayed equation between ``$$`` (what Jupyter's LaTeX display reads)."""
     return f"$$\n{_aligned(eq)}\n$$"
@@ -71,6 +82,11 @@ def _block(b: Block, figures: Sequence[str] | None = None, counter: list[int] | 
         inner = "\n\n".join(_block(x, figures, counter) for x in b.blocks)
         summary = b.summary.replace("<", "&lt;").replace(">", "&gt;")
         return f"<details><summary>{summary}</summary>\n\n{inner}\n\n</details>"
+    if isinstance(b, FullForms):
+        forms = "\n\n".join(f"**{ref}**\n\n" + "\n\n".join(fenced_math(Equation(part)) for part in _chunks(eq))
+                            for ref, eq in b.forms)
+        summary = b.summary.replace("<", "&lt;").replace(">", "&gt;")
+        return f"<details><summary>{summary}</summary>\n\n{forms}\n\n</details>"
     if isinstance(b, Image):
         counter[0] += 1
         if figures is not None and counter[0] <= len(figures):

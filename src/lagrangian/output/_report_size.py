@@ -52,7 +52,15 @@ class Summary(Opaque):
         obj = super().__new__(cls, text, latex)
         obj.source = source
         obj.terms = count
+        obj.plain_text, obj.plain_latex = text, latex
+        obj.reference = None
         return obj
+
+    def refer(self, reference: str, see_word: str) -> None:
+        """Print as ⟨41 terms (see A.3)⟩ from now on: its full form is numbered ``reference``."""
+        self.reference = reference
+        self.text_form = f"{self.plain_text[:-1]} ({see_word} {reference})⟩"
+        self.latex_form = self.plain_latex.replace(r"} \rangle", rf" ({see_word} {reference})}} \rangle")
 
 
 def _terms(e: se.Basic) -> int:
@@ -195,35 +203,54 @@ def split_top(s: str) -> list[str]:
     return [p for p in pieces if p]
 
 
-def _outer_paren(s: str) -> tuple[int, int] | None:
-    """Start of the first top-level ``\\left(`` of ``s`` and the end of its matching ``\\right)``."""
-    open_at = None
+def _parens(s: str) -> list[tuple[int, int]]:
+    """Start of every top-level ``\\left(`` of ``s`` and the end of its matching ``\\right)``."""
+    out, open_at = [], None
     for i, depth in _scan(s):
         if open_at is None and depth == 0 and s.startswith(r"\left(", i):
             open_at = i
         elif open_at is not None and depth == 1 and s.startswith(r"\right)", i):
-            return open_at, i + len(r"\right)")
-    return None
+            out.append((open_at, i + len(r"\right)")))
+            open_at = None
+    return out
+
+
+def _inner(piece: str, group: tuple[int, int]) -> list[str]:
+    return split_top(piece[group[0] + len(r"\left("):group[1] - len(r"\right)")])
 
 
 def _atoms(piece: str, width: int, depth: int = 0) -> list[tuple[str, int]]:
-    """``piece`` as (text, depth after it) atoms: a piece too wide is opened at its first parenthesized sum."""
+    """``piece`` as (text, depth after it) atoms: a piece too wide is opened at its parenthesized sums.
+
+    The sums opened are those wider than a quarter of the line (a product of two long sums is
+    opened at both), else the widest; a short one, such as the argument of a sine, stays whole.
+    """
     if visible_width(piece) <= width:
         return [(piece, depth)]
-    where = _outer_paren(piece)
-    if where is None:
+    groups = [g for g in _parens(piece) if len(_inner(piece, g)) >= 2]
+    if not groups:
         return [(piece, depth)]
-    start, end = where
-    inner = split_top(piece[start + len(r"\left("):end - len(r"\right)")])
-    if len(inner) < 2:
-        return [(piece, depth)]
+    wide = [g for g in groups if visible_width(piece[g[0]:g[1]]) > width // 4] or \
+        [max(groups, key=lambda g: visible_width(piece[g[0]:g[1]]))]
     out: list[tuple[str, int]] = []
-    for k, term in enumerate(inner):
-        out += _atoms(term, width, depth + 1)
-    first, d = out[0]
-    out[0] = (piece[:start] + r"\left(" + first, d)
+    position = 0
+    for start, end in wide:
+        between = piece[position:start]
+        inside: list[tuple[str, int]] = []
+        for term in _inner(piece, (start, end)):
+            inside += _atoms(term, width, depth + 1)
+        if out:  # what follows a closed sum (a power, a space, a factor) stays with it
+            text, d = out[-1]
+            out[-1] = (text + between.rstrip(), d)
+            between = " " if between[-1:].isspace() else ""
+        first, d = inside[0]
+        inside[0] = (between + r"\left(" + first, d)
+        last, _ = inside[-1]
+        inside[-1] = (last + r"\right)", depth)
+        out += inside
+        position = end
     last, _ = out[-1]
-    out[-1] = (last + r"\right)" + piece[end:], depth)
+    out[-1] = (last + piece[position:], depth)
     return out
 
 

@@ -1,7 +1,8 @@
 """The report as a LaTeX document that ``pdflatex`` compiles (packages of a basic TeX Live only).
 
 Long equations are ``align*`` blocks that may break across pages (``\\allowdisplaybreaks``);
-folded content is printed in full; figures are ``\\includegraphics`` of PNG files written
+folded content is printed in full, except the full forms of summarized expressions
+(⟨41 termes (voir A.3)⟩), gathered in an appendix at the end; figures are ``\\includegraphics`` of PNG files written
 beside the ``.tex`` file (`Report.save`), or a note when there are none.
 """
 
@@ -9,7 +10,8 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from ._report_doc import Block, Display, Document, Fold, Image, Items, Math, Para, Runs, Section, Table
+from ._report_doc import (Block, Display, Document, Equation, Fold, FullForms, Image, Items, Math, Para, Runs, Section,
+                          Table, walk)
 
 __all__ = ["render_tex"]
 
@@ -100,14 +102,7 @@ def _block(b: Block, figures: Sequence[str] | None, counter: list[int]) -> str:
             return rf"{{\small {text}}}" + "\n"
         return text + "\n"
     if isinstance(b, Display):
-        out = []
-        for eq in b.equations:
-            if len(eq.lines) == 1:
-                out.append(rf"\[ {eq.lines[0]} \]")
-            else:
-                rows = [f"& {eq.lines[0]}"] + [rf"&\quad {line}" for line in eq.lines[1:]]
-                out.append("\\begin{align*}\n" + " \\\\\n".join(rows) + "\n\\end{align*}")
-        return "\n".join(out) + "\n"
+        return "\n".join(_align(eq) for eq in b.equations) + "\n"
     if isinstance(b, Items):
         return "\\begin{itemize}\n" + "\n".join(rf"\item {_runs(i)}" for i in b.items) + "\n\\end{itemize}\n"
     if isinstance(b, Table):
@@ -117,6 +112,8 @@ def _block(b: Block, figures: Sequence[str] | None, counter: list[int]) -> str:
         return f"\\begin{{longtable}}{{{cols}}}\n\\hline\n{head}\n\\endhead\n{body}\n\\hline\n\\end{{longtable}}\n"
     if isinstance(b, Fold):
         return "".join(_block(x, figures, counter) for x in b.blocks)
+    if isinstance(b, FullForms):
+        return ""  # in the appendix (`_appendix`)
     if isinstance(b, Image):
         counter[0] += 1
         caption = _runs(b.caption)
@@ -126,6 +123,28 @@ def _block(b: Block, figures: Sequence[str] | None, counter: list[int]) -> str:
                     rf"\par{{\small {caption}}}" "\n\\end{figure}\n")
         return rf"\fbox{{\parbox{{0.9\linewidth}}{{{caption}}}}}" + "\n"
     raise TypeError(f"unknown block {type(b).__name__}")  # pragma: no cover
+
+
+def _align(eq: Equation) -> str:
+    if len(eq.lines) == 1:
+        return rf"\[ {eq.lines[0]} \]"
+    rows = [f"& {eq.lines[0]}"] + [rf"&\quad {line}" for line in eq.lines[1:]]
+    return "\\begin{align*}\n" + " \\\\\n".join(rows) + "\n\\end{align*}"
+
+
+def _appendix(doc: Document) -> str:
+    """The full forms of the summarized expressions, by number (A.1, A.2...), as breakable ``align*`` blocks."""
+    from ._report_words import Words
+
+    found = [b for s in doc.sections for b in walk(s.blocks) if isinstance(b, FullForms)]
+    if not found:
+        return ""
+    out = [rf"\section*{{{escape(Words(doc.lang).text('appendix full'))}}}"]
+    for b in found:
+        out.append(rf"\subsection*{{{escape(b.title)}}}")
+        for ref, eq in b.forms:
+            out.append(rf"\textbf{{{escape(ref)}}}" + "\n" + _align(eq))
+    return "\n".join(out) + "\n"
 
 
 def _section(s: Section, figures: Sequence[str] | None, counter: list[int]) -> str:
@@ -139,6 +158,9 @@ def render_tex(doc: Document, *, footer: str = "", figures: Sequence[str] | None
     if doc.subtitle:
         parts.append(rf"\begin{{center}}\textit{{{escape(doc.subtitle)}}}\end{{center}}")
     parts += [_section(s, figures, counter) for s in doc.sections]
+    appendix = _appendix(doc)
+    if appendix:
+        parts.append(appendix)
     if footer:
         parts.append(rf"\vfill{{\footnotesize {escape(footer)}}}")
     parts.append(r"\end{document}")

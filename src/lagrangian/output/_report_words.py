@@ -391,6 +391,21 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "show all": ("{label} — afficher ({k})", "{label} — show ({k})"),
     "terms": ("termes", "terms"),
     "long expression": ("expression longue", "long expression"),
+    "see": ("voir", "see"),
+    "refs": ("{first} à {last}", "{first} to {last}"),
+    "full forms": ("{label} : formes complètes {refs}", "{label}: full forms {refs}"),
+    "show it": ("{what} — afficher", "{what} — show"),
+    "appendix full": ("Annexe : formes complètes", "Appendix: full forms"),
+    "full forms note": ("Une expression trop longue pour être écrite dans son équation y est résumée, comme {sample} ; "
+                        "sa forme complète ({refs}) est donnée sous l'équation (en LaTeX, en annexe).",
+                        "An expression too long to print in its equation is summarized there, as {sample}; its full "
+                        "form ({refs}) is given under the equation (in LaTeX, in an appendix)."),
+    "full forms left": ("Les formes complètes sont limitées à {budget} caractères de LaTeX en tout : {k} autres "
+                        "résumés, comme {sample}, restent tels quels. La commande {cmd} (ou la fonction {fn}) donne "
+                        "toutes les équations en entier.",
+                        "The full forms are limited to {budget} characters of LaTeX in all: {k} other summaries, "
+                        "as {sample}, stay as they are. The command {cmd} (or the function {fn}) gives every "
+                        "equation in full."),
     "summaries": ("{sample} : expression trop longue pour être écrite ici ; la commande {cmd} (ou la fonction "
                   "{fn}) la donne en entier.", "{sample}: an expression too long to print here; the command "
                   "{cmd} (or the function {fn}) gives it in full."),
