@@ -94,6 +94,22 @@ def test_markdown_output_refers_to_figure_files(tmp_path):
     assert pngs and all(f"]({name})" in md for name in pngs)
 
 
+def test_markdown_of_a_model_file_with_figures_writes_png_files(tmp_path):
+    """``lagrangian report examples/lagrange_top.toml --simulate 2 -o top.md``: top.md, PNG files, no data: URI."""
+    out = tmp_path / "top.md"
+    assert main(["report", str(EXAMPLES_DIR / "lagrange_top.toml"), "--simulate", "2", "-o", str(out)]) == 0
+    md = out.read_text(encoding="utf-8")
+    pngs = sorted(p.name for p in tmp_path.glob("top-figure-*.png"))
+    assert len(pngs) >= 2 and all((tmp_path / p).read_bytes().startswith(b"\x89PNG") for p in pngs)
+    assert "data:image" not in md and all(f"]({name})" in md for name in pngs)
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(pngs + ["top.md"])
+
+
+def test_the_notes_name_the_derive_command_for_the_model(capsys):
+    assert main(["report", "zoo:planar_chain:14", "--no-verify", "--format", "html"]) == 0
+    assert "lagrangian derive zoo:planar_chain:14 --json" in capsys.readouterr().out
+
+
 def test_set_changes_the_values_shown_without_simulate(capsys):
     assert main(["report", "--no-verify", "--set", "g=1.62", "--set", "theta=0.5"]) == 0
     out = capsys.readouterr().out

@@ -204,7 +204,7 @@ def test_a_40_link_chain_is_quick_and_summarized():
     assert len(html) < 4_000_000 and "<details>" in html and "<details>" in md
     assert r.document.section("notes")  # the note on ⟨N termes⟩ comes first
     summaries = [s for s in r.document.sections if s.key == "notes"]
-    assert "lagrangian derive --json" in _text(r) and summaries
+    assert "lagrangian derive MODEL --json" in _text(r) and summaries
     # A summary states the engine's own number of terms.
     raw = "\n".join(x for s in r.document.sections for x in math_of(s.blocks))
     # (T(Σ/R0) is the first summary written in full: it refers to its full form, A.1.)
@@ -291,6 +291,18 @@ def test_latex_figures_are_written_beside_the_tex_file(tmp_path):
     r.save(tmp_path / "top.tex")
     assert (tmp_path / "top-figure-1.png").read_bytes() == png
     assert r"\includegraphics[width=\linewidth]{top-figure-1.png}" in (tmp_path / "top.tex").read_text()
+
+
+def test_markdown_figures_are_written_beside_the_md_file(tmp_path):
+    png, fig = _png()
+    r = report(lagrangian.lagrange_top(), figures=[ReportFigure(png, "θ(t)"), ("phase", fig)])
+    r.save(tmp_path / "top.md")
+    md = (tmp_path / "top.md").read_text(encoding="utf-8")
+    assert (tmp_path / "top-figure-1.png").read_bytes() == png
+    assert (tmp_path / "top-figure-2.png").read_bytes().startswith(b"\x89PNG")
+    assert "](top-figure-1.png)" in md and "](top-figure-2.png)" in md and "data:image" not in md
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["top-figure-1.png", "top-figure-2.png", "top.md"]
+    assert "data:image/png;base64," in r.markdown()  # on standard output there is no folder: data: URIs
 
 
 def test_jupyter_displays(top):

@@ -116,7 +116,7 @@ def test_a_40_link_chain_stays_within_the_budget_and_quick():
     # The rest stays summarized, and the report says where the complete equations are.
     text = " ".join(x for s in r.document.sections for b in walk(s.blocks) if hasattr(b, "runs")
                     for x in b.runs if isinstance(x, str))
-    assert "lagrangian derive MODEL.toml --json" in text and "300 000 caractères" in text
+    assert "lagrangian derive MODEL --json" in text and "300 000 caractères" in text
     step6 = " ".join(math_of(r.document.section("step6").blocks))
     assert r"\text{termes} \rangle" in step6  # summaries left as they were
 

@@ -8,23 +8,21 @@ suffix of ``-o FILE``, else Markdown.  The Newton–Euler cross-check is include
 ``--simulate T_END`` adds the figures of a simulated motion (matplotlib needed); ``--set``
 changes parameter values and initial conditions in the report and in the simulation.
 With ``-o``, `Report.save` writes the figures of a LaTeX or Markdown report beside it as
-PNG files.
+PNG files.  The report's notes name ``lagrangian derive MODEL --json`` (with this MODEL) for the
+equations that are too long to print in full.
 """
 
 from __future__ import annotations
 
 import argparse
 import dataclasses
-from pathlib import Path
 
-from .. import _atomic
 from ..dynamics import derive
-from ..errors import ModelError, OutputError, SimulationError
-from ..model import Model, load_model
-from ..model import zoo
+from ..errors import SimulationError
+from ..model import Model
 from ..output import format_for, report
-from ..output._report_md import render_markdown
 from ._settings import add_set_option, parse_settings
+from ._source import MODEL_HELP, load_source
 
 __all__ = ["register", "run", "VERIFY_AUTO_MAX"]
 
@@ -34,28 +32,6 @@ SUMMARY = "write the derivation step by step, as the course does it (constraints
 #: Largest number of coordinates for which the Newton–Euler check runs unless asked not to
 #: (it takes about 30 s for a 40-link chain, where the rest of the report takes a few seconds).
 VERIFY_AUTO_MAX = 12
-
-
-#: The zoo's models that ``zoo:NAME[:N]`` names, and whether they take a size N.
-ZOO = {"lagrange_top": (zoo.lagrange_top, False), "planar_chain": (zoo.planar_chain, True),
-       "spatial_chain": (zoo.spatial_chain, True)}
-
-
-def _zoo_model(name: str) -> Model:
-    """``zoo:planar_chain:40`` → ``lagrangian.model.zoo.planar_chain(40)``."""
-    _, _, rest = name.partition(":")
-    key, _, size = rest.partition(":")
-    known = ", ".join(f"zoo:{k}:N" if sized else f"zoo:{k}" for k, (_, sized) in ZOO.items())
-    if key not in ZOO:
-        raise ModelError(f"`{name}`: the zoo has no model `{key}`.", fix=f"use one of {known}")
-    make, sized = ZOO[key]
-    if not sized:
-        if size:
-            raise ModelError(f"`{name}`: `{key}` takes no size.", fix=f"write zoo:{key}")
-        return make()  # type: ignore[call-arg]
-    if not size.isdigit() or int(size) < 1:
-        raise ModelError(f"`{name}`: `{key}` needs a number of links N ≥ 1.", fix=f"write e.g. zoo:{key}:3")
-    return make(int(size))  # type: ignore[call-arg]
 
 
 def _with_settings(model: Model, settings: list[str]) -> tuple[Model, dict[str, float], dict[str, float]]:
@@ -87,8 +63,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "Newton-Euler cross-check. HTML is one offline page (MathML); LaTeX compiles with pdflatex; "
                     "Markdown uses $...$ mathematics.",
     )
-    r.add_argument("model", nargs="?", help="model file (TOML), or a zoo model by name: zoo:lagrange_top, "
-                   "zoo:planar_chain:N, zoo:spatial_chain:N; default: the seed's Lagrange top")
+    r.add_argument("model", nargs="?", help=MODEL_HELP)
     r.add_argument("--lang", choices=("fr", "en"), default="fr", help="language (default: fr, the course's)")
     r.add_argument("--format", choices=("html", "tex", "md"), default=None,
                    help="output format (default: from the suffix of -o, else md)")
@@ -115,41 +90,15 @@ def _figures(eom, t_end: float, parameters: dict[str, float], initial: dict[str,
             for kind in applicable_kinds(traj, eom)]
 
 
-def save_markdown(r, path: str | Path) -> Path:  # type: ignore[no-untyped-def]
-    """Write a Markdown report and its figures, as ``<name>-figure-<k>.png`` beside it, atomically."""
-    from ..output._report_doc import Image, walk
-    from ..output._report import _footer
-
-    path = Path(path)
-    images = [b for s in r.document.sections for b in walk(s.blocks) if isinstance(b, Image)]
-    names = [f"{path.stem}-figure-{k}.png" for k in range(1, len(images) + 1)]
-    try:
-        for name, image in zip(names, images):
-            _atomic.write_atomic(path.with_name(name), image.png)
-        _atomic.write_atomic(path, render_markdown(r.document, footer=_footer(), figures=names))
-    except OSError as exc:
-        raise OutputError(f"Cannot write `{path}`: {exc.strerror or exc}.",
-                          fix="check that the folder exists and is writable; the old file, if any, is "
-                              "unchanged") from exc
-    return path
-
-
 def run(args: argparse.Namespace) -> str | None:
-    if args.model and args.model.startswith("zoo:"):
-        model = _zoo_model(args.model)
-    else:
-        model = load_model(args.model) if args.model else zoo.lagrange_top()
-    model, parameters, initial = _with_settings(model, args.set)
+    model, parameters, initial = _with_settings(load_source(args.model), args.set)
     eom = derive(model)
     fmt = args.format or (format_for(args.output) if args.output else "md")
     check = args.verify if args.verify is not None else len(eom.coordinates) <= VERIFY_AUTO_MAX
     figures = _figures(eom, args.simulate, parameters, initial, args.lang) if args.simulate is not None else []
-    r = report(eom, lang=args.lang, verification=check, figures=figures)
+    # The notes name the command that prints every equation in full: lagrangian derive MODEL --json.
+    r = report(eom, lang=args.lang, verification=check, figures=figures, source=args.model or "")
     if not args.output:
         return r.render(fmt)
-    # Report.save writes the figures beside a .tex file (\includegraphics); Markdown gets them the same way.
-    if fmt == "md":
-        save_markdown(r, args.output)
-    else:
-        r.save(args.output, fmt)
+    r.save(args.output, fmt)  # the figures of a .tex or .md report as PNG files beside it
     return None

@@ -35,7 +35,7 @@ from ..dynamics import EquationsOfMotion, derive
 from ..errors import OutputError
 from ..model import Model, load_model
 from ._report_build import Context
-from ._report_doc import Document
+from ._report_doc import Document, Image, walk
 from ._report_equations import integrals_section, step6, step7
 from ._report_extras import ReportFigure, check_section, matrix_section, notes_section, simulation_section
 from ._report_forces import step5
@@ -84,9 +84,10 @@ class Report:
         """A LaTeX document; ``figure_files`` name the PNG files of the figures (see `save`)."""
         return render_tex(self.document, footer=_footer(), figures=figure_files)
 
-    def markdown(self) -> str:
-        """Markdown with ``$...$`` mathematics."""
-        return render_markdown(self.document, footer=_footer())
+    def markdown(self, figure_files: Sequence[str] | None = None) -> str:
+        """Markdown with GitHub's math syntax; ``figure_files`` name the PNG files of the figures (see `save`),
+        else they are data: URIs."""
+        return render_markdown(self.document, footer=_footer(), figures=figure_files)
 
     def render(self, format: str) -> str:
         """The report in ``format``: ``"html"``, ``"tex"`` or ``"md"``."""
@@ -101,18 +102,20 @@ class Report:
     def save(self, path: str | os.PathLike[str], format: str | None = None) -> Path:
         """Write the report to ``path`` atomically (format from the suffix unless given).
 
-        A LaTeX report with figures also writes them, as ``<name>-figure-<k>.png`` beside it.
+        A LaTeX or Markdown report with figures also writes them, each atomically, as
+        ``<name>-figure-<k>.png`` beside it, and refers to them by those relative names
+        (``\\includegraphics``, ``![...](name-figure-1.png)``); HTML keeps them inline.
         A failure leaves any older file at ``path`` as it was.
         """
         path = Path(path)
         fmt = format or format_for(path)
         try:
-            if fmt == "tex":
-                images = [b for s in self.document.sections for b in s.blocks if type(b).__name__ == "Image"]
+            if fmt in ("tex", "md"):
+                images = [b for s in self.document.sections for b in walk(s.blocks) if isinstance(b, Image)]
                 names = [f"{path.stem}-figure-{k}.png" for k in range(1, len(images) + 1)]
                 for name, image in zip(names, images):
-                    _atomic.write_atomic(path.with_name(name), image.png)  # type: ignore[attr-defined]
-                text = self.latex(names)
+                    _atomic.write_atomic(path.with_name(name), image.png)
+                text = self.latex(names) if fmt == "tex" else self.markdown(names)
             else:
                 text = self.render(fmt)
             _atomic.write_atomic(path, text)
@@ -158,7 +161,7 @@ def _figure(item: Any) -> ReportFigure:
 
 def report(model: Model | EquationsOfMotion | str | os.PathLike[str], *, lang: str = "fr",
            verification: Verification | bool | None = None, figures: Sequence[Any] = (),
-           integrals: Sequence[FirstIntegral] | None = None) -> Report:
+           integrals: Sequence[FirstIntegral] | None = None, source: str | None = None) -> Report:
     r"""The step-by-step derivation of ``model`` in the course's order, ready to write as HTML, LaTeX or Markdown.
 
     Parameters
@@ -170,6 +173,8 @@ def report(model: Model | EquationsOfMotion | str | os.PathLike[str], *, lang: s
     figures : figures to include (a simulation's plots): `ReportFigure`, PNG bytes, matplotlib
         figures, or ``(caption, figure)`` pairs.
     integrals : the first integrals (default: `lagrangian.first_integrals`).
+    source : how ``lagrangian derive`` names the model (a file, ``zoo:planar_chain:40``, ``""`` for the
+        seed's top), for the note on the equations too long to print in full (default: the model's file).
 
     Returns
     -------
@@ -188,7 +193,7 @@ def report(model: Model | EquationsOfMotion | str | os.PathLike[str], *, lang: s
     else:
         eom = derive(load_model(model) if isinstance(model, (str, os.PathLike)) else model)
     found = tuple(integrals) if integrals is not None else first_integrals(eom)
-    c = Context(eom, found, lang)
+    c = Context(eom, found, lang, source=source)
     checked = verify(eom) if verification is True else (verification or None)
     pictures = [_figure(f) for f in figures]
     sections = [system_section(c), step1(c), step2(c), step3(c), step4(c), step5(c), step6(c), step7(c),

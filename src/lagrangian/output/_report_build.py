@@ -54,8 +54,10 @@ def tex_name(name: str) -> str:
 class Context:
     """One report in the making: the derivation and how to write it in one language."""
 
-    def __init__(self, eom: EquationsOfMotion, integrals: tuple[FirstIntegral, ...], lang: str) -> None:
+    def __init__(self, eom: EquationsOfMotion, integrals: tuple[FirstIntegral, ...], lang: str,
+                 source: str | None = None) -> None:
         self.eom = eom
+        self.source = source if source is not None else eom.model.source
         self.model = eom.model
         self.kin = eom.kinematics
         self.integrals = integrals
@@ -164,8 +166,10 @@ class Context:
         """The command that prints every equation in full: ``lagrangian derive MODEL --json``."""
         import shlex
 
-        source = self.model.source
-        return f"lagrangian derive {shlex.quote(str(source)) if source else 'MODEL.toml'} --json"
+        source = self.source
+        if source is None:
+            return "lagrangian derive MODEL --json"
+        return f"lagrangian derive {shlex.quote(str(source))} --json" if source else "lagrangian derive --json"
 
     def full(self, parts: Sequence[tuple[str, sympy.Basic]], label: str) -> list[Block]:
         """The full forms of the summaries in ``parts`` ((head, expression) pairs), to go under their equation.

@@ -164,7 +164,7 @@ def matrix_section(c: Context) -> Section:
     if len(q) > MATRIX_MAX:
         count = sum(1 for a, row in enumerate(c.eom.M) for b, x in enumerate(row) if b >= a and x != 0)
         text = w("matrix large", form=form, n=Math(rf"{len(q)} \times {len(q)}"), k=str(count),
-                 cmd="lagrangian derive --json")
+                 cmd=c.derive_command)
         return Section("matrix", w.text("matrix"), (Para(text),))
     rows: list[Equation] = []
     for a, row in enumerate(c.form.M):
