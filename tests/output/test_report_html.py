@@ -168,3 +168,31 @@ def test_other_models_render_in_a_browser(name, tmp_path):
 def test_a_40_link_chain_renders_in_a_browser(tmp_path):
     r = report(lagrangian.derive(planar_chain(40)), lang="fr")
     _check_page(r.html(), _math_count(r), tmp_path)
+
+
+_OVERFLOW = """
+<script>
+window.addEventListener('load', () => {
+  document.querySelectorAll('details').forEach(d => { d.open = true; });
+  const forms = Array.from(document.querySelectorAll('.full-form .display'));
+  const wide = forms.filter(e => e.scrollWidth > e.clientWidth + 1).map(e => [e.scrollWidth, e.clientWidth]);
+  const probe = document.createElement('pre');
+  probe.id = 'probe';
+  probe.textContent = JSON.stringify({forms: forms.length, wide: wide});
+  document.body.appendChild(probe);
+});
+</script>
+"""
+
+
+def test_full_forms_fit_the_page_without_scrolling(tmp_path):
+    """The full forms of a 6-link chain's L(θ_i), unfolded, are cut into lines that fit the page's width."""
+    r = report(lagrangian.derive(planar_chain(6)), lang="fr")
+    page = tmp_path / "forms.html"
+    page.write_text(r.html().replace("</body>", _OVERFLOW + "</body>"), encoding="utf-8")
+    run = _chromium(tmp_path, "--window-size=1100,2000", "--virtual-time-budget=10000", "--dump-dom", page.as_uri())
+    assert run.returncode == 0, run.stderr[-2000:]
+    found = re.search(r'<pre id="probe">(.*?)</pre>', run.stdout, re.S)
+    assert found, run.stdout[-2000:]
+    result = json.loads(found.group(1).replace("&quot;", '"'))
+    assert result["forms"] >= 12 and result["wide"] == []
