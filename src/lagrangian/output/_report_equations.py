@@ -244,14 +244,14 @@ def _tension(c: Context, reaction, formulas: tuple[se.Basic, ...]) -> list[Block
     v = up[0]
     h = next(k for k in used if k != v)
     theta, theta_dot = sympy.Symbol("theta"), sympy.Symbol("theta_dot")
-    Ls = sympy.sympify(str(L))
+    Ls = L._sympy_()  # SymEngine → SymPy by structure (no text is parsed)
     x, y = sympy.Symbol(str(comps[h])), sympy.Symbol(str(comps[v]))
     xd, yd = (sympy.Symbol(str(kin.qd[q.index(comps[k])])) for k in (h, v))
     polar = {x: Ls * sympy.sin(theta), y: -Ls * sympy.cos(theta), xd: Ls * sympy.cos(theta) * theta_dot,
              yd: Ls * sympy.sin(theta) * theta_dot}
     try:
-        N_theta = sympy.factor(sympy.trigsimp(sympy.sympify(str(N)).subs(polar)))
-    except (sympy.SympifyError, TypeError, ValueError):
+        N_theta = sympy.factor(sympy.trigsimp(N._sympy_().subs(polar)))
+    except (TypeError, ValueError):
         return blocks
     if N_theta.free_symbols & {x, y, xd, yd}:
         return blocks
