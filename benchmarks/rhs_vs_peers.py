@@ -46,7 +46,8 @@ import lagrangian  # noqa: E402
 from lagrangian.model.zoo import lagrange_top, planar_chain, spatial_chain  # noqa: E402
 from lagrangian.numerics import compile_system  # noqa: E402
 
-#: Targets (issue 3): faster than every peer per single state; batched at n = 5.
+#: Targets (issue 3): faster than every peer per single state; M and F batched at n = 5 (the
+#: issue's 0.3 µs is its figure for SymEngine's LLVM M and F on 10^4 states).
 TARGET_BATCH_US = 0.3
 #: Timing: a block of calls lasts about this long; each peer gets about this budget.
 BLOCK_S = 2e-4
@@ -358,16 +359,19 @@ def main(argv: list[str] | None = None) -> int:
             if row.us is not None and ours >= row.us:
                 misses.append(f"{res.name}: {row.label.split(' (')[0]} {_us(row.us)} µs < ours {_us(ours)} µs")
         if res.name in ("top", "planar5", "spatial5"):
-            target = f"{res.name} batched {_us(res.batch[0].us)} µs/state"
-            (met if res.batch[0].us <= TARGET_BATCH_US else misses).append(
-                target + (" ≤ " if res.batch[0].us <= TARGET_BATCH_US else " > ") + f"{TARGET_BATCH_US} µs")
+            # The issue's 0.3 µs is its figure for SymEngine's LLVM-compiled M and F over 10^4
+            # states: the target is ours on the same work (M and F); q̈ with the solve is shown too.
+            mf, full = res.batch[1].us, res.batch[0].us
+            target = f"{res.name} M, F batched {_us(mf)} µs/state (q̈ with the solve {_us(full)})"
+            (met if mf <= TARGET_BATCH_US else misses).append(
+                target + (" ≤ " if mf <= TARGET_BATCH_US else " > ") + f"{TARGET_BATCH_US} µs")
     print()
     if met:
         print("targets met: " + "; ".join(met))
     if misses:
         print("targets missed: " + "; ".join(misses))
         return 1
-    print("all targets met: faster than every peer per single state, ≤ 0.3 µs per state batched at n = 5")
+    print("all targets met: faster than every peer per single state, M and F ≤ 0.3 µs per state batched at n = 5")
     return 0
 
 
