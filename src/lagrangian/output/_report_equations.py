@@ -78,7 +78,7 @@ def _lagrange(c: Context, row: EquationRow) -> list[Block]:
     w = c.w
     q = row.coordinate
     partials, full = _partials(c, row)
-    blocks: list[Block] = c.show(partials, f"L({q})") + full
+    blocks: list[Block] = c.show(partials, f"L({c.n.symbol(q)})") + full
     if row.integral is not None:
         K = c.n.symbol(row.integral, latex=True)
         p = c.n.latex(row.dT_dqd)
@@ -93,13 +93,13 @@ def _lagrange(c: Context, row: EquationRow) -> list[Block]:
         return blocks
     lhs_head, rhs_head = _sides(c, q)
     full = c.full([(lhs_head, row.lhs), (rhs_head, row.rhs)], f"L({c.n.symbol(q)})")
-    blocks += c.show([c.relation(r"\Rightarrow\quad ", row.lhs, row.rhs)], f"L({q})") + full
+    blocks += c.show([c.relation(r"\Rightarrow\quad ", row.lhs, row.rhs)], f"L({c.n.symbol(q)})") + full
     if row.using_integrals is not None:
         used = {str(s) for s in row.using_integrals.free_symbols}
         eqs = [Math(rf"L({c.sym(r.coordinate)})") for r in c.form.equations if r.integral in used]
         blocks.append(Para(w("using integrals", eqs=w.join(eqs) if eqs else Math(r"\dots"))))
         full = c.full([(lhs_head, row.using_integrals)], f"L({c.n.symbol(q)})")
-        blocks += c.show([c.relation("", row.using_integrals, row.rhs)], f"L({q})") + full
+        blocks += c.show([c.relation("", row.using_integrals, row.rhs)], f"L({c.n.symbol(q)})") + full
     return blocks
 
 
