@@ -64,3 +64,19 @@ def test_bad_arrays_are_refused_before_the_c_runs(top, args, error, words):
     with pytest.raises(TypeError, match="writable"):
         top.rhs_c(0.0, y, p, readonly)
     np.testing.assert_array_equal(np.isnan(out), np.isnan(frozen))
+
+
+def test_the_wrapper_keeps_its_library_alive():
+    """Holding rhs_c alone (the CompiledSystem gone) keeps the code it calls loaded."""
+    import gc
+    import sys
+
+    system = compile_system(lagrangian.derive(lagrange_top()))
+    f, p = system.rhs_c, system.parameter_vector()
+    library = system._lib
+    before = sys.getrefcount(library)
+    del system, library
+    gc.collect()
+    out = np.empty(6)
+    assert f(0.0, np.full(6, 0.5), p, out) == 0 and np.isfinite(out).all()
+    assert before >= 3  # the system's attribute, the wrapper's owner, and getrefcount's argument

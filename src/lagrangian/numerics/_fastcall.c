@@ -6,11 +6,11 @@
  * takes 0.08 µs (the top) to 2 µs (a 20-link chain).  Here the arrays are read through
  * NumPy's C API and the call costs about 0.1 µs more than the C evaluation.
  *
- *     caller = RhsCaller(address_of_lg_eval_rhs, n_state, n_params)
+ *     caller = RhsCaller(address_of_lg_eval_rhs, n_state, n_params, library)
  *     status = caller(t, y, p, out)      # out <- (q', q''), status 0 = fine
  *
  * It is compiled once per Python version (see `_fastcall.py`), not once per model: the
- * model's function arrives as an address.
+ * model's function arrives as an address, with the object that keeps its library loaded.
  */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
@@ -28,6 +28,7 @@ typedef struct {
     Py_ssize_t n_state;   /* 2n: length of y and out */
     Py_ssize_t n_params;  /* least length of p */
     vectorcallfunc vectorcall;
+    PyObject *owner;      /* what keeps the code at `fn` loaded (the ctypes library) */
 } RhsCaller;
 
 /* The array's data, checked: a C-contiguous, aligned float64 ndarray (writable for `out`)
@@ -77,11 +78,12 @@ static PyObject *caller_vectorcall(PyObject *self_obj, PyObject *const *args, si
 static PyObject *caller_new(PyTypeObject *type, PyObject *args, PyObject *kwargs) {
     unsigned long long address;
     Py_ssize_t n_state, n_params;
-    if (!PyArg_ParseTuple(args, "Knn", &address, &n_state, &n_params)) {
+    PyObject *owner;
+    if (!PyArg_ParseTuple(args, "KnnO", &address, &n_state, &n_params, &owner)) {
         return NULL;
     }
     if (!address || n_state < 0 || n_params < 0) {
-        PyErr_SetString(PyExc_ValueError, "RhsCaller(address, n_state, n_params): bad arguments");
+        PyErr_SetString(PyExc_ValueError, "RhsCaller(address, n_state, n_params, owner): bad arguments");
         return NULL;
     }
     RhsCaller *self = (RhsCaller *)type->tp_alloc(type, 0);
@@ -92,7 +94,14 @@ static PyObject *caller_new(PyTypeObject *type, PyObject *args, PyObject *kwargs
     self->n_state = n_state;
     self->n_params = n_params;
     self->vectorcall = caller_vectorcall;
+    Py_INCREF(owner);
+    self->owner = owner;
     return (PyObject *)self;
+}
+
+static void caller_dealloc(PyObject *self) {
+    Py_XDECREF(((RhsCaller *)self)->owner);
+    Py_TYPE(self)->tp_free(self);
 }
 
 static PyTypeObject RhsCallerType = {
@@ -102,6 +111,7 @@ static PyTypeObject RhsCallerType = {
     .tp_basicsize = sizeof(RhsCaller),
     .tp_flags = Py_TPFLAGS_DEFAULT | Py_TPFLAGS_HAVE_VECTORCALL,
     .tp_new = caller_new,
+    .tp_dealloc = caller_dealloc,
     .tp_call = PyVectorcall_Call,
     .tp_vectorcall_offset = offsetof(RhsCaller, vectorcall),
 };

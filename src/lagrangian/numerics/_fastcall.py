@@ -49,10 +49,14 @@ def _module() -> ModuleType | None:
     return module
 
 
-def rhs_caller(function: ctypes._CFuncPtr, n_state: int, n_params: int):
-    """``caller(t, y, p, out) -> status`` running ``function`` on one state, or None."""
+def rhs_caller(function: ctypes._CFuncPtr, n_state: int, n_params: int, library: object):
+    """``caller(t, y, p, out) -> status`` running ``function`` on one state, or None.
+
+    ``library`` (the ctypes library ``function`` comes from) is kept alive by the caller,
+    so the code it points to stays loaded as long as the caller exists.
+    """
     module = _module()
     if module is None:
         return None
     address = ctypes.cast(function, ctypes.c_void_p).value
-    return module.RhsCaller(address, n_state, n_params)
+    return module.RhsCaller(address, n_state, n_params, library)

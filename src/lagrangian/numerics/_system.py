@@ -87,7 +87,8 @@ class CompiledSystem:
             assert tuple(dims) == (self.n, len(self.monitors), len(self.events)), "stale compiled library"
             # The one-state call through ctypes costs ~4 µs, mostly Python's; the vectorcall
             # wrapper brings it to the C evaluation plus ~0.1 µs (`_fastcall`).
-            caller = rhs_caller(self._lib.lg_eval_rhs, 2 * self.n, len(self.parameters) + self._constants)
+            caller = rhs_caller(self._lib.lg_eval_rhs, 2 * self.n, len(self.parameters) + self._constants,
+                                 self._lib)
             if caller is not None:
                 self.rhs_c = caller
         else:
