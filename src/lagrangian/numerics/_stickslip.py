@@ -200,22 +200,6 @@ def _system(model: Model, backend: str) -> StickSlipSystem:
     return system
 
 
-def _grid(t_start: float, t_end: float, n_out: int | None, t_eval) -> np.ndarray:  # type: ignore[no-untyped-def]
-    if not (np.isfinite(t_start) and np.isfinite(t_end)) or not t_end > t_start:
-        raise SimulationError(f"The time span [{t_start}, {t_end}] is not increasing.",
-                              fix="give an end time greater than the start time (e.g. --t-end 10)")
-    if t_eval is not None:
-        grid = np.ascontiguousarray(t_eval, dtype=float)
-        if grid.ndim != 1 or len(grid) == 0 or np.any(np.diff(grid) <= 0) or grid[0] < t_start or grid[-1] > t_end:
-            raise SimulationError("The output times must be increasing and lie within [t_start, t_end].",
-                                  fix="pass a sorted t_eval inside the time span")
-        return grid
-    n_out = 1001 if n_out is None else int(n_out)
-    if n_out < 2:
-        raise SimulationError(f"n_out = {n_out}: at least 2 output times are needed.", fix="use n_out >= 2")
-    return np.linspace(t_start, t_end, n_out)
-
-
 def simulate_stick_slip(
     source,  # type: ignore[no-untyped-def]
     t_end: float,
@@ -263,7 +247,7 @@ def simulate_stick_slip(
     SimulationError
         As `simulate`; also a negative N, f > f_s, an endless chattering of short phases.
     """
-    from ._simulate import EventSpec, initial_state, simulate
+    from ._simulate import EventSpec, _output_times, initial_state, simulate
 
     model = exact_contact_model(source) if not isinstance(source, Model) else source
     if model is None or exact_contact(model) is None:
@@ -273,7 +257,7 @@ def simulate_stick_slip(
                               fix="use an adaptive method such as method='dop853', bounded with max_step if needed")
     system = _system(model, backend)
     load, name = system.load, system.load.name
-    grid = _grid(float(t_start), float(t_end), n_out, t_eval)
+    grid = _output_times(float(t_start), float(t_end), n_out, t_eval)
     p = system.stuck.parameter_vector(parameters)
     coords = system.stuck.coordinates
     n = len(coords)
