@@ -48,6 +48,7 @@ from ._codegen import monitor_expressions
 from ._codegen_dae import generate_dae_c
 from ._compile import compile_library, compiler
 from ._projection import check_initial, project, project_many
+from ._progress import progress_bar
 from ._trajectory import Event, Trajectory, conservation
 
 __all__ = ["ConstrainedSystem", "simulate_dae", "constrained_source", "STABILIZATIONS", "reaction_columns"]
@@ -334,7 +335,7 @@ def simulate_dae(
     """
     from scipy import integrate
 
-    from ._simulate import _event_expressions, _output_times, _progress_bar, check_options, default_tolerance, \
+    from ._simulate import _event_expressions, _output_times, check_options, default_tolerance, \
         initial_state
 
     source, eom = constrained_source(source)
@@ -397,7 +398,7 @@ def simulate_dae(
     while i_out < N and t_out[i_out] <= t_start:
         Y[i_out] = y0
         i_out += 1
-    report = _progress_bar if progress is True else (progress or None)
+    report = progress_bar if progress is True else (progress or None)
     steps, status = 0, "completed"
     evs: list[tuple[str, float, np.ndarray]] = []
     g_old = event_fn(t_start, y0) if event_fn else None

@@ -22,9 +22,6 @@ from __future__ import annotations
 
 import math
 import os
-import sys
-import threading
-import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -38,6 +35,7 @@ from ..model import load_model
 from ..model._expr import ExpressionError, parse_expression
 from ..model.spec import Model
 from ._dae import BAUMGARTE, ConstrainedSystem, constrained_source, simulate_dae
+from ._progress import Reporter, Watch, make_reporter
 from ._system import CompiledSystem, _ptr
 from ._trajectory import Event, Trajectory, conservation
 
@@ -237,72 +235,6 @@ def _output_times(t_start: float, t_end: float, n_out: int | None, t_eval, width
     return np.linspace(t_start, t_end, n_out)
 
 
-class _Reporter:
-    """Progress reports at most every ``period`` seconds, and one at the end (fraction 1 when done)."""
-
-    def __init__(self, report: Callable[[float, float], None], t_start: float, t_end: float,
-                 period: float = 0.1) -> None:
-        self.report, self.t_start, self.span, self.period = report, t_start, t_end - t_start, period
-        self.last = -math.inf
-        self.fraction = -1.0
-
-    def fraction_at(self, t: float) -> float:
-        return min(1.0, max(0.0, (t - self.t_start) / self.span))
-
-    def update(self, t: float) -> None:
-        now = time.monotonic()
-        fraction = self.fraction_at(t)
-        if now - self.last >= self.period and fraction > self.fraction and fraction < 1.0:
-            self.last, self.fraction = now, fraction
-            self.report(fraction, t)
-
-    def finish(self, t: float, completed: bool) -> None:
-        fraction = 1.0 if completed else self.fraction_at(t)
-        if fraction >= self.fraction:
-            self.report(fraction, t)
-        if fraction < 1.0 and self.report is _progress_bar:
-            sys.stderr.write("\n")
-
-
-class _Watch:
-    """Polls the time a C run has reached (``ctl[0]``), from a second thread, for the progress."""
-
-    def __init__(self, reporter: _Reporter | None, ctl: np.ndarray) -> None:
-        self.reporter, self.ctl = reporter, ctl
-        self.stop = threading.Event()
-        self.thread = None
-
-    def __enter__(self) -> _Watch:
-        if self.reporter is not None:
-            self.thread = threading.Thread(target=self._poll, daemon=True)
-            self.thread.start()
-        return self
-
-    def _poll(self) -> None:
-        while not self.stop.wait(self.reporter.period):
-            self.reporter.update(float(self.ctl[0]))
-
-    def __exit__(self, *exc) -> None:
-        self.stop.set()
-        if self.thread is not None:
-            self.thread.join()
-
-
-def _reporter(progress, t_start: float, t_end: float) -> _Reporter | None:
-    if not progress:
-        return None
-    return _Reporter(_progress_bar if progress is True else progress, t_start, t_end)
-
-
-def _progress_bar(fraction: float, t: float) -> None:
-    width = 30
-    done = int(width * fraction)
-    sys.stderr.write(f"\r  [{'#' * done}{'.' * (width - done)}] {100 * fraction:5.1f} %  t = {t:.6g}")
-    if fraction >= 1.0:
-        sys.stderr.write("\n")
-    sys.stderr.flush()
-
-
 def _resolve(source, events: Sequence[EventSpec], backend: str) -> CompiledSystem:
     if isinstance(source, CompiledSystem):
         if not events:
@@ -475,10 +407,10 @@ def _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, m
     ctl[11] = capacity
     ev_out = np.zeros((capacity, 2 + n2))
     lib = system._lib
-    reporter = _reporter(progress, t_start, t_end)
+    reporter = make_reporter(progress, t_start, t_end)
     # One call for the whole run, whether or not progress is shown: a chunked run would cut a
     # step at each chunk's end, and the result would depend on the progress bar.
-    with _Watch(reporter, ctl):
+    with Watch(reporter, ctl):
         if method == "dop853":
             code = lib.lg_dop853(_ptr(ctl), _ptr(y), _ptr(p), _ptr(t_out), len(t_out), _ptr(i_out), _ptr(Y),
                                  float(t_end), _ptr(ev_dir), _ptr(ev_term), _ptr(ev_out))
@@ -512,7 +444,7 @@ def _collapsed(system, t0, y0, t, y, p) -> bool:
     return bool(w[0] < 1e-8 * w0[-1])
 
 
-def _counting_solver(method: str, count: dict, reporter: _Reporter | None) -> type:
+def _counting_solver(method: str, count: dict, reporter: Reporter | None) -> type:
     """SciPy's solver class for ``method``, counting its accepted steps (and reporting progress)."""
     import scipy.integrate
 
@@ -549,7 +481,7 @@ def _run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol, max_ste
         return g
 
     count: dict = {"steps": 0, "solver": None}
-    reporter = _reporter(progress, t_start, t_end)
+    reporter = make_reporter(progress, t_start, t_end)
 
     def reached() -> float:
         return float(count["solver"].t) if count["solver"] is not None else float(t_start)

@@ -50,6 +50,7 @@ from ..model._constraints import Constraint, ReactionSpec
 from ..model.spec import Model, PointForce
 from ._dae import BAUMGARTE, ConstrainedSystem, simulate_dae
 from ._reaction_columns import reaction_columns_along
+from ._progress import progress_bar
 from ._trajectory import Event, Trajectory, conservation
 
 __all__ = ["exact_contact", "exact_contact_model", "simulate_stick_slip", "StickSlipSystem"]
@@ -318,9 +319,7 @@ def simulate_stick_slip(
 
 
 def _bar(fraction: float, t: float) -> None:
-    from ._simulate import _progress_bar
-
-    _progress_bar(fraction, t)
+    progress_bar(fraction, t)
 
 
 def _join(system: StickSlipSystem, p: np.ndarray, grid: np.ndarray, pieces: list[tuple[int, Trajectory]],  # noqa: PLR0913
