@@ -30,7 +30,8 @@ from .spec import CoulombFriction, Dissipation, JointDamper, Load, Location, Poi
 
 if TYPE_CHECKING:  # pragma: no cover
     from ._toml import _Reader
-    from .build import ModelBuilder, _Assembler, _Raw
+    from ._assemble import Assembler, Raw
+    from .build import ModelBuilder
 
 __all__ = ["FRICTION_KINDS", "TOML_KEYS", "DEFAULT_REGULARIZATION", "build_friction_load", "declare_from_toml"]
 
@@ -48,7 +49,7 @@ TOML_KEYS = {
 DEFAULT_REGULARIZATION = se.Rational(1, 1000)
 
 
-def build_friction_load(asm: _Assembler, raw: _Raw, points: Mapping[str, Point], bodies: set[str]) -> Load:
+def build_friction_load(asm: Assembler, raw: Raw, points: Mapping[str, Point], bodies: set[str]) -> Load:
     """The checked load of declaration ``raw`` (kind in `FRICTION_KINDS`)."""
     d = raw.data
     kind = d["kind"]
