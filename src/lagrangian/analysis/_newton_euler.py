@@ -470,7 +470,6 @@ def verify(eom: EquationsOfMotion) -> Verification:
     """
     kin = eom.kinematics
     model = eom.model
-    n = kin.n
     efforts, extra_power, vp_loads = given_efforts(eom)
     by_name = {e.element: e for e in efforts}
     theorems = tuple([_body_theorems(kin, b, by_name[b.name]) for b in model.bodies]

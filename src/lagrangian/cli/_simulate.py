@@ -115,7 +115,7 @@ def _check_outputs(args: argparse.Namespace, plots: Path | None) -> None:
         raise OutputError(f"`--plot {plots}`: `{plots}` is a file, not a folder.",
                           fix="give a folder for the plots (a bare --plot goes after the model file)")
     try:
-        import matplotlib  # noqa: F401
+        import matplotlib
     except ImportError as exc:
         raise SimulationError(f"Plots need matplotlib ({exc}).", fix="pip install 'lagrangian[plot]'") from None
     if args.animation == "mp4":
@@ -123,8 +123,6 @@ def _check_outputs(args: argparse.Namespace, plots: Path | None) -> None:
         if ffmpeg is None:
             raise OutputError("Writing an MP4 needs ffmpeg, which is not installed.",
                               fix="install ffmpeg (or `pip install imageio-ffmpeg`), or use --animation gif")
-        import matplotlib
-
         matplotlib.rcParams["animation.ffmpeg_path"] = ffmpeg
 
 

@@ -257,7 +257,7 @@ def simulate_stick_slip(
         raise SimulationError("Stick/slip phases end at events, so fixed steps (dt, gauss-legendre) are not available.",
                               fix="use an adaptive method such as method='dop853', bounded with max_step if needed")
     system = _system(model, backend)
-    load, name = system.load, system.load.name
+    name = system.load.name
     grid = _output_times(float(t_start), float(t_end), n_out, t_eval)
     p = system.stuck.parameter_vector(parameters)
     coords = system.stuck.coordinates
