@@ -172,7 +172,17 @@ def matrix_section(c: Context) -> Section:
             if b >= a and entry != 0:
                 rows.append(c.equation(rf"M_{{{c.sym(q[a])}{c.sym(q[b])}}} = ", entry))
     rows += [c.equation(rf"F_{{{c.sym(q[a])}}} = ", f) for a, f in enumerate(c.form.F)]
-    blocks: list[Block] = [Para(w("matrix intro", form=form))]
+    # With complementary constraints F holds the given efforts only; their reactions are the rows of Aᵀλ.
+    lams = [(name, c.eom.equation(name).multiplier_terms) for name in q] if c.eom.constraints else []
+    lams = [(name, t) for name, t in lams if t != 0]
+    if lams:
+        form = Math(r"M(q, t)\,\ddot{q} = F(q, \dot{q}, t) + A^{\mathsf{T}}\lambda")
+        rows += [c.equation(rf"\left(A^{{\mathsf{{T}}}}\lambda\right)_{{{c.sym(name)}}} = "
+                            rf"\sum_{{k}} \lambda_{{k}}\, a_{{k,{c.sym(name)}}} = ", c.ex(t)) for name, t in lams]
+        intro = w("matrix intro multipliers", form=form, A=Math(r"A = (a_{k,i})"), lam=Math(r"\lambda"))
+    else:
+        intro = w("matrix intro", form=form)
+    blocks: list[Block] = [Para(intro)]
     blocks += c.many(c.show(rows, "M, F"), len(rows), "M, F")
     return Section("matrix", w.text("matrix"), tuple(blocks))
 

@@ -385,6 +385,12 @@ _PHRASES: dict[str, tuple[str, str]] = {
                      "(triangle supérieur), trop pour les écrire ici : la commande {cmd} les donne, avec F.",
                      "The Lagrange equations read {form}; the {n} matrix has {k} nonzero entries (upper "
                      "triangle), too many to print here: the command {cmd} gives them, with F."),
+    "matrix intro multipliers": ("Les équations de Lagrange s'écrivent {form}, où F ne contient que les efforts donnés "
+                                 "et {A} est la matrice des coefficients des liaisons complémentaires (étape 7), "
+                                 "de multiplicateurs {lam} ; avec :",
+                                 "The Lagrange equations read {form}, where F holds the applied forces only and {A} "
+                                 "is the matrix of the complementary constraints' coefficients (step 7), with the "
+                                 "multipliers {lam}; with:"),
     "matrix intro": ("Les équations de Lagrange s'écrivent {form}, avec :", "The Lagrange equations read {form}, with:"),
     "show full": ("{label} : {k} lignes — afficher en entier", "{label}: {k} lines — show in full"),
     "show more": ("les {k} autres liaisons — afficher", "the {k} other constraints — show"),
