@@ -34,3 +34,14 @@ def test_the_matrix_form_keeps_the_multipliers():
     assert r"\left(A^{\mathsf{T}}\lambda\right)_{x} = \sum_{k} \lambda_{k}\, a_{k,x} = 2 x \lambda" in appendix
     # Without complementary constraints the form stays M q̈ = F.
     assert r"A^{\mathsf{T}}" not in _section(_md("simple_pendulum"), "Annexe")
+
+
+def test_the_total_potential_is_named_u_p_of_the_system():
+    """bead_rotating_hoop printed the total under the last load's name, U_P(entraînement), twice."""
+    step4 = _section(_md("bead_rotating_hoop"), "4.")
+    assert step4.count(r"U_P(\text{entraînement}) =") == 1
+    assert r"U_P(\Sigma/R_{1}) = -\frac{1}{2} m R^{2} \Omega^{2} \sin^{2}\theta - m R g \cos\theta" in step4
+    # block_on_belt: the weight's U_P is 0, so the spring's is the only term: no total repeating it.
+    step4 = _section(_md("block_on_belt", "en"), "4.")
+    assert step4.count(r"\frac{1}{2} k x^{2}") == 1
+    assert r"U_P(\Sigma" not in step4

@@ -258,9 +258,11 @@ def _potential(c: Context) -> list[Block]:
     if not single:
         blocks.append(Para(w("potential of")))
     blocks += c.show(rows, "U_P") + alone
-    if len(rows) > 1:
-        full = c.full([(head, c.form.U_total)], f"U_P(Σ/{c.ref})")
-        blocks += c.show([c.equation(head, c.form.U_total, cste)], "U_P") + full
+    # The total U_P(Σ/R), under its own name, when it sums at least two terms that are not zero.
+    if sum(1 for _, row in loads if row.expression != 0) > 1:
+        total = rf"U_P(\Sigma/{c.R}) = "
+        full = c.full([(total, c.form.U_total)], f"U_P(Σ/{c.ref})")
+        blocks += c.show([c.equation(total, c.form.U_total, cste)], "U_P") + full
     return blocks
 
 
