@@ -368,3 +368,44 @@ def test_builder_declares_the_same_constraints_as_the_file() -> None:
     from_file = eom_of("pendulum_tension.toml")
     assert built.constraints == from_file.constraints
     assert [r.force_components for r in built.reactions] == [r.force_components for r in from_file.reactions]
+
+
+# -- integrable velocity rows: holonomic constraints written on the velocities --------------------------
+def test_rolling_on_an_incline_integrates_to_x_minus_r_phi() -> None:
+    from lagrangian.dynamics._constraints import describe_constraints
+
+    (info,) = describe_constraints(eom_of("rolling_disk_incline.toml"))
+    assert (info.form, info.kind) == ("no_slip", "holonomic")
+    (phi,) = info.integrals
+    assert is_zero(phi - (S("x") - S("r") * S("phi")))
+    # The derivation still keeps the row at velocity level (the simulation's constraint).
+    assert [r.kind for r in info.rows] == ["nonholonomic"]
+
+
+def test_a_coin_rolling_on_a_plane_stays_nonholonomic() -> None:
+    from lagrangian.dynamics._constraints import describe_constraints
+
+    (info,) = describe_constraints(eom_of("rolling_coin.toml"))
+    assert (info.kind, info.integrals) == ("nonholonomic", ())
+
+
+@pytest.mark.parametrize(("relation", "integral"), [
+    ("x_dot - l*cos(t)", S("x") - S("l") * se.sin(S("t"))),                      # b = ∂φ/∂t
+    ("x*x_dot + y*y_dot", (S("x") ** 2 + S("y") ** 2) / 2),                        # ∂a_x/∂y = ∂a_y/∂x
+    ("x*x_dot - x^2*y_dot", se.log(S("x")) - S("y")),                              # exact once divided by −x²
+])
+def test_declared_velocity_rows_that_integrate_are_holonomic(relation, integral) -> None:
+    from lagrangian.dynamics._constraints import describe_constraints
+
+    (info,) = describe_constraints(derive_text(PENDULUM + f'c = {{ nonholonomic = "{relation}" }}\n'))
+    assert info.kind == "holonomic"
+    (phi,) = info.integrals
+    assert is_zero(phi - integral) or is_zero(phi + integral)
+
+
+def test_an_integrable_row_without_a_closed_form_is_still_holonomic() -> None:
+    from lagrangian.dynamics._constraints import describe_constraints
+
+    # y ẋ − x ẏ = 0: y/x = cste (factor 1/x², not among those tried); Frobenius decides.
+    (info,) = describe_constraints(derive_text(PENDULUM + 'c = { nonholonomic = "y*x_dot - x*y_dot" }\n'))
+    assert (info.kind, info.integrals) == ("holonomic", ())

@@ -87,3 +87,10 @@ def test_a_principal_constraint_prints_as_declared_not_0_equals_0(capsys, tmp_pa
     out = derive(capsys, written(tmp_path, PRINCIPAL))
     assert "rod (principal, holonomic): −l² + l² sin²θ + l² cos²θ = 0" in out
     assert "0 = 0" not in out
+
+
+def test_rolling_on_an_incline_is_shown_holonomic_and_integrated(capsys) -> None:
+    out = derive(capsys, EXAMPLES / "rolling_disk_incline.toml")
+    assert "rolling (complementary, no slip; holonomic, integrable: " in out
+    coin = derive(capsys, EXAMPLES / "rolling_coin.toml")
+    assert "rolling (complementary, no slip; nonholonomic): " in coin

@@ -35,8 +35,9 @@ from dataclasses import dataclass
 
 import numpy as np
 import symengine as se
+import sympy
 
-from .._identity import are_zero
+from .._identity import are_zero, is_zero
 from ..errors import DerivationError, ModelError
 from ..kinematics import Kinematics
 from ..model import GALILEAN_FRAME, Constraint, Vector
@@ -44,7 +45,7 @@ from ..model._vector import sum_of
 
 __all__ = ["ConstraintRow", "ConstraintReaction", "complementary_constraints", "multiplier_symbol",
            "admissible_integrals", "multiplier_formulas", "reaction_efforts", "ConstraintInfo",
-           "describe_constraints", "MULTIPLIER_PREFIX"]
+           "describe_constraints", "integrate_row", "MULTIPLIER_PREFIX"]
 
 #: Multipliers are named ``lambda_<row>`` (λ_length, λ_rolling_x0, ...).
 MULTIPLIER_PREFIX = "lambda_"
@@ -456,6 +457,80 @@ def reaction_efforts(eom) -> list[tuple[str, str, object, str | None, str | None
     return out
 
 
+# -- integrable velocity rows -------------------------------------------------------------------------------
+#: Most coordinates (plus t) a velocity row may involve for the integrability test (Frobenius: O(n³) triples).
+INTEGRABLE_MAX_VARIABLES = 10
+
+
+def _exact(coefficients: Sequence[se.Basic], variables: Sequence[se.Basic]) -> bool:
+    """Is Σ_v c_v dv closed (∂c_u/∂v = ∂c_v/∂u for every pair), hence exact on a simply connected domain?"""
+    pairs = [(u, v) for u in range(len(variables)) for v in range(u + 1, len(variables))]
+    return all(are_zero([coefficients[u].diff(variables[v]) - coefficients[v].diff(variables[u])
+                         for u, v in pairs]))
+
+
+def _potential(coefficients: Sequence[se.Basic], variables: Sequence[se.Basic]) -> se.Basic | None:
+    """φ with dφ = Σ_v c_v dv (the form being closed), integrating one variable after the other; None
+    when SymPy finds no closed form."""
+    phi = sympy.Integer(0)
+    for c, v in zip(coefficients, variables):
+        rest = sympy.expand(sympy.sympify(c) - sympy.diff(phi, sympy.sympify(v)))
+        if rest == 0:
+            continue
+        term = sympy.integrate(rest, sympy.sympify(v))
+        if term.has(sympy.Integral):
+            return None
+        phi += term
+    out = se.sympify(phi)
+    if not all(is_zero(out.diff(v) - c) for c, v in zip(coefficients, variables)):
+        return None
+    return out
+
+
+def _frobenius(a: Sequence[se.Basic], variables: Sequence[se.Basic]) -> bool:
+    """ω ∧ dω = 0 for ω = Σ_v a_v dv: the Pfaffian equation ω = 0 is integrable (Frobenius)."""
+    n = len(variables)
+    terms = []
+    for i in range(n):
+        for j in range(i + 1, n):
+            for k in range(j + 1, n):
+                ai, aj, ak = a[i], a[j], a[k]
+                xi, xj, xk = variables[i], variables[j], variables[k]
+                terms.append(ai * (aj.diff(xk) - ak.diff(xj)) + aj * (ak.diff(xi) - ai.diff(xk))
+                             + ak * (ai.diff(xj) - aj.diff(xi)))
+    return all(are_zero(terms))
+
+
+def integrate_row(kin: Kinematics, row: ConstraintRow) -> tuple[bool, se.Basic | None]:
+    """Whether the velocity row a(q, t)·q̇ + b(q, t) = 0 integrates to φ(q, t) = cste, and φ when found.
+
+    The row is the Pfaffian form ω = Σ_i a_i dq_i + b dt = 0 in (q, t).  It is integrable
+    when some factor μ makes μω exact, dφ = μω: tried with μ = 1 (a_i constant, or
+    ∂a_i/∂q_j = ∂a_j/∂q_i and ∂a_i/∂t = ∂b/∂q_i) and with μ = 1/a_k for each coefficient;
+    otherwise Frobenius' ω ∧ dω = 0 still decides (integrable, φ not found).  A rolling disk
+    on an incline, ẋ − r φ̇ = 0, gives x − r φ = cste; a coin rolling on a plane
+    (ẋ − r φ̇ cos ψ = 0) is not integrable.
+    """
+    variables = [*kin.q, kin.t]
+    coefficients = [*row.coefficients, row.b]
+    used = [k for k, c in enumerate(coefficients) if type(c) is not _ZERO_TYPE]
+    # Variables that the form involves: those with a coefficient, and those its coefficients depend on.
+    symbols = set().union(*(coefficients[k].free_symbols for k in used))
+    keep = [k for k, v in enumerate(variables) if k in used or v in symbols]
+    if not used or len(keep) > INTEGRABLE_MAX_VARIABLES:
+        return False, None
+    xs = [variables[k] for k in keep]
+    cs = [coefficients[k] for k in keep]
+    factors = [se.Integer(1)] + [1 / c for c in cs if type(c) is not _ZERO_TYPE and c != 1]
+    for mu in factors:
+        scaled = [se.expand(mu * c) for c in cs]
+        if _exact(scaled, xs):
+            phi = _potential(scaled, xs)
+            if phi is not None:
+                return True, phi
+    return _frobenius(cs, xs), None
+
+
 # -- plain data for reports and JSON (steps 1 and 7) -------------------------------------------------------
 @dataclass(frozen=True, slots=True)
 class ConstraintInfo:
@@ -463,7 +538,14 @@ class ConstraintInfo:
 
     Attributes
     ----------
-    name, form, kind, description : as declared (kind ``"holonomic"`` or ``"nonholonomic"``).
+    name, form, description : as declared.
+    kind : ``"holonomic"`` or ``"nonholonomic"``: as declared, except that a complementary
+        constraint written on the velocities (``nonholonomic``, ``no_slip``) whose every row
+        integrates (`integrate_row`) is holonomic: the disk rolling on an incline,
+        ẋ − r φ̇ = 0, is x − r φ = cste written on the velocities.  The derivation still
+        keeps such rows at velocity level (``ConstraintRow.kind``).
+    integrals : for such a constraint, φ_k(q, t) of each row (φ_k = cste along every motion;
+        the constant is set by the initial state), when found in closed form; else empty.
     role : ``"principal"`` (eliminated by the choice of coordinates; checked, no multiplier)
         or ``"complementary"`` (rows with multipliers, written after the Lagrange equations).
     statement : the relation as the derivation sees it: f(q, t) or a·q̇ + b (scalar), or the
@@ -482,6 +564,7 @@ class ConstraintInfo:
     frame: str | None
     rows: tuple[ConstraintRow, ...]
     reaction: ConstraintReaction | None
+    integrals: tuple[se.Basic, ...] = ()
 
 
 def describe_constraints(eom) -> tuple[ConstraintInfo, ...]:  # type: ignore[no-untyped-def]
@@ -500,6 +583,12 @@ def describe_constraints(eom) -> tuple[ConstraintInfo, ...]:  # type: ignore[no-
             statement, frame = Vector({c.frame: tuple(comps)}), c.frame  # type: ignore[arg-type]
         rows = tuple(r for r in eom.constraints if r.constraint == c.name)
         reaction = next((r for r in eom.reactions if r.constraint == c.name), None)
-        out.append(ConstraintInfo(c.name, "principal" if c.principal else "complementary", c.form, c.kind,
-                                  c.description, statement, frame, rows, reaction))
+        kind, integrals = c.kind, ()
+        if c.kind == "nonholonomic" and rows:
+            found = [integrate_row(kin, r) for r in rows]
+            if all(ok for ok, _ in found):
+                kind = "holonomic"
+                integrals = tuple(phi for _, phi in found) if all(phi is not None for _, phi in found) else ()
+        out.append(ConstraintInfo(c.name, "principal" if c.principal else "complementary", c.form, kind,
+                                  c.description, statement, frame, rows, reaction, integrals))
     return tuple(out)

@@ -60,7 +60,8 @@ class ConstraintLine:
     ``statement`` is f (one expression) or the three components, in ``axes``, of the vector
     that vanishes; a principal constraint's is the declared relation, not simplified (after
     substitution of the coordinates it is identically zero).  ``rows`` are (row, multiplier,
-    equation = 0).
+    equation = 0).  ``kind`` is holonomic for velocity rows that integrate, with ``integrals``
+    their φ_k(q, t) = cste when found (`describe_constraints`).
     """
 
     name: str
@@ -70,6 +71,7 @@ class ConstraintLine:
     statement: tuple[sympy.Basic, ...]
     axes: tuple[str, ...] | None
     rows: tuple[tuple[str, str, sympy.Basic], ...]
+    integrals: tuple[sympy.Basic, ...] = ()
 
 
 @dataclass(frozen=True, slots=True)
@@ -141,7 +143,8 @@ def _constraint_lines(eom: EquationsOfMotion) -> tuple[ConstraintLine, ...]:
         else:
             statement, axes = (convert(info.statement),), None
         rows = tuple((r.name, r.multiplier.name, to_sympy(r.expression)) for r in info.rows)
-        out.append(ConstraintLine(info.name, info.role, info.form, info.kind, statement, axes, rows))
+        out.append(ConstraintLine(info.name, info.role, info.form, info.kind, statement, axes, rows,
+                                  tuple(to_sympy(phi) for phi in info.integrals)))
     return tuple(out)
 
 
@@ -194,11 +197,21 @@ def _statement(n: Notation, line: ConstraintLine) -> str:
     return "; ".join(f"{n.text(c)} = 0 ({axis})" for c, axis in zip(line.statement, line.axes) if c != 0) or "0 = 0"
 
 
+def _kind(n: Notation, line: ConstraintLine) -> str:
+    """"; nonholonomic" or "; holonomic, integrable: x − r φ = cste" for a constraint written on the velocities."""
+    if line.form not in ("no_slip", "nonholonomic"):
+        return ""
+    if line.kind != "holonomic":
+        return "; nonholonomic" if line.form == "no_slip" else ""
+    found = "; ".join(f"{n.text(phi)} = cste" for phi in line.integrals)
+    return "; holonomic, integrable" + (f": {found}" if found else "")
+
+
 def _constraints_text(n: Notation, extra: Supplement) -> list[str]:
     lines = ["", "Constraints (step 1: principal ones are satisfied by the choice of the q_i; complementary ones "
              "keep a multiplier λ_k):"]
     for c in extra.constraints:
-        head = f"  {c.name} ({c.role}, {c.form.replace('_', ' ')}): {_statement(n, c)}"
+        head = f"  {c.name} ({c.role}, {c.form.replace('_', ' ')}{_kind(n, c)}): {_statement(n, c)}"
         if c.role == "complementary":
             head += "    λ: " + ", ".join(row[1] for row in c.rows)
         lines.append(head)
