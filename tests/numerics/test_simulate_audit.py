@@ -165,3 +165,24 @@ def test_stabilization_and_baumgarte_reach_the_dae_through_simulate():
     assert simulate(EXAMPLES / "pendulum_tension.toml", 0.5, n_out=11).method == "dop853 + projection"
     with pytest.raises(SimulationError, match="complementary"):
         simulate(PENDULUM, 0.5, stabilization="baumgarte")
+
+
+def test_two_terminal_events_in_one_step_keep_only_the_first():
+    """A crossing after the first terminal event of a step never happened: it is not recorded."""
+    from lagrangian.numerics import EventSpec
+
+    eom = lagrangian.derive(lagrangian.load_model(EXAMPLES / "simple_pendulum.toml"))
+    events = [EventSpec("late", "theta - 0.2", terminal=True), EventSpec("early", "theta - 0.19", terminal=True)]
+    run = lagrangian.simulate(eom, 5.0, initial={"theta": 0.0, "theta_dot": 3.0}, rtol=1e-3, atol=1e-3,
+                              events=events)
+    assert [e.name for e in run.events] == ["early"]
+    assert run.t[-1] <= run.events[0].t < run.t[-1] + 0.01 and run.status != "completed"
+
+
+def test_a_terminal_event_stops_a_stick_slip_run():
+    from lagrangian.numerics import EventSpec
+
+    eom = lagrangian.derive(lagrangian.load_model(EXAMPLES / "block_on_incline.toml"))
+    run = lagrangian.simulate(eom, 1.0, events=[EventSpec("stop", "x + 0.05", terminal=True)])
+    assert [e.name for e in run.events] == ["stop"]
+    assert run.t[-1] < 0.07 and run.column("x")[-1] == pytest.approx(-0.05, abs=2e-3)

@@ -165,31 +165,47 @@ static double lg_locate(const void *ctx, lg_interp_fn interp, const double *p, i
 }
 
 /* After a step from (t0, g0) to (t1, g1): record events; return 1 when a terminal one fired
- * (then ctl[C_T] and y are moved back to it). ev_dir: +1 rising only, -1 falling, 0 both. */
+ * (then ctl[C_T] and y are moved back to it). ev_dir: +1 rising only, -1 falling, 0 both.
+ * The crossings of one step are recorded in time order, and none past the first terminal
+ * one: the run ends there, so a later crossing in the same step never happened. */
 static int lg_check_events(const void *ctx, lg_interp_fn interp, const double *p, double *ctl,
                            const int *ev_dir, const int *ev_terminal, double *ev_out,
                            double t0, const double *g0, double t1, const double *g1, double *y_new)
 {
     int fired_terminal = 0;
     double t_first = t1;
-    double y_tmp[LG_NY];
+    int found = 0;
+    int which[LG_NE > 0 ? LG_NE : 1];
+    double when[LG_NE > 0 ? LG_NE : 1];
+    double where[(LG_NE > 0 ? LG_NE : 1) * LG_NY];
     for (int k = 0; k < LG_NE; ++k) {
         const int up = g0[k] < 0 && g1[k] >= 0, down = g0[k] > 0 && g1[k] <= 0;
         if (!((up && ev_dir[k] >= 0) || (down && ev_dir[k] <= 0))) continue;
-        double te = lg_locate(ctx, interp, p, k, t0, g0[k], t1, g1[k], y_tmp);
-        int slot = (int)ctl[C_NEV];
-        if (slot < (int)ctl[C_EVCAP]) {
-            double *row = ev_out + (long)slot * (2 + LG_NY);
-            row[0] = k;
-            row[1] = te;
-            memcpy(row + 2, y_tmp, sizeof y_tmp);
-            ctl[C_NEV] = slot + 1;
-        }
+        double *y_k = where + (long)found * LG_NY;
+        double te = lg_locate(ctx, interp, p, k, t0, g0[k], t1, g1[k], y_k);
+        which[found] = k;
+        when[found] = te;
+        ++found;
         if (ev_terminal[k] && te <= t_first) {
             fired_terminal = 1;
             t_first = te;
-            memcpy(y_new, y_tmp, sizeof y_tmp);
+            memcpy(y_new, y_k, LG_NY * sizeof(double));
         }
+    }
+    for (int done = 0; done < found; ++done) {  /* selection by time: a handful of events */
+        int next = -1;
+        for (int j = 0; j < found; ++j)
+            if (which[j] >= 0 && (next < 0 || when[j] < when[next])) next = j;
+        if (fired_terminal && when[next] > t_first) break;
+        int slot = (int)ctl[C_NEV];
+        if (slot < (int)ctl[C_EVCAP]) {
+            double *row = ev_out + (long)slot * (2 + LG_NY);
+            row[0] = which[next];
+            row[1] = when[next];
+            memcpy(row + 2, where + (long)next * LG_NY, LG_NY * sizeof(double));
+            ctl[C_NEV] = slot + 1;
+        }
+        which[next] = -1;
     }
     if (fired_terminal) ctl[C_T] = t_first;
     return fired_terminal;
