@@ -192,3 +192,22 @@ def test_two_exact_contacts_are_refused() -> None:
 def test_bad_options_are_refused(options: dict, words: str) -> None:
     with pytest.raises(SimulationError, match=words):
         simulate_stick_slip(incline(0.2), 1.0, **options)
+
+
+def test_newton_euler_and_reactions_hold_through_the_stuck_phase():
+    """Along a motion that slides then sticks, each phase is checked with its own equations:
+    no NaN from the exact law's v_s/|v_s| at rest, the normal reaction N·n throughout."""
+    from lagrangian.cli.main import main
+    from lagrangian.numerics import check_trajectory_along, reaction_history_along
+
+    eom = lagrangian.derive(lagrangian.load_model(EXAMPLES_DIR / "block_on_incline.toml"))
+    run = lagrangian.simulate(eom, 1.0, n_out=201)
+    assert (run.column("mode_friction") == 0).any() and (run.column("mode_friction") != 0).any()
+    res = check_trajectory_along(eom, run)
+    assert np.isfinite(res.projections).all() and res.max_relative <= 1e-9
+    [history] = reaction_history_along(eom, run).values()
+    values = {p.name: p.value for p in eom.model.parameters}
+    m, g, alpha = values["m"], values["g"], values["alpha"]
+    normal = m * g * np.cos(alpha) * np.array([np.sin(alpha), 0.0, np.cos(alpha)])  # N along the incline's normal
+    np.testing.assert_allclose(history.force, np.broadcast_to(normal, history.force.shape), atol=1e-9)
+    assert main(["verify", str(EXAMPLES_DIR / "block_on_incline.toml"), "--simulate", "1"]) == 0

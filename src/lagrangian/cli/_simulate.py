@@ -187,8 +187,6 @@ def _with_reactions(traj, eom):
 
     from ..numerics import reaction_columns_along
 
-    if traj.method.endswith("stick/slip"):  # computed phase by phase, each with its own model
-        return traj
     return replace(traj, extra={**traj.extra, **reaction_columns_along(eom, traj)})
 
 

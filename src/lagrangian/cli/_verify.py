@@ -178,11 +178,11 @@ def _across(r: Reaction, p: _Printer) -> str:
 
 
 def _numeric_report(v: Verification, args: argparse.Namespace, p: _Printer) -> list[str]:
-    from ..numerics import simulate  # numerics only when asked for (it compiles C)
+    from ..numerics import check_trajectory_along, simulate  # numerics only when asked for (it compiles C)
 
     parameters, initial = parse_settings(args.set, v.eom.model)
     traj = simulate(v.eom, args.simulate, initial=initial, parameters=parameters, n_out=args.n_out)
-    res = check_trajectory(v, traj)
+    res = check_trajectory_along(v.eom, traj, check=lambda eom, rows: check_trajectory(v if eom is v.eom else eom, rows))
     lines = ["", f"Along a simulated motion (t from {traj.t[0]:g} to {traj.t[-1]:g}, {len(traj.t)} states, "
              f"q̈ from the trajectory), largest relative residuals:"]
     for k, c in enumerate(res.coordinates):
@@ -229,5 +229,6 @@ def run(args: argparse.Namespace) -> str:
     lines += _reaction_report(v, reactions(v), p)
     if args.simulate is not None:
         lines += _numeric_report(v, args, p)
-    lines += ["", f"All {len(v.checks)} Lagrange equations agree with the Newton–Euler theorems ✓"]
+    agree = (f"All {len(v.checks)} Lagrange equations agree" if len(v.checks) > 1 else "The Lagrange equation agrees")
+    lines += ["", f"{agree} with the Newton–Euler theorems ✓"]
     return "\n".join(lines) + "\n"

@@ -15,6 +15,8 @@ from ._simulate import simulate as simulate
 from ._stickslip import simulate_stick_slip as simulate_stick_slip
 from ._system import CompiledSystem as CompiledSystem
 from ._system import compile_system as compile_system
+from ._phases import check_trajectory_along as check_trajectory_along
+from ._phases import reaction_history_along as reaction_history_along
 from ._reaction_columns import reaction_columns_along as reaction_columns_along
 from ._top_check import SimulationCheck as SimulationCheck
 from ._top_check import simulation_check as simulation_check
@@ -23,4 +25,5 @@ from ._trajectory import Trajectory as Trajectory
 
 __all__ = ["simulate", "simulate_stick_slip", "save_trajectory", "check_output_path", "EventSpec", "initial_state", "METHODS",
            "STABILIZATIONS", "default_tolerance", "CompiledSystem", "compile_system", "Trajectory", "Event",
-           "SimulationCheck", "simulation_check", "reaction_columns_along"]
+           "SimulationCheck", "simulation_check", "reaction_columns_along",
+           "reaction_history_along", "check_trajectory_along"]

@@ -1,7 +1,8 @@
 """Constraint reactions along a trajectory as named columns: ``R_O_x0``, ``M_R_to_S_z0``...
 
 The reactions come from the Newton–Euler theorems (`analysis.reaction_history`, e.g. R_O from
-m γ(G) = P + R_O for the top), evaluated at the trajectory's states, in R0's components.  A
+m γ(G) = P + R_O for the top), evaluated at the trajectory's states, in R0's components; a
+stick/slip motion is evaluated phase by phase (`_phases`).  A
 transmitted moment gets its columns only when it is not zero along the run.
 """
 
@@ -9,8 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..analysis import reaction_history
 from ..dynamics import EquationsOfMotion
+from ._phases import reaction_history_along
 from ._trajectory import Trajectory
 
 __all__ = ["reaction_columns_along"]
@@ -25,7 +26,7 @@ def reaction_columns_along(eom: EquationsOfMotion, trajectory: Trajectory) -> di
     """Each reaction's force (and, when not zero, its moment) at every state, by R0 axis."""
     axes = tuple(eom.model.frames[0].axes or ("x0", "y0", "z0"))
     columns: dict[str, np.ndarray] = {}
-    for name, history in reaction_history(eom, trajectory).items():
+    for name, history in reaction_history_along(eom, trajectory).items():
         label = _label(name)
         for k, axis in enumerate(axes):
             columns[f"{label}_{axis}"] = history.force[:, k]

@@ -49,7 +49,6 @@ from ..model import CoulombFriction, load_model
 from ..model._constraints import Constraint, ReactionSpec
 from ..model.spec import Model, PointForce
 from ._dae import BAUMGARTE, ConstrainedSystem, simulate_dae
-from ._reaction_columns import reaction_columns_along
 from ._progress import progress_bar
 from ._trajectory import Event, Trajectory, conservation
 
@@ -328,7 +327,6 @@ def _join(system: StickSlipSystem, p: np.ndarray, grid: np.ndarray, pieces: list
     """One trajectory on ``grid`` from the phases (module docstring)."""
     wanted = set(grid.tolist())
     T, Q, QD, QDD, MODE, FRIC = [], [], [], [], [], []
-    REACT: list[dict[str, np.ndarray]] = []
     last = -np.inf
     warnings: list[str] = []
     for mode, piece in pieces:
@@ -340,10 +338,6 @@ def _join(system: StickSlipSystem, p: np.ndarray, grid: np.ndarray, pieces: list
         QD.append(piece.qd[keep])
         QDD.append(piece.qdd[keep])
         MODE.append(np.full(int(keep.sum()), float(mode)))
-        # The principal constraints' reactions, each phase with its own model (while it sticks,
-        # the friction is the stuck model's multiplier; while it slides, a given force).
-        phase_eom = system.stuck_eom if mode == 0 else system.slip_eom(mode)
-        REACT.append({k: v[keep] for k, v in reaction_columns_along(phase_eom, piece).items()})
         if mode == 0:
             FRIC.append(piece.extra[f"lambda_{system.row}"][keep])
         else:
@@ -375,8 +369,6 @@ def _join(system: StickSlipSystem, p: np.ndarray, grid: np.ndarray, pieces: list
     warnings += [f"{k} drifted by {drift[k]:.2e} (relative), more than the tolerance {tolerance:.1e}"
                  for k in integrals if tolerance is not None and drift[k] > tolerance]
     extra = {f"mode_{name}": mode, f"friction_{name}": np.concatenate(FRIC), f"sliding_{name}": g[:, system.k_row].copy()}
-    labels = [k for k in REACT[0] if all(k in r for r in REACT)] if REACT else []
-    extra |= {k: np.concatenate([r[k] for r in REACT]) for k in labels}
     first = pieces[0][1]
     return Trajectory(
         model_name=system.model.name, coordinates=tuple(stuck.coordinates), parameters=dict(first.parameters),

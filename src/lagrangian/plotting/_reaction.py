@@ -17,7 +17,8 @@ from typing import Any
 import numpy as np
 
 from ..analysis._newton_euler import given_efforts
-from ..analysis._reactions import ReactionHistory, reaction_history
+from ..analysis._reactions import ReactionHistory
+from ..numerics import reaction_history_along
 from ..dynamics import EquationsOfMotion
 from ..errors import OutputError
 from ..model import GALILEAN_FRAME, Gravity, Vector
@@ -47,7 +48,7 @@ def reactions_along(trajectory: Trajectory, eom: EquationsOfMotion) -> dict[str,
             f"The load `{by_power[0]}` is given by a potential or by generalized forces, not as forces, so the "
             "resultant of the constraint forces cannot be found from the resultant theorem.",
             fix="describe the load as gravity, a force at a point, a spring or a damper to get the reaction")
-    return reaction_history(eom, trajectory)
+    return reaction_history_along(eom, trajectory)
 
 
 def reaction_stem(eom: EquationsOfMotion) -> str:
