@@ -153,8 +153,8 @@ def test_belt_with_static_friction_above_kinetic_sticks_from_2x_star_minus_xs_to
 
 # -- what is refused, what is unchanged ------------------------------------------------------------
 def test_omitted_regularization_keeps_the_regularised_law() -> None:
-    model = lagrangian.parse_model(INCLINE.format(alpha=0.2, f_s=0.3).replace(", regularization = 0", ""),
-                                   source="m.toml")
+    text = INCLINE.format(alpha=0.2, f_s=0.3).replace(", regularization = 0", "")
+    model = lagrangian.parse_model(text.replace(' static_coefficient = "f_s",', ""), source="m.toml")
     load = model.loads[-1]
     assert not load.exact and float(load.regularization) == pytest.approx(1e-3)
     with pytest.raises(ModelError, match="no exact Coulomb contact"):
@@ -211,3 +211,16 @@ def test_newton_euler_and_reactions_hold_through_the_stuck_phase():
     normal = m * g * np.cos(alpha) * np.array([np.sin(alpha), 0.0, np.cos(alpha)])  # N along the incline's normal
     np.testing.assert_allclose(history.force, np.broadcast_to(normal, history.force.shape), atol=1e-9)
     assert main(["verify", str(EXAMPLES_DIR / "block_on_incline.toml"), "--simulate", "1"]) == 0
+
+
+@pytest.mark.parametrize("replacement, words", [
+    ('regularization = -1', "negative regularization"),
+    ('regularization = "eps", static_coefficient = "0.5"', "only the exact law uses"),
+])
+def test_friction_options_that_would_be_ignored_are_refused(tmp_path, replacement, words):
+    text = (EXAMPLES_DIR / "block_on_belt.toml").read_text().replace('regularization = "eps"', replacement)
+    path = tmp_path / "belt.toml"
+    path.write_text(text)
+    with pytest.raises(ModelError, match=words) as info:
+        lagrangian.load_model(path)
+    assert info.value.line is not None

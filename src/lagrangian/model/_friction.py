@@ -81,13 +81,23 @@ def build_friction_load(asm: Assembler, raw: Raw, points: Mapping[str, Point], b
                         fix="use a declared point, a body name (its centre G) or a particle name")
     normal = d["normal"]
     static = d.get("static_coefficient")
+    eps = asm.expr(raw, "the regularization", d["regularization"], key="regularization")
+    if eps.is_Number and float(eps) < 0:
+        raise asm.error(raw, f"Coulomb friction `{raw.name}` has a negative regularization {eps}: it is a speed "
+                             "below which the law is smoothed", symbol="regularization", key="regularization",
+                        fix="give a positive speed (e.g. 1e-3), or 0 for the exact law with stick/slip")
+    if static is not None and not eps.is_zero:
+        raise asm.error(raw, f"Coulomb friction `{raw.name}` has a static_coefficient, which only the exact law "
+                             "uses (sticking while |T| ≤ f_s N): the regularised law has no sticking phase",
+                        symbol="static_coefficient", key="static_coefficient",
+                        fix="write regularization = 0 for stick/slip with f_s, or leave static_coefficient out")
     return CoulombFriction(
         raw.name, at,
         asm.expr(raw, "the friction coefficient", d["coefficient"], key="coefficient"),
         asm.expr(raw, "the normal force", d["normal_force"], key="normal_force"),
         asm.expr(raw, "the surface velocity", d["surface_velocity"], vector=True, key="surface_velocity"),
         None if normal is None else asm.expr(raw, "the normal", normal, vector=True, key="normal"),
-        asm.expr(raw, "the regularization", d["regularization"], key="regularization"),
+        eps,
         None if static is None else asm.expr(raw, "the static friction coefficient", static,
                                              key="static_coefficient"),
     )
