@@ -209,7 +209,7 @@ def _output_times(t_start: float, t_end: float, n_out: int | None, t_eval, width
     for name, value in (("start", t_start), ("end", t_end)):
         if not np.isfinite(value):
             raise SimulationError(f"The {name} time {value} is not finite.",
-                                  fix=f"give a finite {name} time (e.g. --t-end 10)")
+                                  fix=f"give a finite {name} time (e.g. --t-{name} {0 if name == 'start' else 10})")
     if not t_end > t_start:
         raise SimulationError(f"The time span [{t_start}, {t_end}] is not increasing.",
                               fix="give an end time greater than the start time (e.g. --t-end 10)")
