@@ -45,3 +45,43 @@ def test_the_total_potential_is_named_u_p_of_the_system():
     step4 = _section(_md("block_on_belt", "en"), "4.")
     assert step4.count(r"\frac{1}{2} k x^{2}") == 1
     assert r"U_P(\Sigma" not in step4
+
+
+def test_a_prescribed_motion_keeps_remark_2_and_names_each_power_by_its_value():
+    """Kapitza: L = T − U_P still holds (Remarque 2), but ∂L/∂t ≠ 0, so the energy is no integral; the balance
+    is −∂L/∂t + d/dt(T₁ + 2T₀), not a ∂U_P/∂t plus a 'prescribed motion' power that was neither."""
+    fr = _md("kapitza_pendulum")
+    step6 = _section(fr, "6.")
+    assert "conservatif par rapport à" in step6
+    assert "dépend explicitement de $`t`$" in step6 and "n'est pas une intégrale première" in step6
+    balance = _section(fr, "Intégrales premières")
+    assert r"\frac{dE}{dt} = -\frac{\partial L}{\partial t} + \frac{d}{dt}\left(T_1 + 2\,T_0\right)" in balance
+    assert "mouvement imposé" not in balance and r"\frac{\partial U_P}{\partial t} =" not in balance
+    assert "Painlevé" in balance
+    assert "depends on $`t`$ explicitly" in _section(_md("kapitza_pendulum", "en"), "6.")
+    # A scleronomic conservative system says nothing of the kind.
+    assert "dépend explicitement de $`t`$" not in _md("simple_pendulum")
+
+
+def test_coriolis_forces_do_no_power_and_leave_the_jacobi_integral():
+    """bead_rotating_hoop / foucault_pendulum: not 'the system is not conservative' then a Jacobi integral."""
+    bead, foucault = _md("bead_rotating_hoop"), _md("foucault_pendulum")
+    for text in (bead, foucault):
+        step6 = _section(text, "6.")
+        assert "Le système n'est pas conservatif" not in step6
+        assert "aucune puissance réelle" in step6 and r"h = T_2 - T_0 + U_P(\Sigma/" in step6
+        assert "l'intégrale première de l'énergie" not in _section(text, "Intégrales premières")
+    assert r"Q_i(\text{Coriolis}) = 0" in _section(bead, "6.")
+    assert r"\sum_{i} Q_i(\text{Coriolis})\,\dot{q}_i = 0" in _section(foucault, "6.")
+    assert "remplacée par l'intégrale de Jacobi h" in bead
+    assert "L'intégrale de Jacobi h peut remplacer l'une des équations $`L(\\alpha)`$ ou $`L(\\beta)`$" in foucault
+    assert r"E = T(\Sigma/R_{0}) + U_P(\Sigma/R_{0})" in bead
+    assert "develop no real power" in _md("bead_rotating_hoop", "en")
+    # The entrainment potential is written for this model, its symbols defined.
+    step4 = _section(bead, "4.")
+    assert r"\vec{\Omega}(R_{1}/R_{0})\cdot\Pi_{O}(\Sigma)\cdot\vec{\Omega}(R_{1}/R_{0})" in step4
+    assert "O'" not in step4 and "l'opérateur d'inertie de (Σ) en $`O`$" in step4
+
+
+def test_an_energy_integral_may_replace_one_equation_or_another():
+    assert "l'une des équations $`L(x)`$ ou $`L(y)`$" in _md("pendulum_tension")

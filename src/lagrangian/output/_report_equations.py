@@ -129,13 +129,38 @@ def step6(c: Context) -> Section:
         blocks += c.show([_sum_equation(c, rf"L(\Sigma/{c.R}) = ", parts, "")], "L")
         blocks.append(Display((Equation((r"L(q_i)\quad \frac{d}{dt}\left[\frac{\partial L}{\partial \dot{q}_i}\right]"
                                          r" - \frac{\partial L}{\partial q_i} = 0 \qquad i = 1, \dots, n",)),)))
+        if not are_zero([(c.eom.T - c.eom.U).diff(c.kin.t)])[0]:
+            # Remarque 2 holds with time-dependent constraints; only the energy integral is lost.
+            blocks.append(Para(w("conservative timed", L=Math("L"), t=Math("t"),
+                                 dL=Math(r"\frac{\partial L}{\partial t} \neq 0"))))
     else:
         names = [f"« {c.load_name(f.name)} »" if c.lang == "fr" else f"“{c.load_name(f.name)}”"
-                 for f in c.eom.loads if f.potential is None]
+                 for f in c.eom.loads if f.potential is None and f.kind != "inertial: Coriolis"]
         if names:
             key = "not conservative system" if len(names) == 1 else "not conservative systems"
             blocks.append(Para(w(key, names=w.join(names))))
+        blocks += _coriolis(c, jacobi=not names)
     return Section("step6", w.text("step6"), tuple(blocks))
+
+
+def _coriolis(c: Context, jacobi: bool) -> list[Block]:
+    """The Coriolis forces: no potential, but no real power either (zero, or gyroscopic, generalized forces)."""
+    w = c.w
+    force = next((f for f in c.eom.loads if f.kind == "inertial: Coriolis"), None)
+    if force is None:
+        return []
+    Q = Math(rf"Q_i({c.load_tex(force.name)})")
+    if all(are_zero(list(force.Q))):
+        runs = w("coriolis zero", Q=Math(rf"Q_i({c.load_tex(force.name)}) = 0"), R=Math(c.R))
+    else:
+        power = se.Add(*(x * qd for x, qd in zip(force.Q, c.kin.qd)))
+        if not are_zero([power])[0]:  # pragma: no cover - Coriolis forces never work
+            return []
+        runs = w("coriolis gyroscopic", Q=Q, R=Math(c.R), nc=Math(r"Q_{i,\,\mathrm{nc}}"),
+                 P=Math(rf"\sum_{{i}} Q_i({c.load_tex(force.name)})\,\dot{{q}}_i = 0"))
+    if jacobi and any(r.kind != "momentum" for r in c.form.integrals):
+        runs += w("coriolis jacobi", h=Math(rf"h = T_2 - T_0 + U_P(\Sigma/{c.R})"))
+    return [Para(runs)]
 
 
 def left_out_note(c: Context, left: list) -> Runs:  # type: ignore[type-arg]
@@ -194,9 +219,9 @@ def _multipliers(c: Context) -> tuple[se.Basic, ...] | None:
 SIMPLIFY_MAX_OPS = 120
 
 
-def _simple(c: Context, e: se.Basic) -> sympy.Basic:
+def _simple(c: Context, e: se.Basic, limit: int = SIMPLIFY_MAX_OPS) -> sympy.Basic:
     shown = c.ex(e)
-    if isinstance(shown, sympy.Basic) and sympy.count_ops(shown) <= SIMPLIFY_MAX_OPS:
+    if isinstance(shown, sympy.Basic) and sympy.count_ops(shown) <= limit:
         return sympy.factor(sympy.simplify(shown))
     return shown
 
@@ -318,7 +343,7 @@ def _energy(c: Context, row: IntegralRow) -> list[Block]:
     elif _homogeneous(c):
         # Seed, Remarque 3: in the moving frame R, U_P holds the entrainment potential; T(Σ/R) = T_2.
         blocks = [Para(w("jacobi moving", L=Math("L"), cond=cond, T=T, U=U, R=Math(c.R), R0=Math("R_{0}"),
-                         E=Math(r"E = T(\Sigma/R_{0}) + U"), T2=Math(rf"T(\Sigma/{c.R}) = T_2")))]
+                         E=Math(r"E = T(\Sigma/R_{0}) + U_P(\Sigma/R_{0})"), T2=Math(rf"T(\Sigma/{c.R}) = T_2")))]
         head = rf"h = T(\Sigma/{c.R}) + U_P(\Sigma/{c.R}) = "
         blocks += c.show([_sum_equation(c, head, row.parts, f" = {cste}") if row.parts
                           else c.equation(head, row.expression, f" = {cste}")], row.name)
@@ -335,10 +360,13 @@ def _energy(c: Context, row: IntegralRow) -> list[Block]:
         if value:
             blocks.append(Para(value[1:-1] + (".",)))
     others = [r.coordinate for r in c.form.equations if r.integral is None]
+    what = w.text("the energy integral" if row.kind == "energy" else "the jacobi integral")
     if len(others) == 1:
-        blocks.append(Para(w("replace", q=Math(c.sym(others[0])))))
+        blocks.append(Para(w("replace", q=Math(c.sym(others[0])), what=what)))
     elif len(others) > 1:
-        blocks.append(Para(w("replace one", eqs=w.join([Math(rf"L({c.sym(q)})") for q in others]))))
+        eqs = [Math(rf"L({c.sym(q)})") for q in others]
+        blocks.append(Para(w("replace one", what=what[:1].upper() + what[1:],
+                             eqs=w.join_or(eqs))))
     return blocks
 
 
@@ -374,11 +402,27 @@ def _balance(c: Context) -> list[Block]:
     terms = [t for t in balance.terms if t.power != 0]
     if balance.conserved or not terms:
         return []
+    if any(t.kind == "prescribed motion" for t in terms):
+        # ∂U_P/∂t + [d/dt(T_1 + 2 T_0) − ∂T/∂t] = −∂L/∂t + d/dt(T_1 + 2 T_0): each term under the name of its value
+        # (the course's Painlevé form: d/dt(T_2 − T_0 + U_P) = −∂L/∂t).
+        kin = c.kin
+        dT_dt = c.eom.T.diff(kin.t)
+        timed = [t for t in terms if t.kind in ("explicit time", "prescribed motion")]
+        minus_dL = se.Add(*(t.power for t in timed if t.kind == "explicit time")) - dT_dt
+        rate = next(t.power for t in timed if t.kind == "prescribed motion") + dT_dt
+        from ..analysis._energy_balance import PowerTerm
+
+        merged = [PowerTerm("-dL/dt", "minus dL/dt", minus_dL, ""), PowerTerm("d(T1+2T0)/dt", "T1 T0", rate, "")]
+        terms = [t for t in terms if t not in timed] + [t for t in merged if not are_zero([t.power])[0]]
     labels = []
     for t in terms:
         if t.kind == "load":
             labels.append(rf"P({c.load_tex(t.name)})")
-        elif t.kind == "prescribed motion":
+        elif t.kind == "minus dL/dt":
+            labels.append(r"-\frac{\partial L}{\partial t}")
+        elif t.kind == "T1 T0":
+            labels.append(r"\frac{d}{dt}\left(T_1 + 2\,T_0\right)")
+        elif t.kind == "prescribed motion":  # pragma: no cover - merged above
             labels.append(rf"P(\text{{{w.text('prescribed')}}})")
         elif t.kind == "explicit time":
             labels.append(r"\frac{\partial U_P}{\partial t}")
@@ -386,7 +430,12 @@ def _balance(c: Context) -> list[Block]:
             labels.append(rf"P(\text{{{w.text('reaction')}}}\ {c.tex(next((r.multiplier for r in c.eom.constraints if t.name.endswith(f'({r.name})')), se.Symbol('lambda')))})")
     E = rf"E = T(\Sigma/{c.R}) + U_P(\Sigma/{c.R})"
     blocks: list[Block] = [Para(w("balance", E=Math(E)))]
+    if any(t.kind == "T1 T0" for t in terms) or any(t.kind == "minus dL/dt" for t in terms):
+        blocks.append(Para(w("balance timed", T=Math(rf"T(\Sigma/{c.R}) = T_2 + T_1 + T_0"),
+                             h=Math(rf"\frac{{d}}{{dt}}\left(T_2 - T_0 + U_P(\Sigma/{c.R})\right) = "
+                                    r"-\frac{\partial L}{\partial t}"),
+                             L=Math(rf"L = T(\Sigma/{c.R}) - U_P(\Sigma/{c.R})"))))
     eqs = [Equation((r"\frac{dE}{dt} = " + " + ".join(labels),))]
-    eqs += [c.equation(f"{label} = ", _simple(c, t.power)) for label, t in zip(labels, terms)]
+    eqs += [c.equation(f"{label} = ", _simple(c, t.power, 3 * SIMPLIFY_MAX_OPS)) for label, t in zip(labels, terms)]
     blocks += c.show(eqs, "dE/dt")
     return blocks

@@ -229,9 +229,27 @@ def _potential_formula(c: Context, kind: str, name: str) -> str:
     if isinstance(load, Potential):
         return ""
     if kind == "inertial: entrainment":
-        return (r"\sum m\,\vec{\gamma}(O'/R_{0})\cdot\overrightarrow{O'G} - \frac{1}{2}\,\vec{\Omega}(R/R_{0})\cdot"
-                r"\Pi_{O'}\cdot\vec{\Omega}(R/R_{0})")
+        # Remarque 3, written with this model's frame R, its origin O and its elements.
+        O, R, G = c.name(c.origin), c.R, _inertia_centre(c)
+        Omega = rf"\vec{{\Omega}}({R}/R_{{0}})"
+        m = "m" if G != "G" else r"\sum m"
+        return (rf"{m}\,\vec{{\gamma}}({O}/R_{{0}})\cdot\overrightarrow{{{O}{G}}} - \frac{{1}}{{2}}\,{Omega}\cdot"
+                rf"\Pi_{{{O}}}(\Sigma)\cdot{Omega}")
     return ""
+
+
+def _inertia_centre(c: Context) -> str:
+    """G in the entrainment potential: the element's own point when there is one, else G (each element's)."""
+    elements = [b.name for b in c.model.bodies] + [p.name for p in c.model.particles]
+    return c.point_label(elements[0]) if len(elements) == 1 else "G"
+
+
+def _entrainment_terms(c: Context) -> Para:
+    """What the entrainment potential's symbols are (Remarque 3)."""
+    O, G = c.name(c.origin), _inertia_centre(c)
+    return Para(c.w("entrainment terms", gamma=Math(rf"\vec{{\gamma}}({O}/R_{{0}})"), O=Math(O), R=Math(c.R),
+                    R0=Math("R_{0}"), G=Math(G), Omega=Math(rf"\vec{{\Omega}}({c.R}/R_{{0}})"),
+                    Pi=Math(rf"\Pi_{{{O}}}(\Sigma)"), many="" if G != "G" else c.w.text("each element")))
 
 
 def _potential(c: Context) -> list[Block]:
@@ -258,6 +276,8 @@ def _potential(c: Context) -> list[Block]:
     if not single:
         blocks.append(Para(w("potential of")))
     blocks += c.show(rows, "U_P") + alone
+    if any(f.kind == "inertial: entrainment" for f, _ in loads):
+        blocks.append(_entrainment_terms(c))
     # The total U_P(Σ/R), under its own name, when it sums at least two terms that are not zero.
     if sum(1 for _, row in loads if row.expression != 0) > 1:
         total = rf"U_P(\Sigma/{c.R}) = "

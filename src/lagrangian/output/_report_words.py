@@ -261,6 +261,17 @@ _PHRASES: dict[str, tuple[str, str]] = {
                      "le lagrangien {L}, les équations s'écrivent", "The system (Σ) is conservative relative to "
                      "{R} (Remark 2 of the course): every applied force derives from a potential energy and every constraint "
                      "is perfect and principal. With the Lagrangian {L}, the equations read"),
+    "entrainment terms": ("où {gamma} est l'accélération par rapport à {R0} de l'origine {O} de {R}, {G} le centre "
+                          "d'inertie{many}, {Omega} la rotation de {R} par rapport à {R0} et {Pi} l'opérateur "
+                          "d'inertie de (Σ) en {O} (Remarque 3).",
+                          "where {gamma} is the acceleration relative to {R0} of the origin {O} of {R}, {G} the "
+                          "centre of mass{many}, {Omega} the rotation of {R} relative to {R0} and {Pi} the inertia "
+                          "operator of (Σ) at {O}."),
+    "each element": (" de chaque élément, de masse m", " of each element, of mass m"),
+    "conservative timed": ("Les liaisons dépendant du temps, {L} dépend explicitement de {t} ({dL}) : les équations "
+                           "gardent cette forme, mais l'énergie n'est pas une intégrale première.",
+                           "The constraints depending on the time, {L} depends on {t} explicitly ({dL}): the "
+                           "equations keep this form, but the energy is not a first integral."),
     "not conservative system": ("Le système n'est pas conservatif : {names} ne dérive pas d'une énergie "
                                 "potentielle.", "The system is not conservative: {names} does not derive from a "
                                 "potential energy."),
@@ -326,12 +337,34 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "balance": ("L'énergie {E} n'est donc pas conservée ; le théorème de l'énergie cinétique donne sa variation, "
                 "terme par terme :", "The energy {E} is therefore not conserved; the work–energy theorem gives "
                 "its rate, term by term:"),
+    "balance timed": ("Avec {T} (parties de degré 2, 1 et 0 en q̇) et {L}, la forme de Painlevé {h} donne "
+                      "dE/dt = −∂L/∂t + d(T₁ + 2 T₀)/dt :",
+                      "With {T} (the parts of degree 2, 1 and 0 in q̇) and {L}, Painlevé's form {h} gives "
+                      "dE/dt = −∂L/∂t + d(T₁ + 2 T₀)/dt:"),
     "cond conservative": ("le système est conservatif", "the system is conservative"),
     "cond no work": ("les efforts non conservatifs ne travaillent pas", "the non-conservative forces do no work"),
-    "replace": ("L'équation de Lagrange relative à {q} peut être remplacée par l'intégrale première de l'énergie.",
-                "The Lagrange equation of {q} may be replaced by the energy integral."),
-    "replace one": ("L'intégrale première de l'énergie peut remplacer l'une des équations {eqs}.",
-                    "The energy integral may replace one of the equations {eqs}."),
+    "replace": ("L'équation de Lagrange relative à {q} peut être remplacée par {what}.",
+                "The Lagrange equation of {q} may be replaced by {what}."),
+    "replace one": ("{what} peut remplacer l'une des équations {eqs}.",
+                    "{what} may replace one of the equations {eqs}."),
+    "the energy integral": ("l'intégrale première de l'énergie", "the energy integral"),
+    "the jacobi integral": ("l'intégrale de Jacobi h", "the Jacobi integral h"),
+    "or": ("ou", "or"),
+    "coriolis zero": ("Les efforts d'inertie de Coriolis ne dérivent pas d'une énergie potentielle, mais ils sont "
+                      "orthogonaux à la vitesse par rapport à {R} et ne développent aucune puissance réelle ; ici "
+                      "leurs composantes généralisées sont nulles, {Q}.",
+                      "The Coriolis inertial forces do not derive from a potential energy, but they are orthogonal "
+                      "to the velocity relative to {R} and develop no real power; here their generalized forces "
+                      "are zero, {Q}."),
+    "coriolis gyroscopic": ("Les efforts d'inertie de Coriolis ne dérivent pas d'une énergie potentielle, mais ils "
+                            "sont orthogonaux à la vitesse par rapport à {R} et ne développent aucune puissance "
+                            "réelle : leurs composantes généralisées {Q} ne sont pas nulles mais gyroscopiques, {P} ; "
+                            "elles restent dans les {nc}.",
+                            "The Coriolis inertial forces do not derive from a potential energy, but they are "
+                            "orthogonal to the velocity relative to {R} and develop no real power: their generalized "
+                            "forces {Q} are not zero but gyroscopic, {P}; they stay in the {nc}."),
+    "coriolis jacobi": (" L'intégrale de Jacobi {h} est donc conservée (voir « Intégrales premières »).",
+                        " The Jacobi integral {h} is therefore conserved (see “First integrals”)."),
     "no integral": ("Aucune intégrale première n'apparaît : aucun paramètre n'est cyclique, et {why}.",
                     "No first integral appears: no parameter is cyclic, and {why}."),
     "why time": ("le lagrangien dépend explicitement du temps", "the Lagrangian depends on the time explicitly"),
@@ -468,6 +501,16 @@ class Words:
         """``a, b et c`` / ``a, b and c``."""
         parts: list[Run] = []
         last = " " + self.template("and") + " "
+        for k, item in enumerate(items):
+            if k:
+                parts.append(last if k == len(items) - 1 else ", ")
+            parts.extend(item if isinstance(item, tuple) else (item,))
+        return _merge(parts)
+
+    def join_or(self, items: Sequence[Run | Runs]) -> Runs:
+        """``a, b ou c`` / ``a, b or c``."""
+        parts: list[Run] = []
+        last = " " + self.template("or") + " "
         for k, item in enumerate(items):
             if k:
                 parts.append(last if k == len(items) - 1 else ", ")
