@@ -85,3 +85,16 @@ def test_coriolis_forces_do_no_power_and_leave_the_jacobi_integral():
 
 def test_an_energy_integral_may_replace_one_equation_or_another():
     assert "l'une des équations $`L(x)`$ ou $`L(y)`$" in _md("pendulum_tension")
+
+
+def test_exact_coulomb_friction_shows_its_law_without_epsilon():
+    """block_on_incline (regularization = 0): no √(‖v_s‖² + ε²) for an ε that is 0; the sticking rule and f_s."""
+    step5 = _section(_md("block_on_incline"), "5.")
+    assert r"\varepsilon" not in step5
+    assert r"\vec{T} = -f N\,\vec{v}_s / \|\vec{v}_s\|" in step5
+    assert r"\|\vec{T}\| \le f_{s}\, N" in step5 and "adhérence" in step5
+    assert "switches to sticking" in _md("block_on_incline", "en")
+
+
+def test_a_conservative_load_derives_from_its_u_p():
+    assert r"Q_i(\text{poids}) = -\frac{\partial U_P(\text{poids})}{\partial q_i}" in _md("simple_pendulum")

@@ -73,8 +73,10 @@ def _formula(c: Context, f: LoadForces, load: object) -> tuple[str, str]:
         return (rf"-{c.tex(load.coefficient)}\,\vec{{\Omega}}({s2}/{s1})\cdot\left(\vec{{\Omega}}^{{*}}({s2}/{R}) - "
                 rf"\vec{{\Omega}}^{{*}}({s1}/{R})\right)", "")
     if isinstance(load, CoulombFriction):
-        return (rf"\vec{{T}}\cdot\vec{{V}}^{{*}}({c.point_label(load.at)})",
-                r"\vec{T} = -f N\,\vec{v}_s / \sqrt{\|\vec{v}_s\|^{2} + \varepsilon^{2}}")
+        power = rf"\vec{{T}}\cdot\vec{{V}}^{{*}}({c.point_label(load.at)})"
+        if load.exact:
+            return power, r"\vec{T} = -f N\,\vec{v}_s / \|\vec{v}_s\|"
+        return power, r"\vec{T} = -f N\,\vec{v}_s / \sqrt{\|\vec{v}_s\|^{2} + \varepsilon^{2}}"
     if isinstance(load, GeneralizedForce):
         return r"\sum_{i} Q_i\, q_i^{*}", ""
     if f.kind == "inertial: Coriolis":
@@ -189,6 +191,10 @@ def step5(c: Context) -> Section:
         equations.append(wrap_many(r"\Rightarrow\quad ", _q_list(c, [c.n.latex(x) for x in row.Q], f.name),
                                    r",\quad "))
         blocks += c.show(equations, name)
+        if isinstance(load, CoulombFriction) and load.exact:
+            fs = load.static_coefficient if load.static_coefficient is not None else load.coefficient
+            blocks.append(Para(w("coulomb exact", v=Math(r"\vec{v}_s \neq \vec{0}"),
+                                 stick=Math(rf"\|\vec{{T}}\| \le {c.tex(fs)}\, N"), v0=Math(r"\vec{v}_s = \vec{0}"))))
         zeros = [i for i, x in enumerate(row.Q) if x == 0]
         if zeros and len(row.Q) <= ZERO_REASONS_MAX:
             items = tuple(w("zero because", Q=Math(f"{c.Q_of(c.eom.coordinates[i], f.name)} = 0"),
@@ -196,8 +202,8 @@ def step5(c: Context) -> Section:
             blocks += c.many([Items(items)], len(items), f.name)
         i_math = Math("i")
         if f.potential is not None:
-            blocks.append(Para(w("derives", name=name, Q=Math(rf"Q_i({c.load_tex(f.name)}) = "
-                                                             r"-\frac{\partial U}{\partial q_i}"), i=i_math,
+            blocks.append(Para(w("derives", name=name, Q=Math(rf"Q_i({c.load_tex(f.name)}) = -\frac{{\partial "
+                                                             rf"U_P({c.load_tex(f.name)})}}{{\partial q_i}}"), i=i_math,
                                  UP=Math(rf"U_P(\Sigma/{c.R})"))))
         else:
             blocks.append(Para(w("not conservative", name=name, Q=Math(r"Q_{i,\,\mathrm{nc}}")), style="note"))

@@ -268,6 +268,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
                           "centre of mass{many}, {Omega} the rotation of {R} relative to {R0} and {Pi} the inertia "
                           "operator of (Σ) at {O}."),
     "each element": (" de chaque élément, de masse m", " of each element, of mass m"),
+    "coulomb exact": ("C'est la loi exacte (sans régularisation), valable en glissement, {v} ; quand le glissement "
+                      "cesse, {v0}, la simulation passe à l'adhérence tant que {stick}.",
+                      "This is the exact law (no regularization), valid while sliding, {v}; when the sliding stops, "
+                      "{v0}, the simulation switches to sticking as long as {stick}."),
     "conservative timed": ("Les liaisons dépendant du temps, {L} dépend explicitement de {t} ({dL}) : les équations "
                            "gardent cette forme, mais l'énergie n'est pas une intégrale première.",
                            "The constraints depending on the time, {L} depends on {t} explicitly ({dL}): the "
