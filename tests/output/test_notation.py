@@ -62,3 +62,20 @@ def test_a_function_is_set_apart_from_a_word_or_latin_argument():
     assert n.text(sympy.cos(lat)) == "cos lat" and n.text(sympy.sin(lat) ** 2) == "sin² lat"
     assert n.latex(sympy.cos(x1)) == r"\cos x_{1}"  # not the unknown command \cosx
     assert n.latex(sympy.cos(theta)) == r"\cos\theta" and n.text(sympy.cos(theta)) == "cosθ"
+
+
+def test_a_coordinate_or_its_rate_comes_first_in_a_sum():
+    n = Notation(coordinates=["x", "phi"], parameters=["m", "r", "v_b", "eps"])
+    x, xd, phid, r, vb, eps = sympy.symbols("x x_dot phi_dot r v_b eps")
+    assert n.text(xd - vb) == "x\u0307 − v_b"
+    assert n.text(xd - r * phid) == "x\u0307 − r φ̇"
+    assert n.text(vb - xd) == "v_b − x\u0307"  # a negative rate does not lead
+    assert n.text(r**2 - x**2) == "r² − x²"  # nor a square
+    assert n.text((xd - vb) ** 2 + eps**2) == "(x\u0307 − v_b)² + ε²"
+
+
+def test_eps_is_epsilon():
+    n = Notation(parameters=["eps", "epsilon"])
+    eps, epsilon = sympy.symbols("eps epsilon")
+    assert (n.text(eps), n.latex(eps)) == ("ε", r"\varepsilon")
+    assert (n.text(epsilon), n.latex(epsilon)) == ("ε", r"\varepsilon")

@@ -3,9 +3,10 @@
 `Notation` renders a SymPy expression as terminal text or LaTeX with the factor and
 term order a teacher would write:
 
-* terms with a q̈ first, then by the first parameter they contain (in the order the
-  model declares parameters), then shortest first — so Γ_θ prints as
-  ``A θ̈ − A ψ̇² sinθ cosθ + C ψ̇ sinθ (φ̇ + ψ̇ cosθ)``;
+* terms with a q̈ first, then a positive term free of parameters and linear in a rate or
+  a coordinate (ẋ − v_b, ẋ − r φ̇, x − r φ: the coordinate before what it is compared with), then by the first parameter
+  they contain (in the order the model declares parameters), then shortest first — so
+  Γ_θ prints as ``A θ̈ − A ψ̇² sinθ cosθ + C ψ̇ sinθ (φ̇ + ψ̇ cosθ)``;
 * factors: number, parameters (declaration order), rates, accelerations,
   coordinates, sin, cos, other functions, then parenthesized sums;
 * a function of a single symbol loses its parentheses (sinθ), a power of a function
@@ -25,7 +26,7 @@ __all__ = ["Notation", "Opaque"]
 
 _GREEK = {
     "alpha": ("α", r"\alpha"), "beta": ("β", r"\beta"), "gamma": ("γ", r"\gamma"), "delta": ("δ", r"\delta"),
-    "epsilon": ("ε", r"\varepsilon"), "zeta": ("ζ", r"\zeta"), "eta": ("η", r"\eta"), "theta": ("θ", r"\theta"),
+    "epsilon": ("ε", r"\varepsilon"), "eps": ("ε", r"\varepsilon"), "zeta": ("ζ", r"\zeta"), "eta": ("η", r"\eta"), "theta": ("θ", r"\theta"),
     "iota": ("ι", r"\iota"), "kappa": ("κ", r"\kappa"), "lambda": ("λ", r"\lambda"), "lam": ("λ", r"\lambda"),
     "mu": ("μ", r"\mu"), "nu": ("ν", r"\nu"), "xi": ("ξ", r"\xi"), "rho": ("ρ", r"\rho"),
     "sigma": ("σ", r"\sigma"), "tau": ("τ", r"\tau"), "phi": ("φ", r"\varphi"), "chi": ("χ", r"\chi"),
@@ -189,8 +190,17 @@ class Notation:
         count = sum(1 for f in factors if not f.is_Number)
         coords = [list(self.coordinates).index(_split_name(n)[0]) for n in names
                   if _split_name(n)[0] in self.coordinates]
-        return (0 if has_qdd else 1, min(params) if params else len(self.parameters), count,
+        return (0 if has_qdd else 1 if self._leading_rate(term, names) else 2,
+                min(params) if params else len(self.parameters), count,
                 min(coords) if coords else len(self.coordinates), sympy.default_sort_key(term))
+
+    def _leading_rate(self, term: sympy.Basic, names: set[str]) -> bool:
+        """A positive term, free of parameters, linear in a rate or coordinate: ẋ, ẋ cosψ, x (not ẋ², −ẋ, r φ̇)."""
+        if term.could_extract_minus_sign() or any(n in self.parameters for n in names):
+            return False
+        rates = [s for s in term.free_symbols
+                 if _split_name(s.name)[1] in ("dot", "") and _split_name(s.name)[0] in self.coordinates]
+        return any(term.is_polynomial(r) and sympy.degree(term, r) == 1 for r in rates)
 
     # -- rendering ---------------------------------------------------------------------------
     def text(self, expr: sympy.Basic) -> str:
