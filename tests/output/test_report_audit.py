@@ -98,3 +98,28 @@ def test_exact_coulomb_friction_shows_its_law_without_epsilon():
 
 def test_a_conservative_load_derives_from_its_u_p():
     assert r"Q_i(\text{poids}) = -\frac{\partial U_P(\text{poids})}{\partial q_i}" in _md("simple_pendulum")
+
+
+def test_one_equation_is_singular_and_reactions_name_their_body():
+    assert "l'équation de Lagrange détermine le mouvement" in _section(_md("simple_pendulum"), "7.")
+    assert "les $`1`$ équations" not in _md("simple_pendulum")
+    en = _md("simple_pendulum", "en")
+    assert "All constraints were taken as principal" in en and "the Lagrange equation determines" in en
+    assert "La réaction exercée sur ($`S`$) en $`I`$ est" in _md("rolling_coin")
+    assert "Sa réaction" not in _md("rolling_coin") and "La réaction exercée sur $`P`$ est" in _md("pendulum_tension")
+
+
+def test_the_count_of_principal_parameters_is_said_once():
+    text = _md("pendulum_tension")
+    assert text.count("paramètres principaux.") == 0 and "On a donc $`2`$ paramètres principaux" in text
+    assert r"3 \times 1 - 1 = 2" in _section(text, "1.")
+
+
+def test_english_wording():
+    en = _md("simple_pendulum", "en")
+    assert "Galilean (inertial) frame" in en
+    from lagrangian.output._report_words import Words
+
+    w = Words("en")
+    assert w.text("check") == "Newton–Euler cross-check (Remark 4 of the course)"
+    assert all("found again" not in w.template(k) for k in ("check intro", "check intro moving") if w.has(k))

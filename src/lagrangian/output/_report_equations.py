@@ -175,7 +175,8 @@ def step7(c: Context) -> Section:
     n = len(c.eom.coordinates)
     rows = c.eom.constraints
     if not rows:
-        return Section("step7", w.text("step7"), (Para(w("no complementary", n=Math(str(n)))),))
+        return Section("step7", w.text("step7"), (Para(w("no complementary" if n > 1 else "no complementary one",
+                                                                n=Math(str(n)))),))
     lams = Math(", ".join(c.tex(r.multiplier) for r in rows))
     if len(rows) == 1:
         blocks: list[Block] = [Para(w("complementary row", n=Math(str(n)), lams=lams))]

@@ -224,8 +224,13 @@ def _declared(c: Context, con: Constraint, one: bool) -> list[Block]:
             blocks.append(Para(w("perfect complementary", Q=Math(Q or "0"))))
         for reaction in c.eom.reactions:
             if reaction.constraint == con.name and reaction.point is not None and not reaction.force.is_zero():
-                blocks.append(Para(w("reaction is", E=Math(c.point_label(reaction.point)),
-                                     R=Math(rf"\vec{{R}} = {c.vector(reaction.force)}"))))
+                R = Math(rf"\vec{{R}} = {c.vector(reaction.force)}")
+                body = reaction.body or getattr(con, "body", None)
+                if body is not None and body != reaction.point and body in c.bodies:
+                    blocks.append(Para(w("reaction on at", S=Math(c.element(body)),
+                                         E=Math(c.point_label(reaction.point)), R=R)))
+                else:
+                    blocks.append(Para(w("reaction is", E=Math(c.point_label(reaction.point)), R=R)))
     else:
         blocks.append(Para(w("perfect assumed")))
     return blocks

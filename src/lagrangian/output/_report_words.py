@@ -32,11 +32,11 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "step7": ("7. Équations de liaison complémentaires", "7. Complementary constraint equations"),
     "integrals": ("Intégrales premières", "First integrals"),
     "check": ("Vérification par les théorèmes généraux (Remarque 4)",
-              "Cross-check with the Newton–Euler theorems (Remark 4 of the course)"),
+              "Newton–Euler cross-check (Remark 4 of the course)"),
     "simulation": ("Simulation", "Simulation"),
     "matrix": ("Annexe : forme matricielle", "Appendix: matrix form"),
     # -- the system -------------------------------------------------------------------------------
-    "galilean": ("{R0} est un repère galiléen.", "{R0} is a Galilean frame."),
+    "galilean": ("{R0} est un repère galiléen.", "{R0} is a Galilean (inertial) frame."),
     "reference": ("Les équations sont écrites par rapport au repère {R}, qui n'est pas galiléen : aux efforts "
                   "donnés s'ajoutent les efforts d'inertie de Coriolis et d'entraînement (Remarque 3).",
                   "The equations are written relative to the frame {R}, which is not Galilean: the Coriolis "
@@ -144,11 +144,12 @@ _PHRASES: dict[str, tuple[str, str]] = {
                         "champ compatible avec elle : {P}. Ses composantes généralisées sont {Q}.",
                         "It is perfect because the virtual power of the reaction at {I} is zero in every virtual "
                         "field compatible with it: {P}. Its generalized forces are {Q}."),
-    "reaction is": ("Sa réaction sur {E} est {R}.", "Its reaction on {E} is {R}."),
-    "dof": ("Bilan des degrés de liberté : {count} paramètres principaux.",
-            "Degrees of freedom: {count} principal parameters."),
-    "dof one": ("Bilan des degrés de liberté : {count} paramètre principal.",
-                "Degrees of freedom: {count} principal parameter."),
+    "reaction is": ("La réaction exercée sur {E} est {R}.", "The reaction exerted on {E} is {R}."),
+    "reaction on at": ("La réaction exercée sur ({S}) en {E} est {R}.", "The reaction exerted on ({S}) at {E} is {R}."),
+    "dof": ("Bilan des degrés de liberté (6 par solide, 3 par point, moins une par équation de liaison) : {count}.",
+            "Degrees of freedom (6 per rigid body, 3 per particle, less one per constraint equation): {count}."),
+    "dof one": ("Bilan des degrés de liberté (6 par solide, 3 par point, moins une par équation de liaison) : {count}.",
+                "Degrees of freedom (6 per rigid body, 3 per particle, less one per constraint equation): {count}."),
     "time dep note": ("(le temps y figure explicitement)", "(the time appears in it explicitly)"),
     # -- step 2 -----------------------------------------------------------------------------------
     "n params": ("On a donc {n} paramètres principaux : {list}.", "Hence {n} principal parameters: {list}."),
@@ -287,8 +288,12 @@ _PHRASES: dict[str, tuple[str, str]] = {
     # -- step 7 -----------------------------------------------------------------------------------
     "no complementary": ("Toutes les liaisons ont été prises principales : il n'y a pas d'équation de liaison "
                          "complémentaire, et les {n} équations de Lagrange déterminent le mouvement.",
-                         "Every constraint was taken principal: there is no complementary constraint equation, "
+                         "All constraints were taken as principal: there is no complementary constraint equation, "
                          "and the {n} Lagrange equations determine the motion."),
+    "no complementary one": ("Toutes les liaisons ont été prises principales : il n'y a pas d'équation de liaison "
+                             "complémentaire, et l'équation de Lagrange détermine le mouvement.",
+                             "All constraints were taken as principal: there is no complementary constraint "
+                             "equation, and the Lagrange equation determines the motion."),
     "complementary rows": ("Les équations de liaison complémentaires complètent le système ; avec les {n} équations "
                            "de Lagrange, elles déterminent les {n} paramètres et les {m} multiplicateurs {lams} :",
                            "The complementary constraint equations complete the system; with the {n} Lagrange "
@@ -378,13 +383,13 @@ _PHRASES: dict[str, tuple[str, str]] = {
     # -- the Newton–Euler check -------------------------------------------------------------------
     "check intro": ("Ces équations de Lagrange peuvent être retrouvées en appliquant les théorèmes généraux à chaque "
                     "constituant de (Σ) par rapport à {R0} galiléen, projetés sur les directions associées à chaque "
-                    "paramètre :", "These Lagrange equations can be found again by applying the "
+                    "paramètre :", "These Lagrange equations can be recovered by applying the "
                     "Newton–Euler theorems to each part of (Σ) relative to the Galilean {R0}, projected on the "
                     "directions that go with each parameter:"),
     "check intro moving": ("Ces équations de Lagrange peuvent être retrouvées en appliquant les théorèmes généraux par "
                            "rapport à {R0}, non galiléen, en ajoutant aux efforts donnés les efforts d'inertie de "
                            "Coriolis et d'entraînement, projetés sur les directions associées à chaque paramètre :",
-                           "These Lagrange equations can be found again by applying the Newton–Euler theorems "
+                           "These Lagrange equations can be recovered by applying the Newton–Euler theorems "
                            "relative to {R0}, which is not Galilean, the Coriolis and transport inertial forces being "
                            "added to the applied forces, projected on the directions that go with each parameter:"),
     "moment theorem": ("Théorème du moment dynamique en {P} de {S} :", "Moment (angular momentum) theorem at {P} for {S}:"),
