@@ -231,3 +231,11 @@ motor = { torque = "G0*sin(nu*t)*R0.z", on = "wheel" }
     tr = simulate(eom, 3.0, n_out=301)
     C, G0, nu = 0.3, 0.6, 2.0
     assert np.max(np.abs(tr.column("phi_dot") - G0 * (1 - np.cos(nu * tr.t)) / (C * nu))) <= 1e-8
+
+
+def test_exact_coulomb_note_and_unchanged_law() -> None:
+    eom = lagrangian.derive(lagrangian.load_model(EXAMPLES_DIR / "block_on_incline.toml"))
+    (friction,) = [f for f in eom.loads if f.name == "friction"]
+    assert "T = −f N v_s/‖v_s‖ (exact; sticking handled by the simulation with |T| ≤ f_s N)" in friction.note
+    # The derived law stays −f N ẋ/√(ẋ²) (what the sliding phases integrate); only its display is sgn(ẋ).
+    assert "sqrt(x_dot**2)" in str(friction.Q[0])

@@ -79,3 +79,10 @@ def test_eps_is_epsilon():
     eps, epsilon = sympy.symbols("eps epsilon")
     assert (n.text(eps), n.latex(eps)) == ("ε", r"\varepsilon")
     assert (n.text(epsilon), n.latex(epsilon)) == ("ε", r"\varepsilon")
+
+
+def test_sign_function_prints_sgn_with_parentheses():
+    n = Notation(coordinates=["x"])
+    xd = sympy.Symbol("x_dot")
+    assert n.text(sympy.sign(xd)) == "sgn(x\u0307)"
+    assert n.latex(sympy.sign(xd)) == r"\operatorname{sgn}\left(\dot{x}\right)"

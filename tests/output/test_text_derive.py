@@ -100,3 +100,10 @@ def test_kapitza_lagrange_equation_is_printed_expanded(capsys) -> None:
     # 56 operations as derived (beyond the SymPy tidying), 13 once SymEngine has expanded it.
     out = derive(capsys, EXAMPLES / "kapitza_pendulum.toml")
     assert "m l² θ̈ − m l a ν² sinθ cos(ν t) = −m l g sinθ" in out
+
+
+def test_exact_coulomb_friction_is_printed_with_the_sign_function(capsys) -> None:
+    out = derive(capsys, EXAMPLES / "block_on_incline.toml")
+    assert "Q_x = −m g f cosα sgn(x\u0307)" in out and "√(x\u0307²)" not in out
+    assert "dE/dt = P(non-conservative) = −m g f cosα |x\u0307|" in out
+    assert "T = −f N v_s/‖v_s‖ (exact; sticking handled by the simulation with |T| ≤ f_s N)" in out

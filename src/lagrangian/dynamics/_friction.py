@@ -140,8 +140,8 @@ def friction_q(kin: Kinematics, load: Dissipation | JointDamper | CoulombFrictio
     force = friction_force(kin, load)
     Q = tuple(kin.frames.dot(force, v) for v in kin.partial_velocities(load.at))
     if load.exact:
-        return Q, None, (f"Coulomb friction at {load.at}: T = −f N v_s/|v_s| while sliding, |T| ≤ f_s N while "
-                         "stuck, N given (exact stick/slip: switched by events in simulation)")
+        return Q, None, (f"Coulomb friction at {load.at}: T = −f N v_s/‖v_s‖ (exact; sticking handled by the "
+                         "simulation with |T| ≤ f_s N), N given")
     return Q, None, (f"Coulomb friction at {load.at}: T = −f N v_s/√(|v_s|² + ε²), |T| ≤ f N, "
                      "N given (regularised stick/slip)")
 

@@ -46,12 +46,14 @@ def to_sympy(e: se.Basic) -> sympy.Basic:
     A longer expression (up to `EXPAND_MAX_OPS`) is expanded by SymEngine first, kept when
     shorter, and then tidied as a small one: Kapitza's L(θ), 56 operations as derived, is
     m l² θ̈ − m l a ν² cos(ν t) sinθ.  Only small expressions get SymPy's expansion
-    (`TIDY_MAX_OPS`): simplification only where it pays.
+    (`TIDY_MAX_OPS`): simplification only where it pays.  √(a²) is written |a|, and a/|a|
+    sgn(a): exact Coulomb friction's −f N ẋ/√(ẋ²) prints as −f N sgn(ẋ) (`_signs`).
     """
     expr = _from_engine(e)
     ops = sympy.count_ops(expr)
     if ops == 0 or ops > EXPAND_MAX_OPS:
         return expr
+    expr = _signs(expr)
     if ops > TIDY_MAX_OPS:
         engine = e if isinstance(e, se.Basic) else se.sympify(expr)
         expanded_engine = se.expand(engine)
@@ -73,6 +75,48 @@ def to_sympy(e: se.Basic) -> sympy.Basic:
     rewritten = sympy.expand(expanded.replace(_is_sine_power, _as_cosines))
     best = min((rewritten, expanded), key=sympy.count_ops)
     return best if sympy.count_ops(best) < ops else expr
+
+
+def _is_root_of_square(x: sympy.Basic) -> bool:
+    return (x.is_Pow and x.exp in (sympy.S.Half, -sympy.S.Half) and x.base.is_Pow and x.base.exp == 2)
+
+
+def _as_abs(x: sympy.Pow) -> sympy.Basic:
+    a = sympy.Abs(x.base.base, evaluate=False)
+    return a if x.exp > 0 else 1 / a
+
+
+def _over_own_abs(x: sympy.Basic) -> bool:
+    if not x.is_Mul:
+        return False
+    bases = {f.base.args[0] for f in x.args if f.is_Pow and f.exp == -1 and isinstance(f.base, sympy.Abs)}
+    return any((f.base if f.is_Pow and f.exp in (1, 2) else f) in bases for f in x.args)
+
+
+def _as_sign(x: sympy.Mul) -> sympy.Basic:
+    """a/|a| → sgn(a), a²/|a| → |a| (a real, a ≠ 0: where the expression is defined)."""
+    factors = list(x.args)
+    for f in list(factors):
+        if not (f.is_Pow and f.exp == -1 and isinstance(f.base, sympy.Abs)):
+            continue
+        a = f.base.args[0]
+        for k, g in enumerate(factors):
+            if g == a:
+                factors[k] = sympy.sign(a)
+            elif g.is_Pow and g.base == a and g.exp == 2:
+                factors[k] = f.base
+            else:
+                continue
+            factors.remove(f)
+            break
+    return sympy.Mul(*factors)
+
+
+def _signs(expr: sympy.Basic) -> sympy.Basic:
+    """√(a²) → |a|, then a/|a| → sgn(a) and a²/|a| → |a|: the coordinates and rates are real."""
+    if not any(_is_root_of_square(p) for p in expr.atoms(sympy.Pow)):
+        return expr
+    return expr.replace(_is_root_of_square, _as_abs).replace(_over_own_abs, _as_sign)
 
 
 def _is_sine_power(x: sympy.Basic) -> bool:

@@ -38,7 +38,7 @@ _SUPERSCRIPT = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
 _FRACTIONS = {(1, 2): "½", (1, 3): "⅓", (2, 3): "⅔", (1, 4): "¼", (3, 4): "¾"}
 _FUNCTION_RANK = {"sin": 0, "cos": 1, "tan": 2}
 _LATEX_FUNCTIONS = {"sin", "cos", "tan", "sinh", "cosh", "tanh", "exp", "log", "arcsin", "arccos", "arctan"}
-_SYMPY_TO_NAME = {"asin": "arcsin", "acos": "arccos", "atan": "arctan"}
+_SYMPY_TO_NAME = {"asin": "arcsin", "acos": "arccos", "atan": "arctan", "sign": "sgn"}
 
 
 def _as_sympy(expr: object) -> sympy.Basic:
@@ -375,7 +375,8 @@ class Notation:
             inner = self._render(f.args[0], latex)
             return (rf"\left|{inner}\right|{power}" if latex else f"|{inner}|{power}")
         args = f.args
-        simple = len(args) == 1 and isinstance(args[0], sympy.Symbol)
+        # sgn(ẋ) keeps its parentheses: "sgn ẋ" reads as a product.
+        simple = len(args) == 1 and isinstance(args[0], sympy.Symbol) and name != "sgn"
         # cos lat, not coslat: a symbol written as a word is set apart from the function's name.
         gap = (r"\," if latex else " ") if simple and _wordlike(args[0].name) else ""
         if simple and not gap and self.symbol(args[0].name, latex)[:1].isascii() and \
