@@ -86,3 +86,14 @@ def test_sign_function_prints_sgn_with_parentheses():
     xd = sympy.Symbol("x_dot")
     assert n.text(sympy.sign(xd)) == "sgn(x\u0307)"
     assert n.latex(sympy.sign(xd)) == r"\operatorname{sgn}\left(\dot{x}\right)"
+
+
+def test_an_axis_indexed_by_its_frame_has_the_index_after_the_arrow():
+    from lagrangian.output._notation import _axis_latex
+
+    assert _axis_latex("x_I") == r"\vec{x}_{I}"  # a frame's default axes (examples/block_on_incline.toml)
+    assert _axis_latex("xE") == r"\vec{x}_{E}"  # a letter and the frame's name (examples/foucault_pendulum.toml)
+    assert _axis_latex("xe", frames=["e"]) == r"\vec{x}_{e}"
+    assert (_axis_latex("z0"), _axis_latex("u"), _axis_latex("xe")) == (r"\vec{z}_{0}", r"\vec{u}", r"\vec{xe}")
+    n = Notation(coordinates=["x"])
+    assert n.vector([(sympy.Symbol("x_dot"), "x_I")], latex=True) == r"\dot{x}\,\vec{x}_{I}"

@@ -17,7 +17,7 @@ Nothing here changes an expression's value: it only chooses how to write it.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from dataclasses import dataclass, field
 
 import sympy
@@ -54,7 +54,18 @@ def _as_sympy(expr: object) -> sympy.Basic:
     raise TypeError(f"cannot print a {type(expr).__name__} as an expression")
 
 
-def _axis_latex(name: str) -> str:
+def _axis_latex(name: str, frames: Collection[str] = ()) -> str:
+    r"""An axis with its arrow, its index after it: z0 → \vec{z}_{0}, x_I → \vec{x}_{I}, xE → \vec{x}_{E}.
+
+    A name that is one letter followed by a frame's name (one of ``frames``, or any name that
+    starts with a capital: xE, yR1) is that letter indexed by the frame.
+    """
+    if "_" in name.strip("_"):
+        head, _, tail = name.partition("_")
+        return rf"\vec{{{head}}}_{{{tail}}}"
+    rest = name[1:]
+    if name[:1].isalpha() and rest and (rest in frames or (rest[0].isupper() and rest.isalnum())):
+        return rf"\vec{{{name[0]}}}_{{{rest}}}"
     head = name.rstrip("0123456789")
     tail = name[len(head):]
     return rf"\vec{{{head}}}" + (f"_{{{tail}}}" if tail else "")
