@@ -97,3 +97,11 @@ def test_an_axis_indexed_by_its_frame_has_the_index_after_the_arrow():
     assert (_axis_latex("z0"), _axis_latex("u"), _axis_latex("xe")) == (r"\vec{z}_{0}", r"\vec{u}", r"\vec{xe}")
     n = Notation(coordinates=["x"])
     assert n.vector([(sympy.Symbol("x_dot"), "x_I")], latex=True) == r"\dot{x}\,\vec{x}_{I}"
+
+
+def test_a_multipliers_index_is_one_level_deep():
+    """λ of constraint `rolling`, row x1: λ_{rolling, x₁}, not λ_{rolling_{x₁}} (an index of an index)."""
+    n = Notation()
+    assert n.symbol("lambda_rolling_x1", latex=True) == r"\lambda_{\mathrm{rolling},x_{1}}"
+    assert n.symbol("lambda_length", latex=True) == r"\lambda_{\mathrm{length}}"
+    assert n.symbol("x_I", latex=True) == "x_{I}"

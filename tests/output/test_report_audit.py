@@ -123,3 +123,21 @@ def test_english_wording():
     w = Words("en")
     assert w.text("check") == "Newton–Euler cross-check (Remark 4 of the course)"
     assert all("found again" not in w.template(k) for k in ("check intro", "check intro moving") if w.has(k))
+
+
+def test_units_print_with_superscripts_and_a_centred_dot():
+    from lagrangian.output._report_setup import _unit
+
+    assert [_unit(u) for u in ("m/s^2", "kg m^2", "kg*m^2", "m s^-1", "N/m", None)] == \
+        ["m/s²", "kg·m²", "kg·m²", "m·s⁻¹", "N/m", ""]
+
+
+def test_a_velocity_row_that_integrates_is_called_holonomic_with_its_integral():
+    import lagrangian
+    from lagrangian.output import report
+
+    eom = lagrangian.derive(lagrangian.load_model("examples/rolling_disk_incline.toml"))
+    text = report(eom, lang="fr", verification=False).render("md")
+    step1 = text[text.index("## 1."):text.index("## 2.")]
+    assert "s'intègre en $`x - r \\varphi = \\text{cste}`$ : elle est donc holonome" in step1
+    assert "non holonome" not in step1

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import symengine as se
+from symengine.lib.symengine_wrapper import sympy2symengine
 import sympy
 
 from .._identity import are_zero, is_zero
@@ -474,14 +475,14 @@ def _potential(coefficients: Sequence[se.Basic], variables: Sequence[se.Basic]) 
     when SymPy finds no closed form."""
     phi = sympy.Integer(0)
     for c, v in zip(coefficients, variables):
-        rest = sympy.expand(sympy.sympify(c) - sympy.diff(phi, sympy.sympify(v)))
+        rest = sympy.expand(c._sympy_() - sympy.diff(phi, v._sympy_()))
         if rest == 0:
             continue
-        term = sympy.integrate(rest, sympy.sympify(v))
+        term = sympy.integrate(rest, v._sympy_())
         if term.has(sympy.Integral):
             return None
         phi += term
-    out = se.sympify(phi)
+    out = sympy2symengine(phi)  # SymPy → SymEngine by structure, no text
     if not all(is_zero(out.diff(v) - c) for c, v in zip(coefficients, variables)):
         return None
     return out

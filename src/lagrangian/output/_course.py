@@ -14,6 +14,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import symengine as se
+from symengine.lib.symengine_wrapper import sympy2symengine
 import sympy
 
 from .._identity import are_zero
@@ -55,7 +56,7 @@ def to_sympy(e: se.Basic) -> sympy.Basic:
         return expr
     expr = _signs(expr)
     if ops > TIDY_MAX_OPS:
-        engine = e if isinstance(e, se.Basic) else se.sympify(expr)
+        engine = e if isinstance(e, se.Basic) else sympy2symengine(expr)
         expanded_engine = se.expand(engine)
         # Counted by SymEngine first: most long expressions do not shorten, and are not converted twice.
         if se.count_ops(expanded_engine) >= se.count_ops(engine):

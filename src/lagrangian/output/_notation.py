@@ -92,8 +92,10 @@ def _base_latex(name: str) -> str:
     if name in _GREEK:
         return _GREEK[name][1]
     if "_" in name:
+        # One level of index, its parts separated by commas: lambda_rolling_x1 → λ_{rolling, x₁}.
         head, _, tail = name.partition("_")
-        return f"{_base_latex(head)}_{{{_base_latex(tail) if tail else tail}}}"
+        parts = [_base_latex(part) for part in tail.split("_") if part]
+        return f"{_base_latex(head)}_{{{','.join(parts)}}}"
     head = name.rstrip("0123456789")
     if head and head != name:
         return f"{_base_latex(head)}_{{{name[len(head):]}}}"

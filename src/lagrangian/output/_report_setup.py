@@ -8,6 +8,9 @@ Elle est parfaite car la puissance virtuelle de la réaction R_O en O est nulle 
 
 from __future__ import annotations
 
+import re
+
+from ..dynamics._constraints import describe_constraints
 from ..model import Constraint, Vector
 from ._report_build import Context
 from ._report_constraints import Joint, degrees_of_freedom
@@ -18,6 +21,17 @@ __all__ = ["system_section", "step1", "step2"]
 #: Constraints written out in step 1 before the others are folded (a chain has one per link).
 SHOWN_CONSTRAINTS = 4
 
+
+
+_SUPERSCRIPTS = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
+
+
+def _unit(unit: str | None) -> str:
+    """A unit as printed: ``m/s^2`` → m/s², ``kg m^2`` → kg·m² (the file keeps plain ASCII)."""
+    if not unit:
+        return ""
+    text = re.sub(r"\^\(?(-?\d+)\)?", lambda m: m.group(1).translate(_SUPERSCRIPTS), unit.replace("**", "^"))
+    return re.sub(r"(?<=\w|[⁰¹²³⁴⁵⁶⁷⁸⁹])\s*\*\s*|(?<=\w|[⁰¹²³⁴⁵⁶⁷⁸⁹]) +(?=\w)", "·", text)
 
 def _frame_with_axes(c: Context, frame: str, origin: str | None) -> str:
     axes = ", ".join(c.axis(a) for a in c.kin.frames.axes(frame))
@@ -42,7 +56,7 @@ def system_section(c: Context) -> Section:
         blocks.append(Para(w("constituents")))
         blocks += c.many([Items(tuple(items))], len(items), w.text("constituents").rstrip(" :"))
     if model.parameters:
-        rows = tuple((( Math(c.sym(p.name)),), ("" if p.value is None else w.number(p.value),), (p.unit or "",),
+        rows = tuple((( Math(c.sym(p.name)),), ("" if p.value is None else w.number(p.value),), (_unit(p.unit),),
                       (p.description or "",)) for p in model.parameters)
         header = tuple((w.text(k),) for k in ("col symbol", "col value", "col unit", "col description"))
         blocks.append(Para(w("parameters")))
@@ -210,7 +224,13 @@ def _declared(c: Context, con: Constraint, one: bool) -> list[Block]:
     blocks: list[Block] = [Para(_capitalize(head) + (".",))]
     if len(shown) > 1 or (con.form in ("no_slip", "coincide") and shown):
         blocks.append(Display(tuple(shown)))
-    blocks.append(Para(_classify(c, con.kind == "holonomic", timed, status, True)))
+    info = next((i for i in describe_constraints(c.eom) if i.name == con.name), None)
+    holonomic = info.kind == "holonomic" if info is not None else con.kind == "holonomic"
+    blocks.append(Para(_classify(c, holonomic, timed, status, True)))
+    if info is not None and con.kind != "holonomic" and info.integrals:
+        # A velocity row that integrates (rolling on a line: ẋ − r φ̇ = 0 gives x − r φ = cste).
+        phi = r",\quad ".join(rf"{c.tex(f)} = \text{{cste}}" for f in info.integrals)
+        blocks.append(Para(_capitalize(w("integrable", phi=Math(phi))) + (".",)))
     if not con.principal:
         Q = ", ".join(rf"Q_{{{c.sym(q)}}} = {c.tex(sum(r.multiplier * r.coefficients[i] for r in rows))}"
                       for i, q in enumerate(c.eom.coordinates)

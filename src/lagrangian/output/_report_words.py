@@ -94,6 +94,8 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "equations count": ("{k} équations scalaires", "{k} scalar equations"),
     "equation count": ("1 équation scalaire", "1 scalar equation"),
     "holonomic": ("holonome", "holonomic"),
+    "integrable": ("écrite sur les vitesses, elle s'intègre en {phi} : elle est donc holonome",
+                   "written on the velocities, it integrates to {phi}: it is therefore holonomic"),
     "nonholonomic": ("non holonome (elle porte sur les vitesses)", "nonholonomic (a relation between velocities)"),
     "scleronomic": ("indépendante du temps", "time-independent"),
     "rheonomic": ("dépendante du temps", "time-dependent"),
