@@ -59,3 +59,14 @@ def test_a_principal_constraint_statement_is_the_declared_relation(capsys, tmp_p
     (c,) = document(capsys, path)["constraints"]
     statement = sympy.sympify(c["statement"])
     assert statement != 0 and sympy.simplify(statement) == 0
+
+
+def test_an_integrable_velocity_row_has_its_integral_in_the_json(capsys) -> None:
+    """The rolling disk's ẋ − r φ̇ = 0 is holonomic (x − r φ = cste); the coin's rows are not."""
+    [disk] = document(capsys, EXAMPLES / "rolling_disk_incline.toml")["constraints"]
+    assert disk["kind"] == "holonomic"
+    x, r, phi = sympy.symbols("x r phi")
+    [integral] = disk["integrals"]
+    assert sympy.simplify(sympy.sympify(integral) - (x - r * phi)) == 0
+    coin = document(capsys, EXAMPLES / "rolling_coin.toml")["constraints"]
+    assert any(c["kind"] == "nonholonomic" and "integrals" not in c for c in coin)

@@ -57,9 +57,12 @@ def constraints_section(eom: EquationsOfMotion) -> dict[str, Any]:
                 "moment": [_s(c) for c in r.moment_components] if r.body is not None else None,
                 "generalized": {c: _s(g) for c, g in zip(q, r.generalized)}, "note": r.note,
             }
-        items.append({"name": info.name, "role": info.role, "form": info.form, "kind": info.kind,
-                      "description": info.description, "frame": info.frame, "statement": statement,
-                      "rows": rows, "reaction": reaction})
+        item = {"name": info.name, "role": info.role, "form": info.form, "kind": info.kind,
+                "description": info.description, "frame": info.frame, "statement": statement,
+                "rows": rows, "reaction": reaction}
+        if info.integrals:  # velocity rows that integrate: φ_k(q, t) = cste (optional key)
+            item["integrals"] = [_s(phi) for phi in info.integrals]
+        items.append(item)
     out = {
         "constraints": items,
         "multipliers": [m.name for m in eom.multipliers],
