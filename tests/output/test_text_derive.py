@@ -107,3 +107,11 @@ def test_exact_coulomb_friction_is_printed_with_the_sign_function(capsys) -> Non
     assert "Q_x = −m g f cosα sgn(x\u0307)" in out and "√(x\u0307²)" not in out
     assert "dE/dt = P(non-conservative) = −m g f cosα |x\u0307|" in out
     assert "T = −f N v_s/‖v_s‖ (exact; sticking handled by the simulation with |T| ≤ f_s N)" in out
+
+
+def test_a_time_dependent_balance_is_not_called_non_conservative(capsys) -> None:
+    """Kapitza's dE/dt is ∂U/∂t and the power imposing the pivot's motion: no non-conservative effort."""
+    out = derive(capsys, EXAMPLES / "kapitza_pendulum.toml")
+    assert "dE/dt = P = " in out and "P(non-conservative)" not in out
+    assert "∂U/∂t (weight)" in out and "prescribed motion" in out
+    assert "dE/dt = P(non-conservative) = " in derive(capsys, EXAMPLES / "block_on_belt.toml")

@@ -255,7 +255,11 @@ def power_label(t: PowerRow) -> str:
 def _balance_text(n: Notation, extra: Supplement) -> list[str]:
     assert extra.balance is not None and extra.power is not None
     total = n.text(extra.power)
-    lines = ["", "Energy balance (no energy integral), E = T + U_P:  dE/dt = P(non-conservative)"
+    # The terms are the non-conservative efforts' power, and where L depends on t, ∂U/∂t and the
+    # power that imposes a prescribed motion: not all "non-conservative efforts".
+    timed = any(t.kind in ("explicit time", "prescribed motion") for t in extra.balance)
+    what = "P" if timed else "P(non-conservative)"
+    lines = ["", f"Energy balance (no energy integral), E = T + U_P:  dE/dt = {what}"
              + (f" = {total}" if len(total) <= MAX_SUM_CHARS or len(extra.balance) < 2 else "") + ", term by term:"]
     for t in extra.balance:
         lines.append(f"  {power_label(t)}: {n.text(t.power)}")
