@@ -112,8 +112,7 @@ def step6(c: Context) -> Section:
     n = len(c.form.equations)
     blocks: list[Block] = [Display((Equation((general,)),))]
     if c.eom.constraints:
-        blocks.append(Para(w("multiplier def", lam=Math(r"\lambda_{k}"), a=Math(r"a_{k,i}"),
-                             f=Math(r"\frac{\partial f_{k}}{\partial q_i}"))))
+        blocks.append(Para(w("multiplier def", sum=Math(r"\sum_{k} \lambda_{k}\, a_{k,i}"))))
     blocks.append(Para(w("lagrange n", n=Math(str(n))) if n > 1 else w("lagrange one")))
     for row in ordered_equations(c):
         blocks += _lagrange(c, row)
@@ -350,7 +349,8 @@ def _energy(c: Context, row: IntegralRow) -> list[Block]:
                           else c.equation(head, row.expression, f" = {cste}")], row.name)
     else:
         blocks = [Para(w("jacobi integral", L=Math("L"), cond=cond, T=T,
-                         parts=Math(rf"T(\Sigma/{c.R}) = T_2 + T_1 + T_0"),
+                         parts=Math(rf"T(\Sigma/{c.R}) = T_2 + T_1 + T_0"), qd=Math(r"\dot{q}_i"),
+                         T210=Math(r"T_2,\ T_1,\ T_0"), T1=Math("T_1"), T0=Math("T_0"),
                          E=Math(rf"T(\Sigma/{c.R}) + U_P(\Sigma/{c.R})")))]
         blocks += c.show([c.equation(rf"h = T_2 - T_0 + U_P(\Sigma/{c.R}) = ", row.expression, f" = {cste}")],
                          row.name)

@@ -211,7 +211,8 @@ def step5(c: Context) -> Section:
     blocks.append(Para(w("perfect no Q" if not lossy else "perfect no Q but")))
     if c.eom.constraints:
         blocks.append(Para(w("complementary Q", Q=Math(MULTIPLIER_SUM), lam=Math(r"\lambda_{k}"),
-                             a=Math(r"a_{k,i}"), f=Math(r"\frac{\partial f_{k}}{\partial q_i}"))))
+                             a=Math(r"a_{k,i}"), f=Math(r"\frac{\partial f_{k}}{\partial q_i}"),
+                             qd=Math(r"\dot{q}_i"), fk=Math("f_{k} = 0"))))
     blocks.append(Para(w("nc total")))
     values = [c.n.latex(eq.Q_nc) for eq in c.form.equations]
     if all(v == "0" for v in values) and len(values) > ZERO_REASONS_MAX:

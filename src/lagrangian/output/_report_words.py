@@ -234,19 +234,17 @@ _PHRASES: dict[str, tuple[str, str]] = {
                      "appear in no generalized force."),
     "complementary Q": ("Les réactions des liaisons complémentaires ont pour composantes généralisées {Q} (étape "
                         "7), où {lam} est le multiplicateur de la liaison complémentaire k et {a} le coefficient de "
-                        "la vitesse q̇_i dans son équation ({f} pour une liaison holonome f_k = 0).",
+                        "la vitesse {qd} dans son équation ({f} pour une liaison holonome {fk}).",
                         "The reactions of the complementary constraints have the generalized forces {Q} (step 7), "
                         "where {lam} is the multiplier of complementary constraint k and {a} the coefficient of "
-                        "the rate q̇_i in its equation ({f} for a holonomic constraint f_k = 0)."),
+                        "the rate {qd} in its equation ({f} for a holonomic constraint {fk})."),
     "perfect no Q but": ("Les autres liaisons principales étant parfaites, la puissance virtuelle de leurs efforts "
                          "est nulle ; les efforts des liaisons non parfaites (frottement) sont ceux des efforts "
                          "non conservatifs ci-dessus.", "The other principal constraints being perfect, the "
                          "virtual power of their forces is zero; the forces of the constraints that are not "
                          "perfect (friction) are among the non-conservative forces above."),
-    "multiplier def": ("où {lam} est le multiplicateur de la liaison complémentaire k et {a} le coefficient de q̇_i "
-                       "dans son équation ({f} pour une liaison holonome f_k = 0).",
-                       "where {lam} is the multiplier of complementary constraint k and {a} the coefficient of "
-                       "q̇_i in its equation ({f} for a holonomic constraint f_k = 0)."),
+    "multiplier def": ("{sum} : les composantes généralisées des réactions des liaisons complémentaires (étape 5).",
+                       "{sum}: the generalized forces of the complementary constraints' reactions (step 5)."),
     "nc total": ("Composantes généralisées des efforts non conservatifs :", "Generalized forces of the "
                  "non-conservative forces:"),
     "no loads": ("Aucun effort donné.", "No applied force."),
@@ -326,11 +324,11 @@ _PHRASES: dict[str, tuple[str, str]] = {
                         "homogène des vitesses, l'intégrale première de l'énergie s'écrit :",
                         "{L} does not depend on the time explicitly and {cond}; {T} being a homogeneous "
                         "quadratic form of the rates, the energy integral reads:"),
-    "jacobi integral": ("{L} ne dépend pas explicitement du temps et {cond}. Écrivons {parts}, où T_2, T_1 et T_0 "
-                        "sont les parties de {T} de degré 2, 1 et 0 par rapport aux vitesses q̇_i : T_1 ou T_0 "
+    "jacobi integral": ("{L} ne dépend pas explicitement du temps et {cond}. Écrivons {parts}, où {T210} "
+                        "sont les parties de {T} de degré 2, 1 et 0 par rapport aux vitesses {qd} : {T1} ou {T0} "
                         "n'étant pas nul, {E} n'est pas conservée, mais l'intégrale première de Painlevé–Jacobi "
                         "l'est :", "{L} does not depend on the time explicitly and {cond}. Write {parts}, where "
-                        "T_2, T_1 and T_0 are the parts of {T} of degree 2, 1 and 0 in the rates q̇_i: T_1 or T_0 "
+                        "{T210} are the parts of {T} of degree 2, 1 and 0 in the rates {qd}: {T1} or {T0} "
                         "not being zero, {E} is not conserved, but the Painlevé–Jacobi integral is:"),
     "jacobi moving": ("{L} ne dépend pas explicitement du temps et {cond}. Les équations étant écrites dans le "
                       "repère {R}, entraîné par rapport à {R0} par un mouvement imposé, {T2} est une forme quadratique "
