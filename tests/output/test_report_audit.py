@@ -141,3 +141,15 @@ def test_a_velocity_row_that_integrates_is_called_holonomic_with_its_integral():
     step1 = text[text.index("## 1."):text.index("## 2.")]
     assert "s'intègre en $`x - r \\varphi = \\text{cste}`$ : elle est donc holonome" in step1
     assert "non holonome" not in step1
+
+
+def test_the_multiplier_terms_are_defined_once_and_symbols_are_math():
+    import lagrangian
+    from lagrangian.output import report
+
+    eom = lagrangian.derive(lagrangian.load_model("examples/pendulum_tension.toml"))
+    for lang, words in (("fr", "est le multiplicateur de la liaison complémentaire"),
+                        ("en", "is the multiplier of complementary constraint")):
+        text = report(eom, lang=lang, verification=False).render("md")
+        assert text.count(words) == 1
+        assert "q̇\\_i" not in text and "q̇_i" not in text and "f\\_k" not in text
