@@ -5,7 +5,9 @@ The derivation step by step, in the order of the course's "démarche d'applicati
 (``zoo:planar_chain:40``, ``zoo:lagrange_top``).  The format is ``--format``, else the
 suffix of ``-o FILE``, else Markdown.  The Newton–Euler cross-check is included up to
 `VERIFY_AUTO_MAX` coordinates (``--verify`` / ``--no-verify`` decide otherwise);
-``--simulate T_END`` adds the figures of a simulated motion (matplotlib needed); ``--set``
+``--simulate T_END`` adds the figures of a simulated motion (matplotlib needed);
+``--small-motions --at theta=0`` the small motions about that point (``[operating_point]`` by
+default): the linearized equations, the pulsations and the stability argument; ``--set``
 changes parameter values and initial conditions in the report and in the simulation.
 With ``-o``, `Report.save` writes the figures of a LaTeX or Markdown report beside it as
 PNG files.  The report's notes name ``lagrangian derive MODEL --json`` (with this MODEL) for the
@@ -21,7 +23,8 @@ from ..dynamics import derive
 from ..errors import SimulationError
 from ..model import Model
 from ..output import format_for, report
-from ._settings import add_set_option, parse_settings
+from ._point import add_point_options, full_point
+from ._settings import SettingError, add_set_option, parse_settings
 from ._source import MODEL_HELP, load_source
 
 __all__ = ["register", "run", "VERIFY_AUTO_MAX"]
@@ -72,6 +75,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     r.add_argument("--simulate", type=_float, metavar="T_END", default=None,
                    help="add the figures of a motion simulated from the model's initial state to T_END")
     add_set_option(r)
+    r.add_argument("--small-motions", action="store_true",
+                   help="add the section on the small motions about the point given by --at (or the model's "
+                        "[operating_point]): linearized equations, pulsations, stability")
+    add_point_options(r, inputs=False, symbolic=False)
     r.add_argument("-o", "--output", metavar="FILE", help="write to FILE (atomically) instead of standard output")
     r.set_defaults(run=run)
 
@@ -96,8 +103,16 @@ def run(args: argparse.Namespace) -> str | None:
     fmt = args.format or (format_for(args.output) if args.output else "md")
     check = args.verify if args.verify is not None else len(eom.coordinates) <= VERIFY_AUTO_MAX
     figures = _figures(eom, args.simulate, parameters, initial, args.lang) if args.simulate is not None else []
+    small = None
+    if args.small_motions:
+        from ..analysis import linearize
+
+        small = linearize(eom, full_point(args.at, model))
+    elif args.at:
+        raise SettingError("`--at` gives the point of the small motions, which only `--small-motions` reports.",
+                           fix="add --small-motions, or drop --at")
     # The notes name the command that prints every equation in full: lagrangian derive MODEL --json.
-    r = report(eom, lang=args.lang, verification=check, figures=figures, source=args.model or "")
+    r = report(eom, lang=args.lang, verification=check, figures=figures, source=args.model or "", small_motions=small)
     if not args.output:
         return r.render(fmt)
     r.save(args.output, fmt)  # the figures of a .tex or .md report as PNG files beside it

@@ -6,6 +6,8 @@ from ._json import SCHEMA_ID as SCHEMA_ID
 from ._json import SCHEMA_VERSION as SCHEMA_VERSION
 from ._json import derive_document as derive_document
 from ._latex import render_latex as render_latex
+from ._linearize_json import LINEARIZE_SCHEMA_ID as LINEARIZE_SCHEMA_ID
+from ._linearize_json import linearize_document as linearize_document
 from ._notation import Notation as Notation
 from ._report import FORMATS as FORMATS
 from ._report import Report as Report
@@ -15,4 +17,5 @@ from ._report import report as report
 from ._text import render_text as render_text
 
 __all__ = ["CourseForm", "course_form", "SCHEMA_ID", "SCHEMA_VERSION", "derive_document", "render_latex",
+           "LINEARIZE_SCHEMA_ID", "linearize_document",
            "Notation", "render_text", "Report", "ReportFigure", "report", "FORMATS", "format_for"]

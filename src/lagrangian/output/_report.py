@@ -14,7 +14,7 @@ course's words and notation) or in English:
    the system is conservative);
 7. the complementary equations;
 
-then the first integrals, the Newton–Euler cross-check (``verification``), the simulation's
+then the first integrals, the small motions about an equilibrium (opt-in: ``small_motions``), the Newton–Euler cross-check (``verification``), the simulation's
 figures (``figures``) and the matrix form M q̈ = F.  Everything is computed by the engine;
 this module only arranges and writes it.
 """
@@ -43,6 +43,7 @@ from ._report_html import render_html
 from ._report_kinematics import step3, step4
 from ._report_md import display_math, render_markdown
 from ._report_setup import step1, step2, system_section
+from ._report_small import as_linear_model, small_motions_section
 from ._report_tex import render_tex
 
 __all__ = ["Report", "ReportFigure", "report", "FORMATS", "format_for"]
@@ -161,7 +162,8 @@ def _figure(item: Any) -> ReportFigure:
 
 def report(model: Model | EquationsOfMotion | str | os.PathLike[str], *, lang: str = "fr",
            verification: Verification | bool | None = None, figures: Sequence[Any] = (),
-           integrals: Sequence[FirstIntegral] | None = None, source: str | None = None) -> Report:
+           integrals: Sequence[FirstIntegral] | None = None, source: str | None = None,
+           small_motions: Any = None) -> Report:
     r"""The step-by-step derivation of ``model`` in the course's order, ready to write as HTML, LaTeX or Markdown.
 
     Parameters
@@ -175,6 +177,9 @@ def report(model: Model | EquationsOfMotion | str | os.PathLike[str], *, lang: s
     integrals : the first integrals (default: `lagrangian.first_integrals`).
     source : how ``lagrangian derive`` names the model (a file, ``zoo:planar_chain:40``, ``""`` for the
         seed's top), for the note on the equations too long to print in full (default: the model's file).
+    small_motions : adds the section "Petits mouvements au voisinage d'une position d'équilibre" /
+        "Small motions about an equilibrium": a `LinearModel` (`lagrangian.linearize`), a point
+        ``{"theta": 0}``, or True for the model's ``[operating_point]``; None (default) leaves it out.
 
     Returns
     -------
@@ -198,6 +203,8 @@ def report(model: Model | EquationsOfMotion | str | os.PathLike[str], *, lang: s
     pictures = [_figure(f) for f in figures]
     sections = [system_section(c), step1(c), step2(c), step3(c), step4(c), step5(c), step6(c), step7(c),
                 integrals_section(c)]
+    if small_motions is not None and small_motions is not False:
+        sections.append(small_motions_section(c, as_linear_model(eom, small_motions)))
     if checked is not None:
         sections.append(check_section(c, checked))
     if pictures:

@@ -454,6 +454,74 @@ _PHRASES: dict[str, tuple[str, str]] = {
                         "The full forms are limited to {budget} characters of LaTeX in all: {k} other summaries, "
                         "as {sample}, stay as they are. The command {cmd} (or the function {fn}) gives every "
                         "equation in full."),
+    # -- small motions (opt-in section) ------------------------------------------------------------
+    "small title": ("Petits mouvements au voisinage d'une position d'équilibre", "Small motions about an equilibrium"),
+    "small title steady": ("Petits mouvements au voisinage d'un mouvement stationnaire",
+                           "Small motions about a steady motion"),
+    "small intro": ("Au voisinage de la position d'équilibre {point}, on pose {dq} avec δq petit, et l'on ne garde "
+                    "des équations de Lagrange que les termes du premier ordre en δq et δq̇ (les efforts y sont "
+                    "nuls à l'ordre zéro, puisque la position est d'équilibre).",
+                    "About the equilibrium {point}, write {dq} with δq small, and keep only the first-order terms "
+                    "in δq and δq̇ of Lagrange's equations (the forces vanish at order zero, since the position is "
+                    "an equilibrium)."),
+    "small intro steady": ("Au voisinage du mouvement stationnaire {point}, on pose {dq} avec δq petit, et l'on ne "
+                           "garde des équations de Lagrange que les termes du premier ordre en δq et δq̇.",
+                           "About the steady motion {point}, write {dq} with δq small, and keep only the "
+                           "first-order terms in δq and δq̇ of Lagrange's equations."),
+    "small dependent": ("Les liaisons complémentaires éliminent {names} (paramètres et vitesses dépendants).",
+                        "The complementary constraints eliminate {names} (dependent coordinates and speeds)."),
+    "small equations": ("Les équations linéarisées, de la forme {form}, sont :",
+                        "The linearized equations, of the form {form}, are:"),
+    "small matrices": ("soit, sous forme matricielle :", "that is, in matrix form:"),
+    "small numeric": ("Les coefficients sont écrits avec les valeurs numériques des constantes : la position "
+                      "n'est d'équilibre que pour ces valeurs.",
+                      "The coefficients are written with the numerical values of the constants: the position is "
+                      "an equilibrium for these values only."),
+    "small first order": ("Les équations réduites ne sont que du premier ordre ({why}) ; elles s'écrivent {x}.",
+                          "The reduced equations are first order only ({why}); they read {x}."),
+    "small one pulsation": ("L'équation est celle d'un oscillateur harmonique en {q}, de pulsation propre :",
+                            "This is the equation of a harmonic oscillator in {q}, with the natural pulsation:"),
+    "small omega value": ("soit numériquement {omega}, et une période des petites oscillations {T}.",
+                          "that is {omega}, and a period of the small oscillations {T}."),
+    "small pulsations": ("Les pulsations propres sont les racines positives de {det} :",
+                         "The natural pulsations are the positive roots of {det}:"),
+    "small eigenvalues": ("Les valeurs propres de la matrice d'état A sont {lam}.",
+                          "The eigenvalues of the state matrix A are {lam}."),
+    "small lagrange dirichlet": ("La matrice {K} est définie positive : l'énergie potentielle {U} admet un minimum "
+                                 "strict en {q0}. D'après le théorème de Lagrange–Dirichlet, la position d'équilibre "
+                                 "est stable.",
+                                 "The matrix {K} is positive definite: the potential energy {U} has a strict minimum "
+                                 "at {q0}. By the Lagrange–Dirichlet theorem, the equilibrium is stable."),
+    "small kelvin tait": ("La matrice K est définie positive et les autres termes sont gyroscopiques (G "
+                          "antisymétrique, de puissance nulle) : l'équilibre est stable (théorème de "
+                          "Kelvin–Tait–Chetaev).",
+                          "K is positive definite and the other terms are gyroscopic (G skew, doing no work): the "
+                          "equilibrium is stable (Kelvin–Tait–Chetaev theorem)."),
+    "small gyroscopic": ("La matrice K n'est pas définie positive (plus petite valeur propre {kmin}), mais les termes "
+                         "gyroscopiques rendent toutes les valeurs propres simples et imaginaires pures : stabilité "
+                         "gyroscopique, au premier ordre (la linéarisation ne décide pas du mouvement non linéaire).",
+                         "K is not positive definite (smallest eigenvalue {kmin}), but the gyroscopic terms make every "
+                         "eigenvalue simple and purely imaginary: gyroscopic stabilisation, to first order (the "
+                         "linearization does not decide the nonlinear motion)."),
+    "small unstable no minimum": ("La matrice {K} n'est pas définie positive (plus petite valeur propre {kmin}) : "
+                                  "{U} n'a pas de minimum en {q0}, et la valeur propre {lam} a une partie réelle "
+                                  "positive : les petits mouvements croissent, la position d'équilibre est "
+                                  "instable.",
+                                  "The matrix {K} is not positive definite (smallest eigenvalue {kmin}): {U} has no "
+                                  "minimum at {q0}, and the eigenvalue {lam} has a positive real part: small motions "
+                                  "grow, the equilibrium is unstable."),
+    "small unstable": ("La valeur propre {lam} a une partie réelle positive : les petits mouvements croissent, le "
+                       "mouvement est instable (première méthode de Lyapunov).",
+                       "The eigenvalue {lam} has a positive real part: small motions grow, the motion is unstable "
+                       "(Lyapunov's first method)."),
+    "small asymptotic": ("Toutes les valeurs propres ont une partie réelle négative (la plus grande : {lam}) : les "
+                         "petits mouvements s'amortissent, le mouvement est asymptotiquement stable.",
+                         "Every eigenvalue has a negative real part (the largest: {lam}): small motions decay, the "
+                         "motion is asymptotically stable."),
+    "small marginal": ("Les valeurs propres sont sur l'axe imaginaire (ou l'une est nulle ou multiple) : la "
+                       "linéarisation ne permet pas de conclure sur la stabilité (cas critique).",
+                       "The eigenvalues lie on the imaginary axis (or one is zero or repeated): the linearization "
+                       "does not decide the stability (critical case)."),
     "summaries": ("{sample} : expression trop longue pour être écrite ici ; la commande {cmd} (ou la fonction "
                   "{fn}) la donne en entier.", "{sample}: an expression too long to print here; the command "
                   "{cmd} (or the function {fn}) gives it in full."),

@@ -1,0 +1,254 @@
+"""The report's section "Petits mouvements au voisinage d'une position d'équilibre" (opt-in).
+
+About the point q0 (an equilibrium, or a steady motion), q = q0 + δq with δq small; keeping
+the first-order terms of Lagrange's equations gives
+
+    M δq̈ + (D + G) δq̇ + (K + N) δq = B u
+
+written here coordinate by coordinate, with the parameters as letters (a second linearization
+that keeps every parameter symbolic; the numbers when that one cannot be made).  Then the
+pulsations — ω0² = K/M for one coordinate (g/l for the simple pendulum), the roots of
+det(K − ω² M) = 0 otherwise — and the stability argument: Lagrange–Dirichlet (K = ∂²U_P/∂q²
+positive definite: U_P has a strict minimum, the equilibrium is stable), the gyroscopic
+theorems, or the eigenvalues of A (Lyapunov's first method).  The linearization itself is
+`lagrangian.analysis.linearize`; this module only writes it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+import symengine as se
+import sympy
+
+from ..errors import LagrangianError
+from ._report_build import Context
+from ._report_doc import Block, Display, Equation, Items, Math, Para, Runs, Section
+from ._report_size import LINE_WIDTH, visible_width, wrap_many
+
+__all__ = ["small_motions_section", "as_linear_model"]
+
+#: Most coordinates for which the matrices M and K are displayed as well as the equations.
+MATRIX_MAX = 3
+
+
+def as_linear_model(eom: Any, small_motions: Any) -> Any:
+    """A `LinearModel` from what ``report(..., small_motions=...)`` was given: one, or a point {name: value}."""
+    from ..analysis import LinearModel, linearize
+
+    if isinstance(small_motions, LinearModel):
+        return small_motions
+    if isinstance(small_motions, Mapping):
+        return linearize(eom, dict(small_motions))
+    if small_motions is True:
+        return linearize(eom)  # the model's [operating_point]
+    raise TypeError("small_motions is a LinearModel (lagrangian.linearize), a point {coordinate: value} or True "
+                    f"(the model's [operating_point]), not {type(small_motions).__name__}")
+
+
+def _symbolic(lin: Any) -> Any:
+    """The same linearization with every parameter as a letter, or None when it cannot be made (a point that is
+    an equilibrium for the given values only, e.g. cos θ0 = g/(R Ω²) given as a number)."""
+    from ..analysis import linearize
+
+    if lin.symbols and len(lin.symbols) == len([p for p in lin.eom.model.parameters if p.name not in lin.inputs]):
+        return lin
+    keep = [p.name for p in lin.eom.model.parameters if p.name not in lin.inputs]
+    at = {c: lin.point[c] for c in lin.eom.coordinates}
+    at.update({s: lin.point[s] for s in lin.speeds})
+    try:
+        return linearize(lin.eom, at, symbolic=tuple(keep), inputs=lin.inputs,
+                         independent_speeds=lin.speeds if lin.dependent_speeds else None,
+                         dependent_coordinates=lin.dependent_coordinates or None)
+    except (LagrangianError, ArithmeticError, RuntimeError, ValueError, TypeError):  # then the numbers are shown
+        return None
+
+
+def _positive(lin: Any) -> Any:
+    """``lin``'s second-order form with each entry simplified assuming the parameters whose value is positive are
+    (a spring of rest length l0 gives k, not k (l0³ − (l0²)^{3/2} + l0² |l0|)/l0³)."""
+    so = lin.second_order
+    positive = {sympy.Symbol(p.name): sympy.Symbol(p.name, positive=True)
+                for p in lin.eom.model.parameters if p.value is not None and p.value > 0}
+    back = {v: k for k, v in positive.items()}
+
+    def tidy(e: se.Basic) -> se.Basic:
+        if not e.free_symbols:
+            return e
+        x = sympy.sympify(e._sympy_()).xreplace(positive)
+        y = sympy.factor(sympy.cancel(x)).xreplace(back)
+        return se.sympify(y) if len(str(y)) < len(str(e)) else e
+
+    def matrix(m: se.DenseMatrix) -> se.DenseMatrix:
+        if m.rows == 0 or m.cols == 0:
+            return m
+        return se.DenseMatrix([[tidy(m[i, j]) for j in range(m.cols)] for i in range(m.rows)])
+
+    return dataclasses.replace(so, **{k: matrix(getattr(so, k)) for k in ("M", "D", "G", "K", "N", "B")})
+
+
+def _var(c: Context, name: str, deco: str = "") -> str:
+    return r"\delta " + c.sym(name, deco)
+
+
+def _terms(c: Context, pairs: list[tuple[se.Basic, str]]) -> list[str]:
+    """Σ coefficient · variable as signed LaTeX terms (``m l^{2}\\,\\delta\\ddot{\\theta}``, ``+ m g l\\,\\delta\\theta``)."""
+    out: list[str] = []
+    for coef, var in pairs:
+        if coef == 0:
+            continue
+        e = c.ex(coef)
+        neg = bool(getattr(e, "could_extract_minus_sign", lambda: False)())
+        if neg:
+            e = -e
+        if e == 1:
+            body = var
+        else:
+            text = c.n.latex(e)
+            body = (rf"\left({text}\right)" if isinstance(e, sympy.Add) else text) + r"\," + var
+        out.append(("-" if neg else "") + body if not out else ("- " if neg else "+ ") + body)
+    return out or ["0"]
+
+
+def _is_zero(m: se.DenseMatrix) -> bool:
+    return all(m[i, j] == 0 for i in range(m.rows) for j in range(m.cols))
+
+
+def _equations(c: Context, so: Any, inputs: tuple[str, ...]) -> list[Equation]:
+    q = so.coordinates
+    rows = []
+    for i in range(len(q)):
+        pairs = [(so.M[i, j], _var(c, x, "ddot")) for j, x in enumerate(q)]
+        pairs += [(so.D[i, j] + so.G[i, j], _var(c, x, "dot")) for j, x in enumerate(q)]
+        pairs += [(so.K[i, j] + so.N[i, j], _var(c, x)) for j, x in enumerate(q)]
+        rhs = _terms(c, [(so.B[i, k], c.sym(u)) for k, u in enumerate(inputs)]) if so.B.cols else ["0"]
+        left = _terms(c, pairs)
+        rows.append(wrap_many("", left[:-1] + [left[-1] + " = " + rhs[0]] + rhs[1:], " "))
+    return rows
+
+
+def _pmatrix(c: Context, name: str, m: se.DenseMatrix) -> str:
+    rows = [" & ".join(c.tex(m[i, j]) if m[i, j] != 0 else "0" for j in range(m.cols)) for i in range(m.rows)]
+    return rf"{name} = \begin{{pmatrix}} " + r" \\ ".join(rows) + r" \end{pmatrix}"
+
+
+def _numbers(lin: Any, m: se.DenseMatrix) -> np.ndarray:
+    return np.array([[float(complex(m[i, j]).real) for j in range(m.cols)] for i in range(m.rows)])
+
+
+def _point(c: Context, lin: Any) -> Runs:
+    parts = []
+    for name, value in lin.point.items():
+        parts.append(Math(f"{c.sym(name[:-4], 'dot') if name.endswith('_dot') else c.sym(name)} = "
+                          f"{c.tex(value) if value.free_symbols else c.w.number(float(complex(value).real))}"))
+    return c.w.join(parts)
+
+
+def _pulsations(c: Context, so: Any, modes: Any) -> list[Block]:
+    w = c.w
+    blocks: list[Block] = []
+    if not modes.pulsations:
+        return blocks
+    if len(modes.pulsations) == 1 and so is not None and so.M.rows == 1 and so.K[0, 0] != 0:
+        ratio = sympy.factor(sympy.cancel(sympy.sympify(so.K[0, 0]._sympy_()) / sympy.sympify(so.M[0, 0]._sympy_())))
+        omega = modes.pulsations[0]
+        blocks.append(Para(w("small one pulsation", q=Math(_var(c, so.coordinates[0]))), ))
+        blocks.append(Display((Equation((rf"\omega_{{0}}^{{2}} = {c.n.latex(ratio)}",)),)))
+        blocks.append(Para(w("small omega value", omega=Math(rf"\omega_{{0}} = {w.number(omega)}\ \mathrm{{rad/s}}"),
+                             T=Math(rf"T_{{0}} = \frac{{2\pi}}{{\omega_{{0}}}} = {w.number(2 * math.pi / omega)}"
+                                    r"\ \mathrm{s}"))))
+        return blocks
+    blocks.append(Para(w("small pulsations", det=Math(r"\det\left(K - \omega^{2} M\right) = 0"))))
+    items = []
+    for k, om in enumerate(modes.pulsations, 1):
+        T = rf",\quad T_{{{k}}} = {w.number(2 * math.pi / om)}\ \mathrm{{s}}" if om > 0 else ""
+        items.append((Math(rf"\omega_{{{k}}} = {w.number(om)}\ \mathrm{{rad/s}}{T}"),))
+    blocks.append(Items(tuple(items)))
+    return blocks
+
+
+def _eigenvalue(w: Any, z: complex) -> str:
+    scale = max(1.0, abs(z))
+    re_ = 0.0 if abs(z.real) < 1e-12 * scale else z.real
+    im = 0.0 if abs(z.imag) < 1e-12 * scale else z.imag
+    if im == 0:
+        return w.number(re_)
+    if re_ == 0:
+        return rf"\pm {w.number(abs(im))}\,i"
+    return rf"{w.number(re_)} \pm {w.number(abs(im))}\,i"
+
+
+def _eigenvalues(c: Context, lam: np.ndarray) -> Runs:
+    shown: list[str] = []
+    for z in lam:
+        text = _eigenvalue(c.w, complex(z))
+        if text not in shown:
+            shown.append(text)
+    return c.w.join([Math(rf"\lambda = {t}") for t in shown])
+
+
+def _stability(c: Context, lin: Any, stability: Any) -> list[Block]:
+    """The argument that decides: Lagrange–Dirichlet, the gyroscopic theorems, or an eigenvalue."""
+    w = c.w
+    lam = np.asarray(stability.eigenvalues)
+    so = lin.second_order
+    kmin = None
+    G_zero = True
+    if so is not None and not lin.symbols:
+        K = _numbers(lin, so.K)
+        kmin = float(np.linalg.eigvalsh(K).min()) if K.size else None
+        G_zero = not np.any(np.abs(_numbers(lin, so.G)) > 1e-10 * max(1.0, float(np.abs(K).max(initial=0.0))))
+    K = Math(r"K = \left.\frac{\partial^{2} U_P}{\partial q\,\partial q}\right|_{q_{0}}")
+    verdict = stability.verdict
+    if verdict == "stable" and G_zero:
+        key = "small lagrange dirichlet"
+    elif verdict == "stable":
+        key = "small kelvin tait"
+    elif verdict == "stable to first order":
+        key = "small gyroscopic"
+    elif verdict == "unstable":
+        key = "small unstable no minimum" if kmin is not None and kmin < 0 else "small unstable"
+    elif verdict == "asymptotically stable":
+        key = "small asymptotic"
+    else:
+        key = "small marginal"
+    worst = complex(lam[np.argmax(lam.real)]) if lam.size else 0j
+    blocks: list[Block] = [Para(w("small eigenvalues", lam=_eigenvalues(c, lam)))] if lam.size else []
+    blocks.append(Para(w(key, K=K, U=Math("U_P"), q0=Math("q_{0}"), lam=Math(rf"\lambda = {_eigenvalue(w, worst)}"),
+                         kmin=Math(w.number(kmin if kmin is not None else 0.0)))))
+    return blocks
+
+
+def small_motions_section(c: Context, lin: Any) -> Section:
+    """The section: the point, the linearized equations, the pulsations, the stability argument."""
+    w = c.w
+    sym = _symbolic(lin)
+    shown = sym if sym is not None and sym.second_order is not None else lin
+    stability, modes = lin.stability(), lin.modes()
+    intro = "small intro steady" if lin.steady else "small intro"
+    blocks: list[Block] = [Para(w(intro, point=_point(c, lin), dq=Math(r"q = q_{0} + \delta q")))]
+    if lin.dependent_coordinates or lin.dependent_speeds:
+        names = [Math(c.sym(x)) for x in lin.dependent_coordinates] + \
+                [Math(c.sym(x[:-4], "dot")) for x in lin.dependent_speeds]
+        blocks.append(Para(w("small dependent", names=w.join(names))))
+    so = _positive(shown) if shown is sym else shown.second_order
+    if so is not None:
+        form = "M\\,\\delta\\ddot{q} + (D + G)\\,\\delta\\dot{q} + (K + N)\\,\\delta q = " + ("B\\,u" if so.B.cols else "0")
+        blocks.append(Para(w("small equations", form=Math(form))))
+        blocks += c.show(_equations(c, so, tuple(lin.inputs)), w.text("small title"))
+        matrices = [_pmatrix(c, "M", so.M), _pmatrix(c, "K", so.K)]
+        if 2 <= len(so.coordinates) <= MATRIX_MAX and all(_is_zero(getattr(so, k)) for k in ("D", "G", "N")) \
+                and all(visible_width(m) <= LINE_WIDTH for m in matrices):
+            blocks.append(Para(w("small matrices")))
+            blocks.append(Display(tuple(Equation((m,)) for m in matrices)))
+        if shown is not sym:
+            blocks.append(Para(w("small numeric"), style="note"))
+    else:
+        blocks.append(Para(w("small first order", x=Math(r"\dot{x} = A\,x"), why=lin.second_order_reason)))
+    blocks += _pulsations(c, so if shown is sym else None, modes)
+    blocks += _stability(c, lin, stability)
+    return Section("small motions", w.text("small title steady" if lin.steady else "small title"), tuple(blocks))
