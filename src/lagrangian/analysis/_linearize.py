@@ -265,8 +265,10 @@ def _solve(A: se.DenseMatrix, B: se.DenseMatrix) -> se.DenseMatrix:
 
 def _jacobian(exprs: Sequence[se.Basic], variables: Sequence[se.Symbol], subs: Mapping[se.Basic, se.Basic]) -> se.DenseMatrix:
     """∂exprs/∂variables evaluated at ``subs``."""
-    rows = [[e.diff(v).subs(subs) if v in e.free_symbols else _ZERO for v in variables] for e in exprs]
-    return se.DenseMatrix(rows) if rows else se.zeros(0, len(variables))
+    if not exprs or not variables:
+        return se.zeros(len(exprs), len(variables))
+    # One SymEngine call for the derivatives and one for the substitution (no Python loop per entry).
+    return se.DenseMatrix(list(exprs)).jacobian(se.DenseMatrix(list(variables))).subs(dict(subs))
 
 
 #: Symbolic entries up to this many characters are put over a common denominator and factored
@@ -492,7 +494,9 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
     Csym, S = _velocity_maps(A_at, ind_s, dep_s, n)
     at_all = {**point_subs, **zero_u}
     res_sym = Csym.T * F0
-    scale = _force_scale(F_p, q, point_subs, zero_u, generic)
+    dF_dq = _jacobian(F_p, list(q), at_all)
+    scale = max(max((_scale_of(f, at_all, generic) for f in F_p), default=0.0),
+                float(np.abs(_to_numpy(dF_dq, generic)).max(initial=0.0))) or 1.0
     residual = float(np.abs(_to_numpy(res_sym, generic)).max(initial=0.0)) / scale if res_sym.rows else 0.0
     if residual > POINT_RTOL:
         raise LinearizationError(
@@ -504,7 +508,7 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
 
     # 8. Jacobians.
     qs, qds = list(q), list(qd)
-    Kf = -_jacobian(F_p, qs, at_all)
+    Kf = -dF_dq
     if m:
         lamA = [se.Add(*[lam0[k, 0] * rows[k].coefficients[i].subs(psubs) for k in range(m)]) for i in range(n)]
         Kf = Kf - _jacobian(lamA, qs, at_all)
@@ -624,19 +628,6 @@ def _scale_of(expr: se.Basic, subs: Mapping, generic: Mapping) -> float:
         except (RuntimeError, TypeError):
             pass
     return total
-
-
-def _force_scale(F: Sequence[se.Basic], q: Sequence[se.Symbol], point: Mapping, zero_u: Mapping,
-                 generic: Mapping) -> float:
-    """A size for the forces at the point: their terms and their stiffnesses ∂F/∂q (per unit q)."""
-    at = {**point, **zero_u}
-    scale = 0.0
-    for f in F:
-        scale = max(scale, _scale_of(f, at, generic))
-        for s in q:
-            if s in f.free_symbols:
-                scale = max(scale, _scale_of(f.diff(s), at, generic))
-    return scale if scale > 0 else 1.0
 
 
 def _format_residual(res: se.DenseMatrix, generic: Mapping, ind_s: Sequence[int], rate_names: Sequence[str]) -> str:
