@@ -284,3 +284,16 @@ def test_top_steady_precession_pulsation_matches_closed_form():
     osc = [mo for mo in md.modes if mo.damped_frequency > 1e-6]
     assert len(osc) == 2 and osc[0].damped_frequency == pytest.approx(math.sqrt(d2 / A), rel=1e-6)
     assert lin.stability().stable is True
+
+
+def test_mode_drawn_as_a_motion_solves_the_linearized_equations(tmp_path):
+    """The mode's motion satisfies M δq̈ + K δq = 0 (double pendulum), and the animation draws it."""
+    from lagrangian.plotting import animate, mode_trajectory
+    eom = lagrangian.derive(planar_chain(2))
+    lin = linearize(eom, {"theta1": 0, "theta2": 0})
+    traj = mode_trajectory(lin, 0, amplitude=0.05, samples=50)
+    M, K = _num(lin.second_order.M), _num(lin.second_order.K)
+    np.testing.assert_allclose(traj.qdd @ M.T + traj.q @ K.T, 0, atol=1e-10)
+    assert np.abs(traj.q).max() == pytest.approx(0.05)
+    out = animate(traj, eom, tmp_path / "mode.gif", frames=5)
+    assert out.stat().st_size > 0

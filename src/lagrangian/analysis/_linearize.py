@@ -98,6 +98,8 @@ class LinearModel:
     ignorable : independent coordinates whose columns of A are zero (they do not act on the motion).
     residual : the relative residual force at the point (0 for an exact equilibrium).
     multipliers : λ0 of the complementary constraints at the point.
+    coordinate_map : P, with δq = P δq_i: every coordinate's perturbation from the independent ones
+        (the identity without holonomic complementary constraints).
     """
 
     eom: EquationsOfMotion
@@ -117,6 +119,7 @@ class LinearModel:
     ignorable: tuple[str, ...]
     residual: float
     multipliers: dict[str, se.Basic] = field(default_factory=dict)
+    coordinate_map: se.DenseMatrix | None = None
 
     @property
     def state(self) -> tuple[str, ...]:
@@ -566,7 +569,7 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
                                                                         or any(s in e.free_symbols for e in B))),
         values={k: v for k, v in values.items() if k not in keep}, second_order=second, second_order_reason=why,
         ignorable=ignorable, residual=residual,
-        multipliers={rows[k].multiplier.name: lam0[k, 0] for k in range(m)})
+        multipliers={rows[k].multiplier.name: lam0[k, 0] for k in range(m)}, coordinate_map=_tidy(P))
 
 
 def _sub(m: se.DenseMatrix, rows: Sequence[int], cols: Sequence[int]) -> se.DenseMatrix:
