@@ -95,7 +95,8 @@ class LinearModel:
     symbols : the parameters left symbolic (the others were given their values).
     values : the parameter values substituted.
     second_order : `SecondOrderForm`, or None with ``second_order_reason``.
-    ignorable : independent coordinates whose columns of A are zero (they do not act on the motion).
+    ignorable : independent coordinates that do not act on the motion: their columns of A are zero once
+        the other ignorable ones are set aside.
     residual : the relative residual force at the point (0 for an exact equilibrium).
     multipliers : λ0 of the complementary constraints at the point.
     coordinate_map : P, with δq = P δq_i: every coordinate's perturbation from the independent ones
@@ -556,7 +557,7 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
             B[ni + r, c] = Minv_B[r, c]
     A, B = _tidy(A), _tidy(B)
     An = _to_numpy(A, generic)
-    ignorable = tuple(coords[ind_c[c]] for c in range(ni) if not np.any(An[:, c]))
+    ignorable = _ignorable(An, ni, [coords[i] for i in ind_c])
     second, why = _second_order(coords, ind_c, ind_s, Mr, Cr, Kr, Br, kin_c, ignorable, generic)
     point = {c: se.expand(q0[q[i]]) for i, c in enumerate(coords)}
     point.update({rate_names[i]: qd0[qd[i]] for i in range(n)})
@@ -577,6 +578,22 @@ def _sub(m: se.DenseMatrix, rows: Sequence[int], cols: Sequence[int]) -> se.Dens
     if not rows or not cols:
         return se.zeros(len(rows), len(cols))
     return se.DenseMatrix([[m[i, j] for j in cols] for i in rows])
+
+
+def _ignorable(An: np.ndarray, ni: int, names: Sequence[str]) -> tuple[str, ...]:
+    """Coordinates nothing depends on, found repeatedly: the bicycle's y first (δẏ = v δψ is its
+    only use of ψ), then its heading ψ."""
+    keep = list(range(An.shape[0]))
+    out: list[int] = []
+    changed = True
+    while changed:
+        changed = False
+        for c in range(ni):
+            if c in keep and not np.any(An[np.ix_(keep, [c])]):
+                keep.remove(c)
+                out.append(c)
+                changed = True
+    return tuple(names[c] for c in sorted(out))
 
 
 def _snap(e: se.Basic) -> se.Basic:
