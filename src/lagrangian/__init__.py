@@ -19,8 +19,9 @@ Typical use::
 
 from __future__ import annotations
 
-from .analysis import (EnergyBalance, FirstIntegral, TopAnalysis, Verification, analyse_top, energy_balance,
-                       first_integrals, verify)
+from .analysis import (EnergyBalance, FirstIntegral, LinearizationError, LinearModel, Modes, Stability, Sweep,
+                       TopAnalysis, Verification, analyse_top, energy_balance, first_integrals, linearize, modes,
+                       stability, sweep, verify)
 from .dynamics import EquationsOfMotion, LagrangeEquation, derive
 from .errors import DerivationError, KinematicsError, LagrangianError, ModelError, OutputError, SimulationError, VerificationError
 from .kinematics import Kinematics
@@ -51,6 +52,15 @@ __all__ = [
     "Verification",
     "analyse_top",
     "TopAnalysis",
+    "linearize",
+    "LinearModel",
+    "LinearizationError",
+    "modes",
+    "Modes",
+    "stability",
+    "Stability",
+    "sweep",
+    "Sweep",
     "compile_system",
     "CompiledSystem",
     "simulate",

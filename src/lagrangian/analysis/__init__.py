@@ -1,5 +1,5 @@
 """Stage 4 — analysis of the equations: first integrals, the energy balance, the Newton–Euler cross-check,
-reactions."""
+reactions, small motions (linearization, modes, stability)."""
 
 from ._effective_potential import AnalysisError as AnalysisError
 from ._effective_potential import CyclicReduction as CyclicReduction
@@ -20,10 +20,24 @@ from ._reactions import TrajectoryResiduals as TrajectoryResiduals
 from ._reactions import check_trajectory as check_trajectory
 from ._reactions import reaction_history as reaction_history
 from ._reactions import reactions as reactions
+from ._linearize import LinearizationError as LinearizationError
+from ._linearize import LinearModel as LinearModel
+from ._linearize import SecondOrderForm as SecondOrderForm
+from ._linearize import linearize as linearize
+from ._modes import Mode as Mode
+from ._modes import Modes as Modes
+from ._modes import Stability as Stability
+from ._modes import StabilityChange as StabilityChange
+from ._modes import Sweep as Sweep
+from ._modes import modes as modes
+from ._modes import stability as stability
+from ._modes import sweep as sweep
 from ._top import TopAnalysis as TopAnalysis
 from ._top import analyse_top as analyse_top
 
 __all__ = ["FirstIntegral", "first_integrals", "CoordinateCheck", "ElementTheorems", "Verification", "verify",
            "Reaction", "ReactionHistory", "TrajectoryResiduals", "check_trajectory", "reaction_history",
            "reactions", "analyse_top", "TopAnalysis", "reduce_cyclic", "CyclicReduction", "AnalysisError",
-           "StructureError", "EnergyBalance", "PowerTerm", "energy_balance"]
+           "StructureError", "EnergyBalance", "PowerTerm", "energy_balance", "linearize", "LinearModel",
+           "SecondOrderForm", "LinearizationError", "Mode", "Modes", "Stability", "StabilityChange", "Sweep", "modes",
+           "stability", "sweep"]

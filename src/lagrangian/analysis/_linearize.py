@@ -1,0 +1,704 @@
+"""Small motions: the equations of motion linearized about an equilibrium or a steady motion.
+
+About a point (q0, q̇0) where the motion is steady — q̈0 = 0, every coordinate that moves
+(q̇0_j ≠ 0) absent from the equations (an *ignorable* coordinate: the top's ψ and φ, the
+bicycle's x, y and wheel angles) — a perturbation q = q0 + δq, q̇ = q̇0 + δq̇ obeys, to first
+order, the linearization of
+
+    M(q) q̈ = F(q, q̇, u) + Aᵀ(q) λ,        A(q) q̇ + b(q) = 0        (`dynamics._constraints`)
+
+namely, with q̈0 = 0 and λ0 the multipliers of the steady motion (F0 + A0ᵀ λ0 = 0),
+
+    M0 δq̈ + D_f δq̇ + K_f δq = A0ᵀ δλ + B_f δu,     D_f = −∂F/∂q̇,  K_f = −∂F/∂q − Σ_k λ0_k ∂A_k/∂q,
+    A0 δq̇ + W δq = 0,                               W = ∂(A q̇ + b)/∂q at the point.
+
+**Reduction to independent coordinates and speeds** (the seed's "paramètres principaux" when
+some constraints are kept complementary).  The holonomic rows f(q) = 0 fix the dependent
+coordinates: δq = P δq_i with P = [I; −Φ_d⁻¹ Φ_i] (implicit-function theorem).  The velocity
+rows fix the dependent speeds: δq̇ = C δu + J δq, with C = [I; −A_d⁻¹ A_i] and J the rows
+−A_d⁻¹ W of the dependent speeds (zero on the independent ones).  Projecting the dynamics on
+the admissible velocities (Cᵀ A0ᵀ = 0 removes δλ: the principle of virtual power with
+q* = C u*, as in Kane's and Maggi's equations),
+
+    M_r δu̇ + C_r δu + K_r δq_i = B_r δu_in,     M_r = Cᵀ M0 C,  C_r = Cᵀ (M0 J + D_f) C,
+                                                 K_r = Cᵀ [K_f + (M0 J + D_f) J] P,  B_r = Cᵀ B_f,
+    δq̇_i = (C δu + J P δq_i) restricted to the independent coordinates,
+
+so the state x = (δq_i, δu) obeys ẋ = A x + B u.  Without complementary constraints P = C = I
+and J = 0: the usual M0 δq̈ + (D + G) δq̇ + (K + N) δq = B u, with D, K the symmetric and G, N
+the skew-symmetric parts of D_f and K_f (damping, gyroscopic, stiffness, circulatory).
+
+References: Meirovitch, *Methods of Analytical Dynamics* (1970), ch. 6; Meijaard et al.,
+Proc. R. Soc. A 463 (2007) 1955–1982, §4 (the bicycle, reduced the same way).
+"""
+
+from __future__ import annotations
+
+import math
+import random
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+import symengine as se
+import sympy
+from symengine.lib.symengine_wrapper import sympy2symengine
+
+from .._identity import are_zero
+from ..dynamics import EquationsOfMotion
+from ..model._expr import ExpressionError, parse_expression
+from ._effective_potential import AnalysisError
+
+__all__ = ["LinearizationError", "SecondOrderForm", "LinearModel", "linearize", "POINT_RTOL"]
+
+#: A point is an equilibrium (steady motion) when its residual force is below this fraction
+#: of the forces' scale: `--at theta=3.14159` is the inverted pendulum, within 3e-6.
+POINT_RTOL = 1e-5
+#: Relative size below which a singular value counts as zero when columns are chosen.
+RANK_RTOL = 1e-9
+
+_ZERO = se.Integer(0)
+
+
+class LinearizationError(AnalysisError):
+    """The linearization cannot be made: an incomplete or unknown point, a point that is not an
+    equilibrium or a steady motion, a singular mass matrix or constraint Jacobian there."""
+
+
+@dataclass(frozen=True, slots=True)
+class SecondOrderForm:
+    """M δq̈ + (D + G) δq̇ + (K + N) δq = B u on ``coordinates`` (D, K symmetric; G, N skew)."""
+
+    coordinates: tuple[str, ...]
+    M: se.DenseMatrix
+    D: se.DenseMatrix
+    G: se.DenseMatrix
+    K: se.DenseMatrix
+    N: se.DenseMatrix
+    B: se.DenseMatrix
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class LinearModel:
+    """ẋ = A x + B u about a steady point, and its second-order form when it has one.
+
+    Attributes
+    ----------
+    eom : the equations it comes from.
+    point : the point, name → value (every coordinate and every rate, dependent ones solved).
+    coordinates, speeds : the independent coordinates and speeds (``<c>_dot``): the state is
+        ``coordinates + speeds``.
+    dependent_coordinates, dependent_speeds : those eliminated by the constraints, and ``choice``,
+        a sentence saying how they were chosen.
+    inputs : the names of the inputs u (columns of B).
+    A, B : the state matrices; their entries depend only on ``symbols``.
+    symbols : the parameters left symbolic (the others were given their values).
+    values : the parameter values substituted.
+    second_order : `SecondOrderForm`, or None with ``second_order_reason``.
+    ignorable : independent coordinates that do not act on the motion: their columns of A are zero once
+        the other ignorable ones are set aside.
+    residual : the relative residual force at the point (0 for an exact equilibrium).
+    multipliers : λ0 of the complementary constraints at the point.
+    coordinate_map : P, with δq = P δq_i: every coordinate's perturbation from the independent ones
+        (the identity without holonomic complementary constraints).
+    """
+
+    eom: EquationsOfMotion
+    point: dict[str, se.Basic]
+    coordinates: tuple[str, ...]
+    speeds: tuple[str, ...]
+    dependent_coordinates: tuple[str, ...]
+    dependent_speeds: tuple[str, ...]
+    choice: str
+    inputs: tuple[str, ...]
+    A: se.DenseMatrix
+    B: se.DenseMatrix
+    symbols: tuple[se.Symbol, ...]
+    values: dict[str, float]
+    second_order: SecondOrderForm | None
+    second_order_reason: str
+    ignorable: tuple[str, ...]
+    residual: float
+    multipliers: dict[str, se.Basic] = field(default_factory=dict)
+    coordinate_map: se.DenseMatrix | None = None
+
+    @property
+    def state(self) -> tuple[str, ...]:
+        """Names of the state x in order, e.g. ``("theta", "theta_dot")``."""
+        return self.coordinates + self.speeds
+
+    @property
+    def steady(self) -> bool:
+        """Some coordinate moves at the point (a steady motion rather than an equilibrium)."""
+        return any(not _is_structural_zero(self.point[c + "_dot"]) for c in self.eom.coordinates)
+
+    def _values(self, values: Mapping[str, float]) -> dict[se.Basic, float]:
+        names = {str(s): s for s in self.symbols}
+        unknown = sorted(set(values) - set(names))
+        if unknown:
+            raise LinearizationError(
+                f"`{unknown[0]}` is not a symbol of this linearization (its symbols: "
+                f"{', '.join(names) or 'none'}).", fix="give values only to the parameters left symbolic")
+        missing = [n for n in names if n not in values]
+        if missing:
+            raise LinearizationError(f"the parameter `{missing[0]}` has no value.",
+                                     fix=f"give it one, e.g. `{missing[0]}=1.0`")
+        return {names[n]: float(v) for n, v in values.items()}
+
+    def numeric(self, **values: float) -> tuple[np.ndarray, np.ndarray]:
+        """(A, B) as float arrays, the symbols left symbolic given ``values``."""
+        subs = self._values(values)
+        return _to_numpy(self.A, subs), _to_numpy(self.B, subs)
+
+    def eigenvalues(self, **values: float) -> np.ndarray:
+        """The eigenvalues of A (complex), in LAPACK's order."""
+        A, _ = self.numeric(**values)
+        return np.linalg.eigvals(A) if A.size else np.zeros(0, complex)
+
+    def modes(self, **values: float):  # type: ignore[no-untyped-def]
+        """Natural frequencies, damping ratios and mode shapes (`lagrangian.analysis.Modes`)."""
+        from ._modes import modes
+        return modes(self, **values)
+
+    def stability(self, **values: float):  # type: ignore[no-untyped-def]
+        """The stability verdict with its reason (`lagrangian.analysis.Stability`)."""
+        from ._modes import stability
+        return stability(self, **values)
+
+    def to_scipy(self, **values: float):  # type: ignore[no-untyped-def]
+        """``scipy.signal.StateSpace(A, B, I, 0)``: the whole state as output."""
+        from scipy import signal
+        A, B = self.numeric(**values)
+        n = A.shape[0]
+        B = B if B.shape[1] else np.zeros((n, 1))
+        return signal.StateSpace(A, B, np.eye(n), np.zeros((n, B.shape[1])))
+
+    def to_control(self, **values: float):  # type: ignore[no-untyped-def]
+        """python-control's ``StateSpace`` (extra ``lagrangian[control]``), states and inputs named."""
+        try:
+            import control
+        except ImportError:  # pragma: no cover - depends on the installation
+            raise LinearizationError("python-control is not installed.",
+                                     fix="pip install 'lagrangian[control]'") from None
+        A, B = self.numeric(**values)
+        n = A.shape[0]
+        inputs = list(self.inputs) or ["u"]
+        B = B if B.shape[1] else np.zeros((n, 1))
+        return control.ss(A, B, np.eye(n), np.zeros((n, B.shape[1])),
+                          states=list(self.state), inputs=inputs, outputs=list(self.state))
+
+
+# -- the point -----------------------------------------------------------------------------
+
+def _is_structural_zero(e: se.Basic) -> bool:
+    return e == _ZERO
+
+
+def _value(name: str, value: object, names: Mapping[str, se.Basic]) -> se.Basic:
+    if isinstance(value, se.Basic):
+        return value
+    if isinstance(value, bool):
+        raise LinearizationError(f"the value of `{name}` must be a number, not {value!r}.")
+    if isinstance(value, int):
+        return se.Integer(value)
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            raise LinearizationError(f"the value of `{name}` is not finite.", fix=f"give `{name}` a finite value")
+        return se.RealDouble(value)
+    if isinstance(value, str):  # read by the model's safe grammar: numbers, pi, parameters
+        try:
+            out = parse_expression(value, names)
+        except ExpressionError as exc:
+            raise LinearizationError(f"the value `{value}` of `{name}` cannot be read: {exc}",
+                                     fix="write a number, `pi`, or an expression in the parameters") from None
+        if not isinstance(out, se.Basic):
+            raise LinearizationError(f"the value of `{name}` must be a scalar.")
+        return out
+    raise LinearizationError(f"the value of `{name}` must be a number, not {type(value).__name__}.")
+
+
+def _number(v: float) -> se.Basic:
+    """A parameter value as a SymEngine number: exact when it is an integer (1.0 → 1)."""
+    v = float(v)
+    return se.Integer(int(v)) if v.is_integer() and abs(v) < 2**53 else se.RealDouble(v)
+
+
+def _generic(symbols: Sequence[se.Basic], known: Mapping[se.Basic, float]) -> dict[se.Basic, float]:
+    """Numbers for the symbols: their values when known, else fixed random ones in [0.3, 1.7]."""
+    rng = random.Random(20261124)
+    return {s: known.get(s, rng.uniform(0.3, 1.7)) for s in sorted(symbols, key=str)}
+
+
+def _to_numpy(m: se.DenseMatrix, subs: Mapping[se.Basic, float]) -> np.ndarray:
+    if m.rows == 0 or m.cols == 0:
+        return np.zeros((m.rows, m.cols))
+    try:
+        out = np.array(m.subs(dict(subs)).tolist(), dtype=complex) if subs else np.array(m.tolist(), dtype=complex)
+    except (RuntimeError, TypeError) as exc:
+        raise LinearizationError(f"a matrix entry is not a number once the parameters are given: {exc}") from None
+    if np.abs(out.imag).max(initial=0.0) > 1e-12 * max(1.0, np.abs(out.real).max(initial=0.0)):
+        raise LinearizationError("a matrix entry is complex at this point (a square root of a negative number?).")
+    return out.real.copy()
+
+
+def _choose(columns: np.ndarray, count: int, order: Sequence[int]) -> list[int]:
+    """``count`` columns, taken greedily in ``order``, each raising the numerical rank."""
+    chosen: list[int] = []
+    if count == 0:
+        return chosen
+    scale = max(1.0, float(np.abs(columns).max(initial=0.0)))
+    for j in order:
+        trial = columns[:, chosen + [j]]
+        if np.linalg.matrix_rank(trial, tol=RANK_RTOL * scale) == len(chosen) + 1:
+            chosen.append(j)
+            if len(chosen) == count:
+                break
+    return chosen
+
+
+def _solve(A: se.DenseMatrix, B: se.DenseMatrix) -> se.DenseMatrix:
+    """A⁻¹ B: by LAPACK when every entry is a number, else symbolically (LU)."""
+    if A.rows == 0:
+        return se.zeros(0, B.cols)
+    if not A.free_symbols and not B.free_symbols:
+        a = np.array(A.tolist(), dtype=float)
+        b = np.array(B.tolist(), dtype=float)
+        return se.DenseMatrix(np.linalg.solve(a, b).tolist())
+    return A.LUsolve(B)
+
+
+def _jacobian(exprs: Sequence[se.Basic], variables: Sequence[se.Symbol], subs: Mapping[se.Basic, se.Basic]) -> se.DenseMatrix:
+    """∂exprs/∂variables evaluated at ``subs``."""
+    if not exprs or not variables:
+        return se.zeros(len(exprs), len(variables))
+    # One SymEngine call for the derivatives and one for the substitution (no Python loop per entry).
+    return se.DenseMatrix(list(exprs)).jacobian(se.DenseMatrix(list(variables))).subs(dict(subs))
+
+
+#: Symbolic entries up to this many characters are put over a common denominator and factored
+#: (SymPy's `cancel` and `factor`: −g (m1 + m2)/(l1 m1) rather than the LU's nested fractions).
+TIDY_MAX_CHARS = 1500
+
+
+def _tidy(m: se.DenseMatrix) -> se.DenseMatrix:
+    """Each entry in its shortest form: expanded, or (symbolic and small) cancelled and factored."""
+    out = []
+    for i in range(m.rows):
+        row = []
+        for j in range(m.cols):
+            e = m[i, j]
+            best, size = e, len(str(e))
+            x = se.expand(e)
+            if len(str(x)) <= size:
+                best, size = x, len(str(x))
+            if e.free_symbols and size <= TIDY_MAX_CHARS:
+                y = sympy2symengine(sympy.factor(sympy.cancel(best._sympy_())))
+                if len(str(y)) <= size:
+                    best = y
+            row.append(best)
+        out.append(row)
+    return se.DenseMatrix(out) if out else m
+
+
+def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
+              parameters: Mapping[str, float] | None = None, symbolic: Sequence[str] = (),
+              inputs: Sequence[str] | None = None, independent_speeds: Sequence[str] | None = None,
+              dependent_coordinates: Sequence[str] | None = None) -> LinearModel:
+    """Linearize the equations of motion about an equilibrium or a steady motion.
+
+    Parameters
+    ----------
+    eom : from `lagrangian.derive`.
+    at : the point: every coordinate ``q`` a value, rates ``q_dot`` optional (0 by default;
+        dependent speeds are solved from the constraints).  Values are numbers, SymEngine
+        expressions in the parameters, or text in the model grammar (``"pi"``, ``"-v/rR"``).
+        None: the model's ``[operating_point]`` table.
+    parameters : parameter values overriding the model's.
+    symbolic : parameters kept as symbols although they have a value (A(v) for a sweep).
+    inputs : the inputs u, columns of B: parameters or declared ``[inputs]`` (default: the
+        model's declared inputs).  They are 0 at the point.
+    independent_speeds, dependent_coordinates : the choice of the reduction, when the model
+        keeps constraints complementary (default: the model's, else chosen by rank).
+
+    Returns
+    -------
+    LinearModel
+
+    Raises
+    ------
+    LinearizationError
+        An unknown name, a coordinate without a value, a model that depends on t, a point that
+        is not an equilibrium or steady motion (with the residual and the nearest equilibrium),
+        or a singular mass matrix or constraint Jacobian at the point.
+
+    Examples
+    --------
+    >>> import lagrangian
+    >>> eom = lagrangian.derive(lagrangian.load_model("examples/simple_pendulum.toml"))  # doctest: +SKIP
+    >>> lagrangian.linearize(eom, {"theta": 0}).second_order.K                          # doctest: +SKIP
+    [g*l*m]
+    """
+    model = eom.model
+    coords = eom.coordinates
+    n = len(coords)
+    q, qd, t = eom.q, eom.qd, eom.t
+    pnames = {p.name: p for p in model.parameters}
+    declared_inputs = tuple(getattr(model, "inputs", ()) or ())
+    inputs = tuple(declared_inputs if inputs is None else inputs)
+    for name in list(symbolic) + list(inputs) + list(parameters or {}):
+        if name not in pnames:
+            raise LinearizationError(f"`{name}` is not a parameter of the model ({', '.join(pnames) or 'none'}).",
+                                     fix="check its spelling, or declare it under [parameters] or [inputs]")
+
+    # 1. The point: every coordinate a value; rates 0 unless given.
+    if at is None:
+        at = dict(getattr(model, "operating_point", ()) or ())
+        if not at:
+            raise LinearizationError("no point was given and the model has no [operating_point].",
+                                     fix="give every coordinate a value, e.g. `at={'theta': 0}` (`--at theta=0`)")
+        independent_speeds = independent_speeds or tuple(getattr(model, "independent_speeds", ()) or ()) or None
+        dependent_coordinates = dependent_coordinates or tuple(getattr(model, "dependent_coordinates", ()) or ()) or None
+    names = {p: se.Symbol(p) for p in pnames}
+    rate_names = [c + "_dot" for c in coords]
+    for key in at:
+        if key not in coords and key not in rate_names:
+            raise LinearizationError(f"`{key}` is neither a coordinate nor a rate of the model "
+                                     f"(coordinates: {', '.join(coords)}).",
+                                     fix="name a coordinate (`theta`) or its rate (`theta_dot`)")
+    missing = [c for c in coords if c not in at]
+    if missing:
+        raise LinearizationError(f"the coordinate{'s' if len(missing) > 1 else ''} {', '.join(f'`{c}`' for c in missing)} "
+                                 "of the point have no value.",
+                                 fix="give every coordinate a value (rates default to 0), e.g. "
+                                     f"`--at {missing[0]}=0`")
+    q0 = {q[i]: _value(c, at[c], names) for i, c in enumerate(coords)}
+    given_rates = {i: _value(rate_names[i], at[rate_names[i]], names) for i in range(n) if rate_names[i] in at}
+
+    # 2. Parameter values: the model's, overridden; inputs are 0 at the point.
+    values: dict[str, float] = {k: p.value for k, p in pnames.items() if p.value is not None}
+    values.update({k: float(v) for k, v in (parameters or {}).items()})
+    keep = set(symbolic) | set(inputs)
+    psubs = {names[k]: _number(v) for k, v in values.items() if k not in keep}
+    u_syms = [names[k] for k in inputs]
+
+    rows = eom.constraints
+    holo = [k for k, r in enumerate(rows) if r.kind == "holonomic"]
+    m, h = len(rows), len(holo)
+    everything = [e for row in eom.M for e in row] + list(eom.F)
+    for r in rows:
+        everything += list(r.coefficients) + [r.b]
+    if any(t in e.free_symbols for e in everything):
+        raise LinearizationError("the equations depend on the time t explicitly (a prescribed motion or a "
+                                 "time-dependent load): there is no equilibrium or steady motion to linearize about.",
+                                 fix="linearize a model whose equations do not depend on t")
+    for u in u_syms:
+        if not any(u in e.free_symbols for e in eom.F):
+            raise LinearizationError(f"no load uses the input `{u}`: its column of B would be zero.",
+                                     fix=f"use `{u}` in a load's magnitude, or drop it from the inputs")
+
+    # The point in the parameters left symbolic, and numbers for choosing columns.
+    q0 = {k: v.subs(psubs) for k, v in q0.items()}
+    given_rates = {i: v.subs(psubs) for i, v in given_rates.items()}
+    leftover = set()
+    for v in list(q0.values()) + list(given_rates.values()):
+        leftover |= v.free_symbols
+    sym_left = sorted({s for e in everything for s in e.free_symbols if str(s) in pnames and s not in psubs} | leftover,
+                      key=str)
+    generic = _generic(sym_left, {})
+    at_q = {**psubs, **q0}
+
+    # 3. Holonomic rows: f(q0) = 0, dependent coordinates by rank.
+    for k in holo:
+        res = complex(rows[k].expression.subs(at_q).subs(generic))
+        if abs(res) > POINT_RTOL * max(1.0, _scale_of(rows[k].expression, at_q, generic)):
+            raise LinearizationError(f"the point does not satisfy the holonomic constraint `{rows[k].name}` "
+                                     f"(residual {abs(res):.3g}).",
+                                     fix="give the dependent coordinates values that satisfy the constraint")
+    A_at = se.DenseMatrix([[e.subs(at_q) for e in r.coefficients] for r in rows]) if m else se.zeros(0, n)
+    A_num = _to_numpy(A_at, generic) if m else np.zeros((0, n))
+    given_nonzero = {i for i, v in given_rates.items() if not _is_structural_zero(v)}
+    appears = {s for e in everything for s in e.free_symbols}
+    ignorable_like = [i for i in range(n) if q[i] not in appears]
+    if dependent_coordinates:
+        dep_c = [coords.index(c) if c in coords else _bad_name(c, "coordinate") for c in dependent_coordinates]
+    else:
+        order = [i for i in range(n) if i not in given_nonzero] + sorted(given_nonzero)
+        dep_c = _choose(A_num[holo], h, order) if h else []
+    if h and (len(dep_c) != h or np.linalg.matrix_rank(A_num[np.ix_(holo, dep_c)]) < h):
+        raise LinearizationError("the holonomic constraints' Jacobian is singular at the point for the dependent "
+                                 f"coordinates {', '.join(coords[i] for i in dep_c) or '(none)'}.",
+                                 fix="choose other dependent coordinates, or a regular point")
+    # 4. Velocity rows: dependent speeds (those of the dependent coordinates first).
+    if independent_speeds:
+        names_ind = list(independent_speeds)
+        bad = [s for s in names_ind if s not in rate_names]
+        if bad:
+            _bad_name(bad[0], "rate (`<coordinate>_dot`)")
+        dep_s = [i for i in range(n) if rate_names[i] not in names_ind]
+        if len(dep_s) != m or (m and np.linalg.matrix_rank(A_num[:, dep_s]) < m):
+            raise LinearizationError(f"with {', '.join(names_ind)} independent, the {m} constraint rows do not fix "
+                                     "the other speeds at the point.",
+                                     fix=f"name {n - m} independent speeds whose complement is fixed by the rows")
+        choice = "independent speeds given by the user: " + ", ".join(names_ind)
+    else:
+        rest = [i for i in range(n) if i not in dep_c]
+        free_first = sorted((i for i in rest if i not in given_rates), key=lambda i: (i not in ignorable_like, i))
+        order = dep_c + free_first + [i for i in rest if i in given_rates]
+        dep_s = _choose(A_num, m, order)
+        if len(dep_s) != m:  # pragma: no cover - the rows are independent at a generic state (derive checks)
+            raise LinearizationError("the constraint rows are dependent at the point.", fix="choose another point")
+        choice = ("dependent speeds chosen by rank at the point, preferring the rates of dependent coordinates, "
+                  "of coordinates absent from the equations and of rates not given")
+    ind_s = [i for i in range(n) if i not in dep_s]
+    ind_c = [i for i in range(n) if i not in dep_c]
+
+    # 5. Rates at the point: the independent ones given (or 0), the dependent ones solved.
+    qd0: dict[se.Basic, se.Basic] = {qd[i]: _snap(given_rates.get(i, _ZERO)) for i in ind_s}
+    if m:
+        b_at = se.DenseMatrix([[r.b.subs(at_q)] for r in rows])
+        Ai = _sub(A_at, list(range(m)), ind_s) if ind_s else se.zeros(m, 0)
+        Ad = _sub(A_at, list(range(m)), dep_s)
+        ui0 = se.DenseMatrix([[qd0[qd[i]]] for i in ind_s]) if ind_s else se.zeros(0, 1)
+        rhs = -(Ai * ui0 if ind_s else se.zeros(m, 1)) - b_at
+        ud0 = _solve(Ad, rhs)
+        for k, i in enumerate(dep_s):
+            solved = se.expand(ud0[k, 0])
+            if i in given_rates:
+                diff = complex(se.expand(given_rates[i] - solved).subs(generic))
+                if abs(diff) > POINT_RTOL * max(1.0, abs(complex(solved.subs(generic)))):
+                    raise LinearizationError(f"the rate `{rate_names[i]}` given at the point contradicts the constraints "
+                                             f"(they fix it at {float(complex(solved.subs(generic)).real):.6g}).",
+                                             fix=f"leave `{rate_names[i]}` out: it is solved from the constraints")
+            qd0[qd[i]] = _snap(solved)
+    point_subs = {**at_q, **qd0}
+
+    # 6. Steady: a moving coordinate must be absent from the equations.
+    moving = [i for i in range(n) if not _is_structural_zero(qd0[qd[i]]) and q[i] in appears]
+    held = {i for i in moving  # present in the expressions, but only through identities (sin² + cos²)
+            if not all(are_zero([e.diff(q[i]) for e in everything if q[i] in e.free_symbols]))}
+    for i in moving:
+        if i in held:
+            raise LinearizationError(f"`{coords[i]}` moves at the point ({rate_names[i]} = {qd0[qd[i]]}) but the "
+                                     "equations depend on it: the motion is not steady, there is no fixed point to "
+                                     "linearize about.",
+                                     fix=f"set `{rate_names[i]}=0`, or move only coordinates absent from the equations")
+
+    # 7. The pieces at the point.
+    F_p = [f.subs(psubs) for f in eom.F]
+    M0 = se.DenseMatrix([[e.subs(psubs).subs(point_subs) for e in row] for row in eom.M])
+    F0 = se.DenseMatrix([[f.subs(point_subs)] for f in F_p])
+    zero_u = {u: _ZERO for u in u_syms}
+    F0 = F0.subs(zero_u) if u_syms else F0
+    Mn = _to_numpy(M0, generic)
+    if np.linalg.matrix_rank(Mn, tol=RANK_RTOL * max(1.0, np.abs(Mn).max(initial=0.0))) < n:
+        raise LinearizationError("the mass matrix M is singular at the point (the coordinates are singular there, "
+                                 "e.g. Euler angles at θ = 0).",
+                                 fix="linearize about another point, or describe the system with regular coordinates")
+    # C = ∂q̇/∂u and S = the map of the dependent rows, numerically to check the point.
+    Csym, S = _velocity_maps(A_at, ind_s, dep_s, n)
+    at_all = {**point_subs, **zero_u}
+    res_sym = Csym.T * F0
+    dF_dq = _jacobian(F_p, list(q), at_all)
+    scale = max(max((_scale_of(f, at_all, generic) for f in F_p), default=0.0),
+                float(np.abs(_to_numpy(dF_dq, generic)).max(initial=0.0))) or 1.0
+    residual = float(np.abs(_to_numpy(res_sym, generic)).max(initial=0.0)) / scale if res_sym.rows else 0.0
+    if residual > POINT_RTOL:
+        raise LinearizationError(
+            f"the point is not an equilibrium or a steady motion: the residual force is "
+            f"{_format_residual(res_sym, generic, ind_s, rate_names)} ({residual:.2g} of the forces' scale)."
+            + _nearest(eom, at_q, point_subs, generic, ind_c, dep_c, psubs),
+            fix="linearize about an equilibrium (lagrangian equilibria MODEL) or a steady motion")
+    lam0 = _multipliers(A_at, F0) if m else se.zeros(0, 1)
+
+    # 8. Jacobians.
+    qs, qds = list(q), list(qd)
+    Kf = -dF_dq
+    if m:
+        lamA = [se.Add(*[lam0[k, 0] * rows[k].coefficients[i].subs(psubs) for k in range(m)]) for i in range(n)]
+        Kf = Kf - _jacobian(lamA, qs, at_all)
+        vel = [se.Add(*[r.coefficients[i] * qd[i] for i in range(n)], r.b).subs(psubs) for r in rows]
+        W = _jacobian(vel, qs, {**at_all})
+    Df = -_jacobian(F_p, qds, at_all)
+    Bf = _jacobian(F_p, u_syms, at_all) if u_syms else se.zeros(n, 0)
+    # P: δq = P δq_i.
+    if h:
+        Phi = _sub(A_at, holo, list(range(n)))
+        Phi_d = _sub(Phi, list(range(h)), dep_c)
+        Phi_i = _sub(Phi, list(range(h)), ind_c)
+        dq_d = -_solve(Phi_d, Phi_i)
+        P = _stack(n, ind_c, se.eye(len(ind_c)), dep_c, dq_d)
+    else:
+        P = se.eye(n)
+    J = S * W if m else se.zeros(n, n)
+    MJD = M0 * J + Df
+    Mr = Csym.T * M0 * Csym
+    Cr = Csym.T * MJD * Csym
+    Kr = Csym.T * (Kf + MJD * J) * P
+    Br = Csym.T * Bf
+    kin_c = (_sub(Csym, ind_c, list(range(Csym.cols))), _sub(J * P, ind_c, list(range(P.cols))))
+    ni, nu = len(ind_c), len(ind_s)
+    Minv_C = _solve(Mr, Cr)
+    Minv_K = _solve(Mr, Kr)
+    Minv_B = _solve(Mr, Br) if Br.cols else se.zeros(nu, 0)
+    A = se.zeros(ni + nu, ni + nu)
+    for r in range(ni):
+        for c in range(ni):
+            A[r, c] = kin_c[1][r, c]
+        for c in range(nu):
+            A[r, ni + c] = kin_c[0][r, c]
+    for r in range(nu):
+        for c in range(ni):
+            A[ni + r, c] = -Minv_K[r, c]
+        for c in range(nu):
+            A[ni + r, ni + c] = -Minv_C[r, c]
+    B = se.zeros(ni + nu, len(u_syms))
+    for r in range(nu):
+        for c in range(len(u_syms)):
+            B[ni + r, c] = Minv_B[r, c]
+    A, B = _tidy(A), _tidy(B)
+    An = _to_numpy(A, generic)
+    ignorable = _ignorable(An, ni, [coords[i] for i in ind_c])
+    second, why = _second_order(coords, ind_c, ind_s, Mr, Cr, Kr, Br, kin_c, ignorable, generic)
+    point = {c: se.expand(q0[q[i]]) for i, c in enumerate(coords)}
+    point.update({rate_names[i]: qd0[qd[i]] for i in range(n)})
+    return LinearModel(
+        eom=eom, point=point, coordinates=tuple(coords[i] for i in ind_c), speeds=tuple(rate_names[i] for i in ind_s),
+        dependent_coordinates=tuple(coords[i] for i in dep_c), dependent_speeds=tuple(rate_names[i] for i in dep_s),
+        choice=choice if m else "no complementary constraint: every coordinate and rate is independent",
+        inputs=tuple(inputs), A=A, B=B,
+        symbols=tuple(s for s in sym_left if str(s) not in inputs and (any(s in e.free_symbols for e in A)
+                                                                        or any(s in e.free_symbols for e in B))),
+        values={k: v for k, v in values.items() if k not in keep}, second_order=second, second_order_reason=why,
+        ignorable=ignorable, residual=residual,
+        multipliers={rows[k].multiplier.name: lam0[k, 0] for k in range(m)}, coordinate_map=_tidy(P))
+
+
+def _sub(m: se.DenseMatrix, rows: Sequence[int], cols: Sequence[int]) -> se.DenseMatrix:
+    """The submatrix of ``m`` on ``rows`` and ``cols``."""
+    if not rows or not cols:
+        return se.zeros(len(rows), len(cols))
+    return se.DenseMatrix([[m[i, j] for j in cols] for i in rows])
+
+
+def _ignorable(An: np.ndarray, ni: int, names: Sequence[str]) -> tuple[str, ...]:
+    """Coordinates nothing depends on, found repeatedly: the bicycle's y first (δẏ = v δψ is its
+    only use of ψ), then its heading ψ."""
+    keep = list(range(An.shape[0]))
+    out: list[int] = []
+    changed = True
+    while changed:
+        changed = False
+        for c in range(ni):
+            if c in keep and not np.any(An[np.ix_(keep, [c])]):
+                keep.remove(c)
+                out.append(c)
+                changed = True
+    return tuple(names[c] for c in sorted(out))
+
+
+def _snap(e: se.Basic) -> se.Basic:
+    """A numeric rate within rounding of zero is zero (dependent speeds solved in floating point)."""
+    if not e.free_symbols and abs(complex(e)) < 1e-13:
+        return _ZERO
+    return e
+
+
+def _bad_name(name: str, kind: str) -> int:
+    raise LinearizationError(f"`{name}` is not a {kind} of the model.", fix="check its spelling")
+
+
+def _stack(n: int, top_idx: Sequence[int], top: se.DenseMatrix, bottom_idx: Sequence[int],
+           bottom: se.DenseMatrix) -> se.DenseMatrix:
+    """The n-row matrix whose rows ``top_idx`` are ``top`` and rows ``bottom_idx`` are ``bottom``."""
+    out = se.zeros(n, top.cols)
+    for r, i in enumerate(top_idx):
+        for c in range(top.cols):
+            out[i, c] = top[r, c]
+    for r, i in enumerate(bottom_idx):
+        for c in range(bottom.cols):
+            out[i, c] = bottom[r, c]
+    return out
+
+
+def _velocity_maps(A_at: se.DenseMatrix, ind_s: list[int], dep_s: list[int], n: int) -> tuple[se.DenseMatrix, se.DenseMatrix]:
+    """C = ∂q̇/∂u (n × p) and S (n × m): δq̇_d = −A_d⁻¹ (A_i δu + W δq) placed in the dependent rows."""
+    m = A_at.rows
+    if not m:
+        return se.eye(n), se.zeros(n, 0)
+    Ad = _sub(A_at, list(range(m)), dep_s)
+    Ai = _sub(A_at, list(range(m)), ind_s) if ind_s else se.zeros(m, 0)
+    Ad_inv = _solve(Ad, se.eye(m))
+    C = _stack(n, ind_s, se.eye(len(ind_s)), dep_s, -(Ad_inv * Ai)) if ind_s else se.zeros(n, 0)
+    S = _stack(n, ind_s, se.zeros(len(ind_s), m), dep_s, -Ad_inv)
+    return C, S
+
+
+def _multipliers(A_at: se.DenseMatrix, F0: se.DenseMatrix) -> se.DenseMatrix:
+    """λ0 with F0 + A0ᵀ λ0 = 0 (least squares; exact at a steady point)."""
+    AAT = A_at * A_at.T
+    return _solve(AAT, -(A_at * F0))
+
+
+def _scale_of(expr: se.Basic, subs: Mapping, generic: Mapping) -> float:
+    terms = expr.args if isinstance(expr, se.Add) else (expr,)
+    total = 0.0
+    for term in terms:
+        try:
+            total += abs(complex(term.subs(subs).subs(generic)))
+        except (RuntimeError, TypeError):
+            pass
+    return total
+
+
+def _format_residual(res: se.DenseMatrix, generic: Mapping, ind_s: Sequence[int], rate_names: Sequence[str]) -> str:
+    vals = _to_numpy(res, generic)[:, 0]
+    return ", ".join(f"{rate_names[i][:-4]}: {v:.6g}" for i, v in zip(ind_s, vals))
+
+
+def _nearest(eom: EquationsOfMotion, at_q: Mapping, point_subs: Mapping, generic: Mapping, ind_c: Sequence[int],
+             dep_c: Sequence[int], psubs: Mapping) -> str:
+    """' The nearest equilibrium found: θ = 3.14159265.' (unconstrained models at rest), or ''."""
+    if eom.constraints or any(not _is_structural_zero(point_subs[s]) for s in eom.qd):
+        return ""
+    from scipy import optimize
+    q = list(eom.q)
+    rest = {**{s: _ZERO for s in eom.qd}}
+    F = [f.subs(psubs).subs(rest).subs(generic) for f in eom.F]
+    try:
+        fn = se.Lambdify(q, F)
+        x0 = np.array([complex(at_q[s].subs(generic)).real for s in q])
+        sol = optimize.root(lambda x: np.asarray(fn(x), dtype=float).ravel(), x0)
+    except (RuntimeError, TypeError, ValueError):  # pragma: no cover - defensive: no hint then
+        return ""
+    if not sol.success:
+        return ""
+    return " The nearest equilibrium found: " + ", ".join(f"{s} = {v:.10g}" for s, v in zip(q, sol.x)) + "."
+
+
+def _second_order(coords: Sequence[str], ind_c: Sequence[int], ind_s: Sequence[int], Mr: se.DenseMatrix,
+                  Cr: se.DenseMatrix, Kr: se.DenseMatrix, Br: se.DenseMatrix, kin_c, ignorable: Sequence[str],
+                  generic: Mapping) -> tuple[SecondOrderForm | None, str]:
+    """M δq̈ + (D + G) δq̇ + (K + N) δq = B u on the coordinates whose rates are the independent speeds.
+
+    It exists when every other independent coordinate is ignorable (a zero column of A): then
+    δq̇_c = δu_c for the coordinates kept and the reduced equations are second order in them.
+    """
+    speeds_coord = list(ind_s)  # the coordinate index of each independent speed
+    kept = [i for i in speeds_coord if i in ind_c]
+    if len(kept) != len(speeds_coord):
+        return None, ("an independent speed is the rate of a dependent coordinate: the reduced equations are "
+                      "first order only")
+    others = [c for c in ind_c if c not in speeds_coord]
+    if any(coords[c] not in ignorable for c in others):
+        return None, ("an independent coordinate whose rate is not an independent speed acts on the motion: "
+                      "the reduced equations are first order only (see A)")
+    cols = [list(ind_c).index(i) for i in kept]
+    K_full = _sub(Kr, list(range(Kr.rows)), cols)
+    Msym = Mr
+    Dsym = (Cr + Cr.T) / 2
+    Gskew = (Cr - Cr.T) / 2
+    Ksym = (K_full + K_full.T) / 2
+    Nskew = (K_full - K_full.T) / 2
+    form = SecondOrderForm(tuple(coords[i] for i in kept), _tidy(Msym), _tidy(Dsym), _tidy(Gskew), _tidy(Ksym),
+                           _tidy(Nskew), _tidy(Br))
+    return form, ""

@@ -1,0 +1,116 @@
+"""Figures of the small motions: the eigenvalues against a parameter, and the mode shapes.
+
+`plot_eigenvalue_sweep` is the figure of Meijaard, Papadopoulos, Ruina & Schwab (2007),
+Proc. R. Soc. A 463, fig. 3, for any model: Re λ (solid dots) and Im λ (small dots) of the
+essential eigenvalues against the swept parameter, the zero line, and the values where
+stability changes marked by vertical lines.  `plot_mode_shapes` draws each mode's shape over
+the coordinates (the real part of the eigenvector scaled so its largest coordinate is 1, as
+`lagrangian.analysis.modes` normalises it), or the conservative φ_k of K φ = ω² M φ.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ..dynamics import EquationsOfMotion
+from ._labels import symbol
+from ._mpl import new_figure, suptitle
+
+__all__ = ["plot_eigenvalue_sweep", "plot_mode_shapes"]
+
+_WORDS = {
+    "en": {"eigenvalues": "eigenvalues against {p}", "re": r"Re $\lambda$", "im": r"Im $\lambda$",
+           "lambda": r"$\lambda$ (1/s)", "shapes": "mode shapes", "mode": "mode {k}"},
+    "fr": {"eigenvalues": "valeurs propres en fonction de {p}", "re": r"Re $\lambda$", "im": r"Im $\lambda$",
+           "lambda": r"$\lambda$ (1/s)", "shapes": "déformées modales", "mode": "mode {k}"},
+}
+
+
+def _title(model: str, what: str, lang: str) -> str:
+    return f"{model} : {what}" if lang == "fr" else f"{model}: {what}"
+
+
+def _parameter_label(eom: EquationsOfMotion, name: str) -> str:
+    unit = next((p.unit for p in eom.model.parameters if p.name == name and p.unit), "")
+    return symbol(eom, name) + (f" ({unit})" if unit else "")
+
+
+def plot_eigenvalue_sweep(sweep: Any, eom: EquationsOfMotion, *, fig: Any = None, lang: str = "en") -> Any:
+    """Re λ and Im λ of the essential eigenvalues against ``sweep.parameter`` (a `lagrangian.analysis.Sweep`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        One axes; the changes of stability are dotted vertical lines.
+    """
+    w = _WORDS.get(lang, _WORDS["en"])
+    fig = fig or new_figure(8.0, 5.0, margins=(0.85, 0.2, 0.6, 0.55))
+    ax = fig.add_subplot(1, 1, 1)
+    x = np.asarray(sweep.values, dtype=float)
+    lam = np.asarray(sweep.eigenvalues)
+    if lam.ndim == 2 and lam.shape[1]:
+        xs = np.repeat(x, lam.shape[1])
+        ax.plot(xs, lam.real.ravel(), ".", ms=2.5, color="C0", label=w["re"])
+        im = lam.imag.ravel()
+        keep = im != 0
+        ax.plot(xs[keep], np.abs(im[keep]), ".", ms=1.0, color="C1", label=w["im"])
+    ax.axhline(0.0, color="k", lw=0.8)
+    for change in sweep.changes:
+        ax.axvline(change.value, color="0.4", lw=0.8, ls=":")
+    ax.set_xlim(x[0], x[-1] if x[-1] > x[0] else x[0] + 1.0)
+    ax.set_xlabel(_parameter_label(eom, sweep.parameter))
+    ax.set_ylabel(w["lambda"])
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best", markerscale=4)
+    suptitle(fig, _title(eom.model.name, w["eigenvalues"].format(p=symbol(eom, sweep.parameter)), lang))
+    return fig
+
+
+def _shapes(modes: Any) -> list[tuple[str, dict[str, float]]]:
+    """(legend, shape over the coordinates) of each mode: the conservative φ_k when known, else each
+    eigenvalue with Im λ ≥ 0 (a conjugate pair drawn once)."""
+    if modes.pulsations and modes.shapes:
+        out = []
+        for k, (om, phi) in enumerate(zip(modes.pulsations, modes.shapes), 1):
+            big = max((abs(v) for v in phi.values()), default=1.0) or 1.0
+            out.append((f"{k}: ω = {om:.4g} rad/s", {c: v / big for c, v in phi.items()}))
+        return out
+    out = []
+    for k, m in enumerate((m for m in modes.modes if m.eigenvalue.imag >= 0), 1):
+        shape = {c: float(np.real(v)) for c, v in m.shape.items() if not c.endswith("_dot")}
+        z = m.eigenvalue
+        lam = f"{z.real:.4g}" if z.imag == 0 else f"{z.real:.3g} ± {abs(z.imag):.4g} i"
+        out.append((f"{k}: λ = {lam}", shape))
+    return out
+
+
+def plot_mode_shapes(modes: Any, eom: EquationsOfMotion, *, fig: Any = None, lang: str = "en") -> Any:
+    """A bar chart per mode of its shape over the coordinates (a `lagrangian.analysis.Modes`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        One axes per mode (at most 12).
+    """
+    w = _WORDS.get(lang, _WORDS["en"])
+    shapes = _shapes(modes)[:12]
+    k = max(len(shapes), 1)
+    cols = min(k, 3)
+    rows = (k + cols - 1) // cols
+    fig = fig or new_figure(3.2 * cols + 0.6, 2.4 * rows + 0.8, margins=(0.6, 0.2, 0.55, 0.6), hspace=0.6)
+    axes = fig.subplots(rows, cols, squeeze=False)
+    for ax in axes.ravel()[len(shapes):]:
+        ax.set_visible(False)
+    for ax, (legend, shape) in zip(axes.ravel(), shapes):
+        names = list(shape)
+        ax.bar(range(len(names)), [shape[c] for c in names], color=[f"C{i}" for i in range(len(names))])
+        ax.set_xticks(range(len(names)))
+        ax.set_xticklabels([symbol(eom, c) for c in names])
+        ax.axhline(0.0, color="k", lw=0.8)
+        ax.set_ylim(-1.15, 1.15)
+        ax.set_title(w["mode"].format(k=legend), fontsize=9)
+        ax.grid(True, axis="y", alpha=0.3)
+    suptitle(fig, _title(eom.model.name, w["shapes"], lang))
+    return fig
