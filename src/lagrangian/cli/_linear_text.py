@@ -13,7 +13,6 @@ from typing import Any
 
 import numpy as np
 import symengine as se
-import sympy
 
 from ..output import Notation
 
@@ -51,7 +50,7 @@ def _notation(lin: Any) -> Notation:
 def _cell(n: Notation, e: se.Basic) -> str:
     if not e.free_symbols:
         return number(float(complex(e).real))
-    return n.text(sympy.sympify(e._sympy_()))
+    return n.text(e._sympy_())
 
 
 def _is_zero(m: se.DenseMatrix) -> bool:
@@ -82,7 +81,7 @@ def _matrix(n: Notation, name: str, m: se.DenseMatrix, indent: str = "  ") -> li
 def _point_text(n: Notation, lin: Any) -> str:
     parts = []
     for name, value in lin.point.items():
-        v = number(float(complex(value).real)) if not value.free_symbols else n.text(sympy.sympify(value._sympy_()))
+        v = number(float(complex(value).real)) if not value.free_symbols else n.text(value._sympy_())
         parts.append(f"{n.symbol(name)} = {v}")
     return ", ".join(parts)
 
@@ -134,8 +133,8 @@ def render_linearization(lin: Any, stability: Any, modes: Any) -> str:
         return "\n".join(lines) + "\n"
     lines.append("Eigenvalues of A: " + _eigen_list(np.asarray(stability.eigenvalues)))
     if modes is not None and modes.neutral:
-        lines.append("  set aside (eigenvalue 0): " + "; ".join(f"{n.symbol(x) if x != 'momentum' else x}: {why}"
-                                                             for x, why in modes.neutral))
+        lines.append("  set aside (eigenvalue 0):")
+        lines += [f"    {n.symbol(x) if x != 'momentum' else 'a momentum'}: {why}" for x, why in modes.neutral]
     if modes is not None and modes.pulsations:
         lines.append("Pulsations (K φ = ω² M φ): " + ", ".join(f"ω{_sub(k)} = {number(w)} rad/s"
                                                                for k, w in enumerate(modes.pulsations, 1)))
@@ -192,6 +191,8 @@ def render_modes(lin: Any, stability: Any, modes: Any) -> str:
         lines += [f"  {n.symbol(x) if x != 'momentum' else 'a momentum'}: {why}" for x, why in modes.neutral]
         lines.append("")
     lines.append("Eigenvalues λ, natural frequency ω = |λ|, damping ratio ζ = −Re λ/|λ|, period T = 2π/|Im λ|:")
+    if not modes.modes:
+        lines.append("  none: every direction is neutral")
     seen: list[complex] = []
     k = 0
     for mode in modes.modes:
@@ -211,7 +212,7 @@ def render_modes(lin: Any, stability: Any, modes: Any) -> str:
     if modes.pulsations:
         lines += ["", "Pulsations of the conservative system (det(K − ω² M) = 0):"]
         for k, (w, phi) in enumerate(zip(modes.pulsations, modes.shapes or ()), 1):
-            big = max((abs(v) for v in phi.values()), default=1.0) or 1.0
+            big = max(phi.values(), key=abs, default=1.0) or 1.0  # the largest component becomes +1
             shape = ", ".join(f"{n.symbol(x)}: {number(v / big)}" for x, v in phi.items())
             period = f", T = {number(2 * math.pi / w)} s" if w > 0 else ""
             lines.append(f"  ω{_sub(k)} = {number(w)} rad/s{period};  φ{_sub(k)} = ({shape})")

@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 import symengine as se
 import sympy
+from symengine.lib.symengine_wrapper import sympy2symengine
 
 from ..errors import LagrangianError
 from ._report_build import Context
@@ -79,9 +80,9 @@ def _positive(lin: Any) -> Any:
     def tidy(e: se.Basic) -> se.Basic:
         if not e.free_symbols:
             return e
-        x = sympy.sympify(e._sympy_()).xreplace(positive)
+        x = e._sympy_().xreplace(positive)
         y = sympy.factor(sympy.cancel(x)).xreplace(back)
-        return se.sympify(y) if len(str(y)) < len(str(e)) else e
+        return sympy2symengine(y) if len(str(y)) < len(str(e)) else e
 
     def matrix(m: se.DenseMatrix) -> se.DenseMatrix:
         if m.rows == 0 or m.cols == 0:
@@ -154,7 +155,7 @@ def _pulsations(c: Context, so: Any, modes: Any) -> list[Block]:
     if not modes.pulsations:
         return blocks
     if len(modes.pulsations) == 1 and so is not None and so.M.rows == 1 and so.K[0, 0] != 0:
-        ratio = sympy.factor(sympy.cancel(sympy.sympify(so.K[0, 0]._sympy_()) / sympy.sympify(so.M[0, 0]._sympy_())))
+        ratio = sympy.factor(sympy.cancel(so.K[0, 0]._sympy_() / so.M[0, 0]._sympy_()))
         omega = modes.pulsations[0]
         blocks.append(Para(w("small one pulsation", q=Math(_var(c, so.coordinates[0]))), ))
         blocks.append(Display((Equation((rf"\omega_{{0}}^{{2}} = {c.n.latex(ratio)}",)),)))

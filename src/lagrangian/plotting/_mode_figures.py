@@ -63,7 +63,8 @@ def plot_eigenvalue_sweep(sweep: Any, eom: EquationsOfMotion, *, fig: Any = None
     ax.set_xlabel(_parameter_label(eom, sweep.parameter))
     ax.set_ylabel(w["lambda"])
     ax.grid(True, alpha=0.3)
-    ax.legend(loc="best", markerscale=4)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(loc="best", markerscale=4)
     suptitle(fig, _title(eom.model.name, w["eigenvalues"].format(p=symbol(eom, sweep.parameter)), lang))
     return fig
 
@@ -74,7 +75,7 @@ def _shapes(modes: Any) -> list[tuple[str, dict[str, float]]]:
     if modes.pulsations and modes.shapes:
         out = []
         for k, (om, phi) in enumerate(zip(modes.pulsations, modes.shapes), 1):
-            big = max((abs(v) for v in phi.values()), default=1.0) or 1.0
+            big = max(phi.values(), key=abs, default=1.0) or 1.0  # the largest component becomes +1
             out.append((f"{k}: ω = {om:.4g} rad/s", {c: v / big for c, v in phi.items()}))
         return out
     out = []
