@@ -81,7 +81,7 @@ def _matrix(n: Notation, name: str, m: se.DenseMatrix, indent: str = "  ") -> li
 def _point_text(n: Notation, lin: Any) -> str:
     parts = []
     for name, value in lin.point.items():
-        v = number(float(complex(value).real)) if not value.free_symbols else n.text(value._sympy_())
+        v = number(float(complex(value).real)) if value.is_Number else n.text(value._sympy_())  # π stays π
         parts.append(f"{n.symbol(name)} = {v}")
     return ", ".join(parts)
 

@@ -145,7 +145,7 @@ def _point(c: Context, lin: Any) -> Runs:
     parts = []
     for name, value in lin.point.items():
         parts.append(Math(f"{c.sym(name[:-4], 'dot') if name.endswith('_dot') else c.sym(name)} = "
-                          f"{c.tex(value) if value.free_symbols else c.w.number(float(complex(value).real))}"))
+                          f"{c.w.number(float(complex(value).real)) if value.is_Number else c.tex(value)}"))
     return c.w.join(parts)
 
 
