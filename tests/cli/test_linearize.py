@@ -250,3 +250,28 @@ def test_rolling_coin_records_the_dependent_speeds_it_solved(capsys):
     assert doc["point"]["x_dot"] == pytest.approx(r * 10, rel=1e-14) and doc["point"]["y_dot"] == 0
     assert doc["state"] == doc["coordinates"] + doc["speeds"] and "x_dot" not in doc["speeds"]
     assert doc["choice"]
+
+
+def test_steady_precession_of_the_top_nutation_frequency_from_routh(capsys):
+    """Steady precession of the Lagrange top at θ0 = 0.5, ψ̇ = 2: ω3 = (A ψ̇² cosθ0 + m g a)/(C ψ̇) (the θ equation
+    with θ̇ = θ̈ = 0), and the small nutation about it has ω² = U_eff''(θ0)/A with Routh's effective potential
+    U_eff = (K − H cosθ)²/(2 A sin²θ) + m g a cosθ at the momenta K, H of the motion."""
+    import sympy
+
+    v = dict(lagrangian.lagrange_top().parameter_values)
+    m, g, a, A, C = v["m"], v["g"], v["a"], v["A"], v["C"]
+    theta0, psi_dot = 0.5, 2.0
+    omega3 = (A * psi_dot**2 * math.cos(theta0) + m * g * a) / (C * psi_dot)
+    phi_dot = omega3 - psi_dot * math.cos(theta0)
+    H = C * omega3
+    K = A * psi_dot * math.sin(theta0) ** 2 + H * math.cos(theta0)
+    th = sympy.Symbol("theta")
+    U = (K - H * sympy.cos(th)) ** 2 / (2 * A * sympy.sin(th) ** 2) + m * g * a * sympy.cos(th)
+    assert abs(float(U.diff(th).subs(th, theta0))) < 1e-12  # a steady motion indeed
+    omega = math.sqrt(float(U.diff(th, 2).subs(th, theta0)) / A)
+    doc = _json(capsys, "modes", "--at", "psi=0", "--at", f"theta={theta0!r}", "--at", "phi=0",
+                "--at", f"psi_dot={psi_dot!r}", "--at", f"phi_dot={phi_dot!r}")
+    assert doc["steady"] is True and doc["stable"] is True
+    assert {n["name"] for n in doc["modes"]["neutral"]} >= {"psi", "phi"}
+    assert len(doc["eigenvalues"]) == 2
+    np.testing.assert_allclose(sorted(abs(_eig(doc).imag)), [omega, omega], rtol=1e-9)

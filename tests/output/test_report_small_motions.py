@@ -94,3 +94,17 @@ def test_cli_report_small_motions(tmp_path, capsys):
     assert "--small-motions" in capsys.readouterr().err
     assert main(["report", str(EXAMPLES_DIR / "double_pendulum.toml"), "--small-motions", "--at", "theta1=0"]) == 2
     assert "`theta2`" in capsys.readouterr().err
+
+
+def test_steady_precession_sets_the_neutral_directions_aside_and_gives_the_nutation():
+    # ω3 = (A ψ̇² cosθ0 + m g a)/(C ψ̇) makes θ0 = 0.5, ψ̇ = 2 a steady precession (the θ equation at rest in θ).
+    top = lagrangian.lagrange_top()
+    v = dict(top.parameter_values)
+    theta0, psi_dot = 0.5, 2.0
+    omega3 = (v["A"] * psi_dot**2 * math.cos(theta0) + v["m"] * v["g"] * v["a"]) / (v["C"] * psi_dot)
+    point = {"psi": 0, "theta": theta0, "phi": 0, "psi_dot": psi_dot, "phi_dot": omega3 - psi_dot * math.cos(theta0)}
+    section = report(lagrangian.derive(top), lang="en", small_motions=point).document.section("small motions")
+    assert section.title == "Small motions about a steady motion"
+    text = " ".join(x for b in section.blocks if isinstance(b, Para) for x in b.runs if isinstance(x, str))
+    assert "set aside" in text and "2 conserved momenta" in text and "Routh" in text
+    assert r"\psi" in " ".join(math_of(section.blocks))

@@ -70,7 +70,8 @@ def parse_sweep(text: str, model: Model) -> tuple[str, np.ndarray]:
     name = name.strip()
     parts = rng.split(":")
     if not sep or not name or len(parts) != 3:
-        raise SettingError(f"`--sweep {text}` is not of the form NAME=a:b:step.", fix="write e.g. `--sweep v=0:10:0.01`")
+        raise SettingError(f"`--sweep {text}` is not of the form NAME=a:b:step.",
+                           fix="write e.g. `--sweep v=0:10:0.01`")
     params = [p.name for p in model.parameters]
     if name not in params:
         what = "a coordinate" if name in [c.name for c in model.coordinates] else "not a name"

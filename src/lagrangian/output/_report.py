@@ -14,7 +14,8 @@ course's words and notation) or in English:
    the system is conservative);
 7. the complementary equations;
 
-then the first integrals, the small motions about an equilibrium (opt-in: ``small_motions``), the Newton–Euler cross-check (``verification``), the simulation's
+then the first integrals, the small motions about an equilibrium (opt-in: ``small_motions``),
+the Newton–Euler cross-check (``verification``), the simulation's
 figures (``figures``) and the matrix form M q̈ = F.  Everything is computed by the engine;
 this module only arranges and writes it.
 """

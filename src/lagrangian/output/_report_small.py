@@ -97,7 +97,7 @@ def _var(c: Context, name: str, deco: str = "") -> str:
 
 
 def _terms(c: Context, pairs: list[tuple[se.Basic, str]]) -> list[str]:
-    """Σ coefficient · variable as signed LaTeX terms (``m l^{2}\\,\\delta\\ddot{\\theta}``, ``+ m g l\\,\\delta\\theta``)."""
+    r"""Σ coefficient · variable as signed LaTeX terms: ``m l^{2}\,\delta\ddot{\theta}``, ``+ m g l\,\delta\theta``."""
     out: list[str] = []
     for coef, var in pairs:
         if coef == 0:
@@ -192,25 +192,34 @@ def _eigenvalues(c: Context, lam: np.ndarray) -> Runs:
     return c.w.join([Math(rf"\lambda = {t}") for t in shown])
 
 
-def _stability(c: Context, lin: Any, stability: Any) -> list[Block]:
+def _essential_KG(lin: Any, modes: Any) -> tuple[np.ndarray, np.ndarray] | None:
+    """K and G on the essential coordinates (the neutral ones set aside), when the form is second order."""
+    so = lin.second_order
+    if so is None or lin.symbols:
+        return None
+    idx = [i for i, q in enumerate(so.coordinates) if q in modes.essential]
+    if not idx:
+        return None
+    return _numbers(lin, so.K)[np.ix_(idx, idx)], _numbers(lin, so.G)[np.ix_(idx, idx)]
+
+
+def _stability(c: Context, lin: Any, stability: Any, modes: Any) -> list[Block]:
     """The argument that decides: Lagrange–Dirichlet, the gyroscopic theorems, or an eigenvalue."""
     w = c.w
     lam = np.asarray(stability.eigenvalues)
-    so = lin.second_order
     kmin = None
-    G_zero = True
-    if so is not None and not lin.symbols:
-        K = _numbers(lin, so.K)
-        kmin = float(np.linalg.eigvalsh(K).min()) if K.size else None
-        G_zero = not np.any(np.abs(_numbers(lin, so.G)) > 1e-10 * max(1.0, float(np.abs(K).max(initial=0.0))))
+    gyroscopic = False
+    KG = _essential_KG(lin, modes)
+    if KG is not None:
+        K_e, G_e = KG
+        kmin = float(np.linalg.eigvalsh((K_e + K_e.T) / 2).min())
+        gyroscopic = bool(np.any(np.abs(G_e) > 1e-10 * max(1.0, float(np.abs(K_e).max(initial=0.0)))))
     K = Math(r"K = \left.\frac{\partial^{2} U_P}{\partial q\,\partial q}\right|_{q_{0}}")
     verdict = stability.verdict
-    if verdict == "stable" and G_zero:
-        key = "small lagrange dirichlet"
-    elif verdict == "stable":
-        key = "small kelvin tait"
+    if verdict == "stable":
+        key = "small kelvin tait" if gyroscopic else "small lagrange dirichlet"
     elif verdict == "stable to first order":
-        key = "small gyroscopic"
+        key = "small gyroscopic" if gyroscopic and kmin is not None and kmin < 0 else "small first order stable"
     elif verdict == "unstable":
         key = "small unstable no minimum" if kmin is not None and kmin < 0 else "small unstable"
     elif verdict == "asymptotically stable":
@@ -218,7 +227,17 @@ def _stability(c: Context, lin: Any, stability: Any) -> list[Block]:
     else:
         key = "small marginal"
     worst = complex(lam[np.argmax(lam.real)]) if lam.size else 0j
-    blocks: list[Block] = [Para(w("small eigenvalues", lam=_eigenvalues(c, lam)))] if lam.size else []
+    blocks: list[Block] = []
+    neutral = [x for x, _ in modes.neutral if x != "momentum"]
+    momenta = sum(1 for x, _ in modes.neutral if x == "momentum")
+    if neutral or momenta:
+        names: list[Any] = [Math(c.sym(x[:-4], "dot") if x.endswith("_dot") else c.sym(x)) for x in neutral]
+        if momenta:
+            names.append(w.text("small momenta", k=str(momenta)) if momenta > 1 else w.text("small momentum"))
+        blocks.append(Para(w("small neutral", names=w.join(names))))
+    if lam.size:
+        listed = "small eigenvalues left" if modes.neutral else "small eigenvalues"
+        blocks.append(Para(w(listed, lam=_eigenvalues(c, lam))))
     blocks.append(Para(w(key, K=K, U=Math("U_P"), q0=Math("q_{0}"), lam=Math(rf"\lambda = {_eigenvalue(w, worst)}"),
                          kmin=Math(w.number(kmin if kmin is not None else 0.0)))))
     return blocks
@@ -238,7 +257,7 @@ def small_motions_section(c: Context, lin: Any) -> Section:
         blocks.append(Para(w("small dependent", names=w.join(names))))
     so = _positive(shown) if shown is sym else shown.second_order
     if so is not None:
-        form = "M\\,\\delta\\ddot{q} + (D + G)\\,\\delta\\dot{q} + (K + N)\\,\\delta q = " + ("B\\,u" if so.B.cols else "0")
+        form = r"M\,\delta\ddot{q} + (D + G)\,\delta\dot{q} + (K + N)\,\delta q = " + (r"B\,u" if so.B.cols else "0")
         blocks.append(Para(w("small equations", form=Math(form))))
         blocks += c.show(_equations(c, so, tuple(lin.inputs)), w.text("small title"))
         matrices = [_pmatrix(c, "M", so.M), _pmatrix(c, "K", so.K)]
@@ -251,5 +270,5 @@ def small_motions_section(c: Context, lin: Any) -> Section:
     else:
         blocks.append(Para(w("small first order", x=Math(r"\dot{x} = A\,x"), why=lin.second_order_reason)))
     blocks += _pulsations(c, so if shown is sym else None, modes)
-    blocks += _stability(c, lin, stability)
+    blocks += _stability(c, lin, stability, modes)
     return Section("small motions", w.text("small title steady" if lin.steady else "small title"), tuple(blocks))

@@ -503,6 +503,22 @@ _PHRASES: dict[str, tuple[str, str]] = {
                          "K is not positive definite (smallest eigenvalue {kmin}), but the gyroscopic terms make every "
                          "eigenvalue simple and purely imaginary: gyroscopic stabilisation, to first order (the "
                          "linearization does not decide the nonlinear motion)."),
+    "small first order stable": ("Toutes les valeurs propres restantes sont simples et imaginaires pures : le "
+                                 "mouvement linéarisé reste borné, stable au premier ordre (pour un mouvement "
+                                 "stationnaire à moments conservés fixés, c'est la condition de Routh sur le "
+                                 "potentiel effectif) ; la linéarisation ne décide pas du mouvement non linéaire.",
+                                 "Every eigenvalue left is simple and purely imaginary: the linearized motion stays "
+                                 "bounded, stable to first order (for a steady motion at fixed conserved momenta, "
+                                 "this is Routh's condition on the effective potential); the linearization does not "
+                                 "decide the nonlinear motion."),
+    "small neutral": ("Les directions {names} sont neutres (valeur propre nulle : coordonnées ignorables ou "
+                      "quantités conservées) ; elles sont mises à part.",
+                      "The directions {names} are neutral (eigenvalue 0: ignorable coordinates or conserved "
+                      "quantities); they are set aside."),
+    "small momentum": ("un moment conservé", "a conserved momentum"),
+    "small momenta": ("{k} moments conservés", "{k} conserved momenta"),
+    "small eigenvalues left": ("Les autres valeurs propres de la matrice d'état A sont {lam}.",
+                               "The other eigenvalues of the state matrix A are {lam}."),
     "small unstable no minimum": ("La matrice {K} n'est pas définie positive (plus petite valeur propre {kmin}) : "
                                   "{U} n'a pas de minimum en {q0}, et la valeur propre {lam} a une partie réelle "
                                   "positive : les petits mouvements croissent, la position d'équilibre est "
