@@ -131,7 +131,9 @@ def render_linearization(lin: Any, stability: Any, modes: Any) -> str:
         lines.append(f"Eigenvalues and stability: give values to {symbols} (drop --symbolic, or use "
                      f"`lagrangian modes ... --sweep {lin.symbols[0]}=a:b:step`).")
         return "\n".join(lines) + "\n"
-    lines.append("Eigenvalues of A: " + _eigen_list(np.asarray(stability.eigenvalues)))
+    neutral = modes is not None and bool(modes.neutral)
+    lines.append(("Eigenvalues of A, the neutral ones (0) set aside: " if neutral else "Eigenvalues of A: ")
+                 + _eigen_list(np.asarray(stability.eigenvalues)))
     if modes is not None and modes.neutral:
         lines.append("  set aside (eigenvalue 0):")
         lines += [f"    {n.symbol(x) if x != 'momentum' else 'a momentum'}: {why}" for x, why in modes.neutral]

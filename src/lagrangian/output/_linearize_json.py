@@ -117,7 +117,16 @@ def linearize_document(lin: Any, *, source: str | None, package_version: str,
         doc[key] = None if so is None else matrix_rows(getattr(so, key), numeric)
     doc["A"] = matrix_rows(lin.A, numeric)
     doc["B"] = matrix_rows(lin.B, numeric)
-    doc["eigenvalues"] = None if stability is None else [_complex(z) for z in np.asarray(stability.eigenvalues)]
+    if stability is None:
+        doc["eigenvalues"] = doc["essential_eigenvalues"] = None
+    else:
+        # Every eigenvalue of A (what eig(A) gives), and those left once the neutral directions are set aside
+        # (ignorable coordinates, conserved speeds and momenta: eigenvalue 0), which decide the verdict.
+        A, _ = lin.numeric(**(modes_at or {}))
+        lam = np.linalg.eigvals(A) if A.size else np.zeros(0, complex)
+        lam = lam[np.lexsort((lam.imag, lam.real))] if lam.size else lam
+        doc["eigenvalues"] = [_complex(z) for z in lam]
+        doc["essential_eigenvalues"] = [_complex(z) for z in np.asarray(stability.eigenvalues)]
     doc["stable"] = None if stability is None else stability.stable
     doc["stability_verdict"] = None if stability is None else stability.verdict
     doc["stability_reason"] = (stability.reason if stability is not None else
