@@ -15,8 +15,7 @@ from .. import __version__
 from ..dynamics import derive
 from ..output import linearize_document
 from ._linear_text import render_linearization
-from ._point import add_point_options, linearize_from_args
-from ._settings import add_set_option
+from ._point import add_parameter_option, add_point_options, linearize_from_args
 from ._source import MODEL_HELP, load_source
 
 __all__ = ["register", "run"]
@@ -36,7 +35,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "reduced to independent coordinates and speeds (the choice is printed).")
     p.add_argument("model", nargs="?", help=MODEL_HELP)
     add_point_options(p)
-    add_set_option(p)
+    add_parameter_option(p)
     p.add_argument("--json", action="store_true",
                    help="print the versioned JSON document (schema lagrangian.linearize/1, docs/small-motions.md)")
     p.add_argument("-o", "--output", metavar="FILE", help="write to FILE (atomically) instead of standard output")

@@ -22,8 +22,8 @@ from ..errors import OutputError
 from ..model.spec import Model
 from ..output import linearize_document
 from ._linear_text import render_modes, render_sweep
-from ._point import add_point_options, linearize_from_args
-from ._settings import SettingError, add_set_option
+from ._point import add_parameter_option, add_point_options, linearize_from_args
+from ._settings import SettingError
 from ._source import MODEL_HELP, load_source
 
 __all__ = ["register", "run", "parse_sweep", "SWEEP_MAX"]
@@ -45,7 +45,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "stability changes; --plot DIR draws them against NAME, and the mode shapes.")
     p.add_argument("model", nargs="?", help=MODEL_HELP)
     add_point_options(p, symbolic=False)
-    add_set_option(p)
+    add_parameter_option(p)
     p.add_argument("--sweep", metavar="NAME=a:b:step", default=None,
                    help="follow the eigenvalues as the parameter NAME goes from a to b by step (b included)")
     p.add_argument("--plot", metavar="DIR", default=None,

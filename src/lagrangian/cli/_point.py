@@ -18,7 +18,7 @@ from ..dynamics import EquationsOfMotion
 from ..model.spec import Model
 from ._settings import SettingError, parse_settings
 
-__all__ = ["add_point_options", "parse_point", "parse_names", "linearize_from_args", "point_settings", "full_point"]
+__all__ = ["add_point_options", "add_parameter_option", "parse_point", "parse_names", "linearize_from_args", "point_settings", "full_point"]
 
 
 def add_point_options(parser: argparse.ArgumentParser, *, inputs: bool = True, symbolic: bool = True) -> None:
@@ -36,6 +36,13 @@ def add_point_options(parser: argparse.ArgumentParser, *, inputs: bool = True, s
         parser.add_argument(
             "--symbolic", dest="symbolic", action="append", default=[], metavar="NAME[,NAME...]",
             help="keep these parameters as symbols in the matrices (A(v)); `all` for every parameter")
+
+
+def add_parameter_option(parser: argparse.ArgumentParser) -> None:
+    """``--set NAME=VALUE`` for parameters only (the point is given with ``--at``); stored in ``args.set``."""
+    parser.add_argument(
+        "--set", dest="set", action="append", default=[], metavar="NAME=VALUE",
+        help="override a parameter value (g=1.62); repeat for several (the point is given with --at)")
 
 
 def parse_names(values: Sequence[str] | None) -> list[str]:
