@@ -278,3 +278,15 @@ def test_steady_precession_of_the_top_nutation_frequency_from_routh(capsys):
     np.testing.assert_allclose(sorted(abs(essential.imag)), [omega, omega], rtol=1e-9)
     # The four others are the neutral zeros (ψ, φ and the momenta K, H).
     assert np.sum(np.abs(_eig(doc)) < 1e-9) == 4
+
+
+def test_animate_writes_one_gif_per_mode_into_the_plot_folder(tmp_path, capsys):
+    args = ["modes", str(EXAMPLES_DIR / "double_pendulum.toml"), "--at", "theta1=0", "--at", "theta2=0"]
+    assert main([*args, "--animate"]) == 2
+    assert "--plot DIR" in capsys.readouterr().err
+    plots = tmp_path / "dp"
+    assert main([*args, "--plot", str(plots), "--animate"]) == 0
+    out = capsys.readouterr().out
+    assert "λ₁" in out and "λ₂" in out and "λ₃" not in out  # two conjugate pairs, each written once
+    assert {p.name for p in plots.iterdir()} == {"mode_shapes.png", "mode_1.gif", "mode_2.gif"}
+    assert (plots / "mode_1.gif").read_bytes()[:6] in (b"GIF89a", b"GIF87a")

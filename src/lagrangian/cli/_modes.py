@@ -31,6 +31,11 @@ __all__ = ["register", "run", "parse_sweep", "SWEEP_MAX"]
 SUMMARY = "eigenvalues, frequencies, damping ratios and mode shapes about a point, the stability\n" \
           "verdict; --sweep v=0:10:0.01 finds where stability changes, --plot DIR draws them"
 
+#: Most modes ``--animate`` draws (each GIF takes about a second).
+ANIMATIONS_MAX = 6
+#: Largest coordinate amplitude of an animated mode (rad or the coordinate's unit).
+AMPLITUDE = 0.1
+
 #: Most points a sweep may have (a 10⁶-point sweep of a 4 × 4 A takes seconds; more is a typo).
 SWEEP_MAX = 1_000_000
 
@@ -50,6 +55,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="follow the eigenvalues as the parameter NAME goes from a to b by step (b included)")
     p.add_argument("--plot", metavar="DIR", default=None,
                    help="write eigenvalues.png (with --sweep) and mode_shapes.png into DIR (created when missing)")
+    p.add_argument("--animate", action="store_true",
+                   help=f"with --plot: also write mode_K.gif, the system moving in each mode K (a conjugate pair "
+                        f"once; at most {ANIMATIONS_MAX}), amplitude 0.1")
     p.add_argument("--lang", choices=("en", "fr"), default="en", help="language of the figures (default en)")
     p.add_argument("--json", action="store_true",
                    help="print the versioned JSON document (schema lagrangian.linearize/1, with `modes` and `sweep`)")
@@ -112,6 +120,8 @@ def run(args: argparse.Namespace) -> str:
     if sweep_name is not None and any(s.partition("=")[0].strip() == sweep_name for s in args.set):
         raise SettingError(f"`{sweep_name}` is both swept and given a value with `--set`.", fix="drop the `--set`")
     folder = Path(args.plot) if args.plot else None
+    if args.animate and folder is None:
+        raise SettingError("`--animate` writes its GIF files into the --plot folder.", fix="add --plot DIR")
     if folder is not None:
         _check_plot_folder(folder)
     eom = derive(model)
@@ -138,6 +148,9 @@ def run(args: argparse.Namespace) -> str:
         unit = next((p.unit or "" for p in model.parameters if p.name == sweep_name), "")
         text += render_sweep(lin, swept, unit)
     written = _plots(lin, modes, swept, folder, args.lang) if folder is not None else []
+    if args.animate:
+        at = {sweep_name: at_value} if lin.symbols else {}
+        written += _animations(lin, modes, folder, at)  # type: ignore[arg-type]
     if args.json:
         doc = linearize_document(lin, source=model.source, package_version=__version__, stability=stability,
                                  modes=modes, sweep=swept, modes_at={sweep_name: at_value} if lin.symbols else None)
@@ -162,3 +175,21 @@ def _plots(lin, modes, swept, folder: Path, lang: str) -> list[Path]:  # type: i
         raise OutputError(f"Cannot create the folder `{folder}`: {exc.strerror or exc}.",
                           fix="check the path and its permissions") from None
     return [save_figure(fig, folder / name) for name, fig in figures]
+
+
+def _animations(lin, modes, folder: Path, values: dict) -> list[Path]:  # type: ignore[no-untyped-def]
+    """``mode_K.gif`` for each mode K as the text numbers them (a conjugate pair once)."""
+    from ..plotting import animate, mode_trajectory
+
+    out: list[Path] = []
+    seen: list[complex] = []
+    for index, mode in enumerate(modes.modes):
+        z = mode.eigenvalue
+        if z.imag != 0 and any(abs(z.conjugate() - s) <= 1e-9 * max(1.0, abs(z)) for s in seen):
+            continue
+        seen.append(z)
+        if len(seen) > ANIMATIONS_MAX:
+            break
+        trajectory = mode_trajectory(lin, index, amplitude=AMPLITUDE, **values)
+        out.append(animate(trajectory, lin.eom, folder / f"mode_{len(seen)}.gif", frames=60))
+    return out
