@@ -108,3 +108,17 @@ def test_steady_precession_sets_the_neutral_directions_aside_and_gives_the_nutat
     text = " ".join(x for b in section.blocks if isinstance(b, Para) for x in b.runs if isinstance(x, str))
     assert "set aside" in text and "2 conserved momenta" in text and "Routh" in text
     assert r"\psi" in " ".join(math_of(section.blocks))
+
+
+def test_a_symbolic_linearization_is_reported_with_the_models_values(tmp_path):
+    eom = _pendulum()
+    lin = lagrangian.linearize(eom, {"theta": 0}, symbolic=("g",))
+    maths = math_of(report(eom, lang="en", small_motions=lin).document.section("small motions").blocks)
+    assert any(Words("en").number(math.sqrt(9.81 / 0.5)) in m for m in maths)
+    # A parameter with no value at all: the equations are written, the numbers are not.
+    model = tmp_path / "pendulum.toml"
+    model.write_text((EXAMPLES_DIR / "simple_pendulum.toml").read_text().replace("l = { value = 0.5, ", "l = { "))
+    section = report(lagrangian.load_model(model), lang="fr", small_motions={"theta": 0}).document.section(
+        "small motions")
+    text = " ".join(x for b in section.blocks if isinstance(b, Para) for x in b.runs if isinstance(x, str))
+    assert "demandent une valeur pour" in text and "Lagrange–Dirichlet" not in text

@@ -69,6 +69,23 @@ def _symbolic(lin: Any) -> Any:
         return None
 
 
+def _numeric(lin: Any) -> Any:
+    """``lin`` with numbers for its symbols (the model's values), or None when some symbol has no value."""
+    from ..analysis import linearize
+
+    if not lin.symbols:
+        return lin
+    at = {c: lin.point[c] for c in lin.eom.coordinates}
+    at.update({s: lin.point[s] for s in lin.speeds})
+    try:
+        out = linearize(lin.eom, at, parameters=lin.values, inputs=lin.inputs,
+                        independent_speeds=lin.speeds if lin.dependent_speeds else None,
+                        dependent_coordinates=lin.dependent_coordinates or None)
+    except (LagrangianError, ArithmeticError, RuntimeError, ValueError, TypeError):
+        return None
+    return None if out.symbols else out
+
+
 def _positive(lin: Any) -> Any:
     """``lin``'s second-order form with each entry simplified assuming the parameters whose value is positive are
     (a spring of rest length l0 gives k, not k (l0³ − (l0²)^{3/2} + l0² |l0|)/l0³)."""
@@ -247,8 +264,8 @@ def small_motions_section(c: Context, lin: Any) -> Section:
     """The section: the point, the linearized equations, the pulsations, the stability argument."""
     w = c.w
     sym = _symbolic(lin)
-    shown = sym if sym is not None and sym.second_order is not None else lin
-    stability, modes = lin.stability(), lin.modes()
+    num = _numeric(lin)
+    shown = sym if sym is not None and sym.second_order is not None else (num or lin)
     intro = "small intro steady" if lin.steady else "small intro"
     blocks: list[Block] = [Para(w(intro, point=_point(c, lin), dq=Math(r"q = q_{0} + \delta q")))]
     if lin.dependent_coordinates or lin.dependent_speeds:
@@ -269,6 +286,10 @@ def small_motions_section(c: Context, lin: Any) -> Section:
             blocks.append(Para(w("small numeric"), style="note"))
     else:
         blocks.append(Para(w("small first order", x=Math(r"\dot{x} = A\,x"), why=lin.second_order_reason)))
-    blocks += _pulsations(c, so if shown is sym else None, modes)
-    blocks += _stability(c, lin, stability, modes)
+    if num is None:  # a symbol without a value: no eigenvalue, no verdict
+        blocks.append(Para(w("small no values", names=w.join([Math(c.sym(str(x))) for x in lin.symbols]))))
+    else:
+        stability, modes = num.stability(), num.modes()
+        blocks += _pulsations(c, so if shown is sym else None, modes)
+        blocks += _stability(c, num, stability, modes)
     return Section("small motions", w.text("small title steady" if lin.steady else "small title"), tuple(blocks))

@@ -515,6 +515,8 @@ _PHRASES: dict[str, tuple[str, str]] = {
                       "quantités conservées) ; elles sont mises à part.",
                       "The directions {names} are neutral (eigenvalue 0: ignorable coordinates or conserved "
                       "quantities); they are set aside."),
+    "small no values": ("Les pulsations et la stabilité demandent une valeur pour {names}.",
+                        "The pulsations and the stability need a value for {names}."),
     "small momentum": ("un moment conservé", "a conserved momentum"),
     "small momenta": ("{k} moments conservés", "{k} conserved momenta"),
     "small eigenvalues left": ("Les autres valeurs propres de la matrice d'état A sont {lam}.",
