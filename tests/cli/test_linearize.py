@@ -290,3 +290,23 @@ def test_animate_writes_one_gif_per_mode_into_the_plot_folder(tmp_path, capsys):
     assert "λ₁" in out and "λ₂" in out and "λ₃" not in out  # two conjugate pairs, each written once
     assert {p.name for p in plots.iterdir()} == {"mode_shapes.png", "mode_1.gif", "mode_2.gif"}
     assert (plots / "mode_1.gif").read_bytes()[:6] in (b"GIF89a", b"GIF87a")
+
+
+def test_the_models_operating_point_fills_in_and_at_overrides_it(monkeypatch, capsys):
+    # Until the model format has an [operating_point] table, a model carrying the attribute stands in for one.
+    from lagrangian.cli import _linearize
+
+    import dataclasses
+
+    base = lagrangian.load_model(EXAMPLES_DIR / "cart_pendulum.toml")
+
+    class WithPoint(type(base)):  # no __slots__: the instance takes one more attribute
+        pass
+
+    model = WithPoint(**{f.name: getattr(base, f.name) for f in dataclasses.fields(base) if f.init})
+    object.__setattr__(model, "operating_point", {"x": 0, "theta": "pi"})
+    monkeypatch.setattr(_linearize, "load_source", lambda name: model)
+    doc = _json(capsys, "linearize", "cart")
+    assert doc["point"]["theta"] == pytest.approx(math.pi, rel=1e-15) and doc["stable"] is False
+    doc = _json(capsys, "linearize", "cart", "--at", "theta=0")
+    assert doc["point"]["theta"] == 0 and doc["stable"] is True
