@@ -98,7 +98,8 @@ def _reduce(A: np.ndarray, state: Sequence[str], lin: LinearModel) -> tuple[list
             sub = A[np.ix_(keep, keep)]
             k = keep.index(i)
             if not np.any(np.abs(sub[:, k]) > tol):
-                neutral.append((state[i], "ignorable: a shift of it is another steady motion (eigenvalue 0)"))
+                neutral.append((state[i], "does not act on the motion (eigenvalue 0)" if state[i].endswith("_dot")
+                                else "ignorable: a shift of it is another steady motion (eigenvalue 0)"))
             elif not np.any(np.abs(sub[k, :]) > tol):
                 neutral.append((state[i], "conserved to first order (eigenvalue 0)"))
             else:
@@ -198,7 +199,7 @@ def stability(lin: LinearModel, **values: float) -> Stability:
         moms = sum(1 for n, _ in neutral if n == "momentum")
         parts = [f"{names} neutral (eigenvalue 0: ignorable or conserved)"] if names else []
         if moms:
-            parts.append(f"{moms} conserved momentum{'a' if moms > 1 else ''} (eigenvalue 0)")
+            parts.append(f"{moms} conserved {'momenta' if moms > 1 else 'momentum'} (eigenvalue 0)")
         note = " Set aside: " + "; ".join(parts) + "."
     if lam.size == 0:
         return Stability(None, "marginal", "every direction is neutral: the linearization does not decide." + note, lam)

@@ -100,3 +100,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 def entrypoint() -> None:
     """Console-script entry point."""
     raise SystemExit(main())
+
+
+if __name__ == "__main__":  # python -m lagrangian.cli.main
+    entrypoint()
