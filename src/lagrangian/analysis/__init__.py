@@ -20,9 +20,9 @@ from ._reactions import TrajectoryResiduals as TrajectoryResiduals
 from ._reactions import check_trajectory as check_trajectory
 from ._reactions import reaction_history as reaction_history
 from ._reactions import reactions as reactions
-from ._linearize import LinearizationError as LinearizationError
-from ._linearize import LinearModel as LinearModel
-from ._linearize import SecondOrderForm as SecondOrderForm
+from ._linear_model import LinearizationError as LinearizationError
+from ._linear_model import LinearModel as LinearModel
+from ._linear_model import SecondOrderForm as SecondOrderForm
 from ._linearize import linearize as linearize
 from ._modes import Mode as Mode
 from ._modes import Modes as Modes

@@ -37,162 +37,28 @@ from __future__ import annotations
 import math
 import random
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
 
 import numpy as np
 import symengine as se
-import sympy
-from symengine.lib.symengine_wrapper import sympy2symengine
 
 from .._identity import are_zero
 from ..dynamics import EquationsOfMotion
 from ..model._expr import ExpressionError, parse_expression
-from ._effective_potential import AnalysisError
+from ._linear_algebra import RANK_RTOL, choose as _choose, jacobian as _jacobian, solve as _solve, stack as _stack
+from ._linear_algebra import sub as _sub, tidy as _tidy
+from ._linear_model import LinearizationError, LinearModel, SecondOrderForm, _is_structural_zero
+from ._linear_model import to_numpy as _to_numpy
 
 __all__ = ["LinearizationError", "SecondOrderForm", "LinearModel", "linearize", "POINT_RTOL"]
 
 #: A point is an equilibrium (steady motion) when its residual force is below this fraction
 #: of the forces' scale: `--at theta=3.14159` is the inverted pendulum, within 3e-6.
 POINT_RTOL = 1e-5
-#: Relative size below which a singular value counts as zero when columns are chosen.
-RANK_RTOL = 1e-9
 
 _ZERO = se.Integer(0)
 
 
-class LinearizationError(AnalysisError):
-    """The linearization cannot be made: an incomplete or unknown point, a point that is not an
-    equilibrium or a steady motion, a singular mass matrix or constraint Jacobian there."""
-
-
-@dataclass(frozen=True, slots=True)
-class SecondOrderForm:
-    """M δq̈ + (D + G) δq̇ + (K + N) δq = B u on ``coordinates`` (D, K symmetric; G, N skew)."""
-
-    coordinates: tuple[str, ...]
-    M: se.DenseMatrix
-    D: se.DenseMatrix
-    G: se.DenseMatrix
-    K: se.DenseMatrix
-    N: se.DenseMatrix
-    B: se.DenseMatrix
-
-
-@dataclass(frozen=True, slots=True, eq=False)
-class LinearModel:
-    """ẋ = A x + B u about a steady point, and its second-order form when it has one.
-
-    Attributes
-    ----------
-    eom : the equations it comes from.
-    point : the point, name → value (every coordinate and every rate, dependent ones solved).
-    coordinates, speeds : the independent coordinates and speeds (``<c>_dot``): the state is
-        ``coordinates + speeds``.
-    dependent_coordinates, dependent_speeds : those eliminated by the constraints, and ``choice``,
-        a sentence saying how they were chosen.
-    inputs : the names of the inputs u (columns of B).
-    A, B : the state matrices; their entries depend only on ``symbols``.
-    symbols : the parameters left symbolic (the others were given their values).
-    values : the parameter values substituted.
-    second_order : `SecondOrderForm`, or None with ``second_order_reason``.
-    ignorable : independent coordinates that do not act on the motion: their columns of A are zero once
-        the other ignorable ones are set aside.
-    residual : the relative residual force at the point (0 for an exact equilibrium).
-    multipliers : λ0 of the complementary constraints at the point.
-    coordinate_map : P, with δq = P δq_i: every coordinate's perturbation from the independent ones
-        (the identity without holonomic complementary constraints).
-    """
-
-    eom: EquationsOfMotion
-    point: dict[str, se.Basic]
-    coordinates: tuple[str, ...]
-    speeds: tuple[str, ...]
-    dependent_coordinates: tuple[str, ...]
-    dependent_speeds: tuple[str, ...]
-    choice: str
-    inputs: tuple[str, ...]
-    A: se.DenseMatrix
-    B: se.DenseMatrix
-    symbols: tuple[se.Symbol, ...]
-    values: dict[str, float]
-    second_order: SecondOrderForm | None
-    second_order_reason: str
-    ignorable: tuple[str, ...]
-    residual: float
-    multipliers: dict[str, se.Basic] = field(default_factory=dict)
-    coordinate_map: se.DenseMatrix | None = None
-
-    @property
-    def state(self) -> tuple[str, ...]:
-        """Names of the state x in order, e.g. ``("theta", "theta_dot")``."""
-        return self.coordinates + self.speeds
-
-    @property
-    def steady(self) -> bool:
-        """Some coordinate moves at the point (a steady motion rather than an equilibrium)."""
-        return any(not _is_structural_zero(self.point[c + "_dot"]) for c in self.eom.coordinates)
-
-    def _values(self, values: Mapping[str, float]) -> dict[se.Basic, float]:
-        names = {str(s): s for s in self.symbols}
-        unknown = sorted(set(values) - set(names))
-        if unknown:
-            raise LinearizationError(
-                f"`{unknown[0]}` is not a symbol of this linearization (its symbols: "
-                f"{', '.join(names) or 'none'}).", fix="give values only to the parameters left symbolic")
-        missing = [n for n in names if n not in values]
-        if missing:
-            raise LinearizationError(f"the parameter `{missing[0]}` has no value.",
-                                     fix=f"give it one, e.g. `{missing[0]}=1.0`")
-        return {names[n]: float(v) for n, v in values.items()}
-
-    def numeric(self, **values: float) -> tuple[np.ndarray, np.ndarray]:
-        """(A, B) as float arrays, the symbols left symbolic given ``values``."""
-        subs = self._values(values)
-        return _to_numpy(self.A, subs), _to_numpy(self.B, subs)
-
-    def eigenvalues(self, **values: float) -> np.ndarray:
-        """The eigenvalues of A (complex), in LAPACK's order."""
-        A, _ = self.numeric(**values)
-        return np.linalg.eigvals(A) if A.size else np.zeros(0, complex)
-
-    def modes(self, **values: float):  # type: ignore[no-untyped-def]
-        """Natural frequencies, damping ratios and mode shapes (`lagrangian.analysis.Modes`)."""
-        from ._modes import modes
-        return modes(self, **values)
-
-    def stability(self, **values: float):  # type: ignore[no-untyped-def]
-        """The stability verdict with its reason (`lagrangian.analysis.Stability`)."""
-        from ._modes import stability
-        return stability(self, **values)
-
-    def to_scipy(self, **values: float):  # type: ignore[no-untyped-def]
-        """``scipy.signal.StateSpace(A, B, I, 0)``: the whole state as output."""
-        from scipy import signal
-        A, B = self.numeric(**values)
-        n = A.shape[0]
-        B = B if B.shape[1] else np.zeros((n, 1))
-        return signal.StateSpace(A, B, np.eye(n), np.zeros((n, B.shape[1])))
-
-    def to_control(self, **values: float):  # type: ignore[no-untyped-def]
-        """python-control's ``StateSpace`` (extra ``lagrangian[control]``), states and inputs named."""
-        try:
-            import control
-        except ImportError:  # pragma: no cover - depends on the installation
-            raise LinearizationError("python-control is not installed.",
-                                     fix="pip install 'lagrangian[control]'") from None
-        A, B = self.numeric(**values)
-        n = A.shape[0]
-        inputs = list(self.inputs) or ["u"]
-        B = B if B.shape[1] else np.zeros((n, 1))
-        return control.ss(A, B, np.eye(n), np.zeros((n, B.shape[1])),
-                          states=list(self.state), inputs=inputs, outputs=list(self.state))
-
-
 # -- the point -----------------------------------------------------------------------------
-
-def _is_structural_zero(e: se.Basic) -> bool:
-    return e == _ZERO
-
 
 def _value(name: str, value: object, names: Mapping[str, se.Basic]) -> se.Basic:
     if isinstance(value, se.Basic):
@@ -227,77 +93,6 @@ def _generic(symbols: Sequence[se.Basic], known: Mapping[se.Basic, float]) -> di
     """Numbers for the symbols: their values when known, else fixed random ones in [0.3, 1.7]."""
     rng = random.Random(20261124)
     return {s: known.get(s, rng.uniform(0.3, 1.7)) for s in sorted(symbols, key=str)}
-
-
-def _to_numpy(m: se.DenseMatrix, subs: Mapping[se.Basic, float]) -> np.ndarray:
-    if m.rows == 0 or m.cols == 0:
-        return np.zeros((m.rows, m.cols))
-    try:
-        out = np.array(m.subs(dict(subs)).tolist(), dtype=complex) if subs else np.array(m.tolist(), dtype=complex)
-    except (RuntimeError, TypeError) as exc:
-        raise LinearizationError(f"a matrix entry is not a number once the parameters are given: {exc}") from None
-    if np.abs(out.imag).max(initial=0.0) > 1e-12 * max(1.0, np.abs(out.real).max(initial=0.0)):
-        raise LinearizationError("a matrix entry is complex at this point (a square root of a negative number?).")
-    return out.real.copy()
-
-
-def _choose(columns: np.ndarray, count: int, order: Sequence[int]) -> list[int]:
-    """``count`` columns, taken greedily in ``order``, each raising the numerical rank."""
-    chosen: list[int] = []
-    if count == 0:
-        return chosen
-    scale = max(1.0, float(np.abs(columns).max(initial=0.0)))
-    for j in order:
-        trial = columns[:, chosen + [j]]
-        if np.linalg.matrix_rank(trial, tol=RANK_RTOL * scale) == len(chosen) + 1:
-            chosen.append(j)
-            if len(chosen) == count:
-                break
-    return chosen
-
-
-def _solve(A: se.DenseMatrix, B: se.DenseMatrix) -> se.DenseMatrix:
-    """A⁻¹ B: by LAPACK when every entry is a number, else symbolically (LU)."""
-    if A.rows == 0:
-        return se.zeros(0, B.cols)
-    if not A.free_symbols and not B.free_symbols:
-        a = np.array(A.tolist(), dtype=float)
-        b = np.array(B.tolist(), dtype=float)
-        return se.DenseMatrix(np.linalg.solve(a, b).tolist())
-    return A.LUsolve(B)
-
-
-def _jacobian(exprs: Sequence[se.Basic], variables: Sequence[se.Symbol], subs: Mapping[se.Basic, se.Basic]) -> se.DenseMatrix:
-    """∂exprs/∂variables evaluated at ``subs``."""
-    if not exprs or not variables:
-        return se.zeros(len(exprs), len(variables))
-    # One SymEngine call for the derivatives and one for the substitution (no Python loop per entry).
-    return se.DenseMatrix(list(exprs)).jacobian(se.DenseMatrix(list(variables))).subs(dict(subs))
-
-
-#: Symbolic entries up to this many characters are put over a common denominator and factored
-#: (SymPy's `cancel` and `factor`: −g (m1 + m2)/(l1 m1) rather than the LU's nested fractions).
-TIDY_MAX_CHARS = 1500
-
-
-def _tidy(m: se.DenseMatrix) -> se.DenseMatrix:
-    """Each entry in its shortest form: expanded, or (symbolic and small) cancelled and factored."""
-    out = []
-    for i in range(m.rows):
-        row = []
-        for j in range(m.cols):
-            e = m[i, j]
-            best, size = e, len(str(e))
-            x = se.expand(e)
-            if len(str(x)) <= size:
-                best, size = x, len(str(x))
-            if e.free_symbols and size <= TIDY_MAX_CHARS:
-                y = sympy2symengine(sympy.factor(sympy.cancel(best._sympy_())))
-                if len(str(y)) <= size:
-                    best = y
-            row.append(best)
-        out.append(row)
-    return se.DenseMatrix(out) if out else m
 
 
 def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
@@ -573,13 +368,6 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
         multipliers={rows[k].multiplier.name: lam0[k, 0] for k in range(m)}, coordinate_map=_tidy(P))
 
 
-def _sub(m: se.DenseMatrix, rows: Sequence[int], cols: Sequence[int]) -> se.DenseMatrix:
-    """The submatrix of ``m`` on ``rows`` and ``cols``."""
-    if not rows or not cols:
-        return se.zeros(len(rows), len(cols))
-    return se.DenseMatrix([[m[i, j] for j in cols] for i in rows])
-
-
 def _ignorable(An: np.ndarray, ni: int, names: Sequence[str]) -> tuple[str, ...]:
     """Coordinates nothing depends on, found repeatedly: the bicycle's y first (δẏ = v δψ is its
     only use of ψ), then its heading ψ."""
@@ -605,19 +393,6 @@ def _snap(e: se.Basic) -> se.Basic:
 
 def _bad_name(name: str, kind: str) -> int:
     raise LinearizationError(f"`{name}` is not a {kind} of the model.", fix="check its spelling")
-
-
-def _stack(n: int, top_idx: Sequence[int], top: se.DenseMatrix, bottom_idx: Sequence[int],
-           bottom: se.DenseMatrix) -> se.DenseMatrix:
-    """The n-row matrix whose rows ``top_idx`` are ``top`` and rows ``bottom_idx`` are ``bottom``."""
-    out = se.zeros(n, top.cols)
-    for r, i in enumerate(top_idx):
-        for c in range(top.cols):
-            out[i, c] = top[r, c]
-    for r, i in enumerate(bottom_idx):
-        for c in range(bottom.cols):
-            out[i, c] = bottom[r, c]
-    return out
 
 
 def _velocity_maps(A_at: se.DenseMatrix, ind_s: list[int], dep_s: list[int], n: int) -> tuple[se.DenseMatrix, se.DenseMatrix]:

@@ -33,7 +33,8 @@ import numpy as np
 import symengine as se
 from scipy import linalg, optimize
 
-from ._linearize import LinearizationError, LinearModel, _to_numpy
+from ._linear_model import LinearizationError, LinearModel
+from ._linear_model import to_numpy as _to_numpy
 
 __all__ = ["Mode", "Modes", "Stability", "StabilityChange", "Sweep", "modes", "stability", "sweep"]
 

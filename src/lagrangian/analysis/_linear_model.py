@@ -1,0 +1,165 @@
+"""The result of a linearization: ẋ = A x + B u and M δq̈ + (D + G) δq̇ + (K + N) δq = B u, as values.
+
+`linearize` (in `_linearize`) builds a `LinearModel`; its entries depend only on the parameters
+left symbolic, and its methods evaluate them (`numeric`), give the modes and the verdict
+(`_modes`) and the state-space objects of SciPy and python-control.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+import symengine as se
+
+from ..dynamics import EquationsOfMotion
+from ._effective_potential import AnalysisError
+
+__all__ = ["LinearizationError", "SecondOrderForm", "LinearModel", "to_numpy"]
+
+_ZERO = se.Integer(0)
+
+
+def _is_structural_zero(e: se.Basic) -> bool:
+    return e == _ZERO
+
+
+class LinearizationError(AnalysisError):
+    """The linearization cannot be made: an incomplete or unknown point, a point that is not an
+    equilibrium or a steady motion, a singular mass matrix or constraint Jacobian there."""
+
+
+@dataclass(frozen=True, slots=True)
+class SecondOrderForm:
+    """M δq̈ + (D + G) δq̇ + (K + N) δq = B u on ``coordinates`` (D, K symmetric; G, N skew)."""
+
+    coordinates: tuple[str, ...]
+    M: se.DenseMatrix
+    D: se.DenseMatrix
+    G: se.DenseMatrix
+    K: se.DenseMatrix
+    N: se.DenseMatrix
+    B: se.DenseMatrix
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class LinearModel:
+    """ẋ = A x + B u about a steady point, and its second-order form when it has one.
+
+    Attributes
+    ----------
+    eom : the equations it comes from.
+    point : the point, name → value (every coordinate and every rate, dependent ones solved).
+    coordinates, speeds : the independent coordinates and speeds (``<c>_dot``): the state is
+        ``coordinates + speeds``.
+    dependent_coordinates, dependent_speeds : those eliminated by the constraints, and ``choice``,
+        a sentence saying how they were chosen.
+    inputs : the names of the inputs u (columns of B).
+    A, B : the state matrices; their entries depend only on ``symbols``.
+    symbols : the parameters left symbolic (the others were given their values).
+    values : the parameter values substituted.
+    second_order : `SecondOrderForm`, or None with ``second_order_reason``.
+    ignorable : independent coordinates that do not act on the motion: their columns of A are zero once
+        the other ignorable ones are set aside.
+    residual : the relative residual force at the point (0 for an exact equilibrium).
+    multipliers : λ0 of the complementary constraints at the point.
+    coordinate_map : P, with δq = P δq_i: every coordinate's perturbation from the independent ones
+        (the identity without holonomic complementary constraints).
+    """
+
+    eom: EquationsOfMotion
+    point: dict[str, se.Basic]
+    coordinates: tuple[str, ...]
+    speeds: tuple[str, ...]
+    dependent_coordinates: tuple[str, ...]
+    dependent_speeds: tuple[str, ...]
+    choice: str
+    inputs: tuple[str, ...]
+    A: se.DenseMatrix
+    B: se.DenseMatrix
+    symbols: tuple[se.Symbol, ...]
+    values: dict[str, float]
+    second_order: SecondOrderForm | None
+    second_order_reason: str
+    ignorable: tuple[str, ...]
+    residual: float
+    multipliers: dict[str, se.Basic] = field(default_factory=dict)
+    coordinate_map: se.DenseMatrix | None = None
+
+    @property
+    def state(self) -> tuple[str, ...]:
+        """Names of the state x in order, e.g. ``("theta", "theta_dot")``."""
+        return self.coordinates + self.speeds
+
+    @property
+    def steady(self) -> bool:
+        """Some coordinate moves at the point (a steady motion rather than an equilibrium)."""
+        return any(not _is_structural_zero(self.point[c + "_dot"]) for c in self.eom.coordinates)
+
+    def _values(self, values: Mapping[str, float]) -> dict[se.Basic, float]:
+        names = {str(s): s for s in self.symbols}
+        unknown = sorted(set(values) - set(names))
+        if unknown:
+            raise LinearizationError(
+                f"`{unknown[0]}` is not a symbol of this linearization (its symbols: "
+                f"{', '.join(names) or 'none'}).", fix="give values only to the parameters left symbolic")
+        missing = [n for n in names if n not in values]
+        if missing:
+            raise LinearizationError(f"the parameter `{missing[0]}` has no value.",
+                                     fix=f"give it one, e.g. `{missing[0]}=1.0`")
+        return {names[n]: float(v) for n, v in values.items()}
+
+    def numeric(self, **values: float) -> tuple[np.ndarray, np.ndarray]:
+        """(A, B) as float arrays, the symbols left symbolic given ``values``."""
+        subs = self._values(values)
+        return to_numpy(self.A, subs), to_numpy(self.B, subs)
+
+    def eigenvalues(self, **values: float) -> np.ndarray:
+        """The eigenvalues of A (complex), in LAPACK's order."""
+        A, _ = self.numeric(**values)
+        return np.linalg.eigvals(A) if A.size else np.zeros(0, complex)
+
+    def modes(self, **values: float):  # type: ignore[no-untyped-def]
+        """Natural frequencies, damping ratios and mode shapes (`lagrangian.analysis.Modes`)."""
+        from ._modes import modes
+        return modes(self, **values)
+
+    def stability(self, **values: float):  # type: ignore[no-untyped-def]
+        """The stability verdict with its reason (`lagrangian.analysis.Stability`)."""
+        from ._modes import stability
+        return stability(self, **values)
+
+    def to_scipy(self, **values: float):  # type: ignore[no-untyped-def]
+        """``scipy.signal.StateSpace(A, B, I, 0)``: the whole state as output."""
+        from scipy import signal
+        A, B = self.numeric(**values)
+        n = A.shape[0]
+        B = B if B.shape[1] else np.zeros((n, 1))
+        return signal.StateSpace(A, B, np.eye(n), np.zeros((n, B.shape[1])))
+
+    def to_control(self, **values: float):  # type: ignore[no-untyped-def]
+        """python-control's ``StateSpace`` (extra ``lagrangian[control]``), states and inputs named."""
+        try:
+            import control
+        except ImportError:  # pragma: no cover - depends on the installation
+            raise LinearizationError("python-control is not installed.",
+                                     fix="pip install 'lagrangian[control]'") from None
+        A, B = self.numeric(**values)
+        n = A.shape[0]
+        inputs = list(self.inputs) or ["u"]
+        B = B if B.shape[1] else np.zeros((n, 1))
+        return control.ss(A, B, np.eye(n), np.zeros((n, B.shape[1])),
+                          states=list(self.state), inputs=inputs, outputs=list(self.state))
+
+
+def to_numpy(m: se.DenseMatrix, subs: Mapping[se.Basic, float]) -> np.ndarray:
+    if m.rows == 0 or m.cols == 0:
+        return np.zeros((m.rows, m.cols))
+    try:
+        out = np.array(m.subs(dict(subs)).tolist(), dtype=complex) if subs else np.array(m.tolist(), dtype=complex)
+    except (RuntimeError, TypeError) as exc:
+        raise LinearizationError(f"a matrix entry is not a number once the parameters are given: {exc}") from None
+    if np.abs(out.imag).max(initial=0.0) > 1e-12 * max(1.0, np.abs(out.real).max(initial=0.0)):
+        raise LinearizationError("a matrix entry is complex at this point (a square root of a negative number?).")
+    return out.real.copy()
