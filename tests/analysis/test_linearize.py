@@ -297,3 +297,55 @@ def test_mode_drawn_as_a_motion_solves_the_linearized_equations(tmp_path):
     assert np.abs(traj.q).max() == pytest.approx(0.05)
     out = animate(traj, eom, tmp_path / "mode.gif", frames=5)
     assert out.stat().st_size > 0
+
+
+SLEEPING_TOP = """
+[model]
+name = "Heavy symmetric top in Cardan angles"
+[parameters]
+m = 1.0
+g = 9.81
+a = 0.1
+A = 0.02
+C = 0.01
+omega = { value = 40.0, description = "spin rate of the sleeping top" }
+[coordinates]
+alpha = {}
+beta = {}
+phi = {}
+[frames]
+R1 = { from = "R0", rotation = ["alpha", "x"] }
+R2 = { from = "R1", rotation = ["beta", "y"] }
+R = { from = "R2", rotation = ["phi", "z"] }
+[bodies.S]
+frame = "R"
+mass = "m"
+center = "a*R2.z"
+fixed_point = "O"
+inertia = { at = "O", frame = "R2", diagonal = ["A", "A", "C"] }
+[loads]
+weight = { gravity = "-g*R0.z" }
+"""
+
+
+def test_sleeping_top_gyroscopic_stabilisation_agrees_with_analyse_top():
+    """About α = β = 0, φ̇ = ω: M = A I, G = C ω J, K = −m g a I; stable iff C²ω² > 4 A m g a, the
+    threshold `analyse_top` gives for the same top in Euler angles."""
+    eom = lagrangian.derive(parse_model(SLEEPING_TOP))
+    lin = linearize(eom, {"alpha": 0, "beta": 0, "phi": 0, "phi_dot": "omega"}, symbolic=("omega",))
+    so = lin.second_order
+    A, C, m, g, a = 0.02, 0.01, 1.0, 9.81, 0.1
+    w = se.Symbol("omega")
+    idx = [so.coordinates.index(c) for c in ("alpha", "beta")]
+    for (i, j), expected in {(0, 0): A, (1, 1): A, (0, 1): 0}.items():
+        assert abs(float(so.M[idx[i], idx[j]]) - expected) < 1e-15
+        assert abs(float(so.K[idx[i], idx[j]]) - (-m * g * a if i == j else 0)) < 1e-15
+    assert abs(float(se.expand(so.G[idx[0], idx[1]] / w))) == pytest.approx(C, rel=1e-14)
+    critical = math.sqrt(4 * A * m * g * a) / C
+    assert lin.stability(omega=1.05 * critical).verdict == "stable to first order"
+    assert lin.stability(omega=0.95 * critical).stable is False
+    sw = lagrangian.sweep(lin, "omega", np.linspace(1.0, 60.0, 60))
+    changes = [c for c in sw.changes if c.kind.startswith("stability")]
+    assert len(changes) == 1 and changes[0].value == pytest.approx(critical, rel=1e-10)
+    top = lagrangian.analyse_top(_eom("lagrange_top"), initial={"theta": 0.0, "phi_dot": 40.0})
+    assert top.sleeping[0].critical_spin == pytest.approx(critical, rel=1e-12)
