@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from .analysis import (EnergyBalance, FirstIntegral, TopAnalysis, Verification, analyse_top, energy_balance,
                        first_integrals, verify)
+from .analysis import Equilibrium, equilibria
 from .dynamics import EquationsOfMotion, LagrangeEquation, derive
 from .errors import DerivationError, KinematicsError, LagrangianError, ModelError, OutputError, SimulationError, VerificationError
 from .kinematics import Kinematics
@@ -51,6 +52,8 @@ __all__ = [
     "Verification",
     "analyse_top",
     "TopAnalysis",
+    "Equilibrium",
+    "equilibria",
     "compile_system",
     "CompiledSystem",
     "simulate",

@@ -26,4 +26,8 @@ from ._top import analyse_top as analyse_top
 __all__ = ["FirstIntegral", "first_integrals", "CoordinateCheck", "ElementTheorems", "Verification", "verify",
            "Reaction", "ReactionHistory", "TrajectoryResiduals", "check_trajectory", "reaction_history",
            "reactions", "analyse_top", "TopAnalysis", "reduce_cyclic", "CyclicReduction", "AnalysisError",
-           "StructureError", "EnergyBalance", "PowerTerm", "energy_balance"]
+           "StructureError", "EnergyBalance", "PowerTerm", "energy_balance", "Equilibrium", "EquilibriumError",
+           "equilibria"]
+from ._equilibria import Equilibrium as Equilibrium
+from ._equilibria import EquilibriumError as EquilibriumError
+from ._equilibria import equilibria as equilibria
