@@ -19,9 +19,9 @@ Typical use::
 
 from __future__ import annotations
 
-from .analysis import (EnergyBalance, FirstIntegral, LinearizationError, LinearModel, Modes, Stability, Sweep,
-                       TopAnalysis, Verification, analyse_top, energy_balance, first_integrals, linearize, modes,
-                       stability, sweep, verify)
+from .analysis import (EnergyBalance, Equilibrium, FirstIntegral, LinearizationError, LinearModel, Modes, Stability,
+                       Sweep, TopAnalysis, Verification, analyse_top, energy_balance, equilibria, first_integrals,
+                       linearize, modes, stability, sweep, verify)
 from .dynamics import EquationsOfMotion, LagrangeEquation, derive
 from .errors import DerivationError, KinematicsError, LagrangianError, ModelError, OutputError, SimulationError, VerificationError
 from .kinematics import Kinematics
@@ -61,6 +61,8 @@ __all__ = [
     "Stability",
     "sweep",
     "Sweep",
+    "Equilibrium",
+    "equilibria",
     "compile_system",
     "CompiledSystem",
     "simulate",

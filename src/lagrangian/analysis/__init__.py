@@ -8,6 +8,9 @@ from ._effective_potential import reduce_cyclic as reduce_cyclic
 from ._energy_balance import EnergyBalance as EnergyBalance
 from ._energy_balance import PowerTerm as PowerTerm
 from ._energy_balance import energy_balance as energy_balance
+from ._equilibria import Equilibrium as Equilibrium
+from ._equilibria import EquilibriumError as EquilibriumError
+from ._equilibria import equilibria as equilibria
 from ._integrals import FirstIntegral as FirstIntegral
 from ._integrals import first_integrals as first_integrals
 from ._newton_euler import CoordinateCheck as CoordinateCheck
@@ -40,4 +43,4 @@ __all__ = ["FirstIntegral", "first_integrals", "CoordinateCheck", "ElementTheore
            "reactions", "analyse_top", "TopAnalysis", "reduce_cyclic", "CyclicReduction", "AnalysisError",
            "StructureError", "EnergyBalance", "PowerTerm", "energy_balance", "linearize", "LinearModel",
            "SecondOrderForm", "LinearizationError", "Mode", "Modes", "Stability", "StabilityChange", "Sweep", "modes",
-           "stability", "sweep"]
+           "stability", "sweep", "Equilibrium", "EquilibriumError", "equilibria"]

@@ -19,6 +19,7 @@ from ..errors import ModelError
 from ._expr import CONSTANTS, FUNCTIONS, ExpressionError, parse_expression
 from ._constraints import build_constraints
 from ._friction import FRICTION_KINDS, build_friction_load
+from ._operating_point import build_operating_point, check_inputs_used
 from ._reference import check_reference
 from ._vector import Vector, as_expr
 from .spec import (
@@ -153,6 +154,7 @@ class Assembler:
         loads = self.loads(all_points, bodies, particles, coordinates)
         constraints = build_constraints(self, self.of("constraint"), coordinates, all_points,
                                         [b.name for b in bodies])
+        operating = build_operating_point(self, self.b._operating_point, parameters, coordinates)
         model = Model(
             name=self.b.name,
             description=self.b.description,
@@ -167,8 +169,10 @@ class Assembler:
             locations=self.locations,
             constraints=constraints,
             reference=self.reference(all_points, frames, coordinates),
+            **operating,
         )
         self.check_coordinates_used(model)
+        check_inputs_used(model)
         return model
 
     def check_names(self) -> None:
@@ -220,7 +224,9 @@ class Assembler:
 
     def parameters(self) -> tuple[Parameter, ...]:
         out = []
-        for raw in self.of("parameter"):
+        for raw in self.decl:
+            if raw.kind not in ("parameter", "input"):
+                continue
             value = raw.data["value"]
             if value is not None and (isinstance(value, bool) or not isinstance(value, (int, float))):
                 raise self.error(raw, f"the value of parameter `{raw.name}` must be a number, not `{value}`",
@@ -229,8 +235,12 @@ class Assembler:
             if value is not None and not math.isfinite(value):
                 raise self.error(raw, f"the value of parameter `{raw.name}` must be a finite number, not `{value}`",
                                  symbol=raw.name, key="value", fix="write a finite number (not inf or nan)")
+            for key in ("unit", "description"):
+                if raw.data[key] is not None and not isinstance(raw.data[key], str):
+                    raise self.error(raw, f"`{key}` of {raw.kind} `{raw.name}` must be text, not `{raw.data[key]}`",
+                                     symbol=raw.name, key=key, fix=f'write it in quotes, e.g. {key} = "..."')
             out.append(Parameter(raw.name, None if value is None else float(value), raw.data["unit"],
-                                 raw.data["description"]))
+                                 raw.data["description"], input=raw.kind == "input"))
             self.symbols[raw.name] = se.Symbol(raw.name)
         return tuple(out)
 

@@ -31,14 +31,15 @@ else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 from ._constraints import read_constraint
 from ._friction import FRICTION_KINDS, TOML_KEYS, declare_from_toml
+from ._operating_point import located
 from ._reference import read_reference
 from .build import ModelBuilder
 from .spec import Location, Model
 
 __all__ = ["load_model", "parse_model"]
 
-_TABLES = ("model", "parameters", "coordinates", "frames", "points", "bodies", "particles", "loads",
-           "constraints", "reference")
+_TABLES = ("model", "parameters", "inputs", "coordinates", "frames", "points", "bodies", "particles", "loads",
+           "constraints", "reference", "operating_point")
 _LOAD_KINDS = {
     "gravity": {"gravity", "on"},
     "force": {"force", "at"},
@@ -123,7 +124,7 @@ def _syntax_error(text: str, msg: str, source: str | None) -> ModelError:
                       "tables as [name])", **where)
 
 
-_SINGULAR = {"parameters": "parameter", "coordinates": "coordinate", "frames": "frame", "points": "point",
+_SINGULAR = {"parameters": "parameter", "inputs": "input", "coordinates": "coordinate", "frames": "frame", "points": "point",
              "bodies": "body", "particles": "particle", "loads": "load", "constraints": "constraint"}
 #: TOML keys whose builder name differs, by table.
 _RENAME = {
@@ -212,6 +213,13 @@ class _Reader:
             v = self.entry("parameters", name, value, {"value", "unit", "description"}, "value")
             b.parameter(name, v.get("value"), unit=v.get("unit"), description=v.get("description"),
                         location=self.located("parameters", name, value, "value"))
+        for name, value in self.table("inputs").items():
+            if not isinstance(value, (dict, str)):
+                raise self.fail(("inputs", name), f"input `{name}` must be a table, not `{value}`", symbol=name,
+                                fix=f'e.g. {name} = {{ description = "hip torque", unit = "N*m" }}, or {name} = {{}}')
+            v = self.entry("inputs", name, value, {"unit", "description"}, "description")
+            b.input(name, unit=v.get("unit"), description=v.get("description"),
+                    location=self.located("inputs", name, value, "description"))
         for name, value in self.table("coordinates").items():
             v = self.entry("coordinates", name, value,
                            {"initial", "rate", "momentum", "unit", "description"}, "initial")
@@ -251,10 +259,30 @@ class _Reader:
             self.load(b, name, value)
         for name, value in self.table("constraints").items():
             read_constraint(self, b, name, value)
+        if "operating_point" in self.data:
+            self.operating_point(b)
         if "reference" in self.data:
             frame, origin, where = read_reference(self.data["reference"], self.index, self.source)
             b.reference(frame, origin=origin, location=where)
         return b.build()
+
+    def operating_point(self, b: ModelBuilder) -> None:
+        """``[operating_point]``: values by coordinate or rate name, and the lists ``independent``, ``dependent``."""
+        table = self.table("operating_point")
+        keys = {}
+        for key in table:
+            hit = self.index.get(("operating_point", key))
+            if hit is not None:
+                line, column = hit
+                value = table[key]
+                text = self.lines[line - 1]
+                if not (column and isinstance(value, str) and text[column - 1:column - 1 + len(value)] == value):
+                    column = 0
+                keys[key] = (line, column)
+        where = located(self.source, self.at("operating_point").line, keys)
+        values = {k: v for k, v in table.items() if k not in ("independent", "dependent")}
+        b.operating_point(values, independent=table.get("independent"), dependent=table.get("dependent"),
+                          location=where)
 
     def names(self, load: str, key: str, value: Any) -> tuple[str, ...]:
         """A name or a list of names (the ends of a spring, the bodies gravity acts on)."""

@@ -43,6 +43,7 @@ class ModelBuilder:
         self.source = source
         self._decl: list[Raw] = []
         self._reference: tuple[Any, Any, Location] | None = None  # (R, O', where): see `reference`
+        self._operating_point: Raw | None = None  # see `operating_point`
 
     # -- declarations -------------------------------------------------------------------
     def _add(self, what: str, name: str, location: Location | None, **data: Any) -> None:
@@ -56,6 +57,15 @@ class ModelBuilder:
                   description: str | None = None, location: Location | None = None) -> None:
         """Declare a parameter (a constant symbol), with an optional numeric value."""
         self._add("parameter", name, location, value=value, unit=unit, description=description)
+
+    def input(self, name: str, *, unit: str | None = None, description: str | None = None,
+              location: Location | None = None) -> None:
+        """Declare an input u: a symbol used like a parameter (value 0) that some load must use.
+
+        E.g. ``b.input("tau")`` then ``b.torque("motor", "tau*R1.z", on="S")``; linearization
+        gives it a column of B.
+        """
+        self._add("input", name, location, value=0.0, unit=unit, description=description)
 
     def coordinate(self, name: str, initial: float | None = None, rate: float | None = None, *,
                    momentum: str | None = None, unit: str | None = None, description: str | None = None,
@@ -154,6 +164,19 @@ class ModelBuilder:
         forces of Coriolis and of entrainment are then added to the given efforts.
         """
         self._reference = (frame, origin, location or Location(self.source))
+
+    def operating_point(self, values: Mapping[str, Any], *, independent: Sequence[str] | None = None,
+                        dependent: Sequence[str] | None = None, location: Location | None = None) -> None:
+        """The default point of linearization: coordinate and ``<coordinate>_dot`` names to constants.
+
+        Values are numbers or expressions in the parameters (``"-v/rR"``); ``independent``
+        names the independent speeds (``["phi_dot", "delta_dot"]``) and ``dependent`` the
+        coordinates the holonomic constraints eliminate, for models with complementary
+        constraints.  Given once; a second call replaces the first.
+        """
+        self._operating_point = Raw("operating point", "operating_point",
+                                    {"values": values, "independent": independent, "dependent": dependent},
+                                    location or Location(self.source))
 
     def constraint(self, name: str, form: str, value: Any, *, on: str | None = None, frame: str = GALILEAN_FRAME,
                    principal: bool = False, reaction: Mapping[str, Any] | None = None,

@@ -86,12 +86,18 @@ class Location:
 
 @dataclass(frozen=True, slots=True)
 class Parameter:
-    """A constant of the problem (mass, length, inertia...), with an optional value."""
+    """A constant of the problem (mass, length, inertia...), with an optional value.
+
+    ``input`` marks a declared input u (``[inputs]``): a symbol used like a parameter,
+    typically the magnitude of a load (a motor torque), whose value is 0 (the input off)
+    unless given; linearization makes it a column of B.
+    """
 
     name: str
     value: float | None = None
     unit: str | None = None
     description: str | None = None
+    input: bool = False
 
     @property
     def symbol(self) -> se.Symbol:
@@ -357,6 +363,13 @@ class Model:
     reference: Reference | None = None  # None: the equations are written in R0
     #: Declared constraints, principal or complementary (`lagrangian.model._constraints`).
     constraints: tuple[Constraint, ...] = ()
+    #: The default point of linearization (``[operating_point]``): coordinate and
+    #: ``<coordinate>_dot`` names to constant expressions in the parameters, in file order.
+    operating_point: tuple[tuple[str, se.Basic], ...] = ()
+    #: Independent speeds (``<coordinate>_dot`` names) chosen for the reduction, if given.
+    independent_speeds: tuple[str, ...] = ()
+    #: Dependent coordinates eliminated by the holonomic constraints, if given.
+    dependent_coordinates: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if not self.frames or self.frames[0].name != GALILEAN_FRAME:
@@ -379,6 +392,11 @@ class Model:
 
     def coordinate(self, name: str) -> Coordinate:
         return _find(self.coordinates, name, "coordinate")
+
+    @property
+    def inputs(self) -> tuple[str, ...]:
+        """Names of the declared inputs (``[inputs]``), in declaration order."""
+        return tuple(p.name for p in self.parameters if p.input)
 
     @property
     def parameter_values(self) -> dict[str, float | None]:

@@ -1,0 +1,452 @@
+"""Static equilibria of an autonomous system: q̇ = 0, q̈ = 0, so F(q, 0) + Aᵀλ = 0.
+
+With M(q) q̈ = F(q, q̇) + Aᵀ(q) λ (seed, section II; the multipliers of the complementary
+constraints, step 7), a configuration q* is a position of equilibrium when the system
+placed there at rest stays there: q̈ = 0 at q̇ = 0, i.e.
+
+    F(q*, 0) + Aᵀ(q*) λ = 0,    f(q*) = 0 (holonomic rows),    b(q*) = 0 (rate-free part
+                                                                 of the velocity rows).
+
+λ is eliminated numerically by projecting F on the complement of the range of Aᵀ.
+
+Closed form first: each equation is factored (sin θ · (R Ω² cos θ − g) = 0) and every choice
+of one factor per equation is solved by SymPy (on our own expressions, converted with
+``sympy.sympify``; never on user text).  A branch holding acos(a) or asin(a) exists for
+−1 ≤ a ≤ 1, one with √a for a ≥ 0; where the boundary makes the branch coincide with another
+branch (cos θ = g/(R Ω²) at R Ω² = g is θ = 0, a double root) the inequality is strict, so
+the double root is listed once, as the other branch.  Then a numeric multi-start search
+(``scipy.optimize.least_squares`` from a grid over the ranges) finds all roots when every
+parameter has a value; it fills in what the closed form missed (SymPy's solvers are not
+complete) or replaces it when SymPy fails.  Roots are deduplicated, angles modulo 2π.
+
+An *angle* is a coordinate in which the static equations are 2π-periodic (checked
+numerically); it ranges over (−π, π] — π rather than −π, as the course writes the upper
+position.  In the closed form a parameter is taken positive when its value is positive or
+missing, negative when negative, real when zero.  Other coordinates need a range for the numeric search (``ranges={"x": (a, b)}``).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import threading
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+import symengine as se
+import sympy
+from scipy import optimize
+
+from ..dynamics import EquationsOfMotion
+from ._effective_potential import AnalysisError
+
+__all__ = ["Equilibrium", "EquilibriumError", "equilibria", "SOLVE_TIMEOUT", "STARTS"]
+
+#: Seconds SymPy may take for the closed form before the numeric search takes over.
+SOLVE_TIMEOUT = 10.0
+#: About how many starting points the numeric search uses.
+STARTS = 240
+#: A root is accepted when ‖residual‖ ≤ TOLERANCE × (typical ‖residual‖ over the range).
+TOLERANCE = 1e-9
+
+
+class EquilibriumError(AnalysisError):
+    """Equilibria cannot be sought: a model that depends on t, an unknown parameter, a missing range."""
+
+
+@dataclass(frozen=True)
+class Equilibrium:
+    """One position of equilibrium q*.
+
+    Attributes
+    ----------
+    values : coordinate name → q*_i: a SymEngine expression in the parameters (closed form)
+        or a float (numeric); a coordinate in ``free`` maps to its own symbol (any value).
+    closed_form : whether ``values`` were found by SymPy.
+    condition, condition_text : the condition of existence (a SymPy relational or And of them,
+        in the parameters) and its text, or None when the equilibrium always exists.
+    exists : the condition at the parameter values (None when some value is missing).
+    numeric : q* at the parameter values (angles in (−π, π]), or None without all values.
+    residual : max |F(q*, 0) + Aᵀλ|, |f(q*)| at ``numeric`` (None without values).
+    free : coordinates absent from the static equations: any value is an equilibrium.
+    """
+
+    values: Mapping[str, se.Basic | float]
+    closed_form: bool
+    condition: sympy.Basic | None = None
+    condition_text: str | None = None
+    exists: bool | None = True
+    numeric: Mapping[str, float] | None = None
+    residual: float | None = None
+    free: tuple[str, ...] = field(default=())
+
+
+def equilibria(eom: EquationsOfMotion, parameters: Mapping[str, float] | None = None,
+               ranges: Mapping[str, tuple[float, float]] | None = None, *,
+               all_branches: bool = False) -> tuple[Equilibrium, ...]:
+    """Every static equilibrium of ``eom`` (q̇ = 0, q̈ = 0), closed form when possible.
+
+    Parameters
+    ----------
+    eom : `lagrangian.derive`'s result, for an autonomous model.
+    parameters : values overriding the model's (name → number).
+    ranges : coordinate name → (a, b), where the numeric search looks (and where closed-form
+        roots are kept); angles default to (−π, π], other coordinates have no default.
+    all_branches : keep closed-form branches whose condition is false at the values.
+
+    Raises
+    ------
+    EquilibriumError
+        The model depends on t explicitly, a name in ``parameters`` or ``ranges`` is unknown,
+        or the closed form failed and a coordinate that is not an angle has no range.
+    """
+    system = _StaticSystem(eom)
+    values = _values(eom, parameters)
+    ranges = _ranges(eom, ranges)
+    known = all(v is not None for v in values.values())
+    numbers = {se.Symbol(k): v for k, v in values.items() if v is not None}
+    angles = system.angles(numbers)
+    out: list[Equilibrium] = []
+    branches = _closed_form(system, values)
+    if branches is not None:
+        for sol in branches:
+            eq = _from_closed_form(system, sol, branches, numbers, angles, known)
+            if eq is None or (eq.exists is False and not all_branches):
+                continue
+            if eq.numeric is not None and not _in_ranges(eq.numeric, ranges, angles):
+                continue
+            if eq.numeric is None or eq.exists is False or not any(
+                    o.numeric is not None and o.exists is not False and _same(o.numeric, eq.numeric, angles)
+                    for o in out):
+                out.append(eq)
+    searchable = [n for n in system.active if n in angles or n in ranges]
+    continuum = any(len(e.free) > len(system.free) for e in out)  # sample points of it are no news
+    if known and not continuum and (branches is None or len(searchable) == len(system.active)):
+        missing = [n for n in system.active if n not in searchable]
+        if missing:
+            raise EquilibriumError(
+                f"no closed form was found and coordinate `{missing[0]}` is not an angle, so the numeric search "
+                "needs a range for it", fix=f"give one: ranges={{'{missing[0]}': (a, b)}} "
+                f"(CLI: --range {missing[0]}=a:b)")
+        found = [e.numeric for e in out if e.numeric is not None and e.exists is not False]
+        for root, res in _search(system, numbers, ranges, angles):
+            if not any(_same(f, root, angles) for f in found):
+                found.append(root)
+                vals = {n: root[n] if n in root else se.Symbol(n) for n in system.names}
+                out.append(Equilibrium(vals, False, numeric=root, residual=res, free=system.free))
+    elif not known and branches is None:
+        missing = sorted(k for k, v in values.items() if v is None)
+        raise EquilibriumError(f"no closed form was found, and parameter `{missing[0]}` has no value for a "
+                               "numeric search", fix=f"give it one: parameters={{'{missing[0]}': ...}} "
+                               f"(CLI: --set {missing[0]}=...)")
+    return tuple(out)
+
+
+# -- the static system ---------------------------------------------------------------------
+class _StaticSystem:
+    """F(q, 0) + Aᵀλ = 0, f(q) = 0, b(q) = 0, with the checks that it is autonomous."""
+
+    def __init__(self, eom: EquationsOfMotion) -> None:
+        t = eom.t
+        rest = {qd: 0 for qd in eom.qd}
+        self.eom = eom
+        self.q = list(eom.q)
+        self.names = [str(s) for s in self.q]
+        F = [se.sympify(f).subs(rest) for f in eom.F]
+        for name, f in zip(self.names, F):
+            _autonomous(f, t, f"the generalized force on `{name}` at rest")
+        for row in eom.M:
+            for m in row:
+                _autonomous(se.sympify(m), t, "the mass matrix M")
+        self.A = [[se.sympify(a) for a in r.coefficients] for r in eom.constraints]
+        self.lam = [r.multiplier for r in eom.constraints]
+        extra = []
+        for r in eom.constraints:
+            e = se.sympify(r.expression if r.kind == "holonomic" else r.b).subs(rest)
+            _autonomous(e, t, f"constraint row `{r.name}`")
+            for a in r.coefficients:
+                _autonomous(se.sympify(a), t, f"constraint row `{r.name}`")
+            if e != 0:
+                extra.append(e)
+        self.F = F
+        self.extra = extra
+        #: F + Aᵀλ per coordinate, then the holonomic rows and the rate-free parts b.
+        self.equations = [f + sum((lam * row[i] for lam, row in zip(self.lam, self.A)), se.Integer(0))
+                          for i, f in enumerate(F)] + extra
+        used: set[se.Basic] = set()
+        for e in self.equations:
+            used |= e.free_symbols
+        self.free = tuple(n for n, s in zip(self.names, self.q) if s not in used)
+        self.active = [n for n in self.names if n not in self.free]
+
+    def angles(self, numbers: Mapping[se.Basic, float]) -> set[str]:
+        """Coordinates in which every static equation is 2π-periodic (at two random points)."""
+        rng = np.random.default_rng(1)
+        symbols = set().union(*(e.free_symbols for e in self.equations)) if self.equations else set()
+        out = set()
+        for name, q in zip(self.names, self.q):
+            if name in self.free:
+                continue
+            ok = True
+            for _ in range(2):
+                point = {s: numbers.get(s, float(rng.uniform(0.5, 2.0))) for s in symbols}
+                point.update({s: float(rng.uniform(-3, 3)) for s in symbols if s in self.q or s in self.lam})
+                shifted = dict(point)
+                shifted[q] = point[q] + 2 * math.pi
+                for e in self.equations:
+                    a, b = complex(e.subs(point)), complex(e.subs(shifted))
+                    if abs(a - b) > 1e-9 * (1 + abs(a)):
+                        ok = False
+            if ok:
+                out.add(name)
+        return out
+
+    def residual_function(self, numbers: Mapping[se.Basic, float]):  # type: ignore[no-untyped-def]
+        """r(q_active) with λ eliminated: (I − Aᵀ(Aᵀ)⁺) F, then the holonomic and b rows."""
+        q = [s for n, s in zip(self.names, self.q) if n in self.active]
+        zero = {se.Symbol(n): 0.0 for n in self.free}
+        F = se.Lambdify(q, [f.subs(numbers).subs(zero) for f in self.F]) if q else None
+        A = (se.Lambdify(q, [a.subs(numbers).subs(zero) for row in self.A for a in row])
+             if self.A else None)
+        X = se.Lambdify(q, [e.subs(numbers).subs(zero) for e in self.extra]) if self.extra else None
+        n, m = len(self.names), len(self.A)
+
+        def r(x: np.ndarray) -> np.ndarray:
+            f = np.asarray(F(x), dtype=float).ravel()
+            parts = []
+            if A is not None:
+                At = np.asarray(A(x), dtype=float).reshape(m, n).T
+                lam, *_ = np.linalg.lstsq(At, -f, rcond=None)
+                f = f + At @ lam
+            parts.append(f)
+            if X is not None:
+                parts.append(np.asarray(X(x), dtype=float).ravel())
+            return np.concatenate(parts)
+
+        return r
+
+
+def _autonomous(e: se.Basic, t: se.Symbol, where: str) -> None:
+    if t in e.free_symbols:
+        raise EquilibriumError(
+            f"the model depends on t explicitly ({where} contains t), so it has no static equilibrium in "
+            "the sense q̇ = 0 for all t", fix="write the equations in a frame where the motion is steady "
+            "([reference]), or study the motion by simulation")
+
+
+def _values(eom: EquationsOfMotion, parameters: Mapping[str, float] | None) -> dict[str, float | None]:
+    values: dict[str, float | None] = {p.name: p.value for p in eom.model.parameters}
+    for k, v in (parameters or {}).items():
+        if k not in values:
+            raise EquilibriumError(f"`{k}` is not a parameter of the model", fix="parameters: "
+                                   + ", ".join(values))
+        values[k] = float(v)
+    return values
+
+
+def _ranges(eom: EquationsOfMotion, ranges: Mapping[str, tuple[float, float]] | None) -> dict[str, tuple[float, float]]:
+    out = {}
+    for k, (a, b) in (ranges or {}).items():
+        if k not in eom.coordinates:
+            raise EquilibriumError(f"`{k}` in the ranges is not a coordinate", fix="coordinates: "
+                                   + ", ".join(eom.coordinates))
+        if not (math.isfinite(a) and math.isfinite(b) and a < b):
+            raise EquilibriumError(f"the range of `{k}` must be a < b, finite, not {a}:{b}",
+                                   fix=f"e.g. {k}=-1:1")
+        out[k] = (float(a), float(b))
+    return out
+
+
+# -- closed form ------------------------------------------------------------------------------
+def _sympy_symbols(system: _StaticSystem, values: Mapping[str, float | None]) -> dict[se.Basic, sympy.Symbol]:
+    """SymPy symbols with assumptions: parameters positive (negative) when their value is, else real."""
+    out = {}
+    for name, v in values.items():
+        kw = {"positive": True} if (v is None or v > 0) and v != 0 else {"negative": True} if v < 0 else {"real": True}
+        out[se.Symbol(name)] = sympy.Symbol(name, **kw)
+    for s in [*system.q, *system.lam]:
+        out[s] = sympy.Symbol(str(s), real=True)
+    return out
+
+
+def _closed_form(system: _StaticSystem, values: Mapping[str, float | None]) -> list[dict] | None:
+    """Every branch SymPy finds, as dicts coordinate name → SymPy expression; None when it fails."""
+    if not system.active:
+        return [{}]
+    symbols = _sympy_symbols(system, values)
+    subs = {sympy.Symbol(str(k)): v for k, v in symbols.items()}
+    eqs = [sympy.sympify(e).xreplace(subs) for e in system.equations]  # our expressions, never user text
+    eqs = [e for e in eqs if e != 0]
+    unknowns = [symbols[s] for n, s in zip(system.names, system.q) if n in system.active]
+    unknowns += [symbols[s] for s in system.lam]
+    result: list = []
+
+    def factors(e: sympy.Basic) -> list[sympy.Basic]:
+        try:
+            return [f for f, _ in sympy.factor_list(sympy.together(e))[1] if f.free_symbols & set(unknowns)] or [e]
+        except sympy.PolynomialError:
+            return [e]
+
+    def work() -> None:
+        try:
+            combos = list(itertools.product(*[factors(e) for e in eqs]))
+            if len(combos) > 64:
+                combos = [tuple(eqs)]
+            sols = []
+            for combo in combos:
+                sols += sympy.solve(list(combo), unknowns, dict=True)
+            result.append(sols)
+        except Exception:  # noqa: BLE001 - any SymPy failure means: no closed form, search numerically
+            result.append(None)
+
+    # SymPy cannot be interrupted: a slow solve is left to finish in a daemon thread.
+    th = threading.Thread(target=work, daemon=True)
+    th.start()
+    th.join(SOLVE_TIMEOUT)
+    if not result or result[0] is None:
+        return None
+    names = {symbols[s]: n for n, s in zip(system.names, system.q)}
+    out = []
+    for sol in result[0]:
+        branch = {names[k]: v for k, v in sol.items() if k in names}
+        if any(v.has(sympy.I) for v in branch.values()):
+            continue  # complex roots (or not known to be real): left to the numeric search
+        if any(any(x in unknowns for x in v.free_symbols) for v in branch.values()):
+            continue
+        out.append(branch)
+    return out
+
+
+def _condition(expr: sympy.Basic, branch: Mapping[str, sympy.Basic], others: Sequence[Mapping[str, sympy.Basic]],
+               name: str) -> list[sympy.Basic]:
+    """Where ``expr`` (q*_name) is real: −1 ≤ a ≤ 1 in acos(a), asin(a); a ≥ 0 under √."""
+    conds = []
+    for f in expr.atoms(sympy.acos, sympy.asin):
+        a = f.args[0]
+        for bound, edge in ((1, sympy.acos(1) if f.func is sympy.acos else sympy.pi / 2),
+                            (-1, sympy.pi if f.func is sympy.acos else -sympy.pi / 2)):
+            at_edge = expr.xreplace({f: edge})
+            double = any(_equal_mod_2pi(at_edge, o.get(name)) for o in others if o is not branch)
+            rel = (sympy.Lt if double else sympy.Le) if bound == 1 else (sympy.Gt if double else sympy.Ge)
+            conds.append(_tidy(rel(a, bound)))
+    for p in expr.atoms(sympy.Pow):
+        if p.exp.is_Rational and p.exp.q % 2 == 0:
+            conds.append(_tidy(sympy.Ge(p.base, 0)))
+    return conds
+
+
+def _equal_mod_2pi(a: sympy.Basic, b: sympy.Basic | None) -> bool:
+    if b is None:
+        return False
+    d = sympy.simplify((a - b) / (2 * sympy.pi))
+    return bool(d.is_integer)
+
+
+def _tidy(rel: sympy.Basic) -> sympy.Basic:
+    """``g/(R Ω²) < 1`` → ``R Ω² > g``: clear a positive denominator, positive terms on each side."""
+    if rel in (sympy.true, sympy.false):
+        return rel
+    num, den = sympy.fraction(sympy.together(rel.lhs - rel.rhs))
+    if den.is_positive:
+        terms = sympy.Add.make_args(sympy.expand(num))
+        left = sympy.Add(*[t for t in terms if not t.could_extract_minus_sign()])
+        right = sympy.Add(*[-t for t in terms if t.could_extract_minus_sign()])
+        rel = rel.func(left, right)
+        if rel.func in (sympy.Lt, sympy.Le):
+            rel = rel.reversed
+    return rel
+
+
+def _from_closed_form(system: _StaticSystem, branch: Mapping[str, sympy.Basic], branches: Sequence[Mapping],
+                      numbers: Mapping[se.Basic, float], angles: set[str], known: bool) -> Equilibrium | None:
+    conds: list[sympy.Basic] = []
+    for name, v in branch.items():
+        conds += _condition(v, branch, branches, name)
+    condition = sympy.And(*conds) if conds else sympy.true
+    if condition == sympy.false:
+        return None
+    free = tuple(n for n in system.names if n in system.free or n not in branch)
+    plain = {s: sympy.Symbol(s.name) for v in branch.values() for s in v.free_symbols}
+    values: dict[str, se.Basic | float] = {n: se.sympify(v.xreplace(plain)) for n, v in branch.items()}
+    exists: bool | None = True
+    if condition != sympy.true:
+        at = condition.xreplace({s: numbers[se.Symbol(s.name)] for s in condition.free_symbols
+                                 if se.Symbol(s.name) in numbers})
+        exists = bool(at) if at in (sympy.true, sympy.false) else None
+    numeric = residual = None
+    if known and exists is not False and len(free) == len(system.free):
+        numeric = {}
+        for n, v in values.items():
+            x = float(se.sympify(v).subs(numbers))
+            if n in angles:
+                shift = _wrap(x) - x
+                x += shift
+                k = round(shift / (2 * math.pi))
+                if k:
+                    values[n] = se.sympify(v) + 2 * k * se.pi
+            numeric[n] = x
+        r = system.residual_function(numbers)
+        residual = float(np.max(np.abs(r(np.array([numeric[n] for n in system.active]))), initial=0.0))
+    for n in free:
+        values[n] = se.Symbol(n)
+    values = {n: values[n] for n in system.names}
+    return Equilibrium(values, True, None if condition == sympy.true else condition,
+                       None if condition == sympy.true else sympy.sstr(condition), exists, numeric, residual, free)
+
+
+# -- numeric search -----------------------------------------------------------------------------
+def _wrap(x: float) -> float:
+    """x modulo 2π in (−π, π]."""
+    y = math.remainder(x, 2 * math.pi)
+    return math.pi if y <= -math.pi + 1e-12 else y
+
+
+def _in_ranges(point: Mapping[str, float], ranges: Mapping[str, tuple[float, float]], angles: set[str]) -> bool:
+    for n, x in point.items():
+        if n in ranges and n not in angles:
+            a, b = ranges[n]
+            if not (a - 1e-12 * (1 + abs(a)) <= x <= b + 1e-12 * (1 + abs(b))):
+                return False
+    return True
+
+
+def _same(a: Mapping[str, float], b: Mapping[str, float], angles: set[str]) -> bool:
+    for n in a:
+        d = a[n] - b.get(n, math.nan)
+        if n in angles:
+            d = math.remainder(d, 2 * math.pi)
+        if not abs(d) <= 1e-6 * (1 + abs(a[n])):
+            return False
+    return True
+
+
+def _search(system: _StaticSystem, numbers: Mapping[se.Basic, float], ranges: Mapping[str, tuple[float, float]],
+            angles: set[str]) -> list[tuple[dict[str, float], float]]:
+    """All roots of the static system in the ranges, from a grid of starting points."""
+    names = system.active
+    if not names:
+        return []
+    box = [(-math.pi, math.pi) if n in angles and n not in ranges else ranges[n] for n in names]
+    d = len(names)
+    k = max(2, int(round(STARTS ** (1 / d))))
+    rng = np.random.default_rng(0)
+    axes = [np.linspace(a, b, k, endpoint=False) + (b - a) / (2 * k) for a, b in box]
+    starts = [np.array(p) for p in itertools.product(*axes)] if k ** d <= 4 * STARTS else \
+        [np.array([rng.uniform(a, b) for a, b in box]) for _ in range(STARTS)]
+    r = system.residual_function(numbers)
+    scale = float(np.median([np.linalg.norm(r(x)) for x in starts[:: max(1, len(starts) // 30)]])) or 1.0
+    found: list[tuple[dict[str, float], float]] = []
+    for x0 in starts:
+        try:
+            sol = optimize.least_squares(r, x0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15)
+        except (ValueError, np.linalg.LinAlgError):
+            continue
+        res = float(np.max(np.abs(r(sol.x))))
+        if not np.isfinite(res) or np.linalg.norm(r(sol.x)) > TOLERANCE * scale:
+            continue
+        point = {n: (_wrap(x) if n in angles else float(x)) for n, x in zip(names, sol.x)}
+        if _in_ranges(point, ranges, angles) and not any(_same(p, point, angles) for p, _ in found):
+            found.append((point, res))
+    found.sort(key=lambda pr: tuple(pr[0][n] for n in names))
+    return found

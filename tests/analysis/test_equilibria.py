@@ -1,0 +1,164 @@
+"""`lagrangian.equilibria` against closed forms worked by hand, and a numeric case against a scan.
+
+* Bead on the hoop turning at Ω (examples/bead_rotating_hoop.toml): in the hoop's frame
+  m R² θ̈ = −m g R sinθ + m R² Ω² sinθ cosθ, so θ = 0, θ = π, and cosθ = g/(R Ω²) when R Ω² > g.
+* Simple pendulum: sinθ = 0.
+* Double pendulum of two rods, θ2 relative to rod 1: U = −(m1 l1/2 + m2 l1) g cosθ1 −
+  m2 g l2/2 cos(θ1 + θ2), so sinθ1 = 0 and sin(θ1 + θ2) = 0: four equilibria.
+* Cart on a spring with a pendulum: k x = 0 (the spring's length |x + l0| = l0: x = 0 or −2 l0),
+  sinθ = 0.
+* Pendulum with a torsion spring of rest angle α: −k(θ − α) − m g l sinθ = 0 has no closed form;
+  its roots are counted and bracketed by a sign-change scan and `scipy.optimize.brentq`.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy import optimize
+
+import lagrangian
+from lagrangian.analysis import EquilibriumError
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def derive(name: str) -> lagrangian.EquationsOfMotion:
+    return lagrangian.derive(lagrangian.load_model(ROOT / "examples" / f"{name}.toml"))
+
+
+def points(found, *names):  # type: ignore[no-untyped-def]
+    rows = sorted(tuple(round(e.numeric[n], 9) for n in names) for e in found)
+    return [r[0] for r in rows] if len(names) == 1 else rows
+
+
+# -- bead on the rotating hoop ---------------------------------------------------------------------
+def test_bead_above_the_critical_rate_has_four_equilibria() -> None:
+    eom = derive("bead_rotating_hoop")  # R = 0.5, g = 9.81, Omega = 6: R Ω² = 18 > g
+    found = lagrangian.equilibria(eom)
+    a = math.acos(9.81 / (0.5 * 36))
+    assert points(found, "theta") == sorted(round(x, 9) for x in (0.0, math.pi, a, -a))
+    assert all(e.closed_form and e.residual < 1e-12 for e in found)
+    tilted = [e for e in found if e.condition is not None]
+    assert len(tilted) == 2
+    for e in tilted:
+        assert e.exists is True
+        assert e.condition_text == "Omega**2*R > g"
+    upright = [e for e in found if e.condition is None]
+    assert sorted(str(e.values["theta"]) for e in upright) == ["0", "pi"]
+
+
+def test_bead_below_the_critical_rate_has_two() -> None:
+    eom = derive("bead_rotating_hoop")
+    found = lagrangian.equilibria(eom, parameters={"Omega": 2.0})  # R Ω² = 2 < g
+    assert points(found, "theta") == [0.0, round(math.pi, 9)]
+    every = lagrangian.equilibria(eom, parameters={"Omega": 2.0}, all_branches=True)
+    assert [e.exists for e in every].count(False) == 2
+
+
+def test_bead_at_the_critical_rate_the_double_root_is_theta_zero() -> None:
+    # R Ω² = g: cosθ = 1 is θ = 0, already listed; the tilted branch needs R Ω² > g strictly.
+    eom = derive("bead_rotating_hoop")
+    found = lagrangian.equilibria(eom, parameters={"Omega": math.sqrt(9.81 / 0.5)})
+    assert points(found, "theta") == [0.0, round(math.pi, 9)]
+
+
+# -- pendulums ---------------------------------------------------------------------------------------
+def test_simple_pendulum_sin_theta_zero() -> None:
+    found = lagrangian.equilibria(derive("simple_pendulum"))
+    assert points(found, "theta") == [0.0, round(math.pi, 9)]
+    assert all(e.closed_form and e.condition is None for e in found)
+
+
+def test_double_pendulum_four_equilibria() -> None:
+    found = lagrangian.equilibria(derive("double_pendulum"))
+    pi = round(math.pi, 9)
+    # down-down, down-up (θ2 = π relative), up-down (θ1 = π, θ1 + θ2 ≡ 0), up-up (θ1 = π, θ2 = 0)
+    assert points(found, "theta1", "theta2") == sorted([(0.0, 0.0), (0.0, pi), (pi, pi), (pi, 0.0)])
+    assert all(e.residual < 1e-12 for e in found)
+
+
+def test_cart_pendulum_with_a_spring() -> None:
+    eom = derive("cart_pendulum")  # l0 = 0.5
+    found = lagrangian.equilibria(eom)
+    pi = round(math.pi, 9)
+    assert points(found, "x", "theta") == sorted([(0.0, 0.0), (0.0, pi), (-1.0, 0.0), (-1.0, pi)])
+    assert {str(e.values["x"]) for e in found} == {"0", "-2*l0"}
+    near = lagrangian.equilibria(eom, ranges={"x": (-0.4, 2.0)})
+    assert points(near, "x", "theta") == [(0.0, 0.0), (0.0, pi)]
+
+
+def test_constrained_pendulum_uses_the_multiplier() -> None:
+    # x² + y² = l² kept complementary: F + λ ∇f = 0 gives x = 0, y = ±l.
+    found = lagrangian.equilibria(derive("pendulum_tension"))
+    assert points(found, "x", "y") == [(0.0, -0.5), (0.0, 0.5)]
+
+
+TORSION = """\
+[parameters]
+m = 1.0
+l = 1.0
+g = 1.0
+k = 0.1
+alpha = 0.3
+
+[coordinates]
+theta = {}
+
+[frames]
+R1 = { from = "R0", rotation = ["theta", "z"] }
+
+[particles.P]
+mass = "m"
+position = "l*R1.x"
+
+[loads]
+weight = { gravity = "g*R0.x" }
+torsion = { potential = "1/2*k*(theta - alpha)^2" }
+"""
+
+
+def test_torsion_pendulum_numeric_roots_match_a_sign_change_scan() -> None:
+    eom = lagrangian.derive(lagrangian.parse_model(TORSION))
+    with pytest.raises(EquilibriumError) as info:
+        lagrangian.equilibria(eom)
+    assert "coordinate `theta` is not an angle" in info.value.message and "--range theta=a:b" in info.value.fix
+    lo, hi = -12.0, 12.0
+    found = lagrangian.equilibria(eom, ranges={"theta": (lo, hi)})
+
+    def f(th: float) -> float:  # Q_θ = −k(θ − α) − m g l sinθ, written here from the physics
+        return -0.1 * (th - 0.3) - math.sin(th)
+
+    grid = np.linspace(lo, hi, 200001)
+    values = np.array([f(x) for x in grid])
+    brackets = np.nonzero(np.sign(values[:-1]) != np.sign(values[1:]))[0]
+    expected = sorted(optimize.brentq(f, grid[i], grid[i + 1], xtol=1e-14) for i in brackets)
+    assert len(expected) == 5  # the line −0.1(θ − 0.3) meets sinθ five times in [−12, 12]
+    got = sorted(e.numeric["theta"] for e in found)
+    assert len(got) == len(expected)
+    assert np.allclose(got, expected, atol=1e-9)
+    assert all(not e.closed_form and e.residual < 1e-10 for e in found)
+
+
+# -- refusals ------------------------------------------------------------------------------------------
+def test_time_dependent_model_is_refused() -> None:
+    with pytest.raises(EquilibriumError) as info:
+        lagrangian.equilibria(derive("kapitza_pendulum"))
+    assert "depends on t explicitly" in info.value.message and "theta" in info.value.message
+
+
+def test_unknown_names_are_refused() -> None:
+    eom = derive("simple_pendulum")
+    with pytest.raises(EquilibriumError, match="`w` is not a parameter"):
+        lagrangian.equilibria(eom, parameters={"w": 1.0})
+    with pytest.raises(EquilibriumError, match="`y` in the ranges is not a coordinate"):
+        lagrangian.equilibria(eom, ranges={"y": (0.0, 1.0)})
+
+
+def test_a_continuum_of_equilibria_is_reported_free() -> None:
+    # The rolling coin on a level plane stays at rest anywhere: every coordinate is free.
+    found = lagrangian.equilibria(derive("rolling_coin"))
+    assert len(found) == 1 and set(found[0].free) == {"x", "y", "psi", "phi"}
