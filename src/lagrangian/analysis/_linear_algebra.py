@@ -35,13 +35,21 @@ def choose(columns: np.ndarray, count: int, order: Sequence[int]) -> list[int]:
 
 
 def solve(A: se.DenseMatrix, B: se.DenseMatrix) -> se.DenseMatrix:
-    """A⁻¹ B: by LAPACK when every entry is a number, else symbolically (LU)."""
+    """A⁻¹ B: by LAPACK when A is numeric (B may hold symbols: A⁻¹ is then applied to them), else by
+    a symbolic LU.
+
+    A numeric A goes through LAPACK even when its entries are unevaluated numbers such as
+    sin(157/500): a symbolic LU would take as pivot an entry that is zero only numerically
+    (sin a cos b − cos a sin b with a = b) and divide by it.
+    """
     if A.rows == 0:
         return se.zeros(0, B.cols)
-    if not A.free_symbols and not B.free_symbols:
+    if not A.free_symbols:
         a = np.array(A.tolist(), dtype=float)
-        b = np.array(B.tolist(), dtype=float)
-        return se.DenseMatrix(np.linalg.solve(a, b).tolist())
+        if not B.free_symbols:
+            b = np.array(B.tolist(), dtype=float)
+            return se.DenseMatrix(np.linalg.solve(a, b).tolist())
+        return se.DenseMatrix(np.linalg.inv(a).tolist()) * B
     return A.LUsolve(B)
 
 
