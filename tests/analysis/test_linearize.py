@@ -171,47 +171,22 @@ def test_cart_pendulum_against_finite_differences():
 
 # -- inputs, control ---------------------------------------------------------------------------
 
-INVERTED_CART = """
-[model]
-name = "Inverted pendulum on a cart"
-[parameters]
-M = 1.0
-m = 0.2
-l = 0.6
-g = 9.81
-F = 0.0
-[coordinates]
-x = {}
-theta = {}
-[frames]
-R1 = { from = "R0", rotation = ["theta", "y"] }
-[points]
-C = "x*R0.x"
-[particles.cart]
-mass = "M"
-position = "x*R0.x"
-[particles.bob]
-mass = "m"
-position = "x*R0.x + l*R1.z"
-[loads]
-weight = { gravity = "-g*R0.z" }
-push = { force = "F*R0.x", at = "cart" }
-"""
 
 
 def test_inverted_cart_pendulum_unstable_and_controllable():
-    eom = lagrangian.derive(parse_model(INVERTED_CART))
-    lin = linearize(eom, {"x": 0, "theta": 0}, inputs=("F",))
+    eom = _eom("inverted_pendulum_cart")
+    lin = linearize(eom)  # the model's [operating_point] (upright) and its declared input F
+    assert lin.inputs == ("F",) and lin.point["theta"] == 0
     A, B = lin.numeric()
     M, m, l, g = 1.0, 0.2, 0.6, 9.81
     lam = np.sort(lin.eigenvalues().real)
-    unstable = math.sqrt((M + m) * g / (M * l))  # θ̈ = (M + m) g θ/(M l) − F/(M l), x free
+    unstable = math.sqrt((M + m) * g / (M * l))  # θ̈ = (mc + m) g θ/(mc l) − F/(mc l), x free
     assert lam[-1] == pytest.approx(unstable, rel=1e-12)
     st = lin.stability()
     assert st.stable is False
     ctrb = np.hstack([np.linalg.matrix_power(A, k) @ B for k in range(4)])
     assert np.linalg.matrix_rank(ctrb) == 4
-    # B: ẍ = F/M, θ̈ = −F/(M l) (θ measured from the upward vertical, towards +x).
+    # B: ẍ = F/mc, θ̈ = −F/(mc l) (θ measured from the upward vertical, towards +x).
     i_xd, i_td = lin.state.index("x_dot"), lin.state.index("theta_dot")
     assert B[i_xd, 0] == pytest.approx(1 / M) and abs(B[i_td, 0]) == pytest.approx(1 / (M * l))
     sys_scipy = lin.to_scipy()
@@ -220,8 +195,7 @@ def test_inverted_cart_pendulum_unstable_and_controllable():
 
 def test_to_control_names_states_and_inputs():
     control = pytest.importorskip("control")
-    eom = lagrangian.derive(parse_model(INVERTED_CART))
-    sys = linearize(eom, {"x": 0, "theta": 0}, inputs=("F",)).to_control()
+    sys = linearize(_eom("inverted_pendulum_cart")).to_control()
     assert isinstance(sys, control.StateSpace)
     assert list(sys.state_labels) == ["x", "theta", "x_dot", "theta_dot"] and list(sys.input_labels) == ["F"]
 
@@ -245,9 +219,9 @@ def test_errors_name_the_problem_and_the_fix():
     top = _eom("lagrange_top")
     with pytest.raises(LinearizationError, match="mass matrix M is singular"):
         linearize(top, {"psi": 0, "theta": 0, "phi": 0})
-    cart = lagrangian.derive(parse_model(INVERTED_CART))
-    with pytest.raises(LinearizationError, match="no load uses the input `M`"):
-        linearize(cart, {"x": 0, "theta": 0}, inputs=("M",))
+    cart = _eom("inverted_pendulum_cart")
+    with pytest.raises(LinearizationError, match="no load uses the input `mc`"):
+        linearize(cart, inputs=("mc",))
 
 
 def test_moving_coordinate_that_the_equations_hold_is_refused():

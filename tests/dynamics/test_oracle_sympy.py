@@ -243,6 +243,22 @@ def block_on_incline() -> Oracle:
     return [x], me.Particle("block", B, m).kinetic_energy(N), [(B, -m * g * N.z + friction)], N
 
 
+def inverted_pendulum_cart() -> Oracle:
+    mc, m, l, g, F = _params("mc m l g F")
+    x, theta = me.dynamicsymbols("x theta")
+    N = me.ReferenceFrame("N")
+    R1 = N.orientnew("R1", "Axis", (theta, N.y))
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    C = O.locatenew("C", x * N.x)
+    C.set_vel(N, x.diff() * N.x)
+    P = C.locatenew("P", l * R1.z)
+    P.v2pt_theory(C, N, R1)
+    cart, bob = me.Particle("cart", C, mc), me.Particle("bob", P, m)
+    T = cart.kinetic_energy(N) + bob.kinetic_energy(N)
+    return [x, theta], T, [(C, -mc * g * N.z + F * N.x), (P, -m * g * N.z)], N
+
+
 ORACLES: dict[str, Callable[[], Oracle]] = {
     "pendulum_tension.toml": pendulum_tension,
     "rolling_disk_incline.toml": rolling_disk_incline,
@@ -252,6 +268,7 @@ ORACLES: dict[str, Callable[[], Oracle]] = {
     "spherical_pendulum.toml": spherical_pendulum,
     "double_pendulum.toml": double_pendulum,
     "cart_pendulum.toml": cart_pendulum,
+    "inverted_pendulum_cart.toml": inverted_pendulum_cart,
     "lagrange_top.toml": lagrange_top,
     "bead_rotating_hoop.toml": bead_rotating_hoop,
     "foucault_pendulum.toml": foucault_pendulum,
@@ -284,6 +301,7 @@ def oracle_qdd(name: str) -> Callable[[dict[str, float]], np.ndarray]:
     ts = sp.Symbol("t")  # prescribed motions depend on the time
     data = tomllib.loads((EXAMPLES_DIR / name).read_text(encoding="utf-8"))
     values = {sp.Symbol(k): (v["value"] if isinstance(v, dict) else v) for k, v in data["parameters"].items()}
+    values.update({sp.Symbol(k): 0.0 for k in data.get("inputs", {})})  # inputs are off (0) in simulations
 
     def numeric(expr: sp.Matrix) -> Callable:
         expr = expr.xreplace(to_symbols).xreplace(to_symbols_q).xreplace({t: ts}).subs(values)
