@@ -10,8 +10,8 @@ placed there at rest stays there: q̈ = 0 at q̇ = 0, i.e.
 λ is eliminated numerically by projecting F on the complement of the range of Aᵀ.
 
 Closed form first: each equation is factored (sin θ · (R Ω² cos θ − g) = 0) and every choice
-of one factor per equation is solved by SymPy (on our own expressions, converted with
-``sympy.sympify``; never on user text).  A branch holding acos(a) or asin(a) exists for
+of one factor per equation is solved by SymPy (on our own expressions, converted
+structurally with ``_sympy_()``; no text is ever parsed).  A branch holding acos(a) or asin(a) exists for
 −1 ≤ a ≤ 1, one with √a for a ≥ 0; where the boundary makes the branch coincide with another
 branch (cos θ = g/(R Ω²) at R Ω² = g is θ = 0, a double root) the inequality is strict, so
 the double root is listed once, as the other branch.  Then a numeric multi-start search
@@ -37,6 +37,7 @@ import numpy as np
 import symengine as se
 import sympy
 from scipy import optimize
+from symengine.lib.symengine_wrapper import sympy2symengine
 
 from ..dynamics import EquationsOfMotion
 from ._effective_potential import AnalysisError
@@ -44,7 +45,7 @@ from ._effective_potential import AnalysisError
 __all__ = ["Equilibrium", "EquilibriumError", "equilibria", "SOLVE_TIMEOUT", "STARTS"]
 
 #: Seconds SymPy may take for the closed form before the numeric search takes over.
-SOLVE_TIMEOUT = 10.0
+SOLVE_TIMEOUT = 5.0
 #: About how many starting points the numeric search uses.
 STARTS = 240
 #: A root is accepted when ‖residual‖ ≤ TOLERANCE × (typical ‖residual‖ over the range).
@@ -116,9 +117,7 @@ def equilibria(eom: EquationsOfMotion, parameters: Mapping[str, float] | None = 
                 continue
             if eq.numeric is not None and not _in_ranges(eq.numeric, ranges, angles):
                 continue
-            if eq.numeric is None or eq.exists is False or not any(
-                    o.numeric is not None and o.exists is not False and _same(o.numeric, eq.numeric, angles)
-                    for o in out):
+            if not any(_duplicate(o, eq, angles) for o in out):
                 out.append(eq)
     searchable = [n for n in system.active if n in angles or n in ranges]
     continuum = any(len(e.free) > len(system.free) for e in out)  # sample points of it are no news
@@ -153,20 +152,20 @@ class _StaticSystem:
         self.eom = eom
         self.q = list(eom.q)
         self.names = [str(s) for s in self.q]
-        F = [se.sympify(f).subs(rest) for f in eom.F]
+        F = [_se(f).subs(rest) for f in eom.F]
         for name, f in zip(self.names, F):
             _autonomous(f, t, f"the generalized force on `{name}` at rest")
         for row in eom.M:
             for m in row:
-                _autonomous(se.sympify(m), t, "the mass matrix M")
-        self.A = [[se.sympify(a) for a in r.coefficients] for r in eom.constraints]
+                _autonomous(_se(m), t, "the mass matrix M")
+        self.A = [[_se(a) for a in r.coefficients] for r in eom.constraints]
         self.lam = [r.multiplier for r in eom.constraints]
         extra = []
         for r in eom.constraints:
-            e = se.sympify(r.expression if r.kind == "holonomic" else r.b).subs(rest)
+            e = _se(r.expression if r.kind == "holonomic" else r.b).subs(rest)
             _autonomous(e, t, f"constraint row `{r.name}`")
             for a in r.coefficients:
-                _autonomous(se.sympify(a), t, f"constraint row `{r.name}`")
+                _autonomous(_se(a), t, f"constraint row `{r.name}`")
             if e != 0:
                 extra.append(e)
         self.F = F
@@ -227,6 +226,15 @@ class _StaticSystem:
         return r
 
 
+def _se(x: object) -> se.Basic:
+    """Our SymEngine or SymPy objects (or numbers) as SymEngine, structurally (no text is parsed)."""
+    if isinstance(x, se.Basic):
+        return x
+    if isinstance(x, sympy.Basic):
+        return sympy2symengine(x)
+    return se.Integer(x) if isinstance(x, int) else se.RealDouble(float(x))  # type: ignore[arg-type]
+
+
 def _autonomous(e: se.Basic, t: se.Symbol, where: str) -> None:
     if t in e.free_symbols:
         raise EquilibriumError(
@@ -276,10 +284,12 @@ def _closed_form(system: _StaticSystem, values: Mapping[str, float | None]) -> l
         return [{}]
     symbols = _sympy_symbols(system, values)
     subs = {sympy.Symbol(str(k)): v for k, v in symbols.items()}
-    eqs = [sympy.sympify(e).xreplace(subs) for e in system.equations]  # our expressions, never user text
+    eqs = [e._sympy_().xreplace(subs) for e in system.equations]  # our expressions, never user text
     eqs = [e for e in eqs if e != 0]
     unknowns = [symbols[s] for n, s in zip(system.names, system.q) if n in system.active]
     unknowns += [symbols[s] for s in system.lam]
+    if any(_mixed(e, u) for e in eqs for u in unknowns):
+        return None  # θ and sinθ together (k θ = sinθ): no SymPy solver knows it, don't wait for one
     result: list = []
 
     def factors(e: sympy.Basic) -> list[sympy.Basic]:
@@ -316,6 +326,18 @@ def _closed_form(system: _StaticSystem, values: Mapping[str, float | None]) -> l
             continue
         out.append(branch)
     return out
+
+
+_TRANSCENDENTAL = (sympy.sin, sympy.cos, sympy.tan, sympy.exp, sympy.log, sympy.sinh, sympy.cosh, sympy.tanh)
+
+
+def _mixed(e: sympy.Basic, u: sympy.Symbol) -> bool:
+    """Whether ``u`` appears both inside a transcendental function and outside every such function."""
+    inside = [f for f in e.atoms(*_TRANSCENDENTAL) if u in f.free_symbols]
+    if not inside:
+        return False
+    bare = e.xreplace({f: sympy.Dummy() for f in inside})
+    return u in bare.free_symbols
 
 
 def _condition(expr: sympy.Basic, branch: Mapping[str, sympy.Basic], others: Sequence[Mapping[str, sympy.Basic]],
@@ -367,25 +389,29 @@ def _from_closed_form(system: _StaticSystem, branch: Mapping[str, sympy.Basic], 
     if condition == sympy.false:
         return None
     free = tuple(n for n in system.names if n in system.free or n not in branch)
+    branch = {n: _principal(v) if n in angles else v for n, v in branch.items()}
     plain = {s: sympy.Symbol(s.name) for v in branch.values() for s in v.free_symbols}
-    values: dict[str, se.Basic | float] = {n: se.sympify(v.xreplace(plain)) for n, v in branch.items()}
+    values: dict[str, se.Basic | float] = {n: _se(v.xreplace(plain)) for n, v in branch.items()}
     exists: bool | None = True
     if condition != sympy.true:
         at = condition.xreplace({s: numbers[se.Symbol(s.name)] for s in condition.free_symbols
                                  if se.Symbol(s.name) in numbers})
         exists = bool(at) if at in (sympy.true, sympy.false) else None
+    at_values: dict[str, float] = {}
+    for n, v in values.items():
+        try:
+            x = float(_se(v).subs(numbers))
+        except (RuntimeError, TypeError, ValueError):
+            continue  # a parameter without value
+        if n in angles:  # into (−π, π], the expression too (−π is written π)
+            k = round((_wrap(x) - x) / (2 * math.pi))
+            if k:
+                x += 2 * k * math.pi
+                values[n] = _se(v) + 2 * k * se.pi
+        at_values[n] = x
     numeric = residual = None
     if known and exists is not False and len(free) == len(system.free):
-        numeric = {}
-        for n, v in values.items():
-            x = float(se.sympify(v).subs(numbers))
-            if n in angles:
-                shift = _wrap(x) - x
-                x += shift
-                k = round(shift / (2 * math.pi))
-                if k:
-                    values[n] = se.sympify(v) + 2 * k * se.pi
-            numeric[n] = x
+        numeric = at_values
         r = system.residual_function(numbers)
         residual = float(np.max(np.abs(r(np.array([numeric[n] for n in system.active]))), initial=0.0))
     for n in free:
@@ -396,6 +422,33 @@ def _from_closed_form(system: _StaticSystem, branch: Mapping[str, sympy.Basic], 
 
 
 # -- numeric search -----------------------------------------------------------------------------
+def _principal(v: sympy.Basic) -> sympy.Basic:
+    """2π − acos(a) → −acos(a): drop a constant 2kπ when what is left is ±acos, ±asin or ±atan (within [−π, π])."""
+    terms = sympy.Add.make_args(v)
+    const = sympy.Add(*[t for t in terms if t.is_number])
+    rest = v - const
+    k = const / (2 * sympy.pi)
+    inverse = (sympy.acos, sympy.asin, sympy.atan)
+    if const != 0 and k.is_integer and (isinstance(rest, inverse) or isinstance(-rest, inverse)):
+        return rest
+    return v
+
+
+def _duplicate(a: Equilibrium, b: Equilibrium, angles: set[str]) -> bool:
+    """The same point: equal numbers (angles modulo 2π), or the same expressions and condition."""
+    if a.exists is False or b.exists is False:
+        return False
+    if a.numeric is not None and b.numeric is not None:
+        return _same(a.numeric, b.numeric, angles)
+    if a.free != b.free or a.condition != b.condition:
+        return False
+    for n, v in a.values.items():
+        d = se.expand(_se(v) - _se(b.values[n]))
+        if d != 0 and not (n in angles and d.is_number and abs(math.remainder(float(d), 2 * math.pi)) < 1e-12):
+            return False
+    return True
+
+
 def _wrap(x: float) -> float:
     """x modulo 2π in (−π, π]."""
     y = math.remainder(x, 2 * math.pi)
