@@ -18,6 +18,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import symengine as se
 from scipy import optimize
 
 import lagrangian
@@ -162,3 +163,31 @@ def test_a_continuum_of_equilibria_is_reported_free() -> None:
     # The rolling coin on a level plane stays at rest anywhere: every coordinate is free.
     found = lagrangian.equilibria(derive("rolling_coin"))
     assert len(found) == 1 and set(found[0].free) == {"x", "y", "psi", "phi"}
+
+
+def test_bead_symbolic_rate_keeps_the_condition() -> None:
+    text = (ROOT / "examples" / "bead_rotating_hoop.toml").read_text()
+    assert 'Omega = { value = 6.0, unit' in text
+    eom = lagrangian.derive(lagrangian.parse_model(text.replace('Omega = { value = 6.0, unit', 'Omega = { unit')))
+    found = lagrangian.equilibria(eom)
+    tilted = [e for e in found if e.condition is not None]
+    assert len(found) == 4 and len(tilted) == 2
+    g, R, Om = (se.Symbol(n) for n in ("g", "R", "Omega"))
+    expected = se.acos(g / (R * Om**2))
+    assert sorted(str(e.values["theta"]) for e in tilted) == sorted([str(expected), str(-expected)])
+    for e in tilted:
+        assert e.exists is None and e.numeric is None
+        names = {s.name: s for s in e.condition.free_symbols}
+        at = {names["g"]: 9.81, names["R"]: 0.5}
+        assert bool(e.condition.subs({**at, names["Omega"]: 4.5})) is (0.5 * 4.5**2 > 9.81)  # 10.125 > 9.81
+        assert bool(e.condition.subs({**at, names["Omega"]: 4.4})) is (0.5 * 4.4**2 > 9.81)  # 9.68 < 9.81
+
+
+def test_no_closed_form_and_a_missing_value_is_refused() -> None:
+    eom = lagrangian.derive(lagrangian.parse_model(TORSION.replace("k = 0.1", "k = {}")))
+    with pytest.raises(EquilibriumError) as info:
+        lagrangian.equilibria(eom, ranges={"theta": (-1.0, 1.0)})
+    assert "parameter `k` has no value" in info.value.message and "--set k=" in info.value.fix
+    found = lagrangian.equilibria(eom, parameters={"k": 0.1}, ranges={"theta": (-1.0, 1.0)})
+    root = optimize.brentq(lambda th: -0.1 * (th - 0.3) - math.sin(th), -1.0, 1.0, xtol=1e-14)
+    assert len(found) == 1 and found[0].numeric["theta"] == pytest.approx(root, abs=1e-9)
