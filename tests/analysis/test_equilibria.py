@@ -18,6 +18,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import symengine as se
+import sympy
 from scipy import optimize
 
 import lagrangian
@@ -62,8 +64,12 @@ def test_bead_below_the_critical_rate_has_two() -> None:
 def test_bead_at_the_critical_rate_the_double_root_is_theta_zero() -> None:
     # R Ω² = g: cosθ = 1 is θ = 0, already listed; the tilted branch needs R Ω² > g strictly.
     eom = derive("bead_rotating_hoop")
-    found = lagrangian.equilibria(eom, parameters={"Omega": math.sqrt(9.81 / 0.5)})
+    exact = {"R": 1.0, "g": 4.0, "Omega": 2.0}  # R Ω² = g exactly in floating point
+    found = lagrangian.equilibria(eom, parameters=exact)
     assert points(found, "theta") == [0.0, round(math.pi, 9)]
+    assert all(e.condition is None for e in found)
+    every = lagrangian.equilibria(eom, parameters=exact, all_branches=True)
+    assert sorted(e.exists for e in every) == [False, False, True, True]
 
 
 # -- pendulums ---------------------------------------------------------------------------------------
@@ -162,3 +168,41 @@ def test_a_continuum_of_equilibria_is_reported_free() -> None:
     # The rolling coin on a level plane stays at rest anywhere: every coordinate is free.
     found = lagrangian.equilibria(derive("rolling_coin"))
     assert len(found) == 1 and set(found[0].free) == {"x", "y", "psi", "phi"}
+
+
+def test_bead_symbolic_rate_keeps_the_condition() -> None:
+    text = (ROOT / "examples" / "bead_rotating_hoop.toml").read_text()
+    assert 'Omega = { value = 6.0, unit' in text
+    eom = lagrangian.derive(lagrangian.parse_model(text.replace('Omega = { value = 6.0, unit', 'Omega = { unit')))
+    found = lagrangian.equilibria(eom)
+    tilted = [e for e in found if e.condition is not None]
+    assert len(found) == 4 and len(tilted) == 2
+    g, R, Om = (se.Symbol(n) for n in ("g", "R", "Omega"))
+    expected = se.acos(g / (R * Om**2))
+    assert sorted(str(e.values["theta"]) for e in tilted) == sorted([str(expected), str(-expected)])
+    for e in tilted:
+        assert e.exists is None and e.numeric is None
+        names = {s.name: s for s in e.condition.free_symbols}
+        at = {names["g"]: 9.81, names["R"]: 0.5}
+        assert bool(e.condition.subs({**at, names["Omega"]: 4.5})) is (0.5 * 4.5**2 > 9.81)  # 10.125 > 9.81
+        assert bool(e.condition.subs({**at, names["Omega"]: 4.4})) is (0.5 * 4.4**2 > 9.81)  # 9.68 < 9.81
+
+
+def test_no_closed_form_and_a_missing_value_is_refused() -> None:
+    eom = lagrangian.derive(lagrangian.parse_model(TORSION.replace("k = 0.1", "k = {}")))
+    with pytest.raises(EquilibriumError) as info:
+        lagrangian.equilibria(eom, ranges={"theta": (-1.0, 1.0)})
+    assert "parameter `k` has no value" in info.value.message and "--set k=" in info.value.fix
+    found = lagrangian.equilibria(eom, parameters={"k": 0.1}, ranges={"theta": (-1.0, 1.0)})
+    root = optimize.brentq(lambda th: -0.1 * (th - 0.3) - math.sin(th), -1.0, 1.0, xtol=1e-14)
+    assert len(found) == 1 and found[0].numeric["theta"] == pytest.approx(root, abs=1e-9)
+
+
+def test_the_numeric_search_fills_in_what_the_closed_form_missed(monkeypatch) -> None:
+    # SymPy's `solve` alone loses θ = π of the bead (tangent half-angle); were a closed form to
+    # miss a root, the search must add it, numeric. Simulated by a closed form giving θ = 0 only.
+    import lagrangian.analysis._equilibria as module
+
+    monkeypatch.setattr(module, "closed_form", lambda *args: [{"theta": sympy.Integer(0)}])
+    found = lagrangian.equilibria(derive("simple_pendulum"))
+    assert [(e.closed_form, round(e.numeric["theta"], 9)) for e in found] == [(True, 0.0), (False, round(math.pi, 9))]

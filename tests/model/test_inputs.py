@@ -192,7 +192,8 @@ def test_operating_point_unknown_name() -> None:
 def test_operating_point_value_must_be_constant(value: str, bad: str, what: str) -> None:
     err = fails(edit(CART, 'x_dot = "v/2"', f"x_dot = {value}"))
     assert err.symbol == bad
-    assert err.message == f"the value of `x_dot` in the operating point uses {what} `{bad}`; an operating point is constant"
+    assert err.message == (f"the value of `x_dot` in the operating point uses {what} `{bad}`; "
+                           "an operating point is constant")
     assert err.line == line_of(CART, 'x_dot = "v/2"')
 
 

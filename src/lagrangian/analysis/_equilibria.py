@@ -9,27 +9,23 @@ placed there at rest stays there: q̈ = 0 at q̇ = 0, i.e.
 
 λ is eliminated numerically by projecting F on the complement of the range of Aᵀ.
 
-Closed form first: each equation is factored (sin θ · (R Ω² cos θ − g) = 0) and every choice
-of one factor per equation is solved by SymPy (on our own expressions, converted with
-``sympy.sympify``; never on user text).  A branch holding acos(a) or asin(a) exists for
-−1 ≤ a ≤ 1, one with √a for a ≥ 0; where the boundary makes the branch coincide with another
-branch (cos θ = g/(R Ω²) at R Ω² = g is θ = 0, a double root) the inequality is strict, so
-the double root is listed once, as the other branch.  Then a numeric multi-start search
-(``scipy.optimize.least_squares`` from a grid over the ranges) finds all roots when every
-parameter has a value; it fills in what the closed form missed (SymPy's solvers are not
-complete) or replaces it when SymPy fails.  Roots are deduplicated, angles modulo 2π.
+Closed form first (`_equilibria_closed_form`: SymPy on the factors of each equation, with
+each branch's condition of existence, R Ω² > g for the bead's tilted positions).  Then a
+numeric multi-start search (``scipy.optimize.least_squares`` from a grid over the ranges)
+finds all roots when every parameter has a value; it fills in what the closed form missed
+(SymPy's solvers are not complete: ``solve`` alone loses θ = π of the bead) or replaces it
+when SymPy fails.  Roots are deduplicated, angles modulo 2π.
 
 An *angle* is a coordinate in which the static equations are 2π-periodic (checked
 numerically); it ranges over (−π, π] — π rather than −π, as the course writes the upper
-position.  In the closed form a parameter is taken positive when its value is positive or
-missing, negative when negative, real when zero.  Other coordinates need a range for the numeric search (``ranges={"x": (a, b)}``).
+position.  Other coordinates need a range for the numeric search (``ranges={"x": (a, b)}``).
+See docs/equilibria.md.
 """
 
 from __future__ import annotations
 
 import itertools
 import math
-import threading
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
@@ -37,14 +33,15 @@ import numpy as np
 import symengine as se
 import sympy
 from scipy import optimize
+from symengine.lib.symengine_wrapper import sympy2symengine
 
 from ..dynamics import EquationsOfMotion
 from ._effective_potential import AnalysisError
+from ._equilibria_closed_form import SOLVE_TIMEOUT, closed_form, principal
+from ._equilibria_closed_form import condition as branch_condition
 
 __all__ = ["Equilibrium", "EquilibriumError", "equilibria", "SOLVE_TIMEOUT", "STARTS"]
 
-#: Seconds SymPy may take for the closed form before the numeric search takes over.
-SOLVE_TIMEOUT = 10.0
 #: About how many starting points the numeric search uses.
 STARTS = 240
 #: A root is accepted when ‖residual‖ ≤ TOLERANCE × (typical ‖residual‖ over the range).
@@ -108,7 +105,7 @@ def equilibria(eom: EquationsOfMotion, parameters: Mapping[str, float] | None = 
     numbers = {se.Symbol(k): v for k, v in values.items() if v is not None}
     angles = system.angles(numbers)
     out: list[Equilibrium] = []
-    branches = _closed_form(system, values)
+    branches = closed_form(system.equations, system.q, system.active, system.lam, values)
     if branches is not None:
         for sol in branches:
             eq = _from_closed_form(system, sol, branches, numbers, angles, known)
@@ -116,9 +113,7 @@ def equilibria(eom: EquationsOfMotion, parameters: Mapping[str, float] | None = 
                 continue
             if eq.numeric is not None and not _in_ranges(eq.numeric, ranges, angles):
                 continue
-            if eq.numeric is None or eq.exists is False or not any(
-                    o.numeric is not None and o.exists is not False and _same(o.numeric, eq.numeric, angles)
-                    for o in out):
+            if not any(_duplicate(o, eq, angles) for o in out):
                 out.append(eq)
     searchable = [n for n in system.active if n in angles or n in ranges]
     continuum = any(len(e.free) > len(system.free) for e in out)  # sample points of it are no news
@@ -153,20 +148,20 @@ class _StaticSystem:
         self.eom = eom
         self.q = list(eom.q)
         self.names = [str(s) for s in self.q]
-        F = [se.sympify(f).subs(rest) for f in eom.F]
+        F = [_se(f).subs(rest) for f in eom.F]
         for name, f in zip(self.names, F):
             _autonomous(f, t, f"the generalized force on `{name}` at rest")
         for row in eom.M:
             for m in row:
-                _autonomous(se.sympify(m), t, "the mass matrix M")
-        self.A = [[se.sympify(a) for a in r.coefficients] for r in eom.constraints]
+                _autonomous(_se(m), t, "the mass matrix M")
+        self.A = [[_se(a) for a in r.coefficients] for r in eom.constraints]
         self.lam = [r.multiplier for r in eom.constraints]
         extra = []
         for r in eom.constraints:
-            e = se.sympify(r.expression if r.kind == "holonomic" else r.b).subs(rest)
+            e = _se(r.expression if r.kind == "holonomic" else r.b).subs(rest)
             _autonomous(e, t, f"constraint row `{r.name}`")
             for a in r.coefficients:
-                _autonomous(se.sympify(a), t, f"constraint row `{r.name}`")
+                _autonomous(_se(a), t, f"constraint row `{r.name}`")
             if e != 0:
                 extra.append(e)
         self.F = F
@@ -227,6 +222,15 @@ class _StaticSystem:
         return r
 
 
+def _se(x: object) -> se.Basic:
+    """Our SymEngine or SymPy objects (or numbers) as SymEngine, structurally (no text is parsed)."""
+    if isinstance(x, se.Basic):
+        return x
+    if isinstance(x, sympy.Basic):
+        return sympy2symengine(x)
+    return se.Integer(x) if isinstance(x, int) else se.RealDouble(float(x))  # type: ignore[arg-type]
+
+
 def _autonomous(e: se.Basic, t: se.Symbol, where: str) -> None:
     if t in e.free_symbols:
         raise EquilibriumError(
@@ -258,134 +262,38 @@ def _ranges(eom: EquationsOfMotion, ranges: Mapping[str, tuple[float, float]] | 
     return out
 
 
-# -- closed form ------------------------------------------------------------------------------
-def _sympy_symbols(system: _StaticSystem, values: Mapping[str, float | None]) -> dict[se.Basic, sympy.Symbol]:
-    """SymPy symbols with assumptions: parameters positive (negative) when their value is, else real."""
-    out = {}
-    for name, v in values.items():
-        kw = {"positive": True} if (v is None or v > 0) and v != 0 else {"negative": True} if v < 0 else {"real": True}
-        out[se.Symbol(name)] = sympy.Symbol(name, **kw)
-    for s in [*system.q, *system.lam]:
-        out[s] = sympy.Symbol(str(s), real=True)
-    return out
-
-
-def _closed_form(system: _StaticSystem, values: Mapping[str, float | None]) -> list[dict] | None:
-    """Every branch SymPy finds, as dicts coordinate name → SymPy expression; None when it fails."""
-    if not system.active:
-        return [{}]
-    symbols = _sympy_symbols(system, values)
-    subs = {sympy.Symbol(str(k)): v for k, v in symbols.items()}
-    eqs = [sympy.sympify(e).xreplace(subs) for e in system.equations]  # our expressions, never user text
-    eqs = [e for e in eqs if e != 0]
-    unknowns = [symbols[s] for n, s in zip(system.names, system.q) if n in system.active]
-    unknowns += [symbols[s] for s in system.lam]
-    result: list = []
-
-    def factors(e: sympy.Basic) -> list[sympy.Basic]:
-        try:
-            return [f for f, _ in sympy.factor_list(sympy.together(e))[1] if f.free_symbols & set(unknowns)] or [e]
-        except sympy.PolynomialError:
-            return [e]
-
-    def work() -> None:
-        try:
-            combos = list(itertools.product(*[factors(e) for e in eqs]))
-            if len(combos) > 64:
-                combos = [tuple(eqs)]
-            sols = []
-            for combo in combos:
-                sols += sympy.solve(list(combo), unknowns, dict=True)
-            result.append(sols)
-        except Exception:  # noqa: BLE001 - any SymPy failure means: no closed form, search numerically
-            result.append(None)
-
-    # SymPy cannot be interrupted: a slow solve is left to finish in a daemon thread.
-    th = threading.Thread(target=work, daemon=True)
-    th.start()
-    th.join(SOLVE_TIMEOUT)
-    if not result or result[0] is None:
-        return None
-    names = {symbols[s]: n for n, s in zip(system.names, system.q)}
-    out = []
-    for sol in result[0]:
-        branch = {names[k]: v for k, v in sol.items() if k in names}
-        if any(v.has(sympy.I) for v in branch.values()):
-            continue  # complex roots (or not known to be real): left to the numeric search
-        if any(any(x in unknowns for x in v.free_symbols) for v in branch.values()):
-            continue
-        out.append(branch)
-    return out
-
-
-def _condition(expr: sympy.Basic, branch: Mapping[str, sympy.Basic], others: Sequence[Mapping[str, sympy.Basic]],
-               name: str) -> list[sympy.Basic]:
-    """Where ``expr`` (q*_name) is real: −1 ≤ a ≤ 1 in acos(a), asin(a); a ≥ 0 under √."""
-    conds = []
-    for f in expr.atoms(sympy.acos, sympy.asin):
-        a = f.args[0]
-        for bound, edge in ((1, sympy.acos(1) if f.func is sympy.acos else sympy.pi / 2),
-                            (-1, sympy.pi if f.func is sympy.acos else -sympy.pi / 2)):
-            at_edge = expr.xreplace({f: edge})
-            double = any(_equal_mod_2pi(at_edge, o.get(name)) for o in others if o is not branch)
-            rel = (sympy.Lt if double else sympy.Le) if bound == 1 else (sympy.Gt if double else sympy.Ge)
-            conds.append(_tidy(rel(a, bound)))
-    for p in expr.atoms(sympy.Pow):
-        if p.exp.is_Rational and p.exp.q % 2 == 0:
-            conds.append(_tidy(sympy.Ge(p.base, 0)))
-    return conds
-
-
-def _equal_mod_2pi(a: sympy.Basic, b: sympy.Basic | None) -> bool:
-    if b is None:
-        return False
-    d = sympy.simplify((a - b) / (2 * sympy.pi))
-    return bool(d.is_integer)
-
-
-def _tidy(rel: sympy.Basic) -> sympy.Basic:
-    """``g/(R Ω²) < 1`` → ``R Ω² > g``: clear a positive denominator, positive terms on each side."""
-    if rel in (sympy.true, sympy.false):
-        return rel
-    num, den = sympy.fraction(sympy.together(rel.lhs - rel.rhs))
-    if den.is_positive:
-        terms = sympy.Add.make_args(sympy.expand(num))
-        left = sympy.Add(*[t for t in terms if not t.could_extract_minus_sign()])
-        right = sympy.Add(*[-t for t in terms if t.could_extract_minus_sign()])
-        rel = rel.func(left, right)
-        if rel.func in (sympy.Lt, sympy.Le):
-            rel = rel.reversed
-    return rel
-
-
 def _from_closed_form(system: _StaticSystem, branch: Mapping[str, sympy.Basic], branches: Sequence[Mapping],
                       numbers: Mapping[se.Basic, float], angles: set[str], known: bool) -> Equilibrium | None:
     conds: list[sympy.Basic] = []
     for name, v in branch.items():
-        conds += _condition(v, branch, branches, name)
+        conds += branch_condition(v, branch, branches, name)
     condition = sympy.And(*conds) if conds else sympy.true
     if condition == sympy.false:
         return None
     free = tuple(n for n in system.names if n in system.free or n not in branch)
+    branch = {n: principal(v) if n in angles else v for n, v in branch.items()}
     plain = {s: sympy.Symbol(s.name) for v in branch.values() for s in v.free_symbols}
-    values: dict[str, se.Basic | float] = {n: se.sympify(v.xreplace(plain)) for n, v in branch.items()}
+    values: dict[str, se.Basic | float] = {n: _se(v.xreplace(plain)) for n, v in branch.items()}
     exists: bool | None = True
     if condition != sympy.true:
         at = condition.xreplace({s: numbers[se.Symbol(s.name)] for s in condition.free_symbols
                                  if se.Symbol(s.name) in numbers})
         exists = bool(at) if at in (sympy.true, sympy.false) else None
+    at_values: dict[str, float] = {}
+    for n, v in values.items():
+        try:
+            x = float(_se(v).subs(numbers))
+        except (RuntimeError, TypeError, ValueError):
+            continue  # a parameter without value
+        if n in angles:  # into (−π, π], the expression too (−π is written π)
+            k = round((_wrap(x) - x) / (2 * math.pi))
+            if k:
+                x += 2 * k * math.pi
+                values[n] = _se(v) + 2 * k * se.pi
+        at_values[n] = x
     numeric = residual = None
     if known and exists is not False and len(free) == len(system.free):
-        numeric = {}
-        for n, v in values.items():
-            x = float(se.sympify(v).subs(numbers))
-            if n in angles:
-                shift = _wrap(x) - x
-                x += shift
-                k = round(shift / (2 * math.pi))
-                if k:
-                    values[n] = se.sympify(v) + 2 * k * se.pi
-            numeric[n] = x
+        numeric = at_values
         r = system.residual_function(numbers)
         residual = float(np.max(np.abs(r(np.array([numeric[n] for n in system.active]))), initial=0.0))
     for n in free:
@@ -396,6 +304,21 @@ def _from_closed_form(system: _StaticSystem, branch: Mapping[str, sympy.Basic], 
 
 
 # -- numeric search -----------------------------------------------------------------------------
+def _duplicate(a: Equilibrium, b: Equilibrium, angles: set[str]) -> bool:
+    """The same point: equal numbers (angles modulo 2π), or the same expressions and condition."""
+    if a.exists is False or b.exists is False:
+        return False
+    if a.numeric is not None and b.numeric is not None:
+        return _same(a.numeric, b.numeric, angles)
+    if a.free != b.free or a.condition != b.condition:
+        return False
+    for n, v in a.values.items():
+        d = se.expand(_se(v) - _se(b.values[n]))
+        if d != 0 and not (n in angles and d.is_number and abs(math.remainder(float(d), 2 * math.pi)) < 1e-12):
+            return False
+    return True
+
+
 def _wrap(x: float) -> float:
     """x modulo 2π in (−π, π]."""
     y = math.remainder(x, 2 * math.pi)

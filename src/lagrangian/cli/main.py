@@ -26,7 +26,7 @@ from ._atomic import write_output
 __all__ = ["main", "entrypoint"]
 
 # The commands, in the order `--help` lists them; each name is a module `cli/_<name>.py`.
-COMMANDS = ("derive", "simulate", "verify", "analyse", "linearize", "modes", "report")
+COMMANDS = ("derive", "simulate", "verify", "analyse", "equilibria", "linearize", "modes", "report")
 
 
 def _commands() -> list:
@@ -36,7 +36,7 @@ def _commands() -> list:
 def _parser() -> argparse.ArgumentParser:
     modules = _commands()
     listing = "\n".join(
-        f"  {name:<9} " + module.SUMMARY.replace("\n", "\n" + " " * 12) for name, module in zip(COMMANDS, modules)
+        f"  {name:<10} " + module.SUMMARY.replace("\n", "\n" + " " * 13) for name, module in zip(COMMANDS, modules)
     )
     description = (
         "Lagrange's equations of a mechanical system, derived the way the course does it:\n"

@@ -124,7 +124,8 @@ def _syntax_error(text: str, msg: str, source: str | None) -> ModelError:
                       "tables as [name])", **where)
 
 
-_SINGULAR = {"parameters": "parameter", "inputs": "input", "coordinates": "coordinate", "frames": "frame", "points": "point",
+_SINGULAR = {"parameters": "parameter", "inputs": "input", "coordinates": "coordinate", "frames": "frame",
+             "points": "point",
              "bodies": "body", "particles": "particle", "loads": "load", "constraints": "constraint"}
 #: TOML keys whose builder name differs, by table.
 _RENAME = {
