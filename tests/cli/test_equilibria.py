@@ -70,3 +70,15 @@ def test_time_dependent_model_is_refused(capsys, tmp_path):
     assert code != 0
     assert "depends on t explicitly" in capsys.readouterr().err
     assert not out_file.exists()
+
+
+def test_each_equilibrium_comes_with_its_stability(capsys):
+    """The bead: θ = 0 stable iff Ω² < g/R (here Ω = 3 < 4.43), θ = π always unstable."""
+    import json
+    from lagrangian.cli.main import main as cli
+    from lagrangian_test_support import EXAMPLES_DIR
+    assert cli(["equilibria", str(EXAMPLES_DIR / "bead_rotating_hoop.toml"), "--set", "Omega=3", "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    verdicts = {e["values"]["theta"]: (e["stable"], e["stability_reason"]) for e in doc["equilibria"]}
+    assert verdicts["0"][0] is True and "Lagrange–Dirichlet" in verdicts["0"][1]
+    assert verdicts["pi"][0] is False

@@ -1,6 +1,9 @@
 """Stage 4 — analysis of the equations: first integrals, the energy balance, the Newton–Euler cross-check,
 reactions, small motions (linearization, modes, stability)."""
 
+from ._bifurcation import BifurcationDiagram as BifurcationDiagram
+from ._bifurcation import Branch as Branch
+from ._bifurcation import bifurcation as bifurcation
 from ._effective_potential import AnalysisError as AnalysisError
 from ._effective_potential import CyclicReduction as CyclicReduction
 from ._effective_potential import StructureError as StructureError
@@ -43,4 +46,5 @@ __all__ = ["FirstIntegral", "first_integrals", "CoordinateCheck", "ElementTheore
            "reactions", "analyse_top", "TopAnalysis", "reduce_cyclic", "CyclicReduction", "AnalysisError",
            "StructureError", "EnergyBalance", "PowerTerm", "energy_balance", "linearize", "LinearModel",
            "SecondOrderForm", "LinearizationError", "Mode", "Modes", "Stability", "StabilityChange", "Sweep", "modes",
-           "stability", "sweep", "Equilibrium", "EquilibriumError", "equilibria"]
+           "stability", "sweep", "Equilibrium", "EquilibriumError", "equilibria", "bifurcation",
+           "BifurcationDiagram", "Branch"]

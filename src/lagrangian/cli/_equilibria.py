@@ -10,13 +10,17 @@ from __future__ import annotations
 import argparse
 import json
 import math
+from pathlib import Path
 
 import sympy
 
-from ..analysis import Equilibrium, equilibria
+from ..analysis import Equilibrium, LinearizationError, bifurcation, equilibria, linearize
+from ..errors import OutputError
 from ..dynamics import derive
 from ..output import Notation
 from ..output._course import to_sympy
+from ._modes import _check_plot_folder as check_plot_folder
+from ._modes import parse_sweep
 from ._settings import SettingError, add_set_option, parse_settings
 from ._source import MODEL_HELP, load_source
 
@@ -41,6 +45,12 @@ def register(sub: argparse._SubParsersAction) -> None:
     add_set_option(p)
     p.add_argument("--range", dest="range", action="append", default=[], metavar="NAME=a:b",
                    help="where to search coordinate NAME (numbers, a < b), e.g. x=-1:1; repeat for several")
+    p.add_argument("--sweep", metavar="NAME=a:b:step", default=None,
+                   help="follow the closed-form equilibria and their stability as parameter NAME goes from a to b; "
+                        "print where a branch appears or changes stability (a pitchfork)")
+    p.add_argument("--plot", metavar="DIR", default=None,
+                   help="with --sweep: write DIR/bifurcation.png (q* against NAME, solid stable, dashed unstable)")
+    p.add_argument("--lang", choices=("en", "fr"), default="en", help="language of the figure (default en)")
     p.add_argument("--json", action="store_true", help=f"print the JSON document `{SCHEMA}` version 1")
     p.add_argument("-o", "--output", metavar="FILE", help="write the result to FILE (atomically)")
     p.set_defaults(run=run)
@@ -78,15 +88,38 @@ def run(args: argparse.Namespace) -> str:
         raise SettingError(f"--set {name}=...: an equilibrium is found, not given; --set takes parameters only",
                            fix="remove it, or use --range to say where to look")
     ranges = parse_ranges(args.range, tuple(c.name for c in model.coordinates))
+    if args.plot and not args.sweep:
+        raise SettingError("`--plot` draws the equilibria against a parameter: it needs --sweep.",
+                           fix="add e.g. `--sweep Omega=0:10:0.05`")
+    swept = parse_sweep(args.sweep, model) if args.sweep else None
+    folder = Path(args.plot) if args.plot else None
+    if folder is not None:
+        check_plot_folder(folder)
     eom = derive(model)
+    if swept is not None:
+        return _sweep(eom, swept, parameters, folder, args.lang, args.json)
     found = equilibria(eom, parameters=parameters or None, ranges=ranges)
     values = {p.name: parameters.get(p.name, p.value) for p in model.parameters}
+    verdicts = [_stability(eom, e, parameters) for e in found]
     if args.json:
-        return json.dumps(_document(model.name, eom.coordinates, values, found), indent=2) + "\n"
-    return _text(model.name, eom.coordinates, [p.name for p in model.parameters], found)
+        return json.dumps(_document(model.name, eom.coordinates, values, found, verdicts), indent=2) + "\n"
+    return _text(model.name, eom.coordinates, [p.name for p in model.parameters], found, verdicts)
 
 
-def _document(name: str, coordinates: tuple[str, ...], values: dict, found: tuple[Equilibrium, ...]) -> dict:
+def _stability(eom, e: Equilibrium, parameters: dict) -> tuple[bool | None, str, str] | None:  # type: ignore[no-untyped-def]
+    """(stable, verdict, reason) from the linearization at the equilibrium's numeric value, or None
+    (no value, a continuum, or a point where the linearization cannot be made: singular M)."""
+    if e.numeric is None or e.free or e.exists is False:
+        return None
+    try:
+        st = linearize(eom, dict(e.numeric), parameters=parameters or None).stability()
+    except LinearizationError:
+        return None
+    return st.stable, st.verdict, st.reason
+
+
+def _document(name: str, coordinates: tuple[str, ...], values: dict, found: tuple[Equilibrium, ...],
+              verdicts: list) -> dict:
     return {
         "schema": SCHEMA, "version": 1, "model": name, "coordinates": list(coordinates), "parameters": values,
         "equilibria": [{
@@ -94,16 +127,19 @@ def _document(name: str, coordinates: tuple[str, ...], values: dict, found: tupl
             "numeric": None if e.numeric is None else {n: e.numeric[n] for n in coordinates if n in e.numeric},
             "closed_form": e.closed_form, "condition": e.condition_text, "exists": e.exists,
             "residual": e.residual, "free": list(e.free),
-        } for e in found],
+            "stable": None if v is None else v[0], "stability_verdict": None if v is None else v[1],
+            "stability_reason": None if v is None else v[2],
+        } for e, v in zip(found, verdicts)],
     }
 
 
-def _text(name: str, coordinates: tuple[str, ...], parameters: list[str], found: tuple[Equilibrium, ...]) -> str:
+def _text(name: str, coordinates: tuple[str, ...], parameters: list[str], found: tuple[Equilibrium, ...],
+          verdicts: list) -> str:
     n = Notation(list(coordinates), parameters)
     lines = [f"Equilibria of {name} (q̇ = 0, q̈ = 0: F(q, 0) + Aᵀλ = 0)", ""]
     if not found:
         lines.append("  none found in the ranges searched")
-    for k, e in enumerate(found, start=1):
+    for k, (e, stab) in enumerate(zip(found, verdicts), start=1):
         parts = []
         for q in coordinates:
             v = e.values[q]
@@ -121,6 +157,8 @@ def _text(name: str, coordinates: tuple[str, ...], parameters: list[str], found:
         if e.condition is not None:
             verdict = {True: "holds here", False: "does not hold here", None: "undecided without values"}[e.exists]
             lines.append(f"     exists if {_condition(n, e.condition)} ({verdict})")
+        if stab is not None:
+            lines.append(f"     {stab[1]}: {stab[2]}")
     return "\n".join(lines) + "\n"
 
 
@@ -132,3 +170,43 @@ def _condition(n: Notation, cond: sympy.Basic) -> str:
         return sympy.sstr(cond)
     plain = {s: sympy.Symbol(s.name) for s in cond.free_symbols}
     return f"{n.text(cond.lhs.xreplace(plain))} {op} {n.text(cond.rhs.xreplace(plain))}"
+
+
+def _sweep(eom, swept, parameters: dict, folder: Path | None, lang: str, as_json: bool) -> str:  # type: ignore[no-untyped-def]
+    """The closed-form branches along the parameter: where each appears and changes stability."""
+    name, values = swept
+    diagram = bifurcation(eom, name, values, parameters=parameters or None)
+    n = Notation(list(eom.coordinates), [p.name for p in eom.model.parameters])
+    written = []
+    if folder is not None:
+        from ..plotting import plot_bifurcation, save_figure
+        fig = plot_bifurcation(diagram, eom, lang=lang)
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise OutputError(f"Cannot create the folder `{folder}`: {exc.strerror or exc}.",
+                              fix="check the path and its permissions") from None
+        written.append(save_figure(fig, folder / "bifurcation.png"))
+    if as_json:
+        doc = {"schema": SCHEMA, "version": 1, "model": eom.model.name, "parameter": name,
+               "values": [float(v) for v in values],
+               "branches": [{"values": {c: str(v) for c, v in b.equilibrium.values.items()},
+                             "condition": b.equilibrium.condition_text,
+                             "stable": [None if math.isnan(s) else bool(s) for s in b.stable],
+                             "changes": [{"value": x, "kind": what} for x, what in b.changes]}
+                            for b in diagram.branches]}
+        return json.dumps(doc, indent=2) + "\n"
+    sym = n.symbol(name)
+    lines = [f"Equilibria of {eom.model.name} against {sym} from {values[0]:g} to {values[-1]:g} "
+             f"({len(values)} values)", ""]
+    for k, b in enumerate(diagram.branches, start=1):
+        parts = ", ".join(f"{n.symbol(c)} = {n.text(to_sympy(v))}" for c, v in b.equilibrium.values.items())
+        lines.append(f"  {k}. {parts}")
+        if not b.changes:
+            state = {1.0: "stable", 0.0: "unstable"}
+            kinds = {state.get(float(s), "undecided") for s in b.stable if not math.isnan(s)} or {"absent"}
+            lines.append(f"     {' / '.join(sorted(kinds))} over the whole range")
+        for x, what in b.changes:
+            lines.append(f"     {sym} = {x:.12g}: {what}")
+    lines += [f"wrote {p}" for p in written]
+    return "\n".join(lines) + "\n"

@@ -24,6 +24,7 @@ from ._geometry import apex_path as apex_path
 from ._geometry import axis_angles as axis_angles
 from ._modes import mode_trajectory as mode_trajectory
 from ._mpl import MissingPlotDependency as MissingPlotDependency
+from ._mode_figures import plot_bifurcation as plot_bifurcation
 from ._mode_figures import plot_eigenvalue_sweep as plot_eigenvalue_sweep
 from ._mode_figures import plot_mode_shapes as plot_mode_shapes
 from ._reaction import plot_reaction as plot_reaction
@@ -39,7 +40,7 @@ from ._series import plot_phase as plot_phase
 from ._series import plot_time_series as plot_time_series
 from ._series import relative_drift as relative_drift
 
-__all__ = ["mode_trajectory", "save_plots", "plot_trajectory", "applicable_kinds", "figure_caption", "KINDS", "animate", "save_figure",
+__all__ = ["plot_bifurcation", "mode_trajectory", "save_plots", "plot_trajectory", "applicable_kinds", "figure_caption", "KINDS", "animate", "save_figure",
            "plot_time_series", "plot_phase", "plot_drift", "relative_drift", "plot_apex_sphere", "plot_nutation",
            "apex_path", "axis_angles", "turning_angles", "TurningAngles", "plot_reaction", "reactions_along",
            "MissingPlotDependency", "plot_eigenvalue_sweep", "plot_mode_shapes"]

@@ -18,13 +18,17 @@ from ..dynamics import EquationsOfMotion
 from ._labels import symbol
 from ._mpl import new_figure, suptitle
 
-__all__ = ["plot_eigenvalue_sweep", "plot_mode_shapes"]
+__all__ = ["plot_eigenvalue_sweep", "plot_mode_shapes", "plot_bifurcation"]
 
 _WORDS = {
     "en": {"eigenvalues": "eigenvalues against {p}", "re": r"Re $\lambda$", "im": r"Im $\lambda$",
-           "lambda": r"$\lambda$ (1/s)", "shapes": "mode shapes", "mode": "mode {k}"},
+           "lambda": r"$\lambda$ (1/s)", "shapes": "mode shapes", "mode": "mode {k}",
+           "bifurcation": "equilibria against {p}", "stable": "stable", "unstable": "unstable",
+           "marginal": "undecided"},
     "fr": {"eigenvalues": "valeurs propres en fonction de {p}", "re": r"Re $\lambda$", "im": r"Im $\lambda$",
-           "lambda": r"$\lambda$ (1/s)", "shapes": "déformées modales", "mode": "mode {k}"},
+           "lambda": r"$\lambda$ (1/s)", "shapes": "déformées modales", "mode": "mode {k}",
+           "bifurcation": "positions d'équilibre en fonction de {p}", "stable": "stable", "unstable": "instable",
+           "marginal": "non décidé"},
 }
 
 
@@ -114,4 +118,35 @@ def plot_mode_shapes(modes: Any, eom: EquationsOfMotion, *, fig: Any = None, lan
         ax.set_title(w["mode"].format(k=legend), fontsize=9)
         ax.grid(True, axis="y", alpha=0.3)
     suptitle(fig, _title(eom.model.name, w["shapes"], lang))
+    return fig
+
+
+def plot_bifurcation(diagram: Any, eom: EquationsOfMotion, coordinate: str | None = None, *, fig: Any = None,
+                     lang: str = "en") -> Any:
+    """q* of each branch of equilibria against the parameter (a `lagrangian.analysis.BifurcationDiagram`):
+    solid where stable, dashed where unstable, dotted where the linearization does not decide; the
+    values where a branch appears or changes stability are dotted vertical lines (the bead on the
+    rotating hoop: the pitchfork at Ω² = g/R).
+    """
+    w = _WORDS.get(lang, _WORDS["en"])
+    coordinate = coordinate or diagram.coordinates[0]
+    j = diagram.coordinates.index(coordinate)
+    fig = fig or new_figure(7.0, 4.5, margins=(0.85, 0.2, 0.6, 0.55))
+    ax = fig.add_subplot(1, 1, 1)
+    x = np.asarray(diagram.values, dtype=float)
+    for k, branch in enumerate(diagram.branches):
+        y = branch.q[:, j]
+        for value, ls in ((1.0, "-"), (0.0, "--")):
+            ax.plot(x, np.where(branch.stable == value, y, np.nan), ls, color=f"C{k % 10}", lw=1.8)
+        ax.plot(x, np.where(np.isnan(branch.stable), y, np.nan), ":", color=f"C{k % 10}", lw=1.2)
+    for ls, label in (("-", w["stable"]), ("--", w["unstable"]), (":", w["marginal"])):
+        ax.plot([], [], ls, color="k", lw=1.5, label=label)  # the legend explains the line styles only
+    for branch in diagram.branches:
+        for value, _ in branch.changes:
+            ax.axvline(value, color="0.4", lw=0.8, ls=":")
+    ax.set_xlabel(_parameter_label(eom, diagram.parameter))
+    ax.set_ylabel(symbol(eom, coordinate) + "*")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best")
+    suptitle(fig, _title(eom.model.name, w["bifurcation"].format(p=symbol(eom, diagram.parameter)), lang))
     return fig
