@@ -24,6 +24,7 @@ from .._identity import are_zero
 from ..dynamics import EquationsOfMotion
 from ..dynamics._inertial import rotating_frame
 from ..dynamics._constraints import admissible_integrals
+from ._noether import nonholonomic_integrals, symmetry_integrals
 
 __all__ = ["FirstIntegral", "first_integrals"]
 
@@ -33,7 +34,7 @@ class FirstIntegral:
     """A quantity constant along every motion: ``expression`` = ``name`` (a constant)."""
 
     name: str
-    kind: str  # "momentum", "energy" or "jacobi"
+    kind: str  # "momentum", "energy", "jacobi", "symmetry" (Noether) or "nonholonomic" (a constant speed)
     expression: se.Basic
     reason: str
     coordinate: str | None = None
@@ -84,4 +85,13 @@ def first_integrals(eom: EquationsOfMotion) -> tuple[FirstIntegral, ...]:
                                      f"Painlevé–Jacobi integral T2 − T0 + U = cste: {condition}, "
                                      "T not homogeneous in q̇"))
     # Reactions of complementary constraints may work on q_i or on the motion (docs/constraints.md).
-    return admissible_integrals(eom, out)
+    out = list(admissible_integrals(eom, out))
+    # Integrals that no single coordinate shows: symmetries of the whole system (Noether), and the
+    # speeds a nonholonomic model keeps (`_noether`); only those that are new.
+    known = [fi.expression for fi in out]
+    for name, J, why in symmetry_integrals(eom, known):
+        out.append(FirstIntegral(name, "symmetry", J, why))
+        known.append(J)
+    for name, u, why in nonholonomic_integrals(eom, known):
+        out.append(FirstIntegral(name, "nonholonomic", u, why))
+    return tuple(out)

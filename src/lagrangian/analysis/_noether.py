@@ -1,0 +1,241 @@
+"""First integrals from symmetries (Noether), and the constant speeds of nonholonomic models.
+
+**Noether.**  Move the whole system rigidly — a translation along an axis e of R0, or a rotation
+about an axis e through O — and write the motion in the coordinates: the generator ξ(q) with
+
+    Σ_i ∂V(P)/∂q̇_i ξ_i = e  (translation)  or  e ∧ OP  (rotation)     for every centre P,
+    Σ_i ∂Ω(S)/∂q̇_i ξ_i = 0  (translation)  or  e                      for every body S.
+
+When such a ξ exists and T, U are invariant (δT = Σ ∂T/∂q_i ξ_i + ∂T/∂q̇_i ξ̇_i ≡ 0,
+Σ ∂U/∂q_i ξ_i ≡ 0), the non-conservative efforts do no work on it (Σ Q_i(nc) ξ_i ≡ 0) and the
+complementary constraints admit it (Σ_i A_ki ξ_i ≡ 0, so Σ λ_k A_k·ξ = 0), the Lagrange
+equations give d/dt(Σ_i p_i ξ_i) = 0 (E. Noether, 1918; Arnold, *Mathematical Methods of
+Classical Mechanics*, §20): J = Σ p_i ξ_i = P·e (the momentum) or σ_O·e (the angular momentum
+about the axis).  A free rigid body about a fixed point keeps all three components of σ_O, not
+only the one a cyclic coordinate gives.
+
+**Nonholonomic speeds.**  With the velocity rows solved for the dependent speeds, q̇ = C(q) u,
+the reduced equations (Maggi, the seed's principle of virtual power with q* = C u*)
+Cᵀ(M q̈ − F) = 0 give u̇ = M_r⁻¹ Cᵀ(F − M Ċ u), M_r = Cᵀ M C.  An independent speed whose
+u̇_j vanishes identically is constant: the upright rolling coin keeps ψ̇ and φ̇.
+
+"≡ 0" is the randomized identity test of `_identity`.  Only integrals that are new — not a
+combination with constant coefficients of those already found (K of the top is σ_O·z0) — are
+kept.
+"""
+
+from __future__ import annotations
+
+import random
+from collections.abc import Sequence
+
+import numpy as np
+import symengine as se
+
+from .._identity import are_zero
+from ..dynamics import EquationsOfMotion
+from ..model.spec import GALILEAN_FRAME
+from ._linear_algebra import choose
+
+__all__ = ["symmetry_integrals", "nonholonomic_integrals", "MAX_COORDINATES"]
+
+#: Symmetries are sought up to this many coordinates (the invariance tests differentiate T).
+MAX_COORDINATES = 12
+
+_ZERO = se.Integer(0)
+_AXES = ("x", "y", "z")
+
+
+def _cross(e: int, v: Sequence[se.Basic]) -> list[se.Basic]:
+    """e_k ∧ v in R0 components."""
+    x, y, z = v
+    return [[_ZERO, -z, y], [z, _ZERO, -x], [-y, x, _ZERO]][e]
+
+
+def _numbers(symbols: set, seed: int) -> dict:
+    rng = random.Random(seed)
+    return {s: rng.uniform(0.3, 1.7) for s in sorted(symbols, key=str)}
+
+
+def _generator(eom: EquationsOfMotion, kind: str, axis: int) -> list[se.Basic] | None:
+    """ξ(q) of the rigid translation or rotation, or None when the coordinates cannot follow it."""
+    kin, model = eom.kinematics, eom.model
+    express = kin.frames.express
+    n = kin.n
+    rows: list[list[se.Basic]] = []
+    rhs: list[se.Basic] = []
+    e = [se.Integer(int(k == axis)) for k in range(3)]
+    centres = [b.name for b in model.bodies] + [p.name for p in model.particles]
+    for name in centres:
+        partials = [express(v, GALILEAN_FRAME) for v in kin.partial_velocities(name)]
+        target = e if kind == "translation" else _cross(axis, express(kin.position(name), GALILEAN_FRAME))
+        for k in range(3):
+            rows.append([partials[i][k] for i in range(n)])
+            rhs.append(target[k])
+    for body in model.bodies:
+        partials = [express(w, GALILEAN_FRAME) for w in kin.partial_omegas(body.frame)]
+        for k in range(3):
+            rows.append([partials[i][k] for i in range(n)])
+            rhs.append(_ZERO if kind == "translation" else e[k])
+    if not rows:
+        return None
+    symbols = set().union(*(x.free_symbols for r in rows for x in r)) | set().union(*(x.free_symbols for x in rhs))
+    numbers = _numbers(symbols, 11)
+    Jn = np.array([[float(complex(x.subs(numbers)).real) for x in r] for r in rows])
+    picked_rows = choose(Jn.T, n, range(len(rows)))  # n independent rows fix ξ
+    if len(picked_rows) < n:
+        return None
+    A = se.DenseMatrix([rows[r] for r in picked_rows])
+    b = se.DenseMatrix([[rhs[r]] for r in picked_rows])
+    try:
+        xi = A.LUsolve(b)
+    except (RuntimeError, ValueError, ZeroDivisionError):  # pragma: no cover - a singular symbolic pivot
+        return None
+    xi_list = [xi[i, 0] for i in range(n)]
+    residuals = [se.Add(*[r[i] * xi_list[i] for i in range(n)]) - t for r, t in zip(rows, rhs)]
+    return xi_list if all(are_zero(residuals)) else None
+
+
+def _admissible(eom: EquationsOfMotion, xi: Sequence[se.Basic]) -> bool:
+    """Σ_i A_ki ξ_i = 0 for every complementary row, where the holonomic rows hold (a pivot kept at O
+    admits the rotations about O: e ∧ OQ vanishes with OQ).  Tested at points of the constraint
+    manifold found by least squares from random starts."""
+    rows = eom.constraints
+    if not rows:
+        return True
+    kin = eom.kinematics
+    dot = [se.Add(*[a * x for a, x in zip(row.coefficients, xi)]) for row in rows]
+    holonomic = [row.expression for row in rows if row.kind == "holonomic"]
+    if not holonomic:
+        return all(are_zero(dot))
+    from scipy import optimize
+    q = list(kin.q)
+    symbols = set().union(*(e.free_symbols for e in dot + holonomic)) - set(q) - set(kin.qd)
+    parameters = _numbers(symbols, 7)
+    f = se.Lambdify(q, [e.subs(parameters) for e in holonomic])
+    g = se.Lambdify(q, [e.subs(parameters) for e in dot])
+    rng = np.random.default_rng(3)
+    for _ in range(3):
+        sol = optimize.least_squares(lambda x: np.asarray(f(x), dtype=float).ravel(), rng.uniform(-1.0, 1.0, len(q)),
+                                     xtol=1e-15, ftol=1e-15, gtol=1e-15)
+        if np.abs(sol.fun).max(initial=0.0) > 1e-10:
+            return False  # no point of the manifold found: do not claim the integral
+        value = np.asarray(g(sol.x), dtype=float)
+        if np.abs(value).max(initial=0.0) > 1e-8 * max(1.0, float(np.abs(sol.x).max())):
+            return False
+    return True
+
+
+def _independent(eom: EquationsOfMotion, found: Sequence[se.Basic], candidate: se.Basic) -> bool:
+    """``candidate`` is not a constant-coefficient combination of ``found`` (a rank test at random states)."""
+    exprs = list(found) + [candidate]
+    symbols = set().union(*(x.free_symbols for x in exprs))
+    kin = eom.kinematics
+    state = set(kin.q) | set(kin.qd) | {kin.t}
+    parameters = _numbers(symbols - state, 99)  # the same parameters at every state: constant coefficients
+    values = []
+    for seed in range(len(exprs) + 4):
+        numbers = {**parameters, **_numbers(symbols & state, 100 + seed)}
+        values.append([float(complex(x.subs(numbers)).real) for x in exprs])
+    V = np.array(values)
+    scale = max(1.0, float(np.abs(V).max()))
+    rank_before = np.linalg.matrix_rank(V[:, :-1], tol=1e-9 * scale) if found else 0
+    return np.linalg.matrix_rank(V, tol=1e-9 * scale) > rank_before
+
+
+def symmetry_integrals(eom: EquationsOfMotion, known: Sequence[se.Basic] = ()) -> list[tuple[str, se.Basic, str]]:
+    """(name, J, reason) for each rigid translation or rotation of the whole system that leaves L,
+    the non-conservative efforts and the constraints invariant, J new with respect to ``known``."""
+    model = eom.model
+    if eom.kinematics.n > MAX_COORDINATES or (model.reference is not None and not model.reference.is_galilean_frame):
+        return []
+    kin = eom.kinematics
+    axes_names = next((f.axes for f in model.frames if f.name == GALILEAN_FRAME and getattr(f, "axes", None)), None)
+    axes_names = tuple(axes_names) if axes_names else ("x0", "y0", "z0")
+    T, U = eom.T, eom.U
+    p = [eq.dT_dqd for eq in eom.equations]
+    found = list(known)
+    out = []
+    for kind in ("translation", "rotation"):
+        for axis in range(3):
+            xi = _generator(eom, kind, axis)
+            if xi is None or all(are_zero(xi)):
+                continue
+            xi_dot = [se.Add(*[x.diff(q) * qd for q, qd in zip(kin.q, kin.qd)]) for x in xi]
+            dT = se.Add(*[T.diff(q) * x for q, x in zip(kin.q, xi)], *[T.diff(qd) * x for qd, x in zip(kin.qd, xi_dot)])
+            dU = se.Add(*[U.diff(q) * x for q, x in zip(kin.q, xi)])
+            work = se.Add(*[Q * x for Q, x in zip(eom.Q_nc, xi)])
+            if not all(are_zero([dT, dU, work])) or not _admissible(eom, xi):
+                continue
+            J = se.Add(*[pi * x for pi, x in zip(p, xi)])
+            if are_zero([J])[0] or not _independent(eom, found, J):
+                continue
+            found.append(J)
+            axis_name = axes_names[axis]
+            if kind == "translation":
+                name = f"P_{axis_name}"
+                why = (f"Noether: L is invariant under a translation along {axis_name} and no other effort works "
+                       f"on it, so the momentum P(Σ/R0)·{axis_name} = Σ p_i ξ_i is constant")
+            else:
+                name = f"sigma_O_{axis_name}"
+                why = (f"Noether: L is invariant under a rotation about O{axis_name} and no other effort works "
+                       f"on it, so the angular momentum σ_O(Σ/R0)·{axis_name} = Σ p_i ξ_i is constant")
+            out.append((name, J, why))
+    return out
+
+
+def nonholonomic_integrals(eom: EquationsOfMotion, known: Sequence[se.Basic] = ()) -> list[tuple[str, se.Basic, str]]:
+    """(name, u_j, reason) for each independent speed that the reduced equations keep constant."""
+    rows = eom.constraints
+    kin = eom.kinematics
+    n, m = kin.n, len(rows)
+    if not m or n > 8 or any(r.kind == "holonomic" for r in rows):
+        return []
+    A = se.DenseMatrix([list(r.coefficients) for r in rows])
+    b = [r.b for r in rows]
+    if not all(are_zero(b)):
+        return []  # rheonomic rows: q̇ = C u + d, left aside
+    symbols = set().union(*(x.free_symbols for x in A))
+    An = np.array(A.subs(_numbers(symbols | set(kin.q), 5)).tolist(), dtype=float)
+    appears = set().union(*(e.free_symbols for row in eom.M for e in row), *(f.free_symbols for f in eom.F))
+    order = sorted(range(n), key=lambda i: (kin.q[i] in appears, i))  # dependent: coordinates absent first
+    dep = choose(An, m, order)
+    if len(dep) < m:
+        return []
+    ind = [i for i in range(n) if i not in dep]
+    Ad = se.DenseMatrix([[A[k, i] for i in dep] for k in range(m)])
+    Ai = se.DenseMatrix([[A[k, i] for i in ind] for k in range(m)])
+    try:
+        solved = Ad.LUsolve(-Ai)
+    except (RuntimeError, ValueError, ZeroDivisionError):  # pragma: no cover
+        return []
+    C = se.zeros(n, len(ind))
+    for c, i in enumerate(ind):
+        C[i, c] = 1
+    for r, i in enumerate(dep):
+        for c in range(len(ind)):
+            C[i, c] = solved[r, c]
+    u = [kin.qd[i] for i in ind]
+    qd_of_u = [se.Add(*[C[i, c] * u[c] for c in range(len(ind))]) for i in range(n)]
+    on_manifold = dict(zip(kin.qd, qd_of_u))
+    Cu_dot = [se.Add(*[x.diff(q) * v for q, v in zip(kin.q, qd_of_u)]) for x in qd_of_u]
+    M = se.DenseMatrix([list(r) for r in eom.M])
+    F = se.DenseMatrix([[f.subs(on_manifold)] for f in eom.F])
+    rhs = C.T * (F - M * se.DenseMatrix([[x] for x in Cu_dot]))
+    try:
+        u_dot = (C.T * M * C).LUsolve(rhs)
+    except (RuntimeError, ValueError, ZeroDivisionError):  # pragma: no cover
+        return []
+    zero = are_zero([u_dot[j, 0] for j in range(len(ind))])
+    out = []
+    found = list(known)
+    for j, i in enumerate(ind):
+        if not zero[j] or not _independent(eom, found, u[j]):
+            continue
+        found.append(u[j])
+        name = f"{kin.model.coordinates[i].name}_dot"
+        others = ", ".join(str(kin.qd[d]) for d in dep)
+        out.append((name, u[j],
+                    f"the reduced equations (dependent speeds {others} eliminated by the constraint rows) give "
+                    f"d/dt({name}) = 0: {name} is constant"))
+    return out
