@@ -21,7 +21,7 @@ from __future__ import annotations
 
 from .analysis import (EnergyBalance, Equilibrium, FirstIntegral, LinearizationError, LinearModel, Modes, Stability,
                        Sweep, TopAnalysis, Verification, analyse_top, energy_balance, equilibria, first_integrals,
-                       linearize, modes, stability, sweep, verify)
+                       linearize, modes, routh_reduction, stability, steady_motions, sweep, verify)
 from .dynamics import EquationsOfMotion, LagrangeEquation, derive
 from .errors import DerivationError, KinematicsError, LagrangianError, ModelError, OutputError, SimulationError, VerificationError
 from .kinematics import Kinematics
@@ -62,6 +62,8 @@ __all__ = [
     "sweep",
     "Sweep",
     "Equilibrium",
+    "routh_reduction",
+    "steady_motions",
     "equilibria",
     "compile_system",
     "CompiledSystem",

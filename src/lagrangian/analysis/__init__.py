@@ -38,6 +38,10 @@ from ._modes import Sweep as Sweep
 from ._modes import modes as modes
 from ._modes import stability as stability
 from ._modes import sweep as sweep
+from ._steady import RouthReduction as RouthReduction
+from ._steady import SteadyMotion as SteadyMotion
+from ._steady import routh_reduction as routh_reduction
+from ._steady import steady_motions as steady_motions
 from ._top import TopAnalysis as TopAnalysis
 from ._top import analyse_top as analyse_top
 
@@ -47,4 +51,5 @@ __all__ = ["FirstIntegral", "first_integrals", "CoordinateCheck", "ElementTheore
            "StructureError", "EnergyBalance", "PowerTerm", "energy_balance", "linearize", "LinearModel",
            "SecondOrderForm", "LinearizationError", "Mode", "Modes", "Stability", "StabilityChange", "Sweep", "modes",
            "stability", "sweep", "Equilibrium", "EquilibriumError", "equilibria", "bifurcation",
-           "BifurcationDiagram", "Branch"]
+           "BifurcationDiagram", "Branch", "routh_reduction", "RouthReduction", "steady_motions",
+           "SteadyMotion"]
