@@ -309,6 +309,10 @@ def _line(text: str, needle: str) -> int:
     ('bad = { holonomic = "x", principal = "yes" }', "must be true or false"),
     ('bad = { holonomic = "x", rolling = "P" }', "unknown key `rolling`"),
     ('bad = { description = "nothing" }', "exactly one of the keys"),
+    ('bad = { holonomic = "x", axes = ["x0"] }', "is scalar"),
+    ('bad = { coincide = ["P", "O"], axes = ["w"] }', "`w`, which is not an axis of its frame `R0`"),
+    ('bad = { coincide = ["P", "O"], axes = ["x", "x0"] }', "names an axis twice"),
+    ('bad = { coincide = ["P", "O"], axes = "x0" }', "must list axis names"),
     ("bad = 3", "must be a table"),
 ])
 def test_bad_constraints_name_the_constraint_and_its_line(constraint: str, words: str) -> None:
@@ -319,6 +323,20 @@ def test_bad_constraints_name_the_constraint_and_its_line(constraint: str, words
     assert words in err.message, err.message
     assert err.file == "model.toml" and err.line == _line(text, "bad =")
     assert err.fix
+
+
+def test_axes_keep_the_rows_that_a_holonomic_contact_leaves() -> None:
+    # No slip at I in R1 has rows x1, y1 (zero: dropped) and z1 = d/dt(z − r), redundant with `contact`
+    # (next test); `axes` keeps x1 only, which is rolling ẋ − r φ̇ = 0, as the Pfaffian form says.
+    kept = derive_text(INCLINE_NORMAL + 'rolling = { no_slip = "I", on = "S", frame = "R1", axes = ["x1"] }\n')
+    pfaff = derive_text(INCLINE_NORMAL + 'rolling = { nonholonomic = { x = "1", phi = "-r" } }\n')
+    assert [r.name for r in kept.constraints] == ["contact", "rolling_x1"]
+    row, ref = kept.constraints[1], pfaff.constraints[1]
+    assert row.kind == "nonholonomic"
+    assert all(is_zero(a - b) for a, b in zip(row.coefficients, ref.coefficients))
+    # The same axis named as x (the letter) or as the frame's axis name.
+    letter = derive_text(INCLINE_NORMAL + 'rolling = { no_slip = "I", on = "S", frame = "R1", axes = ["x"] }\n')
+    assert [r.name for r in letter.constraints] == ["contact", "rolling_x1"]
 
 
 def test_redundant_constraints_are_named() -> None:

@@ -254,7 +254,14 @@ def test_equations_do_not_depend_on_coordinate_order(name: str, order: tuple[int
     assert np.allclose(ours, theirs, rtol=RTOL, atol=RTOL * _scale(ours)), (ours, theirs)
 
 
-@pytest.mark.parametrize(("name", "order"), PERMUTATIONS)
+#: The bicycle's first integrals take seconds per order (its energy is long): the reversal and an
+#: interleaving, which move every coordinate, are enough there.
+_LONG = {"whipple_bicycle.toml"}
+INTEGRAL_ORDERS = [(name, order) for name, order in PERMUTATIONS
+                   if name not in _LONG or order in (other_orders(len(order))[0], other_orders(len(order))[-1])]
+
+
+@pytest.mark.parametrize(("name", "order"), INTEGRAL_ORDERS)
 def test_first_integrals_do_not_depend_on_coordinate_order(name: str, order: tuple[int, ...]) -> None:
     ours = {(fi.name, fi.kind, fi.coordinate): fi.expression for fi in integrals_of(name)}
     permuted = lagrangian.first_integrals(_permuted(name, order))
@@ -272,6 +279,7 @@ EXPECTED_INTEGRALS = {
     "cart_pendulum.toml": {"E"},
     "inverted_pendulum_cart.toml": {"E"},  # a constant push F derives from U = −F x: E, but no p_x
     "lagrange_top.toml": {"K", "H", "E"},
+    "sleeping_top.toml": {"p_phi", "E", "sigma_O_z0"},  # the spin's momentum, and σ_O·z0 by Noether
     "bead_rotating_hoop.toml": {"h"},  # Jacobi: energy in the hoop's frame, with the entrainment potential
     "foucault_pendulum.toml": {"h"},
     "kapitza_pendulum.toml": set(),  # L depends on t

@@ -54,6 +54,16 @@ def test_the_dot_goes_on_the_letter_not_on_its_index():
     assert n.latex(sympy.Symbol("theta_dot")) == r"\dot{\theta}"
 
 
+def test_a_greek_letter_with_a_capital_index_is_that_letter_indexed():
+    # The bicycle's rear-wheel angle thetaR is θ_R, its rate θ̇_R (not "thetaṘ"); a lower-case tail is a word.
+    n = Notation(coordinates=("thetaR",))
+    assert n.symbol("thetaR") == "θR" and n.symbol("thetaR_dot") == "θ̇R"
+    assert n.symbol("thetaR", latex=True) == r"\theta_{R}"
+    assert n.symbol("thetaR_dot", latex=True) == r"\dot{\theta}_{R}"
+    assert n.symbol("omegaZ1_ddot", latex=True) == r"\ddot{\omega}_{Z1}"
+    assert n.symbol("thetas") == "thetas" and n.symbol("beta") == "β" and n.symbol("eta") == "η"
+
+
 def test_a_function_is_set_apart_from_a_word_or_latin_argument():
     lat, x1, theta = sympy.symbols("lat x_1 theta")
     n = Notation(["lat"], ["g"])

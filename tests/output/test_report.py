@@ -20,7 +20,7 @@ from lagrangian.model.zoo import planar_chain
 from lagrangian.output import Report, ReportFigure, course_form, report
 from lagrangian.output._report_doc import Display, Fold, Items, Para, math_of, walk
 from lagrangian.output._report_md import render_markdown
-from lagrangian.output._report_size import Summary
+from lagrangian.output._report_size import SMALL_OPS, Summary
 from lagrangian.output._text import notation
 from lagrangian_test_support import EXAMPLES_DIR, eom_of, example_names, integrals_of
 
@@ -124,6 +124,11 @@ def test_cyclic_equations_first_then_the_rest_with_the_integrals(top):
 
 
 # -- every equation is the engine's ------------------------------------------------------------------
+#: Examples whose equations exceed the report's print budget (`_report_size.BUDGET`): their long
+#: expressions are summarized ⟨N terms⟩, as the report says.
+OVER_BUDGET = {"whipple_bicycle.toml"}
+
+
 @pytest.mark.parametrize("name", example_names())
 @pytest.mark.parametrize("lang", ["fr", "en"])
 def test_report_equations_are_the_engines(name, lang):
@@ -149,6 +154,12 @@ def test_report_equations_are_the_engines(name, lang):
     expected += [n.sum(i.parts, latex=True) + " = " + n.symbol(i.name, latex=True) for i in form.integrals
                  if i.kind == "momentum"]
     expected += [n.latex(x) for row in form.M for x in row if x != 0] + [n.latex(f) for f in form.F]
+    if name in OVER_BUDGET:
+        # Printed in full only when short (SMALL_OPS operations, about six characters each);
+        # longer ones may stand as ⟨N terms⟩ (derive --json has them in full).
+        assert r"\langle" in shown
+        expected = [e for e in expected if len(_norm(e)) <= 6 * SMALL_OPS]
+        assert expected
     for e in expected:
         assert _norm(e) in shown, f"{name}: {e!r} is not in the report"
     assert f"{len(eom.coordinates)}" in " ".join(math_of(r.document.section("step2").blocks))

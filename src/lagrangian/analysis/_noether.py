@@ -31,6 +31,8 @@ from collections.abc import Sequence
 
 import numpy as np
 import symengine as se
+import sympy
+from symengine.lib.symengine_wrapper import sympy2symengine
 
 from .._identity import are_zero
 from ..dynamics import EquationsOfMotion
@@ -55,6 +57,22 @@ def _cross(e: int, v: Sequence[se.Basic]) -> list[se.Basic]:
 def _numbers(symbols: set, seed: int) -> dict:
     rng = random.Random(seed)
     return {s: rng.uniform(0.3, 1.7) for s in sorted(symbols, key=str)}
+
+
+#: Longest entry (characters of its text) that `_tidy` simplifies: SymPy's cancel grows fast with
+#: the size (a bicycle's entries would take minutes), and the removable singularities it is there
+#: for come from short entries (Cardan angles' sin β / sin β).
+TIDY_MAX_CHARS = 400
+
+
+def _tidy(e: se.Basic) -> se.Basic:
+    """cancel, trigsimp, cancel (SymPy): the generator's entries are short once simplified."""
+    if not e.free_symbols or len(str(e)) > TIDY_MAX_CHARS:
+        return e
+    try:
+        return sympy2symengine(sympy.cancel(sympy.trigsimp(sympy.cancel(e._sympy_()))))
+    except (TypeError, ValueError, RuntimeError, NotImplementedError, AttributeError):  # pragma: no cover
+        return e
 
 
 def _generator(eom: EquationsOfMotion, kind: str, axis: int) -> list[se.Basic] | None:
@@ -91,7 +109,8 @@ def _generator(eom: EquationsOfMotion, kind: str, axis: int) -> list[se.Basic] |
         xi = A.LUsolve(b)
     except (RuntimeError, ValueError, ZeroDivisionError):  # pragma: no cover - a singular symbolic pivot
         return None
-    xi_list = [xi[i, 0] for i in range(n)]
+    # The LU leaves removable singularities (sin β/sin β in Cardan angles): simplify before use.
+    xi_list = [_tidy(xi[i, 0]) for i in range(n)]
     residuals = [se.Add(*[r[i] * xi_list[i] for i in range(n)]) - t for r, t in zip(rows, rhs)]
     return xi_list if all(are_zero(residuals)) else None
 

@@ -156,7 +156,9 @@ def _raw_rows(kin: Kinematics, c: Constraint) -> list[tuple[str, int | None, se.
         return [(c.name, None, value)]
     comps = kin.frames.express(value, c.frame)
     axes = _axis_names(kin, c.frame)
-    return [(f"{c.name}_{axes[k]}", k, comps[k]) for k in range(3)]
+    # `axes` keeps only some rows: a wheel's normal row is the derivative of its holonomic contact.
+    kept = c.axes if c.axes is not None else (0, 1, 2)
+    return [(f"{c.name}_{axes[k]}", k, comps[k]) for k in kept]
 
 
 def _row(kin: Kinematics, c: Constraint, name: str, expr: se.Basic) -> ConstraintRow:

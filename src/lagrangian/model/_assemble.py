@@ -153,7 +153,7 @@ class Assembler:
         all_points.update({p.name: Point(p.name, p.position) for p in particles})
         loads = self.loads(all_points, bodies, particles, coordinates)
         constraints = build_constraints(self, self.of("constraint"), coordinates, all_points,
-                                        [b.name for b in bodies])
+                                        [b.name for b in bodies], {f.name: f.axes for f in frames})
         operating = build_operating_point(self, self.b._operating_point, parameters, coordinates)
         model = Model(
             name=self.b.name,

@@ -49,7 +49,7 @@ NONHOLONOMIC = "nonholonomic"
 #: The forms a constraint may take, and the kind (holonomic or not) of each.
 FORMS = {"holonomic": HOLONOMIC, "nonholonomic": NONHOLONOMIC, "no_slip": NONHOLONOMIC, "coincide": HOLONOMIC}
 #: Keys every form accepts besides its own.
-_COMMON = {"frame", "principal", "reaction", "description"}
+_COMMON = {"frame", "axes", "principal", "reaction", "description"}
 _EXTRA = {"no_slip": {"on"}}
 _EXAMPLES = {
     "holonomic": 'length = { holonomic = "x^2 + y^2 - l^2" }',
@@ -82,6 +82,9 @@ class Constraint:
     frame : the basis whose axes give the scalar rows of a vector constraint.
     principal : true when the choice of coordinates already satisfies it (no multiplier).
     reaction : the physical efforts that carry its reaction, when declared.
+    axes : for a vector constraint, the indices (0, 1, 2) of the axes of ``frame`` whose rows are
+        kept; None keeps all three.  A wheel on the ground keeps its two tangential rows when its
+        normal row is the derivative of a holonomic contact constraint declared beside it.
     """
 
     name: str
@@ -93,6 +96,7 @@ class Constraint:
     principal: bool = False
     reaction: ReactionSpec | None = None
     description: str | None = None
+    axes: tuple[int, ...] | None = None
 
     def __post_init__(self) -> None:
         if self.form not in FORMS:
@@ -127,8 +131,8 @@ def read_constraint(reader: Any, builder: ModelBuilder, name: str, value: Any) -
                           symbol=unknown[0], fix="the keys allowed here are " + ", ".join(sorted(allowed)))
     where = reader.located("constraints", name, value, form)
     builder.constraint(name, form, value[form], on=value.get("on"), frame=value.get("frame", GALILEAN_FRAME),
-                       principal=value.get("principal", False), reaction=value.get("reaction"),
-                       description=value.get("description"), location=where)
+                       axes=value.get("axes"), principal=value.get("principal", False),
+                       reaction=value.get("reaction"), description=value.get("description"), location=where)
 
 
 # -- the build stage ------------------------------------------------------------------------------
@@ -140,8 +144,9 @@ class _Checker:
     """Turns the raw ``constraint`` declarations of a `ModelBuilder` into `Constraint` values."""
 
     def __init__(self, assembler: Any, coordinates: Sequence[Any], points: Collection[str],
-                 bodies: Collection[str]) -> None:
+                 bodies: Collection[str], frame_axes: Mapping[str, tuple[str, str, str]]) -> None:
         self.a = assembler
+        self.frame_axes = frame_axes
         self.coordinates = {c.name: c for c in coordinates}
         self.rates = {c.rate_symbol: c.rate_symbol.name for c in coordinates}
         self.points = set(points)
@@ -199,7 +204,39 @@ class _Checker:
                 raise self.fail(raw, f"constraint `{raw.name}` keeps point `{points[0]}` on itself", key=form,
                                 fix="name two different points")
         reaction = self.reaction(raw, d["reaction"], form)
-        return Constraint(raw.name, form, expression, points, body, frame, principal, reaction, description)
+        vector = form in ("no_slip", "coincide") or isinstance(expression, Vector)
+        axes = self.axes(raw, d.get("axes"), frame, vector)
+        return Constraint(raw.name, form, expression, points, body, frame, principal, reaction, description, axes)
+
+    def axes(self, raw: Any, value: Any, frame: str, vector: bool) -> tuple[int, ...] | None:
+        """The indices of the rows kept (`axes` = names of axes of `frame`, or x, y, z), in the frame's order."""
+        if value is None:
+            return None
+        names = self.frame_axes.get(frame, ("x", "y", "z"))
+        example = f'axes = ["{names[0]}", "{names[1]}"]'
+        if not vector:
+            raise self.fail(raw, f"constraint `{raw.name}` is scalar: it has one row, so `axes` has nothing to choose",
+                            key="axes", fix="remove `axes`; it selects rows of a vector constraint (no_slip, "
+                                            "coincide, or a vector expression)")
+        if isinstance(value, str) or not isinstance(value, Sequence) or not value \
+                or not all(isinstance(v, str) for v in value):
+            raise self.fail(raw, f"`axes` of constraint `{raw.name}` must list axis names, not `{value}`",
+                            key="axes", fix=f"e.g. {example} (axes of frame `{frame}`)")
+        picked = []
+        for v in value:
+            if v in names:
+                picked.append(names.index(v))
+            elif v in ("x", "y", "z"):
+                picked.append("xyz".index(v))
+            else:
+                raise self.fail(raw, f"constraint `{raw.name}` keeps the rows along `{v}`, which is not an axis of "
+                                f"its frame `{frame}`", key="axes", symbol=v,
+                                fix="name axes of the frame: " + ", ".join(f"`{a}`" for a in names)
+                                    + " (or x, y, z)")
+        if len(set(picked)) != len(picked):
+            raise self.fail(raw, f"`axes` of constraint `{raw.name}` names an axis twice", key="axes",
+                            fix=f"name each axis once, e.g. {example}")
+        return tuple(sorted(picked))
 
     def check_holonomic(self, raw: Any, expression: Any) -> None:
         comps = [c for _, cs in expression for c in cs] if isinstance(expression, Vector) else [expression]
@@ -279,7 +316,8 @@ class _Checker:
 
 
 def build_constraints(assembler: Any, raws: Sequence[Any], coordinates: Sequence[Any], points: Collection[str],
-                      bodies: Collection[str]) -> tuple[Constraint, ...]:
+                      bodies: Collection[str], frame_axes: Mapping[str, tuple[str, str, str]] | None = None
+                      ) -> tuple[Constraint, ...]:
     """Check the raw ``constraint`` declarations and return them as `Constraint` values.
 
     Raises
@@ -288,5 +326,5 @@ def build_constraints(assembler: Any, raws: Sequence[Any], coordinates: Sequence
         At the declaration's file and line: unknown names, a holonomic constraint that
         holds a rate, a nonholonomic one that holds none or is not linear in the rates.
     """
-    checker = _Checker(assembler, coordinates, points, bodies)
+    checker = _Checker(assembler, coordinates, points, bodies, frame_axes or {})
     return tuple(checker.build(raw) for raw in raws)

@@ -179,14 +179,16 @@ class ModelBuilder:
                                     location or Location(self.source))
 
     def constraint(self, name: str, form: str, value: Any, *, on: str | None = None, frame: str = GALILEAN_FRAME,
-                   principal: bool = False, reaction: Mapping[str, Any] | None = None,
+                   axes: Sequence[str] | None = None, principal: bool = False, reaction: Mapping[str, Any] | None = None,
                    description: str | None = None, location: Location | None = None) -> None:
         """A constraint kept complementary (with a multiplier), or declared ``principal``.
 
         ``form`` is ``"holonomic"``, ``"nonholonomic"``, ``"no_slip"`` or ``"coincide"``; see
-        `lagrangian.model._constraints` and ``docs/constraints.md``.
+        `lagrangian.model._constraints` and ``docs/constraints.md``.  ``axes`` keeps, of a vector
+        constraint, only the rows along those axes of ``frame``.
         """
-        self._add("constraint", name, location, form=form, value=value, on=on, frame=frame, principal=principal,
+        self._add("constraint", name, location, form=form, value=value, on=on, frame=frame, axes=axes,
+                  principal=principal,
                   reaction=reaction, description=description)
 
     # -- build ----------------------------------------------------------------------------

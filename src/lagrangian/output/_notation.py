@@ -79,12 +79,25 @@ def _split_name(name: str) -> tuple[str, str]:
     return name, ""
 
 
+def _greek_index(name: str) -> tuple[str, str] | None:
+    """``thetaR`` → (``theta``, ``R``), ``theta1`` → (``theta``, ``1``): a Greek letter and its index.
+
+    The index is digits, or starts with a capital (thetaB, omegaZ1): a lower-case tail
+    (``thetas``, ``eta`` in ``beta``) is part of a word, not an index.
+    """
+    for head in sorted(_GREEK, key=len, reverse=True):
+        tail = name[len(head):]
+        if name.startswith(head) and tail and tail.isalnum() and (tail.isdigit() or tail[0].isupper()):
+            return head, tail
+    return None
+
+
 def _base_text(name: str) -> str:
     if name in _GREEK:
         return _GREEK[name][0]
-    head = name.rstrip("0123456789")
-    if head in _GREEK and head != name:
-        return _GREEK[head][0] + name[len(head):]
+    split = _greek_index(name)
+    if split:
+        return _GREEK[split[0]][0] + split[1]
     return name
 
 
@@ -96,6 +109,9 @@ def _base_latex(name: str) -> str:
         head, _, tail = name.partition("_")
         parts = [_base_latex(part) for part in tail.split("_") if part]
         return f"{_base_latex(head)}_{{{','.join(parts)}}}"
+    split = _greek_index(name)
+    if split:
+        return f"{_GREEK[split[0]][1]}_{{{split[1]}}}"
     head = name.rstrip("0123456789")
     if head and head != name:
         return f"{_base_latex(head)}_{{{name[len(head):]}}}"
@@ -163,7 +179,9 @@ class Notation:
                        "": b}[deco]
             else:
                 b = _base_text(base)
-                head = b.rstrip("0123456789")  # θ̇1: the dot on the letter, not on the index
+                split = _greek_index(base)
+                # θ̇1, θ̇R: the dot on the letter, not on the index.
+                head = _GREEK[split[0]][0] if split else b.rstrip("0123456789")
                 out = head + {"dot": "\u0307", "ddot": "\u0308", "star": "", "": ""}[deco] + b[len(head):] + \
                     ("*" if deco == "star" else "")
             self._cache[key] = out
