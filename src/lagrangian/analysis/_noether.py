@@ -75,8 +75,8 @@ def _tidy(e: se.Basic) -> se.Basic:
         return e
 
 
-def _generator(eom: EquationsOfMotion, kind: str, axis: int) -> list[se.Basic] | None:
-    """ξ(q) of the rigid translation or rotation, or None when the coordinates cannot follow it."""
+def _rows(eom: EquationsOfMotion, kind: str, axis: int) -> tuple[list[list[se.Basic]], list[se.Basic]]:
+    """The linear system R ξ = r that the generator of the rigid motion must satisfy (module docstring)."""
     kin, model = eom.kinematics, eom.model
     express = kin.frames.express
     n = kin.n
@@ -95,7 +95,47 @@ def _generator(eom: EquationsOfMotion, kind: str, axis: int) -> list[se.Basic] |
         for k in range(3):
             rows.append([partials[i][k] for i in range(n)])
             rhs.append(_ZERO if kind == "translation" else e[k])
+    return rows, rhs
+
+
+class _NumericGenerator:
+    """ξ(q) by least squares on R(q) ξ = r(q), with numbers for the parameters: whether a generator
+    exists, and whether the constraints admit it, are settled numerically before any symbolic solve
+    (a symbolic LU with an unlucky pivot order swells: the bicycle's coordinates listed backwards)."""
+
+    def __init__(self, eom: EquationsOfMotion, rows: list[list[se.Basic]], rhs: list[se.Basic]) -> None:
+        kin = eom.kinematics
+        self.q = list(kin.q)
+        flat = [x for r in rows for x in r] + list(rhs)
+        symbols = set().union(*(x.free_symbols for x in flat)) - set(self.q)
+        self.parameters = _numbers(symbols, 11)
+        self.shape = (len(rows), kin.n)
+        self.fn = se.Lambdify(self.q, [x.subs(self.parameters) for x in flat], cse=True)
+
+    def __call__(self, q: np.ndarray) -> tuple[np.ndarray, float]:
+        """(ξ at q, the relative residual of R ξ = r there)."""
+        values = np.asarray(self.fn(np.asarray(q, dtype=float)), dtype=float).ravel()
+        m, n = self.shape
+        R, r = values[: m * n].reshape(m, n), values[m * n:]
+        xi, *_ = np.linalg.lstsq(R, r, rcond=None)
+        scale = max(1.0, float(np.abs(R).max(initial=0.0)), float(np.abs(r).max(initial=0.0)))
+        return xi, float(np.abs(R @ xi - r).max(initial=0.0)) / scale
+
+    def exists(self) -> bool:
+        rng = np.random.default_rng(13)
+        return all(self(rng.uniform(-1.0, 1.0, len(self.q)))[1] < 1e-9 for _ in range(2))
+
+
+def _generator(eom: EquationsOfMotion, kind: str, axis: int) -> tuple[list[se.Basic], _NumericGenerator] | None:
+    """ξ(q) of the rigid translation or rotation (and its numeric twin), or None when the
+    coordinates cannot follow it or the complementary constraints do not admit it."""
+    kin = eom.kinematics
+    n = kin.n
+    rows, rhs = _rows(eom, kind, axis)
     if not rows:
+        return None
+    numeric = _NumericGenerator(eom, rows, rhs)
+    if not numeric.exists() or not _admissible(eom, numeric):
         return None
     symbols = set().union(*(x.free_symbols for r in rows for x in r)) | set().union(*(x.free_symbols for x in rhs))
     numbers = _numbers(symbols, 11)
@@ -112,35 +152,39 @@ def _generator(eom: EquationsOfMotion, kind: str, axis: int) -> list[se.Basic] |
     # The LU leaves removable singularities (sin β/sin β in Cardan angles): simplify before use.
     xi_list = [_tidy(xi[i, 0]) for i in range(n)]
     residuals = [se.Add(*[r[i] * xi_list[i] for i in range(n)]) - t for r, t in zip(rows, rhs)]
-    return xi_list if all(are_zero(residuals)) else None
+    return (xi_list, numeric) if all(are_zero(residuals)) else None
 
 
-def _admissible(eom: EquationsOfMotion, xi: Sequence[se.Basic]) -> bool:
+def _admissible(eom: EquationsOfMotion, xi: _NumericGenerator) -> bool:
     """Σ_i A_ki ξ_i = 0 for every complementary row, where the holonomic rows hold (a pivot kept at O
-    admits the rotations about O: e ∧ OQ vanishes with OQ).  Tested at points of the constraint
-    manifold found by least squares from random starts."""
+    admits the rotations about O: e ∧ OQ vanishes with OQ).  Tested at random states, or at points
+    of the constraint manifold found by least squares from random starts, with ξ found there."""
     rows = eom.constraints
     if not rows:
         return True
-    kin = eom.kinematics
-    dot = [se.Add(*[a * x for a, x in zip(row.coefficients, xi)]) for row in rows]
-    holonomic = [row.expression for row in rows if row.kind == "holonomic"]
-    if not holonomic:
-        return all(are_zero(dot))
     from scipy import optimize
+    kin = eom.kinematics
     q = list(kin.q)
-    symbols = set().union(*(e.free_symbols for e in dot + holonomic)) - set(q) - set(kin.qd)
-    parameters = _numbers(symbols, 7)
-    f = se.Lambdify(q, [e.subs(parameters) for e in holonomic])
-    g = se.Lambdify(q, [e.subs(parameters) for e in dot])
+    exprs = [c for row in rows for c in row.coefficients]
+    holonomic = [row.expression for row in rows if row.kind == "holonomic"]
+    symbols = set().union(*(e.free_symbols for e in exprs + holonomic)) - set(q) - set(kin.qd)
+    parameters = {**_numbers(symbols, 7), **{s: v for s, v in xi.parameters.items() if s in symbols}}
+    A = se.Lambdify(q, [e.subs(parameters) for e in exprs], cse=True)
+    f = se.Lambdify(q, [e.subs(parameters) for e in holonomic], cse=True) if holonomic else None
     rng = np.random.default_rng(3)
     for _ in range(3):
-        sol = optimize.least_squares(lambda x: np.asarray(f(x), dtype=float).ravel(), rng.uniform(-1.0, 1.0, len(q)),
-                                     xtol=1e-15, ftol=1e-15, gtol=1e-15)
-        if np.abs(sol.fun).max(initial=0.0) > 1e-10:
-            return False  # no point of the manifold found: do not claim the integral
-        value = np.asarray(g(sol.x), dtype=float)
-        if np.abs(value).max(initial=0.0) > 1e-8 * max(1.0, float(np.abs(sol.x).max())):
+        point = rng.uniform(-1.0, 1.0, len(q))
+        if f is not None:
+            sol = optimize.least_squares(lambda x: np.asarray(f(x), dtype=float).ravel(), point,
+                                         xtol=1e-15, ftol=1e-15, gtol=1e-15)
+            if np.abs(sol.fun).max(initial=0.0) > 1e-10:
+                return False  # no point of the manifold found: do not claim the integral
+            point = sol.x
+        x, residual = xi(point)
+        if residual > 1e-9:
+            return False
+        value = np.asarray(A(point), dtype=float).reshape(len(rows), len(q)) @ x
+        if np.abs(value).max(initial=0.0) > 1e-8 * max(1.0, float(np.abs(x).max(initial=0.0))):
             return False
     return True
 
@@ -177,14 +221,15 @@ def symmetry_integrals(eom: EquationsOfMotion, known: Sequence[se.Basic] = ()) -
     out = []
     for kind in ("translation", "rotation"):
         for axis in range(3):
-            xi = _generator(eom, kind, axis)
-            if xi is None or all(are_zero(xi)):
+            found_xi = _generator(eom, kind, axis)
+            if found_xi is None or all(are_zero(found_xi[0])):
                 continue
+            xi = found_xi[0]
             xi_dot = [se.Add(*[x.diff(q) * qd for q, qd in zip(kin.q, kin.qd)]) for x in xi]
             dT = se.Add(*[T.diff(q) * x for q, x in zip(kin.q, xi)], *[T.diff(qd) * x for qd, x in zip(kin.qd, xi_dot)])
             dU = se.Add(*[U.diff(q) * x for q, x in zip(kin.q, xi)])
             work = se.Add(*[Q * x for Q, x in zip(eom.Q_nc, xi)])
-            if not all(are_zero([dT, dU, work])) or not _admissible(eom, xi):
+            if not all(are_zero([dT, dU, work])):
                 continue
             J = se.Add(*[pi * x for pi, x in zip(p, xi)])
             if are_zero([J])[0] or not _independent(eom, found, J):

@@ -165,6 +165,7 @@ class Notation:
     coordinates: Sequence[str] = ()
     parameters: Sequence[str] = ()
     _cache: dict[tuple[str, str], str] = field(default_factory=dict, repr=False)
+    _keys: dict[tuple[sympy.Basic, bool | None], tuple] = field(default_factory=dict, repr=False)
 
     # -- symbols ---------------------------------------------------------------------------
     def symbol(self, name: str, latex: bool = False) -> str:
@@ -200,6 +201,14 @@ class Notation:
             factors.sort(key=lambda f: self._factor_key(f, text=False))
 
     def _factor_key(self, factor: sympy.Basic, text: bool = True) -> tuple:
+        # Cached: a long equation meets the same factors (cos(θ_B + λ), a bracketed sum) thousands
+        # of times, and their keys hold printed text.
+        key = (factor, text)
+        if key not in self._keys:
+            self._keys[key] = self._make_factor_key(factor, text)
+        return self._keys[key]
+
+    def _make_factor_key(self, factor: sympy.Basic, text: bool) -> tuple:
         base = factor.base if isinstance(factor, sympy.Pow) else factor
         if isinstance(base, sympy.Symbol):
             name, deco = _split_name(base.name)
@@ -214,6 +223,12 @@ class Notation:
         return (8, 0, str(base) if text else "")
 
     def _term_key(self, term: sympy.Basic) -> tuple:
+        key = (term, None)
+        if key not in self._keys:
+            self._keys[key] = self._make_term_key(term)
+        return self._keys[key]
+
+    def _make_term_key(self, term: sympy.Basic) -> tuple:
         factors = sympy.Mul.make_args(term)
         names = {s.name for s in term.free_symbols}
         has_qdd = any(n.endswith("_ddot") for n in names)
