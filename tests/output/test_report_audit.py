@@ -5,6 +5,7 @@ Each test names the model of ``examples/`` it reads and the sentence or formula 
 
 from __future__ import annotations
 
+import re
 from functools import lru_cache
 
 from lagrangian.output import report
@@ -69,7 +70,10 @@ def test_coriolis_forces_do_no_power_and_leave_the_jacobi_integral():
     for text in (bead, foucault):
         step6 = _section(text, "6.")
         assert "Le système n'est pas conservatif" not in step6
-        assert "aucune puissance réelle" in step6 and r"h = T_2 - T_0 + U_P(\Sigma/" in step6
+        # One definition of h (issue 11, item 4): T(Σ/R) = T_2 there, U_P(Σ/R) holds the entrainment potential.
+        assert "aucune puissance réelle" in step6 and re.search(r"h = T\(\\Sigma/([^)]+)\) \+ U_P\(\\Sigma/\1\)", step6)
+        # h is written as the integrals section defines it: with T_2 − T_0 only where T(Σ/R) has a T_0 part.
+        assert ("T_0" in step6) == ("T_2 - T_0" in _section(text, "Intégrales premières"))
         assert "l'intégrale première de l'énergie" not in _section(text, "Intégrales premières")
     assert r"Q_i(\text{Coriolis}) = 0" in _section(bead, "6.")
     assert r"\sum_{i} Q_i(\text{Coriolis})\,\dot{q}_i = 0" in _section(foucault, "6.")

@@ -183,3 +183,75 @@ def test_no_english_in_french_and_no_french_in_english(name):
     for word in FRENCH:
         assert word not in en, (name, word)
     assert "e-0" not in fr and "e-0" not in en  # 5·10⁻⁵, not 5e-05
+
+
+# -- degrees of freedom, planar motion, the multiplier's derivation (issue 11, items 1 and 3) ---------------------
+#: Degrees of freedom counted by hand from each statement (independent velocities): the rod of
+#: `pendulum_tension` leaves one of x, y; the coin's two rolling rows leave ψ̇ and φ̇; the disk rolls
+#: (x = r φ); the top's pivot (3 rows) leaves ψ, θ, φ; the bicycle's five rows leave lean, steer and
+#: the rear wheel's rate.
+DOF = {"pendulum_tension.toml": (2, 1, 0, 1), "rolling_coin.toml": (4, 0, 2, 2),
+       "rolling_disk_incline.toml": (2, 1, 0, 1), "top_reaction.toml": (6, 3, 0, 3),
+       "whipple_bicycle.toml": (8, 1, 4, 3), "lagrange_top.toml": (3, 0, 0, 3), "double_pendulum.toml": (2, 0, 0, 2)}
+#: The plane of the motion when it is planar by construction (None: it is not).
+PLANE = {"pendulum_tension.toml": r"(O;\,\vec{x}_{0},\,\vec{y}_{0})", "double_pendulum.toml": r"(O;\,\vec{y}_{0},\,\vec{z}_{0})",
+         "rolling_disk_incline.toml": r"(O;\,\vec{x}_{0},\,\vec{z}_{0})", "lagrange_top.toml": None,
+         "rolling_coin.toml": None, "top_reaction.toml": None, "whipple_bicycle.toml": None}
+
+
+@pytest.mark.parametrize("name", sorted(DOF))
+def test_step1_counts_the_degrees_of_freedom_and_says_when_the_motion_is_planar(name):
+    n, h, k, dof = DOF[name]
+    assert n - h - k == dof
+    eom = _eom_of(name)
+    for lang, word in (("fr", "Degrés de liberté"), ("en", "Degrees of freedom")):
+        step1 = _section(_report(eom, lang=lang), "step1")
+        assert "Bilan des degrés" not in step1 and "(6 per rigid body, 3 per particle, less one" not in step1
+        if k:
+            assert f"{word} : " in step1 or f"{word}: " in step1
+            assert f"n - h - k = {n} - {h} - {k} = {dof}" in step1
+        elif h:
+            assert f"n - h = {n} - {h} = {dof}" in step1
+        else:
+            assert f"n = {n}" in step1
+        # Only nonholonomic rows leave more independent positions (n − h) than speeds (n − h − k).
+        only_speeds = "ne restreignent que les vitesses" if lang == "fr" else "restrict only the velocities"
+        assert (only_speeds in step1) == bool(k)
+        if k:
+            assert f"n - h = {n - h}" in step1 and f"n - h - k = {dof}" in step1
+        plane = PLANE[name]
+        planar = "plan par construction" if lang == "fr" else "planar by construction"
+        assert (planar in step1) == (plane is not None)
+        if plane is not None:
+            assert plane in step1
+
+
+def test_a_holonomic_multiplier_comes_from_the_constraint_differentiated_twice():
+    eom = _eom_of("pendulum_tension.toml")
+    assert "dérivée deux fois par rapport au temps" in _section(_report(eom, lang="fr"), "step7")
+    assert "differentiated twice with respect to time" in _section(_report(eom, lang="en"), "step7")
+
+
+def test_the_jacobi_integral_of_the_hoop_has_one_definition():
+    # In R1 the bead's T(Σ/R1) = ½ m R² θ̇² is T_2 and U_P(Σ/R1) already holds the centrifugal potential
+    # −½ m R² Ω² sin²θ: h = T(Σ/R1) + U_P(Σ/R1), written the same way wherever the report names it.
+    eom = _eom_of("bead_rotating_hoop.toml")
+    for lang in ("fr", "en"):
+        text = _all(_report(eom, lang=lang))
+        assert "T_0" not in text and "T_2 - T_0" not in text
+        assert text.count(r"h = T(\Sigma/R_{1}) + U_P(\Sigma/R_{1})") >= 2
+
+
+def test_the_moment_theorem_at_a_moving_point_keeps_its_extra_term():
+    # δ_A = d/dt[σ_A] + m V(A) ∧ V(G) at a moving point A.  The double pendulum's joint A: by hand, with
+    # V(A) = l1 θ̇1 t1 and V(G2) = V(A) + ½ l2 (θ̇1 + θ̇2) t2 (t_k ⟂ rod k, θ2 relative), V(A) ∧ V(G2) has the
+    # magnitude ½ l1 l2 θ̇1 (θ̇1 + θ̇2) |sin θ2|, not zero: the term must be written.  The coin's contact
+    # point I moves with G (V(I) = V(G) = ẋ x0 + ẏ y0): the term vanishes, and the report says why.
+    l1, l2, th2, w1, w2 = 1.0, 0.8, 0.5, 1.0, 2.0
+    assert 0.5 * l1 * l2 * w1 * (w1 + w2) * abs(__import__("math").sin(th2)) > 0.1
+    double = _section(_report(_eom_of("double_pendulum.toml"), verification=True), "check")
+    assert r"\frac{d}{dt}\left[\vec{\sigma}_{A}(S_{2}/R_{0})\right]_{R_{0}} + m_{2}\,\vec{V}(A/R_{0})\wedge\vec{V}(G_{S_{2}}/R_{0})" in double
+    coin = _section(_report(_eom_of("rolling_coin.toml"), verification=True), "check")
+    assert r"m\,\vec{V}(I/R_{0})\wedge\vec{V}(G/R_{0}) = \vec{0}" in coin
+    top = _section(_report(_eom_of("lagrange_top.toml"), verification=True), "check")
+    assert "mobile" not in top

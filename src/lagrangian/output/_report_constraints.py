@@ -36,7 +36,7 @@ from ..dynamics import EquationsOfMotion
 from ..model import GALILEAN_FRAME, ORIGIN, Vector
 from ..model._vector import AXES
 
-__all__ = ["Joint", "joints", "degrees_of_freedom"]
+__all__ = ["Joint", "joints", "degrees_of_freedom", "constraint_counts", "planar_normal"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -349,3 +349,40 @@ def degrees_of_freedom(eom: EquationsOfMotion, found: tuple[Joint, ...]) -> tupl
     free = 6 * len(eom.model.bodies) + 3 * len(eom.model.particles)
     total = sum(j.equations for j in found)
     return (free, total, n) if free - total == n else None
+
+
+def constraint_counts(eom: EquationsOfMotion) -> tuple[int, int, int]:
+    """(n, h, k): principal parameters, complementary holonomic rows, nonholonomic rows.
+
+    The degrees of freedom are n − h − k (independent velocities); the position depends on
+    n − h independent parameters (a nonholonomic row restricts only the velocities).  A velocity
+    row that integrates (the disk on an incline) counts as holonomic here, as in step 7.
+    """
+    from ..dynamics._constraints import describe_constraints
+
+    holonomic_names = {info.name for info in describe_constraints(eom) if info.kind == "holonomic"}
+    h = sum(1 for row in eom.constraints if row.kind == "holonomic" or row.constraint in holonomic_names)
+    return len(eom.coordinates), h, len(eom.constraints) - h
+
+
+def planar_normal(eom: EquationsOfMotion) -> int | None:
+    """The axis k of R0 normal to the plane of the motion when it is planar by construction, else None.
+
+    Planar: the k-th R0 component of every partial velocity ∂V(P)/∂q̇_i of every centre vanishes
+    identically, and every partial angular velocity ∂Ω(S)/∂q̇_i is along that axis.
+    """
+    kin, model = eom.kinematics, eom.model
+    if not eom.coordinates or (model.reference is not None and not model.reference.is_galilean_frame):
+        return None
+    express = kin.frames.express
+    centres = [b.name for b in model.bodies] + [p.name for p in model.particles]
+    if not centres:
+        return None
+    velocities = [express(v, GALILEAN_FRAME) for name in centres for v in kin.partial_velocities(name)]
+    omegas = [express(w, GALILEAN_FRAME) for b in model.bodies for w in kin.partial_omegas(b.frame)]
+    for k in range(3):
+        along = [v[k] for v in velocities] + [w[j] for w in omegas for j in range(3) if j != k]
+        if all(are_zero(along)):
+            return k
+    return None
+

@@ -158,7 +158,11 @@ def _coriolis(c: Context, jacobi: bool) -> list[Block]:
         runs = w("coriolis gyroscopic", Q=Q, R=Math(c.R), nc=Math(r"Q_{i,\,\mathrm{nc}}"),
                  P=Math(rf"\sum_{{i}} Q_i({c.load_tex(force.name)})\,\dot{{q}}_i = 0"))
     if jacobi and any(r.kind != "momentum" for r in c.form.integrals):
-        runs += w("coriolis jacobi", h=Math(rf"h = T_2 - T_0 + U_P(\Sigma/{c.R})"))
+        # The same h as the integrals section defines: T(Σ/R) + U_P(Σ/R) when T(Σ/R) = T_2 (U_P then holds the
+        # entrainment potential, counted once), T_2 − T_0 + U_P(Σ/R) otherwise.
+        h = (rf"h = T(\Sigma/{c.R}) + U_P(\Sigma/{c.R})" if _homogeneous(c)
+             else rf"h = T_2 - T_0 + U_P(\Sigma/{c.R})")
+        runs += w("coriolis jacobi", h=Math(h))
     return [Para(runs)]
 
 
@@ -184,7 +188,12 @@ def step7(c: Context) -> Section:
     blocks += c.show([c.equation("", c.ex(r.expression), " = 0") for r in rows], "7")
     formulas = _multipliers(c)
     if formulas is not None:
-        blocks.append(Para(w("multipliers are" if len(rows) > 1 else "multiplier is")))
+        if len(rows) > 1:
+            blocks.append(Para(w("multipliers are")))
+        else:  # a holonomic row f = 0 is differentiated twice (A q̈ + c = 0), a velocity row once
+            twice = rows[0].kind == "holonomic"
+            times = {"fr": ("deux fois", "une fois"), "en": ("twice", "once")}[c.lang][0 if twice else 1]
+            blocks.append(Para(w("multiplier is", times=times)))
         blocks += c.show([c.equation(f"{c.tex(r.multiplier)} = ", _simple(c, f)) for r, f in zip(rows, formulas)],
                          "λ")
     for reaction in c.eom.reactions:

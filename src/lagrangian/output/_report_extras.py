@@ -11,7 +11,11 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+import symengine as se
+
+from .._identity import are_zero
 from ..analysis import Verification
+from ..model import Vector
 from ._report_build import Context
 from ._report_doc import Block, Display, Equation, Image, Math, Para, Runs, Section
 
@@ -126,9 +130,33 @@ def _theorem(c: Context, kind: str, point: str | None, names: tuple[str, ...], t
         out.append(Para(w("fixed point moment", R=Math(RO), O=Math(P), OO=Math(rf"\overrightarrow{{{P}{P}}}\wedge{RO} = \vec{{0}}"))))
         out.append(Display((Equation((rf"{dsigma} = " + (" + ".join(arms) or r"\vec{0}"),)),)))
         return out
-    out.append(Para(w("moment theorem", P=Math(P), S=elements)))
+    # δ_P = d/dt[σ_P]_R only where P is fixed in R or is the centre of mass; at a moving point A,
+    # δ_A = d/dt[σ_A]_R + m V(A/R) ∧ V(G/R) (the double pendulum's joint, the coin's contact point).
+    where = point[2:] if point and point.startswith("G_") and point[2:] in c.bodies else point  # G_S: S's centre
+    at_centre = where is None or (len(names) == 1 and where == names[0])
+    moving = not at_centre and not c.kin.is_fixed(where)  # type: ignore[arg-type]
+    drift = ""
+    if moving:
+        masses = {th.name: th.mass for th in theorems.values() if th.name in names}
+        m = c.tex(masses[names[0]]) if len(names) == 1 else "m"
+        G = c.point_label(names[0]) if len(names) == 1 else "G"
+        term = rf"{m}\,\vec{{V}}({P}/{R})\wedge\vec{{V}}({G}/{R})"
+        # m V(P) ∧ V(G) = V(P) ∧ Σ m_k V(G_k): it vanishes when P moves with G (the coin's contact point).
+        frames, vP = c.kin.frames, c.kin.velocity(where)  # type: ignore[arg-type]
+        total = Vector.zero()
+        for name in names:
+            total = total + frames.cross(vP, c.kin.velocity(name)) * masses.get(name, se.Integer(1))
+        parallel = total.is_zero() or all(are_zero(list(frames.express(total, "R0"))))
+        if parallel:
+            out.append(Para(w("moment theorem parallel", P=Math(P), S=elements, R=Math(R), G=Math(G),
+                              term=Math(term + r" = \vec{0}"))))
+        else:
+            drift = " + " + term
+            out.append(Para(w("moment theorem moving", P=Math(P), S=elements, R=Math(R), term=Math(term))))
+    else:
+        out.append(Para(w("moment theorem", P=Math(P), S=elements)))
     rows = [Equation((rf"\vec{{\delta}}_{{{P}}}({E}/{R}) = \frac{{d}}{{dt}}\left[\vec{{\sigma}}_{{{P}}}({E}/{R})\right]_{{{R}}}"
-                      rf" = {moments} + \vec{{M}}_{{{P}}}(\text{{{liaisons}}})",))]
+                      rf"{drift} = {moments} + \vec{{M}}_{{{P}}}(\text{{{liaisons}}})",))]
     if th is not None and th.kind == "body":
         rows.append(c.vector_equation(rf"\vec{{\sigma}}_{{{P}}}({E}/{R}) = \Pi_{{{P}}}({E})\cdot\vec{{\Omega}}({E}/{R}) = ",
                                       c.terms(th.angular_momentum)))

@@ -13,7 +13,7 @@ import re
 from ..dynamics._constraints import describe_constraints
 from ..model import Constraint, Vector
 from ._report_build import Context
-from ._report_constraints import Joint, degrees_of_freedom
+from ._report_constraints import Joint, constraint_counts, degrees_of_freedom, planar_normal
 from ._report_doc import Block, Display, Equation, Fold, Items, Math, Para, Runs, Section, Table
 
 __all__ = ["system_section", "step1", "step2"]
@@ -284,6 +284,15 @@ def step1(c: Context) -> Section:
     if len(groups) > SHOWN_CONSTRAINTS:
         rest = [b for g in groups[SHOWN_CONSTRAINTS:] for b in g]
         blocks.append(Fold(w.text("show more", k=str(len(groups) - SHOWN_CONSTRAINTS)), tuple(rest)))
+    blocks += _freedom(c)
+    return Section("step1", w.text("step1"), tuple(blocks))
+
+
+def _freedom(c: Context) -> list[Block]:
+    """The count of the parameters (principal constraints), then the degrees of freedom n − h − k
+    (complementary rows), and whether the motion is planar by construction."""
+    w = c.w
+    blocks: list[Block] = []
     dof = degrees_of_freedom(c.eom, c.joints)
     if dof is not None and c.joints:
         free, used, n = dof
@@ -292,8 +301,24 @@ def step1(c: Context) -> Section:
             parts.append(rf"6 \times {len(c.model.bodies)}")
         if c.model.particles:
             parts.append(rf"3 \times {len(c.model.particles)}")
-        blocks.append(Para(w("dof" if n > 1 else "dof one", count=Math(" + ".join(parts) + rf" - {used} = {n}"))))
-    return Section("step1", w.text("step1"), tuple(blocks))
+        blocks.append(Para(w("parameter count", count=Math(" + ".join(parts) + rf" - {used} = {n}"))))
+    n, h, k = constraint_counts(c.eom)
+    if k:
+        blocks.append(Para(w("dof", count=Math(rf"n - h - k = {n} - {h} - {k} = {n - h - k}"))))
+        blocks.append(Para(w("dof nonholonomic", p=Math(f"n - h = {n - h}"), d=Math(f"n - h - k = {n - h - k}"))))
+    elif h:
+        blocks.append(Para(w("dof holonomic", count=Math(rf"n - h = {n} - {h} = {n - h}"))))
+    else:
+        blocks.append(Para(w("dof free", count=Math(f"n = {n}"))))
+    normal = planar_normal(c.eom)
+    if normal is not None:
+        axes = c.kin.frames.axes("R0")
+        plane = [c.axis(a) for j, a in enumerate(axes) if j != normal]
+        plane_tex = Math(rf"(O;\,{plane[0]},\,{plane[1]})")
+        axis_tex = Math(rf"(O, {c.axis(axes[normal])})")
+        blocks.append(Para(w("planar bodies", plane=plane_tex, axis=axis_tex) if c.model.bodies
+                           else w("planar", plane=plane_tex)))
+    return blocks
 
 
 # -- step 2 ---------------------------------------------------------------------------------------

@@ -148,10 +148,30 @@ _PHRASES: dict[str, tuple[str, str]] = {
                         "field compatible with it: {P}. Its generalized forces are {Q}."),
     "reaction is": ("La réaction exercée sur {E} est {R}.", "The reaction exerted on {E} is {R}."),
     "reaction on at": ("La réaction exercée sur ({S}) en {E} est {R}.", "The reaction exerted on ({S}) at {E} is {R}."),
-    "dof": ("Bilan des degrés de liberté (6 par solide, 3 par point, moins une par équation de liaison) : {count}.",
-            "Degrees of freedom (6 per rigid body, 3 per particle, less one per constraint equation): {count}."),
-    "dof one": ("Bilan des degrés de liberté (6 par solide, 3 par point, moins une par équation de liaison) : {count}.",
-                "Degrees of freedom (6 per rigid body, 3 per particle, less one per constraint equation): {count}."),
+    "parameter count": ("Bilan des paramètres (6 par solide, 3 par point, moins une par équation de liaison "
+                        "principale) : {count}.",
+                        "Count of the parameters (6 per rigid body, 3 per particle, minus one per principal "
+                        "constraint equation): {count}."),
+    "dof": ("Degrés de liberté : {count}, où n est le nombre de paramètres principaux, h celui des équations de "
+            "liaison complémentaires holonomes et k celui des non holonomes.",
+            "Degrees of freedom: {count}, where n is the number of principal parameters, h that of the holonomic "
+            "complementary constraint equations and k that of the nonholonomic ones."),
+    "dof holonomic": ("Degrés de liberté : {count}, où n est le nombre de paramètres principaux et h celui des "
+                      "équations de liaison complémentaires.",
+                      "Degrees of freedom: {count}, where n is the number of principal parameters and h that of the "
+                      "complementary constraint equations."),
+    "dof free": ("Degrés de liberté : {count} (les paramètres principaux sont indépendants).",
+                 "Degrees of freedom: {count} (the principal parameters are independent)."),
+    "dof nonholonomic": ("Les liaisons non holonomes ne restreignent que les vitesses : la position dépend de {p} "
+                         "paramètres indépendants, la vitesse de {d} seulement.",
+                         "The nonholonomic constraints restrict only the velocities: the position depends on {p} "
+                         "independent parameters, the velocity on {d} only."),
+    "planar": ("Le mouvement est plan par construction : toutes les vitesses sont parallèles au plan {plane}.",
+               "The motion is planar by construction: every velocity is parallel to the plane {plane}."),
+    "planar bodies": ("Le mouvement est plan par construction : toutes les vitesses sont parallèles au plan "
+                      "{plane} et toutes les rotations se font autour de l'axe {axis}.",
+                      "The motion is planar by construction: every velocity is parallel to the plane {plane} "
+                      "and every rotation is about the axis {axis}."),
     "time dep note": ("(le temps y figure explicitement)", "(the time appears in it explicitly)"),
     # -- step 2 -----------------------------------------------------------------------------------
     "n params": ("On a donc {n} paramètres principaux : {list}.", "Hence {n} principal parameters: {list}."),
@@ -304,18 +324,19 @@ _PHRASES: dict[str, tuple[str, str]] = {
                           "equations it determines the {n} parameters and the multiplier {lams}:"),
     "reaction of": ("Réaction de « {name} » sur {E} :", "Reaction of “{name}” on {E}:"),
     "multipliers are": ("En éliminant les accélérations entre les équations de Lagrange et les équations de liaison "
-                        "dérivées par rapport au temps, les multiplicateurs valent :",
+                        "dérivées par rapport au temps (deux fois pour une liaison holonome), les multiplicateurs "
+                        "valent :",
                         "Eliminating the accelerations between the Lagrange equations and the constraint equations "
-                        "differentiated with respect to time, the multipliers are:"),
+                        "differentiated with respect to time (twice for a holonomic one), the multipliers are:"),
     "tension": ("Tension de la liaison (positive quand elle tire {P} vers {X}) :",
                 "Tension of the constraint (positive when it pulls {P} towards {X}):"),
     "tension angle": ("soit, en posant {sub} ({theta} angle de {XP} avec la verticale descendante, opposée à {e}) :",
                       "that is, with {sub} ({theta} the angle of {XP} from the descending vertical, opposite to "
                       "{e}):"),
     "multiplier is": ("En éliminant les accélérations entre les équations de Lagrange et l'équation de liaison "
-                      "dérivée par rapport au temps, le multiplicateur vaut :",
+                      "dérivée {times} par rapport au temps, le multiplicateur vaut :",
                       "Eliminating the accelerations between the Lagrange equations and the constraint equation "
-                      "differentiated with respect to time, the multiplier is:"),
+                      "differentiated {times} with respect to time, the multiplier is:"),
     # -- integrals --------------------------------------------------------------------------------
     "cyclic": ("{q} est un paramètre cyclique : {why}, donc {eq} s'intègre :", "{q} is cyclic: {why}, so {eq} "
                "integrates:"),
@@ -393,6 +414,15 @@ _PHRASES: dict[str, tuple[str, str]] = {
                            "relative to {R0}, which is not Galilean, the Coriolis and transport inertial forces being "
                            "added to the applied forces, projected on the directions that go with each parameter:"),
     "moment theorem": ("Théorème du moment dynamique en {P} de {S} :", "Moment (angular momentum) theorem at {P} for {S}:"),
+    "moment theorem parallel": ("Théorème du moment dynamique en {P} de {S} ; le point {P} est mobile dans {R}, mais "
+                                "sa vitesse est parallèle à celle de {G}, donc {term} et le moment dynamique est la "
+                                "dérivée du moment cinétique.",
+                                "Moment (angular momentum) theorem at {P} for {S}; {P} moves in {R}, but parallel to "
+                                "{G}, so {term} and the dynamic moment is the derivative of the angular momentum."),
+    "moment theorem moving": ("Théorème du moment dynamique en {P} de {S} ; le point {P} étant mobile dans {R}, le "
+                              "moment dynamique n'est pas la dérivée du moment cinétique : il s'en écarte de {term}.",
+                              "Moment (angular momentum) theorem at {P} for {S}; {P} moves in {R}, so the dynamic "
+                              "moment is not the derivative of the angular momentum: they differ by {term}."),
     "resultant theorem": ("Théorème de la résultante dynamique pour {P} :", "Resultant theorem for {P}:"),
     "by moment": ("{eq} par projection du théorème du moment dynamique en {P}{of} sur {e} :",
                   "{eq} by projecting the moment (angular momentum) theorem at {P}{of} on {e}:"),
