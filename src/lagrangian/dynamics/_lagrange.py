@@ -162,6 +162,19 @@ class EquationsOfMotion:
                 return eq
         raise KeyError(coordinate)
 
+    def to_sympy(self, *, time_functions: bool = False):  # type: ignore[no-untyped-def]
+        """M, F, the equations L(q_i), T, U, L, the first integrals and λ's formulas as SymPy objects.
+
+        Symbols are named as in the model (``theta``, ``theta_dot``, ``theta_ddot``, the
+        parameters); with ``time_functions=True`` the coordinates are SymPy mechanics'
+        ``dynamicsymbols`` θ(t) and the rates Derivative(θ(t), t), Derivative(θ(t), (t, 2)).
+        The conversion is structural (no text is parsed, nothing is simplified).  See
+        `lagrangian.output.SympyEquations` and docs/interop.md.
+        """
+        from ..output._sympy_form import sympy_equations  # output is a later stage: imported on use
+
+        return sympy_equations(self, time_functions=time_functions)
+
 
 def lagrange_equations(kin: Kinematics, T: se.Basic, U: se.Basic,
                        Q_nc: tuple[se.Basic, ...]) -> tuple[LagrangeEquation, ...]:
