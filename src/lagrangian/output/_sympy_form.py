@@ -84,7 +84,7 @@ def _convert(e: se.Basic) -> sympy.Basic:
         return e
     if hasattr(e, "_sympy_"):
         return e._sympy_()
-    return sympy.sympify(e, strict=True)  # a plain number
+    return sympy.S(e) if isinstance(e, (int, float)) else sympy.Float(float(e))  # a plain number
 
 
 def sympy_equations(eom: EquationsOfMotion, *, time_functions: bool = False) -> SympyEquations:
