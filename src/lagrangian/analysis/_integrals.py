@@ -39,6 +39,18 @@ class FirstIntegral:
     reason: str
     coordinate: str | None = None
 
+    def _repr_latex_(self) -> str:
+        """``expression = name`` as display math in the course's notation (Jupyter)."""
+        from ..output._display import integral_latex  # output is a later stage: imported on display
+
+        return integral_latex(self)
+
+    def _repr_markdown_(self) -> str:
+        """The integral, then its kind and why it holds."""
+        from ..output._display import integral_markdown
+
+        return integral_markdown(self)
+
 
 def first_integrals(eom: EquationsOfMotion) -> tuple[FirstIntegral, ...]:
     """The first integrals of the motion that the structure of L guarantees.

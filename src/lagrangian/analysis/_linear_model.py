@@ -130,6 +130,12 @@ class LinearModel:
         from ._modes import stability
         return stability(self, **values)
 
+    def _repr_latex_(self) -> str:
+        """ẋ = A x + B u written out, about the point (Jupyter); large states give the sizes only."""
+        from ..output._display import linear_model_latex  # output is a later stage: imported on display
+
+        return linear_model_latex(self)
+
     def to_scipy(self, **values: float):  # type: ignore[no-untyped-def]
         """``scipy.signal.StateSpace(A, B, I, 0)``: the whole state as output."""
         from scipy import signal

@@ -56,6 +56,12 @@ class LagrangeEquation:
     rhs: se.Basic  # −∂U/∂q_i + Q_i(nc) (+ Σ_k λ_k A_ki)
     multiplier_terms: se.Basic = se.Integer(0)  # Σ_k λ_k A_ki of the complementary constraints
 
+    def _repr_latex_(self) -> str:
+        """L(q_i) as display math in the course's notation (Jupyter); long sides are summarized."""
+        from ..output._display import equation_latex  # output is a later stage: imported on display
+
+        return equation_latex(self)
+
 
 @dataclass(frozen=True, slots=True)
 class EquationsOfMotion:
@@ -161,6 +167,32 @@ class EquationsOfMotion:
             if eq.coordinate == coordinate:
                 return eq
         raise KeyError(coordinate)
+
+    def to_sympy(self, *, time_functions: bool = False):  # type: ignore[no-untyped-def]
+        """M, F, the equations L(q_i), T, U, L, the first integrals and λ's formulas as SymPy objects.
+
+        Symbols are named as in the model (``theta``, ``theta_dot``, ``theta_ddot``, the
+        parameters); with ``time_functions=True`` the coordinates are SymPy mechanics'
+        ``dynamicsymbols`` θ(t) and the rates Derivative(θ(t), t), Derivative(θ(t), (t, 2)).
+        The conversion is structural (no text is parsed, nothing is simplified).  See
+        `lagrangian.output.SympyEquations` and docs/interop.md.
+        """
+        from ..output._sympy_form import sympy_equations  # output is a later stage: imported on use
+
+        return sympy_equations(self, time_functions=time_functions)
+
+    # -- Jupyter (IPython's display protocol; output is a later stage, imported on display) --------
+    def _repr_latex_(self) -> str:
+        """The n equations L(q_i) (and the complementary rows) as display math, bounded in size."""
+        from ..output._display import equations_latex
+
+        return equations_latex(self)
+
+    def _repr_markdown_(self) -> str:
+        """The model, its coordinates, then the equations as in `_repr_latex_`."""
+        from ..output._display import equations_markdown
+
+        return equations_markdown(self)
 
 
 def lagrange_equations(kin: Kinematics, T: se.Basic, U: se.Basic,

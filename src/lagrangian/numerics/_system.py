@@ -182,6 +182,23 @@ class CompiledSystem:
         self._t1[0] = t
         return self._lib.lg_eval_rhs(1, _ptr(self._t1), _ptr(y), _ptr(p), _ptr(out))
 
+    def rhs_function(self, parameters: Mapping[str, float] | None = None):  # type: ignore[no-untyped-def]
+        """A plain ``f(t, y)`` for `scipy.integrate.solve_ivp`, with the analytic Jacobian ``f.jac(t, y)``.
+
+        ``solve_ivp(f, (0, 10), y0, method="Radau", jac=f.jac)``; y = (q, q̇) in `coordinates`
+        order, ``parameters`` override the model's values.  Each call returns a new array
+        (never a reused buffer).  See `lagrangian.numerics._scipy_rhs.RhsFunction`.
+
+        Raises
+        ------
+        SimulationError
+            For a model with complementary constraints (a differential-algebraic system), or
+            a parameter without a value.
+        """
+        from ._scipy_rhs import RhsFunction
+
+        return RhsFunction(self, parameters)
+
     def mass_forces(self, t, y, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """M (N, n, n) and F (N, n) at each state (no leading axis for a single state)."""
         T, Y, single = self._batch(t, y, 2 * self.n)

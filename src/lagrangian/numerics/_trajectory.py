@@ -174,6 +174,23 @@ class Trajectory:
         scale = self.scales[name] if name in self.scales else drift_scale(values)
         return relative_drift(values, scale)
 
+    # -- Jupyter (IPython's display protocol; output is a later stage, imported on display) --------
+    def _repr_html_(self) -> str:
+        """A short summary table: time span, method, each coordinate's first and last value, drifts."""
+        from ..output._display import trajectory_html
+
+        return trajectory_html(self)
+
+    def _repr_markdown_(self) -> str:
+        from ..output._display import trajectory_markdown
+
+        return trajectory_markdown(self)
+
+    def _repr_latex_(self) -> str:
+        from ..output._display import trajectory_latex
+
+        return trajectory_latex(self)
+
     def drift_summary(self) -> str:
         """E.g. ``"E relative drift 3.1e-12, K 1.0e-13, H 0"``."""
         parts = []

@@ -14,8 +14,11 @@ from ._report import Report as Report
 from ._report import ReportFigure as ReportFigure
 from ._report import format_for as format_for
 from ._report import report as report
+from ._sympy_form import SympyEquations as SympyEquations
+from ._sympy_form import sympy_equations as sympy_equations
 from ._text import render_text as render_text
 
 __all__ = ["CourseForm", "course_form", "SCHEMA_ID", "SCHEMA_VERSION", "derive_document", "render_latex",
            "LINEARIZE_SCHEMA_ID", "linearize_document",
-           "Notation", "render_text", "Report", "ReportFigure", "report", "FORMATS", "format_for"]
+           "Notation", "render_text", "Report", "ReportFigure", "report", "FORMATS", "format_for",
+           "SympyEquations", "sympy_equations"]

@@ -1,0 +1,140 @@
+"""The equations of a model as SymPy objects: `SympyEquations`, what ``eom.to_sympy()`` returns.
+
+Every expression is converted structurally from SymEngine (``_sympy_()``: no text is
+parsed and nothing is simplified), so the SymPy form has exactly the value of the
+engine's: M(q, t) q̈ = F(q, q̇, t) [Seed, section II; Goldstein, *Classical Mechanics*,
+3rd ed., § 1.4], the n equations L(q_i)
+
+    d/dt(∂T/∂q̇_i) − ∂T/∂q_i = −∂U/∂q_i + Q_i(nc) (+ Σ_k λ_k A_ki),
+
+T, U, L = T − U, the first integrals and the multipliers' formulas.
+
+Symbols are named as in the model: ``theta``, ``theta_dot``, ``theta_ddot``, ``t``, the
+parameters and the multipliers ``lambda_<constraint>``.  With ``time_functions=True`` the
+coordinates are ``sympy.physics.mechanics.dynamicsymbols`` θ(t), and q̇, q̈ are
+Derivative(θ(t), t) and Derivative(θ(t), (t, 2)) — the form of SymPy's ``LagrangesMethod``
+and ``KanesMethod`` — so that ``sympy.diff(expr, t)`` is the total time derivative.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+import symengine as se
+import sympy
+
+from ..analysis import first_integrals
+from ..dynamics import EquationsOfMotion
+from ..dynamics._constraints import multiplier_formulas
+
+__all__ = ["SympyEquations", "sympy_equations"]
+
+
+@dataclass(frozen=True, eq=False)
+class SympyEquations:
+    """The equations of motion of one model in SymPy (see the module docstring).
+
+    Attributes
+    ----------
+    coordinates : the coordinate names q_i, in order.
+    t : the time symbol (``dynamicsymbols._t`` in the time-function form).
+    q, qd, qdd : the coordinates, rates and accelerations: symbols ``theta``, ``theta_dot``,
+        ``theta_ddot``, or θ(t), Derivative(θ(t), t), Derivative(θ(t), (t, 2)).
+    parameters : the model's parameter symbols, in declaration order; ``values`` their values
+        (symbol → number) where the model gives one, ready for ``subs`` or ``lambdify``.
+    M, F : M(q, t) q̈ = F(q, q̇, t) (+ Aᵀλ with complementary constraints): n×n and n×1 Matrix.
+    equations : one ``sympy.Eq`` per coordinate, L(q_i): Γ_i = −∂U/∂q_i + Q_i(nc) (+ Σ_k λ_k A_ki).
+    T, U : the kinetic energy T(Σ/R0) and the potential U_P (up to a constant).
+    L : T − U when the system is conservative (Remarque 2), else None.
+    first_integrals : name → expression constant along every motion (K, H, E, p_x, ...).
+    multipliers : the λ_k of the complementary constraints; ``A`` the m×n matrix of their rows.
+    multiplier_formulas : λ_k name → λ_k(q, q̇, t) in closed form (empty when there is none,
+        or the system is too large for one: then λ is found along a motion).
+    time_functions : whether this is the ``dynamicsymbols`` form.
+    """
+
+    coordinates: tuple[str, ...]
+    t: sympy.Symbol
+    q: tuple[sympy.Basic, ...]
+    qd: tuple[sympy.Basic, ...]
+    qdd: tuple[sympy.Basic, ...]
+    parameters: tuple[sympy.Symbol, ...]
+    values: Mapping[sympy.Symbol, float]
+    M: sympy.Matrix
+    F: sympy.Matrix
+    equations: tuple[sympy.Eq, ...]
+    T: sympy.Basic
+    U: sympy.Basic
+    L: sympy.Basic | None
+    first_integrals: Mapping[str, sympy.Basic]
+    multipliers: tuple[sympy.Basic, ...] = ()
+    A: sympy.Matrix = field(default_factory=lambda: sympy.zeros(0, 0))
+    multiplier_formulas: Mapping[str, sympy.Basic] = field(default_factory=dict)
+    time_functions: bool = False
+
+    def qdd_solved(self) -> sympy.Matrix:
+        """q̈ = M⁻¹ F (without complementary constraints), by LU: small systems only (it grows fast)."""
+        return self.M.LUsolve(self.F)
+
+
+def _convert(e: se.Basic) -> sympy.Basic:
+    """SymEngine → SymPy, structurally (never through text)."""
+    if isinstance(e, sympy.Basic):
+        return e
+    if hasattr(e, "_sympy_"):
+        return e._sympy_()
+    return sympy.S(e) if isinstance(e, (int, float)) else sympy.Float(float(e))  # a plain number
+
+
+def sympy_equations(eom: EquationsOfMotion, *, time_functions: bool = False) -> SympyEquations:
+    """`SympyEquations` of ``eom``: symbols named as in the model, or SymPy mechanics' ``dynamicsymbols``.
+
+    Examples
+    --------
+    >>> import lagrangian, sympy
+    >>> s = lagrangian.derive(lagrangian.lagrange_top()).to_sympy()
+    >>> s.equations[1].lhs.has(sympy.Symbol("theta_ddot"))
+    True
+    """
+    names = eom.coordinates
+    q = tuple(sympy.Symbol(str(s)) for s in eom.q)
+    qd = tuple(sympy.Symbol(str(s)) for s in eom.qd)
+    qdd = tuple(sympy.Symbol(str(s)) for s in eom.qdd)
+    t = sympy.Symbol(str(eom.t))
+    lam = tuple(sympy.Symbol(str(s)) for s in eom.multipliers)
+    replace: dict[sympy.Basic, sympy.Basic] = {}
+    if time_functions:
+        from sympy.physics.mechanics import dynamicsymbols
+
+        t_new = dynamicsymbols._t
+        funcs = tuple(dynamicsymbols(str(s)) for s in eom.q)
+        lam_new = tuple(dynamicsymbols(str(s)) for s in eom.multipliers)
+        replace = {t: t_new}
+        replace.update(zip(qdd, (sympy.Derivative(f, (t_new, 2)) for f in funcs)))
+        replace.update(zip(qd, (sympy.Derivative(f, t_new) for f in funcs)))
+        replace.update(zip(q, funcs))
+        replace.update(zip(lam, lam_new))
+        t, lam = t_new, lam_new
+        q, qd, qdd = funcs, tuple(replace[s] for s in qd), tuple(replace[s] for s in qdd)
+
+    def conv(e: se.Basic) -> sympy.Basic:
+        out = _convert(e)
+        return out.xreplace(replace) if replace else out
+
+    parameters = tuple(sympy.Symbol(p.name) for p in eom.model.parameters)
+    values = {sympy.Symbol(name): float(v) for name, v in eom.model.parameter_values.items() if v is not None}
+    T, U = conv(eom.T), conv(eom.U)
+    formulas = multiplier_formulas(eom) if eom.constraints else None
+    return SympyEquations(
+        coordinates=names, t=t, q=q, qd=qd, qdd=qdd, parameters=parameters, values=values,
+        M=sympy.Matrix([[conv(x) for x in row] for row in eom.M]),
+        F=sympy.Matrix([conv(x) for x in eom.F]),
+        equations=tuple(sympy.Eq(conv(eq.lhs), conv(eq.rhs), evaluate=False) for eq in eom.equations),
+        T=T, U=U, L=T - U if eom.conservative else None,
+        first_integrals={fi.name: conv(fi.expression) for fi in first_integrals(eom)},
+        multipliers=lam,
+        A=sympy.Matrix(len(eom.constraints), len(q), [conv(x) for row in eom.A for x in row]),
+        multiplier_formulas={str(row.multiplier): conv(f) for row, f in zip(eom.constraints, formulas or ())},
+        time_functions=time_functions,
+    )
