@@ -283,14 +283,28 @@ def nonholonomic_integrals(eom: EquationsOfMotion, known: Sequence[se.Basic] = (
     qd_of_u = [se.Add(*[C[i, c] * u[c] for c in range(len(ind))]) for i in range(n)]
     on_manifold = dict(zip(kin.qd, qd_of_u))
     Cu_dot = [se.Add(*[x.diff(q) * v for q, v in zip(kin.q, qd_of_u)]) for x in qd_of_u]
-    M = se.DenseMatrix([list(r) for r in eom.M])
-    F = se.DenseMatrix([[f.subs(on_manifold)] for f in eom.F])
-    rhs = C.T * (F - M * se.DenseMatrix([[x] for x in Cu_dot]))
-    try:
-        u_dot = (C.T * M * C).LUsolve(rhs)
-    except (RuntimeError, ValueError, ZeroDivisionError):  # pragma: no cover
-        return []
-    zero = are_zero([u_dot[j, 0] for j in range(len(ind))])
+    # u̇ = M_r⁻¹ Cᵀ(F − M Ċ u) is evaluated numerically at random states (the randomized identity test
+    # of `_identity`, without forming M_r⁻¹ symbolically: that swelled to seconds on the stuck block).
+    flat = [e for r in eom.M for e in r] + [f.subs(on_manifold) for f in eom.F] + list(C) + Cu_dot
+    state = list(kin.q) + u + [kin.t]
+    symbols = set().union(*(e.free_symbols for e in flat)) - set(state)
+    rng = np.random.default_rng(17)
+    k = len(ind)
+    zero = [True] * k
+    for seed in range(3):
+        parameters = _numbers(symbols, 50 + seed)
+        fn = se.Lambdify(state, [e.subs(parameters) for e in flat], cse=True)
+        values = np.asarray(fn(rng.uniform(0.3, 1.2, len(state))), dtype=float).ravel()
+        Mn = values[: n * n].reshape(n, n)
+        Fn = values[n * n: n * n + n]
+        Cn = values[n * n + n: n * n + n + n * k].reshape(n, k)
+        Cun = values[n * n + n + n * k:]
+        try:
+            u_dot = np.linalg.solve(Cn.T @ Mn @ Cn, Cn.T @ (Fn - Mn @ Cun))
+        except np.linalg.LinAlgError:  # pragma: no cover - a singular reduced mass matrix
+            return []
+        scale = max(1.0, float(np.abs(Fn).max(initial=0.0)), float(np.abs(Mn @ Cun).max(initial=0.0)))
+        zero = [z and abs(x) <= 1e-9 * scale for z, x in zip(zero, u_dot)]
     out = []
     found = list(known)
     for j, i in enumerate(ind):
