@@ -8,7 +8,6 @@ unknown points.  Expressions are read by the safe grammar of `_expr` (never eval
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -17,6 +16,7 @@ import symengine as se
 
 from ..errors import ModelError
 from ._expr import CONSTANTS, FUNCTIONS, ExpressionError, parse_expression
+from ._limits import NotFinite, excerpt, real_value
 from ._constraints import build_constraints
 from ._friction import FRICTION_KINDS, build_friction_load
 from ._operating_point import build_operating_point, check_inputs_used
@@ -109,7 +109,8 @@ class Assembler:
             except ExpressionError as exc:
                 start = raw.location.value_column(key)
                 raise ModelError(
-                    f"in {what} of {raw.kind} `{raw.name}`: {exc.message} (in `{value}`, column {exc.column})",
+                    f"in {what} of {raw.kind} `{raw.name}`: {exc.message} "
+                    f"(in `{excerpt(value, exc.column)}`, column {exc.column})",
                     fix=exc.fix or "correct the expression: numbers, declared names, + - * / ^ ** and parentheses",
                     symbol=exc.symbol or raw.name,
                     column=None if start is None else start + exc.column - 1,  # in the file, when known
@@ -137,6 +138,15 @@ class Assembler:
             raise self.error(raw, f"{what} of {raw.kind} `{raw.name}` must be a scalar, not a vector",
                              fix="remove the basis vectors (`R.x`, ...) from it", symbol=raw.name, key=key)
         return parsed
+
+    def number(self, raw: Raw, value: Any, what: str, key: str) -> float:
+        """``value`` as a finite real float (`real_value`, the one check of every number's value)."""
+        try:
+            return real_value(value)
+        except NotFinite as exc:
+            raise self.error(raw, f"{what} must be a finite number: `{excerpt(str(value), width=40)}` is {exc}",
+                             symbol=raw.name, key=key, fix="write a finite number, at most about 1.8e308 in "
+                             "absolute value (not inf or nan)") from None
 
     # -- the stages of the build ---------------------------------------------------------------
     def run(self) -> Model:
@@ -232,14 +242,13 @@ class Assembler:
                 raise self.error(raw, f"the value of parameter `{raw.name}` must be a number, not `{value}`",
                                  symbol=raw.name, key="value",
                                  fix="write a number, or leave the value out to keep it symbolic")
-            if value is not None and not math.isfinite(value):
-                raise self.error(raw, f"the value of parameter `{raw.name}` must be a finite number, not `{value}`",
-                                 symbol=raw.name, key="value", fix="write a finite number (not inf or nan)")
+            if value is not None:
+                value = self.number(raw, value, f"the value of parameter `{raw.name}`", "value")
             for key in ("unit", "description"):
                 if raw.data[key] is not None and not isinstance(raw.data[key], str):
                     raise self.error(raw, f"`{key}` of {raw.kind} `{raw.name}` must be text, not `{raw.data[key]}`",
                                      symbol=raw.name, key=key, fix=f'write it in quotes, e.g. {key} = "..."')
-            out.append(Parameter(raw.name, None if value is None else float(value), raw.data["unit"],
+            out.append(Parameter(raw.name, value, raw.data["unit"],
                                  raw.data["description"], input=raw.kind == "input"))
             self.symbols[raw.name] = se.Symbol(raw.name)
         return tuple(out)
@@ -247,16 +256,18 @@ class Assembler:
     def coordinates(self) -> tuple[Coordinate, ...]:
         out = []
         for raw in self.of("coordinate"):
+            values: dict[str, float | None] = {}
             for key in ("initial", "rate"):
                 v = raw.data[key]
-                if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v)):
+                if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float))):
                     raise self.error(raw, f"`{key}` of coordinate `{raw.name}` must be a finite number, not `{v}`",
                                      symbol=raw.name, key=key, fix=f"write a number, e.g. {key} = 0.0, or leave it out")
+                values[key] = None if v is None else self.number(raw, v, f"`{key}` of coordinate `{raw.name}`", key)
             momentum = raw.data["momentum"]
             if momentum is not None and (not isinstance(momentum, str) or not momentum.isidentifier()):
                 raise self.error(raw, f"`momentum` of coordinate `{raw.name}` must be a name, not `{momentum}`",
                                  symbol=raw.name, key="momentum", fix='write a name in quotes, e.g. momentum = "K"')
-            c = Coordinate(raw.name, _float(raw.data["initial"]), _float(raw.data["rate"]),
+            c = Coordinate(raw.name, values["initial"], values["rate"],
                            raw.data["momentum"], raw.data["unit"], raw.data["description"])
             out.append(c)
             self.symbols[c.name] = c.symbol
@@ -589,6 +600,3 @@ def _is_single_rotation(rot: Any) -> bool:
     return (isinstance(rot, Sequence) and not isinstance(rot, str) and len(rot) == 2
             and isinstance(rot[1], str))
 
-
-def _float(v: Any) -> float | None:
-    return None if v is None else float(v)
