@@ -145,3 +145,25 @@ def test_parameter_values_must_be_finite(value: str) -> None:
     with pytest.raises(ModelError) as info:
         parse_model(PENDULUM.replace("m = 1.0", f"m = {value}"), source="p.toml")
     assert info.value.line == 2 and info.value.symbol == "m" and "finite" in info.value.message
+
+
+# -- 3. TOML nested too deeply ---------------------------------------------------------------------
+@pytest.mark.parametrize("opening, closing", [("[", "]"), ("{a=", "}")])
+def test_toml_nested_500_deep_is_refused_with_its_line(tmp_path: Path, opening: str, closing: str) -> None:
+    text = PENDULUM + "\n[model]\nname = 'deep'\n" + "description = " + opening * 500 + "1" + closing * 500 + "\n"
+    err = model_error(tmp_path, text)  # a RecursionError inside the TOML reader before
+    assert err.line == text.count("\n") and "nested" in err.message and "32" in err.message
+
+
+def test_brackets_in_strings_and_comments_do_not_count() -> None:
+    deep = "[" * 40 + "]" * 40
+    text = PENDULUM.replace('well = { potential = "0" }', f'well = {{ potential = "0" }}  # {deep}') + (
+        f'\n[model]\nname = "{deep}"\ndescription = """\n{deep}\n"""\n')
+    assert parse_model(text, source="p.toml").name == deep
+
+
+def test_nesting_within_the_limit_reaches_the_ordinary_checks() -> None:
+    text = PENDULUM.replace("m = 1.0", "m = " + "[" * 30 + "1" + "]" * 30)
+    with pytest.raises(ModelError) as info:
+        parse_model(text, source="p.toml")
+    assert info.value.line == 2 and "must be a number" in info.value.message
