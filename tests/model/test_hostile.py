@@ -167,3 +167,38 @@ def test_nesting_within_the_limit_reaches_the_ordinary_checks() -> None:
     with pytest.raises(ModelError) as info:
         parse_model(text, source="p.toml")
     assert info.value.line == 2 and "must be a number" in info.value.message
+
+
+# -- 6. non-physical bodies ------------------------------------------------------------------------
+BODY = PENDULUM.replace('[particles.P]\nmass = "m"\nposition = "l*R1.x"', """\
+[bodies.S]
+frame = "R1"
+mass = "m"
+center = "l*R1.x"
+inertia = { diagonal = ["m*l^2", "m*l^2", "m*l^2"] }""")
+
+
+@pytest.mark.parametrize("template", [PENDULUM, BODY], ids=["particle", "body"])
+@pytest.mark.parametrize("mass, words", [("m*(1+t)", "depends on `t` (the time)"),
+                                         ("m*cos(theta)", "depends on `theta`"),
+                                         ("m*theta_dot^2", "depends on `theta_dot`"),
+                                         ("-m", "is -1 (with m = 1)"), ("0", "is 0: the mass of"),
+                                         ("m - l", "is 0 (with l = 1, m = 1)")])
+def test_non_physical_masses_are_refused_at_load(tmp_path: Path, template: str, mass: str, words: str) -> None:
+    text = template.replace('mass = "m"', f'mass = "{mass}"')
+    err = model_error(tmp_path, text)
+    assert words in err.message and err.line == text.splitlines().index(f'mass = "{mass}"') + 1
+    assert err.symbol in ("S", "P", "t", "theta", "theta_dot")
+    if "is " in words:
+        assert "must be positive" in err.message and "massless" in err.fix
+
+
+def test_a_mass_may_stay_symbolic() -> None:
+    model = parse_model(PENDULUM.replace("m = 1.0", "m = {}"), source="p.toml")
+    assert model.particles[0].mass == m
+
+
+def test_a_mass_that_depends_on_an_input_is_refused() -> None:
+    text = PENDULUM.replace('mass = "m"', 'mass = "m + u"') + '\n[inputs]\nu = {}\n'
+    with pytest.raises(ModelError, match="depends on `u` \\(an input\\)"):
+        parse_model(text, source="p.toml")

@@ -87,6 +87,8 @@ class Assembler:
         self.symbols: dict[str, se.Basic] = {"t": TIME}
         self.frame_names: list[str] = [GALILEAN_FRAME]
         self.locations: dict[tuple[str, str], Location] = {}
+        #: The (non-input) parameters, by symbol, with their value (None when symbolic).
+        self.constants: dict[se.Basic, float | None] = {}
 
     def of(self, kind: str) -> list[Raw]:
         return [d for d in self.decl if d.kind == kind]
@@ -251,6 +253,8 @@ class Assembler:
             out.append(Parameter(raw.name, value, raw.data["unit"],
                                  raw.data["description"], input=raw.kind == "input"))
             self.symbols[raw.name] = se.Symbol(raw.name)
+            if raw.kind == "parameter":
+                self.constants[self.symbols[raw.name]] = value
         return tuple(out)
 
     def coordinates(self) -> tuple[Coordinate, ...]:
@@ -401,7 +405,7 @@ class Assembler:
             if d["frame"] not in self.frame_names:
                 raise self.error(raw, f"body `{raw.name}` is attached to unknown frame `{d['frame']}`",
                                  symbol=str(d["frame"]), fix="declare the frame under [frames] first", key="frame")
-            mass = self.expr(raw, "the mass", d["mass"], key="mass")
+            mass = self.mass(raw, d["mass"])
             center = self._position(raw, d["center"], d["center_from"], "the centre of mass", "center", "center_from")
             inertia = self.inertia(raw, d["inertia"], d["frame"])
             fixed = d["fixed_point"]
@@ -412,6 +416,43 @@ class Assembler:
             out.append(Body(raw.name, d["frame"], mass, center, inertia, fixed))
             self._points.setdefault(raw.name, Point(raw.name, center))  # its centre, for later `from`
         return tuple(out)
+
+    def mass(self, raw: Raw, value: Any) -> se.Basic:
+        """The mass of a body or particle: constant (parameters only) and positive where its value is known.
+
+        A mass that changes with t or the coordinates is outside the Lagrange equations of
+        the course (variable-mass systems need the momentum flux); a zero mass is a point,
+        not a particle or a body; a negative one makes M indefinite.
+        """
+        mass = self.expr(raw, "the mass", value, key="mass")
+        moving = sorted(str(s) for s in mass.free_symbols if s not in self.constants)
+        what = "a particle" if raw.kind == "particle" else "a body"
+        if moving:
+            name = moving[0]
+            kind = ("the time" if name == "t" else "an input" if any(p == name for p in self._inputs()) else
+                    "a coordinate or a rate")
+            raise self.error(raw, f"the mass of {raw.kind} `{raw.name}` depends on `{name}` ({kind}): "
+                             f"the mass of {what} is constant", symbol=name, key="mass",
+                             fix="write the mass with parameters only, e.g. mass = \"m\"")
+        known = {s: v for s, v in self.constants.items() if v is not None}
+        if not mass.free_symbols <= set(known):
+            return mass  # symbolic: its sign is that of the parameters' values, given later
+        try:
+            number = real_value(mass.subs(known) if mass.free_symbols else mass)
+        except NotFinite as exc:
+            raise self.error(raw, f"the mass of {raw.kind} `{raw.name}` must be a finite number: it is {exc}",
+                             symbol=raw.name, key="mass", fix="correct the mass or the parameters' values") from None
+        if number <= 0:
+            given = ", ".join(f"{s} = {known[s]:g}" for s in sorted(mass.free_symbols, key=str))
+            point = ("a massless point is a point, not a particle: declare it under [points]" if raw.kind == "particle"
+                     else "a body has a positive mass; a massless part is a frame, with points on it")
+            raise self.error(raw, f"the mass of {raw.kind} `{raw.name}` is {number:g}"
+                             + (f" (with {given})" if given else "") + f": the mass of {what} must be positive",
+                             symbol=raw.name, key="mass", fix=f"give it a positive mass; {point}")
+        return mass
+
+    def _inputs(self) -> list[str]:
+        return [raw.name for raw in self.of("input")]
 
     def inertia(self, raw: Raw, spec: Mapping[str, Any] | None, body_frame: str) -> Inertia:
         fix = ('give `inertia = { at = "G", frame = "' + body_frame + '", diagonal = ["A", "B", "C"] }`, '
@@ -473,7 +514,7 @@ class Assembler:
     def particles(self, points: list[Point]) -> tuple[Particle, ...]:
         out = []
         for raw in self.of("particle"):
-            mass = self.expr(raw, "the mass", raw.data["mass"], key="mass")
+            mass = self.mass(raw, raw.data["mass"])
             position = self._position(raw, raw.data["position"], raw.data["relative_to"], "the position",
                                       "position", "relative_to")
             out.append(Particle(raw.name, mass, position))
