@@ -202,3 +202,26 @@ def test_a_mass_that_depends_on_an_input_is_refused() -> None:
     text = PENDULUM.replace('mass = "m"', 'mass = "m + u"') + '\n[inputs]\nu = {}\n'
     with pytest.raises(ModelError, match="depends on `u` \\(an input\\)"):
         parse_model(text, source="p.toml")
+
+
+# -- the command line: one short message, exit 2, never a traceback ----------------------------------
+@pytest.mark.parametrize("old, new", [
+    ('potential = "0"', 'potential = "' + "theta+" * 23_000 + '1"'),  # 140 KB: 420 KB of stderr before
+    ('mass = "m"', 'mass = "exp(exp(exp(1000)))"'),  # an OverflowError in the text output before
+    ('mass = "m"', 'mass = "1e400"'),
+    ('["theta", "z"]', '["theta+1e309", "z"]'),  # LinAlgError in derive before
+    ('potential = "0"', 'potential = "(1+theta^2)^1000"'),  # OverflowError in verify before
+])
+@pytest.mark.parametrize("command", ["derive", "verify"])
+def test_the_command_line_says_what_is_wrong_in_a_few_lines(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                                             old: str, new: str, command: str) -> None:
+    from lagrangian.cli.main import main
+
+    path = tmp_path / "hostile.toml"
+    path.write_text(PENDULUM.replace(old, new), encoding="utf-8")
+    start = time.perf_counter()
+    assert main([command, str(path)]) == 2
+    assert time.perf_counter() - start < 5.0
+    err = capsys.readouterr().err
+    assert err.startswith(f"{path}:") and "Traceback" not in err
+    assert len(err) < 2000 and len(err.splitlines()) <= 4
