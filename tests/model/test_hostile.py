@@ -225,3 +225,13 @@ def test_the_command_line_says_what_is_wrong_in_a_few_lines(tmp_path: Path, caps
     err = capsys.readouterr().err
     assert err.startswith(f"{path}:") and "Traceback" not in err
     assert len(err) < 2000 and len(err.splitlines()) <= 4
+
+
+def test_an_inertia_that_overflows_with_the_parameters_values_is_refused() -> None:
+    import lagrangian
+
+    text = BODY.replace("l = 1.0", "l = 1.0\nbig = 1e300").replace('["m*l^2", "m*l^2", "m*l^2"]',
+                                                                     '["big^2", "big^2", "big^2"]')
+    with pytest.raises(ModelError, match="inertia of body `S` at G is not finite") as info:
+        lagrangian.derive(parse_model(text, source="p.toml"))  # LinAlgError in eigvalsh before
+    assert text.splitlines()[info.value.line - 1].startswith("inertia =")
