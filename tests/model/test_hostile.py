@@ -235,3 +235,16 @@ def test_an_inertia_that_overflows_with_the_parameters_values_is_refused() -> No
     with pytest.raises(ModelError, match="inertia of body `S` at G is not finite") as info:
         lagrangian.derive(parse_model(text, source="p.toml"))  # LinAlgError in eigvalsh before
     assert text.splitlines()[info.value.line - 1].startswith("inertia =")
+
+
+def test_a_state_outside_the_domain_of_log_is_named_not_called_singular() -> None:
+    import lagrangian
+
+    text = PENDULUM.replace("theta = { initial = 0.5, rate = 0.0 }",
+                            "theta = { initial = 0.5, rate = 0.0 }\npsi = { initial = 0.0, rate = 0.0 }").replace(
+        '["theta", "z"]', '["theta+log(psi)", "z"]').replace('"l*R1.x"', '"l*R1.x + psi*R0.z"')
+    eom = lagrangian.derive(parse_model(text, source="p.toml"))
+    with pytest.raises(lagrangian.SimulationError) as info:  # "M is singular ... eigenvalue nan" before
+        lagrangian.simulate(eom, 0.1)
+    assert "not defined at the initial state" in info.value.message and "M[psi,psi]" in info.value.message
+    assert "nan" not in info.value.message
