@@ -305,7 +305,7 @@ def test_huge_numbers_are_refused_quickly(text: str) -> None:
 def test_large_but_reasonable_numbers_are_exact() -> None:
     assert parse("2^1000") == se.Integer(2) ** 1000
     assert parse("1e300") == se.Integer(10) ** 300
-    assert parse("x^100") == x**100  # symbolic powers: the degree limit (100) applies
+    assert parse("x^32") == x**32  # symbolic powers: the degree limit (32) applies
 
 
 def test_division_by_zero() -> None:

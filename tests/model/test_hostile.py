@@ -66,22 +66,22 @@ def model_error(tmp_path: Path, text: str, seconds: float = 2.0) -> ModelError:
 # -- 1. expression bombs through nesting ---------------------------------------------------------
 @pytest.mark.parametrize("text, column", [("((theta+2)^1000)^1000", 11), ("(theta+1)^1000", 10),
                                           ("(1+theta^2)^1000", 12), ("sin((theta+1)^200)", 14),
-                                          ("((theta^10)^10)^2", 16), ("theta^101", 6)])
+                                          ("((theta^4)^4)^4", 14), ("theta^33", 6)])
 def test_effective_degree_is_limited(text: str, column: int) -> None:
     err = refused(text)
     assert "too large" in err.message and f"degree is" in err.message and str(MAX_DEGREE) in err.message
     assert err.column == column
 
 
-@pytest.mark.parametrize("text", ["(theta+l+m+g)^15", "(theta+1)^50*(l+1)^50",
+@pytest.mark.parametrize("text", ["(theta+l+m+g)^15", "(theta+1)^10*(l+1)^20", "(theta+l+m+g)^6*(theta+l)",
                                   "(theta+l)^9*(l+m)^9*(m+g)^9"])
 def test_size_once_multiplied_out_is_limited(text: str) -> None:
     err = refused(text)
     assert "terms once multiplied out" in err.message and str(MAX_TERMS) in err.message
 
 
-@pytest.mark.parametrize("text", ["(theta+1)^100", "(theta+l+m+g)^10", "theta^(1/1000)", "((theta+l)^(1/2))^3",
-                                  "sin(theta)^20*cos(theta)^20", "(1+sqrt(2))^100*theta"])
+@pytest.mark.parametrize("text", ["(theta+1)^32", "(theta+l+m+g)^5", "theta^(1/1000)", "((theta+l)^(1/2))^3",
+                                  "sin(theta)^16*cos(theta)^16", "(1+sqrt(2))^100*theta", "(theta+l)^15*(l+m)^7"])
 def test_reasonable_powers_are_accepted(text: str) -> None:
     parse_expression(text, NAMES)
 

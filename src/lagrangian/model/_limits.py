@@ -6,11 +6,11 @@ the derivation, the code generation and the integrator would try.  So every
 expression read from a file is measured before it is accepted:
 
 - its length, at most `MAX_LENGTH` characters;
-- its *effective degree*: nested powers multiply (``(theta^2+1)^30`` has degree 60),
+- its *effective degree*: nested powers multiply (``(theta^2+1)^20`` has degree 40),
   products add, sums take the largest; a function call such as ``sin(theta)`` counts
   as one new variable (degree 1).  At most `MAX_DEGREE`;
 - its *size*: an upper bound of the number of terms once multiplied out
-  (``(a+b+c+d)^10`` has 286, ``(a+b)*(c+d)`` 4).  At most `MAX_TERMS`;
+  (``(a+b+c+d)^5`` has 56, ``(a+b)*(c+d)`` 4).  At most `MAX_TERMS`;
 - every constant sub-expression (no coordinate, rate, parameter or time in it) must be
   a finite real number as a double: ``sqrt(-1)``, ``log(-1)``, ``exp(exp(1000))`` and
   ``1e400`` are refused.
@@ -32,10 +32,12 @@ __all__ = ["MAX_LENGTH", "MAX_DEGREE", "MAX_TERMS", "NotFinite", "TooLarge", "re
 
 #: Longest expression, in characters (the longest in the examples has a few hundred).
 MAX_LENGTH = 20_000
-#: Largest effective polynomial degree of an expression (nested powers multiply).
-MAX_DEGREE = 100
+#: Largest effective polynomial degree of an expression (nested powers multiply).  The
+#: examples reach 7; a position of degree 32 already takes seconds to derive (T squares it).
+MAX_DEGREE = 32
 #: Largest number of terms an expression may have once multiplied out (an upper bound).
-MAX_TERMS = 500
+#: The examples reach 15; a position of 128 terms takes about 5 s to derive.
+MAX_TERMS = 128
 
 #: Relative size of an imaginary part that is taken as rounding (``acos`` of an exact 1, ...).
 _IMAG_TOL = 1e-12
