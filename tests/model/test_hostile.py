@@ -69,7 +69,7 @@ def model_error(tmp_path: Path, text: str, seconds: float = 2.0) -> ModelError:
                                           ("((theta^4)^4)^4", 14), ("theta^33", 6)])
 def test_effective_degree_is_limited(text: str, column: int) -> None:
     err = refused(text)
-    assert "too large" in err.message and f"degree is" in err.message and str(MAX_DEGREE) in err.message
+    assert "too large" in err.message and "degree is" in err.message and str(MAX_DEGREE) in err.message
     assert err.column == column
 
 
@@ -248,3 +248,10 @@ def test_a_state_outside_the_domain_of_log_is_named_not_called_singular() -> Non
         lagrangian.simulate(eom, 0.1)
     assert "not defined at the initial state" in info.value.message and "M[psi,psi]" in info.value.message
     assert "nan" not in info.value.message
+
+
+def test_a_constraint_with_a_literal_past_a_double_is_refused_not_identically_satisfied() -> None:
+    text = PENDULUM + '\n[constraints]\nc = { holonomic = "l^2*theta^2 - l^2 + 1e400*theta" }\n'
+    with pytest.raises(ModelError, match="1e400") as info:  # "identically satisfied" before (item 7)
+        parse_model(text, source="p.toml")
+    assert info.value.line == text.count("\n") and "finite double" in info.value.message

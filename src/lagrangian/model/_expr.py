@@ -177,8 +177,9 @@ class _Parser:
             elif not value.free_symbols:
                 real_value(value)
         except TooLarge as exc:
-            raise ExpressionError(str(exc), column, fix=f"write a smaller expression: the degree of an expression "
-                                  f"is limited to {MAX_DEGREE} and its size to {MAX_TERMS} terms once multiplied out") from None
+            raise ExpressionError(str(exc), column, fix=f"write a smaller expression: the degree of an "
+                                  f"expression is limited to {MAX_DEGREE} and its size to {MAX_TERMS} terms once "
+                                  "multiplied out") from None
         except NotFinite as exc:
             shown = excerpt(written or str(value), width=60)
             raise ExpressionError(f"`{shown}` is not a finite real number: {exc}", column,

@@ -66,7 +66,8 @@ def real_value(value: object) -> float:
         if math.isnan(number):
             raise NotFinite("not a number (nan)")
         if math.isinf(number):
-            raise NotFinite("infinite" if isinstance(value, float) else "too large for a double (at most about 1.8e308)")
+            raise NotFinite("infinite" if isinstance(value, float)
+                            else "too large for a double (at most about 1.8e308)")
         return number
     if not isinstance(value, se.Basic):
         raise NotFinite(f"not a number: `{excerpt(str(value))}`")
