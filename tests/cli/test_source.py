@@ -38,3 +38,22 @@ def test_every_command_takes_a_zoo_model(argv, capsys):
 def test_a_bad_zoo_name_exits_with_the_model_error_code(capsys):
     assert main(["derive", "zoo:nope"]) == 2
     assert "zoo:planar_chain:N" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("name", ["zoo:planar_chain:²", "zoo:planar_chain:١٢", "zoo:planar_chain:101",
+                                  "zoo:spatial_chain:1000", "zoo:planar_chain:" + "9" * 5000,
+                                  "zoo:planar_chain:+3", "zoo:planar_chain: 3"])
+def test_zoo_sizes_are_plain_digits_up_to_the_limit(name, capsys):
+    # issue 15: `²` gave a ValueError traceback and N had no upper bound
+    with pytest.raises(lagrangian.ModelError, match=f"from 1 to {zoo.MAX_LINKS}") as info:
+        load_source(name)
+    assert len(str(info.value)) < 300
+    assert main(["derive", name]) == 2
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and "from 1 to 100" in err
+
+
+def test_the_zoo_chains_refuse_too_many_links():
+    for make in (zoo.planar_chain, zoo.spatial_chain):
+        with pytest.raises(ValueError, match="from 1 to 100"):
+            make(zoo.MAX_LINKS + 1)

@@ -305,7 +305,7 @@ def test_huge_numbers_are_refused_quickly(text: str) -> None:
 def test_large_but_reasonable_numbers_are_exact() -> None:
     assert parse("2^1000") == se.Integer(2) ** 1000
     assert parse("1e300") == se.Integer(10) ** 300
-    assert parse("x^1000") == x**1000
+    assert parse("x^32") == x**32  # symbolic powers: the degree limit (32) applies
 
 
 def test_division_by_zero() -> None:
@@ -317,13 +317,13 @@ def test_division_by_zero() -> None:
 
 def test_deeply_nested_parentheses() -> None:
     same("(" * 50 + "x" + ")" * 50, x)
-    err = _quick("(" * 100_000 + "x" + ")" * 100_000, seconds=10)
+    err = _quick("(" * 9_000 + "x" + ")" * 9_000, seconds=10)  # within the length limit (20,000)
     assert "nested too deeply" in err.message
 
 
 def test_long_chains_of_signs() -> None:
     same("-" * 40 + "x", x)
-    assert "nested too deeply" in _quick("-" * 100_000 + "x", seconds=10).message
+    assert "nested too deeply" in _quick("-" * 19_000 + "x", seconds=10).message
 
 
 def test_long_flat_sums_are_fine() -> None:

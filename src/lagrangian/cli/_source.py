@@ -27,15 +27,21 @@ def _zoo_model(name: str) -> Model:
     key, _, size = rest.partition(":")
     known = ", ".join(f"zoo:{k}:N" if sized else f"zoo:{k}" for k, (_, sized) in ZOO.items())
     if key not in ZOO:
-        raise ModelError(f"`{name}`: the zoo has no model `{key}`.", fix=f"use one of {known}")
+        raise ModelError(f"`{_short(name)}`: the zoo has no model `{_short(key)}`.", fix=f"use one of {known}")
     make, sized = ZOO[key]
     if not sized:
         if size:
             raise ModelError(f"`{name}`: `{key}` takes no size.", fix=f"write zoo:{key}")
         return make()  # type: ignore[call-arg]
-    if not size.isdigit() or int(size) < 1:
-        raise ModelError(f"`{name}`: `{key}` needs a number of links N ≥ 1.", fix=f"write e.g. zoo:{key}:3")
+    # ASCII digits only: "²".isdigit() is true but int("²") fails; at most 3 digits before int().
+    if not (size.isascii() and size.isdigit() and len(size) <= 3) or not 1 <= int(size) <= zoo.MAX_LINKS:
+        raise ModelError(f"`{_short(name)}`: `{key}` needs a number of links N from 1 to {zoo.MAX_LINKS}.",
+                         fix=f"write e.g. zoo:{key}:3 (digits 0-9, N ≤ {zoo.MAX_LINKS})")
     return make(int(size))  # type: ignore[call-arg]
+
+
+def _short(text: str) -> str:
+    return text if len(text) <= 60 else f"{text[:40]} … {text[-10:]}"
 
 
 def load_source(name: str | None) -> Model:

@@ -58,21 +58,45 @@ def format_error(error: LagrangianError) -> str:
     """The message a user sees: ``file:line:col: error: ...``, the source line with a caret, a tip."""
     if isinstance(error, ModelError):
         where = error.location
-        lines = [f"{where}: error: {error.message}" if where else f"error: {error.message}"]
+        message = _capped(error.message)
+        lines = [f"{where}: error: {message}" if where else f"error: {message}"]
         if error.file and error.line:
             try:
                 source = Path(error.file).read_text(encoding="utf-8").splitlines()[error.line - 1]
+                column = error.column if error.column and 0 < error.column <= len(source) + 1 else None
+                source, column = _window(source, column)
                 gutter = f"  {error.line} | "
                 lines.append(gutter + source)
-                if error.column and 0 < error.column <= len(source) + 1:
-                    lines.append(" " * (len(gutter) + error.column - 1) + "^")
+                if column:
+                    lines.append(" " * (len(gutter) + column - 1) + "^")
             except (OSError, IndexError, UnicodeDecodeError):
                 pass
     else:
-        lines = [f"error: {error.message}"]
+        lines = [f"error: {_capped(error.message)}"]
     if error.fix:
-        lines.append(f"  tip: {error.fix}")
+        lines.append(f"  tip: {_capped(error.fix)}")
     return "\n".join(lines) + "\n"
+
+
+#: Longest message and source line shown (a 140 KB expression must not print 140 KB).
+_MAX_SHOWN = 2000
+_MAX_SOURCE = 160
+
+
+def _capped(text: str) -> str:
+    return text if len(text) <= _MAX_SHOWN else f"{text[:_MAX_SHOWN // 2]} … {text[-_MAX_SHOWN // 4:]}"
+
+
+def _window(source: str, column: int | None) -> tuple[str, int | None]:
+    """The part of a long source line around ``column``, and the column in that part."""
+    if len(source) <= _MAX_SOURCE:
+        return source, column
+    half = _MAX_SOURCE // 2
+    start = 0 if column is None else max(0, min(column - 1 - half, len(source) - _MAX_SOURCE))
+    part = source[start:start + _MAX_SOURCE]
+    prefix = "… " if start > 0 else ""
+    suffix = " …" if start + _MAX_SOURCE < len(source) else ""
+    return prefix + part + suffix, None if column is None else column - start + len(prefix)
 
 
 def main(argv: Sequence[str] | None = None) -> int:

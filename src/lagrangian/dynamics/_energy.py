@@ -21,6 +21,7 @@ import symengine as se
 
 from .._identity import are_zero
 from ..errors import ModelError
+from ..model._limits import NotFinite, real_value
 from ..kinematics import Kinematics
 from ..model import Body, Location
 
@@ -137,10 +138,16 @@ def _check_invariant(kin: Kinematics, body: Body, loc) -> None:  # type: ignore[
 def _check_physical(kin: Kinematics, body: Body, pi_g: Matrix3, loc) -> None:  # type: ignore[no-untyped-def]
     """Principal moments at G must be ≥ 0 and obey the triangle inequality I1 ≤ I2 + I3."""
     values = {se.Symbol(p.name): p.value for p in kin.model.parameters if p.value is not None}
-    try:
-        numeric = np.array([[float(e.subs(values)) for e in row] for row in pi_g])
-    except (TypeError, RuntimeError, ValueError):
+    entries = [[e.subs(values) for e in row] for row in pi_g]
+    if any(e.free_symbols for row in entries for e in row):
         return  # symbolic parameters without values: nothing to check numerically
+    try:
+        numeric = np.array([[real_value(e) for e in row] for row in entries])
+    except NotFinite as exc:
+        raise ModelError(
+            f"the inertia of body `{body.name}` at G is not finite with the parameters' values: an entry is {exc}",
+            fix="check the values of the parameters in the inertia (a double holds at most about 1.8e308)",
+            symbol=body.name, file=loc.file, line=loc.line) from None
     moments = np.linalg.eigvalsh(numeric)
     scale = max(float(np.max(np.abs(moments))), 1e-300)
     where = dict(symbol=body.name, file=loc.file, line=loc.line)

@@ -8,7 +8,6 @@ unknown points.  Expressions are read by the safe grammar of `_expr` (never eval
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -17,6 +16,7 @@ import symengine as se
 
 from ..errors import ModelError
 from ._expr import CONSTANTS, FUNCTIONS, ExpressionError, parse_expression
+from ._limits import NotFinite, excerpt, real_value
 from ._constraints import build_constraints
 from ._friction import FRICTION_KINDS, build_friction_load
 from ._operating_point import build_operating_point, check_inputs_used
@@ -87,6 +87,8 @@ class Assembler:
         self.symbols: dict[str, se.Basic] = {"t": TIME}
         self.frame_names: list[str] = [GALILEAN_FRAME]
         self.locations: dict[tuple[str, str], Location] = {}
+        #: The (non-input) parameters, by symbol, with their value (None when symbolic).
+        self.constants: dict[se.Basic, float | None] = {}
 
     def of(self, kind: str) -> list[Raw]:
         return [d for d in self.decl if d.kind == kind]
@@ -109,7 +111,8 @@ class Assembler:
             except ExpressionError as exc:
                 start = raw.location.value_column(key)
                 raise ModelError(
-                    f"in {what} of {raw.kind} `{raw.name}`: {exc.message} (in `{value}`, column {exc.column})",
+                    f"in {what} of {raw.kind} `{raw.name}`: {exc.message} "
+                    f"(in `{excerpt(value, exc.column)}`, column {exc.column})",
                     fix=exc.fix or "correct the expression: numbers, declared names, + - * / ^ ** and parentheses",
                     symbol=exc.symbol or raw.name,
                     column=None if start is None else start + exc.column - 1,  # in the file, when known
@@ -137,6 +140,15 @@ class Assembler:
             raise self.error(raw, f"{what} of {raw.kind} `{raw.name}` must be a scalar, not a vector",
                              fix="remove the basis vectors (`R.x`, ...) from it", symbol=raw.name, key=key)
         return parsed
+
+    def number(self, raw: Raw, value: Any, what: str, key: str) -> float:
+        """``value`` as a finite real float (`real_value`, the one check of every number's value)."""
+        try:
+            return real_value(value)
+        except NotFinite as exc:
+            raise self.error(raw, f"{what} must be a finite number: `{excerpt(str(value), width=40)}` is {exc}",
+                             symbol=raw.name, key=key, fix="write a finite number, at most about 1.8e308 in "
+                             "absolute value (not inf or nan)") from None
 
     # -- the stages of the build ---------------------------------------------------------------
     def run(self) -> Model:
@@ -232,31 +244,34 @@ class Assembler:
                 raise self.error(raw, f"the value of parameter `{raw.name}` must be a number, not `{value}`",
                                  symbol=raw.name, key="value",
                                  fix="write a number, or leave the value out to keep it symbolic")
-            if value is not None and not math.isfinite(value):
-                raise self.error(raw, f"the value of parameter `{raw.name}` must be a finite number, not `{value}`",
-                                 symbol=raw.name, key="value", fix="write a finite number (not inf or nan)")
+            if value is not None:
+                value = self.number(raw, value, f"the value of parameter `{raw.name}`", "value")
             for key in ("unit", "description"):
                 if raw.data[key] is not None and not isinstance(raw.data[key], str):
                     raise self.error(raw, f"`{key}` of {raw.kind} `{raw.name}` must be text, not `{raw.data[key]}`",
                                      symbol=raw.name, key=key, fix=f'write it in quotes, e.g. {key} = "..."')
-            out.append(Parameter(raw.name, None if value is None else float(value), raw.data["unit"],
+            out.append(Parameter(raw.name, value, raw.data["unit"],
                                  raw.data["description"], input=raw.kind == "input"))
             self.symbols[raw.name] = se.Symbol(raw.name)
+            if raw.kind == "parameter":
+                self.constants[self.symbols[raw.name]] = value
         return tuple(out)
 
     def coordinates(self) -> tuple[Coordinate, ...]:
         out = []
         for raw in self.of("coordinate"):
+            values: dict[str, float | None] = {}
             for key in ("initial", "rate"):
                 v = raw.data[key]
-                if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v)):
+                if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float))):
                     raise self.error(raw, f"`{key}` of coordinate `{raw.name}` must be a finite number, not `{v}`",
                                      symbol=raw.name, key=key, fix=f"write a number, e.g. {key} = 0.0, or leave it out")
+                values[key] = None if v is None else self.number(raw, v, f"`{key}` of coordinate `{raw.name}`", key)
             momentum = raw.data["momentum"]
             if momentum is not None and (not isinstance(momentum, str) or not momentum.isidentifier()):
                 raise self.error(raw, f"`momentum` of coordinate `{raw.name}` must be a name, not `{momentum}`",
                                  symbol=raw.name, key="momentum", fix='write a name in quotes, e.g. momentum = "K"')
-            c = Coordinate(raw.name, _float(raw.data["initial"]), _float(raw.data["rate"]),
+            c = Coordinate(raw.name, values["initial"], values["rate"],
                            raw.data["momentum"], raw.data["unit"], raw.data["description"])
             out.append(c)
             self.symbols[c.name] = c.symbol
@@ -390,7 +405,7 @@ class Assembler:
             if d["frame"] not in self.frame_names:
                 raise self.error(raw, f"body `{raw.name}` is attached to unknown frame `{d['frame']}`",
                                  symbol=str(d["frame"]), fix="declare the frame under [frames] first", key="frame")
-            mass = self.expr(raw, "the mass", d["mass"], key="mass")
+            mass = self.mass(raw, d["mass"])
             center = self._position(raw, d["center"], d["center_from"], "the centre of mass", "center", "center_from")
             inertia = self.inertia(raw, d["inertia"], d["frame"])
             fixed = d["fixed_point"]
@@ -401,6 +416,43 @@ class Assembler:
             out.append(Body(raw.name, d["frame"], mass, center, inertia, fixed))
             self._points.setdefault(raw.name, Point(raw.name, center))  # its centre, for later `from`
         return tuple(out)
+
+    def mass(self, raw: Raw, value: Any) -> se.Basic:
+        """The mass of a body or particle: constant (parameters only) and positive where its value is known.
+
+        A mass that changes with t or the coordinates is outside the Lagrange equations of
+        the course (variable-mass systems need the momentum flux); a zero mass is a point,
+        not a particle or a body; a negative one makes M indefinite.
+        """
+        mass = self.expr(raw, "the mass", value, key="mass")
+        moving = sorted(str(s) for s in mass.free_symbols if s not in self.constants)
+        what = "a particle" if raw.kind == "particle" else "a body"
+        if moving:
+            name = moving[0]
+            kind = ("the time" if name == "t" else "an input" if any(p == name for p in self._inputs()) else
+                    "a coordinate or a rate")
+            raise self.error(raw, f"the mass of {raw.kind} `{raw.name}` depends on `{name}` ({kind}): "
+                             f"the mass of {what} is constant", symbol=name, key="mass",
+                             fix="write the mass with parameters only, e.g. mass = \"m\"")
+        known = {s: v for s, v in self.constants.items() if v is not None}
+        if not mass.free_symbols <= set(known):
+            return mass  # symbolic: its sign is that of the parameters' values, given later
+        try:
+            number = real_value(mass.subs(known) if mass.free_symbols else mass)
+        except NotFinite as exc:
+            raise self.error(raw, f"the mass of {raw.kind} `{raw.name}` must be a finite number: it is {exc}",
+                             symbol=raw.name, key="mass", fix="correct the mass or the parameters' values") from None
+        if number <= 0:
+            given = ", ".join(f"{s} = {known[s]:g}" for s in sorted(mass.free_symbols, key=str))
+            point = ("a massless point is a point, not a particle: declare it under [points]" if raw.kind == "particle"
+                     else "a body has a positive mass; a massless part is a frame, with points on it")
+            raise self.error(raw, f"the mass of {raw.kind} `{raw.name}` is {number:g}"
+                             + (f" (with {given})" if given else "") + f": the mass of {what} must be positive",
+                             symbol=raw.name, key="mass", fix=f"give it a positive mass; {point}")
+        return mass
+
+    def _inputs(self) -> list[str]:
+        return [raw.name for raw in self.of("input")]
 
     def inertia(self, raw: Raw, spec: Mapping[str, Any] | None, body_frame: str) -> Inertia:
         fix = ('give `inertia = { at = "G", frame = "' + body_frame + '", diagonal = ["A", "B", "C"] }`, '
@@ -462,7 +514,7 @@ class Assembler:
     def particles(self, points: list[Point]) -> tuple[Particle, ...]:
         out = []
         for raw in self.of("particle"):
-            mass = self.expr(raw, "the mass", raw.data["mass"], key="mass")
+            mass = self.mass(raw, raw.data["mass"])
             position = self._position(raw, raw.data["position"], raw.data["relative_to"], "the position",
                                       "position", "relative_to")
             out.append(Particle(raw.name, mass, position))
@@ -589,6 +641,3 @@ def _is_single_rotation(rot: Any) -> bool:
     return (isinstance(rot, Sequence) and not isinstance(rot, str) and len(rot) == 2
             and isinstance(rot[1], str))
 
-
-def _float(v: Any) -> float | None:
-    return None if v is None else float(v)

@@ -16,6 +16,10 @@ Every value is either a scalar (a SymEngine expression) or a `Vector`; the parse
 checks the types (no vector in a sine, no product of two vectors) and reports each
 mistake with its column.  Decimal numbers are read exactly (``0.1`` is 1/10) so that
 symbolic results stay exact.
+
+Reading is linear in the length of the text, and what an expression may cost is
+limited (`_limits`): its length, its effective degree, its size once multiplied out,
+and every constant in it must be a finite real double.
 """
 
 from __future__ import annotations
@@ -27,6 +31,7 @@ from fractions import Fraction
 
 import symengine as se
 
+from ._limits import MAX_DEGREE, MAX_LENGTH, MAX_TERMS, Measure, NotFinite, TooLarge, excerpt, real_value
 from ._vector import AXES, Vector
 
 __all__ = ["ExpressionError", "parse_expression", "FUNCTIONS"]
@@ -60,10 +65,12 @@ MAX_LITERAL = 100
 CONSTANTS: dict[str, se.Basic] = {"pi": se.pi}
 
 _TOKEN = re.compile(
-    r"\s*(?:(?P<number>(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)"
+    r"(?P<number>(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)"
     r"|(?P<name>[A-Za-z_][A-Za-z0-9_]*)"
-    r"|(?P<op>\*\*|[-+*/^().,]))"
+    r"|(?P<op>\*\*|[-+*/^().,])",
+    re.ASCII,
 )
+_SPACE = re.compile(r"\s*")
 
 
 class ExpressionError(ValueError):
@@ -85,24 +92,24 @@ class _Token:
 
 
 def _tokenize(text: str) -> list[_Token]:
+    """The tokens of ``text``, in one pass (linear in its length)."""
+    if len(text) > MAX_LENGTH:
+        raise ExpressionError(f"the expression has {len(text):,} characters, more than the {MAX_LENGTH:,} allowed",
+                              MAX_LENGTH + 1, fix="shorten it: name repeated parts as parameters, points or "
+                              "separate loads")
     tokens: list[_Token] = []
-    pos = 0
+    pos = _SPACE.match(text).end()  # type: ignore[union-attr]
     while pos < len(text):
-        if text[pos:].strip() == "":
-            break
         match = _TOKEN.match(text, pos)
-        if match is None or match.end() == pos:
-            col = pos + len(text[pos:]) - len(text[pos:].lstrip()) + 1
-            bad = text[col - 1]
+        if match is None:
             raise ExpressionError(
-                f"unexpected character `{bad}`",
-                col,
+                f"unexpected character `{text[pos]}`",
+                pos + 1,
                 fix="expressions may use numbers, declared names, + - * / ^ ** and parentheses",
             )
         kind = match.lastgroup or "op"
-        start = match.start(kind)
-        tokens.append(_Token(kind, match.group(kind), start + 1))
-        pos = match.end()
+        tokens.append(_Token(kind, match.group(kind), pos + 1))
+        pos = _SPACE.match(text, match.end()).end()  # type: ignore[union-attr]
     tokens.append(_Token("end", "", len(text) + 1))
     return tokens
 
@@ -114,6 +121,7 @@ class _Parser:
         self.frames = frames
         self.tokens = _tokenize(text)
         self.i = 0
+        self.measure = Measure()
 
     # -- token helpers --------------------------------------------------------------
     @property
@@ -143,6 +151,40 @@ class _Parser:
                 self.tok.column,
                 fix="an operator such as `*` may be missing",
             )
+        for component in _components(value):  # sums are checked here, once (not at each `+`)
+            self._checked(component, 1, constants=True)
+        return value
+
+    def _since(self, column: int) -> str:
+        """The text from ``column`` to the end of the last token read (what the user wrote)."""
+        last = self.tokens[self.i - 1]
+        return self.text[column - 1:last.column - 1 + len(last.text)]
+
+    def _checked(self, value: se.Basic | Vector, column: int, *, constants: bool = False,
+                 written: str | None = None) -> se.Basic | Vector:
+        """``value`` once it is within the limits of `_limits` (size, degree, finite real constants).
+
+        ``constants`` walks the whole expression for constant parts; otherwise only
+        ``value`` itself is checked when it is constant (its parts were, as they were read).
+        ``written`` is the text ``value`` was read from, for the message.
+        """
+        if isinstance(value, Vector):
+            return value
+        try:
+            self.measure(value)
+            if constants:
+                _check_constants(value)
+            elif not value.free_symbols:
+                real_value(value)
+        except TooLarge as exc:
+            raise ExpressionError(str(exc), column, fix=f"write a smaller expression: the degree of an "
+                                  f"expression is limited to {MAX_DEGREE} and its size to {MAX_TERMS} terms once "
+                                  "multiplied out") from None
+        except NotFinite as exc:
+            shown = excerpt(written or str(value), width=60)
+            raise ExpressionError(f"`{shown}` is not a finite real number: {exc}", column,
+                                  fix="correct the constant: every constant must be a real number that a double "
+                                  "holds (at most about 1.8e308 in absolute value)") from None
         return value
 
     def expr(self) -> se.Basic | Vector:
@@ -169,6 +211,7 @@ class _Parser:
         return self.power()
 
     def power(self) -> se.Basic | Vector:
+        start = self.tok.column
         base = self.atom()
         if self.tok.text in ("^", "**"):
             op = self._advance()
@@ -187,7 +230,7 @@ class _Parser:
                 if base == 0 and exponent.is_negative:
                     raise ExpressionError("division by zero: `0` raised to a negative power", op.column,
                                           fix="correct the exponent or the base")
-            return base**exponent
+            return self._checked(base**exponent, op.column, written=self._since(start))
         return base
 
     def atom(self) -> se.Basic | Vector:
@@ -238,9 +281,9 @@ class _Parser:
                                   fix="apply functions to scalars only")
         value = fn(arg)
         if value.has(se.zoo) or value.has(se.nan):
-            raise ExpressionError(f"`{name.text}({arg})` is not defined (it is infinite)", name.column,
-                                  symbol=name.text, fix="correct the argument")
-        return value
+            raise ExpressionError(f"`{name.text}({excerpt(str(arg), width=60)})` is not defined (it is infinite)",
+                                  name.column, symbol=name.text, fix="correct the argument")
+        return self._checked(value, name.column, written=self._since(name.column))
 
     def _basis_vector(self, frame: _Token) -> Vector:
         self._advance()  # the dot
@@ -278,14 +321,14 @@ class _Parser:
             if lv and rv:
                 raise ExpressionError("the product of two vectors is not defined here", op.column,
                                       fix="multiply each basis vector by a scalar, e.g. `l*sin(q)*R0.x`")
-            return lhs * rhs
+            return self._checked(lhs * rhs, op.column)
         # division
         if rv:
             raise ExpressionError("cannot divide by a vector", op.column,
                                   fix="divide by a scalar only, e.g. `(a*R.x)/2`")
         if rhs == 0:
             raise ExpressionError("division by zero", op.column, fix="correct the denominator")
-        return lhs / rhs
+        return self._checked(lhs / rhs, op.column)
 
 
 def _exact_number(tok: _Token) -> se.Basic:
@@ -296,9 +339,35 @@ def _exact_number(tok: _Token) -> se.Basic:
                               fix=f"numbers may have at most {MAX_LITERAL} characters and a power of ten "
                               f"of at most {MAX_EXPONENT} in absolute value")
     value = Fraction(tok.text)
+    try:
+        real_value(value)
+    except NotFinite as exc:
+        raise ExpressionError(f"the number `{_short(tok.text)}` is not a finite double: {exc}", tok.column,
+                              fix="write a number at most about 1.8e308 in absolute value") from None
     if value.denominator == 1:
         return se.Integer(value.numerator)
     return se.Rational(value.numerator, value.denominator)
+
+
+def _components(value: se.Basic | Vector) -> list[se.Basic]:
+    """The scalar ``value``, or the components of the vector ``value``."""
+    if isinstance(value, Vector):
+        return [c for comps in value.pieces.values() for c in comps]
+    return [value]
+
+
+def _check_constants(value: se.Basic) -> None:
+    """Each largest constant part of ``value`` must be a finite real double (`real_value`)."""
+    stack, seen = [value], set()
+    while stack:
+        e = stack.pop()
+        if e in seen:
+            continue
+        seen.add(e)
+        if e.free_symbols:
+            stack.extend(e.args)
+        else:
+            real_value(e)
 
 
 def _bits(value: se.Basic) -> int:

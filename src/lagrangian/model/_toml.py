@@ -33,6 +33,7 @@ from ._constraints import read_constraint
 from ._friction import FRICTION_KINDS, TOML_KEYS, declare_from_toml
 from ._operating_point import located
 from ._reference import read_reference
+from ._toml_guard import check_nesting
 from .build import ModelBuilder
 from .spec import Location, Model
 
@@ -73,10 +74,14 @@ def load_model(path: str | Path) -> Model:
 
 def parse_model(text: str, *, source: str | None = None) -> Model:
     """Read a model from TOML ``text`` (``source`` names it in error messages)."""
+    check_nesting(text, source)  # before tomllib, which recurses on nested arrays
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise _syntax_error(text, str(exc), source) from None
+    except RecursionError:  # pragma: no cover - check_nesting refuses such files first
+        raise ModelError("the file is nested too deeply to be read", file=source,
+                         fix="remove the extra brackets") from None
     lines = text.splitlines()
     try:
         return _Reader(lines, data, source).read()

@@ -8,7 +8,11 @@ from ._toml import parse_model
 from .build import ModelBuilder
 from .spec import Model
 
-__all__ = ["lagrange_top", "LAGRANGE_TOP_TOML", "planar_chain", "spatial_chain"]
+__all__ = ["lagrange_top", "LAGRANGE_TOP_TOML", "planar_chain", "spatial_chain", "MAX_LINKS"]
+
+#: Most links of a zoo chain: a 100-link chain already has a 100 x 100 mass matrix, and a
+#: size from the command line (``zoo:planar_chain:N``) must not start an endless derivation.
+MAX_LINKS = 100
 
 
 def _read(name: str) -> str:
@@ -23,6 +27,11 @@ def lagrange_top() -> Model:
     """The seed's worked example: the heavy symmetric top with a fixed point O."""
     return parse_model(LAGRANGE_TOP_TOML, source="<lagrange_top>")
 
+
+
+def _check_links(n: object, kind: str) -> None:
+    if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= MAX_LINKS:
+        raise ValueError(f"a {kind} chain needs a whole number of links from 1 to {MAX_LINKS}, not {n!r}")
 
 
 def planar_chain(n: int) -> Model:
@@ -52,8 +61,7 @@ def planar_chain(n: int) -> Model:
     >>> [c.name for c in planar_chain(3).coordinates]
     ['theta1', 'theta2', 'theta3']
     """
-    if isinstance(n, bool) or not isinstance(n, int) or n < 1:
-        raise ValueError(f"a planar chain needs a positive whole number of links, not {n!r}")
+    _check_links(n, "planar")
     b = ModelBuilder(f"planar {n}-link pendulum",
                      f"Planar pendulum of {n} point masses on massless rods, absolute angles from the "
                      "downward vertical")
@@ -107,8 +115,7 @@ def spatial_chain(n: int) -> Model:
     >>> [c.name for c in spatial_chain(2).coordinates]
     ['alpha1', 'beta1', 'alpha2', 'beta2']
     """
-    if isinstance(n, bool) or not isinstance(n, int) or n < 1:
-        raise ValueError(f"a spatial chain needs a positive whole number of links, not {n!r}")
+    _check_links(n, "spatial")
     b = ModelBuilder(f"spatial {n}-link pendulum",
                      f"3D pendulum of {n} uniform thin rods joined by ball joints, absolute angles")
     b.parameter("g", 9.81, unit="m/s^2", description="gravitational acceleration (along -z0)")

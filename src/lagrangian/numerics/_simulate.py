@@ -149,8 +149,23 @@ def _state_text(system: CompiledSystem, y: np.ndarray) -> str:
 
 
 def _singularity(system: CompiledSystem, t: float, y: np.ndarray, p: np.ndarray, where: str) -> SimulationError:
-    """Explain a singular M: which rates its null vector mixes, so the user sees why."""
-    M, _ = system.mass_forces(t, y, p)
+    """Explain a singular M: which rates its null vector mixes, so the user sees why.
+
+    When M or F is not even finite there (``log(psi)`` at psi = 0, a division by zero), say
+    that instead: no eigenvalue of a matrix of nan explains anything.
+    """
+    M, F = system.mass_forces(t, y, p)
+    names = system.coordinates
+    bad = ([f"M[{names[i]},{names[j]}]" for i, j in zip(*np.nonzero(~np.isfinite(M)))]
+           + [f"F[{names[i]}]" for i in np.flatnonzero(~np.isfinite(F))])
+    if bad:
+        shown = ", ".join(bad[:4]) + (f" and {len(bad) - 4} more" if len(bad) > 4 else "")
+        return SimulationError(
+            f"M(q, t) q'' = F is not defined {where} (t = {t:.9g}, {_state_text(system, y)}): {shown} "
+            "not finite; the state is outside the domain of a function of the model (log or sqrt of a "
+            "non-positive number, a division by zero) or a value overflows.",
+            fix="start from a state where every expression of the model is defined, or correct the expression",
+            t=t, state=y.copy())
     w, v = np.linalg.eigh(0.5 * (M + M.T))
     null = v[:, 0]
     parts = [f"{c:+.2f} {name}_dot" for c, name in zip(null, system.coordinates) if abs(c) > 0.1]
