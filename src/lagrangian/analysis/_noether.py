@@ -114,7 +114,10 @@ class _NumericGenerator:
 
     def __call__(self, q: np.ndarray) -> tuple[np.ndarray, float]:
         """(ξ at q, the relative residual of R ξ = r there)."""
-        values = np.asarray(self.fn(np.asarray(q, dtype=float)), dtype=float).ravel()
+        with np.errstate(all="ignore"):
+            values = np.asarray(self.fn(np.asarray(q, dtype=float)), dtype=float).ravel()
+        if not np.all(np.isfinite(values)):  # outside the coordinates' domain (log ψ at ψ < 0)
+            return np.full(self.shape[1], np.nan), float("inf")
         m, n = self.shape
         R, r = values[: m * n].reshape(m, n), values[m * n:]
         xi, *_ = np.linalg.lstsq(R, r, rcond=None)
@@ -122,8 +125,19 @@ class _NumericGenerator:
         return xi, float(np.abs(R @ xi - r).max(initial=0.0)) / scale
 
     def exists(self) -> bool:
+        """R ξ = r solvable at two random states where the rows are defined (up to eight tried)."""
         rng = np.random.default_rng(13)
-        return all(self(rng.uniform(-1.0, 1.0, len(self.q)))[1] < 1e-9 for _ in range(2))
+        solved = 0
+        for _ in range(8):
+            residual = self(rng.uniform(-1.0, 1.0, len(self.q)))[1]
+            if residual == float("inf"):
+                continue
+            if residual >= 1e-9:
+                return False
+            solved += 1
+            if solved == 2:
+                return True
+        return False
 
 
 def _generator(eom: EquationsOfMotion, kind: str, axis: int) -> tuple[list[se.Basic], _NumericGenerator] | None:
@@ -175,13 +189,16 @@ def _admissible(eom: EquationsOfMotion, xi: _NumericGenerator) -> bool:
     for _ in range(3):
         point = rng.uniform(-1.0, 1.0, len(q))
         if f is not None:
-            sol = optimize.least_squares(lambda x: np.asarray(f(x), dtype=float).ravel(), point,
-                                         xtol=1e-15, ftol=1e-15, gtol=1e-15)
+            try:
+                sol = optimize.least_squares(lambda x: np.asarray(f(x), dtype=float).ravel(), point,
+                                             xtol=1e-15, ftol=1e-15, gtol=1e-15)
+            except ValueError:  # residuals not finite at the start: outside the coordinates' domain
+                return False
             if np.abs(sol.fun).max(initial=0.0) > 1e-10:
                 return False  # no point of the manifold found: do not claim the integral
             point = sol.x
         x, residual = xi(point)
-        if residual > 1e-9:
+        if residual > 1e-9:  # not solvable there, or outside the coordinates' domain: do not claim it
             return False
         value = np.asarray(A(point), dtype=float).reshape(len(rows), len(q)) @ x
         if np.abs(value).max(initial=0.0) > 1e-8 * max(1.0, float(np.abs(x).max(initial=0.0))):
@@ -294,7 +311,10 @@ def nonholonomic_integrals(eom: EquationsOfMotion, known: Sequence[se.Basic] = (
     for seed in range(3):
         parameters = _numbers(symbols, 50 + seed)
         fn = se.Lambdify(state, [e.subs(parameters) for e in flat], cse=True)
-        values = np.asarray(fn(rng.uniform(0.3, 1.2, len(state))), dtype=float).ravel()
+        with np.errstate(all="ignore"):
+            values = np.asarray(fn(rng.uniform(0.3, 1.2, len(state))), dtype=float).ravel()
+        if not np.all(np.isfinite(values)):
+            return []  # outside the domain of the equations: claim nothing
         Mn = values[: n * n].reshape(n, n)
         Fn = values[n * n: n * n + n]
         Cn = values[n * n + n: n * n + n + n * k].reshape(n, k)
