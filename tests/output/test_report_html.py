@@ -73,10 +73,16 @@ window.addEventListener('load', () => {
         fences.push([f.textContent, box(f).height, box(t).height, where(t)]);
     });
   });
+  // The table of contents: each entry's box and list marker (the titles carry their own numbers).
+  const toc = Array.from(document.querySelectorAll('nav li')).map(li => {
+    const r = box(li);
+    return [r.left, r.top, r.right, r.bottom, getComputedStyle(li).listStyleType, li.textContent];
+  });
   const probe = document.createElement('pre');
   probe.id = 'probe';
   probe.textContent = JSON.stringify({errors: window.__errors, maths: maths.length, bad: bad, images: images,
-                                      arrows: arrows, fences: fences, text: document.body.innerText});
+                                      arrows: arrows, fences: fences, toc: toc,
+                                      text: document.body.innerText});
   document.body.appendChild(probe);
 });
 </script>
@@ -102,7 +108,7 @@ def _check_page(html: str, expected_math: int, tmp_path: Path, images: int = 0) 
     # with no console message and no failed resource, every equation laid out as MathML, no LaTeX left.
     probed = tmp_path / "probed.html"
     probed.write_text(html.replace("</body>", _PROBE + "</body>"), encoding="utf-8")
-    run = _chromium(tmp_path, "--virtual-time-budget=10000", "--dump-dom", probed.as_uri())
+    run = _chromium(tmp_path, "--virtual-time-budget=10000", "--window-size=1200,2000", "--dump-dom", probed.as_uri())
     assert run.returncode == 0, run.stderr[-2000:]
     assert _console(run.stderr) == [], _console(run.stderr)
     found = re.search(r'<pre id="probe">(.*?)</pre>', run.stdout, re.S)
@@ -115,6 +121,12 @@ def _check_page(html: str, expected_math: int, tmp_path: Path, images: int = 0) 
     assert result["images"] == [True] * images
     assert result["arrows"] == [], result["arrows"][:5]
     assert result["fences"] == [], result["fences"][:5]
+    # The table of contents at 1200 px: numbered once (no list numbers before "1. Choix …"), no entry over another.
+    toc = result["toc"]
+    assert toc and all(style == "none" for *_, style, _ in toc), toc[:3]
+    for k, (l1, t1, r1, b1, *_rest) in enumerate(toc):
+        for l2, t2, r2, b2, *_ in toc[k + 1:]:
+            assert min(r1, r2) - max(l1, l2) <= 0.5 or min(b1, b2) - max(t1, t2) <= 0.5, (toc[k], (l2, t2, r2, b2))
     # latex2mathml's \xrightarrow: an <mpadded> pulled up over the arrow (negative height / offset).
     assert not re.search(r'<mpadded[^>]*="-', html)
     for raw in (r"\frac", r"\dot", r"\vec", r"\left", r"\text", "$", "^{", "_{"):

@@ -26,7 +26,8 @@ _CSS = """
 .lagrangian-report h1 { font-size: 1.7em; margin-bottom: 0.2em; }
 .lagrangian-report .subtitle { font-style: italic; margin-top: 0; color: #444; }
 .lagrangian-report h2 { font-size: 1.3em; border-bottom: 1px solid #ccc; margin-top: 1.6em; padding-bottom: 0.2em; }
-.lagrangian-report nav ol { columns: 2; font-size: 0.95em; }
+.lagrangian-report nav ul { columns: 2; column-gap: 2.5em; font-size: 0.95em; list-style: none; padding-left: 0; }
+.lagrangian-report nav li { break-inside: avoid; margin: 0.2em 0; }
 .lagrangian-report .display { margin: 0.6em 0 0.8em 1.5em; overflow-x: auto; }
 .lagrangian-report .eq { margin: 0.35em 0; }
 .lagrangian-report .eq math[display="block"] { margin: 0.15em 0; }
@@ -164,10 +165,11 @@ def _section(s: Section) -> str:
 
 
 def _body(doc: Document, footer: str) -> str:
+    # A list without numbers: the titles carry the course's own ("1. Choix des liaisons principales").
     toc = "".join(f'<li><a href="#{s.key}">{html.escape(s.title)}</a></li>' for s in doc.sections)
     subtitle = f'<p class="subtitle">{html.escape(doc.subtitle)}</p>' if doc.subtitle else ""
     return (f'<div class="lagrangian-report"><h1>{html.escape(doc.title)}</h1>{subtitle}'
-            f"<nav><ol>{toc}</ol></nav>" + "".join(_section(s) for s in doc.sections)
+            f"<nav><ul>{toc}</ul></nav>" + "".join(_section(s) for s in doc.sections)
             + f"<footer>{html.escape(footer)}</footer></div>")
 
 
