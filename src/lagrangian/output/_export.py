@@ -114,7 +114,7 @@ def exported_symbols(eom: EquationsOfMotion) -> ExportedSymbols:
     private[eom.t] = t
 
     def rename(expr: se.Basic, what: str) -> se.Basic:
-        expr = se.sympify(expr) if not isinstance(expr, se.Basic) else expr  # a Python number only
+        expr = expr if isinstance(expr, se.Basic) else se.Integer(0) + expr  # a Python number only
         unknown = sorted(str(s) for s in expr.free_symbols if s not in private)
         if unknown:
             raise ExportError(f"{what} contains `{unknown[0]}`, which is neither a coordinate, a rate, a parameter "
