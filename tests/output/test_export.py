@@ -10,6 +10,8 @@ import importlib.util
 import os
 import shutil
 import subprocess
+import sys
+import types
 from pathlib import Path
 
 import numpy as np
@@ -240,3 +242,33 @@ def test_cli_errors(argv, code, message, tmp_path, capsys, monkeypatch):
     err = capsys.readouterr().err
     assert message in err and "tip:" in err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a_file"]
+
+
+# -- jax: with JAX when it is installed; else its logic run on a stand-in `jax` whose `jax.numpy` is NumPy ----
+@pytest.mark.parametrize("case", ["lagrange_top.toml", "kapitza_pendulum.toml", "zoo:planar_chain:5"])
+def test_jax_export_logic_on_numpy(case, tmp_path, monkeypatch):
+    if importlib.util.find_spec("jax") is not None:
+        pytest.skip("JAX is installed: test_jax_export runs it for real")
+    fake = types.ModuleType("jax")
+    fake.numpy = np
+    monkeypatch.setitem(sys.modules, "jax", fake)  # removed again after the test
+    monkeypatch.setitem(sys.modules, "jax.numpy", np)
+    (path,) = lagrangian.export(_eom(case), "jax", tmp_path / "out")
+    module = _import(path)
+    t, y = _states(case, 8, seed=7)
+    expected = _reference(case, t, y)
+    _assert_close(module.rhs(t, y), expected)
+    _assert_close(module.rhs(t[0], y[0]), expected[0])
+
+
+@pytest.mark.parametrize("case", ["lagrange_top.toml", "zoo:planar_chain:5"])
+def test_jax_export(case, tmp_path):
+    jax = pytest.importorskip("jax")
+    jax.config.update("jax_enable_x64", True)
+    (path,) = lagrangian.export(_eom(case), "jax", tmp_path / "out")
+    module = _import(path)
+    t, y = _states(case, 8, seed=7)
+    expected = _reference(case, t, y)
+    f = jax.jit(jax.vmap(module.rhs))
+    _assert_close(np.asarray(f(t, y)), expected)
+    _assert_close(np.asarray(module.rhs(t, y)), expected)

@@ -3,7 +3,8 @@
 ``export(eom, target, directory)`` writes, for ``target``:
 
 - ``"numpy"``: one module ``<name>.py`` that needs only NumPy (`_export_numpy`);
-- ``"c"``: ``<name>.h`` and ``<name>.c`` that need only libm (`_export_c`).
+- ``"c"``: ``<name>.h`` and ``<name>.c`` that need only libm (`_export_c`);
+- ``"jax"``: one module ``<name>.py`` of jit-able, vmap-able ``jax.numpy`` functions (`_export_jax`).
 
 Every file names the model, the ``lagrangian`` version, the parameters with their default
 values and the state order y = (q_1..q_n, q̇_1..q̇_n).  The expressions are the derivation's
@@ -143,8 +144,15 @@ def _c_files(symbols: ExportedSymbols) -> dict[str, str]:
     return c_files(symbols)
 
 
+def _jax_files(symbols: ExportedSymbols) -> dict[str, str]:
+    from ._export_jax import jax_module
+
+    return {f"{symbols.identifier}.py": jax_module(symbols)}
+
+
 #: target name → the files it writes ({file name: text}).
-EXPORT_TARGETS: dict[str, Callable[[ExportedSymbols], dict[str, str]]] = {"numpy": _numpy_files, "c": _c_files}
+EXPORT_TARGETS: dict[str, Callable[[ExportedSymbols], dict[str, str]]] = {
+    "numpy": _numpy_files, "c": _c_files, "jax": _jax_files}
 
 
 def check_target(target: str) -> None:
@@ -214,7 +222,8 @@ def export(eom: EquationsOfMotion, target: str, directory: str | os.PathLike[str
     eom : the equations of motion (`lagrangian.derive`).
     target : ``"numpy"`` (one module, NumPy only: ``PARAMETERS``, ``STATE``, ``mass_matrix``,
         ``forcing``, ``rhs`` batched over leading axes) or ``"c"`` (``<name>.h`` and ``<name>.c``,
-        libm only: ``<name>_rhs``, ``<name>_mass_matrix``, ``<name>_forcing``); docs/export.md.
+        libm only: ``<name>_rhs``, ``<name>_mass_matrix``, ``<name>_forcing``) or ``"jax"`` (the NumPy
+        module's interface in ``jax.numpy``, jit-able and vmap-able); docs/export.md.
     directory : created (with the files) atomically; if it exists, it may hold only the
         files of an earlier export of the same name, which are replaced.
 
