@@ -26,12 +26,12 @@ SUMMARY = "write standalone code of M q'' = F and the right-hand side (--to nump
 def register(sub: argparse._SubParsersAction) -> None:
     targets = ", ".join(EXPORT_TARGETS)
     p = sub.add_parser(
-        "export", help="write the equations as standalone NumPy or C code",
+        "export", help="write the equations as standalone NumPy, C or JAX code",
         description="Write M(q, t), F(q, q', t) and the right-hand side y' = (q', q'') of the model as code that "
                     "needs nothing of lagrangian: --to numpy writes one module needing only NumPy (rhs batched over "
-                    "states), --to c a header and a source needing only libm, --to jax one module of jit-able, vmap-able "
-                    "jax.numpy functions. Every file names the model, the "
-                    "lagrangian version, the parameters with their defaults and the state order. Models with "
+                    "states), --to c a header and a source needing only libm, --to jax one module of jit-able, "
+                    "vmap-able jax.numpy functions. Every file names the model, the lagrangian version, the "
+                    "parameters with their defaults and the state order. Models with "
                     "complementary constraints or an exact stick/slip contact are refused (docs/export.md).")
     p.add_argument("model", nargs="?", help=MODEL_HELP)
     p.add_argument("--to", dest="target", required=True, metavar="TARGET", help=f"the target: {targets}")
