@@ -8,6 +8,7 @@ import ctypes
 import functools
 import importlib.util
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -272,3 +273,47 @@ def test_jax_export(case, tmp_path):
     f = jax.jit(jax.vmap(module.rhs))
     _assert_close(np.asarray(f(t, y)), expected)
     _assert_close(np.asarray(module.rhs(t, y)), expected)
+
+
+# -- octave: run by GNU Octave when installed; else a check of the files' structure and tokens -------
+OCTAVE_WORDS = {"function", "end", "zeros", "sin", "cos", "tan", "asin", "acos", "atan", "sinh", "cosh", "tanh",
+                "exp", "log", "sqrt", "abs", "sign", "pi", "NaN", "t", "y", "p", "M", "F", "names", "defaults",
+                "ydot"}
+
+
+@pytest.mark.parametrize("case", ["lagrange_top.toml", "kapitza_pendulum.toml", "block_on_belt.toml"])
+def test_octave_export_structure(case, tmp_path):
+    eom = _eom(case)
+    paths = lagrangian.export(eom, "octave", tmp_path / "out")
+    ident = paths[0].name.removesuffix("_parameters.m")
+    assert [p.name for p in paths] == [f"{ident}_{f}.m" for f in ("parameters", "mass_matrix", "forcing", "rhs")]
+    for path in paths:
+        lines = path.read_text().splitlines()
+        assert lines[0].startswith("function ") and f"= {path.stem}(" in lines[0] and lines[-1] == "end"
+        code = [line.split("%")[0] for line in lines[1:-1] if not line.lstrip().startswith("%")]
+        for line in code:
+            if "'" in line:  # the names' cell array in _parameters
+                continue
+            assert line.count("(") == line.count(")") and line.count("[") == line.count("]"), line
+            assert not line.strip() or line.rstrip().endswith(";"), line
+            words = set(re.findall(r"[A-Za-z_]\w*", line))
+            own = {f"{ident}_mass_matrix", f"{ident}_forcing"}  # what _rhs calls
+            assert words <= OCTAVE_WORDS | own | {w for w in words if re.fullmatch(r"[xyp]_\d+", w)}, line
+    assert f"names = {{{', '.join(repr(p.name) for p in eom.model.parameters)}}};" in paths[0].read_text()
+
+
+@pytest.mark.skipif(shutil.which("octave") is None, reason="GNU Octave is not installed")
+@pytest.mark.parametrize("case", ["lagrange_top.toml", "zoo:planar_chain:5"])
+def test_octave_export_runs(case, tmp_path):
+    eom = _eom(case)
+    paths = lagrangian.export(eom, "octave", tmp_path / "out")
+    ident = paths[0].name.removesuffix("_parameters.m")
+    t, y = _states(case, 4, seed=11)
+    expected = _reference(case, t, y)
+    calls = "".join(f"disp(num2str({ident}_rhs({ti!r}, [{'; '.join(map(repr, yi))}], d)', 17));"
+                    for ti, yi in zip(t, y))
+    script = f"addpath('{tmp_path / 'out'}'); [n, d] = {ident}_parameters(); {calls}"
+    out = subprocess.run(["octave", "--no-gui", "--quiet", "--eval", script], check=True, capture_output=True,
+                         text=True, timeout=120).stdout
+    actual = np.array([[float(v) for v in line.split()] for line in out.strip().splitlines()])
+    _assert_close(actual, expected)

@@ -1,9 +1,9 @@
-"""``lagrangian export MODEL --to numpy|c|jax [-o DIR] [--set NAME=VALUE]``: standalone code for M q̈ = F.
+"""``lagrangian export MODEL --to numpy|c|jax|octave [-o DIR] [--set NAME=VALUE]``: standalone code for M q̈ = F.
 
 Writes the directory atomically (`lagrangian.export`, docs/export.md): ``numpy`` writes one
 module ``<name>.py`` needing only NumPy; ``c`` writes ``<name>.h`` and ``<name>.c`` needing only
-libm; ``jax`` writes one module of jit-able, vmap-able ``jax.numpy`` functions.  ``--set`` changes
-the parameters' default values written into the files.
+libm; ``jax`` writes one module of jit-able, vmap-able ``jax.numpy`` functions; ``octave`` writes
+``.m`` function files.  ``--set`` changes the parameters' default values written into the files.
 """
 
 from __future__ import annotations
@@ -20,19 +20,20 @@ from ._source import MODEL_HELP, load_source
 
 __all__ = ["register", "run"]
 
-SUMMARY = "write standalone code of M q'' = F and the right-hand side (--to numpy | c | jax)"
+SUMMARY = "write standalone code of M q'' = F and the right-hand side\n(--to numpy | c | jax | octave)"
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     targets = ", ".join(EXPORT_TARGETS)
     p = sub.add_parser(
-        "export", help="write the equations as standalone NumPy, C or JAX code",
+        "export", help="write the equations as standalone NumPy, C, JAX or Octave code",
         description="Write M(q, t), F(q, q', t) and the right-hand side y' = (q', q'') of the model as code that "
                     "needs nothing of lagrangian: --to numpy writes one module needing only NumPy (rhs batched over "
                     "states), --to c a header and a source needing only libm, --to jax one module of jit-able, "
-                    "vmap-able jax.numpy functions. Every file names the model, the lagrangian version, the "
-                    "parameters with their defaults and the state order. Models with "
-                    "complementary constraints or an exact stick/slip contact are refused (docs/export.md).")
+                    "vmap-able jax.numpy functions, --to octave .m functions for Octave and MATLAB. Every file "
+                    "names the model, the lagrangian version, the parameters with their defaults and the state "
+                    "order. Models with complementary constraints or an exact stick/slip contact are refused "
+                    "(docs/export.md).")
     p.add_argument("model", nargs="?", help=MODEL_HELP)
     p.add_argument("--to", dest="target", required=True, metavar="TARGET", help=f"the target: {targets}")
     p.add_argument("-o", "--output-dir", dest="directory", metavar="DIR",

@@ -4,7 +4,8 @@
 
 - ``"numpy"``: one module ``<name>.py`` that needs only NumPy (`_export_numpy`);
 - ``"c"``: ``<name>.h`` and ``<name>.c`` that need only libm (`_export_c`);
-- ``"jax"``: one module ``<name>.py`` of jit-able, vmap-able ``jax.numpy`` functions (`_export_jax`).
+- ``"jax"``: one module ``<name>.py`` of jit-able, vmap-able ``jax.numpy`` functions (`_export_jax`);
+- ``"octave"``: ``.m`` function files for GNU Octave and MATLAB (`_export_octave`).
 
 Every file names the model, the ``lagrangian`` version, the parameters with their default
 values and the state order y = (q_1..q_n, q̇_1..q̇_n).  The expressions are the derivation's
@@ -150,9 +151,15 @@ def _jax_files(symbols: ExportedSymbols) -> dict[str, str]:
     return {f"{symbols.identifier}.py": jax_module(symbols)}
 
 
+def _octave_files(symbols: ExportedSymbols) -> dict[str, str]:
+    from ._export_octave import octave_files
+
+    return octave_files(symbols)
+
+
 #: target name → the files it writes ({file name: text}).
 EXPORT_TARGETS: dict[str, Callable[[ExportedSymbols], dict[str, str]]] = {
-    "numpy": _numpy_files, "c": _c_files, "jax": _jax_files}
+    "numpy": _numpy_files, "c": _c_files, "jax": _jax_files, "octave": _octave_files}
 
 
 def check_target(target: str) -> None:
@@ -223,7 +230,8 @@ def export(eom: EquationsOfMotion, target: str, directory: str | os.PathLike[str
     target : ``"numpy"`` (one module, NumPy only: ``PARAMETERS``, ``STATE``, ``mass_matrix``,
         ``forcing``, ``rhs`` batched over leading axes) or ``"c"`` (``<name>.h`` and ``<name>.c``,
         libm only: ``<name>_rhs``, ``<name>_mass_matrix``, ``<name>_forcing``) or ``"jax"`` (the NumPy
-        module's interface in ``jax.numpy``, jit-able and vmap-able); docs/export.md.
+        module's interface in ``jax.numpy``, jit-able and vmap-able) or ``"octave"`` (``.m`` function
+        files: ``<name>_parameters``, ``_mass_matrix``, ``_forcing``, ``_rhs``); docs/export.md.
     directory : created (with the files) atomically; if it exists, it may hold only the
         files of an earlier export of the same name, which are replaced.
 
