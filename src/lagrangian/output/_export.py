@@ -36,6 +36,8 @@ import symengine as se
 from ..dynamics import EquationsOfMotion
 from ..errors import ExportError, OutputError
 from ..model.spec import CoulombFriction
+from ..numerics._codegen import _smaller as smaller
+from ..numerics._codegen import collect_by_state, expand_angle_sums
 
 __all__ = ["EXPORT_TARGETS", "ExportedSymbols", "check_target", "export", "export_files", "model_identifier"]
 
@@ -123,14 +125,20 @@ def exported_symbols(eom: EquationsOfMotion) -> ExportedSymbols:
                               "nor t.", fix="declare it as a parameter of the model")
         return expr.xreplace(private)
 
-    M = tuple(rename(eom.M[i][j], f"M[{i}][{j}]") for i in range(n) for j in range(n))
-    F = tuple(rename(eom.F[i], f"F[{i}]") for i in range(n))
+    M = [rename(eom.M[i][j], f"M[{i}][{j}]") for i in range(n) for j in range(n)]
+    F = [rename(eom.F[i], f"F[{i}]") for i in range(n)]
+    # The compiled package's rewritings, exact identities that make the code cheaper
+    # (`numerics._codegen`): M's entries grouped by their function of q, and sin/cos of
+    # sums of coordinates by the addition formulas, so that cse shares 2n trigonometric calls.
+    M = [smaller(e, collect_by_state([se.expand(e)], y)[0]) for e in M]
+    flat = expand_angle_sums(M + F, list(y[:n]))
+    M, F = flat[: n * n], flat[n * n:]
     coords = eom.coordinates
     return ExportedSymbols(
         name=_comment_safe(eom.model.name), identifier=model_identifier(eom.model.name), version=_version(),
         coordinates=coords, state=(*coords, *(c + "_dot" for c in coords)), parameters=params,
         defaults=tuple(None if values[k] is None else float(values[k]) for k in params),  # type: ignore[arg-type]
-        M=M, F=F, y=y, p=p, t=t)
+        M=tuple(M), F=tuple(F), y=y, p=p, t=t)
 
 
 def _numpy_files(symbols: ExportedSymbols) -> dict[str, str]:
