@@ -9,8 +9,9 @@
 
 Every file names the model, the ``lagrangian`` version, the parameters with their default
 values and the state order y = (q_1..q_n, q̇_1..q̇_n).  The expressions are the derivation's
-own M and F, each function's common subexpressions shared (SymEngine's ``cse``); q̈ is
-solved from M q̈ = F (never M⁻¹ formed symbolically).
+M and F, rewritten only by exact identities (M's terms grouped, angle sums expanded, as in
+`numerics._codegen`), each function's common subexpressions shared (SymEngine's ``cse``); q̈
+is solved from M q̈ = F (never M⁻¹ formed symbolically).
 
 What is not exported: a model with complementary constraints (M q̈ = F + Aᵀλ, A q̈ + c = 0
 is a differential-algebraic system) or with an exact Coulomb contact (stick/slip needs
