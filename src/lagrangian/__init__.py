@@ -23,12 +23,12 @@ from .analysis import (EnergyBalance, Equilibrium, FirstIntegral, LinearizationE
                        Sweep, TopAnalysis, Verification, analyse_top, energy_balance, equilibria, first_integrals,
                        linearize, modes, routh_reduction, stability, steady_motions, sweep, verify)
 from .dynamics import EquationsOfMotion, LagrangeEquation, derive
-from .errors import DerivationError, KinematicsError, LagrangianError, ModelError, OutputError, SimulationError, VerificationError
+from .errors import DerivationError, ExportError, KinematicsError, LagrangianError, ModelError, OutputError, SimulationError, VerificationError
 from .kinematics import Kinematics
 from .model import ModelBuilder, load_model, parse_model
 from .model.spec import Model
 from .model.zoo import lagrange_top
-from .output import Report, report
+from .output import Report, export, report
 from .numerics import CompiledSystem, EventSpec, Trajectory, compile_system, save_trajectory, simulate
 
 __version__ = "0.1.0"
@@ -73,12 +73,14 @@ __all__ = [
     "save_trajectory",
     "report",
     "Report",
+    "export",
     "LagrangianError",
     "ModelError",
     "KinematicsError",
     "DerivationError",
     "SimulationError",
     "OutputError",
+    "ExportError",
     "VerificationError",
 ]
 

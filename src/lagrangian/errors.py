@@ -15,6 +15,7 @@ __all__ = [
     "DerivationError",
     "SimulationError",
     "OutputError",
+    "ExportError",
     "VerificationError",
 ]
 
@@ -105,6 +106,11 @@ class OutputError(LagrangianError):
     """An output file cannot be written; whatever was there before is left as it was."""
 
     exit_code = 3
+
+
+class ExportError(LagrangianError):
+    """The equations cannot be exported as asked: an unknown target, or a model the target cannot express
+    (complementary constraints, an exact stick/slip contact); nothing is written."""
 
 
 class VerificationError(LagrangianError):

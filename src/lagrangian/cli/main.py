@@ -26,7 +26,7 @@ from ._atomic import write_output
 __all__ = ["main", "entrypoint"]
 
 # The commands, in the order `--help` lists them; each name is a module `cli/_<name>.py`.
-COMMANDS = ("derive", "simulate", "verify", "analyse", "equilibria", "linearize", "modes", "report")
+COMMANDS = ("derive", "simulate", "verify", "analyse", "equilibria", "linearize", "modes", "report", "export")
 
 
 def _commands() -> list:

@@ -2,6 +2,8 @@
 
 from ._course import CourseForm as CourseForm
 from ._course import course_form as course_form
+from ._export import EXPORT_TARGETS as EXPORT_TARGETS
+from ._export import export as export
 from ._json import SCHEMA_ID as SCHEMA_ID
 from ._json import SCHEMA_VERSION as SCHEMA_VERSION
 from ._json import derive_document as derive_document
@@ -18,7 +20,7 @@ from ._sympy_form import SympyEquations as SympyEquations
 from ._sympy_form import sympy_equations as sympy_equations
 from ._text import render_text as render_text
 
-__all__ = ["CourseForm", "course_form", "SCHEMA_ID", "SCHEMA_VERSION", "derive_document", "render_latex",
+__all__ = ["CourseForm", "course_form", "EXPORT_TARGETS", "export", "SCHEMA_ID", "SCHEMA_VERSION", "derive_document", "render_latex",
            "LINEARIZE_SCHEMA_ID", "linearize_document",
            "Notation", "render_text", "Report", "ReportFigure", "report", "FORMATS", "format_for",
            "SympyEquations", "sympy_equations"]

@@ -1,0 +1,271 @@
+"""Code export: the equations M(q, t) q̈ = F(q, q̇, t) as source files that stand on their own.
+
+``export(eom, target, directory)`` writes, for ``target``:
+
+- ``"numpy"``: one module ``<name>.py`` that needs only NumPy (`_export_numpy`);
+- ``"c"``: ``<name>.h`` and ``<name>.c`` that need only libm (`_export_c`);
+- ``"jax"``: one module ``<name>.py`` of jit-able, vmap-able ``jax.numpy`` functions (`_export_jax`);
+- ``"octave"``: ``.m`` function files for GNU Octave and MATLAB (`_export_octave`).
+
+Every file names the model, the ``lagrangian`` version, the parameters with their default
+values and the state order y = (q_1..q_n, q̇_1..q̇_n).  The expressions are the derivation's
+M and F, rewritten only by exact identities (M's terms grouped, angle sums expanded, as in
+`numerics._codegen`), each function's common subexpressions shared (SymEngine's ``cse``); q̈
+is solved from M q̈ = F (never M⁻¹ formed symbolically).
+
+What is not exported: a model with complementary constraints (M q̈ = F + Aᵀλ, A q̈ + c = 0
+is a differential-algebraic system) or with an exact Coulomb contact (stick/slip needs
+the event machinery of `lagrangian.simulate`) is refused with an `ExportError` rather than
+exported as an ``rhs`` that would silently drop the multipliers or the sticking phase.
+
+The directory is written atomically: the files are built in a temporary sibling
+directory that is then renamed into place, so a failure leaves nothing half-written.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import tempfile
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import symengine as se
+
+from ..dynamics import EquationsOfMotion
+from ..errors import ExportError, OutputError
+from ..model.spec import CoulombFriction
+from ..numerics._codegen import _smaller as smaller
+from ..numerics._codegen import collect_by_state, expand_angle_sums
+
+__all__ = ["EXPORT_TARGETS", "ExportedSymbols", "check_target", "export", "export_files", "model_identifier"]
+
+
+def _version() -> str:
+    from .. import __version__  # late: the package's __init__ imports this stage
+
+    return __version__
+
+
+@dataclass(frozen=True)
+class ExportedSymbols:
+    """What every target prints: names, defaults, and M, F over private symbols.
+
+    The free symbols of ``M`` and ``F`` are replaced by ``_y<i>`` (y[i], the state), ``_p<k>``
+    (p[k], the parameters) and ``_t``, so that no model name can clash with a name of the
+    generated code (``numpy``, ``sin``, a C keyword).
+    """
+
+    name: str            # the model's name, for comments (printable, no comment terminators)
+    identifier: str      # a C / Python identifier made from it
+    version: str
+    coordinates: tuple[str, ...]
+    state: tuple[str, ...]
+    parameters: tuple[str, ...]
+    defaults: tuple[float | None, ...]
+    M: tuple[se.Basic, ...]     # row by row, n*n entries
+    F: tuple[se.Basic, ...]
+    y: tuple[se.Symbol, ...]
+    p: tuple[se.Symbol, ...]
+    t: se.Symbol
+
+    @property
+    def n(self) -> int:
+        return len(self.coordinates)
+
+
+def _comment_safe(text: str) -> str:
+    """The model name as it may appear inside a comment: printable, one line, no ``*/``."""
+    clean = "".join(ch if ch.isprintable() else "?" for ch in text)
+    return clean.replace("*/", "* /").replace("/*", "/ *")
+
+
+def model_identifier(name: str) -> str:
+    """``double pendulum`` → ``double_pendulum``: ASCII letters, digits and ``_``, not starting with a digit."""
+    ident = re.sub(r"[^0-9A-Za-z]+", "_", name).strip("_").lower() or "model"
+    return ident if not ident[0].isdigit() else "m_" + ident
+
+
+def validate_exportable(eom: EquationsOfMotion) -> None:
+    """Refuse what the exported ``rhs`` could not express (module docstring)."""
+    if eom.constraints:
+        raise ExportError(
+            f"`{eom.model.name}` has {len(eom.constraints)} complementary constraint row(s) "
+            f"({', '.join(f'`{row.multiplier}`' for row in eom.constraints)}); an exported rhs would drop "
+            "their multipliers, so neither M and F nor rhs is exported.",
+            fix="describe the motion with independent coordinates (no [constraints]) to export it, or simulate "
+                "it in the package with `lagrangian simulate`")
+    exact = [load.name for load in eom.model.loads if isinstance(load, CoulombFriction) and load.exact]
+    if exact:
+        raise ExportError(
+            f"`{eom.model.name}` has the exact Coulomb contact `{exact[0]}` (regularization = 0): its stick/slip "
+            "phases need the event machinery of `lagrangian.simulate`, so nothing is exported.",
+            fix=f"give `{exact[0]}` a positive regularization (e.g. 1e-3) to export the smooth model")
+
+
+def exported_symbols(eom: EquationsOfMotion) -> ExportedSymbols:
+    """M and F over private symbols (`ExportedSymbols`), checked for stray symbols."""
+    validate_exportable(eom)
+    n = len(eom.q)
+    params = tuple(p.name for p in eom.model.parameters)
+    values = eom.model.parameter_values
+    y = tuple(se.Symbol(f"_y{i}") for i in range(2 * n))
+    p = tuple(se.Symbol(f"_p{k}") for k in range(len(params)))
+    t = se.Symbol("_t")
+    private: dict[se.Basic, se.Basic] = dict(zip((*eom.q, *eom.qd), y))
+    private.update({se.Symbol(name): sym for name, sym in zip(params, p)})
+    private[eom.t] = t
+
+    def rename(expr: se.Basic, what: str) -> se.Basic:
+        expr = expr if isinstance(expr, se.Basic) else se.Integer(0) + expr  # a Python number only
+        unknown = sorted(str(s) for s in expr.free_symbols if s not in private)
+        if unknown:
+            raise ExportError(f"{what} contains `{unknown[0]}`, which is neither a coordinate, a rate, a parameter "
+                              "nor t.", fix="declare it as a parameter of the model")
+        return expr.xreplace(private)
+
+    M = [rename(eom.M[i][j], f"M[{i}][{j}]") for i in range(n) for j in range(n)]
+    F = [rename(eom.F[i], f"F[{i}]") for i in range(n)]
+    # The compiled package's rewritings, exact identities that make the code cheaper
+    # (`numerics._codegen`): M's entries grouped by their function of q, and sin/cos of
+    # sums of coordinates by the addition formulas, so that cse shares 2n trigonometric calls.
+    M = [smaller(e, collect_by_state([se.expand(e)], y)[0]) for e in M]
+    flat = expand_angle_sums(M + F, list(y[:n]))
+    M, F = flat[: n * n], flat[n * n:]
+    coords = eom.coordinates
+    return ExportedSymbols(
+        name=_comment_safe(eom.model.name), identifier=model_identifier(eom.model.name), version=_version(),
+        coordinates=coords, state=(*coords, *(c + "_dot" for c in coords)), parameters=params,
+        defaults=tuple(None if values[k] is None else float(values[k]) for k in params),  # type: ignore[arg-type]
+        M=tuple(M), F=tuple(F), y=y, p=p, t=t)
+
+
+def _numpy_files(symbols: ExportedSymbols) -> dict[str, str]:
+    from ._export_numpy import numpy_module
+
+    return {f"{symbols.identifier}.py": numpy_module(symbols)}
+
+
+def _c_files(symbols: ExportedSymbols) -> dict[str, str]:
+    from ._export_c import c_files
+
+    return c_files(symbols)
+
+
+def _jax_files(symbols: ExportedSymbols) -> dict[str, str]:
+    from ._export_jax import jax_module
+
+    return {f"{symbols.identifier}.py": jax_module(symbols)}
+
+
+def _octave_files(symbols: ExportedSymbols) -> dict[str, str]:
+    from ._export_octave import octave_files
+
+    return octave_files(symbols)
+
+
+#: target name → the files it writes ({file name: text}).
+EXPORT_TARGETS: dict[str, Callable[[ExportedSymbols], dict[str, str]]] = {
+    "numpy": _numpy_files, "c": _c_files, "jax": _jax_files, "octave": _octave_files}
+
+
+def check_target(target: str) -> None:
+    """Raise `ExportError` unless ``target`` is one of `EXPORT_TARGETS`."""
+    if target not in EXPORT_TARGETS:
+        raise ExportError(f"`{target}` is not an export target.",
+                          fix="use one of " + ", ".join(f"`{k}`" for k in EXPORT_TARGETS))
+
+
+def export_files(eom: EquationsOfMotion, target: str) -> dict[str, str]:
+    """The files of ``target`` as {file name: text}, nothing written (see `export`)."""
+    check_target(target)
+    return EXPORT_TARGETS[target](exported_symbols(eom))
+
+
+def _write_directory(directory: Path, files: dict[str, str]) -> None:
+    """Write ``files`` into ``directory`` atomically (a temporary sibling, then a rename).
+
+    An existing ``directory`` is replaced only when it holds nothing but files of the same
+    names (an earlier export); anything else in it is never touched.
+    """
+    directory = directory.absolute()
+    if directory.exists():
+        if not directory.is_dir():
+            raise OutputError(f"`{directory}` exists and is not a directory.", fix="choose another output directory")
+        others = sorted(p.name for p in directory.iterdir() if p.name not in files or not p.is_file())
+        if others:
+            raise OutputError(f"`{directory}` already holds `{others[0]}`, which this export does not write; "
+                              "it is left untouched.", fix="choose a new or empty output directory")
+    parent = directory.parent
+    tmp = old = None
+    try:
+        tmp = Path(tempfile.mkdtemp(prefix=f".{directory.name}.", suffix=".tmp", dir=parent))
+        for name, text in files.items():
+            (tmp / name).write_text(text, encoding="utf-8")
+        os.chmod(tmp, 0o777 & ~_umask())
+        if directory.exists():
+            old = Path(tempfile.mkdtemp(prefix=f".{directory.name}.", suffix=".old", dir=parent))
+            os.replace(directory, old / "previous")  # rename(2): the old export set aside whole
+        try:
+            os.replace(tmp, directory)
+        except OSError:
+            if old is not None:
+                os.replace(old / "previous", directory)
+            raise
+        tmp = None
+    except OSError as exc:
+        raise OutputError(f"Cannot write the export directory `{directory}`: {exc.strerror or exc}.",
+                          fix="check that its parent folder exists and is writable; nothing was written") from exc
+    finally:
+        for leftover in (tmp, old):
+            if leftover is not None:
+                shutil.rmtree(leftover, ignore_errors=True)
+
+
+def _umask() -> int:
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
+def export(eom: EquationsOfMotion, target: str, directory: str | os.PathLike[str]) -> tuple[Path, ...]:
+    """Write ``eom``'s M, F and q̇, q̈ = M⁻¹F as standalone code for ``target`` into ``directory``.
+
+    Parameters
+    ----------
+    eom : the equations of motion (`lagrangian.derive`).
+    target : ``"numpy"`` (one module, NumPy only: ``PARAMETERS``, ``STATE``, ``mass_matrix``,
+        ``forcing``, ``rhs`` batched over leading axes) or ``"c"`` (``<name>.h`` and ``<name>.c``,
+        libm only: ``<name>_rhs``, ``<name>_mass_matrix``, ``<name>_forcing``) or ``"jax"`` (the NumPy
+        module's interface in ``jax.numpy``, jit-able and vmap-able) or ``"octave"`` (``.m`` function
+        files: ``<name>_parameters``, ``_mass_matrix``, ``_forcing``, ``_rhs``); docs/export.md.
+    directory : created (with the files) atomically; if it exists, it may hold only the
+        files of an earlier export of the same name, which are replaced.
+
+    Returns
+    -------
+    The paths of the written files.
+
+    Raises
+    ------
+    ExportError
+        An unknown ``target``; a model with complementary constraints or an exact Coulomb
+        contact (what is not exported is named); a symbol that is not a coordinate, rate,
+        parameter nor t.  Nothing is written.
+    OutputError
+        ``directory`` cannot be written or holds other files.  Nothing is written.
+
+    Examples
+    --------
+    >>> import lagrangian, tempfile, pathlib
+    >>> eom = lagrangian.derive(lagrangian.lagrange_top())
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "top"
+    >>> [p.name for p in lagrangian.export(eom, "c", out)]
+    ['lagrange_top.h', 'lagrange_top.c']
+    """
+    files = export_files(eom, target)
+    directory = Path(directory)
+    _write_directory(directory, files)
+    return tuple(directory / name for name in files)

@@ -1,0 +1,319 @@
+"""Code export (`lagrangian.export`, ``lagrangian export``): the written NumPy module and C library
+reproduce the in-package q̈ = M⁻¹F (`CompiledSystem.rhs`) at random states, and bad input
+writes nothing (issue 12, items 3 and 6)."""
+
+from __future__ import annotations
+
+import ctypes
+import functools
+import importlib.util
+import os
+import re
+import shutil
+import subprocess
+import sys
+import types
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import lagrangian
+from lagrangian.cli.main import main
+from lagrangian.model import zoo
+from lagrangian_test_support import EXAMPLES_DIR, random_states
+
+# Different but exact expression forms of M and F (the in-package C hoists and regroups them):
+# the results agree to rounding, amplified at most by M's condition number at these states.
+RTOL = 1e-12
+
+CASES = ["lagrange_top.toml", "double_pendulum.toml", "kapitza_pendulum.toml", "block_on_belt.toml",
+         "zoo:planar_chain:5"]
+
+
+@functools.cache
+def _eom(case: str) -> lagrangian.EquationsOfMotion:
+    model = zoo.planar_chain(5) if case == "zoo:planar_chain:5" else lagrangian.load_model(EXAMPLES_DIR / case)
+    return lagrangian.derive(model)
+
+
+@functools.cache
+def _system(case: str) -> lagrangian.CompiledSystem:
+    return lagrangian.CompiledSystem(_eom(case), integrals=())
+
+
+def _states(case: str, count: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
+    """(t, y) of ``count`` random states, y in the exported state order."""
+    eom = _eom(case)
+    names = random_states(case, eom.coordinates, count, seed)
+    y = np.array([[s[c] for c in eom.coordinates] + [s[c + "_dot"] for c in eom.coordinates] for s in names])
+    t = np.random.default_rng(seed).uniform(0.0, 2.0, count)
+    return t, y
+
+
+def _reference(case: str, t: np.ndarray, y: np.ndarray) -> np.ndarray:
+    system = _system(case)
+    return np.array([system.rhs(ti, yi, system.parameter_vector()) for ti, yi in zip(t, y)])
+
+
+def _assert_close(actual: np.ndarray, expected: np.ndarray) -> None:
+    scale = np.max(np.abs(expected), axis=-1, keepdims=True)
+    np.testing.assert_allclose(actual, expected, rtol=RTOL, atol=RTOL * float(np.max(scale)))
+
+
+def _import(path: Path):
+    spec = importlib.util.spec_from_file_location(f"exported_{path.stem}_{id(path)}", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_numpy_export_reproduces_the_package(case, tmp_path):
+    eom = _eom(case)
+    (path,) = lagrangian.export(eom, "numpy", tmp_path / "out")
+    module = _import(path)
+    assert module.STATE == (*eom.coordinates, *(c + "_dot" for c in eom.coordinates))
+    assert list(module.PARAMETERS) == [p.name for p in eom.model.parameters]
+    t, y = _states(case, 12, seed=3)
+    expected = _reference(case, t, y)
+    for ti, yi, ei in zip(t, y, expected):  # one state at a time
+        _assert_close(module.rhs(ti, yi), ei)
+    _assert_close(module.rhs(t, y), expected)  # batched: (N, 2n), t of shape (N,)
+    n = len(eom.q)
+    M = module.mass_matrix(y[:, :n], None, t)
+    assert M.shape == (len(y), n, n)
+    np.testing.assert_allclose(M, np.swapaxes(M, -1, -2), rtol=0, atol=0)
+
+
+def test_numpy_export_parameters(tmp_path):
+    (path,) = lagrangian.export(_eom("double_pendulum.toml"), "numpy", tmp_path / "dp")
+    module = _import(path)
+    y = np.array([0.3, -0.2, 0.5, 1.0])
+    base = module.rhs(0.0, y)
+    p = module.parameter_array({"g": 2 * module.PARAMETERS["g"]})
+    assert not np.allclose(module.rhs(0.0, y, p), base)
+    np.testing.assert_array_equal(module.rhs(0.0, y, dict(module.PARAMETERS)), base)
+    with pytest.raises(KeyError, match="not a parameter"):
+        module.parameter_array({"nope": 1.0})
+
+
+def _c_library(directory: Path, ident: str) -> ctypes.CDLL:
+    lib = directory / f"lib{ident}.so"
+    subprocess.run(["gcc", "-O2", "-std=c99", "-Wall", "-Wextra", "-Werror", "-shared", "-fPIC", "-o", str(lib),
+                    str(directory / f"{ident}.c"), "-lm"], check=True, capture_output=True)
+    return ctypes.CDLL(str(lib))
+
+
+@pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
+@pytest.mark.parametrize("case", CASES)
+def test_c_export_reproduces_the_package(case, tmp_path):
+    eom = _eom(case)
+    paths = lagrangian.export(eom, "c", tmp_path / "out")
+    header = paths[0].read_text()
+    ident = paths[0].stem
+    assert f"#define {ident.upper()}_N {len(eom.q)}" in header
+    for name in eom.coordinates:
+        assert f'"{name}_dot"' in header
+    lib = _c_library(tmp_path / "out", ident)
+    fn = getattr(lib, f"{ident}_rhs")
+    double_p = ctypes.POINTER(ctypes.c_double)
+    fn.argtypes = [ctypes.c_double, double_p, double_p, double_p]
+    fn.restype = None
+    p = np.array([v for v in eom.model.parameter_values.values()], dtype=float)
+    t, y = _states(case, 12, seed=5)
+    expected = _reference(case, t, y)
+    out = np.empty(y.shape[1])
+    for ti, yi, ei in zip(t, y, expected):
+        yi = np.ascontiguousarray(yi)
+        fn(ti, yi.ctypes.data_as(double_p), p.ctypes.data_as(double_p), out.ctypes.data_as(double_p))
+        _assert_close(out, ei)
+
+
+@pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
+def test_c_export_nan_where_the_mass_matrix_is_not_positive_definite(tmp_path):
+    eom = _eom("double_pendulum.toml")
+    paths = lagrangian.export(eom, "c", tmp_path / "out")
+    lib = _c_library(tmp_path / "out", paths[0].stem)
+    fn = getattr(lib, f"{paths[0].stem}_rhs")
+    double_p = ctypes.POINTER(ctypes.c_double)
+    fn.argtypes = [ctypes.c_double, double_p, double_p, double_p]
+    p = np.zeros(len(eom.model.parameters))  # every mass 0: M = 0
+    y, out = np.array([0.3, -0.2, 0.5, 1.0]), np.zeros(4)
+    fn(0.0, y.ctypes.data_as(double_p), p.ctypes.data_as(double_p), out.ctypes.data_as(double_p))
+    assert np.all(np.isnan(out[2:])) and np.array_equal(out[:2], y[2:])
+
+
+# -- bad input: a clear error, nothing written ------------------------------------------------
+def test_unknown_target(tmp_path):
+    with pytest.raises(lagrangian.ExportError, match="`fortran` is not an export target") as info:
+        lagrangian.export(_eom("double_pendulum.toml"), "fortran", tmp_path / "out")
+    assert "numpy" in info.value.fix
+    assert not any(tmp_path.iterdir())
+
+
+def test_unwritable_directory(tmp_path):
+    blocker = tmp_path / "a_file"
+    blocker.write_text("x")
+    with pytest.raises(lagrangian.OutputError, match="Cannot write the export directory"):
+        lagrangian.export(_eom("double_pendulum.toml"), "numpy", blocker / "out")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a_file"]
+
+
+@pytest.mark.skipif(os.name != "posix" or os.geteuid() == 0, reason="needs a non-root POSIX user")
+def test_read_only_parent(tmp_path):
+    parent = tmp_path / "ro"
+    parent.mkdir()
+    parent.chmod(0o500)
+    try:
+        with pytest.raises(lagrangian.OutputError, match="nothing was written"):
+            lagrangian.export(_eom("double_pendulum.toml"), "c", parent / "out")
+        assert not any(parent.iterdir())
+    finally:
+        parent.chmod(0o700)
+
+
+def test_failure_mid_write_leaves_nothing(tmp_path, monkeypatch):
+    calls = []
+    original = Path.write_text
+
+    def failing(self, *args, **kwargs):
+        calls.append(self)
+        if len(calls) == 2:
+            raise OSError(28, "No space left on device")
+        return original(self, *args, **kwargs)
+
+    monkeypatch.setattr(Path, "write_text", failing)
+    with pytest.raises(lagrangian.OutputError, match="No space left"):
+        lagrangian.export(_eom("double_pendulum.toml"), "c", tmp_path / "out")
+    assert not any(tmp_path.iterdir())
+
+
+def test_existing_directory(tmp_path):
+    eom = _eom("double_pendulum.toml")
+    out = tmp_path / "out"
+    first = lagrangian.export(eom, "numpy", out)
+    first[0].write_text("stale")
+    second = lagrangian.export(eom, "numpy", out)  # an earlier export of the same files is replaced
+    assert first == second and "stale" not in second[0].read_text()
+    (out / "notes.txt").write_text("mine")
+    with pytest.raises(lagrangian.OutputError, match="notes.txt"):
+        lagrangian.export(eom, "numpy", out)
+    assert (out / "notes.txt").read_text() == "mine" and second[0].read_text() != "stale"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]
+
+
+def test_constrained_and_stick_slip_models_are_refused(tmp_path):
+    coin = lagrangian.derive(lagrangian.load_model(EXAMPLES_DIR / "rolling_coin.toml"))
+    with pytest.raises(lagrangian.ExportError, match="complementary constraint"):
+        lagrangian.export(coin, "numpy", tmp_path / "coin")
+    text = (EXAMPLES_DIR / "block_on_belt.toml").read_text().replace('regularization = "eps"', 'regularization = 0')
+    belt = lagrangian.derive(lagrangian.parse_model(text))
+    with pytest.raises(lagrangian.ExportError, match="stick/slip") as info:
+        lagrangian.export(belt, "c", tmp_path / "belt")
+    assert "regularization" in info.value.fix
+    assert not any(tmp_path.iterdir())
+
+
+# -- command line -------------------------------------------------------------------------------
+def test_cli_export(tmp_path, capsys):
+    assert main(["export", "zoo:planar_chain:2", "--to", "numpy", "-o", str(tmp_path / "chain"), "--set", "g=1.5"]) == 0
+    assert "wrote" in capsys.readouterr().out
+    (path,) = (tmp_path / "chain").iterdir()
+    assert _import(path).PARAMETERS["g"] == 1.5
+
+
+def test_cli_default_directory(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert main(["export", str(EXAMPLES_DIR / "double_pendulum.toml"), "--to", "c"]) == 0
+    (folder,) = tmp_path.iterdir()
+    assert folder.name.endswith("_c") and len(list(folder.iterdir())) == 2
+
+
+@pytest.mark.parametrize(("argv", "code", "message"), [
+    (["--to", "fortran"], 2, "`fortran` is not an export target"),
+    (["--to", "numpy", "--set", "theta=1"], 2, "no initial state"),
+    (["--to", "numpy", "-o", "{tmp}/a_file/out"], 3, "Cannot write the export directory"),
+    ([str(EXAMPLES_DIR / "rolling_coin.toml"), "--to", "c"], 2, "complementary constraint"),
+])
+def test_cli_errors(argv, code, message, tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "a_file").write_text("x")
+    assert main(["export", *(a.replace("{tmp}", str(tmp_path)) for a in argv)]) == code
+    err = capsys.readouterr().err
+    assert message in err and "tip:" in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a_file"]
+
+
+# -- jax: with JAX when it is installed; else its logic run on a stand-in `jax` whose `jax.numpy` is NumPy ----
+@pytest.mark.parametrize("case", ["lagrange_top.toml", "kapitza_pendulum.toml", "zoo:planar_chain:5"])
+def test_jax_export_logic_on_numpy(case, tmp_path, monkeypatch):
+    if importlib.util.find_spec("jax") is not None:
+        pytest.skip("JAX is installed: test_jax_export runs it for real")
+    fake = types.ModuleType("jax")
+    fake.numpy = np
+    monkeypatch.setitem(sys.modules, "jax", fake)  # removed again after the test
+    monkeypatch.setitem(sys.modules, "jax.numpy", np)
+    (path,) = lagrangian.export(_eom(case), "jax", tmp_path / "out")
+    module = _import(path)
+    t, y = _states(case, 8, seed=7)
+    expected = _reference(case, t, y)
+    _assert_close(module.rhs(t, y), expected)
+    _assert_close(module.rhs(t[0], y[0]), expected[0])
+
+
+@pytest.mark.parametrize("case", ["lagrange_top.toml", "zoo:planar_chain:5"])
+def test_jax_export(case, tmp_path):
+    jax = pytest.importorskip("jax")
+    jax.config.update("jax_enable_x64", True)
+    (path,) = lagrangian.export(_eom(case), "jax", tmp_path / "out")
+    module = _import(path)
+    t, y = _states(case, 8, seed=7)
+    expected = _reference(case, t, y)
+    f = jax.jit(jax.vmap(module.rhs))
+    _assert_close(np.asarray(f(t, y)), expected)
+    _assert_close(np.asarray(module.rhs(t, y)), expected)
+
+
+# -- octave: run by GNU Octave when installed; else a check of the files' structure and tokens -------
+OCTAVE_WORDS = {"function", "end", "zeros", "sin", "cos", "tan", "asin", "acos", "atan", "sinh", "cosh", "tanh",
+                "exp", "log", "sqrt", "abs", "sign", "pi", "NaN", "t", "y", "p", "M", "F", "names", "defaults",
+                "ydot"}
+
+
+@pytest.mark.parametrize("case", ["lagrange_top.toml", "kapitza_pendulum.toml", "block_on_belt.toml"])
+def test_octave_export_structure(case, tmp_path):
+    eom = _eom(case)
+    paths = lagrangian.export(eom, "octave", tmp_path / "out")
+    ident = paths[0].name.removesuffix("_parameters.m")
+    assert [p.name for p in paths] == [f"{ident}_{f}.m" for f in ("parameters", "mass_matrix", "forcing", "rhs")]
+    for path in paths:
+        lines = path.read_text().splitlines()
+        assert lines[0].startswith("function ") and f"= {path.stem}(" in lines[0] and lines[-1] == "end"
+        code = [line.split("%")[0] for line in lines[1:-1] if not line.lstrip().startswith("%")]
+        for line in code:
+            if "'" in line:  # the names' cell array in _parameters
+                continue
+            assert line.count("(") == line.count(")") and line.count("[") == line.count("]"), line
+            assert not line.strip() or line.rstrip().endswith(";"), line
+            words = set(re.findall(r"[A-Za-z_]\w*", line))
+            own = {f"{ident}_mass_matrix", f"{ident}_forcing"}  # what _rhs calls
+            assert words <= OCTAVE_WORDS | own | {w for w in words if re.fullmatch(r"[xyp]_\d+", w)}, line
+    assert f"names = {{{', '.join(repr(p.name) for p in eom.model.parameters)}}};" in paths[0].read_text()
+
+
+@pytest.mark.skipif(shutil.which("octave") is None, reason="GNU Octave is not installed")
+@pytest.mark.parametrize("case", ["lagrange_top.toml", "zoo:planar_chain:5"])
+def test_octave_export_runs(case, tmp_path):
+    eom = _eom(case)
+    paths = lagrangian.export(eom, "octave", tmp_path / "out")
+    ident = paths[0].name.removesuffix("_parameters.m")
+    t, y = _states(case, 4, seed=11)
+    expected = _reference(case, t, y)
+    calls = "".join(f"disp(num2str({ident}_rhs({ti!r}, [{'; '.join(map(repr, yi))}], d)', 17));"
+                    for ti, yi in zip(t, y))
+    script = f"addpath('{tmp_path / 'out'}'); [n, d] = {ident}_parameters(); {calls}"
+    out = subprocess.run(["octave", "--no-gui", "--quiet", "--eval", script], check=True, capture_output=True,
+                         text=True, timeout=120).stdout
+    actual = np.array([[float(v) for v in line.split()] for line in out.strip().splitlines()])
+    _assert_close(actual, expected)
