@@ -181,16 +181,19 @@ def test_a_library_owned_by_another_user_is_never_loaded(cache, tmp_path):
     assert "belongs to another user" in result.stderr
 
 
-@pytest.mark.parametrize("where", ["under-a-file", "read-only"])
+@pytest.mark.parametrize("where", ["under-a-file", "read-only", "home-under-a-file"])
 def test_an_unwritable_cache_falls_back_to_a_private_temporary_one(tmp_path, where):
-    if where == "under-a-file":
+    env = {}
+    if where.endswith("under-a-file"):
         (tmp_path / "file").write_text("")
         cache = tmp_path / "file" / "cache"
+        if where == "home-under-a-file":  # the default ~/.cache/lagrangian, with no LAGRANGIAN_CACHE
+            env = {"HOME": str(cache), "LAGRANGIAN_CACHE": ""}
     else:
         if os.getuid() == 0:
             pytest.skip("root writes into read-only folders")
         cache = tmp_path / "ro"
         cache.mkdir(mode=0o500)
-    result = run(cache)
+    result = run(cache, **env)
     assert result.returncode == 0 and result.stdout.strip() == "fast", result.stderr
     assert "not using the compile cache" in result.stderr and "Traceback" not in result.stderr
