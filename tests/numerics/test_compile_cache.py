@@ -32,9 +32,10 @@ RUN = textwrap.dedent("""
 """)
 
 
-def run(cache: Path, **env: str) -> subprocess.CompletedProcess:
+def run(cache: Path, umask: int = 0o022, **env: str) -> subprocess.CompletedProcess:
     environ = {**os.environ, "LAGRANGIAN_CACHE": str(cache), "PYTHONPATH": SRC, **env}
-    return subprocess.run([sys.executable, "-c", RUN], capture_output=True, text=True, env=environ, timeout=300)
+    return subprocess.run([sys.executable, "-c", RUN], capture_output=True, text=True, env=environ, timeout=300,
+                          umask=umask)
 
 
 @pytest.fixture(scope="module")
@@ -87,6 +88,17 @@ def test_a_warm_cache_is_used_silently(cache):
     result = run(cache)
     assert result.returncode == 0 and result.stderr == ""
     assert model_library(cache).stat().st_mtime_ns == before
+
+
+def test_a_group_writable_umask_does_not_make_every_run_rebuild(tmp_path):
+    # With umask 002 (usual where each user has their own group) the compiler's output is
+    # group-writable: the cache must store it private, or every later run would refuse it.
+    cache = tmp_path / "cache"
+    first = run(cache, umask=0o002)
+    assert first.returncode == 0 and first.stderr == "", first.stderr
+    second = run(cache, umask=0o002)
+    assert second.returncode == 0 and second.stderr == "", second.stderr
+    assert model_library(cache).stat().st_mode & 0o077 == 0
 
 
 def test_a_zero_byte_library_is_rebuilt(cache):

@@ -213,6 +213,10 @@ def build_shared(source: str, key: str, *, flags: Sequence[str] = (), name: str 
                                   fix="report this as a bug of lagrangian, with the model file")
         digest = Path(tmp) / "model.sha256"
         digest.write_text(_digest(built) + "\n", encoding="ascii")
+        # Private whatever the umask: with umask 002 the compiler's output is group-writable,
+        # and `_unsafe` would refuse it on every later run.
+        os.chmod(built, 0o700)
+        os.chmod(digest, 0o600)
         # Library first, its checksum second (both atomic renames in the same folder): a reader
         # that sees the new checksum sees the library it describes.  Concurrent builds of the
         # same key are harmless; at worst a mismatched pair makes the next run rebuild.
