@@ -14,6 +14,7 @@ __all__ = [
     "KinematicsError",
     "DerivationError",
     "SimulationError",
+    "Interrupted",
     "OutputError",
     "ExportError",
     "VerificationError",
@@ -100,6 +101,20 @@ class SimulationError(LagrangianError):
         super().__init__(message, fix=fix)
         self.t = t
         self.state = state
+
+
+class Interrupted(KeyboardInterrupt):
+    """Ctrl-C (SIGINT) stopped a compiled run between two steps.
+
+    A `KeyboardInterrupt`, so code that stops on Ctrl-C still stops; ``trajectory`` is the
+    part computed so far (its ``status`` says it was interrupted), or None when no output
+    time was reached; ``t`` is the time reached.
+    """
+
+    def __init__(self, t: float, trajectory=None) -> None:
+        super().__init__(f"interrupted at t = {t:.9g}")
+        self.t = t
+        self.trajectory = trajectory
 
 
 class OutputError(LagrangianError):

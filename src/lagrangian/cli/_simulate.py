@@ -14,7 +14,7 @@ import time
 from pathlib import Path
 
 from ..dynamics import derive
-from ..errors import OutputError, SimulationError
+from ..errors import Interrupted, OutputError, SimulationError
 from ..numerics import METHODS, STABILIZATIONS, EventSpec, check_output_path, compile_system, save_trajectory, \
     simulate
 from ._settings import add_set_option, parse_settings
@@ -138,10 +138,17 @@ def run(args: argparse.Namespace) -> str:
     system = eom if events or eom.constraints else compile_system(eom)
     progress = sys.stderr.isatty() if args.progress is None else args.progress
     start = time.perf_counter()
-    traj = simulate(system, args.t_end, t_start=args.t_start, initial=initial,
-                    parameters=parameters, method=args.method, rtol=args.rtol, atol=args.atol, dt=args.dt,
-                    n_out=args.n_out, events=events, tolerance=args.tolerance, progress=progress,
-                    stabilization=args.stabilization)
+    try:
+        traj = simulate(system, args.t_end, t_start=args.t_start, initial=initial,
+                        parameters=parameters, method=args.method, rtol=args.rtol, atol=args.atol, dt=args.dt,
+                        n_out=args.n_out, events=events, tolerance=args.tolerance, progress=progress,
+                        stabilization=args.stabilization)
+    except Interrupted as exc:
+        # Ctrl-C: what was computed is kept in the file asked for, its header saying
+        # "interrupted ... (partial)"; `main` prints the one line and exits 130.
+        if args.out and exc.trajectory is not None:
+            exc.written = str(save_trajectory(exc.trajectory, args.out))
+        raise
     elapsed = time.perf_counter() - start
     if args.reactions:
         traj = _with_reactions(traj, eom)

@@ -20,7 +20,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from .. import __version__
-from ..errors import LagrangianError, ModelError
+from ..errors import Interrupted, LagrangianError, ModelError
 from ._atomic import write_output
 
 __all__ = ["main", "entrypoint"]
@@ -118,6 +118,14 @@ def main(argv: Sequence[str] | None = None) -> int:
     except LagrangianError as exc:
         sys.stderr.write(format_error(exc))
         return exc.exit_code
+    except KeyboardInterrupt as exc:
+        # Ctrl-C: one line, no traceback, and the shell's convention for SIGINT (128 + 2).
+        where = f" at t = {exc.t:.9g}" if isinstance(exc, Interrupted) else ""
+        written = getattr(exc, "written", None)
+        kept = f"; wrote the part computed so far to {written} (marked partial)" if written else \
+            ("; nothing written" if getattr(args, "out", None) or getattr(args, "output", None) else "")
+        sys.stderr.write(f"lagrangian: interrupted{where}{kept}\n")
+        return 130
     return 0
 
 

@@ -6,10 +6,21 @@ so a model compiled once loads in milliseconds afterwards, and a changed model o
 compiler never reuses a stale library.  The compiler is ``$CC`` or the first of
 ``cc``, ``gcc``, ``clang`` on the PATH; without one, `compiler` returns None and the
 caller falls back to SymEngine's evaluators and SciPy's integrators.
+
+Loading a library runs its code, so the cache is trusted only as far as it is private:
+the folder is created with mode 0700, and a folder or file owned by another user or
+writable by group or others is not used (one line on stderr says why and how to fix it;
+the run goes on with a private temporary cache, as it does when the folder cannot be
+written).  Each library is written atomically (a temporary file in the same folder, then
+`os.replace`), and its SHA-256 is written after it in a sidecar ``<library>.sha256``; a
+library is loaded only when the sidecar matches it, so a truncated, empty or swapped file
+is rebuilt instead of crashing the process (SIGBUS on a truncated library) or failing on
+every later run.
 """
 
 from __future__ import annotations
 
+import atexit
 import ctypes
 import hashlib
 import os
@@ -17,13 +28,15 @@ import shlex
 import shutil
 import subprocess
 import sys
+import stat
 import tempfile
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from functools import lru_cache
 from pathlib import Path
 
 from ..errors import SimulationError
 
-__all__ = ["compiler", "compile_library", "build_shared", "cache_dir"]
+__all__ = ["compiler", "compile_library", "build_shared", "cache_dir", "load_verified"]
 
 FLAGS = ("-O2", "-fPIC", "-shared", "-std=c99", "-fno-math-errno")
 
@@ -42,8 +55,84 @@ def compiler() -> list[str] | None:
 
 
 def cache_dir() -> Path:
+    """The configured cache folder: ``$LAGRANGIAN_CACHE``, else ``~/.cache/lagrangian``."""
     root = os.environ.get("LAGRANGIAN_CACHE")
     return Path(root) if root else Path.home() / ".cache" / "lagrangian"
+
+
+_said: set[str] = set()
+
+
+def _say_once(message: str) -> None:
+    # One line on stderr, once per process: a rebuilt cache entry is worth knowing about,
+    # not worth a traceback or a warning on every model.
+    if message not in _said:
+        _said.add(message)
+        print(f"lagrangian: {message}", file=sys.stderr)
+
+
+def _unsafe(path: Path) -> str | None:
+    """Why ``path`` must not be trusted (another user's, or writable by group/others), or None."""
+    info = path.stat()
+    if info.st_uid != os.getuid():
+        return f"`{path}` belongs to another user (uid {info.st_uid})"
+    if info.st_mode & 0o022:
+        return f"`{path}` is writable by group or others (mode {stat.S_IMODE(info.st_mode):o})"
+    return None
+
+
+def _private_folder(folder: Path) -> Path:
+    """``folder``, created with mode 0700 if missing; `OSError` when it is not private or not writable."""
+    folder.mkdir(mode=0o700, parents=True, exist_ok=True)
+    reason = _unsafe(folder)
+    if reason:
+        raise PermissionError(reason)
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise PermissionError(f"`{folder}` is not writable")
+    return folder
+
+
+@lru_cache(maxsize=None)
+def _cache_for(configured: Path) -> Path:
+    try:
+        return _private_folder(configured)
+    except OSError as exc:
+        reason = str(exc) if isinstance(exc, PermissionError) and exc.errno is None else \
+            f"`{configured}` cannot be used ({exc.strerror or exc})"
+    fallback = Path(tempfile.mkdtemp(prefix="lagrangian-cache-"))  # mkdtemp: mode 0700, ours
+    atexit.register(shutil.rmtree, fallback, ignore_errors=True)  # this run's builds only: not kept
+    _say_once(f"not using the compile cache: {reason}; compiling into {fallback} for this run instead "
+              f"(fix: `chmod 700` / `chown` that folder, or set LAGRANGIAN_CACHE to a private one)")
+    return fallback
+
+
+def _usable_cache() -> Path:
+    """The cache folder this process may load from: the configured one when it is private, else a temporary one."""
+    return _cache_for(cache_dir())
+
+
+def _sidecar(library: Path) -> Path:
+    return library.with_name(library.name + ".sha256")
+
+
+def _digest(path: Path) -> str:
+    with open(path, "rb") as handle:
+        return hashlib.file_digest(handle, "sha256").hexdigest() if hasattr(hashlib, "file_digest") \
+            else hashlib.sha256(handle.read()).hexdigest()
+
+
+def _why_not_verified(library: Path) -> str | None:
+    """Why the cached ``library`` must not be loaded (None: it is the file this cache built)."""
+    reason = _unsafe(library)
+    if reason:
+        return reason
+    try:
+        recorded = _sidecar(library).read_text(encoding="ascii").strip()
+    except (OSError, UnicodeDecodeError):
+        return f"`{library.name}` has no checksum"
+    if _unsafe(_sidecar(library)) or recorded != _digest(library):
+        return f"`{library.name}` does not match its checksum (truncated or replaced)"
+    return None
 
 
 def compile_library(source: str, key: str) -> ctypes.CDLL:
@@ -54,14 +143,38 @@ def compile_library(source: str, key: str) -> ctypes.CDLL:
     SimulationError
         When there is no compiler or it rejects the source (with its first lines of output).
     """
-    return ctypes.CDLL(str(build_shared(source, key)))
+    return load_verified(source, key, lambda path: ctypes.CDLL(str(path)))
 
 
-def build_shared(source: str, key: str, *, flags: Sequence[str] = (), name: str | None = None) -> Path:
-    """The cached shared object built from ``source`` (built now if it is not there yet).
+def load_verified(source: str, key: str, load: Callable[[Path], object], *, flags: Sequence[str] = (),
+                  name: str | None = None) -> object:
+    """``load(path)`` on the checked build of ``source``; on a load failure, rebuild once and load again.
+
+    Raises
+    ------
+    SimulationError
+        When there is no compiler, it rejects the source, or a fresh build does not load.
+    """
+    path = build_shared(source, key, flags=flags, name=name)
+    try:
+        return load(path)
+    except (OSError, ImportError) as exc:
+        _say_once(f"the cached `{path.name}` did not load ({exc}); rebuilding it")
+    path = build_shared(source, key, flags=flags, name=name, rebuild=True)
+    try:
+        return load(path)
+    except (OSError, ImportError) as exc:
+        raise SimulationError(f"A freshly compiled library does not load: {exc}",
+                              fix="report this as a bug of lagrangian, with the model file") from exc
+
+
+def build_shared(source: str, key: str, *, flags: Sequence[str] = (), name: str | None = None,
+                 rebuild: bool = False) -> Path:
+    """The cached shared object built from ``source`` (built now if it is not there yet or fails its checksum).
 
     ``flags`` are added to the compiler's; ``name`` is the file name inside the build's own
     folder (an extension module must be named after its module), default ``lg_<hash>.so``.
+    ``rebuild`` builds anew even over a library that passes its checks.
 
     Raises
     ------
@@ -74,19 +187,39 @@ def build_shared(source: str, key: str, *, flags: Sequence[str] = (), name: str 
                               fix="install one (e.g. `apt-get install gcc`) or use backend='symengine'")
     command = [*cc, *FLAGS, *flags]
     command_id = hashlib.sha256((key + " ".join(command) + sys.platform).encode()).hexdigest()[:32]
-    folder = cache_dir()
-    library = folder / f"lg_{command_id}.so" if name is None else folder / f"lg_{command_id}" / name
-    if not library.exists():
-        library.parent.mkdir(parents=True, exist_ok=True)
-        with tempfile.TemporaryDirectory(dir=folder) as tmp:
-            c_file = Path(tmp) / "model.c"
-            c_file.write_text(source, encoding="utf-8")
-            built = Path(tmp) / "model.so"
-            result = subprocess.run([*command, "-o", str(built), str(c_file), "-lm"],
-                                    capture_output=True, text=True)
-            if result.returncode != 0:
-                first = "\n".join(result.stderr.splitlines()[:8])
-                raise SimulationError(f"The C compiler rejected the generated code:\n{first}",
-                                      fix="report this as a bug of lagrangian, with the model file")
-            os.replace(built, library)  # atomic: a concurrent build of the same key is harmless
+    folder = _usable_cache()
+    if name is not None:
+        try:
+            folder = _private_folder(folder / f"lg_{command_id}")
+        except OSError as exc:
+            # The build's own folder is someone else's: build in a fresh private one instead.
+            _say_once(f"not using `{folder / f'lg_{command_id}'}` ({exc}); building elsewhere")
+            folder = Path(tempfile.mkdtemp(prefix=f"lg_{command_id}_", dir=folder))
+    library = folder / (f"lg_{command_id}.so" if name is None else name)
+    if library.exists() and not rebuild:
+        reason = _why_not_verified(library)
+        if reason is None:
+            return library
+        _say_once(f"{reason}; rebuilding it")
+    with tempfile.TemporaryDirectory(dir=folder) as tmp:
+        c_file = Path(tmp) / "model.c"
+        c_file.write_text(source, encoding="utf-8")
+        built = Path(tmp) / "model.so"
+        result = subprocess.run([*command, "-o", str(built), str(c_file), "-lm"],
+                                capture_output=True, text=True)
+        if result.returncode != 0:
+            first = "\n".join(result.stderr.splitlines()[:8])
+            raise SimulationError(f"The C compiler rejected the generated code:\n{first}",
+                                  fix="report this as a bug of lagrangian, with the model file")
+        digest = Path(tmp) / "model.sha256"
+        digest.write_text(_digest(built) + "\n", encoding="ascii")
+        # Private whatever the umask: with umask 002 the compiler's output is group-writable,
+        # and `_unsafe` would refuse it on every later run.
+        os.chmod(built, 0o700)
+        os.chmod(digest, 0o600)
+        # Library first, its checksum second (both atomic renames in the same folder): a reader
+        # that sees the new checksum sees the library it describes.  Concurrent builds of the
+        # same key are harmless; at worst a mismatched pair makes the next run rebuild.
+        os.replace(built, library)
+        os.replace(digest, _sidecar(library))
     return library

@@ -4,7 +4,7 @@
 function) in a small CPython extension type (built against NumPy's headers) called with the vectorcall protocol: one state
 then costs the C evaluation plus ~0.1 µs, instead of ~4 µs through ctypes (see
 ``benchmarks/rhs_vs_peers.py``).  The extension is built once per Python version and
-compiler, cached like the models (`_compile.build_shared`).  Where it cannot be built (no
+compiler, cached and checked like the models (`_compile.load_verified`).  Where it cannot be built (no
 ``Python.h``, as with some distributions' Python without its -dev package), `rhs_caller`
 returns None and the caller keeps ctypes.
 """
@@ -20,7 +20,7 @@ from pathlib import Path
 from types import ModuleType
 
 from ..errors import SimulationError
-from ._compile import build_shared
+from ._compile import load_verified
 
 __all__ = ["rhs_caller"]
 
@@ -38,13 +38,17 @@ def _module() -> ModuleType | None:
 
     flags = (f"-I{include}", f"-I{numpy.get_include()}")
     try:
-        path = build_shared(source, source + suffix + numpy.__version__, flags=flags, name=_MODULE + suffix)
+        return load_verified(source, source + suffix + numpy.__version__, _import, flags=flags,
+                             name=_MODULE + suffix)
     except SimulationError:
         return None
+
+
+def _import(path: Path) -> ModuleType:
     spec = importlib.util.spec_from_file_location(_MODULE, path)
     if spec is None or spec.loader is None:
-        return None
-    module = importlib.util.module_from_spec(spec)
+        raise ImportError(f"cannot import {path}")
+    module = importlib.util.module_from_spec(spec)  # the dlopen: `load_verified` has checked the file
     spec.loader.exec_module(module)
     return module
 

@@ -32,14 +32,21 @@
 #define LG_NY (2 * LG_N)
 
 enum { LG_DONE = 0, LG_SINGULAR = 1, LG_NONFINITE = 2, LG_UNDERFLOW = 3, LG_EVENT = 4,
-       LG_MAXSTEPS = 5, LG_NOCONVERGE = 6 };
+       LG_MAXSTEPS = 5, LG_NOCONVERGE = 6, LG_INTERRUPTED = 7 };
 
 /* Control block shared with Python (doubles, so one array carries it):
  * [0] t  [1] h (0: choose)  [2] rtol  [3] atol  [4] max_step  [5] nfev  [6] accepted steps
  * [7] rejected steps  [8] fixed step (0: adaptive)  [9] max steps  [10] events found
- * [11] event capacity  [12] worst relative pivot seen (Cholesky) */
+ * [11] event capacity  [12] worst relative pivot seen (Cholesky)
+ * [13] stop request: set non-zero by another thread (Ctrl-C); the run returns LG_INTERRUPTED
+ *      at its next step, so it is read through a volatile pointer on every step. */
 enum { C_T, C_H, C_RTOL, C_ATOL, C_MAXSTEP, C_NFEV, C_STEPS, C_REJECTED, C_FIXED, C_MAXSTEPS, C_NEV,
-       C_EVCAP, C_PIVOT, C_SIZE };
+       C_EVCAP, C_PIVOT, C_STOP, C_SIZE };
+
+static int lg_stop_requested(const double *ctl)
+{
+    return ((const volatile double *)ctl)[C_STOP] != 0.0;
+}
 
 /* Solve M x = F in place (F becomes x) by Cholesky: M is symmetric positive definite
  * wherever the coordinates are regular, and a pivot that collapses relative to its
@@ -293,6 +300,7 @@ int lg_dop853(double *ctl, double *y, const double *p, const double *t_out, int 
 
     while (t < t_stop) {
         if (ctl[C_STEPS] >= ctl[C_MAXSTEPS]) { ctl[C_T] = t; ctl[C_H] = h_abs; return LG_MAXSTEPS; }
+        if (lg_stop_requested(ctl)) { ctl[C_T] = t; ctl[C_H] = h_abs; return LG_INTERRUPTED; }
         const double min_step = 10 * fabs(nextafter(t, INFINITY) - t);
         if (h_abs > max_step) h_abs = max_step;
         if (!fixed && h_abs < min_step) h_abs = min_step;
@@ -476,6 +484,7 @@ int lg_gauss(double *ctl, double *y, const double *p, const double *t_out, int n
     }
     while (t < t_stop) {
         if (ctl[C_STEPS] >= ctl[C_MAXSTEPS]) return LG_MAXSTEPS;
+        if (lg_stop_requested(ctl)) { ctl[C_T] = t; return LG_INTERRUPTED; }
         const double k_index = floor((t - t_origin) / h + 0.5) + 1.0;
         double t_new = t_origin + k_index * h;
         if (t_new > t_stop) t_new = t_stop;

@@ -4,7 +4,9 @@ The run itself happens in compiled C (`_integrators.c`): Python sets it up, call
 and turns the preallocated output arrays into a `Trajectory`.  Memory is the output grid,
 whatever the number of steps.  A progress bar is drawn by a second thread that reads the
 time the C loop reached (ctypes releases the GIL during the call), so the run is the same,
-bit for bit, with or without it.
+bit for bit, with or without it.  The call runs in a worker thread so that Ctrl-C reaches the
+main thread at once: it then sets the control block's stop request, the C loop returns at its
+next step, and `Interrupted` (a `KeyboardInterrupt`) carries the part computed so far.
 
 Methods
 -------
@@ -22,6 +24,7 @@ from __future__ import annotations
 
 import math
 import os
+import threading
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -30,7 +33,7 @@ import numpy as np
 import symengine as se
 
 from ..dynamics import EquationsOfMotion, derive
-from ..errors import ModelError, SimulationError
+from ..errors import Interrupted, ModelError, SimulationError
 from ..model import load_model
 from ..model._expr import ExpressionError, parse_expression
 from ..model.spec import Model
@@ -62,6 +65,8 @@ _STATUS = {
     5: "the maximum number of steps was reached",
     6: "the implicit stages of the Gauss-Legendre step did not converge",
 }
+_INTERRUPTED = 7  # LG_INTERRUPTED: the stop request ctl[_C_STOP] was seen
+_C_STOP = 13
 
 
 @dataclass(frozen=True)
@@ -377,6 +382,11 @@ def simulate(
     else:
         t_o, Y, evs, nfev, steps, status, conditioning = _run_builtin(
             system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, max_step, max_steps, specs, progress)
+    if isinstance(status, Interrupted):
+        if len(t_o) > 0:
+            status.trajectory = _trajectory(system, p, t_o, Y, evs, method, steps, nfev, tolerance,
+                                            f"interrupted at t = {status.t:.9g} (partial)", conditioning)
+        raise status
     return _trajectory(system, p, t_o, Y, evs, method, steps, nfev, tolerance, status, conditioning)
 
 
@@ -394,7 +404,7 @@ def _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, m
     if dt is not None and not dt > 0:
         raise SimulationError(f"dt = {dt} must be positive.", fix="give a positive step, e.g. dt=1e-3")
     n2 = 2 * system.n
-    ctl = np.zeros(13)
+    ctl = np.zeros(14)
     ctl[0] = t_start
     ctl[2], ctl[3] = rtol, atol
     ctl[4] = np.inf if max_step is None else float(max_step)
@@ -425,17 +435,23 @@ def _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, m
     reporter = make_reporter(progress, t_start, t_end)
     # One call for the whole run, whether or not progress is shown: a chunked run would cut a
     # step at each chunk's end, and the result would depend on the progress bar.
-    with Watch(reporter, ctl):
-        if method == "dop853":
-            code = lib.lg_dop853(_ptr(ctl), _ptr(y), _ptr(p), _ptr(t_out), len(t_out), _ptr(i_out), _ptr(Y),
+    if method == "dop853":
+        def call():
+            return lib.lg_dop853(_ptr(ctl), _ptr(y), _ptr(p), _ptr(t_out), len(t_out), _ptr(i_out), _ptr(Y),
                                  float(t_end), _ptr(ev_dir), _ptr(ev_term), _ptr(ev_out))
-        else:
-            code = lib.lg_gauss(_ptr(ctl), _ptr(y), _ptr(p), _ptr(t_out), len(t_out), _ptr(i_out), _ptr(Y),
+    else:
+        def call():
+            return lib.lg_gauss(_ptr(ctl), _ptr(y), _ptr(p), _ptr(t_out), len(t_out), _ptr(i_out), _ptr(Y),
                                 float(t_end), _ptr(ev_dir), _ptr(ev_term), _ptr(ev_out), float(t_start))
+    with Watch(reporter, ctl):
+        code = _interruptible(call, ctl)
     if reporter:
         reporter.finish(float(ctl[0]), code in (0, 4))
     n_ev = int(min(ctl[10], capacity))
     evs = [(specs[int(r[0])].name, r[1], r[2:]) for r in ev_out[:n_ev]]
+    if code == _INTERRUPTED:
+        m = int(i_out[0])
+        return t_out[:m], Y[:m], evs, int(ctl[5]), int(ctl[6]), Interrupted(float(ctl[0])), float(ctl[12])
     if code in (0, 4):
         m = int(i_out[0])
         return t_out[:m], Y[:m], evs, int(ctl[5]), int(ctl[6]), "completed" if code == 0 else \
@@ -449,6 +465,32 @@ def _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, m
              5: "raise max_steps, or shorten the time span",
              6: "use a smaller dt"}.get(code, "check the model and the initial state"),
         t=t_fail, state=y.copy())
+
+
+def _interruptible(call: Callable[[], int], ctl: np.ndarray) -> int:
+    """``call()`` (a compiled run) in a worker thread; Ctrl-C meanwhile asks it to stop at its next step.
+
+    The main thread only waits: a signal's Python handler runs in the main thread, and not
+    before a C call made there returns, so the run itself must not be made there.
+    """
+    result: list = []
+    done = threading.Event()
+
+    def run() -> None:
+        try:
+            result.append(call())
+        finally:
+            done.set()
+
+    # Waiting on an Event, not on `Thread.join`: before Python 3.13 an interrupted join marks
+    # the thread finished, and a second join would return while the run still writes.
+    threading.Thread(target=run, name="lagrangian-run", daemon=True).start()
+    try:
+        done.wait()  # interruptible: KeyboardInterrupt arrives here within milliseconds
+    except KeyboardInterrupt:
+        ctl[_C_STOP] = 1.0
+        done.wait()
+    return result[0]
 
 
 def _collapsed(system, t0, y0, t, y, p) -> bool:
@@ -507,6 +549,12 @@ def _run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol, max_ste
             sol = solve_ivp(fun, (t_start, t_end), y0, method=_counting_solver(method, count, reporter),
                             t_eval=t_out, rtol=rtol, atol=atol, max_step=np.inf if max_step is None else max_step,
                             events=[make_event(k, s) for k, s in enumerate(specs)] or None)
+    except KeyboardInterrupt:
+        # SciPy's loop runs in Python, so Ctrl-C stops it at once; what it had is inside
+        # solve_ivp and lost, so the Interrupted carries no trajectory.
+        if reporter:
+            reporter.finish(reached(), False)
+        raise Interrupted(reached()) from None
     except SimulationError as exc:
         if reporter:
             reporter.finish(reached(), False)
