@@ -77,7 +77,7 @@ def test_output_file(tmp_path, capsys):
     (["--set", "thta=0.3"], "`thta` in `--set thta=0.3` is not a parameter, a coordinate or a coordinate's rate"),
     (["--set", "theta=abc"], "`abc` is not a number"),
     (["--set", "theta"], "is not of the form NAME=VALUE"),
-    (["--set", "theta=nan"], "is not finite"),
+    (["--set", "theta=nan"], "`nan` is not a number"),
     ([str(ROOT / "examples" / "double_pendulum.toml")], "`Double pendulum` has none cyclic"),
 ])
 def test_errors_are_clear_and_exit_non_zero(argv, message, capsys):
@@ -101,6 +101,11 @@ def test_parse_settings_splits_parameters_and_initial_values():
         parse_settings(["g=1", "g=2"], model)
     with pytest.raises(SettingError, match="not a number"):
         parse_settings(["g=2*pi"], model)  # no expression evaluation
+    # What Python's float also reads is not a plain decimal number (issue 15, item 7).
+    for text in ("1_0", "\u0663", "infinity", "nan", "0x10", "1e", "--1"):
+        with pytest.raises(SettingError, match="not a number"):
+            parse_settings([f"theta={text}"], model)
+    assert parse_settings(["theta=.5", "g=+1E1", "phi_dot=-3."], model) == ({"g": 10.0}, {"theta": 0.5, "phi_dot": -3.0})
 
 
 def test_simulate_checks_the_analysis_against_the_motion(capsys):

@@ -16,7 +16,7 @@ from typing import Any
 
 from ..dynamics import EquationsOfMotion
 from ..model.spec import Model
-from ._settings import SettingError, parse_settings
+from ._settings import SettingError, parse_settings, plain_number
 
 __all__ = ["add_point_options", "add_parameter_option", "parse_point", "parse_names", "linearize_from_args", "point_settings", "full_point"]
 
@@ -85,7 +85,7 @@ def parse_point(values: Sequence[str], model: Model) -> dict[str, int | float | 
         if name in out:
             raise SettingError(f"`--at {name}` is given twice.", fix="give each coordinate once")
         try:
-            value: int | float | str = float(text)
+            value: int | float | str = plain_number(text)
         except ValueError:
             value = text  # a formula: read by the model grammar in `linearize`
         else:

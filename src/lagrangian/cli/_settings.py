@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import re
 from collections.abc import Sequence
 
 from ..errors import LagrangianError
@@ -19,6 +20,17 @@ __all__ = ["SettingError", "add_set_option", "parse_settings"]
 
 class SettingError(LagrangianError):
     """A ``--set NAME=VALUE`` option that cannot be used: bad form, unknown name, not a number."""
+
+
+#: A plain decimal number in ASCII: Python's ``float`` also takes ``1_0``, ``٣`` and ``infinity``.
+_PLAIN = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+
+
+def plain_number(text: str) -> float:
+    """``text`` as a float when it is a plain decimal number (``-0.5``, ``1e3``, ``.5``); else ValueError."""
+    if not _PLAIN.fullmatch(text.strip()):
+        raise ValueError(f"not a plain decimal number: {text!r}")
+    return float(text)
 
 
 def add_set_option(parser: argparse.ArgumentParser) -> None:
@@ -70,7 +82,7 @@ def parse_settings(values: Sequence[str] | None, model: Model) -> tuple[dict[str
             raise SettingError(f"`--set {item}` is not of the form NAME=VALUE.",
                                fix="write e.g. `--set theta=0.3` (no spaces around `=` needed)")
         try:
-            value = float(text)
+            value = plain_number(text)
         except ValueError:
             raise SettingError(f"In `--set {item}`, `{text}` is not a number; VALUE must be a plain decimal "
                                "number (expressions are not evaluated).",
