@@ -255,3 +255,27 @@ def test_the_moment_theorem_at_a_moving_point_keeps_its_extra_term():
     assert r"m\,\vec{V}(I/R_{0})\wedge\vec{V}(G/R_{0}) = \vec{0}" in coin
     top = _section(_report(_eom_of("lagrange_top.toml"), verification=True), "check")
     assert "mobile" not in top
+
+
+def test_values_of_the_integrals_carry_their_units_and_minus_signs():
+    # Issue 11, item 9.  The simple pendulum at rest at θ0: E = −m g l cos θ0 (J, negative: a minus sign,
+    # U+2212, not a hyphen); the top's K and H are angular momenta (J·s), its E an energy (J); the coin's
+    # φ̇ is a speed (rad/s).  The values are recomputed here from the model files' numbers.
+    import math
+    import tomllib
+    from lagrangian_test_support import EXAMPLES_DIR
+
+    data = tomllib.loads((EXAMPLES_DIR / "simple_pendulum.toml").read_text(encoding="utf-8"))
+    value = {k: (v["value"] if isinstance(v, dict) else v) for k, v in data["parameters"].items()}
+    theta0 = data["coordinates"]["theta"]["initial"]
+    rate0 = data["coordinates"]["theta"].get("rate", 0.0)
+    m, g, l = value["m"], value["g"], value["l"]
+    E = 0.5 * m * l**2 * rate0**2 - m * g * l * math.cos(theta0)
+    fr = _all(_report(_eom_of("simple_pendulum.toml"), lang="fr"))
+    en = _all(_report(_eom_of("simple_pendulum.toml"), lang="en"))
+    assert f"≈ \u2212{abs(E):.6g}".replace(".", ",") + "\u202fJ" in fr
+    assert f"≈ \u2212{abs(E):.6g}\u202fJ" in en
+    top = _all(_report(_eom_of("lagrange_top.toml"), lang="en"))
+    assert top.count("\u202fJ·s with the model's initial values") == 2 and "\u202fJ with the model's" in top
+    coin = _all(_report(_eom_of("rolling_coin.toml"), lang="en"))
+    assert "≈ 10\u202frad/s" in coin

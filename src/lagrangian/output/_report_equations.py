@@ -41,12 +41,43 @@ def _dT(c: Context, q: str, deco: str = "", U: bool = False) -> str:
     return rf"\frac{{\partial {what}}}{{\partial {c.sym(q, deco)}}}"
 
 
-def _value(c: Context, name: str, expr_engine: se.Basic) -> Runs:
-    """`` (K ≈ 0,4388 avec les valeurs initiales du modèle)``, when the model gives every value."""
+#: SI units a model's parameters may be written in for `_unit` to name the unit of an integral.
+_SI = {"m", "kg", "s", "rad", "N", "J", "W", "Pa", "kg m^2", "kg*m^2", "kg·m²", "m/s", "m/s^2", "m/s²", "rad/s",
+       "N m", "N*m", "N·m", "N/m", "N s/m", "N*s/m", "kg/s", "1", ""}
+
+
+def _unit(c: Context, kind: str, coordinate: str | None = None) -> str:
+    """The SI unit of an integral's value — J for an energy or a Jacobi integral, J·s (kg·m²/s) for the
+    momentum of an angle or an angular momentum, kg·m/s for that of a length, rad/s or m/s for a constant
+    speed — when every parameter with a value (and every coordinate with a unit) declares an SI unit.
+    ``coordinate``: the coordinate of a momentum, or the integral's name (σ_O·z0, φ̇)."""
+    declared = [p.unit for p in c.model.parameters if p.value is not None and not getattr(p, "input", False)]
+    declared += [q.unit for q in c.model.coordinates if q.unit is not None]
+    if not declared or any(u is None or u.strip() not in _SI for u in declared):
+        return ""
+    if kind in ("energy", "jacobi"):
+        return "\u202fJ"
+    if kind == "symmetry":  # P·e (a translation) or σ_O·e (a rotation)
+        return "\u202fJ·s" if (coordinate or "").startswith("sigma") else "\u202fkg·m/s"
+    if kind == "nonholonomic":  # a constant speed q̇ (coordinate: its name q_dot)
+        coordinate = (coordinate or "").removesuffix("_dot")
+    q = next((q for q in c.model.coordinates if q.name == coordinate), None)
+    if q is None:
+        return ""
+    unit = (q.unit or "").strip()
+    if not unit and any(f.rotation is not None and q.symbol in f.rotation.angle.free_symbols for f in c.model.frames):
+        unit = "rad"  # an angle of rotation of a frame
+    if kind == "nonholonomic":
+        return {"rad": "\u202frad/s", "m": "\u202fm/s"}.get(unit, "")
+    return {"rad": "\u202fJ·s", "m": "\u202fkg·m/s"}.get(unit, "")
+
+
+def _value(c: Context, name: str, expr_engine: se.Basic, unit: str = "") -> Runs:
+    """`` (K ≈ 0,4388 J·s avec les valeurs initiales du modèle)``, when the model gives every value."""
     value = c.initial_value(expr_engine)
     if value is None:
         return ()
-    return (" (",) + c.w("with values", value=(Math(name), f" ≈ {c.w.number(value)}")) + (")",)
+    return (" (",) + c.w("with values", value=(Math(name), f" ≈ {c.w.number(value)}{unit}")) + (")",)
 
 
 def _partials(c: Context, row: EquationRow) -> tuple[list[Equation], list[Block]]:
@@ -89,7 +120,7 @@ def _lagrange(c: Context, row: EquationRow) -> list[Block]:
                                          rf"{K}{constant}",)),)))
         at = rf"\text{{{w.text('at t0')}}}\ t = 0"
         blocks.append(Para(w("first integral K", K=Math(rf"{K} = \left[{p}\right]_{{{at}}}"))[:-1]
-                           + _value(c, K, c.eom.equation(q).dT_dqd) + (".",)))
+                           + _value(c, K, c.eom.equation(q).dT_dqd, _unit(c, "momentum", q)) + (".",)))
         return blocks
     lhs_head, rhs_head = _sides(c, q)
     full = c.full([(lhs_head, row.lhs), (rhs_head, row.rhs)], f"L({c.n.symbol(q)})")
@@ -366,7 +397,7 @@ def _energy(c: Context, row: IntegralRow) -> list[Block]:
     source = next((i.expression for i in c.integrals if i.name == row.name), None)
     if source is not None:
         name = c.n.symbol(row.name, latex=True)
-        value = _value(c, cste if row.kind == "energy" else name, source)
+        value = _value(c, cste if row.kind == "energy" else name, source, _unit(c, row.kind, row.name))
         if value:
             blocks.append(Para(value[1:-1] + (".",)))
     others = [r.coordinate for r in c.form.equations if r.integral is None]

@@ -656,6 +656,7 @@ class Words:
             text = ("" if mantissa in ("1", "-1") else mantissa + "·") + "10" + power
             if mantissa == "-1":
                 text = "-" + text
+        text = text.replace("-", "\u2212")  # a minus sign, not a hyphen
         return text.replace(".", ",") if self.lang == "fr" else text
 
 
