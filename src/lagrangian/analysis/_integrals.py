@@ -16,6 +16,8 @@ does not miss zeros that only appear after simplification.
 
 from __future__ import annotations
 
+from collections import OrderedDict
+
 from dataclasses import dataclass
 
 import symengine as se
@@ -52,6 +54,13 @@ class FirstIntegral:
         return integral_markdown(self)
 
 
+#: The last derivations' integrals, by identity: `simulate` asks for them on every run, and the
+#: symmetry tests cost tens of milliseconds.  The equations are immutable and held here, so an
+#: identity cannot be reused while its entry lives.
+_RECENT: OrderedDict[int, tuple[EquationsOfMotion, tuple[FirstIntegral, ...]]] = OrderedDict()
+_RECENT_SIZE = 16
+
+
 def first_integrals(eom: EquationsOfMotion) -> tuple[FirstIntegral, ...]:
     """The first integrals of the motion that the structure of L guarantees.
 
@@ -59,6 +68,18 @@ def first_integrals(eom: EquationsOfMotion) -> tuple[FirstIntegral, ...]:
     --------
     For the seed's top: K (ψ cyclic), H (φ cyclic) and the energy T + U.
     """
+    hit = _RECENT.get(id(eom))
+    if hit is not None and hit[0] is eom:
+        _RECENT.move_to_end(id(eom))
+        return hit[1]
+    found = _first_integrals(eom)
+    _RECENT[id(eom)] = (eom, found)
+    while len(_RECENT) > _RECENT_SIZE:
+        _RECENT.popitem(last=False)
+    return found
+
+
+def _first_integrals(eom: EquationsOfMotion) -> tuple[FirstIntegral, ...]:
     kin = eom.kinematics
     out: list[FirstIntegral] = []
     residues = [eq.dT_dq - eq.dU_dq + eq.Q_nc for eq in eom.equations]

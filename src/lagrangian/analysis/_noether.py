@@ -163,8 +163,7 @@ def _generator(eom: EquationsOfMotion, kind: str, axis: int) -> tuple[list[se.Ba
         xi = A.LUsolve(b)
     except (RuntimeError, ValueError, ZeroDivisionError):  # pragma: no cover - a singular symbolic pivot
         return None
-    # The LU leaves removable singularities (sin β/sin β in Cardan angles): simplify before use.
-    xi_list = [_tidy(xi[i, 0]) for i in range(n)]
+    xi_list = [xi[i, 0] for i in range(n)]
     residuals = [se.Add(*[r[i] * xi_list[i] for i in range(n)]) - t for r, t in zip(rows, rhs)]
     return (xi_list, numeric) if all(are_zero(residuals)) else None
 
@@ -248,6 +247,9 @@ def symmetry_integrals(eom: EquationsOfMotion, known: Sequence[se.Basic] = ()) -
             work = se.Add(*[Q * x for Q, x in zip(eom.Q_nc, xi)])
             if not all(are_zero([dT, dU, work])):
                 continue
+            # The LU leaves removable singularities (sin β/sin β in Cardan angles): simplified once the
+            # symmetry holds (SymPy's cancel is slow; most candidates fail the tests above).
+            xi = [_tidy(x) for x in xi]
             J = se.Add(*[pi * x for pi, x in zip(p, xi)])
             if are_zero([J])[0] or not _independent(eom, found, J):
                 continue
