@@ -28,9 +28,10 @@ import os
 import re
 import shutil
 import tempfile
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import symengine as se
 
@@ -74,6 +75,23 @@ class ExportedSymbols:
     @property
     def n(self) -> int:
         return len(self.coordinates)
+
+
+def cse_lines(targets: Sequence[str], exprs: Sequence[se.Basic], printer: Any, local: str,
+              indent: str, end: str = "", first: int = 0) -> list[str]:
+    """``target = expression`` lines for ``exprs``, their common subexpressions (SymEngine's ``cse``)
+    first, named ``<local><first>``, ``<local><first + 1>``…; each printed by ``printer`` (a SymPy code
+    printer, fed ``_sympy_()`` objects: no text is parsed), indented and ended as the target language wants."""
+    replacements, reduced = se.cse(list(exprs)) if exprs else ([], [])
+    mapping: dict[se.Basic, se.Basic] = {}
+    lines = []
+    for k, (sym, value) in enumerate(replacements):
+        name = se.Symbol(f"{local}{k + first}")
+        lines.append(f"{indent}{name} = {printer.doprint(value.xreplace(mapping)._sympy_())}{end}")
+        mapping[sym] = name
+    for target, value in zip(targets, reduced):
+        lines.append(f"{indent}{target} = {printer.doprint(value.xreplace(mapping)._sympy_())}{end}")
+    return lines
 
 
 def _comment_safe(text: str) -> str:

@@ -15,23 +15,14 @@ from collections.abc import Sequence
 import symengine as se
 from sympy.printing.numpy import NumPyPrinter
 
-from ._export import ExportedSymbols
+from ._export import ExportedSymbols, cse_lines
 
 __all__ = ["numpy_module", "python_function", "module_header"]
 
 
 def _assignments(targets: Sequence[str], exprs: Sequence[se.Basic], local: str, printer: NumPyPrinter) -> list[str]:
     """Lines computing ``exprs`` into ``targets``, common subexpressions named ``<local>0, <local>1...``."""
-    replacements, reduced = se.cse(list(exprs)) if exprs else ([], [])
-    mapping: dict[se.Basic, se.Basic] = {}
-    lines = []
-    for k, (sym, value) in enumerate(replacements):
-        name = se.Symbol(f"{local}{k}")
-        lines.append(f"    {name} = {printer.doprint(value.xreplace(mapping)._sympy_())}")
-        mapping[sym] = name
-    for target, value in zip(targets, reduced):
-        lines.append(f"    {target} = {printer.doprint(value.xreplace(mapping)._sympy_())}")
-    return lines
+    return cse_lines(targets, exprs, printer, local, "    ")
 
 
 def python_function(signature: str, doc: str, prologue: list[str], targets: Sequence[str],

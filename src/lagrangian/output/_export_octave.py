@@ -17,7 +17,7 @@ from collections.abc import Sequence
 import symengine as se
 from sympy.printing.octave import OctaveCodePrinter
 
-from ._export import ExportedSymbols
+from ._export import ExportedSymbols, cse_lines
 
 __all__ = ["octave_files"]
 
@@ -34,14 +34,7 @@ def _body(symbols: ExportedSymbols, targets: Sequence[str], exprs: Sequence[se.B
     rename.update({s: se.Symbol(f"p_{k + 1}") for k, s in enumerate(symbols.p)})
     rename[symbols.t] = se.Symbol("t")
     exprs = [e.xreplace(rename) for e in exprs]
-    replacements, reduced = se.cse(exprs) if exprs else ([], [])
-    lines, mapping = [], {}
-    for k, (sym, value) in enumerate(replacements):
-        name = se.Symbol(f"x_{k + 1}")
-        lines.append(f"  {name} = {printer.doprint(value.xreplace(mapping)._sympy_())};")
-        mapping[sym] = name
-    for target, value in zip(targets, reduced):
-        lines.append(f"  {target} = {printer.doprint(value.xreplace(mapping)._sympy_())};")
+    lines = cse_lines(targets, exprs, printer, "x_", "  ", ";", first=1)
     used = set(re.findall(r"\b[yp]_\d+\b", "\n".join(lines)))
     unpack = [f"  y_{i + 1} = y({i + 1});" for i in range(len(symbols.y)) if f"y_{i + 1}" in used]
     unpack += [f"  p_{k + 1} = p({k + 1});" for k in range(len(symbols.p)) if f"p_{k + 1}" in used]

@@ -11,8 +11,6 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-import symengine as se
-
 from .._identity import are_zero
 from ..analysis import Verification
 from ..model import Vector
@@ -145,7 +143,7 @@ def _theorem(c: Context, kind: str, point: str | None, names: tuple[str, ...], t
         frames, vP = c.kin.frames, c.kin.velocity(where)  # type: ignore[arg-type]
         total = Vector.zero()
         for name in names:
-            total = total + frames.cross(vP, c.kin.velocity(name)) * masses.get(name, se.Integer(1))
+            total = total + frames.cross(vP, c.kin.velocity(name)) * masses[name]
         parallel = total.is_zero() or all(are_zero(list(frames.express(total, "R0"))))
         if parallel:
             out.append(Para(w("moment theorem parallel", P=Math(P), S=elements, R=Math(R), G=Math(G),
