@@ -548,10 +548,13 @@ class Assembler:
                 out.append(PointForce(raw.name, self.expr(raw, "the force", d["force"], vector=True, key="force"),
                                       need_point(raw, d["at"], "at")))
             elif kind == "torque":
+                # A couple acts on a body or on a frame (a massless link: its virtual power is
+                # C·Ω*(frame), the same with or without a body attached to it).
                 for key, n in (("on", d["on"]), ("reaction_on", d["reaction_on"])):
-                    if n is not None and n not in body_names and not (key == "reaction_on" and n in self.frame_names):
-                        raise self.error(raw, f"torque `{raw.name}` acts on unknown body `{n}`", symbol=str(n),
-                                         fix="name a declared body", key=key)
+                    if n is not None and n not in body_names and n not in self.frame_names:
+                        raise self.error(raw, f"torque `{raw.name}` acts on unknown body or frame `{n}`",
+                                         symbol=str(n), key=key,
+                                         fix="name a declared body, or a frame (a massless link; R0 for the ground)")
                 out.append(Torque(raw.name, self.expr(raw, "the torque", d["torque"], vector=True, key="torque"),
                                   d["on"], d["reaction_on"]))
             elif kind in ("spring", "damper"):
@@ -620,7 +623,7 @@ class Assembler:
             elif isinstance(load, PointForce):
                 referenced |= set(load.force.pieces)
             elif isinstance(load, Torque):
-                referenced |= set(load.torque.pieces) | {load.reaction_on or GALILEAN_FRAME}
+                referenced |= set(load.torque.pieces) | {load.on, load.reaction_on or GALILEAN_FRAME}
         parents = {f.name: f for f in model.frames}
         for name in referenced:
             frame = parents.get(name)

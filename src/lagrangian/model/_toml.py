@@ -320,7 +320,7 @@ class _Reader:
             b.force(name, value["force"], at=value["at"], location=where)
         elif kind == "torque":
             if "on" not in value:
-                raise self.fail(("loads", name), f"torque `{name}` does not say which body it acts on",
+                raise self.fail(("loads", name), f"torque `{name}` does not say which body or frame it acts on",
                                 symbol=name, fix='add on = "S"')
             b.torque(name, value["torque"], on=value["on"], reaction_on=value.get("reaction_on"), location=where)
         elif kind == "spring":

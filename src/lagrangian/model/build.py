@@ -114,7 +114,7 @@ class ModelBuilder:
 
     def torque(self, name: str, torque: Any, *, on: str, reaction_on: str | None = None,
                location: Location | None = None) -> None:
-        """A couple C⃗ on body ``on``; −C⃗ on ``reaction_on`` when given."""
+        """A couple C⃗ on ``on``, a body or a frame (a massless link); −C⃗ on ``reaction_on`` (body or frame) when given."""
         self._add("load", name, location, kind="torque", torque=torque, on=on, reaction_on=reaction_on)
 
     def spring(self, name: str, ends: Sequence[str], *, stiffness: Any, rest_length: Any = 0,

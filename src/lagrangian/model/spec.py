@@ -227,7 +227,7 @@ class PointForce:
 
 @dataclass(frozen=True, slots=True)
 class Torque:
-    """A couple C⃗ on body ``on``; with ``reaction_on``, −C⃗ acts on that body (or frame)."""
+    """A couple C⃗ on ``on`` (a body, or a frame: a massless link); with ``reaction_on``, −C⃗ acts on that body or frame."""
 
     name: str
     torque: Vector
