@@ -116,3 +116,85 @@ def test_couple_on_massless_links_is_that_on_invented_zero_mass_bodies() -> None
 def test_couple_on_an_unknown_name_names_bodies_and_frames() -> None:
     with pytest.raises(ModelError, match="unknown body or frame `R9`"):
         parse(DOUBLE_PENDULUM.format(extra_parameters="", bodies="", link1="R9", link2="R2"))
+
+
+# -- item 1: a rotation about a constant axis of the parent ------------------------------------
+FOUCAULT_AXIS = """
+    # The Foucault pendulum as its statement says: the Earth E turns at Omega about its polar
+    # axis, cos(lat) north + sin(lat) up in the local frame R0 (x east, y north, z up).
+    [parameters]
+    m = 1.0
+    l = 1.0
+    g = 9.81
+    Omega = 0.2
+    lat = 0.7853981633974483
+    [coordinates]
+    alpha = { initial = 0.0 }
+    beta = { initial = 0.1 }
+    [frames]
+    E = { from = "R0", rotation = ["Omega*t", "cos(lat)*R0.y + sin(lat)*R0.z"] }
+    R1 = { from = "E", rotation = ["-alpha", "y"] }
+    R2 = { from = "R1", rotation = ["beta", "x"] }
+    [reference]
+    frame = "E"
+    [particles.P]
+    mass = "m"
+    position = "-l*R2.z"
+    [loads]
+    weight = { gravity = "-g*E.z" }
+"""
+
+
+def test_foucault_about_the_polar_axis_is_the_chained_formulation() -> None:
+    """One rotation about cos(λ) y + sin(λ) z gives the equations of examples/foucault_pendulum.toml
+    (rotation about z0, then the tilt π/2 − λ of the local frame): the bob is at the same place
+    (x = l sin α cos β east, l sin β north) and Ω(E/R0) is the same vector."""
+    from pathlib import Path
+
+    chained = lagrangian.derive(lagrangian.load_model(Path(__file__).parents[2] / "examples" / "foucault_pendulum.toml"))
+    axis = derive(FOUCAULT_AXIS)
+    assert_same_equations(axis, chained)
+    rotation = axis.model.frame("E").rotation
+    assert not rotation.elementary and not rotation.normalized  # cos² + sin² = 1: kept as written
+
+
+def test_builder_takes_the_axis_too() -> None:
+    b = lagrangian.ModelBuilder("Foucault")
+    for name, value in (("m", 1.0), ("l", 1.0), ("g", 9.81), ("Omega", 0.2), ("lat", 0.785)):
+        b.parameter(name, value)
+    b.coordinate("alpha")
+    b.coordinate("beta")
+    b.frame("E", "R0", rotation=("Omega*t", "cos(lat)*R0.y + sin(lat)*R0.z"))
+    b.frame("R1", "E", rotation=("-alpha", "y"))
+    b.frame("R2", "R1", rotation=("beta", "x"))
+    b.reference("E")
+    b.particle("P", mass="m", position="-l*R2.z")
+    b.gravity("weight", "-g*E.z")
+    assert_same_equations(lagrangian.derive(b.build()), derive(FOUCAULT_AXIS.replace("0.7853981633974483", "0.785")),
+                          states=1)
+
+
+def test_axis_not_unit_is_normalized_and_basis_vector_is_elementary() -> None:
+    tilted = parse(FOUCAULT_AXIS.replace("cos(lat)*R0.y + sin(lat)*R0.z", "3*R0.y + 4*R0.z")).frame("E").rotation
+    assert tilted.normalized and [sp.nsimplify(sym(c)) for c in tilted.direction] == [0, sp.Rational(3, 5),
+                                                                                       sp.Rational(4, 5)]
+    assert parse(FOUCAULT_AXIS.replace("cos(lat)*R0.y + sin(lat)*R0.z", "R0.z")).frame("E").rotation.axis == "z"
+    # a symbolic axis that is not provably unit is divided by its norm, and the frames say so
+    from lagrangian.output import course_form, render_latex, render_text
+
+    eom = derive(FOUCAULT_AXIS.replace("cos(lat)*R0.y + sin(lat)*R0.z", "l*R0.y + R0.z"))
+    form = course_form(eom, ())
+    assert "(the axis given, divided by its norm)" in render_text(form)
+    assert r"\text{(the axis given, divided by its norm)}" in render_latex(form)
+
+
+@pytest.mark.parametrize(("axis", "message"), [
+    ("0*R0.y", "is the zero vector"),
+    ("(l - 1)*R0.y", r"is the zero vector \(with l = 1\)"),
+    ("alpha*R0.y + R0.z", "depends on `alpha`"),
+    ("cos(Omega*t)*R0.y + R0.z", "depends on `t`"),
+    ("R1.z", "is written in `R1`, not in its parent `R0`"),
+])
+def test_bad_axes_are_refused_clearly(axis: str, message: str) -> None:
+    with pytest.raises(ModelError, match=message):
+        parse(FOUCAULT_AXIS.replace("cos(lat)*R0.y + sin(lat)*R0.z", axis))

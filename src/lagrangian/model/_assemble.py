@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 import symengine as se
 
+from .._identity import are_zero
 from ..errors import ModelError
 from ._expr import CONSTANTS, FUNCTIONS, ExpressionError, parse_expression
 from ._limits import NotFinite, excerpt, real_value
@@ -24,6 +25,7 @@ from ._reference import check_reference
 from ._vector import Vector, as_expr
 from .spec import (
     GALILEAN_FRAME,
+    GENERAL_AXIS,
     ORIGIN,
     TIME,
     Body,
@@ -340,23 +342,75 @@ class Assembler:
         else:
             raise self.error(raw, f"rotation of frame `{raw.name}` must be [angle, axis] or a list of such pairs, "
                              f"not `{rot}`", symbol=raw.name, key="rotation",
-                             fix='e.g. rotation = ["theta", "x"], or [["psi", "z"], ["theta", "x"]]')
+                             fix='e.g. rotation = ["theta", "x"], ["Omega*t", "cos(lat)*R0.y + sin(lat)*R0.z"], '
+                             'or [["psi", "z"], ["theta", "x"]]')
         self.check_axes(raw)
         axes = raw.data["axes"]
         frames = []
         parent = raw.data["parent"]
         for k, step in enumerate(steps):
             angle, axis = step
-            if axis not in ("x", "y", "z"):
-                raise self.error(raw, f"rotation axis `{axis}` of frame `{raw.name}` is not x, y or z",
-                                 symbol=str(axis), fix="rotate about the parent's x, y or z axis", key="rotation")
             angle_expr = self.expr(raw, "the rotation angle", angle, key="rotation")
+            rotation = (Rotation(angle_expr, axis) if axis in ("x", "y", "z")
+                        else self.axis_rotation(raw, angle_expr, axis, parent, first=k == 0))
             last = k == len(steps) - 1
             name = raw.name if last else f"_{raw.name}_{k + 1}"
             frame_axes = tuple(axes) if (last and axes) else default_axes(name)
-            frames.append(Frame(name, parent, Rotation(angle_expr, axis), frame_axes))  # type: ignore[arg-type]
+            frames.append(Frame(name, parent, rotation, frame_axes))  # type: ignore[arg-type]
             parent = name
         return frames
+
+    def axis_rotation(self, raw: Raw, angle: se.Basic, axis: Any, parent: str, *, first: bool) -> Rotation:
+        """A rotation about a constant vector n of the parent (``"cos(lat)*R0.y + sin(lat)*R0.z"``).
+
+        n must be written in the parent's basis, with parameters only (the axis is fixed in
+        both frames).  A unit n is kept as written — provably unit: |n|² − 1 ≡ 0, e.g.
+        cos²λ + sin²λ — ; any other non-zero n is replaced by n/|n| (``normalized``, which
+        the printed frames mention); the zero vector is refused.  A basis vector of the
+        parent gives the elementary rotation about that axis.
+        """
+        fix = (f'write the axis as a constant vector of the parent `{parent}`, e.g. '
+               f'"cos(lat)*{parent}.y + sin(lat)*{parent}.z", or one of x, y, z')
+        if not first:
+            raise self.error(raw, f"in the rotations of frame `{raw.name}`, only the first may turn about a vector "
+                             f"(`{axis}`): the frames between the rotations of a sequence have no name to write it in",
+                             symbol=raw.name, key="rotation",
+                             fix="declare the frame before that rotation under [frames], then this one from it")
+        if not isinstance(axis, (str, Vector)):
+            raise self.error(raw, f"rotation axis `{axis}` of frame `{raw.name}` is not x, y, z or a vector",
+                             symbol=str(axis), key="rotation", fix=fix)
+        vector = self.expr(raw, "the rotation axis", axis, vector=True, key="rotation")
+        others = [f for f in vector.frames if f != parent]
+        if others:
+            raise self.error(raw, f"the rotation axis of frame `{raw.name}` is written in `{others[0]}`, not in its "
+                             f"parent `{parent}`", symbol=others[0], key="rotation", fix=fix)
+        moving = sorted(str(x) for x in vector.free_symbols() if x not in self.constants)
+        if moving:
+            raise self.error(raw, f"the rotation axis of frame `{raw.name}` depends on `{moving[0]}`: an axis is a "
+                             "constant vector of the parent (and of the frame)", symbol=moving[0], key="rotation",
+                             fix=fix + "; a moving axis is a chain of rotations")
+        comps = vector.pieces.get(parent)
+        if comps is None:
+            raise self.error(raw, f"the rotation axis of frame `{raw.name}` is the zero vector", symbol=raw.name,
+                             key="rotation", fix=fix)
+        zero = se.Integer(0)
+        for letter, unit in zip("xyz", ((1, 0, 0), (0, 1, 0), (0, 0, 1))):
+            if all(c == u for c, u in zip(comps, unit)):
+                return Rotation(angle, letter)  # a basis vector: the elementary rotation
+        norm2 = se.expand(sum((c * c for c in comps), zero))
+        if are_zero([norm2 - 1])[0]:
+            return Rotation(angle, GENERAL_AXIS, comps)
+        known = {x: v for x, v in self.constants.items() if v is not None}
+        try:
+            size = real_value(norm2.subs(known)) if norm2.free_symbols <= set(known) else None
+        except NotFinite:
+            size = None
+        if are_zero([norm2])[0] or size == 0:
+            given = ", ".join(f"{x} = {known[x]:g}" for x in sorted(norm2.free_symbols, key=str))
+            raise self.error(raw, f"the rotation axis of frame `{raw.name}` is the zero vector"
+                             + (f" (with {given})" if given else ""), symbol=raw.name, key="rotation", fix=fix)
+        norm = se.sqrt(norm2)
+        return Rotation(angle, GENERAL_AXIS, tuple(c / norm for c in comps), normalized=True)  # type: ignore[arg-type]
 
     def points(self) -> list[Point]:
         raws = {r.name: r for r in self.of("point")}
@@ -641,6 +695,7 @@ class Assembler:
 
 
 def _is_single_rotation(rot: Any) -> bool:
+    # [angle, axis]: the axis is a letter, a vector written as text, or a `Vector`.
     return (isinstance(rot, Sequence) and not isinstance(rot, str) and len(rot) == 2
-            and isinstance(rot[1], str))
+            and isinstance(rot[1], (str, Vector)))
 

@@ -75,12 +75,15 @@ class ModelBuilder:
                   unit=unit, description=description)
 
     def frame(self, name: str, parent: str | None = GALILEAN_FRAME, *,
-              rotation: tuple[Any, str] | Sequence[tuple[Any, str]] | None = None,
+              rotation: tuple[Any, Any] | Sequence[tuple[Any, Any]] | None = None,
               axes: Sequence[str] | None = None, location: Location | None = None) -> None:
         """Declare a frame obtained from ``parent`` by one rotation ``(angle, axis)`` or a sequence of them.
 
         Each rotation is about the axis (``"x"``, ``"y"`` or ``"z"``) of the frame before it,
-        as in the seed: R0 →(ψ, z0)→ R1 →(θ, u)→ R2 →(φ, z)→ R.
+        as in the seed: R0 →(ψ, z0)→ R1 →(θ, u)→ R2 →(φ, z)→ R.  A single rotation (or the
+        first of a sequence) may instead turn about a constant vector of ``parent``, e.g.
+        ``("Omega*t", "cos(lat)*R0.y + sin(lat)*R0.z")``: kept when provably unit, else
+        divided by its norm (the printed frames say so); the zero vector is refused.
         """
         self._add("frame", name, location, parent=parent, rotation=rotation, axes=axes)
 

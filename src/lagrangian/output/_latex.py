@@ -122,8 +122,10 @@ def render_latex(form: CourseForm, extra: Supplement | None = None) -> str:
         out.append(r"\begin{align*}")
         rows = []
         for f in form.frames:
-            rows.append(rf"&{f.parent} \xrightarrow{{{n.latex(f.angle)},\ {_axis_latex(f.axis)}}} {f.name}"
-                        rf"({', '.join(_axis_latex(a) for a in f.axes)})")
+            axis = _axis_latex(f.axis) if f.axis_vector is None else n.vector(f.axis_vector.terms, latex=True)
+            note = r"\quad\text{(the axis given, divided by its norm)}" if f.normalized else ""
+            rows.append(rf"&{f.parent} \xrightarrow{{{n.latex(f.angle)},\ {axis}}} {f.name}"
+                        rf"({', '.join(_axis_latex(a) for a in f.axes)}){note}")
         for f in form.frames:
             if f.name == form.reference and extra is not None and extra.reference_omega is not None:
                 rows.append(rf"\vec{{\Omega}}({f.name}/R_0) &= {n.vector(extra.reference_omega.terms, latex=True)}"
