@@ -198,3 +198,39 @@ def test_axis_not_unit_is_normalized_and_basis_vector_is_elementary() -> None:
 def test_bad_axes_are_refused_clearly(axis: str, message: str) -> None:
     with pytest.raises(ModelError, match=message):
         parse(FOUCAULT_AXIS.replace("cos(lat)*R0.y + sin(lat)*R0.z", axis))
+
+
+# -- item 6: conservative with multipliers -----------------------------------------------------
+def test_gravity_and_a_scleronomic_multiplier_is_conservative_with_its_lagrangian() -> None:
+    """The pendulum of examples/pendulum_tension.toml (x, y, the rod kept as x² + y² − l² = 0 with
+    λ): gravity only and a perfect time-independent constraint, so L = T − U_P, and SymPy's
+    LagrangesMethod on that L with the same holonomic constraint finds our equations, λ included."""
+    from pathlib import Path
+
+    from sympy.physics.mechanics import LagrangesMethod, dynamicsymbols
+
+    eom = lagrangian.derive(lagrangian.load_model(Path(__file__).parents[2] / "examples" / "pendulum_tension.toml"))
+    assert eom.constraints and eom.conservative and eom.scleronomic
+    m, g, l = sp.symbols("m g l")
+    x, y, xd, yd = sp.symbols("x y x_dot y_dot")
+    assert sp.expand(sym(eom.L) - (m * (xd**2 + yd**2) / 2 - m * g * y)) == 0  # T − U, U = m g y
+    s = eom.to_sympy(time_functions=True)
+    X, Y = s.q
+    lm = LagrangesMethod(s.L, list(s.q), hol_coneqs=[X**2 + Y**2 - l**2])
+    theirs = lm.form_lagranges_equations()  # d/dt ∂L/∂q̇ − ∂L/∂q − (their λ terms) = 0
+    lam = dynamicsymbols("lambda_length")
+    ours = [eq.lhs - eq.rhs for eq in s.equations]
+    assert len(lm.lam_vec) == 1
+    matches = [all(sp.simplify(a - b.subs(lm.lam_vec[0], sign * lam)) == 0 for a, b in zip(ours, theirs))
+               for sign in (1, -1)]
+    assert any(matches)  # the same equations, up to the sign convention of λ
+
+
+def test_a_rheonomic_multiplier_is_not_conservative() -> None:
+    """The same rod with a length that changes with t: its reaction works on the motion (−λ b)."""
+    from pathlib import Path
+
+    text = (Path(__file__).parents[2] / "examples" / "pendulum_tension.toml").read_text()
+    eom = lagrangian.derive(lagrangian.parse_model(text.replace('"x^2 + y^2 - l^2"', '"x^2 + y^2 - (l + t/10)^2"'),
+                                                   source="<test>"))
+    assert eom.constraints and not eom.scleronomic and not eom.conservative and eom.L is None

@@ -355,6 +355,9 @@ def render_text(form: CourseForm, extra: Supplement | None = None) -> str:
                 lines.append(f"        or, with the first integrals: {n.text(eq.using_integrals)} = {n.text(eq.rhs)}")
     if form.conservative and form.L is not None:
         lines.append(f"  The system is conservative (Remarque 2): L = T − U_P = {n.sum((form.T_total, -form.U_total))}")
+        if extra is not None and extra.multipliers:
+            lines.append("  its complementary constraints are perfect and time-independent (no work along the motion): "
+                         "d/dt(∂L/∂q̇_i) − ∂L/∂q_i = Σ_k λ_k a_k,i")
     if extra is not None and extra.multipliers:
         lines += _step7_text(n, form, extra)
     lines.append("")
