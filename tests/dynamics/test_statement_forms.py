@@ -234,3 +234,94 @@ def test_a_rheonomic_multiplier_is_not_conservative() -> None:
     eom = lagrangian.derive(lagrangian.parse_model(text.replace('"x^2 + y^2 - l^2"', '"x^2 + y^2 - (l + t/10)^2"'),
                                                    source="<test>"))
     assert eom.constraints and not eom.scleronomic and not eom.conservative and eom.L is None
+
+
+# -- item 3: masses only where they matter -----------------------------------------------------
+ATWOOD = """
+    # Atwood's machine: A (m1) and B (m2) hang from a rope over a pulley of inertia J turning
+    # about its fixed axle O; the rope does not slip (pulley angle -x/r) and x is A's descent.
+    [parameters]
+    m1 = 2.0
+    m2 = 1.0
+    r = 0.1
+    J = 0.01
+    g = 9.81
+    {extra}
+    [coordinates]
+    x = {{ initial = 0.0, rate = 0.0 }}
+    [frames]
+    Rp = {{ from = "R0", rotation = ["-x/r", "z"] }}
+    [bodies.pulley]
+    frame = "Rp"
+    {mass}
+    center = "{center}"
+    inertia = {{ diagonal = ["J/2", "J/2", "J"] }}
+    [particles.A]
+    mass = "m1"
+    position = "-r*R0.x - (1 + x)*R0.y"
+    [particles.B]
+    mass = "m2"
+    position = "r*R0.x - (1 - x)*R0.y"
+    [loads]
+    weight = {{ gravity = "-g*R0.y" }}
+"""
+
+
+def atwood(mass: str = "", extra: str = "", center: str = "0") -> str:
+    return ATWOOD.format(mass=mass, extra=extra, center=center)
+
+
+def test_atwood_without_a_pulley_mass_is_atwood_with_one() -> None:
+    """The pulley's mass enters neither T (its centre is fixed) nor the work of the weights: the
+    equations are those of the model that gives it, and (m1 + m2 + J/r²) ẍ = (m1 − m2) g."""
+    without = derive(atwood())
+    given = derive(atwood(mass='mass = "M"', extra="M = 3.0", center="0.5*R0.y"))
+    assert not without.model.body("pulley").mass_given and given.model.body("pulley").mass_given
+    assert_same_equations(without, given)
+    m1, m2, r, J, g = sp.symbols("m1 m2 r J g")
+    M, F = mass_and_forces(without)
+    assert sp.simplify(F[0] / M[0, 0] - (m1 - m2) * g / (m1 + m2 + J / r**2)) == 0
+    # the pulley's weight is a constant of U: left out, so M has no part in the energy either
+    assert sp.Symbol("M") not in sym(given.U).free_symbols
+
+
+def test_reactions_ask_for_the_mass_and_simulate_runs_without_it() -> None:
+    from lagrangian.analysis import reactions
+
+    without = derive(atwood())
+    with pytest.raises(ModelError, match="the reactions need the mass of body `pulley`"):
+        reactions(without)
+    trajectory = lagrangian.simulate(without, 0.5, n_out=3)
+    m1, m2, r, J, g = 2.0, 1.0, 0.1, 0.01, 9.81
+    assert trajectory.q[-1, 0] == pytest.approx(0.5 * (m1 - m2) * g / (m1 + m2 + J / r**2) * 0.5**2, rel=1e-8)
+    # a mass given as a symbol without a value: nothing the motion needs holds it
+    unvalued = derive(atwood(mass='mass = "M"', extra="M = {}", center="0.5*R0.y"))
+    assert lagrangian.simulate(unvalued, 0.5, n_out=3).q[-1, 0] == pytest.approx(trajectory.q[-1, 0], rel=1e-12)
+
+
+def test_simulate_cli_runs_with_no_reactions_and_says_why_otherwise(tmp_path, capsys) -> None:  # noqa: ANN001
+    from lagrangian.cli.main import main
+
+    model = tmp_path / "atwood.toml"
+    model.write_text(textwrap.dedent(atwood(mass='mass = "M"', extra="M = {}", center="0.5*R0.y")))
+    assert main(["simulate", str(model), "--t-end", "0.2", "--n-out", "3", "--no-reactions",
+                 "-o", str(tmp_path / "out.csv")]) == 0
+    assert main(["simulate", str(model), "--t-end", "0.2", "--n-out", "3", "-o", str(tmp_path / "r.csv")]) != 0
+    err = capsys.readouterr().err
+    assert "`M` have no value" in err and "--no-reactions" in err
+
+
+@pytest.mark.parametrize(("change", "message"), [
+    (dict(center="x*R0.y"), r"no mass, but its centre of mass moves \(with `x`\)"),
+    (dict(center="0.1*Rp.x"), r"no mass, but its centre of mass moves \(with `x`\)"),
+])
+def test_a_moving_centre_needs_its_mass(change: dict, message: str) -> None:
+    with pytest.raises(ModelError, match=message):
+        parse(atwood(**change))
+
+
+def test_inertia_elsewhere_than_g_needs_the_mass() -> None:
+    text = atwood().replace("[bodies.pulley]", '[points]\n    K = "0.05*Rp.x"\n    [bodies.pulley]')
+    assert not parse(text.replace("inertia = { diagonal", 'inertia = { at = "O", diagonal')).bodies[0].mass_given
+    with pytest.raises(ModelError, match="inertia is given at `K`, not at its centre of mass"):
+        parse(text.replace("inertia = { diagonal", 'inertia = { at = "K", diagonal'))

@@ -84,11 +84,14 @@ def _q_of(kin: Kinematics, load: Load) -> tuple[tuple[se.Basic, ...], se.Basic |
         masses = {b.name: b.mass for b in kin.model.bodies} | {p.name: p.mass for p in kin.model.particles}
         Q_terms: list[list[se.Basic]] = [[] for _ in range(n)]
         U_terms = []
+        moving = set(kin.q) | {kin.t}
         for name in names:
             weight = load.field * masses[name]
             for terms, x in zip(Q_terms, _dot_partials(kin, weight, name)):
                 terms.append(x)
-            U_terms.append(-kin.frames.dot(weight, kin.position(name)))
+            u = -kin.frames.dot(weight, kin.position(name))
+            if u.free_symbols & moving:  # a constant (G fixed: a pulley's axle) is left to the "+ cste"
+                U_terms.append(u)
         potential = sum_of(U_terms) if _is_constant_vector(kin, load.field) else None
         return tuple(sum_of(terms) for terms in Q_terms), potential, "P* = Σ m g·V*(G); U = −Σ m g·OG + cste"
     if isinstance(load, PointForce):

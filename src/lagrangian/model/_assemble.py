@@ -159,6 +159,7 @@ class Assembler:
         parameters = self.parameters()
         coordinates = self.coordinates()
         frames = self.frames()
+        self._frame_map = {f.name: f for f in frames}
         points = self.points()
         bodies = self.bodies(points)
         particles = self.particles(points)
@@ -459,7 +460,8 @@ class Assembler:
             if d["frame"] not in self.frame_names:
                 raise self.error(raw, f"body `{raw.name}` is attached to unknown frame `{d['frame']}`",
                                  symbol=str(d["frame"]), fix="declare the frame under [frames] first", key="frame")
-            mass = self.mass(raw, d["mass"])
+            given = d["mass"] is not None
+            mass = self.mass(raw, d["mass"]) if given else se.Integer(0)
             center = self._position(raw, d["center"], d["center_from"], "the centre of mass", "center", "center_from")
             inertia = self.inertia(raw, d["inertia"], d["frame"])
             fixed = d["fixed_point"]
@@ -467,9 +469,46 @@ class Assembler:
                 raise self.error(raw, f"fixed point `{fixed}` of body `{raw.name}` is not a declared point",
                                  symbol=str(fixed), fix="declare it under [points] (O is predeclared)",
                                  key="fixed_point")
-            out.append(Body(raw.name, d["frame"], mass, center, inertia, fixed))
+            if not given:
+                self.check_mass_not_needed(raw, center, inertia)
+            out.append(Body(raw.name, d["frame"], mass, center, inertia, fixed, mass_given=given))
             self._points.setdefault(raw.name, Point(raw.name, center))  # its centre, for later `from`
         return tuple(out)
+
+    def check_mass_not_needed(self, raw: Raw, center: Vector, inertia: Inertia) -> None:
+        """A body may leave its mass out only where the mass cannot enter the equations.
+
+        That is when its centre G is fixed in R0 (OG holds no coordinate, rate or t, and is
+        written in frames that do not turn): T = ½ Ω·Π_G·Ω (Koenig, V(G) = 0) and any force
+        at G, its weight included, has no virtual power (V*(G) = 0).  The inertia must then
+        be given at G (or at a point that is G), since moving it there needs m (Huygens), and
+        the equations written in R0, since inertial forces would need m too.
+        """
+        fix = f'give it its mass, e.g. mass = "M" under [bodies.{raw.name}]'
+
+        def moving(symbols: set) -> list[str]:  # type: ignore[type-arg]
+            return sorted(str(x) for x in symbols if x not in self.constants)
+
+        why = moving(center.free_symbols())
+        for name in center.frames:
+            frame = self._frame_map[name]
+            while frame.rotation is not None and not why:
+                why = moving(frame.rotation.angle.free_symbols)
+                frame = self._frame_map[frame.parent]  # type: ignore[index]
+        if why:
+            raise self.error(raw, f"body `{raw.name}` has no mass, but its centre of mass moves (with `{why[0]}`): "
+                             "its mass enters T and the work of its weight", symbol=raw.name, key="frame",
+                             fix=fix + "; only a body whose centre of mass is fixed may leave it out")
+        if inertia.at != "G":
+            offset = self._points[inertia.at].position - center
+            if any(se.expand(c) != 0 for _, comps in offset for c in comps):
+                raise self.error(raw, f"body `{raw.name}` has no mass, but its inertia is given at `{inertia.at}`, "
+                                 "not at its centre of mass: moving it there needs the mass (Huygens)",
+                                 symbol=raw.name, key="inertia", fix=fix + ', or give the inertia at = "G"')
+        reference = self.b._reference
+        if reference is not None and (reference[0], reference[1]) != (GALILEAN_FRAME, ORIGIN):
+            raise self.error(raw, f"body `{raw.name}` has no mass, but the equations are written in `{reference[0]}`, "
+                             "whose inertial forces on the body need it", symbol=raw.name, key="frame", fix=fix)
 
     def mass(self, raw: Raw, value: Any) -> se.Basic:
         """The mass of a body or particle: constant (parameters only) and positive where its value is known.

@@ -92,12 +92,14 @@ class ModelBuilder:
         """Declare a point by its position vector from ``relative_to`` (default O)."""
         self._add("point", name, location, position=position, relative_to=relative_to)
 
-    def body(self, name: str, *, frame: str, mass: Any, center: Any, inertia: Mapping[str, Any] | None,
+    def body(self, name: str, *, frame: str, mass: Any = None, center: Any, inertia: Mapping[str, Any] | None,
              center_from: str = ORIGIN, fixed_point: str | None = None, location: Location | None = None) -> None:
         """Declare a rigid body fixed to ``frame``.
 
         ``inertia`` is ``{"at": point or "G", "frame": name, "diagonal": [I1, I2, I3]}`` or
-        with ``"matrix": [[...], [...], [...]]`` instead of ``"diagonal"``.
+        with ``"matrix": [[...], [...], [...]]`` instead of ``"diagonal"``.  ``mass`` may be
+        left out (None) for a body whose centre of mass G is fixed (a pulley on a fixed axle):
+        it then enters neither T nor the generalized forces; the reactions ask for it.
         """
         self._add("body", name, location, frame=frame, mass=mass, center=center, center_from=center_from,
                   inertia=inertia, fixed_point=fixed_point)

@@ -214,7 +214,13 @@ class Inertia:
 
 @dataclass(frozen=True, slots=True)
 class Body:
-    """A rigid body S attached to ``frame``, with mass m, centre of mass G (OG) and inertia."""
+    """A rigid body S attached to ``frame``, with mass m, centre of mass G (OG) and inertia.
+
+    ``mass_given`` is False for a body whose G is fixed and whose mass the model leaves out
+    (a pulley on a fixed axle): ``mass`` is then 0, exact for everything the Lagrange
+    equations use — T = ½ Ω·Π_G·Ω and m g·∂OG/∂q_i = 0 whatever m — while the reactions,
+    which need it, refuse to be computed (`lagrangian.analysis.reactions`).
+    """
 
     name: str
     frame: str
@@ -222,6 +228,7 @@ class Body:
     center: Vector
     inertia: Inertia
     fixed_point: str | None = None
+    mass_given: bool = True
 
 
 @dataclass(frozen=True, slots=True)
