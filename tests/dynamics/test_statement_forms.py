@@ -312,8 +312,8 @@ def test_simulate_cli_runs_with_no_reactions_and_says_why_otherwise(tmp_path, ca
 
 
 @pytest.mark.parametrize(("change", "message"), [
-    (dict(center="x*R0.y"), r"no mass, but its centre of mass moves \(with `x`\)"),
-    (dict(center="0.1*Rp.x"), r"no mass, but its centre of mass moves \(with `x`\)"),
+    (dict(center="x*R0.y"), r"no `mass`, but its centre of mass moves \(with `x`\)"),
+    (dict(center="0.1*Rp.x"), r"no `mass`, but its centre of mass moves \(with `x`\)"),
 ])
 def test_a_moving_centre_needs_its_mass(change: dict, message: str) -> None:
     with pytest.raises(ModelError, match=message):
@@ -325,3 +325,11 @@ def test_inertia_elsewhere_than_g_needs_the_mass() -> None:
     assert not parse(text.replace("inertia = { diagonal", 'inertia = { at = "O", diagonal')).bodies[0].mass_given
     with pytest.raises(ModelError, match="inertia is given at `K`, not at its centre of mass"):
         parse(text.replace("inertia = { diagonal", 'inertia = { at = "K", diagonal'))
+
+
+def test_no_mass_in_a_moving_reference_frame_is_refused() -> None:
+    text = atwood(extra="Omega = 1.0").replace("[bodies.pulley]", 'W = { from = "R0", rotation = ["Omega*t", "y"] }\n'
+                                                "    [reference]\n    frame = \"W\"\n    [bodies.pulley]")
+    text = text.replace('Rp = { from = "R0"', 'Rp = { from = "W"')
+    with pytest.raises(ModelError, match="no `mass`, but the equations are written in `W`"):
+        parse(text)

@@ -105,7 +105,9 @@ def _symbolic_report(v: Verification, p: _Printer) -> list[str]:
             lines.append(f"  {th.name} (particle): {p.expr(th.mass)} γ({th.name}/{f}) = {efforts} + R")
             continue
         at = th.point if th.point != th.name else "G"
-        lines.append(f"  {th.name} (body, moments at {at}): {p.expr(th.mass)} γ(G/{f}) = {efforts} + R;  "
+        mass = (p.expr(th.mass) if model.body(th.name).mass_given
+                else "m (not given: G is fixed)")  # m·0: the theorem holds whatever m
+        lines.append(f"  {th.name} (body, moments at {at}): {mass} γ(G/{f}) = {efforts} + R;  "
                      f"δ_{at}({th.name}/{f}) = M_{at}({efforts}) + M_{at}(R)")
         lines.append(f"      σ_{at}({th.name}/{f}) = Π_{at}·Ω = {p.vector(th.angular_momentum)}")
     lines += ["", "Each L(q_i) is those theorems projected on the directions of q_i (∂V/∂q̇_i, ∂Ω/∂q̇_i). "

@@ -496,19 +496,19 @@ class Assembler:
                 why = moving(frame.rotation.angle.free_symbols)
                 frame = self._frame_map[frame.parent]  # type: ignore[index]
         if why:
-            raise self.error(raw, f"body `{raw.name}` has no mass, but its centre of mass moves (with `{why[0]}`): "
-                             "its mass enters T and the work of its weight", symbol=raw.name, key="frame",
+            raise self.error(raw, f"body `{raw.name}` has no `mass`, but its centre of mass moves (with `{why[0]}`): "
+                             "its mass enters T and the work of its weight", symbol=raw.name,
                              fix=fix + "; only a body whose centre of mass is fixed may leave it out")
         if inertia.at != "G":
             offset = self._points[inertia.at].position - center
             if any(se.expand(c) != 0 for _, comps in offset for c in comps):
-                raise self.error(raw, f"body `{raw.name}` has no mass, but its inertia is given at `{inertia.at}`, "
+                raise self.error(raw, f"body `{raw.name}` has no `mass`, but its inertia is given at `{inertia.at}`, "
                                  "not at its centre of mass: moving it there needs the mass (Huygens)",
                                  symbol=raw.name, key="inertia", fix=fix + ', or give the inertia at = "G"')
         reference = self.b._reference
         if reference is not None and (reference[0], reference[1]) != (GALILEAN_FRAME, ORIGIN):
-            raise self.error(raw, f"body `{raw.name}` has no mass, but the equations are written in `{reference[0]}`, "
-                             "whose inertial forces on the body need it", symbol=raw.name, key="frame", fix=fix)
+            raise self.error(raw, f"body `{raw.name}` has no `mass`, but the equations are written in `{reference[0]}`, "
+                             "whose inertial forces on the body need it", symbol=raw.name, fix=fix)
 
     def mass(self, raw: Raw, value: Any) -> se.Basic:
         """The mass of a body or particle: constant (parameters only) and positive where its value is known.

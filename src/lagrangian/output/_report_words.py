@@ -44,6 +44,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "constituents": ("(Σ) est formé de :", "(Σ) is made of:"),
     "body item": ("le solide ({S}) : masse {m}, centre d'inertie {G}, {OG}",
                   "the rigid body ({S}): mass {m}, centre of mass {G}, {OG}"),
+    "body item no mass": ("le solide ({S}) : masse non donnée (son centre d'inertie {G} est fixe : elle n'entre pas "
+                          "dans les équations de Lagrange), {OG}",
+                          "the rigid body ({S}): mass not given (its centre of mass {G} is fixed: the mass does not "
+                          "enter the Lagrange equations), {OG}"),
     "particle item": ("le point matériel {P} : masse {m}, {OP}", "the particle {P}: mass {m}, {OP}"),
     "parameters": ("Constantes du problème :", "Constants of the problem:"),
     "col symbol": ("symbole", "symbol"),
