@@ -21,7 +21,8 @@ import pytest
 import lagrangian
 from lagrangian.cli.main import main
 from lagrangian.model import zoo
-from lagrangian_test_support import EXAMPLES_DIR, random_states
+from lagrangian.numerics._dae import ConstrainedSystem
+from lagrangian_test_support import EXAMPLES_DIR, Numeric, random_states
 
 # Different but exact expression forms of M and F (the in-package C hoists and regroups them):
 # the results agree to rounding, amplified at most by M's condition number at these states.
@@ -144,6 +145,93 @@ def test_c_export_nan_where_the_mass_matrix_is_not_positive_definite(tmp_path):
     assert np.all(np.isnan(out[2:])) and np.array_equal(out[:2], y[2:])
 
 
+# A small C program (libm only) that reads p, Baumgarte's (alpha, beta), then (t, y) per line, and prints
+# y' (rhs_k, checked equal to rhs), the first integrals, the constraint rows A, b, c, f, and, with rows,
+# (y', lambda) of rhs_multipliers at (alpha, beta).
+C_DRIVER = r"""
+#include <stdio.h>
+#include <string.h>
+#include "NAME.h"
+#define N2 (2 * UP_N)
+static void show(const double *v, int count) { for (int i = 0; i < count; ++i) printf("%.17g ", v[i]); }
+int main(void) {
+    double p[UP_NP + 1], k[UP_NK + 1], y[N2], t, alpha, beta, out[N2], again[N2], I[UP_NI + 1];
+    double A[UP_NC * UP_N + 1], b[UP_NC + 1], c[UP_NC + 1], f[UP_NC + 1];
+    for (int i = 0; i < UP_NP; ++i) if (scanf("%lf", &p[i]) != 1) return 2;
+    if (scanf("%lf %lf", &alpha, &beta) != 2) return 2;
+    NAME_constants(p, k);
+    while (scanf("%lf", &t) == 1) {
+        for (int i = 0; i < N2; ++i) if (scanf("%lf", &y[i]) != 1) return 2;
+        NAME_rhs_k(t, y, p, k, out);
+        NAME_rhs(t, y, p, again);
+        if (memcmp(out, again, sizeof out) != 0) return 3;
+        NAME_first_integrals(t, y, p, I);
+        NAME_constraint_rows(t, y, p, A, b, c, f);
+        show(out, N2); show(I, UP_NI); show(A, UP_NC * UP_N); show(b, UP_NC); show(c, UP_NC); show(f, UP_NC);
+#if UP_NC > 0
+        double lam[UP_NC];
+        if (NAME_rhs_multipliers(t, y, p, k, alpha, beta, out, lam) != 0) return 4;
+        show(out, N2); show(lam, UP_NC);
+#endif
+        printf("\n");
+    }
+    return 0;
+}
+"""
+
+C_DRIVER_CASES = ["lagrange_top.toml", "pendulum_tension.toml", "rolling_coin.toml", "zoo:planar_chain:5"]
+
+
+@pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
+@pytest.mark.parametrize("case", C_DRIVER_CASES)
+def test_c_export_driver_integrals_and_constraint_rows(case, tmp_path):
+    """A C program built on the export (gcc, libm only) against Python: y' against the package's
+    compiled rhs (with the multipliers for the constrained models), the first integrals and the
+    constraint rows against `first_integrals` and the derivation's rows evaluated by SymEngine."""
+    eom = _eom(case)
+    paths = lagrangian.export(eom, "c", tmp_path / "out")
+    ident, n, rows = paths[0].stem, len(eom.q), eom.constraints
+    driver = tmp_path / "out" / "driver.c"
+    driver.write_text(C_DRIVER.replace("NAME", ident).replace("UP_", ident.upper() + "_"))
+    exe = tmp_path / "driver"
+    subprocess.run(["gcc", "-O2", "-std=c99", "-Wall", "-Wextra", "-Werror", "-o", str(exe), str(driver),
+                    str(paths[1]), "-lm"], check=True, capture_output=True)
+    p = np.array([v for v in eom.model.parameter_values.values()], dtype=float)
+    stab = (2.0, 3.0)
+    t, y = _states(case, 6, seed=13)
+    def line(values) -> str:
+        return " ".join(repr(float(v)) for v in values)
+
+    text = line([*p, *stab]) + "\n" + "\n".join(line([ti, *yi]) for ti, yi in zip(t, y))
+    run = subprocess.run([str(exe)], input=text, capture_output=True, text=True, timeout=60)
+    assert run.returncode == 0, run.stderr
+    got = np.array([[float(v) for v in line.split()] for line in run.stdout.strip().splitlines()])
+    integrals = lagrangian.first_integrals(eom)
+    assert integrals and f'"{integrals[0].name}"' in paths[0].read_text()
+    fi = Numeric(eom, [i.expression for i in integrals])
+    A = Numeric(eom, [a for r in rows for a in r.coefficients])
+    bcf = Numeric(eom, [r.b for r in rows] + [r.bias for r in rows]
+                  + [r.expression if r.kind == "holonomic" else 0 for r in rows])
+    if rows:
+        dae = ConstrainedSystem(eom)
+        exact, _ = dae.rhs(t, y, dae.parameter_vector())
+        stabilized, lam = dae.rhs(t, y, dae.parameter_vector(), stab)
+    else:
+        exact = _reference(case, t, y)
+    m, ni = len(rows), len(integrals)
+    for k, (ti, yi) in enumerate(zip(t, y)):
+        state = {**{c: v for c, v in zip(eom.coordinates, yi[:n])},
+                 **{c + "_dot": v for c, v in zip(eom.coordinates, yi[n:])}, str(eom.t): ti}
+        parts = np.split(got[k], np.cumsum([2 * n, ni, m * n, 3 * m, 2 * n]))
+        assert len(got[k]) == 2 * n + ni + (m * n + 3 * m + 2 * n + m if m else 0)
+        _assert_close(parts[0], exact[k])
+        _assert_close(parts[1], fi(state))
+        if rows:
+            _assert_close(np.concatenate([parts[2], parts[3]]), np.concatenate([A(state), bcf(state)]))
+            _assert_close(parts[4], stabilized[k])
+            _assert_close(parts[5], lam[k])
+
+
 # -- bad input: a clear error, nothing written ------------------------------------------------
 def test_unknown_target(tmp_path):
     with pytest.raises(lagrangian.ExportError, match="`fortran` is not an export target") as info:
@@ -205,8 +293,10 @@ def test_existing_directory(tmp_path):
 
 def test_constrained_and_stick_slip_models_are_refused(tmp_path):
     coin = lagrangian.derive(lagrangian.load_model(EXAMPLES_DIR / "rolling_coin.toml"))
-    with pytest.raises(lagrangian.ExportError, match="complementary constraint"):
-        lagrangian.export(coin, "numpy", tmp_path / "coin")
+    for target in ("numpy", "jax", "octave"):  # the C export solves for the multipliers (test above)
+        with pytest.raises(lagrangian.ExportError, match="complementary constraint") as info:
+            lagrangian.export(coin, target, tmp_path / "coin")
+        assert "--to c" in info.value.fix
     text = (EXAMPLES_DIR / "block_on_belt.toml").read_text().replace('regularization = "eps"', 'regularization = 0')
     belt = lagrangian.derive(lagrangian.parse_model(text))
     with pytest.raises(lagrangian.ExportError, match="stick/slip") as info:
@@ -234,7 +324,7 @@ def test_cli_default_directory(tmp_path, capsys, monkeypatch):
     (["--to", "fortran"], 2, "`fortran` is not an export target"),
     (["--to", "numpy", "--set", "theta=1"], 2, "no initial state"),
     (["--to", "numpy", "-o", "{tmp}/a_file/out"], 3, "Cannot write the export directory"),
-    ([str(EXAMPLES_DIR / "rolling_coin.toml"), "--to", "c"], 2, "complementary constraint"),
+    ([str(EXAMPLES_DIR / "rolling_coin.toml"), "--to", "numpy"], 2, "complementary constraint"),
 ])
 def test_cli_errors(argv, code, message, tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
