@@ -166,6 +166,7 @@ int main(void) {
         NAME_rhs(t, y, p, again);
         if (memcmp(out, again, sizeof out) != 0) return 3;
         NAME_first_integrals(t, y, p, I);
+        ONE_BY_ONE
         NAME_constraint_rows(t, y, p, A, b, c, f);
         show(out, N2); show(I, UP_NI); show(A, UP_NC * UP_N); show(b, UP_NC); show(c, UP_NC); show(f, UP_NC);
 #if UP_NC > 0
@@ -192,7 +193,12 @@ def test_c_export_driver_integrals_and_constraint_rows(case, tmp_path):
     paths = lagrangian.export(eom, "c", tmp_path / "out")
     ident, n, rows = paths[0].stem, len(eom.q), eom.constraints
     driver = tmp_path / "out" / "driver.c"
-    driver.write_text(C_DRIVER.replace("NAME", ident).replace("UP_", ident.upper() + "_"))
+    # Each integral's own function (declared in the header) must give the value of the array function.
+    own = re.findall(r"^double (\w+)\(double t, const double \*y, const double \*p\);", paths[0].read_text(), re.M)
+    assert len(own) == len(lagrangian.first_integrals(eom))
+    checks = "\n        ".join(f"if (fabs({fn}(t, y, p) - I[{j}]) > 1e-13 * (1.0 + fabs(I[{j}]))) return 5;"
+                      for j, fn in enumerate(own))
+    driver.write_text(C_DRIVER.replace("ONE_BY_ONE", checks).replace("NAME", ident).replace("UP_", ident.upper() + "_"))
     exe = tmp_path / "driver"
     subprocess.run(["gcc", "-O2", "-std=c99", "-Wall", "-Wextra", "-Werror", "-o", str(exe), str(driver),
                     str(paths[1]), "-lm"], check=True, capture_output=True)

@@ -37,6 +37,11 @@ def _string(text: str) -> str:
     return json.dumps(text, ensure_ascii=True)
 
 
+def _comment(text: str) -> str:
+    """``text`` inside a C comment: ASCII (JSON's escapes), no comment terminator."""
+    return json.dumps(text, ensure_ascii=True)[1:-1].replace("*/", "* /")
+
+
 def _double(value: float | None) -> str:
     return "NAN" if value is None else repr(float(value))
 
@@ -52,7 +57,8 @@ def _inputs(symbols: ExportedSymbols) -> dict[str, str]:
 
 
 def _function(signature: str, comment: str, stages: Sequence[Sequence[tuple[str, se.Basic]]],
-              inputs: dict[str, str], unused: str = "(void)t; (void)y; (void)p;", after: str = "") -> str:
+              inputs: dict[str, str], unused: str = "(void)t; (void)y; (void)p;", after: str = "",
+              returns: str = "") -> str:
     """A C function computing ``stages`` in turn (the targets of one stage may be read by the next).
 
     The inputs it reads are first copied into ``const`` locals (``const double _y3 = y[3];``), as in
@@ -69,6 +75,8 @@ def _function(signature: str, comment: str, stages: Sequence[Sequence[tuple[str,
             body.append("    " + after)
     used = set(re.findall(r"\b_[ypkt]\w*", "\n".join(body)))
     decls = [f"    const double {c} = {v};" for c, v in inputs.items() if c in used]
+    if returns:
+        body.append(f"    return {returns};")
     return f"/* {comment} */\n{signature} {{\n    {unused}\n" + "\n".join([*decls, *body]) + "\n}\n"
 
 
@@ -110,6 +118,8 @@ def _header(symbols: ExportedSymbols, banner: str) -> str:
     row_names = ", ".join(_string(r.name) for r in symbols.rows) or "0"
     row_kinds = ", ".join(_string(r.kind) for r in symbols.rows) or "0"
     multipliers = ", ".join(_string(r.multiplier) for r in symbols.rows) or "0"
+    one_by_one = "".join(f"double {fn}(double t, const double *y, const double *p);  /* {_comment(name)} */\n"
+                         for fn, (name, _) in zip(integral_functions(symbols), symbols.integrals))
     constrained = "" if not m else f"""
 /* With the {m} complementary constraint row(s): M q'' = F + A^T lam and A q'' + c = -2 alpha g - beta^2 f
    (g = A q' + b, the velocity residual; f, the position residual of holonomic rows): alpha = beta = 0 is
@@ -165,9 +175,9 @@ void {ident}_forcing(double t, const double *y, const double *p, double *F);
 void {ident}_rhs(double t, const double *y, const double *p, double *out);
 void {ident}_rhs_k(double t, const double *y, const double *p, const double *k, double *out);
 {constrained}
-/* The first integrals at state y, {up}_NI entries (out must hold at least one). */
+/* The first integrals at state y, {up}_NI entries (out must hold at least one), and each on its own. */
 void {ident}_first_integrals(double t, const double *y, const double *p, double *out);
-
+{one_by_one}
 /* The complementary constraint rows (none when {up}_NC is 0): A (NC x n, row-major), b, c and f (NC each)
    with A q' + b = 0 and A q'' + c = 0 along a motion, f(q, t) = 0 for a holonomic row (0 for a
    nonholonomic one). */
@@ -176,6 +186,19 @@ void {ident}_constraint_rows(double t, const double *y, const double *p, double 
 
 #endif
 """
+
+
+def integral_functions(symbols: ExportedSymbols) -> list[str]:
+    """The C name of each first integral's own function: ``<name>_integral_<K>``, the integral's name
+    made an identifier (``p_psi``; non-identifier characters become ``_``), numbered when two coincide."""
+    out: list[str] = []
+    for name, _ in symbols.integrals:
+        base = re.sub(r"[^0-9A-Za-z_]", "_", name.encode("ascii", "replace").decode())
+        candidate, k = f"{symbols.identifier}_integral_{base}", 2
+        while candidate in out:
+            candidate, k = f"{symbols.identifier}_integral_{base}_{k}", k + 1
+        out.append(candidate)
+    return out
 
 
 def c_files(symbols: ExportedSymbols) -> dict[str, str]:
@@ -295,6 +318,10 @@ void {ident}_rhs_k(double t, const double *y, const double *p, const double *k, 
                           "the first integrals, in the order of " + f"{ident}_integral_names",
                           [[(f"out[{j}]", e) for j, (_, e) in enumerate(symbols.integrals)]], names,
                           "(void)t; (void)y; (void)p; (void)out;")
+    integrals += "".join(
+        "\n" + _function(f"double {fn}(double t, const double *y, const double *p)", f"the first integral {_comment(name)}",
+                         [[("const double value", e)]], names, returns="value")
+        for fn, (name, e) in zip(integral_functions(symbols), symbols.integrals))
     rows = [(f"A[{r * n + i}]", a) for r, row in enumerate(symbols.rows) for i, a in enumerate(row.A)]
     rows += [(f"{v}[{r}]", getattr(row, v)) for v in "bcf" for r, row in enumerate(symbols.rows)]
     constraint_rows = _function(
