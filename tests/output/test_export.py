@@ -319,6 +319,12 @@ def test_cli_export(tmp_path, capsys):
     assert _import(path).PARAMETERS["g"] == 1.5
 
 
+def test_cli_exports_a_constrained_model_to_c(tmp_path, capsys):
+    assert main(["export", str(EXAMPLES_DIR / "rolling_coin.toml"), "--to", "c", "-o", str(tmp_path / "coin")]) == 0
+    header = (tmp_path / "coin" / "rolling_upright_coin.h").read_text()
+    assert "#define ROLLING_UPRIGHT_COIN_NC 2" in header and "rolling_upright_coin_rhs_multipliers(" in header
+
+
 def test_cli_default_directory(tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
     assert main(["export", str(EXAMPLES_DIR / "double_pendulum.toml"), "--to", "c"]) == 0

@@ -319,8 +319,9 @@ void {ident}_rhs_k(double t, const double *y, const double *p, const double *k, 
                           [[(f"out[{j}]", e) for j, (_, e) in enumerate(symbols.integrals)]], names,
                           "(void)t; (void)y; (void)p; (void)out;")
     integrals += "".join(
-        "\n" + _function(f"double {fn}(double t, const double *y, const double *p)", f"the first integral {_comment(name)}",
-                         [[("const double value", e)]], names, returns="value")
+        "\n" + _function(f"double {fn}(double t, const double *y, const double *p)",
+                         f"the first integral {_comment(name)}", [[("const double value", e)]], names,
+                         returns="value")
         for fn, (name, e) in zip(integral_functions(symbols), symbols.integrals))
     rows = [(f"A[{r * n + i}]", a) for r, row in enumerate(symbols.rows) for i, a in enumerate(row.A)]
     rows += [(f"{v}[{r}]", getattr(row, v)) for v in "bcf" for r, row in enumerate(symbols.rows)]
