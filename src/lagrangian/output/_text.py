@@ -87,6 +87,7 @@ class ReactionLine:
     moment: VectorRow | None
     generalized: tuple[sympy.Basic, ...]
     note: str
+    row_choice: str | None = None  # the rows the engine kept of a vector constraint, and why
 
 
 @dataclass(frozen=True, slots=True)
@@ -154,7 +155,8 @@ def _reaction_lines(eom: EquationsOfMotion) -> tuple[ReactionLine, ...]:
         force = _vector_row(eom, Vector({r.frame: r.force_components})) if r.point is not None else None
         moment = _vector_row(eom, Vector({r.frame: r.moment_components})) if r.body is not None else None
         out.append(ReactionLine(r.constraint, r.point, r.body, r.counter_point, r.frame, force, moment,
-                                tuple(to_sympy(g) for g in r.generalized), r.note))
+                                tuple(to_sympy(g) for g in r.generalized), r.note,
+                                r.row_choice.text if r.row_choice is not None else None))
     return tuple(out)
 
 
@@ -225,6 +227,7 @@ def _step7_text(n: Notation, form: CourseForm, extra: Supplement) -> list[str]:
     for c in extra.constraints:
         for row, _, equation in c.rows:
             lines.append(f"  {n.text(equation)} = 0    [{row}]")
+    lines += [f"  {r.constraint}: {r.row_choice}" for r in extra.reactions if r.row_choice]
     unsolved = [name for name, formula in extra.multipliers if formula is None]
     for name, formula in extra.multipliers:
         if formula is not None:
