@@ -18,6 +18,7 @@ from ..dynamics import EquationsOfMotion, multiplier_formulas
 from ..dynamics._constraints import FORMULA_MAX_SIZE, describe_constraints
 from ..dynamics._inertial import RelativeKinematics
 from ..model import Vector
+from ..model._assumptions import SIGN_RELATIONS, range_text
 from ._course import CourseForm, VectorRow, _vector_row, to_sympy
 from ._notation import Notation
 
@@ -111,6 +112,10 @@ class Supplement:
     reactions: tuple[ReactionLine, ...]
     balance: tuple[PowerRow, ...] | None
     power: sympy.Basic | None
+    #: The declared signs and ranges (text), and the signs the derivation used, as (expression,
+    #: relation, reason): `lagrangian.model._assumptions`.
+    declared: tuple[str, ...] = ()
+    used: tuple[tuple[sympy.Basic, str, str], ...] = ()
 
 
 #: Largest expression (SymPy operation count) that `_shortest` tries to cancel and factor.
@@ -176,8 +181,12 @@ def supplement(eom: EquationsOfMotion, form: CourseForm) -> Supplement:
         balance = tuple(PowerRow(t.name, kinds[t.name] if t.kind == "load" else t.kind, _shortest(t.power), t.note)
                         for t in b.terms)
         power = _shortest(b.P_nc)
+    declared = tuple(f"{p.name} {SIGN_RELATIONS[p.sign]}" for p in eom.model.parameters if p.sign is not None)
+    declared += tuple(f"{c.name} ∈ {range_text(c.range)}" for c in eom.model.coordinates if c.range is not None)
+    used = tuple((to_sympy(f.expression), f.relation, f.reason) for f in eom.assumptions)
     return Supplement(reference_omega, _constraint_lines(eom) if eom.model.constraints else (), multipliers,
-                      _reaction_lines(eom), balance, power)
+                      _reaction_lines(eom), balance, power, declared, used)
+
 
 
 # -- text -----------------------------------------------------------------------------------------------
@@ -298,6 +307,10 @@ def render_text(form: CourseForm, extra: Supplement | None = None) -> str:
                      "and the Coriolis and entrainment inertial forces among the loads.")
     if extra is not None and extra.constraints:
         lines += _constraints_text(n, extra)
+    if extra is not None and extra.declared:
+        lines.append("Declared assumptions: " + ", ".join(extra.declared))
+        for expr, relation, reason in extra.used:
+            lines.append(f"  used to simplify: {n.text(expr)} {relation} 0    ({reason})")
     if form.frames:
         lines.append("")
         relative = f" relative to {ref}:" if ref != "R0" else ":"
