@@ -115,3 +115,12 @@ def test_models_without_assumptions_are_untouched() -> None:
     eom = lagrangian.derive(lagrangian.load_model(
         __import__("lagrangian_test_support").EXAMPLES_DIR / "simple_pendulum.toml"))
     assert eom.assumptions == ()
+
+
+@pytest.mark.parametrize(("wall_at", "ends"), [("-L", '["W", "P"]'), ("L", '["P", "W"]')])
+def test_newton_euler_agrees_under_the_same_assumptions(wall_at: str, ends: str) -> None:
+    from lagrangian.analysis import verify
+
+    eom = wall(range=', range = ["-L", "L"]', wall=wall_at, ends=ends)
+    assert eom.F == (-k * x,)
+    assert verify(eom).agrees
