@@ -185,3 +185,19 @@ def test_explicit_axes_are_kept_as_given() -> None:
     text = LEANING_DISK + 'rolling = { no_slip = "I", on = "S", frame = "R3", axes = ["x", "y", "z"] }\n'
     with pytest.raises(ModelError, match="redundant"):
         derive(text)
+
+
+@pytest.mark.parametrize(("lang", "words"), [
+    ("en", "Written in R2, the constraint “rolling” gives 3 rows of rank 2 only; the same vector is written along "
+           "the axes of R1"),
+    ("fr", "Écrite dans R2, la liaison « rolling » donne 3 équations de rang 2 seulement"),
+])
+def test_the_report_says_which_rows_were_kept(tmp_path, lang: str, words: str) -> None:
+    from lagrangian.cli.main import main
+
+    text = (EXAMPLES_DIR / "rolling_coin.toml").read_text(encoding="utf-8")
+    model = tmp_path / "coin.toml"
+    model.write_text(text.replace('frame = "R1", description', 'frame = "R2", description'), encoding="utf-8")
+    out = tmp_path / "coin.md"
+    assert main(["report", str(model), "--format", "md", "--no-verify", "--lang", lang, "-o", str(out)]) == 0
+    assert words in out.read_text(encoding="utf-8")
