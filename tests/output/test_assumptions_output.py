@@ -50,3 +50,13 @@ def test_json_and_text_say_what_was_assumed_and_used(capsys, tmp_path) -> None:
 def test_models_without_assumptions_have_no_key(capsys) -> None:
     assert main(["derive", str(ROOT / "examples" / "simple_pendulum.toml"), "--json"]) == 0
     assert "assumptions" not in json.loads(capsys.readouterr().out)
+
+
+def test_the_report_says_which_signs_simplified_the_efforts(tmp_path) -> None:
+    path = tmp_path / "spring.toml"
+    path.write_text(SPRING.replace("range = [-0.5, 0.5]", 'range = ["-L", "L"]'))
+    out = tmp_path / "spring.md"
+    assert main(["report", str(path), "--format", "md", "--no-verify", "--lang", "en", "-o", str(out)]) == 0
+    text = out.read_text()
+    assert (r"The declared assumptions ($`L > 0`$ and $`x \in \left[-L, L\right]`$) give $`x + L \geq 0`$ "
+            "(for every allowed value)") in text

@@ -323,6 +323,12 @@ _PHRASES: dict[str, tuple[str, str]] = {
                           "The complementary constraint equation completes the system; with the {n} Lagrange "
                           "equations it determines the {n} parameters and the multiplier {lams}:"),
     "reaction of": ("Réaction de « {name} » sur {E} :", "Reaction of “{name}” on {E}:"),
+    "signs used": ("Les hypothèses déclarées ({declared}) donnent {facts} : les valeurs absolues, racines de carrés "
+                   "et signes de ces expressions se simplifient dans les efforts ci-dessous.",
+                   "The declared assumptions ({declared}) give {facts}: the absolute values, square roots of squares "
+                   "and signs of these expressions simplify in the efforts below."),
+    "sign general": ("pour toutes les valeurs permises", "for every allowed value"),
+    "sign at values": ("aux valeurs déclarées des paramètres", "at the declared values of the parameters"),
     "rows chosen frame": ("Écrite dans {declared}, la liaison « {name} » donne {k} équations de rang {r} seulement ; "
                           "le même vecteur est écrit dans la base de {frame}, où {r} composantes seulement ne sont "
                           "pas identiquement nulles : {kept}.",
