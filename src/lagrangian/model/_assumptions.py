@@ -29,9 +29,9 @@ declared sign or range nothing is touched: `refine` returns its argument.
 from __future__ import annotations
 
 import math
-from fractions import Fraction
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from fractions import Fraction
 from typing import TYPE_CHECKING, Any
 
 import symengine as se
@@ -47,10 +47,11 @@ if TYPE_CHECKING:  # pragma: no cover
 __all__ = ["SIGNS", "SIGN_RELATIONS", "SignFact", "Assumptions", "check_sign", "sign_problem", "read_sign",
            "read_range", "range_text"]
 
-#: The sign assumptions a parameter may declare, with the SymPy assumption each one is.
+#: The sign assumptions a parameter may declare (each is also the SymPy assumption of its symbol).
 SIGNS = ("positive", "nonnegative", "negative", "nonpositive")
 _TEST = {"positive": lambda v: v > 0, "nonnegative": lambda v: v >= 0, "negative": lambda v: v < 0,
          "nonpositive": lambda v: v <= 0}
+#: Each sign as a relation, for messages.
 SIGN_RELATIONS = {"positive": "> 0", "nonnegative": "≥ 0", "negative": "< 0", "nonpositive": "≤ 0"}
 #: Largest expression (SymPy operation count) whose sign is sought; beyond, nothing is simplified.
 MAX_OPS = 200
