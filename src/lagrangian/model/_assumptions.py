@@ -270,7 +270,7 @@ class Assumptions:
         symbols = u.free_symbols
         if not symbols or not symbols <= set(self._sympy):
             return None  # a number (SymEngine decides its sign itself), or rates, time...: not here
-        su = self._sympify(u)
+        su = self._to_sympy(u)
         if sympy.count_ops(su) > MAX_OPS:
             return None
         declared = ", ".join(f"{s} {SIGN_RELATIONS[self.signs[s]]}"  # type: ignore[index]
@@ -321,7 +321,7 @@ class Assumptions:
             c = sympy.diff(su, x)
             if c.free_symbols & coordinates:
                 return None
-            lower, upper = (None if b is None else self._sympify(b) for b in self.ranges[s])  # type: ignore[union-attr]
+            lower, upper = (None if b is None else self._to_sympy(b) for b in self.ranges[s])  # type: ignore[union-attr]
             if c.is_zero:
                 continue
             if c.is_positive:
@@ -341,7 +341,7 @@ class Assumptions:
             lower, upper = self.ranges[s]  # type: ignore[misc]
             if lower is None or upper is None:
                 return None
-            lo, hi = self._sympify(lower).xreplace(values), self._sympify(upper).xreplace(values)
+            lo, hi = self._to_sympy(lower).xreplace(values), self._to_sympy(upper).xreplace(values)
             if not (lo.is_number and hi.is_number):
                 return None
             bounds[self._sympy[s]] = sympy.AccumBounds(lo, hi)
@@ -351,6 +351,6 @@ class Assumptions:
             return None
         return out if isinstance(out, sympy.AccumBounds) and out.min.is_number and out.max.is_number else None
 
-    def _sympify(self, e: se.Basic) -> sympy.Basic:
+    def _to_sympy(self, e: se.Basic) -> sympy.Basic:
         """``e`` in SymPy (by structure, `_sympy_`: no text), its symbols carrying the declared signs."""
         return e._sympy_().xreplace({sympy.Symbol(str(k)): v for k, v in self._sympy.items()})
