@@ -469,6 +469,14 @@ def _check_rank(kin: Kinematics, rows: list[ConstraintRow], constraints: dict[st
         others = ", ".join(f"`{rows[j].name}`" for j in involved)
         what = f"is a combination of {others} only" if involved else "vanishes"
         names = [f"`{row.constraint}`"] + list(dict.fromkeys(f"`{rows[j].constraint}`" for j in involved))
+        if all(rows[j].constraint == row.constraint for j in involved) and constraints[row.constraint].axes:
+            # Rows of one vector constraint whose `axes` were listed by hand: list fewer.
+            raise _error(kin, constraints[row.constraint],
+                         f"the rows of constraint `{row.constraint}` kept by its `axes` are redundant: row "
+                         f"`{row.name}` {what} (rank < {len(rows)} at a generic state), so their multipliers are "
+                         "not determined", key="axes",
+                         fix="list fewer axes in `axes`, or leave `axes` out: the engine then keeps an independent "
+                             "set of rows by itself and says which")
         raise _error(kin, constraints[row.constraint],
                      f"the complementary constraints are redundant: row `{row.name}` {what} "
                      f"(the Jacobian A of the {len(rows)} rows has rank < {len(rows)} at a generic state), so their "

@@ -207,11 +207,11 @@ class Assumptions:
         self.facts: list[SignFact] = []
         self._proofs: dict[se.Basic, SignFact | None] = {}
         self._refined: dict[se.Basic, se.Basic] = {}
-        # SymPy symbols that carry the declared signs (the others are real).
+        # SymPy symbols that carry the declared signs (the others are real); none needed when inactive.
         self._sympy = {}
-        for p in model.parameters:
+        for p in model.parameters if self.active else ():
             self._sympy[p.symbol] = sympy.Symbol(p.name, **{p.sign or "real": True})
-        for c in model.coordinates:
+        for c in model.coordinates if self.active else ():
             self._sympy[c.symbol] = sympy.Symbol(c.name, real=True)
 
     # -- simplification --------------------------------------------------------------------------
