@@ -69,3 +69,22 @@ def test_principal_constraints_are_listed_without_rows(capsys, tmp_path) -> None
     jsonschema.validate(doc, SCHEMA)
     (c,) = doc["constraints"]
     assert (c["role"], c["rows"], c["reaction"], doc["multipliers"]) == ("principal", [], None, [])
+
+
+def test_rows_chosen_by_the_engine_are_said(capsys, tmp_path) -> None:
+    # Rolling written in the coin's own frame R2: three rows of rank two, kept as the two rows of R1.
+    text = (ROOT / "examples" / "rolling_coin.toml").read_text()
+    path = tmp_path / "coin.toml"
+    path.write_text(text.replace('frame = "R1", description', 'frame = "R2", description'))
+    assert main(["derive", str(path), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    jsonschema.validate(doc, SCHEMA)
+    (c,) = doc["constraints"]
+    assert c["frame"] == "R2" and [r["name"] for r in c["rows"]] == ["rolling_x1", "rolling_y1"]
+    choice = c["row_choice"]
+    assert (choice["declared_frame"], choice["rank"], choice["frame"], choice["kept"]) == (
+        "R2", 2, "R1", ["rolling_x1", "rolling_y1"])
+    assert choice["declared_rows"] == ["rolling_x2", "rolling_y1", "rolling_z2"]
+    assert c["reaction"]["frame"] == "R1" and choice["note"] in c["reaction"]["note"]
+    assert main(["derive", str(path)]) == 0
+    assert "rolling: rows chosen by the engine: written in R2" in capsys.readouterr().out

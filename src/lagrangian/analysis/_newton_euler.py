@@ -55,6 +55,7 @@ from ..dynamics._inertial import RelativeKinematics, inertial_torsors
 from ..kinematics import Kinematics
 from ..model import (ORIGIN, Body, CoulombFriction, Damper, Dissipation, GeneralizedForce, Gravity, JointDamper, Particle,
                      PointForce, Potential, Spring, Torque, Vector)
+from ..model._assumptions import Assumptions
 from ..model._vector import sum_of
 
 __all__ = ["EffortsOnElement", "ElementTheorems", "CoordinateCheck", "Verification", "verify"]
@@ -470,6 +471,7 @@ def verify(eom: EquationsOfMotion) -> Verification:
     """
     kin = eom.kinematics
     model = eom.model
+    assumptions = Assumptions(model)
     efforts, extra_power, vp_loads = given_efforts(eom)
     by_name = {e.element: e for e in efforts}
     theorems = tuple([_body_theorems(kin, b, by_name[b.name]) for b in model.bodies]
@@ -493,7 +495,8 @@ def verify(eom: EquationsOfMotion) -> Verification:
             if dw is not None:
                 dyn.append(frames.dot(th.dynamic_moment, dw))
                 given.append(frames.dot(th.moment, dw))
-        ne, ne_efforts = sum_of(dyn), sum_of(given)
+        # Under the model's declared signs and ranges, as the derivation is (|x + L| = x + L where x ≥ −L).
+        ne, ne_efforts = sum_of(dyn), assumptions.refine(sum_of(given))
         eq = eom.equations[i]
         lhs_ok, rhs_ok = (_vanish([ne - eq.lhs]), _vanish([ne_efforts - eq.rhs]))
         if moving:

@@ -13,6 +13,7 @@ import re
 from collections.abc import Sequence
 
 from ..errors import LagrangianError
+from ..model._assumptions import SIGN_RELATIONS, sign_problem
 from ..model.spec import Model
 
 __all__ = ["SettingError", "add_set_option", "parse_settings"]
@@ -93,6 +94,12 @@ def parse_settings(values: Sequence[str] | None, model: Model) -> tuple[dict[str
         if name in parameters or name in initial:
             raise SettingError(f"`{name}` is set twice.", fix="give each name once")
         if name in params:
+            sign = next(p.sign for p in model.parameters if p.name == name)
+            problem = sign_problem(name, sign, value)
+            if problem is not None:  # the equations may have been simplified with the sign
+                raise SettingError(f"In `--set {item}`: {problem}.",
+                                   fix=f"give `{name}` a value {SIGN_RELATIONS[sign]}, or change the sign declared "
+                                       "in the model")  # type: ignore[index]
             parameters[name] = value
         elif name in coords or name in rates:
             initial[name] = value

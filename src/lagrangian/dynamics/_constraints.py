@@ -44,7 +44,7 @@ from ..kinematics import Kinematics
 from ..model import GALILEAN_FRAME, Constraint, Vector
 from ..model._vector import sum_of
 
-__all__ = ["ConstraintRow", "ConstraintReaction", "complementary_constraints", "multiplier_symbol",
+__all__ = ["ConstraintRow", "ConstraintReaction", "RowChoice", "complementary_constraints", "multiplier_symbol",
            "admissible_integrals", "multiplier_formulas", "reaction_efforts", "ConstraintInfo",
            "describe_constraints", "integrate_row", "MULTIPLIER_PREFIX"]
 
@@ -90,6 +90,38 @@ class ConstraintRow:
 
 
 @dataclass(frozen=True, slots=True)
+class RowChoice:
+    """The rows the engine kept of a vector constraint whose rows in its declared frame are dependent.
+
+    Attributes
+    ----------
+    declared_frame, declared_rows : the frame the constraint was written in, and its non-zero rows there.
+    rank : the rank of those rows at generic states (fewer than the rows).
+    frame : the frame whose axes carry the kept rows (exactly ``rank`` non-zero components there),
+        or None when ``rank`` rows of the declared frame were kept (pivoted QR).
+    kept : the names of the kept rows.
+    """
+
+    declared_frame: str
+    declared_rows: tuple[str, ...]
+    rank: int
+    frame: str | None
+    kept: tuple[str, ...]
+
+    @property
+    def text(self) -> str:
+        """The choice in one sentence (derive's step 7, the JSON's ``row_choice``, the reaction's note)."""
+        declared = (f"written in {self.declared_frame}, the {len(self.declared_rows)} rows "
+                    f"{', '.join(self.declared_rows)} have rank {self.rank} at generic states")
+        kept = ", ".join(self.kept)
+        if self.frame is not None:
+            return (f"rows chosen by the engine: {declared}; the same vector is written along the axes of "
+                    f"{self.frame}, where exactly {self.rank} of its components are not identically zero: {kept}")
+        return (f"rows chosen by the engine: {declared}; {kept} are kept (rank-revealing QR with column pivoting "
+                "at a generic state, independent at the others), the other rows being combinations of them")
+
+
+@dataclass(frozen=True, slots=True)
 class ConstraintReaction:
     """The effort a complementary constraint exerts, in terms of its multipliers.
 
@@ -117,6 +149,8 @@ class ConstraintReaction:
     moment_components: tuple[se.Basic, se.Basic, se.Basic]
     generalized: tuple[se.Basic, ...]
     note: str
+    #: When the engine chose the rows of a vector constraint (`_independent_rows`): which and why.
+    row_choice: RowChoice | None = None
 
     @property
     def physical(self) -> bool:
@@ -139,8 +173,11 @@ def _axis_names(kin: Kinematics, frame: str) -> tuple[str, str, str]:
     return kin.frames.axes(frame)
 
 
-def _raw_rows(kin: Kinematics, c: Constraint) -> list[tuple[str, int | None, se.Basic]]:
-    """(row name, axis index or None, expression) for every scalar row, zero rows included."""
+def _raw_rows(kin: Kinematics, c: Constraint, frame: str | None = None) -> list[tuple[str, int | None, se.Basic]]:
+    """(row name, axis index or None, expression) for every scalar row, zero rows included.
+
+    A vector form's rows are its components along the axes of ``frame`` (default: the declared one).
+    """
     if c.form == "no_slip":
         body = kin.model.body(c.body)  # type: ignore[arg-type]
         # Each vector lifted to the highest frame where it reads the same (φ̇ y2 = φ̇ y1 about a
@@ -154,10 +191,11 @@ def _raw_rows(kin: Kinematics, c: Constraint) -> list[tuple[str, int | None, se.
         value = c.expression  # type: ignore[assignment]
     if not isinstance(value, Vector):
         return [(c.name, None, value)]
-    comps = kin.frames.express(value, c.frame)
-    axes = _axis_names(kin, c.frame)
+    frame = frame or c.frame
+    comps = kin.frames.express(value, frame)
+    axes = _axis_names(kin, frame)
     # `axes` keeps only some rows: a wheel's normal row is the derivative of its holonomic contact.
-    kept = c.axes if c.axes is not None else (0, 1, 2)
+    kept = c.axes if c.axes is not None and frame == c.frame else (0, 1, 2)
     return [(f"{c.name}_{axes[k]}", k, comps[k]) for k in kept]
 
 
@@ -174,7 +212,9 @@ def _row(kin: Kinematics, c: Constraint, name: str, expr: se.Basic) -> Constrain
     return ConstraintRow(name, c.name, c.kind, expr, A, b, multiplier_symbol(name), velocity, bias)
 
 
-def _rows_of(kin: Kinematics, c: Constraint) -> tuple[list[ConstraintRow], list[int | None]]:
+def _rows_of(kin: Kinematics, c: Constraint) -> tuple[list[ConstraintRow], list[int | None], str, RowChoice | None]:
+    """The complementary rows of ``c`` with their axes, the frame of those axes, and the choice of
+    `_independent_rows` when the engine chose the rows (None otherwise)."""
     raw = _raw_rows(kin, c)
     zero = are_zero([e for _, _, e in raw])
     if c.principal:
@@ -185,7 +225,7 @@ def _rows_of(kin: Kinematics, c: Constraint) -> tuple[list[ConstraintRow], list[
                          f"`{left[0]}` = `{expr}` is not identically zero",
                          fix="make it complementary (remove `principal = true`): it then gets a multiplier; or "
                              "choose coordinates that satisfy it", key="principal")
-        return [], []
+        return [], [], c.frame, None
     kept = [(name, axis, e) for (name, axis, e), z in zip(raw, zero) if not z]
     if not kept:
         raise _error(kin, c, f"complementary constraint `{c.name}` is identically satisfied by the coordinates, so "
@@ -198,7 +238,97 @@ def _rows_of(kin: Kinematics, c: Constraint) -> tuple[list[ConstraintRow], list[
                          f"{'' if c.kind == 'holonomic' else 'rate '}, so it cannot be satisfied by the motion",
                          fix="check the expression: it must involve the coordinates "
                              + ("(f(q, t) = 0)" if c.kind == "holonomic" else "through their rates (a·q̇ + b = 0)"))
-    return rows, [axis for _, axis, _ in kept]
+    return _independent_rows(kin, c, rows, [axis for _, axis, _ in kept])
+
+
+# -- rows chosen by the engine ---------------------------------------------------------------------
+#: Seeds of the generic random states at which the rank of a vector constraint's rows is measured.
+ROW_CHOICE_SEEDS = (3, 11, 29)
+
+
+def _augmented(kin: Kinematics, rows: Sequence[ConstraintRow], seed: int) -> np.ndarray:
+    """[A | b] of ``rows`` at the random state drawn from ``seed`` (parameters at their values)."""
+    matrix = [[*r.coefficients, r.b] for r in rows]
+    symbols = set().union(*(e.free_symbols for row in matrix for e in row))
+    return _numeric(matrix, _random_values(symbols, kin.model.parameter_values, seed))
+
+
+def _rank(a: np.ndarray) -> int:
+    return int(np.linalg.matrix_rank(a, tol=RANK_RTOL * max(1.0, float(np.abs(a).max(initial=0.0)))))
+
+
+def _candidate_frames(kin: Kinematics, declared: str) -> list[str]:
+    """Frames in which to write a vector constraint's rows: the declared frame's ancestors, nearest
+    first, then the other declared frames, then the intermediate frames of rotation sequences."""
+    frames = kin.model.frames
+    parent = {f.name: f.parent for f in frames}
+    chain = []
+    name = parent[declared]
+    while name is not None:
+        chain.append(name)
+        name = parent[name]
+    named = [n for n in chain if not n.startswith("_")] + [f.name for f in frames
+                                                            if f.name not in chain and not f.name.startswith("_")]
+    hidden = [n for n in chain if n.startswith("_")] + [f.name for f in frames
+                                                         if f.name not in chain and f.name.startswith("_")]
+    return [n for n in named + hidden if n != declared]
+
+
+def _independent_rows(kin: Kinematics, c: Constraint, rows: list[ConstraintRow],
+                      axes: list[int | None]) -> tuple[list[ConstraintRow], list[int | None], str, RowChoice | None]:
+    """An independent set of rows for the vector constraint ``c`` whose rows in its frame are dependent.
+
+    The components of V(I ∈ S/R0) in the disk's own frame are three rows of rank two for a
+    disk rolling on a plane (its vertical component vanishes identically): rolling is two
+    conditions, written along three axes.  The rank r is measured at generic random states
+    (`ROW_CHOICE_SEEDS`; SVD, relative tolerance `RANK_RTOL`), then
+
+    1. the same vector is written in the nearest frame where exactly r of its components are
+       non-zero and independent (the declared frame's ancestors first): the heading frame of
+       the disk.  Those rows are independent wherever the constraint's rank is r, unlike any
+       fixed subset of the disk-frame rows (they are cos φ and sin φ times one row: either
+       subset loses rank where the disk has turned a quarter of a turn);
+    2. failing that, r rows of the declared frame are kept by a rank-revealing QR with column
+       pivoting of Aᵀ at the first state, checked independent at the others.
+
+    Rows whose coefficients are dependent but whose terms b are not ([A | b] of larger rank)
+    ask for incompatible velocities: refused, as is a set with no independent subset.
+    An explicit ``axes`` is the user's choice and is kept as given (`_check_rank` judges it).
+    """
+    if len(rows) < 2 or c.axes is not None:
+        return rows, axes, c.frame, None
+    states = [_augmented(kin, rows, seed) for seed in ROW_CHOICE_SEEDS]
+    rank = max(_rank(a[:, :-1]) for a in states)
+    if rank == len(rows):
+        return rows, axes, c.frame, None
+    names = ", ".join(f"`{r.name}`" for r in rows)
+    if any(_rank(a) > _rank(a[:, :-1]) for a in states):
+        raise _error(kin, c, f"the {len(rows)} rows of constraint `{c.name}` ({names}) are inconsistent: their "
+                     f"coefficients A have rank {rank} at a generic state but [A | b] has rank {rank + 1}, so they "
+                     "ask for different velocities of the same combination of coordinates and no motion satisfies "
+                     "them all", fix="check the constraint's expression (its components contradict each other), "
+                     "or keep only the rows you mean with `axes`")
+    declared = f"written in {c.frame}, its {len(rows)} rows {names} have rank {rank} at generic states"
+    for frame in _candidate_frames(kin, c.frame):
+        raw = _raw_rows(kin, c, frame)
+        nonzero = [(name, axis, e) for (name, axis, e), z in zip(raw, are_zero([e for _, _, e in raw])) if not z]
+        if len(nonzero) != rank:
+            continue
+        chosen = [_row(kin, c, name, e) for name, _, e in nonzero]
+        if all(_rank(_augmented(kin, chosen, seed)[:, :-1]) == rank for seed in ROW_CHOICE_SEEDS):
+            choice = RowChoice(c.frame, tuple(r.name for r in rows), rank, frame, tuple(r.name for r in chosen))
+            return chosen, [a for _, a, _ in nonzero], frame, choice
+    # No frame has exactly r non-zero components: keep r rows of the declared frame (pivoted QR of Aᵀ).
+    import scipy.linalg  # late: only this rare path needs it
+
+    _, _, pivots = scipy.linalg.qr(states[0][:, :-1].T, pivoting=True, mode="economic")
+    keep = sorted(int(k) for k in pivots[:rank])
+    if not all(_rank(a[keep, :-1]) == rank for a in states):  # pragma: no cover - a generic state is generic
+        raise _error(kin, c, f"constraint `{c.name}`: {declared}, and no {rank} of them stay independent",
+                     fix="write the constraint in a frame where its components are independent (`frame`), or keep "
+                         "the rows you mean with `axes`")
+    choice = RowChoice(c.frame, tuple(r.name for r in rows), rank, None, tuple(rows[k].name for k in keep))
+    return [rows[k] for k in keep], [axes[k] for k in keep], c.frame, choice
 
 
 # -- reactions ------------------------------------------------------------------------------------
@@ -273,7 +403,18 @@ def _solve_reaction(kin: Kinematics, c: Constraint, rows: list[ConstraintRow],
     return Vector({frame: tuple(force)}), Vector({frame: tuple(moment)}), note  # type: ignore[arg-type]
 
 
-def _reaction(kin: Kinematics, c: Constraint, rows: list[ConstraintRow], axes: list[int | None]) -> ConstraintReaction:
+def _reaction(kin: Kinematics, c: Constraint, rows: list[ConstraintRow], axes: list[int | None],
+              frame: str, chosen: RowChoice | None) -> ConstraintReaction:
+    """The reaction of ``c``; ``frame`` is the basis of the rows of a vector form, ``chosen`` the
+    choice of `_independent_rows` when the engine chose them (it opens the reaction's note)."""
+    reaction = _reaction_of(kin, c, rows, axes, frame)
+    if chosen is None:
+        return reaction
+    return dataclasses.replace(reaction, note=f"{chosen.text}. {reaction.note}", row_choice=chosen)
+
+
+def _reaction_of(kin: Kinematics, c: Constraint, rows: list[ConstraintRow], axes: list[int | None],
+                 frame: str) -> ConstraintReaction:
     n = kin.n
     generalized = tuple(sum_of([r.multiplier * r.coefficients[i] for r in rows
                                 if type(r.coefficients[i]) is not _ZERO_TYPE]) for i in range(n))
@@ -282,7 +423,7 @@ def _reaction(kin: Kinematics, c: Constraint, rows: list[ConstraintRow], axes: l
         comps = [_ZERO, _ZERO, _ZERO]
         for row, axis in zip(rows, axes):
             comps[axis] = row.multiplier  # type: ignore[index]
-        force = Vector({c.frame: tuple(comps)})  # type: ignore[arg-type]
+        force = Vector({frame: tuple(comps)})  # type: ignore[arg-type]
         counter = None
         if c.form == "no_slip":
             note = (f"force on `{c.body}` at the contact point `{c.points[0]}`: row k is the virtual power of "
@@ -293,7 +434,7 @@ def _reaction(kin: Kinematics, c: Constraint, rows: list[ConstraintRow], axes: l
             counter = None if kin.is_fixed(c.points[1]) else c.points[1]
             note = (f"force at `{point}`" + (f", and its opposite at `{counter}`" if counter else "")
                     + "; exact where the constraint holds")
-        return ConstraintReaction(c.name, point, None, counter, c.frame, force, Vector.zero(),
+        return ConstraintReaction(c.name, point, None, counter, frame, force, Vector.zero(),
                                   tuple(comps), zero3, generalized, note)  # type: ignore[arg-type]
     if c.reaction is None:
         return ConstraintReaction(c.name, None, None, None, GALILEAN_FRAME, Vector.zero(), Vector.zero(), zero3,
@@ -328,12 +469,22 @@ def _check_rank(kin: Kinematics, rows: list[ConstraintRow], constraints: dict[st
         others = ", ".join(f"`{rows[j].name}`" for j in involved)
         what = f"is a combination of {others} only" if involved else "vanishes"
         names = [f"`{row.constraint}`"] + list(dict.fromkeys(f"`{rows[j].constraint}`" for j in involved))
+        if all(rows[j].constraint == row.constraint for j in involved) and constraints[row.constraint].axes:
+            # Rows of one vector constraint whose `axes` were listed by hand: list fewer.
+            raise _error(kin, constraints[row.constraint],
+                         f"the rows of constraint `{row.constraint}` kept by its `axes` are redundant: row "
+                         f"`{row.name}` {what} (rank < {len(rows)} at a generic state), so their multipliers are "
+                         "not determined", key="axes",
+                         fix="list fewer axes in `axes`, or leave `axes` out: the engine then keeps an independent "
+                             "set of rows by itself and says which")
         raise _error(kin, constraints[row.constraint],
                      f"the complementary constraints are redundant: row `{row.name}` {what} "
                      f"(the Jacobian A of the {len(rows)} rows has rank < {len(rows)} at a generic state), so their "
                      "multipliers are not determined",
-                     fix=f"remove `{row.constraint}` (or the row it repeats), or declare one of "
-                         f"{', '.join(dict.fromkeys(names))} principal")
+                     fix=f"remove `{row.constraint}`, or keep only its rows that say something new with `axes` "
+                         f"(axes = [...] of its frame), or declare one of {', '.join(dict.fromkeys(names))} principal "
+                         "(the engine chooses the rows within one vector constraint, not between two: which "
+                         "reaction carries the effort is for the model to say)")
 
 
 # -- the entry point -------------------------------------------------------------------------------
@@ -353,11 +504,11 @@ def complementary_constraints(kin: Kinematics, equations: tuple) -> tuple[tuple,
     reactions: list[ConstraintReaction] = []
     by_name = {c.name: c for c in kin.model.constraints}
     for c in kin.model.constraints:
-        own, axes = _rows_of(kin, c)
+        own, axes, frame, chosen = _rows_of(kin, c)
         if not own:
             continue
         rows += own
-        reactions.append(_reaction(kin, c, own, axes))
+        reactions.append(_reaction(kin, c, own, axes, frame, chosen))
     if not rows:
         return equations, (), ()
     taken = {p.name for p in kin.model.parameters} | {str(s) for s in (*kin.q, *kin.qd, *kin.qdd)}

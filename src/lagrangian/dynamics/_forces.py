@@ -25,6 +25,7 @@ from symengine.lib.symengine_wrapper import sympy2symengine
 from .._identity import are_zero
 from ..kinematics import Kinematics
 from ..model import Damper, GeneralizedForce, Gravity, Load, PointForce, Potential, Spring, Torque, Vector
+from ..model._assumptions import Assumptions
 from ..model._vector import sum_of
 from ._friction import FRICTION_LOADS, frame_of, friction_q
 
@@ -169,11 +170,19 @@ def _derives_from(kin: Kinematics, Q: tuple[se.Basic, ...], potential: se.Basic)
     return all(are_zero(residues))
 
 
-def generalized_forces(kin: Kinematics) -> tuple[LoadForces, ...]:
-    """Q_i of every load of the model, by virtual power, with its potential when it has one."""
+def generalized_forces(kin: Kinematics, assumptions: Assumptions | None = None) -> tuple[LoadForces, ...]:
+    """Q_i of every load of the model, by virtual power, with its potential when it has one.
+
+    With ``assumptions`` (the model's declared signs and ranges), Q_i and the candidate
+    potential are simplified where a sign is proved: a spring from a wall at x = −L with
+    x ≥ −L gives −k x, not −k sgn(x + L)(|x + L| − L) (`lagrangian.model._assumptions`).
+    """
     out = []
     for load in kin.model.loads:
         Q, candidate, note = _q_of(kin, load)
+        if assumptions is not None and assumptions.active:
+            Q = tuple(assumptions.refine(x) for x in Q)
+            candidate = None if candidate is None else assumptions.refine(candidate)
         potential = candidate
         if potential is not None and not _derives_from(kin, Q, potential):
             potential = None  # e.g. a field that depends on q: no potential after all

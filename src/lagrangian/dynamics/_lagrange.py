@@ -24,6 +24,7 @@ from .._identity import are_zero
 from ..errors import DerivationError
 from ..kinematics import Kinematics
 from ..model import Model
+from ..model._assumptions import Assumptions, SignFact
 from ..model._vector import sum_of
 from ._constraints import ConstraintReaction, ConstraintRow, complementary_constraints
 from ._energy import KineticEnergyTerm, RigidInertia, kinetic_energy
@@ -82,6 +83,8 @@ class EquationsOfMotion:
     constraints : the rows of the complementary constraints (step 7), each ``expression = 0``
         with its multiplier λ_k; then M q̈ = F + Aᵀλ and A q̈ + c = 0 (`dynamics._constraints`).
     reactions : per complementary constraint, the force/moment its multipliers stand for.
+    assumptions : the signs proved from the model's declared signs and ranges and used to
+        simplify (x + L > 0 where x ≥ −L), each with how it was proved.
     """
 
     model: Model
@@ -94,6 +97,9 @@ class EquationsOfMotion:
     F: tuple[se.Basic, ...]
     constraints: tuple[ConstraintRow, ...] = ()
     reactions: tuple[ConstraintReaction, ...] = ()
+    #: The signs the derivation proved from the declared assumptions and used to simplify
+    #: (`lagrangian.model._assumptions.SignFact`); `simulate` checks them along the motion.
+    assumptions: tuple[SignFact, ...] = ()
 
     def __post_init__(self) -> None:
         n = len(self.model.coordinates)
@@ -255,7 +261,8 @@ def derive(model: Model) -> EquationsOfMotion:
     """
     kin = reference_kinematics(model)  # relative to R0, or to the model's [reference] frame R (Remarque 3)
     T_terms, inertias = kinetic_energy(kin)
-    loads = generalized_forces(kin) + inertial_forces(kin)  # + Coriolis and entrainment when R is not R0
+    assumptions = Assumptions(model)  # declared signs and ranges: |x + L| = x + L where x ≥ −L
+    loads = generalized_forces(kin, assumptions) + inertial_forces(kin)  # + Coriolis and entrainment when R is not R0
     T = sum_of([term.expression for term in T_terms])
     U = sum_of([f.potential for f in loads if f.potential is not None])
     n = kin.n
@@ -268,4 +275,5 @@ def derive(model: Model) -> EquationsOfMotion:
     reactions: tuple[ConstraintReaction, ...] = ()
     if model.constraints:  # step 7: the complementary equations, and λ_k A_ki in each L(q_i)
         equations, rows, reactions = complementary_constraints(kin, equations)
-    return EquationsOfMotion(model, kin, T_terms, inertias, loads, equations, M, F, rows, reactions)
+    return EquationsOfMotion(model, kin, T_terms, inertias, loads, equations, M, F, rows, reactions,
+                             tuple(assumptions.facts))

@@ -8,6 +8,7 @@ unknown points.  Expressions are read by the safe grammar of `_expr` (never eval
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -18,6 +19,7 @@ from .._identity import are_zero
 from ..errors import ModelError
 from ._expr import CONSTANTS, FUNCTIONS, ExpressionError, parse_expression
 from ._limits import NotFinite, excerpt, real_value
+from ._assumptions import read_range, read_sign
 from ._constraints import build_constraints
 from ._friction import FRICTION_KINDS, build_friction_load
 from ._operating_point import build_operating_point, check_inputs_used
@@ -253,8 +255,9 @@ class Assembler:
                 if raw.data[key] is not None and not isinstance(raw.data[key], str):
                     raise self.error(raw, f"`{key}` of {raw.kind} `{raw.name}` must be text, not `{raw.data[key]}`",
                                      symbol=raw.name, key=key, fix=f'write it in quotes, e.g. {key} = "..."')
+            sign = read_sign(self, raw, value) if raw.kind == "parameter" else None
             out.append(Parameter(raw.name, value, raw.data["unit"],
-                                 raw.data["description"], input=raw.kind == "input"))
+                                 raw.data["description"], input=raw.kind == "input", sign=sign))
             self.symbols[raw.name] = se.Symbol(raw.name)
             if raw.kind == "parameter":
                 self.constants[self.symbols[raw.name]] = value
@@ -282,7 +285,9 @@ class Assembler:
         if not out:
             raise ModelError("the model declares no coordinate", file=self.b.source,
                              fix="declare the principal parameters q_i under [coordinates]")
-        return tuple(out)
+        # Ranges once every coordinate is known, so that a bound naming one is refused as such.
+        return tuple(dataclasses.replace(c, range=read_range(self, raw, c.initial))
+                     if raw.data.get("range") is not None else c for c, raw in zip(out, self.of("coordinate")))
 
     def frames(self) -> tuple[Frame, ...]:
         raws = {r.name: r for r in self.of("frame")}

@@ -29,6 +29,7 @@ if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
+from ._assumptions import SIGNS
 from ._constraints import read_constraint
 from ._friction import FRICTION_KINDS, TOML_KEYS, declare_from_toml
 from ._operating_point import located
@@ -216,8 +217,9 @@ class _Reader:
         b = ModelBuilder(meta.get("name", Path(self.source).stem if self.source else "model"),
                          meta.get("description", ""), source=self.source)
         for name, value in self.table("parameters").items():
-            v = self.entry("parameters", name, value, {"value", "unit", "description"}, "value")
+            v = self.entry("parameters", name, value, {"value", "unit", "description", *SIGNS}, "value")
             b.parameter(name, v.get("value"), unit=v.get("unit"), description=v.get("description"),
+                        **{sign: v.get(sign) for sign in SIGNS},
                         location=self.located("parameters", name, value, "value"))
         for name, value in self.table("inputs").items():
             if not isinstance(value, (dict, str)):
@@ -228,9 +230,9 @@ class _Reader:
                     location=self.located("inputs", name, value, "description"))
         for name, value in self.table("coordinates").items():
             v = self.entry("coordinates", name, value,
-                           {"initial", "rate", "momentum", "unit", "description"}, "initial")
+                           {"initial", "rate", "momentum", "unit", "description", "range"}, "initial")
             b.coordinate(name, v.get("initial"), v.get("rate"), momentum=v.get("momentum"), unit=v.get("unit"),
-                         description=v.get("description"),
+                         description=v.get("description"), range=v.get("range"),
                          location=self.located("coordinates", name, value, "initial"))
         for name, value in self.table("frames").items():
             v = self.entry("frames", name, value, {"from", "rotation", "axes"}, "from")

@@ -54,9 +54,17 @@ class ModelBuilder:
         self._decl.append(Raw(what, name, data, location or Location(self.source)))
 
     def parameter(self, name: str, value: float | None = None, *, unit: str | None = None,
-                  description: str | None = None, location: Location | None = None) -> None:
-        """Declare a parameter (a constant symbol), with an optional numeric value."""
-        self._add("parameter", name, location, value=value, unit=unit, description=description)
+                  description: str | None = None, positive: bool | None = None, nonnegative: bool | None = None,
+                  negative: bool | None = None, nonpositive: bool | None = None,
+                  location: Location | None = None) -> None:
+        """Declare a parameter (a constant symbol), with an optional numeric value.
+
+        ``positive=True`` (or ``nonnegative``, ``negative``, ``nonpositive``) declares its sign: the
+        derivation may simplify with it, and a value that breaks it is refused.
+        """
+        self._add("parameter", name, location, value=value, unit=unit, description=description,
+                  signs={"positive": positive, "nonnegative": nonnegative, "negative": negative,
+                         "nonpositive": nonpositive})
 
     def input(self, name: str, *, unit: str | None = None, description: str | None = None,
               location: Location | None = None) -> None:
@@ -69,10 +77,15 @@ class ModelBuilder:
 
     def coordinate(self, name: str, initial: float | None = None, rate: float | None = None, *,
                    momentum: str | None = None, unit: str | None = None, description: str | None = None,
-                   location: Location | None = None) -> None:
-        """Declare a principal parameter q_i, with optional q_i(0), q̇_i(0) and a name for its momentum integral."""
+                   range: Sequence[Any] | None = None, location: Location | None = None) -> None:
+        """Declare a principal parameter q_i, with optional q_i(0), q̇_i(0) and a name for its momentum integral.
+
+        ``range=[lower, upper]`` (numbers, or constant expressions in the parameters such as ``"-L"``;
+        ``float("inf")`` for an open side) declares where q_i stays: the derivation may simplify with
+        it, and `simulate` warns when a motion leaves it.
+        """
         self._add("coordinate", name, location, initial=initial, rate=rate, momentum=momentum,
-                  unit=unit, description=description)
+                  unit=unit, description=description, range=range)
 
     def frame(self, name: str, parent: str | None = GALILEAN_FRAME, *,
               rotation: tuple[Any, Any] | Sequence[tuple[Any, Any]] | None = None,

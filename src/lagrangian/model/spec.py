@@ -99,6 +99,10 @@ class Parameter:
     unit: str | None = None
     description: str | None = None
     input: bool = False
+    #: A declared sign assumption: ``"positive"``, ``"nonnegative"``, ``"negative"``, ``"nonpositive"``
+    #: or None (`lagrangian.model._assumptions`): the derivation may simplify with it, and a value
+    #: that breaks it is refused.
+    sign: str | None = None
 
     @property
     def symbol(self) -> se.Symbol:
@@ -119,6 +123,10 @@ class Coordinate:
     momentum: str | None = None
     unit: str | None = None
     description: str | None = None
+    #: The declared range [lower, upper] of q_i (constant expressions in the parameters; None for
+    #: an open side), or None: the derivation may simplify with it (|x + L| = x + L when
+    #: x ≥ −L), and `simulate` warns when a motion leaves it (`lagrangian.model._assumptions`).
+    range: tuple[se.Basic | None, se.Basic | None] | None = None
 
     @property
     def symbol(self) -> se.Symbol:

@@ -27,13 +27,16 @@ FORMATS = (".csv", ".npz")
 
 
 def _metadata(traj: Trajectory) -> dict:
-    return {
+    out = {
         "format": "lagrangian.trajectory", "version": 1, "model": traj.model_name, "method": traj.method,
         "coordinates": list(traj.coordinates), "parameters": dict(traj.parameters),
         "integrals": list(traj.integrals), "drift": dict(traj.drift), "steps": traj.steps,
         "rhs_calls": traj.rhs_calls, "status": traj.status,
         "events": [{"name": e.name, "t": e.t} for e in traj.events],
     }
+    if traj.range_exits:  # where the motion left a declared range (`_ranges`)
+        out["range_exits"] = [e.as_dict() for e in traj.range_exits]
+    return out
 
 
 def check_output_path(path: str | Path) -> Path:

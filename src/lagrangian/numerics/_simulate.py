@@ -35,10 +35,12 @@ import symengine as se
 from ..dynamics import EquationsOfMotion, derive
 from ..errors import Interrupted, ModelError, SimulationError
 from ..model import load_model
+from ..model._assumptions import check_sign
 from ..model._expr import ExpressionError, parse_expression
 from ..model.spec import Model
 from ._dae import BAUMGARTE, ConstrainedSystem, constrained_source, simulate_dae
 from ._progress import Reporter, Watch, make_reporter
+from ._ranges import watch_ranges
 from ._system import CompiledSystem, _ptr, known_values
 from ._trajectory import Event, Trajectory, conservation
 
@@ -332,6 +334,32 @@ def simulate(
         matrix (before or during the run: never a silent NaN), step-size underflow, overflow.
     """
     check_options(rtol, atol, tolerance)
+    from ._stickslip import exact_contact_model, simulate_stick_slip  # late: `_stickslip` imports this module
+
+    # Declared signs and ranges (`model._assumptions`): values that break a sign are refused, and the
+    # motion is checked against the ranges and the signs the derivation used (`_ranges`).
+    if isinstance(source, (str, Path)):
+        source = load_model(source)  # read once
+    model = source if isinstance(source, Model) else getattr(getattr(source, "eom", source), "model", None)
+    watched = model is not None and (any(c.range is not None for c in model.coordinates)
+                                     or any(p.sign is not None for p in model.parameters))
+    if watched:
+        check_sign(model, parameters or {})  # type: ignore[arg-type]
+        if isinstance(source, Model) and exact_contact_model(source) is None:
+            source = derive(source)  # derived here once, for the signs it used
+    traj = _simulate(source, t_end, t_start=t_start, initial=initial, parameters=parameters, method=method,
+                     rtol=rtol, atol=atol, dt=dt, max_step=max_step, n_out=n_out, t_eval=t_eval, events=events,
+                     tolerance=tolerance, max_steps=max_steps, progress=progress, backend=backend,
+                     stabilization=stabilization, baumgarte=baumgarte)
+    if not watched:
+        return traj
+    eom = source if isinstance(source, EquationsOfMotion) else getattr(source, "eom", None)
+    return watch_ranges(model, traj, eom.assumptions if isinstance(eom, EquationsOfMotion) else ())  # type: ignore[arg-type]
+
+
+def _simulate(source, t_end, *, t_start, initial, parameters, method, rtol, atol, dt, max_step, n_out, t_eval,
+              events, tolerance, max_steps, progress, backend, stabilization, baumgarte) -> Trajectory:
+    """`simulate` once the source is read: the stick-slip, constrained or plain run."""
     from ._stickslip import exact_contact_model, simulate_stick_slip  # late: `_stickslip` imports this module
 
     exact = exact_contact_model(source)

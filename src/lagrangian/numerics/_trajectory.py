@@ -24,6 +24,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -110,6 +111,8 @@ class Trajectory:
         M, 0 at a singular configuration); below 1e-6 a warning says accuracy may be lost.
     extra : further columns (reactions, multipliers), name → shape (N,).
     scales : the scale S of each first integral's drift (module docstring).
+    range_exits : where the motion left a declared range ``range = [a, b]`` of a coordinate, or
+        broke a sign the derivation simplified with (`lagrangian.numerics._ranges`).
     """
 
     model_name: str
@@ -132,6 +135,9 @@ class Trajectory:
     conditioning: float = 1.0
     extra: Mapping[str, np.ndarray] = field(default_factory=dict)
     scales: Mapping[str, float] = field(default_factory=dict)
+    #: Where the motion left a declared coordinate range or broke a sign the derivation used
+    #: (`lagrangian.numerics._ranges.RangeExit`), each also in `warnings`.
+    range_exits: tuple[Any, ...] = ()
 
     def __post_init__(self) -> None:
         n, N = len(self.coordinates), len(self.t)

@@ -60,6 +60,11 @@ def constraints_section(eom: EquationsOfMotion) -> dict[str, Any]:
         item = {"name": info.name, "role": info.role, "form": info.form, "kind": info.kind,
                 "description": info.description, "frame": info.frame, "statement": statement,
                 "rows": rows, "reaction": reaction}
+        choice = info.reaction.row_choice if info.reaction is not None else None
+        if choice is not None:  # rows chosen by the engine (optional key)
+            item["row_choice"] = {"declared_frame": choice.declared_frame, "declared_rows": list(choice.declared_rows),
+                                  "rank": choice.rank, "frame": choice.frame, "kept": list(choice.kept),
+                                  "note": choice.text}
         if info.integrals:  # velocity rows that integrate: φ_k(q, t) = cste (optional key)
             item["integrals"] = [_s(phi) for phi in info.integrals]
         items.append(item)

@@ -82,7 +82,23 @@ def derive_document(form: CourseForm, *, parameters: dict[str, float | None],
             doc["reference"] = {"frame": ref.frame, "origin": ref.origin}
         if not any(i.kind in ("energy", "jacobi") for i in form.integrals):
             doc["energy_balance"] = _balance(eom)
+        doc.update(_assumptions(eom))
     return doc
+
+
+def _assumptions(eom: EquationsOfMotion) -> dict[str, Any]:
+    """The declared signs and ranges, and the signs the derivation proved and used (optional key)."""
+    model = eom.model
+    signs = {p.name: p.sign for p in model.parameters if p.sign is not None}
+    ranges = {c.name: [None if b is None else _s(to_sympy(b)) for b in c.range]
+              for c in model.coordinates if c.range is not None}
+    if not signs and not ranges:
+        return {}
+    return {"assumptions": {
+        "signs": signs, "ranges": ranges,
+        "used": [{"expression": _s(to_sympy(f.expression)), "relation": f.relation, "general": f.general,
+                  "reason": f.reason} for f in eom.assumptions],
+    }}
 
 
 def _balance(eom: EquationsOfMotion) -> dict[str, Any]:

@@ -221,6 +221,14 @@ def step7(c: Context) -> Section:
     else:
         blocks = [Para(w("complementary rows", n=Math(str(n)), m=Math(str(len(rows))), lams=lams))]
     blocks += c.show([c.equation("", c.ex(r.expression), " = 0") for r in rows], "7")
+    for reaction in c.eom.reactions:  # rows the engine chose of a vector constraint, and why
+        choice = reaction.row_choice
+        if choice is not None:
+            kept = w.join(list(choice.kept))
+            blocks.append(Para(w("rows chosen frame" if choice.frame else "rows chosen subset",
+                                 declared=choice.declared_frame, name=reaction.constraint,
+                                 k=str(len(choice.declared_rows)), r=str(choice.rank), frame=choice.frame or "",
+                                 kept=kept)))
     formulas = _multipliers(c)
     if formulas is not None:
         if len(rows) > 1:

@@ -173,12 +173,28 @@ def _q_list(c: Context, values: list[str], load: str | None = None) -> list[str]
             for q, v in zip(c.eom.coordinates, values)]
 
 
+_RELATION = {"positive": ">", "nonnegative": r"\geq", "negative": "<", "nonpositive": r"\leq"}
+
+
+def _interval(c: Context, bounds: tuple) -> str:  # type: ignore[type-arg]
+    """[a, b] in LaTeX (numbers as decimals, as the file wrote them), an open side as ∞."""
+    lower, upper = (None if b is None else f"{float(b):g}" if not b.free_symbols else c.tex(b) for b in bounds)
+    return ((rf"\left[{lower}, " if lower is not None else r"\left]-\infty, ")
+            + (rf"{upper}\right]" if upper is not None else r"+\infty\right["))
+
+
 def step5(c: Context) -> Section:
     w = c.w
     blocks: list[Block] = [Para(w("virtual power intro", P=Math(r"P^{*} = \sum_{i=1}^{n} Q_i\, q_i^{*}"),
                                   Q=Math("Q_i")))]
     if not c.eom.loads:
         blocks.append(Para(w("no loads")))
+    if c.eom.assumptions:  # the signs the derivation proved from the declared ones, and used
+        declared = [Math(rf"{c.tex(p.symbol)} {_RELATION[p.sign]} 0") for p in c.model.parameters if p.sign]
+        declared += [Math(rf"{c.tex(q.symbol)} \in " + _interval(c, q.range)) for q in c.model.coordinates if q.range]
+        facts = [(Math(rf"{c.tex(f.expression)} {_RELATION['nonnegative' if f.sign > 0 else 'nonpositive']} 0"),
+                  " (", w.text("sign general" if f.general else "sign at values"), ")") for f in c.eom.assumptions]
+        blocks.append(Para(w("signs used", declared=w.join(declared), facts=w.join(facts))))
     spec = {x.name: x for x in c.model.loads}
     for f, row in zip(c.eom.loads, c.form.loads):
         load = spec.get(f.name)

@@ -336,6 +336,24 @@ _PHRASES: dict[str, tuple[str, str]] = {
                           "The complementary constraint equation completes the system; with the {n} Lagrange "
                           "equations it determines the {n} parameters and the multiplier {lams}:"),
     "reaction of": ("Réaction de « {name} » sur {E} :", "Reaction of “{name}” on {E}:"),
+    "signs used": ("Les hypothèses déclarées ({declared}) donnent {facts} : les valeurs absolues, racines de carrés "
+                   "et signes de ces expressions se simplifient dans les efforts ci-dessous.",
+                   "The declared assumptions ({declared}) give {facts}: the absolute values, square roots of squares "
+                   "and signs of these expressions simplify in the efforts below."),
+    "sign general": ("pour toutes les valeurs permises", "for every allowed value"),
+    "sign at values": ("aux valeurs déclarées des paramètres", "at the declared values of the parameters"),
+    "rows chosen frame": ("Écrite dans {declared}, la liaison « {name} » donne {k} équations de rang {r} seulement ; "
+                          "le même vecteur est écrit dans la base de {frame}, où {r} composantes seulement ne sont "
+                          "pas identiquement nulles : {kept}.",
+                          "Written in {declared}, the constraint “{name}” gives {k} rows of rank {r} only; the same "
+                          "vector is written along the axes of {frame}, where only {r} of its components are not "
+                          "identically zero: {kept}."),
+    "rows chosen subset": ("Écrite dans {declared}, la liaison « {name} » donne {k} équations de rang {r} seulement ; "
+                           "on garde {kept}, indépendantes (QR à pivot en un état générique), les autres en étant "
+                           "des combinaisons.",
+                           "Written in {declared}, the constraint “{name}” gives {k} rows of rank {r} only; {kept} "
+                           "are kept, independent (pivoted QR at a generic state), the others being combinations "
+                           "of them."),
     "multipliers are": ("En éliminant les accélérations entre les équations de Lagrange et les équations de liaison "
                         "dérivées par rapport au temps (deux fois pour une liaison holonome), les multiplicateurs "
                         "valent :",

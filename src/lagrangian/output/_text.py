@@ -18,6 +18,7 @@ from ..dynamics import EquationsOfMotion, multiplier_formulas
 from ..dynamics._constraints import FORMULA_MAX_SIZE, describe_constraints
 from ..dynamics._inertial import RelativeKinematics
 from ..model import Vector
+from ..model._assumptions import SIGN_RELATIONS, range_text
 from ._course import CourseForm, VectorRow, _vector_row, to_sympy
 from ._notation import Notation
 
@@ -87,6 +88,7 @@ class ReactionLine:
     moment: VectorRow | None
     generalized: tuple[sympy.Basic, ...]
     note: str
+    row_choice: str | None = None  # the rows the engine kept of a vector constraint, and why
 
 
 @dataclass(frozen=True, slots=True)
@@ -110,6 +112,10 @@ class Supplement:
     reactions: tuple[ReactionLine, ...]
     balance: tuple[PowerRow, ...] | None
     power: sympy.Basic | None
+    #: The declared signs and ranges (text), and the signs the derivation used, as (expression,
+    #: relation, reason): `lagrangian.model._assumptions`.
+    declared: tuple[str, ...] = ()
+    used: tuple[tuple[sympy.Basic, str, str], ...] = ()
 
 
 #: Largest expression (SymPy operation count) that `_shortest` tries to cancel and factor.
@@ -154,7 +160,8 @@ def _reaction_lines(eom: EquationsOfMotion) -> tuple[ReactionLine, ...]:
         force = _vector_row(eom, Vector({r.frame: r.force_components})) if r.point is not None else None
         moment = _vector_row(eom, Vector({r.frame: r.moment_components})) if r.body is not None else None
         out.append(ReactionLine(r.constraint, r.point, r.body, r.counter_point, r.frame, force, moment,
-                                tuple(to_sympy(g) for g in r.generalized), r.note))
+                                tuple(to_sympy(g) for g in r.generalized), r.note,
+                                r.row_choice.text if r.row_choice is not None else None))
     return tuple(out)
 
 
@@ -174,8 +181,12 @@ def supplement(eom: EquationsOfMotion, form: CourseForm) -> Supplement:
         balance = tuple(PowerRow(t.name, kinds[t.name] if t.kind == "load" else t.kind, _shortest(t.power), t.note)
                         for t in b.terms)
         power = _shortest(b.P_nc)
+    declared = tuple(f"{p.name} {SIGN_RELATIONS[p.sign]}" for p in eom.model.parameters if p.sign is not None)
+    declared += tuple(f"{c.name} ∈ {range_text(c.range)}" for c in eom.model.coordinates if c.range is not None)
+    used = tuple((to_sympy(f.expression), f.relation, f.reason) for f in eom.assumptions)
     return Supplement(reference_omega, _constraint_lines(eom) if eom.model.constraints else (), multipliers,
-                      _reaction_lines(eom), balance, power)
+                      _reaction_lines(eom), balance, power, declared, used)
+
 
 
 # -- text -----------------------------------------------------------------------------------------------
@@ -225,6 +236,7 @@ def _step7_text(n: Notation, form: CourseForm, extra: Supplement) -> list[str]:
     for c in extra.constraints:
         for row, _, equation in c.rows:
             lines.append(f"  {n.text(equation)} = 0    [{row}]")
+    lines += [f"  {r.constraint}: {r.row_choice}" for r in extra.reactions if r.row_choice]
     unsolved = [name for name, formula in extra.multipliers if formula is None]
     for name, formula in extra.multipliers:
         if formula is not None:
@@ -295,6 +307,10 @@ def render_text(form: CourseForm, extra: Supplement | None = None) -> str:
                      "and the Coriolis and entrainment inertial forces among the loads.")
     if extra is not None and extra.constraints:
         lines += _constraints_text(n, extra)
+    if extra is not None and extra.declared:
+        lines.append("Declared assumptions: " + ", ".join(extra.declared))
+        for expr, relation, reason in extra.used:
+            lines.append(f"  used to simplify: {n.text(expr)} {relation} 0    ({reason})")
     if form.frames:
         lines.append("")
         relative = f" relative to {ref}:" if ref != "R0" else ":"
