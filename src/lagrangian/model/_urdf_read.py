@@ -380,14 +380,13 @@ class _Reader:
                 self.unique(element, joint.name, joints, "joint")  # type: ignore[union-attr]
                 joints[joint.name] = joint  # type: ignore[union-attr]
                 elements[joint.name] = element  # type: ignore[union-attr]
-            elif element.tag == "transmission":
-                self.note(element, f"<transmission> `{element.attrib.get('name', '')}` skipped: the joint "
-                          "efforts are the model's inputs tau_<joint> instead (actuator gearing is not modelled)")
-            else:  # material, gazebo, ros2_control...: appearance and simulator settings
+            else:  # transmission, material, gazebo, ros2_control...: actuators, looks and simulator settings
                 skipped.setdefault(element.tag, []).append(element.line)
         for tag, lines in skipped.items():
+            why = ("the joint efforts are the model's inputs tau_<joint> instead; gearing and motor inertia are "
+                   "not modelled" if tag == "transmission" else "no part in the dynamics")
             self.notes.append(f"{self.source or '<urdf>'}:{lines[0]}: note: {len(lines)} <{tag}> element"
-                              f"{'s' if len(lines) > 1 else ''} skipped (no part in the dynamics)")
+                              f"{'s' if len(lines) > 1 else ''} skipped ({why})")
         if not links:
             raise self.fail(root, "the URDF has no <link>", fix="describe the robot's links and joints")
         parent_joint: dict[str, UrdfJoint] = {}

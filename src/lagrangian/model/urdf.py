@@ -29,6 +29,7 @@ Algorithms* (2008), §2.12.
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 import re
 import warnings
 from dataclasses import dataclass, field
@@ -121,13 +122,22 @@ def rpy_matrix(rpy: tuple[float, float, float]) -> np.ndarray:
     return _elementary(2, yaw) @ _elementary(1, pitch) @ _elementary(0, roll)
 
 
+#: An angle this close to a multiple of π/4 (rad) is taken as exactly that: the double nearest to π/2,
+#: and rounding in the products of rotations, not a truncated π (the UR5's 1.57079632679 is kept).
+ANGLE_SNAP = 1e-13
+
+
 def _exact_angle(angle: float) -> se.Basic | None:
-    """``angle`` as a SymEngine number: None for 0, kπ/2 exactly when it is that to rounding, else a double."""
-    quarter = round(angle / (math.pi / 2))
-    if abs(angle - quarter * math.pi / 2) <= 1e-14 * max(1.0, abs(angle)):
-        quarter = (quarter + 1) % 4 - 1  # in (−π, π]: −1, 0, 1, 2
-        return None if quarter == 0 else se.pi * se.Rational(quarter, 2)
-    return se.RealDouble(angle)
+    """``angle`` as a SymEngine number: None for 0, kπ/4 exactly within `ANGLE_SNAP`, else rational.
+
+    Exact multiples of π/4 keep cos and sin exact (0, ±1, ±√2/2), so that products of
+    constant rotations simplify instead of carrying cos(0.785398163397448) as a symbol.
+    """
+    eighth = round(angle / (math.pi / 4))
+    if abs(angle - eighth * math.pi / 4) <= ANGLE_SNAP:
+        eighth = (eighth + 3) % 8 - 3  # in (−π, π]: −3 ... 4
+        return None if eighth == 0 else se.pi * se.Rational(eighth, 4)
+    return _number(angle)
 
 
 def rotation_steps(c: np.ndarray) -> list[tuple[se.Basic, str]]:
@@ -151,12 +161,19 @@ def rotation_steps(c: np.ndarray) -> list[tuple[se.Basic, str]]:
 
 
 def _number(x: float) -> se.Basic:
-    """A float as a SymEngine number: exact 0 and small integers kept exact (they simplify products)."""
+    """A float as an exact SymEngine rational, its 15 significant digits (the file's decimals, as written).
+
+    Exact numbers, not doubles: the derivation recognises a potential (the weight's U) by
+    an identity Q_i + ∂U/∂q_i ≡ 0 tested to far below double rounding, which two orders of
+    double products would fail; and 15 digits drop the rounding noise of the rotations
+    (0.20000000000000004 is 1/5), well below the 1e-10 to which M agrees with Pinocchio.
+    """
     if x == 0:
         return se.Integer(0)
     if x == int(x) and abs(x) < 1e6:
         return se.Integer(int(x))
-    return se.RealDouble(float(x))
+    f = Fraction(f"{float(x):.15g}")
+    return se.Rational(f.numerator, f.denominator)
 
 
 def _clean(values: np.ndarray, scale: float | None = None) -> np.ndarray:
