@@ -125,3 +125,23 @@ def test_an_external_dtd_is_never_fetched(tmp_path):
             + robot(*ok_parts()).split("\n", 1)[1])
     model = parse_urdf(text, source="r.urdf")  # the DTD is not read: nothing of it can reach the model
     assert [c.name for c in model.coordinates] == ["j1"]
+
+
+def test_odd_and_clashing_names_become_distinct_identifiers():
+    text = robot('<link name="g"/>', LINK.format(name="t"), LINK.format(name="arm-1"),
+                 JOINT.format(name="t", parent="g", child="t"), JOINT.format(name="arm-1", parent="t", child="arm-1"))
+    model = parse_urdf(text, source="r.urdf")
+    assert [c.name for c in model.coordinates] == ["t_2", "arm_1"]  # `t` is the time, `arm-1` no identifier
+    names = [c.name for c in model.coordinates] + [b.name for b in model.bodies] + list(model.inputs)
+    assert len(set(names)) == len(names) and all(n.isidentifier() and n not in ("t", "g", "pi") for n in names)
+    assert model.inputs == ("tau_t", "tau_arm_1") and {b.name for b in model.bodies} == {"t_3", "arm_1_2"}
+
+
+def test_a_robot_with_too_many_joints_is_refused_before_any_derivation():
+    parts = ['<link name="l0"/>']
+    for k in range(1, 103):
+        parts += [LINK.format(name=f"l{k}"), JOINT.format(name=f"j{k}", parent=f"l{k - 1}", child=f"l{k}")]
+    text = robot(*parts)
+    with pytest.raises(ModelError, match="102 moving joints, more than the 100") as info:
+        parse_urdf(text, source="long.urdf")
+    assert info.value.line == line_of(text, '<joint name="j101"')

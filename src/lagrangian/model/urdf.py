@@ -47,6 +47,9 @@ from .spec import GALILEAN_FRAME, ORIGIN, Location, Model
 
 __all__ = ["load_urdf", "parse_urdf", "read_urdf", "UrdfRobot", "UrdfNote", "GRAVITY"]
 
+#: Most joints with a coordinate: the derivation expands M's n² entries, and a file from a stranger
+#: must not start an endless one (as `lagrangian.model.zoo.MAX_LINKS` for the zoo's chains).
+MAX_JOINTS = 100
 #: Standard gravity, m/s², along −z of the root link (ROS's and Pinocchio's convention).
 GRAVITY = 9.81
 #: Below this (relative to the largest entry), a computed rotation or inertia entry is rounding noise.
@@ -259,6 +262,12 @@ class _Translation:
         self.check_masses_move()
         b.parameter("g", GRAVITY, unit="m/s^2", description="gravitational acceleration, along -z of the root link")
         order = self.tree_order()
+        moving = [j for j in order if j.moves and j.mimic is None]
+        if len(moving) > MAX_JOINTS:
+            raise ModelError(f"the robot has {len(moving)} moving joints, more than the {MAX_JOINTS} this "
+                             "derivation takes", file=robot.source, line=moving[MAX_JOINTS].line,
+                             symbol=moving[MAX_JOINTS].name, fix="fix some joints (type=\"fixed\"), or split "
+                             "the robot")
         for joint in order:  # coordinates, rates and inputs first: the mimics refer to them
             if joint.moves and joint.mimic is None:
                 q = self.names.take(joint.name, suffixes=("_dot", "_ddot"))
