@@ -121,7 +121,7 @@ class Ours:
         self.eom = eom = lagrangian.derive(model)
         self.names = [p.name for p in model.parameters]
         args = [*eom.q, *eom.qd, *(p.symbol for p in model.parameters)]
-        self.n = n = len(eom.q)
+        self.n = len(eom.q)
         # one function with common subexpressions shared: M, F, T, U
         self._all = se.Lambdify(args, [*(e for row in eom.M for e in row), *eom.F, eom.T, eom.U], cse=True)
 

@@ -104,9 +104,11 @@ def test_limits_are_recorded_and_skipped_elements_noted(tmp_path):
     with pytest.warns(UrdfNote, match=r"tree.urdf:\d+: note: 1 <transmission> element skipped"):
         model = lagrangian.load_urdf(path)
     swing = model.coordinate("swing")
-    assert swing.unit == "rad" and "limits [-1, 1] rad" in swing.description and "effort ≤ 10 N·m" in swing.description
+    assert swing.unit == "rad" and "limits [-1, 1] rad" in swing.description
+    assert "effort ≤ 10 N·m" in swing.description
     assert model.coordinate("slide").unit == "m"
-    assert lagrangian.load_model(path) == model  # every path reader takes a .urdf
+    with pytest.warns(UrdfNote):
+        assert lagrangian.load_model(path) == model  # every path reader takes a .urdf
 
 
 @pytest.mark.parametrize("rpy", [(0.0, 0.0, 0.0), (np.pi / 2, 0, 0), (0, -np.pi / 2, 0), (np.pi, 0, 0),

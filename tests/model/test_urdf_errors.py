@@ -14,7 +14,8 @@ from lagrangian.model.urdf import parse_urdf
 
 LINK = ('<link name="{name}"><inertial><mass value="1"/>'
         '<inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial></link>')
-JOINT = '<joint name="{name}" type="revolute"><parent link="{parent}"/><child link="{child}"/><axis xyz="0 0 1"/></joint>'
+JOINT = ('<joint name="{name}" type="revolute"><parent link="{parent}"/><child link="{child}"/>'
+         '<axis xyz="0 0 1"/></joint>')
 
 
 def robot(*parts: str) -> str:
@@ -90,7 +91,8 @@ CASES = {
                       '<joint name="j1"', "moves no mass"),
     "not a robot": ('<?xml version="1.0"?>\n<model name="x"/>\n', "<model", "not <robot>"),
     "malformed XML": (robot(*ok_parts(), '<link name="b">'), "</robot>", "not well-formed"),
-    "XML bomb": ('<?xml version="1.0"?>\n<!DOCTYPE robot [\n <!ENTITY lol "lol">\n <!ENTITY lol2 "&lol;&lol;&lol;">\n]>\n'
+    "XML bomb": ('<?xml version="1.0"?>\n<!DOCTYPE robot [\n <!ENTITY lol "lol">\n'
+                 ' <!ENTITY lol2 "&lol;&lol;&lol;">\n]>\n'
                  '<robot name="&lol2;"/>\n', '<!ENTITY lol "lol">', "declares an entity"),
     "external entity": ('<?xml version="1.0"?>\n<!DOCTYPE robot [\n<!ENTITY secret SYSTEM "file:///etc/passwd">\n]>\n'
                         '<robot name="r">&secret;</robot>\n', "<!ENTITY secret", "declares an entity"),

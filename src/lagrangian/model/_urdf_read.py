@@ -28,7 +28,8 @@ import numpy as np
 
 from ..errors import ModelError
 
-__all__ = ["UrdfInertial", "UrdfLink", "UrdfLimits", "UrdfMimic", "UrdfJoint", "UrdfRobot", "read_urdf_text", "read_urdf_file",
+__all__ = ["UrdfInertial", "UrdfLink", "UrdfLimits", "UrdfMimic", "UrdfJoint", "UrdfRobot", "read_urdf_text",
+           "read_urdf_file",
            "MAX_BYTES", "SUPPORTED_JOINTS"]
 
 #: Largest URDF accepted, in bytes: the largest robots of example-robot-data are under 1 MB.
@@ -282,7 +283,8 @@ class _Reader:
         if mass == 0:
             return UrdfLink(name, element.line, None)  # the zero <inertial> of many exported frames
         xyz, rpy = self.origin(inertial, owner)
-        return UrdfLink(name, element.line, UrdfInertial(mass, xyz, rpy, matrix, inertial.line))  # type: ignore[arg-type]
+        inertial_data = UrdfInertial(mass, xyz, rpy, matrix, inertial.line)  # type: ignore[arg-type]
+        return UrdfLink(name, element.line, inertial_data)
 
     def check_inertia(self, element: _Element, matrix: np.ndarray, owner: str, name: str) -> None:
         """I_G must be positive semi-definite with each moment at most the sum of the other two.
@@ -353,12 +355,13 @@ class _Reader:
         friction = self.number(dynamics, "friction", owner, 0.0) or 0.0
         if damping < 0:
             raise self.fail(dynamics, f"the damping of {owner} is {damping:g}: a damper dissipates, its "
-                            "coefficient is not negative", symbol=name, fix="give a damping ≥ 0 (N·m·s/rad or N·s/m)")
+                            "coefficient is not negative", symbol=name,
+                            fix="give a damping ≥ 0 (N·m·s/rad or N·s/m)")
         if friction:
             self.note(dynamics, f"the dry friction {friction:g} of {owner} is left out (only the viscous damping "
                       "is modelled)")
-        return UrdfJoint(name, kind, ends["parent"], ends["child"], xyz, rpy, axis, limits, mimic,  # type: ignore[arg-type]
-                         damping, friction, element.line)
+        return UrdfJoint(name, kind, ends["parent"], ends["child"], xyz, rpy, axis,  # type: ignore[arg-type]
+                         limits, mimic, damping, friction, element.line)
 
     # -- the robot -------------------------------------------------------------------------------
     def robot(self, root: _Element) -> UrdfRobot:
