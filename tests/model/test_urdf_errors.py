@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import pytest
 
+import lagrangian
 from lagrangian import ModelError
 from lagrangian.cli.main import main
 from lagrangian.model.urdf import parse_urdf
@@ -147,3 +148,10 @@ def test_a_robot_with_too_many_joints_is_refused_before_any_derivation():
     with pytest.raises(ModelError, match="102 moving joints, more than the 100") as info:
         parse_urdf(text, source="long.urdf")
     assert info.value.line == line_of(text, '<joint name="j101"')
+
+
+def test_a_huge_file_is_refused_before_it_is_parsed(tmp_path):
+    path = tmp_path / "huge.urdf"
+    path.write_text(robot(*ok_parts(), "<!--" + "x" * (6 * 2**20) + "-->"))
+    with pytest.raises(ModelError, match="more than the 5 MB read"):
+        lagrangian.load_urdf(path)

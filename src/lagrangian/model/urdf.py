@@ -259,8 +259,6 @@ class _Translation:
 
     def model(self) -> Model:
         robot, b = self.robot, self.b
-        self.check_masses_move()
-        b.parameter("g", GRAVITY, unit="m/s^2", description="gravitational acceleration, along -z of the root link")
         order = self.tree_order()
         moving = [j for j in order if j.moves and j.mimic is None]
         if len(moving) > MAX_JOINTS:
@@ -268,6 +266,8 @@ class _Translation:
                              "derivation takes", file=robot.source, line=moving[MAX_JOINTS].line,
                              symbol=moving[MAX_JOINTS].name, fix="fix some joints (type=\"fixed\"), or split "
                              "the robot")
+        self.check_masses_move()
+        b.parameter("g", GRAVITY, unit="m/s^2", description="gravitational acceleration, along -z of the root link")
         for joint in order:  # coordinates, rates and inputs first: the mimics refer to them
             if joint.moves and joint.mimic is None:
                 q = self.names.take(joint.name, suffixes=("_dot", "_ddot"))
