@@ -4,7 +4,7 @@ PYTHON ?= python3
 VENV ?= .venv
 PY := $(VENV)/bin/python
 
-.PHONY: demo test bench clean browser
+.PHONY: demo test bench clean browser octave
 
 $(VENV)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -15,7 +15,7 @@ $(VENV)/.installed: pyproject.toml
 demo: $(VENV)/.installed   ## derive the seed's Lagrange top
 	$(VENV)/bin/lagrangian derive
 
-test: $(VENV)/.installed browser   ## run the test suite
+test: $(VENV)/.installed browser octave   ## run the test suite
 	$(PY) -m pytest src tests
 
 # The HTML report's tests open the page in a headless browser (Debian's chromium). Install it when it
@@ -32,6 +32,23 @@ browser:
 	else \
 	    echo "note: chromium is not installed (installing it needs root and apt-get);" \
 	         "the HTML report's browser tests will be skipped"; \
+	fi
+
+# The Octave export's tests run the exported .m files with GNU Octave (Debian's octave, without its
+# recommended packages: about 70 MB to download, 1.5 minutes). Install it when missing and we are root
+# with apt-get, unless SKIP_OCTAVE=1; otherwise those tests check the files' structure only.
+octave:
+	@if command -v octave >/dev/null 2>&1 || [ -n "$(SKIP_OCTAVE)" ]; then :; \
+	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	    echo "installing octave (runs the Octave export in the tests; SKIP_OCTAVE=1 to skip)..."; \
+	    (DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends octave >/dev/null 2>&1 \
+	     || (apt-get update -q >/dev/null 2>&1 \
+	         && DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends octave \
+	            >/dev/null 2>&1)) \
+	    || echo "note: octave could not be installed; the Octave export is checked for structure only"; \
+	else \
+	    echo "note: octave is not installed (installing it needs root and apt-get);" \
+	         "the Octave export is checked for structure only"; \
 	fi
 
 bench: $(VENV)/.installed   ## derivation benchmark against SymPy's LagrangesMethod (slow: minutes)

@@ -575,7 +575,7 @@ def test_gravity_on_unknown_body(tmp_path: Path) -> None:
 def test_torque_on_unknown_body(tmp_path: Path) -> None:
     text = TOP + 'motor = { torque = "C*R.z", on = "S2" }\n'
     err, path = error_of(tmp_path, text)
-    check(err, path, line_of(text, "motor ="), "S2", "torque `motor`", "unknown body `S2`")
+    check(err, path, line_of(text, "motor ="), "S2", "torque `motor`", "unknown body or frame `S2`")
 
 
 def test_spring_with_three_ends(tmp_path: Path) -> None:

@@ -21,7 +21,8 @@ import pytest
 import lagrangian
 from lagrangian.cli.main import main
 from lagrangian.model import zoo
-from lagrangian_test_support import EXAMPLES_DIR, random_states
+from lagrangian.numerics._dae import ConstrainedSystem
+from lagrangian_test_support import EXAMPLES_DIR, Numeric, random_states
 
 # Different but exact expression forms of M and F (the in-package C hoists and regroups them):
 # the results agree to rounding, amplified at most by M's condition number at these states.
@@ -144,6 +145,99 @@ def test_c_export_nan_where_the_mass_matrix_is_not_positive_definite(tmp_path):
     assert np.all(np.isnan(out[2:])) and np.array_equal(out[:2], y[2:])
 
 
+# A small C program (libm only) that reads p, Baumgarte's (alpha, beta), then (t, y) per line, and prints
+# y' (rhs_k, checked equal to rhs), the first integrals, the constraint rows A, b, c, f, and, with rows,
+# (y', lambda) of rhs_multipliers at (alpha, beta).
+C_DRIVER = r"""
+#include <stdio.h>
+#include <string.h>
+#include "NAME.h"
+#define N2 (2 * UP_N)
+static void show(const double *v, int count) { for (int i = 0; i < count; ++i) printf("%.17g ", v[i]); }
+int main(void) {
+    double p[UP_NP + 1], k[UP_NK + 1], y[N2], t, alpha, beta, out[N2], again[N2], I[UP_NI + 1];
+    double A[UP_NC * UP_N + 1], b[UP_NC + 1], c[UP_NC + 1], f[UP_NC + 1];
+    for (int i = 0; i < UP_NP; ++i) if (scanf("%lf", &p[i]) != 1) return 2;
+    if (scanf("%lf %lf", &alpha, &beta) != 2) return 2;
+    NAME_constants(p, k);
+    while (scanf("%lf", &t) == 1) {
+        for (int i = 0; i < N2; ++i) if (scanf("%lf", &y[i]) != 1) return 2;
+        NAME_rhs_k(t, y, p, k, out);
+        NAME_rhs(t, y, p, again);
+        if (memcmp(out, again, sizeof out) != 0) return 3;
+        NAME_first_integrals(t, y, p, I);
+        ONE_BY_ONE
+        NAME_constraint_rows(t, y, p, A, b, c, f);
+        show(out, N2); show(I, UP_NI); show(A, UP_NC * UP_N); show(b, UP_NC); show(c, UP_NC); show(f, UP_NC);
+#if UP_NC > 0
+        double lam[UP_NC];
+        if (NAME_rhs_multipliers(t, y, p, k, alpha, beta, out, lam) != 0) return 4;
+        show(out, N2); show(lam, UP_NC);
+#endif
+        printf("\n");
+    }
+    return 0;
+}
+"""
+
+C_DRIVER_CASES = ["lagrange_top.toml", "pendulum_tension.toml", "rolling_coin.toml", "zoo:planar_chain:5"]
+
+
+@pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
+@pytest.mark.parametrize("case", C_DRIVER_CASES)
+def test_c_export_driver_integrals_and_constraint_rows(case, tmp_path):
+    """A C program built on the export (gcc, libm only) against Python: y' against the package's
+    compiled rhs (with the multipliers for the constrained models), the first integrals and the
+    constraint rows against `first_integrals` and the derivation's rows evaluated by SymEngine."""
+    eom = _eom(case)
+    paths = lagrangian.export(eom, "c", tmp_path / "out")
+    ident, n, rows = paths[0].stem, len(eom.q), eom.constraints
+    driver = tmp_path / "out" / "driver.c"
+    # Each integral's own function (declared in the header) must give the value of the array function.
+    own = re.findall(r"^double (\w+)\(double t, const double \*y, const double \*p\);", paths[0].read_text(), re.M)
+    assert len(own) == len(lagrangian.first_integrals(eom))
+    checks = "\n        ".join(f"if (fabs({fn}(t, y, p) - I[{j}]) > 1e-13 * (1.0 + fabs(I[{j}]))) return 5;"
+                      for j, fn in enumerate(own))
+    driver.write_text(C_DRIVER.replace("ONE_BY_ONE", checks).replace("NAME", ident).replace("UP_", ident.upper() + "_"))
+    exe = tmp_path / "driver"
+    subprocess.run(["gcc", "-O2", "-std=c99", "-Wall", "-Wextra", "-Werror", "-o", str(exe), str(driver),
+                    str(paths[1]), "-lm"], check=True, capture_output=True)
+    p = np.array([v for v in eom.model.parameter_values.values()], dtype=float)
+    stab = (2.0, 3.0)
+    t, y = _states(case, 6, seed=13)
+    def line(values) -> str:
+        return " ".join(repr(float(v)) for v in values)
+
+    text = line([*p, *stab]) + "\n" + "\n".join(line([ti, *yi]) for ti, yi in zip(t, y))
+    run = subprocess.run([str(exe)], input=text, capture_output=True, text=True, timeout=60)
+    assert run.returncode == 0, run.stderr
+    got = np.array([[float(v) for v in line.split()] for line in run.stdout.strip().splitlines()])
+    integrals = lagrangian.first_integrals(eom)
+    assert integrals and f'"{integrals[0].name}"' in paths[0].read_text()
+    fi = Numeric(eom, [i.expression for i in integrals])
+    A = Numeric(eom, [a for r in rows for a in r.coefficients])
+    bcf = Numeric(eom, [r.b for r in rows] + [r.bias for r in rows]
+                  + [r.expression if r.kind == "holonomic" else 0 for r in rows])
+    if rows:
+        dae = ConstrainedSystem(eom)
+        exact, _ = dae.rhs(t, y, dae.parameter_vector())
+        stabilized, lam = dae.rhs(t, y, dae.parameter_vector(), stab)
+    else:
+        exact = _reference(case, t, y)
+    m, ni = len(rows), len(integrals)
+    for k, (ti, yi) in enumerate(zip(t, y)):
+        state = {**{c: v for c, v in zip(eom.coordinates, yi[:n])},
+                 **{c + "_dot": v for c, v in zip(eom.coordinates, yi[n:])}, str(eom.t): ti}
+        parts = np.split(got[k], np.cumsum([2 * n, ni, m * n, 3 * m, 2 * n]))
+        assert len(got[k]) == 2 * n + ni + (m * n + 3 * m + 2 * n + m if m else 0)
+        _assert_close(parts[0], exact[k])
+        _assert_close(parts[1], fi(state))
+        if rows:
+            _assert_close(np.concatenate([parts[2], parts[3]]), np.concatenate([A(state), bcf(state)]))
+            _assert_close(parts[4], stabilized[k])
+            _assert_close(parts[5], lam[k])
+
+
 # -- bad input: a clear error, nothing written ------------------------------------------------
 def test_unknown_target(tmp_path):
     with pytest.raises(lagrangian.ExportError, match="`fortran` is not an export target") as info:
@@ -205,8 +299,10 @@ def test_existing_directory(tmp_path):
 
 def test_constrained_and_stick_slip_models_are_refused(tmp_path):
     coin = lagrangian.derive(lagrangian.load_model(EXAMPLES_DIR / "rolling_coin.toml"))
-    with pytest.raises(lagrangian.ExportError, match="complementary constraint"):
-        lagrangian.export(coin, "numpy", tmp_path / "coin")
+    for target in ("numpy", "jax", "octave"):  # the C export solves for the multipliers (test above)
+        with pytest.raises(lagrangian.ExportError, match="complementary constraint") as info:
+            lagrangian.export(coin, target, tmp_path / "coin")
+        assert "--to c" in info.value.fix
     text = (EXAMPLES_DIR / "block_on_belt.toml").read_text().replace('regularization = "eps"', 'regularization = 0')
     belt = lagrangian.derive(lagrangian.parse_model(text))
     with pytest.raises(lagrangian.ExportError, match="stick/slip") as info:
@@ -223,6 +319,12 @@ def test_cli_export(tmp_path, capsys):
     assert _import(path).PARAMETERS["g"] == 1.5
 
 
+def test_cli_exports_a_constrained_model_to_c(tmp_path, capsys):
+    assert main(["export", str(EXAMPLES_DIR / "rolling_coin.toml"), "--to", "c", "-o", str(tmp_path / "coin")]) == 0
+    header = (tmp_path / "coin" / "rolling_upright_coin.h").read_text()
+    assert "#define ROLLING_UPRIGHT_COIN_NC 2" in header and "rolling_upright_coin_rhs_multipliers(" in header
+
+
 def test_cli_default_directory(tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
     assert main(["export", str(EXAMPLES_DIR / "double_pendulum.toml"), "--to", "c"]) == 0
@@ -234,7 +336,7 @@ def test_cli_default_directory(tmp_path, capsys, monkeypatch):
     (["--to", "fortran"], 2, "`fortran` is not an export target"),
     (["--to", "numpy", "--set", "theta=1"], 2, "no initial state"),
     (["--to", "numpy", "-o", "{tmp}/a_file/out"], 3, "Cannot write the export directory"),
-    ([str(EXAMPLES_DIR / "rolling_coin.toml"), "--to", "c"], 2, "complementary constraint"),
+    ([str(EXAMPLES_DIR / "rolling_coin.toml"), "--to", "numpy"], 2, "complementary constraint"),
 ])
 def test_cli_errors(argv, code, message, tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
@@ -262,17 +364,29 @@ def test_jax_export_logic_on_numpy(case, tmp_path, monkeypatch):
     _assert_close(module.rhs(t[0], y[0]), expected[0])
 
 
-@pytest.mark.parametrize("case", ["lagrange_top.toml", "zoo:planar_chain:5"])
+@pytest.mark.parametrize("case", ["lagrange_top.toml", "kapitza_pendulum.toml"])
 def test_jax_export(case, tmp_path):
+    """JAX itself (the `jax` extra, in `test`): rhs, mass_matrix and forcing jitted and vmapped in
+    double precision, against the NumPy export and the package to 1e-12."""
     jax = pytest.importorskip("jax")
     jax.config.update("jax_enable_x64", True)
-    (path,) = lagrangian.export(_eom(case), "jax", tmp_path / "out")
-    module = _import(path)
+    eom = _eom(case)
+    (path,) = lagrangian.export(eom, "jax", tmp_path / "jax")
+    (np_path,) = lagrangian.export(eom, "numpy", tmp_path / "np")
+    module, reference = _import(path), _import(np_path)
     t, y = _states(case, 8, seed=7)
-    expected = _reference(case, t, y)
-    f = jax.jit(jax.vmap(module.rhs))
-    _assert_close(np.asarray(f(t, y)), expected)
-    _assert_close(np.asarray(module.rhs(t, y)), expected)
+    n, p = len(eom.q), reference.parameter_array()
+    expected = reference.rhs(t, y, p)
+    _assert_close(expected, _reference(case, t, y))
+    f = jax.jit(jax.vmap(module.rhs, in_axes=(0, 0, None)))
+    actual = f(t, y, p)
+    assert actual.dtype == np.float64 and actual.shape == y.shape
+    _assert_close(np.asarray(actual), expected)
+    _assert_close(np.asarray(jax.jit(module.rhs)(t, y)), expected)  # batched without vmap
+    M = jax.jit(jax.vmap(module.mass_matrix, in_axes=(0, None, 0)))(y[:, :n], p, t)
+    np.testing.assert_allclose(np.asarray(M), reference.mass_matrix(y[:, :n], p, t), rtol=RTOL, atol=1e-14)
+    F = jax.jit(jax.vmap(module.forcing, in_axes=(0, 0, 0, None)))(t, y[:, :n], y[:, n:], p)
+    _assert_close(np.asarray(F), reference.forcing(t, y[:, :n], y[:, n:], p))
 
 
 # -- octave: run by GNU Octave when installed; else a check of the files' structure and tokens -------
@@ -310,10 +424,12 @@ def test_octave_export_runs(case, tmp_path):
     ident = paths[0].name.removesuffix("_parameters.m")
     t, y = _states(case, 4, seed=11)
     expected = _reference(case, t, y)
-    calls = "".join(f"disp(num2str({ident}_rhs({ti!r}, [{'; '.join(map(repr, yi))}], d)', 17));"
+    calls = "".join(f"disp(num2str({ident}_rhs({float(ti)!r}, [{'; '.join(repr(float(v)) for v in yi)}], d)', 17));"
                     for ti, yi in zip(t, y))
     script = f"addpath('{tmp_path / 'out'}'); [n, d] = {ident}_parameters(); {calls}"
-    out = subprocess.run(["octave", "--no-gui", "--quiet", "--eval", script], check=True, capture_output=True,
-                         text=True, timeout=120).stdout
+    run = subprocess.run(["octave", "--no-gui", "--quiet", "--no-window-system", "--eval", script],
+                         capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    out = run.stdout
     actual = np.array([[float(v) for v in line.split()] for line in out.strip().splitlines()])
     _assert_close(actual, expected)

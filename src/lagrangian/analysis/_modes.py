@@ -243,7 +243,9 @@ def stability(lin: LinearModel, **values: float) -> Stability:
                              "terms make every eigenvalue simple and purely imaginary: gyroscopic stabilisation "
                              "(Kelvin–Tait). Stable to first order; the nonlinear motion is not decided by the "
                              "linearization." + note, lam)
-    if _simple_on_axis(lam, tol) and lin.eom.conservative:
+    # (Routh's reading needs a Lagrangian system: conservative, and no nonholonomic row, which
+    # keeps the energy but not the Lagrangian structure of the reduced equations.)
+    if _simple_on_axis(lam, tol) and lin.eom.conservative and all(r.kind == "holonomic" for r in lin.eom.constraints):
         return Stability(True, "stable to first order",
                          "the system is conservative and every eigenvalue left is simple and purely imaginary: the "
                          "linearized motion is bounded (stable to first order; at fixed momenta this is Routh's "

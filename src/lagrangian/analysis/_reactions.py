@@ -31,7 +31,7 @@ import numpy as np
 import symengine as se
 
 from ..dynamics import EquationsOfMotion
-from ..errors import SimulationError
+from ..errors import ModelError, SimulationError
 from ..kinematics import Kinematics
 from ..model import GALILEAN_FRAME, ORIGIN, Vector
 from ..model._vector import as_expr
@@ -157,6 +157,7 @@ def reactions(source: Verification | EquationsOfMotion) -> tuple[Reaction, ...]:
     out = []
     for group in _groups(v):
         elements = [v.theorems[e] for e in group]
+        _need_masses(model, [th.name for th in elements if th.kind == "body"])
         pins = [th for th in elements if th.kind == "body" and model.body(th.name).fixed_point is not None]
         point = pins[0].point if len(pins) == 1 else ORIGIN
         force, moment = Vector.zero(), Vector.zero()
@@ -180,6 +181,21 @@ def reactions(source: Verification | EquationsOfMotion) -> tuple[Reaction, ...]:
     return tuple(out)
 
 
+def _need_masses(model, bodies: Sequence[str]) -> None:  # type: ignore[no-untyped-def]
+    """A reaction takes Σ m γ(G) and the weights of its group: each body needs its mass.
+
+    A body may leave its mass out when its centre is fixed (the Lagrange equations do not
+    hold it); its mass then still weighs on the reaction of its axle.
+    """
+    for name in bodies:
+        if not model.body(name).mass_given:
+            where = model.where("body", name)
+            raise ModelError(f"the reactions need the mass of body `{name}`, which the model leaves out "
+                             "(its weight bears on its axle)", symbol=name, file=where.file, line=where.line,
+                             fix=f'give it its mass, e.g. mass = "M" under [bodies.{name}]; the equations of motion '
+                                 "do not need it")
+
+
 # -- numbers along a trajectory ------------------------------------------------------------------
 class _Numeric:
     """Expressions of (q, q̇, q̈, t) as one LLVM-compiled function of the trajectory's states."""
@@ -191,8 +207,9 @@ class _Numeric:
         left = set().union(*(e.free_symbols for e in subbed)) - set(args) if subbed else set()
         if left:
             names = ", ".join(sorted(f"`{s}`" for s in map(str, left)))
-            raise SimulationError(f"The parameters {names} have no value in the trajectory.",
-                                  fix="simulate with a value for each parameter (parameters={...})")
+            raise SimulationError(f"The parameters {names} have no value in the trajectory, and the reactions "
+                                  "need them.", fix="simulate with a value for each (parameters={...}, or --set "
+                                  "NAME=... on the command line)")
         self.size = len(subbed)
         self._f = se.Lambdify(args, subbed, backend="llvm", cse=True) if subbed else None
 

@@ -192,9 +192,15 @@ def _with_reactions(traj, eom):
     """The trajectory with each reaction's force (and transmitted moment) as extra columns."""
     from dataclasses import replace
 
+    from ..errors import LagrangianError
     from ..numerics import reaction_columns_along
 
-    return replace(traj, extra={**traj.extra, **reaction_columns_along(eom, traj)})
+    try:
+        columns = reaction_columns_along(eom, traj)
+    except LagrangianError as exc:  # a mass or a value only the reactions need
+        exc.fix = (exc.fix + "; " if exc.fix else "") + "or simulate without the reactions: --no-reactions"
+        raise
+    return replace(traj, extra={**traj.extra, **columns})
 
 
 def _plots(traj, eom, directory: Path, animation: str) -> list:

@@ -16,7 +16,7 @@ import sympy
 
 from ..analysis import Reaction, Verification, check_trajectory, reactions, verify
 from ..dynamics import derive
-from ..errors import VerificationError
+from ..errors import ModelError, VerificationError
 from ..model import Torque, Vector
 from ..output import Notation
 from ..output._course import reference_label, to_sympy
@@ -105,7 +105,9 @@ def _symbolic_report(v: Verification, p: _Printer) -> list[str]:
             lines.append(f"  {th.name} (particle): {p.expr(th.mass)} γ({th.name}/{f}) = {efforts} + R")
             continue
         at = th.point if th.point != th.name else "G"
-        lines.append(f"  {th.name} (body, moments at {at}): {p.expr(th.mass)} γ(G/{f}) = {efforts} + R;  "
+        mass = (p.expr(th.mass) if model.body(th.name).mass_given
+                else "m (not given: G is fixed)")  # m·0: the theorem holds whatever m
+        lines.append(f"  {th.name} (body, moments at {at}): {mass} γ(G/{f}) = {efforts} + R;  "
                      f"δ_{at}({th.name}/{f}) = M_{at}({efforts}) + M_{at}(R)")
         lines.append(f"      σ_{at}({th.name}/{f}) = Π_{at}·Ω = {p.vector(th.angular_momentum)}")
     lines += ["", "Each L(q_i) is those theorems projected on the directions of q_i (∂V/∂q̇_i, ∂Ω/∂q̇_i). "
@@ -226,7 +228,10 @@ def run(args: argparse.Namespace) -> str:
             f"(difference `{p.expr(sympy.expand(to_sympy(ours - theirs)))}`)"
             + (f"; {len(failed) - 1} other equation(s) disagree too." if len(failed) > 1 else "."),
             fix="the derivation or the model's loads are inconsistent; report it with the model file")
-    lines += _reaction_report(v, reactions(v), p)
+    try:
+        lines += _reaction_report(v, reactions(v), p)
+    except ModelError as exc:  # a body without its mass: the equations are checked, the reactions cannot be
+        lines += ["", f"Constraint reactions: not computed: {exc.message}.", f"  tip: {exc.fix}"]
     if args.simulate is not None:
         lines += _numeric_report(v, args, p)
     agree = (f"All {len(v.checks)} Lagrange equations agree" if len(v.checks) > 1 else "The Lagrange equation agrees")

@@ -2,7 +2,7 @@
 
 P*(effort) = Σ_i Q_i q_i*  with the virtual velocity field V*(P) = Σ ∂OP/∂q_i q_i*:
     force F at P:            Q_i = F · ∂OP/∂q_i
-    couple C on S (−C on S'): Q_i = C · (∂Ω(S/R0)/∂q̇_i − ∂Ω(S'/R0)/∂q̇_i)
+    couple C on S (−C on S'): Q_i = C · (∂Ω(S/R0)/∂q̇_i − ∂Ω(S'/R0)/∂q̇_i), S and S' bodies or frames
     gravity on S:            Q_i = m g · ∂OG/∂q_i
     spring, damper A–B:      Q_i = f · ∂AB/∂q_i with f the force on B along AB
 
@@ -26,7 +26,7 @@ from .._identity import are_zero
 from ..kinematics import Kinematics
 from ..model import Damper, GeneralizedForce, Gravity, Load, PointForce, Potential, Spring, Torque, Vector
 from ..model._vector import sum_of
-from ._friction import FRICTION_LOADS, friction_q
+from ._friction import FRICTION_LOADS, frame_of, friction_q
 
 __all__ = ["LoadForces", "generalized_forces"]
 
@@ -84,11 +84,14 @@ def _q_of(kin: Kinematics, load: Load) -> tuple[tuple[se.Basic, ...], se.Basic |
         masses = {b.name: b.mass for b in kin.model.bodies} | {p.name: p.mass for p in kin.model.particles}
         Q_terms: list[list[se.Basic]] = [[] for _ in range(n)]
         U_terms = []
+        moving = set(kin.q) | {kin.t}
         for name in names:
             weight = load.field * masses[name]
             for terms, x in zip(Q_terms, _dot_partials(kin, weight, name)):
                 terms.append(x)
-            U_terms.append(-kin.frames.dot(weight, kin.position(name)))
+            u = -kin.frames.dot(weight, kin.position(name))
+            if u.free_symbols & moving:  # a constant (G fixed: a pulley's axle) is left to the "+ cste"
+                U_terms.append(u)
         potential = sum_of(U_terms) if _is_constant_vector(kin, load.field) else None
         return tuple(sum_of(terms) for terms in Q_terms), potential, "P* = Σ m g·V*(G); U = −Σ m g·OG + cste"
     if isinstance(load, PointForce):
@@ -97,13 +100,10 @@ def _q_of(kin: Kinematics, load: Load) -> tuple[tuple[se.Basic, ...], se.Basic |
                      if _is_constant_vector(kin, load.force) else None)
         return Q, potential, f"P* = F·V*({load.at})"
     if isinstance(load, Torque):
-        on = kin.partial_omegas(kin.model.body(load.on).frame)
-        if load.reaction_on is None:
-            other = (Vector.zero(),) * n
-        elif load.reaction_on in {b.name for b in kin.model.bodies}:
-            other = kin.partial_omegas(kin.model.body(load.reaction_on).frame)
-        else:
-            other = kin.partial_omegas(load.reaction_on)
+        # Each side is a body (its frame turns with it) or a frame itself (a massless link).
+        on = kin.partial_omegas(frame_of(kin, load.on))
+        other = ((Vector.zero(),) * n if load.reaction_on is None
+                 else kin.partial_omegas(frame_of(kin, load.reaction_on)))
         Q = tuple(kin.frames.dot(load.torque, a - b) for a, b in zip(on, other))
         return Q, None, "P* = C·Ω*"
     if isinstance(load, (Spring, Damper)):

@@ -41,14 +41,14 @@ from ..kinematics import Kinematics
 from ..model import CoulombFriction, Dissipation, JointDamper, Vector
 from ..model._vector import is_structural_zero
 
-__all__ = ["FRICTION_LOADS", "friction_q", "friction_efforts", "sliding_velocity", "friction_force",
+__all__ = ["FRICTION_LOADS", "frame_of", "friction_q", "friction_efforts", "sliding_velocity", "friction_force",
            "dissipation_function", "sliding_direction", "SlidingDirection"]
 
 #: The load types whose generalized forces are computed here.
 FRICTION_LOADS = (Dissipation, JointDamper, CoulombFriction)
 
 
-def _frame_of(kin: Kinematics, name: str) -> str:
+def frame_of(kin: Kinematics, name: str) -> str:
     """The frame of a body, or the frame itself."""
     bodies = {b.name: b.frame for b in kin.model.bodies}
     return bodies.get(name, name)
@@ -56,7 +56,7 @@ def _frame_of(kin: Kinematics, name: str) -> str:
 
 def _relative_rotation(kin: Kinematics, load: JointDamper) -> tuple[Vector, tuple[Vector, ...]]:
     """Ω(S2/S1) and its partial rates ∂Ω(S2/S1)/∂q̇_i."""
-    a, b = (_frame_of(kin, n) for n in load.bodies)
+    a, b = (frame_of(kin, n) for n in load.bodies)
     omega = kin.omega(b) - kin.omega(a)
     partials = tuple(wb - wa for wa, wb in zip(kin.partial_omegas(a), kin.partial_omegas(b)))
     return omega, partials

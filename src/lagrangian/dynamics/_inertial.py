@@ -37,9 +37,9 @@ from typing import TYPE_CHECKING
 import symengine as se
 
 from .._identity import are_zero
-from ..kinematics import FrameTree, Kinematics, TimeDerivative
+from ..kinematics import FrameTree, Kinematics, TimeDerivative, rotation_rate
 from ..model import Model, Point, Vector
-from ..model._vector import AXES, is_structural_zero, sum_of
+from ..model._vector import is_structural_zero, sum_of
 from ..model._reference import INERTIAL_LOAD_NAMES
 from ._energy import rigid_inertia
 from ._forces import LoadForces, _derives_from
@@ -50,7 +50,6 @@ if TYPE_CHECKING:  # pragma: no cover
 __all__ = ["RelativeFrameTree", "RelativeKinematics", "InertialTorsor", "reference_kinematics",
            "inertial_torsors", "inertial_forces", "rotating_frame"]
 
-_ZERO = se.Integer(0)
 CORIOLIS, ENTRAINMENT = INERTIAL_LOAD_NAMES
 Components = tuple[se.Basic, se.Basic, se.Basic]
 
@@ -82,9 +81,7 @@ class RelativeFrameTree(FrameTree):
                 value = Vector.zero()
             elif frame in self._below:
                 rot = f.rotation
-                comps = [_ZERO, _ZERO, _ZERO]
-                comps[AXES[rot.axis]] = self.d_dt(rot.angle, accelerations=False)  # type: ignore[union-attr]
-                own = Vector._trusted({frame: tuple(comps)})  # type: ignore[arg-type]
+                own = Vector._trusted({frame: rotation_rate(rot, self.d_dt(rot.angle, accelerations=False))})
                 parent = self.omega(f.parent)  # type: ignore[arg-type]
                 value = own if parent.is_zero() else parent + own
             else:

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 import symengine as se
 
+from .._identity import are_zero
 from ..errors import DerivationError
 from ..kinematics import Kinematics
 from ..model import Model
@@ -138,8 +139,23 @@ class EquationsOfMotion:
     @property
     def conservative(self) -> bool:
         """Remarque 2: every given effort derives from a potential and every constraint is perfect and
-        principal (a complementary constraint's reaction is a non-conservative effort of the seed's Q_i(nc))."""
-        return all(f.potential is not None for f in self.loads) and not self.constraints
+        principal — or complementary and scleronomic (`scleronomic`).
+
+        The engine's constraints are all perfect (ideal: their reactions do no virtual work, so
+        they enter as Σ_k λ_k A_ki).  A scleronomic complementary row (b_k ≡ 0, A_k free of t)
+        does no work along the motion either (λ_k A_k·q̇ = −λ_k b_k = 0), so the system keeps
+        its Lagrangian L = T − U_P, with d/dt(∂L/∂q̇_i) − ∂L/∂q_i = Σ_k λ_k A_ki (the constrained
+        form of Remarque 2; Goldstein, Classical Mechanics, §2.4).  A rheonomic row works on the
+        motion (power −λ_k b_k): the system is then not conservative.
+        """
+        return all(f.potential is not None for f in self.loads) and self.scleronomic
+
+    @property
+    def scleronomic(self) -> bool:
+        """Every complementary constraint row is independent of t: b_k ≡ 0 and no t in A_k (true without rows)."""
+        t = self.t
+        return all(t not in a.free_symbols for row in self.constraints for a in row.coefficients) and (
+            all(are_zero([row.b for row in self.constraints])))
 
     @property
     def L(self) -> se.Basic | None:

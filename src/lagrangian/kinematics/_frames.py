@@ -1,7 +1,9 @@
 """The frame tree: orientation of every frame, change of basis, and Ω(F/R0).
 
-Each frame comes from its parent by one elementary rotation of angle α about an
-axis e shared by both (R0 →(ψ, z0)→ R1 →(θ, u)→ R2 →(φ, z)→ R).  So
+Each frame comes from its parent by one rotation of angle α about an axis e shared by
+both: an elementary one (R0 →(ψ, z0)→ R1 →(θ, u)→ R2 →(φ, z)→ R), or one about a
+constant unit vector n of the parent (the Earth about cos λ y0 + sin λ z0), whose change
+of basis is Rodrigues' formula v ↦ cos α v + sin α n ∧ v + (1 − cos α)(n·v) n.  So
 
     Ω(F/R0) = Σ over the chain α̇_k e_k        (composition of rotation rates)
 
@@ -19,7 +21,7 @@ from ..model import GALILEAN_FRAME, Model, Vector
 from ..model._vector import AXES, is_structural_zero, sum_of
 from ._time import TimeDerivative
 
-__all__ = ["FrameTree"]
+__all__ = ["FrameTree", "rotation_rate"]
 
 Components = tuple[se.Basic, se.Basic, se.Basic]
 
@@ -48,6 +50,30 @@ def _turn(axis: int, c: se.Basic, s: se.Basic, v: Components) -> Components:
     return tuple(out)  # type: ignore[return-value]
 
 
+def _turn_about(n: Components, c: se.Basic, s: se.Basic, v: Components) -> Components:
+    """`_turn` about the unit vector ``n`` (the same components in child and parent): Rodrigues' formula.
+
+    R v = c v + s n ∧ v + (1 − c)(n·v) n, the rotation of angle α (cos α = c, sin α = s)
+    about n (e.g. Goldstein, Classical Mechanics, eq. 4.92).
+    """
+    if all(is_structural_zero(x) for x in v):
+        return v
+    n_v = sum_of([a * b for a, b in zip(n, v) if not is_structural_zero(a) and not is_structural_zero(b)])
+    turned = _cross(n, v)
+    along = (1 - c) * n_v
+    return tuple(sum_of([t for t in (c * x, s * w, along * a) if not is_structural_zero(t)])  # type: ignore[return-value]
+                 for x, w, a in zip(v, turned, n))
+
+
+def rotation_rate(rotation, rate: se.Basic) -> Components:  # type: ignore[no-untyped-def]
+    """Components of α̇ e in the child's basis, e the axis of ``rotation`` (a `Rotation`)."""
+    if rotation.elementary:
+        comps = [_ZERO, _ZERO, _ZERO]
+        comps[AXES[rotation.axis]] = rate
+        return tuple(comps)  # type: ignore[return-value]
+    return tuple(rate * a if not is_structural_zero(a) else _ZERO for a in rotation.direction)  # type: ignore[return-value]
+
+
 class FrameTree:
     """Orientation data of every frame of a model, with cached conversions."""
 
@@ -65,8 +91,11 @@ class FrameTree:
         return self.frames[frame].axes
 
     # -- change of basis -------------------------------------------------------------------
-    def _path_uncached(self, src: str, dst: str) -> tuple[tuple[int, se.Basic, se.Basic], ...]:
-        """Rotations (axis, cos angle, sin angle) that take components in ``src`` to components in ``dst``."""
+    def _path_uncached(self, src: str, dst: str) -> tuple[tuple[int | Components, se.Basic, se.Basic], ...]:
+        """Rotations (axis, cos angle, sin angle) that take components in ``src`` to components in ``dst``.
+
+        The axis is an index (x, y, z) or the components of a constant unit vector n.
+        """
         up, down = [], []
         a, b = src, dst
         while self._depth[a] > self._depth[b]:
@@ -80,14 +109,14 @@ class FrameTree:
             down.append(b)
             a = self.frames[a].parent  # type: ignore[assignment]
             b = self.frames[b].parent  # type: ignore[assignment]
-        steps: list[tuple[int, se.Basic]] = []
+        steps: list[tuple[int | Components, se.Basic]] = []
         for name in up:
             rot = self.frames[name].rotation
-            steps.append((AXES[rot.axis], rot.angle))  # type: ignore[union-attr]
+            steps.append((_axis_key(rot), rot.angle))  # type: ignore[union-attr]
         for name in reversed(down):
             rot = self.frames[name].rotation
-            steps.append((AXES[rot.axis], -rot.angle))  # type: ignore[union-attr]
-        merged: list[tuple[int, se.Basic]] = []
+            steps.append((_axis_key(rot), -rot.angle))  # type: ignore[union-attr]
+        merged: list[tuple[int | Components, se.Basic]] = []
         for axis, angle in steps:
             if merged and merged[-1][0] == axis:
                 merged[-1] = (axis, merged[-1][1] + angle)
@@ -104,7 +133,7 @@ class FrameTree:
         if path is None:
             path = self._paths[(src, dst)] = self._path_uncached(src, dst)
         for axis, c, s in path:
-            comps = _turn(axis, c, s, comps)
+            comps = _turn(axis, c, s, comps) if type(axis) is int else _turn_about(axis, c, s, comps)  # type: ignore[arg-type]
         return comps
 
     def express(self, v: Vector, frame: str) -> Components:
@@ -129,6 +158,8 @@ class FrameTree:
         for frame, comps in v:
             f = self.frames[frame]
             while f.parent is not None:
+                if not f.rotation.elementary:  # type: ignore[union-attr]
+                    break  # (a piece along a general axis n is rare: left where it is)
                 k = AXES[f.rotation.axis]  # type: ignore[union-attr]
                 if any(type(comps[i]) is not _ZERO_TYPE for i in range(3) if i != k):
                     break
@@ -185,9 +216,7 @@ class FrameTree:
             else:
                 rot = f.rotation
                 rate = self.d_dt(rot.angle, accelerations=False)  # type: ignore[union-attr]
-                comps = [_ZERO, _ZERO, _ZERO]
-                comps[AXES[rot.axis]] = rate  # type: ignore[union-attr]
-                own = Vector._trusted({frame: tuple(comps)})  # rate × (frame.axis)
+                own = Vector._trusted({frame: rotation_rate(rot, rate)})  # rate × (frame.axis)
                 parent = self.omega(f.parent)
                 self._omega[frame] = own if parent.is_zero() else parent + own
         return self._omega[frame]
@@ -211,6 +240,11 @@ class FrameTree:
             own = tuple(c if type(c) is _ZERO_TYPE else d_dt(c, accelerations=accelerations) for c in comps)
             _accumulate(out, frame, _add3(own, _cross(self.omega_in(frame, frame), comps)))  # type: ignore[arg-type]
         return Vector._trusted(out)
+
+
+def _axis_key(rotation) -> int | Components:  # type: ignore[no-untyped-def]
+    """The axis of a `Rotation` as `_turn` or `_turn_about` takes it: an index, or n's components."""
+    return AXES[rotation.axis] if rotation.elementary else rotation.direction
 
 
 def _accumulate(out: dict[str, Components], frame: str, comps: Components) -> None:

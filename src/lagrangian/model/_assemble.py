@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 import symengine as se
 
+from .._identity import are_zero
 from ..errors import ModelError
 from ._expr import CONSTANTS, FUNCTIONS, ExpressionError, parse_expression
 from ._limits import NotFinite, excerpt, real_value
@@ -24,6 +25,7 @@ from ._reference import check_reference
 from ._vector import Vector, as_expr
 from .spec import (
     GALILEAN_FRAME,
+    GENERAL_AXIS,
     ORIGIN,
     TIME,
     Body,
@@ -157,6 +159,7 @@ class Assembler:
         parameters = self.parameters()
         coordinates = self.coordinates()
         frames = self.frames()
+        self._frame_map = {f.name: f for f in frames}
         points = self.points()
         bodies = self.bodies(points)
         particles = self.particles(points)
@@ -340,23 +343,75 @@ class Assembler:
         else:
             raise self.error(raw, f"rotation of frame `{raw.name}` must be [angle, axis] or a list of such pairs, "
                              f"not `{rot}`", symbol=raw.name, key="rotation",
-                             fix='e.g. rotation = ["theta", "x"], or [["psi", "z"], ["theta", "x"]]')
+                             fix='e.g. rotation = ["theta", "x"], ["Omega*t", "cos(lat)*R0.y + sin(lat)*R0.z"], '
+                             'or [["psi", "z"], ["theta", "x"]]')
         self.check_axes(raw)
         axes = raw.data["axes"]
         frames = []
         parent = raw.data["parent"]
         for k, step in enumerate(steps):
             angle, axis = step
-            if axis not in ("x", "y", "z"):
-                raise self.error(raw, f"rotation axis `{axis}` of frame `{raw.name}` is not x, y or z",
-                                 symbol=str(axis), fix="rotate about the parent's x, y or z axis", key="rotation")
             angle_expr = self.expr(raw, "the rotation angle", angle, key="rotation")
+            rotation = (Rotation(angle_expr, axis) if axis in ("x", "y", "z")
+                        else self.axis_rotation(raw, angle_expr, axis, parent, first=k == 0))
             last = k == len(steps) - 1
             name = raw.name if last else f"_{raw.name}_{k + 1}"
             frame_axes = tuple(axes) if (last and axes) else default_axes(name)
-            frames.append(Frame(name, parent, Rotation(angle_expr, axis), frame_axes))  # type: ignore[arg-type]
+            frames.append(Frame(name, parent, rotation, frame_axes))  # type: ignore[arg-type]
             parent = name
         return frames
+
+    def axis_rotation(self, raw: Raw, angle: se.Basic, axis: Any, parent: str, *, first: bool) -> Rotation:
+        """A rotation about a constant vector n of the parent (``"cos(lat)*R0.y + sin(lat)*R0.z"``).
+
+        n must be written in the parent's basis, with parameters only (the axis is fixed in
+        both frames).  A unit n is kept as written — provably unit: |n|² − 1 ≡ 0, e.g.
+        cos²λ + sin²λ — ; any other non-zero n is replaced by n/|n| (``normalized``, which
+        the printed frames mention); the zero vector is refused.  A basis vector of the
+        parent gives the elementary rotation about that axis.
+        """
+        fix = (f'write the axis as a constant vector of the parent `{parent}`, e.g. '
+               f'"cos(lat)*{parent}.y + sin(lat)*{parent}.z", or one of x, y, z')
+        if not first:
+            raise self.error(raw, f"in the rotations of frame `{raw.name}`, only the first may turn about a vector "
+                             f"(`{axis}`): the frames between the rotations of a sequence have no name to write it in",
+                             symbol=raw.name, key="rotation",
+                             fix="declare the frame before that rotation under [frames], then this one from it")
+        if not isinstance(axis, (str, Vector)):
+            raise self.error(raw, f"rotation axis `{axis}` of frame `{raw.name}` is not x, y, z or a vector",
+                             symbol=str(axis), key="rotation", fix=fix)
+        vector = self.expr(raw, "the rotation axis", axis, vector=True, key="rotation")
+        others = [f for f in vector.frames if f != parent]
+        if others:
+            raise self.error(raw, f"the rotation axis of frame `{raw.name}` is written in `{others[0]}`, not in its "
+                             f"parent `{parent}`", symbol=others[0], key="rotation", fix=fix)
+        moving = sorted(str(x) for x in vector.free_symbols() if x not in self.constants)
+        if moving:
+            raise self.error(raw, f"the rotation axis of frame `{raw.name}` depends on `{moving[0]}`: an axis is a "
+                             "constant vector of the parent (and of the frame)", symbol=moving[0], key="rotation",
+                             fix=fix + "; a moving axis is a chain of rotations")
+        comps = vector.pieces.get(parent)
+        if comps is None:
+            raise self.error(raw, f"the rotation axis of frame `{raw.name}` is the zero vector", symbol=raw.name,
+                             key="rotation", fix=fix)
+        zero = se.Integer(0)
+        for letter, unit in zip("xyz", ((1, 0, 0), (0, 1, 0), (0, 0, 1))):
+            if all(c == u for c, u in zip(comps, unit)):
+                return Rotation(angle, letter)  # a basis vector: the elementary rotation
+        norm2 = se.expand(sum((c * c for c in comps), zero))
+        if are_zero([norm2 - 1])[0]:
+            return Rotation(angle, GENERAL_AXIS, comps)
+        known = {x: v for x, v in self.constants.items() if v is not None}
+        try:
+            size = real_value(norm2.subs(known)) if norm2.free_symbols <= set(known) else None
+        except NotFinite:
+            size = None
+        if are_zero([norm2])[0] or size == 0:
+            given = ", ".join(f"{x} = {known[x]:g}" for x in sorted(norm2.free_symbols, key=str))
+            raise self.error(raw, f"the rotation axis of frame `{raw.name}` is the zero vector"
+                             + (f" (with {given})" if given else ""), symbol=raw.name, key="rotation", fix=fix)
+        norm = se.sqrt(norm2)
+        return Rotation(angle, GENERAL_AXIS, tuple(c / norm for c in comps), normalized=True)  # type: ignore[arg-type]
 
     def points(self) -> list[Point]:
         raws = {r.name: r for r in self.of("point")}
@@ -405,7 +460,8 @@ class Assembler:
             if d["frame"] not in self.frame_names:
                 raise self.error(raw, f"body `{raw.name}` is attached to unknown frame `{d['frame']}`",
                                  symbol=str(d["frame"]), fix="declare the frame under [frames] first", key="frame")
-            mass = self.mass(raw, d["mass"])
+            given = d["mass"] is not None
+            mass = self.mass(raw, d["mass"]) if given else se.Integer(0)
             center = self._position(raw, d["center"], d["center_from"], "the centre of mass", "center", "center_from")
             inertia = self.inertia(raw, d["inertia"], d["frame"])
             fixed = d["fixed_point"]
@@ -413,9 +469,46 @@ class Assembler:
                 raise self.error(raw, f"fixed point `{fixed}` of body `{raw.name}` is not a declared point",
                                  symbol=str(fixed), fix="declare it under [points] (O is predeclared)",
                                  key="fixed_point")
-            out.append(Body(raw.name, d["frame"], mass, center, inertia, fixed))
+            if not given:
+                self.check_mass_not_needed(raw, center, inertia)
+            out.append(Body(raw.name, d["frame"], mass, center, inertia, fixed, mass_given=given))
             self._points.setdefault(raw.name, Point(raw.name, center))  # its centre, for later `from`
         return tuple(out)
+
+    def check_mass_not_needed(self, raw: Raw, center: Vector, inertia: Inertia) -> None:
+        """A body may leave its mass out only where the mass cannot enter the equations.
+
+        That is when its centre G is fixed in R0 (OG holds no coordinate, rate or t, and is
+        written in frames that do not turn): T = ½ Ω·Π_G·Ω (Koenig, V(G) = 0) and any force
+        at G, its weight included, has no virtual power (V*(G) = 0).  The inertia must then
+        be given at G (or at a point that is G), since moving it there needs m (Huygens), and
+        the equations written in R0, since inertial forces would need m too.
+        """
+        fix = f'give it its mass, e.g. mass = "M" under [bodies.{raw.name}]'
+
+        def moving(symbols: set) -> list[str]:  # type: ignore[type-arg]
+            return sorted(str(x) for x in symbols if x not in self.constants)
+
+        why = moving(center.free_symbols())
+        for name in center.frames:
+            frame = self._frame_map[name]
+            while frame.rotation is not None and not why:
+                why = moving(frame.rotation.angle.free_symbols)
+                frame = self._frame_map[frame.parent]  # type: ignore[index]
+        if why:
+            raise self.error(raw, f"body `{raw.name}` has no `mass`, but its centre of mass moves (with `{why[0]}`): "
+                             "its mass enters T and the work of its weight", symbol=raw.name,
+                             fix=fix + "; only a body whose centre of mass is fixed may leave it out")
+        if inertia.at != "G":
+            offset = self._points[inertia.at].position - center
+            if any(se.expand(c) != 0 for _, comps in offset for c in comps):
+                raise self.error(raw, f"body `{raw.name}` has no `mass`, but its inertia is given at `{inertia.at}`, "
+                                 "not at its centre of mass: moving it there needs the mass (Huygens)",
+                                 symbol=raw.name, key="inertia", fix=fix + ', or give the inertia at = "G"')
+        reference = self.b._reference
+        if reference is not None and (reference[0], reference[1]) != (GALILEAN_FRAME, ORIGIN):
+            raise self.error(raw, f"body `{raw.name}` has no `mass`, but the equations are written in `{reference[0]}`, "
+                             "whose inertial forces on the body need it", symbol=raw.name, fix=fix)
 
     def mass(self, raw: Raw, value: Any) -> se.Basic:
         """The mass of a body or particle: constant (parameters only) and positive where its value is known.
@@ -548,10 +641,13 @@ class Assembler:
                 out.append(PointForce(raw.name, self.expr(raw, "the force", d["force"], vector=True, key="force"),
                                       need_point(raw, d["at"], "at")))
             elif kind == "torque":
+                # A couple acts on a body or on a frame (a massless link: its virtual power is
+                # C·Ω*(frame), the same with or without a body attached to it).
                 for key, n in (("on", d["on"]), ("reaction_on", d["reaction_on"])):
-                    if n is not None and n not in body_names and not (key == "reaction_on" and n in self.frame_names):
-                        raise self.error(raw, f"torque `{raw.name}` acts on unknown body `{n}`", symbol=str(n),
-                                         fix="name a declared body", key=key)
+                    if n is not None and n not in body_names and n not in self.frame_names:
+                        raise self.error(raw, f"torque `{raw.name}` acts on unknown body or frame `{n}`",
+                                         symbol=str(n), key=key,
+                                         fix="name a declared body, or a frame (a massless link; R0 for the ground)")
                 out.append(Torque(raw.name, self.expr(raw, "the torque", d["torque"], vector=True, key="torque"),
                                   d["on"], d["reaction_on"]))
             elif kind in ("spring", "damper"):
@@ -620,7 +716,7 @@ class Assembler:
             elif isinstance(load, PointForce):
                 referenced |= set(load.force.pieces)
             elif isinstance(load, Torque):
-                referenced |= set(load.torque.pieces) | {load.reaction_on or GALILEAN_FRAME}
+                referenced |= set(load.torque.pieces) | {load.on, load.reaction_on or GALILEAN_FRAME}
         parents = {f.name: f for f in model.frames}
         for name in referenced:
             frame = parents.get(name)
@@ -638,6 +734,7 @@ class Assembler:
 
 
 def _is_single_rotation(rot: Any) -> bool:
+    # [angle, axis]: the axis is a letter, a vector written as text, or a `Vector`.
     return (isinstance(rot, Sequence) and not isinstance(rot, str) and len(rot) == 2
-            and isinstance(rot[1], str))
+            and isinstance(rot[1], (str, Vector)))
 

@@ -252,11 +252,11 @@ class _Reader:
         for name, value in self.table("bodies").items():
             v = self.entry("bodies", name, value,
                            {"frame", "mass", "center", "center_from", "inertia", "fixed_point"}, "frame")
-            for key in ("frame", "mass", "center"):
+            for key in ("frame", "center"):  # `mass` may be left out where it cannot enter (`Assembler.bodies`)
                 if key not in v:
                     raise self.fail(("bodies", name), f"body `{name}` has no `{key}`", symbol=name,
                                     fix=f"add `{key} = ...` to [bodies.{name}]")
-            b.body(name, frame=v["frame"], mass=v["mass"], center=v["center"], center_from=v.get("center_from", "O"),
+            b.body(name, frame=v["frame"], mass=v.get("mass"), center=v["center"], center_from=v.get("center_from", "O"),
                    inertia=v.get("inertia"), fixed_point=v.get("fixed_point"),
                    location=self.located("bodies", name, value, "frame"))
         for name, value in self.table("particles").items():
@@ -326,7 +326,7 @@ class _Reader:
             b.force(name, value["force"], at=value["at"], location=where)
         elif kind == "torque":
             if "on" not in value:
-                raise self.fail(("loads", name), f"torque `{name}` does not say which body it acts on",
+                raise self.fail(("loads", name), f"torque `{name}` does not say which body or frame it acts on",
                                 symbol=name, fix='add on = "S"')
             b.torque(name, value["torque"], on=value["on"], reaction_on=value.get("reaction_on"), location=where)
         elif kind == "spring":

@@ -75,12 +75,15 @@ class ModelBuilder:
                   unit=unit, description=description)
 
     def frame(self, name: str, parent: str | None = GALILEAN_FRAME, *,
-              rotation: tuple[Any, str] | Sequence[tuple[Any, str]] | None = None,
+              rotation: tuple[Any, Any] | Sequence[tuple[Any, Any]] | None = None,
               axes: Sequence[str] | None = None, location: Location | None = None) -> None:
         """Declare a frame obtained from ``parent`` by one rotation ``(angle, axis)`` or a sequence of them.
 
         Each rotation is about the axis (``"x"``, ``"y"`` or ``"z"``) of the frame before it,
-        as in the seed: R0 →(ψ, z0)→ R1 →(θ, u)→ R2 →(φ, z)→ R.
+        as in the seed: R0 →(ψ, z0)→ R1 →(θ, u)→ R2 →(φ, z)→ R.  A single rotation (or the
+        first of a sequence) may instead turn about a constant vector of ``parent``, e.g.
+        ``("Omega*t", "cos(lat)*R0.y + sin(lat)*R0.z")``: kept when provably unit, else
+        divided by its norm (the printed frames say so); the zero vector is refused.
         """
         self._add("frame", name, location, parent=parent, rotation=rotation, axes=axes)
 
@@ -89,12 +92,14 @@ class ModelBuilder:
         """Declare a point by its position vector from ``relative_to`` (default O)."""
         self._add("point", name, location, position=position, relative_to=relative_to)
 
-    def body(self, name: str, *, frame: str, mass: Any, center: Any, inertia: Mapping[str, Any] | None,
+    def body(self, name: str, *, frame: str, mass: Any = None, center: Any, inertia: Mapping[str, Any] | None,
              center_from: str = ORIGIN, fixed_point: str | None = None, location: Location | None = None) -> None:
         """Declare a rigid body fixed to ``frame``.
 
         ``inertia`` is ``{"at": point or "G", "frame": name, "diagonal": [I1, I2, I3]}`` or
-        with ``"matrix": [[...], [...], [...]]`` instead of ``"diagonal"``.
+        with ``"matrix": [[...], [...], [...]]`` instead of ``"diagonal"``.  ``mass`` may be
+        left out (None) for a body whose centre of mass G is fixed (a pulley on a fixed axle):
+        it then enters neither T nor the generalized forces; the reactions ask for it.
         """
         self._add("body", name, location, frame=frame, mass=mass, center=center, center_from=center_from,
                   inertia=inertia, fixed_point=fixed_point)
@@ -114,7 +119,7 @@ class ModelBuilder:
 
     def torque(self, name: str, torque: Any, *, on: str, reaction_on: str | None = None,
                location: Location | None = None) -> None:
-        """A couple C⃗ on body ``on``; −C⃗ on ``reaction_on`` when given."""
+        """A couple C⃗ on ``on``, a body or a frame (a massless link); −C⃗ on ``reaction_on`` (body or frame) when given."""
         self._add("load", name, location, kind="torque", torque=torque, on=on, reaction_on=reaction_on)
 
     def spring(self, name: str, ends: Sequence[str], *, stiffness: Any, rest_length: Any = 0,

@@ -19,6 +19,7 @@ from ._vector import Vector
 
 __all__ = [
     "GALILEAN_FRAME",
+    "GENERAL_AXIS",
     "ORIGIN",
     "TIME",
     "Location",
@@ -134,19 +135,45 @@ class Coordinate:
         return se.Symbol(self.name + "_ddot")
 
 
+#: The axis letter of a rotation about a constant unit vector n (`Rotation.direction`).
+GENERAL_AXIS = "n"
+
+
 @dataclass(frozen=True, slots=True)
 class Rotation:
-    """An elementary rotation of ``angle`` about the parent frame's ``axis`` (x, y or z).
+    """A rotation of ``angle`` about the parent frame's ``axis`` (x, y or z), or about a constant axis n.
 
-    The child frame shares that axis with its parent, as in R0 →(ψ, z0)→ R1.
+    The child frame shares that axis with its parent, as in R0 →(ψ, z0)→ R1.  With
+    ``axis = "n"`` the axis is the constant unit vector ``direction`` = (n_x, n_y, n_z),
+    its components in the parent's basis — which are also its components in the child's,
+    the axis being common to both (the Earth turning about cos λ y0 + sin λ z0).  The
+    change of basis is then Rodrigues' formula, v ↦ cos α v + sin α n ∧ v + (1 − cos α)(n·v) n.
+    ``normalized`` records that the engine divided the given vector by its norm.
     """
 
     angle: se.Basic
     axis: str
+    direction: tuple[se.Basic, se.Basic, se.Basic] | None = None
+    normalized: bool = False
 
     def __post_init__(self) -> None:
-        if self.axis not in ("x", "y", "z"):
-            raise ValueError(f"rotation axis must be x, y or z, not {self.axis!r}")
+        if self.axis not in ("x", "y", "z", GENERAL_AXIS):
+            raise ValueError(f"rotation axis must be x, y, z or n, not {self.axis!r}")
+        if (self.axis == GENERAL_AXIS) != (self.direction is not None):
+            raise ValueError("a rotation about n needs its direction, and only it has one")
+
+    @property
+    def elementary(self) -> bool:
+        """True for a rotation about the parent's x, y or z."""
+        return self.axis != GENERAL_AXIS
+
+    @property
+    def unit_vector(self) -> tuple[se.Basic, se.Basic, se.Basic]:
+        """The components of the rotation axis (unit) in the parent's (and the child's) basis."""
+        if self.direction is not None:
+            return self.direction
+        one, zero = se.Integer(1), se.Integer(0)
+        return tuple(one if a == self.axis else zero for a in "xyz")  # type: ignore[return-value]
 
 
 @dataclass(frozen=True, slots=True)
@@ -187,7 +214,13 @@ class Inertia:
 
 @dataclass(frozen=True, slots=True)
 class Body:
-    """A rigid body S attached to ``frame``, with mass m, centre of mass G (OG) and inertia."""
+    """A rigid body S attached to ``frame``, with mass m, centre of mass G (OG) and inertia.
+
+    ``mass_given`` is False for a body whose G is fixed and whose mass the model leaves out
+    (a pulley on a fixed axle): ``mass`` is then 0, exact for everything the Lagrange
+    equations use — T = ½ Ω·Π_G·Ω and m g·∂OG/∂q_i = 0 whatever m — while the reactions,
+    which need it, refuse to be computed (`lagrangian.analysis.reactions`).
+    """
 
     name: str
     frame: str
@@ -195,6 +228,7 @@ class Body:
     center: Vector
     inertia: Inertia
     fixed_point: str | None = None
+    mass_given: bool = True
 
 
 @dataclass(frozen=True, slots=True)
@@ -227,7 +261,7 @@ class PointForce:
 
 @dataclass(frozen=True, slots=True)
 class Torque:
-    """A couple C⃗ on body ``on``; with ``reaction_on``, −C⃗ acts on that body (or frame)."""
+    """A couple C⃗ on ``on`` (a body, or a frame: a massless link); with ``reaction_on``, −C⃗ acts on that body or frame."""
 
     name: str
     torque: Vector

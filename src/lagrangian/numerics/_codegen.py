@@ -25,7 +25,7 @@ from ..dynamics import EquationsOfMotion
 from ..errors import DerivationError
 from ._cprint import c_block
 
-__all__ = ["GeneratedSource", "generate_c", "monitor_expressions"]
+__all__ = ["GeneratedSource", "MassForcesForm", "generate_c", "mass_forces_form", "monitor_expressions"]
 
 
 @dataclass(frozen=True)
@@ -202,6 +202,46 @@ def _shared_bias(eom: EquationsOfMotion) -> tuple[list[tuple[se.Symbol, se.Basic
     return shared, F
 
 
+@dataclass(frozen=True)
+class MassForcesForm:
+    """M and F as the C code evaluates them: exact rewritings that make them cheaper.
+
+    Attributes (expressions over the model's own symbols, plus the names below)
+    ----------
+    shared : (symbol, expression) of each body's γ⁰(G) and dσ⁰/dt components (`_shared_bias`),
+        to be computed first; M and F refer to the symbols.
+    M : the n*n entries row by row, grouped by their function of q (`collect_by_state`).
+    F : Q − Γ⁰, written with ``shared``.
+    constants : (``_k<j>``, expression of the parameters only) lifted out of all the above
+        (`_Hoist`): computed once per parameter set, not per state.
+
+    Every sin/cos of a sum of coordinates is expanded (`expand_angle_sums`).
+    """
+
+    shared: tuple[tuple[se.Symbol, se.Basic], ...]
+    M: tuple[se.Basic, ...]
+    F: tuple[se.Basic, ...]
+    constants: tuple[tuple[se.Symbol, se.Basic], ...]
+
+
+def mass_forces_form(eom: EquationsOfMotion) -> MassForcesForm:
+    """The package's C form of M and F (`MassForcesForm`): the in-package library and ``export --to c``."""
+    n = len(eom.q)
+    state = (*eom.q, *eom.qd)
+    # M's entries are sums over bodies of one function of q each: collect them.  F keeps
+    # the nested form of the derivation, which shares more than its expansion would.
+    M_flat = [_smaller(e, collect_by_state([se.expand(e)], state)[0])
+              for e in [eom.M[i][j] for i in range(n) for j in range(n)]]
+    shared, F = _shared_bias(eom)
+    flat = expand_angle_sums(M_flat + list(F) + [e for _, e in shared], eom.q)
+    hoist = _Hoist([se.Symbol(p.name) for p in eom.model.parameters])
+    flat = [hoist(e) for e in flat]
+    return MassForcesForm(
+        shared=tuple((sym, e) for (sym, _), e in zip(shared, flat[n * n + n:])),
+        M=tuple(flat[: n * n]), F=tuple(flat[n * n: n * n + n]),
+        constants=tuple((sym, expr) for expr, sym in hoist.constants.items()))
+
+
 def _coefficients() -> dict[str, str]:
     """DOP853's tableau as C initialisers, from SciPy's own coefficient module."""
     from scipy.integrate._ivp import dop853_coefficients as c
@@ -279,26 +319,17 @@ def generate_c(
         decls.append("    (void)t; (void)y; (void)p;")
         return signature + " {\n" + "\n".join([*decls, *body]) + "\n}\n"
 
-    state = (*eom.q, *eom.qd)
-    # M's entries are sums over bodies of one function of q each: collect them.  F keeps
-    # the nested form of the derivation, which shares more than its expansion would.
-    M_flat = [_smaller(e, collect_by_state([se.expand(e)], state)[0])
-              for e in [eom.M[i][j] for i in range(n) for j in range(n)]]
-    shared, F = _shared_bias(eom)
-    for k, (sym, _) in enumerate(shared):
+    form = mass_forces_form(eom)
+    for k, (sym, _) in enumerate(form.shared):
         private[sym] = se.Symbol(f"_s{k}")
-    names = {sym: str(sym) for sym in private.values()}
-    flat = expand_angle_sums(M_flat + list(F) + [e for _, e in shared], eom.q)
-    hoist = _Hoist([se.Symbol(name) for name in params])
-    flat = [hoist(e) for e in flat]
-    for k, (expr, sym) in enumerate(hoist.constants.items()):
+    for k, (sym, _) in enumerate(form.constants):
         private[sym] = sym
         header[str(sym)] = f"p[{len(params) + k}]"
     names = {sym: str(sym) for sym in private.values()}
-    M_out = [(f"M[{k}]", e) for k, e in enumerate(flat[: n * n])]
-    F_out = [(f"F[{i}]", e) for i, e in enumerate(flat[n * n: n * n + n])]
-    S_out = [(f"const double _s{k}", e) for k, e in enumerate(flat[n * n + n:])]
-    constants = [(f"k[{j}]", expr) for j, expr in enumerate(hoist.constants)]
+    M_out = [(f"M[{k}]", e) for k, e in enumerate(form.M)]
+    F_out = [(f"F[{i}]", e) for i, e in enumerate(form.F)]
+    S_out = [(f"const double _s{k}", e) for k, (_, e) in enumerate(form.shared)]
+    constants = [(f"k[{j}]", expr) for j, (_, expr) in enumerate(form.constants)]
     monitors = monitor_expressions(eom, integrals)
     zero = se.Integer(0)
     rates_zero = {s: zero for s in eom.qd}

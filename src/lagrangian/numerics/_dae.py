@@ -49,6 +49,7 @@ from ._codegen_dae import generate_dae_c
 from ._compile import compile_library, compiler
 from ._projection import check_initial, project, project_many
 from ._progress import progress_bar
+from ._system import known_values, unused_parameters
 from ._trajectory import Event, Trajectory, conservation
 
 __all__ = ["ConstrainedSystem", "simulate_dae", "constrained_source", "STABILIZATIONS", "reaction_columns"]
@@ -123,6 +124,11 @@ class ConstrainedSystem:
         self.monitors = tuple(name for name, _ in monitor_items)
         reaction_items = reaction_columns(eom)
         self.reactions = tuple(name for name, _ in reaction_items)
+        rows = eom.constraints
+        self._unused = unused_parameters(self.parameters, [
+            *(e for row in eom.M for e in row), *eom.F, *(a for r in rows for a in r.coefficients),
+            *(r.b for r in rows), *(r.bias for r in rows), *(e for _, e in monitor_items),
+            *(e for _, e in reaction_items)])
         if backend == "auto":
             backend = "c" if compiler() is not None else "symengine"
         self.backend = backend
@@ -153,6 +159,9 @@ class ConstrainedSystem:
         out = np.empty(len(self.parameters))
         for k, name in enumerate(self.parameters):
             value = values.get(name, model_values[name])
+            if value is None and name in self._unused:
+                out[k] = np.nan  # nothing computed reads it (`_system.unused_parameters`)
+                continue
             if value is None:
                 raise SimulationError(f"The parameter `{name}` has no value, so the motion cannot be computed.",
                                       fix=f"give it one in the model file (`{name} = {{ value = ... }}`) or with "
@@ -501,7 +510,7 @@ def _trajectory(system: ConstrainedSystem, p, t, Y, stab, evs, method, stabiliza
     label = EXPLICIT.get(method, method).lower() if method in EXPLICIT else method
     return Trajectory(
         model_name=system.eom.model.name, coordinates=tuple(system.coordinates),
-        parameters=dict(zip(system.parameters, map(float, p))),
+        parameters=known_values(system.parameters, p),
         t=np.asarray(t, dtype=float), q=Y[:, :n].copy(), qd=Y[:, n:].copy(), qdd=dY[:, n:].copy(),
         monitors=monitors, integrals=tuple(system.integrals), drift=drift,
         method=f"{label} + {stabilization}", steps=steps, rhs_calls=nfev, tolerance=tolerance, warnings=warnings,

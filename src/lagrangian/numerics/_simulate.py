@@ -39,7 +39,7 @@ from ..model._expr import ExpressionError, parse_expression
 from ..model.spec import Model
 from ._dae import BAUMGARTE, ConstrainedSystem, constrained_source, simulate_dae
 from ._progress import Reporter, Watch, make_reporter
-from ._system import CompiledSystem, _ptr
+from ._system import CompiledSystem, _ptr, known_values
 from ._trajectory import Event, Trajectory, conservation
 
 __all__ = ["simulate", "EventSpec", "initial_state", "METHODS", "default_tolerance"]
@@ -604,7 +604,7 @@ def _trajectory(system, p, t, Y, evs, method, steps, nfev, tolerance, status, co
     return Trajectory(
         model_name=system.eom.model.name,
         coordinates=tuple(system.coordinates),
-        parameters=dict(zip(system.parameters, map(float, p))),
+        parameters=known_values(system.parameters, p),
         t=np.asarray(t, dtype=float), q=Y[:, :n].copy(), qd=Y[:, n:].copy(), qdd=qdd,
         monitors=monitors, integrals=tuple(system.integrals), drift=drift, method=method, steps=steps,
         rhs_calls=nfev, tolerance=tolerance, warnings=warnings, events=events, status=status,

@@ -26,7 +26,25 @@ from ._codegen import generate_c, monitor_expressions
 from ._compile import compile_library, compiler
 from ._fastcall import rhs_caller
 
-__all__ = ["CompiledSystem", "compile_system"]
+__all__ = ["CompiledSystem", "compile_system", "unused_parameters", "known_values"]
+
+
+def unused_parameters(parameters: Sequence[str], expressions: Sequence[se.Basic]) -> frozenset[str]:
+    """The names among ``parameters`` that no expression of ``expressions`` holds.
+
+    Such a parameter needs no value to compute the motion (the mass of a pulley turning about
+    its fixed centre: it enters neither M, F nor the first integrals); `parameter_vector`
+    then gives it NaN, which nothing reads, rather than refusing the run.
+    """
+    used: set[se.Basic] = set()
+    for e in expressions:
+        used |= e.free_symbols
+    return frozenset(name for name in parameters if se.Symbol(name) not in used)
+
+
+def known_values(parameters: Sequence[str], p: np.ndarray) -> dict[str, float]:
+    """The values of ``p`` by name, leaving out the NaN of unused parameters without a value."""
+    return {name: float(v) for name, v in zip(parameters, p) if not np.isnan(v)}
 
 _P = ctypes.c_void_p
 _SIGNATURES = {
@@ -68,6 +86,7 @@ class CompiledSystem:
         self.first_integrals = tuple(first_integrals(eom) if integrals is None else integrals)
         self.integrals = tuple(fi.name for fi in self.first_integrals)
         self.parameters = tuple(p.name for p in eom.model.parameters)
+        self._unused: frozenset[str] | None = None  # see `unused_parameters`
         self._events = tuple(events)
         self.events = tuple(name for name, _ in self._events)
         self.monitors = tuple(name for name, _ in monitor_expressions(eom, self.first_integrals))
@@ -118,6 +137,9 @@ class CompiledSystem:
         out = np.empty(len(self.parameters))
         for k, name in enumerate(self.parameters):
             value = values.get(name, model_values[name])
+            if value is None and name in self.unused_parameters:
+                out[k] = np.nan  # nothing computed reads it
+                continue
             if value is None:
                 raise SimulationError(
                     f"The parameter `{name}` has no value, so the motion cannot be computed.",
@@ -135,6 +157,15 @@ class CompiledSystem:
             self._lib.lg_constants(_ptr(extended), _ptr(extended[len(out):]))
             return extended
         return out
+
+    @property
+    def unused_parameters(self) -> frozenset[str]:
+        """Parameters that M, F, the monitors and the events do not hold (they need no value)."""
+        if self._unused is None:
+            exprs = [e for row in self.eom.M for e in row] + list(self.eom.F)
+            exprs += [e for _, e in monitor_expressions(self.eom, self.first_integrals)] + [e for _, e in self._events]
+            self._unused = unused_parameters(self.parameters, exprs)
+        return self._unused
 
     # -- evaluators (single state or batch) ---------------------------------------------
     @staticmethod

@@ -141,11 +141,13 @@ class FrameStep:
     name: str
     parent: str
     angle: sympy.Basic
-    axis: str  # display name of the rotation axis (shared by parent and child)
+    axis: str  # display name of the rotation axis (shared by parent and child); "n" for a vector axis
     axes: tuple[str, str, str]
     omega_chain: VectorRow  # Ω(F/R0) as the sum of rotation rates
     omega_components: VectorRow | None  # Ω(F/R0) in the basis where a body's inertia is given
     components_frame: str | None
+    axis_vector: VectorRow | None = None  # the axis n in the parent's basis, when not x, y or z
+    normalized: bool = False  # n is the given vector divided by its norm
 
 
 @dataclass(frozen=True, slots=True)
@@ -280,13 +282,17 @@ def course_form(eom: EquationsOfMotion, integrals: tuple[FirstIntegral, ...], *,
         if f.parent is None or f.name.startswith("_"):
             continue
         rot = f.rotation
-        axis_name = f.axes["xyz".index(rot.axis)]  # type: ignore[union-attr]
+        if rot.elementary:  # type: ignore[union-attr]
+            axis_name, axis_vector = f.axes["xyz".index(rot.axis)], None  # type: ignore[union-attr]
+        else:  # about a constant vector n of the parent
+            axis_name, axis_vector = rot.axis, _vector_row(eom, Vector({f.parent: rot.direction}), convert)  # type: ignore
         basis = inertia_frame.get(f.name)
         comps = None
         if basis is not None:
             comps = _vector_row(eom, Vector({basis: kin.frames.omega_in(f.name, basis)}), convert)
         frames.append(FrameStep(f.name, f.parent, convert(rot.angle), axis_name, f.axes,  # type: ignore[union-attr]
-                                _vector_row(eom, kin.omega(f.name), convert), comps, basis))
+                                _vector_row(eom, kin.omega(f.name), convert), comps, basis, axis_vector,
+                                rot.normalized))  # type: ignore[union-attr]
     T_rows = tuple(EnergyRow(t.name, t.formula, convert(t.expression)) for t in eom.T_terms)
     U_rows = tuple(EnergyRow(f.name, f.kind, convert(f.potential)) for f in eom.loads if f.potential is not None)
     loads = tuple(LoadRow(f.name, f.kind, f.potential is not None,

@@ -13,10 +13,16 @@ M and F, rewritten only by exact identities (M's terms grouped, angle sums expan
 `numerics._codegen`), each function's common subexpressions shared (SymEngine's ``cse``); q̈
 is solved from M q̈ = F (never M⁻¹ formed symbolically).
 
-What is not exported: a model with complementary constraints (M q̈ = F + Aᵀλ, A q̈ + c = 0
-is a differential-algebraic system) or with an exact Coulomb contact (stick/slip needs
-the event machinery of `lagrangian.simulate`) is refused with an `ExportError` rather than
-exported as an ``rhs`` that would silently drop the multipliers or the sticking phase.
+The C export also carries the first integrals (`lagrangian.first_integrals`) and, for a model
+with complementary constraints, their rows A q̇ + b = 0, A q̈ + c = 0 and the augmented solve
+of M q̈ = F + Aᵀλ for q̈ and λ; its M and F are the in-package library's form
+(`numerics._codegen.mass_forces_form`: each body's bias shared, parameter-only coefficients
+computed once per parameter set).
+
+What is not exported: the other targets refuse a model with complementary constraints (their
+``rhs`` solves M q̈ = F only and would silently drop the multipliers), and every target
+refuses a model with an exact Coulomb contact (stick/slip needs the event machinery of
+`lagrangian.simulate`): an `ExportError` names the fix.
 
 The directory is written atomically: the files are built in a temporary sibling
 directory that is then renamed into place, so a failure leaves nothing half-written.
@@ -39,7 +45,7 @@ from ..dynamics import EquationsOfMotion
 from ..errors import ExportError, OutputError
 from ..model.spec import CoulombFriction
 from ..numerics._codegen import _smaller as smaller
-from ..numerics._codegen import collect_by_state, expand_angle_sums
+from ..numerics._codegen import MassForcesForm, collect_by_state, expand_angle_sums, mass_forces_form
 
 __all__ = ["EXPORT_TARGETS", "ExportedSymbols", "check_target", "export", "export_files", "model_identifier"]
 
@@ -71,10 +77,30 @@ class ExportedSymbols:
     y: tuple[se.Symbol, ...]
     p: tuple[se.Symbol, ...]
     t: se.Symbol
+    # The C target's extras (empty for the others): the first integrals (name, expression),
+    # the complementary rows, and M, F in the in-package form, all over the private symbols.
+    integrals: tuple[tuple[str, se.Basic], ...] = ()
+    rows: tuple[ExportedRow, ...] = ()
+    fast: MassForcesForm | None = None
 
     @property
     def n(self) -> int:
         return len(self.coordinates)
+
+
+@dataclass(frozen=True)
+class ExportedRow:
+    """One complementary constraint row over the private symbols (`dynamics.ConstraintRow`):
+    A q̇ + b = 0 along a motion, A q̈ + c = 0 its derivative, f(q, t) = 0 for a holonomic row
+    (``f`` = 0 for a nonholonomic one)."""
+
+    name: str
+    kind: str
+    multiplier: str
+    A: tuple[se.Basic, ...]
+    b: se.Basic
+    c: se.Basic
+    f: se.Basic
 
 
 def cse_lines(targets: Sequence[str], exprs: Sequence[se.Basic], printer: Any, local: str,
@@ -106,15 +132,15 @@ def model_identifier(name: str) -> str:
     return ident if not ident[0].isdigit() else "m_" + ident
 
 
-def validate_exportable(eom: EquationsOfMotion) -> None:
-    """Refuse what the exported ``rhs`` could not express (module docstring)."""
-    if eom.constraints:
+def validate_exportable(eom: EquationsOfMotion, target: str = "numpy") -> None:
+    """Refuse what the exported ``rhs`` of ``target`` could not express (module docstring)."""
+    if eom.constraints and target != "c":
         raise ExportError(
             f"`{eom.model.name}` has {len(eom.constraints)} complementary constraint row(s) "
-            f"({', '.join(f'`{row.multiplier}`' for row in eom.constraints)}); an exported rhs would drop "
-            "their multipliers, so neither M and F nor rhs is exported.",
-            fix="describe the motion with independent coordinates (no [constraints]) to export it, or simulate "
-                "it in the package with `lagrangian simulate`")
+            f"({', '.join(f'`{row.multiplier}`' for row in eom.constraints)}); the `{target}` export's rhs "
+            "would drop their multipliers, so neither M and F nor rhs is exported.",
+            fix="export it with `--to c` (which solves for the multipliers), describe the motion with "
+                "independent coordinates (no [constraints]), or simulate it with `lagrangian simulate`")
     exact = [load.name for load in eom.model.loads if isinstance(load, CoulombFriction) and load.exact]
     if exact:
         raise ExportError(
@@ -123,9 +149,10 @@ def validate_exportable(eom: EquationsOfMotion) -> None:
             fix=f"give `{exact[0]}` a positive regularization (e.g. 1e-3) to export the smooth model")
 
 
-def exported_symbols(eom: EquationsOfMotion) -> ExportedSymbols:
-    """M and F over private symbols (`ExportedSymbols`), checked for stray symbols."""
-    validate_exportable(eom)
+def exported_symbols(eom: EquationsOfMotion, target: str = "numpy") -> ExportedSymbols:
+    """M and F over private symbols (`ExportedSymbols`), checked for stray symbols; for
+    ``target`` ``"c"``, also the first integrals, the constraint rows and the in-package form."""
+    validate_exportable(eom, target)
     n = len(eom.q)
     params = tuple(p.name for p in eom.model.parameters)
     values = eom.model.parameter_values
@@ -153,11 +180,42 @@ def exported_symbols(eom: EquationsOfMotion) -> ExportedSymbols:
     flat = expand_angle_sums(M + F, list(y[:n]))
     M, F = flat[: n * n], flat[n * n:]
     coords = eom.coordinates
+    extras: dict[str, Any] = {}
+    if target == "c":
+        extras = _c_extras(eom, private, rename)
     return ExportedSymbols(
         name=_comment_safe(eom.model.name), identifier=model_identifier(eom.model.name), version=_version(),
         coordinates=coords, state=(*coords, *(c + "_dot" for c in coords)), parameters=params,
         defaults=tuple(None if values[k] is None else float(values[k]) for k in params),  # type: ignore[arg-type]
-        M=tuple(M), F=tuple(F), y=y, p=p, t=t)
+        M=tuple(M), F=tuple(F), y=y, p=p, t=t, **extras)
+
+
+def _c_extras(eom: EquationsOfMotion, private: dict[se.Basic, se.Basic],
+              rename: Callable[[se.Basic, str], se.Basic]) -> dict[str, Any]:
+    """The C target's first integrals, constraint rows and M, F in the in-package form."""
+    from ..analysis import first_integrals  # analysis precedes output; imported when exporting C only
+
+    integrals = tuple((fi.name, rename(fi.expression, f"the first integral `{fi.name}`"))
+                      for fi in first_integrals(eom))
+    rows = tuple(ExportedRow(
+        name=row.name, kind=row.kind, multiplier=str(row.multiplier),
+        A=tuple(rename(a, f"the constraint row `{row.name}`") for a in row.coefficients),
+        b=rename(row.b, f"the constraint row `{row.name}`"), c=rename(row.bias, f"the constraint row `{row.name}`"),
+        f=rename(row.expression, f"the constraint `{row.name}`") if row.kind == "holonomic" else se.Integer(0))
+        for row in eom.constraints)
+    form = mass_forces_form(eom)
+    # The shared components become `_s<k>`, the hoisted constants keep their `_k<j>` names.
+    local = dict(private)
+    local.update({sym: se.Symbol(f"_s{k}") for k, (sym, _) in enumerate(form.shared)})
+    local.update({sym: sym for sym, _ in form.constants})
+
+    def own(expr: se.Basic) -> se.Basic:
+        return expr.xreplace(local)
+
+    fast = MassForcesForm(
+        shared=tuple((local[sym], own(e)) for sym, e in form.shared), M=tuple(own(e) for e in form.M),
+        F=tuple(own(e) for e in form.F), constants=tuple((sym, own(e)) for sym, e in form.constants))
+    return {"integrals": integrals, "rows": rows, "fast": fast}
 
 
 def _numpy_files(symbols: ExportedSymbols) -> dict[str, str]:
@@ -199,7 +257,7 @@ def check_target(target: str) -> None:
 def export_files(eom: EquationsOfMotion, target: str) -> dict[str, str]:
     """The files of ``target`` as {file name: text}, nothing written (see `export`)."""
     check_target(target)
-    return EXPORT_TARGETS[target](exported_symbols(eom))
+    return EXPORT_TARGETS[target](exported_symbols(eom, target))
 
 
 def _write_directory(directory: Path, files: dict[str, str]) -> None:
@@ -256,7 +314,8 @@ def export(eom: EquationsOfMotion, target: str, directory: str | os.PathLike[str
     eom : the equations of motion (`lagrangian.derive`).
     target : ``"numpy"`` (one module, NumPy only: ``PARAMETERS``, ``STATE``, ``mass_matrix``,
         ``forcing``, ``rhs`` batched over leading axes) or ``"c"`` (``<name>.h`` and ``<name>.c``,
-        libm only: ``<name>_rhs``, ``<name>_mass_matrix``, ``<name>_forcing``) or ``"jax"`` (the NumPy
+        libm only: ``<name>_rhs``, ``_rhs_k``, ``_constants``, ``_mass_matrix``, ``_forcing``,
+        ``_first_integrals``, ``_constraint_rows`` and, with constraints, ``_rhs_multipliers``) or ``"jax"`` (the NumPy
         module's interface in ``jax.numpy``, jit-able and vmap-able) or ``"octave"`` (``.m`` function
         files: ``<name>_parameters``, ``_mass_matrix``, ``_forcing``, ``_rhs``); docs/export.md.
     directory : created (with the files) atomically; if it exists, it may hold only the
@@ -269,8 +328,8 @@ def export(eom: EquationsOfMotion, target: str, directory: str | os.PathLike[str
     Raises
     ------
     ExportError
-        An unknown ``target``; a model with complementary constraints or an exact Coulomb
-        contact (what is not exported is named); a symbol that is not a coordinate, rate,
+        An unknown ``target``; a model with complementary constraints (except for ``"c"``) or an
+        exact Coulomb contact (what is not exported is named); a symbol that is not a coordinate, rate,
         parameter nor t.  Nothing is written.
     OutputError
         ``directory`` cannot be written or holds other files.  Nothing is written.

@@ -122,8 +122,10 @@ def render_latex(form: CourseForm, extra: Supplement | None = None) -> str:
         out.append(r"\begin{align*}")
         rows = []
         for f in form.frames:
-            rows.append(rf"&{f.parent} \xrightarrow{{{n.latex(f.angle)},\ {_axis_latex(f.axis)}}} {f.name}"
-                        rf"({', '.join(_axis_latex(a) for a in f.axes)})")
+            axis = _axis_latex(f.axis) if f.axis_vector is None else n.vector(f.axis_vector.terms, latex=True)
+            note = r"\quad\text{(the axis given, divided by its norm)}" if f.normalized else ""
+            rows.append(rf"&{f.parent} \xrightarrow{{{n.latex(f.angle)},\ {axis}}} {f.name}"
+                        rf"({', '.join(_axis_latex(a) for a in f.axes)}){note}")
         for f in form.frames:
             if f.name == form.reference and extra is not None and extra.reference_omega is not None:
                 rows.append(rf"\vec{{\Omega}}({f.name}/R_0) &= {n.vector(extra.reference_omega.terms, latex=True)}"
@@ -174,8 +176,11 @@ def render_latex(form: CourseForm, extra: Supplement | None = None) -> str:
     out.append(r" \\".join(rows))
     out.append(r"\end{align*}")
     if form.conservative and form.L is not None:
-        out.append(r"The system is conservative (Remarque 2): $L = T - U_P$ and "
-                   r"$\frac{d}{dt}\frac{\partial L}{\partial \dot q_i} - \frac{\partial L}{\partial q_i} = 0$.")
+        constrained = extra is not None and bool(extra.multipliers)
+        out.append(r"The system is conservative (Remarque 2"
+                   + (r"; its complementary constraints are perfect and time-independent" if constrained else "")
+                   + r"): $L = T - U_P$ and $\frac{d}{dt}\frac{\partial L}{\partial \dot q_i} - "
+                   r"\frac{\partial L}{\partial q_i} = " + (r"\sum_k \lambda_k a_{k,i}" if constrained else "0") + "$.")
     if extra is not None and extra.multipliers:
         out += _step7_latex(n, form, extra)
     out.append(r"\subsection*{First integrals}")

@@ -202,6 +202,8 @@ class _Reader:
         for f in path:
             rot = self.frames[f].rotation
             if _free(rot.angle) & set(self.q_names):  # type: ignore[union-attr]
+                if not rot.elementary:  # type: ignore[union-attr]
+                    return None  # about a vector n: no axis name to give (the joint is described generally)
                 out.append((f, self.frames[f].axes[AXES[rot.axis]]))  # type: ignore[union-attr]
         return out
 

@@ -154,11 +154,15 @@ def step6(c: Context) -> Section:
         blocks.append(Para(left_out_note(c, left), style="note"))
     if c.form.conservative and c.form.L is not None:
         L = Math(rf"L(\Sigma/{c.R}) = T(\Sigma/{c.R}) - U_P(\Sigma/{c.R})")
-        blocks.append(Para(w("conservative", R=Math(c.R), L=L)))
+        if c.eom.constraints:  # complementary and scleronomic: their reactions stay on the right
+            blocks.append(Para(w("conservative constrained", R=Math(c.R), L=L, sum=Math(MULTIPLIER_SUM))))
+        else:
+            blocks.append(Para(w("conservative", R=Math(c.R), L=L)))
         parts = (c.form.T_total, -c.form.U_total) if c.form.U_total != 0 else (c.form.T_total,)
         blocks += c.show([_sum_equation(c, rf"L(\Sigma/{c.R}) = ", parts, "")], "L")
+        right = MULTIPLIER_SUM if c.eom.constraints else "0"
         blocks.append(Display((Equation((r"L(q_i)\quad \frac{d}{dt}\left[\frac{\partial L}{\partial \dot{q}_i}\right]"
-                                         r" - \frac{\partial L}{\partial q_i} = 0 \qquad i = 1, \dots, n",)),)))
+                                         rf" - \frac{{\partial L}}{{\partial q_i}} = {right} \qquad i = 1, \dots, n",)),)))
         if not are_zero([(c.eom.T - c.eom.U).diff(c.kin.t)])[0]:
             # Remarque 2 holds with time-dependent constraints; only the energy integral is lost.
             blocks.append(Para(w("conservative timed", L=Math("L"), t=Math("t"),

@@ -58,10 +58,14 @@ def _chains(c: Context) -> list[Equation]:
         return text
 
     def arrow(name: str) -> str:
-        rot = by_name[name].rotation
-        axis = by_name[name].axes["xyz".index(rot.axis)]  # type: ignore[union-attr]
+        frame = by_name[name]
+        rot = frame.rotation
         origin = origins.get(name)
-        where = (c.name(origin) if origin else "") + c.axis(axis)
+        if rot.elementary:  # type: ignore[union-attr]
+            axis = c.axis(frame.axes["xyz".index(rot.axis)])  # type: ignore[union-attr]
+        else:  # about a constant vector n of the parent, written in its basis
+            axis = r"\left(" + c.vector(Vector({frame.parent: rot.direction})) + r"\right)"  # type: ignore
+        where = (c.name(origin) if origin else "") + axis
         return rf"\xrightarrow{{{c.tex(rot.angle)},\ {where}}}"  # type: ignore[union-attr]
 
     lines: list[Equation] = []

@@ -48,7 +48,10 @@ def system_section(c: Context) -> Section:
     for b in model.bodies:
         G = c.point_label(b.name)
         OG = Math(rf"\overrightarrow{{{origin}{G}}} = {c.short_vector(c.kin.position(b.name))}")
-        items.append(w("body item", S=Math(c.element(b.name)), m=Math(c.tex(b.mass)), G=Math(G), OG=OG))
+        if b.mass_given:
+            items.append(w("body item", S=Math(c.element(b.name)), m=Math(c.tex(b.mass)), G=Math(G), OG=OG))
+        else:
+            items.append(w("body item no mass", S=Math(c.element(b.name)), G=Math(G), OG=OG))
     for p in model.particles:
         OP = Math(rf"\overrightarrow{{{origin}{c.element(p.name)}}} = {c.short_vector(c.kin.position(p.name))}")
         items.append(w("particle item", P=Math(c.element(p.name)), m=Math(c.tex(p.mass)), OP=OP))

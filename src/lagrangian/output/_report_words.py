@@ -44,6 +44,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "constituents": ("(Σ) est formé de :", "(Σ) is made of:"),
     "body item": ("le solide ({S}) : masse {m}, centre d'inertie {G}, {OG}",
                   "the rigid body ({S}): mass {m}, centre of mass {G}, {OG}"),
+    "body item no mass": ("le solide ({S}) : masse non donnée (son centre d'inertie {G} est fixe : elle n'entre pas "
+                          "dans les équations de Lagrange), {OG}",
+                          "the rigid body ({S}): mass not given (its centre of mass {G} is fixed: the mass does not "
+                          "enter the Lagrange equations), {OG}"),
     "particle item": ("le point matériel {P} : masse {m}, {OP}", "the particle {P}: mass {m}, {OP}"),
     "parameters": ("Constantes du problème :", "Constants of the problem:"),
     "col symbol": ("symbole", "symbol"),
@@ -282,6 +286,15 @@ _PHRASES: dict[str, tuple[str, str]] = {
                      "le lagrangien {L}, les équations s'écrivent", "The system (Σ) is conservative relative to "
                      "{R} (Remark 2 of the course): every applied force derives from a potential energy and every constraint "
                      "is perfect and principal. With the Lagrangian {L}, the equations read"),
+    "conservative constrained": ("Le système (Σ) est conservatif par rapport à {R} : tous les efforts donnés "
+                                 "dérivent d'une énergie potentielle et toutes les liaisons sont parfaites, principales "
+                                 "ou complémentaires indépendantes du temps — la réaction {sum} de ces dernières ne "
+                                 "travaille pas au cours du mouvement. Avec le lagrangien {L}, les équations s'écrivent "
+                                 "(Remarque 2, avec les multiplicateurs)",
+                                 "The system (Σ) is conservative relative to {R}: every applied force derives from a "
+                                 "potential energy and every constraint is perfect, principal or complementary and "
+                                 "time-independent — the reaction {sum} of the latter does no work along the motion. "
+                                 "With the Lagrangian {L}, the equations read (Remark 2, with the multipliers)"),
     "entrainment terms": ("où {gamma} est l'accélération par rapport à {R0} de l'origine {O} de {R}, {G} le centre "
                           "d'inertie{many}, {Omega} la rotation de {R} par rapport à {R0} et {Pi} l'opérateur "
                           "d'inertie de (Σ) en {O} (Remarque 3).",

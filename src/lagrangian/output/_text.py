@@ -300,7 +300,9 @@ def render_text(form: CourseForm, extra: Supplement | None = None) -> str:
         relative = f" relative to {ref}:" if ref != "R0" else ":"
         lines.append("Frames (R0 is Galilean) and angular velocities" + relative)
         for f in form.frames:
-            lines.append(f"  {f.parent} --({n.text(f.angle)}, {f.axis})--> {f.name}({', '.join(f.axes)})")
+            axis = f.axis if f.axis_vector is None else n.vector(f.axis_vector.terms)
+            note = "    (the axis given, divided by its norm)" if f.normalized else ""
+            lines.append(f"  {f.parent} --({n.text(f.angle)}, {axis})--> {f.name}({', '.join(f.axes)}){note}")
         for f in form.frames:
             if f.name == ref and extra is not None and extra.reference_omega is not None:
                 lines.append(f"  Ω({f.name}/R0) = {n.vector(extra.reference_omega.terms)}    (prescribed)")
@@ -353,6 +355,9 @@ def render_text(form: CourseForm, extra: Supplement | None = None) -> str:
                 lines.append(f"        or, with the first integrals: {n.text(eq.using_integrals)} = {n.text(eq.rhs)}")
     if form.conservative and form.L is not None:
         lines.append(f"  The system is conservative (Remarque 2): L = T − U_P = {n.sum((form.T_total, -form.U_total))}")
+        if extra is not None and extra.multipliers:
+            lines.append("  its complementary constraints are perfect and time-independent (no work along the motion): "
+                         "d/dt(∂L/∂q̇_i) − ∂L/∂q_i = Σ_k λ_k a_k,i")
     if extra is not None and extra.multipliers:
         lines += _step7_text(n, form, extra)
     lines.append("")
