@@ -25,7 +25,7 @@ from .analysis import (EnergyBalance, Equilibrium, FirstIntegral, LinearizationE
 from .dynamics import EquationsOfMotion, LagrangeEquation, derive
 from .errors import DerivationError, ExportError, KinematicsError, LagrangianError, ModelError, OutputError, SimulationError, VerificationError
 from .kinematics import Kinematics
-from .model import ModelBuilder, load_model, parse_model
+from .model import ModelBuilder, load_model, load_urdf, parse_model
 from .model.spec import Model
 from .model.zoo import lagrange_top
 from .output import Report, export, report
@@ -37,6 +37,7 @@ __all__ = [
     "__version__",
     "load_model",
     "parse_model",
+    "load_urdf",
     "ModelBuilder",
     "Model",
     "lagrange_top",

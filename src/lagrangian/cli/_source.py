@@ -1,15 +1,21 @@
 """The model a command works on: a model file, a zoo model by name, or the seed's top.
 
-Every command takes the same MODEL argument: a TOML file, ``zoo:NAME[:N]`` for a model of
+Every command takes the same MODEL argument: a TOML file, a robot's URDF file (``robot.urdf``,
+read by `lagrangian.model.urdf.load_urdf`: each joint a coordinate, its effort an input; what it
+skips is printed as ``file:line: note: ...`` on stderr), ``zoo:NAME[:N]`` for a model of
 `lagrangian.model.zoo` (``zoo:lagrange_top``, ``zoo:planar_chain:40``,
 ``zoo:spatial_chain:5``), or nothing for the course's heavy symmetric top.
 """
 
 from __future__ import annotations
 
+import sys
+import warnings
+
 from ..errors import ModelError
 from ..model import load_model, zoo
 from ..model.spec import Model
+from ..model.urdf import UrdfNote
 
 __all__ = ["ZOO", "MODEL_HELP", "load_source"]
 
@@ -17,8 +23,8 @@ __all__ = ["ZOO", "MODEL_HELP", "load_source"]
 ZOO = {"lagrange_top": (zoo.lagrange_top, False), "planar_chain": (zoo.planar_chain, True),
        "spatial_chain": (zoo.spatial_chain, True)}
 
-MODEL_HELP = ("model file (TOML), or a zoo model by name: zoo:lagrange_top, zoo:planar_chain:N, "
-              "zoo:spatial_chain:N; default: the seed's Lagrange top")
+MODEL_HELP = ("model file (TOML), a robot's URDF file (.urdf), or a zoo model by name: zoo:lagrange_top, "
+              "zoo:planar_chain:N, zoo:spatial_chain:N; default: the seed's Lagrange top")
 
 
 def _zoo_model(name: str) -> Model:
@@ -50,4 +56,12 @@ def load_source(name: str | None) -> Model:
         return zoo.lagrange_top()
     if name.startswith("zoo:"):
         return _zoo_model(name)
-    return load_model(name)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", UrdfNote)
+        model = load_model(name)
+    for warning in caught:  # a URDF's notes, one line each; any other warning goes on as it came
+        if issubclass(warning.category, UrdfNote):
+            sys.stderr.write(f"{warning.message}\n")
+        else:
+            warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
+    return model

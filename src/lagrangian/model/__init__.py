@@ -7,8 +7,10 @@ from ._toml import load_model as load_model
 from ._toml import parse_model as parse_model
 from ._vector import Vector as Vector
 from .build import ModelBuilder as ModelBuilder
+from .urdf import load_urdf as load_urdf
+from .urdf import parse_urdf as parse_urdf
 from .spec import *  # noqa: F403
 from .spec import __all__ as _spec_all
 
 __all__ = ["FUNCTIONS", "ExpressionError", "parse_expression", "load_model", "parse_model", "Vector",
-           "ModelBuilder", *_spec_all]
+           "ModelBuilder", "load_urdf", "parse_urdf", *_spec_all]

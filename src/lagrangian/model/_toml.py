@@ -37,6 +37,7 @@ from ._reference import read_reference
 from ._toml_guard import check_nesting
 from .build import ModelBuilder
 from .spec import Location, Model
+from .urdf import load_urdf
 
 __all__ = ["load_model", "parse_model"]
 
@@ -55,7 +56,10 @@ _LOAD_KINDS = {
 
 
 def load_model(path: str | Path) -> Model:
-    """Read and check the model file at ``path``.
+    """Read and check the model file at ``path``: TOML, or a URDF robot when it ends in ``.urdf``.
+
+    A ``.urdf`` file is read by `lagrangian.model.urdf.load_urdf` (see ``docs/urdf.md``), so
+    every command and function that takes a model file takes a robot's URDF too.
 
     Raises
     ------
@@ -63,6 +67,8 @@ def load_model(path: str | Path) -> Model:
         With the file, line and symbol of the problem, and how to fix it.
     """
     path = Path(path)
+    if path.suffix.lower() == ".urdf":
+        return load_urdf(path)
     try:
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
