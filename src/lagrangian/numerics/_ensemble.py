@@ -166,7 +166,8 @@ def ensemble(
                               fix="give the store the interrupted run wrote")
     _require("xarray", "xarray")
     if out_path is not None:
-        _require("zarr" if out_path.suffix == ".zarr" else "h5netcdf", "xarray, zarr and h5netcdf")
+        for module in ("zarr",) if out_path.suffix == ".zarr" else ("h5netcdf", "h5py"):
+            _require(module, "xarray, zarr, h5netcdf and h5py")
     # An unreachable scheduler is reported before anything is compiled or run.
     client, own_client = _client(scheduler) if scheduler is not None else (None, False)
     try:
