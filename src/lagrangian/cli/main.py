@@ -20,13 +20,13 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from .. import __version__
-from ..errors import Interrupted, LagrangianError, ModelError
+from ..errors import EnsembleInterrupted, Interrupted, LagrangianError, ModelError
 from ._atomic import write_output
 
 __all__ = ["main", "entrypoint"]
 
 # The commands, in the order `--help` lists them; each name is a module `cli/_<name>.py`.
-COMMANDS = ("derive", "simulate", "verify", "analyse", "equilibria", "linearize", "modes", "report", "export")
+COMMANDS = ("derive", "simulate", "sweep", "verify", "analyse", "equilibria", "linearize", "modes", "report", "export")
 
 
 def _commands() -> list:
@@ -122,8 +122,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         # Ctrl-C: one line, no traceback, and the shell's convention for SIGINT (128 + 2).
         where = f" at t = {exc.t:.9g}" if isinstance(exc, Interrupted) else ""
         written = getattr(exc, "written", None)
-        kept = f"; wrote the part computed so far to {written} (marked partial)" if written else \
-            ("; nothing written" if getattr(args, "out", None) or getattr(args, "output", None) else "")
+        if isinstance(exc, EnsembleInterrupted):
+            where = f" after {exc.done} of {exc.count} members"
+            kept = f"; {written} keeps them (finish with --resume)" if written else "; nothing written"
+        else:
+            kept = f"; wrote the part computed so far to {written} (marked partial)" if written else \
+                ("; nothing written" if getattr(args, "out", None) or getattr(args, "output", None) else "")
         sys.stderr.write(f"lagrangian: interrupted{where}{kept}\n")
         return 130
     return 0
