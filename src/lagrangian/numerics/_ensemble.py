@@ -65,6 +65,8 @@ from ._stickslip import exact_contact_model
 
 __all__ = ["ensemble", "flip_events", "EnsembleInterrupted"]
 
+#: How long to try reaching a Dask scheduler before saying it cannot be reached.
+CONNECT_TIMEOUT = "10s"
 #: Largest memory (bytes) one chunk's output buffers may take.
 CHUNK_MEMORY = 64 * 2**20
 
@@ -199,7 +201,7 @@ def _client(scheduler):
         raise SimulationError(f"scheduler={scheduler!r}: give an address such as 'tcp://host:8786' or a "
                               "distributed.Client.", fix="e.g. scheduler='tcp://127.0.0.1:8786'")
     try:
-        client = Client(scheduler, timeout="10s", set_as_default=False)
+        client = Client(scheduler, timeout=CONNECT_TIMEOUT, set_as_default=False)
     except (OSError, TimeoutError, ValueError) as exc:
         raise SimulationError(f"The Dask scheduler at `{scheduler}` cannot be reached ({exc}); nothing was run.",
                               fix="start one with `dask scheduler` (it prints its address, tcp://HOST:8786) and "
