@@ -18,10 +18,12 @@ Where the chunks run
 --------------------
 Locally, in ``workers`` threads (default: every core this process may use).  Threads, not
 processes: the compiled call releases the GIL (ctypes does), so the threads' C runs in
-parallel, share one loaded library and write into shared NumPy arrays; processes would
-each load the library and send every chunk's results back through a pipe, for nothing
-(measured in ``benchmarks/ensemble.py``: 2 threads give ~1.9x one thread on 2 cores, the
-Python share of a chunk — allocation and the NumPy reductions — being ~1 %).
+parallel, shares one loaded library and writes into NumPy arrays of this process; worker
+processes would each load the library and send every chunk's results back through a pipe.
+The Python share of a chunk (allocation, the NumPy reductions of the summaries) is small:
+in CPU time a batched member costs about 0.6 of a `simulate` call on the top (1.2 ms
+against 2.0 ms, ``benchmarks/ensemble.py``), the difference being `simulate`'s per-call
+set-up and `Trajectory`.  Processes are still at hand, through Dask (below).
 With ``scheduler`` (a ``tcp://host:8786`` address or a ``distributed.Client``), each chunk
 is a Dask task: the `Kernel` (the generated C source and the run's settings) is sent to
 every worker once, each worker compiles it once (or finds it in its cache) and keeps it.

@@ -153,7 +153,7 @@ def unflatten(ds):
     out = {}
     for name, var in ds.data_vars.items():
         if var.dims and var.dims[0] == "member":
-            out[name] = xr.Variable(tuple(names) + var.dims[1:], np.asarray(var.values).reshape(shape + var.shape[1:]),
+            out[name] = xr.Variable(tuple(names) + var.dims[1:], _data(var).reshape(shape + var.shape[1:]),
                                     attrs=var.attrs)
         else:
             out[name] = var.variable
@@ -165,6 +165,12 @@ def unflatten(ds):
         if name not in coords and name != "member" and ds[name].dims == ("member",):
             coords[name] = (tuple(names), np.asarray(ds[name].values).reshape(shape))
     return xr.Dataset(out, coords=coords, attrs=dict(ds.attrs))
+
+
+def _data(var):
+    """The variable's array: a NumPy array, or a Dask array left lazy (it reshapes lazily too)."""
+    data = var.data
+    return data if hasattr(data, "dask") else np.asarray(var.values)
 
 
 class ZarrSink:
@@ -235,14 +241,16 @@ class ZarrSink:
         self.arrays["status"][start:stop] = rows["status"]  # last: a member is done once its status says so
 
     def dataset(self):
-        return open_ensemble(self.path)
+        return open_ensemble(self.path, load=False)
 
 
-def open_ensemble(path):
+def open_ensemble(path, *, load: bool = True):
     """The ensemble in a Zarr store (``.zarr``) or NetCDF file (``.nc``), with a grid's own dimensions.
 
-    ``xarray.open_zarr`` / ``xarray.open_dataset`` read the same files as they are: one
-    ``member`` dimension, the swept names as its coordinates.
+    ``load=False`` leaves a Zarr store's variables lazy when Dask is installed (they are
+    read when used), for stores larger than memory.  ``xarray.open_zarr`` /
+    ``xarray.open_dataset`` read the same files as they are: one ``member`` dimension, the
+    swept names as its coordinates.
     """
     import xarray as xr
 
@@ -250,4 +258,10 @@ def open_ensemble(path):
     if path.suffix == ".nc":
         with xr.open_dataset(path, engine="h5netcdf") as ds:
             return unflatten(ds.load())
-    return unflatten(xr.open_zarr(str(path)).load())
+    try:
+        import dask  # noqa: F401  (open_zarr is lazy through Dask)
+        lazy = not load
+    except ImportError:
+        lazy = False
+    ds = xr.open_zarr(str(path))
+    return unflatten(ds if lazy else ds.load())
