@@ -135,7 +135,7 @@ def main() -> None:
         rates = {}
         for n in (1, 2):
             with distributed.LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                          dashboard_address=None, host="127.0.0.1") as cluster, \
+                                          dashboard_address=":0", host="127.0.0.1") as cluster, \
                     distributed.Client(cluster) as client:
                 ensemble(top, 10.0, initial={"phi_dot": spins["phi_dot"][:4 * n]}, scheduler=client, n_out=2)
                 t0 = time.perf_counter()
