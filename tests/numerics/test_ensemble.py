@@ -5,6 +5,8 @@ integrator from the same control block, so states and event times must agree to 
 bit and the drift (reduced in NumPy over the batch instead of per trajectory) to rounding.
 """
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -148,3 +150,6 @@ def test_bad_members_are_clear_errors(top):
         ensemble(top, 1.0, method="RK45")
     with pytest.raises(OutputError, match=".zarr"):
         ensemble(top, 1.0, out="x.csv")
+    examples = Path(__file__).resolve().parents[2] / "examples"
+    with pytest.raises(SimulationError, match="complementary constraints"):
+        ensemble(examples / "pendulum_tension.toml", 1.0)

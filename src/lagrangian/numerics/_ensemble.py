@@ -62,7 +62,8 @@ from ._dae import constrained_source
 from ._ensemble_store import Layout, MemorySink, ZarrSink
 from ._members import Grid, members
 from ._progress import Reporter
-from ._simulate import BUILTIN, EventSpec, _output_times, _resolve, check_options, control_block, momenta
+from ._simulate import BUILTIN, EventSpec, _memory_limit, _output_times, _resolve, check_options, control_block, \
+    momenta
 from ._stickslip import exact_contact_model
 
 __all__ = ["ensemble", "flip_events", "EnsembleInterrupted"]
@@ -225,7 +226,8 @@ def _kernel(system, specs, method, ctl, t_out, t_start, t_end) -> Kernel:
 def _ensemble(source, t_end, t_start, initial, parameters, initial_names, parameter_names, n_out, t_eval, method,
               rtol, atol, dt, max_step, max_steps, events, keep, workers, chunk_size, client, out_path, resume,
               progress):
-    if exact_contact_model(source) is not None or constrained_source(source)[1] is not None:
+    source, constrained = constrained_source(source)  # a file is read here, once
+    if constrained is not None or exact_contact_model(source) is not None:
         raise SimulationError("Ensembles run models without complementary constraints or exact (ε = 0) "
                               "friction; this one has them.", fix="use `simulate` for each motion of this model")
     specs = [EventSpec(e, e) if isinstance(e, str) else e for e in events]
@@ -265,6 +267,13 @@ def _ensemble(source, t_end, t_start, initial, parameters, initial_names, parame
                               fix="give a file name ending in .nc in an existing folder")
         sink = MemorySink(layout)
 
+    if keep and not isinstance(sink, ZarrSink):
+        need = 8.0 * count * len(t_out) * n2
+        if need > _memory_limit():
+            raise SimulationError(f"Keeping {count} trajectories of {len(t_out)} times would take about "
+                                  f"{need / 2**30:.1f} GiB of memory.",
+                                  fix="stream them to a Zarr store (out='....zarr'), use fewer output times, or "
+                                      "keep='summary'")
     pending = sink.pending()
     chunks = [(a, min(a + chunk_size, count)) for a in range(0, count, chunk_size)
               if pending[a:min(a + chunk_size, count)].any()]
@@ -364,9 +373,13 @@ def _run_threads(kernel, group, chunks, keep, sink, reporter, done, n_workers, s
             if not running:
                 break
             finished, _ = wait_threads(list(running), timeout=0.1, return_when=FIRST_COMPLETED)
-            for future in finished:
-                a, b = running.pop(future)
-                done = _write(sink, group, a, b, future.result(), reporter, done)
+            try:
+                for future in finished:
+                    a, b = running.pop(future)
+                    done = _write(sink, group, a, b, future.result(), reporter, done)
+            except BaseException:
+                stop[0] = 1.0  # the other chunks return at their next step instead of running on
+                raise
             if guard.hit:
                 todo = []
     return guard.hit
