@@ -253,27 +253,27 @@ def _ensemble(source, t_end, t_start, initial, parameters, initial_names, parame
     run = {"model": kernel.key[:16], "members": _digest(group.Y0, group.P), "t_start": float(t_start),
            "t_end": float(t_end), "n_out": len(t_out), "t_out": _digest(t_out), "method": method, "rtol": rtol,
            "atol": atol, "dt": dt, "max_step": max_step, "max_steps": int(max_steps), "keep": keep,
-           "events": [[s.name, str(s.expression), s.direction, bool(s.terminal)] for s in specs],
-           "chunk_size": chunk_size}
+           "events": [[s.name, str(s.expression), s.direction, bool(s.terminal)] for s in specs]}
     grid_axes = tuple((name, len(values)) for name, values in group.grid.axes) if isinstance(group.grid, Grid) \
         else None
     layout = Layout(count, t_out, states, tuple(system.events), tuple(system.integrals), keep, group.swept,
                     grid_axes, run)
-    if out_path is not None and out_path.suffix == ".zarr":
-        sink = ZarrSink(out_path, layout, chunk_size, resume=resume)
-    else:
-        if out_path is not None and (out_path.is_dir() or not out_path.parent.resolve().is_dir()):
-            raise OutputError(f"`{out_path}` cannot be written: it is a folder, or its folder does not exist.",
-                              fix="give a file name ending in .nc in an existing folder")
-        sink = MemorySink(layout)
-
-    if keep and not isinstance(sink, ZarrSink):
+    if keep and (out_path is None or out_path.suffix != ".zarr"):
         need = 8.0 * count * len(t_out) * n2
         if need > _memory_limit():
             raise SimulationError(f"Keeping {count} trajectories of {len(t_out)} times would take about "
                                   f"{need / 2**30:.1f} GiB of memory.",
                                   fix="stream them to a Zarr store (out='....zarr'), use fewer output times, or "
                                       "keep='summary'")
+    if out_path is not None and out_path.suffix == ".zarr":
+        sink = ZarrSink(out_path, layout, chunk_size, resume=resume)
+        chunk_size = sink.chunk  # a resumed store keeps its own chunks, whatever this machine's cores
+    else:
+        if out_path is not None and (out_path.is_dir() or not out_path.parent.resolve().is_dir()):
+            raise OutputError(f"`{out_path}` cannot be written: it is a folder, or its folder does not exist.",
+                              fix="give a file name ending in .nc in an existing folder")
+        sink = MemorySink(layout)
+
     pending = sink.pending()
     chunks = [(a, min(a + chunk_size, count)) for a in range(0, count, chunk_size)
               if pending[a:min(a + chunk_size, count)].any()]

@@ -203,6 +203,7 @@ class ZarrSink:
             self._create(chunk)
             self.group = zarr.open_group(str(self.path), mode="r+")
         self.arrays = {name: self.group[name] for name in layout.variables()}
+        self.chunk = int(self.arrays["status"].chunks[0])
 
     def _create(self, chunk: int) -> None:
         import xarray as xr
