@@ -1,4 +1,4 @@
-"""``lagrangian sweep MODEL --grid NAME=START:STOP:COUNT ... --t-end T [--event EXPR|flip] --out X.zarr --plot map.png``.
+"""``lagrangian sweep MODEL --grid NAME=START:STOP:COUNT ... --t-end T [--event EXPR|flip] --out X.zarr``.
 
 A parameter sweep: every combination of the grid axes is one member of an ensemble
 (`lagrangian.ensemble`), integrated in compiled batches on every core, or on a Dask
@@ -152,7 +152,8 @@ def run(args: argparse.Namespace) -> str:
     progress = sys.stderr.isatty() if args.progress is None else args.progress
     g = grid(**axes)
     start = time.perf_counter()
-    ds = ensemble(source, args.t_end, t_start=args.t_start, initial=g, parameters=parameters or None, method=args.method, rtol=args.rtol, atol=args.atol,
+    ds = ensemble(source, args.t_end, t_start=args.t_start, initial=g, parameters=parameters or None,
+                  method=args.method, rtol=args.rtol, atol=args.atol,
                   dt=args.dt, n_out=args.n_out, events=events, workers=args.workers, scheduler=args.scheduler,
                   out=out, resume=args.resume, progress=progress)
     elapsed = time.perf_counter() - start

@@ -361,7 +361,9 @@ def _write(sink, group, a: int, b: int, rows: dict, reporter, done: int) -> int:
 
 
 def _run_threads(kernel, group, chunks, keep, sink, reporter, done, n_workers, stop) -> bool:
-    """Chunks in ``n_workers`` threads, at most two per thread in flight (bounded memory); written in the main thread."""
+    """Chunks in ``n_workers`` threads, at most two per thread in flight (bounded memory).
+
+    The rows are written by the main thread, as chunks finish."""
     todo = list(reversed(chunks))
     with _SigintStop(stop) as guard, ThreadPoolExecutor(max_workers=n_workers,
                                                         thread_name_prefix="lagrangian-ensemble") as pool:
