@@ -21,6 +21,7 @@ import numpy as np
 from ..dynamics import derive
 from ..errors import OutputError
 from ..numerics import EventSpec, compile_system, ensemble, flip_events, grid
+from ..numerics._ensemble import connect_scheduler
 from ._settings import SettingError, add_set_option, parse_settings, plain_number
 from ._simulate import _float
 from ._source import MODEL_HELP, load_source
@@ -138,6 +139,10 @@ def run(args: argparse.Namespace) -> str:
     if out.suffix not in (".zarr", ".nc"):
         raise OutputError(f"`--out {out}`: a sweep writes a Zarr store (.zarr) or a NetCDF file (.nc).",
                           fix="e.g. --out map.zarr")
+    if out.suffix == ".zarr" and out.exists() != bool(args.resume):  # said again, with more, by `ensemble`
+        raise OutputError(f"`{out}` already exists." if out.exists() else f"`{out}` does not exist, so there is "
+                          "nothing to resume.", fix="add --resume to finish an interrupted sweep in it, or remove it "
+                          "/ choose another name" if out.exists() else "run the sweep without --resume first")
     if args.plot:
         from ..plotting._mpl import require_matplotlib
 
@@ -146,6 +151,16 @@ def run(args: argparse.Namespace) -> str:
             raise OutputError(f"`--plot {args.plot}`: its folder does not exist.", fix="create it first")
     if args.workers is not None and args.workers < 1:
         raise SettingError("--workers must be at least 1.", fix="e.g. --workers 2")
+    # An unreachable scheduler is said before the model is derived and compiled.
+    client, opened = connect_scheduler(args.scheduler) if args.scheduler else (None, False)
+    try:
+        return _sweep(args, model, axes, parameters, initial, out, client)
+    finally:
+        if opened:
+            client.close()
+
+
+def _sweep(args, model, axes, parameters, initial, out, client) -> str:
     eom = derive(_with_initial(model, initial))
     events = _events(args.event, eom, False) + _events(args.stop_when, eom, True)
     source = eom if events else compile_system(eom)
@@ -154,7 +169,7 @@ def run(args: argparse.Namespace) -> str:
     start = time.perf_counter()
     ds = ensemble(source, args.t_end, t_start=args.t_start, initial=g, parameters=parameters or None,
                   method=args.method, rtol=args.rtol, atol=args.atol,
-                  dt=args.dt, n_out=args.n_out, events=events, workers=args.workers, scheduler=args.scheduler,
+                  dt=args.dt, n_out=args.n_out, events=events, workers=args.workers, scheduler=client,
                   out=out, resume=args.resume, progress=progress)
     elapsed = time.perf_counter() - start
     from ..numerics._batch import STATUS

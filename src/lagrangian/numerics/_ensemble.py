@@ -66,7 +66,7 @@ from ._simulate import BUILTIN, EventSpec, _memory_limit, _output_times, _resolv
     momenta
 from ._stickslip import exact_contact_model
 
-__all__ = ["ensemble", "flip_events", "EnsembleInterrupted"]
+__all__ = ["ensemble", "flip_events", "connect_scheduler", "EnsembleInterrupted"]
 
 #: How long to try reaching a Dask scheduler before saying it cannot be reached.
 CONNECT_TIMEOUT = "10s"
@@ -190,6 +190,19 @@ def _require(module: str, what: str) -> None:
     except ImportError:
         raise SimulationError(f"Ensembles need {what} ({module} is not installed).",
                               fix="pip install 'lagrangian[ensemble]'") from None
+
+
+def connect_scheduler(scheduler):
+    """(client, opened): a ``distributed.Client`` for ``scheduler`` (an address, or a Client given back as is).
+
+    ``opened`` says whether the client was opened here (the caller closes it then).
+
+    Raises
+    ------
+    SimulationError
+        Dask's distributed package missing, or the scheduler cannot be reached.
+    """
+    return _client(scheduler)
 
 
 def _client(scheduler):
