@@ -72,12 +72,15 @@ def test_ctrl_c_keeps_finished_members_and_resume_finishes(tmp_path):
     proc = subprocess.Popen(args + ["--progress"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
     chunks: list[bytes] = []
     started = threading.Event()
+    said: list[float] = []
 
     def read() -> None:
         for chunk in iter(lambda: proc.stderr.read1(4096), b""):
             chunks.append(chunk)
             if b"members" in chunk:
                 started.set()
+            if b"interrupted" in chunk and not said:
+                said.append(time.monotonic())
 
     reader = threading.Thread(target=read, daemon=True)
     reader.start()
@@ -94,6 +97,7 @@ def test_ctrl_c_keeps_finished_members_and_resume_finishes(tmp_path):
     reader.join(5)
     stderr = b"".join(chunks).decode()
     assert proc.returncode == 130, stderr
+    assert said and said[0] - sent < 1.0, "the one-line message comes within a second"
     assert stopped < 3.0 and "Traceback" not in stderr
     last = stderr.replace("\r", "\n").strip().splitlines()[-1]
     assert last.startswith("lagrangian: interrupted after ") and "finish with --resume" in last, last

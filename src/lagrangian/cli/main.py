@@ -14,7 +14,9 @@ Exit codes: 0 success, 1 usage error (argparse), 2 bad model or derivation error
 from __future__ import annotations
 
 import argparse
+import atexit
 import importlib
+import os
 import sys
 from collections.abc import Sequence
 from pathlib import Path
@@ -135,7 +137,19 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def entrypoint() -> None:
     """Console-script entry point."""
-    raise SystemExit(main())
+    code = main()
+    if code == 130:
+        # Ctrl-C: what was computed is written and closed, and the message is out.  The
+        # interpreter's teardown of the loaded modules (xarray, zarr, SciPy) would still keep
+        # the user waiting most of a second (several on a loaded machine), so the exit
+        # handlers run and the process ends without it.
+        sys.stdout.flush()
+        sys.stderr.flush()
+        run_exit_handlers = getattr(atexit, "_run_exitfuncs", None)
+        if run_exit_handlers is not None:
+            run_exit_handlers()
+        os._exit(code)
+    raise SystemExit(code)
 
 
 if __name__ == "__main__":  # python -m lagrangian.cli.main
