@@ -57,7 +57,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import EnsembleInterrupted, OutputError, SimulationError
-from ._batch import PENDING, STATUS, Kernel, run_chunk
+from ._batch import PENDING, Kernel, run_chunk
 from ._dae import constrained_source
 from ._ensemble_store import Layout, MemorySink, ZarrSink
 from ._members import Grid, members
@@ -443,10 +443,3 @@ def _run_dask(client, kernel, group, chunks, keep, sink, reporter, done) -> bool
             if running:
                 client.cancel(list(running))
     return guard.hit
-
-
-def status_names(codes) -> np.ndarray:
-    """The status codes of an ensemble as their names (``"ok"``, ``"blow-up"``, ...)."""
-    table = np.array([STATUS[k] for k in sorted(STATUS)], dtype=object)
-    return table[np.asarray(codes, dtype=int) - min(STATUS)]
-
