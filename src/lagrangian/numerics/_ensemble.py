@@ -21,8 +21,8 @@ processes: the compiled call releases the GIL (ctypes does), so the threads' C r
 parallel, shares one loaded library and writes into NumPy arrays of this process; worker
 processes would each load the library and send every chunk's results back through a pipe.
 The Python share of a chunk (allocation, the NumPy reductions of the summaries) is small:
-in CPU time a batched member costs about 0.6 of a `simulate` call on the top (1.2 ms
-against 2.0 ms, ``benchmarks/ensemble.py``), the difference being `simulate`'s per-call
+in CPU time a batched member costs about 0.6 of a `simulate` call on the top (1.13 ms
+against 1.79 ms, ``benchmarks/ensemble.py``), the difference being `simulate`'s per-call
 set-up and `Trajectory`.  Processes are still at hand, through Dask (below).
 With ``scheduler`` (a ``tcp://host:8786`` address or a ``distributed.Client``), each chunk
 is a Dask task: the `Kernel` (the generated C source and the run's settings) is sent to
