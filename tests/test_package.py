@@ -24,3 +24,23 @@ def test_no_evaluation_of_text_in_the_package():
         code = path.read_text(encoding="utf-8")
         for forbidden in ("eval(", "exec(", "sympify(", "parse_expr("):
             assert forbidden not in code.replace("_sympy_()", ""), f"{forbidden} in {path}"
+
+
+def test_module_level_imports_flow_one_way():
+    # model -> kinematics -> dynamics -> analysis -> numerics -> output/plotting -> cli: a stage's modules
+    # never import a later stage at module level (not even for annotations, under TYPE_CHECKING).
+    import ast
+
+    order = {"model": 0, "kinematics": 1, "dynamics": 2, "analysis": 3, "numerics": 4, "output": 5,
+             "plotting": 5, "cli": 6}
+    for path in (ROOT / "src" / "lagrangian").rglob("*.py"):
+        parts = path.relative_to(ROOT / "src" / "lagrangian").parts
+        if len(parts) < 2 or parts[0] not in order:
+            continue
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        nodes = list(tree.body) + [n for top in tree.body if isinstance(top, ast.If) for n in top.body]
+        for node in nodes:
+            if isinstance(node, ast.ImportFrom) and node.level >= 1 and node.module:
+                target = node.module.split(".")[0] if node.level == 2 else parts[0]
+                if target in order:
+                    assert order[target] <= order[parts[0]], f"{path} imports {node.module} (a later stage)"

@@ -29,7 +29,8 @@ from .model import ModelBuilder, load_model, load_urdf, parse_model
 from .model.spec import Model
 from .model.zoo import lagrange_top
 from .output import Report, export, report
-from .numerics import CompiledSystem, EventSpec, Trajectory, compile_system, save_trajectory, simulate
+from .numerics import CompiledSystem, EventSpec, Trajectory, compile_system, ensemble, grid, open_ensemble, \
+    save_trajectory, simulate
 
 __version__ = "0.1.0"
 
@@ -69,6 +70,9 @@ __all__ = [
     "compile_system",
     "CompiledSystem",
     "simulate",
+    "ensemble",
+    "grid",
+    "open_ensemble",
     "EventSpec",
     "Trajectory",
     "save_trajectory",

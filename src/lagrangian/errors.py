@@ -15,6 +15,7 @@ __all__ = [
     "DerivationError",
     "SimulationError",
     "Interrupted",
+    "EnsembleInterrupted",
     "OutputError",
     "ExportError",
     "VerificationError",
@@ -115,6 +116,20 @@ class Interrupted(KeyboardInterrupt):
         super().__init__(f"interrupted at t = {t:.9g}")
         self.t = t
         self.trajectory = trajectory
+
+
+class EnsembleInterrupted(KeyboardInterrupt):
+    """Ctrl-C (SIGINT) stopped an ensemble: ``done`` of ``count`` members were finished.
+
+    ``written`` is the Zarr store that holds them (finish it with ``resume``), or None;
+    ``dataset`` the in-memory results (pending members have status ``pending``), or None.
+    """
+
+    def __init__(self, done: int, count: int) -> None:
+        super().__init__(f"interrupted after {done} of {count} members")
+        self.done, self.count = done, count
+        self.written: str | None = None
+        self.dataset = None
 
 
 class OutputError(LagrangianError):

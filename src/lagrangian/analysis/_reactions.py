@@ -25,7 +25,7 @@ from __future__ import annotations
 import random
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
 import symengine as se
@@ -37,8 +37,22 @@ from ..model import GALILEAN_FRAME, ORIGIN, Vector
 from ..model._vector import as_expr
 from ._newton_euler import Verification, verify
 
-if TYPE_CHECKING:  # numerics comes after analysis: for annotations only
-    from ..numerics import Trajectory
+
+
+class Trajectory(Protocol):
+    """What the checks along a motion read of it: a `lagrangian.numerics.Trajectory` is one.
+
+    Declared here, by what is used, so that analysis does not name numerics (the stage
+    after it) even for annotations: imports flow one way.
+    """
+
+    coordinates: Sequence[str]
+    parameters: Mapping[str, float]
+    t: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    qdd: np.ndarray
+    extra: Mapping[str, np.ndarray]
 
 __all__ = ["Reaction", "reactions", "ReactionHistory", "reaction_history", "TrajectoryResiduals",
            "check_trajectory"]

@@ -14,19 +14,21 @@ Exit codes: 0 success, 1 usage error (argparse), 2 bad model or derivation error
 from __future__ import annotations
 
 import argparse
+import atexit
 import importlib
+import os
 import sys
 from collections.abc import Sequence
 from pathlib import Path
 
 from .. import __version__
-from ..errors import Interrupted, LagrangianError, ModelError
+from ..errors import EnsembleInterrupted, Interrupted, LagrangianError, ModelError
 from ._atomic import write_output
 
 __all__ = ["main", "entrypoint"]
 
 # The commands, in the order `--help` lists them; each name is a module `cli/_<name>.py`.
-COMMANDS = ("derive", "simulate", "verify", "analyse", "equilibria", "linearize", "modes", "report", "export")
+COMMANDS = ("derive", "simulate", "sweep", "verify", "analyse", "equilibria", "linearize", "modes", "report", "export")
 
 
 def _commands() -> list:
@@ -122,8 +124,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         # Ctrl-C: one line, no traceback, and the shell's convention for SIGINT (128 + 2).
         where = f" at t = {exc.t:.9g}" if isinstance(exc, Interrupted) else ""
         written = getattr(exc, "written", None)
-        kept = f"; wrote the part computed so far to {written} (marked partial)" if written else \
-            ("; nothing written" if getattr(args, "out", None) or getattr(args, "output", None) else "")
+        if isinstance(exc, EnsembleInterrupted):
+            where = f" after {exc.done} of {exc.count} members"
+            kept = f"; {written} keeps them (finish with --resume)" if written else "; nothing written"
+        else:
+            kept = f"; wrote the part computed so far to {written} (marked partial)" if written else \
+                ("; nothing written" if getattr(args, "out", None) or getattr(args, "output", None) else "")
         sys.stderr.write(f"lagrangian: interrupted{where}{kept}\n")
         return 130
     return 0
@@ -131,7 +137,19 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def entrypoint() -> None:
     """Console-script entry point."""
-    raise SystemExit(main())
+    code = main()
+    if code == 130:
+        # Ctrl-C: what was computed is written and closed, and the message is out.  The
+        # interpreter's teardown of the loaded modules (xarray, zarr, SciPy) would still keep
+        # the user waiting most of a second (several on a loaded machine), so the exit
+        # handlers run and the process ends without it.
+        sys.stdout.flush()
+        sys.stderr.flush()
+        run_exit_handlers = getattr(atexit, "_run_exitfuncs", None)
+        if run_exit_handlers is not None:
+            run_exit_handlers()
+        os._exit(code)
+    raise SystemExit(code)
 
 
 if __name__ == "__main__":  # python -m lagrangian.cli.main

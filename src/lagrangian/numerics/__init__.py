@@ -1,10 +1,16 @@
 """Numerics: the equations of motion as compiled code, integrators, simulation results.
 
 ``compile_system(eom)`` → `CompiledSystem` (M, F, q̈, monitors, events; C or SymEngine);
-``simulate(model_or_eom, t_end, ...)`` → `Trajectory`.
+``simulate(model_or_eom, t_end, ...)`` → `Trajectory`;
+``ensemble(model_or_eom, t_end, initial=grid(...), ...)`` → many motions as an ``xarray.Dataset``.
 """
 
 from ._dae import STABILIZATIONS as STABILIZATIONS
+from ._ensemble import ensemble as ensemble
+from ._ensemble import flip_events as flip_events
+from ._ensemble_store import open_ensemble as open_ensemble
+from ._members import Grid as Grid
+from ._members import grid as grid
 from ._files import check_output_path as check_output_path
 from ._files import save_trajectory as save_trajectory
 from ._simulate import METHODS as METHODS
@@ -23,7 +29,7 @@ from ._top_check import simulation_check as simulation_check
 from ._trajectory import Event as Event
 from ._trajectory import Trajectory as Trajectory
 
-__all__ = ["simulate", "simulate_stick_slip", "save_trajectory", "check_output_path", "EventSpec", "initial_state", "METHODS",
+__all__ = ["simulate", "ensemble", "grid", "Grid", "open_ensemble", "flip_events", "simulate_stick_slip", "save_trajectory", "check_output_path", "EventSpec", "initial_state", "METHODS",
            "STABILIZATIONS", "default_tolerance", "CompiledSystem", "compile_system", "Trajectory", "Event",
            "SimulationCheck", "simulation_check", "reaction_columns_along",
            "reaction_history_along", "check_trajectory_along"]

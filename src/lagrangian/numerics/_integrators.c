@@ -43,9 +43,9 @@ enum { LG_DONE = 0, LG_SINGULAR = 1, LG_NONFINITE = 2, LG_UNDERFLOW = 3, LG_EVEN
 enum { C_T, C_H, C_RTOL, C_ATOL, C_MAXSTEP, C_NFEV, C_STEPS, C_REJECTED, C_FIXED, C_MAXSTEPS, C_NEV,
        C_EVCAP, C_PIVOT, C_STOP, C_SIZE };
 
-static int lg_stop_requested(const double *ctl)
+static int lg_stop_requested(const volatile double *stop)
 {
-    return ((const volatile double *)ctl)[C_STOP] != 0.0;
+    return *stop != 0.0;
 }
 
 /* Solve M x = F in place (F becomes x) by Cholesky: M is symmetric positive definite
@@ -204,6 +204,19 @@ static int lg_check_events(const void *ctx, lg_interp_fn interp, const double *p
         for (int j = 0; j < found; ++j)
             if (which[j] >= 0 && (next < 0 || when[j] < when[next])) next = j;
         if (fired_terminal && when[next] > t_first) break;
+        if (ctl[C_EVCAP] < 0) {
+            /* first-occurrence mode (ensembles): row k of ev_out is event k's count and the time
+             * and state of its first occurrence, so memory does not grow with the events. */
+            double *row = ev_out + (long)which[next] * (2 + LG_NY);
+            if (row[0] == 0.0) {
+                row[1] = when[next];
+                memcpy(row + 2, where + (long)next * LG_NY, LG_NY * sizeof(double));
+            }
+            row[0] += 1.0;
+            ctl[C_NEV] += 1;
+            which[next] = -1;
+            continue;
+        }
         int slot = (int)ctl[C_NEV];
         if (slot < (int)ctl[C_EVCAP]) {
             double *row = ev_out + (long)slot * (2 + LG_NY);
@@ -251,8 +264,9 @@ static double lg_rms(const double *v, const double *scale)
 /* Integrate from ctl[C_T] to t_stop, writing y at each t_out[*i_out..] <= t_stop into
  * Y_out.  Re-entrant: Python calls it chunk by chunk (for progress reports) with the
  * same ctl, y and i_out. */
-int lg_dop853(double *ctl, double *y, const double *p, const double *t_out, int n_out, int *i_out,
-              double *Y_out, double t_stop, const int *ev_dir, const int *ev_terminal, double *ev_out)
+static int lg_dop853_run(double *ctl, const volatile double *stop, double *y, const double *p,
+                         const double *t_out, int n_out, int *i_out, double *Y_out, double t_stop,
+                         const int *ev_dir, const int *ev_terminal, double *ev_out)
 {
     static const double A[LG_DOP_STAGES_EXT][LG_DOP_STAGES_EXT] = LG_DOP_A;
     static const double B[LG_DOP_STAGES] = LG_DOP_B;
@@ -300,7 +314,7 @@ int lg_dop853(double *ctl, double *y, const double *p, const double *t_out, int 
 
     while (t < t_stop) {
         if (ctl[C_STEPS] >= ctl[C_MAXSTEPS]) { ctl[C_T] = t; ctl[C_H] = h_abs; return LG_MAXSTEPS; }
-        if (lg_stop_requested(ctl)) { ctl[C_T] = t; ctl[C_H] = h_abs; return LG_INTERRUPTED; }
+        if (lg_stop_requested(stop)) { ctl[C_T] = t; ctl[C_H] = h_abs; return LG_INTERRUPTED; }
         const double min_step = 10 * fabs(nextafter(t, INFINITY) - t);
         if (h_abs > max_step) h_abs = max_step;
         if (!fixed && h_abs < min_step) h_abs = min_step;
@@ -405,6 +419,13 @@ int lg_dop853(double *ctl, double *y, const double *p, const double *t_out, int 
     return LG_DONE;
 }
 
+int lg_dop853(double *ctl, double *y, const double *p, const double *t_out, int n_out, int *i_out,
+              double *Y_out, double t_stop, const int *ev_dir, const int *ev_terminal, double *ev_out)
+{
+    return lg_dop853_run(ctl, ctl + C_STOP, y, p, t_out, n_out, i_out, Y_out, t_stop, ev_dir, ev_terminal,
+                         ev_out);
+}
+
 /* ---- Gauss-Legendre in (q, p) -------------------------------------------------------- */
 
 /* z = (q, p) -> z' = (q', p'): q' from M q' = p - b, p' = dT/dq - dU/dq + Q(nc) at (q, q'). */
@@ -457,9 +478,9 @@ static void lg_hermite_interp(const void *ctx, double t, double *y)
 /* Fixed step ctl[C_H]; step k ends at t0 + k h exactly (no accumulated round-off), so an
  * output grid that is a multiple of h is hit without interpolation.  ctl[C_RTOL] is the
  * tolerance of the fixed-point iteration of the stages. */
-int lg_gauss(double *ctl, double *y, const double *p, const double *t_out, int n_out, int *i_out,
-             double *Y_out, double t_stop, const int *ev_dir, const int *ev_terminal, double *ev_out,
-             double t_origin)
+static int lg_gauss_run(double *ctl, const volatile double *stop, double *y, const double *p,
+                        const double *t_out, int n_out, int *i_out, double *Y_out, double t_stop,
+                        const int *ev_dir, const int *ev_terminal, double *ev_out, double t_origin)
 {
     static const double r3 = 1.7320508075688772935;   /* sqrt(3) */
     const double a11 = 0.25, a12 = 0.25 - r3 / 6, a21 = 0.25 + r3 / 6, a22 = 0.25;
@@ -484,7 +505,7 @@ int lg_gauss(double *ctl, double *y, const double *p, const double *t_out, int n
     }
     while (t < t_stop) {
         if (ctl[C_STEPS] >= ctl[C_MAXSTEPS]) return LG_MAXSTEPS;
-        if (lg_stop_requested(ctl)) { ctl[C_T] = t; return LG_INTERRUPTED; }
+        if (lg_stop_requested(stop)) { ctl[C_T] = t; return LG_INTERRUPTED; }
         const double k_index = floor((t - t_origin) / h + 0.5) + 1.0;
         double t_new = t_origin + k_index * h;
         if (t_new > t_stop) t_new = t_stop;
@@ -544,6 +565,84 @@ int lg_gauss(double *ctl, double *y, const double *p, const double *t_out, int n
         t = t_new;
         ctl[C_T] = t;
         if (terminal) return LG_EVENT;
+    }
+    return LG_DONE;
+}
+
+int lg_gauss(double *ctl, double *y, const double *p, const double *t_out, int n_out, int *i_out,
+             double *Y_out, double t_stop, const int *ev_dir, const int *ev_terminal, double *ev_out,
+             double t_origin)
+{
+    return lg_gauss_run(ctl, ctl + C_STOP, y, p, t_out, n_out, i_out, Y_out, t_stop, ev_dir, ev_terminal,
+                        ev_out, t_origin);
+}
+
+/* ---- ensembles: many members in one call ----------------------------------------------
+ * lg_batch integrates `count` members one after another, each exactly as one lg_dop853 /
+ * lg_gauss call of `simulate` would (same control block ctl0, same output grid, its own
+ * adaptive step), so a member's result is bit for bit the single run's.  Per member k:
+ *   Y0[k]   (2n)            initial state; Y_fin[k] receives the state where the run ended
+ *   P[k]    (LG_NP + LG_NK) the parameter values; the hoisted constants p[LG_NP..] are
+ *                           computed here (lg_constants), once per member
+ *   Y_out[k] (n_out x 2n)  the state at the output times (rows after the end are left as given)
+ *   mon[k]  (n_out x NM)    the monitors (first integrals, T, U) at those rows
+ *   mom[k]  (n_out x 2n)    for each row i: (sum_j |M_ij q'_j|, sum_j M_ij q'_j), the terms of
+ *                           the momenta p_i = dT/dq'_i, for the scale of their drift
+ *   ev[k]   (NE x (2 + 2n)) first-occurrence rows of the events (count, time, state)
+ *   info[k] (6)             status, t reached, accepted steps, rhs calls, rows written,
+ *                           worst relative pivot
+ * `stop` is read at every step of every member (Ctrl-C, from another thread): the member
+ * being integrated returns LG_INTERRUPTED and the later ones are not started (info[k][0]
+ * keeps its initial value, -1).  The batch holds no Python state, so several threads can
+ * run batches of the same library at once (the Python side calls it with the GIL released). */
+enum { B_STATUS, B_T, B_STEPS, B_NFEV, B_ROWS, B_PIVOT, B_SIZE };
+
+int lg_batch(int method, int count, const double *ctl0, const double *Y0, double *P, const double *t_out,
+             int n_out, double t_stop, double t_origin, const int *ev_dir, const int *ev_terminal,
+             double *Y_fin, double *Y_out, double *mon, double *mom, double *ev, double *info,
+             const double *stop)
+{
+    const int np = LG_NP + LG_NK, nm = LG_NM > 0 ? LG_NM : 1;
+    for (int k = 0; k < count; ++k) {
+        if (lg_stop_requested(stop)) return LG_INTERRUPTED;
+        double ctl[C_SIZE];
+        memcpy(ctl, ctl0, sizeof ctl);
+        ctl[C_EVCAP] = -1.0;
+        double *p = P + (long)k * np, *y = Y_fin + (long)k * LG_NY, *rows = Y_out + (long)k * n_out * LG_NY;
+        double *evk = ev + (long)k * (LG_NE > 0 ? LG_NE : 1) * (2 + LG_NY);
+        if (LG_NK > 0) lg_constants(p, p + LG_NP);
+        memcpy(y, Y0 + (long)k * LG_NY, LG_NY * sizeof(double));
+        int i_out = 0, status;
+        if (method == 0)
+            status = lg_dop853_run(ctl, stop, y, p, t_out, n_out, &i_out, rows, t_stop, ev_dir, ev_terminal, evk);
+        else
+            status = lg_gauss_run(ctl, stop, y, p, t_out, n_out, &i_out, rows, t_stop, ev_dir, ev_terminal, evk,
+                                  t_origin);
+        double *out = info + (long)k * B_SIZE;
+        for (int i = 0; i < i_out; ++i) {
+            const double *row = rows + (long)i * LG_NY;
+            double M[LG_N * LG_N], F[LG_N];
+            lg_monitors(t_out[i], row, p, mon + ((long)k * n_out + i) * nm);
+            lg_mass_forces(t_out[i], row, p, M, F);
+            double *m = mom + ((long)k * n_out + i) * LG_NY;
+            for (int a = 0; a < LG_N; ++a) {
+                double s = 0.0, s_abs = 0.0;
+                for (int b = 0; b < LG_N; ++b) {
+                    const double term = M[a * LG_N + b] * row[LG_N + b];
+                    s += term;
+                    s_abs += fabs(term);
+                }
+                m[a] = s_abs;
+                m[LG_N + a] = s;
+            }
+        }
+        out[B_STATUS] = status;
+        out[B_T] = ctl[C_T];
+        out[B_STEPS] = ctl[C_STEPS];
+        out[B_NFEV] = ctl[C_NFEV];
+        out[B_ROWS] = i_out;
+        out[B_PIVOT] = ctl[C_PIVOT];
+        if (status == LG_INTERRUPTED) return LG_INTERRUPTED;
     }
     return LG_DONE;
 }

@@ -44,7 +44,7 @@ from ._ranges import watch_ranges
 from ._system import CompiledSystem, _ptr, known_values
 from ._trajectory import Event, Trajectory, conservation
 
-__all__ = ["simulate", "EventSpec", "initial_state", "METHODS", "default_tolerance"]
+__all__ = ["simulate", "EventSpec", "initial_state", "METHODS", "default_tolerance", "control_block"]
 
 BUILTIN = ("dop853", "gauss-legendre")
 SCIPY = ("RK45", "RK23", "DOP853", "Radau", "BDF", "LSODA")
@@ -427,11 +427,15 @@ def _pivot(system, t, Y, p) -> float:
     return float(np.min(np.diagonal(L, axis1=-2, axis2=-1) ** 2 / diag)) if len(M) else 1.0
 
 
-def _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, max_step, max_steps, specs,
-                 progress):
+def control_block(method: str, t_start: float, t_end: float, t_out: np.ndarray, rtol: float, atol: float,
+                  dt: float | None, max_step: float | None, max_steps: int) -> np.ndarray:
+    """The C integrators' control block (``_integrators.c``) at the start of a run.
+
+    One place for it, so that `ensemble` starts each member exactly as `simulate` starts
+    its run (same first step, same fixed step of ``gauss-legendre``).
+    """
     if dt is not None and not dt > 0:
         raise SimulationError(f"dt = {dt} must be positive.", fix="give a positive step, e.g. dt=1e-3")
-    n2 = 2 * system.n
     ctl = np.zeros(14)
     ctl[0] = t_start
     ctl[2], ctl[3] = rtol, atol
@@ -451,6 +455,13 @@ def _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, m
         ctl[2] = 1e-14  # stage iteration tolerance: converged to round-off, so symplecticity holds
     elif dt is not None:
         ctl[1], ctl[8] = float(dt), 1.0
+    return ctl
+
+
+def _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, max_step, max_steps, specs,
+                 progress):
+    n2 = 2 * system.n
+    ctl = control_block(method, t_start, t_end, t_out, rtol, atol, dt, max_step, max_steps)
     y = y0.copy()
     Y = np.full((len(t_out), n2), np.nan)
     i_out = np.zeros(1, dtype=np.intc)

@@ -17,6 +17,7 @@ matplotlib is imported only when a figure is made; without it a `MissingPlotDepe
 
 from ._animation import animate as animate
 from ._apex import TurningAngles as TurningAngles
+from ._ensemble import plot_ensemble as plot_ensemble
 from ._apex import plot_apex_sphere as plot_apex_sphere
 from ._apex import plot_nutation as plot_nutation
 from ._apex import turning_angles as turning_angles
@@ -43,4 +44,4 @@ from ._series import relative_drift as relative_drift
 __all__ = ["plot_bifurcation", "mode_trajectory", "save_plots", "plot_trajectory", "applicable_kinds", "figure_caption", "KINDS", "animate", "save_figure",
            "plot_time_series", "plot_phase", "plot_drift", "relative_drift", "plot_apex_sphere", "plot_nutation",
            "apex_path", "axis_angles", "turning_angles", "TurningAngles", "plot_reaction", "reactions_along",
-           "MissingPlotDependency", "plot_eigenvalue_sweep", "plot_mode_shapes"]
+           "MissingPlotDependency", "plot_eigenvalue_sweep", "plot_mode_shapes", "plot_ensemble"]

@@ -1,0 +1,48 @@
+"""`ensemble` on a Dask cluster (issue 14, item 4): a real LocalCluster with two worker processes.
+
+The workers receive the generated C source, compile it once each (their own compile
+cache), and must return exactly what the local threads compute.
+"""
+
+import numpy as np
+import pytest
+
+xr = pytest.importorskip("xarray")
+distributed = pytest.importorskip("distributed")
+
+import lagrangian  # noqa: E402
+from lagrangian.errors import SimulationError  # noqa: E402
+from lagrangian.cli.main import main  # noqa: E402
+from lagrangian.numerics import _ensemble, compile_system, ensemble, grid, open_ensemble  # noqa: E402
+
+
+def test_local_cluster_gives_the_local_results(tmp_path):
+    top = compile_system(lagrangian.derive(lagrangian.lagrange_top()))
+    g = grid(theta=[0.4, 0.8, 1.2], phi_dot=[20.0, 40.0, 60.0, 80.0])
+    local = ensemble(top, 1.0, initial=g, n_out=11, events=["theta_dot"], workers=1)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0",
+                                  host="127.0.0.1") as cluster, distributed.Client(cluster) as client:
+        remote = ensemble(top, 1.0, initial=g, n_out=11, events=["theta_dot"], scheduler=client, chunk_size=3)
+        store = tmp_path / "remote.zarr"
+        by_address = ensemble(top, 1.0, initial=g, n_out=11, events=["theta_dot"], scheduler=cluster.scheduler_address,
+                              chunk_size=5, out=store)
+        cli = tmp_path / "cli.zarr"
+        assert main(["sweep", "zoo:lagrange_top", "--grid", "phi_dot=20:80:4", "--set", "theta=0.8", "--t-end", "1",
+                     "--n-out", "11", "--event", "theta_dot", "--out", str(cli), "--scheduler",
+                     cluster.scheduler_address]) == 0
+    on_cli = open_ensemble(cli)
+    np.testing.assert_array_equal(on_cli.state_final.values, local.sel(theta=0.8).state_final.values)
+    xr.testing.assert_identical(remote.drop_attrs(), local.drop_attrs())
+    xr.testing.assert_identical(by_address.drop_attrs(), local.drop_attrs())
+    assert np.all(local.status.values == 0)
+
+
+def test_unreachable_scheduler_is_a_clear_error_before_any_work(monkeypatch, tmp_path, capsys):
+    monkeypatch.setattr(_ensemble, "CONNECT_TIMEOUT", "1s")
+    with pytest.raises(SimulationError, match="cannot be reached") as info:
+        ensemble("no such model.toml", 1.0, scheduler="tcp://127.0.0.1:9")  # checked before the model is read
+    assert "dask scheduler" in info.value.fix
+    out = tmp_path / "never.zarr"
+    assert main(["sweep", "zoo:lagrange_top", "--grid", "phi_dot=20:80:4", "--out", str(out), "--scheduler",
+                 "tcp://127.0.0.1:9"]) == 4
+    assert "cannot be reached" in capsys.readouterr().err and not out.exists()
