@@ -47,7 +47,8 @@ class ModelBuilder:
 
     # -- declarations -------------------------------------------------------------------
     def _add(self, what: str, name: str, location: Location | None, **data: Any) -> None:
-        if not isinstance(name, str) or not name.isidentifier():
+        # A leading underscore is kept for the generated code's own names (_k0, _shared0, _y...).
+        if not isinstance(name, str) or not name.isidentifier() or name.startswith("_"):
             raise ModelError(f"`{name}` is not a valid {what} name", symbol=str(name),
                              fix="use letters, digits and underscores, starting with a letter",
                              **location_keys(location or Location(self.source)))

@@ -190,7 +190,11 @@ def _shared_bias(eom: EquationsOfMotion) -> tuple[list[tuple[se.Symbol, se.Basic
             if c == 0 or c.is_Number or c.is_Symbol or se.count_ops(c) < 4:
                 out.append(c)
             else:
-                sym = se.Dummy(f"shared{len(shared)}")
+                # A named Symbol, not a Dummy: a Dummy's hash holds a per-process counter, so
+                # SymEngine would order the sums that use it differently at every compile (a new
+                # source, a cache miss, results a few ulp apart).  The leading underscore keeps it
+                # apart from model names, which cannot start with one.
+                sym = se.Symbol(f"_shared{len(shared)}")
                 shared.append((sym, c))
                 out.append(sym)
         return tuple(out)
