@@ -16,6 +16,7 @@ each other).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import symengine as se
@@ -169,10 +170,12 @@ def _derives_from(kin: Kinematics, Q: tuple[se.Basic, ...], potential: se.Basic)
     return all(are_zero(residues))
 
 
-def generalized_forces(kin: Kinematics) -> tuple[LoadForces, ...]:
-    """Q_i of every load of the model, by virtual power, with its potential when it has one."""
+def generalized_forces(kin: Kinematics, *, only: Sequence[int] | None = None) -> tuple[LoadForces, ...]:
+    """Q_i of every load of the model (or of the loads at indices ``only``), by virtual power,
+    with its potential when it has one."""
     out = []
-    for load in kin.model.loads:
+    loads = kin.model.loads if only is None else [kin.model.loads[k] for k in only]
+    for load in loads:
         Q, candidate, note = _q_of(kin, load)
         potential = candidate
         if potential is not None and not _derives_from(kin, Q, potential):
