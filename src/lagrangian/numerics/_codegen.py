@@ -280,7 +280,8 @@ def generate_c(
             raise DerivationError(
                 f"{what} contains `{unknown[0]}`, which is neither a coordinate, a rate, a parameter nor t.",
                 fix="declare it as a parameter of the model")
-        out = renamed[expr] = expr.xreplace(private)
+        # Only the symbols it holds: `xreplace` converts its whole map on every call.
+        out = renamed[expr] = expr.xreplace({s: private[s] for s in expr.free_symbols if s in private})
         return out
 
     def function(signature: str, outputs, what: str, definitions=None) -> str:
