@@ -82,6 +82,27 @@ class CourseForm(NamedTuple):
     F: tuple[se.Basic, ...]
 
 
+class _FromCourse:
+    """A field of `EquationsOfMotion` that, left as None, is taken from the course's derivation on first use.
+
+    A data descriptor as the dataclass field's default (the dataclasses "descriptor-typed
+    field"): the default is None, ``__set__`` stores what ``__init__`` or `dataclasses.replace`
+    gives, and ``__get__`` answers it, or the course form's value when it is None.
+    """
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.name, self.slot = name, "_" + name
+
+    def __get__(self, obj, objtype=None):  # type: ignore[no-untyped-def]
+        if obj is None:
+            return None
+        value = obj.__dict__.get(self.slot)
+        return getattr(obj._course, self.name) if value is None else value
+
+    def __set__(self, obj, value) -> None:  # type: ignore[no-untyped-def]
+        obj.__dict__[self.slot] = value
+
+
 @dataclass(frozen=True)
 class EquationsOfMotion:
     """Everything `derive` finds for a model, as values to print, inspect and reuse.
@@ -102,17 +123,24 @@ class EquationsOfMotion:
     reactions : per complementary constraint, the force/moment its multipliers stand for.
     recursive : for a kinematic tree, M q̈ = F over named intermediates (`dynamics._recursive`),
         which the compiled code uses; None when the course's derivation is the only one.
+    course : makes the course's derivation (`CourseForm`) when the fields above it are left None.
 
-    With a recursive form, the course's derivation (T_terms, inertias, loads, equations,
-    M, F) is made on first use: compiling and simulating a robot need none of it.
+    With a recursive form, `derive` leaves T_terms, inertias, loads, equations, M and F to
+    ``course``, run on first use of any of them: compiling and simulating a robot need none.
     """
 
     model: Model
     kinematics: Kinematics
-    course: Callable[[], CourseForm] = field(repr=False, compare=False)
+    T_terms: tuple[KineticEnergyTerm, ...] = _FromCourse()  # type: ignore[assignment]
+    inertias: dict[str, RigidInertia] = _FromCourse()  # type: ignore[assignment]
+    loads: tuple[LoadForces, ...] = _FromCourse()  # type: ignore[assignment]
+    equations: tuple[LagrangeEquation, ...] = _FromCourse()  # type: ignore[assignment]
+    M: tuple[tuple[se.Basic, ...], ...] = _FromCourse()  # type: ignore[assignment]
+    F: tuple[se.Basic, ...] = _FromCourse()  # type: ignore[assignment]
     constraints: tuple[ConstraintRow, ...] = ()
     reactions: tuple[ConstraintReaction, ...] = ()
     recursive: RecursiveForm | None = field(default=None, repr=False, compare=False)
+    course: Callable[[], CourseForm] | None = field(default=None, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         n = len(self.model.coordinates)
@@ -120,42 +148,24 @@ class EquationsOfMotion:
             raise DerivationError(f"each constraint row must have {n} coefficients A_ki, one per coordinate")
         if len({row.multiplier for row in self.constraints}) != len(self.constraints):
             raise DerivationError("each complementary constraint row must have its own multiplier")
-        if self.recursive is None:
-            self._course  # the course's form is the one made at once: check it now
+        if self.__dict__.get("_M") is not None:
+            self._check(self.M, self.F, self.equations)
+
+    def _check(self, M, F, equations) -> None:  # type: ignore[no-untyped-def]
+        n = len(self.model.coordinates)
+        if len(M) != n or any(len(row) != n for row in M) or len(F) != n:
+            raise DerivationError(f"M must be {n}×{n} and F of length {n}, one per coordinate")
+        if len(equations) != n:
+            raise DerivationError("there must be as many Lagrange equations as coordinates (Remarque 1)")
 
     @cached_property
     def _course(self) -> CourseForm:
+        if self.course is None:
+            raise DerivationError("these equations of motion were made without the course's derivation",
+                                  fix="derive the model with lagrangian.derive")
         form = self.course()
-        n = len(self.model.coordinates)
-        if len(form.M) != n or any(len(row) != n for row in form.M) or len(form.F) != n:
-            raise DerivationError(f"M must be {n}×{n} and F of length {n}, one per coordinate")
-        if len(form.equations) != n:
-            raise DerivationError("there must be as many Lagrange equations as coordinates (Remarque 1)")
+        self._check(form.M, form.F, form.equations)
         return form
-
-    @property
-    def T_terms(self) -> tuple[KineticEnergyTerm, ...]:
-        return self._course.T_terms
-
-    @property
-    def inertias(self) -> dict[str, RigidInertia]:
-        return self._course.inertias
-
-    @property
-    def loads(self) -> tuple[LoadForces, ...]:
-        return self._course.loads
-
-    @property
-    def equations(self) -> tuple[LagrangeEquation, ...]:
-        return self._course.equations
-
-    @property
-    def M(self) -> tuple[tuple[se.Basic, ...], ...]:
-        return self._course.M
-
-    @property
-    def F(self) -> tuple[se.Basic, ...]:
-        return self._course.F
 
     @property
     def formulation(self) -> str:
@@ -325,11 +335,12 @@ def derive(model: Model, *, formulation: str = "auto") -> EquationsOfMotion:
         return CourseForm(T_terms, inertias, loads, equations, M, F)
 
     if recursive is not None:
-        return EquationsOfMotion(model, kin, course, recursive=recursive)
+        return EquationsOfMotion(model, kin, recursive=recursive, course=course)
     form = course()
     rows: tuple[ConstraintRow, ...] = ()
     reactions: tuple[ConstraintReaction, ...] = ()
+    equations = form.equations
     if model.constraints:  # step 7: the complementary equations, and λ_k A_ki in each L(q_i)
         equations, rows, reactions = complementary_constraints(kin, form.equations)
-        form = form._replace(equations=equations)
-    return EquationsOfMotion(model, kin, lambda: form, rows, reactions)
+    return EquationsOfMotion(model, kin, form.T_terms, form.inertias, form.loads, equations, form.M, form.F, rows,
+                             reactions)

@@ -69,17 +69,18 @@ class CompiledSystem:
         if backend == "auto":
             backend = "c" if compiler() is not None else "symengine"
         self.backend = backend
+        # With a recursive form the C code monitors its energy integral, T and U; the course's
+        # search (`first_integrals`) and its T, U would first make the whole course derivation.
+        recursive = eom.recursive is not None and backend == "c"
         if integrals is None:
-            # With a recursive form the C code monitors its energy integral; the course's search
-            # (`first_integrals`) would first make the whole course derivation.
-            recursive = eom.recursive is not None and backend == "c"
             integrals = _recursive_integrals(eom) if recursive else first_integrals(eom)
         self.first_integrals = tuple(integrals)
         self.integrals = tuple(fi.name for fi in self.first_integrals)
         self.parameters = tuple(p.name for p in eom.model.parameters)
         self._events = tuple(events)
         self.events = tuple(name for name, _ in self._events)
-        self.monitors = tuple(name for name, _ in monitor_expressions(eom, self.first_integrals))
+        self.monitors = tuple(name for name, _ in monitor_expressions(eom, self.first_integrals,
+                                                                       recursive=recursive))
         if backend == "c":
             generated = generate_c(eom, self.first_integrals, self._events)
             self.source = generated.source
