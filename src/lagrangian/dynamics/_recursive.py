@@ -312,7 +312,7 @@ class RecursiveForm:
         known: dict[se.Basic, se.Basic] = {s: se.RealDouble(float(v)) for s, v in values.items()}
         for s, e in self.needed(exprs):
             known[s] = se.RealDouble(float(e.xreplace(known)))
-        return [float(se.sympify(e).xreplace(known)) for e in exprs]
+        return [float(e.xreplace(known)) for e in exprs]
 
 
 def _gradient(names: _Names, f: se.Basic, wrt: Sequence[se.Symbol]) -> list[se.Basic]:
