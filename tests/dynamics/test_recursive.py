@@ -173,6 +173,20 @@ def test_compiled_recursive_code_agrees_and_simulates() -> None:
         assert np.max(np.abs(a.q - b.q)) < 1e-8 and np.max(np.abs(a.qd - b.qd)) < 1e-8
 
 
+def test_expanded_form_and_the_symengine_backend() -> None:
+    eom = lagrangian.derive(relative_chain(4))
+    rec = eom.recursive
+    values = _point(eom, np.random.default_rng(7))
+    flat = [e for row in rec.M for e in row]
+    expanded = rec.expand(flat + list(rec.F))
+    assert all(s in values for e in expanded for s in e.free_symbols)  # no intermediate left
+    _close(_course(expanded, values), rec.evaluate(flat + list(rec.F), values))
+    # Without a C compiler the course's M and F are evaluated: the same q̈.
+    Y = np.random.default_rng(8).uniform(-1, 1, (3, 8))
+    c, s = compile_system(eom), compile_system(eom, backend="symengine")
+    _close(c.rhs(0.0, Y, c.parameter_vector()), s.rhs(0.0, Y, s.parameter_vector()))
+
+
 def test_energy_is_monitored_and_kept() -> None:
     system = compile_system(lagrangian.derive(relative_chain(6)))
     assert system.integrals == ("E",)
