@@ -18,6 +18,7 @@ from lagrangian.errors import DerivationError
 from lagrangian.model.build import ModelBuilder
 from lagrangian.model.zoo import ARM_AXES, lagrange_top, planar_chain, relative_chain, serial_arm
 from lagrangian.numerics import compile_system, simulate
+from lagrangian_test_support import EXAMPLES_DIR
 
 RTOL = 1e-10
 
@@ -97,6 +98,18 @@ def _prismatic_model() -> lagrangian.Model:
     b.point("anchor", "0.5*R0.y")
     b.spring("rail_spring", ("anchor", "cart"), stiffness="k")
     return b.build()
+
+
+TREE_EXAMPLES = ["block_on_belt.toml", "block_on_incline.toml", "cart_pendulum.toml", "double_pendulum.toml",
+                 "inverted_pendulum_cart.toml", "lagrange_top.toml", "simple_pendulum.toml", "sleeping_top.toml",
+                 "spherical_pendulum.toml"]
+
+
+@pytest.mark.parametrize("name", TREE_EXAMPLES)
+def test_every_tree_example(name: str) -> None:
+    # Fixed points, inertias given at a point other than G, sliding blocks, friction and the like:
+    # the recursive form of every example that is a tree equals the course's derivation.
+    _check_against_course(lagrangian.load_model(EXAMPLES_DIR / name), states=2)
 
 
 def test_prismatic_joints_offsets_and_other_loads() -> None:
