@@ -49,7 +49,7 @@ from ..kinematics import Kinematics
 from ..kinematics._frames import _add3, _cross, _turn
 from ..model import GALILEAN_FRAME, Gravity, JointDamper, Torque, Vector
 from ..model._vector import AXES, sum_of
-from ._energy import rigid_inertia
+from ._energy import _transport, rigid_inertia
 from ._forces import LoadForces
 
 __all__ = ["RecursiveForm", "TreeStructure", "tree_structure", "recursive_form", "AUTO_MIN_DEPTH"]
@@ -188,7 +188,13 @@ def tree_structure(kin: Kinematics) -> TreeStructure | str:
                      offset_rates={j: tuple(u) for j, u in rates.items()})  # type: ignore[misc]
         if body is not None:
             _, pi_g = rigid_inertia(kin, body)  # checks the inertia (physical, at a point of the body)
-            leaf.inertia = pi_g  # given in the body's frame, or in one where it reads the same (checked)
+            given = body.inertia
+            if given.frame != body.frame and given.at != "G":
+                # Given in a frame where it reads as in the body's (checked): moved to G with GP in
+                # the body's components, which are constant (P is a point of the body, checked).
+                gp = kin.frames.express(kin.position(given.at) - body.center, body.frame)
+                pi_g = _transport(given.matrix, body.mass, gp, -1)
+            leaf.inertia = pi_g  # Π_G in the body's basis
         leaf.gravity = tuple(k for k, (load, _) in enumerate(gravity) if not load.on or name in load.on)
         nodes[index[home]].children.append(len(nodes))
         leaf_of[name] = len(nodes)
