@@ -21,10 +21,12 @@ __all__ = ["ZOO", "MODEL_HELP", "load_source"]
 
 #: The zoo's models that ``zoo:NAME[:N]`` names, and whether they take a size N.
 ZOO = {"lagrange_top": (zoo.lagrange_top, False), "planar_chain": (zoo.planar_chain, True),
-       "spatial_chain": (zoo.spatial_chain, True)}
+       "spatial_chain": (zoo.spatial_chain, True), "relative_chain": (zoo.relative_chain, True),
+       "serial_arm": (zoo.serial_arm, True)}
 
 MODEL_HELP = ("model file (TOML), a robot's URDF file (.urdf), or a zoo model by name: zoo:lagrange_top, "
-              "zoo:planar_chain:N, zoo:spatial_chain:N; default: the seed's Lagrange top")
+              "zoo:planar_chain:N, zoo:spatial_chain:N, zoo:relative_chain:N, zoo:serial_arm:N; "
+              "default: the seed's Lagrange top")
 
 
 def _zoo_model(name: str) -> Model:

@@ -137,7 +137,10 @@ def _check_invariant(kin: Kinematics, body: Body, loc) -> None:  # type: ignore[
 
 def _check_physical(kin: Kinematics, body: Body, pi_g: Matrix3, loc) -> None:  # type: ignore[no-untyped-def]
     """Principal moments at G must be ≥ 0 and obey the triangle inequality I1 ≤ I2 + I3."""
-    values = {se.Symbol(p.name): p.value for p in kin.model.parameters if p.value is not None}
+    used = set().union(*(e.free_symbols for row in pi_g for e in row))
+    # Only the parameters the entries hold: `subs` converts its whole map on every call.
+    values = {se.Symbol(p.name): p.value for p in kin.model.parameters
+              if p.value is not None and se.Symbol(p.name) in used}
     entries = [[e.subs(values) for e in row] for row in pi_g]
     if any(e.free_symbols for row in entries for e in row):
         return  # symbolic parameters without values: nothing to check numerically

@@ -16,6 +16,7 @@ each other).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import symengine as se
@@ -170,15 +171,18 @@ def _derives_from(kin: Kinematics, Q: tuple[se.Basic, ...], potential: se.Basic)
     return all(are_zero(residues))
 
 
-def generalized_forces(kin: Kinematics, assumptions: Assumptions | None = None) -> tuple[LoadForces, ...]:
-    """Q_i of every load of the model, by virtual power, with its potential when it has one.
+def generalized_forces(kin: Kinematics, assumptions: Assumptions | None = None, *,
+                       only: Sequence[int] | None = None) -> tuple[LoadForces, ...]:
+    """Q_i of every load of the model (or of the loads at indices ``only``), by virtual power,
+    with its potential when it has one.
 
     With ``assumptions`` (the model's declared signs and ranges), Q_i and the candidate
     potential are simplified where a sign is proved: a spring from a wall at x = −L with
     x ≥ −L gives −k x, not −k sgn(x + L)(|x + L| − L) (`lagrangian.model._assumptions`).
     """
     out = []
-    for load in kin.model.loads:
+    loads = kin.model.loads if only is None else [kin.model.loads[k] for k in only]
+    for load in loads:
         Q, candidate, note = _q_of(kin, load)
         if assumptions is not None and assumptions.active:
             Q = tuple(assumptions.refine(x) for x in Q)

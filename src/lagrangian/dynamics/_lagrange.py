@@ -16,7 +16,10 @@ by numerics, see `_inertia`).  The two must agree; the test suite checks it.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import NamedTuple
 
 import symengine as se
 
@@ -31,8 +34,13 @@ from ._energy import KineticEnergyTerm, RigidInertia, kinetic_energy
 from ._forces import LoadForces, generalized_forces
 from ._inertia import mass_matrix_and_bias
 from ._inertial import inertial_forces, reference_kinematics
+from ._recursive import AUTO_MIN_DEPTH, RecursiveForm, recursive_form, require_tree, tree_structure
 
-__all__ = ["LagrangeEquation", "EquationsOfMotion", "derive"]
+__all__ = ["LagrangeEquation", "EquationsOfMotion", "derive", "FORMULATIONS"]
+
+#: `derive`'s formulations: "auto" (recursive for kinematic trees of at least
+#: `AUTO_MIN_DEPTH` moving rotations in series, else the course's), "lagrange", "recursive".
+FORMULATIONS = ("auto", "lagrange", "recursive")
 
 #: Largest number of coordinates for which Γ_i = d/dt(∂T/∂q̇_i) − ∂T/∂q_i is grouped by
 #: q̈_j and q̇_j (see `lagrange_equations`).
@@ -65,7 +73,39 @@ class LagrangeEquation:
         return equation_latex(self)
 
 
-@dataclass(frozen=True, slots=True)
+class CourseForm(NamedTuple):
+    """What the course's derivation gives: T body by body, the Q_i, the L(q_i), M and F."""
+
+    T_terms: tuple[KineticEnergyTerm, ...]
+    inertias: dict[str, RigidInertia]
+    loads: tuple[LoadForces, ...]
+    equations: tuple[LagrangeEquation, ...]
+    M: tuple[tuple[se.Basic, ...], ...]
+    F: tuple[se.Basic, ...]
+
+
+class _FromCourse:
+    """A field of `EquationsOfMotion` that, left as None, is taken from the course's derivation on first use.
+
+    A data descriptor as the dataclass field's default (the dataclasses "descriptor-typed
+    field"): the default is None, ``__set__`` stores what ``__init__`` or `dataclasses.replace`
+    gives, and ``__get__`` answers it, or the course form's value when it is None.
+    """
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.name, self.slot = name, "_" + name
+
+    def __get__(self, obj, objtype=None):  # type: ignore[no-untyped-def]
+        if obj is None:
+            return None
+        value = obj.__dict__.get(self.slot)
+        return getattr(obj._course, self.name) if value is None else value
+
+    def __set__(self, obj, value) -> None:  # type: ignore[no-untyped-def]
+        obj.__dict__[self.slot] = value
+
+
+@dataclass(frozen=True)
 class EquationsOfMotion:
     """Everything `derive` finds for a model, as values to print, inspect and reuse.
 
@@ -85,32 +125,59 @@ class EquationsOfMotion:
     reactions : per complementary constraint, the force/moment its multipliers stand for.
     assumptions : the signs proved from the model's declared signs and ranges and used to
         simplify (x + L > 0 where x ≥ −L), each with how it was proved.
+    recursive : for a kinematic tree, M q̈ = F over named intermediates (`dynamics._recursive`),
+        which the compiled code uses; None when the course's derivation is the only one.
+    course : makes the course's derivation (`CourseForm`) when the fields above it are left None.
+
+    With a recursive form, `derive` leaves T_terms, inertias, loads, equations, M and F to
+    ``course``, run on first use of any of them: compiling and simulating a robot need none.
     """
 
     model: Model
     kinematics: Kinematics
-    T_terms: tuple[KineticEnergyTerm, ...]
-    inertias: dict[str, RigidInertia]
-    loads: tuple[LoadForces, ...]
-    equations: tuple[LagrangeEquation, ...]
-    M: tuple[tuple[se.Basic, ...], ...]
-    F: tuple[se.Basic, ...]
+    T_terms: tuple[KineticEnergyTerm, ...] = _FromCourse()  # type: ignore[assignment]
+    inertias: dict[str, RigidInertia] = _FromCourse()  # type: ignore[assignment]
+    loads: tuple[LoadForces, ...] = _FromCourse()  # type: ignore[assignment]
+    equations: tuple[LagrangeEquation, ...] = _FromCourse()  # type: ignore[assignment]
+    M: tuple[tuple[se.Basic, ...], ...] = _FromCourse()  # type: ignore[assignment]
+    F: tuple[se.Basic, ...] = _FromCourse()  # type: ignore[assignment]
     constraints: tuple[ConstraintRow, ...] = ()
     reactions: tuple[ConstraintReaction, ...] = ()
     #: The signs the derivation proved from the declared assumptions and used to simplify
     #: (`lagrangian.model._assumptions.SignFact`); `simulate` checks them along the motion.
     assumptions: tuple[SignFact, ...] = ()
+    recursive: RecursiveForm | None = field(default=None, repr=False, compare=False)
+    course: Callable[[], CourseForm] | None = field(default=None, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         n = len(self.model.coordinates)
-        if len(self.M) != n or any(len(row) != n for row in self.M) or len(self.F) != n:
-            raise DerivationError(f"M must be {n}×{n} and F of length {n}, one per coordinate")
         if any(len(row.coefficients) != n for row in self.constraints):
             raise DerivationError(f"each constraint row must have {n} coefficients A_ki, one per coordinate")
         if len({row.multiplier for row in self.constraints}) != len(self.constraints):
             raise DerivationError("each complementary constraint row must have its own multiplier")
-        if len(self.equations) != n:
+        if self.__dict__.get("_M") is not None:
+            self._check(self.M, self.F, self.equations)
+
+    def _check(self, M, F, equations) -> None:  # type: ignore[no-untyped-def]
+        n = len(self.model.coordinates)
+        if len(M) != n or any(len(row) != n for row in M) or len(F) != n:
+            raise DerivationError(f"M must be {n}×{n} and F of length {n}, one per coordinate")
+        if len(equations) != n:
             raise DerivationError("there must be as many Lagrange equations as coordinates (Remarque 1)")
+
+    @cached_property
+    def _course(self) -> CourseForm:
+        if self.course is None:
+            raise DerivationError("these equations of motion were made without the course's derivation",
+                                  fix="derive the model with lagrangian.derive")
+        form = self.course()
+        self._check(form.M, form.F, form.equations)
+        return form
+
+    @property
+    def formulation(self) -> str:
+        """"recursive" when the compiled code uses `recursive`, else "lagrange"."""
+        return "lagrange" if self.recursive is None else "recursive"
 
     @property
     def q(self) -> tuple[se.Symbol, ...]:
@@ -242,12 +309,18 @@ def lagrange_equations(kin: Kinematics, T: se.Basic, U: se.Basic,
     return tuple(out)
 
 
-def derive(model: Model) -> EquationsOfMotion:
+def derive(model: Model, *, formulation: str = "auto") -> EquationsOfMotion:
     """From a model to its Lagrange equations, following the seed's steps 2–6.
 
     Parameters
     ----------
     model : a checked `Model` (`load_model`, `parse_model` or `ModelBuilder.build`).
+    formulation : "auto" (default), "lagrange" or "recursive".  "recursive" also builds M and
+        F of a kinematic tree by the recursive multibody algorithms over named intermediates
+        (`dynamics._recursive`: what the compiled code then uses, linear in the number of
+        joints where the expanded entries swell); "auto" does so for trees with at least
+        `AUTO_MIN_DEPTH` moving rotations in series.  The course's equations are the same
+        in every case (on first use with a recursive form).
 
     Returns
     -------
@@ -258,22 +331,41 @@ def derive(model: Model) -> EquationsOfMotion:
     ------
     ModelError
         For data only kinematics can check (non-physical inertia, a fixed point that moves).
+    DerivationError
+        For ``formulation="recursive"`` on a model that is not a kinematic tree (why, and the fix).
     """
+    if formulation not in FORMULATIONS:
+        raise ValueError(f"formulation must be one of {', '.join(FORMULATIONS)}, not {formulation!r}")
     kin = reference_kinematics(model)  # relative to R0, or to the model's [reference] frame R (Remarque 3)
-    T_terms, inertias = kinetic_energy(kin)
     assumptions = Assumptions(model)  # declared signs and ranges: |x + L| = x + L where x ≥ −L
-    loads = generalized_forces(kin, assumptions) + inertial_forces(kin)  # + Coriolis and entrainment when R is not R0
-    T = sum_of([term.expression for term in T_terms])
-    U = sum_of([f.potential for f in loads if f.potential is not None])
-    n = kin.n
-    Q_nc = tuple(sum_of([f.Q[i] for f in loads if f.potential is None]) for i in range(n))
-    equations = lagrange_equations(kin, T, U, Q_nc)
-    M, gamma0 = mass_matrix_and_bias(kin, inertias)
-    Q_total = tuple(sum_of([f.Q[i] for f in loads]) for i in range(n))
-    F = tuple(Q if type(g) is _ZERO_TYPE else Q - g for Q, g in zip(Q_total, gamma0))
+    recursive = None
+    if formulation != "lagrange":
+        tree = require_tree(kin) if formulation == "recursive" else tree_structure(kin)
+        if not isinstance(tree, str) and (formulation == "recursive" or tree.depth >= AUTO_MIN_DEPTH):
+            recursive = recursive_form(kin, tree, generalized_forces(kin, assumptions, only=tree.other_loads))
+
+    def course() -> CourseForm:
+        T_terms, inertias = kinetic_energy(kin)
+        # + Coriolis and entrainment when R is not R0
+        loads = generalized_forces(kin, assumptions) + inertial_forces(kin)
+        T = sum_of([term.expression for term in T_terms])
+        U = sum_of([f.potential for f in loads if f.potential is not None])
+        n = kin.n
+        Q_nc = tuple(sum_of([f.Q[i] for f in loads if f.potential is None]) for i in range(n))
+        equations = lagrange_equations(kin, T, U, Q_nc)
+        M, gamma0 = mass_matrix_and_bias(kin, inertias)
+        Q_total = tuple(sum_of([f.Q[i] for f in loads]) for i in range(n))
+        F = tuple(Q if type(g) is _ZERO_TYPE else Q - g for Q, g in zip(Q_total, gamma0))
+        return CourseForm(T_terms, inertias, loads, equations, M, F)
+
+    if recursive is not None:
+        return EquationsOfMotion(model, kin, recursive=recursive, course=course,
+                                 assumptions=tuple(assumptions.facts))
+    form = course()
     rows: tuple[ConstraintRow, ...] = ()
     reactions: tuple[ConstraintReaction, ...] = ()
+    equations = form.equations
     if model.constraints:  # step 7: the complementary equations, and λ_k A_ki in each L(q_i)
-        equations, rows, reactions = complementary_constraints(kin, equations)
-    return EquationsOfMotion(model, kin, T_terms, inertias, loads, equations, M, F, rows, reactions,
-                             tuple(assumptions.facts))
+        equations, rows, reactions = complementary_constraints(kin, form.equations)
+    return EquationsOfMotion(model, kin, form.T_terms, form.inertias, form.loads, equations, form.M, form.F, rows,
+                             reactions, tuple(assumptions.facts))

@@ -23,7 +23,7 @@ import symengine as se
 
 from ..dynamics import EquationsOfMotion
 from ..errors import DerivationError
-from ._cprint import c_block
+from ._cprint import c_block, c_sequence
 
 __all__ = ["GeneratedSource", "MassForcesForm", "generate_c", "mass_forces_form", "monitor_expressions"]
 
@@ -52,11 +52,16 @@ class GeneratedSource:
     constants: int = 0
 
 
-def monitor_expressions(eom: EquationsOfMotion, integrals: Sequence) -> list[tuple[str, se.Basic]]:
-    """(name, expression) of each first integral, then T and U (under other names if taken)."""
+def monitor_expressions(eom: EquationsOfMotion, integrals: Sequence, *,
+                        recursive: bool = False) -> list[tuple[str, se.Basic]]:
+    """(name, expression) of each first integral, then T and U (under other names if taken).
+
+    With ``recursive``, T and U are those of ``eom.recursive``, over its intermediates.
+    """
     out = [(fi.name, fi.expression) for fi in integrals]
     taken = {name for name, _ in out}
-    for name, expr in (("T", eom.T), ("U", eom.U)):
+    energies = (eom.recursive.T, eom.recursive.U) if recursive and eom.recursive is not None else (eom.T, eom.U)
+    for name, expr in zip(("T", "U"), energies):
         out.append((name if name not in taken else f"{name}_total", expr))
     return out
 
@@ -303,26 +308,45 @@ def generate_c(
     header["_t"] = "t"
     names = {sym: str(sym) for sym in private.values()}
 
+    #: Symbols printed under their own C name, not renamed: the recursive form's intermediates and
+    #: the hoisted constants (one `xreplace` with a map of thousands would cost more than the rest).
+    named: dict[se.Basic, str] = {}
+
+    renamed: dict[se.Basic, se.Basic] = {}
+
     def rename(expr: se.Basic, what: str) -> se.Basic:
         expr = expr if isinstance(expr, se.Basic) else se.Integer(0) + expr
-        unknown = [s for s in expr.free_symbols if s not in private]
+        out = renamed.get(expr)
+        if out is not None:
+            return out
+        unknown = [s for s in expr.free_symbols if s not in private and s not in named]
         if unknown:
             raise DerivationError(
                 f"{what} contains `{unknown[0]}`, which is neither a coordinate, a rate, a parameter nor t.",
                 fix="declare it as a parameter of the model")
-        return expr.xreplace(private)
+        # Only the symbols it holds: `xreplace` converts its whole map on every call.
+        out = renamed[expr] = expr.xreplace({s: private[s] for s in expr.free_symbols if s in private})
+        return out
 
-    def function(signature: str, outputs, what: str) -> str:
+    def function(signature: str, outputs, what: str, definitions=None) -> str:
         # `outputs` is one list of (target, expression), or several computed in turn
-        # (the first defining names the next use).
+        # (the first defining names the next use); `definitions`, named intermediates
+        # (symbol, expression) the outputs use, each defined before its first use.
         stages = outputs if outputs and isinstance(outputs[0], list) else [outputs]
-        body = [line for k, stage in enumerate(stages)
-                for line in c_block([(tg, rename(e, what)) for tg, e in stage], names, prefix="xyz"[k])]
+        names = {sym: str(sym) for sym in private.values()} | named
+        if definitions is not None:
+            body = c_sequence([(sym, rename(e, what)) for sym, e in definitions],
+                              [(tg, rename(e, what)) for tg, e in outputs], names)
+        else:
+            body = [line for k, stage in enumerate(stages)
+                    for line in c_block([(tg, rename(e, what)) for tg, e in stage], names, prefix="xyz"[k])]
         used = set(re.findall(r"\b_[ypkt]\w*", "\n".join(body)))
         decls = [f"    const double {c} = {v};" for c, v in header.items() if c in used]
         decls.append("    (void)t; (void)y; (void)p;")
         return signature + " {\n" + "\n".join([*decls, *body]) + "\n}\n"
 
+    if eom.recursive is not None:
+        return _generate_recursive(eom, integrals, events, named, header, function)
     form = mass_forces_form(eom)
     for k, (sym, _) in enumerate(form.shared):
         private[sym] = se.Symbol(f"_s{k}")
@@ -340,6 +364,81 @@ def generate_c(
     b = [se.diff(eom.T, s).xreplace(rates_zero) for s in eom.qd]
     g = [eq.dT_dq - eq.dU_dq + eq.Q_nc for eq in eom.equations]
 
+    return _assemble(eom, monitors, events, params, constants, [
+        function("static void lg_mass_forces(double t, const double *y, const double *p, double *M, double *F)",
+                 [S_out, M_out + F_out], "M q'' = F"),
+        function("static void lg_monitors(double t, const double *y, const double *p, double *out)",
+                 [(f"out[{k}]", e) for k, (_, e) in enumerate(monitors)], "a first integral"),
+        function("static void lg_events(double t, const double *y, const double *p, double *g)",
+                 [(f"g[{k}]", e) for k, (_, e) in enumerate(events)], "an event function"),
+        function("static void lg_hamilton_mass(double t, const double *y, const double *p, double *M, double *b)",
+                 M_out + [(f"b[{i}]", e) for i, e in enumerate(b)], "dT/dq'"),
+        function("static void lg_hamilton_force(double t, const double *y, const double *p, double *g)",
+                 [(f"g[{i}]", e) for i, e in enumerate(g)], "dT/dq - dU/dq + Q"),
+    ], function)
+
+
+def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence, events: Sequence[tuple[str, se.Basic]],
+                        named: dict, header: dict, function) -> GeneratedSource:
+    """`generate_c` for an ``eom`` with a recursive form: each function defines the intermediates it
+    needs, in order, as ``const double`` locals, then its outputs; CSE runs on both.
+
+    Nothing is expanded: M, F and Hamilton's ∂(T − U)/∂q stay written in the link velocities,
+    accelerations, forces and composite inertias of `dynamics._recursive`, so the source
+    grows about linearly (F) and quadratically (M) with the number of joints.
+    """
+    rec = eom.recursive
+    n = len(eom.q)
+    params = tuple(p.name for p in eom.model.parameters)
+    for k, (sym, _) in enumerate(rec.intermediates):
+        named[sym] = f"_w{k}"
+    hoist = _Hoist([se.Symbol(name) for name in params])
+    M = [rec.M[i][j] for i in range(n) for j in range(n)]
+    monitors = monitor_expressions(eom, integrals, recursive=True)
+    hoisted: dict[se.Basic, se.Basic] = {}
+
+    def lifted(expr: se.Basic) -> se.Basic:
+        out = hoisted.get(expr)
+        if out is None:
+            out = hoisted[expr] = hoist(expr)
+        return out
+
+    def with_intermediates(outputs: list[tuple[str, se.Basic]]):
+        defs = [(s, lifted(e)) for s, e in rec.needed([e for _, e in outputs])]
+        return defs, [(target, lifted(e)) for target, e in outputs]
+
+    bodies = [
+        ("static void lg_mass_forces(double t, const double *y, const double *p, double *M, double *F)",
+         [(f"M[{k}]", e) for k, e in enumerate(M)] + [(f"F[{i}]", e) for i, e in enumerate(rec.F)], "M q'' = F"),
+        ("static void lg_monitors(double t, const double *y, const double *p, double *out)",
+         [(f"out[{k}]", e) for k, (_, e) in enumerate(monitors)], "a first integral"),
+        ("static void lg_events(double t, const double *y, const double *p, double *g)",
+         [(f"g[{k}]", e) for k, (_, e) in enumerate(events)], "an event function"),
+        ("static void lg_hamilton_force(double t, const double *y, const double *p, double *g)",
+         [(f"g[{i}]", e) for i, e in enumerate(rec.dL_dq)], "dT/dq - dU/dq + Q"),
+    ]
+    staged = [(signature, with_intermediates(outputs), what) for signature, outputs, what in bodies]
+    for k, sym in enumerate(hoist.constants.values()):
+        named[sym] = str(sym)
+        header[str(sym)] = f"p[{len(params) + k}]"
+    constants = [(f"k[{j}]", expr) for j, expr in enumerate(hoist.constants)]
+    # M is lg_mass_forces' (F is dropped: the symplectic integrator asks for M alone far less often
+    # than compiling a second copy of the composite inertias would cost); T is homogeneous
+    # quadratic in q̇ for a tree with no time in it, so b = ∂T/∂q̇ at q̇ = 0 is 0.
+    hamilton_mass = (
+        "static void lg_hamilton_mass(double t, const double *y, const double *p, double *M, double *b) {\n"
+        f"    double F[{n}], yq[{2 * n}];\n"
+        f"    for (int i = 0; i < {n}; i++) {{ yq[i] = y[i]; yq[{n} + i] = 0.0; b[i] = 0.0; }}\n"
+        "    lg_mass_forces(t, yq, p, M, F);  /* only q is read from y */\n}\n")
+    functions = [function(signature, outs, what, defs) for signature, (defs, outs), what in staged]
+    return _assemble(eom, monitors, events, params, constants, [*functions[:3], hamilton_mass, functions[3]],
+                     function)
+
+
+def _assemble(eom: EquationsOfMotion, monitors, events, params, constants, functions: list[str],
+              function) -> GeneratedSource:
+    """The translation unit: dimensions, DOP853's tableau, the constants, the model's functions, the integrators."""
+    n = len(eom.q)
     parts = [
         "/* Generated by lagrangian from the equations of motion of "
         f"`{eom.model.name}`. Do not edit. */",
@@ -353,16 +452,7 @@ def generate_c(
         "/* The parameter-only subexpressions, p[LG_NP + j] = k[j], computed once per parameter set. */",
         function("void lg_constants(const double *p, double *k)", constants, "a constant").replace(
             " {\n", " {\n    const double t = 0.0; const double *y = 0;\n", 1),  # neither is read
-        function("static void lg_mass_forces(double t, const double *y, const double *p, double *M, double *F)",
-                 [S_out, M_out + F_out], "M q'' = F"),
-        function("static void lg_monitors(double t, const double *y, const double *p, double *out)",
-                 [(f"out[{k}]", e) for k, (_, e) in enumerate(monitors)], "a first integral"),
-        function("static void lg_events(double t, const double *y, const double *p, double *g)",
-                 [(f"g[{k}]", e) for k, (_, e) in enumerate(events)], "an event function"),
-        function("static void lg_hamilton_mass(double t, const double *y, const double *p, double *M, double *b)",
-                 M_out + [(f"b[{i}]", e) for i, e in enumerate(b)], "dT/dq'"),
-        function("static void lg_hamilton_force(double t, const double *y, const double *p, double *g)",
-                 [(f"g[{i}]", e) for i, e in enumerate(g)], "dT/dq - dU/dq + Q"),
+        *functions,
         resources.files(__package__).joinpath("_integrators.c").read_text(encoding="utf-8"),
     ]
     source = "\n".join(parts)

@@ -12,7 +12,7 @@ from collections.abc import Mapping, Sequence
 
 import symengine as se
 
-__all__ = ["c_block", "c_expression"]
+__all__ = ["c_block", "c_expression", "c_sequence"]
 
 _FUNCTIONS = {
     "sin": "sin", "cos": "cos", "tan": "tan", "asin": "asin", "acos": "acos", "atan": "atan",
@@ -94,4 +94,49 @@ def c_block(outputs: Sequence[tuple[str, se.Basic]], names: Mapping[se.Basic, st
         local[sym] = f"{prefix}{k}"
     for (target, _), value in zip(outputs, reduced):
         lines.append(f"    {target} = {c_expression(value, local)};")
+    return lines
+
+
+def c_sequence(definitions: Sequence[tuple[se.Symbol, se.Basic]], outputs: Sequence[tuple[str, se.Basic]],
+               names: Mapping[se.Basic, str], prefix: str = "x") -> list[str]:
+    """Statements defining each named intermediate in turn, then assigning each output, with CSE over all.
+
+    ``definitions`` are (symbol, expression) with each expression in earlier symbols; the symbols
+    must be in ``names``.  SymEngine's ``cse`` may pull out of a later definition a piece that an
+    earlier one also holds, so the lines are written in dependency order (each local after what it
+    reads), not simply the common subexpressions first as in `c_block`.
+    """
+    exprs = [e for _, e in definitions] + [e if isinstance(e, se.Basic) else se.RealDouble(float(e))
+                                           for _, e in outputs]
+    replacements, reduced = se.cse(exprs) if exprs else ([], [])
+    local = dict(names)
+    value: dict[se.Basic, se.Basic] = {}
+    for k, (sym, expr) in enumerate(replacements):
+        local[sym] = f"{prefix}{k}"
+        value[sym] = expr
+    for (sym, _), expr in zip(definitions, reduced):
+        value[sym] = expr
+    done: set[se.Basic] = set()
+    lines: list[str] = []
+
+    def emit(root: se.Basic) -> None:
+        stack = [(root, False)]
+        while stack:
+            sym, ready = stack.pop()
+            if sym in done:
+                continue
+            if ready:
+                done.add(sym)
+                lines.append(f"    const double {local[sym]} = {c_expression(value[sym], local)};")
+                continue
+            stack.append((sym, True))
+            stack.extend((s, False) for s in value[sym].free_symbols if s in value and s not in done)
+
+    for sym, _ in definitions:
+        emit(sym)
+    for (target, _), expr in zip(outputs, reduced[len(definitions):]):
+        for s in expr.free_symbols:
+            if s in value:
+                emit(s)
+        lines.append(f"    {target} = {c_expression(expr, local)};")
     return lines

@@ -20,6 +20,7 @@ import numpy as np
 import symengine as se
 
 from ..analysis import first_integrals
+from ..analysis._integrals import FirstIntegral
 from ..dynamics import EquationsOfMotion
 from ..errors import SimulationError
 from ._codegen import generate_c, monitor_expressions
@@ -83,16 +84,22 @@ class CompiledSystem:
         self.eom = eom
         self.n = len(eom.q)
         self.coordinates = eom.coordinates
-        self.first_integrals = tuple(first_integrals(eom) if integrals is None else integrals)
+        if backend == "auto":
+            backend = "c" if compiler() is not None else "symengine"
+        self.backend = backend
+        # With a recursive form the C code monitors its energy integral, T and U; the course's
+        # search (`first_integrals`) and its T, U would first make the whole course derivation.
+        recursive = eom.recursive is not None and backend == "c"
+        if integrals is None:
+            integrals = _recursive_integrals(eom) if recursive else first_integrals(eom)
+        self.first_integrals = tuple(integrals)
         self.integrals = tuple(fi.name for fi in self.first_integrals)
         self.parameters = tuple(p.name for p in eom.model.parameters)
         self._unused: frozenset[str] | None = None  # see `unused_parameters`
         self._events = tuple(events)
         self.events = tuple(name for name, _ in self._events)
-        self.monitors = tuple(name for name, _ in monitor_expressions(eom, self.first_integrals))
-        if backend == "auto":
-            backend = "c" if compiler() is not None else "symengine"
-        self.backend = backend
+        self.monitors = tuple(name for name, _ in monitor_expressions(eom, self.first_integrals,
+                                                                       recursive=recursive))
         if backend == "c":
             generated = generate_c(eom, self.first_integrals, self._events)
             self.source = generated.source
@@ -278,6 +285,21 @@ class CompiledSystem:
         self._se_mf = make([eom.M[i][j] for i in range(n) for j in range(n)] + list(eom.F))
         self._se_mon = make([e for _, e in monitor_expressions(eom, self.first_integrals)])
         self._se_ev = make([e for _, e in self._events])
+
+
+def _recursive_integrals(eom: EquationsOfMotion) -> tuple[FirstIntegral, ...]:
+    """The energy integral T + U of a kinematic tree, over the recursive form's intermediates.
+
+    A tree has no time in its kinematics, so T is homogeneous quadratic in q̇; T + U is then
+    constant when every load derives from a potential U(q) (no t in it).  The expression is in
+    the intermediates of ``eom.recursive``: it is for the generated code, not for display.
+    """
+    rec = eom.recursive
+    if rec is None or not rec.conservative or eom.t in rec.U.free_symbols:
+        return ()
+    return (FirstIntegral("E", "energy", rec.T + rec.U,
+                          "energy integral T + U = cste: a kinematic tree with no time in it, every load "
+                          "derives from a potential"),)
 
 
 def _rhs_failure(status: int, T: np.ndarray, Y: np.ndarray) -> SimulationError:
