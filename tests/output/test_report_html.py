@@ -76,6 +76,26 @@ window.addEventListener('load', () => {
         fences.push([f.textContent, box(f).height, box(t).height, where(t)]);
     });
   });
+  // sin θ set apart by a thin space (LaTeX's \\sin), S/R0 with no space around the solidus.
+  const spacing = [];
+  const fontPx = e => parseFloat(getComputedStyle(e).fontSize);
+  document.querySelectorAll('mi').forEach(f => {
+    if (!/^(sin|cos|tan)$/.test(f.textContent)) return;
+    const name = f.parentElement.tagName === 'msup' && f === f.parentElement.children[0] ? f.parentElement : f;
+    let next = name.nextElementSibling;
+    while (next && next.tagName === 'mspace') next = next.nextElementSibling;
+    if (!next || next.tagName === 'mo' || (next.firstElementChild && next.firstElementChild.tagName === 'mo')
+        || (next.firstElementChild && next.firstElementChild.firstElementChild
+            && next.firstElementChild.firstElementChild.tagName === 'mo')) return;
+    const gap = box(next).left - box(name).right;
+    if (gap < 0.1 * fontPx(f)) spacing.push(['sin θ touching', gap, where(f)]);
+  });
+  document.querySelectorAll('mo').forEach(o => {
+    if (o.textContent !== '/') return;
+    const prev = o.previousElementSibling, next = o.nextElementSibling;
+    if (prev && box(o).left - box(prev).right > 0.08 * fontPx(o)) spacing.push(['space before /', box(o).left - box(prev).right, where(o)]);
+    if (next && box(next).left - box(o).right > 0.08 * fontPx(o)) spacing.push(['space after /', box(next).left - box(o).right, where(o)]);
+  });
   // The table of contents: each entry's box and list marker (the titles carry their own numbers).
   const toc = Array.from(document.querySelectorAll('nav li')).map(li => {
     const r = box(li);
@@ -84,7 +104,7 @@ window.addEventListener('load', () => {
   const probe = document.createElement('pre');
   probe.id = 'probe';
   probe.textContent = JSON.stringify({errors: window.__errors, maths: maths.length, bad: bad, images: images,
-                                      arrows: arrows, fences: fences, toc: toc,
+                                      arrows: arrows, fences: fences, toc: toc, spacing: spacing,
                                       text: document.body.innerText});
   document.body.appendChild(probe);
 });
@@ -124,6 +144,7 @@ def _check_page(html: str, expected_math: int, tmp_path: Path, images: int = 0) 
     assert result["images"] == [True] * images
     assert result["arrows"] == [], result["arrows"][:5]
     assert result["fences"] == [], result["fences"][:5]
+    assert result["spacing"] == [], result["spacing"][:5]
     # The table of contents at 1200 px: numbered once (no list numbers before "1. Choix …"), no entry over another.
     toc = result["toc"]
     assert toc and all(style == "none" for *_, style, _ in toc), toc[:3]

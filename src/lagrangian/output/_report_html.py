@@ -66,7 +66,7 @@ def _mathml(latex: str, display: str) -> str:
     except Exception as exc:  # latex2mathml raises assorted errors on input it does not know
         raise OutputError(f"Cannot convert `{latex[:120]}` to MathML: {exc}.",
                           fix="report this model to the lagrangian developers; --format tex or md still works") from None
-    return _stretchy(out.replace(' xmlns="http://www.w3.org/1998/Math/MathML"', "", 1))
+    return _function_spacing(_stretchy(out.replace(' xmlns="http://www.w3.org/1998/Math/MathML"', "", 1)))
 
 
 def _braced(s: str, i: int) -> int:
@@ -126,6 +126,22 @@ def _stretchy(mathml: str) -> str:
     as wide as ``OG``."""
     mathml = mathml.replace(_OVERSET_ARROW, '<mover><mo stretchy="true">&#x027F6;</mo>')
     return _OVER_ARROW.sub(_over_arrow, mathml)
+
+
+#: A function name (``sin``, or ``sin²``) and what follows it when that is not a bracket, an operator or a space.
+_FUNCTION_THEN_ARGUMENT = re.compile(r"(<mi>(?:sin|cos|tan|sinh|cosh|tanh|exp|log|arcsin|arccos|arctan)</mi>"
+                                     r"|<msup><mi>(?:sin|cos|tan|sinh|cosh|tanh)</mi><mrow><mn>\d+</mn></mrow></msup>)"
+                                     r"(?!<mo[ >]|<mrow><mo[ >]|<mrow><mrow><mo[ >]|<mspace|</mrow>|</math>)")
+#: The solidus of ``S/R0`` (S relative to R0) and of a/b inline.
+_SOLIDUS = "<mo>&#x0002F;</mo>"
+
+
+def _function_spacing(mathml: str) -> str:
+    """``sin θ`` and ``S/R0`` as LaTeX sets them: a thin space between a function's name and its argument
+    (LaTeX's \\mathop; latex2mathml writes two bare ``<mi>``, set touching), and none around the solidus
+    (an ordinary symbol in LaTeX, an infix operator with spaces in the MathML operator dictionary)."""
+    mathml = _FUNCTION_THEN_ARGUMENT.sub(r'\1<mspace width="0.167em"></mspace>', mathml)
+    return mathml.replace(_SOLIDUS, '<mo lspace="0em" rspace="0em">&#x0002F;</mo>')
 
 
 #: Function names that LaTeX spaces from the factor before them (\\mathop) and latex2mathml does not.
