@@ -18,10 +18,10 @@ import pytest
 import lagrangian
 from lagrangian.model.zoo import planar_chain
 from lagrangian.output import Report, ReportFigure, course_form, report
+from lagrangian.output._report_build import report_notation
 from lagrangian.output._report_doc import Display, Fold, Items, Para, math_of, walk
 from lagrangian.output._report_md import render_markdown
 from lagrangian.output._report_size import SMALL_OPS, Summary
-from lagrangian.output._text import notation
 from lagrangian_test_support import EXAMPLES_DIR, eom_of, example_names, integrals_of
 
 GOLDEN = Path(__file__).parent / "golden" / "lagrange_top.fr.md"
@@ -134,7 +134,8 @@ OVER_BUDGET = {"whipple_bicycle.toml"}
 def test_report_equations_are_the_engines(name, lang):
     eom, integrals = eom_of(name), integrals_of(name)
     form = course_form(eom, integrals)
-    n = notation(form)
+    # The report's notation: masses first, and the forms of `display_form` (its values: test_display_form).
+    n = report_notation(form, eom.model)
     r = report(eom, lang=lang, integrals=integrals)
     shown = _all_math(r)
     expected = []
