@@ -35,6 +35,7 @@ from ..analysis import FirstIntegral, Verification, first_integrals, verify
 from ..dynamics import EquationsOfMotion, derive
 from ..errors import OutputError
 from ..model import Model, load_model
+from ..model._texts import in_language
 from ._report_build import Context
 from ._report_doc import Document, Image, walk
 from ._report_equations import integrals_section, step6, step7
@@ -214,5 +215,6 @@ def report(model: Model | EquationsOfMotion | str | os.PathLike[str], *, lang: s
     notes = notes_section(c)
     if notes is not None:
         sections.insert(1, notes)
-    title = c.w.text("title", name=eom.model.name)
-    return Report(Document(lang, title, eom.model.description, tuple(sections)), eom)
+    # The model's own title in the report's language ("Mouvement de Lagrange"), else one made from its name.
+    title = in_language(eom.model.title, lang) or c.w.text("title", name=eom.model.name)
+    return Report(Document(lang, title, in_language(eom.model.description, lang) or "", tuple(sections)), eom)
