@@ -340,3 +340,23 @@ def test_every_fold_has_content(top):
     r = report(lagrangian.derive(planar_chain(14)))
     folds = [b for s in r.document.sections for b in walk(s.blocks) if isinstance(b, Fold)]
     assert folds and all(f.blocks and f.summary for f in folds)
+
+
+def test_the_check_recognises_L_psi_as_dK_dt(top):
+    """δ_O·z0 = d/dt(σ_O·z0) = d/dt(∂T/∂ψ̇) = dK/dt for the top (O fixed, z0 fixed in R0), with
+    σ_O·z0 = A ψ̇ sin²θ + C cosθ (φ̇ + ψ̇ cosθ), the seed's K, written from the seed, not the engine."""
+    import sympy
+
+    A, C, psd, phd, th = sympy.symbols("A C psi_dot phi_dot theta")
+    seed_K = A * psd * sympy.sin(th)**2 + C * sympy.cos(th) * (phd + psd * sympy.cos(th))
+    eom = lagrangian.derive(lagrangian.lagrange_top())
+    dT = next(e for e in eom.equations if e.coordinate == "psi").dT_dqd
+    assert sympy.simplify(dT._sympy_() - seed_K) == 0  # the statement holds (independently of the report)
+    r = report(eom, lang="fr", verification=True)
+    shown = math_of(r.document.section("check").blocks)
+    n = report_notation(course_form(eom, ()), eom.model)
+    assert any(r"\cdot\vec{z}_{0} = \frac{d}{dt}\left[\vec{\sigma}_{O}(S/R_{0})\cdot\vec{z}_{0}\right]" in m
+               and m.endswith(r"= \frac{dK}{dt}") for m in shown), shown
+    assert rf"\vec{{\sigma}}_{{O}}(S/R_{{0}})\cdot\vec{{z}}_{{0}} = {n.latex(seed_K)}" in shown
+    # Not said where it does not hold: no fixed axis of R0 for L(θ) (about u) nor L(φ) (about z).
+    assert sum(r"\right] = \frac{d}{dt}\left[\frac{\partial T" in m for m in shown) == 1

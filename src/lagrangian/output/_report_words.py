@@ -445,6 +445,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
                          "liaisons non parfaites y restent, avec les efforts donnés.",
                          "The actions of the perfect constraints drop out of every projection; those of the "
                          "constraints that are not perfect stay, with the applied forces."),
+    "fixed axis": ("{e} étant fixe dans {R0} et {O} fixe, la projection du moment dynamique sur {e} est la dérivée de "
+                   "celle du moment cinétique, qui est la quantité de mouvement généralisée :",
+                   "{e} being fixed in {R0} and {O} fixed, the projection of the dynamic moment on {e} is the derivative "
+                   "of that of the angular momentum, which is the generalized momentum:"),
     "top moment": ("{R0} étant galiléen, le théorème du moment dynamique en {O} de ({S}) par rapport à {R0} "
                    "s'écrit :", "{R0} being Galilean, the moment (angular momentum) theorem at {O} for ({S}) "
                    "relative to {R0} reads:"),
