@@ -360,3 +360,21 @@ def test_the_check_recognises_L_psi_as_dK_dt(top):
     assert rf"\vec{{\sigma}}_{{O}}(S/R_{{0}})\cdot\vec{{z}}_{{0}} = {n.latex(seed_K)}" in shown
     # Not said where it does not hold: no fixed axis of R0 for L(θ) (about u) nor L(φ) (about z).
     assert sum(r"\right] = \frac{d}{dt}\left[\frac{\partial T" in m for m in shown) == 1
+
+
+@pytest.mark.parametrize("name", ["lagrange_top.toml", "double_pendulum.toml"])
+def test_step6_states_the_principle_of_virtual_power(name):
+    """Step 6 opens with P*_acc = Σ Γ_i q_i* = Σ Q_i q_i* ⇒ Γ_i = Q_i, Γ_i = d/dt[∂T/∂q̇_i] − ∂T/∂q_i [Seed, I–II].
+    The statement is checked, not only shown: Γ_i (the engine's lhs) is the projection of the Newton–Euler
+    acceleration quantities on the virtual velocities of q_i (Σ m γ(G)·∂V(G)/∂q̇_i + δ_G·∂Ω/∂q̇_i), for each i."""
+    from lagrangian.analysis import verify
+
+    eom = eom_of(name)
+    v = verify(eom)
+    assert v.checks and all(ch.lhs_agrees for ch in v.checks)
+    step6 = math_of(report(eom, lang="fr").document.section("step6").blocks)
+    pvv = next(k for k, m in enumerate(step6) if m.startswith(r"P^{*}_{\mathrm{acc}}(\Sigma/R_{0}) = \sum_{i=1}^{n} "
+                                                             r"\Gamma_i\, q_i^{*} = \sum_{i=1}^{n} Q_i\, q_i^{*}"))
+    gamma = next(k for k, m in enumerate(step6) if m.startswith(r"\Gamma_i = \frac{d}{dt}\left[\frac{\partial T"))
+    general = next(k for k, m in enumerate(step6) if m.startswith("L(q_i)"))
+    assert pvv < gamma < general and step6[pvv].endswith(r"\Rightarrow\quad \Gamma_i = Q_i")

@@ -141,7 +141,15 @@ def step6(c: Context) -> Section:
                rf"\frac{{\partial T(\Sigma/{c.R})}}{{\partial q_i}} = -\frac{{\partial U_P(\Sigma/{c.R})}}{{\partial q_i}}"
                rf" + Q_{{i,\,\mathrm{{nc}}}}{lam} \qquad i = 1, \dots, n")
     n = len(c.form.equations)
-    blocks: list[Block] = [Display((Equation((general,)),))]
+    # The principle of virtual power where it is used [Seed, II]: P*_acc = Σ Γ_i q_i* = Σ Q_i q_i* for every
+    # q_i*, so Γ_i = Q_i, with Γ_i = d/dt[∂T/∂q̇_i] − ∂T/∂q_i [Seed, I].
+    pvv = (rf"P^{{*}}_{{\mathrm{{acc}}}}(\Sigma/{c.R}) = \sum_{{i=1}}^{{n}} \Gamma_i\, q_i^{{*}} = "
+           rf"\sum_{{i=1}}^{{n}} Q_i\, q_i^{{*}} \quad \forall\, q_i^{{*}} \quad\Rightarrow\quad \Gamma_i = Q_i")
+    gamma = (rf"\Gamma_i = \frac{{d}}{{dt}}\left[\frac{{\partial T(\Sigma/{c.R})}}{{\partial \dot{{q}}_i}}\right] - "
+             rf"\frac{{\partial T(\Sigma/{c.R})}}{{\partial q_i}}")
+    blocks: list[Block] = [Para(w("pvv", R=Math(c.R))), Display((Equation((pvv,)),)),
+                           Para(w("gamma", gamma=Math(gamma), R=Math(c.R), Q=Math("Q_i"))),
+                           Display((Equation((general,)),))]
     if c.eom.constraints:
         blocks.append(Para(w("multiplier def", sum=Math(r"\sum_{k} \lambda_{k}\, a_{k,i}"))))
     blocks.append(Para(w("lagrange n", n=Math(str(n))) if n > 1 else w("lagrange one")))

@@ -449,6 +449,14 @@ _PHRASES: dict[str, tuple[str, str]] = {
                    "celle du moment cinétique, qui est la quantité de mouvement généralisée :",
                    "{e} being fixed in {R0} and {O} fixed, the projection of the dynamic moment on {e} is the derivative "
                    "of that of the angular momentum, which is the generalized momentum:"),
+    "pvv": ("Le principe des puissances virtuelles, pour tout champ de vitesses virtuelles compatible avec les "
+            "liaisons principales :",
+            "The principle of virtual power, for every virtual velocity field compatible with the principal "
+            "constraints:"),
+    "gamma": ("où {gamma} est la composante généralisée des quantités d'accélération de (Σ) par rapport à {R}, "
+              "et {Q} celle de tous les efforts ; d'où les équations de Lagrange :",
+              "where {gamma} is the generalized component of the acceleration quantities (inertia) of (Σ) relative "
+              "to {R}, and {Q} that of all the forces and moments; hence Lagrange's equations:"),
     "top moment": ("{R0} étant galiléen, le théorème du moment dynamique en {O} de ({S}) par rapport à {R0} "
                    "s'écrit :", "{R0} being Galilean, the moment (angular momentum) theorem at {O} for ({S}) "
                    "relative to {R0} reads:"),
