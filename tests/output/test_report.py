@@ -378,3 +378,15 @@ def test_step6_states_the_principle_of_virtual_power(name):
     gamma = next(k for k, m in enumerate(step6) if m.startswith(r"\Gamma_i = \frac{d}{dt}\left[\frac{\partial T"))
     general = next(k for k, m in enumerate(step6) if m.startswith("L(q_i)"))
     assert pvv < gamma < general and step6[pvv].endswith(r"\Rightarrow\quad \Gamma_i = Q_i")
+
+
+def test_english_words_and_cross_product():
+    """The English report says what an English-speaking teacher says: ideal (workless) constraints, principal
+    parameters (generalized coordinates), and × for the cross product (∧ is the French notation)."""
+    eom = lagrangian.derive(lagrangian.lagrange_top())
+    en, fr = report(eom, lang="en", verification=True), report(eom, lang="fr", verification=True)
+    en_text, fr_text = en.markdown(), fr.markdown()
+    assert "ideal (workless)" in en_text and "perfect" not in en_text
+    assert en.document.section("step2").title == "2. Principal parameters (generalized coordinates)"
+    assert r"\wedge" not in en_text and r"\overrightarrow{OG}\times\vec{P}" in en_text
+    assert r"\overrightarrow{OG}\wedge\vec{P}" in fr_text and "parfaite" in fr_text

@@ -37,7 +37,7 @@ from ..errors import OutputError
 from ..model import Model, load_model
 from ..model._texts import in_language
 from ._report_build import Context
-from ._report_doc import Document, Image, walk
+from ._report_doc import Document, Image, map_math, walk
 from ._report_equations import integrals_section, step6, step7
 from ._report_extras import ReportFigure, check_section, matrix_section, notes_section, simulation_section
 from ._report_forces import step5
@@ -226,6 +226,9 @@ def report(model: Model | EquationsOfMotion | str | os.PathLike[str], *, lang: s
     notes = notes_section(c)
     if notes is not None:
         sections.insert(1, notes)
+    if lang == "en":
+        # The cross product: ∧ in French (the course's), × in English.
+        sections = [map_math(s, lambda latex: latex.replace(r"\wedge", r"\times")) for s in sections]
     # The model's own title in the report's language ("Mouvement de Lagrange"), else one made from its name.
     title = in_language(eom.model.title, lang) or c.w.text("title", name=eom.model.name)
     return Report(Document(lang, title, in_language(eom.model.description, lang) or "", tuple(sections)), eom)
