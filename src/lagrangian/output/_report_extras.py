@@ -8,6 +8,7 @@ check itself is `lagrangian.analysis.verify`; this module only writes it.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -205,8 +206,25 @@ def simulation_section(c: Context, figures: Sequence[ReportFigure]) -> Section:
     w = c.w
     blocks: list[Block] = []
     for k, fig in enumerate(figures, start=1):
-        blocks.append(Image(fig.png, w("figure", k=str(k), caption=fig.caption), fig.caption))
+        blocks.append(Image(fig.png, w("figure", k=str(k), caption=caption_runs(fig.caption)), fig.caption))
     return Section("simulation", w.text("simulation"), tuple(blocks))
+
+
+#: An indexed symbol of a caption's plain text: q_i(t), q̇_i, U_P, R_O(t).
+_INDEXED = re.compile(r"(q\u0307|[A-Za-z])_([A-Za-z0-9]+)(\(t\))?")
+
+
+def caption_runs(caption: str) -> Runs:
+    """A figure's plain-text caption with its indexed symbols as mathematics: "Paramètres q_i(t)" →
+    "Paramètres " + q_i(t) set as math (the captions of `lagrangian.plotting` are plain text)."""
+    out: list[str | Math] = []
+    start = 0
+    for m in _INDEXED.finditer(caption):
+        base = r"\dot{q}" if m.group(1) == "q\u0307" else m.group(1)
+        out += [caption[start:m.start()], Math(f"{base}_{{{m.group(2)}}}" + (m.group(3) or ""))]
+        start = m.end()
+    out.append(caption[start:])
+    return tuple(r for r in out if r != "")
 
 
 #: Most coordinates for which the appendix lists the entries of M and F (n(n + 1)/2 + n of them).
