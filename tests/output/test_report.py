@@ -390,3 +390,22 @@ def test_english_words_and_cross_product():
     assert en.document.section("step2").title == "2. Principal parameters (generalized coordinates)"
     assert r"\wedge" not in en_text and r"\overrightarrow{OG}\times\vec{P}" in en_text
     assert r"\overrightarrow{OG}\wedge\vec{P}" in fr_text and "parfaite" in fr_text
+
+
+def test_step7_gives_the_reaction_of_the_fixed_point():
+    """After step 7: R_O = m γ(G/R0) − P, the engine's reaction (checked against the closed form in
+    tests/analysis/test_reactions.py), in the course's basis (u, w, z); not where a multiplier gives it."""
+    from lagrangian.analysis import reactions, verify
+
+    eom = lagrangian.derive(lagrangian.lagrange_top())
+    v = verify(eom)
+    [r] = reactions(v)
+    doc = report(eom, lang="fr", verification=v).document
+    shown = " ".join(line.replace("& \\quad ", "").replace("& ", "") for m in math_of(doc.section("step7").blocks)
+                     for line in m.split(" \\\\\n"))
+    n = report_notation(course_form(eom, ()), eom.model)
+    assert r"\vec{R}_{O} = m\,\vec{\gamma}(G/R_{0}) - \vec{F}(\text{poids}) = " in shown
+    for x, axis in zip(r.force_components, (r"\vec{u}", r"\vec{w}", r"\vec{z}")):
+        assert n.latex(x._sympy_()) in shown and axis in shown
+    tension = report(eom_of("pendulum_tension.toml"), lang="fr", verification=True).document
+    assert not any(r"\vec{\gamma}(" in m for m in math_of(tension.section("step7").blocks))

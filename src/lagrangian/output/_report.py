@@ -37,8 +37,8 @@ from ..errors import OutputError
 from ..model import Model, load_model
 from ..model._texts import in_language
 from ._report_build import Context
-from ._report_doc import Document, Image, map_math, walk
-from ._report_equations import integrals_section, step6, step7
+from ._report_doc import Document, Image, Section, map_math, walk
+from ._report_equations import integrals_section, pin_reaction, step6, step7
 from ._report_extras import ReportFigure, check_section, matrix_section, notes_section, simulation_section
 from ._report_forces import step5
 from ._report_html import render_html
@@ -216,6 +216,10 @@ def report(model: Model | EquationsOfMotion | str | os.PathLike[str], *, lang: s
     pictures = [_figure(f) for f in figures]
     sections = [system_section(c), step1(c), step2(c), step3(c), step4(c), step5(c), step6(c), step7(c),
                 integrals_section(c)]
+    if checked is not None:  # the reaction of a fixed point, after step 7
+        extra = pin_reaction(c, checked)
+        if extra:
+            sections[7] = Section(sections[7].key, sections[7].title, sections[7].blocks + tuple(extra))
     if small_motions is not None and small_motions is not False:
         sections.append(small_motions_section(c, as_linear_model(eom, small_motions)))
     if checked is not None:

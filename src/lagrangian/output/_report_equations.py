@@ -20,6 +20,7 @@ import symengine as se
 import sympy
 
 from .._identity import are_zero
+from ..analysis import Verification
 from ._course import EquationRow, IntegralRow
 from ._report_build import Context
 from ._report_doc import Block, Display, Equation, Math, Para, Runs, Section
@@ -210,6 +211,32 @@ def left_out_note(c: Context, left: list) -> Runs:  # type: ignore[type-arg]
     budget = f"{c.book.budget:,}".replace(",", " " if c.lang == "fr" else ",")
     return c.w("full forms left", budget=budget, k=str(len(left)),
                sample=Math(left[0].plain_latex), cmd=c.derive_command, fn="lagrangian.derive")
+
+
+def pin_reaction(c: Context, v: Verification) -> list[Block]:
+    """After step 7, the reaction of a fixed point as a formula: R_O = m γ(G/R0) − P (the resultant theorem,
+    [Seed, Remarque 4]; `lagrangian.analysis.reactions`), where no complementary equation gives it already."""
+    from ..analysis import reactions
+
+    if c.eom.constraints or c.ref != "R0":
+        return []
+    out: list[Block] = []
+    for r in reactions(v):
+        if r.pinned is None or len(r.elements) != 1 or r.point is None:
+            continue
+        body = r.elements[0]
+        th = next((t for t in v.theorems if t.name == body), None)
+        if th is None:
+            continue
+        P, G, S, R = c.name(r.point), c.point_label(body), c.element(body), c.R
+        RO = rf"\vec{{R}}_{{{P}}}"
+        given = " - ".join(rf"\vec{{F}}({c.load_tex(e)})" for e in th.efforts)
+        head = rf"{RO} = {c.tex(th.mass)}\,\vec{{\gamma}}({G}/{R})" + (f" - {given}" if given else "") + " = "
+        axes = c.kin.frames.axes(r.frame)
+        terms = tuple((c.ex(x), a) for x, a in zip(r.force_components, axes) if not c.is_zero(x))
+        out.append(Para(c.w("pin reaction", R=Math(RO), O=Math(P), S=Math(f"({S})"))))
+        out.append(Display((c.vector_equation(head, terms),)))
+    return out
 
 
 def step7(c: Context) -> Section:

@@ -306,6 +306,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "with multipliers": ("Les liaisons complémentaires ajoutent {sum} au second membre (étape 7).",
                          "The complementary constraints add {sum} to the right-hand side (step 7)."),
     # -- step 7 -----------------------------------------------------------------------------------
+    "pin reaction": ("La réaction {R} en {O}, qui n'entre pas dans les équations de Lagrange (la liaison est parfaite), "
+                     "se déduit ensuite du théorème de la résultante dynamique appliqué à {S} :",
+                     "The reaction {R} at {O}, which does not enter Lagrange's equations (the constraint is ideal), "
+                     "then follows from the resultant theorem applied to {S}:"),
     "no complementary": ("Toutes les liaisons ont été prises principales : il n'y a pas d'équation de liaison "
                          "complémentaire, et les {n} équations de Lagrange déterminent le mouvement.",
                          "All constraints were taken as principal: there is no complementary constraint equation, "
