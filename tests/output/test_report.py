@@ -97,7 +97,7 @@ def test_french_uses_the_course_vocabulary(top):
 def test_english_uses_the_standard_terms():
     text = _text(report(lagrangian.lagrange_top(), lang="en"))
     for words in ("principal parameters", "virtual velocity field compatible", "virtual power", "generalized forces",
-                  "first integral", "holonomic", "time-independent", "perfect", "Euler angles", "cyclic"):
+                  "first integral", "holonomic", "time-independent", "ideal (workless)", "Euler angles", "cyclic"):
         assert words in text, words
     assert "liaison" not in text and "équation" not in text
 
@@ -243,7 +243,7 @@ def test_verification_is_optional_and_pluggable():
     check = lagrangian.analysis.verify(eom)
     r = report(eom, verification=check, lang="en")
     marks = " ".join(math_of(r.document.section("check").blocks))
-    assert marks.count(r"\checkmark") == 3 and r"\times" not in marks
+    assert marks.count(r"\checkmark") == 3 and r"\quad\times" not in marks  # (× is also the English cross product)
 
 
 def _png() -> bytes:
@@ -333,7 +333,9 @@ def test_unknown_language_and_format_are_refused(top):
     with pytest.raises(ValueError, match="language"):
         report(lagrangian.lagrange_top(), lang="de")
     with pytest.raises(lagrangian.OutputError, match="format"):
-        top.render("pdf")
+        top.render("docx")
+    with pytest.raises(lagrangian.OutputError, match="written to a file"):
+        top.render("pdf")  # bytes: Report.pdf() or save("x.pdf")
 
 
 def test_every_fold_has_content(top):
