@@ -98,3 +98,13 @@ def test_every_example_keeps_its_values_at_random_states():
                 want, got = complex(e.xreplace(values).evalf()), complex(shown.xreplace(values).evalf())
                 assert abs(want - got) <= 1e-9 * (1 + abs(want)), (name, e, shown)
     assert rewritten >= 10  # the check above is not empty
+
+
+def test_a_constant_subtracted_comes_last():
+    """The pendulum's rod: x² + y² − l² = 0, as written on the board (not −l² + x² + y²)."""
+    from lagrangian.output._notation import Notation
+
+    x, y = symbols("x y")
+    n = Notation(("x", "y"), ("m", "l", "g"))
+    assert n.text(x**2 + y**2 - symbols("l")**2) == "x² + y² − l²"
+    assert n.latex(x**2 + y**2 - symbols("l")**2) == "x^{2} + y^{2} - l^{2}"

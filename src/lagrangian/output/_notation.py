@@ -333,11 +333,15 @@ class Notation:
 
     def _ordered(self, e: sympy.Add) -> list[sympy.Basic]:
         """The terms of a sum in the order they are written; a sum of constants starts with a positive term
-        (C − A, not −A + C)."""
+        (C − A, not −A + C), and a constant subtracted from the others comes last (x² + y² − l²)."""
         terms = sorted(e.args, key=self._term_key)
         if _is_negative(terms[0]) and all(s.name in self.parameters for s in e.free_symbols):
             first = next((k for k, t in enumerate(terms) if not _is_negative(t)), 0)
             terms.insert(0, terms.pop(first))
+        elif (_is_negative(terms[0]) and all(s.name in self.parameters for s in terms[0].free_symbols)
+              and not _is_negative(terms[1])):
+            # A constant subtracted goes last: x² + y² − l², not −l² + x² + y².
+            terms.append(terms.pop(0))
         return terms
 
     def _add(self, e: sympy.Add, latex: bool) -> str:
