@@ -4,7 +4,7 @@ PYTHON ?= python3
 VENV ?= .venv
 PY := $(VENV)/bin/python
 
-.PHONY: demo test bench clean browser octave
+.PHONY: demo test bench clean browser octave tex
 
 $(VENV)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -15,7 +15,7 @@ $(VENV)/.installed: pyproject.toml
 demo: $(VENV)/.installed   ## derive the seed's Lagrange top
 	$(VENV)/bin/lagrangian derive
 
-test: $(VENV)/.installed browser octave   ## run the test suite
+test: $(VENV)/.installed browser octave tex   ## run the test suite
 	$(PY) -m pytest src tests
 
 # The HTML report's tests open the page in a headless browser (Debian's chromium). Install it when it
@@ -49,6 +49,23 @@ octave:
 	else \
 	    echo "note: octave is not installed (installing it needs root and apt-get);" \
 	         "the Octave export is checked for structure only"; \
+	fi
+
+# The LaTeX report's tests compile it (pdflatex, from Debian's TeX Live: about 100 MB) and read the PDF back
+# (pdftotext, poppler-utils). Installed like chromium: when missing and we are root with apt-get; else skipped.
+TEX_PACKAGES := texlive-latex-base texlive-latex-recommended texlive-lang-french poppler-utils
+tex:
+	@if command -v pdflatex >/dev/null 2>&1 && command -v pdftotext >/dev/null 2>&1; then :; \
+	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	    echo "installing TeX Live and poppler-utils (LaTeX and PDF report tests)..."; \
+	    (DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends $(TEX_PACKAGES) >/dev/null 2>&1 \
+	     || (apt-get update -q >/dev/null 2>&1 \
+	         && DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends $(TEX_PACKAGES) \
+	            >/dev/null 2>&1)) \
+	    || echo "note: TeX Live could not be installed; the LaTeX and PDF report tests will be skipped"; \
+	else \
+	    echo "note: pdflatex is not installed (installing it needs root and apt-get);" \
+	         "the LaTeX and PDF report tests will be skipped"; \
 	fi
 
 bench: $(VENV)/.installed   ## derivation benchmark against SymPy's LagrangesMethod (slow: minutes)

@@ -272,7 +272,8 @@ def test_principal_constraint_satisfied_by_the_coordinates_gets_no_multiplier() 
 def test_principal_no_slip_is_checked() -> None:
     # The disk with x = r φ chosen by the coordinates: rolling without slipping holds identically.
     text = model_text("rolling_disk_incline.toml")
-    text = text.replace('x = { initial = 0.0, rate = 0.0, unit = "m", description = "distance of G down the slope" }\n',
+    text = text.replace('x = { initial = 0.0, rate = 0.0, unit = "m", description = { fr = "distance de G vers le bas de la pente", '
+                        'en = "distance of G down the slope" } }\n',
                         "").replace('"x*R1.x"', '"r*phi*R1.x"').replace('"x*R1.x + r*R1.z"', '"r*phi*R1.x + r*R1.z"')
     eom = derive_text(text.replace('frame = "R1", description', 'frame = "R1", principal = true, description'))
     assert eom.coordinates == ("phi",) and eom.constraints == ()

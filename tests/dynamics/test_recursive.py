@@ -139,6 +139,17 @@ def test_auto_choice_and_refusals() -> None:
         lagrangian.derive(b.build(), formulation="recursive")
     with pytest.raises(ValueError, match="formulation"):
         lagrangian.derive(relative_chain(2), formulation="kane")
+    # A frame turning about a general constant axis (docs/model-format.md) is left to the course's route.
+    b = ModelBuilder("tilted hinge")
+    b.parameter("m", 1.0)
+    b.parameter("g", 9.81)
+    b.coordinate("a")
+    b.frame("R0", None)
+    b.frame("R1", "R0", rotation=("a", "0.6*R0.x + 0.8*R0.z"))
+    b.particle("P", mass="m", position="R1.y")
+    b.gravity("weight", "-g*R0.z")
+    with pytest.raises(DerivationError, match="axis other than"):
+        lagrangian.derive(b.build(), formulation="recursive")
 
 
 def test_course_form_stays_available() -> None:

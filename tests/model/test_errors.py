@@ -510,9 +510,22 @@ def test_unknown_key_in_the_inertia(tmp_path: Path) -> None:
 
 
 def test_unknown_key_in_model(tmp_path: Path) -> None:
-    text = edit(TOP, 'name = "Lagrange top"', 'title = "Lagrange top"')
+    text = edit(TOP, 'name = "Lagrange top"', 'heading = "Lagrange top"')
     err, path = error_of(tmp_path, text)
-    check(err, path, line_of(text, "title ="), "title", "unknown key `title` in [model]")
+    check(err, path, line_of(text, "heading ="), "heading", "unknown key `heading` in [model]")
+
+
+def test_a_text_in_an_unknown_language(tmp_path: Path) -> None:
+    text = edit(TOP, 'm = { value = 1.0, unit = "kg" }',
+                'm = { value = 1.0, unit = "kg", description = { fr = "masse de (S)", de = "Masse" } }')
+    err, path = error_of(tmp_path, text)
+    check(err, path, line_of(text, "m = {"), "description", "unknown language `de`")
+
+
+def test_a_text_that_is_not_text(tmp_path: Path) -> None:
+    text = edit(TOP, 'name = "Lagrange top"', 'name = "Lagrange top"\ntitle = { fr = 3 }')
+    err, path = error_of(tmp_path, text)
+    check(err, path, line_of(text, "title ="), "title", "`title.fr` must be text")
 
 
 def test_unknown_key_in_a_load(tmp_path: Path) -> None:

@@ -18,10 +18,10 @@ import pytest
 import lagrangian
 from lagrangian.model.zoo import planar_chain
 from lagrangian.output import Report, ReportFigure, course_form, report
+from lagrangian.output._report_build import report_notation
 from lagrangian.output._report_doc import Display, Fold, Items, Para, math_of, walk
 from lagrangian.output._report_md import render_markdown
 from lagrangian.output._report_size import SMALL_OPS, Summary
-from lagrangian.output._text import notation
 from lagrangian_test_support import EXAMPLES_DIR, eom_of, example_names, integrals_of
 
 GOLDEN = Path(__file__).parent / "golden" / "lagrange_top.fr.md"
@@ -97,7 +97,7 @@ def test_french_uses_the_course_vocabulary(top):
 def test_english_uses_the_standard_terms():
     text = _text(report(lagrangian.lagrange_top(), lang="en"))
     for words in ("principal parameters", "virtual velocity field compatible", "virtual power", "generalized forces",
-                  "first integral", "holonomic", "time-independent", "perfect", "Euler angles", "cyclic"):
+                  "first integral", "holonomic", "time-independent", "ideal (workless)", "Euler angles", "cyclic"):
         assert words in text, words
     assert "liaison" not in text and "équation" not in text
 
@@ -134,7 +134,8 @@ OVER_BUDGET = {"whipple_bicycle.toml"}
 def test_report_equations_are_the_engines(name, lang):
     eom, integrals = eom_of(name), integrals_of(name)
     form = course_form(eom, integrals)
-    n = notation(form)
+    # The report's notation: masses first, and the forms of `display_form` (its values: test_display_form).
+    n = report_notation(form, eom.model)
     r = report(eom, lang=lang, integrals=integrals)
     shown = _all_math(r)
     expected = []
@@ -242,7 +243,7 @@ def test_verification_is_optional_and_pluggable():
     check = lagrangian.analysis.verify(eom)
     r = report(eom, verification=check, lang="en")
     marks = " ".join(math_of(r.document.section("check").blocks))
-    assert marks.count(r"\checkmark") == 3 and r"\times" not in marks
+    assert marks.count(r"\checkmark") == 3 and r"\quad\times" not in marks  # (× is also the English cross product)
 
 
 def _png() -> bytes:
@@ -332,10 +333,81 @@ def test_unknown_language_and_format_are_refused(top):
     with pytest.raises(ValueError, match="language"):
         report(lagrangian.lagrange_top(), lang="de")
     with pytest.raises(lagrangian.OutputError, match="format"):
-        top.render("pdf")
+        top.render("docx")
+    with pytest.raises(lagrangian.OutputError, match="written to a file"):
+        top.render("pdf")  # bytes: Report.pdf() or save("x.pdf")
 
 
 def test_every_fold_has_content(top):
     r = report(lagrangian.derive(planar_chain(14)))
     folds = [b for s in r.document.sections for b in walk(s.blocks) if isinstance(b, Fold)]
     assert folds and all(f.blocks and f.summary for f in folds)
+
+
+def test_the_check_recognises_L_psi_as_dK_dt(top):
+    """δ_O·z0 = d/dt(σ_O·z0) = d/dt(∂T/∂ψ̇) = dK/dt for the top (O fixed, z0 fixed in R0), with
+    σ_O·z0 = A ψ̇ sin²θ + C cosθ (φ̇ + ψ̇ cosθ), the seed's K, written from the seed, not the engine."""
+    import sympy
+
+    A, C, psd, phd, th = sympy.symbols("A C psi_dot phi_dot theta")
+    seed_K = A * psd * sympy.sin(th)**2 + C * sympy.cos(th) * (phd + psd * sympy.cos(th))
+    eom = lagrangian.derive(lagrangian.lagrange_top())
+    dT = next(e for e in eom.equations if e.coordinate == "psi").dT_dqd
+    assert sympy.simplify(dT._sympy_() - seed_K) == 0  # the statement holds (independently of the report)
+    r = report(eom, lang="fr", verification=True)
+    shown = math_of(r.document.section("check").blocks)
+    n = report_notation(course_form(eom, ()), eom.model)
+    assert any(r"\cdot\vec{z}_{0} = \frac{d}{dt}\left[\vec{\sigma}_{O}(S/R_{0})\cdot\vec{z}_{0}\right]" in m
+               and m.endswith(r"= \frac{dK}{dt}") for m in shown), shown
+    assert rf"\vec{{\sigma}}_{{O}}(S/R_{{0}})\cdot\vec{{z}}_{{0}} = {n.latex(seed_K)}" in shown
+    # Not said where it does not hold: no fixed axis of R0 for L(θ) (about u) nor L(φ) (about z).
+    assert sum(r"\right] = \frac{d}{dt}\left[\frac{\partial T" in m for m in shown) == 1
+
+
+@pytest.mark.parametrize("name", ["lagrange_top.toml", "double_pendulum.toml"])
+def test_step6_states_the_principle_of_virtual_power(name):
+    """Step 6 opens with P*_acc = Σ Γ_i q_i* = Σ Q_i q_i* ⇒ Γ_i = Q_i, Γ_i = d/dt[∂T/∂q̇_i] − ∂T/∂q_i [Seed, I–II].
+    The statement is checked, not only shown: Γ_i (the engine's lhs) is the projection of the Newton–Euler
+    acceleration quantities on the virtual velocities of q_i (Σ m γ(G)·∂V(G)/∂q̇_i + δ_G·∂Ω/∂q̇_i), for each i."""
+    from lagrangian.analysis import verify
+
+    eom = eom_of(name)
+    v = verify(eom)
+    assert v.checks and all(ch.lhs_agrees for ch in v.checks)
+    step6 = math_of(report(eom, lang="fr").document.section("step6").blocks)
+    pvv = next(k for k, m in enumerate(step6) if m.startswith(r"P^{*}_{\mathrm{acc}}(\Sigma/R_{0}) = \sum_{i=1}^{n} "
+                                                             r"\Gamma_i\, q_i^{*} = \sum_{i=1}^{n} Q_i\, q_i^{*}"))
+    gamma = next(k for k, m in enumerate(step6) if m.startswith(r"\Gamma_i = \frac{d}{dt}\left[\frac{\partial T"))
+    general = next(k for k, m in enumerate(step6) if m.startswith("L(q_i)"))
+    assert pvv < gamma < general and step6[pvv].endswith(r"\Rightarrow\quad \Gamma_i = Q_i")
+
+
+def test_english_words_and_cross_product():
+    """The English report says what an English-speaking teacher says: ideal (workless) constraints, principal
+    parameters (generalized coordinates), and × for the cross product (∧ is the French notation)."""
+    eom = lagrangian.derive(lagrangian.lagrange_top())
+    en, fr = report(eom, lang="en", verification=True), report(eom, lang="fr", verification=True)
+    en_text, fr_text = en.markdown(), fr.markdown()
+    assert "ideal (workless)" in en_text and "perfect" not in en_text
+    assert en.document.section("step2").title == "2. Principal parameters (generalized coordinates)"
+    assert r"\wedge" not in en_text and r"\overrightarrow{OG}\times\vec{P}" in en_text
+    assert r"\overrightarrow{OG}\wedge\vec{P}" in fr_text and "parfaite" in fr_text
+
+
+def test_step7_gives_the_reaction_of_the_fixed_point():
+    """After step 7: R_O = m γ(G/R0) − P, the engine's reaction (checked against the closed form in
+    tests/analysis/test_reactions.py), in the course's basis (u, w, z); not where a multiplier gives it."""
+    from lagrangian.analysis import reactions, verify
+
+    eom = lagrangian.derive(lagrangian.lagrange_top())
+    v = verify(eom)
+    [r] = reactions(v)
+    doc = report(eom, lang="fr", verification=v).document
+    shown = " ".join(line.replace("& \\quad ", "").replace("& ", "") for m in math_of(doc.section("step7").blocks)
+                     for line in m.split(" \\\\\n"))
+    n = report_notation(course_form(eom, ()), eom.model)
+    assert r"\vec{R}_{O} = m\,\vec{\gamma}(G/R_{0}) - \vec{F}(\text{poids}) = " in shown
+    for x, axis in zip(r.force_components, (r"\vec{u}", r"\vec{w}", r"\vec{z}")):
+        assert n.latex(x._sympy_()) in shown and axis in shown
+    tension = report(eom_of("pendulum_tension.toml"), lang="fr", verification=True).document
+    assert not any(r"\vec{\gamma}(" in m for m in math_of(tension.section("step7").blocks))

@@ -65,7 +65,9 @@ def test_full_forms_are_the_notations_latex_of_the_engines_expressions(chain6):
     from lagrangian.output._text import notation
     from lagrangian.output._course import course_form
 
-    n = notation(course_form(eom, ()))
+    from lagrangian.output._report_build import report_notation
+
+    n = report_notation(course_form(eom, ()), eom.model)
     engine = {}
     for eq in eom.equations:
         for name in ("dT_dqd", "dT_dq", "dU_dq", "lhs", "rhs"):

@@ -60,8 +60,11 @@ window.addEventListener('load', () => {
       if (next && box(next).left < r.right - 1) arrows.push(['overlaps the next', r.right, box(next).left, where(m)]);
       if (prev && box(prev).right > r.left + 1) arrows.push(['overlaps the previous', box(prev).right, r.left, where(m)]);
     }
-    // An arrow over several letters (the vector OG) spans them.
-    if (over.tagName === 'mo' && base.children.length > 1 && box(over).width < 0.9 * box(base).width)
+    // An arrow over several letters (the vector OG) is drawn by the style sheet across them (class vec;
+    // test_two_letter_vectors_carry_an_arrow_with_its_head measures it); any other spans them.
+    if (over.tagName === 'mo' && base.children.length > 1
+        && !(m.classList.contains('vec') && getComputedStyle(m).backgroundImage.includes('svg'))
+        && box(over).width < 0.9 * box(base).width)
       arrows.push(['short arrow over', box(over).width, box(base).width, where(m)]);
   });
   // Brackets around a matrix (the inertia matrix) as tall as it.
@@ -73,6 +76,26 @@ window.addEventListener('load', () => {
         fences.push([f.textContent, box(f).height, box(t).height, where(t)]);
     });
   });
+  // sin θ set apart by a thin space (LaTeX's \\sin), S/R0 with no space around the solidus.
+  const spacing = [];
+  const fontPx = e => parseFloat(getComputedStyle(e).fontSize);
+  document.querySelectorAll('mi').forEach(f => {
+    if (!/^(sin|cos|tan)$/.test(f.textContent)) return;
+    const name = f.parentElement.tagName === 'msup' && f === f.parentElement.children[0] ? f.parentElement : f;
+    let next = name.nextElementSibling;
+    while (next && next.tagName === 'mspace') next = next.nextElementSibling;
+    if (!next || next.tagName === 'mo' || (next.firstElementChild && next.firstElementChild.tagName === 'mo')
+        || (next.firstElementChild && next.firstElementChild.firstElementChild
+            && next.firstElementChild.firstElementChild.tagName === 'mo')) return;
+    const gap = box(next).left - box(name).right;
+    if (gap < 0.1 * fontPx(f)) spacing.push(['sin θ touching', gap, where(f)]);
+  });
+  document.querySelectorAll('mo').forEach(o => {
+    if (o.textContent !== '/') return;
+    const prev = o.previousElementSibling, next = o.nextElementSibling;
+    if (prev && box(o).left - box(prev).right > 0.08 * fontPx(o)) spacing.push(['space before /', box(o).left - box(prev).right, where(o)]);
+    if (next && box(next).left - box(o).right > 0.08 * fontPx(o)) spacing.push(['space after /', box(next).left - box(o).right, where(o)]);
+  });
   // The table of contents: each entry's box and list marker (the titles carry their own numbers).
   const toc = Array.from(document.querySelectorAll('nav li')).map(li => {
     const r = box(li);
@@ -81,7 +104,7 @@ window.addEventListener('load', () => {
   const probe = document.createElement('pre');
   probe.id = 'probe';
   probe.textContent = JSON.stringify({errors: window.__errors, maths: maths.length, bad: bad, images: images,
-                                      arrows: arrows, fences: fences, toc: toc,
+                                      arrows: arrows, fences: fences, toc: toc, spacing: spacing,
                                       text: document.body.innerText});
   document.body.appendChild(probe);
 });
@@ -121,6 +144,7 @@ def _check_page(html: str, expected_math: int, tmp_path: Path, images: int = 0) 
     assert result["images"] == [True] * images
     assert result["arrows"] == [], result["arrows"][:5]
     assert result["fences"] == [], result["fences"][:5]
+    assert result["spacing"] == [], result["spacing"][:5]
     # The table of contents at 1200 px: numbered once (no list numbers before "1. Choix …"), no entry over another.
     toc = result["toc"]
     assert toc and all(style == "none" for *_, style, _ in toc), toc[:3]
@@ -208,3 +232,67 @@ def test_full_forms_fit_the_page_without_scrolling(tmp_path):
     assert found, run.stdout[-2000:]
     result = json.loads(found.group(1).replace("&quot;", '"'))
     assert result["forms"] >= 12 and result["wide"] == []
+
+
+_VECTORS = (r"\overrightarrow{OG}", r"\overrightarrow{O_{1}G_{2}}", r"\overrightarrow{OO'}", r"\overrightarrow{AB} = \vec{x}")
+
+# The boxes of each vector's arrow-and-letters (mover) and of its letters (the base), in CSS pixels.
+_VECTOR_BOXES = """
+<script>
+window.addEventListener('load', () => {
+  const box = e => { const r = e.getBoundingClientRect(); return [r.left, r.top, r.right, r.bottom]; };
+  const vectors = Array.from(document.querySelectorAll('mover')).filter(m => m.children[0].children.length > 1)
+    .map(m => [box(m), box(m.children[0]), getComputedStyle(m).transform, getComputedStyle(m.children[1]).transform]);
+  const probe = document.createElement('pre');
+  probe.id = 'probe';
+  probe.textContent = JSON.stringify(vectors);
+  document.body.appendChild(probe);
+});
+</script>
+"""
+
+
+def test_two_letter_vectors_carry_an_arrow_with_its_head(tmp_path):
+    """OG is drawn as a vector, not as OG with a bar (a mesure algébrique in French notation): on a
+    screenshot, the mark above the letters spans both of them and ends in a head at the right, several
+    times as tall as the line; and no CSS transform is used to widen a glyph."""
+    from lagrangian.output._report_doc import Display, Document, Equation, Section
+    from lagrangian.output._report_html import render_html
+
+    doc = Document("fr", "Vecteurs", "", (Section("v", "Vecteurs", (Display(tuple(Equation((v,)) for v in _VECTORS)),)),))
+    big = "<style>.lagrangian-report .display math { font-size: 72px; }</style></head>"
+    html_text = render_html(doc)
+    assert "transform" not in html_text
+    html_text = html_text.replace("</head>", big).replace("</body>", _VECTOR_BOXES + "</body>")
+    page = tmp_path / "vectors.html"
+    page.write_text(html_text, encoding="utf-8")
+    window = "--window-size=900,1400"
+    run = _chromium(tmp_path, "--virtual-time-budget=5000", window, "--dump-dom", page.as_uri())
+    assert run.returncode == 0, run.stderr[-2000:]
+    found = re.search(r'<pre id="probe">(.*?)</pre>', run.stdout, re.S)
+    assert found, run.stdout[-2000:]
+    vectors = json.loads(found.group(1).replace("&quot;", '"'))
+    assert len(vectors) == len(_VECTORS)
+    shot = tmp_path / "vectors.png"
+    run = _chromium(tmp_path, "--virtual-time-budget=5000", window, f"--screenshot={shot}", page.as_uri())
+    assert run.returncode == 0, run.stderr[-2000:]
+    import matplotlib.image
+
+    pixels = matplotlib.image.imread(shot)
+    dark = pixels[..., :3].mean(axis=2) < 0.5
+    for (ml, mt, mr, mb), (bl, bt, br, bb), *transforms in vectors:
+        assert transforms == ["none", "none"]
+        width = br - bl
+        # The band above the letters, within the arrow's box: where the arrow is drawn.
+        band = dark[int(mt):int(bt), int(ml) - 2:int(mr) + 3]
+        cols = np.flatnonzero(band.any(axis=0))
+        assert cols.size, (ml, mt, mr, mb)
+        left, right = ml - 2 + cols[0], ml - 2 + cols[-1]
+        # From the first letter's left edge to the last one's right edge (a glyph arrow left at its own width fails).
+        assert left <= bl + 0.12 * width and right >= br - 0.12 * width, (left, right, bl, br)
+        height = band.sum(axis=0)[cols[0]:cols[-1] + 1]
+        line = np.median(height[: len(height) // 2])
+        head = height[-max(3, len(height) // 8):].max()
+        # A head at the right end: several times the line's thickness (an overline has none).
+        assert line >= 1 and head >= 3 * line, (line, head)
+        assert int(np.argmax(height)) >= 0.75 * len(height), (list(height), width)

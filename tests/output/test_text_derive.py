@@ -35,8 +35,8 @@ def written(tmp_path: Path, text: str) -> Path:
 
 def test_pendulum_tension_prints_step_7_the_multiplier_and_the_reaction(capsys) -> None:
     out = derive(capsys, EXAMPLES / "pendulum_tension.toml")
-    assert "length (complementary, holonomic): −l² + x² + y² = 0" in out
-    assert "Complementary equations (step 7)" in out and "−l² + x² + y² = 0    [length]" in out
+    assert "length (complementary, holonomic): x² + y² − l² = 0" in out
+    assert "Complementary equations (step 7)" in out and "x² + y² − l² = 0    [length]" in out
     # T = −2 l λ = m (g cos θ + l θ̇²) with x = l sin θ, y = −l cos θ (docs/constraints.md).
     assert "λ_length = m (g y − x\u0307² − y\u0307²)/(2 (x² + y²))" in out
     assert "reaction of length: force at P: R = 2 x λ_length x0 + 2 y λ_length y0" in out
@@ -85,7 +85,7 @@ def test_no_balance_where_the_energy_is_a_first_integral(capsys, name) -> None:
 
 def test_a_principal_constraint_prints_as_declared_not_0_equals_0(capsys, tmp_path) -> None:
     out = derive(capsys, written(tmp_path, PRINCIPAL))
-    assert "rod (principal, holonomic): −l² + l² sin²θ + l² cos²θ = 0" in out
+    assert "rod (principal, holonomic): l² sin²θ + l² cos²θ − l² = 0" in out
     assert "0 = 0" not in out
 
 

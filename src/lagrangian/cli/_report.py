@@ -1,4 +1,4 @@
-"""``lagrangian report [MODEL] [--lang fr|en] [--format html|tex|md] [--simulate T_END] [--set k=v] [-o FILE]``.
+"""``lagrangian report [MODEL] [--lang fr|en] [--format html|tex|md|pdf] [--simulate T_END] [--set k=v] [-o FILE]``.
 
 The derivation step by step, in the order of the course's "démarche d'application"
 (`lagrangian.output.report`).  MODEL is a model file, or a model of the zoo by name
@@ -20,7 +20,7 @@ import argparse
 import dataclasses
 
 from ..dynamics import derive
-from ..errors import SimulationError
+from ..errors import OutputError, SimulationError
 from ..model import Model
 from ..output import format_for, report
 from ._point import add_point_options, full_point
@@ -58,7 +58,7 @@ def _float(text: str) -> float:
 
 def register(sub: argparse._SubParsersAction) -> None:
     r = sub.add_parser(
-        "report", help="write the step-by-step derivation (HTML, LaTeX or Markdown)",
+        "report", help="write the step-by-step derivation (HTML, LaTeX, PDF or Markdown)",
         description="Write the derivation of a model in the order of the course's 'démarche d'application': "
                     "the principal constraints and why they are perfect, the principal parameters, the virtual "
                     "velocity field, T and U_P with their formulas, each Q_i by virtual power, each L(q_i) with "
@@ -68,8 +68,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     )
     r.add_argument("model", nargs="?", help=MODEL_HELP)
     r.add_argument("--lang", choices=("fr", "en"), default="fr", help="language (default: fr, the course's)")
-    r.add_argument("--format", choices=("html", "tex", "md"), default=None,
-                   help="output format (default: from the suffix of -o, else md)")
+    r.add_argument("--format", choices=("html", "tex", "md", "pdf"), default=None,
+                   help="output format (default: from the suffix of -o, else md); pdf compiles the LaTeX with "
+                        "pdflatex or lualatex and needs -o")
     r.add_argument("--verify", action=argparse.BooleanOptionalAction, default=None,
                    help=f"include the Newton-Euler cross-check (default: up to {VERIFY_AUTO_MAX} coordinates)")
     r.add_argument("--simulate", type=_float, metavar="T_END", default=None,
@@ -114,6 +115,9 @@ def run(args: argparse.Namespace) -> str | None:
     # The notes name the command that prints every equation in full: lagrangian derive MODEL --json.
     r = report(eom, lang=args.lang, verification=check, figures=figures, source=args.model or "", small_motions=small)
     if not args.output:
+        if fmt == "pdf":
+            raise OutputError("A PDF report is written to a file, not to the terminal.",
+                              fix="give the file: lagrangian report MODEL --format pdf -o report.pdf")
         return r.render(fmt)
     r.save(args.output, fmt)  # the figures of a .tex or .md report as PNG files beside it
     return None

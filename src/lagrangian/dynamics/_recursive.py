@@ -128,6 +128,8 @@ def tree_structure(kin: Kinematics) -> TreeStructure | str:
         node = _Node(frame.name, None if frame.parent is None else index[frame.parent], frame=frame.name)
         moving = 0
         if frame.rotation is not None:
+            if not frame.rotation.elementary:  # the recursion's rotations are about x, y or z of the parent
+                return f"frame `{frame.name}` turns about an axis other than its parent's x, y or z"
             node.axis = AXES[frame.rotation.axis]
             node.angle = frame.rotation.angle
             rates = _affine(kin, (frame.rotation.angle,))

@@ -175,6 +175,7 @@ class Assembler:
         model = Model(
             name=self.b.name,
             description=self.b.description,
+            title=getattr(self.b, "title", None),
             parameters=parameters,
             coordinates=coordinates,
             frames=frames,

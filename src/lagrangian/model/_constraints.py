@@ -132,7 +132,9 @@ def read_constraint(reader: Any, builder: ModelBuilder, name: str, value: Any) -
     where = reader.located("constraints", name, value, form)
     builder.constraint(name, form, value[form], on=value.get("on"), frame=value.get("frame", GALILEAN_FRAME),
                        axes=value.get("axes"), principal=value.get("principal", False),
-                       reaction=value.get("reaction"), description=value.get("description"), location=where)
+                       reaction=value.get("reaction"),
+                       description=reader.text(("constraints", name, "description"), value.get("description")),
+                       location=where)
 
 
 # -- the build stage ------------------------------------------------------------------------------

@@ -2,7 +2,7 @@
 
 The file's tables map onto the course's vocabulary::
 
-    [model]        name, description
+    [model]        name, title, description (a text, or one per language: { fr = "…", en = "…" })
     [parameters]   m = 1.0   or   m = { value = 1.0, unit = "kg", description = "mass" }
     [coordinates]  theta = { initial = 0.5, rate = 0.0, momentum = "K" }
     [frames]       R1 = { from = "R0", rotation = ["psi", "z"], axes = ["u", "v", "z0"] }
@@ -34,6 +34,7 @@ from ._constraints import read_constraint
 from ._friction import FRICTION_KINDS, TOML_KEYS, declare_from_toml
 from ._operating_point import located
 from ._reference import read_reference
+from ._texts import LANGUAGES, Text
 from ._toml_guard import check_nesting
 from .build import ModelBuilder
 from .spec import Location, Model
@@ -196,10 +197,29 @@ class _Reader:
             raise self.fail((name,), f"`{name}` must be a table", fix=f"write it as [{name}]")
         return value
 
+    def text(self, path: tuple[str, ...], value: Any) -> Any:
+        """A text given as a string, or as a table of languages (``{ fr = "…", en = "…" }``) read into a `Text`;
+        anything else is returned as it is, for the caller to refuse."""
+        if not isinstance(value, dict):
+            return value
+        unknown = sorted(set(value) - set(LANGUAGES))
+        if unknown or not value:
+            raise self.fail(path, f"`{path[-1]}` has unknown language `{unknown[0]}`" if unknown
+                            else f"`{path[-1]}` is an empty table", symbol=path[-1],
+                            fix='give the text in French and/or English, e.g. { fr = "masse", en = "mass" }')
+        for lang, text in value.items():
+            if not isinstance(text, str) or not text.strip():
+                raise self.fail(path, f"`{path[-1]}.{lang}` must be text, not `{text}`", symbol=path[-1],
+                                fix=f'write it in quotes, e.g. {lang} = "..."')
+        return Text({lang: value[lang] for lang in LANGUAGES if lang in value})
+
     def entry(self, table: str, name: str, value: Any, allowed: set[str], shorthand: str) -> dict[str, Any]:
-        """An entry given either as a table with ``allowed`` keys, or as a bare value for ``shorthand``."""
+        """An entry given either as a table with ``allowed`` keys, or as a bare value for ``shorthand``;
+        its description may be a table of languages."""
         if not isinstance(value, dict):
             return {shorthand: value}
+        if "description" in allowed and isinstance(value.get("description"), dict):
+            value = {**value, "description": self.text((table, name, "description"), value["description"])}
         unknown = set(value) - allowed
         if unknown:
             key = sorted(unknown)[0]
@@ -212,16 +232,18 @@ class _Reader:
             if key not in _TABLES:
                 raise self.fail((key,), f"unknown table `[{key}]`", symbol=key,
                                 fix="the tables are " + ", ".join(f"[{t}]" for t in _TABLES))
-        meta = self.table("model")
+        meta = dict(self.table("model"))
         for key, value in meta.items():
-            if key not in ("name", "description"):
+            if key not in ("name", "description", "title"):
                 raise self.fail(("model", key), f"unknown key `{key}` in [model]", symbol=key,
-                                fix="the keys allowed in [model] are name and description")
+                                fix="the keys allowed in [model] are name, title and description")
+            if key != "name":
+                meta[key] = value = self.text(("model", key), value)
             if not isinstance(value, str):
                 raise self.fail(("model", key), f"`{key}` in [model] must be text, not `{value}`", symbol=key,
                                 fix=f'write it in quotes, e.g. {key} = "..."')
         b = ModelBuilder(meta.get("name", Path(self.source).stem if self.source else "model"),
-                         meta.get("description", ""), source=self.source)
+                         meta.get("description", ""), source=self.source, title=meta.get("title"))
         for name, value in self.table("parameters").items():
             v = self.entry("parameters", name, value, {"value", "unit", "description", *SIGNS}, "value")
             b.parameter(name, v.get("value"), unit=v.get("unit"), description=v.get("description"),

@@ -37,9 +37,11 @@ class ModelBuilder:
     'theta'
     """
 
-    def __init__(self, name: str = "model", description: str = "", *, source: str | None = None) -> None:
+    def __init__(self, name: str = "model", description: str = "", *, source: str | None = None,
+                 title: str | None = None) -> None:
         self.name = name
         self.description = description
+        self.title = title
         self.source = source
         self._decl: list[Raw] = []
         self._reference: tuple[Any, Any, Location] | None = None  # (R, O', where): see `reference`

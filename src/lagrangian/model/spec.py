@@ -412,6 +412,8 @@ class Model:
     independent_speeds: tuple[str, ...] = ()
     #: Dependent coordinates eliminated by the holonomic constraints, if given.
     dependent_coordinates: tuple[str, ...] = ()
+    #: The report's title (``[model] title``, a `Text` when given per language); None: from ``name``.
+    title: str | None = None
 
     def __post_init__(self) -> None:
         if not self.frames or self.frames[0].name != GALILEAN_FRAME:

@@ -186,7 +186,7 @@ def render_latex(form: CourseForm, extra: Supplement | None = None) -> str:
     out.append(r"\subsection*{First integrals}")
     if form.integrals:
         out.append(r"\begin{align*}")
-        out.append(r" \\".join(rf"{n.sum(i.parts, latex=True)} &= {i.name}" for i in form.integrals))
+        out.append(r" \\".join(rf"{n.sum(i.parts, latex=True)} &= {n.symbol(i.name, latex=True)}" for i in form.integrals))
         out.append(r"\end{align*}")
     else:
         out.append("None found.")

@@ -7,8 +7,9 @@ term order a teacher would write:
   a coordinate (ẋ − v_b, ẋ − r φ̇, x − r φ: the coordinate before what it is compared with), then by the first parameter
   they contain (in the order the model declares parameters), then shortest first — so
   Γ_θ prints as ``A θ̈ − A ψ̇² sinθ cosθ + C ψ̇ sinθ (φ̇ + ψ̇ cosθ)``;
-* factors: number, parameters (declaration order), rates, accelerations,
-  coordinates, sin, cos, other functions, then parenthesized sums;
+* factors: number, parameters (declaration order), sums of parameters (C − A, a sum of constants
+  starting with a positive term), rates, accelerations, coordinates, sin, cos, other functions,
+  then parenthesized sums;
 * a function of a single symbol loses its parentheses (sinθ), a power of a function
   goes on the function (sin²θ), and one-half is written ½.
 
@@ -17,7 +18,7 @@ Nothing here changes an expression's value: it only chooses how to write it.
 
 from __future__ import annotations
 
-from collections.abc import Collection, Sequence
+from collections.abc import Callable, Collection, Sequence
 from dataclasses import dataclass, field
 
 import sympy
@@ -39,6 +40,11 @@ _FRACTIONS = {(1, 2): "½", (1, 3): "⅓", (2, 3): "⅔", (1, 4): "¼", (3, 4): 
 _FUNCTION_RANK = {"sin": 0, "cos": 1, "tan": 2}
 _LATEX_FUNCTIONS = {"sin", "cos", "tan", "sinh", "cosh", "tanh", "exp", "log", "arcsin", "arccos", "arctan"}
 _SYMPY_TO_NAME = {"asin": "arcsin", "acos": "arccos", "atan": "arctan", "sign": "sgn"}
+
+
+def _is_negative(term: sympy.Basic) -> bool:
+    coeff = term.as_coeff_Mul()[0]
+    return bool(coeff.is_Number and coeff.is_negative)
 
 
 def _as_sympy(expr: object) -> sympy.Basic:
@@ -160,10 +166,13 @@ class Notation:
     ----------
     coordinates : coordinate names in model order.
     parameters : parameter names in declaration order (sets the order of factors).
+    rewrite : applied to every expression before it is written (same value, another form).
     """
 
     coordinates: Sequence[str] = ()
     parameters: Sequence[str] = ()
+    #: Rewrites an expression into the form to print, keeping its value (the report's `display_form`); none by default.
+    rewrite: Callable[[sympy.Basic], sympy.Basic] | None = None
     _cache: dict[tuple[str, str], str] = field(default_factory=dict, repr=False)
     _keys: dict[tuple[sympy.Basic, bool | None], tuple] = field(default_factory=dict, repr=False)
 
@@ -220,6 +229,9 @@ class Notation:
             return (5, 0, base.name)
         if isinstance(base, sympy.Function):
             return (6, _FUNCTION_RANK.get(type(base).__name__, 9), str(base.args))
+        if isinstance(base, sympy.Add) and base.free_symbols and all(s.name in self.parameters for s in base.free_symbols):
+            # A sum of constants goes with the constants: 2 (C − A) ψ̇ cosθ.
+            return (0, len(self.parameters), str(base) if text else "")
         return (8, 0, str(base) if text else "")
 
     def _term_key(self, term: sympy.Basic) -> tuple:
@@ -249,20 +261,24 @@ class Notation:
         return any(term.is_polynomial(r) and sympy.degree(term, r) == 1 for r in rates)
 
     # -- rendering ---------------------------------------------------------------------------
+    def _prepared(self, expr: object) -> sympy.Basic:
+        e = _as_sympy(expr)
+        return self.rewrite(e) if self.rewrite is not None else e
+
     def text(self, expr: sympy.Basic) -> str:
         """Terminal text, e.g. ``½ A (θ̇² + ψ̇² sin²θ)``."""
-        return self._render(_as_sympy(expr), latex=False)
+        return self._render(self._prepared(expr), latex=False)
 
     def latex(self, expr: sympy.Basic) -> str:
         r"""LaTeX, e.g. ``\frac{1}{2} A \left(\dot{\theta}^{2} + \dot{\psi}^{2} \sin^{2}\theta\right)``."""
-        return self._render(_as_sympy(expr), latex=True)
+        return self._render(self._prepared(expr), latex=True)
 
     def sum(self, parts: Sequence[sympy.Basic], latex: bool = False) -> str:
         """``parts`` written one after the other with their signs (e.g. T then U in T + U)."""
         minus = "-" if latex else "−"
         out = ""
         for k, p in enumerate(parts):
-            text = self._render(_as_sympy(p), latex)
+            text = self._render(self._prepared(p), latex)
             if k == 0:
                 out = text
             elif text.startswith(minus):
@@ -278,10 +294,10 @@ class Notation:
         ``−`` (``-`` in LaTeX).  Joined with spaces they give the rendering of ``expr``;
         the report cuts long sums into lines with them.
         """
-        e = _as_sympy(expr)
+        e = self._prepared(expr)
         if not isinstance(e, sympy.Add):
             return [self._render(e, latex)]
-        ordered = sorted(e.args, key=self._term_key)
+        ordered = self._ordered(e)
         return [self._signed(ordered[0], latex, first=True)] + [
             self._signed(term, latex, first=False).strip() for term in ordered[1:]]
 
@@ -295,7 +311,7 @@ class Notation:
         minus = "-" if latex else "−"
         out = ""
         for k, (c, axis) in enumerate(terms):
-            c = _as_sympy(c)
+            c = self._prepared(c)
             if isinstance(c, sympy.Add):
                 body, negative = self._factor(c, latex), False
             else:
@@ -315,8 +331,21 @@ class Notation:
             return self._add(e, latex)
         return self._signed(e, latex, first=True)
 
-    def _add(self, e: sympy.Add, latex: bool) -> str:
+    def _ordered(self, e: sympy.Add) -> list[sympy.Basic]:
+        """The terms of a sum in the order they are written; a sum of constants starts with a positive term
+        (C − A, not −A + C), and a constant subtracted from the others comes last (x² + y² − l²)."""
         terms = sorted(e.args, key=self._term_key)
+        if _is_negative(terms[0]) and all(s.name in self.parameters for s in e.free_symbols):
+            first = next((k for k, t in enumerate(terms) if not _is_negative(t)), 0)
+            terms.insert(0, terms.pop(first))
+        elif (_is_negative(terms[0]) and all(s.name in self.parameters for s in terms[0].free_symbols)
+              and not _is_negative(terms[1])):
+            # A constant subtracted goes last: x² + y² − l², not −l² + x² + y².
+            terms.append(terms.pop(0))
+        return terms
+
+    def _add(self, e: sympy.Add, latex: bool) -> str:
+        terms = self._ordered(e)
         parts = [self._signed(terms[0], latex, first=True)]
         for term in terms[1:]:
             parts.append(self._signed(term, latex, first=False))

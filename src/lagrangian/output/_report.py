@@ -35,14 +35,16 @@ from ..analysis import FirstIntegral, Verification, first_integrals, verify
 from ..dynamics import EquationsOfMotion, derive
 from ..errors import OutputError
 from ..model import Model, load_model
+from ..model._texts import in_language
 from ._report_build import Context
-from ._report_doc import Document, Image, walk
-from ._report_equations import integrals_section, step6, step7
+from ._report_doc import Document, Image, Section, map_math, walk
+from ._report_equations import integrals_section, pin_reaction, step6, step7
 from ._report_extras import ReportFigure, check_section, matrix_section, notes_section, simulation_section
 from ._report_forces import step5
 from ._report_html import render_html
 from ._report_kinematics import step3, step4
 from ._report_md import display_math, render_markdown
+from ._report_pdf import compile_pdf
 from ._report_setup import step1, step2, system_section
 from ._report_small import as_linear_model, small_motions_section
 from ._report_tex import render_tex
@@ -50,7 +52,7 @@ from ._report_tex import render_tex
 __all__ = ["Report", "ReportFigure", "report", "FORMATS", "format_for"]
 
 #: The formats, by name, and the file suffixes that select them.
-FORMATS = {"html": (".html", ".htm"), "tex": (".tex", ".latex"), "md": (".md", ".markdown")}
+FORMATS = {"html": (".html", ".htm"), "tex": (".tex", ".latex"), "md": (".md", ".markdown"), "pdf": (".pdf",)}
 
 
 def format_for(path: str | os.PathLike[str], default: str = "md") -> str:
@@ -91,8 +93,16 @@ class Report:
         else they are data: URIs."""
         return render_markdown(self.document, footer=_footer(), figures=figure_files)
 
+    def pdf(self) -> bytes:
+        """The PDF of the LaTeX report, compiled by pdflatex (or lualatex) installed on this machine."""
+        images = [b for s in self.document.sections for b in walk(s.blocks) if isinstance(b, Image)]
+        names = [f"report-figure-{k}.png" for k in range(1, len(images) + 1)]
+        return compile_pdf(self.latex(names), {name: image.png for name, image in zip(names, images)})
+
     def render(self, format: str) -> str:
-        """The report in ``format``: ``"html"``, ``"tex"`` or ``"md"``."""
+        """The report in ``format``: ``"html"``, ``"tex"`` or ``"md"`` (a PDF is bytes: `pdf` or `save`)."""
+        if format == "pdf":
+            raise OutputError("A PDF is not text: it is written to a file.", fix="give the file: -o report.pdf")
         if format == "html":
             return self.html()
         if format == "tex":
@@ -107,7 +117,7 @@ class Report:
         A LaTeX or Markdown report with figures also writes them, each atomically, as
         ``<name>-figure-<k>.png`` beside it, and refers to them by those relative names
         (``\\includegraphics``, ``![...](name-figure-1.png)``); HTML keeps them inline.
-        A failure leaves any older file at ``path`` as it was.
+        A PDF is compiled from the LaTeX (`pdf`). A failure leaves any older file at ``path`` as it was.
         """
         path = Path(path)
         fmt = format or format_for(path)
@@ -118,6 +128,8 @@ class Report:
                 for name, image in zip(names, images):
                     _atomic.write_atomic(path.with_name(name), image.png)
                 text = self.latex(names) if fmt == "tex" else self.markdown(names)
+            elif fmt == "pdf":
+                text = self.pdf()  # compiled in a temporary folder: nothing is written beside the PDF
             else:
                 text = self.render(fmt)
             _atomic.write_atomic(path, text)
@@ -204,6 +216,10 @@ def report(model: Model | EquationsOfMotion | str | os.PathLike[str], *, lang: s
     pictures = [_figure(f) for f in figures]
     sections = [system_section(c), step1(c), step2(c), step3(c), step4(c), step5(c), step6(c), step7(c),
                 integrals_section(c)]
+    if checked is not None:  # the reaction of a fixed point, after step 7
+        extra = pin_reaction(c, checked)
+        if extra:
+            sections[7] = Section(sections[7].key, sections[7].title, sections[7].blocks + tuple(extra))
     if small_motions is not None and small_motions is not False:
         sections.append(small_motions_section(c, as_linear_model(eom, small_motions)))
     if checked is not None:
@@ -214,5 +230,9 @@ def report(model: Model | EquationsOfMotion | str | os.PathLike[str], *, lang: s
     notes = notes_section(c)
     if notes is not None:
         sections.insert(1, notes)
-    title = c.w.text("title", name=eom.model.name)
-    return Report(Document(lang, title, eom.model.description, tuple(sections)), eom)
+    if lang == "en":
+        # The cross product: ∧ in French (the course's), × in English.
+        sections = [map_math(s, lambda latex: latex.replace(r"\wedge", r"\times")) for s in sections]
+    # The model's own title in the report's language ("Mouvement de Lagrange"), else one made from its name.
+    title = in_language(eom.model.title, lang) or c.w.text("title", name=eom.model.name)
+    return Report(Document(lang, title, in_language(eom.model.description, lang) or "", tuple(sections)), eom)

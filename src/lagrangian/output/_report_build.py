@@ -8,6 +8,7 @@ long).
 
 from __future__ import annotations
 
+import functools
 import re
 from collections.abc import Sequence
 
@@ -18,6 +19,7 @@ from ..analysis import FirstIntegral
 from ..dynamics import EquationsOfMotion
 from ..model import GALILEAN_FRAME, ORIGIN, Vector
 from ._course import CourseForm, _vector_row, course_form
+from ._display_form import display_form
 from ._notation import Notation, _axis_latex, _base_latex
 from ._report_constraints import Joint, joints
 from ._report_doc import Block, Display, Equation, Fold, Math
@@ -51,6 +53,16 @@ def tex_name(name: str) -> str:
     return _base_latex(name)
 
 
+def report_notation(form: CourseForm, model) -> Notation:
+    """The report's notation: masses before the other constants (m2 l1 l2, m g a), and forms a teacher would
+    write (`display_form`)."""
+    base = notation(form)
+    masses = [p.name for p in model.parameters if (p.unit or "").replace(" ", "") == "kg"]
+    order = tuple(masses) + tuple(p for p in base.parameters if p not in masses)
+    constants = frozenset(order)
+    return Notation(base.coordinates, order, rewrite=functools.partial(display_form, parameters=constants))
+
+
 class Context:
     """One report in the making: the derivation and how to write it in one language."""
 
@@ -65,7 +77,7 @@ class Context:
         self.lang = lang
         self.gate = SizeGate(self.w.text("terms"), self.w.text("long expression"))
         self.form: CourseForm = course_form(eom, integrals, convert=self.gate)
-        self.n: Notation = notation(self.form)
+        self.n: Notation = report_notation(self.form, self.model)
         self.book = FullFormBook(self.n, self.w.text("see"))
         reference = self.model.reference
         relative = reference is not None and not reference.is_galilean_frame

@@ -8,11 +8,11 @@ content without parsing any output.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 
 __all__ = ["Math", "Run", "Runs", "Para", "Equation", "Display", "Items", "Table", "Fold", "FullForms", "Image", "Block",
-           "Section", "Document", "walk", "math_of"]
+           "Section", "Document", "walk", "math_of", "map_math"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -160,3 +160,32 @@ def math_of(blocks: tuple[Block, ...]) -> list[str]:
         elif isinstance(b, Image):
             runs(b.caption)
     return out
+
+
+def map_math(section: Section, fn: Callable[[str], str]) -> Section:
+    """``section`` with ``fn`` applied to the LaTeX of every piece of mathematics (folds and tables included)."""
+
+    def runs(rs: Runs) -> Runs:
+        return tuple(Math(fn(r.latex)) if isinstance(r, Math) else r for r in rs)
+
+    def eq(e: Equation) -> Equation:
+        return Equation(tuple(fn(line) for line in e.lines))
+
+    def block(b: Block) -> Block:
+        if isinstance(b, Para):
+            return Para(runs(b.runs), b.style)
+        if isinstance(b, Display):
+            return Display(tuple(eq(e) for e in b.equations))
+        if isinstance(b, Items):
+            return Items(tuple(runs(i) for i in b.items))
+        if isinstance(b, Table):
+            return Table(tuple(runs(c) for c in b.header), tuple(tuple(runs(c) for c in row) for row in b.rows))
+        if isinstance(b, Fold):
+            return Fold(b.summary, tuple(block(x) for x in b.blocks))
+        if isinstance(b, FullForms):
+            return FullForms(b.title, b.summary, tuple((ref, eq(e)) for ref, e in b.forms))
+        if isinstance(b, Image):
+            return Image(b.png, runs(b.caption), b.alt)
+        raise TypeError(f"unknown block {type(b).__name__}")  # pragma: no cover
+
+    return Section(section.key, section.title, tuple(block(b) for b in section.blocks))

@@ -20,6 +20,7 @@ import symengine as se
 import sympy
 
 from .._identity import are_zero
+from ..analysis import Verification
 from ._course import EquationRow, IntegralRow
 from ._report_build import Context
 from ._report_doc import Block, Display, Equation, Math, Para, Runs, Section
@@ -141,7 +142,15 @@ def step6(c: Context) -> Section:
                rf"\frac{{\partial T(\Sigma/{c.R})}}{{\partial q_i}} = -\frac{{\partial U_P(\Sigma/{c.R})}}{{\partial q_i}}"
                rf" + Q_{{i,\,\mathrm{{nc}}}}{lam} \qquad i = 1, \dots, n")
     n = len(c.form.equations)
-    blocks: list[Block] = [Display((Equation((general,)),))]
+    # The principle of virtual power where it is used [Seed, II]: P*_acc = Σ Γ_i q_i* = Σ Q_i q_i* for every
+    # q_i*, so Γ_i = Q_i, with Γ_i = d/dt[∂T/∂q̇_i] − ∂T/∂q_i [Seed, I].
+    pvv = (rf"P^{{*}}_{{\mathrm{{acc}}}}(\Sigma/{c.R}) = \sum_{{i=1}}^{{n}} \Gamma_i\, q_i^{{*}} = "
+           rf"\sum_{{i=1}}^{{n}} Q_i\, q_i^{{*}} \quad \forall\, q_i^{{*}} \quad\Rightarrow\quad \Gamma_i = Q_i")
+    gamma = (rf"\Gamma_i = \frac{{d}}{{dt}}\left[\frac{{\partial T(\Sigma/{c.R})}}{{\partial \dot{{q}}_i}}\right] - "
+             rf"\frac{{\partial T(\Sigma/{c.R})}}{{\partial q_i}}")
+    blocks: list[Block] = [Para(w("pvv", R=Math(c.R))), Display((Equation((pvv,)),)),
+                           Para(w("gamma", gamma=Math(gamma), R=Math(c.R), Q=Math("Q_i"))),
+                           Display((Equation((general,)),))]
     if c.eom.constraints:
         blocks.append(Para(w("multiplier def", sum=Math(r"\sum_{k} \lambda_{k}\, a_{k,i}"))))
     blocks.append(Para(w("lagrange n", n=Math(str(n))) if n > 1 else w("lagrange one")))
@@ -206,6 +215,32 @@ def left_out_note(c: Context, left: list) -> Runs:  # type: ignore[type-arg]
     budget = f"{c.book.budget:,}".replace(",", " " if c.lang == "fr" else ",")
     return c.w("full forms left", budget=budget, k=str(len(left)),
                sample=Math(left[0].plain_latex), cmd=c.derive_command, fn="lagrangian.derive")
+
+
+def pin_reaction(c: Context, v: Verification) -> list[Block]:
+    """After step 7, the reaction of a fixed point as a formula: R_O = m γ(G/R0) − P (the resultant theorem,
+    [Seed, Remarque 4]; `lagrangian.analysis.reactions`), where no complementary equation gives it already."""
+    from ..analysis import reactions
+
+    if c.eom.constraints or c.ref != "R0":
+        return []
+    out: list[Block] = []
+    for r in reactions(v):
+        if r.pinned is None or len(r.elements) != 1 or r.point is None:
+            continue
+        body = r.elements[0]
+        th = next((t for t in v.theorems if t.name == body), None)
+        if th is None:
+            continue
+        P, G, S, R = c.name(r.point), c.point_label(body), c.element(body), c.R
+        RO = rf"\vec{{R}}_{{{P}}}"
+        given = " - ".join(rf"\vec{{F}}({c.load_tex(e)})" for e in th.efforts)
+        head = rf"{RO} = {c.tex(th.mass)}\,\vec{{\gamma}}({G}/{R})" + (f" - {given}" if given else "") + " = "
+        axes = c.kin.frames.axes(r.frame)
+        terms = tuple((c.ex(x), a) for x, a in zip(r.force_components, axes) if not c.is_zero(x))
+        out.append(Para(c.w("pin reaction", R=Math(RO), O=Math(P), S=Math(f"({S})"))))
+        out.append(Display((c.vector_equation(head, terms),)))
+    return out
 
 
 def step7(c: Context) -> Section:

@@ -8,6 +8,7 @@ check itself is `lagrangian.analysis.verify`; this module only writes it.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -74,6 +75,7 @@ def check_section(c: Context, v: Verification) -> Section:
             head = w("by resultant", eq=eq, of=of, e=direction)
         else:
             head = w("by power", eq=eq, of=of, q=Math(q))
+        blocks += _fixed_axis(c, check, theorems)
         blocks.append(Para(head))
         mark = r"\quad\checkmark" if check.agrees else r"\quad\times"
         blocks += c.show([c.relation("", c.ex(check.newton_euler), c.ex(check.newton_euler_efforts), mark)],
@@ -81,6 +83,35 @@ def check_section(c: Context, v: Verification) -> Section:
         if not check.agrees:
             blocks.append(Para(w("check failed", eq=eq), style="note"))
     return Section("check", w.text("check"), tuple(blocks))
+
+
+def _fixed_axis(c: Context, check, theorems: dict) -> list[Block]:  # type: ignore[no-untyped-def,type-arg]
+    """δ_O·z0 = d/dt(σ_O·z0) = d/dt(∂T/∂ψ̇) (= dK/dt): the moment at a fixed point projected on an axis fixed
+    in R0 is the derivative of the projected angular momentum, and that is ∂T/∂q̇ — shown only where the
+    engine finds σ_O·e − ∂T/∂q̇ identically zero, so that a student recognises L(q) in it."""
+    if (check.theorem != "moment" or c.ref != "R0" or check.axis is None or check.direction is None
+            or len(check.elements) != 1 or check.point is None
+            or (check.point.startswith("G_") and check.point[2:] in c.bodies)  # a centre of mass: not a fixed point
+            or not c.kin.is_fixed(check.point)):
+        return []
+    (frame, _), = list(check.direction)
+    th = theorems.get((check.elements[0], check.point))
+    if frame != "R0" or th is None or getattr(th, "angular_momentum", None) is None:
+        return []
+    projected = c.kin.frames.dot(th.angular_momentum, check.direction)
+    equation = next(e for e in c.eom.equations if e.coordinate == check.coordinate)
+    if not are_zero([projected - equation.dT_dqd])[0]:
+        return []
+    row = next(r for r in c.form.equations if r.coordinate == check.coordinate)
+    P, E, R, e = _point(c, check.point, check.elements[0]), c.element(check.elements[0]), c.R, c.axis(check.axis)
+    qd = c.sym(check.coordinate, "dot")
+    sigma = rf"\vec{{\sigma}}_{{{P}}}({E}/{R})\cdot{e}"
+    chain = (rf"\vec{{\delta}}_{{{P}}}({E}/{R})\cdot{e} = \frac{{d}}{{dt}}\left[{sigma}\right] = "
+             rf"\frac{{d}}{{dt}}\left[\frac{{\partial T(\Sigma/{R})}}{{\partial {qd}}}\right]")
+    if row.integral is not None:
+        chain += rf" = \frac{{d{c.n.symbol(row.integral, latex=True)}}}{{dt}}"
+    return [Para(c.w("fixed axis", e=Math(e), R0=Math(R), O=Math(P))),
+            Display((Equation((chain,)), c.equation(f"{sigma} = ", c.ex(projected))))]
 
 
 def _theorem(c: Context, kind: str, point: str | None, names: tuple[str, ...], theorems: dict,  # type: ignore[type-arg]
@@ -175,8 +206,25 @@ def simulation_section(c: Context, figures: Sequence[ReportFigure]) -> Section:
     w = c.w
     blocks: list[Block] = []
     for k, fig in enumerate(figures, start=1):
-        blocks.append(Image(fig.png, w("figure", k=str(k), caption=fig.caption), fig.caption))
+        blocks.append(Image(fig.png, w("figure", k=str(k), caption=caption_runs(fig.caption)), fig.caption))
     return Section("simulation", w.text("simulation"), tuple(blocks))
+
+
+#: An indexed symbol of a caption's plain text: q_i(t), q̇_i, U_P, R_O(t).
+_INDEXED = re.compile(r"(q\u0307|[A-Za-z])_([A-Za-z0-9]+)(\(t\))?")
+
+
+def caption_runs(caption: str) -> Runs:
+    """A figure's plain-text caption with its indexed symbols as mathematics: "Paramètres q_i(t)" →
+    "Paramètres " + q_i(t) set as math (the captions of `lagrangian.plotting` are plain text)."""
+    out: list[str | Math] = []
+    start = 0
+    for m in _INDEXED.finditer(caption):
+        base = r"\dot{q}" if m.group(1) == "q\u0307" else m.group(1)
+        out += [caption[start:m.start()], Math(f"{base}_{{{m.group(2)}}}" + (m.group(3) or ""))]
+        start = m.end()
+    out.append(caption[start:])
+    return tuple(r for r in out if r != "")
 
 
 #: Most coordinates for which the appendix lists the entries of M and F (n(n + 1)/2 + n of them).

@@ -48,7 +48,15 @@ _CSS = """
 .lagrangian-report figure img { max-width: 100%; }
 .lagrangian-report figcaption { font-size: 0.95em; color: #333; }
 .lagrangian-report footer { margin-top: 2em; font-size: 0.85em; color: #777; }
+.lagrangian-report mover.vec > mo { color: transparent; }
+.lagrangian-report mover.vec { background: __HEAD__ right 0.06em top 0.05em / 0.34em 0.32em no-repeat,
+  linear-gradient(#1d1d1f, #1d1d1f) left 0.04em top 0.185em / calc(100% - 0.2em) 0.05em no-repeat; }
 """
+
+#: The head of a vector's arrow (``.vec``): a filled, notched triangle, drawn at the arrow's right end.
+_ARROW_HEAD = ("url(\"data:image/svg+xml,%3Csvg xmlns='http://www.w3.org/2000/svg' viewBox='0 0 10 10' "
+               "preserveAspectRatio='none'%3E%3Cpath d='M0 0L10 5L0 10L2.5 5Z' fill='%231d1d1f'/%3E%3C/svg%3E\")")
+_CSS = _CSS.replace("__HEAD__", _ARROW_HEAD)
 
 
 @functools.lru_cache(maxsize=4096)
@@ -58,7 +66,7 @@ def _mathml(latex: str, display: str) -> str:
     except Exception as exc:  # latex2mathml raises assorted errors on input it does not know
         raise OutputError(f"Cannot convert `{latex[:120]}` to MathML: {exc}.",
                           fix="report this model to the lagrangian developers; --format tex or md still works") from None
-    return _stretchy(out.replace(' xmlns="http://www.w3.org/1998/Math/MathML"', "", 1))
+    return _function_spacing(_stretchy(out.replace(' xmlns="http://www.w3.org/1998/Math/MathML"', "", 1)))
 
 
 def _braced(s: str, i: int) -> int:
@@ -92,20 +100,25 @@ def _arrows(latex: str) -> str:
 
 #: The long arrow latex2mathml writes as an ``<mi>`` base of ``\\overset``.
 _OVERSET_ARROW = "<mover><mrow><mi>&#x027F6;</mi></mrow>"
-#: An arrow over several letters (``\\overrightarrow{OG}``): its base and the arrow.
+#: An arrow over letters (``\\overrightarrow{OG}``): its base and the arrow.
 _OVER_ARROW = re.compile(r"<mover><mrow>((?:(?!</?mover>).)*?)</mrow><mo>(&#x02192;|&#x02190;|&#x02194;)</mo></mover>")
-#: Width of a letter (or an index's digit, with the script's space) over the width of the arrow glyph
-#: (about 0.87 em over 0.79 em).
-_LETTER_PER_ARROW = 1.1
 _DIGITS = re.compile(r"<mn>([^<]*)</mn>")
 
 
 def _over_arrow(m: re.Match[str]) -> str:
-    """The arrow over ``OG`` widened to span it (a CSS scale: Chromium does not stretch it, math font or not)."""
+    """The arrow over ``OG`` as wide as ``OG``, with its head: a vector, not an overline (a mesure algébrique).
+
+    Chromium stretches an operator over its base only with an OpenType MATH font that has a horizontal
+    construction for it, which most machines lack; a scaled glyph has its head scaled into a line.  So
+    the arrow over two symbols or more is drawn by the style sheet (``mover.vec``): a line across the whole
+    base and a head of fixed size at its right end.  The ``<mo>`` stays, transparent, for copying and
+    screen readers.
+    """
     inner, arrow = m.group(1), m.group(2)
-    letters = inner.count("<mi>") + inner.count("<mi ") + sum(len(d) for d in _DIGITS.findall(inner))
-    style = f' style="transform: scaleX({_LETTER_PER_ARROW * letters:.2f})"' if letters >= 2 else ""
-    return f'<mover><mrow>{inner}</mrow><mo stretchy="true"{style}>{arrow}</mo></mover>'
+    symbols = inner.count("<mi>") + inner.count("<mi ") + sum(len(d) for d in _DIGITS.findall(inner))
+    if symbols >= 2 and arrow == "&#x02192;":
+        return f'<mover class="vec"><mrow>{inner}</mrow><mo stretchy="false">{arrow}</mo></mover>'
+    return f"<mover><mrow>{inner}</mrow><mo>{arrow}</mo></mover>"
 
 
 def _stretchy(mathml: str) -> str:
@@ -113,6 +126,22 @@ def _stretchy(mathml: str) -> str:
     as wide as ``OG``."""
     mathml = mathml.replace(_OVERSET_ARROW, '<mover><mo stretchy="true">&#x027F6;</mo>')
     return _OVER_ARROW.sub(_over_arrow, mathml)
+
+
+#: A function name (``sin``, or ``sin²``) and what follows it when that is not a bracket, an operator or a space.
+_FUNCTION_THEN_ARGUMENT = re.compile(r"(<mi>(?:sin|cos|tan|sinh|cosh|tanh|exp|log|arcsin|arccos|arctan)</mi>"
+                                     r"|<msup><mi>(?:sin|cos|tan|sinh|cosh|tanh)</mi><mrow><mn>\d+</mn></mrow></msup>)"
+                                     r"(?!<mo[ >]|<mrow><mo[ >]|<mrow><mrow><mo[ >]|<mspace|</mrow>|</math>)")
+#: The solidus of ``S/R0`` (S relative to R0) and of a/b inline.
+_SOLIDUS = "<mo>&#x0002F;</mo>"
+
+
+def _function_spacing(mathml: str) -> str:
+    """``sin θ`` and ``S/R0`` as LaTeX sets them: a thin space between a function's name and its argument
+    (LaTeX's \\mathop; latex2mathml writes two bare ``<mi>``, set touching), and none around the solidus
+    (an ordinary symbol in LaTeX, an infix operator with spaces in the MathML operator dictionary)."""
+    mathml = _FUNCTION_THEN_ARGUMENT.sub(r'\1<mspace width="0.167em"></mspace>', mathml)
+    return mathml.replace(_SOLIDUS, '<mo lspace="0em" rspace="0em">&#x0002F;</mo>')
 
 
 #: Function names that LaTeX spaces from the factor before them (\\mathop) and latex2mathml does not.

@@ -12,6 +12,7 @@ import re
 
 from ..dynamics._constraints import describe_constraints
 from ..model import Constraint, Vector
+from ..model._texts import in_language
 from ._report_build import Context
 from ._report_constraints import Joint, constraint_counts, degrees_of_freedom, planar_normal
 from ._report_doc import Block, Display, Equation, Fold, Items, Math, Para, Runs, Section, Table
@@ -60,7 +61,7 @@ def system_section(c: Context) -> Section:
         blocks += c.many([Items(tuple(items))], len(items), w.text("constituents").rstrip(" :"))
     if model.parameters:
         rows = tuple((( Math(c.sym(p.name)),), ("" if p.value is None else w.number(p.value),), (_unit(p.unit),),
-                      (p.description or "",)) for p in model.parameters)
+                      (in_language(p.description, c.lang) or "",)) for p in model.parameters)
         header = tuple((w.text(k),) for k in ("col symbol", "col value", "col unit", "col description"))
         blocks.append(Para(w("parameters")))
         blocks += c.many([Table(header, rows)], len(rows), w.text("parameters").rstrip(" :"))
@@ -206,7 +207,7 @@ def _declared(c: Context, con: Constraint, one: bool) -> list[Block]:
     shown = [Equation((rf"{c.tex(r.expression)} = 0",)) for r in rows]
     if not shown and con.expression is not None and not isinstance(con.expression, Vector):
         shown = [Equation((rf"{c.tex(con.expression)} = 0",))]
-    description = f" ({con.description})" if con.description else ""
+    description = f" ({in_language(con.description, c.lang)})" if con.description else ""
     equation = Math(r"\quad".join(e.lines[0] for e in shown)) if len(shown) == 1 else ""
     if con.form == "no_slip":
         head = w("no slip", S=Math(c.element(con.body or "")), I=Math(c.point_label(con.points[0])),
@@ -358,7 +359,7 @@ def step2(c: Context) -> Section:
     header = tuple((w.text(k),) for k in ("col symbol", "col description", "col initial", "col rate"))
     rows = []
     for coord in c.model.coordinates:
-        rows.append(((Math(c.sym(coord.name)),), (coord.description or "",),
+        rows.append(((Math(c.sym(coord.name)),), (in_language(coord.description, c.lang) or "",),
                      ("" if coord.initial is None else w.number(coord.initial),),
                      ("" if coord.rate is None else w.number(coord.rate),)))
     blocks += c.many([Table(header, tuple(rows))], len(rows), w.text("step2"))

@@ -23,7 +23,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "title": ("Équations de Lagrange — {name}", "Lagrange's equations — {name}"),
     "system": ("Le système étudié", "The system"),
     "step1": ("1. Choix des liaisons principales", "1. Choice of the principal constraints"),
-    "step2": ("2. Paramètres principaux", "2. Principal parameters"),
+    "step2": ("2. Paramètres principaux", "2. Principal parameters (generalized coordinates)"),
     "step3": ("3. Champ de vitesses virtuelles compatible avec les liaisons principales",
               "3. Virtual velocity field compatible with the principal constraints"),
     "step4": ("4. Énergies cinétique et potentielle", "4. Kinetic and potential energies"),
@@ -77,11 +77,11 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "perfect body plane": ("Elle est supposée parfaite (sans frottement) : ses actions se réduisent à une force "
                            "selon {n} et à un couple orthogonal aux rotations permises, de puissance virtuelle nulle "
                            "puisque {cond}.",
-                           "It is assumed perfect (frictionless): its actions reduce to a force along {n} and a "
+                           "It is assumed ideal (workless) (frictionless): its actions reduce to a force along {n} and a "
                            "couple orthogonal to the allowed rotations, whose virtual power is zero since {cond}."),
     "not perfect": ("Elle n'est pas parfaite : la puissance virtuelle de ses efforts n'est pas nulle ({why}) ; "
                     "ils figurent dans {Q} (étape 5).",
-                    "It is not perfect: the virtual power of its forces is not zero ({why}); they enter {Q} "
+                    "It is not ideal (not workless): the virtual power of its forces is not zero ({why}); they enter {Q} "
                     "(step 5)."),
     "why coulomb": ("frottement de Coulomb « {name} » en {P}, opposé au glissement",
                     "Coulomb friction “{name}” at {P}, opposing the sliding"),
@@ -113,42 +113,42 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "classified one": ("Elle est {a}, {b} et {c}.", "It is {a}, {b} and {c}."),
     "classified": ("{a}, {b}, {c}", "{a}, {b}, {c}"),
     "perfect fixed point": ("Elle est parfaite car la puissance virtuelle de la réaction {R} en {X} est nulle ; "
-                            "en effet :", "It is perfect: the virtual power of the reaction {R} at {X} is zero, as"),
+                            "en effet :", "It is ideal (workless): the virtual power of the reaction {R} at {X} is zero, as"),
     "because": ("car", "because"),
     "since": ("puisque", "since"),
     "and": ("et", "and"),
     "perfect pivot": ("Elle est parfaite (sans frottement, {MX}) : la puissance virtuelle des actions de liaison "
-                      "est nulle,", "It is perfect (frictionless, {MX}): the virtual power of the constraint "
+                      "est nulle,", "It is ideal (workless) (frictionless, {MX}): the virtual power of the constraint "
                       "actions is zero,"),
     "perfect joint": ("Elle est parfaite (sans frottement, {MX}) : les actions mutuelles de liaison, opposées, ont "
                       "une puissance virtuelle nulle, {X} étant commun aux deux solides,",
-                      "It is perfect (frictionless, {MX}): the mutual constraint actions, opposite, have zero "
+                      "It is ideal (workless) (frictionless, {MX}): the mutual constraint actions, opposite, have zero "
                       "virtual power, {X} being common to both bodies,"),
     "perfect ball": ("Elle est parfaite : les actions mutuelles de liaison se réduisent à une force en {X}, point "
                      "commun aux deux solides, de puissance virtuelle nulle.",
-                     "It is perfect: the mutual constraint actions reduce to a force at {X}, a point common to "
+                     "It is ideal (workless): the mutual constraint actions reduce to a force at {X}, a point common to "
                      "both bodies, whose virtual power is zero."),
     "perfect rod": ("Elle est parfaite (sans frottement) : la réaction sur {P} n'a de composante que selon {dirs}, "
                     "{orth} à son champ de vitesses virtuelles puisque {XP2} est constant :",
-                    "It is perfect (frictionless): the reaction on {P} only has components along {dirs}, "
+                    "It is ideal (workless) (frictionless): the reaction on {P} only has components along {dirs}, "
                     "{orth} to its virtual velocity field since {XP2} is constant:"),
     "orth one": ("direction orthogonale", "a direction orthogonal"),
     "orth many": ("directions orthogonales", "directions orthogonal"),
     "perfect smooth": ("Elle est parfaite (contact sans frottement) : la réaction est normale à {where}, qui contient "
-                       "{V}.", "It is perfect (frictionless contact): the reaction is normal to {where}, which "
+                       "{V}.", "It is ideal (workless) (frictionless contact): the reaction is normal to {where}, which "
                        "contains {V}."),
     "the plane": ("ce plan", "that plane"),
     "the line": ("cette droite", "that line"),
     "perfect assumed": ("Elle est supposée parfaite (sans frottement) : ses efforts n'entrent dans aucune "
-                        "composante généralisée.", "It is assumed perfect (frictionless): its forces enter no "
+                        "composante généralisée.", "It is assumed ideal (workless) (frictionless): its forces enter no "
                         "generalized force."),
     "perfect complementary": ("Elle est parfaite : sa réaction a une puissance virtuelle nulle dans tout champ "
                               "compatible avec elle, et ses composantes généralisées sont {Q}.",
-                              "It is perfect: its reaction has zero virtual power in every virtual field "
+                              "It is ideal (workless): its reaction has zero virtual power in every virtual field "
                               "compatible with it, and its generalized forces are {Q}."),
     "perfect no slip": ("Elle est parfaite car la puissance virtuelle de la réaction en {I} est nulle dans tout "
                         "champ compatible avec elle : {P}. Ses composantes généralisées sont {Q}.",
-                        "It is perfect because the virtual power of the reaction at {I} is zero in every virtual "
+                        "It is ideal (workless) because the virtual power of the reaction at {I} is zero in every virtual "
                         "field compatible with it: {P}. Its generalized forces are {Q}."),
     "reaction is": ("La réaction exercée sur {E} est {R}.", "The reaction exerted on {E} is {R}."),
     "reaction on at": ("La réaction exercée sur ({S}) en {E} est {R}.", "The reaction exerted on ({S}) at {E} is {R}."),
@@ -254,7 +254,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "kind inertial: entrainment": ("effort d'inertie d'entraînement", "transport inertial force"),
     "perfect no Q": ("Les liaisons principales étant parfaites, la puissance virtuelle de leurs efforts est nulle : "
                      "ils n'apparaissent dans aucune composante généralisée.",
-                     "The principal constraints being perfect, the virtual power of their forces is zero: they "
+                     "The principal constraints being ideal (workless), the virtual power of their forces is zero: they "
                      "appear in no generalized force."),
     "complementary Q": ("Les réactions des liaisons complémentaires ont pour composantes généralisées {Q} (étape "
                         "7), où {lam} est le multiplicateur de la liaison complémentaire k et {a} le coefficient de "
@@ -264,7 +264,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
                         "the rate {qd} in its equation ({f} for a holonomic constraint {fk})."),
     "perfect no Q but": ("Les autres liaisons principales étant parfaites, la puissance virtuelle de leurs efforts "
                          "est nulle ; les efforts des liaisons non parfaites (frottement) sont ceux des efforts "
-                         "non conservatifs ci-dessus.", "The other principal constraints being perfect, the "
+                         "non conservatifs ci-dessus.", "The other principal constraints being ideal (workless), the "
                          "virtual power of their forces is zero; the forces of the constraints that are not "
                          "perfect (friction) are among the non-conservative forces above."),
     "multiplier def": ("{sum} : les composantes généralisées des réactions des liaisons complémentaires (étape 5).",
@@ -285,14 +285,15 @@ _PHRASES: dict[str, tuple[str, str]] = {
                      "dérivent d'une énergie potentielle et toutes les liaisons sont parfaites et principales. Avec "
                      "le lagrangien {L}, les équations s'écrivent", "The system (Σ) is conservative relative to "
                      "{R} (Remark 2 of the course): every applied force derives from a potential energy and every constraint "
-                     "is perfect and principal. With the Lagrangian {L}, the equations read"),
+                     "is ideal (workless) and principal. With the Lagrangian {L}, the equations read"),
+
     "conservative constrained": ("Le système (Σ) est conservatif par rapport à {R} : tous les efforts donnés "
                                  "dérivent d'une énergie potentielle et toutes les liaisons sont parfaites, principales "
                                  "ou complémentaires indépendantes du temps — la réaction {sum} de ces dernières ne "
                                  "travaille pas au cours du mouvement. Avec le lagrangien {L}, les équations s'écrivent "
                                  "(Remarque 2, avec les multiplicateurs)",
                                  "The system (Σ) is conservative relative to {R}: every applied force derives from a "
-                                 "potential energy and every constraint is perfect, principal or complementary and "
+                                 "potential energy and every constraint is ideal (workless), principal or complementary and "
                                  "time-independent — the reaction {sum} of the latter does no work along the motion. "
                                  "With the Lagrangian {L}, the equations read (Remark 2, with the multipliers)"),
     "entrainment terms": ("où {gamma} est l'accélération par rapport à {R0} de l'origine {O} de {R}, {G} le centre "
@@ -319,6 +320,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "with multipliers": ("Les liaisons complémentaires ajoutent {sum} au second membre (étape 7).",
                          "The complementary constraints add {sum} to the right-hand side (step 7)."),
     # -- step 7 -----------------------------------------------------------------------------------
+    "pin reaction": ("La réaction {R} en {O}, qui n'entre pas dans les équations de Lagrange (la liaison est parfaite), "
+                     "se déduit ensuite du théorème de la résultante dynamique appliqué à {S} :",
+                     "The reaction {R} at {O}, which does not enter Lagrange's equations (the constraint is ideal), "
+                     "then follows from the resultant theorem applied to {S}:"),
     "no complementary": ("Toutes les liaisons ont été prises principales : il n'y a pas d'équation de liaison "
                          "complémentaire, et les {n} équations de Lagrange déterminent le mouvement.",
                          "All constraints were taken as principal: there is no complementary constraint equation, "
@@ -467,15 +472,27 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "constraint actions": ("liaisons", "constraints"),
     "notes": ("Expressions longues", "Long expressions"),
     "perfect drop": ("Les liaisons étant parfaites, leurs actions disparaissent de chaque projection.",
-                     "The constraints being perfect, their actions drop out of every projection."),
+                     "The constraints being ideal (workless), their actions drop out of every projection."),
     "perfect drop principal": ("Les liaisons principales étant parfaites, leurs actions disparaissent de chaque "
                                "projection ; celles des liaisons complémentaires y restent, par les multiplicateurs.",
-                               "The principal constraints being perfect, their actions drop out of every "
+                               "The principal constraints being ideal (workless), their actions drop out of every "
                                "projection; those of the complementary constraints stay, through the multipliers."),
     "drop not perfect": ("Les actions des liaisons parfaites disparaissent de chaque projection ; celles des "
                          "liaisons non parfaites y restent, avec les efforts donnés.",
-                         "The actions of the perfect constraints drop out of every projection; those of the "
-                         "constraints that are not perfect stay, with the applied forces."),
+                         "The actions of the ideal (workless) constraints drop out of every projection; those of the "
+                         "constraints that are not ideal stay, with the applied forces."),
+    "fixed axis": ("{e} étant fixe dans {R0} et {O} fixe, la projection du moment dynamique sur {e} est la dérivée de "
+                   "celle du moment cinétique, qui est la quantité de mouvement généralisée :",
+                   "{e} being fixed in {R0} and {O} fixed, the projection of the dynamic moment on {e} is the derivative "
+                   "of that of the angular momentum, which is the generalized momentum:"),
+    "pvv": ("Le principe des puissances virtuelles, pour tout champ de vitesses virtuelles compatible avec les "
+            "liaisons principales :",
+            "The principle of virtual power, for every virtual velocity field compatible with the principal "
+            "constraints:"),
+    "gamma": ("où {gamma} est la composante généralisée des quantités d'accélération de (Σ) par rapport à {R}, "
+              "et {Q} celle de tous les efforts ; d'où les équations de Lagrange :",
+              "where {gamma} is the generalized component of the acceleration quantities (inertia) of (Σ) relative "
+              "to {R}, and {Q} that of all the forces and moments; hence Lagrange's equations:"),
     "top moment": ("{R0} étant galiléen, le théorème du moment dynamique en {O} de ({S}) par rapport à {R0} "
                    "s'écrit :", "{R0} being Galilean, the moment (angular momentum) theorem at {O} for ({S}) "
                    "relative to {R0} reads:"),

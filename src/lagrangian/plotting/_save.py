@@ -6,6 +6,8 @@ failure leaves any older file of that name as it was.
 
 from __future__ import annotations
 
+import re
+
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
@@ -67,7 +69,49 @@ def plot_trajectory(trajectory: Trajectory, eom: EquationsOfMotion, kind: str = 
     """
     if kind not in _PLOTTERS:
         raise OutputError(f"Unknown figure `{kind}`.", fix="choose one of " + ", ".join(KINDS))
-    return _PLOTTERS[kind](trajectory, eom, **options)
+    fig = _PLOTTERS[kind](trajectory, eom, **options)
+    if options.get("lang") == "fr":
+        french_numbers(fig)
+    return fig
+
+
+#: A decimal point between digits, outside $...$ (mathtext).
+_DECIMAL_POINT = re.compile(r"(?<=\d)\.(?=\d)")
+
+
+def _comma(text: str) -> str:
+    """``28.65°`` → ``28,65°`` in the plain parts of a label; in ``$...$`` the comma is braced, ``{,}``, so that
+    mathtext does not space it as punctuation."""
+    parts = text.split("$")
+    return "$".join(_DECIMAL_POINT.sub("," if k % 2 == 0 else "{,}", part) for k, part in enumerate(parts))
+
+
+def french_numbers(fig: Any) -> None:
+    """The numbers of a figure written the French way, with a decimal comma: its tick labels (plain axes) and
+    its texts (titles, legends, annotations)."""
+    import matplotlib.text
+    from matplotlib.ticker import ScalarFormatter
+
+    class CommaFormatter(ScalarFormatter):
+        def __call__(self, x: float, pos: int | None = None) -> str:
+            return _comma(super().__call__(x, pos))
+
+        def get_offset(self) -> str:
+            return _comma(super().get_offset())
+
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            if type(axis.get_major_formatter()) is ScalarFormatter:
+                axis.set_major_formatter(CommaFormatter())
+    for text in fig.findobj(matplotlib.text.Text):
+        label = text.get_text()
+        if label and _DECIMAL_POINT.search(label):
+            text.set_text(_comma(label))
+    for ax in fig.axes:
+        legend = ax.get_legend()
+        if legend is not None:
+            for t in legend.get_texts():
+                t.set_text(_comma(t.get_text()))
 
 
 def _turns_in_3d(trajectory: Trajectory, eom: EquationsOfMotion) -> bool:

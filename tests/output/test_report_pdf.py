@@ -1,0 +1,74 @@
+"""``lagrangian report --format pdf``: the LaTeX report compiled by a real TeX engine, written atomically.
+
+Compiled where pdflatex (or lualatex) is installed (``make test`` installs Debian's TeX Live as root) and
+read back with pdftotext and pdfinfo (poppler-utils); skipped, with the reason, elsewhere.  The refusals
+(no engine, a failing engine, no file to write to) are checked everywhere.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import stat
+import subprocess
+
+import pytest
+
+from lagrangian.cli.main import main
+from lagrangian.errors import OutputError
+from lagrangian.output import _report_pdf, report
+from lagrangian_test_support import EXAMPLES_DIR
+
+needs_tex = pytest.mark.skipif(_report_pdf.tex_engine() is None or shutil.which("pdftotext") is None
+                               or shutil.which("pdfinfo") is None,
+                               reason="no pdflatex/lualatex or poppler-utils here (`make test` installs them as root)")
+
+
+@needs_tex
+def test_pdf_of_the_double_pendulum_in_french(tmp_path):
+    out = tmp_path / "pendule.pdf"
+    assert main(["report", str(EXAMPLES_DIR / "double_pendulum.toml"), "--lang", "fr", "-o", str(out)]) == 0
+    data = out.read_bytes()
+    assert data.startswith(b"%PDF-") and data.rstrip().endswith(b"%%EOF")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["pendule.pdf"]  # no .aux, .log or temporary left
+    pages = int(next(line.split()[-1] for line in subprocess.run(["pdfinfo", str(out)], capture_output=True,
+                     text=True, check=True).stdout.splitlines() if line.startswith("Pages:")))
+    assert 3 <= pages <= 20, pages
+    text = subprocess.run(["pdftotext", "-layout", str(out), "-"], capture_output=True, text=True, check=True).stdout
+    # The title, the steps of the démarche and the model's French texts, in order.
+    order = [text.find(s) for s in ("Pendule double", "masse de la tige (S1)", "1. Choix des liaisons principales",
+                                    "2. Paramètres principaux", "6. Équations de Lagrange", "Annexe")]
+    assert -1 not in order and order == sorted(order), order
+    assert "mass of rod" not in text
+
+
+@needs_tex
+def test_a_failed_pdf_leaves_the_old_file(tmp_path, monkeypatch):
+    """An engine that fails: an OutputError with the engine's first error, and the old PDF unchanged."""
+    fake = tmp_path / "bin" / "pdflatex"
+    fake.parent.mkdir()
+    fake.write_text("#!/bin/sh\necho '! Undefined control sequence.' > report.log\necho 'l.7 \\\\oops' >> report.log\n"
+                    "exit 1\n")
+    fake.chmod(fake.stat().st_mode | stat.S_IXUSR)
+    monkeypatch.setenv("PATH", f"{fake.parent}{os.pathsep}{os.environ['PATH']}")
+    out = tmp_path / "old.pdf"
+    out.write_bytes(b"%PDF-old")
+    r = report(EXAMPLES_DIR / "simple_pendulum.toml", lang="en")
+    with pytest.raises(OutputError) as info:
+        r.save(out)
+    assert "Undefined control sequence" in str(info.value) and info.value.fix
+    assert out.read_bytes() == b"%PDF-old"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bin", "old.pdf"]
+
+
+def test_no_engine_says_how_to_install_one(tmp_path, monkeypatch):
+    monkeypatch.setattr(_report_pdf, "ENGINES", ("no-such-tex-engine",))
+    with pytest.raises(OutputError) as info:
+        report(EXAMPLES_DIR / "simple_pendulum.toml", lang="en").save(tmp_path / "x.pdf")
+    assert "no TeX engine" in str(info.value) and "texlive-latex-base" in info.value.fix
+    assert not (tmp_path / "x.pdf").exists()
+
+
+def test_a_pdf_goes_to_a_file_not_the_terminal(capsys):
+    assert main(["report", str(EXAMPLES_DIR / "simple_pendulum.toml"), "--format", "pdf"]) != 0
+    assert "-o report.pdf" in capsys.readouterr().err
