@@ -27,8 +27,10 @@ set-up and `Trajectory`.  Processes are still at hand, through Dask (below).
 With ``scheduler`` (a ``tcp://host:8786`` address or a ``distributed.Client``), each chunk
 is a Dask task: the `Kernel` (the generated C source and the run's settings) is sent to
 every worker once, each worker compiles it once (or finds it in its cache) and keeps it.
-A task that fails with its worker is run again by Dask (``retries``); a chunk's rows are
-written by the index of the chunk, so a repeat is never counted twice.
+A task lost with its worker is given to another worker by Dask's scheduler (up to
+``distributed.scheduler.allowed-failures`` deaths, then ``KilledWorker``), a task that raises
+is retried (``retries``); each chunk's result is gathered once and its rows are written by the
+index of the chunk, so a chunk run again is never counted twice.
 
 Results
 -------
@@ -408,7 +410,7 @@ def _dask_workers(client) -> int:
 
 
 def _run_dask(client, kernel, group, chunks, keep, sink, reporter, done) -> bool:
-    """Chunks as Dask tasks (retried on a lost worker), gathered and written here as they finish."""
+    """Chunks as Dask tasks (run again when their worker dies), gathered and written here as they finish."""
     from distributed import wait as wait_dask
 
     token = hashlib.sha256(f"{kernel.key}{time.time_ns()}".encode()).hexdigest()[:12]
