@@ -11,7 +11,9 @@ diffrax's ``Dopri8`` (the same Dormand–Prince 8(5,3)-order family; Hairer, Nø
 controllers differ, so members agree with the C path to the tolerance, not to the bit.
 
 What the C path has and this one has not: events, the first integrals' drift, the
-mass matrix's conditioning (NaN), Dask.  ``rhs_calls`` counts the solver's stages per step.
+mass matrix's conditioning (NaN), Dask.  ``rhs_calls`` counts the solver's stages per step;
+a failed member's ``t_final`` is the last output time it reached (diffrax fills the states
+after a failure with inf, and says no more).
 Each chunk is padded to the chunk size (the last member repeated) so that JAX compiles
 one program per run.  JAX computes in float32 unless ``jax_enable_x64`` is on; this backend
 turns it on (a process-wide JAX setting), since float32 cannot reach the tolerances of a
