@@ -46,3 +46,56 @@ def test_unreachable_scheduler_is_a_clear_error_before_any_work(monkeypatch, tmp
     assert main(["sweep", "zoo:lagrange_top", "--grid", "phi_dot=20:80:4", "--out", str(out), "--scheduler",
                  "tcp://127.0.0.1:9"]) == 4
     assert "cannot be reached" in capsys.readouterr().err and not out.exists()
+
+
+def test_a_worker_killed_during_its_chunk_has_the_chunk_run_again_and_counted_once(tmp_path):
+    """Issue 14, item 6: a worker process dies (os._exit) while it integrates a chunk.
+
+    Dask's scheduler gives the lost task to another worker (its nanny also starts a new
+    process); the sweep must end with every member done exactly once and equal to the local
+    run.  The fault is injected from the test only, by a worker plugin pickled by value:
+    the first worker to start a chunk exits 0.1 s later, in the middle of the C call.
+    """
+    from distributed.diagnostics.plugin import WorkerPlugin
+
+    marker, log = tmp_path / "killed", tmp_path / "started"
+
+    class KillFirstChunk(WorkerPlugin):
+        name = "kill-first-chunk"
+
+        def transition(self, key, start, finish, **kwargs):
+            import os
+            import threading
+
+            if finish != "executing" or not str(key).startswith("lagrangian-chunk-"):
+                return
+            with open(log, "a") as handle:  # every start of a chunk, with the process that ran it
+                handle.write(f"{key} {os.getpid()}\n")
+            try:  # one death in all: the nanny's new process gets this plugin too
+                fd = os.open(marker, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+            except FileExistsError:
+                return
+            os.write(fd, str(key).encode())
+            os.close(fd)
+            threading.Timer(0.1, os._exit, args=(1,)).start()
+
+    top = compile_system(lagrangian.derive(lagrangian.lagrange_top()))
+    g = grid(theta=[0.5, 1.0, 1.5], phi_dot=[30.0, 60.0])  # 3 chunks of 2 members, ~0.5 s each on an idle core
+    t_end = 1000.0
+    local = ensemble(top, t_end, initial=g, n_out=11, events=["theta_dot"], workers=1)
+    reports = []
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0",
+                                  host="127.0.0.1", death_timeout="60s") as cluster, \
+            distributed.Client(cluster, timeout="60s") as client:
+        client.register_plugin(KillFirstChunk())
+        remote = ensemble(top, t_end, initial=g, n_out=11, events=["theta_dot"], scheduler=client, chunk_size=2,
+                          out=tmp_path / "sweep.zarr", progress=lambda fraction, done: reports.append(done))
+    killed = marker.read_text()
+    starts = [line.split() for line in log.read_text().splitlines()]
+    # The fault really happened mid-chunk: the killed chunk was started twice, in two processes.
+    assert len({pid for key, pid in starts if key == killed}) == 2
+    assert len({key for key, _ in starts}) == 3
+    # ... and was counted once: every member done, the progress never past the member count.
+    assert reports[-1] == 6 and max(reports) == 6 and reports == sorted(reports)
+    assert np.all(remote.status.values == 0) and np.all(open_ensemble(tmp_path / "sweep.zarr").status.values == 0)
+    xr.testing.assert_identical(remote.drop_attrs(), local.drop_attrs())

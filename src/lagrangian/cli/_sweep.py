@@ -112,6 +112,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     s.add_argument("--plot", metavar="IMAGE", help="draw the 2-D map (two axes) or min/max diagram (one axis)")
     s.add_argument("--workers", type=int, default=None, metavar="N", help="local threads (default: every core)")
     s.add_argument("--scheduler", metavar="ADDRESS", help="run on a Dask cluster, e.g. tcp://HOST:8786")
+    s.add_argument("--backend", choices=("c", "jax"), default="c",
+                   help="c: the compiled batch integrator (default); jax: the JAX export with diffrax, for a GPU "
+                        "(pip install 'lagrangian[jax]'; no events, no --scheduler)")
     s.add_argument("--resume", action="store_true", help="finish the pending members of an interrupted --out store")
     s.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                    help="show a progress bar over members (default: when standard error is a terminal)")
@@ -163,14 +166,14 @@ def run(args: argparse.Namespace) -> str:
 def _sweep(args, model, axes, parameters, initial, out, client) -> str:
     eom = derive(_with_initial(model, initial))
     events = _events(args.event, eom, False) + _events(args.stop_when, eom, True)
-    source = eom if events else compile_system(eom)
+    source = eom if events or args.backend != "c" else compile_system(eom)
     progress = sys.stderr.isatty() if args.progress is None else args.progress
     g = grid(**axes)
     start = time.perf_counter()
     ds = ensemble(source, args.t_end, t_start=args.t_start, initial=g, parameters=parameters or None,
                   method=args.method, rtol=args.rtol, atol=args.atol,
                   dt=args.dt, n_out=args.n_out, events=events, workers=args.workers, scheduler=client,
-                  out=out, resume=args.resume, progress=progress)
+                  out=out, resume=args.resume, progress=progress, backend=args.backend)
     elapsed = time.perf_counter() - start
     from ..numerics._batch import STATUS
 

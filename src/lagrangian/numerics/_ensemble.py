@@ -27,8 +27,10 @@ set-up and `Trajectory`.  Processes are still at hand, through Dask (below).
 With ``scheduler`` (a ``tcp://host:8786`` address or a ``distributed.Client``), each chunk
 is a Dask task: the `Kernel` (the generated C source and the run's settings) is sent to
 every worker once, each worker compiles it once (or finds it in its cache) and keeps it.
-A task that fails with its worker is run again by Dask (``retries``); a chunk's rows are
-written by the index of the chunk, so a repeat is never counted twice.
+A task lost with its worker is given to another worker by Dask's scheduler (up to
+``distributed.scheduler.allowed-failures`` deaths, then ``KilledWorker``), a task that raises
+is retried (``retries``); each chunk's result is gathered once and its rows are written by the
+index of the chunk, so a chunk run again is never counted twice.
 
 Results
 -------
@@ -66,7 +68,18 @@ from ._simulate import BUILTIN, EventSpec, _memory_limit, _output_times, _resolv
     momenta
 from ._stickslip import exact_contact_model
 
-__all__ = ["ensemble", "flip_events", "connect_scheduler", "EnsembleInterrupted"]
+__all__ = ["ensemble", "flip_events", "connect_scheduler", "register_backend", "EnsembleInterrupted"]
+
+#: Ensemble backends besides the compiled C one, by name: a function(eom, *, t_start, t_end,
+#: t_out, rtol, atol, max_step, max_steps, keep) -> (key, run) with run(Y0, P, size) -> rows.
+#: A later stage registers them (`lagrangian.output` registers ``"jax"``), so that this stage
+#: never imports what is built above it.
+BACKENDS: dict = {}
+
+
+def register_backend(name: str, prepare) -> None:
+    """Make ``backend=name`` available to `ensemble` (see `BACKENDS`)."""
+    BACKENDS[name] = prepare
 
 #: How long to try reaching a Dask scheduler before saying it cannot be reached.
 CONNECT_TIMEOUT = "10s"
@@ -122,6 +135,7 @@ def ensemble(
     out: str | Path | None = None,
     resume: bool = False,
     progress=False,
+    backend: str = "c",
 ):
     """Integrate many members of one model (module docstring) and return their results as an ``xarray.Dataset``.
 
@@ -145,6 +159,10 @@ def ensemble(
     out : a ``.zarr`` store (written as chunks finish) or a ``.nc`` file (written at the end).
     resume : finish the pending members of an interrupted ``.zarr`` store.
     progress : True for a bar on standard error, or a callable(fraction, members done).
+    backend : ``"c"`` (default: the compiled batch integrator) or ``"jax"`` (the JAX export's
+        rhs vmapped over a chunk and integrated by diffrax's Dopri8: the GPU route, see
+        `lagrangian.output._ensemble_jax`; no events or drift, no ``scheduler``, equal to the
+        C path to the tolerance).
 
     Raises
     ------
@@ -162,6 +180,8 @@ def ensemble(
         raise SimulationError(f"Ensembles run the compiled integrators, and `{method}` is not one of them.",
                               fix="use method='dop853' (adaptive) or method='gauss-legendre'")
     check_options(rtol, atol, None)
+    if backend != "c":
+        _check_backend(backend, method, events, scheduler)
     out_path = Path(out) if out is not None else None
     if out_path is not None and out_path.suffix not in (".zarr", ".nc"):
         raise OutputError(f"`{out_path}`: an ensemble is written to a Zarr store (.zarr) or a NetCDF file (.nc).",
@@ -178,10 +198,20 @@ def ensemble(
     try:
         return _ensemble(source, t_end, t_start, initial, parameters, initial_names, parameter_names, n_out, t_eval,
                          method, rtol, atol, dt, max_step, max_steps, events, keep == "trajectories", workers,
-                         chunk_size, client, out_path, resume, progress)
+                         chunk_size, client, out_path, resume, progress, backend)
     finally:
         if own_client:
             client.close()
+
+
+def _check_backend(backend: str, method: str, events, scheduler) -> None:
+    if backend not in BACKENDS:
+        raise SimulationError(f"backend={backend!r}: the ensemble backends are "
+                              f"{', '.join(repr(b) for b in ('c', *BACKENDS))}.", fix="e.g. backend='c'")
+    if method != "dop853" or events or scheduler is not None:
+        raise SimulationError(f"backend={backend!r} integrates with an adaptive Dormand-Prince 8 method, without "
+                              "events and without a Dask scheduler.",
+                              fix="use method='dop853', no events and no scheduler, or backend='c'")
 
 
 def _require(module: str, what: str) -> None:
@@ -238,12 +268,17 @@ def _kernel(system, specs, method, ctl, t_out, t_start, t_end) -> Kernel:
 
 def _ensemble(source, t_end, t_start, initial, parameters, initial_names, parameter_names, n_out, t_eval, method,
               rtol, atol, dt, max_step, max_steps, events, keep, workers, chunk_size, client, out_path, resume,
-              progress):
+              progress, backend="c"):
     source, constrained = constrained_source(source)  # a file is read here, once
     if constrained is not None or exact_contact_model(source) is not None:
         raise SimulationError("Ensembles run models without complementary constraints or exact (ε = 0) "
                               "friction; this one has them.", fix="use `simulate` for each motion of this model")
     specs = [EventSpec(e, e) if isinstance(e, str) else e for e in events]
+    if backend != "c":
+        system = _resolve(source, [], "symengine")  # for its names only: no C compiler needed
+        return _ensemble_backend(system, backend, t_end, t_start, initial, parameters, initial_names,
+                                 parameter_names, n_out, t_eval, method, rtol, atol, max_step, max_steps, keep,
+                                 chunk_size, out_path, resume, progress)
     system = _resolve(source, specs, "c")
     if not specs:
         specs = [EventSpec(name, name) for name in system.events]
@@ -271,22 +306,7 @@ def _ensemble(source, t_end, t_start, initial, parameters, initial_names, parame
         else None
     layout = Layout(count, t_out, states, tuple(system.events), tuple(system.integrals), keep, group.swept,
                     grid_axes, run)
-    if keep and (out_path is None or out_path.suffix != ".zarr"):
-        need = 8.0 * count * len(t_out) * n2
-        if need > _memory_limit():
-            raise SimulationError(f"Keeping {count} trajectories of {len(t_out)} times would take about "
-                                  f"{need / 2**30:.1f} GiB of memory.",
-                                  fix="stream them to a Zarr store (out='....zarr'), use fewer output times, or "
-                                      "keep='summary'")
-    if out_path is not None and out_path.suffix == ".zarr":
-        sink = ZarrSink(out_path, layout, chunk_size, resume=resume)
-        chunk_size = sink.chunk  # a resumed store keeps its own chunks, whatever this machine's cores
-    else:
-        if out_path is not None and (out_path.is_dir() or not out_path.parent.resolve().is_dir()):
-            raise OutputError(f"`{out_path}` cannot be written: it is a folder, or its folder does not exist.",
-                              fix="give a file name ending in .nc in an existing folder")
-        sink = MemorySink(layout)
-
+    sink, chunk_size = _open_sink(layout, out_path, chunk_size, resume)
     pending = sink.pending()
     chunks = [(a, min(a + chunk_size, count)) for a in range(0, count, chunk_size)
               if pending[a:min(a + chunk_size, count)].any()]
@@ -297,6 +317,66 @@ def _ensemble(source, t_end, t_start, initial, parameters, initial_names, parame
         interrupted = _run_dask(client, kernel, group, chunks, keep, sink, reporter, done)
     else:
         interrupted = _run_threads(kernel, group, chunks, keep, sink, reporter, done, n_workers, stop)
+    return _finish(sink, reporter, progress, interrupted, out_path)
+
+
+def _ensemble_backend(system, backend, t_end, t_start, initial, parameters, initial_names, parameter_names, n_out,
+                      t_eval, method, rtol, atol, max_step, max_steps, keep, chunk_size, out_path, resume, progress):
+    """`ensemble` on a registered backend (`BACKENDS`): its chunks one after another, in this thread
+    (the backend parallelises a chunk itself: vmap on a GPU); Ctrl-C between two chunks."""
+    group = members(system, initial, parameters, initial_names=initial_names, parameter_names=parameter_names)
+    n2 = 2 * system.n
+    t_out = _output_times(float(t_start), float(t_end), n_out, t_eval, 2 * n2)
+    key, run_members = BACKENDS[backend](system.eom, t_start=float(t_start), t_end=float(t_end), t_out=t_out,
+                                         rtol=rtol, atol=atol, max_step=max_step, max_steps=int(max_steps), keep=keep)
+    count = group.count
+    width = len(t_out) * 2 * n2 * 8  # bytes per member in a chunk
+    chunk_size = int(max(1, min(chunk_size or 4096, count, CHUNK_MEMORY // width or 1)))
+    states = tuple(system.coordinates) + tuple(c + "_dot" for c in system.coordinates)
+    run = {"model": key[:16], "backend": backend, "members": _digest(group.Y0, group.P), "t_start": float(t_start),
+           "t_end": float(t_end), "n_out": len(t_out), "t_out": _digest(t_out), "method": method, "rtol": rtol,
+           "atol": atol, "max_step": max_step, "max_steps": int(max_steps), "keep": keep, "events": []}
+    grid_axes = tuple((name, len(values)) for name, values in group.grid.axes) if isinstance(group.grid, Grid) \
+        else None
+    layout = Layout(count, t_out, states, (), (), keep, group.swept, grid_axes, run)
+    sink, chunk_size = _open_sink(layout, out_path, chunk_size, resume)
+    pending = sink.pending()
+    reporter = _reporter(progress, count)
+    done = int(count - pending.sum())
+    interrupted = False
+    try:
+        for a in range(0, count, chunk_size):
+            b = min(a + chunk_size, count)
+            if pending[a:b].any():
+                done = _write(sink, group, a, b, run_members(group.Y0[a:b], group.P[a:b], chunk_size), reporter,
+                              done)
+    except KeyboardInterrupt:
+        interrupted = True  # the finished chunks are written; the store says which members are pending
+    return _finish(sink, reporter, progress, interrupted, out_path)
+
+
+def _open_sink(layout: Layout, out_path: Path | None, chunk_size: int, resume: bool):
+    """(sink, chunk size): where the rows go, the memory a kept run needs checked first."""
+    count, n2 = layout.count, len(layout.states)
+    if layout.keep and (out_path is None or out_path.suffix != ".zarr"):
+        need = 8.0 * count * len(layout.t_out) * n2
+        if need > _memory_limit():
+            raise SimulationError(f"Keeping {count} trajectories of {len(t_out)} times would take about "
+                                  f"{need / 2**30:.1f} GiB of memory.",
+                                  fix="stream them to a Zarr store (out='....zarr'), use fewer output times, or "
+                                      "keep='summary'")
+    if out_path is not None and out_path.suffix == ".zarr":
+        sink = ZarrSink(out_path, layout, chunk_size, resume=resume)
+        return sink, sink.chunk  # a resumed store keeps its own chunks, whatever this machine's cores
+    if out_path is not None and (out_path.is_dir() or not out_path.parent.resolve().is_dir()):
+        raise OutputError(f"`{out_path}` cannot be written: it is a folder, or its folder does not exist.",
+                          fix="give a file name ending in .nc in an existing folder")
+    return MemorySink(layout), chunk_size
+
+
+def _finish(sink, reporter, progress, interrupted: bool, out_path: Path | None):
+    """The run's Dataset (and its NetCDF file); `EnsembleInterrupted` after Ctrl-C."""
+    count = sink.layout.count
     if reporter is not None:
         finished = int((~sink.pending()).sum())
         reporter.finish(finished, finished == count)
@@ -408,7 +488,7 @@ def _dask_workers(client) -> int:
 
 
 def _run_dask(client, kernel, group, chunks, keep, sink, reporter, done) -> bool:
-    """Chunks as Dask tasks (retried on a lost worker), gathered and written here as they finish."""
+    """Chunks as Dask tasks (run again when their worker dies), gathered and written here as they finish."""
     from distributed import wait as wait_dask
 
     token = hashlib.sha256(f"{kernel.key}{time.time_ns()}".encode()).hexdigest()[:12]
