@@ -286,6 +286,8 @@ def run_case(path: str, out: str, command: list[str], result_file: str) -> None:
     for name, stage in stages + [("cli", cli)]:
         start = time.perf_counter()
         entry: dict = {"stage": name}
+        record["running"] = name  # a hang or a crash is then put on this stage
+        _write_json(result_file, record)
         try:
             value = stage()
             if name == "cli":
@@ -306,10 +308,13 @@ def run_case(path: str, out: str, command: list[str], result_file: str) -> None:
             else:
                 record["outcome"] = "error"
             if name != "cli":
+                record["running"] = "cli"
+                _write_json(result_file, record)
                 record["stages"].append(_cli_after(cli))
                 if record["stages"][-1]["outcome"] in BAD:
                     record["outcome"] = record["stages"][-1]["outcome"]
             break
+    record.pop("running", None)
     _write_json(result_file, record)
 
 
@@ -454,7 +459,7 @@ def campaign(cases: int, seed: int, out: Path, *, jobs: int = 1, time_limit: flo
             (out / "findings" / f"{name}.json").write_text(json.dumps(record, indent=1), encoding="utf-8")
             findings.append({"case": run.number, "outcome": outcome, "file": f"findings/{name}.toml",
                              "stage": next((e["stage"] for e in record.get("stages", []) if e["outcome"] in BAD),
-                                           None),
+                                           record.get("running")),
                              "what": _what(record)})
             if not quiet:
                 print(f"case {run.number}: {outcome} ({findings[-1]['stage']}): {findings[-1]['what']}", flush=True)

@@ -15,13 +15,14 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
 from collections.abc import Sequence
 from pathlib import Path
 
 from .. import __version__
-from ..errors import Interrupted, LagrangianError, ModelError
-from ._atomic import write_output
+from ..errors import Interrupted, LagrangianError, ModelError, OutputError
+from ._atomic import check_output, write_output
 
 __all__ = ["main", "entrypoint"]
 
@@ -101,20 +102,21 @@ def _window(source: str, column: int | None) -> tuple[str, int | None]:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line with ``argv`` (default: ``sys.argv[1:]``); return the exit code."""
-    parser = _parser()
-    args = parser.parse_args(argv)
-    if args.command is None:
-        parser.print_help()
-        return 0
+    args = None
     try:
-        result = args.run(args)
+        parser = _parser()  # imports every command, and SymPy, SciPy, ...: Ctrl-C here is handled below too
+        args = parser.parse_args(argv)
+        if args.command is None:
+            parser.print_help()
+            return 0
         output = getattr(args, "output", None)
+        if output:  # a read-only or missing folder is said before the work, not after it
+            check_output(output)
+        result = args.run(args)
         if result is not None and output:
             write_output(output, result)
-        elif isinstance(result, bytes):
-            sys.stdout.buffer.write(result)
         elif result is not None:
-            sys.stdout.write(result)
+            _to_stdout(result)
     except LagrangianError as exc:
         sys.stderr.write(format_error(exc))
         return exc.exit_code
@@ -126,12 +128,61 @@ def main(argv: Sequence[str] | None = None) -> int:
             ("; nothing written" if getattr(args, "out", None) or getattr(args, "output", None) else "")
         sys.stderr.write(f"lagrangian: interrupted{where}{kept}\n")
         return 130
+    except _ClosedOutput:  # `lagrangian derive | head`: the reader has gone, nothing more to say
+        return 141  # 128 + SIGPIPE, as the shell reports a command killed by it
     return 0
+
+
+class _ClosedOutput(Exception):
+    """Standard output's reader closed the pipe."""
+
+
+def _to_stdout(result: str | bytes) -> None:
+    """Write ``result`` to standard output and flush it; a full device is an `OutputError`, not a traceback.
+
+    After a failed write the rest of the buffer goes to the null device, so that Python's own flush
+    at exit does not print a second error.
+    """
+    try:
+        if isinstance(result, bytes):
+            sys.stdout.flush()
+            sys.stdout.buffer.write(result)
+        else:
+            sys.stdout.write(result)
+        sys.stdout.flush()
+    except BrokenPipeError:
+        _drop_stdout()
+        raise _ClosedOutput() from None
+    except OSError as exc:
+        _drop_stdout()
+        raise OutputError(f"Cannot write to standard output: {exc.strerror or exc}.",
+                          fix="free space where standard output goes, or write to a file with -o FILE") from None
+
+
+def _drop_stdout() -> None:
+    try:
+        null = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(null, sys.stdout.fileno())
+        os.close(null)
+    except (OSError, ValueError, AttributeError):  # no file descriptor (a test's StringIO): nothing to drop
+        pass
 
 
 def entrypoint() -> None:
     """Console-script entry point."""
-    raise SystemExit(main())
+    try:
+        code = main()
+    except SystemExit as exc:  # argparse's --help, --version and usage errors
+        code = exc.code
+    try:
+        sys.stdout.flush()  # what argparse printed (--help): a full device is one line, not a traceback
+    except BrokenPipeError:
+        _drop_stdout()
+    except OSError as exc:
+        _drop_stdout()
+        sys.stderr.write(f"error: cannot write to standard output: {exc.strerror or exc}\n")
+        code = code or OutputError.exit_code
+    raise SystemExit(code)
 
 
 if __name__ == "__main__":  # python -m lagrangian.cli.main

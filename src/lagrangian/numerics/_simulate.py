@@ -102,13 +102,16 @@ def _event_expressions(eom: EquationsOfMotion, events: Sequence[EventSpec | str]
         expr = spec.expression
         if isinstance(expr, str):
             try:
-                expr = parse_expression(expr, names)
+                # The frames are known so that `R0.x` reads as the vector it is, refused below as not a
+                # scalar, rather than as an "unknown frame R0".
+                expr = parse_expression(expr, names, [f.name for f in eom.model.frames])
             except ExpressionError as exc:
                 raise ModelError(f"In the event `{spec.name}`: {exc.message}", fix=exc.fix,
                                  symbol=exc.symbol) from None
             if not isinstance(expr, se.Basic) or hasattr(expr, "components"):
-                raise ModelError(f"The event `{spec.name}` must be a scalar expression.",
-                                 fix="write a scalar such as `theta_dot` or `theta - 0.3`")
+                raise ModelError(f"The event `{spec.name}` must be a scalar expression: `{spec.name}` is a vector.",
+                                 fix="write a scalar of the coordinates, their rates and t, such as `theta_dot` or "
+                                     "`theta - 0.3` (an event is where it crosses zero)")
         if spec.direction not in (-1, 0, 1):
             raise ValueError("EventSpec.direction must be -1, 0 or 1")
         specs.append(EventSpec(spec.name, expr, spec.direction, spec.terminal))
