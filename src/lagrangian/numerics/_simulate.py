@@ -372,7 +372,9 @@ def simulate(
     t_out = _output_times(float(t_start), float(t_end), n_out, t_eval, 4 * system.n + len(system.monitors) + 1)
 
     # A singular M at the start is reported before anything runs.
-    M, _ = system.mass_forces(t_start, y0, p)
+    M, F0 = system.mass_forces(t_start, y0, p)
+    if not (np.isfinite(M).all() and np.isfinite(F0).all()):  # nan: no eigenvalue (LinAlgError), say why
+        raise _singularity(system, t_start, y0, p, "at the initial state")
     w = np.linalg.eigvalsh(0.5 * (M + M.T))
     if not w[0] > 1e-12 * max(abs(w[-1]), 1e-300):
         raise _singularity(system, t_start, y0, p, "at the initial state")
@@ -398,7 +400,12 @@ def _pivot(system, t, Y, p) -> float:
     M, _ = system.mass_forces(t, Y, p)
     M = np.atleast_3d(M) if M.ndim == 2 else M
     diag = np.abs(np.diagonal(M, axis1=-2, axis2=-1))
-    L = np.linalg.cholesky(M)
+    if not np.isfinite(M).all():
+        return 0.0
+    try:
+        L = np.linalg.cholesky(M)
+    except np.linalg.LinAlgError:  # M not positive definite at some output state: no pivot, not a crash
+        return 0.0
     return float(np.min(np.diagonal(L, axis1=-2, axis2=-1) ** 2 / diag)) if len(M) else 1.0
 
 
@@ -499,8 +506,11 @@ def _interruptible(call: Callable[[], int], ctl: np.ndarray) -> int:
 def _collapsed(system, t0, y0, t, y, p) -> bool:
     """Whether M lost (almost) all its inertia in some direction since the start: then a
     step-size underflow or an overflow is the singularity showing, and is reported as one."""
-    w0 = np.linalg.eigvalsh(system.mass_forces(t0, y0, p)[0])
-    w = np.linalg.eigvalsh(system.mass_forces(t, y, p)[0])
+    M0, M = system.mass_forces(t0, y0, p)[0], system.mass_forces(t, y, p)[0]
+    if not (np.isfinite(M0).all() and np.isfinite(M).all()):
+        return True  # M undefined there: `_singularity` says which entries
+    w0 = np.linalg.eigvalsh(M0)
+    w = np.linalg.eigvalsh(M)
     return bool(w[0] < 1e-8 * w0[-1])
 
 
