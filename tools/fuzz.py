@@ -347,6 +347,7 @@ def _child(case_dir: Path, command: list[str], memory: int) -> None:
     """In the forked child: cap the memory, send the output to files, run the case, never return."""
     code = 0
     try:
+        _die_with_parent()
         resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
         resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
         signal.signal(signal.SIGINT, signal.SIG_DFL)
@@ -367,6 +368,14 @@ def _child(case_dir: Path, command: list[str], memory: int) -> None:
             sys.stdout.flush()
             sys.stderr.flush()
         os._exit(code)
+
+
+def _die_with_parent() -> None:
+    """Linux: the case is killed when the campaign is (no orphan left running with its 4 GiB)."""
+    with contextlib.suppress(Exception):
+        import ctypes
+
+        ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
 
 
 class Running:
