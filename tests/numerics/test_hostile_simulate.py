@@ -41,3 +41,45 @@ def test_the_command_line_says_it_in_one_message(tmp_path: Path, capsys) -> None
     assert main(["simulate", str(path), "--t-end", "0.1"]) == 4
     err = capsys.readouterr().err
     assert "not finite" in err and "Traceback" not in err
+
+
+# -- gauss-legendre's step (issue 15, item 7) -------------------------------------------------------
+STIFF = """\
+[model]
+name = "Stiff spring"
+
+[parameters]
+m = 1.0
+k = 1e8
+
+[coordinates]
+x = { initial = 0.1, rate = 0.0 }
+
+[particles.P]
+mass = "m"
+position = "x*R0.x"
+
+[loads]
+spring = { potential = "k*x^2/2" }
+"""
+
+
+def test_gauss_legendre_default_step_runs_the_top_for_1000_s() -> None:
+    # 1/10 of the output spacing (dt = 0.1) stopped at t = 13.1: the spin phi_dot ~ 48 rad/s turns
+    # too far in one step for the implicit stages to converge; the step is now halved until they do.
+    eom = lagrangian.derive(lagrangian.load_model(ROOT / "examples" / "lagrange_top.toml"))
+    traj = lagrangian.simulate(eom, 1000.0, method="gauss-legendre")
+    assert traj.t[-1] == 1000.0 and traj.status == "completed"
+    assert traj.steps % 10_000 == 0 and traj.steps > 10_000  # fixed steps that divide the spacing
+    assert max(abs(d) for d in traj.drift.values()) < 1e-5
+
+
+def test_a_stiff_spring_says_reduce_dt_and_the_default_step_adapts(tmp_path: Path, capsys) -> None:
+    path = tmp_path / "stiff.toml"
+    path.write_text(STIFF, encoding="utf-8")
+    assert main(["simulate", str(path), "--method", "gauss-legendre", "--t-end", "1", "--dt", "0.001"]) == 4
+    err = capsys.readouterr().err
+    assert "reduce the step" in err and "--dt 0.0001" in err and "check the model" not in err
+    eom = lagrangian.derive(lagrangian.load_model(path))
+    traj = lagrangian.simulate(eom, 1.0, method="gauss-legendre", n_out=11)
+    assert traj.status == "completed" and max(abs(d) for d in traj.drift.values()) < 1e-6
