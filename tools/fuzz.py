@@ -18,7 +18,7 @@ Every case runs in its own forked process (the parent imports `lagrangian` once)
 memory cap (``RLIMIT_AS``, 4 GiB by default) and a time cap, through the stages
 ``load → derive → integrals → verify → compile → simulate → report`` and then one command
 of the command line (``derive``, ``derive --latex``, ``simulate``, ``verify``, ``report``,
-``analyse``) with its output to a file.  Each case ends in one outcome:
+``analyse``, ``equilibria``, ``linearize``, ``modes``, ``export``), its output to a file.  Each case ends in one outcome:
 
 ``ok``         every stage ran;
 ``error``      a stage refused the input with a `lagrangian` error (the expected way out);
@@ -243,7 +243,9 @@ COMMANDS = (["derive", "MODEL"], ["derive", "--latex", "MODEL", "-o", "OUT/d.tex
             ["simulate", "MODEL", "--t-end", "0.3", "--n-out", "7", "-o", "OUT/t.csv"],
             ["simulate", "MODEL", "--t-end", "0.3", "--n-out", "7", "--method", "gauss-legendre"],
             ["verify", "MODEL"], ["report", "MODEL", "--lang", "en", "-o", "OUT/r.md"],
-            ["analyse", "MODEL"], ["simulate", "MODEL", "--t-end", "0.3", "--event", "R0.x"])
+            ["analyse", "MODEL"], ["simulate", "MODEL", "--t-end", "0.3", "--event", "R0.x"],
+            ["equilibria", "MODEL"], ["linearize", "MODEL"], ["modes", "MODEL"],
+            ["export", "MODEL", "--to", "numpy", "-o", "OUT/export"], ["export", "MODEL", "--to", "c", "-o", "OUT/c"])
 
 
 def _stages(path: str, out: str, command: list[str]):

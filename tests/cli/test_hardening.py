@@ -83,3 +83,10 @@ def test_an_event_that_is_a_vector_is_named_as_such(capsys) -> None:
     assert main(["simulate", PENDULUM, "--t-end", "0.1", "--event", "R0.x"]) == 2
     err = capsys.readouterr().err
     assert "is a vector" in err and "unknown frame" not in err and "scalar" in err
+
+
+def test_equilibria_of_a_model_with_no_coordinate_left_to_solve(capsys) -> None:
+    # Found by tools/fuzz.py: the block held on its incline by friction has every coordinate "any";
+    # SymEngine's Lambdify refuses zero arguments and the residual crashed with a TypeError.
+    assert main(["equilibria", str(ROOT / "examples" / "block_on_incline.toml")]) == 0
+    assert "x any" in capsys.readouterr().out
