@@ -414,7 +414,8 @@ def _classify(run: Running, status: int, canary: Path) -> dict:
 
 
 def campaign(cases: int, seed: int, out: Path, *, jobs: int = 1, time_limit: float = 30.0,
-             memory_gib: float = 4.0, examples: list[str] | None = None, quiet: bool = False,
+             memory_gib: float = 4.0, examples: list[str] | None = None, exclude: list[str] = (),
+             quiet: bool = False,
              replay: list[Path] | None = None) -> dict:
     """Run ``cases`` mutated models (or the files of ``replay``); return the summary (also in OUT/summary.json)."""
     import lagrangian  # noqa: F401 -- imported once here, shared by every forked case
@@ -426,6 +427,7 @@ def campaign(cases: int, seed: int, out: Path, *, jobs: int = 1, time_limit: flo
     chosen = sorted(EXAMPLES.glob("*.toml"))
     if examples:
         chosen = [p for p in chosen if p.stem in examples]
+    chosen = [p for p in chosen if p.stem not in exclude]
     sources = {p.stem: p.read_text(encoding="utf-8") for p in chosen}
     rng = random.Random(seed)
     memory = int(memory_gib * 2**30)
@@ -540,12 +542,14 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--time-limit", type=float, default=30.0, help="seconds per case before it is a hang")
     parser.add_argument("--memory", type=float, default=4.0, help="memory cap per case, GiB (default 4)")
     parser.add_argument("--example", action="append", help="mutate only this example (repeatable)")
+    parser.add_argument("--exclude", action="append", default=[], help="do not mutate this example (repeatable)")
     parser.add_argument("--out", type=Path, default=Path("fuzz-out"), help="folder for the summary and findings")
     parser.add_argument("--replay", nargs="+", type=Path, help="run these model files instead of mutations")
     parser.add_argument("--quiet", action="store_true")
     args = parser.parse_args(argv)
     summary = campaign(args.cases, args.seed, args.out, jobs=args.jobs, time_limit=args.time_limit,
-                       memory_gib=args.memory, examples=args.example, quiet=args.quiet, replay=args.replay)
+                       memory_gib=args.memory, examples=args.example, exclude=args.exclude, quiet=args.quiet,
+                       replay=args.replay)
     print_summary(summary)
     return 1 if any(summary["outcomes"][k] for k in BAD) else 0
 

