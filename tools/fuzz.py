@@ -478,23 +478,42 @@ def campaign(cases: int, seed: int, out: Path, *, jobs: int = 1, time_limit: flo
                 print(f"case {run.number}: {outcome} ({findings[-1]['stage']}): {findings[-1]['what']}", flush=True)
         shutil.rmtree(run.case_dir, ignore_errors=True)
 
+    def summary() -> dict:
+        done = sum(counts.values())
+        record = {"cases": done, "planned": total, "seed": seed, "seconds": round(time.monotonic() - started, 1),
+                  "time_limit_s": time_limit, "memory_gib": memory_gib,
+                  "outcomes": {k: counts.get(k, 0) for k in OUTCOMES},
+                  "stages": {f"{s}:{o}": n for (s, o), n in sorted(stage_counts.items())},
+                  "slowest": [{"case": c, "seconds": s} for s, c in sorted(slowest, reverse=True)[:10]],
+                  "findings": findings}
+        _write_json(str(out / "summary.json"), record)  # after every case: a stopped campaign keeps its count
+        return record
+
+    # SIGTERM or Ctrl-C ends the campaign between cases: the running ones are killed (not counted)
+    # and the summary of the finished ones stays.
+    stop: list[int] = []
+    previous = {sig: signal.signal(sig, lambda number, frame: stop.append(number))
+                for sig in (signal.SIGTERM, signal.SIGINT)}
     number = 0
-    while number < total or running:
-        while number < total and len(running) < jobs:
-            start(number)
-            number += 1
-        _wait_any(running, time_limit, finish)
-        if not quiet and number % 100 == 0 and len(running) == 0:
-            print(f"{number} cases, {dict(counts)}", flush=True)
-    shutil.rmtree(work, ignore_errors=True)
-    summary = {"cases": total, "seed": seed, "seconds": round(time.monotonic() - started, 1),
-               "time_limit_s": time_limit, "memory_gib": memory_gib,
-               "outcomes": {k: counts.get(k, 0) for k in OUTCOMES},
-               "stages": {f"{s}:{o}": n for (s, o), n in sorted(stage_counts.items())},
-               "slowest": [{"case": c, "seconds": s} for s, c in sorted(slowest, reverse=True)[:10]],
-               "findings": findings}
-    (out / "summary.json").write_text(json.dumps(summary, indent=1), encoding="utf-8")
-    return summary
+    try:
+        while (number < total or running) and not stop:
+            while number < total and len(running) < jobs and not stop:
+                start(number)
+                number += 1
+            _wait_any(running, time_limit, finish, stop)
+            summary()
+            if not quiet and sum(counts.values()) % 100 == 0:
+                print(f"{sum(counts.values())} cases, {dict(counts)}", flush=True)
+    finally:
+        for run in running.values():
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(run.pid, signal.SIGKILL)
+            with contextlib.suppress(ChildProcessError):
+                os.waitpid(run.pid, 0)
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+        shutil.rmtree(work, ignore_errors=True)
+    return summary()
 
 
 def _what(record: dict) -> str:
@@ -505,10 +524,10 @@ def _what(record: dict) -> str:
     return (record.get("signal") and f"signal {record['signal']}") or record.get("stderr_tail", "")[-200:]
 
 
-def _wait_any(running: dict[int, Running], time_limit: float, finish) -> None:
-    """Wait until one case ends or passes the time cap (then kill it: a hang)."""
+def _wait_any(running: dict[int, Running], time_limit: float, finish, stop: list) -> None:
+    """Wait until one case ends or passes the time cap (then kill it: a hang), or the campaign is stopped."""
     deadline = min(r.start for r in running.values()) + time_limit
-    while running:
+    while running and not stop:
         pid, status = os.waitpid(-1, os.WNOHANG)
         if pid and pid in running:
             finish(running.pop(pid), status)
@@ -523,7 +542,7 @@ def _wait_any(running: dict[int, Running], time_limit: float, finish) -> None:
 
 
 def print_summary(summary: dict) -> None:
-    print(f"{summary['cases']} cases in {summary['seconds']} s (seed {summary['seed']}, time cap "
+    print(f"{summary['cases']} cases (of {summary['planned']} planned) in {summary['seconds']} s (seed {summary['seed']}, time cap "
           f"{summary['time_limit_s']} s, memory cap {summary['memory_gib']} GiB)")
     for outcome in OUTCOMES:
         print(f"  {outcome:<10} {summary['outcomes'][outcome]}")
