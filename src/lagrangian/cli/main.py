@@ -7,9 +7,10 @@ Each command lives in its own module ``cli/_<command>.py`` with a ``SUMMARY`` li
 files return a short summary.
 
 Exit codes: 0 success, 1 usage error (argparse), 2 bad model or derivation error,
-3 output file (or standard output: a full device) could not be written, 4 simulation could not start or go on, 5 a cross-check (Newton–Euler against Lagrange) failed,
-130 interrupted by Ctrl-C (also while the package is still loading), 141 standard output closed
-by its reader (``| head``).
+3 output file (or standard output: a full device) could not be written, 4 simulation could
+not start or go on, 5 a cross-check (Newton–Euler against Lagrange) failed, 130 interrupted
+by Ctrl-C (also while the package is still loading), 141 standard output closed by its
+reader (``| head``).
 """
 
 from __future__ import annotations
