@@ -89,6 +89,6 @@ def test_the_harness_sees_each_kind_of_defect(tmp_path: Path, monkeypatch, case,
     sys.modules["lagrangian_fuzz_selftest"] = fuzz
     monkeypatch.setattr(fuzz, "run_case", case)
     summary = fuzz.campaign(1, 0, tmp_path, time_limit=2.0, memory_gib=1.0, examples=["simple_pendulum"],
-                            quiet=True)
+                            quiet=True, warm_up=False)
     assert summary["outcomes"][outcome] == 1, summary
     assert (tmp_path / summary["findings"][0]["file"]).exists()
