@@ -45,6 +45,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import faulthandler
 import io
 import json
 import os
@@ -357,6 +358,7 @@ def _child(case_dir: Path, command: list[str], memory: int) -> None:
             handle = os.open(case_dir / name, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600)
             os.dup2(handle, fd)
             os.close(handle)
+        faulthandler.enable()  # a crash's Python stack goes to the case's stderr.txt (not the campaign's)
         os.chdir(case_dir)
         run_case(str(case_dir / "model.toml"), str(case_dir), command, str(case_dir / "result.json"))
     except MemoryError:
