@@ -83,3 +83,13 @@ def test_a_stiff_spring_says_reduce_dt_and_the_default_step_adapts(tmp_path: Pat
     eom = lagrangian.derive(lagrangian.load_model(path))
     traj = lagrangian.simulate(eom, 1.0, method="gauss-legendre", n_out=11)
     assert traj.status == "completed" and max(abs(d) for d in traj.drift.values()) < 1e-6
+
+
+def test_finite_numbers_that_overflow_once_multiplied_are_a_model_error(tmp_path: Path) -> None:
+    # Found by tools/fuzz.py: 1e308 is a finite double, but T has its square; code generation
+    # raised a bare ValueError ("non-finite number inf").
+    path = _top(tmp_path, "block_on_incline.toml", 'position = "x*I.x"', 'position = "(x*I.x)*1e308"')
+    eom = lagrangian.derive(lagrangian.load_model(path))
+    with pytest.raises(lagrangian.ModelError) as info:
+        lagrangian.compile_system(eom)
+    assert "overflow a double" in info.value.message and info.value.fix
