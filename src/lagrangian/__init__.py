@@ -19,18 +19,45 @@ Typical use::
 
 from __future__ import annotations
 
-from .analysis import (EnergyBalance, Equilibrium, FirstIntegral, LinearizationError, LinearModel, Modes, Stability,
-                       Sweep, TopAnalysis, Verification, analyse_top, energy_balance, equilibria, first_integrals,
-                       linearize, modes, routh_reduction, stability, steady_motions, sweep, verify)
-from .dynamics import EquationsOfMotion, LagrangeEquation, derive
-from .errors import DerivationError, ExportError, KinematicsError, LagrangianError, ModelError, OutputError, SimulationError, VerificationError
-from .kinematics import Kinematics
-from .model import ModelBuilder, load_model, load_urdf, parse_model
-from .model.spec import Model
-from .model.zoo import lagrange_top
-from .output import Report, export, report
-from .numerics import CompiledSystem, EventSpec, Trajectory, compile_system, ensemble, grid, open_ensemble, \
-    save_trajectory, simulate
+import importlib
+from typing import TYPE_CHECKING
+
+# The names are imported on first use (PEP 562), not here: `import lagrangian` and the command
+# line's first lines then cost milliseconds, not the 3 s of SymPy, SciPy and the whole pipeline,
+# so that Ctrl-C while those load reaches the command line's handler (one line, exit 130), not a
+# traceback from the middle of an import.
+_WHERE = {
+    **dict.fromkeys(("EnergyBalance", "Equilibrium", "FirstIntegral", "LinearizationError", "LinearModel", "Modes",
+                     "Stability", "Sweep", "TopAnalysis", "Verification", "analyse_top", "energy_balance",
+                     "equilibria", "first_integrals", "linearize", "modes", "routh_reduction", "stability",
+                     "steady_motions", "sweep", "verify"), ".analysis"),
+    **dict.fromkeys(("EquationsOfMotion", "LagrangeEquation", "derive"), ".dynamics"),
+    **dict.fromkeys(("DerivationError", "ExportError", "KinematicsError", "LagrangianError", "ModelError",
+                     "OutputError", "SimulationError", "VerificationError"), ".errors"),
+    "Kinematics": ".kinematics",
+    **dict.fromkeys(("ModelBuilder", "load_model", "load_urdf", "parse_model"), ".model"),
+    "Model": ".model.spec",
+    "lagrange_top": ".model.zoo",
+    **dict.fromkeys(("Report", "report", "export"), ".output"),
+    **dict.fromkeys(("CompiledSystem", "EventSpec", "Trajectory", "compile_system", "ensemble", "grid",
+                     "open_ensemble", "save_trajectory", "simulate"), ".numerics"),
+}
+
+if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
+    from .analysis import (EnergyBalance, Equilibrium, FirstIntegral, LinearizationError, LinearModel, Modes,
+                           Stability, Sweep, TopAnalysis, Verification, analyse_top, energy_balance, equilibria,
+                           first_integrals, linearize, modes, routh_reduction, stability, steady_motions, sweep,
+                           verify)
+    from .dynamics import EquationsOfMotion, LagrangeEquation, derive
+    from .errors import (DerivationError, ExportError, KinematicsError, LagrangianError, ModelError, OutputError,
+                         SimulationError, VerificationError)
+    from .kinematics import Kinematics
+    from .model import ModelBuilder, load_model, load_urdf, parse_model
+    from .model.spec import Model
+    from .model.zoo import lagrange_top
+    from .numerics import (CompiledSystem, EventSpec, Trajectory, compile_system, ensemble, grid, open_ensemble,
+                           save_trajectory, simulate)
+    from .output import Report, export, report
 
 __version__ = "0.1.0"
 
@@ -88,6 +115,16 @@ __all__ = [
     "ExportError",
     "VerificationError",
 ]
+
+
+def __getattr__(name: str):
+    """A public name, imported from its subpackage on first use (and kept)."""
+    where = _WHERE.get(name)
+    if where is None:
+        raise AttributeError(f"module 'lagrangian' has no attribute {name!r}")
+    value = getattr(importlib.import_module(where, __name__), name)
+    globals()[name] = value
+    return value
 
 
 def __dir__() -> list[str]:

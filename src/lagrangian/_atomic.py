@@ -13,7 +13,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import BinaryIO
 
-__all__ = ["write_atomic", "write_atomic_with"]
+__all__ = ["write_atomic", "write_atomic_with", "check_writable"]
 
 
 def _umask() -> int:
@@ -50,3 +50,16 @@ def write_atomic(path: str | Path, data: str | bytes) -> None:
     """Write text (UTF-8) or bytes to ``path`` atomically."""
     payload = data.encode("utf-8") if isinstance(data, str) else data
     write_atomic_with(path, lambda handle: handle.write(payload))
+
+
+def check_writable(path: str | Path) -> None:
+    """Raise `OSError` unless a file can be written at ``path`` the way `write_atomic` writes it.
+
+    A temporary file is created beside ``path`` and removed: the one test that holds for a
+    read-only folder, a read-only file system and root alike, so that a long run is not
+    spent before a write that fails.
+    """
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent or ".")
+    os.close(fd)
+    os.unlink(tmp)

@@ -61,7 +61,7 @@ def are_zero(exprs: Iterable[se.Basic]) -> list[bool]:
         return result
     symbols = sorted({s for i in pending for s in exprs[i].free_symbols}, key=str)
     if not symbols:
-        return [r or _magnitude(se.expand(exprs[i]).n(PRECISION_BITS)) == 0 if i in pending else r
+        return [r or _evaluated(se.expand(exprs[i]), False) == 0 if i in pending else r
                 for i, r in enumerate(result)]
     rng = random.Random(_SEED)
     verdict = {i: True for i in pending}
@@ -74,7 +74,10 @@ def are_zero(exprs: Iterable[se.Basic]) -> list[bool]:
         for i in pending:
             if not verdict[i]:
                 continue
-            v = _magnitude(exprs[i].subs(point).n(PRECISION_BITS, real=False))
+            v = _evaluated(exprs[i].subs(point), True)
+            if v is _UNKNOWN:  # SymEngine cannot evaluate it (the derivative of abs): not claimed zero
+                verdict[i] = False
+                continue
             values[i] = v
         if any(v is None for v in values.values()):
             continue  # undefined here (e.g. 1/0): draw another point
@@ -85,6 +88,18 @@ def are_zero(exprs: Iterable[se.Basic]) -> list[bool]:
     for i in pending:
         result[i] = verdict[i]
     return result
+
+
+_UNKNOWN = object()
+
+
+def _evaluated(expr: se.Basic, complex_: bool):  # type: ignore[no-untyped-def]
+    """`_magnitude` of ``expr`` in MPFR, or `_UNKNOWN` when SymEngine cannot evaluate it
+    (``RuntimeError: Not Implemented`` for ``Derivative(abs(theta), theta)``)."""
+    try:
+        return _magnitude(expr.n(PRECISION_BITS, real=False) if complex_ else expr.n(PRECISION_BITS))
+    except RuntimeError:
+        return _UNKNOWN
 
 
 def is_zero(expr: se.Basic) -> bool:

@@ -255,3 +255,32 @@ def test_a_constraint_with_a_literal_past_a_double_is_refused_not_identically_sa
     with pytest.raises(ModelError, match="1e400") as info:  # "identically satisfied" before (item 7)
         parse_model(text, source="p.toml")
     assert info.value.line == text.count("\n") and "finite double" in info.value.message
+
+
+# -- 7. TOML errors with a line ------------------------------------------------------------------
+TOP = (Path(__file__).resolve().parents[2] / "examples" / "lagrange_top.toml").read_text(encoding="utf-8")
+
+
+@pytest.mark.parametrize("tail, line_text, column, what", [
+    ('x = "unterminated', 'x = "unterminated', 5, "Unterminated string"),
+    ('x = """abc\ny = 2', 'x = """abc', 5, "Unterminated string"),
+    ("x = [1, 2,\n  3", "x = [1, 2,", 5, "Unclosed array"),
+    ("key = ", "key = ", None, "Invalid value"),
+])
+def test_errors_at_the_end_of_the_document_name_a_line(tmp_path: Path, tail: str, line_text: str, column,
+                                                       what: str) -> None:
+    text = TOP + "\n" + tail
+    err = model_error(tmp_path, text)
+    assert err.line is not None and text.splitlines()[err.line - 1] == line_text
+    assert err.column == column and what in err.message and "end of document" not in err.message
+    assert f"{err.line} | {line_text}" in format_error(err)
+
+
+def test_a_sub_table_without_its_table_is_placed_at_the_sub_table(tmp_path: Path) -> None:
+    body = '[bodies.S]\nframe = "R"\nmass = "m"\ncenter = "a*R.z"\nfixed_point = "O"\n'
+    inline = 'inertia = { at = "O", frame = "R2", diagonal = ["A", "A", "C"] }\n'
+    assert body + inline in TOP
+    text = TOP.replace(body + inline, '[bodies.S.inertia]\nat = "O"\nframe = "R2"\ndiagonal = ["A", "A", "C"]\n')
+    err = model_error(tmp_path, text)
+    assert err.line is not None and text.splitlines()[err.line - 1] == "[bodies.S.inertia]"
+    assert "body `S`" in err.message

@@ -139,6 +139,16 @@ def equilibria(eom: EquationsOfMotion, parameters: Mapping[str, float] | None = 
 
 
 # -- the static system ---------------------------------------------------------------------
+
+def _lambdify(q: list[se.Basic], exprs: list[se.Basic]):  # type: ignore[no-untyped-def]
+    """`symengine.Lambdify` of ``exprs`` in ``q``, also when ``q`` is empty (every coordinate fixed
+    or free, e.g. a block held on an incline): SymEngine refuses zero arguments, so a dummy one."""
+    if q:
+        return se.Lambdify(q, exprs)
+    f = se.Lambdify([se.Symbol("_unused_")], exprs)
+    return lambda x: f(np.zeros(1))
+
+
 class _StaticSystem:
     """F(q, 0) + Aᵀλ = 0, f(q) = 0, b(q) = 0, with the checks that it is autonomous."""
 
@@ -201,10 +211,9 @@ class _StaticSystem:
         """r(q_active) with λ eliminated: (I − Aᵀ(Aᵀ)⁺) F, then the holonomic and b rows."""
         q = [s for n, s in zip(self.names, self.q) if n in self.active]
         zero = {se.Symbol(n): 0.0 for n in self.free}
-        F = se.Lambdify(q, [f.subs(numbers).subs(zero) for f in self.F]) if q else None
-        A = (se.Lambdify(q, [a.subs(numbers).subs(zero) for row in self.A for a in row])
-             if self.A else None)
-        X = se.Lambdify(q, [e.subs(numbers).subs(zero) for e in self.extra]) if self.extra else None
+        F = _lambdify(q, [f.subs(numbers).subs(zero) for f in self.F])
+        A = _lambdify(q, [a.subs(numbers).subs(zero) for row in self.A for a in row]) if self.A else None
+        X = _lambdify(q, [e.subs(numbers).subs(zero) for e in self.extra]) if self.extra else None
         n, m = len(self.names), len(self.A)
 
         def r(x: np.ndarray) -> np.ndarray:

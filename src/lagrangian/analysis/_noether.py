@@ -148,7 +148,10 @@ def _generator(eom: EquationsOfMotion, kind: str, axis: int) -> tuple[list[se.Ba
     rows, rhs = _rows(eom, kind, axis)
     if not rows:
         return None
-    numeric = _NumericGenerator(eom, rows, rhs)
+    try:
+        numeric = _NumericGenerator(eom, rows, rhs)
+    except RuntimeError:  # SymEngine cannot compile it (the derivative of abs): no generator shown
+        return None
     if not numeric.exists() or not _admissible(eom, numeric):
         return None
     symbols = set().union(*(x.free_symbols for r in rows for x in r)) | set().union(*(x.free_symbols for x in rhs))
@@ -217,6 +220,8 @@ def _independent(eom: EquationsOfMotion, found: Sequence[se.Basic], candidate: s
         numbers = {**parameters, **_numbers(symbols & state, 100 + seed)}
         values.append([float(complex(x.subs(numbers)).real) for x in exprs])
     V = np.array(values)
+    if not np.isfinite(V).all():  # overflow at a random state: no rank to compare, not shown independent
+        return False
     scale = max(1.0, float(np.abs(V).max()))
     rank_before = np.linalg.matrix_rank(V[:, :-1], tol=1e-9 * scale) if found else 0
     return np.linalg.matrix_rank(V, tol=1e-9 * scale) > rank_before

@@ -50,8 +50,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     s.add_argument("--rtol", type=_float, default=1e-10, help="relative tolerance (default 1e-10)")
     s.add_argument("--atol", type=_float, default=1e-10, help="absolute tolerance (default 1e-10)")
     s.add_argument("--dt", type=_float, default=None,
-                   help="fixed step (gauss-legendre: default 1/10 of the output spacing, rounded down to divide it "
-                        "when smaller, used as given when larger; dop853: fixed steps)")
+                   help="fixed step (gauss-legendre: default 1/10 of the output spacing, halved while too long for "
+                        "the motion; rounded down to divide the spacing when smaller, used as given when larger; "
+                        "dop853: fixed steps)")
     s.add_argument("--n-out", type=int, default=1001, metavar="N",
                    help="number of output times (default 1001; refused when it would not fit in memory)")
     s.add_argument("--event", action="append", default=[], metavar="EXPR",

@@ -7,8 +7,10 @@ Each command lives in its own module ``cli/_<command>.py`` with a ``SUMMARY`` li
 files return a short summary.
 
 Exit codes: 0 success, 1 usage error (argparse), 2 bad model or derivation error,
-3 output file could not be written, 4 simulation could not start or go on, 5 a cross-check
-(Newton–Euler against Lagrange) failed.
+3 output file (or standard output: a full device) could not be written, 4 simulation could
+not start or go on, 5 a cross-check (Newton–Euler against Lagrange) failed, 130 interrupted
+by Ctrl-C (also while the package is still loading), 141 standard output closed by its
+reader (``| head``).
 """
 
 from __future__ import annotations
@@ -22,8 +24,8 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from .. import __version__
-from ..errors import EnsembleInterrupted, Interrupted, LagrangianError, ModelError
-from ._atomic import write_output
+from ..errors import EnsembleInterrupted, Interrupted, LagrangianError, ModelError, OutputError
+from ._atomic import check_output, write_output
 
 __all__ = ["main", "entrypoint"]
 
@@ -103,20 +105,21 @@ def _window(source: str, column: int | None) -> tuple[str, int | None]:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line with ``argv`` (default: ``sys.argv[1:]``); return the exit code."""
-    parser = _parser()
-    args = parser.parse_args(argv)
-    if args.command is None:
-        parser.print_help()
-        return 0
+    args = None
     try:
-        result = args.run(args)
+        parser = _parser()  # imports every command, and SymPy, SciPy, ...: Ctrl-C here is handled below too
+        args = parser.parse_args(argv)
+        if args.command is None:
+            parser.print_help()
+            return 0
         output = getattr(args, "output", None)
+        if output:  # a read-only or missing folder is said before the work, not after it
+            check_output(output)
+        result = args.run(args)
         if result is not None and output:
             write_output(output, result)
-        elif isinstance(result, bytes):
-            sys.stdout.buffer.write(result)
         elif result is not None:
-            sys.stdout.write(result)
+            _to_stdout(result)
     except LagrangianError as exc:
         sys.stderr.write(format_error(exc))
         return exc.exit_code
@@ -132,19 +135,70 @@ def main(argv: Sequence[str] | None = None) -> int:
                 ("; nothing written" if getattr(args, "out", None) or getattr(args, "output", None) else "")
         sys.stderr.write(f"lagrangian: interrupted{where}{kept}\n")
         return 130
+    except _ClosedOutput:  # `lagrangian derive | head`: the reader has gone, nothing more to say
+        return 141  # 128 + SIGPIPE, as the shell reports a command killed by it
     return 0
+
+
+class _ClosedOutput(Exception):
+    """Standard output's reader closed the pipe."""
+
+
+def _to_stdout(result: str | bytes) -> None:
+    """Write ``result`` to standard output and flush it; a full device is an `OutputError`, not a traceback.
+
+    After a failed write the rest of the buffer goes to the null device, so that Python's own flush
+    at exit does not print a second error.
+    """
+    try:
+        if isinstance(result, bytes):
+            sys.stdout.flush()
+            sys.stdout.buffer.write(result)
+        else:
+            sys.stdout.write(result)
+        sys.stdout.flush()
+    except BrokenPipeError:
+        _drop_stdout()
+        raise _ClosedOutput() from None
+    except OSError as exc:
+        _drop_stdout()
+        raise OutputError(f"Cannot write to standard output: {exc.strerror or exc}.",
+                          fix="free space where standard output goes, or write to a file with -o FILE") from None
+
+
+def _drop_stdout() -> None:
+    try:
+        null = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(null, sys.stdout.fileno())
+        os.close(null)
+    except (OSError, ValueError, AttributeError):  # no file descriptor (a test's StringIO): nothing to drop
+        pass
 
 
 def entrypoint() -> None:
     """Console-script entry point."""
-    code = main()
+    try:
+        code = main()
+    except SystemExit as exc:  # argparse's --help, --version and usage errors
+        code = exc.code
+    try:
+        sys.stdout.flush()  # what argparse printed (--help): a full device is one line, not a traceback
+    except BrokenPipeError:
+        _drop_stdout()
+    except OSError as exc:
+        _drop_stdout()
+        sys.stderr.write(f"error: cannot write to standard output: {exc.strerror or exc}\n")
+        code = code or OutputError.exit_code
     if code == 130:
         # Ctrl-C: what was computed is written and closed, and the message is out.  The
         # interpreter's teardown of the loaded modules (xarray, zarr, SciPy) would still keep
         # the user waiting most of a second (several on a loaded machine), so the exit
         # handlers run and the process ends without it.
-        sys.stdout.flush()
-        sys.stderr.flush()
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except (OSError, ValueError):
+                pass
         run_exit_handlers = getattr(atexit, "_run_exitfuncs", None)
         if run_exit_handlers is not None:
             run_exit_handlers()

@@ -24,10 +24,11 @@ from typing import NamedTuple
 import symengine as se
 
 from .._identity import are_zero
-from ..errors import DerivationError
+from ..errors import DerivationError, ModelError
 from ..kinematics import Kinematics
 from ..model import Model
 from ..model._assumptions import Assumptions, SignFact
+from ..model._limits import MAX_OPS_VARIABLE, equations_size, max_ops
 from ..model._vector import sum_of
 from ._constraints import ConstraintReaction, ConstraintRow, complementary_constraints
 from ._energy import KineticEnergyTerm, RigidInertia, kinetic_energy
@@ -309,6 +310,23 @@ def lagrange_equations(kin: Kinematics, T: se.Basic, U: se.Basic,
     return tuple(out)
 
 
+def _check_size(model: Model, kin: Kinematics, M, F) -> None:
+    """Refuse equations of motion past `max_ops` operations before anything compiles or checks them."""
+    names = [str(q) for q in kin.q]
+    named = {f"M[{a}, {b}]": M[i][j] for i, a in enumerate(names) for j, b in enumerate(names)}
+    named.update({f"F[{a}]": F[i] for i, a in enumerate(names)})
+    limit = max_ops()
+    over = equations_size(named, limit)
+    if over is not None:
+        total, largest, size = over
+        raise ModelError(
+            f"the equations of motion M q'' = F of {len(names)} coordinates are too large: {total:,} operations, "
+            f"more than the {limit:,} allowed (the largest entry, {largest}, has {size:,}).",
+            fix=f"use fewer bodies or coordinates, or simpler positions and rotations; for a model you trust, "
+                f"set the environment variable {MAX_OPS_VARIABLE} to a larger number of operations",
+            file=model.source)
+
+
 def derive(model: Model, *, formulation: str = "auto") -> EquationsOfMotion:
     """From a model to its Lagrange equations, following the seed's steps 2–6.
 
@@ -333,6 +351,8 @@ def derive(model: Model, *, formulation: str = "auto") -> EquationsOfMotion:
         For data only kinematics can check (non-physical inertia, a fixed point that moves).
     DerivationError
         For ``formulation="recursive"`` on a model that is not a kinematic tree (why, and the fix).
+        Also for equations of motion larger than `lagrangian.model._limits.MAX_OPS` operations
+        (checked on the course's expanded M and F).
     """
     if formulation not in FORMULATIONS:
         raise ValueError(f"formulation must be one of {', '.join(FORMULATIONS)}, not {formulation!r}")
@@ -356,6 +376,7 @@ def derive(model: Model, *, formulation: str = "auto") -> EquationsOfMotion:
         M, gamma0 = mass_matrix_and_bias(kin, inertias)
         Q_total = tuple(sum_of([f.Q[i] for f in loads]) for i in range(n))
         F = tuple(Q if type(g) is _ZERO_TYPE else Q - g for Q, g in zip(Q_total, gamma0))
+        _check_size(model, kin, M, F)
         return CourseForm(T_terms, inertias, loads, equations, M, F)
 
     if recursive is not None:

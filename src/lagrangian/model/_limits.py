@@ -22,13 +22,15 @@ the model's assembly for parameter values and initial conditions.
 from __future__ import annotations
 
 import math
+import os
 import sys
 from fractions import Fraction
 from numbers import Real
 
 import symengine as se
 
-__all__ = ["MAX_LENGTH", "MAX_DEGREE", "MAX_TERMS", "NotFinite", "TooLarge", "real_value", "Measure", "excerpt"]
+__all__ = ["MAX_LENGTH", "MAX_DEGREE", "MAX_TERMS", "MAX_OPS", "NotFinite", "TooLarge", "real_value", "Measure",
+           "excerpt", "max_ops", "equations_size"]
 
 #: Longest expression, in characters (the longest in the examples has a few hundred).
 MAX_LENGTH = 20_000
@@ -38,6 +40,15 @@ MAX_DEGREE = 32
 #: Largest number of terms an expression may have once multiplied out (an upper bound).
 #: The examples reach 15; a position of 128 terms takes about 5 s to derive.
 MAX_TERMS = 128
+
+#: Largest size of the derived equations of motion M q̈ = F, in operations (SymEngine's
+#: ``count_ops`` over M and F together).  The largest models we ship measure: the Whipple
+#: bicycle 4·10^4, the 20-link planar chain 6·10^4, the 10-rod spatial chain 1.1·10^5, the
+#: 100-link planar chain 7.4·10^6 and the 50-rod spatial chain 1.4·10^7; past this, code
+#: generation, compilation and the cross-checks take minutes and gigabytes.
+MAX_OPS = 20_000_000
+#: The environment variable that raises (or lowers) `MAX_OPS` for models one trusts.
+MAX_OPS_VARIABLE = "LAGRANGIAN_MAX_OPS"
 
 #: Relative size of an imaginary part that is taken as rounding (``acos`` of an exact 1, ...).
 _IMAG_TOL = 1e-12
@@ -86,6 +97,27 @@ def real_value(value: object) -> float:
     if abs(number.imag) > _IMAG_TOL * max(1.0, abs(number.real)):
         raise NotFinite(f"not a real number (it is {number.real:.6g}{number.imag:+.6g}i)")
     return number.real
+
+
+def max_ops() -> int:
+    """`MAX_OPS`, or the whole number in ``$LAGRANGIAN_MAX_OPS`` when it is set (ASCII digits only)."""
+    text = os.environ.get(MAX_OPS_VARIABLE, "").strip()
+    return int(text) if text.isascii() and text.isdigit() and len(text) <= 18 else MAX_OPS
+
+
+def equations_size(named: dict[str, se.Basic], limit: int) -> tuple[int, str, int] | None:
+    """None when the expressions of ``named`` have at most ``limit`` operations together,
+    else ``(total, largest's name, largest's operations)``.
+
+    SymEngine counts in C++ (0.2 s for 10^7 operations), so the check costs little next to
+    the derivation it guards.
+    """
+    total = se.count_ops(*named.values()) if named else 0
+    if total <= limit:
+        return None
+    sizes = {name: se.count_ops(e) for name, e in named.items()}
+    largest = max(sizes, key=sizes.__getitem__)
+    return total, largest, sizes[largest]
 
 
 class TooLarge(ValueError):

@@ -106,6 +106,10 @@ def _syntax_error(text: str, msg: str, source: str | None) -> ModelError:
     column = int(m.group(2)) if m else None
     core = re.sub(r"\s*\(at line \d+, column \d+\)", "", msg)
     lines = text.splitlines()
+    if m is None and "end of document" in msg:  # tomllib gives no line there: the construct left open has one
+        core = re.sub(r"\s*\(at end of document\)", "", core)
+        line, column = _left_open(text)
+        core += " (at the end of the file)" if column is None else " (still open at the end of the file)"
     source_line = lines[line - 1] if line is not None and 0 < line <= len(lines) else None
     where = dict(file=source, line=line, column=column, source_line=source_line)
     # The key (or table) declared on the offending line, and where it was declared before.
@@ -137,6 +141,60 @@ def _syntax_error(text: str, msg: str, source: str | None) -> ModelError:
                       "tables as [name])", **where)
 
 
+def _left_open(text: str) -> tuple[int | None, int | None]:
+    """The line and column where the string, array, inline table or header still open at the end starts.
+
+    For tomllib's errors "at end of document" (an unterminated string, an unclosed array):
+    one linear pass over the text that follows strings (basic, literal, multi-line, with
+    escapes), comments and brackets.  With nothing left open, the last line that is not blank
+    (and no column).
+    """
+    opened: list[tuple[int, int]] = []  # brackets not closed yet: (line, column)
+    string: tuple[str, int, int] | None = None  # the delimiter of the open string, where it starts
+    line, col, i, n = 1, 1, 0, len(text)
+    while i < n:
+        ch = text[i]
+        if string is not None:
+            delim = string[0]
+            if ch == "\\" and delim in ('"', '"""'):
+                i += 2
+                col += 2
+                continue
+            if text.startswith(delim, i):
+                i += len(delim)
+                col += len(delim)
+                string = None
+                continue
+            if ch == "\n" and len(delim) == 1:  # a one-line string ends at the line's end (tomllib says so)
+                string = None
+        elif ch == "#":
+            while i < n and text[i] != "\n":
+                i += 1
+            continue
+        elif ch in "\"'":
+            delim = ch * 3 if text.startswith(ch * 3, i) else ch
+            string = (delim, line, col)
+            i += len(delim)
+            col += len(delim)
+            continue
+        elif ch in "[{":
+            opened.append((line, col))
+        elif ch in "]}" and opened:
+            opened.pop()
+        if ch == "\n":
+            line, col = line + 1, 1
+        else:
+            col += 1
+        i += 1
+    if string is not None:
+        return string[1], string[2]
+    if opened:
+        return opened[-1]
+    lines = text.splitlines()
+    last = max((k for k, t in enumerate(lines, 1) if t.strip()), default=None)
+    return last, None
+
+
 _SINGULAR = {"parameters": "parameter", "inputs": "input", "coordinates": "coordinate", "frames": "frame",
              "points": "point",
              "bodies": "body", "particles": "particle", "loads": "load", "constraints": "constraint"}
@@ -159,9 +217,17 @@ class _Reader:
         self.index = _first_lines(self.lines)
 
     def at(self, *path: str) -> Location:
-        """The line declaring ``path`` (the longest known prefix of it)."""
+        """The line declaring ``path`` (the longest known prefix of it).
+
+        A table known only through a sub-table (``[bodies.S.inertia]`` with no ``[bodies.S]``)
+        is placed at the first line of that sub-table.
+        """
         for k in range(len(path), 0, -1):
-            hit = self.index.get(tuple(path[:k]))
+            prefix = tuple(path[:k])
+            hit = self.index.get(prefix)
+            if hit is None:
+                below = [line for key, (line, _) in self.index.items() if key[:k] == prefix]
+                hit = (min(below), 0) if below else None
             if hit is not None:
                 return Location(self.source, hit[0])
         return Location(self.source, None)

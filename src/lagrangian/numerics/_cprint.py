@@ -12,6 +12,8 @@ from collections.abc import Mapping, Sequence
 
 import symengine as se
 
+from ..errors import ModelError
+
 __all__ = ["c_block", "c_expression", "c_sequence"]
 
 _FUNCTIONS = {
@@ -23,8 +25,16 @@ _FUNCTIONS = {
 def _number(value: float) -> str:
     text = repr(float(value))
     if text in ("inf", "-inf", "nan"):
-        raise ValueError(f"the expression contains the non-finite number {text}")
+        raise _overflow(text)
     return text if any(ch in text for ch in ".en") else text + ".0"
+
+
+def _overflow(text: str) -> ModelError:
+    """Every number of a model is a finite double, but their products in M and F need not be
+    (``1e308*x`` in a position: T has 1e308² = inf)."""
+    return ModelError(f"the equations of motion contain the number {text}: numbers of the model, each finite, "
+                      "overflow a double once multiplied together in M q'' = F.",
+                      fix="use smaller numbers in the model (other units, or a scaled coordinate)")
 
 
 def c_expression(expr: se.Basic, names: Mapping[se.Basic, str]) -> str:
@@ -32,7 +42,10 @@ def c_expression(expr: se.Basic, names: Mapping[se.Basic, str]) -> str:
     if expr in names:
         return names[expr]
     if expr.is_Number:
-        value = float(expr)  # a complex number raises here: it has no place in M or F
+        try:
+            value = float(expr)  # a complex number raises here: it has no place in M or F
+        except OverflowError:  # an integer or a rational past 1.8e308
+            raise _overflow("past 1.8e308") from None
         return f"({_number(value)})" if value < 0 else _number(value)
     if expr == se.pi:
         return "3.141592653589793"

@@ -45,6 +45,7 @@ finished members and raises `EnsembleInterrupted`.
 from __future__ import annotations
 
 import hashlib
+import importlib
 import math
 import os
 import signal
@@ -205,6 +206,10 @@ def ensemble(
 
 
 def _check_backend(backend: str, method: str, events, scheduler) -> None:
+    if backend not in BACKENDS:
+        # The backends built on later stages register themselves when those load (`lagrangian.output`
+        # registers "jax"); `import lagrangian` no longer loads them eagerly, so load them by name here.
+        importlib.import_module("lagrangian.output")
     if backend not in BACKENDS:
         raise SimulationError(f"backend={backend!r}: the ensemble backends are "
                               f"{', '.join(repr(b) for b in ('c', *BACKENDS))}.", fix="e.g. backend='c'")

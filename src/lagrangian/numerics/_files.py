@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .._atomic import write_atomic_with
+from .._atomic import check_writable, write_atomic_with
 from ..errors import OutputError
 from ._trajectory import Trajectory
 
@@ -40,12 +40,12 @@ def _metadata(traj: Trajectory) -> dict:
 
 
 def check_output_path(path: str | Path) -> Path:
-    """Check, before a run, that ``path`` can take a trajectory: a known suffix, an existing folder.
+    """Check, before a run, that ``path`` can take a trajectory: a known suffix, an existing, writable folder.
 
     Raises
     ------
     OutputError
-        For another suffix, a missing folder, or a path that is a folder.
+        For another suffix, a missing or read-only folder, or a path that is a folder.
     """
     path = Path(path)
     if path.suffix.lower() not in FORMATS:
@@ -57,6 +57,11 @@ def check_output_path(path: str | Path) -> Path:
     if not folder.is_dir():
         raise OutputError(f"Cannot write `{path}`: the folder `{folder}` does not exist.",
                           fix="create the folder first, or write elsewhere")
+    try:
+        check_writable(path)
+    except OSError as exc:
+        raise OutputError(f"Cannot write `{path}`: the folder `{folder}` is not writable ({exc.strerror or exc}).",
+                          fix="write elsewhere, or make the folder writable; nothing was run") from None
     return path
 
 

@@ -81,6 +81,16 @@ def check_initial(system: ConstrainedSystem, t0: float, y0: np.ndarray, p: np.nd
     eom = system.eom
     n = system.n
     M, _, A, _, g, f = system.parts(t0, y0, p)
+    if not (np.isfinite(M).all() and np.isfinite(A).all()):  # nan: no eigenvalue (LinAlgError), say why
+        names = system.coordinates
+        bad = ([f"M[{names[i]},{names[j]}]" for i, j in zip(*np.nonzero(~np.isfinite(M)))]
+               + [f"A[{k},{names[j]}]" for k, j in zip(*np.nonzero(~np.isfinite(A)))])
+        raise SimulationError(
+            f"M(q, t) q'' = F + Aᵀλ is not defined at the initial state (t = {t0:.9g}): {', '.join(bad[:4])}"
+            f"{f' and {len(bad) - 4} more' if len(bad) > 4 else ''} not finite; the state is outside the domain of "
+            "a function of the model (log or sqrt of a non-positive number, a division by zero) or a value overflows.",
+            fix="start from a state where every expression of the model is defined, or correct the expression",
+            t=t0, state=np.array(y0, dtype=float))
     w = np.linalg.eigvalsh(0.5 * (M + M.T))
     if not w[0] > 1e-12 * max(abs(w[-1]), 1e-300):
         raise SimulationError(f"The mass matrix M is singular at the initial state (smallest eigenvalue {w[0]:.3g}).",

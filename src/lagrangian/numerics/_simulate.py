@@ -104,13 +104,16 @@ def _event_expressions(eom: EquationsOfMotion, events: Sequence[EventSpec | str]
         expr = spec.expression
         if isinstance(expr, str):
             try:
-                expr = parse_expression(expr, names)
+                # The frames are known so that `R0.x` reads as the vector it is, refused below as not a
+                # scalar, rather than as an "unknown frame R0".
+                expr = parse_expression(expr, names, [f.name for f in eom.model.frames])
             except ExpressionError as exc:
                 raise ModelError(f"In the event `{spec.name}`: {exc.message}", fix=exc.fix,
                                  symbol=exc.symbol) from None
             if not isinstance(expr, se.Basic) or hasattr(expr, "components"):
-                raise ModelError(f"The event `{spec.name}` must be a scalar expression.",
-                                 fix="write a scalar such as `theta_dot` or `theta - 0.3`")
+                raise ModelError(f"The event `{spec.name}` must be a scalar expression: `{spec.name}` is a vector.",
+                                 fix="write a scalar of the coordinates, their rates and t, such as `theta_dot` or "
+                                     "`theta - 0.3` (an event is where it crosses zero)")
         if spec.direction not in (-1, 0, 1):
             raise ValueError("EventSpec.direction must be -1, 0 or 1")
         specs.append(EventSpec(spec.name, expr, spec.direction, spec.terminal))
@@ -306,7 +309,8 @@ def simulate(
     parameters : overrides of the parameter values (``"g": 1.62``).
     method : ``"dop853"``, ``"gauss-legendre"`` or a SciPy method name (module docstring).
     rtol, atol : local error tolerances of the adaptive methods.
-    dt : fixed step. ``"gauss-legendre"``: default 1/10 of the output spacing; a dt smaller
+    dt : fixed step. ``"gauss-legendre"``: default 1/10 of the output spacing, halved (at most
+        `GAUSS_HALVINGS` times, the run restarted) while its implicit stages do not converge; a dt smaller
         than the spacing is rounded down so that a whole number of steps fills it, a larger
         one is used as it is (the outputs are interpolated between steps). With ``"dop853"``
         it switches to fixed steps.
@@ -397,7 +401,9 @@ def _simulate(source, t_end, *, t_start, initial, parameters, method, rtol, atol
     t_out = _output_times(float(t_start), float(t_end), n_out, t_eval, 4 * system.n + len(system.monitors) + 1)
 
     # A singular M at the start is reported before anything runs.
-    M, _ = system.mass_forces(t_start, y0, p)
+    M, F0 = system.mass_forces(t_start, y0, p)
+    if not (np.isfinite(M).all() and np.isfinite(F0).all()):  # nan: no eigenvalue (LinAlgError), say why
+        raise _singularity(system, t_start, y0, p, "at the initial state")
     w = np.linalg.eigvalsh(0.5 * (M + M.T))
     if not w[0] > 1e-12 * max(abs(w[-1]), 1e-300):
         raise _singularity(system, t_start, y0, p, "at the initial state")
@@ -423,16 +429,39 @@ def _pivot(system, t, Y, p) -> float:
     M, _ = system.mass_forces(t, Y, p)
     M = np.atleast_3d(M) if M.ndim == 2 else M
     diag = np.abs(np.diagonal(M, axis1=-2, axis2=-1))
-    L = np.linalg.cholesky(M)
+    if not np.isfinite(M).all():
+        return 0.0
+    try:
+        L = np.linalg.cholesky(M)
+    except np.linalg.LinAlgError:  # M not positive definite at some output state: no pivot, not a crash
+        return 0.0
     return float(np.min(np.diagonal(L, axis1=-2, axis2=-1) ** 2 / diag)) if len(M) else 1.0
 
 
+#: How many times gauss-legendre's default step is halved when its implicit stages do not converge
+#: (or the state overflows): 1/10 of the output spacing is too long for a fast spin or a stiff spring.
+GAUSS_HALVINGS = 10
+
+
+def _gauss_step(t_start: float, t_end: float, t_out: np.ndarray, dt: float | None) -> float:
+    """gauss-legendre's fixed step: ``dt``, or 1/10 of the output spacing; rounded to fill the spacing."""
+    spacing = np.min(np.diff(t_out)) if len(t_out) > 1 else t_end - t_start
+    if dt is None:
+        dt = spacing / 10
+    uniform = len(t_out) > 1 and np.allclose(np.diff(t_out), spacing, rtol=1e-12, atol=0)
+    # A dt below the output spacing is rounded down so that whole steps fill it (the outputs
+    # fall on steps); a larger one is honoured, the outputs interpolated between steps.
+    return spacing / np.ceil(spacing / dt - 1e-9) \
+        if uniform and abs(t_out[0] - t_start) < 1e-15 and dt <= spacing else dt
+
+
 def control_block(method: str, t_start: float, t_end: float, t_out: np.ndarray, rtol: float, atol: float,
-                  dt: float | None, max_step: float | None, max_steps: int) -> np.ndarray:
+                  dt: float | None, max_step: float | None, max_steps: int, h: float | None = None) -> np.ndarray:
     """The C integrators' control block (``_integrators.c``) at the start of a run.
 
     One place for it, so that `ensemble` starts each member exactly as `simulate` starts
-    its run (same first step, same fixed step of ``gauss-legendre``).
+    its run (same first step, same fixed step of ``gauss-legendre``; ``h`` overrides that
+    step when `simulate` halves it).
     """
     if dt is not None and not dt > 0:
         raise SimulationError(f"dt = {dt} must be positive.", fix="give a positive step, e.g. dt=1e-3")
@@ -443,15 +472,7 @@ def control_block(method: str, t_start: float, t_end: float, t_out: np.ndarray, 
     ctl[9] = float(max_steps)
     ctl[12] = 1.0
     if method == "gauss-legendre":
-        spacing = np.min(np.diff(t_out)) if len(t_out) > 1 else t_end - t_start
-        if dt is None:
-            dt = spacing / 10
-        uniform = len(t_out) > 1 and np.allclose(np.diff(t_out), spacing, rtol=1e-12, atol=0)
-        # A dt below the output spacing is rounded down so that whole steps fill it (the outputs
-        # fall on steps); a larger one is honoured, the outputs interpolated between steps.
-        h = spacing / np.ceil(spacing / dt - 1e-9) \
-            if uniform and abs(t_out[0] - t_start) < 1e-15 and dt <= spacing else dt
-        ctl[1] = h
+        ctl[1] = _gauss_step(t_start, t_end, t_out, dt) if h is None else h
         ctl[2] = 1e-14  # stage iteration tolerance: converged to round-off, so symplecticity holds
     elif dt is not None:
         ctl[1], ctl[8] = float(dt), 1.0
@@ -460,30 +481,21 @@ def control_block(method: str, t_start: float, t_end: float, t_out: np.ndarray, 
 
 def _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, max_step, max_steps, specs,
                  progress):
-    n2 = 2 * system.n
-    ctl = control_block(method, t_start, t_end, t_out, rtol, atol, dt, max_step, max_steps)
-    y = y0.copy()
-    Y = np.full((len(t_out), n2), np.nan)
-    i_out = np.zeros(1, dtype=np.intc)
-    ev_dir = np.array([e.direction for e in specs] or [0], dtype=np.intc)
-    ev_term = np.array([int(e.terminal) for e in specs] or [0], dtype=np.intc)
-    capacity = 100_000 if specs else 1
-    ctl[11] = capacity
-    ev_out = np.zeros((capacity, 2 + n2))
-    lib = system._lib
+    if dt is not None and not dt > 0:
+        raise SimulationError(f"dt = {dt} must be positive.", fix="give a positive step, e.g. dt=1e-3")
+    given = dt is not None
+    h = _gauss_step(t_start, t_end, t_out, dt) if method == "gauss-legendre" else None
     reporter = make_reporter(progress, t_start, t_end)
-    # One call for the whole run, whether or not progress is shown: a chunked run would cut a
-    # step at each chunk's end, and the result would depend on the progress bar.
-    if method == "dop853":
-        def call():
-            return lib.lg_dop853(_ptr(ctl), _ptr(y), _ptr(p), _ptr(t_out), len(t_out), _ptr(i_out), _ptr(Y),
-                                 float(t_end), _ptr(ev_dir), _ptr(ev_term), _ptr(ev_out))
-    else:
-        def call():
-            return lib.lg_gauss(_ptr(ctl), _ptr(y), _ptr(p), _ptr(t_out), len(t_out), _ptr(i_out), _ptr(Y),
-                                float(t_end), _ptr(ev_dir), _ptr(ev_term), _ptr(ev_out), float(t_start))
-    with Watch(reporter, ctl):
-        code = _interruptible(call, ctl)
+    halvings = 0
+    while True:
+        code, ctl, y, Y, i_out, ev_out, capacity = _attempt(system, p, y0, t_start, t_end, t_out, method, rtol, atol,
+                                                            dt, h, max_step, max_steps, specs, reporter)
+        # The default step failed (stages not converging, or a blow-up): the same fixed-step run with
+        # half the step, from the start, so that every step of the result has the same length.
+        if method != "gauss-legendre" or given or code not in (2, 6) or halvings == GAUSS_HALVINGS:
+            break
+        halvings += 1
+        h /= 2
     if reporter:
         reporter.finish(float(ctl[0]), code in (0, 4))
     n_ev = int(min(ctl[10], capacity))
@@ -498,12 +510,48 @@ def _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, m
     t_fail = float(ctl[0])
     if code == 1 or (code in (2, 3) and _collapsed(system, t_start, y0, t_fail, y, p)):
         raise _singularity(system, t_fail, y, p, "during the integration")
+    fixes = {3: "the equations may be stiff or singular there: try method='Radau', or check the model",
+             5: "raise max_steps, or shorten the time span"}
+    if method == "gauss-legendre" and code in (2, 6):
+        if given:  # the user's step is too long for the fastest motion (a stiff spring, a fast spin)
+            fixes[code] = (f"reduce the step: dt = {h:.3g} is too long for the fastest motion of the model "
+                           f"(a stiff spring, a fast spin); try dt={h / 10:.3g} (--dt {h / 10:.3g} on the command line)")
+        else:
+            fixes[code] = (f"the default step was halved {GAUSS_HALVINGS} times, down to dt = {h:.3g}: the equations "
+                           "are stiff there; give a smaller dt (--dt), or use method='Radau' (SciPy)")
+    elif code == 6:
+        fixes[6] = "use a smaller dt"
     raise SimulationError(
         f"The integration stopped at t = {t_fail:.9g} ({_state_text(system, y)}): {_STATUS[code]}.",
-        fix={3: "the equations may be stiff or singular there: try method='Radau', or check the model",
-             5: "raise max_steps, or shorten the time span",
-             6: "use a smaller dt"}.get(code, "check the model and the initial state"),
-        t=t_fail, state=y.copy())
+        fix=fixes.get(code, "check the model and the initial state"), t=t_fail, state=y.copy())
+
+
+def _attempt(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, h, max_step, max_steps, specs, reporter):
+    """One call of the compiled integrator over the whole span (gauss-legendre with the step ``h``)."""
+    n2 = 2 * system.n
+    ctl = control_block(method, t_start, t_end, t_out, rtol, atol, dt, max_step, max_steps, h)
+    y = y0.copy()
+    Y = np.full((len(t_out), n2), np.nan)
+    i_out = np.zeros(1, dtype=np.intc)
+    ev_dir = np.array([e.direction for e in specs] or [0], dtype=np.intc)
+    ev_term = np.array([int(e.terminal) for e in specs] or [0], dtype=np.intc)
+    capacity = 100_000 if specs else 1
+    ctl[11] = capacity
+    ev_out = np.zeros((capacity, 2 + n2))
+    lib = system._lib
+    # One call for the whole run, whether or not progress is shown: a chunked run would cut a
+    # step at each chunk's end, and the result would depend on the progress bar.
+    if method == "dop853":
+        def call():
+            return lib.lg_dop853(_ptr(ctl), _ptr(y), _ptr(p), _ptr(t_out), len(t_out), _ptr(i_out), _ptr(Y),
+                                 float(t_end), _ptr(ev_dir), _ptr(ev_term), _ptr(ev_out))
+    else:
+        def call():
+            return lib.lg_gauss(_ptr(ctl), _ptr(y), _ptr(p), _ptr(t_out), len(t_out), _ptr(i_out), _ptr(Y),
+                                float(t_end), _ptr(ev_dir), _ptr(ev_term), _ptr(ev_out), float(t_start))
+    with Watch(reporter, ctl):
+        code = _interruptible(call, ctl)
+    return code, ctl, y, Y, i_out, ev_out, capacity
 
 
 def _interruptible(call: Callable[[], int], ctl: np.ndarray) -> int:
@@ -535,8 +583,11 @@ def _interruptible(call: Callable[[], int], ctl: np.ndarray) -> int:
 def _collapsed(system, t0, y0, t, y, p) -> bool:
     """Whether M lost (almost) all its inertia in some direction since the start: then a
     step-size underflow or an overflow is the singularity showing, and is reported as one."""
-    w0 = np.linalg.eigvalsh(system.mass_forces(t0, y0, p)[0])
-    w = np.linalg.eigvalsh(system.mass_forces(t, y, p)[0])
+    M0, M = system.mass_forces(t0, y0, p)[0], system.mass_forces(t, y, p)[0]
+    if not (np.isfinite(M0).all() and np.isfinite(M).all()):
+        return True  # M undefined there: `_singularity` says which entries
+    w0 = np.linalg.eigvalsh(M0)
+    w = np.linalg.eigvalsh(M)
     return bool(w[0] < 1e-8 * w0[-1])
 
 

@@ -21,11 +21,20 @@ _FORMULA = {
 }
 
 
+#: Each special character of LaTeX's text mode and what writes it.  One pass over the text (a
+#: translation table): replacing one character after another escaped the braces of
+#: ``\textbackslash{}`` a second time (``\textbackslash\{\}`` printed a brace pair).
+_ESCAPES = str.maketrans({"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_",
+                          "{": r"\{", "}": r"\}", "~": r"\textasciitilde{}", "^": r"\^{}"})
+
+
 def _escape(text: str) -> str:
-    for a, b in (("\\", r"\textbackslash{}"), ("&", r"\&"), ("%", r"\%"), ("$", r"\$"), ("#", r"\#"),
-                 ("_", r"\_"), ("{", r"\{"), ("}", r"\}"), ("~", r"\textasciitilde{}"), ("^", r"\^{}")):
-        text = text.replace(a, b)
-    return text
+    r"""``text`` for LaTeX's text mode.
+
+    >>> print(_escape(r"a\b_c {x} 50%"))
+    a\textbackslash{}b\_c \{x\} 50\%
+    """
+    return text.translate(_ESCAPES)
 
 
 def _frame(name: str) -> str:
