@@ -14,6 +14,7 @@ PENDULUM = (ROOT / "examples" / "simple_pendulum.toml").read_text(encoding="utf-
 
 def _model(tmp_path: Path, name: str, description: str, unit: str = "kg") -> Path:
     text = re.sub(r'(?m)^name = .*$', lambda _: f'name = "{name}"', PENDULUM)
+    text = re.sub(r'(?m)^title = .*$', lambda _: f'title = "{name}"', text)  # the report's heading
     text = re.sub(r'(?m)^description = .*$', lambda _: f'description = "{description}"', text)
     text = text.replace('unit = "kg"', f'unit = "{unit}"')
     path = tmp_path / "model.toml"
