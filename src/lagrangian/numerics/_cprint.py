@@ -19,7 +19,13 @@ __all__ = ["c_block", "c_expression", "c_sequence"]
 _FUNCTIONS = {
     "sin": "sin", "cos": "cos", "tan": "tan", "asin": "asin", "acos": "acos", "atan": "atan",
     "sinh": "sinh", "cosh": "cosh", "tanh": "tanh", "exp": "exp", "log": "log", "Abs": "fabs",
+    "asinh": "asinh", "acosh": "acosh", "atanh": "atanh",
 }
+# What SymEngine makes of the model's functions without being asked: tan(pi/2 - x) is cot(x),
+# 1/cos(x) may come back as sec(x).  libm has none of them: f(x) = 1/g(x), and a(x) = b(1/x).
+_RECIPROCALS = {"cot": "tan", "sec": "cos", "csc": "sin", "coth": "tanh", "sech": "cosh", "csch": "sinh"}
+_INVERSE_RECIPROCALS = {"acot": "atan", "asec": "acos", "acsc": "asin", "acoth": "atanh", "asech": "acosh",
+                        "acsch": "asinh"}
 
 
 def _number(value: float) -> str:
@@ -84,11 +90,15 @@ def c_expression(expr: se.Basic, names: Mapping[se.Basic, str]) -> str:
     name = type(expr).__name__
     if name in _FUNCTIONS and len(expr.args) == 1:
         return f"{_FUNCTIONS[name]}({c_expression(expr.args[0], names)})"
+    if name in _RECIPROCALS and len(expr.args) == 1:
+        return f"(1.0/{_RECIPROCALS[name]}({c_expression(expr.args[0], names)}))"
+    if name in _INVERSE_RECIPROCALS and len(expr.args) == 1:
+        return f"{_INVERSE_RECIPROCALS[name]}(1.0/({c_expression(expr.args[0], names)}))"
     if name == "Sign":
         x = c_expression(expr.args[0], names)
         return f"(({x}) > 0.0 ? 1.0 : (({x}) < 0.0 ? -1.0 : 0.0))"
     raise ValueError(f"cannot generate C for `{expr}` ({name}); the numeric code supports "
-                     f"{', '.join(sorted(_FUNCTIONS))}, powers and sign")
+                     f"{', '.join(sorted([*_FUNCTIONS, *_RECIPROCALS, *_INVERSE_RECIPROCALS]))}, powers and sign")
 
 
 def c_block(outputs: Sequence[tuple[str, se.Basic]], names: Mapping[se.Basic, str], prefix: str = "x") -> list[str]:
