@@ -234,8 +234,11 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "virtual field": ("Le champ de vitesses virtuelles compatible avec les liaisons principales est {field} ; aux "
                       "points où s'appliquent les efforts donnés :", "The virtual velocity field compatible with "
                       "the principal constraints is {field}; at the points where the applied forces act:"),
-    "virtual rotation": ("Vecteur rotation virtuel des solides qui portent des couples :",
-                         "Virtual angular velocity of the bodies that bear couples:"),
+    "virtual torsor": ("Le champ des vitesses virtuelles de chaque solide (S) est un torseur, le torseur cinématique "
+                       "virtuel, donné par ses éléments de réduction en un point A de (S), tel que {field} :",
+                       "The virtual velocity field of each rigid body (S) is a screw (the virtual kinematic screw, or "
+                       "twist), given by its reduction elements at a point A of (S), such that {field}:"),
+    "virtual torsor short": ("Torseurs cinématiques virtuels", "Virtual kinematic screws"),
     # -- step 4 -----------------------------------------------------------------------------------
     "energies": ("Les énergies cinétique et potentielle compatibles de (Σ) par rapport à {R} sont :",
                  "The kinetic and potential energies of (Σ) relative to {R} are:"),
