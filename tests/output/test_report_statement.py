@@ -99,7 +99,7 @@ def test_every_body_and_particle_is_named_with_its_mass_and_inertia(case):
     math = _math(s.blocks)
     notation = report_notation(course_form(eom, ()), eom.model)
     for b in eom.model.bodies:
-        assert f"{tex_name(b.name)}" in math
+        assert tex_name(b.name) in math
         assert _norm(notation.latex(b.mass)) in math
         moments = ",".join(_norm(notation.latex(b.inertia.matrix[k][k])) for k in range(3))
         assert moments in math  # the principal moments as given: A, A, C
@@ -114,7 +114,7 @@ def test_every_load_and_declared_constraint_is_stated(case):
     prose, math = _prose(s.blocks), _math(s.blocks)
     w = Words(lang)
     for load in eom.model.loads:
-        assert f"{w.load(load.name)}" in prose
+        assert w.load(load.name) in prose
         if isinstance(load, Gravity):
             assert r"\vec{g}=" in math
     for con in eom.model.constraints:

@@ -10,7 +10,7 @@ Seed, worked example:
 
 from __future__ import annotations
 
-from ..model import Gravity, JointDamper, PointForce, Potential, Spring, Torque, Vector
+from ..model import Gravity, PointForce, Potential, Spring, Vector
 from ._report_build import Context
 from ._report_doc import Block, Display, Equation, Math, Para, Section
 from ._report_size import visible_width, wrap_many
