@@ -177,7 +177,7 @@ FRENCH = ("Remarque", "poids", "liaison", "équation", "effort", "entraînement"
 def test_no_english_in_french_and_no_french_in_english(name):
     eom = _eom_of(name)
     fr = _all(_report(eom, lang="fr"))
-    en = _all(_report(eom, lang="en"))
+    en = _all(_report(eom, lang="en")).replace(" et al.", " al.")  # a citation (Meijaard et al.) is not French
     for word in ENGLISH:
         assert word not in fr, (name, word)
     for word in FRENCH:

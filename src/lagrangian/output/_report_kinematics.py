@@ -10,7 +10,7 @@ Seed, worked example:
 
 from __future__ import annotations
 
-from ..model import Gravity, JointDamper, PointForce, Potential, Spring, Torque, Vector
+from ..model import Gravity, PointForce, Potential, Spring, Vector
 from ._report_build import Context
 from ._report_doc import Block, Display, Equation, Math, Para, Section
 from ._report_size import visible_width, wrap_many
@@ -127,12 +127,39 @@ def _omegas(c: Context) -> list[Equation]:
     return out
 
 
-def _torqued(c: Context) -> list[str]:
-    out: list[str] = []
-    for load in c.model.loads:
-        names = (load.on, load.reaction_on) if isinstance(load, Torque) else (
-            load.bodies if isinstance(load, JointDamper) else ())
-        out += [n for n in names if n is not None and n in c.bodies and n not in out]
+def torsor_point(c: Context, name: str) -> str:
+    """The point A where the virtual torsor of a body is written: its fixed point (O for the top), else its centre G."""
+    body = c.model.body(name)
+    return body.fixed_point if body.fixed_point is not None else name
+
+
+def virtual_torsor(c: Context, name: str) -> tuple[Vector, Vector]:
+    """(Ω*(S/R), V*(A ∈ S/R)) of body ``name`` at `torsor_point`: Ω* = Σ ∂Ω/∂q̇_i q_i*, V*(A) = Σ ∂OA/∂q_i q_i*.
+
+    Course, step 3: the virtual velocity field of a rigid body is a torsor (« champ équiprojectif »),
+    V*(P) = V*(A) + Ω* ∧ AP for every point P of (S).
+    """
+    body = c.model.body(name)
+    omega = Vector.zero()
+    for part, star in zip(c.kin.partial_omegas(body.frame), c.kin.q_star):
+        omega = omega + part * star
+    return omega, c.kin.virtual_velocity(torsor_point(c, name))
+
+
+def _virtual_torsors(c: Context) -> list[Block]:
+    """{V*(S/R)} = {Ω*(S/R) ; V*(A ∈ S/R)}_A for every rigid body (the course's torseur cinématique virtuel)."""
+    out: list[Block] = []
+    R = c.R
+    for b in c.model.bodies:
+        S = c.element(b.name)
+        A = c.point_label(torsor_point(c, b.name))
+        omega, v = virtual_torsor(c, b.name)
+        head = (rf"\left\{{\mathcal{{V}}^{{*}}({S}/{R})\right\}} = \left\{{\begin{{matrix}} \vec{{\Omega}}^{{*}}({S}/{R})"
+                rf" \\ \vec{{V}}^{{*}}({A}\in {S}/{R}) \end{{matrix}}\right\}}_{{{A}}}")
+        eqs = [Equation((head,)),
+               c.vector_equation(rf"\vec{{\Omega}}^{{*}}({S}/{R}) = ", c.terms(omega)),
+               c.vector_equation(rf"\vec{{V}}^{{*}}({A}\in {S}/{R}) = ", c.terms(v))]
+        out.append(Display(tuple(eqs)))
     return out
 
 
@@ -151,17 +178,11 @@ def step3(c: Context) -> Section:
     blocks.append(Para(w("virtual field", field=field)))
     if rows:
         blocks += c.many(c.show(rows, r"V*"), len(rows), "V*")
-    rotating = _torqued(c)
-    if rotating:
-        blocks.append(Para(w("virtual rotation")))
-        eqs = []
-        for name in rotating:
-            body = c.model.body(name)
-            v = Vector.zero()
-            for part, star in zip(c.kin.partial_omegas(body.frame), c.kin.q_star):
-                v = v + part * star
-            eqs.append(Equation((rf"\vec{{\Omega}}^{{*}}({c.element(name)}/{c.R}) = {c.vector(v)}",)))
-        blocks.append(Display(tuple(eqs)))
+    torsors = _virtual_torsors(c)
+    if torsors:
+        AP = rf"\vec{{V}}^{{*}}(P\in S/{c.R}) = \vec{{V}}^{{*}}(A\in S/{c.R}) + \vec{{\Omega}}^{{*}}(S/{c.R})\wedge\overrightarrow{{AP}}"
+        blocks.append(Para(w("virtual torsor", field=Math(AP))))
+        blocks += c.many(torsors, len(c.model.bodies), w.text("virtual torsor short"), limit=6)
     return Section("step3", w.text("step3"), tuple(blocks))
 
 

@@ -39,9 +39,90 @@ def _frame_with_axes(c: Context, frame: str, origin: str | None) -> str:
     return f"{c.name(frame)}({c.name(origin)};\\ {axes})" if origin else f"{c.name(frame)}({axes})"
 
 
+def _inertia_given(c: Context, body) -> Runs:  # type: ignore[no-untyped-def]
+    """The inertia of a body as the model gives it: principal moments, or the matrix, at a point in a basis."""
+    i = body.inertia
+    P = Math(c.point_label(body.name) if i.at == "G" else c.point_label(i.at))
+    basis = Math(c.basis(i.frame))
+    m = i.matrix
+    if all(m[r][k] == 0 for r in range(3) for k in range(3) if r != k):
+        return c.w("inertia principal given", P=P, basis=basis,
+                   values=Math(r",\ ".join(c.tex(m[k][k]) for k in range(3))))
+    rows = r" \\ ".join(" & ".join(c.tex(x) for x in row) for row in m)
+    return c.w("inertia matrix given", P=P, basis=basis, matrix=Math(rf"\begin{{bmatrix}} {rows} \end{{bmatrix}}"))
+
+
+def _load_given(c: Context, load: object) -> Runs | None:  # noqa: PLR0911 - one phrase per kind of load
+    """A load as the model declares it, in words and formulas (``pesanteur g = −g z0``)."""
+    from ..model import (CoulombFriction, Damper, Dissipation, GeneralizedForce, Gravity, JointDamper, PointForce,
+                         Potential, Spring, Torque)
+
+    w = c.w
+    if isinstance(load, Gravity):
+        g = Math(rf"\vec{{g}} = {c.vector(load.field)}")
+        if load.on:
+            return w("load on", g=g, on=w.join([Math(c.element(x)) for x in load.on]))
+        return w("load gravity", g=g)
+    if isinstance(load, PointForce):
+        return w("load force", F=Math(rf"\vec{{F}} = {c.vector(load.force)}"), P=Math(c.point_label(load.at)))
+    if isinstance(load, Torque):
+        C = Math(rf"\vec{{C}} = {c.vector(load.torque)}")
+        if load.reaction_on is None:
+            return w("load torque", C=C, S=Math(c.element(load.on)))
+        return w("load torque reaction", C=C, S=Math(c.element(load.on)), S2=Math(c.element(load.reaction_on)))
+    if isinstance(load, Spring):
+        A, B = (Math(c.point_label(p)) for p in load.ends)
+        return w("load spring", A=A, B=B, k=Math(c.tex(load.stiffness)), l0=Math(c.tex(load.rest_length)))
+    if isinstance(load, Damper):
+        A, B = (Math(c.point_label(p)) for p in load.ends)
+        return w("load damper", A=A, B=B, c=Math(c.tex(load.coefficient)))
+    if isinstance(load, Potential):
+        return w("load potential", U=Math(rf"U = {c.tex(load.energy)}"))
+    if isinstance(load, Dissipation):
+        return w("load dissipation", D=Math(rf"D = {c.tex(load.function)}"))
+    if isinstance(load, JointDamper):
+        S1, S2 = (Math(c.element(x)) for x in load.bodies)
+        return w("load joint damper", S1=S1, S2=S2, c=Math(c.tex(load.coefficient)))
+    if isinstance(load, CoulombFriction):
+        return w("load coulomb", P=Math(c.point_label(load.at)), f=Math(c.tex(load.coefficient)))
+    if isinstance(load, GeneralizedForce):
+        Q = r",\ ".join(rf"Q_{{{c.sym(q)}}} = {c.tex(v)}" for q, v in load.components)
+        return w("load generalized", Q=Math(Q))
+    return None
+
+
+def _constraint_given(c: Context, con: Constraint) -> Runs:
+    """A declared constraint: its description in the report's language (else its name) and its equation."""
+    w = c.w
+    if con.form == "no_slip":
+        I, S = c.point_label(con.points[0]), c.element(con.body or "")
+        equation = rf"\vec{{V}}({I}\in {S}/{c.R}) = \vec{{0}}"
+    elif con.form == "coincide":
+        P, Q = c.point_label(con.points[0]), c.point_label(con.points[1])
+        equation = rf"\overrightarrow{{{Q}{P}}} = \vec{{0}}"
+    else:
+        rows = [r for r in c.eom.constraints if r.constraint == con.name]
+        parts = [rf"{c.tex(r.expression)} = 0" for r in rows]
+        if not parts and con.expression is not None and not isinstance(con.expression, Vector):
+            parts = [rf"{c.tex(con.expression)} = 0"]
+        equation = r",\quad ".join(parts)
+    described = in_language(con.description, c.lang)
+    label: Runs = (described,) if described else w("quoted", name=con.name)
+    return w("constraint item", label=label, equation=Math(equation) if equation else "")
+
+
 def system_section(c: Context) -> Section:
+    """The statement (« Énoncé ») a teacher hands out: the system, R0, the bodies, the constants, the loads, the
+    constraints, all as the model declares them (before any step of the démarche)."""
     w, model = c.w, c.model
-    blocks: list[Block] = [Para(w("galilean", R0=Math(_frame_with_axes(c, "R0", "O"))))]
+    blocks: list[Block] = []
+    what = in_language(model.description, c.lang)
+    if what:
+        what = what.rstrip(". ")
+        if len(what) > 1 and what[1].islower():  # « … suivant : toupie symétrique … » (not an acronym)
+            what = what[0].lower() + what[1:]
+        blocks.append(Para(w("statement intro", what=what)))
+    blocks.append(Para(w("galilean", R0=Math(_frame_with_axes(c, "R0", "O")))))
     if c.ref != "R0":
         blocks.append(Para(w("reference", R=Math(_frame_with_axes(c, c.ref, c.origin)))))
     items: list[Runs] = []
@@ -50,9 +131,10 @@ def system_section(c: Context) -> Section:
         G = c.point_label(b.name)
         OG = Math(rf"\overrightarrow{{{origin}{G}}} = {c.short_vector(c.kin.position(b.name))}")
         if b.mass_given:
-            items.append(w("body item", S=Math(c.element(b.name)), m=Math(c.tex(b.mass)), G=Math(G), OG=OG))
+            item = w("body item", S=Math(c.element(b.name)), m=Math(c.tex(b.mass)), G=Math(G), OG=OG)
         else:
-            items.append(w("body item no mass", S=Math(c.element(b.name)), G=Math(G), OG=OG))
+            item = w("body item no mass", S=Math(c.element(b.name)), G=Math(G), OG=OG)
+        items.append(item + (", ",) + _inertia_given(c, b))
     for p in model.particles:
         OP = Math(rf"\overrightarrow{{{origin}{c.element(p.name)}}} = {c.short_vector(c.kin.position(p.name))}")
         items.append(w("particle item", P=Math(c.element(p.name)), m=Math(c.tex(p.mass)), OP=OP))
@@ -65,6 +147,17 @@ def system_section(c: Context) -> Section:
         header = tuple((w.text(k),) for k in ("col symbol", "col value", "col unit", "col description"))
         blocks.append(Para(w("parameters")))
         blocks += c.many([Table(header, rows)], len(rows), w.text("parameters").rstrip(" :"))
+    loads = [(load, _load_given(c, load)) for load in model.loads]
+    load_items = tuple(w("load item", name=w.load(load.name), what=what) for load, what in loads  # type: ignore[attr-defined]
+                       if what is not None)
+    if load_items:
+        blocks.append(Para(w("loads given")))
+        blocks += c.many([Items(load_items)], len(load_items), w.text("loads given").rstrip(" :"))
+    links = tuple(_joint_name(c, j) for j in c.joints) + tuple(_constraint_given(c, con) for con in model.constraints)
+    if links:
+        blocks.append(Para(w("constraints given")))
+        blocks += c.many([Items(tuple(_capitalize(x) for x in links))], len(links),
+                         w.text("constraints given").rstrip(" :"))
     return Section("system", w.text("system"), tuple(blocks))
 
 

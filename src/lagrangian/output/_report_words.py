@@ -21,7 +21,7 @@ LANGUAGES = ("fr", "en")
 _PHRASES: dict[str, tuple[str, str]] = {
     # -- titles ---------------------------------------------------------------------------------
     "title": ("Équations de Lagrange — {name}", "Lagrange's equations — {name}"),
-    "system": ("Le système étudié", "The system"),
+    "system": ("Énoncé", "Statement"),
     "step1": ("1. Choix des liaisons principales", "1. Choice of the principal constraints"),
     "step2": ("2. Paramètres principaux", "2. Principal parameters (generalized coordinates)"),
     "step3": ("3. Champ de vitesses virtuelles compatible avec les liaisons principales",
@@ -41,7 +41,33 @@ _PHRASES: dict[str, tuple[str, str]] = {
                   "donnés s'ajoutent les efforts d'inertie de Coriolis et d'entraînement (Remarque 3).",
                   "The equations are written relative to the frame {R}, which is not Galilean: the Coriolis "
                   "and transport inertial forces are added to the applied forces (Remark 3 of the course)."),
+    "statement intro": ("On étudie le système (Σ) suivant : {what}.", "We study the following system (Σ): {what}."),
     "constituents": ("(Σ) est formé de :", "(Σ) is made of:"),
+    "inertia principal given": ("moments principaux d'inertie en {P} dans la base {basis} : {values}",
+                                "principal moments of inertia at {P} in the basis {basis}: {values}"),
+    "inertia matrix given": ("matrice d'inertie en {P} dans la base {basis} : {matrix}",
+                             "inertia matrix at {P} in the basis {basis}: {matrix}"),
+    "loads given": ("Efforts donnés :", "Applied forces:"),
+    "load item": ("« {name} » : {what}", "“{name}”: {what}"),
+    "load gravity": ("pesanteur {g}", "gravity {g}"),
+    "load on": ("pesanteur {g}, sur {on}", "gravity {g}, on {on}"),
+    "load force": ("force {F} appliquée en {P}", "force {F} applied at {P}"),
+    "load torque": ("couple {C} exercé sur ({S})", "torque {C} exerted on ({S})"),
+    "load torque reaction": ("couple {C} exercé sur ({S}) par ({S2})", "torque {C} exerted on ({S}) by ({S2})"),
+    "load spring": ("ressort entre {A} et {B}, de raideur {k} et de longueur à vide {l0}",
+                    "spring between {A} and {B}, of stiffness {k} and rest length {l0}"),
+    "load damper": ("amortisseur entre {A} et {B}, de coefficient {c}",
+                    "damper between {A} and {B}, of coefficient {c}"),
+    "load potential": ("énergie potentielle {U}", "potential energy {U}"),
+    "load dissipation": ("fonction de dissipation {D}", "dissipation function {D}"),
+    "load joint damper": ("frottement visqueux entre ({S1}) et ({S2}), de coefficient {c}",
+                          "viscous friction between ({S1}) and ({S2}), of coefficient {c}"),
+    "load coulomb": ("frottement de Coulomb en {P}, de coefficient {f}",
+                     "Coulomb friction at {P}, of coefficient {f}"),
+    "load generalized": ("composantes généralisées données {Q}", "given generalized forces {Q}"),
+    "constraints given": ("Liaisons :", "Constraints:"),
+    "constraint item": ("{label} : {equation}", "{label}: {equation}"),
+    "quoted": ("« {name} »", "“{name}”"),
     "body item": ("le solide ({S}) : masse {m}, centre d'inertie {G}, {OG}",
                   "the rigid body ({S}): mass {m}, centre of mass {G}, {OG}"),
     "body item no mass": ("le solide ({S}) : masse non donnée (son centre d'inertie {G} est fixe : elle n'entre pas "
@@ -208,8 +234,11 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "virtual field": ("Le champ de vitesses virtuelles compatible avec les liaisons principales est {field} ; aux "
                       "points où s'appliquent les efforts donnés :", "The virtual velocity field compatible with "
                       "the principal constraints is {field}; at the points where the applied forces act:"),
-    "virtual rotation": ("Vecteur rotation virtuel des solides qui portent des couples :",
-                         "Virtual angular velocity of the bodies that bear couples:"),
+    "virtual torsor": ("Le champ des vitesses virtuelles de chaque solide (S) est un torseur, le torseur cinématique "
+                       "virtuel, donné par ses éléments de réduction en un point A de (S), tel que {field} :",
+                       "The virtual velocity field of each rigid body (S) is a screw (the virtual kinematic screw, or "
+                       "twist), given by its reduction elements at a point A of (S), such that {field}:"),
+    "virtual torsor short": ("Torseurs cinématiques virtuels", "Virtual kinematic screws"),
     # -- step 4 -----------------------------------------------------------------------------------
     "energies": ("Les énergies cinétique et potentielle compatibles de (Σ) par rapport à {R} sont :",
                  "The kinetic and potential energies of (Σ) relative to {R} are:"),
