@@ -13,7 +13,9 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import BinaryIO
 
-__all__ = ["write_atomic", "write_atomic_with", "check_writable"]
+from .errors import OutputError
+
+__all__ = ["write_atomic", "write_atomic_with", "check_writable", "check_destination"]
 
 
 def _umask() -> int:
@@ -63,3 +65,24 @@ def check_writable(path: str | Path) -> None:
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent or ".")
     os.close(fd)
     os.unlink(tmp)
+
+
+def check_destination(path: str | Path, *, name_fix: str, fix_suffix: str = "") -> None:
+    """Raise `OutputError` unless ``path`` names a file in an existing, writable folder.
+
+    One check for every stage that writes a file the user named (``simulate -o``, the command
+    line's ``-o``), run before the work: ``name_fix`` is the fix when ``path`` is a folder,
+    ``fix_suffix`` ends the other fixes (e.g. "; nothing was run").
+    """
+    path = Path(path)
+    if path.is_dir():
+        raise OutputError(f"`{path}` is a folder, not a file.", fix=name_fix)
+    folder = path.parent
+    if not folder.is_dir():
+        raise OutputError(f"Cannot write `{path}`: the folder `{folder}` does not exist.",
+                          fix="create the folder first, or write elsewhere" + fix_suffix)
+    try:
+        check_writable(path)
+    except OSError as exc:
+        raise OutputError(f"Cannot write `{path}`: the folder `{folder}` is not writable ({exc.strerror or exc}).",
+                          fix="write elsewhere, or make the folder writable; nothing was run") from None

@@ -6,7 +6,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import BinaryIO
 
-from .._atomic import check_writable, write_atomic, write_atomic_with
+from .._atomic import check_destination, write_atomic, write_atomic_with
 from ..errors import OutputError
 
 __all__ = ["write_atomic", "write_atomic_with", "write_output", "check_output"]
@@ -26,15 +26,4 @@ def write_output(path: str | Path, data: str | bytes | Callable[[BinaryIO], None
 
 def check_output(path: str | Path) -> None:
     """Before a command runs: ``-o FILE`` must name a file in an existing, writable folder (`OutputError`)."""
-    path = Path(path)
-    if path.is_dir():
-        raise OutputError(f"`{path}` is a folder, not a file.", fix="give a file name after -o")
-    folder = path.parent
-    if not folder.is_dir():
-        raise OutputError(f"Cannot write `{path}`: the folder `{folder}` does not exist.",
-                          fix="create the folder first, or write elsewhere; nothing was run")
-    try:
-        check_writable(path)
-    except OSError as exc:
-        raise OutputError(f"Cannot write `{path}`: the folder `{folder}` is not writable ({exc.strerror or exc}).",
-                          fix="write elsewhere, or make the folder writable; nothing was run") from None
+    check_destination(path, name_fix="give a file name after -o", fix_suffix="; nothing was run")

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .._atomic import check_writable, write_atomic_with
+from .._atomic import check_destination, write_atomic_with
 from ..errors import OutputError
 from ._trajectory import Trajectory
 
@@ -51,17 +51,7 @@ def check_output_path(path: str | Path) -> Path:
     if path.suffix.lower() not in FORMATS:
         raise OutputError(f"Cannot tell the format of `{path}` from its suffix `{path.suffix}`.",
                           fix="name the output file `.csv` (a table) or `.npz` (NumPy arrays)")
-    if path.is_dir():
-        raise OutputError(f"`{path}` is a folder, not a file.", fix="give a file name, e.g. traj.csv")
-    folder = path.parent
-    if not folder.is_dir():
-        raise OutputError(f"Cannot write `{path}`: the folder `{folder}` does not exist.",
-                          fix="create the folder first, or write elsewhere")
-    try:
-        check_writable(path)
-    except OSError as exc:
-        raise OutputError(f"Cannot write `{path}`: the folder `{folder}` is not writable ({exc.strerror or exc}).",
-                          fix="write elsewhere, or make the folder writable; nothing was run") from None
+    check_destination(path, name_fix="give a file name, e.g. traj.csv")
     return path
 
 
