@@ -206,3 +206,29 @@ def test_the_numeric_search_fills_in_what_the_closed_form_missed(monkeypatch) ->
     monkeypatch.setattr(module, "closed_form", lambda *args: [{"theta": sympy.Integer(0)}])
     found = lagrangian.equilibria(derive("simple_pendulum"))
     assert [(e.closed_form, round(e.numeric["theta"], 9)) for e in found] == [(True, 0.0), (False, round(math.pi, 9))]
+
+
+# -- dry friction: a rest holds while the friction it needs stays in the cone -------------------
+# Block on an incline of angle α with exact Coulomb friction (examples/block_on_incline.toml):
+# at rest the contact sticks and the friction holds m g sin α against N = m g cos α, so every
+# x is an equilibrium if and only if |tan α| ≤ f_s (Coulomb's law of adherence).
+@pytest.mark.parametrize("alpha", [0.2, 0.5, -0.3, -0.45])
+def test_block_on_incline_rests_anywhere_iff_tan_alpha_is_at_most_f_s(alpha: float) -> None:
+    found = lagrangian.equilibria(derive("block_on_incline"), parameters={"alpha": alpha}, all_branches=True)
+    assert len(found) == 1 and found[0].free == ("x",)
+    e = found[0]
+    assert e.exists is (abs(math.tan(alpha)) <= 0.4)
+    assert e.residual == 0.0  # the friction force is the multiplier of sticking, not 0/0
+    sym = {s.name: s for s in e.condition.free_symbols}
+    assert set(sym) == {"alpha", "f_s"}
+    for a in np.linspace(-1.2, 1.2, 13):
+        for fs in (0.1, 0.5, 1.0):
+            assert bool(e.condition.subs({sym["alpha"]: a, sym["f_s"]: fs})) is (abs(math.tan(a)) <= fs)
+
+
+def test_block_on_incline_without_enough_friction_has_no_rest(capsys: pytest.CaptureFixture[str]) -> None:
+    assert lagrangian.equilibria(derive("block_on_incline"), parameters={"alpha": 0.5}) == ()
+    from lagrangian.cli.main import main
+    assert main(["equilibria", str(ROOT / "examples" / "block_on_incline.toml")]) == 0
+    out = capsys.readouterr().out
+    assert "x any" in out and "tan" in out and "nan" not in out

@@ -16,6 +16,13 @@ finds all roots when every parameter has a value; it fills in what the closed fo
 (SymPy's solvers are not complete: ``solve`` alone loses θ = π of the bead) or replaces it
 when SymPy fails.  Roots are deduplicated, angles modulo 2π.
 
+Dry friction (an exact Coulomb contact, ``regularization = 0``): at rest the contact sticks,
+so its law T = −f N v_s/|v_s| (undefined at v_s = 0) is replaced by the sticking constraint
+w = v_s·e = 0 with its own multiplier T, the friction force along e; a rest is an equilibrium
+where the force it needs stays in the friction cone, |T| ≤ f_s N (Coulomb's law of
+adherence).  For a block on an incline of angle α: T = −m g sin α, so every x is an
+equilibrium when |sin α|/cos α = tan α ≤ f_s.
+
 An *angle* is a coordinate in which the static equations are 2π-periodic (checked
 numerically); it ranges over (−π, π] — π rather than −π, as the course writes the upper
 position.  Other coordinates need a range for the numeric search (``ranges={"x": (a, b)}``).
@@ -27,7 +34,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import symengine as se
@@ -36,6 +43,8 @@ from scipy import optimize
 from symengine.lib.symengine_wrapper import sympy2symengine
 
 from ..dynamics import EquationsOfMotion
+from ..dynamics._friction import sliding_direction
+from ..model import CoulombFriction
 from ._effective_potential import AnalysisError
 from ._equilibria_closed_form import SOLVE_TIMEOUT, closed_form, principal
 from ._equilibria_closed_form import condition as branch_condition
@@ -109,6 +118,8 @@ def equilibria(eom: EquationsOfMotion, parameters: Mapping[str, float] | None = 
     if branches is not None:
         for sol in branches:
             eq = _from_closed_form(system, sol, branches, numbers, angles, known)
+            if eq is not None and system.sticking:
+                eq = _within_friction_cone(system, eq, sol, numbers)
             if eq is None or (eq.exists is False and not all_branches):
                 continue
             if eq.numeric is not None and not _in_ranges(eq.numeric, ranges, angles):
@@ -129,6 +140,8 @@ def equilibria(eom: EquationsOfMotion, parameters: Mapping[str, float] | None = 
             if not any(_same(f, root, angles) for f in found):
                 found.append(root)
                 vals = {n: root[n] if n in root else se.Symbol(n) for n in system.names}
+                if system.sticking and not system.holds_by_friction(root, numbers):
+                    continue  # the contacts would need more friction than f_s N: it slides away
                 out.append(Equilibrium(vals, False, numeric=root, residual=res, free=system.free))
     elif not known and branches is None:
         missing = sorted(k for k, v in values.items() if v is None)
@@ -158,7 +171,12 @@ class _StaticSystem:
         self.eom = eom
         self.q = list(eom.q)
         self.names = [str(s) for s in self.q]
-        F = [_se(f).subs(rest) for f in eom.F]
+        F = [_se(f) for f in eom.F]
+        sticking = self._sticking_contacts(eom)
+        for load in eom.loads:
+            if load.name in sticking:  # its sliding law is undefined at rest: replaced by T (below)
+                F = [se.expand(f - q) for f, q in zip(F, load.Q)]
+        F = [f.subs(rest) for f in F]
         for name, f in zip(self.names, F):
             _autonomous(f, t, f"the generalized force on `{name}` at rest")
         for row in eom.M:
@@ -174,6 +192,15 @@ class _StaticSystem:
                 _autonomous(_se(a), t, f"constraint row `{r.name}`")
             if e != 0:
                 extra.append(e)
+        #: Per exact contact: (name, multiplier T, f_s, N); T is the friction force along e.
+        self.sticking: list[tuple[str, se.Symbol, se.Basic, se.Basic]] = []
+        for name, (speed, fs, N) in sticking.items():
+            # Sticking: w = a·q̇ + b = 0, a nonholonomic row whose multiplier is T (seed, Q_i = T ∂w/∂q̇_i).
+            self.A.append([_se(speed.diff(qd)) for qd in eom.qd])
+            T = se.Symbol(f"T_{name}")
+            self.lam.append(T)
+            self.sticking.append((name, T, fs, N))
+
         self.F = F
         self.extra = extra
         #: F + Aᵀλ per coordinate, then the holonomic rows and the rate-free parts b.
@@ -184,6 +211,42 @@ class _StaticSystem:
             used |= e.free_symbols
         self.free = tuple(n for n, s in zip(self.names, self.q) if s not in used)
         self.active = [n for n in self.names if n not in self.free]
+
+    @staticmethod
+    def _sticking_contacts(eom: EquationsOfMotion) -> dict[str, tuple[se.Basic, se.Basic, se.Basic]]:
+        """Exact Coulomb contacts that can stick at rest: name → (sliding speed w = v_s·e, f_s, N).
+
+        A contact whose surface moves (a belt) still slides when the system is at rest, with a
+        friction force that is then well defined: it keeps its sliding law.
+        """
+        out = {}
+        rest = {qd: 0 for qd in eom.qd}
+        for load in eom.model.loads:
+            if isinstance(load, CoulombFriction) and load.exact:
+                if se.expand(_se(sliding_direction(eom.kinematics, load).speed).subs(rest)) != 0:
+                    continue
+                fs = load.static_coefficient if load.static_coefficient is not None else load.coefficient
+                out[load.name] = (sliding_direction(eom.kinematics, load).speed, _se(fs), _se(load.normal_force))
+        return out
+
+    def multipliers_at(self, point: Mapping[str, float], numbers: Mapping[se.Basic, float]) -> np.ndarray:
+        """λ (then the friction forces T) at a rest point, by least squares on F + Aᵀλ = 0."""
+        at = {**numbers, **{s: point.get(n, 0.0) for n, s in zip(self.names, self.q)}}
+        f = np.array([float(e.subs(at)) for e in self.F])
+        At = np.array([[float(a.subs(at)) for a in row] for row in self.A]).T
+        lam, *_ = np.linalg.lstsq(At, -f, rcond=None)
+        return lam
+
+    def holds_by_friction(self, point: Mapping[str, float], numbers: Mapping[se.Basic, float]) -> bool:
+        """|T| ≤ f_s N at every sticking contact (with a relative margin for rounding)."""
+        lam = self.multipliers_at(point, numbers)
+        at = {**numbers, **{s: point.get(n, 0.0) for n, s in zip(self.names, self.q)}}
+        k0 = len(self.lam) - len(self.sticking)
+        for (_, _, fs, N), T in zip(self.sticking, lam[k0:]):
+            b = abs(float((fs * N).subs(at)))
+            if abs(T) > b * (1 + 1e-12) + 1e-300:
+                return False
+        return True
 
     def angles(self, numbers: Mapping[se.Basic, float]) -> set[str]:
         """Coordinates in which every static equation is 2π-periodic (at two random points)."""
@@ -310,6 +373,56 @@ def _from_closed_form(system: _StaticSystem, branch: Mapping[str, sympy.Basic], 
     values = {n: values[n] for n in system.names}
     return Equilibrium(values, True, None if condition == sympy.true else condition,
                        None if condition == sympy.true else sympy.sstr(condition), exists, numeric, residual, free)
+
+
+def _within_friction_cone(system: _StaticSystem, eq: Equilibrium, branch: Mapping[str, sympy.Basic],
+                          numbers: Mapping[se.Basic, float]) -> Equilibrium:
+    """Add |T|/N ≤ f_s, Coulomb's condition of adherence, to a closed-form rest with sticking contacts.
+
+    T comes from F + Aᵀλ = 0 solved for the multipliers at the branch (linear in them); when it
+    is not unique (redundant rows) the rest is checked numerically only.
+    """
+    lam = [sympy.Symbol(str(s), real=True) for s in system.lam]
+    positive = {sympy.Symbol(str(k)): sympy.Symbol(str(k), positive=True) for k, v in numbers.items() if v > 0}
+    plain = {sympy.Symbol(str(s)): s2 for s, s2 in zip(system.lam, lam)}
+    at = {sympy.Symbol(n): v for n, v in branch.items()}
+    eqs = [e._sympy_().xreplace(plain).xreplace(at).xreplace(positive) for e in system.equations]
+    try:
+        sols = sympy.solve([e for e in eqs if e != 0], lam, dict=True)
+    except (NotImplementedError, ValueError):
+        sols = []
+    conds: list[sympy.Basic] = []
+    k0 = len(system.lam) - len(system.sticking)
+    for (_, T, fs, N), sym in zip(system.sticking, lam[k0:]):
+        value = sols[0].get(sym) if len(sols) == 1 else None
+        if value is None or any(s in lam for s in value.free_symbols):
+            conds = []
+            break
+        # Coulomb's adherence |T| ≤ f_s N, written as a teacher does: |T|/N ≤ f_s (tan α ≤ f_s).
+        ratio = sympy.simplify(sympy.Abs(value) / sympy.Abs(N._sympy_().xreplace(positive)))
+        fs_ = fs._sympy_().xreplace(positive)
+        rel = sympy.Le(ratio, fs_)
+        conds.append(rel if rel not in (sympy.true, sympy.false) else rel)
+    if not conds:
+        if eq.numeric is not None and not system.holds_by_friction(eq.numeric, numbers):
+            return replace(eq, exists=False)
+        return eq
+    back = {v: sympy.Symbol(str(k)) for k, v in positive.items()}
+    cond = sympy.And(*[c.xreplace(back) if c not in (sympy.true, sympy.false) else c for c in conds])
+    condition = cond if eq.condition is None else sympy.And(eq.condition, cond)
+    if condition == sympy.true:
+        return eq
+    exists: bool | None = eq.exists
+    if condition == sympy.false:
+        exists = False
+    else:
+        at_num = condition.xreplace({s: numbers[se.Symbol(s.name)] for s in condition.free_symbols
+                                     if se.Symbol(s.name) in numbers})
+        if at_num in (sympy.true, sympy.false):
+            exists = bool(at_num) if exists is not False else False
+        elif exists is True:
+            exists = None
+    return replace(eq, condition=condition, condition_text=sympy.sstr(condition), exists=exists)
 
 
 # -- numeric search -----------------------------------------------------------------------------
