@@ -284,7 +284,10 @@ def nonholonomic_integrals(eom: EquationsOfMotion, known: Sequence[se.Basic] = (
     if not all(are_zero(b)):
         return []  # rheonomic rows: q̇ = C u + d, left aside
     symbols = set().union(*(x.free_symbols for x in A))
-    An = np.array(A.subs(_numbers(symbols | set(kin.q), 5)).tolist(), dtype=float)
+    try:
+        An = np.array(A.subs(_numbers(symbols | set(kin.q), 5)).tolist(), dtype=float)
+    except (RuntimeError, TypeError, ValueError):  # not real at the sample point (asin(φ) at φ > 1): claim nothing
+        return []
     appears = set().union(*(e.free_symbols for row in eom.M for e in row), *(f.free_symbols for f in eom.F))
     order = sorted(range(n), key=lambda i: (kin.q[i] in appears, i))  # dependent: coordinates absent first
     dep = choose(An, m, order)
