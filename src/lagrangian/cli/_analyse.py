@@ -14,7 +14,7 @@ from ..dynamics import EquationsOfMotion, derive
 from ..errors import SimulationError
 from ..numerics import SimulationCheck, simulation_check
 from ..output import Notation
-from ._settings import add_set_option, parse_settings
+from ._settings import add_set_option, number_argument, parse_settings
 from ._source import MODEL_HELP, load_source
 
 __all__ = ["register", "run", "render_analysis", "render_check"]
@@ -34,7 +34,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "sleeping-top criterion and the steady precession rates, with the model's values.")
     p.add_argument("model", nargs="?", help=MODEL_HELP)
     add_set_option(p)
-    p.add_argument("--simulate", metavar="PERIODS", type=float, nargs="?", const=3.0,
+    p.add_argument("--simulate", metavar="PERIODS", type=number_argument, nargs="?", const=3.0,
                    help="check θ1, θ2, the nutation period and the mean precession against a simulation over "
                         "PERIODS nutation periods (default 3), the turning points located as events θ̇ = 0")
     p.add_argument("-o", "--output", metavar="FILE", help="write to FILE (atomically) instead of standard output")

@@ -21,7 +21,7 @@ from ..output import Notation
 from ..output._course import to_sympy
 from ._modes import _check_plot_folder as check_plot_folder
 from ._modes import parse_sweep
-from ._settings import SettingError, add_set_option, parse_settings
+from ._settings import SettingError, add_set_option, parse_settings, plain_number
 from ._source import MODEL_HELP, load_source
 
 __all__ = ["register", "run", "parse_ranges", "SCHEMA"]
@@ -69,7 +69,7 @@ def parse_ranges(values: list[str], coordinates: tuple[str, ...]) -> dict[str, t
             raise SettingError(f"--range {text}: `{name}` is not a coordinate",
                                fix="coordinates: " + ", ".join(coordinates))
         try:
-            lo, hi = float(a), float(b)
+            lo, hi = plain_number(a), plain_number(b)
         except ValueError:
             raise SettingError(f"--range {text}: the bounds must be numbers", fix="e.g. --range x=-1:1") from None
         if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):

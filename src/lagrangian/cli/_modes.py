@@ -23,7 +23,7 @@ from ..model.spec import Model
 from ..output import linearize_document
 from ._linear_text import render_modes, render_sweep
 from ._point import add_parameter_option, add_point_options, linearize_from_args
-from ._settings import SettingError
+from ._settings import SettingError, plain_number
 from ._source import MODEL_HELP, load_source
 
 __all__ = ["register", "run", "parse_sweep", "SWEEP_MAX"]
@@ -86,7 +86,7 @@ def parse_sweep(text: str, model: Model) -> tuple[str, np.ndarray]:
         raise SettingError(f"`--sweep {text}`: `{name}` is {what} of `{model.name}`; a sweep follows a parameter.",
                            fix="the parameters are " + (", ".join(params) or "(none)"))
     try:
-        a, b, step = (float(x) for x in parts)
+        a, b, step = (plain_number(x) for x in parts)
     except ValueError:
         raise SettingError(f"`--sweep {text}`: a, b and step must be plain decimal numbers.",
                            fix="write e.g. `--sweep v=0:10:0.01`") from None

@@ -24,7 +24,7 @@ from ..errors import OutputError, SimulationError
 from ..model import Model
 from ..output import format_for, report
 from ._point import add_point_options, full_point
-from ._settings import SettingError, add_set_option, parse_settings
+from ._settings import SettingError, add_set_option, number_argument, parse_settings
 from ._source import MODEL_HELP, load_source
 
 __all__ = ["register", "run", "VERIFY_AUTO_MAX"]
@@ -49,12 +49,6 @@ def _with_settings(model: Model, settings: list[str]) -> tuple[Model, dict[str, 
     return dataclasses.replace(model, parameters=params, coordinates=coords), parameters, initial
 
 
-def _float(text: str) -> float:
-    try:
-        return float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"`{text}` is not a number") from None
-
 
 def register(sub: argparse._SubParsersAction) -> None:
     r = sub.add_parser(
@@ -73,7 +67,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "pdflatex or lualatex and needs -o")
     r.add_argument("--verify", action=argparse.BooleanOptionalAction, default=None,
                    help=f"include the Newton-Euler cross-check (default: up to {VERIFY_AUTO_MAX} coordinates)")
-    r.add_argument("--simulate", type=_float, metavar="T_END", default=None,
+    r.add_argument("--simulate", type=number_argument, metavar="T_END", default=None,
                    help="add the figures of a motion simulated from the model's initial state to T_END")
     add_set_option(r)
     r.add_argument("--small-motions", action="store_true",

@@ -34,6 +34,21 @@ def plain_number(text: str) -> float:
     return float(text)
 
 
+def number_argument(text: str) -> float:
+    """An argparse ``type`` for a numeric option (``--t-end 10``): a plain, finite decimal number.
+
+    ``float`` alone would take ``1_0``, ``٣``, ``nan`` and ``inf``; the error names the text and
+    the form expected, as argparse prints it (``argument --t-end: …``).
+    """
+    try:
+        value = plain_number(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"`{text}` is not a plain decimal number (e.g. 10, -0.5, 1e-3)") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"`{text}` is too large for a double; give a finite number")
+    return value
+
+
 def add_set_option(parser: argparse.ArgumentParser) -> None:
     """Add the repeatable ``--set NAME=VALUE`` option (stored in ``args.set`` as a list of strings)."""
     parser.add_argument(

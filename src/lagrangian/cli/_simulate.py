@@ -17,21 +17,13 @@ from ..dynamics import derive
 from ..errors import Interrupted, OutputError, SimulationError
 from ..numerics import METHODS, STABILIZATIONS, EventSpec, check_output_path, compile_system, save_trajectory, \
     simulate
-from ._settings import add_set_option, parse_settings
+from ._settings import add_set_option, number_argument, parse_settings
 from ._source import MODEL_HELP, load_source
 
 __all__ = ["register"]
 
 SUMMARY = "simulate a model from its initial state; report the drift of every first integral\n" \
           "(CSV or NPZ output, plots and an animation with --plot [DIR])"
-
-
-def _float(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"`{text}` is not a number") from None
-    return value
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -42,14 +34,14 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "integrals, T, U) goes to --out, or as CSV to standard output.",
     )
     s.add_argument("model", nargs="?", help=MODEL_HELP)
-    s.add_argument("--t-end", type=_float, default=10.0, metavar="T", help="end time (default 10)")
-    s.add_argument("--t-start", type=_float, default=0.0, metavar="T0", help="start time (default 0)")
+    s.add_argument("--t-end", type=number_argument, default=10.0, metavar="T", help="end time (default 10)")
+    s.add_argument("--t-start", type=number_argument, default=0.0, metavar="T0", help="start time (default 0)")
     add_set_option(s)
     s.add_argument("--method", choices=METHODS, default="dop853",
                    help="dop853 (adaptive, default), gauss-legendre (fixed step, symplectic) or a SciPy method")
-    s.add_argument("--rtol", type=_float, default=1e-10, help="relative tolerance (default 1e-10)")
-    s.add_argument("--atol", type=_float, default=1e-10, help="absolute tolerance (default 1e-10)")
-    s.add_argument("--dt", type=_float, default=None,
+    s.add_argument("--rtol", type=number_argument, default=1e-10, help="relative tolerance (default 1e-10)")
+    s.add_argument("--atol", type=number_argument, default=1e-10, help="absolute tolerance (default 1e-10)")
+    s.add_argument("--dt", type=number_argument, default=None,
                    help="fixed step (gauss-legendre: default 1/10 of the output spacing, halved while too long for "
                         "the motion; rounded down to divide the spacing when smaller, used as given when larger; "
                         "dop853: fixed steps)")
@@ -59,7 +51,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="record the times where EXPR crosses zero, e.g. --event theta_dot (repeatable)")
     s.add_argument("--stop-when", action="append", default=[], metavar="EXPR",
                    help="stop at the first zero crossing of EXPR, e.g. --stop-when 'theta - 1.2'")
-    s.add_argument("--tolerance", type=_float, default=None, metavar="TOL",
+    s.add_argument("--tolerance", type=number_argument, default=None, metavar="TOL",
                    help="warn when a first integral drifts by more than TOL (relative, > 0; default "
                         "min(1e3 rtol, 1e-6), 1e-6 for gauss-legendre)")
     s.add_argument("--stabilization", choices=STABILIZATIONS, default=None,

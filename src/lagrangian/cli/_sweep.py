@@ -22,8 +22,7 @@ from ..dynamics import derive
 from ..errors import OutputError
 from ..numerics import EventSpec, compile_system, ensemble, flip_events, grid
 from ..numerics._ensemble import connect_scheduler
-from ._settings import SettingError, add_set_option, parse_settings, plain_number
-from ._simulate import _float
+from ._settings import SettingError, add_set_option, number_argument, parse_settings, plain_number
 from ._source import MODEL_HELP, load_source
 
 __all__ = ["register", "parse_grid"]
@@ -95,13 +94,13 @@ def register(sub: argparse._SubParsersAction) -> None:
     s.add_argument("model", nargs="?", help=MODEL_HELP)
     s.add_argument("--grid", action="append", default=[], metavar="NAME=START:STOP:COUNT",
                    help="a grid axis over a coordinate (theta1), a rate (theta1_dot) or a parameter (g); repeatable")
-    s.add_argument("--t-end", type=_float, default=10.0, metavar="T", help="end time (default 10)")
-    s.add_argument("--t-start", type=_float, default=0.0, metavar="T0", help="start time (default 0)")
+    s.add_argument("--t-end", type=number_argument, default=10.0, metavar="T", help="end time (default 10)")
+    s.add_argument("--t-start", type=number_argument, default=0.0, metavar="T0", help="start time (default 0)")
     add_set_option(s)
     s.add_argument("--method", choices=("dop853", "gauss-legendre"), default="dop853")
-    s.add_argument("--rtol", type=_float, default=1e-10, help="relative tolerance (default 1e-10)")
-    s.add_argument("--atol", type=_float, default=1e-10, help="absolute tolerance (default 1e-10)")
-    s.add_argument("--dt", type=_float, default=None, help="fixed step (gauss-legendre)")
+    s.add_argument("--rtol", type=number_argument, default=1e-10, help="relative tolerance (default 1e-10)")
+    s.add_argument("--atol", type=number_argument, default=1e-10, help="absolute tolerance (default 1e-10)")
+    s.add_argument("--dt", type=number_argument, default=None, help="fixed step (gauss-legendre)")
     s.add_argument("--n-out", type=int, default=101, metavar="N",
                    help="output times the summaries are taken over (default 101)")
     s.add_argument("--event", action="append", default=[], metavar="EXPR",

@@ -20,7 +20,7 @@ from ..errors import ModelError, VerificationError
 from ..model import Torque, Vector
 from ..output import Notation
 from ..output._course import reference_label, to_sympy
-from ._settings import SettingError, add_set_option, parse_settings
+from ._settings import SettingError, add_set_option, number_argument, parse_settings
 from ._source import MODEL_HELP, load_source
 
 __all__ = ["register", "run", "TOLERANCE"]
@@ -35,12 +35,6 @@ TOLERANCE = 1e-9
 MAX_PRINTED = 1500
 
 
-def _float(text: str) -> float:
-    try:
-        return float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"`{text}` is not a number") from None
-
 
 def register(sub: argparse._SubParsersAction) -> None:
     v = sub.add_parser(
@@ -51,7 +45,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "--simulate, also evaluate the theorems along a simulated motion.",
     )
     v.add_argument("model", nargs="?", help=MODEL_HELP)
-    v.add_argument("--simulate", type=_float, metavar="T_END", default=None,
+    v.add_argument("--simulate", type=number_argument, metavar="T_END", default=None,
                    help="also check along a motion simulated from t = 0 to T_END (--set changes its values)")
     add_set_option(v)
     v.add_argument("--n-out", type=int, default=201, metavar="N", help="states checked with --simulate (default 201)")
