@@ -7,9 +7,14 @@ domains and numeric evaluation of engine expressions.
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import itertools
 import re
+import signal
+import subprocess
+import threading
+import time
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -176,3 +181,69 @@ def other_orders(n: int) -> list[tuple[int, ...]]:
     orders += [tuple((k + s) % n for k in range(n)) for s in range(1, n)]
     orders += [tuple(range(1, n, 2)) + tuple(range(0, n, 2)), tuple(range(0, n, 2))[::-1] + tuple(range(1, n, 2))]
     return list(dict.fromkeys(o for o in orders if o != tuple(range(n))))
+
+
+def wall_spring(initial: float) -> str:
+    """A particle P on a spring fixed to a wall at x = −L (ω = √(k/m) = √2), with L declared positive and
+    x ranging over [−0.5, 0.5]: the model of the sign-assumption and coordinate-range tests."""
+    return f"""
+[parameters]
+m = 1.0
+k = 2.0
+L = {{ value = 1.0, positive = true }}
+[coordinates]
+x = {{ initial = {initial}, rate = 0.0, range = [-0.5, 0.5] }}
+[points]
+W = "-L*R0.x"
+[particles.P]
+mass = "m"
+position = "x*R0.x"
+[loads]
+spring = {{ spring = ["W", "P"], stiffness = "k", rest_length = "L" }}
+"""
+
+
+@dataclasses.dataclass
+class Interrupted:
+    """What `interrupt_when_started` saw: the finished process, seconds from SIGINT to its exit,
+    and seconds from SIGINT to the first ``said`` bytes on its standard error (None if never)."""
+
+    process: subprocess.CompletedProcess
+    stopped: float
+    said: float | None
+
+
+def interrupt_when_started(command: Sequence[str], env: dict[str, str], ready: bytes, *, delay: float = 1.0,
+                           said: bytes = b"interrupted") -> Interrupted:
+    """Run ``command``, send SIGINT ``delay`` s after ``ready`` first shows on its standard error
+    (a progress bar: the compiled loop is running), and wait for it to exit (Ctrl-C tests, issue 15)."""
+    proc = subprocess.Popen(list(command), stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
+    chunks: list[bytes] = []
+    started = threading.Event()
+    heard: list[float] = []
+
+    def read() -> None:
+        for chunk in iter(lambda: proc.stderr.read1(4096), b""):
+            chunks.append(chunk)
+            if ready in chunk:
+                started.set()
+            if said in chunk and not heard:
+                heard.append(time.monotonic())
+
+    reader = threading.Thread(target=read, daemon=True)
+    reader.start()
+    try:
+        assert started.wait(240), b"".join(chunks).decode()
+        time.sleep(delay)
+        sent = time.monotonic()
+        proc.send_signal(signal.SIGINT)
+        proc.wait(timeout=30)
+        stopped = time.monotonic() - sent
+    finally:
+        proc.kill()
+        proc.wait()
+    reader.join(5)
+    stdout = proc.stdout.read().decode()
+    stderr = b"".join(chunks).decode()
+    return Interrupted(subprocess.CompletedProcess(list(command), proc.returncode, stdout, stderr), stopped,
+                       heard[0] - sent if heard else None)

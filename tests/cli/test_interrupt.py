@@ -7,17 +7,15 @@ so far in the file, its header saying "interrupted ... (partial)".
 
 import json
 import os
-import signal
 import subprocess
 import sys
-import threading
-import time
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from lagrangian.numerics import _compile
+from lagrangian_test_support import interrupt_when_started
 
 SRC = str(Path(_compile.__file__).resolve().parents[2])
 
@@ -27,32 +25,8 @@ def interrupt(tmp_path: Path, *argv: str) -> tuple[subprocess.CompletedProcess, 
     env = {**os.environ, "PYTHONPATH": SRC, "LAGRANGIAN_CACHE": str(tmp_path / "cache")}
     command = [sys.executable, "-m", "lagrangian.cli.main", "simulate", "zoo:planar_chain:2", "--t-end", "1e6",
                "--progress", *argv]
-    proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
-    chunks: list[bytes] = []
-    started = threading.Event()
-
-    def read() -> None:  # the progress bar ("[##...") appears once the C loop runs
-        for chunk in iter(lambda: proc.stderr.read1(4096), b""):
-            chunks.append(chunk)
-            if b"[" in chunk:
-                started.set()
-
-    reader = threading.Thread(target=read, daemon=True)
-    reader.start()
-    try:
-        assert started.wait(240), b"".join(chunks).decode()
-        time.sleep(1.0)
-        sent = time.monotonic()
-        proc.send_signal(signal.SIGINT)
-        proc.wait(timeout=30)
-        stopped = time.monotonic() - sent
-    finally:
-        proc.kill()
-        proc.wait()
-    reader.join(5)
-    stdout = proc.stdout.read().decode()
-    stderr = b"".join(chunks).decode()
-    return subprocess.CompletedProcess(command, proc.returncode, stdout, stderr), stopped
+    seen = interrupt_when_started(command, env, b"[")  # the progress bar: the C loop runs
+    return seen.process, seen.stopped
 
 
 def last_line(stderr: str) -> str:

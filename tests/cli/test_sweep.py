@@ -1,11 +1,8 @@
 """``lagrangian sweep`` (issue 14, items 3 and 6): grids, maps, Ctrl-C and --resume."""
 
 import os
-import signal
 import subprocess
 import sys
-import threading
-import time
 from pathlib import Path
 
 import numpy as np
@@ -19,6 +16,7 @@ from lagrangian.cli._settings import SettingError  # noqa: E402
 from lagrangian.cli._sweep import parse_grid  # noqa: E402
 from lagrangian.cli.main import main  # noqa: E402
 from lagrangian.numerics import _compile, flip_events, open_ensemble, simulate  # noqa: E402
+from lagrangian_test_support import interrupt_when_started  # noqa: E402
 
 SRC = str(Path(_compile.__file__).resolve().parents[2])
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
@@ -69,36 +67,11 @@ def test_ctrl_c_keeps_finished_members_and_resume_finishes(tmp_path):
     out = tmp_path / "tops.zarr"
     args = [sys.executable, "-m", "lagrangian.cli.main", "sweep", "zoo:lagrange_top", "--grid",
             "phi_dot=30:80:1500", "--t-end", "10", "--n-out", "11", "--out", str(out), "--workers", "2"]
-    proc = subprocess.Popen(args + ["--progress"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
-    chunks: list[bytes] = []
-    started = threading.Event()
-    said: list[float] = []
-
-    def read() -> None:
-        for chunk in iter(lambda: proc.stderr.read1(4096), b""):
-            chunks.append(chunk)
-            if b"members" in chunk:
-                started.set()
-            if b"interrupted" in chunk and not said:
-                said.append(time.monotonic())
-
-    reader = threading.Thread(target=read, daemon=True)
-    reader.start()
-    try:
-        assert started.wait(240), b"".join(chunks).decode()
-        time.sleep(0.2)
-        sent = time.monotonic()
-        proc.send_signal(signal.SIGINT)
-        proc.wait(timeout=30)
-        stopped = time.monotonic() - sent
-    finally:
-        proc.kill()
-        proc.wait()
-    reader.join(5)
-    stderr = b"".join(chunks).decode()
-    assert proc.returncode == 130, stderr
-    assert said and said[0] - sent < 1.0, "the one-line message comes within a second"
-    assert stopped < 3.0 and "Traceback" not in stderr
+    seen = interrupt_when_started(args + ["--progress"], env, b"members", delay=0.2)
+    stderr = seen.process.stderr
+    assert seen.process.returncode == 130, stderr
+    assert seen.said is not None and seen.said < 1.0, "the one-line message comes within a second"
+    assert seen.stopped < 3.0 and "Traceback" not in stderr
     last = stderr.replace("\r", "\n").strip().splitlines()[-1]
     assert last.startswith("lagrangian: interrupted after ") and "finish with --resume" in last, last
     partial = xr.open_zarr(out)  # the store opens, and says which members are done

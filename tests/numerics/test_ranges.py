@@ -14,22 +14,9 @@ import pytest
 import lagrangian
 from lagrangian import ModelError
 from lagrangian.numerics._files import save_trajectory
+from lagrangian_test_support import wall_spring
 
-SPRING = """
-[parameters]
-m = 1.0
-k = 2.0
-L = { value = 1.0, positive = true }
-[coordinates]
-x = { initial = 0.4, rate = 0.0, range = [-0.5, 0.5] }
-[points]
-W = "-L*R0.x"
-[particles.P]
-mass = "m"
-position = "x*R0.x"
-[loads]
-spring = { spring = ["W", "P"], stiffness = "k", rest_length = "L" }
-"""
+SPRING = wall_spring(0.4)
 
 
 @pytest.fixture(scope="module")

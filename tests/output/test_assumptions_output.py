@@ -8,25 +8,12 @@ from pathlib import Path
 import jsonschema
 
 from lagrangian.cli.main import main
+from lagrangian_test_support import wall_spring
 
 ROOT = Path(__file__).resolve().parents[2]
 SCHEMA = json.loads((ROOT / "src/lagrangian/output/derive.schema.json").read_text())
 
-SPRING = """
-[parameters]
-m = 1.0
-k = 2.0
-L = { value = 1.0, positive = true }
-[coordinates]
-x = { initial = 0.1, rate = 0.0, range = [-0.5, 0.5] }
-[points]
-W = "-L*R0.x"
-[particles.P]
-mass = "m"
-position = "x*R0.x"
-[loads]
-spring = { spring = ["W", "P"], stiffness = "k", rest_length = "L" }
-"""
+SPRING = wall_spring(0.1)
 
 
 def test_json_and_text_say_what_was_assumed_and_used(capsys, tmp_path) -> None:
