@@ -19,7 +19,11 @@ of M q̈ = F + Aᵀλ for q̈ and λ; its M and F are the in-package library's f
 (`numerics._codegen.mass_forces_form`: each body's bias shared, parameter-only coefficients
 computed once per parameter set).
 
-What is not exported: the other targets refuse a model with complementary constraints (their
+The NumPy and JAX modules also carry the complementary rows (``constraint_rows``) and solve the
+augmented system [M −Aᵀ; A 0] [q̈; λ] = [F; −c − 2α g − β² f] (``rhs_multipliers``; ``rhs``
+is it with α = β = 0).
+
+What is not exported: the Octave target refuses a model with complementary constraints (its
 ``rhs`` solves M q̈ = F only and would silently drop the multipliers), and every target
 refuses a model with an exact Coulomb contact (stick/slip needs the event machinery of
 `lagrangian.simulate`): an `ExportError` names the fix.
@@ -77,10 +81,11 @@ class ExportedSymbols:
     y: tuple[se.Symbol, ...]
     p: tuple[se.Symbol, ...]
     t: se.Symbol
-    # The C target's extras (empty for the others): the first integrals (name, expression),
-    # the complementary rows, and M, F in the in-package form, all over the private symbols.
-    integrals: tuple[tuple[str, se.Basic], ...] = ()
+    # The complementary rows (every target that exports them), then the C target's extras (empty
+    # for the others): the first integrals (name, expression) and M, F in the in-package form, all
+    # over the private symbols.
     rows: tuple[ExportedRow, ...] = ()
+    integrals: tuple[tuple[str, se.Basic], ...] = ()
     fast: MassForcesForm | None = None
 
     @property
@@ -134,12 +139,12 @@ def model_identifier(name: str) -> str:
 
 def validate_exportable(eom: EquationsOfMotion, target: str = "numpy") -> None:
     """Refuse what the exported ``rhs`` of ``target`` could not express (module docstring)."""
-    if eom.constraints and target != "c":
+    if eom.constraints and target not in ("c", "numpy", "jax"):
         raise ExportError(
             f"`{eom.model.name}` has {len(eom.constraints)} complementary constraint row(s) "
             f"({', '.join(f'`{row.multiplier}`' for row in eom.constraints)}); the `{target}` export's rhs "
             "would drop their multipliers, so neither M and F nor rhs is exported.",
-            fix="export it with `--to c` (which solves for the multipliers), describe the motion with "
+            fix="export it with `--to c`, `--to numpy` or `--to jax` (which solve for the multipliers), describe the motion with "
                 "independent coordinates (no [constraints]), or simulate it with `lagrangian simulate`")
     exact = [load.name for load in eom.model.loads if isinstance(load, CoulombFriction) and load.exact]
     if exact:
@@ -180,9 +185,9 @@ def exported_symbols(eom: EquationsOfMotion, target: str = "numpy") -> ExportedS
     flat = expand_angle_sums(M + F, list(y[:n]))
     M, F = flat[: n * n], flat[n * n:]
     coords = eom.coordinates
-    extras: dict[str, Any] = {}
+    extras: dict[str, Any] = {"rows": _rows(eom, rename)}
     if target == "c":
-        extras = _c_extras(eom, private, rename)
+        extras.update(_c_extras(eom, private, rename))
     return ExportedSymbols(
         name=_comment_safe(eom.model.name), identifier=model_identifier(eom.model.name), version=_version(),
         coordinates=coords, state=(*coords, *(c + "_dot" for c in coords)), parameters=params,
@@ -192,17 +197,11 @@ def exported_symbols(eom: EquationsOfMotion, target: str = "numpy") -> ExportedS
 
 def _c_extras(eom: EquationsOfMotion, private: dict[se.Basic, se.Basic],
               rename: Callable[[se.Basic, str], se.Basic]) -> dict[str, Any]:
-    """The C target's first integrals, constraint rows and M, F in the in-package form."""
+    """The C target's first integrals and M, F in the in-package form."""
     from ..analysis import first_integrals  # analysis precedes output; imported when exporting C only
 
     integrals = tuple((fi.name, rename(fi.expression, f"the first integral `{fi.name}`"))
                       for fi in first_integrals(eom))
-    rows = tuple(ExportedRow(
-        name=row.name, kind=row.kind, multiplier=str(row.multiplier),
-        A=tuple(rename(a, f"the constraint row `{row.name}`") for a in row.coefficients),
-        b=rename(row.b, f"the constraint row `{row.name}`"), c=rename(row.bias, f"the constraint row `{row.name}`"),
-        f=rename(row.expression, f"the constraint `{row.name}`") if row.kind == "holonomic" else se.Integer(0))
-        for row in eom.constraints)
     form = mass_forces_form(eom)
     # The shared components become `_s<k>`, the hoisted constants keep their `_k<j>` names.
     local = dict(private)
@@ -215,7 +214,17 @@ def _c_extras(eom: EquationsOfMotion, private: dict[se.Basic, se.Basic],
     fast = MassForcesForm(
         shared=tuple((local[sym], own(e)) for sym, e in form.shared), M=tuple(own(e) for e in form.M),
         F=tuple(own(e) for e in form.F), constants=tuple((sym, own(e)) for sym, e in form.constants))
-    return {"integrals": integrals, "rows": rows, "fast": fast}
+    return {"integrals": integrals, "fast": fast}
+
+
+def _rows(eom: EquationsOfMotion, rename: Callable[[se.Basic, str], se.Basic]) -> tuple[ExportedRow, ...]:
+    """The complementary constraint rows over the private symbols."""
+    return tuple(ExportedRow(
+        name=row.name, kind=row.kind, multiplier=str(row.multiplier),
+        A=tuple(rename(a, f"the constraint row `{row.name}`") for a in row.coefficients),
+        b=rename(row.b, f"the constraint row `{row.name}`"), c=rename(row.bias, f"the constraint row `{row.name}`"),
+        f=rename(row.expression, f"the constraint `{row.name}`") if row.kind == "holonomic" else se.Integer(0))
+        for row in eom.constraints)
 
 
 def _numpy_files(symbols: ExportedSymbols) -> dict[str, str]:
@@ -313,7 +322,8 @@ def export(eom: EquationsOfMotion, target: str, directory: str | os.PathLike[str
     ----------
     eom : the equations of motion (`lagrangian.derive`).
     target : ``"numpy"`` (one module, NumPy only: ``PARAMETERS``, ``STATE``, ``mass_matrix``,
-        ``forcing``, ``rhs`` batched over leading axes) or ``"c"`` (``<name>.h`` and ``<name>.c``,
+        ``forcing``, ``rhs`` batched over leading axes and, with constraints, ``CONSTRAINTS``,
+        ``constraint_rows`` and ``rhs_multipliers``) or ``"c"`` (``<name>.h`` and ``<name>.c``,
         libm only: ``<name>_rhs``, ``_rhs_k``, ``_constants``, ``_mass_matrix``, ``_forcing``,
         ``_first_integrals``, ``_constraint_rows`` and, with constraints, ``_rhs_multipliers``) or ``"jax"`` (the NumPy
         module's interface in ``jax.numpy``, jit-able and vmap-able) or ``"octave"`` (``.m`` function
@@ -328,7 +338,7 @@ def export(eom: EquationsOfMotion, target: str, directory: str | os.PathLike[str
     Raises
     ------
     ExportError
-        An unknown ``target``; a model with complementary constraints (except for ``"c"``) or an
+        An unknown ``target``; a model with complementary constraints (for ``"octave"``) or an
         exact Coulomb contact (what is not exported is named); a symbol that is not a coordinate, rate,
         parameter nor t.  Nothing is written.
     OutputError

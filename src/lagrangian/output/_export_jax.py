@@ -14,7 +14,7 @@ from __future__ import annotations
 from sympy.printing.numpy import JaxPrinter
 
 from ._export import ExportedSymbols
-from ._export_numpy import module_header, python_function
+from ._export_numpy import constrained_functions, module_header, python_function
 
 __all__ = ["jax_module"]
 
@@ -47,6 +47,8 @@ def jax_module(symbols: ExportedSymbols) -> str:
          "    p = parameter_array(p)",
          f"    shape = {XP}.broadcast_shapes(q.shape[:-1], qd.shape[:-1], p.shape[:-1], {XP}.shape(t))"],
         [f"_o{k}" for k in range(n)], symbols.F, symbols, _stacked("F", n, f"({n},)"), printer)
+    if symbols.rows:
+        return header + "\n" + mass + "\n\n" + forcing + "\n\n" + constrained_functions(symbols, XP, printer)
     rhs = f'''def rhs(t, y, p=None):
     """y' = (q', q'') with q'' solved from M q'' = F; y of shape (2n,) or (N, 2n), batched solve."""
     y = {XP}.asarray(y, dtype=float)

@@ -5,6 +5,16 @@ are printed by SymPy's ``NumPyPrinter`` after converting the SymEngine objects w
 ``_sympy_()`` (no text is ever parsed).  Every function works elementwise on the leading
 axes of its arguments, so a batch of N states is one call: q̈ solves M q̈ = F with
 ``numpy.linalg.solve`` on the stacked (N, n, n) matrices.
+
+With complementary constraints (seed, step 7: M q̈ = F + Aᵀλ with the rows A q̇ + b = 0,
+A q̈ + c = 0), the module also has ``CONSTRAINTS``, ``constraint_rows`` and
+``rhs_multipliers``, which solves the augmented system
+
+    [M  −Aᵀ] [q̈]   [F                  ]
+    [A   0 ] [λ ] = [−c − 2α g − β² f   ],   g = A q̇ + b,  f the holonomic residual,
+
+(Baumgarte's stabilisation with α, β; the rows held exactly at α = β = 0), and ``rhs`` is
+its first half at α = β = 0.  The same text serves the JAX module (`_export_jax`).
 """
 
 from __future__ import annotations
@@ -17,7 +27,7 @@ from sympy.printing.numpy import NumPyPrinter
 
 from ._export import ExportedSymbols, cse_lines
 
-__all__ = ["numpy_module", "python_function", "module_header"]
+__all__ = ["numpy_module", "python_function", "module_header", "constrained_functions"]
 
 
 def _assignments(targets: Sequence[str], exprs: Sequence[se.Basic], local: str, printer: NumPyPrinter) -> list[str]:
@@ -115,6 +125,8 @@ def numpy_module(symbols: ExportedSymbols) -> str:
          "    shape = numpy.broadcast_shapes(q.shape[:-1], qd.shape[:-1], p.shape[:-1], numpy.shape(t))",
          f"    F = numpy.empty(shape + ({n},))"],
         [f"F[..., {i}]" for i in range(n)], symbols.F, symbols, ["    return F"])
+    if symbols.rows:
+        return header + "\n" + mass + "\n\n" + forcing + "\n\n" + constrained_functions(symbols, "numpy", None)
     rhs = f'''def rhs(t, y, p=None):
     """y' = (q', q'') with q'' solved from M q'' = F; y of shape (2n,) or (N, 2n), batched solve."""
     y = numpy.asarray(y, dtype=float)
@@ -126,3 +138,61 @@ def numpy_module(symbols: ExportedSymbols) -> str:
     return numpy.concatenate([numpy.broadcast_to(qd, qdd.shape), qdd], axis=-1)
 '''
     return header + "\n" + mass + "\n\n" + forcing + "\n\n" + rhs
+
+
+def constrained_functions(symbols: ExportedSymbols, xp: str, printer: NumPyPrinter | None) -> str:
+    """``CONSTRAINTS``, ``constraint_rows``, ``rhs_multipliers`` and ``rhs`` of a model with complementary
+    rows, in the array module ``xp`` (``numpy`` or ``jax.numpy``: no item assignment, so that JAX can trace it)."""
+    n, m = symbols.n, len(symbols.rows)
+    rows = symbols.rows
+    names = tuple((r.name, r.kind, r.multiplier) for r in rows)
+    exprs = [a for r in rows for a in r.A] + [r.b for r in rows] + [r.c for r in rows] + [r.f for r in rows]
+    count = len(exprs)
+
+    def stacked(name: str, first: int, size: int, tail: str) -> str:
+        items = ", ".join(f"{xp}.broadcast_to(_o{k}, shape)" for k in range(first, first + size))
+        return f"    {name} = {xp}.stack([{items}], axis=-1).reshape(shape + {tail}).astype(q.dtype)"
+
+    rows_fn = python_function(
+        "def constraint_rows(t, q, qd, p=None):",
+        "(A, b, c, f) of the complementary rows, shapes (..., m, n) and (..., m): A q' + b = 0 along a motion, "
+        "A q'' + c = 0, f(q, t) = 0 for a holonomic row (f = 0 for a nonholonomic one).",
+        [f"    q = {xp}.asarray(q, dtype=float)", f"    qd = {xp}.asarray(qd, dtype=float)",
+         "    p = parameter_array(p)",
+         f"    shape = {xp}.broadcast_shapes(q.shape[:-1], qd.shape[:-1], p.shape[:-1], {xp}.shape(t))"],
+        [f"_o{k}" for k in range(count)], exprs, symbols,
+        [stacked("A", 0, m * n, f"({m}, {n})"), stacked("b", m * n, m, f"({m},)"),
+         stacked("c", m * n + m, m, f"({m},)"), stacked("f", m * n + 2 * m, m, f"({m},)"),
+         "    return A, b, c, f"], printer)
+    return f'''#: The complementary constraint rows (name, kind, multiplier), in the order of A's rows and of lam.
+CONSTRAINTS = {names!r}
+
+
+{rows_fn}
+
+def rhs_multipliers(t, y, p=None, alpha=0.0, beta=0.0):
+    """(y', lam): [M -A^T; A 0] [q''; lam] = [F; -c - 2 alpha g - beta^2 f] with g = A q' + b, so that
+    M q'' = F + A^T lam; alpha = beta = 0 holds the rows exactly, alpha, beta > 0 is Baumgarte's
+    stabilisation. y of shape (2n,) or (N, 2n); lam of shape (..., m), in CONSTRAINTS order."""
+    y = {xp}.asarray(y, dtype=float)
+    p = parameter_array(p)
+    q, qd = y[..., :{n}], y[..., {n}:]
+    M = mass_matrix(q, p, t)
+    F = forcing(t, q, qd, p)
+    A, b, c, f = constraint_rows(t, q, qd, p)
+    shape = {xp}.broadcast_shapes(M.shape[:-2], A.shape[:-2], qd.shape[:-1])
+    M, A = {xp}.broadcast_to(M, shape + ({n}, {n})), {xp}.broadcast_to(A, shape + ({m}, {n}))
+    g = {xp}.einsum("...ij,...j->...i", A, {xp}.broadcast_to(qd, shape + ({n},))) + b
+    K = {xp}.concatenate([{xp}.concatenate([M, -{xp}.swapaxes(A, -1, -2)], axis=-1),
+                         {xp}.concatenate([A, {xp}.zeros(shape + ({m}, {m}))], axis=-1)], axis=-2)
+    r = {xp}.concatenate([{xp}.broadcast_to(F, shape + ({n},)),
+                         {xp}.broadcast_to(-c - 2.0 * alpha * g - beta * beta * f, shape + ({m},))], axis=-1)
+    x = {xp}.linalg.solve(K, r[..., None])[..., 0]
+    qdd, lam = x[..., :{n}], x[..., {n}:]
+    return {xp}.concatenate([{xp}.broadcast_to(qd, qdd.shape), qdd], axis=-1), lam
+
+
+def rhs(t, y, p=None):
+    """y' = (q', q'') with the rows held exactly (rhs_multipliers at alpha = beta = 0)."""
+    return rhs_multipliers(t, y, p)[0]
+'''
