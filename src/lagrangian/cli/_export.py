@@ -32,9 +32,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "states), --to c a header and a source needing only libm, --to jax one module of jit-able, "
                     "vmap-able jax.numpy functions, --to octave .m functions for Octave and MATLAB. Every file "
                     "names the model, the lagrangian version, the parameters with their defaults and the state "
-                    "order. The C export also has the first integrals and the constraint rows, and solves a "
-                    "constrained model's multipliers; the other targets refuse complementary constraints, and "
-                    "all refuse an exact stick/slip contact (docs/export.md).")
+                    "order. Every target has the constraint rows of a constrained model and solves for its "
+                    "multipliers; the C export also has the first integrals. All refuse an exact stick/slip "
+                    "contact (docs/export.md).")
     p.add_argument("model", nargs="?", help=MODEL_HELP)
     p.add_argument("--to", dest="target", required=True, metavar="TARGET", help=f"the target: {targets}")
     p.add_argument("-o", "--output-dir", dest="directory", metavar="DIR",

@@ -19,14 +19,12 @@ of M q̈ = F + Aᵀλ for q̈ and λ; its M and F are the in-package library's f
 (`numerics._codegen.mass_forces_form`: each body's bias shared, parameter-only coefficients
 computed once per parameter set).
 
-The NumPy and JAX modules also carry the complementary rows (``constraint_rows``) and solve the
-augmented system [M −Aᵀ; A 0] [q̈; λ] = [F; −c − 2α g − β² f] (``rhs_multipliers``; ``rhs``
-is it with α = β = 0).
+The NumPy, JAX and Octave files also carry the complementary rows (``constraint_rows``) and
+solve the augmented system [M −Aᵀ; A 0] [q̈; λ] = [F; −c − 2α g − β² f] (``rhs_multipliers``;
+``rhs`` is it with α = β = 0).
 
-What is not exported: the Octave target refuses a model with complementary constraints (its
-``rhs`` solves M q̈ = F only and would silently drop the multipliers), and every target
-refuses a model with an exact Coulomb contact (stick/slip needs the event machinery of
-`lagrangian.simulate`): an `ExportError` names the fix.
+What is not exported: every target refuses a model with an exact Coulomb contact (stick/slip
+needs the event machinery of `lagrangian.simulate`): an `ExportError` names the fix.
 
 The directory is written atomically: the files are built in a temporary sibling
 directory that is then renamed into place, so a failure leaves nothing half-written.
@@ -139,13 +137,6 @@ def model_identifier(name: str) -> str:
 
 def validate_exportable(eom: EquationsOfMotion, target: str = "numpy") -> None:
     """Refuse what the exported ``rhs`` of ``target`` could not express (module docstring)."""
-    if eom.constraints and target not in ("c", "numpy", "jax"):
-        raise ExportError(
-            f"`{eom.model.name}` has {len(eom.constraints)} complementary constraint row(s) "
-            f"({', '.join(f'`{row.multiplier}`' for row in eom.constraints)}); the `{target}` export's rhs "
-            "would drop their multipliers, so neither M and F nor rhs is exported.",
-            fix="export it with `--to c`, `--to numpy` or `--to jax` (which solve for the multipliers), describe the motion with "
-                "independent coordinates (no [constraints]), or simulate it with `lagrangian simulate`")
     exact = [load.name for load in eom.model.loads if isinstance(load, CoulombFriction) and load.exact]
     if exact:
         raise ExportError(
@@ -338,8 +329,7 @@ def export(eom: EquationsOfMotion, target: str, directory: str | os.PathLike[str
     Raises
     ------
     ExportError
-        An unknown ``target``; a model with complementary constraints (for ``"octave"``) or an
-        exact Coulomb contact (what is not exported is named); a symbol that is not a coordinate, rate,
+        An unknown ``target``; a model with an exact Coulomb contact (what is not exported is named); a symbol that is not a coordinate, rate,
         parameter nor t.  Nothing is written.
     OutputError
         ``directory`` cannot be written or holds other files.  Nothing is written.

@@ -5,6 +5,10 @@ array, default values as a column, NaN where there is none), ``<name>_mass_matri
 ``<name>_forcing(t, y, p)`` and ``<name>_rhs(t, y, p)`` for ``ode45`` (``@(t, y)
 <name>_rhs(t, y, p)``), which solves M q̈ = F with the backslash operator (Octave and MATLAB
 try a Cholesky factorisation first when M is symmetric).  One state per call, y a column.
+With complementary constraints, two more: ``<name>_constraint_rows(t, y, p)`` → [A, b, c, f]
+and ``<name>_rhs_multipliers(t, y, p, alpha, beta)`` → [ydot, lam], the augmented solve
+[M −Aᵀ; A 0] [q̈; λ] = [F; −c − 2α g − β² f] (as the NumPy export), which ``<name>_rhs``
+calls with α = β = 0.
 Expressions are printed by SymPy's ``OctaveCodePrinter`` after a structural conversion
 (``_sympy_()``), common subexpressions shared (SymEngine's ``cse``).
 """
@@ -62,10 +66,44 @@ def octave_files(symbols: ExportedSymbols) -> dict[str, str]:
     forcing = (f"function F = {ident}_forcing(t, y, p)\n  % F(q, q', t), a column of {n}.\n"
                + banner + f"  F = zeros({n}, 1);\n"
                + "\n".join(_body(symbols, [f"F({i + 1})" for i in range(n)], symbols.F)) + "\nend\n")
+    files = {f"{ident}_parameters.m": parameters, f"{ident}_mass_matrix.m": mass, f"{ident}_forcing.m": forcing}
+    if symbols.rows:
+        files.update(_constrained(symbols, banner))
+        return files
     rhs = (f"function ydot = {ident}_rhs(t, y, p)\n"
            "  % y' = [q'; q''], q'' solved from M q'' = F; for ode45: @(t, y) "
            f"{ident}_rhs(t, y, p).\n" + banner
            + f"  M = {ident}_mass_matrix(t, y, p);\n  F = {ident}_forcing(t, y, p);\n"
            + f"  ydot = [y({n + 1}:{2 * n}); M \\ F];\nend\n")
-    return {f"{ident}_parameters.m": parameters, f"{ident}_mass_matrix.m": mass, f"{ident}_forcing.m": forcing,
+    files[f"{ident}_rhs.m"] = rhs
+    return files
+
+
+def _constrained(symbols: ExportedSymbols, banner: str) -> dict[str, str]:
+    """``_constraint_rows``, ``_rhs_multipliers`` and ``_rhs`` of a model with complementary rows."""
+    ident, n, m = symbols.identifier, symbols.n, len(symbols.rows)
+    rows = symbols.rows
+    names = ", ".join(f"{r.name} ({r.kind}, {r.multiplier})" for r in rows)
+    targets = ([f"A({k + 1}, {i + 1})" for k in range(m) for i in range(n)] + [f"b({k + 1})" for k in range(m)]
+               + [f"c({k + 1})" for k in range(m)] + [f"f({k + 1})" for k in range(m)])
+    exprs = [a for r in rows for a in r.A] + [r.b for r in rows] + [r.c for r in rows] + [r.f for r in rows]
+    constraint_rows = (
+        f"function [A, b, c, f] = {ident}_constraint_rows(t, y, p)\n"
+        f"  % The complementary rows {names}: A ({m}x{n}) and b with A q' + b = 0 along a motion,\n"
+        "  % c with A q'' + c = 0, f(q, t) = 0 for a holonomic row (0 for a nonholonomic one).\n" + banner
+        + f"  A = zeros({m}, {n});\n  b = zeros({m}, 1);\n  c = zeros({m}, 1);\n  f = zeros({m}, 1);\n"
+        + "\n".join(_body(symbols, targets, exprs)) + "\nend\n")
+    multipliers = (
+        f"function [ydot, lam] = {ident}_rhs_multipliers(t, y, p, alpha, beta)\n"
+        "  % [M -A'; A 0] [q''; lam] = [F; -c - 2 alpha g - beta^2 f], g = A q' + b, so M q'' = F + A' lam;\n"
+        "  % alpha = beta = 0 holds the rows exactly, alpha, beta > 0 is Baumgarte's stabilisation.\n" + banner
+        + f"  M = {ident}_mass_matrix(t, y, p);\n  F = {ident}_forcing(t, y, p);\n"
+        + f"  [A, b, c, f] = {ident}_constraint_rows(t, y, p);\n  qd = y({n + 1}:{2 * n});\n"
+        + "  g = A * qd + b;\n"
+        + f"  x = [M, -A'; A, zeros({m}, {m})] \\ [F; -c - 2 * alpha * g - beta^2 * f];\n"
+        + f"  ydot = [qd; x(1:{n})];\n  lam = x({n + 1}:{n + m});\nend\n")
+    rhs = (f"function ydot = {ident}_rhs(t, y, p)\n"
+           f"  % y' = [q'; q''] with the rows held exactly; for ode45: @(t, y) {ident}_rhs(t, y, p).\n" + banner
+           + f"  ydot = {ident}_rhs_multipliers(t, y, p, 0, 0);\nend\n")
+    return {f"{ident}_constraint_rows.m": constraint_rows, f"{ident}_rhs_multipliers.m": multipliers,
             f"{ident}_rhs.m": rhs}
