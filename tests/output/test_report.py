@@ -18,10 +18,10 @@ import pytest
 import lagrangian
 from lagrangian.model.zoo import planar_chain
 from lagrangian.output import Report, ReportFigure, course_form, report
-from lagrangian.output._report_build import report_notation
-from lagrangian.output._report_doc import Display, Fold, Items, Para, math_of, walk
-from lagrangian.output._report_md import render_markdown
-from lagrangian.output._report_size import SMALL_OPS, Summary
+from lagrangian.output.report.build import report_notation
+from lagrangian.output.report.document import Display, Fold, Items, Para, math_of, walk
+from lagrangian.output.report.render.markdown import render_markdown
+from lagrangian.output.report.size import SMALL_OPS, Summary
 from lagrangian_test_support import EXAMPLES_DIR, eom_of, example_names, integrals_of
 
 GOLDEN = Path(__file__).parent / "golden" / "lagrange_top.fr.md"
@@ -124,7 +124,7 @@ def test_cyclic_equations_first_then_the_rest_with_the_integrals(top):
 
 
 # -- every equation is the engine's ------------------------------------------------------------------
-#: Examples whose equations exceed the report's print budget (`_report_size.BUDGET`): their long
+#: Examples whose equations exceed the report's print budget (`report.size.BUDGET`): their long
 #: expressions are summarized ⟨N terms⟩, as the report says.
 OVER_BUDGET = {"whipple_bicycle.toml"}
 

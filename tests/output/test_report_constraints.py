@@ -12,7 +12,7 @@ import symengine as se
 
 import lagrangian
 from lagrangian.model.zoo import planar_chain
-from lagrangian.output._report_constraints import degrees_of_freedom, joints
+from lagrangian.output.report.joints import degrees_of_freedom, joints
 from lagrangian_test_support import eom_of
 
 
@@ -82,8 +82,8 @@ def test_every_constraint_is_holonomic_principal_and_perfect(name):
 
 # -- audit fixes: each test fails on the report as it was before them -------------------------------
 from lagrangian.output import report as _report  # noqa: E402
-from lagrangian.output._report_doc import Display as _Display, Items as _Items, Para as _Para  # noqa: E402
-from lagrangian.output._report_doc import math_of as _math_of, walk as _walk  # noqa: E402
+from lagrangian.output.report.document import Display as _Display, Items as _Items, Para as _Para  # noqa: E402
+from lagrangian.output.report.document import math_of as _math_of, walk as _walk  # noqa: E402
 from lagrangian_test_support import eom_of as _eom_of, example_names as _example_names  # noqa: E402
 
 

@@ -16,8 +16,8 @@ import sympy
 import lagrangian
 from lagrangian.cli.main import main
 from lagrangian.output import report
-from lagrangian.output._report_doc import Display, Para, math_of, walk
-from lagrangian.output._report_words import Words
+from lagrangian.output.report.document import Display, Para, math_of, walk
+from lagrangian.output.report.words import Words
 from lagrangian.output._text import notation
 from lagrangian.output import course_form
 from lagrangian_test_support import EXAMPLES_DIR

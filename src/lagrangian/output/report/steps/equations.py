@@ -19,15 +19,15 @@ import re
 import symengine as se
 import sympy
 
-from .._identity import are_zero
-from ..analysis import Verification
-from ._course import EquationRow, IntegralRow
-from ._report_build import Context
-from ._report_doc import Block, Display, Equation, Math, Para, Runs, Section
-from ..model import ORIGIN
-from ._report_constraints import _root
-from ._report_forces import MULTIPLIER_SUM
-from ._report_size import visible_width, wrap_many
+from ...._identity import are_zero
+from ....analysis import Verification
+from ..._course import EquationRow, IntegralRow
+from ..build import Context
+from ..document import Block, Display, Equation, Math, Para, Runs, Section
+from ....model import ORIGIN
+from ..joints import _root
+from .forces import MULTIPLIER_SUM
+from ..size import visible_width, wrap_many
 
 __all__ = ["step6", "step7", "integrals_section", "ordered_equations", "left_out_note"]
 
@@ -220,7 +220,7 @@ def left_out_note(c: Context, left: list) -> Runs:  # type: ignore[type-arg]
 def pin_reaction(c: Context, v: Verification) -> list[Block]:
     """After step 7, the reaction of a fixed point as a formula: R_O = m γ(G/R0) − P (the resultant theorem,
     [Seed, Remarque 4]; `lagrangian.analysis.reactions`), where no complementary equation gives it already."""
-    from ..analysis import reactions
+    from ....analysis import reactions
 
     if c.eom.constraints or c.ref != "R0":
         return []
@@ -293,8 +293,8 @@ def step7(c: Context) -> Section:
 
 def _multipliers(c: Context) -> tuple[se.Basic, ...] | None:
     """λ_k(q, q̇, t) solved from the Lagrange equations and the constraint equations differentiated."""
-    from ..dynamics._constraints import multiplier_formulas
-    from ..errors import DerivationError
+    from ....dynamics._constraints import multiplier_formulas
+    from ....errors import DerivationError
 
     try:
         return multiplier_formulas(c.eom)  # type: ignore[no-any-return]
@@ -319,7 +319,7 @@ def _tension(c: Context, reaction, formulas: tuple[se.Basic, ...]) -> list[Block
     With XP in a vertical plane whose coordinates are two of the q_i, it is also written with the
     angle θ of XP from the descending vertical: x = L sin θ, y = −L cos θ (seed's notation).
     """
-    from ..model import Gravity
+    from ....model import Gravity
 
     w, kin = c.w, c.kin
     rows = [r for r in c.eom.constraints if r.constraint == reaction.constraint]
@@ -480,7 +480,7 @@ def integrals_section(c: Context) -> Section:
 
 def _balance(c: Context) -> list[Block]:
     """dE/dt = P_nc term by term, E = T + U_P, when no energy integral holds (friction, driving, prescribed motion)."""
-    from ..analysis._energy_balance import energy_balance
+    from ....analysis._energy_balance import energy_balance
 
     w = c.w
     try:
@@ -498,7 +498,7 @@ def _balance(c: Context) -> list[Block]:
         timed = [t for t in terms if t.kind in ("explicit time", "prescribed motion")]
         minus_dL = se.Add(*(t.power for t in timed if t.kind == "explicit time")) - dT_dt
         rate = next(t.power for t in timed if t.kind == "prescribed motion") + dT_dt
-        from ..analysis._energy_balance import PowerTerm
+        from ....analysis._energy_balance import PowerTerm
 
         merged = [PowerTerm("-dL/dt", "minus dL/dt", minus_dL, ""), PowerTerm("d(T1+2T0)/dt", "T1 T0", rate, "")]
         terms = [t for t in terms if t not in timed] + [t for t in merged if not are_zero([t.power])[0]]

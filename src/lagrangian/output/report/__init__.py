@@ -30,24 +30,24 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .. import _atomic
-from ..analysis import FirstIntegral, Verification, first_integrals, verify
-from ..dynamics import EquationsOfMotion, derive
-from ..errors import OutputError
-from ..model import Model, load_model
-from ..model._texts import in_language
-from ._report_build import Context
-from ._report_doc import Document, Image, Section, map_math, walk
-from ._report_equations import integrals_section, pin_reaction, step6, step7
-from ._report_extras import ReportFigure, check_section, matrix_section, notes_section, simulation_section
-from ._report_forces import step5
-from ._report_html import render_html
-from ._report_kinematics import step3, step4
-from ._report_md import display_math, render_markdown
-from ._report_pdf import compile_pdf
-from ._report_setup import step1, step2, system_section
-from ._report_small import as_linear_model, small_motions_section
-from ._report_tex import render_tex
+from ... import _atomic
+from ...analysis import FirstIntegral, Verification, first_integrals, verify
+from ...dynamics import EquationsOfMotion, derive
+from ...errors import OutputError
+from ...model import Model, load_model
+from ...model._texts import in_language
+from .build import Context
+from .document import Document, Image, Section, map_math, walk
+from .steps.equations import integrals_section, pin_reaction, step6, step7
+from .steps.extras import ReportFigure, check_section, matrix_section, notes_section, simulation_section
+from .steps.forces import step5
+from .render.html import render_html
+from .steps.kinematics import step3, step4
+from .render.markdown import display_math, render_markdown
+from .render.pdf import compile_pdf
+from .steps.statement import step1, step2, system_section
+from .steps.small_motions import as_linear_model, small_motions_section
+from .render.tex import render_tex
 
 __all__ = ["Report", "ReportFigure", "report", "FORMATS", "format_for"]
 
@@ -65,7 +65,7 @@ def format_for(path: str | os.PathLike[str], default: str = "md") -> str:
 
 
 def _footer() -> str:
-    from .. import __version__
+    from ... import __version__
 
     return f"lagrangian {__version__}"
 
@@ -148,7 +148,7 @@ class Report:
 
     def _repr_latex_(self) -> str:
         """The Lagrange equations alone, as display math (what a LaTeX-only front end can show)."""
-        from ._report_doc import Display
+        from .document import Display
 
         blocks = self.document.section("step6").blocks
         return "\n".join(display_math(eq) for b in blocks if isinstance(b, Display) for eq in b.equations)

@@ -18,10 +18,10 @@ from dataclasses import dataclass, field
 import symengine as se
 import sympy
 
-from ._course import to_sympy
-from ._notation import Notation
-from ._report_doc import Block, Equation, FullForms
-from ._report_size import Summary, wrap_latex
+from .._course import to_sympy
+from .._notation import Notation
+from .document import Block, Equation, FullForms
+from .size import Summary, wrap_latex
 
 __all__ = ["FullFormBook", "FULL_BUDGET", "CHARS_PER_OP", "FULL_WIDTH", "summaries_in"]
 

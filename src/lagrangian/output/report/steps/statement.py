@@ -10,12 +10,12 @@ from __future__ import annotations
 
 import re
 
-from ..dynamics._constraints import describe_constraints
-from ..model import Constraint, Vector
-from ..model._texts import in_language
-from ._report_build import Context
-from ._report_constraints import Joint, constraint_counts, degrees_of_freedom, planar_normal
-from ._report_doc import Block, Display, Equation, Fold, Items, Math, Para, Runs, Section, Table
+from ....dynamics._constraints import describe_constraints
+from ....model import Constraint, Vector
+from ....model._texts import in_language
+from ..build import Context
+from ..joints import Joint, constraint_counts, degrees_of_freedom, planar_normal
+from ..document import Block, Display, Equation, Fold, Items, Math, Para, Runs, Section, Table
 
 __all__ = ["system_section", "step1", "step2"]
 
@@ -54,7 +54,7 @@ def _inertia_given(c: Context, body) -> Runs:  # type: ignore[no-untyped-def]
 
 def _load_given(c: Context, load: object) -> Runs | None:  # noqa: PLR0911 - one phrase per kind of load
     """A load as the model declares it, in words and formulas (``pesanteur g = −g z0``)."""
-    from ..model import (CoulombFriction, Damper, Dissipation, GeneralizedForce, Gravity, JointDamper, PointForce,
+    from ....model import (CoulombFriction, Damper, Dissipation, GeneralizedForce, Gravity, JointDamper, PointForce,
                          Potential, Spring, Torque)
 
     w = c.w

@@ -12,7 +12,7 @@ from __future__ import annotations
 import re
 from collections.abc import Sequence
 
-from ._report_doc import Run, Runs
+from .document import Run, Runs
 
 __all__ = ["Words", "LANGUAGES"]
 

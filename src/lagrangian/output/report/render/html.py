@@ -13,8 +13,8 @@ import re
 
 from latex2mathml.converter import convert
 
-from ..errors import OutputError
-from ._report_doc import Block, Display, Document, Fold, FullForms, Image, Items, Math, Para, Runs, Section, Table
+from ....errors import OutputError
+from ..document import Block, Display, Document, Fold, FullForms, Image, Items, Math, Para, Runs, Section, Table
 
 __all__ = ["render_html"]
 

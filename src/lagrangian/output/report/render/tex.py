@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from ._report_doc import (Block, Display, Document, Equation, Fold, FullForms, Image, Items, Math, Para, Runs, Section,
+from ..document import (Block, Display, Document, Equation, Fold, FullForms, Image, Items, Math, Para, Runs, Section,
                           Table, walk)
 
 __all__ = ["render_tex"]
@@ -89,7 +89,7 @@ def _columns(t: Table) -> str:
 
 def _visible(runs: Runs) -> int:
     """About how many characters a cell prints."""
-    from ._report_size import visible_width
+    from ..size import visible_width
 
     return sum(visible_width(r.latex) if isinstance(r, Math) else len(r) for r in runs)
 
@@ -135,7 +135,7 @@ def _align(eq: Equation) -> str:
 
 def _appendix(doc: Document) -> str:
     """The full forms of the summarized expressions, by number (A.1, A.2...), as breakable ``align*`` blocks."""
-    from ._report_words import Words
+    from ..words import Words
 
     found = [b for s in doc.sections for b in walk(s.blocks) if isinstance(b, FullForms)]
     if not found:

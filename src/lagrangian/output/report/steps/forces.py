@@ -9,13 +9,13 @@ and the perfect constraints contribute nothing.
 
 from __future__ import annotations
 
-from .._identity import are_zero
-from ..dynamics import LoadForces
-from ..model import (CoulombFriction, Damper, Dissipation, GeneralizedForce, Gravity, JointDamper, PointForce, Potential,
+from ...._identity import are_zero
+from ....dynamics import LoadForces
+from ....model import (CoulombFriction, Damper, Dissipation, GeneralizedForce, Gravity, JointDamper, PointForce, Potential,
                      Spring, Torque)
-from ._report_build import Context
-from ._report_doc import Block, Display, Equation, Items, Math, Para, Runs, Section
-from ._report_size import wrap_many
+from ..build import Context
+from ..document import Block, Display, Equation, Items, Math, Para, Runs, Section
+from ..size import wrap_many
 
 __all__ = ["step5"]
 
@@ -143,7 +143,7 @@ def _why_zero(c: Context, f: LoadForces, load: object, i: int) -> Runs:
 
 def _why_inertial(c: Context, f: LoadForces, i: int) -> Runs:
     """Q_i of an inertial load is zero: its force on each element is orthogonal to ∂OP/∂q_i (Coriolis on a hoop)."""
-    from ..dynamics._inertial import inertial_torsors
+    from ....dynamics._inertial import inertial_torsors
 
     w, kin = c.w, c.kin
     q = c.sym(c.eom.coordinates[i])

@@ -19,10 +19,10 @@ from dataclasses import dataclass, field
 import symengine as se
 import sympy
 
-from ..model._vector import as_expr
-from ._course import to_sympy
-from ._notation import Notation, Opaque
-from ._report_doc import Equation
+from ...model._vector import as_expr
+from .._course import to_sympy
+from .._notation import Notation, Opaque
+from .document import Equation
 
 __all__ = ["Summary", "SizeGate", "visible_width", "wrap", "wrap_latex", "wrap_many", "split_top", "MAX_OPS",
            "BUDGET", "LINE_WIDTH", "FOLD_LINES"]

@@ -26,10 +26,10 @@ import symengine as se
 import sympy
 from symengine.lib.symengine_wrapper import sympy2symengine
 
-from ..errors import LagrangianError
-from ._report_build import Context
-from ._report_doc import Block, Display, Equation, Items, Math, Para, Runs, Section
-from ._report_size import LINE_WIDTH, visible_width, wrap_many
+from ....errors import LagrangianError
+from ..build import Context
+from ..document import Block, Display, Equation, Items, Math, Para, Runs, Section
+from ..size import LINE_WIDTH, visible_width, wrap_many
 
 __all__ = ["small_motions_section", "as_linear_model"]
 
@@ -39,7 +39,7 @@ MATRIX_MAX = 3
 
 def as_linear_model(eom: Any, small_motions: Any) -> Any:
     """A `LinearModel` from what ``report(..., small_motions=...)`` was given: one, or a point {name: value}."""
-    from ..analysis import LinearModel, linearize
+    from ....analysis import LinearModel, linearize
 
     if isinstance(small_motions, LinearModel):
         return small_motions
@@ -54,7 +54,7 @@ def as_linear_model(eom: Any, small_motions: Any) -> Any:
 def _symbolic(lin: Any) -> Any:
     """The same linearization with every parameter as a letter, or None when it cannot be made (a point that is
     an equilibrium for the given values only, e.g. cos θ0 = g/(R Ω²) given as a number)."""
-    from ..analysis import linearize
+    from ....analysis import linearize
 
     if lin.symbols and len(lin.symbols) == len([p for p in lin.eom.model.parameters if p.name not in lin.inputs]):
         return lin
@@ -71,7 +71,7 @@ def _symbolic(lin: Any) -> Any:
 
 def _numeric(lin: Any) -> Any:
     """``lin`` with numbers for its symbols (the model's values), or None when some symbol has no value."""
-    from ..analysis import linearize
+    from ....analysis import linearize
 
     if not lin.symbols:
         return lin

@@ -17,7 +17,7 @@ import tempfile
 from collections.abc import Mapping
 from pathlib import Path
 
-from ..errors import OutputError
+from ....errors import OutputError
 
 __all__ = ["ENGINES", "tex_engine", "compile_pdf"]
 

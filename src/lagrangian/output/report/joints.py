@@ -31,10 +31,10 @@ from dataclasses import dataclass
 
 import symengine as se
 
-from .._identity import are_zero
-from ..dynamics import EquationsOfMotion
-from ..model import GALILEAN_FRAME, ORIGIN, Vector
-from ..model._vector import AXES
+from ..._identity import are_zero
+from ...dynamics import EquationsOfMotion
+from ...model import GALILEAN_FRAME, ORIGIN, Vector
+from ...model._vector import AXES
 
 __all__ = ["Joint", "joints", "degrees_of_freedom", "constraint_counts", "planar_normal"]
 
@@ -321,7 +321,7 @@ def _with_losses(r: _Reader, joint: Joint) -> Joint:
     """The joint with the friction loads that act in it: Coulomb friction at the element, a damper across it."""
     from dataclasses import replace
 
-    from ..model import CoulombFriction, JointDamper
+    from ...model import CoulombFriction, JointDamper
 
     losses: list[tuple[str, str]] = []
     points = {p.name for p in r.model.points}
@@ -360,7 +360,7 @@ def constraint_counts(eom: EquationsOfMotion) -> tuple[int, int, int]:
     n − h independent parameters (a nonholonomic row restricts only the velocities).  A velocity
     row that integrates (the disk on an incline) counts as holonomic here, as in step 7.
     """
-    from ..dynamics._constraints import describe_constraints
+    from ...dynamics._constraints import describe_constraints
 
     holonomic_names = {info.name for info in describe_constraints(eom) if info.kind == "holonomic"}
     h = sum(1 for row in eom.constraints if row.kind == "holonomic" or row.constraint in holonomic_names)

@@ -14,7 +14,7 @@ import re
 from collections.abc import Sequence
 from urllib.parse import quote
 
-from ._report_doc import (Block, Display, Document, Equation, Fold, FullForms, Image, Items, Math, Para, Runs, Section,
+from ..document import (Block, Display, Document, Equation, Fold, FullForms, Image, Items, Math, Para, Runs, Section,
                           Table)
 
 __all__ = ["render_markdown", "display_math", "fenced_math", "inline_math"]

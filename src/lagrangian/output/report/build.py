@@ -15,19 +15,19 @@ from collections.abc import Sequence
 import symengine as se
 import sympy
 
-from ..analysis import FirstIntegral
-from ..dynamics import EquationsOfMotion
-from ..model import GALILEAN_FRAME, ORIGIN, Vector
-from ._course import CourseForm, _vector_row, course_form
-from ._display_form import display_form
-from ._notation import Notation, _axis_latex, _base_latex
-from ._report_constraints import Joint, joints
-from ._report_doc import Block, Display, Equation, Fold, Math
-from . import _report_size
-from ._report_full import FullFormBook
-from ._report_size import FOLD_LINES, SizeGate, visible_width, wrap, wrap_latex, wrap_many
-from ._report_words import Words
-from ._text import notation
+from ...analysis import FirstIntegral
+from ...dynamics import EquationsOfMotion
+from ...model import GALILEAN_FRAME, ORIGIN, Vector
+from .._course import CourseForm, _vector_row, course_form
+from .._display_form import display_form
+from .._notation import Notation, _axis_latex, _base_latex
+from .joints import Joint, joints
+from .document import Block, Display, Equation, Fold, Math
+from . import size as _report_size
+from .full_forms import FullFormBook
+from .size import FOLD_LINES, SizeGate, visible_width, wrap, wrap_latex, wrap_many
+from .words import Words
+from .._text import notation
 
 __all__ = ["Context", "tex_name", "tex_text"]
 

@@ -12,11 +12,11 @@ import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from .._identity import are_zero
-from ..analysis import Verification
-from ..model import Vector
-from ._report_build import Context
-from ._report_doc import Block, Display, Equation, Image, Math, Para, Runs, Section
+from ...._identity import are_zero
+from ....analysis import Verification
+from ....model import Vector
+from ..build import Context
+from ..document import Block, Display, Equation, Image, Math, Para, Runs, Section
 
 __all__ = ["ReportFigure", "check_section", "simulation_section", "matrix_section", "notes_section"]
 
@@ -141,7 +141,7 @@ def _theorem(c: Context, kind: str, point: str | None, names: tuple[str, ...], t
         arms, named = [], []
         for load in efforts:
             spec = next((x for x in c.model.loads if x.name == load), None)
-            from ..model import Gravity
+            from ....model import Gravity
 
             if isinstance(spec, Gravity):
                 arms.append(rf"\overrightarrow{{{P}{c.point_label(names[0])}}}\wedge\vec{{P}}")
@@ -265,7 +265,7 @@ def notes_section(c: Context) -> Section | None:
     """A note on the expressions summarized as ⟨N terms⟩, when there are any."""
     if not c.gate.summaries:
         return None
-    from ._report_equations import left_out_note
+    from .equations import left_out_note
 
     blocks: list[Block] = []
     numbered = c.book.numbered
