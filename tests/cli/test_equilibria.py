@@ -82,3 +82,16 @@ def test_each_equilibrium_comes_with_its_stability(capsys):
     verdicts = {e["values"]["theta"]: (e["stable"], e["stability_reason"]) for e in doc["equilibria"]}
     assert verdicts["0"][0] is True and "Lagrange–Dirichlet" in verdicts["0"][1]
     assert verdicts["pi"][0] is False
+
+
+def test_numeric_roots_at_simple_multiples_of_pi_are_named_and_minus_zero_is_zero() -> None:
+    import math
+
+    from lagrangian.cli._equilibria import _numeric
+
+    assert _numeric(-0.0) == "0"
+    assert _numeric(-math.pi / 2) == "−π/2 = -1.57079632679"
+    assert _numeric(math.pi) == "π = 3.14159265359"
+    assert _numeric(2 * math.pi / 3) == "2π/3 = 2.09439510239"
+    assert _numeric(0.994407212058699) == "0.994407212059"  # acos(g/(R Ω²)): not a multiple of π
+    assert "π" not in _numeric(math.pi / 2 + 1e-9)  # 1e-9 away: a number, not π/2

@@ -8,6 +8,7 @@ recursive algorithms (CRBA, ABA); ours come from Lagrange's equations of the mod
 from __future__ import annotations
 
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -37,7 +38,11 @@ def _compare(ours: Ours, peer: Peer, *, states: int = 4, seed: int = 0, damping=
         np.testing.assert_allclose(ours.acceleration(q, v), peer.acceleration(q, v, tau), rtol=TOL, atol=TOL)
 
 
-@pytest.mark.parametrize("text", [DOUBLE_PENDULUM, SPATIAL_ARM], ids=["double_pendulum", "spatial_arm"])
+RRR_ARM = (Path(__file__).resolve().parents[2] / "examples" / "rrr_arm.urdf").read_text(encoding="utf-8")
+
+
+@pytest.mark.parametrize("text", [DOUBLE_PENDULUM, SPATIAL_ARM, RRR_ARM],
+                         ids=["double_pendulum", "spatial_arm", "example_rrr_arm"])
 def test_mass_matrix_and_accelerations_are_pinocchios(text):
     ours = Ours(_model(text, damping=False))
     _compare(ours, Peer(pin, text, list(ours.eom.coordinates)))

@@ -146,7 +146,7 @@ def _text(name: str, coordinates: tuple[str, ...], parameters: list[str], found:
             if q in e.free:
                 parts.append(f"{n.symbol(q)} any")
                 continue
-            shown = f"{v:.12g}" if isinstance(v, float) else n.text(to_sympy(v))
+            shown = _numeric(v) if isinstance(v, float) else n.text(to_sympy(v))
             x = None if e.numeric is None else e.numeric.get(q)
             if x is not None and not isinstance(v, float) and shown != f"{x:.12g}":
                 shown += f" = {x:.12g}"
@@ -160,6 +160,18 @@ def _text(name: str, coordinates: tuple[str, ...], parameters: list[str], found:
         if stab is not None:
             lines.append(f"     {stab[1]}: {stab[2]}")
     return "\n".join(lines) + "\n"
+
+
+def _numeric(x: float) -> str:
+    """A numeric root: −0 as 0, and a root at k π/d (d ≤ 12) to 1e-12 named so (−π/2 = −1.57079632679)."""
+    x += 0.0  # −0.0 → 0.0
+    value = f"{x:.12g}"
+    ratio = sympy.nsimplify(x / math.pi, rational=True, tolerance=1e-12) if x else sympy.Integer(0)
+    if x and isinstance(ratio, sympy.Rational) and 0 < ratio.q <= 12 and abs(float(ratio) * math.pi - x) <= 1e-12:
+        num, den = abs(ratio.p), ratio.q
+        text = ("−" if ratio < 0 else "") + ("" if num == 1 else str(num)) + "π" + ("" if den == 1 else f"/{den}")
+        return f"{text} = {value}"
+    return value
 
 
 def _condition(n: Notation, cond: sympy.Basic) -> str:

@@ -10,7 +10,7 @@ import re
 
 from ._course import CourseForm
 from ._notation import _axis_latex
-from ._text import Supplement, kind_words, notation, power_label
+from ._text import Supplement, as_declared, kind_words, notation, power_label
 
 __all__ = ["render_latex"]
 
@@ -44,11 +44,12 @@ def _frame(name: str) -> str:
 
 def _constraints_latex(n, extra: Supplement) -> list[str]:  # type: ignore[no-untyped-def]
     out = [r"\subsection*{Constraints (step 1)}", r"\begin{itemize}"]
+    declared = as_declared(n)  # the relations as the user wrote them, not rewritten
     for c in extra.constraints:
         if c.axes is None:
-            statement = f"${n.latex(c.statement[0])} = 0$"
+            statement = f"${declared.latex(c.statement[0])} = 0$"
         else:
-            statement = ", ".join(f"${n.latex(x)} = 0$ (${_axis_latex(a)}$)" for x, a in zip(c.statement, c.axes)
+            statement = ", ".join(f"${declared.latex(x)} = 0$ (${_axis_latex(a)}$)" for x, a in zip(c.statement, c.axes)
                                   if x != 0) or "$0 = 0$"
         mult = (": multipliers $" + ", ".join(n.latex(_lam(row[1])) for row in c.rows) + "$") if c.rows else ""
         out.append(rf"\item \texttt{{{_escape(c.name)}}} ({c.role}, {_escape(c.form.replace('_', ' '))}): "

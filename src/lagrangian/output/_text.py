@@ -8,6 +8,8 @@ energy balance dE/dt = P(non-conservative) when no energy integral holds.
 
 from __future__ import annotations
 
+import dataclasses
+import functools
 import re
 from dataclasses import dataclass
 
@@ -20,6 +22,7 @@ from ..dynamics._inertial import RelativeKinematics
 from ..model import Vector
 from ..model._assumptions import SIGN_RELATIONS, range_text
 from ._course import CourseForm, VectorRow, _vector_row, to_sympy
+from ._display_form import display_form
 from ._notation import Notation
 
 __all__ = ["render_text", "Supplement", "supplement", "kind_words", "power_label", "notation", "greek"]
@@ -191,8 +194,18 @@ def supplement(eom: EquationsOfMotion, form: CourseForm) -> Supplement:
 
 # -- text -----------------------------------------------------------------------------------------------
 def notation(form: CourseForm) -> Notation:
-    """The notation of a derivation; first-integral constants (K, H) order like parameters."""
-    return Notation(form.coordinates, form.parameters + tuple(i.name for i in form.integrals))
+    """The notation of a derivation; first-integral constants (K, H) order like parameters.
+
+    Expressions are printed in the forms a teacher writes (`display_form`: sin² + cos² = 1,
+    angle sums collapsed, common factors out), the same rewriting as the report's, value unchanged.
+    """
+    constants = form.parameters + tuple(i.name for i in form.integrals)
+    return Notation(form.coordinates, constants, rewrite=functools.partial(display_form, parameters=frozenset(constants)))
+
+
+def as_declared(n: Notation) -> Notation:
+    """The same notation without the teacher's rewriting: for what is printed as the user declared it."""
+    return dataclasses.replace(n, rewrite=None)
 
 
 def greek(n: Notation, form: CourseForm, sentence: str) -> str:
@@ -203,6 +216,7 @@ def greek(n: Notation, form: CourseForm, sentence: str) -> str:
 
 
 def _statement(n: Notation, line: ConstraintLine) -> str:
+    n = as_declared(n)  # the relation the user wrote, never rewritten (l² sin²θ + l² cos²θ − l² is not 0 = 0)
     if line.axes is None:
         return f"{n.text(line.statement[0])} = 0"
     return "; ".join(f"{n.text(c)} = 0 ({axis})" for c, axis in zip(line.statement, line.axes) if c != 0) or "0 = 0"
