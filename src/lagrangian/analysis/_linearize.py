@@ -308,7 +308,8 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
             f"the point is not an equilibrium or a steady motion: the residual force is "
             f"{_format_residual(res_sym, generic, ind_s, rate_names)} ({residual:.2g} of the forces' scale)."
             + _nearest(eom, at_q, point_subs, generic, ind_c, dep_c, psubs),
-            fix="linearize about an equilibrium (lagrangian equilibria MODEL) or a steady motion")
+            fix="linearize about an equilibrium (lagrangian equilibria MODEL) or a steady motion"
+                + (", or hold the point with the inputs' values (--hold; `holding_inputs`)" if u_syms else ""))
     lam0 = _multipliers(A_at, F0) if m else se.zeros(0, 1)
 
     # 8. Jacobians.
