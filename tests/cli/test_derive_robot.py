@@ -47,3 +47,8 @@ def test_intermediates_of_a_model_without_them_is_a_clear_error(capsys):
     assert main(["derive", "zoo:serial_arm:3", "--intermediates"]) == 2  # 3 joints: the course's route
     err = capsys.readouterr().err
     assert "derived by the course's route" in err and "leave out --intermediates" in err
+
+
+def test_intermediates_are_text_only(capsys):
+    assert main(["derive", "zoo:serial_arm:4", "--intermediates", "--json"]) != 0
+    assert "--intermediates prints text only" in capsys.readouterr().err

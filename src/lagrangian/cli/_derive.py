@@ -15,13 +15,14 @@ import json
 
 from .. import __version__
 from ..analysis import first_integrals
-from ..dynamics import derive
-from ..output import course_form, derive_document, render_latex, render_text
-from ._source import MODEL_HELP, load_source
+from ..dynamics import EquationsOfMotion, derive
 from ..errors import DerivationError
+from ..output import course_form, derive_document, render_latex, render_text
 from ..output._intermediates import listed, render_intermediates
 from ..output._report_size import SizeGate
 from ..output._text import supplement
+from ._settings import SettingError
+from ._source import MODEL_HELP, load_source
 
 __all__ = ["register"]
 
@@ -56,6 +57,9 @@ def run(args: argparse.Namespace) -> str:
     eom = derive(model)
     robot = eom.formulation == "recursive"
     if args.intermediates:
+        if args.latex or args.json:
+            raise SettingError("--intermediates prints text only.",
+                               fix="leave out --latex/--json, or --intermediates (the JSON has every expression)")
         if not robot:
             raise DerivationError(f"model `{model.name}` is derived by the course's route, without intermediates",
                                   fix="leave out --intermediates (its expressions are printed in full)")
@@ -80,8 +84,9 @@ def run(args: argparse.Namespace) -> str:
     return text
 
 
-def _note(eom, gate: SizeGate, *, latex: bool = False) -> str:  # type: ignore[no-untyped-def]
+def _note(eom: EquationsOfMotion, gate: SizeGate, *, latex: bool = False) -> str:
     """What the summaries stand for, and where the full expressions are."""
+    assert eom.recursive is not None
     count = len(listed(eom.recursive))
     text = (f"{len(gate.summaries)} long expressions are summarized as ⟨N terms⟩: the expanded entries of a robot in "
             f"relative joint angles grow several-fold per joint. `lagrangian derive --expanded` prints them in full "
