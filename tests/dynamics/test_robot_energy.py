@@ -11,6 +11,7 @@ import warnings
 
 import numpy as np
 import pytest
+import symengine as se
 
 import lagrangian
 from lagrangian.dynamics._recursive import tree_structure
@@ -90,3 +91,19 @@ def test_monitored_energy_is_the_closed_form_with_constant_torques(formulation):
     assert np.abs(work).max() > 0.1  # the torques do work: T + U_gravity alone is not constant
     physical = np.array([sum(peer.energies(q, v)) for q, v in zip(run.q, run.qd)])
     np.testing.assert_allclose(physical - physical[0], work, atol=1e-8 * np.abs(physical).max())
+
+
+def test_energy_balance_of_a_damped_urdf_robot_is_the_dampers_power():
+    # The course's balance dE/dt = P_nc with E = T + U, U holding −τ·q: only the damper works.
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UrdfNote)
+        model = parse_urdf(DOUBLE_PENDULUM, source="pendulum.urdf")  # <dynamics damping="0.2"> on the elbow
+    eom = lagrangian.derive(model)
+    balance = lagrangian.energy_balance(eom)
+    assert not balance.conserved
+    working = [t for t in balance.terms if t.power != 0]
+    assert [t.name for t in working] == ["joint_damping"]
+    rates = {s: float(x) for s, x in zip(eom.qd, (0.7, -1.3))}
+    assert float(working[0].power.subs(rates)) == pytest.approx(-0.2 * 1.3**2, rel=1e-12)
+    for name, q in zip(TAU, eom.q):  # E holds the actuators' potential −τ_j q_j
+        assert se.expand(balance.E.diff(se.Symbol(name)) + q) == 0
