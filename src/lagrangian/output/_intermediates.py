@@ -15,6 +15,7 @@ import symengine as se
 
 from ..dynamics import EquationsOfMotion
 from ..dynamics._recursive import RecursiveForm
+from ..model._vector import as_expr
 from ._course import to_sympy
 from ._notation import Notation
 
@@ -38,7 +39,7 @@ def render_intermediates(eom: EquationsOfMotion) -> str:
     names = {s: se.Symbol(f"{prefix}{k}") for k, (s, _) in enumerate(rec.intermediates)}  # k: computing order
 
     def text(e: se.Basic) -> str:
-        return n.text(to_sympy(se.sympify(e).xreplace(names)))
+        return n.text(to_sympy(as_expr(e).xreplace(names)))
 
     coordinates = [n.symbol(c) for c in eom.coordinates]
     needed = listed(rec)
