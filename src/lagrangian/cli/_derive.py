@@ -1,7 +1,7 @@
 """``lagrangian derive [MODEL.toml] [--latex | --json] [--expanded | --intermediates] [-o FILE]``.
 
 A robot (a model derived in the recursive form, `dynamics._recursive`) has expanded
-entries of thousands of terms (2 MB of text and 50 s at 7 joints, minutes for the Panda):
+entries of thousands of terms (2 MB of text and 40–50 s at 7 joints, more than 5 minutes for the Panda):
 its text and LaTeX show the course's view with every long expression summarized as
 ⟨24 terms⟩ (the report's `SizeGate`), ``--expanded`` prints them in full, and
 ``--intermediates`` prints T, U, M and F over the named intermediates the compiled code
@@ -44,7 +44,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     size = d.add_mutually_exclusive_group()
     size.add_argument("--expanded", action="store_true",
                       help="a robot (recursive form): print every expression of the course's view in full instead "
-                           "of ⟨24 terms⟩ (slow: about a minute at 7 joints)")
+                           "of ⟨24 terms⟩ (slow: 40–50 s at 7 joints)")
     size.add_argument("--intermediates", action="store_true",
                       help="a robot (recursive form): print T, U, M and F over the named intermediates of the "
                            "recursive Newton–Euler and composite-rigid-body algorithms, and each intermediate")
