@@ -95,6 +95,19 @@ def test_reaction_columns_hold_the_rod_tension(tmp_path, capsys):
     assert "R_to_P" not in out.read_text()
 
 
+
+def test_a_robots_reactions_are_asked_for_not_computed_by_default(tmp_path, capsys):
+    # The only reaction of a robot is the ground's wrench on the arm: motion first, the wrench on request.
+    out = tmp_path / "arm.csv"
+    assert main(["simulate", "zoo:serial_arm:4", "--t-end", "0.05", "--n-out", "3", "-o", str(out)]) == 0
+    assert "R_to_link1" not in out.read_text()
+    assert "reactions: not computed for a kinematic tree" in capsys.readouterr().out
+    assert main(["simulate", "zoo:serial_arm:4", "--t-end", "0.05", "--n-out", "3", "--reactions",
+                 "-o", str(out)]) == 0
+    assert "R_to_link1_link2_link3_link4_x0" in out.read_text()
+    assert "reactions: not computed" not in capsys.readouterr().out
+
+
 # -- the audit of `simulate`: bare --plot, checks before the run, validation, MP4, stabilization --------
 
 PENDULUM_FILE = str(EXAMPLES_DIR / "simple_pendulum.toml")

@@ -30,6 +30,7 @@ from ._linear_model import LinearizationError as LinearizationError
 from ._linear_model import LinearModel as LinearModel
 from ._linear_model import SecondOrderForm as SecondOrderForm
 from ._linearize import linearize as linearize
+from ._linearize import holding_inputs as holding_inputs
 from ._modes import Mode as Mode
 from ._modes import Modes as Modes
 from ._modes import Stability as Stability
@@ -48,7 +49,7 @@ from ._top import analyse_top as analyse_top
 __all__ = ["FirstIntegral", "first_integrals", "CoordinateCheck", "ElementTheorems", "Verification", "verify",
            "Reaction", "ReactionHistory", "TrajectoryResiduals", "check_trajectory", "reaction_history",
            "reactions", "analyse_top", "TopAnalysis", "reduce_cyclic", "CyclicReduction", "AnalysisError",
-           "StructureError", "EnergyBalance", "PowerTerm", "energy_balance", "linearize", "LinearModel",
+           "StructureError", "EnergyBalance", "PowerTerm", "energy_balance", "linearize", "holding_inputs", "LinearModel",
            "SecondOrderForm", "LinearizationError", "Mode", "Modes", "Stability", "StabilityChange", "Sweep", "modes",
            "stability", "sweep", "Equilibrium", "EquilibriumError", "equilibria", "bifurcation",
            "BifurcationDiagram", "Branch", "routh_reduction", "RouthReduction", "steady_motions",

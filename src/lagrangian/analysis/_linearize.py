@@ -49,7 +49,7 @@ from ._linear_algebra import sub as _sub, tidy as _tidy
 from ._linear_model import LinearizationError, LinearModel, SecondOrderForm, _is_structural_zero
 from ._linear_model import to_numpy as _to_numpy
 
-__all__ = ["LinearizationError", "SecondOrderForm", "LinearModel", "linearize", "POINT_RTOL"]
+__all__ = ["LinearizationError", "SecondOrderForm", "LinearModel", "linearize", "holding_inputs", "POINT_RTOL"]
 
 #: A point is an equilibrium (steady motion) when its residual force is below this fraction
 #: of the forces' scale: `--at theta=3.14159` is the inverted pendulum, within 3e-6.
@@ -105,13 +105,16 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
     ----------
     eom : from `lagrangian.derive`.
     at : the point: every coordinate ``q`` a value, rates ``q_dot`` optional (0 by default;
-        dependent speeds are solved from the constraints).  Values are numbers, SymEngine
-        expressions in the parameters, or text in the model grammar (``"pi"``, ``"-v/rR"``).
-        None: the model's ``[operating_point]`` table.
+        dependent speeds are solved from the constraints), inputs optional (0 by default: a
+        robot held still by its joint torques is ``{"q1": 0.3, "tau_q1": 4.2}``; see
+        `holding_inputs`).  Values are numbers, SymEngine expressions in the parameters, or
+        text in the model grammar (``"pi"``, ``"-v/rR"``).  None: the model's
+        ``[operating_point]`` table.
     parameters : parameter values overriding the model's.
     symbolic : parameters kept as symbols although they have a value (A(v) for a sweep).
     inputs : the inputs u, columns of B: parameters or declared ``[inputs]`` (default: the
-        model's declared inputs).  They are 0 at the point.
+        model's declared inputs).  Their values at the point u0 come from ``at`` (0 when not
+        given), and A, B are the Jacobians at (q0, q̇0, u0).
     independent_speeds, dependent_coordinates : the choice of the reduction, when the model
         keeps constraints complementary (default: the model's, else chosen by rank).
 
@@ -156,10 +159,11 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
     names = {p: se.Symbol(p) for p in pnames}
     rate_names = [c + "_dot" for c in coords]
     for key in at:
-        if key not in coords and key not in rate_names:
-            raise LinearizationError(f"`{key}` is neither a coordinate nor a rate of the model "
-                                     f"(coordinates: {', '.join(coords)}).",
-                                     fix="name a coordinate (`theta`) or its rate (`theta_dot`)")
+        if key not in coords and key not in rate_names and key not in inputs:
+            also = f"; inputs: {', '.join(inputs)}" if inputs else ""
+            raise LinearizationError(f"`{key}` is neither a coordinate, a rate nor an input of the linearization "
+                                     f"(coordinates: {', '.join(coords)}{also}).",
+                                     fix="name a coordinate (`theta`), its rate (`theta_dot`) or an input")
     missing = [c for c in coords if c not in at]
     if missing:
         raise LinearizationError(f"the coordinate{'s' if len(missing) > 1 else ''} {', '.join(f'`{c}`' for c in missing)} "
@@ -168,6 +172,7 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
                                      f"`--at {missing[0]}=0`")
     q0 = {q[i]: _value(c, at[c], names) for i, c in enumerate(coords)}
     given_rates = {i: _value(rate_names[i], at[rate_names[i]], names) for i in range(n) if rate_names[i] in at}
+    given_inputs = {k: _value(k, at[k], names) for k in inputs if k in at}  # u0
 
     # 2. Parameter values: the model's, overridden; inputs are 0 at the point.
     values: dict[str, float] = {k: p.value for k, p in pnames.items() if p.value is not None}
@@ -195,7 +200,8 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
     q0 = {k: v.subs(psubs) for k, v in q0.items()}
     given_rates = {i: v.subs(psubs) for i, v in given_rates.items()}
     leftover = set()
-    for v in list(q0.values()) + list(given_rates.values()):
+    given_inputs = {k: v.subs(psubs) for k, v in given_inputs.items()}
+    for v in list(q0.values()) + list(given_rates.values()) + list(given_inputs.values()):
         leftover |= v.free_symbols
     sym_left = sorted({s for e in everything for s in e.free_symbols if str(s) in pnames and s not in psubs} | leftover,
                       key=str)
@@ -282,7 +288,7 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
     F_p = [f.subs(psubs) for f in eom.F]
     M0 = se.DenseMatrix([[e.subs(psubs).subs(point_subs) for e in row] for row in eom.M])
     F0 = se.DenseMatrix([[f.subs(point_subs)] for f in F_p])
-    zero_u = {u: _ZERO for u in u_syms}
+    zero_u = {u: given_inputs.get(str(u), _ZERO) for u in u_syms}  # u0, 0 unless given
     F0 = F0.subs(zero_u) if u_syms else F0
     Mn = _to_numpy(M0, generic)
     if np.linalg.matrix_rank(Mn, tol=RANK_RTOL * max(1.0, np.abs(Mn).max(initial=0.0))) < n:
@@ -302,7 +308,8 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
             f"the point is not an equilibrium or a steady motion: the residual force is "
             f"{_format_residual(res_sym, generic, ind_s, rate_names)} ({residual:.2g} of the forces' scale)."
             + _nearest(eom, at_q, point_subs, generic, ind_c, dep_c, psubs),
-            fix="linearize about an equilibrium (lagrangian equilibria MODEL) or a steady motion")
+            fix="linearize about an equilibrium (lagrangian equilibria MODEL) or a steady motion"
+                + (", or hold the point with the inputs' values (--hold; `holding_inputs`)" if u_syms else ""))
     lam0 = _multipliers(A_at, F0) if m else se.zeros(0, 1)
 
     # 8. Jacobians.
@@ -356,6 +363,7 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
     second, why = _second_order(coords, ind_c, ind_s, Mr, Cr, Kr, Br, kin_c, ignorable, generic)
     point = {c: se.expand(q0[q[i]]) for i, c in enumerate(coords)}
     point.update({rate_names[i]: qd0[qd[i]] for i in range(n)})
+    point.update({str(u): zero_u[u] for u in u_syms if str(u) in given_inputs})
     return LinearModel(
         eom=eom, point=point, coordinates=tuple(coords[i] for i in ind_c), speeds=tuple(rate_names[i] for i in ind_s),
         dependent_coordinates=tuple(coords[i] for i in dep_c), dependent_speeds=tuple(rate_names[i] for i in dep_s),
@@ -477,3 +485,58 @@ def _second_order(coords: Sequence[str], ind_c: Sequence[int], ind_s: Sequence[i
     form = SecondOrderForm(tuple(coords[i] for i in kept), _tidy(Msym), _tidy(Dsym), _tidy(Gskew), _tidy(Ksym),
                            _tidy(Nskew), _tidy(Br))
     return form, ""
+
+
+def holding_inputs(eom: EquationsOfMotion, at: Mapping[str, object], *,
+                   parameters: Mapping[str, float] | None = None,
+                   inputs: Sequence[str] | None = None) -> dict[str, float]:
+    """The inputs u0 that hold the system at rest at ``at``: F(q0, 0, u0) = 0, for `linearize`.
+
+    For a robot these are the gravity-compensating joint torques τ0 = g(q0) (Pinocchio's
+    ``computeGeneralizedGravity``).  F is affine in the inputs of a load's magnitude (Q_j = τ_j),
+    so u0 solves F(q0, q̇0, 0) + (∂F/∂u) u0 = 0 by least squares; the inputs given in ``at`` keep
+    their values.  Every parameter needs a value.
+
+    Raises
+    ------
+    LinearizationError
+        A coordinate without a value, or a point that no input values hold (an under-actuated
+        system away from its equilibria): with the residual force.
+    """
+    model = eom.model
+    pnames = {p.name: p for p in model.parameters}
+    names = {p: se.Symbol(p) for p in pnames}
+    inputs = tuple(model.inputs if inputs is None else inputs)
+    coords = eom.coordinates
+    missing = [c for c in coords if c not in at]
+    if missing:
+        raise LinearizationError(f"the coordinate `{missing[0]}` of the point has no value.",
+                                 fix=f"give every coordinate a value, e.g. `--at {missing[0]}=0`")
+    values = {k: p.value for k, p in pnames.items() if p.value is not None}
+    values.update({k: float(v) for k, v in (parameters or {}).items()})
+    free = [k for k in inputs if k not in at]
+    subs: dict[se.Basic, se.Basic] = {names[k]: _number(v) for k, v in values.items() if k not in free}
+    for k in inputs:
+        if k in at:
+            subs[names[k]] = _value(k, at[k], names).subs(subs)
+    for i, c in enumerate(coords):
+        subs[eom.q[i]] = _value(c, at[c], names).subs(subs)
+        subs[eom.qd[i]] = _value(c + "_dot", at.get(c + "_dot", 0), names).subs(subs)
+    u = [names[k] for k in free]
+    F = [f.subs(subs) for f in eom.F]
+    try:
+        F0 = np.array([float(f.subs({s: 0 for s in u})) for f in F])
+        Bf = np.array([[float(f.diff(s).subs({x: 0 for x in u})) for s in u] for f in F]).reshape(len(F), len(u))
+    except (RuntimeError, TypeError) as exc:
+        raise LinearizationError(f"the holding inputs need every parameter's value ({exc}).",
+                                 fix="give the parameters values (`--set NAME=VALUE`)") from None
+    u0 = np.linalg.lstsq(Bf, -F0, rcond=None)[0] if u else np.zeros(0)
+    residual = F0 + Bf @ u0
+    scale = max(float(np.abs(F0).max(initial=0.0)), 1.0)
+    if np.abs(residual).max(initial=0.0) > POINT_RTOL * scale:
+        worst = int(np.argmax(np.abs(residual)))
+        raise LinearizationError(f"no values of the inputs {', '.join(free) or '(none)'} hold the point: the force "
+                                 f"along `{coords[worst]}` stays {residual[worst]:.6g}.",
+                                 fix="choose an equilibrium of the coordinates the inputs do not drive "
+                                     "(lagrangian equilibria MODEL), or more inputs")
+    return {k: float(v) for k, v in zip(free, u0)}

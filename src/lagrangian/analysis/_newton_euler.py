@@ -444,7 +444,7 @@ def given_efforts(eom: EquationsOfMotion) -> tuple[tuple[EffortsOnElement, ...],
 
 
 # -- the check -----------------------------------------------------------------------------------
-def verify(eom: EquationsOfMotion) -> Verification:
+def verify(eom: EquationsOfMotion, *, check: bool = True) -> Verification:
     """Check every Lagrange equation against the Newton–Euler theorems, symbolically.
 
     Parameters
@@ -452,6 +452,8 @@ def verify(eom: EquationsOfMotion) -> Verification:
     eom : the derivation to check (`lagrangian.derive`).  Only its model, kinematics,
         loads (for potentials and given generalized forces) and ``equations`` are read;
         the Newton–Euler side is computed from the kinematics, not from T.
+    check : False: the vector theorems only, no ``checks`` (what the reactions need; the
+        symbolic comparison with each L(q_i) is most of the cost for a robot).
 
     Returns
     -------
@@ -479,7 +481,7 @@ def verify(eom: EquationsOfMotion) -> Verification:
     element_count = len(theorems)
     frames = kin.frames
     checks = []
-    for i, coordinate in enumerate(eom.coordinates):
+    for i, coordinate in enumerate(eom.coordinates if check else ()):
         dyn: list[se.Basic] = []
         given: list[se.Basic] = [extra_power[i]] if extra_power[i] != 0 else []
         moving: list[tuple[str, Vector, Vector | None]] = []

@@ -156,8 +156,12 @@ def _shortest_frame(kin: Kinematics, v: Vector) -> tuple[str, tuple[se.Basic, se
     return name, comps
 
 
-def reactions(source: Verification | EquationsOfMotion) -> tuple[Reaction, ...]:
+def reactions(source: Verification | EquationsOfMotion, *, display: bool = True) -> tuple[Reaction, ...]:
     """The reactions of the ground on each group of linked elements (see the module docstring).
+
+    ``display=False`` leaves ``force_components`` in R0's basis instead of the frame where they
+    read shortest: that choice expands R in every frame (seconds for a robot arm), and the
+    numbers along a trajectory (`reaction_history`) do not need it.
 
     Examples
     --------
@@ -190,7 +194,10 @@ def reactions(source: Verification | EquationsOfMotion) -> tuple[Reaction, ...]:
         else:
             pinned, axes = None, ()
             name = "R(→" + "+".join(names) + ")"
-        frame, comps = _shortest_frame(kin, force)
+        if display:
+            frame, comps = _shortest_frame(kin, force)
+        else:
+            frame, comps = GALILEAN_FRAME, tuple(_r0(kin, force))
         out.append(Reaction(name, point, pinned, names, force, moment, axes, _rank(kin, axes), frame, comps))
     return tuple(out)
 
@@ -261,12 +268,13 @@ class ReactionHistory:
 def reaction_history(source: Verification | EquationsOfMotion,
                      trajectory: Trajectory) -> dict[str, ReactionHistory]:
     """Every reaction of `reactions` evaluated at the trajectory's states (q̈ from the trajectory)."""
-    v = source if isinstance(source, Verification) else verify(source)
+    # The vector theorems only: the symbolic check of each L(q_i) is not needed for the numbers.
+    v = source if isinstance(source, Verification) else verify(source, check=False)
     _check_coordinates(v, trajectory)
     kin = v.eom.kinematics
     out = {}
     states = _states(trajectory, v.eom)
-    for r in reactions(v):
+    for r in reactions(v, display=False):
         values = _Numeric(v.eom, trajectory.parameters, _r0(kin, r.force) + _r0(kin, r.moment))(states)
         out[r.name] = ReactionHistory(r.name, r.point, trajectory.t, values[:, :3], values[:, 3:])
     return out

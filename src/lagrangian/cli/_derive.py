@@ -1,4 +1,12 @@
-"""``lagrangian derive [MODEL.toml] [--latex | --json] [-o FILE]``."""
+"""``lagrangian derive [MODEL.toml] [--latex | --json] [--expanded | --intermediates] [-o FILE]``.
+
+A robot (a model derived in the recursive form, `dynamics._recursive`) has expanded
+entries of thousands of terms (2 MB of text and 40–50 s at 7 joints, more than 5 minutes for the Panda):
+its text and LaTeX show the course's view with every long expression summarized as
+⟨24 terms⟩ (the report's `SizeGate`), ``--expanded`` prints them in full, and
+``--intermediates`` prints T, U, M and F over the named intermediates the compiled code
+computes (linear in the joints), each intermediate with its formula.
+"""
 
 from __future__ import annotations
 
@@ -7,10 +15,14 @@ import json
 
 from .. import __version__
 from ..analysis import first_integrals
-from ..dynamics import derive
+from ..dynamics import EquationsOfMotion, derive
+from ..errors import DerivationError
 from ..output import course_form, derive_document, render_latex, render_text
-from ._source import MODEL_HELP, load_source
+from ..output._intermediates import listed, render_intermediates
+from ..output._report_size import SizeGate
 from ..output._text import supplement
+from ._settings import SettingError
+from ._source import MODEL_HELP, load_source
 
 __all__ = ["register"]
 
@@ -29,6 +41,13 @@ def register(sub: argparse._SubParsersAction) -> None:
     fmt.add_argument("--latex", action="store_true", help="print a LaTeX document instead of text")
     fmt.add_argument("--json", action="store_true",
                      help="print the versioned JSON document (schema lagrangian.derive/1, docs/derive-json.md)")
+    size = d.add_mutually_exclusive_group()
+    size.add_argument("--expanded", action="store_true",
+                      help="a robot (recursive form): print every expression of the course's view in full instead "
+                           "of ⟨24 terms⟩ (slow: 40–50 s at 7 joints)")
+    size.add_argument("--intermediates", action="store_true",
+                      help="a robot (recursive form): print T, U, M and F over the named intermediates of the "
+                           "recursive Newton–Euler and composite-rigid-body algorithms, and each intermediate")
     d.add_argument("-o", "--output", metavar="FILE", help="write to FILE (atomically) instead of standard output")
     d.set_defaults(run=run)
 
@@ -36,7 +55,18 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> str:
     model = load_source(args.model)
     eom = derive(model)
-    form = course_form(eom, first_integrals(eom))
+    robot = eom.formulation == "recursive"
+    if args.intermediates:
+        if args.latex or args.json:
+            raise SettingError("--intermediates prints text only.",
+                               fix="leave out --latex/--json, or --intermediates (the JSON has every expression)")
+        if not robot:
+            raise DerivationError(f"model `{model.name}` is derived by the course's route, without intermediates",
+                                  fix="leave out --intermediates (its expressions are printed in full)")
+        return render_intermediates(eom)
+    # A robot's course view, summarized (JSON always has every expression in full).
+    gate = SizeGate("terms", "long expression") if robot and not args.expanded and not args.json else None
+    form = course_form(eom, first_integrals(eom), **({"convert": gate} if gate is not None else {}))
     if args.json:
         initial = {c.name: {"value": c.initial, "rate": c.rate} for c in model.coordinates}
         doc = derive_document(form, parameters=model.parameter_values, initial=initial, source=model.source,
@@ -44,5 +74,25 @@ def run(args: argparse.Namespace) -> str:
         return json.dumps(doc, indent=2, ensure_ascii=False) + "\n"
     extra = supplement(eom, form)
     if args.latex:
-        return render_latex(form, extra)
-    return render_text(form, extra)
+        text = render_latex(form, extra)
+        if gate is not None and gate.summaries:
+            text = text.replace(r"\end{document}", _note(eom, gate, latex=True) + "\n\\end{document}")
+        return text
+    text = render_text(form, extra)
+    if gate is not None and gate.summaries:
+        text = text.rstrip("\n") + "\n\n" + _note(eom, gate) + "\n"
+    return text
+
+
+def _note(eom: EquationsOfMotion, gate: SizeGate, *, latex: bool = False) -> str:
+    """What the summaries stand for, and where the full expressions are."""
+    assert eom.recursive is not None
+    count = len(listed(eom.recursive))
+    text = (f"{len(gate.summaries)} long expressions are summarized as ⟨N terms⟩: the expanded entries of a robot in "
+            f"relative joint angles grow several-fold per joint. `lagrangian derive --expanded` prints them in full "
+            f"(slow), --json holds them all, and `lagrangian derive --intermediates` prints T, U, M and F over the "
+            f"{count} named intermediates the compiled code computes.")
+    if latex:
+        text = (text.replace("⟨N terms⟩", r"$\langle N\ \text{terms}\rangle$").replace("`", "")
+                .replace("--", "-{}-"))
+    return text

@@ -36,6 +36,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("model", nargs="?", help=MODEL_HELP)
     add_point_options(p)
     add_parameter_option(p)
+    p.add_argument("--hold", action="store_true",
+                   help="the inputs not given with --at take the values that hold the point at rest (a robot's "
+                        "gravity-compensating joint torques), printed with the point")
     p.add_argument("--json", action="store_true",
                    help="print the versioned JSON document (schema lagrangian.linearize/1, docs/small-motions.md)")
     p.add_argument("-o", "--output", metavar="FILE", help="write to FILE (atomically) instead of standard output")

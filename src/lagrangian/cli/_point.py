@@ -25,8 +25,9 @@ def add_point_options(parser: argparse.ArgumentParser, *, inputs: bool = True, s
     """``--at`` (repeatable), and optionally ``--inputs`` and ``--symbolic``; ``--set`` is added by the caller."""
     parser.add_argument(
         "--at", dest="at", action="append", default=[], metavar="NAME=VALUE",
-        help="the point: a coordinate's value (theta=3.14159, theta=pi) or a rate (psi_dot=10); repeat for "
-             "each coordinate (rates default to 0); default: the model's [operating_point]")
+        help="the point: a coordinate's value (theta=3.14159, theta=pi), a rate (psi_dot=10) or a declared "
+             "input's value (tau_elbow=0.3); repeat for each coordinate (rates and inputs default to 0); default: "
+             "the model's [operating_point]")
     if inputs:
         parser.add_argument(
             "--inputs", dest="inputs", action="append", default=None, metavar="NAME[,NAME...]",
@@ -71,13 +72,14 @@ def parse_point(values: Sequence[str], model: Model) -> dict[str, int | float | 
     coords = [c.name for c in model.coordinates]
     rates = [c + "_dot" for c in coords]
     params = [p.name for p in model.parameters]
+    inputs = [getattr(x, "name", str(x)) for x in (getattr(model, "inputs", None) or ())]
     out: dict[str, int | float | str] = {}
     for item in values:
         name, sep, text = item.partition("=")
         name, text = name.strip(), text.strip()
         if not sep or not name or not text:
             raise SettingError(f"`--at {item}` is not of the form NAME=VALUE.", fix="write e.g. `--at theta=0`")
-        if name not in coords and name not in rates:
+        if name not in coords and name not in rates and name not in inputs:  # an input: its value u0 at the point
             what = " is a parameter, not a coordinate" if name in params else " is not a coordinate or a rate"
             fix = (f"give parameter values with `--set {name}=VALUE`" if name in params else
                    "the coordinates are " + ", ".join(coords) + "; their rates " + ", ".join(rates))
@@ -152,6 +154,10 @@ def linearize_from_args(args: argparse.Namespace, model: Model, eom: EquationsOf
                                f"`{model.name}`.",
                                fix="name a parameter used in a load's magnitude, or declare it under [inputs]"
                                    + (" (declared: " + ", ".join(declared) + ")" if declared else ""))
+    if getattr(args, "hold", False):  # the inputs not given: those that hold the point (gravity compensation)
+        from ..analysis import holding_inputs
+
+        point = {**point, **holding_inputs(eom, point, parameters=parameters, inputs=names)}
     return linearize(eom, point, parameters=parameters, symbolic=tuple(dict.fromkeys(keep)), inputs=names,
                      independent_speeds=tuple(getattr(model, "independent_speeds", None) or ()) or None,
                      dependent_coordinates=tuple(getattr(model, "dependent_coordinates", None) or ()) or None)

@@ -64,9 +64,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     s.add_argument("--animation", choices=("gif", "mp4", "none"), default="gif",
                    help="the animation --plot writes (default gif; mp4 needs ffmpeg, found on the PATH or "
                         "through the imageio-ffmpeg package)")
-    s.add_argument("--reactions", action=argparse.BooleanOptionalAction, default=True,
+    s.add_argument("--reactions", action=argparse.BooleanOptionalAction, default=None,
                    help="add the constraint reactions (e.g. R_O from m γ(G) = P + R_O) as columns R_O_x0... "
-                        "(R0 components; default: on)")
+                        "(R0 components; default: on, except for a robot derived in the recursive form, where "
+                        "the only one is the ground's wrench on the arm and its expanded formula costs seconds)")
     s.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                    help="show a progress bar (default: when standard error is a terminal)")
     s.set_defaults(run=run)
@@ -143,7 +144,11 @@ def run(args: argparse.Namespace) -> str:
             exc.written = str(save_trajectory(exc.trajectory, args.out))
         raise
     elapsed = time.perf_counter() - start
-    if args.reactions:
+    # What the reactions are for: the course's pin and contact reactions (R_O of the top). A
+    # robot's only one is the ground's wrench on the whole arm, whose expanded Newton–Euler
+    # formula grows steeply with the joints (seconds at 12): asked for, not by default.
+    reactions = args.reactions if args.reactions is not None else eom.formulation != "recursive"
+    if reactions:
         traj = _with_reactions(traj, eom)
     lines = [
         f"{model.name}: t from {traj.t[0]:g} to {traj.t[-1]:g} with {traj.method}, {traj.steps} steps, "
@@ -154,6 +159,9 @@ def run(args: argparse.Namespace) -> str:
     if constraint:
         lines.append("constraint drift (max residual): "
                      + ", ".join(f"{name} {value:.1e}" for name, value in constraint.items()))
+    if args.reactions is None and not reactions:
+        lines.append("reactions: not computed for a kinematic tree (the ground's wrench on it); --reactions adds "
+                     "them")
     lines += [f"warning: {w}" for w in traj.warnings]
     if traj.events:
         lines.append(f"events: {len(traj.events)} — " + ", ".join(f"{e.name} at t = {e.t:.9g}" for e in traj.events[:8])

@@ -50,7 +50,7 @@ from ..kinematics._frames import _add3, _cross, _turn
 from ..model import GALILEAN_FRAME, Gravity, JointDamper, Torque, Vector
 from ..model._vector import AXES, sum_of
 from ._energy import _transport, rigid_inertia
-from ._forces import LoadForces
+from ._forces import LoadForces, _q_of
 
 __all__ = ["RecursiveForm", "TreeStructure", "tree_structure", "recursive_form", "AUTO_MIN_DEPTH"]
 
@@ -206,7 +206,9 @@ def tree_structure(kin: Kinematics) -> TreeStructure | str:
     kept: list[int] = []
     for k in other:
         load = model.loads[k]
-        if isinstance(load, Torque):
+        if isinstance(load, Torque) and _constant_q(kin, load):
+            kept.append(k)  # a motor's τ about its joint axis: Q_j = τ, potential −τ q_j (see `_constant_q`)
+        elif isinstance(load, Torque):
             couples.append((leaf_of.get(load.on, index.get(load.on, 0)), load.torque))
             if load.reaction_on is not None:
                 couples.append((leaf_of.get(load.reaction_on, index.get(load.reaction_on, 0)), -load.torque))
@@ -220,6 +222,20 @@ def tree_structure(kin: Kinematics) -> TreeStructure | str:
         else:
             kept.append(k)
     return TreeStructure(nodes, max(depth.values(), default=0), tuple(gravity), tuple(kept), tuple(couples))
+
+
+def _constant_q(kin: Kinematics, load: Torque) -> bool:
+    """The torque's Q_j = C⃗·∂Ω(S/S')/∂q̇_j (course, virtual power) hold no q, q̇ nor t.
+
+    That is a motor's constant τ about the axis of the joint between the two bodies it acts on:
+    Q_j = τ a_j, whose potential is −τ α.  Such a torque is kept among the loads with their
+    Q_i (a constant each) and potential, as the course's derivation has it, so that U holds
+    −τ·q and T + U is the energy integral of a robot driven by constant torques, in both forms
+    (by d/dt (T + U_gravity) = Σ τ_j q̇_j).  Any other torque is a couple in the recursion.
+    """
+    Q, _, _ = _q_of(kin, load)
+    moving = set(kin.q) | set(kin.qd) | {kin.t}
+    return not any(x.free_symbols & moving for x in Q)
 
 
 def model_depth(kin: Kinematics, frame: str) -> int:

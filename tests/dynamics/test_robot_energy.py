@@ -1,0 +1,109 @@
+"""A robot driven by constant joint torques: U holds −τ·q in both forms, and T + U is monitored.
+
+With the torques τ_j as inputs (constant along a run), d/dt (T + U_gravity) = Σ τ_j q̇_j, the
+power of the actuators, so E = T + U_gravity − Σ τ_j q_j is a first integral: the closed form
+the monitored E is checked against, with T and U_gravity from Pinocchio.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+import symengine as se
+
+import lagrangian
+from lagrangian.dynamics._recursive import tree_structure
+from lagrangian.model.build import ModelBuilder
+from lagrangian.model.urdf import UrdfNote, parse_urdf
+from lagrangian.model.zoo import serial_arm
+from urdf_robots import DOUBLE_PENDULUM, Peer
+
+TAU = {"tau_shoulder": 1.3, "tau_elbow": -0.6}
+
+
+def _pendulum() -> lagrangian.Model:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UrdfNote)
+        return parse_urdf(DOUBLE_PENDULUM, source="pendulum.urdf", damping=False)
+
+
+def _chain_with_a_wind_torque() -> lagrangian.Model:
+    """Four links about z, y, y, x; a motor τ between links 1 and 2, and a couple fixed in R0 on link 3."""
+    b = ModelBuilder("arm with wind")
+    for name, value in (("m", 1.0), ("L", 0.4), ("g", 9.81), ("A", 0.01), ("c", 0.7)):
+        b.parameter(name, value)
+    b.input("tau")
+    b.frame("R0", None)
+    for k, axis in enumerate("zyyx", start=1):
+        b.coordinate(f"q{k}", initial=0.2 * k)
+        b.frame(f"R{k}", f"R{k - 1}", rotation=(f"q{k}", axis))
+    center = ""
+    for k in range(1, 5):
+        center += f"{' + ' if k > 1 else ''}L*R{k}.z"
+        b.body(f"link{k}", frame=f"R{k}", mass="m", center=center + f" + L/3*R{k}.x",
+               inertia={"at": "G", "frame": f"R{k}", "diagonal": ["A", "2*A", "3*A"]})
+    b.gravity("weight", "-g*R0.z")
+    b.torque("motor", "tau*R2.y", on="link2", reaction_on="link1")
+    b.torque("wind", "c*R0.x", on="link3")
+    return b.build()
+
+
+def test_a_motor_torque_is_a_load_with_a_potential_and_a_couple_fixed_in_r0_stays_a_couple():
+    model = _chain_with_a_wind_torque()
+    eom = lagrangian.derive(model, formulation="recursive")
+    tree = tree_structure(eom.kinematics)
+    assert [model.loads[k].name for k in tree.other_loads] == ["motor"] and len(tree.couples) == 1
+    assert not eom.recursive.conservative  # the wind's Q depends on q: no potential
+    course = lagrangian.derive(model, formulation="lagrange")
+    rng = np.random.default_rng(5)
+    for _ in range(3):
+        values = {s: float(x) for s, x in zip([*eom.q, *eom.qd], rng.uniform(-2, 2, 2 * len(eom.q)))}
+        values |= {p.symbol: float(p.value) if not p.input else 0.8 for p in model.parameters}
+        values[eom.t] = 0.0
+        got = eom.recursive.evaluate(eom.recursive.F, values)
+        want = [float(f.subs(values)) for f in course.F]
+        np.testing.assert_allclose(got, want, rtol=1e-10, atol=1e-10)
+
+
+def test_zoo_arm_motors_give_the_course_potential_and_the_energy_integral():
+    eom = lagrangian.derive(serial_arm(5), formulation="recursive")
+    assert eom.recursive.conservative and not tree_structure(eom.kinematics).couples
+    run = lagrangian.simulate(eom, 1.0, parameters={"tau1": 0.8, "tau3": -0.5}, n_out=5)
+    assert "E" in run.integrals and run.drift["E"] < 1e-8
+
+
+@pytest.mark.parametrize("formulation", ["recursive", "lagrange"])
+def test_monitored_energy_is_the_closed_form_with_constant_torques(formulation):
+    pin = pytest.importorskip("pinocchio", reason="Pinocchio gives T and U_gravity independently")
+    model = _pendulum()
+    eom = lagrangian.derive(model, formulation=formulation)
+    run = lagrangian.simulate(eom, 2.0, parameters=TAU, initial={"shoulder": 0.4, "elbow": -0.3}, n_out=41)
+    peer = Peer(pin, DOUBLE_PENDULUM, list(eom.coordinates))
+    tau = np.array([TAU["tau_shoulder"], TAU["tau_elbow"]])
+    closed = np.array([sum(peer.energies(q, v)) - tau @ q for q, v in zip(run.q, run.qd)])
+    E = run.column("E")
+    np.testing.assert_allclose(E - E[0], closed - closed[0], atol=1e-8 * np.abs(closed).max())
+    assert run.drift["E"] < 1e-9
+    # The actuators' power: T + U_gravity changes by the work Σ τ_j Δq_j.
+    work = (run.q - run.q[0]) @ tau
+    assert np.abs(work).max() > 0.1  # the torques do work: T + U_gravity alone is not constant
+    physical = np.array([sum(peer.energies(q, v)) for q, v in zip(run.q, run.qd)])
+    np.testing.assert_allclose(physical - physical[0], work, atol=1e-8 * np.abs(physical).max())
+
+
+def test_energy_balance_of_a_damped_urdf_robot_is_the_dampers_power():
+    # The course's balance dE/dt = P_nc with E = T + U, U holding −τ·q: only the damper works.
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UrdfNote)
+        model = parse_urdf(DOUBLE_PENDULUM, source="pendulum.urdf")  # <dynamics damping="0.2"> on the elbow
+    eom = lagrangian.derive(model)
+    balance = lagrangian.energy_balance(eom)
+    assert not balance.conserved
+    working = [t for t in balance.terms if t.power != 0]
+    assert [t.name for t in working] == ["joint_damping"]
+    rates = {s: float(x) for s, x in zip(eom.qd, (0.7, -1.3))}
+    assert float(working[0].power.subs(rates)) == pytest.approx(-0.2 * 1.3**2, rel=1e-12)
+    for name, q in zip(TAU, eom.q):  # E holds the actuators' potential −τ_j q_j
+        assert se.expand(balance.E.diff(se.Symbol(name)) + q) == 0
