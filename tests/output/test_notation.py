@@ -115,3 +115,11 @@ def test_a_multipliers_index_is_one_level_deep():
     assert n.symbol("lambda_rolling_x1", latex=True) == r"\lambda_{\mathrm{rolling},x_{1}}"
     assert n.symbol("lambda_length", latex=True) == r"\lambda_{\mathrm{length}}"
     assert n.symbol("x_I", latex=True) == "x_{I}"
+
+
+def test_the_rate_of_a_word_keeps_its_name_instead_of_a_dot_on_its_last_letter() -> None:
+    # URDF joints are words: "shouldeṙ" read as a dotted r; the rate is written as the user types it.
+    n = Notation(("shoulder", "theta1", "x"), ("g",))
+    assert n.symbol("shoulder_dot") == "shoulder_dot" and n.symbol("shoulder_ddot") == "shoulder_ddot"
+    assert n.symbol("shoulder_dot", latex=True) == r"\dot{\mathrm{shoulder}}"
+    assert n.symbol("theta1_dot") == "θ\u03071" and n.symbol("x_ddot") == "x\u0308"  # letters keep Newton's dots

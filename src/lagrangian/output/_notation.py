@@ -18,6 +18,7 @@ Nothing here changes an expression's value: it only chooses how to write it.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Collection, Sequence
 from dataclasses import dataclass, field
 
@@ -192,8 +193,14 @@ class Notation:
                 split = _greek_index(base)
                 # θ̇1, θ̇R: the dot on the letter, not on the index.
                 head = _GREEK[split[0]][0] if split else b.rstrip("0123456789")
-                out = head + {"dot": "\u0307", "ddot": "\u0308", "star": "", "": ""}[deco] + b[len(head):] + \
-                    ("*" if deco == "star" else "")
+                word = re.match(r"[A-Za-z]*", head).group()  # type: ignore[union-attr]
+                if len(word) > 1 and deco in ("dot", "ddot"):
+                    # A word (a URDF joint, `shoulder`): a combining dot would sit on its last letter
+                    # ("shouldeṙ"), so the rate keeps the name the user types (--set shoulder_dot=1).
+                    out = f"{b}_{deco}"
+                else:
+                    out = head + {"dot": "\u0307", "ddot": "\u0308", "star": "", "": ""}[deco] + b[len(head):] + \
+                        ("*" if deco == "star" else "")
             self._cache[key] = out
         return self._cache[key]
 
