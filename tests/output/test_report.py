@@ -18,7 +18,7 @@ import pytest
 import lagrangian
 from lagrangian.model.zoo import planar_chain
 from lagrangian.output import Report, ReportFigure, course_form, report
-from lagrangian.output._report_build import report_notation
+from lagrangian.output._report_build import multiplier_names, report_notation
 from lagrangian.output._report_doc import Display, Fold, Items, Para, math_of, walk
 from lagrangian.output._report_md import render_markdown
 from lagrangian.output._report_size import SMALL_OPS, Summary
@@ -135,7 +135,8 @@ def test_report_equations_are_the_engines(name, lang):
     eom, integrals = eom_of(name), integrals_of(name)
     form = course_form(eom, integrals)
     # The report's notation: masses first, and the forms of `display_form` (its values: test_display_form).
-    n = report_notation(form, eom.model)
+    # and the multipliers as a teacher names them (λ, λ_1 … λ_k; test_report_constraints checks which).
+    n = report_notation(form, eom.model, multiplier_names(eom))
     r = report(eom, lang=lang, integrals=integrals)
     shown = _all_math(r)
     expected = []
@@ -188,7 +189,7 @@ def test_every_example_in_every_format_and_language(name):
 def test_complementary_constraint_is_kept_for_step_7():
     r = report(eom_of("pendulum_tension.toml"), lang="fr")
     text = _text(r)
-    assert "complémentaire" in text and r"\lambda_{\mathrm{length}}" in text
+    assert "complémentaire" in text and r"2 x \lambda" in text and r"\mathrm{length}" not in text
     step7 = " ".join(math_of(r.document.section("step7").blocks))
     assert "= 0" in step7 and r"\vec{R}" in step7
 

@@ -32,7 +32,10 @@ def test_the_matrix_form_keeps_the_multipliers():
             appendix = _section(_md(name, lang), title)
             assert r"A^{\mathsf{T}}\lambda" in appendix
     appendix = _section(_md("pendulum_tension"), "Annexe")
-    assert r"\left(A^{\mathsf{T}}\lambda\right)_{x} = \sum_{k} \lambda_{k}\, a_{k,x} = 2 x \lambda" in appendix
+    # One multiplier: λ a_x (a teacher writes Σ_k λ_k a_{k,x} only when there are several).
+    assert r"\left(A^{\mathsf{T}}\lambda\right)_{x} = \lambda\, a_{x} = 2 x \lambda" in appendix
+    coin = _section(_md("rolling_coin"), "Annexe")
+    assert r"\left(A^{\mathsf{T}}\lambda\right)_{x} = \sum_{k} \lambda_{k}\, a_{k,x} = \lambda_{1} \cos\psi" in coin
     # Without complementary constraints the form stays M q̈ = F.
     assert r"A^{\mathsf{T}}" not in _section(_md("simple_pendulum"), "Annexe")
 
@@ -152,8 +155,7 @@ def test_the_multiplier_terms_are_defined_once_and_symbols_are_math():
     from lagrangian.output import report
 
     eom = lagrangian.derive(lagrangian.load_model("examples/pendulum_tension.toml"))
-    for lang, words in (("fr", "est le multiplicateur de la liaison complémentaire"),
-                        ("en", "is the multiplier of complementary constraint")):
+    for lang, words in (("fr", "est son multiplicateur"), ("en", "is its multiplier")):
         text = report(eom, lang=lang, verification=False).render("md")
         assert text.count(words) == 1
         assert "q̇\\_i" not in text and "q̇_i" not in text and "f\\_k" not in text

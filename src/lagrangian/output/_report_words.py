@@ -117,7 +117,13 @@ _PHRASES: dict[str, tuple[str, str]] = {
               "the constraint keeping {P} in the plane through {X} normal to {n}"),
     "placement": ("la liaison qui place {E} en fonction des paramètres principaux",
                   "the constraint that places {E} as a function of the principal parameters"),
-    "declared": ("la liaison « {name} »{description} : {equation}", "the constraint “{name}”{description}: {equation}"),
+    "declared": ("{label} : {equation}", "{label}: {equation}"),
+    "constraint number": ("la liaison {k}", "constraint {k}"),
+    "multiplier table": ("Les multiplicateurs sont numérotés dans l'ordre des liaisons du modèle :",
+                         "The multipliers are numbered in the order of the model's constraints:"),
+    "col multiplier": ("multiplicateur", "multiplier"),
+    "col constraint": ("liaison", "constraint"),
+    "col row": ("équation", "equation"),
     "no slip": ("la liaison de roulement sans glissement de ({S}) en {I} : {equation}",
                 "rolling without slipping of ({S}) at {I}: {equation}"),
     "coincide": ("la liaison qui maintient {P} en {Q} : {equation}", "the constraint that keeps {P} at {Q}: {equation}"),
@@ -291,6 +297,12 @@ _PHRASES: dict[str, tuple[str, str]] = {
                         "The reactions of the complementary constraints have the generalized forces {Q} (step 7), "
                         "where {lam} is the multiplier of complementary constraint k and {a} the coefficient of "
                         "the rate {qd} in its equation ({f} for a holonomic constraint {fk})."),
+    "complementary Q one": ("La réaction de la liaison complémentaire a pour composantes généralisées {Q} (étape 7), "
+                            "où {lam} est son multiplicateur et {a} le coefficient de la vitesse {qd} dans son "
+                            "équation ({f} pour une liaison holonome {fk}).",
+                            "The reaction of the complementary constraint has the generalized forces {Q} (step 7), "
+                            "where {lam} is its multiplier and {a} the coefficient of the rate {qd} in its equation "
+                            "({f} for a holonomic constraint {fk})."),
     "perfect no Q but": ("Les autres liaisons principales étant parfaites, la puissance virtuelle de leurs efforts "
                          "est nulle ; les efforts des liaisons non parfaites (frottement) sont ceux des efforts "
                          "non conservatifs ci-dessus.", "The other principal constraints being ideal (workless), the "
@@ -369,7 +381,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
                           "Lagrange, elle détermine les {n} paramètres et le multiplicateur {lams} :",
                           "The complementary constraint equation completes the system; with the {n} Lagrange "
                           "equations it determines the {n} parameters and the multiplier {lams}:"),
-    "reaction of": ("Réaction de « {name} » sur {E} :", "Reaction of “{name}” on {E}:"),
+    "reaction of": ("Réaction {R} de la liaison « {name} » sur {E} :", "Reaction {R} of the constraint “{name}” on {E}:"),
     "signs used": ("Les hypothèses déclarées ({declared}) donnent {facts} : les valeurs absolues, racines de carrés "
                    "et signes de ces expressions se simplifient dans les efforts ci-dessous.",
                    "The declared assumptions ({declared}) give {facts}: the absolute values, square roots of squares "
