@@ -83,3 +83,83 @@ def test_step3_writes_the_torsor_of_each_body(lang):
         assert rf"\left\{{\mathcal{{V}}^{{*}}({name}/R_{{0}})\right\}}" in step3
         assert rf"\vec{{V}}^{{*}}({A}\in {name}/R_{{0}})" in step3
     assert r"\vec{V}^{*}(O\in S_{1}/R_{0}) = \vec{0}" in step3  # S1 turns about the fixed O
+
+
+# -- step 3: the comoment of each perfect principal constraint's action torsor with the virtual torsor -----------
+#: Examples and the principal constraints step 3 argues (the report states one comoment per entry).
+COMOMENTS = {"lagrange_top.toml": ["fixed point"], "double_pendulum.toml": ["pivot", "pivot"],
+             "pendulum_tension.toml": ["plane"], "rolling_coin.toml": ["body plane"],
+             "bead_rotating_hoop.toml": ["rod"], "cart_pendulum.toml": ["line", "rod"]}
+
+
+def _sym(e):  # type: ignore[no-untyped-def]
+    import sympy
+
+    return sympy.sympify(e._sympy_() if hasattr(e, "_sympy_") else e)
+
+
+def _unit(c: Context, name: str):  # type: ignore[no-untyped-def]
+    """An axis of the model (x0, u, y1) as R0 components."""
+    frames = c.kin.frames
+    frame = next(f for f in frames.frames if name in frames.axes(f))
+    k = frames.axes(frame).index(name)
+    return [_sym(x) for x in _r0(c, Vector({frame: tuple(se.Integer(int(i == k)) for i in range(3))}))]
+
+
+def _omega_star(c: Context, body: str | None):  # type: ignore[no-untyped-def]
+    """Ω*(S/R0) = Σ ∂Ω/∂q̇_i q_i*, Ω in R0 components differentiated here (not the engine's partial ω)."""
+    if body is None:
+        return [0, 0, 0]
+    omega = [_sym(x) for x in _r0(c, c.kin.omega(c.model.body(body).frame))]
+    return [sum(x.diff(_sym(qd)) * _sym(s) for qd, s in zip(c.kin.qd, c.kin.q_star)) for x in omega]
+
+
+@pytest.mark.parametrize("name", sorted(COMOMENTS))
+def test_step3_argues_each_perfect_constraint_by_a_zero_comoment(name):
+    """For each principal constraint step 3 argues, a generic action torsor {R ; M_X}_X with the stated
+    properties (M_O = 0 at a fixed point, M_X·e = 0 for a hinge, R along the normal of a smooth plane, along XP
+    and the plane normals for a rod, R ⟂ e for a slider, R along n and M_G ⟂ the allowed rotations for a body on
+    a plane) has a comoment with the virtual field, R·V*(X) + M_X·Ω*, that simplifies to 0 with SymPy."""
+    import sympy
+
+    eom = eom_of(name)
+    c = Context(eom, (), "fr")
+    step3 = " ".join(math_of(report(eom, lang="fr").document.section("step3").blocks))
+    assert step3.count(r"P^{*} = \vec{R}") == len(COMOMENTS[name]) + 1  # and the general comoment before them
+    assert [j.kind for j in c.joints if j.perfect] == COMOMENTS[name]
+    Rg, Mg = sympy.symbols("R1:4"), sympy.symbols("M1:4")
+    dot = lambda a, b: sum(x * y for x, y in zip(a, b))  # noqa: E731
+    cross = lambda a, b: [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]  # noqa: E731
+    for j in c.joints:
+        if j.kind in ("fixed point", "pivot", "ball joint"):
+            # Relative virtual torsor of S to its support, at X (a point of both): Ω*(S) − Ω*(S1), V*(X) − V*(X).
+            omega = [a - b for a, b in zip(_omega_star(c, j.element), _omega_star(c, j.support))]
+            V = [0, 0, 0]
+            R = list(Rg)
+            if j.kind == "pivot":
+                e = _unit(c, j.axis)
+                M = [m - dot(Mg, e) * x for m, x in zip(Mg, e)]  # the part of a generic moment orthogonal to e
+            else:
+                M = [0, 0, 0]
+        else:
+            omega, M = _omega_star(c, j.element if j.is_body else None), [0, 0, 0]
+            V = [_sym(x) for x in _direct(c, c.kin.position(j.element))]
+            if j.kind == "rod":  # relative to the rod's anchor X
+                V = [a - _sym(b) for a, b in zip(V, _direct(c, c.kin.position(j.point)))]
+            if j.kind == "rod":
+                XP = [_sym(x) for x in _r0(c, c.kin.position(j.element) - c.kin.position(j.point))]
+                R = [Rg[0] * a + sum(Rg[k + 1] * n for k, n in enumerate(col)) for a, *col in
+                     zip(XP, *[_unit(c, a) for a in j.normals])]
+            elif j.kind == "plane":
+                R = [Rg[0] * x for x in _unit(c, j.normals[0])]
+            elif j.kind == "line":
+                e = _unit(c, j.axis)
+                R = [r - dot(Rg, e) * x for r, x in zip(Rg, e)]
+            else:  # body plane: a force along the normal, a moment orthogonal to the allowed rotations
+                R = [Rg[0] * x for x in _unit(c, j.normals[0])]
+                t = [_unit(c, a) for a in j.turns]
+                M = [Mg[0] * x for x in cross(t[0], t[1])] if len(t) == 2 else [m - dot(Mg, t[0]) * x for m, x in zip(Mg, t[0])]
+        comoment = dot(R, V) + dot(M, omega)
+        assert sympy.simplify(sympy.expand_trig(comoment)) == 0, (name, j.kind, comoment)
+        # and the argument is not empty: the virtual field does move (else the check proves nothing).
+        assert any(sympy.simplify(x) != 0 for x in V + omega)

@@ -244,6 +244,34 @@ _PHRASES: dict[str, tuple[str, str]] = {
                        "virtuel, donné par ses éléments de réduction en un point A de (S), tel que {field} :",
                        "The virtual velocity field of each rigid body (S) is a screw (the virtual kinematic screw, or "
                        "twist), given by its reduction elements at a point A of (S), such that {field}:"),
+    "comoment intro": ("Les liaisons principales parfaites ne travaillent pas dans ce champ : la puissance virtuelle "
+                       "des actions d'une liaison est le comoment du torseur de ses actions {torsor}, réduit en un "
+                       "point X, et du torseur cinématique virtuel : {P}.",
+                       "The ideal (workless) principal constraints do no work in this field: the virtual power of a "
+                       "constraint's actions is the comoment of their screw {torsor}, reduced at a point X, with the "
+                       "virtual kinematic screw: {P}."),
+    "comoment short": ("Comoments des liaisons principales", "Comoments of the principal constraints"),
+    "comoment fixed point": ("Liaison « {X} point fixe » de ({S}) : rotule parfaite en {X}, de moment nul en {X} ;",
+                             "Fixed point {X} of ({S}): an ideal ball joint at {X}, of zero moment about {X};"),
+    "comoment ball": ("Liaison rotule de centre {X} entre ({S}) et {S1} : parfaite, de moment nul en {X} ;",
+                      "Ball joint of centre {X} between ({S}) and {S1}: ideal, of zero moment about {X};"),
+    "comoment pivot": ("Liaison pivot en {X} de ({S}) par rapport à {S1} : parfaite, son moment en {X} est "
+                       "orthogonal à l'axe ; dans le mouvement relatif, {X} est fixe et la rotation a lieu autour "
+                       "de l'axe :",
+                       "Hinge at {X} of ({S}) relative to {S1}: ideal, its moment about {X} is orthogonal to the "
+                       "axis; in the relative motion, {X} is fixed and the rotation is about the axis:"),
+    "comoment rod": ("Liaison de {P} (point matériel, torseur cinématique réduit à sa vitesse) : sans frottement, la "
+                     "réaction n'a de composante que selon {dirs} ;",
+                     "Constraint on {P} (a particle, whose kinematic screw reduces to its velocity): frictionless, "
+                     "the reaction only has components along {dirs};"),
+    "comoment plane": ("Contact de {P} avec le plan sans frottement : la réaction est portée par {dirs} ;",
+                       "Frictionless contact of {P} with the plane: the reaction is along {dirs};"),
+    "comoment line": ("Glissière de {P} sans frottement : la réaction est orthogonale à {dirs} ;",
+                      "Frictionless slider of {P}: the reaction is orthogonal to {dirs};"),
+    "comoment body plane": ("Contact de ({S}) sans frottement : ses actions, réduites en {G}, sont une force selon {n} "
+                            "et un moment orthogonal à {turns} ;",
+                            "Frictionless contact of ({S}): its actions, reduced at {G}, are a force along {n} and a "
+                            "moment orthogonal to {turns};"),
     "virtual torsor short": ("Torseurs cinématiques virtuels", "Virtual kinematic screws"),
     # -- step 4 -----------------------------------------------------------------------------------
     "energies": ("Les énergies cinétique et potentielle compatibles de (Σ) par rapport à {R} sont :",
