@@ -163,3 +163,40 @@ def test_step3_argues_each_perfect_constraint_by_a_zero_comoment(name):
         assert sympy.simplify(sympy.expand_trig(comoment)) == 0, (name, j.kind, comoment)
         # and the argument is not empty: the virtual field does move (else the check proves nothing).
         assert any(sympy.simplify(x) != 0 for x in V + omega)
+
+
+# -- step 4: Π_P(S), the inertia operator, introduced where T first uses it ------------------------------------
+@pytest.mark.parametrize("name", ["lagrange_top.toml", "double_pendulum.toml", "rolling_coin.toml"])
+def test_step4_introduces_the_inertia_operator_that_T_uses(name):
+    """T(S/R0) = ½ Ω·[Π_P(S)·Ω] (+ ½ m V²(G) by König): with the matrix step 3 prints and Ω's components in its
+    basis, ½ Ωᵀ [Π] Ω (+ ½ m V(G)² differentiated here) equals the engine's T term (SymPy); step 4 defines each Π."""
+    import sympy
+
+    eom = eom_of(name)
+    c = Context(eom, (), "fr")
+    step4 = " ".join(math_of(report(eom, lang="fr").document.section("step4").blocks))
+    t = sympy.Symbol("t")
+    for term in eom.T_terms:
+        used = eom.inertias[term.name]
+        P = c.point_label(term.name) if used.point == "G" else c.point_label(used.point)
+        S = c.element(term.name)
+        assert rf"\Pi_{{{P}}}({S})\cdot\vec{{\Omega}}({S}/R_{{0}}) = \int_{{M\in {S}}}" in step4
+        Pi = sympy.Matrix([[_sym(x) for x in row] for row in used.matrix])
+        w = sympy.Matrix([_sym(x) for x in c.kin.frames.express(c.kin.omega(c.model.body(term.name).frame), used.frame)])
+        T = (w.T * Pi * w)[0] / 2
+        if term.formula == "König":
+            # V(G/R0) by differentiating OG's R0 components along q(t) here.
+            q = [_sym(x) for x in c.kin.q]
+            funcs = {x: sympy.Function(str(x))(t) for x in q}
+            OG = [_sym(x).subs(funcs) for x in _r0(c, c.kin.position(term.name))]
+            rates = {sympy.Derivative(funcs[x], t): _sym(qd) for x, qd in zip(q, c.kin.qd)}
+            V = [sympy.diff(x, t).subs(rates).subs({v: k for k, v in funcs.items()}) for x in OG]
+            T += _sym(c.model.body(term.name).mass) * sum(x**2 for x in V) / 2
+        else:
+            assert term.formula == "fixed point"
+        assert sympy.simplify(T - _sym(term.expression)) == 0, (name, term.name)
+    if name == "lagrange_top.toml":  # and the seed's closed form
+        A, C = sympy.symbols("A C")
+        th, ps, ph = (sympy.Symbol(f"{x}_dot") for x in ("theta", "psi", "phi"))
+        seed = A * (th**2 + ps**2 * sympy.sin(sympy.Symbol("theta"))**2) / 2 + C * (ph + ps * sympy.cos(sympy.Symbol("theta")))**2 / 2
+        assert sympy.simplify(_sym(eom.T_terms[0].expression) - seed) == 0

@@ -343,6 +343,7 @@ def _kinetic(c: Context) -> list[Block]:
         head = rf"T({S}/{c.R}) = " + (f"{formula} = " if formula else "")
         rows.append(c.equation(head, shown.expression))
     blocks = c.many(c.show(rows, "T"), len(rows), "T") + single
+    blocks += c.many(_inertia_operators(c), len(c.model.bodies), "Π", limit=6)
     if len(rows) > 1:
         head = rf"T(\Sigma/{c.R}) = "
         names = [rf"T({c.element(t.name)}/{c.R})" for t in c.eom.T_terms]
@@ -350,6 +351,25 @@ def _kinetic(c: Context) -> list[Block]:
         full = c.full([(head, c.form.T_total)], f"T(Σ/{c.ref})")
         blocks += c.show([c.equation(rf"{head}{total} = ", c.form.T_total)], "T") + full
     return blocks
+
+
+def _inertia_operators(c: Context) -> list[Block]:
+    """Where T first uses Π_P(S) (½ Ω·[Π_O(S)·Ω] for the top): what it is — the inertia operator of (S) at P,
+    whose matrix in the basis of step 3 gives T = ½ Ωᵀ [Π_P(S)] Ω with Ω's components in that basis."""
+    out: list[Block] = []
+    for term in c.eom.T_terms:
+        if term.inertia is None or term.formula not in ("fixed point", "König"):
+            continue
+        S = c.element(term.name)
+        P = c.point_label(term.name) if term.inertia.point == "G" else c.point_label(term.inertia.point)
+        Pi = rf"\Pi_{{{P}}}({S})"
+        # Π_P(S)·Ω = σ_P(S/R) = ∫ PM ∧ (Ω ∧ PM) dm, P fixed in S and R (the top's O) or the centre of mass G.
+        Omega = rf"\vec{{\Omega}}({S}/{c.R})"
+        v = (rf"\Pi_{{{P}}}({S})\cdot{Omega} = \int_{{M\in {S}}} \overrightarrow{{{P}M}}\wedge\left({Omega}"
+             rf"\wedge\overrightarrow{{{P}M}}\right) dm = \vec{{\sigma}}_{{{P}}}({S}/{c.R})")
+        out.append(Para(c.w("inertia operator", Pi=Math(Pi), S=Math(S), P=Math(P), op=Math(v),
+                            basis=Math(c.basis(term.inertia.frame)))))
+    return out
 
 
 def _gravity_formula(c: Context, load: Gravity) -> str:

@@ -272,6 +272,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
                             "et un moment orthogonal à {turns} ;",
                             "Frictionless contact of ({S}): its actions, reduced at {G}, are a force along {n} and a "
                             "moment orthogonal to {turns};"),
+    "inertia operator": ("où {Pi} est l'opérateur d'inertie de ({S}) en {P} : {op} (moment cinétique en {P}) ; sa "
+                         "matrice dans la base {basis} est donnée à l'étape 3.",
+                         "where {Pi} is the inertia operator (inertia tensor) of ({S}) at {P}: {op} (the angular momentum "
+                         "about {P}); its matrix in the basis {basis} is given at step 3."),
     "virtual torsor short": ("Torseurs cinématiques virtuels", "Virtual kinematic screws"),
     # -- step 4 -----------------------------------------------------------------------------------
     "energies": ("Les énergies cinétique et potentielle compatibles de (Σ) par rapport à {R} sont :",
