@@ -318,3 +318,27 @@ def test_values_of_the_integrals_carry_their_units_and_minus_signs():
     assert top.count("\u202fJ·s with the model's initial values") == 2 and "\u202fJ with the model's" in top
     coin = _all(_report(_eom_of("rolling_coin.toml"), lang="en"))
     assert "≈ 10\u202frad/s" in coin
+
+
+def test_a_constant_speed_and_a_symmetry_integral_are_not_called_jacobi_integrals():
+    """The coin's φ̇ = cste (its reduced equations) and a top's σ_O·z0 were printed as « h = T + U_P = φ̇ »,
+    the Painlevé–Jacobi integral of a moving frame.  φ̇ = cste is checked here on the textbook coin: T =
+    ½ m (ẋ² + ẏ²) + ⅛ m r² ψ̇² + ¼ m r² φ̇², ẋ = r φ̇ cos ψ, ẏ = r φ̇ sin ψ (Lagrange–d'Alembert) gives φ̈ = 0."""
+    import sympy
+
+    m, r, t = sympy.symbols("m r t", positive=True)
+    x, y, psi, phi = (sympy.Function(n)(t) for n in ("x", "y", "psi", "phi"))
+    l1, l2 = sympy.symbols("lambda1 lambda2")
+    # m ẍ = λ1, m ÿ = λ2, ½ m r² φ̈ = −r (λ1 cos ψ + λ2 sin ψ), with the rolling rows differentiated once.
+    xdd = sympy.diff(r * phi.diff(t) * sympy.cos(psi), t)
+    ydd = sympy.diff(r * phi.diff(t) * sympy.sin(psi), t)
+    lam = {l1: m * xdd, l2: m * ydd}
+    eq = sympy.Rational(1, 2) * m * r**2 * phi.diff(t, 2) + r * (l1 * sympy.cos(psi) + l2 * sympy.sin(psi))
+    phidd = sympy.solve(sympy.simplify(eq.subs(lam)), phi.diff(t, 2))
+    assert phidd == [0]
+    for lang, cste in (("fr", "cste"), ("en", "const")):
+        coin = _section(_report(_eom_of("rolling_coin.toml"), lang=lang), "integrals")
+        assert rf"\dot{{\varphi}} = \text{{{cste}}}" in coin and r"h = " not in coin and "Painlev" not in coin
+        for name in ("sleeping_top.toml", "top_reaction.toml"):
+            top = _section(_report(_eom_of(name), lang=lang), "integrals")
+            assert r"= \sigma_{O,z_{0}}" in top and "h = " not in top and "Noether" in top

@@ -459,10 +459,33 @@ def _energy(c: Context, row: IntegralRow) -> list[Block]:
     return blocks
 
 
+def _other_integral(c: Context, row: IntegralRow) -> list[Block]:
+    """A constant speed of a nonholonomic system (the coin's φ̇, from its reduced equations) or a symmetry's
+    integral (σ_O·z0 of a top free to turn about Oz0): neither is an energy nor a Jacobi integral."""
+    w = c.w
+    name = c.n.symbol(row.name, latex=True)
+    if row.kind == "nonholonomic":
+        blocks: list[Block] = [Para(w("constant speed", qd=Math(name),
+                                      d=Math(rf"\frac{{d{name}}}{{dt}} = 0")))]
+        blocks += c.show([c.equation("", row.expression, rf" = \text{{{w.text('cste')}}}")], row.name)
+    else:
+        blocks = [Para(w("symmetry integral"))]
+        blocks += c.show([c.equation("", row.expression, f" = {name}")], row.name)
+    source = next((i.expression for i in c.integrals if i.name == row.name), None)
+    if source is not None:
+        value = _value(c, name, source, _unit(c, row.kind, row.name))
+        if value:
+            blocks.append(Para(value[1:-1] + (".",)))
+    return blocks
+
+
 def integrals_section(c: Context) -> Section:
     w = c.w
     blocks: list[Block] = []
     for row in c.form.integrals:
+        if row.kind in ("nonholonomic", "symmetry"):
+            blocks += _other_integral(c, row)
+            continue
         blocks += _momentum(c, row) if row.kind == "momentum" else _energy(c, row)
     if not blocks:
         kin = c.kin

@@ -103,7 +103,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "perfect body plane": ("Elle est supposée parfaite (sans frottement) : ses actions se réduisent à une force "
                            "selon {n} et à un couple orthogonal aux rotations permises, de puissance virtuelle nulle "
                            "puisque {cond}.",
-                           "It is assumed ideal (workless) (frictionless): its actions reduce to a force along {n} and a "
+                           "It is assumed ideal (workless), being frictionless: its actions reduce to a force along {n} and a "
                            "couple orthogonal to the allowed rotations, whose virtual power is zero since {cond}."),
     "not perfect": ("Elle n'est pas parfaite : la puissance virtuelle de ses efforts n'est pas nulle ({why}) ; "
                     "ils figurent dans {Q} (étape 5).",
@@ -145,16 +145,16 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "classified one": ("Elle est {a}, {b} et {c}.", "It is {a}, {b} and {c}."),
     "classified": ("{a}, {b}, {c}", "{a}, {b}, {c}"),
     "perfect fixed point": ("Elle est parfaite car la puissance virtuelle de la réaction {R} en {X} est nulle ; "
-                            "en effet :", "It is ideal (workless): the virtual power of the reaction {R} at {X} is zero, as"),
+                            "en effet :", "It is ideal (workless) because the virtual power of the reaction {R} at {X} is zero:"),
     "because": ("car", "because"),
     "since": ("puisque", "since"),
     "and": ("et", "and"),
     "perfect pivot": ("Elle est parfaite (sans frottement, {MX}) : la puissance virtuelle des actions de liaison "
-                      "est nulle,", "It is ideal (workless) (frictionless, {MX}): the virtual power of the constraint "
+                      "est nulle,", "It is ideal (workless), being frictionless ({MX}): the virtual power of the constraint "
                       "actions is zero,"),
     "perfect joint": ("Elle est parfaite (sans frottement, {MX}) : les actions mutuelles de liaison, opposées, ont "
                       "une puissance virtuelle nulle, {X} étant commun aux deux solides,",
-                      "It is ideal (workless) (frictionless, {MX}): the mutual constraint actions, opposite, have zero "
+                      "It is ideal (workless), being frictionless ({MX}): the mutual constraint actions, opposite, have zero "
                       "virtual power, {X} being common to both bodies,"),
     "perfect ball": ("Elle est parfaite : les actions mutuelles de liaison se réduisent à une force en {X}, point "
                      "commun aux deux solides, de puissance virtuelle nulle.",
@@ -162,17 +162,17 @@ _PHRASES: dict[str, tuple[str, str]] = {
                      "both bodies, whose virtual power is zero."),
     "perfect rod": ("Elle est parfaite (sans frottement) : la réaction sur {P} n'a de composante que selon {dirs}, "
                     "{orth} à son champ de vitesses virtuelles puisque {XP2} est constant :",
-                    "It is ideal (workless) (frictionless): the reaction on {P} only has components along {dirs}, "
+                    "It is ideal (workless), being frictionless: the reaction on {P} only has components along {dirs}, "
                     "{orth} to its virtual velocity field since {XP2} is constant:"),
     "orth one": ("direction orthogonale", "a direction orthogonal"),
     "orth many": ("directions orthogonales", "directions orthogonal"),
     "perfect smooth": ("Elle est parfaite (contact sans frottement) : la réaction est normale à {where}, qui contient "
-                       "{V}.", "It is ideal (workless) (frictionless contact): the reaction is normal to {where}, which "
+                       "{V}.", "It is ideal (workless), the contact being frictionless: the reaction is normal to {where}, which "
                        "contains {V}."),
     "the plane": ("ce plan", "that plane"),
     "the line": ("cette droite", "that line"),
     "perfect assumed": ("Elle est supposée parfaite (sans frottement) : ses efforts n'entrent dans aucune "
-                        "composante généralisée.", "It is assumed ideal (workless) (frictionless): its forces enter no "
+                        "composante généralisée.", "It is assumed ideal (workless), being frictionless: its forces enter no "
                         "generalized force."),
     "perfect complementary": ("Elle est parfaite : sa réaction a une puissance virtuelle nulle dans tout champ "
                               "compatible avec elle, et ses composantes généralisées sont {Q}.",
@@ -184,10 +184,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
                         "field compatible with it: {P}. Its generalized forces are {Q}."),
     "reaction is": ("La réaction exercée sur {E} est {R}.", "The reaction exerted on {E} is {R}."),
     "reaction on at": ("La réaction exercée sur ({S}) en {E} est {R}.", "The reaction exerted on ({S}) at {E} is {R}."),
-    "parameter count": ("Bilan des paramètres (6 par solide, 3 par point, moins une par équation de liaison "
+    "parameter count": ("Bilan des paramètres (6 par solide, 3 par point matériel, moins un par équation de liaison "
                         "principale) : {count}.",
-                        "Count of the parameters (6 per rigid body, 3 per particle, minus one per principal "
-                        "constraint equation): {count}."),
+                        "Parameter count (6 per rigid body and 3 per particle, minus one for each scalar equation of a "
+                        "principal constraint): {count}."),
     "dof": ("Degrés de liberté : {count}, où n est le nombre de paramètres principaux, h celui des équations de "
             "liaison complémentaires holonomes et k celui des non holonomes.",
             "Degrees of freedom: {count}, where n is the number of principal parameters, h that of the holonomic "
@@ -210,10 +210,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
                       "and every rotation is about the axis {axis}."),
     "time dep note": ("(le temps y figure explicitement)", "(the time appears in it explicitly)"),
     # -- step 2 -----------------------------------------------------------------------------------
-    "n params": ("On a donc {n} paramètres principaux : {list}.", "Hence {n} principal parameters: {list}."),
+    "n params": ("On a donc {n} paramètres principaux : {list}.", "There are therefore {n} principal parameters: {list}."),
     "n params euler": ("On a donc {n} paramètres principaux qui sont les angles d'Euler {list} de ({S}).",
-                       "Hence {n} principal parameters, the Euler angles {list} of ({S})."),
-    "one param": ("On a donc un seul paramètre principal, {q}.", "Hence a single principal parameter, {q}."),
+                       "There are therefore {n} principal parameters: the Euler angles {list} of ({S})."),
+    "one param": ("On a donc un seul paramètre principal, {q}.", "There is therefore a single principal parameter: {q}."),
     "remark 1": ("Remarque 1 : il y a autant d'équations de Lagrange que de paramètres principaux, soit {n}.",
                  "Remark 1 (course): there are as many Lagrange equations as principal parameters, that is {n}."),
     "remark 1 lambda": ("Remarque 1 : il y a autant d'équations de Lagrange que de paramètres principaux, soit {n} ; "
@@ -321,8 +321,8 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "kind inertial: entrainment": ("effort d'inertie d'entraînement", "transport inertial force"),
     "perfect no Q": ("Les liaisons principales étant parfaites, la puissance virtuelle de leurs efforts est nulle : "
                      "ils n'apparaissent dans aucune composante généralisée.",
-                     "The principal constraints being ideal (workless), the virtual power of their forces is zero: they "
-                     "appear in no generalized force."),
+                     "Since the principal constraints are ideal (workless), the virtual power of their forces is zero: "
+                     "they appear in no generalized force."),
     "complementary Q": ("Les réactions des liaisons complémentaires ont pour composantes généralisées {Q} (étape "
                         "7), où {lam} est le multiplicateur de la liaison complémentaire k et {a} le coefficient de "
                         "la vitesse {qd} dans son équation ({f} pour une liaison holonome {fk}).",
@@ -452,20 +452,28 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "momentum": ("{why}, donc {eq} s'intègre :", "{why}, so {eq} integrates:"),
     "energy integral": ("{L} ne dépend pas explicitement du temps et {cond} ; {T} étant une forme quadratique "
                         "homogène des vitesses, l'intégrale première de l'énergie s'écrit :",
-                        "{L} does not depend on the time explicitly and {cond}; {T} being a homogeneous "
-                        "quadratic form of the rates, the energy integral reads:"),
+                        "{L} does not depend explicitly on time and {cond}; since {T} is a homogeneous "
+                        "quadratic form in the rates, the energy integral reads:"),
     "jacobi integral": ("{L} ne dépend pas explicitement du temps et {cond}. Écrivons {parts}, où {T210} "
                         "sont les parties de {T} de degré 2, 1 et 0 par rapport aux vitesses {qd} : {T1} ou {T0} "
                         "n'étant pas nul, {E} n'est pas conservée, mais l'intégrale première de Painlevé–Jacobi "
-                        "l'est :", "{L} does not depend on the time explicitly and {cond}. Write {parts}, where "
+                        "l'est :", "{L} does not depend explicitly on time and {cond}. Write {parts}, where "
                         "{T210} are the parts of {T} of degree 2, 1 and 0 in the rates {qd}: {T1} or {T0} "
                         "not being zero, {E} is not conserved, but the Painlevé–Jacobi integral is:"),
+    "constant speed": ("Les équations réduites, où les vitesses dépendantes sont éliminées par les liaisons non "
+                       "holonomes, donnent {d} : {qd} est une intégrale première.",
+                       "The reduced equations, where the dependent rates are eliminated by the nonholonomic "
+                       "constraints, give {d}: {qd} is a first integral."),
+    "symmetry integral": ("Le système étant invariant par une symétrie de ses efforts et de ses liaisons (théorème de "
+                          "Noether), la quantité suivante est une intégrale première :",
+                          "The system being invariant under a symmetry of its forces and constraints (Noether's "
+                          "theorem), the following quantity is a first integral:"),
     "jacobi moving": ("{L} ne dépend pas explicitement du temps et {cond}. Les équations étant écrites dans le "
                       "repère {R}, entraîné par rapport à {R0} par un mouvement imposé, {T2} est une forme quadratique "
                       "homogène des vitesses et {U} contient l'énergie potentielle des efforts d'inertie "
                       "d'entraînement (Remarque 3) : l'intégrale première est celle de Painlevé–Jacobi, et non "
                       "l'énergie mécanique {E} dans le repère galiléen, que le mouvement imposé fait varier :",
-                      "{L} does not depend on the time explicitly and {cond}. The equations being written in the "
+                      "{L} does not depend explicitly on time and {cond}. The equations being written in the "
                       "frame {R}, driven relative to {R0} by a prescribed motion, {T2} is a homogeneous quadratic "
                       "form of the rates and {U} holds the potential energy of the transport inertial forces "
                       "(Remark 3 of the course): the first integral is the Painlevé–Jacobi one, not the mechanical "
@@ -514,7 +522,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "check intro": ("Ces équations de Lagrange peuvent être retrouvées en appliquant les théorèmes généraux à chaque "
                     "constituant de (Σ) par rapport à {R0} galiléen, projetés sur les directions associées à chaque "
                     "paramètre :", "These Lagrange equations can be recovered by applying the "
-                    "Newton–Euler theorems to each part of (Σ) relative to the Galilean {R0}, projected on the "
+                    "Newton–Euler theorems to each part of (Σ) relative to the Galilean frame {R0}, projected onto the "
                     "directions that go with each parameter:"),
     "check intro moving": ("Ces équations de Lagrange peuvent être retrouvées en appliquant les théorèmes généraux par "
                            "rapport à {R0}, non galiléen, en ajoutant aux efforts donnés les efforts d'inertie de "
@@ -522,23 +530,23 @@ _PHRASES: dict[str, tuple[str, str]] = {
                            "These Lagrange equations can be recovered by applying the Newton–Euler theorems "
                            "relative to {R0}, which is not Galilean, the Coriolis and transport inertial forces being "
                            "added to the applied forces, projected on the directions that go with each parameter:"),
-    "moment theorem": ("Théorème du moment dynamique en {P} de {S} :", "Moment (angular momentum) theorem at {P} for {S}:"),
+    "moment theorem": ("Théorème du moment dynamique en {P} de {S} :", "Angular momentum theorem about {P} for {S}:"),
     "moment theorem parallel": ("Théorème du moment dynamique en {P} de {S} ; le point {P} est mobile dans {R}, mais "
                                 "sa vitesse est parallèle à celle de {G}, donc {term} et le moment dynamique est la "
                                 "dérivée du moment cinétique.",
-                                "Moment (angular momentum) theorem at {P} for {S}; {P} moves in {R}, but parallel to "
+                                "Angular momentum theorem about {P} for {S}; {P} moves in {R}, but parallel to "
                                 "{G}, so {term} and the dynamic moment is the derivative of the angular momentum."),
     "moment theorem moving": ("Théorème du moment dynamique en {P} de {S} ; le point {P} étant mobile dans {R}, le "
                               "moment dynamique n'est pas la dérivée du moment cinétique : il s'en écarte de {term}.",
-                              "Moment (angular momentum) theorem at {P} for {S}; {P} moves in {R}, so the dynamic "
+                              "Angular momentum theorem about {P} for {S}; {P} moves in {R}, so the dynamic "
                               "moment is not the derivative of the angular momentum: they differ by {term}."),
     "resultant theorem": ("Théorème de la résultante dynamique pour {P} :", "Resultant theorem for {P}:"),
     "by moment": ("{eq} par projection du théorème du moment dynamique en {P}{of} sur {e} :",
-                  "{eq} by projecting the moment (angular momentum) theorem at {P}{of} on {e}:"),
+                  "{eq} by projecting the angular momentum theorem about {P}{of} onto {e}:"),
     "by resultant": ("{eq} par projection du théorème de la résultante dynamique{of} sur {e} :",
-                     "{eq} by projecting the resultant theorem{of} on {e}:"),
+                     "{eq} by projecting the resultant theorem{of} onto {e}:"),
     "by power": ("{eq} par projection des théorèmes{of} sur les vitesses partielles de {q} (puissance virtuelle) :",
-                 "{eq} by projecting the theorems{of} on the partial velocities of {q} (virtual power):"),
+                 "{eq} by projecting the theorems{of} onto the partial velocities of {q} (virtual power):"),
     "of": (" de {names}", " of {names}"),
     "check failed": ("Désaccord : la projection ne redonne pas {eq}.", "Disagreement: the projection does not give "
                      "{eq} back."),
@@ -556,7 +564,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
                          "constraints that are not ideal stay, with the applied forces."),
     "fixed axis": ("{e} étant fixe dans {R0} et {O} fixe, la projection du moment dynamique sur {e} est la dérivée de "
                    "celle du moment cinétique, qui est la quantité de mouvement généralisée :",
-                   "{e} being fixed in {R0} and {O} fixed, the projection of the dynamic moment on {e} is the derivative "
+                   "Since {e} and {O} are fixed in {R0}, the projection of the dynamic moment onto {e} is the derivative "
                    "of that of the angular momentum, which is the generalized momentum:"),
     "pvv": ("Le principe des puissances virtuelles, pour tout champ de vitesses virtuelles compatible avec les "
             "liaisons principales :",
@@ -567,10 +575,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
               "where {gamma} is the generalized component of the acceleration quantities (inertia) of (Σ) relative "
               "to {R}, and {Q} that of all the forces and moments; hence Lagrange's equations:"),
     "top moment": ("{R0} étant galiléen, le théorème du moment dynamique en {O} de ({S}) par rapport à {R0} "
-                   "s'écrit :", "{R0} being Galilean, the moment (angular momentum) theorem at {O} for ({S}) "
+                   "s'écrit :", "{R0} being Galilean, the angular momentum theorem about {O} for ({S}) "
                    "relative to {R0} reads:"),
     "fixed point moment": ("La réaction {R} s'applique en {O} : son moment en {O} est nul, {OO}.",
-                           "The reaction {R} acts at {O}: its moment at {O} is zero, {OO}."),
+                           "The reaction {R} acts at {O}: its moment about {O} is zero, {OO}."),
     "whole system": ("(Σ)", "(Σ)"),
     # -- simulation, appendix, sizes --------------------------------------------------------------
     "figure": ("Figure {k} : {caption}", "Figure {k}: {caption}"),
