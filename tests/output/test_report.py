@@ -152,9 +152,10 @@ def test_report_equations_are_the_engines(name, lang):
     expected += [n.latex(q) for load in form.loads for q in load.Q]
     # The seed writes the energy integral "… = cste" (and the momentum ones "= K constante", above).
     cste = {"fr": "cste", "en": "const"}[lang]
-    expected += [n.sum(i.parts, latex=True) + rf" = \text{{{cste}}}" for i in form.integrals if i.kind != "momentum"]
+    expected += [n.sum(i.parts, latex=True) + rf" = \text{{{cste}}}" for i in form.integrals
+                 if i.kind not in ("momentum", "symmetry")]
     expected += [n.sum(i.parts, latex=True) + " = " + n.symbol(i.name, latex=True) for i in form.integrals
-                 if i.kind == "momentum"]
+                 if i.kind in ("momentum", "symmetry")]  # σ_O·z0 = σ_{O,z0}: a symmetry's integral, by name
     expected += [n.latex(x) for row in form.M for x in row if x != 0] + [n.latex(f) for f in form.F]
     if name in OVER_BUDGET:
         # Printed in full only when short (SMALL_OPS operations, about six characters each);
