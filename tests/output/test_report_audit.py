@@ -83,7 +83,7 @@ def test_coriolis_forces_do_no_power_and_leave_the_jacobi_integral():
     assert "remplacée par l'intégrale de Jacobi h" in bead
     assert "L'intégrale de Jacobi h peut remplacer l'une des équations $`L(\\alpha)`$ ou $`L(\\beta)`$" in foucault
     assert r"E = T(\Sigma/R_{0}) + U_P(\Sigma/R_{0})" in bead
-    assert "develop no real power" in _md("bead_rotating_hoop", "en")
+    assert "do no work (their real power is zero)" in _md("bead_rotating_hoop", "en")
     # The entrainment potential is written for this model, its symbols defined.
     step4 = _section(bead, "4.")
     assert r"\vec{\Omega}(R_{1}/R_{0})\cdot\Pi_{O}(\Sigma)\cdot\vec{\Omega}(R_{1}/R_{0})" in step4

@@ -151,12 +151,12 @@ def step6(c: Context) -> Section:
                            Para(w("gamma", gamma=Math(gamma), R=Math(c.R), Q=Math("Q_i"))),
                            Display((Equation((general,)),))]
     if c.eom.constraints:
-        blocks.append(Para(w("multiplier def", sum=Math(c.multiplier_sum()))))
+        blocks.append(Para(w("multiplier def one" if len(c.eom.constraints) == 1 else "multiplier def", sum=Math(c.multiplier_sum()))))
     blocks.append(Para(w("lagrange n", n=Math(str(n))) if n > 1 else w("lagrange one")))
     for row in ordered_equations(c):
         blocks += _lagrange(c, row)
     if c.eom.constraints:
-        blocks.append(Para(w("with multipliers", sum=Math(c.multiplier_sum()))))
+        blocks.append(Para(w("with multiplier" if len(c.eom.constraints) == 1 else "with multipliers", sum=Math(c.multiplier_sum()))))
     left = [s for s in c.book.left_out if s.reference is None]
     if left:
         blocks.append(Para(left_out_note(c, left), style="note"))
@@ -278,8 +278,13 @@ def step7(c: Context) -> Section:
             continue
         where = reaction.point or reaction.body or ""
         R = c.reaction_tex(reaction.constraint)
-        blocks.append(Para(w("reaction of", R=Math(R) if not reaction.force.is_zero() else "",
-                             name=c.constraint_label(reaction.constraint), E=Math(c.point_label(where)))))
+        body = reaction.body or next((k.body for k in c.model.constraints if k.name == reaction.constraint), None)
+        label, shown = c.constraint_label(reaction.constraint), Math(R) if not reaction.force.is_zero() else ""
+        if reaction.point is not None and body in c.bodies and body != reaction.point:  # on (S) at I
+            blocks.append(Para(w("reaction of at", R=shown, name=label, S=Math(c.element(body)),
+                                 E=Math(c.point_label(reaction.point)))))
+        else:
+            blocks.append(Para(w("reaction of", R=shown, name=label, E=Math(c.point_label(where)))))
         eqs = []
         if not reaction.force.is_zero():
             eqs.append(c.vector_equation(f"{R} = ", c.terms(reaction.force)))

@@ -257,7 +257,7 @@ def matrix_section(c: Context) -> Section:
         rows += [c.equation(rf"\left(A^{{\mathsf{{T}}}}{L}\right)_{{{c.sym(name)}}} = {c.multiplier_sum(c.sym(name))} = ",
                             c.ex(t)) for name, t in lams]
         A = "A = (a_{i})" if len(c.eom.constraints) == 1 else "A = (a_{k,i})"
-        intro = w("matrix intro multipliers", form=form, A=Math(A), lam=Math(L))
+        intro = w("matrix intro multiplier" if len(c.eom.constraints) == 1 else "matrix intro multipliers", form=form, A=Math(A), lam=Math(L))
     else:
         intro = w("matrix intro", form=form)
     blocks: list[Block] = [Para(intro)]

@@ -450,6 +450,9 @@ def _potential(c: Context) -> list[Block]:
             label = rf"U_P({c.load_tex(f.name)})"
         formula = _potential_formula(c, f.kind, f.name)
         head = f"{label} = " + (f"{formula}{cste} = " if formula else "")
+        if row.expression == 0 and formula:  # m g OG·z0 + cste with OG·z0 = r: a constant, « = cste », not « 0 + cste »
+            rows.append(Equation((head + cste.removeprefix(" + "),)))
+            continue
         rows.append(c.equation(head, row.expression, cste))
     blocks: list[Block] = []
     if not single:

@@ -83,7 +83,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "col initial": ("valeur initiale", "initial value"),
     "col rate": ("vitesse initiale", "initial rate"),
     # -- step 1 ---------------------------------------------------------------------------------
-    "only constraint": ("La seule liaison est {c}.", "The only constraint is {c}."),
+    "only constraint": ("La seule liaison est {c}.", "There is a single constraint: {c}."),
     "constraints": ("Les liaisons sont :", "The constraints are:"),
     "fixed point": ("la liaison « {X} point fixe » de ({S}) : {xyz}", "the fixed-point constraint at {X} of ({S}): {xyz}"),
     "pivot R0": ("la liaison pivot d'axe {axis} de ({S}) par rapport à {R0}",
@@ -154,7 +154,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
                       "actions is zero,"),
     "perfect joint": ("Elle est parfaite (sans frottement, {MX}) : les actions mutuelles de liaison, opposées, ont "
                       "une puissance virtuelle nulle, {X} étant commun aux deux solides,",
-                      "It is ideal (workless), being frictionless ({MX}): the mutual constraint actions, opposite, have zero "
+                      "It is ideal (workless), being frictionless ({MX}): the mutual constraint actions, equal and opposite, have zero total "
                       "virtual power, {X} being common to both bodies,"),
     "perfect ball": ("Elle est parfaite : les actions mutuelles de liaison se réduisent à une force en {X}, point "
                      "commun aux deux solides, de puissance virtuelle nulle.",
@@ -342,6 +342,8 @@ _PHRASES: dict[str, tuple[str, str]] = {
                          "perfect (friction) are among the non-conservative forces above."),
     "multiplier def": ("{sum} : les composantes généralisées des réactions des liaisons complémentaires (étape 5).",
                        "{sum}: the generalized forces of the complementary constraints' reactions (step 5)."),
+    "multiplier def one": ("{sum} : les composantes généralisées de la réaction de la liaison complémentaire (étape 5).",
+                           "{sum}: the generalized forces of the complementary constraint's reaction (step 5)."),
     "nc total": ("Composantes généralisées des efforts non conservatifs :", "Generalized forces of the "
                  "non-conservative forces:"),
     "no loads": ("Aucun effort donné.", "No applied force."),
@@ -392,6 +394,8 @@ _PHRASES: dict[str, tuple[str, str]] = {
                                  "potential energy."),
     "with multipliers": ("Les liaisons complémentaires ajoutent {sum} au second membre (étape 7).",
                          "The complementary constraints add {sum} to the right-hand side (step 7)."),
+    "with multiplier": ("La liaison complémentaire ajoute {sum} au second membre (étape 7).",
+                        "The complementary constraint adds {sum} to the right-hand side (step 7)."),
     # -- step 7 -----------------------------------------------------------------------------------
     "pin reaction": ("La réaction {R} en {O}, qui n'entre pas dans les équations de Lagrange (la liaison est parfaite), "
                      "se déduit ensuite du théorème de la résultante dynamique appliqué à {S} :",
@@ -413,6 +417,8 @@ _PHRASES: dict[str, tuple[str, str]] = {
                           "Lagrange, elle détermine les {n} paramètres et le multiplicateur {lams} :",
                           "The complementary constraint equation completes the system; with the {n} Lagrange "
                           "equations it determines the {n} parameters and the multiplier {lams}:"),
+    "reaction of at": ("Réaction {R} de la liaison « {name} » sur ({S}) en {E} :",
+                       "Reaction {R} of the constraint “{name}” on ({S}) at {E}:"),
     "reaction of": ("Réaction {R} de la liaison « {name} » sur {E} :", "Reaction {R} of the constraint “{name}” on {E}:"),
     "signs used": ("Les hypothèses déclarées ({declared}) donnent {facts} : les valeurs absolues, racines de carrés "
                    "et signes de ces expressions se simplifient dans les efforts ci-dessous.",
@@ -473,9 +479,9 @@ _PHRASES: dict[str, tuple[str, str]] = {
                       "homogène des vitesses et {U} contient l'énergie potentielle des efforts d'inertie "
                       "d'entraînement (Remarque 3) : l'intégrale première est celle de Painlevé–Jacobi, et non "
                       "l'énergie mécanique {E} dans le repère galiléen, que le mouvement imposé fait varier :",
-                      "{L} does not depend explicitly on time and {cond}. The equations being written in the "
-                      "frame {R}, driven relative to {R0} by a prescribed motion, {T2} is a homogeneous quadratic "
-                      "form of the rates and {U} holds the potential energy of the transport inertial forces "
+                      "{L} does not depend explicitly on time and {cond}. Since the equations are written in the "
+                      "frame {R}, which moves relative to {R0} with a prescribed motion, {T2} is a homogeneous "
+                      "quadratic form in the rates and {U} holds the potential energy of the transport inertial forces "
                       "(Remark 3 of the course): the first integral is the Painlevé–Jacobi one, not the mechanical "
                       "energy {E} in the Galilean frame, which the prescribed motion changes:"),
     "at t0": ("à", "at"),
@@ -501,14 +507,14 @@ _PHRASES: dict[str, tuple[str, str]] = {
                       "orthogonaux à la vitesse par rapport à {R} et ne développent aucune puissance réelle ; ici "
                       "leurs composantes généralisées sont nulles, {Q}.",
                       "The Coriolis inertial forces do not derive from a potential energy, but they are orthogonal "
-                      "to the velocity relative to {R} and develop no real power; here their generalized forces "
+                      "to the velocity relative to {R} and do no work (their real power is zero); here their generalized forces "
                       "are zero, {Q}."),
     "coriolis gyroscopic": ("Les efforts d'inertie de Coriolis ne dérivent pas d'une énergie potentielle, mais ils "
                             "sont orthogonaux à la vitesse par rapport à {R} et ne développent aucune puissance "
                             "réelle : leurs composantes généralisées {Q} ne sont pas nulles mais gyroscopiques, {P} ; "
                             "elles restent dans les {nc}.",
                             "The Coriolis inertial forces do not derive from a potential energy, but they are "
-                            "orthogonal to the velocity relative to {R} and develop no real power: their generalized "
+                            "orthogonal to the velocity relative to {R} and do no work (their real power is zero): their generalized "
                             "forces {Q} are not zero but gyroscopic, {P}; they stay in the {nc}."),
     "coriolis jacobi": (" L'intégrale de Jacobi {h} est donc conservée (voir « Intégrales premières »).",
                         " The Jacobi integral {h} is therefore conserved (see “First integrals”)."),
@@ -528,8 +534,9 @@ _PHRASES: dict[str, tuple[str, str]] = {
                            "rapport à {R0}, non galiléen, en ajoutant aux efforts donnés les efforts d'inertie de "
                            "Coriolis et d'entraînement, projetés sur les directions associées à chaque paramètre :",
                            "These Lagrange equations can be recovered by applying the Newton–Euler theorems "
-                           "relative to {R0}, which is not Galilean, the Coriolis and transport inertial forces being "
-                           "added to the applied forces, projected on the directions that go with each parameter:"),
+                           "relative to {R0}, which is not Galilean, adding the Coriolis and transport inertial forces "
+                           "to the applied forces, and projecting them onto the directions that go with each "
+                           "parameter:"),
     "moment theorem": ("Théorème du moment dynamique en {P} de {S} :", "Angular momentum theorem about {P} for {S}:"),
     "moment theorem parallel": ("Théorème du moment dynamique en {P} de {S} ; le point {P} est mobile dans {R}, mais "
                                 "sa vitesse est parallèle à celle de {G}, donc {term} et le moment dynamique est la "
@@ -572,8 +579,9 @@ _PHRASES: dict[str, tuple[str, str]] = {
             "constraints:"),
     "gamma": ("où {gamma} est la composante généralisée des quantités d'accélération de (Σ) par rapport à {R}, "
               "et {Q} celle de tous les efforts ; d'où les équations de Lagrange :",
-              "where {gamma} is the generalized component of the acceleration quantities (inertia) of (Σ) relative "
-              "to {R}, and {Q} that of all the forces and moments; hence Lagrange's equations:"),
+              "where {gamma} is the generalized component of the mass-times-acceleration of (Σ) relative to {R} "
+              "(its generalized inertia term), and {Q} that of all the forces and moments; hence Lagrange's "
+              "equations:"),
     "top moment": ("{R0} étant galiléen, le théorème du moment dynamique en {O} de ({S}) par rapport à {R0} "
                    "s'écrit :", "{R0} being Galilean, the angular momentum theorem about {O} for ({S}) "
                    "relative to {R0} reads:"),
@@ -592,6 +600,12 @@ _PHRASES: dict[str, tuple[str, str]] = {
                                  "The Lagrange equations read {form}, where F holds the applied forces only and {A} "
                                  "is the matrix of the complementary constraints' coefficients (step 7), with the "
                                  "multipliers {lam}; with:"),
+    "matrix intro multiplier": ("Les équations de Lagrange s'écrivent {form}, où F ne contient que les efforts donnés, "
+                                "{A} est la ligne des coefficients de la liaison complémentaire (étape 7) et {lam} son "
+                                "multiplicateur ; avec :",
+                                "The Lagrange equations read {form}, where F holds the applied forces only, {A} is the "
+                                "row of the complementary constraint's coefficients (step 7) and {lam} its multiplier; "
+                                "with:"),
     "matrix intro": ("Les équations de Lagrange s'écrivent {form}, avec :", "The Lagrange equations read {form}, with:"),
     "show full": ("{label} : {k} lignes — afficher en entier", "{label}: {k} lines — show in full"),
     "show more": ("les {k} autres liaisons — afficher", "the {k} other constraints — show"),
