@@ -342,3 +342,20 @@ def test_a_constant_speed_and_a_symmetry_integral_are_not_called_jacobi_integral
         for name in ("sleeping_top.toml", "top_reaction.toml"):
             top = _section(_report(_eom_of(name), lang=lang), "integrals")
             assert r"= \sigma_{O,z_{0}}" in top and "h = " not in top and "Noether" in top
+
+
+def test_a_constraint_without_description_is_named_by_its_rank_not_its_identifier():
+    """A model file may give no description: the prose then says « la liaison 1 » / "constraint 1", never the
+    identifier (here `rod_len`, which stays in the JSON)."""
+    import lagrangian
+    from lagrangian.model._toml import parse_model
+    from lagrangian_test_support import EXAMPLES_DIR
+
+    text = (EXAMPLES_DIR / "pendulum_tension.toml").read_text(encoding="utf-8")
+    head, _, _ = text.partition("[constraints]")
+    text = head + '[constraints]\nrod_len = { holonomic = "x^2 + y^2 - l^2", reaction = { force_at = "P", frame = "R0" } }\n'
+    eom = lagrangian.derive(parse_model(text))
+    for lang, label in (("fr", "La liaison 1"), ("en", "Constraint 1")):
+        whole = _all(_report(eom, lang=lang))
+        assert "rod_len" not in whole and r"rod\_len" not in whole and r"\mathrm{rod}" not in whole
+        assert label in whole
