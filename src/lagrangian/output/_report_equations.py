@@ -258,7 +258,9 @@ def step7(c: Context) -> Section:
     for reaction in c.eom.reactions:  # rows the engine chose of a vector constraint, and why
         choice = reaction.row_choice
         if choice is not None:
-            kept = w.join(list(choice.kept))
+            # The kept rows by their axes (rolling_x1 → x1): the identifiers stay in the JSON.
+            prefix = reaction.constraint + "_"
+            kept = w.join([Math(c.axis(r.removeprefix(prefix))) for r in choice.kept])
             blocks.append(Para(w("rows chosen frame" if choice.frame else "rows chosen subset",
                                  declared=choice.declared_frame, name=c.constraint_label(reaction.constraint),
                                  k=str(len(choice.declared_rows)), r=str(choice.rank), frame=choice.frame or "",

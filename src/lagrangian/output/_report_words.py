@@ -433,10 +433,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
                           "vector is written along the axes of {frame}, where only {r} of its components are not "
                           "identically zero: {kept}."),
     "rows chosen subset": ("Écrite dans {declared}, la liaison « {name} » donne {k} équations de rang {r} seulement ; "
-                           "on garde {kept}, indépendantes (QR à pivot en un état générique), les autres en étant "
+                           "on garde les composantes selon {kept}, indépendantes (QR à pivot en un état générique), les autres en étant "
                            "des combinaisons.",
-                           "Written in {declared}, the constraint “{name}” gives {k} rows of rank {r} only; {kept} "
-                           "are kept, independent (pivoted QR at a generic state), the others being combinations "
+                           "Written in {declared}, the constraint “{name}” gives {k} rows of rank {r} only; the "
+                           "components along {kept} are kept, independent (pivoted QR at a generic state), the others being combinations "
                            "of them."),
     "multipliers are": ("En éliminant les accélérations entre les équations de Lagrange et les équations de liaison "
                         "dérivées par rapport au temps (deux fois pour une liaison holonome), les multiplicateurs "
