@@ -189,9 +189,9 @@ def test_explicit_axes_are_kept_as_given() -> None:
 
 
 @pytest.mark.parametrize(("lang", "words"), [
-    ("en", "Written in R2, the constraint “rolling” gives 3 rows of rank 2 only; the same vector is written along "
-           "the axes of R1"),
-    ("fr", "Écrite dans R2, la liaison « rolling » donne 3 équations de rang 2 seulement"),
+    ("en", "Written in R2, the constraint “rolling without slipping at I” gives 3 rows of rank 2 only; the same "
+           "vector is written along the axes of R1"),
+    ("fr", "Écrite dans R2, la liaison « roulement sans glissement en I » donne 3 équations de rang 2 seulement"),
 ])
 def test_the_report_says_which_rows_were_kept(tmp_path, lang: str, words: str) -> None:
     from lagrangian.cli.main import main
@@ -201,4 +201,5 @@ def test_the_report_says_which_rows_were_kept(tmp_path, lang: str, words: str) -
     model.write_text(text.replace('frame = "R1", description', 'frame = "R2", description'), encoding="utf-8")
     out = tmp_path / "coin.md"
     assert main(["report", str(model), "--format", "md", "--no-verify", "--lang", lang, "-o", str(out)]) == 0
-    assert words in out.read_text(encoding="utf-8")
+    written = out.read_text(encoding="utf-8")
+    assert words in written and "rolling_x1" not in written  # the kept rows by their axes, not their identifiers

@@ -32,7 +32,10 @@ def test_the_matrix_form_keeps_the_multipliers():
             appendix = _section(_md(name, lang), title)
             assert r"A^{\mathsf{T}}\lambda" in appendix
     appendix = _section(_md("pendulum_tension"), "Annexe")
-    assert r"\left(A^{\mathsf{T}}\lambda\right)_{x} = \sum_{k} \lambda_{k}\, a_{k,x} = 2 x \lambda" in appendix
+    # One multiplier: λ a_x (a teacher writes Σ_k λ_k a_{k,x} only when there are several).
+    assert r"\left(A^{\mathsf{T}}\lambda\right)_{x} = \lambda\, a_{x} = 2 x \lambda" in appendix
+    coin = _section(_md("rolling_coin"), "Annexe")
+    assert r"\left(A^{\mathsf{T}}\lambda\right)_{x} = \sum_{k} \lambda_{k}\, a_{k,x} = \lambda_{1} \cos\psi" in coin
     # Without complementary constraints the form stays M q̈ = F.
     assert r"A^{\mathsf{T}}" not in _section(_md("simple_pendulum"), "Annexe")
 
@@ -80,7 +83,7 @@ def test_coriolis_forces_do_no_power_and_leave_the_jacobi_integral():
     assert "remplacée par l'intégrale de Jacobi h" in bead
     assert "L'intégrale de Jacobi h peut remplacer l'une des équations $`L(\\alpha)`$ ou $`L(\\beta)`$" in foucault
     assert r"E = T(\Sigma/R_{0}) + U_P(\Sigma/R_{0})" in bead
-    assert "develop no real power" in _md("bead_rotating_hoop", "en")
+    assert "do no work (their real power is zero)" in _md("bead_rotating_hoop", "en")
     # The entrainment potential is written for this model, its symbols defined.
     step4 = _section(bead, "4.")
     assert r"\vec{\Omega}(R_{1}/R_{0})\cdot\Pi_{O}(\Sigma)\cdot\vec{\Omega}(R_{1}/R_{0})" in step4
@@ -152,8 +155,7 @@ def test_the_multiplier_terms_are_defined_once_and_symbols_are_math():
     from lagrangian.output import report
 
     eom = lagrangian.derive(lagrangian.load_model("examples/pendulum_tension.toml"))
-    for lang, words in (("fr", "est le multiplicateur de la liaison complémentaire"),
-                        ("en", "is the multiplier of complementary constraint")):
+    for lang, words in (("fr", "est son multiplicateur"), ("en", "is its multiplier")):
         text = report(eom, lang=lang, verification=False).render("md")
         assert text.count(words) == 1
         assert "q̇\\_i" not in text and "q̇_i" not in text and "f\\_k" not in text

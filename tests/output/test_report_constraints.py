@@ -83,6 +83,7 @@ def test_every_constraint_is_holonomic_principal_and_perfect(name):
 # -- audit fixes: each test fails on the report as it was before them -------------------------------
 from lagrangian.output import report as _report  # noqa: E402
 from lagrangian.output.report.document import Display as _Display, Items as _Items, Para as _Para  # noqa: E402
+from lagrangian.output.report.document import Table as _Table  # noqa: E402
 from lagrangian.output.report.document import math_of as _math_of, walk as _walk  # noqa: E402
 from lagrangian_test_support import eom_of as _eom_of, example_names as _example_names  # noqa: E402
 
@@ -97,6 +98,9 @@ def _section(r, key: str) -> str:  # type: ignore[no-untyped-def]
             out += ["".join(x if isinstance(x, str) else f"${x.latex}$" for x in item) for item in b.items]
         elif isinstance(b, _Display):
             out += [" ".join(eq.lines) for eq in b.equations]
+        elif isinstance(b, _Table):
+            out += [" | ".join("".join(x if isinstance(x, str) else f"${x.latex}$" for x in cell) for cell in row)
+                    for row in (b.header, *b.rows)]
     return "\n".join(out)
 
 
@@ -141,7 +145,7 @@ def test_multiplier_coefficients_are_defined_and_do_not_clash_with_inertia():
 
 def test_step_7_gives_the_multiplier_and_the_rods_tension():
     step7 = _section(_report(_eom_of("pendulum_tension.toml")), "step7")
-    assert r"\lambda_{\mathrm{length}} = " in step7
+    assert "\n\\lambda = \\frac{" in step7  # one multiplier: λ, not the engine's lambda_length
     assert r"N = m \left(g \cos\theta + l \dot{\theta}^{2}\right)" in step7
 
 
@@ -183,6 +187,41 @@ def test_no_english_in_french_and_no_french_in_english(name):
     for word in FRENCH:
         assert word not in en, (name, word)
     assert "e-0" not in fr and "e-0" not in en  # 5·10⁻⁵, not 5e-05
+    _constraints_named_in_the_reports_language(eom, {"fr": fr, "en": en})
+
+
+def _constraints_named_in_the_reports_language(eom, texts):  # type: ignore[no-untyped-def]
+    """A declared constraint is named in prose by its description in the report's language, never by its
+    identifier (« length », “rolling”, \\text{length}, λ_length): those stay in the JSON and the command line.
+    Its multiplier is λ when it is the only one, else λ_1 … λ_k with a table that says which constraint
+    each one belongs to; another letter when the model already writes one of its symbols λ (the bicycle)."""
+    from lagrangian.model._texts import in_language
+    from lagrangian.output.report.build import tex_text
+
+    rows = eom.constraints
+    own = {p.name for p in eom.model.parameters} | set(eom.coordinates)
+    letter = r"\mu" if own & {"lam", "lambda"} else r"\lambda"
+    for lang, text in texts.items():
+        other = "en" if lang == "fr" else "fr"
+        for k, con in enumerate(eom.model.constraints, 1):
+            for quoted in (f"« {con.name} »", f"“{con.name}”", tex_text(con.name), rf"\mathrm{{{con.name.split('_')[0]}}}"):
+                assert quoted not in text, (lang, quoted)
+            if "_" in con.name:
+                assert con.name not in text and con.name.replace("_", r"\_") not in text, (lang, con.name)
+            assert in_language(con.description, lang) in text, (lang, con.name)
+            if in_language(con.description, other) != in_language(con.description, lang):
+                assert in_language(con.description, other) not in text, (lang, con.name)
+        assert r"\lambda_{\mathrm" not in text
+        if len(rows) == 1:
+            assert rf"2 x {letter}" in text if eom.model.name.startswith("Pendulum") else rf"{letter}\," in text
+            assert rf"{letter}_{{1}}" not in text
+        elif rows:
+            numbered = ("numérotés dans l'ordre des liaisons du modèle" if lang == "fr"
+                        else "numbered in the order of the model's constraints")
+            assert numbered in text
+            for k in range(1, len(rows) + 1):
+                assert rf"{letter}_{{{k}}}" in text, (lang, k)
+            assert rf"{letter}_{{{len(rows) + 1}}}" not in text
 
 
 # -- degrees of freedom, planar motion, the multiplier's derivation (issue 11, items 1 and 3) ---------------------
@@ -279,3 +318,44 @@ def test_values_of_the_integrals_carry_their_units_and_minus_signs():
     assert top.count("\u202fJ·s with the model's initial values") == 2 and "\u202fJ with the model's" in top
     coin = _all(_report(_eom_of("rolling_coin.toml"), lang="en"))
     assert "≈ 10\u202frad/s" in coin
+
+
+def test_a_constant_speed_and_a_symmetry_integral_are_not_called_jacobi_integrals():
+    """The coin's φ̇ = cste (its reduced equations) and a top's σ_O·z0 were printed as « h = T + U_P = φ̇ »,
+    the Painlevé–Jacobi integral of a moving frame.  φ̇ = cste is checked here on the textbook coin: T =
+    ½ m (ẋ² + ẏ²) + ⅛ m r² ψ̇² + ¼ m r² φ̇², ẋ = r φ̇ cos ψ, ẏ = r φ̇ sin ψ (Lagrange–d'Alembert) gives φ̈ = 0."""
+    import sympy
+
+    m, r, t = sympy.symbols("m r t", positive=True)
+    x, y, psi, phi = (sympy.Function(n)(t) for n in ("x", "y", "psi", "phi"))
+    l1, l2 = sympy.symbols("lambda1 lambda2")
+    # m ẍ = λ1, m ÿ = λ2, ½ m r² φ̈ = −r (λ1 cos ψ + λ2 sin ψ), with the rolling rows differentiated once.
+    xdd = sympy.diff(r * phi.diff(t) * sympy.cos(psi), t)
+    ydd = sympy.diff(r * phi.diff(t) * sympy.sin(psi), t)
+    lam = {l1: m * xdd, l2: m * ydd}
+    eq = sympy.Rational(1, 2) * m * r**2 * phi.diff(t, 2) + r * (l1 * sympy.cos(psi) + l2 * sympy.sin(psi))
+    phidd = sympy.solve(sympy.simplify(eq.subs(lam)), phi.diff(t, 2))
+    assert phidd == [0]
+    for lang, cste in (("fr", "cste"), ("en", "const")):
+        coin = _section(_report(_eom_of("rolling_coin.toml"), lang=lang), "integrals")
+        assert rf"\dot{{\varphi}} = \text{{{cste}}}" in coin and r"h = " not in coin and "Painlev" not in coin
+        for name in ("sleeping_top.toml", "top_reaction.toml"):
+            top = _section(_report(_eom_of(name), lang=lang), "integrals")
+            assert r"= \sigma_{O,z_{0}}" in top and "h = " not in top and "Noether" in top
+
+
+def test_a_constraint_without_description_is_named_by_its_rank_not_its_identifier():
+    """A model file may give no description: the prose then says « la liaison 1 » / "constraint 1", never the
+    identifier (here `rod_len`, which stays in the JSON)."""
+    import lagrangian
+    from lagrangian.model._toml import parse_model
+    from lagrangian_test_support import EXAMPLES_DIR
+
+    text = (EXAMPLES_DIR / "pendulum_tension.toml").read_text(encoding="utf-8")
+    head, _, _ = text.partition("[constraints]")
+    text = head + '[constraints]\nrod_len = { holonomic = "x^2 + y^2 - l^2", reaction = { force_at = "P", frame = "R0" } }\n'
+    eom = lagrangian.derive(parse_model(text))
+    for lang, label in (("fr", "La liaison 1"), ("en", "Constraint 1")):
+        whole = _all(_report(eom, lang=lang))
+        assert "rod_len" not in whole and r"rod\_len" not in whole and r"\mathrm{rod}" not in whole
+        assert label in whole

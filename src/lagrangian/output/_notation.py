@@ -19,7 +19,7 @@ Nothing here changes an expression's value: it only chooses how to write it.
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Collection, Sequence
+from collections.abc import Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass, field
 
 import sympy
@@ -168,18 +168,23 @@ class Notation:
     coordinates : coordinate names in model order.
     parameters : parameter names in declaration order (sets the order of factors).
     rewrite : applied to every expression before it is written (same value, another form).
+    names : symbols written otherwise than their name says, name → (text, LaTeX): the report writes
+        the multiplier ``lambda_length`` as λ, or λ_1 … λ_k when there are several.
     """
 
     coordinates: Sequence[str] = ()
     parameters: Sequence[str] = ()
     #: Rewrites an expression into the form to print, keeping its value (the report's `display_form`); none by default.
     rewrite: Callable[[sympy.Basic], sympy.Basic] | None = None
+    names: Mapping[str, tuple[str, str]] = field(default_factory=dict)
     _cache: dict[tuple[str, str], str] = field(default_factory=dict, repr=False)
     _keys: dict[tuple[sympy.Basic, bool | None], tuple] = field(default_factory=dict, repr=False)
 
     # -- symbols ---------------------------------------------------------------------------
     def symbol(self, name: str, latex: bool = False) -> str:
         key = (name, "tex" if latex else "txt")
+        if name in self.names:
+            return self.names[name][1 if latex else 0]
         if key not in self._cache:
             base, deco = _split_name(name)
             if latex:

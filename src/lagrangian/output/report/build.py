@@ -53,14 +53,38 @@ def tex_name(name: str) -> str:
     return _base_latex(name)
 
 
-def report_notation(form: CourseForm, model) -> Notation:
+def report_notation(form: CourseForm, model, names: dict[str, tuple[str, str]] | None = None) -> Notation:
     """The report's notation: masses before the other constants (m2 l1 l2, m g a), and forms a teacher would
-    write (`display_form`)."""
+    write (`display_form`); ``names`` writes some symbols otherwise (the multipliers, `multiplier_names`)."""
     base = notation(form)
     masses = [p.name for p in model.parameters if (p.unit or "").replace(" ", "") == "kg"]
     order = tuple(masses) + tuple(p for p in base.parameters if p not in masses)
     constants = frozenset(order)
-    return Notation(base.coordinates, order, rewrite=functools.partial(display_form, parameters=constants))
+    return Notation(base.coordinates, order, rewrite=functools.partial(display_form, parameters=constants),
+                    names=dict(names or {}))
+
+
+#: Letters for the multipliers, the first one the model's symbols leave free (the bicycle's steer axis tilt is λ).
+_MULTIPLIER_LETTERS = (("λ", r"\lambda"), ("μ", r"\mu"), ("ν", r"\nu"), ("Λ", r"\Lambda"))
+
+
+def multiplier_names(eom: EquationsOfMotion) -> dict[str, tuple[str, str]]:
+    """How a teacher names the multipliers: λ for a single complementary row, λ_1 … λ_k for several, numbered
+    in the order of the model's constraints (the engine's rows).  The engine's names (``lambda_length``,
+    ``lambda_rolling_x1``) stay those of the JSON and command-line outputs.
+
+    When a parameter or coordinate of the model is already written λ, the next free letter is taken (μ, ν…).
+    """
+    rows = eom.constraints
+    if not rows:
+        return {}
+    plain = Notation()
+    own = [p.name for p in eom.model.parameters] + list(eom.coordinates)
+    used = {plain.symbol(name, latex=True).split("_")[0] for name in own}
+    text, tex = next(((t, x) for t, x in _MULTIPLIER_LETTERS if x not in used), _MULTIPLIER_LETTERS[-1])
+    if len(rows) == 1:
+        return {rows[0].multiplier.name: (text, tex)}
+    return {r.multiplier.name: (f"{text}{k}", f"{tex}_{{{k}}}") for k, r in enumerate(rows, 1)}
 
 
 class Context:
@@ -77,7 +101,8 @@ class Context:
         self.lang = lang
         self.gate = SizeGate(self.w.text("terms"), self.w.text("long expression"))
         self.form: CourseForm = course_form(eom, integrals, convert=self.gate)
-        self.n: Notation = report_notation(self.form, self.model)
+        self.multiplier_names = multiplier_names(eom)
+        self.n: Notation = report_notation(self.form, self.model, self.multiplier_names)
         self.book = FullFormBook(self.n, self.w.text("see"))
         reference = self.model.reference
         relative = reference is not None and not reference.is_galilean_frame
@@ -102,6 +127,44 @@ class Context:
     def load_tex(self, name: str) -> str:
         """A load's name as text inside math, in the report's language: ``\\text{poids}``."""
         return tex_text(self.w.load(name))
+
+    def constraint_label(self, name: str) -> str:
+        """A declared constraint as the prose names it: its description in the report's language (« la tige
+        maintient OP = l »), else « la liaison k » by its rank in the model — never its identifier, which is
+        the JSON's and the command line's."""
+        from ..model._texts import in_language
+
+        for k, con in enumerate(self.model.constraints, 1):
+            if con.name == name:
+                return in_language(con.description, self.lang) or self.w.text("constraint number", k=str(k))
+        return name
+
+    def reaction_tex(self, name: str) -> str:
+        """The reaction of the complementary constraint ``name`` in formulas: R_P at its point of application
+        (R_I for the coin's contact, as the course writes R_O for the top's), else R_k by its rank in the model."""
+        points = {r.constraint: r.point for r in self.eom.reactions if r.point is not None}
+        at = points.get(name)
+        if at is not None and list(points.values()).count(at) == 1:
+            return rf"\vec{{R}}_{{{self.point_label(at)}}}"
+        k = next((k for k, con in enumerate(self.model.constraints, 1) if con.name == name), 0)
+        return rf"\vec{{R}}_{{{k}}}"
+
+    @property
+    def lam(self) -> str:
+        """The multipliers' letter in LaTeX: λ, or the first one the model leaves free (`multiplier_names`)."""
+        names = list(self.multiplier_names.values())
+        return names[0][1].split("_")[0] if names else r"\lambda"
+
+    def multiplier_sum(self, index: str = "i") -> str:
+        """The generalized force of the complementary reactions on q_i: λ a_i with one multiplier,
+        Σ_k λ_k a_{k,i} with several (λ_k multiplies +a_{k,i}, the engine's sign convention)."""
+        if len(self.eom.constraints) == 1:
+            return rf"{self.lam}\, a_{{{index}}}"
+        return rf"\sum_{{k}} {self.lam}_{{k}}\, a_{{k,{index}}}"
+
+    def is_constraint(self, name: str) -> bool:
+        """Whether the effort ``name`` is the reaction of a declared constraint (not a given load)."""
+        return any(con.name == name for con in self.model.constraints)
 
     def Q_nc(self, q: str) -> str:
         """Q_{q, nc}: the generalized force of the non-conservative efforts (seed: Q_{i efforts nonconservatifs})."""

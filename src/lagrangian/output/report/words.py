@@ -83,7 +83,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "col initial": ("valeur initiale", "initial value"),
     "col rate": ("vitesse initiale", "initial rate"),
     # -- step 1 ---------------------------------------------------------------------------------
-    "only constraint": ("La seule liaison est {c}.", "The only constraint is {c}."),
+    "only constraint": ("La seule liaison est {c}.", "There is a single constraint: {c}."),
     "constraints": ("Les liaisons sont :", "The constraints are:"),
     "fixed point": ("la liaison « {X} point fixe » de ({S}) : {xyz}", "the fixed-point constraint at {X} of ({S}): {xyz}"),
     "pivot R0": ("la liaison pivot d'axe {axis} de ({S}) par rapport à {R0}",
@@ -103,7 +103,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "perfect body plane": ("Elle est supposée parfaite (sans frottement) : ses actions se réduisent à une force "
                            "selon {n} et à un couple orthogonal aux rotations permises, de puissance virtuelle nulle "
                            "puisque {cond}.",
-                           "It is assumed ideal (workless) (frictionless): its actions reduce to a force along {n} and a "
+                           "It is assumed ideal (workless), being frictionless: its actions reduce to a force along {n} and a "
                            "couple orthogonal to the allowed rotations, whose virtual power is zero since {cond}."),
     "not perfect": ("Elle n'est pas parfaite : la puissance virtuelle de ses efforts n'est pas nulle ({why}) ; "
                     "ils figurent dans {Q} (étape 5).",
@@ -117,7 +117,13 @@ _PHRASES: dict[str, tuple[str, str]] = {
               "the constraint keeping {P} in the plane through {X} normal to {n}"),
     "placement": ("la liaison qui place {E} en fonction des paramètres principaux",
                   "the constraint that places {E} as a function of the principal parameters"),
-    "declared": ("la liaison « {name} »{description} : {equation}", "the constraint “{name}”{description}: {equation}"),
+    "declared": ("{label} : {equation}", "{label}: {equation}"),
+    "constraint number": ("la liaison {k}", "constraint {k}"),
+    "multiplier table": ("Les multiplicateurs sont numérotés dans l'ordre des liaisons du modèle :",
+                         "The multipliers are numbered in the order of the model's constraints:"),
+    "col multiplier": ("multiplicateur", "multiplier"),
+    "col constraint": ("liaison", "constraint"),
+    "col row": ("équation", "equation"),
     "no slip": ("la liaison de roulement sans glissement de ({S}) en {I} : {equation}",
                 "rolling without slipping of ({S}) at {I}: {equation}"),
     "coincide": ("la liaison qui maintient {P} en {Q} : {equation}", "the constraint that keeps {P} at {Q}: {equation}"),
@@ -139,16 +145,16 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "classified one": ("Elle est {a}, {b} et {c}.", "It is {a}, {b} and {c}."),
     "classified": ("{a}, {b}, {c}", "{a}, {b}, {c}"),
     "perfect fixed point": ("Elle est parfaite car la puissance virtuelle de la réaction {R} en {X} est nulle ; "
-                            "en effet :", "It is ideal (workless): the virtual power of the reaction {R} at {X} is zero, as"),
+                            "en effet :", "It is ideal (workless) because the virtual power of the reaction {R} at {X} is zero:"),
     "because": ("car", "because"),
     "since": ("puisque", "since"),
     "and": ("et", "and"),
     "perfect pivot": ("Elle est parfaite (sans frottement, {MX}) : la puissance virtuelle des actions de liaison "
-                      "est nulle,", "It is ideal (workless) (frictionless, {MX}): the virtual power of the constraint "
+                      "est nulle,", "It is ideal (workless), being frictionless ({MX}): the virtual power of the constraint "
                       "actions is zero,"),
     "perfect joint": ("Elle est parfaite (sans frottement, {MX}) : les actions mutuelles de liaison, opposées, ont "
                       "une puissance virtuelle nulle, {X} étant commun aux deux solides,",
-                      "It is ideal (workless) (frictionless, {MX}): the mutual constraint actions, opposite, have zero "
+                      "It is ideal (workless), being frictionless ({MX}): the mutual constraint actions, equal and opposite, have zero total "
                       "virtual power, {X} being common to both bodies,"),
     "perfect ball": ("Elle est parfaite : les actions mutuelles de liaison se réduisent à une force en {X}, point "
                      "commun aux deux solides, de puissance virtuelle nulle.",
@@ -156,17 +162,17 @@ _PHRASES: dict[str, tuple[str, str]] = {
                      "both bodies, whose virtual power is zero."),
     "perfect rod": ("Elle est parfaite (sans frottement) : la réaction sur {P} n'a de composante que selon {dirs}, "
                     "{orth} à son champ de vitesses virtuelles puisque {XP2} est constant :",
-                    "It is ideal (workless) (frictionless): the reaction on {P} only has components along {dirs}, "
+                    "It is ideal (workless), being frictionless: the reaction on {P} only has components along {dirs}, "
                     "{orth} to its virtual velocity field since {XP2} is constant:"),
     "orth one": ("direction orthogonale", "a direction orthogonal"),
     "orth many": ("directions orthogonales", "directions orthogonal"),
     "perfect smooth": ("Elle est parfaite (contact sans frottement) : la réaction est normale à {where}, qui contient "
-                       "{V}.", "It is ideal (workless) (frictionless contact): the reaction is normal to {where}, which "
+                       "{V}.", "It is ideal (workless), the contact being frictionless: the reaction is normal to {where}, which "
                        "contains {V}."),
     "the plane": ("ce plan", "that plane"),
     "the line": ("cette droite", "that line"),
     "perfect assumed": ("Elle est supposée parfaite (sans frottement) : ses efforts n'entrent dans aucune "
-                        "composante généralisée.", "It is assumed ideal (workless) (frictionless): its forces enter no "
+                        "composante généralisée.", "It is assumed ideal (workless), being frictionless: its forces enter no "
                         "generalized force."),
     "perfect complementary": ("Elle est parfaite : sa réaction a une puissance virtuelle nulle dans tout champ "
                               "compatible avec elle, et ses composantes généralisées sont {Q}.",
@@ -178,10 +184,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
                         "field compatible with it: {P}. Its generalized forces are {Q}."),
     "reaction is": ("La réaction exercée sur {E} est {R}.", "The reaction exerted on {E} is {R}."),
     "reaction on at": ("La réaction exercée sur ({S}) en {E} est {R}.", "The reaction exerted on ({S}) at {E} is {R}."),
-    "parameter count": ("Bilan des paramètres (6 par solide, 3 par point, moins une par équation de liaison "
+    "parameter count": ("Bilan des paramètres (6 par solide, 3 par point matériel, moins un par équation de liaison "
                         "principale) : {count}.",
-                        "Count of the parameters (6 per rigid body, 3 per particle, minus one per principal "
-                        "constraint equation): {count}."),
+                        "Parameter count (6 per rigid body and 3 per particle, minus one for each scalar equation of a "
+                        "principal constraint): {count}."),
     "dof": ("Degrés de liberté : {count}, où n est le nombre de paramètres principaux, h celui des équations de "
             "liaison complémentaires holonomes et k celui des non holonomes.",
             "Degrees of freedom: {count}, where n is the number of principal parameters, h that of the holonomic "
@@ -204,10 +210,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
                       "and every rotation is about the axis {axis}."),
     "time dep note": ("(le temps y figure explicitement)", "(the time appears in it explicitly)"),
     # -- step 2 -----------------------------------------------------------------------------------
-    "n params": ("On a donc {n} paramètres principaux : {list}.", "Hence {n} principal parameters: {list}."),
+    "n params": ("On a donc {n} paramètres principaux : {list}.", "There are therefore {n} principal parameters: {list}."),
     "n params euler": ("On a donc {n} paramètres principaux qui sont les angles d'Euler {list} de ({S}).",
-                       "Hence {n} principal parameters, the Euler angles {list} of ({S})."),
-    "one param": ("On a donc un seul paramètre principal, {q}.", "Hence a single principal parameter, {q}."),
+                       "There are therefore {n} principal parameters: the Euler angles {list} of ({S})."),
+    "one param": ("On a donc un seul paramètre principal, {q}.", "There is therefore a single principal parameter: {q}."),
     "remark 1": ("Remarque 1 : il y a autant d'équations de Lagrange que de paramètres principaux, soit {n}.",
                  "Remark 1 (course): there are as many Lagrange equations as principal parameters, that is {n}."),
     "remark 1 lambda": ("Remarque 1 : il y a autant d'équations de Lagrange que de paramètres principaux, soit {n} ; "
@@ -238,6 +244,38 @@ _PHRASES: dict[str, tuple[str, str]] = {
                        "virtuel, donné par ses éléments de réduction en un point A de (S), tel que {field} :",
                        "The virtual velocity field of each rigid body (S) is a screw (the virtual kinematic screw, or "
                        "twist), given by its reduction elements at a point A of (S), such that {field}:"),
+    "comoment intro": ("Les liaisons principales parfaites ne travaillent pas dans ce champ : la puissance virtuelle "
+                       "des actions d'une liaison est le comoment du torseur de ses actions {torsor}, réduit en un "
+                       "point X, et du torseur cinématique virtuel : {P}.",
+                       "The ideal (workless) principal constraints do no work in this field: the virtual power of a "
+                       "constraint's actions is the comoment of their screw {torsor}, reduced at a point X, with the "
+                       "virtual kinematic screw: {P}."),
+    "comoment short": ("Comoments des liaisons principales", "Comoments of the principal constraints"),
+    "comoment fixed point": ("Liaison « {X} point fixe » de ({S}) : rotule parfaite en {X}, de moment nul en {X} ;",
+                             "Fixed point {X} of ({S}): an ideal ball joint at {X}, of zero moment about {X};"),
+    "comoment ball": ("Liaison rotule de centre {X} entre ({S}) et {S1} : parfaite, de moment nul en {X} ;",
+                      "Ball joint of centre {X} between ({S}) and {S1}: ideal, of zero moment about {X};"),
+    "comoment pivot": ("Liaison pivot en {X} de ({S}) par rapport à {S1} : parfaite, son moment en {X} est "
+                       "orthogonal à l'axe ; dans le mouvement relatif, {X} est fixe et la rotation a lieu autour "
+                       "de l'axe :",
+                       "Hinge at {X} of ({S}) relative to {S1}: ideal, its moment about {X} is orthogonal to the "
+                       "axis; in the relative motion, {X} is fixed and the rotation is about the axis:"),
+    "comoment rod": ("Liaison de {P} (point matériel, torseur cinématique réduit à sa vitesse) : sans frottement, la "
+                     "réaction n'a de composante que selon {dirs} ;",
+                     "Constraint on {P} (a particle, whose kinematic screw reduces to its velocity): frictionless, "
+                     "the reaction only has components along {dirs};"),
+    "comoment plane": ("Contact de {P} avec le plan sans frottement : la réaction est portée par {dirs} ;",
+                       "Frictionless contact of {P} with the plane: the reaction is along {dirs};"),
+    "comoment line": ("Glissière de {P} sans frottement : la réaction est orthogonale à {dirs} ;",
+                      "Frictionless slider of {P}: the reaction is orthogonal to {dirs};"),
+    "comoment body plane": ("Contact de ({S}) sans frottement : ses actions, réduites en {G}, sont une force selon {n} "
+                            "et un moment orthogonal à {turns} ;",
+                            "Frictionless contact of ({S}): its actions, reduced at {G}, are a force along {n} and a "
+                            "moment orthogonal to {turns};"),
+    "inertia operator": ("où {Pi} est l'opérateur d'inertie de ({S}) en {P} : {op} (moment cinétique en {P}) ; sa "
+                         "matrice dans la base {basis} est donnée à l'étape 3.",
+                         "where {Pi} is the inertia operator (inertia tensor) of ({S}) at {P}: {op} (the angular momentum "
+                         "about {P}); its matrix in the basis {basis} is given at step 3."),
     "virtual torsor short": ("Torseurs cinématiques virtuels", "Virtual kinematic screws"),
     # -- step 4 -----------------------------------------------------------------------------------
     "energies": ("Les énergies cinétique et potentielle compatibles de (Σ) par rapport à {R} sont :",
@@ -283,14 +321,20 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "kind inertial: entrainment": ("effort d'inertie d'entraînement", "transport inertial force"),
     "perfect no Q": ("Les liaisons principales étant parfaites, la puissance virtuelle de leurs efforts est nulle : "
                      "ils n'apparaissent dans aucune composante généralisée.",
-                     "The principal constraints being ideal (workless), the virtual power of their forces is zero: they "
-                     "appear in no generalized force."),
+                     "Since the principal constraints are ideal (workless), the virtual power of their forces is zero: "
+                     "they appear in no generalized force."),
     "complementary Q": ("Les réactions des liaisons complémentaires ont pour composantes généralisées {Q} (étape "
                         "7), où {lam} est le multiplicateur de la liaison complémentaire k et {a} le coefficient de "
                         "la vitesse {qd} dans son équation ({f} pour une liaison holonome {fk}).",
                         "The reactions of the complementary constraints have the generalized forces {Q} (step 7), "
                         "where {lam} is the multiplier of complementary constraint k and {a} the coefficient of "
                         "the rate {qd} in its equation ({f} for a holonomic constraint {fk})."),
+    "complementary Q one": ("La réaction de la liaison complémentaire a pour composantes généralisées {Q} (étape 7), "
+                            "où {lam} est son multiplicateur et {a} le coefficient de la vitesse {qd} dans son "
+                            "équation ({f} pour une liaison holonome {fk}).",
+                            "The reaction of the complementary constraint has the generalized forces {Q} (step 7), "
+                            "where {lam} is its multiplier and {a} the coefficient of the rate {qd} in its equation "
+                            "({f} for a holonomic constraint {fk})."),
     "perfect no Q but": ("Les autres liaisons principales étant parfaites, la puissance virtuelle de leurs efforts "
                          "est nulle ; les efforts des liaisons non parfaites (frottement) sont ceux des efforts "
                          "non conservatifs ci-dessus.", "The other principal constraints being ideal (workless), the "
@@ -298,6 +342,8 @@ _PHRASES: dict[str, tuple[str, str]] = {
                          "perfect (friction) are among the non-conservative forces above."),
     "multiplier def": ("{sum} : les composantes généralisées des réactions des liaisons complémentaires (étape 5).",
                        "{sum}: the generalized forces of the complementary constraints' reactions (step 5)."),
+    "multiplier def one": ("{sum} : les composantes généralisées de la réaction de la liaison complémentaire (étape 5).",
+                           "{sum}: the generalized forces of the complementary constraint's reaction (step 5)."),
     "nc total": ("Composantes généralisées des efforts non conservatifs :", "Generalized forces of the "
                  "non-conservative forces:"),
     "no loads": ("Aucun effort donné.", "No applied force."),
@@ -348,6 +394,8 @@ _PHRASES: dict[str, tuple[str, str]] = {
                                  "potential energy."),
     "with multipliers": ("Les liaisons complémentaires ajoutent {sum} au second membre (étape 7).",
                          "The complementary constraints add {sum} to the right-hand side (step 7)."),
+    "with multiplier": ("La liaison complémentaire ajoute {sum} au second membre (étape 7).",
+                        "The complementary constraint adds {sum} to the right-hand side (step 7)."),
     # -- step 7 -----------------------------------------------------------------------------------
     "pin reaction": ("La réaction {R} en {O}, qui n'entre pas dans les équations de Lagrange (la liaison est parfaite), "
                      "se déduit ensuite du théorème de la résultante dynamique appliqué à {S} :",
@@ -369,7 +417,9 @@ _PHRASES: dict[str, tuple[str, str]] = {
                           "Lagrange, elle détermine les {n} paramètres et le multiplicateur {lams} :",
                           "The complementary constraint equation completes the system; with the {n} Lagrange "
                           "equations it determines the {n} parameters and the multiplier {lams}:"),
-    "reaction of": ("Réaction de « {name} » sur {E} :", "Reaction of “{name}” on {E}:"),
+    "reaction of at": ("Réaction {R} de la liaison « {name} » sur ({S}) en {E} :",
+                       "Reaction {R} of the constraint “{name}” on ({S}) at {E}:"),
+    "reaction of": ("Réaction {R} de la liaison « {name} » sur {E} :", "Reaction {R} of the constraint “{name}” on {E}:"),
     "signs used": ("Les hypothèses déclarées ({declared}) donnent {facts} : les valeurs absolues, racines de carrés "
                    "et signes de ces expressions se simplifient dans les efforts ci-dessous.",
                    "The declared assumptions ({declared}) give {facts}: the absolute values, square roots of squares "
@@ -383,10 +433,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
                           "vector is written along the axes of {frame}, where only {r} of its components are not "
                           "identically zero: {kept}."),
     "rows chosen subset": ("Écrite dans {declared}, la liaison « {name} » donne {k} équations de rang {r} seulement ; "
-                           "on garde {kept}, indépendantes (QR à pivot en un état générique), les autres en étant "
+                           "on garde les composantes selon {kept}, indépendantes (QR à pivot en un état générique), les autres en étant "
                            "des combinaisons.",
-                           "Written in {declared}, the constraint “{name}” gives {k} rows of rank {r} only; {kept} "
-                           "are kept, independent (pivoted QR at a generic state), the others being combinations "
+                           "Written in {declared}, the constraint “{name}” gives {k} rows of rank {r} only; the "
+                           "components along {kept} are kept, independent (pivoted QR at a generic state), the others being combinations "
                            "of them."),
     "multipliers are": ("En éliminant les accélérations entre les équations de Lagrange et les équations de liaison "
                         "dérivées par rapport au temps (deux fois pour une liaison holonome), les multiplicateurs "
@@ -408,22 +458,30 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "momentum": ("{why}, donc {eq} s'intègre :", "{why}, so {eq} integrates:"),
     "energy integral": ("{L} ne dépend pas explicitement du temps et {cond} ; {T} étant une forme quadratique "
                         "homogène des vitesses, l'intégrale première de l'énergie s'écrit :",
-                        "{L} does not depend on the time explicitly and {cond}; {T} being a homogeneous "
-                        "quadratic form of the rates, the energy integral reads:"),
+                        "{L} does not depend explicitly on time and {cond}; since {T} is a homogeneous "
+                        "quadratic form in the rates, the energy integral reads:"),
     "jacobi integral": ("{L} ne dépend pas explicitement du temps et {cond}. Écrivons {parts}, où {T210} "
                         "sont les parties de {T} de degré 2, 1 et 0 par rapport aux vitesses {qd} : {T1} ou {T0} "
                         "n'étant pas nul, {E} n'est pas conservée, mais l'intégrale première de Painlevé–Jacobi "
-                        "l'est :", "{L} does not depend on the time explicitly and {cond}. Write {parts}, where "
+                        "l'est :", "{L} does not depend explicitly on time and {cond}. Write {parts}, where "
                         "{T210} are the parts of {T} of degree 2, 1 and 0 in the rates {qd}: {T1} or {T0} "
                         "not being zero, {E} is not conserved, but the Painlevé–Jacobi integral is:"),
+    "constant speed": ("Les équations réduites, où les vitesses dépendantes sont éliminées par les liaisons non "
+                       "holonomes, donnent {d} : {qd} est une intégrale première.",
+                       "The reduced equations, where the dependent rates are eliminated by the nonholonomic "
+                       "constraints, give {d}: {qd} is a first integral."),
+    "symmetry integral": ("Le système étant invariant par une symétrie de ses efforts et de ses liaisons (théorème de "
+                          "Noether), la quantité suivante est une intégrale première :",
+                          "The system being invariant under a symmetry of its forces and constraints (Noether's "
+                          "theorem), the following quantity is a first integral:"),
     "jacobi moving": ("{L} ne dépend pas explicitement du temps et {cond}. Les équations étant écrites dans le "
                       "repère {R}, entraîné par rapport à {R0} par un mouvement imposé, {T2} est une forme quadratique "
                       "homogène des vitesses et {U} contient l'énergie potentielle des efforts d'inertie "
                       "d'entraînement (Remarque 3) : l'intégrale première est celle de Painlevé–Jacobi, et non "
                       "l'énergie mécanique {E} dans le repère galiléen, que le mouvement imposé fait varier :",
-                      "{L} does not depend on the time explicitly and {cond}. The equations being written in the "
-                      "frame {R}, driven relative to {R0} by a prescribed motion, {T2} is a homogeneous quadratic "
-                      "form of the rates and {U} holds the potential energy of the transport inertial forces "
+                      "{L} does not depend explicitly on time and {cond}. Since the equations are written in the "
+                      "frame {R}, which moves relative to {R0} with a prescribed motion, {T2} is a homogeneous "
+                      "quadratic form in the rates and {U} holds the potential energy of the transport inertial forces "
                       "(Remark 3 of the course): the first integral is the Painlevé–Jacobi one, not the mechanical "
                       "energy {E} in the Galilean frame, which the prescribed motion changes:"),
     "at t0": ("à", "at"),
@@ -449,14 +507,14 @@ _PHRASES: dict[str, tuple[str, str]] = {
                       "orthogonaux à la vitesse par rapport à {R} et ne développent aucune puissance réelle ; ici "
                       "leurs composantes généralisées sont nulles, {Q}.",
                       "The Coriolis inertial forces do not derive from a potential energy, but they are orthogonal "
-                      "to the velocity relative to {R} and develop no real power; here their generalized forces "
+                      "to the velocity relative to {R} and do no work (their real power is zero); here their generalized forces "
                       "are zero, {Q}."),
     "coriolis gyroscopic": ("Les efforts d'inertie de Coriolis ne dérivent pas d'une énergie potentielle, mais ils "
                             "sont orthogonaux à la vitesse par rapport à {R} et ne développent aucune puissance "
                             "réelle : leurs composantes généralisées {Q} ne sont pas nulles mais gyroscopiques, {P} ; "
                             "elles restent dans les {nc}.",
                             "The Coriolis inertial forces do not derive from a potential energy, but they are "
-                            "orthogonal to the velocity relative to {R} and develop no real power: their generalized "
+                            "orthogonal to the velocity relative to {R} and do no work (their real power is zero): their generalized "
                             "forces {Q} are not zero but gyroscopic, {P}; they stay in the {nc}."),
     "coriolis jacobi": (" L'intégrale de Jacobi {h} est donc conservée (voir « Intégrales premières »).",
                         " The Jacobi integral {h} is therefore conserved (see “First integrals”)."),
@@ -470,31 +528,32 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "check intro": ("Ces équations de Lagrange peuvent être retrouvées en appliquant les théorèmes généraux à chaque "
                     "constituant de (Σ) par rapport à {R0} galiléen, projetés sur les directions associées à chaque "
                     "paramètre :", "These Lagrange equations can be recovered by applying the "
-                    "Newton–Euler theorems to each part of (Σ) relative to the Galilean {R0}, projected on the "
+                    "Newton–Euler theorems to each part of (Σ) relative to the Galilean frame {R0}, projected onto the "
                     "directions that go with each parameter:"),
     "check intro moving": ("Ces équations de Lagrange peuvent être retrouvées en appliquant les théorèmes généraux par "
                            "rapport à {R0}, non galiléen, en ajoutant aux efforts donnés les efforts d'inertie de "
                            "Coriolis et d'entraînement, projetés sur les directions associées à chaque paramètre :",
                            "These Lagrange equations can be recovered by applying the Newton–Euler theorems "
-                           "relative to {R0}, which is not Galilean, the Coriolis and transport inertial forces being "
-                           "added to the applied forces, projected on the directions that go with each parameter:"),
-    "moment theorem": ("Théorème du moment dynamique en {P} de {S} :", "Moment (angular momentum) theorem at {P} for {S}:"),
+                           "relative to {R0}, which is not Galilean, adding the Coriolis and transport inertial forces "
+                           "to the applied forces, and projecting them onto the directions that go with each "
+                           "parameter:"),
+    "moment theorem": ("Théorème du moment dynamique en {P} de {S} :", "Angular momentum theorem about {P} for {S}:"),
     "moment theorem parallel": ("Théorème du moment dynamique en {P} de {S} ; le point {P} est mobile dans {R}, mais "
                                 "sa vitesse est parallèle à celle de {G}, donc {term} et le moment dynamique est la "
                                 "dérivée du moment cinétique.",
-                                "Moment (angular momentum) theorem at {P} for {S}; {P} moves in {R}, but parallel to "
+                                "Angular momentum theorem about {P} for {S}; {P} moves in {R}, but parallel to "
                                 "{G}, so {term} and the dynamic moment is the derivative of the angular momentum."),
     "moment theorem moving": ("Théorème du moment dynamique en {P} de {S} ; le point {P} étant mobile dans {R}, le "
                               "moment dynamique n'est pas la dérivée du moment cinétique : il s'en écarte de {term}.",
-                              "Moment (angular momentum) theorem at {P} for {S}; {P} moves in {R}, so the dynamic "
+                              "Angular momentum theorem about {P} for {S}; {P} moves in {R}, so the dynamic "
                               "moment is not the derivative of the angular momentum: they differ by {term}."),
     "resultant theorem": ("Théorème de la résultante dynamique pour {P} :", "Resultant theorem for {P}:"),
     "by moment": ("{eq} par projection du théorème du moment dynamique en {P}{of} sur {e} :",
-                  "{eq} by projecting the moment (angular momentum) theorem at {P}{of} on {e}:"),
+                  "{eq} by projecting the angular momentum theorem about {P}{of} onto {e}:"),
     "by resultant": ("{eq} par projection du théorème de la résultante dynamique{of} sur {e} :",
-                     "{eq} by projecting the resultant theorem{of} on {e}:"),
+                     "{eq} by projecting the resultant theorem{of} onto {e}:"),
     "by power": ("{eq} par projection des théorèmes{of} sur les vitesses partielles de {q} (puissance virtuelle) :",
-                 "{eq} by projecting the theorems{of} on the partial velocities of {q} (virtual power):"),
+                 "{eq} by projecting the theorems{of} onto the partial velocities of {q} (virtual power):"),
     "of": (" de {names}", " of {names}"),
     "check failed": ("Désaccord : la projection ne redonne pas {eq}.", "Disagreement: the projection does not give "
                      "{eq} back."),
@@ -512,7 +571,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
                          "constraints that are not ideal stay, with the applied forces."),
     "fixed axis": ("{e} étant fixe dans {R0} et {O} fixe, la projection du moment dynamique sur {e} est la dérivée de "
                    "celle du moment cinétique, qui est la quantité de mouvement généralisée :",
-                   "{e} being fixed in {R0} and {O} fixed, the projection of the dynamic moment on {e} is the derivative "
+                   "Since {e} and {O} are fixed in {R0}, the projection of the dynamic moment onto {e} is the derivative "
                    "of that of the angular momentum, which is the generalized momentum:"),
     "pvv": ("Le principe des puissances virtuelles, pour tout champ de vitesses virtuelles compatible avec les "
             "liaisons principales :",
@@ -520,13 +579,14 @@ _PHRASES: dict[str, tuple[str, str]] = {
             "constraints:"),
     "gamma": ("où {gamma} est la composante généralisée des quantités d'accélération de (Σ) par rapport à {R}, "
               "et {Q} celle de tous les efforts ; d'où les équations de Lagrange :",
-              "where {gamma} is the generalized component of the acceleration quantities (inertia) of (Σ) relative "
-              "to {R}, and {Q} that of all the forces and moments; hence Lagrange's equations:"),
+              "where {gamma} is the generalized component of the mass-times-acceleration of (Σ) relative to {R} "
+              "(its generalized inertia term), and {Q} that of all the forces and moments; hence Lagrange's "
+              "equations:"),
     "top moment": ("{R0} étant galiléen, le théorème du moment dynamique en {O} de ({S}) par rapport à {R0} "
-                   "s'écrit :", "{R0} being Galilean, the moment (angular momentum) theorem at {O} for ({S}) "
+                   "s'écrit :", "{R0} being Galilean, the angular momentum theorem about {O} for ({S}) "
                    "relative to {R0} reads:"),
     "fixed point moment": ("La réaction {R} s'applique en {O} : son moment en {O} est nul, {OO}.",
-                           "The reaction {R} acts at {O}: its moment at {O} is zero, {OO}."),
+                           "The reaction {R} acts at {O}: its moment about {O} is zero, {OO}."),
     "whole system": ("(Σ)", "(Σ)"),
     # -- simulation, appendix, sizes --------------------------------------------------------------
     "figure": ("Figure {k} : {caption}", "Figure {k}: {caption}"),
@@ -540,6 +600,12 @@ _PHRASES: dict[str, tuple[str, str]] = {
                                  "The Lagrange equations read {form}, where F holds the applied forces only and {A} "
                                  "is the matrix of the complementary constraints' coefficients (step 7), with the "
                                  "multipliers {lam}; with:"),
+    "matrix intro multiplier": ("Les équations de Lagrange s'écrivent {form}, où F ne contient que les efforts donnés, "
+                                "{A} est la ligne des coefficients de la liaison complémentaire (étape 7) et {lam} son "
+                                "multiplicateur ; avec :",
+                                "The Lagrange equations read {form}, where F holds the applied forces only, {A} is the "
+                                "row of the complementary constraint's coefficients (step 7) and {lam} its multiplier; "
+                                "with:"),
     "matrix intro": ("Les équations de Lagrange s'écrivent {form}, avec :", "The Lagrange equations read {form}, with:"),
     "show full": ("{label} : {k} lignes — afficher en entier", "{label}: {k} lines — show in full"),
     "show more": ("les {k} autres liaisons — afficher", "the {k} other constraints — show"),

@@ -26,7 +26,6 @@ from ..build import Context
 from ..document import Block, Display, Equation, Math, Para, Runs, Section
 from ....model import ORIGIN
 from ..joints import _root
-from .forces import MULTIPLIER_SUM
 from ..size import visible_width, wrap_many
 
 __all__ = ["step6", "step7", "integrals_section", "ordered_equations", "left_out_note"]
@@ -90,7 +89,7 @@ def _partials(c: Context, row: EquationRow) -> tuple[list[Equation], list[Block]
              (_dT(c, q, U=True) + " = ", row.dU_dq), (c.Q_nc(q) + " = ", row.Q_nc)]
     multiplier = c.eom.equation(q).multiplier_terms
     if multiplier != 0:
-        parts.append((rf"\sum_{{k}} \lambda_{{k}}\, a_{{k,{c.sym(q)}}} = ", c.ex(multiplier)))
+        parts.append((f"{c.multiplier_sum(c.sym(q))} = ", c.ex(multiplier)))
     full = c.full(parts, f"L({c.n.symbol(q)})")
     pieces = [head + c.n.latex(e) for head, e in parts]
     # The seed's layout: "… ; ∂U_P/∂q_i = … et Q_i = …", cut into lines (inside a piece if need be).
@@ -101,7 +100,7 @@ def _partials(c: Context, row: EquationRow) -> tuple[list[Equation], list[Block]
 
 def _sides(c: Context, q: str) -> list[str]:
     """What the two sides of L(q_i) are, as heads of their full forms: d/dt[∂T/∂q̇] − ∂T/∂q = and −∂U_P/∂q + Q = ."""
-    lam = rf" + \sum_{{k}} \lambda_{{k}}\, a_{{k,{c.sym(q)}}}" if c.eom.equation(q).multiplier_terms != 0 else ""
+    lam = f" + {c.multiplier_sum(c.sym(q))}" if c.eom.equation(q).multiplier_terms != 0 else ""
     return [rf"\frac{{d}}{{dt}}\left[{_dT(c, q, 'dot')}\right] - {_dT(c, q)} = ",
             rf"-{_dT(c, q, U=True)} + {c.Q_nc(q)}{lam} = "]
 
@@ -137,7 +136,7 @@ def _lagrange(c: Context, row: EquationRow) -> list[Block]:
 
 def step6(c: Context) -> Section:
     w = c.w
-    lam = rf" + {MULTIPLIER_SUM}" if c.eom.constraints else ""
+    lam = f" + {c.multiplier_sum()}" if c.eom.constraints else ""
     general = (rf"L(q_i)\quad \frac{{d}}{{dt}}\left[\frac{{\partial T(\Sigma/{c.R})}}{{\partial \dot{{q}}_i}}\right] - "
                rf"\frac{{\partial T(\Sigma/{c.R})}}{{\partial q_i}} = -\frac{{\partial U_P(\Sigma/{c.R})}}{{\partial q_i}}"
                rf" + Q_{{i,\,\mathrm{{nc}}}}{lam} \qquad i = 1, \dots, n")
@@ -152,24 +151,24 @@ def step6(c: Context) -> Section:
                            Para(w("gamma", gamma=Math(gamma), R=Math(c.R), Q=Math("Q_i"))),
                            Display((Equation((general,)),))]
     if c.eom.constraints:
-        blocks.append(Para(w("multiplier def", sum=Math(r"\sum_{k} \lambda_{k}\, a_{k,i}"))))
+        blocks.append(Para(w("multiplier def one" if len(c.eom.constraints) == 1 else "multiplier def", sum=Math(c.multiplier_sum()))))
     blocks.append(Para(w("lagrange n", n=Math(str(n))) if n > 1 else w("lagrange one")))
     for row in ordered_equations(c):
         blocks += _lagrange(c, row)
     if c.eom.constraints:
-        blocks.append(Para(w("with multipliers", sum=Math(MULTIPLIER_SUM))))
+        blocks.append(Para(w("with multiplier" if len(c.eom.constraints) == 1 else "with multipliers", sum=Math(c.multiplier_sum()))))
     left = [s for s in c.book.left_out if s.reference is None]
     if left:
         blocks.append(Para(left_out_note(c, left), style="note"))
     if c.form.conservative and c.form.L is not None:
         L = Math(rf"L(\Sigma/{c.R}) = T(\Sigma/{c.R}) - U_P(\Sigma/{c.R})")
         if c.eom.constraints:  # complementary and scleronomic: their reactions stay on the right
-            blocks.append(Para(w("conservative constrained", R=Math(c.R), L=L, sum=Math(MULTIPLIER_SUM))))
+            blocks.append(Para(w("conservative constrained", R=Math(c.R), L=L, sum=Math(c.multiplier_sum()))))
         else:
             blocks.append(Para(w("conservative", R=Math(c.R), L=L)))
         parts = (c.form.T_total, -c.form.U_total) if c.form.U_total != 0 else (c.form.T_total,)
         blocks += c.show([_sum_equation(c, rf"L(\Sigma/{c.R}) = ", parts, "")], "L")
-        right = MULTIPLIER_SUM if c.eom.constraints else "0"
+        right = c.multiplier_sum() if c.eom.constraints else "0"
         blocks.append(Display((Equation((r"L(q_i)\quad \frac{d}{dt}\left[\frac{\partial L}{\partial \dot{q}_i}\right]"
                                          rf" - \frac{{\partial L}}{{\partial q_i}} = {right} \qquad i = 1, \dots, n",)),)))
         if not are_zero([(c.eom.T - c.eom.U).diff(c.kin.t)])[0]:
@@ -259,9 +258,11 @@ def step7(c: Context) -> Section:
     for reaction in c.eom.reactions:  # rows the engine chose of a vector constraint, and why
         choice = reaction.row_choice
         if choice is not None:
-            kept = w.join(list(choice.kept))
+            # The kept rows by their axes (rolling_x1 → x1): the identifiers stay in the JSON.
+            prefix = reaction.constraint + "_"
+            kept = w.join([Math(c.axis(r.removeprefix(prefix))) for r in choice.kept])
             blocks.append(Para(w("rows chosen frame" if choice.frame else "rows chosen subset",
-                                 declared=choice.declared_frame, name=reaction.constraint,
+                                 declared=choice.declared_frame, name=c.constraint_label(reaction.constraint),
                                  k=str(len(choice.declared_rows)), r=str(choice.rank), frame=choice.frame or "",
                                  kept=kept)))
     formulas = _multipliers(c)
@@ -278,10 +279,17 @@ def step7(c: Context) -> Section:
         if not reaction.physical:
             continue
         where = reaction.point or reaction.body or ""
-        blocks.append(Para(w("reaction of", name=reaction.constraint, E=Math(c.point_label(where)))))
+        R = c.reaction_tex(reaction.constraint)
+        body = reaction.body or next((k.body for k in c.model.constraints if k.name == reaction.constraint), None)
+        label, shown = c.constraint_label(reaction.constraint), Math(R) if not reaction.force.is_zero() else ""
+        if reaction.point is not None and body in c.bodies and body != reaction.point:  # on (S) at I
+            blocks.append(Para(w("reaction of at", R=shown, name=label, S=Math(c.element(body)),
+                                 E=Math(c.point_label(reaction.point)))))
+        else:
+            blocks.append(Para(w("reaction of", R=shown, name=label, E=Math(c.point_label(where)))))
         eqs = []
         if not reaction.force.is_zero():
-            eqs.append(c.vector_equation(r"\vec{R} = ", c.terms(reaction.force)))
+            eqs.append(c.vector_equation(f"{R} = ", c.terms(reaction.force)))
         if not reaction.moment.is_zero():
             eqs.append(c.vector_equation(r"\vec{M} = ", c.terms(reaction.moment)))
         if eqs:
@@ -338,7 +346,7 @@ def _tension(c: Context, reaction, formulas: tuple[se.Basic, ...]) -> list[Block
     L = _root(L2)
     N = (-kin.frames.dot(reaction.force, d) / L).xreplace(values)
     X, P = c.name(c.origin), c.point_label(reaction.point)
-    head = rf"N = -\vec{{R}}\cdot\frac{{\overrightarrow{{{X}{P}}}}}{{{c.tex(L)}}} = "
+    head = rf"N = -{c.reaction_tex(reaction.constraint)}\cdot\frac{{\overrightarrow{{{X}{P}}}}}{{{c.tex(L)}}} = "
     blocks: list[Block] = [Para(w("tension", P=Math(P), X=Math(X)))]
     blocks += c.show([c.equation(head, _simple(c, N))], "N")
     # The angle of XP from the descending vertical, when XP = x e1 + y e2 with e2 the ascending vertical.
@@ -458,10 +466,33 @@ def _energy(c: Context, row: IntegralRow) -> list[Block]:
     return blocks
 
 
+def _other_integral(c: Context, row: IntegralRow) -> list[Block]:
+    """A constant speed of a nonholonomic system (the coin's φ̇, from its reduced equations) or a symmetry's
+    integral (σ_O·z0 of a top free to turn about Oz0): neither is an energy nor a Jacobi integral."""
+    w = c.w
+    name = c.n.symbol(row.name, latex=True)
+    if row.kind == "nonholonomic":
+        blocks: list[Block] = [Para(w("constant speed", qd=Math(name),
+                                      d=Math(rf"\frac{{d{name}}}{{dt}} = 0")))]
+        blocks += c.show([c.equation("", row.expression, rf" = \text{{{w.text('cste')}}}")], row.name)
+    else:
+        blocks = [Para(w("symmetry integral"))]
+        blocks += c.show([c.equation("", row.expression, f" = {name}")], row.name)
+    source = next((i.expression for i in c.integrals if i.name == row.name), None)
+    if source is not None:
+        value = _value(c, name, source, _unit(c, row.kind, row.name))
+        if value:
+            blocks.append(Para(value[1:-1] + (".",)))
+    return blocks
+
+
 def integrals_section(c: Context) -> Section:
     w = c.w
     blocks: list[Block] = []
     for row in c.form.integrals:
+        if row.kind in ("nonholonomic", "symmetry"):
+            blocks += _other_integral(c, row)
+            continue
         blocks += _momentum(c, row) if row.kind == "momentum" else _energy(c, row)
     if not blocks:
         kin = c.kin

@@ -126,11 +126,13 @@ def _theorem(c: Context, kind: str, point: str | None, names: tuple[str, ...], t
         masses = [th.mass for th in theorems.values() if th.name in names]
         G = c.point_label(names[0]) if len(names) == 1 else "G"
         m = c.tex(masses[0]) if len(masses) == 1 else r"\sum m"
-        forces = " + ".join(rf"\vec{{F}}({c.load_tex(e)})" for e in efforts) or r"\vec{0}"
+        forces = " + ".join(c.reaction_tex(e) if c.is_constraint(e) else rf"\vec{{F}}({c.load_tex(e)})"
+                            for e in efforts) or r"\vec{0}"
         return [Para(w("resultant theorem", P=elements)),
                 Display((Equation((rf"{m}\,\vec{{\gamma}}({G}/{R}) = {forces} + \vec{{R}}(\text{{{liaisons}}})",)),))]
     P = _point(c, point, names[0])
-    moments = " + ".join(rf"\vec{{M}}_{{{P}}}({c.load_tex(e)})" for e in efforts) or r"\vec{0}"
+    moments = " + ".join(rf"\vec{{M}}_{{{P}}}({c.reaction_tex(e) if c.is_constraint(e) else c.load_tex(e)})"
+                         for e in efforts) or r"\vec{0}"
     fixed = next((j for j in c.joints if j.kind == "fixed point" and j.support is None and names == (j.element,)
                   and j.point is not None and c.point_label(j.point) == P), None)
     th = theorems.get((names[0], point)) if len(names) == 1 else None
@@ -250,10 +252,12 @@ def matrix_section(c: Context) -> Section:
     lams = [(name, c.eom.equation(name).multiplier_terms) for name in q] if c.eom.constraints else []
     lams = [(name, t) for name, t in lams if t != 0]
     if lams:
-        form = Math(r"M(q, t)\,\ddot{q} = F(q, \dot{q}, t) + A^{\mathsf{T}}\lambda")
-        rows += [c.equation(rf"\left(A^{{\mathsf{{T}}}}\lambda\right)_{{{c.sym(name)}}} = "
-                            rf"\sum_{{k}} \lambda_{{k}}\, a_{{k,{c.sym(name)}}} = ", c.ex(t)) for name, t in lams]
-        intro = w("matrix intro multipliers", form=form, A=Math(r"A = (a_{k,i})"), lam=Math(r"\lambda"))
+        L = c.lam
+        form = Math(rf"M(q, t)\,\ddot{{q}} = F(q, \dot{{q}}, t) + A^{{\mathsf{{T}}}}{L}")
+        rows += [c.equation(rf"\left(A^{{\mathsf{{T}}}}{L}\right)_{{{c.sym(name)}}} = {c.multiplier_sum(c.sym(name))} = ",
+                            c.ex(t)) for name, t in lams]
+        A = "A = (a_{i})" if len(c.eom.constraints) == 1 else "A = (a_{k,i})"
+        intro = w("matrix intro multiplier" if len(c.eom.constraints) == 1 else "matrix intro multipliers", form=form, A=Math(A), lam=Math(L))
     else:
         intro = w("matrix intro", form=form)
     blocks: list[Block] = [Para(intro)]

@@ -19,9 +19,6 @@ from ..size import wrap_many
 
 __all__ = ["step5"]
 
-#: The generalized forces of the complementary reactions: λ_k the multiplier of constraint k, a_{k,i} the
-#: coefficient of q̇_i in its equation (∂f_k/∂q_i for a holonomic f_k = 0).  Not A_{ki}: A is a moment of inertia.
-MULTIPLIER_SUM = r"\sum_{k} \lambda_{k}\, a_{k,i}"
 
 #: Most coordinates for which each vanishing Q_i is explained (beyond, the list would drown the rest).
 ZERO_REASONS_MAX = 12
@@ -226,9 +223,12 @@ def step5(c: Context) -> Section:
     lossy = [j for j in c.joints if not j.perfect]
     blocks.append(Para(w("perfect no Q" if not lossy else "perfect no Q but")))
     if c.eom.constraints:
-        blocks.append(Para(w("complementary Q", Q=Math(MULTIPLIER_SUM), lam=Math(r"\lambda_{k}"),
-                             a=Math(r"a_{k,i}"), f=Math(r"\frac{\partial f_{k}}{\partial q_i}"),
-                             qd=Math(r"\dot{q}_i"), fk=Math("f_{k} = 0"))))
+        one = len(c.eom.constraints) == 1
+        k = "" if one else "k"
+        blocks.append(Para(w("complementary Q one" if one else "complementary Q", Q=Math(c.multiplier_sum()),
+                             lam=Math(c.lam if one else rf"{c.lam}_{{k}}"), a=Math(f"a_{{{k + ',' if k else ''}i}}"),
+                             f=Math(rf"\frac{{\partial f{'_{k}' if k else ''}}}{{\partial q_i}}"),
+                             qd=Math(r"\dot{q}_i"), fk=Math(f"f{'_{k}' if k else ''} = 0"))))
     blocks.append(Para(w("nc total")))
     values = [c.n.latex(eq.Q_nc) for eq in c.form.equations]
     if all(v == "0" for v in values) and len(values) > ZERO_REASONS_MAX:

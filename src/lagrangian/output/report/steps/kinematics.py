@@ -10,6 +10,8 @@ Seed, worked example:
 
 from __future__ import annotations
 
+import symengine as se
+
 from ....model import Gravity, PointForce, Potential, Spring, Vector
 from ..build import Context
 from ..document import Block, Display, Equation, Math, Para, Section
@@ -163,6 +165,136 @@ def _virtual_torsors(c: Context) -> list[Block]:
     return out
 
 
+def comoment_conditions(c: Context, j) -> list[se.Basic] | None:  # type: ignore[no-untyped-def]
+    """The scalars whose vanishing makes the comoment of a perfect principal constraint's action torsor with the
+    virtual kinematic torsor zero, as step 3 states it; None for a constraint it does not argue.
+
+    Comoment at the joint's point X: P* = R·V*(X ∈ S/S₁) + M_X·Ω*(S/S₁) (S₁ the support, R0 if none).
+    fixed point, ball joint: V*(X ∈ S/S₁) = 0 and M_X = 0; pivot of axis e: V*(X ∈ S/S₁) = 0 and
+    Ω*(S/S₁) ∧ e = 0 (M_X·e = 0); rod XP: XP·V*(P) = 0 (R along XP) and n·V*(P) = 0 for each plane normal;
+    plane of normal n: n·V*(P) = 0 (R = N n); line e: V*(P) ∧ e = 0 (R ⟂ e); body plane: n·V*(G) = 0 (R = N n)
+    and Ω* along the allowed rotations (M_G orthogonal to them).
+    """
+    kin, frames = c.kin, c.kin.frames
+
+    def vstar_on(body: str | None, point: str) -> Vector:
+        # V*(X ∈ S) = V*(A) + Ω*(S) ∧ AX with A the torsor's point of S (V*(X) for R0 or a particle).
+        if body is None or body not in c.bodies:
+            return kin.virtual_velocity(point) if body is not None else Vector.zero()
+        omega, v = virtual_torsor(c, body)
+        A = torsor_point(c, body)
+        return v + frames.cross(omega, kin.position(point) - kin.position(A))
+
+    def omega_star(body: str | None) -> Vector:
+        return virtual_torsor(c, body)[0] if body is not None and body in c.bodies else Vector.zero()
+
+    def comps(v: Vector) -> list[se.Basic]:
+        return list(frames.express(v, c.ref))
+
+    def axis_vector(name: str) -> Vector:
+        frame = next(f for f in frames.frames if name in frames.axes(f))
+        k = frames.axes(frame).index(name)
+        return Vector({frame: tuple(se.Integer(int(i == k)) for i in range(3))})
+
+    if not j.perfect or j.point is None and j.kind != "body plane":
+        return None
+    if j.kind in ("fixed point", "ball joint", "pivot"):
+        relative = vstar_on(j.element, j.point) - vstar_on(j.support, j.point)
+        out = comps(relative)
+        if j.kind == "pivot":
+            if j.axis is None:
+                return None
+            rotation = omega_star(j.element) - omega_star(j.support)
+            out += comps(frames.cross(rotation, axis_vector(j.axis)))
+        return out
+    v = kin.virtual_velocity(j.element)
+    if j.kind == "rod":
+        d = kin.position(j.element) - kin.position(j.point)
+        rel = v - kin.virtual_velocity(j.point)
+        return [frames.dot(d, rel)] + [frames.dot(axis_vector(a), rel) for a in j.normals]
+    if j.kind == "plane":
+        return [frames.dot(axis_vector(a), v) for a in j.normals]
+    if j.kind == "line" and j.axis is not None:
+        return comps(frames.cross(v, axis_vector(j.axis)))
+    if j.kind == "body plane":
+        out = [frames.dot(axis_vector(a), v) for a in j.normals]
+        turns = [axis_vector(a) for a in j.turns]
+        omega = omega_star(j.element)
+        if len(turns) == 1:
+            out += comps(frames.cross(omega, turns[0]))
+        elif len(turns) == 2:
+            out.append(frames.dot(omega, frames.cross(turns[0], turns[1])))
+        return out
+    return None
+
+
+def _comoments(c: Context) -> list[Block]:
+    """Step 3: why each perfect principal constraint does no virtual work — the comoment of its action torsor
+    {R ; M_X}_X with the virtual kinematic torsor is zero (stated only where `comoment_conditions` vanish)."""
+    from .._identity import are_zero
+
+    w, R = c.w, c.R
+    because = rf"\text{{{w.text('because')}}}\quad"
+    et = rf"\quad\text{{{w.text('et')}}}\quad"
+    out: list[Block] = []
+    for j in c.joints:
+        conditions = comoment_conditions(c, j)
+        if conditions is None or not all(are_zero(conditions)):
+            continue
+        S = c.element(j.element)
+        X = c.point_label(j.point) if j.point else ""
+        if j.kind in ("fixed point", "ball joint", "pivot"):
+            S1 = c.element(j.support) if j.support is not None else R
+            rel = rf"{S}/{S1}"
+            eq = rf"P^{{*}} = \vec{{R}}_{{{X}}}\cdot\vec{{V}}^{{*}}({X}\in {rel}) + \vec{{M}}_{{{X}}}\cdot\vec{{\Omega}}^{{*}}({rel}) = 0"
+            if j.kind == "pivot":
+                e = c.axis(j.axis)  # type: ignore[arg-type]
+                rotation = c.vector(j.rotation) if j.rotation is not None else ""
+                why = (rf"{because} \vec{{V}}^{{*}}({X}\in {rel}) = \vec{{0}},\quad "
+                       rf"\vec{{\Omega}}^{{*}}({rel}) = {rotation} {et} \vec{{M}}_{{{X}}}\cdot{e} = 0")
+                key = "comoment pivot"
+            else:
+                why = rf"{because} \vec{{V}}^{{*}}({X}\in {rel}) = \vec{{0}} {et} \vec{{M}}_{{{X}}} = \vec{{0}}"
+                key = "comoment fixed point" if j.kind == "fixed point" else "comoment ball"
+            support = ("(", Math(S1), ")") if j.support is not None else (Math(S1),)
+            out += [Para(w(key, S=Math(S), X=Math(X), S1=support)), Display((Equation((eq, why)),))]
+        elif j.kind in ("rod", "plane", "line"):
+            P = c.element(j.element)
+            V = rf"\vec{{V}}^{{*}}({P})"
+            if j.kind == "rod":
+                XP = rf"\overrightarrow{{{X}{P}}}"
+                dirs = [XP] + [c.axis(a) for a in j.normals]
+                why = rf"{because} " + r",\ ".join(rf"{d}\cdot{V} = 0" for d in dirs)
+                if not c.kin.is_fixed(j.point):  # type: ignore[arg-type]
+                    V = rf"\left({V} - \vec{{V}}^{{*}}({X})\right)"
+                    why = rf"{because} " + r",\ ".join(rf"{d}\cdot{V} = 0" for d in dirs)
+                key, along = "comoment rod", w.join([Math(d) for d in dirs])
+            elif j.kind == "plane":
+                n = c.axis(j.normals[0])
+                why, key, along = rf"{because} {n}\cdot{V} = 0", "comoment plane", Math(n)
+            else:
+                e = c.axis(j.axis)  # type: ignore[arg-type]
+                why, key, along = rf"{because} {V}\wedge{e} = \vec{{0}}", "comoment line", Math(e)
+            eq = rf"P^{{*}} = \vec{{R}}\cdot{V} = 0"
+            out += [Para(w(key, P=Math(P), dirs=along)), Display((Equation((eq, why)),))]
+        elif j.kind == "body plane":
+            G = c.point_label(j.element)
+            n = w.join([Math(c.axis(a)) for a in j.normals])
+            allowed = w.join([Math(c.axis(a)) for a in j.turns])
+            eq = (rf"P^{{*}} = \vec{{R}}\cdot\vec{{V}}^{{*}}({G}\in {S}/{R}) + \vec{{M}}_{{{G}}}\cdot"
+                  rf"\vec{{\Omega}}^{{*}}({S}/{R}) = 0")
+            why = (rf"{because} " + r",\ ".join(rf"{c.axis(a)}\cdot\vec{{V}}^{{*}}({G}) = 0" for a in j.normals)
+                   + rf" {et} \vec{{\Omega}}^{{*}}({S}/{R}) \in \mathrm{{vect}}("
+                   + ", ".join(c.axis(a) for a in j.turns) + ")")
+            out += [Para(w("comoment body plane", S=Math(S), G=Math(G), n=n, turns=allowed)),
+                    Display((Equation((eq, why)),))]
+    if out:
+        comoment = Math(r"P^{*} = \vec{R}\cdot\vec{V}^{*}(X) + \vec{M}_{X}\cdot\vec{\Omega}^{*}")
+        out.insert(0, Para(w("comoment intro", P=comoment,
+                             torsor=Math(r"\left\{\vec{R} \,;\, \vec{M}_{X}\right\}_{X}"))))
+    return out
+
+
 def step3(c: Context) -> Section:
     w, blocks = c.w, []
     chains = _chains(c)
@@ -183,6 +315,8 @@ def step3(c: Context) -> Section:
         AP = rf"\vec{{V}}^{{*}}(P\in S/{c.R}) = \vec{{V}}^{{*}}(A\in S/{c.R}) + \vec{{\Omega}}^{{*}}(S/{c.R})\wedge\overrightarrow{{AP}}"
         blocks.append(Para(w("virtual torsor", field=Math(AP))))
         blocks += c.many(torsors, len(c.model.bodies), w.text("virtual torsor short"), limit=6)
+    comoments = _comoments(c)
+    blocks += c.many(comoments, len(c.joints), w.text("comoment short"), limit=8)
     return Section("step3", w.text("step3"), tuple(blocks))
 
 
@@ -209,6 +343,7 @@ def _kinetic(c: Context) -> list[Block]:
         head = rf"T({S}/{c.R}) = " + (f"{formula} = " if formula else "")
         rows.append(c.equation(head, shown.expression))
     blocks = c.many(c.show(rows, "T"), len(rows), "T") + single
+    blocks += c.many(_inertia_operators(c), len(c.model.bodies), "Π", limit=6)
     if len(rows) > 1:
         head = rf"T(\Sigma/{c.R}) = "
         names = [rf"T({c.element(t.name)}/{c.R})" for t in c.eom.T_terms]
@@ -216,6 +351,25 @@ def _kinetic(c: Context) -> list[Block]:
         full = c.full([(head, c.form.T_total)], f"T(Σ/{c.ref})")
         blocks += c.show([c.equation(rf"{head}{total} = ", c.form.T_total)], "T") + full
     return blocks
+
+
+def _inertia_operators(c: Context) -> list[Block]:
+    """Where T first uses Π_P(S) (½ Ω·[Π_O(S)·Ω] for the top): what it is — the inertia operator of (S) at P,
+    whose matrix in the basis of step 3 gives T = ½ Ωᵀ [Π_P(S)] Ω with Ω's components in that basis."""
+    out: list[Block] = []
+    for term in c.eom.T_terms:
+        if term.inertia is None or term.formula not in ("fixed point", "König"):
+            continue
+        S = c.element(term.name)
+        P = c.point_label(term.name) if term.inertia.point == "G" else c.point_label(term.inertia.point)
+        Pi = rf"\Pi_{{{P}}}({S})"
+        # Π_P(S)·Ω = σ_P(S/R) = ∫ PM ∧ (Ω ∧ PM) dm, P fixed in S and R (the top's O) or the centre of mass G.
+        Omega = rf"\vec{{\Omega}}({S}/{c.R})"
+        v = (rf"\Pi_{{{P}}}({S})\cdot{Omega} = \int_{{M\in {S}}} \overrightarrow{{{P}M}}\wedge\left({Omega}"
+             rf"\wedge\overrightarrow{{{P}M}}\right) dm = \vec{{\sigma}}_{{{P}}}({S}/{c.R})")
+        out.append(Para(c.w("inertia operator", Pi=Math(Pi), S=Math(S), P=Math(P), op=Math(v),
+                            basis=Math(c.basis(term.inertia.frame)))))
+    return out
 
 
 def _gravity_formula(c: Context, load: Gravity) -> str:
@@ -296,6 +450,9 @@ def _potential(c: Context) -> list[Block]:
             label = rf"U_P({c.load_tex(f.name)})"
         formula = _potential_formula(c, f.kind, f.name)
         head = f"{label} = " + (f"{formula}{cste} = " if formula else "")
+        if row.expression == 0 and formula:  # m g OG·z0 + cste with OG·z0 = r: a constant, « = cste », not « 0 + cste »
+            rows.append(Equation((head + cste.removeprefix(" + "),)))
+            continue
         rows.append(c.equation(head, row.expression, cste))
     blocks: list[Block] = []
     if not single:

@@ -106,8 +106,7 @@ def _constraint_given(c: Context, con: Constraint) -> Runs:
         if not parts and con.expression is not None and not isinstance(con.expression, Vector):
             parts = [rf"{c.tex(con.expression)} = 0"]
         equation = r",\quad ".join(parts)
-    described = in_language(con.description, c.lang)
-    label: Runs = (described,) if described else w("quoted", name=con.name)
+    label: Runs = (c.constraint_label(con.name),)
     return w("constraint item", label=label, equation=Math(equation) if equation else "")
 
 
@@ -300,7 +299,6 @@ def _declared(c: Context, con: Constraint, one: bool) -> list[Block]:
     shown = [Equation((rf"{c.tex(r.expression)} = 0",)) for r in rows]
     if not shown and con.expression is not None and not isinstance(con.expression, Vector):
         shown = [Equation((rf"{c.tex(con.expression)} = 0",))]
-    description = f" ({in_language(con.description, c.lang)})" if con.description else ""
     equation = Math(r"\quad".join(e.lines[0] for e in shown)) if len(shown) == 1 else ""
     if con.form == "no_slip":
         head = w("no slip", S=Math(c.element(con.body or "")), I=Math(c.point_label(con.points[0])),
@@ -311,7 +309,7 @@ def _declared(c: Context, con: Constraint, one: bool) -> list[Block]:
                  equation=Math(rf"\overrightarrow{{{c.point_label(con.points[1])}{c.point_label(con.points[0])}}}"
                                r" = \vec{0}"))
     else:
-        head = w("declared", name=con.name, description=description, equation=equation)
+        head = w("declared", label=c.constraint_label(con.name), equation=equation)
     timed = any(r.b != 0 for r in rows) or any(kin.t in r.expression.free_symbols for r in rows)
     if con.principal:
         status: Runs = (w.text("principal declared"),)
@@ -341,7 +339,7 @@ def _declared(c: Context, con: Constraint, one: bool) -> list[Block]:
             blocks.append(Para(w("perfect complementary", Q=Math(Q or "0"))))
         for reaction in c.eom.reactions:
             if reaction.constraint == con.name and reaction.point is not None and not reaction.force.is_zero():
-                R = Math(rf"\vec{{R}} = {c.vector(reaction.force)}")
+                R = Math(rf"{c.reaction_tex(con.name)} = {c.vector(reaction.force)}")
                 body = reaction.body or getattr(con, "body", None)
                 if body is not None and body != reaction.point and body in c.bodies:
                     blocks.append(Para(w("reaction on at", S=Math(c.element(body)),
@@ -381,8 +379,21 @@ def step1(c: Context) -> Section:
     if len(groups) > SHOWN_CONSTRAINTS:
         rest = [b for g in groups[SHOWN_CONSTRAINTS:] for b in g]
         blocks.append(Fold(w.text("show more", k=str(len(groups) - SHOWN_CONSTRAINTS)), tuple(rest)))
+    blocks += _multiplier_table(c)
     blocks += _freedom(c)
     return Section("step1", w.text("step1"), tuple(blocks))
+
+
+def _multiplier_table(c: Context) -> list[Block]:
+    """With several multipliers λ_1 … λ_k, which constraint (its description) and which equation each one goes with."""
+    rows = c.eom.constraints
+    if len(rows) < 2:
+        return []
+    w = c.w
+    header = tuple((w.text(k),) for k in ("col multiplier", "col constraint", "col row"))
+    table = tuple(((Math(c.tex(r.multiplier)),), (c.constraint_label(r.constraint),),
+                   (Math(rf"{c.tex(r.expression)} = 0"),)) for r in rows)
+    return [Para(w("multiplier table")), *c.many([Table(header, table)], len(table), w.text("col multiplier"))]
 
 
 def _freedom(c: Context) -> list[Block]:
