@@ -231,7 +231,7 @@ def comoment_conditions(c: Context, j) -> list[se.Basic] | None:  # type: ignore
 def _comoments(c: Context) -> list[Block]:
     """Step 3: why each perfect principal constraint does no virtual work — the comoment of its action torsor
     {R ; M_X}_X with the virtual kinematic torsor is zero (stated only where `comoment_conditions` vanish)."""
-    from .._identity import are_zero
+    from ...._identity import are_zero
 
     w, R = c.w, c.R
     because = rf"\text{{{w.text('because')}}}\quad"
