@@ -222,6 +222,7 @@ def simulate_stick_slip(
     stabilization: str | None = None,
     baumgarte: tuple[float, float] = BAUMGARTE,
     max_switches: int = 100_000,
+    stiffness_check: bool = True,
 ) -> Trajectory:
     """Integrate a model with one exact Coulomb contact, switching between slip and stick (module docstring).
 
@@ -229,7 +230,7 @@ def simulate_stick_slip(
     ----------
     source : a model file, a `Model`, or its equations, whose contact has ``regularization = 0``.
     t_end, t_start, initial, parameters, method, rtol, atol, max_step, n_out, t_eval, events,
-    tolerance, max_steps, progress, backend : as for `simulate` (``dt`` and ``gauss-legendre``
+    tolerance, max_steps, progress, backend, stiffness_check : as for `simulate` (``dt`` and ``gauss-legendre``
         are refused: the phases end at events, not on a fixed grid).
     stabilization, baumgarte : the drift control of the stuck phases (`simulate_dae`).
     max_switches : the most phases a run may have.
@@ -268,7 +269,7 @@ def simulate_stick_slip(
     lam, f_s, N = system.symbols["lam"], system.symbols["f_s"], system.symbols["N"]
     w = system.direction.speed
     common = dict(parameters=parameters, method=method, rtol=rtol, atol=atol, max_step=max_step,
-                  tolerance=tolerance, max_steps=max_steps, backend=backend)
+                  tolerance=tolerance, max_steps=max_steps, backend=backend, stiffness_check=stiffness_check)
     pieces: list[tuple[int, Trajectory]] = []
     switches: list[Event] = []
     user_events: list[Event] = []
