@@ -269,7 +269,7 @@ def simulate_stick_slip(
     lam, f_s, N = system.symbols["lam"], system.symbols["f_s"], system.symbols["N"]
     w = system.direction.speed
     common = dict(parameters=parameters, method=method, rtol=rtol, atol=atol, max_step=max_step,
-                  tolerance=tolerance, max_steps=max_steps, backend=backend, stiffness_check=stiffness_check)
+                  tolerance=tolerance, max_steps=max_steps, backend=backend)
     pieces: list[tuple[int, Trajectory]] = []
     switches: list[Event] = []
     user_events: list[Event] = []
@@ -288,7 +288,8 @@ def simulate_stick_slip(
         else:
             ends = [EventSpec(SWITCH, mode * w, -1, True)]
             piece = simulate(system.slip_eom(mode), float(t_end), t_start=t, initial=start, t_eval=t_seg,
-                             events=ends + user, progress=False, **common)  # type: ignore[arg-type]
+                             events=ends + user, progress=False, stiffness_check=stiffness_check,
+                             **common)  # type: ignore[arg-type]
         pieces.append((mode, piece))
         if progress:
             (_bar if progress is True else progress)(min(1.0, (piece.t[-1] - t_start) / (t_end - t_start)),
