@@ -127,3 +127,13 @@ def test_gauss_legendre_with_too_long_a_step_on_the_stiff_spring_says_reduce_dt(
     assert main(["simulate", str(path), "--method", "gauss-legendre", "--dt", "0.001", "--t-end", "0.01"]) == 4
     err = capsys.readouterr().err
     assert "reduce the step" in err and "--dt 0.0001" in err and "check the model" not in err
+
+
+def test_a_first_step_that_overflows_is_rejected_not_fatal(tmp_path: Path) -> None:
+    # k = 1e16 at rest: the first trial step (h ~ 1e-3 from the slow motion) makes the stages
+    # overflow; that step is cut (as an infinite error estimate), where the run used to stop at
+    # t = 0 with "the state stopped being finite".  Here the step budget ends it instead.
+    eom = lagrangian.derive(lagrangian.load_model(_stiff_cart(tmp_path, k="1e16", c="0")))
+    with pytest.raises(SimulationError) as info:
+        lagrangian.simulate(eom, 10.0, initial={"x": 0.0}, max_steps=2000)
+    assert "maximum number of steps" in info.value.message and info.value.t > 0
