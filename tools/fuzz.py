@@ -46,6 +46,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import faulthandler
+import hashlib
 import io
 import json
 import os
@@ -272,11 +273,13 @@ def _stages(path: str, out: str, command: list[str]):
     return [
         ("load", lambda: state.__setitem__("model", lagrangian.load_model(path))),
         ("derive", lambda: state.__setitem__("eom", lagrangian.derive(state["model"]))),
-        ("integrals", lambda: lagrangian.first_integrals(state["eom"])),
+        ("integrals", lambda: state.__setitem__("integrals", lagrangian.first_integrals(state["eom"]))),
         ("verify", lambda: lagrangian.verify(state["eom"])),
         ("compile", lambda: state.__setitem__("system", lagrangian.compile_system(state["eom"]))),
-        ("simulate", lambda: lagrangian.simulate(state["eom"], 0.3, n_out=7)),
-        ("report", lambda: lagrangian.report(state["eom"], lang="en").markdown()),
+        # the system the stage before compiled: generating the same C again would only repeat that stage
+        ("simulate", lambda: lagrangian.simulate(state["system"], 0.3, n_out=7)),
+        # with the stage's integrals, not a second search for them (the command line's report searches)
+        ("report", lambda: lagrangian.report(state["eom"], lang="en", integrals=state["integrals"]).markdown()),
     ], cli
 
 
@@ -421,6 +424,7 @@ def campaign(cases: int, seed: int, out: Path, *, jobs: int = 1, time_limit: flo
     """Run ``cases`` mutated models (or the files of ``replay``); return the summary (also in OUT/summary.json)."""
     import lagrangian  # noqa: F401 -- imported once here, shared by every forked case
 
+    out = Path(out).resolve()  # each case chdirs into its own folder: a relative --out would be lost
     out.mkdir(parents=True, exist_ok=True)
     (out / "findings").mkdir(exist_ok=True)
     work = Path(tempfile.mkdtemp(prefix="cases-", dir=out))
@@ -436,9 +440,12 @@ def campaign(cases: int, seed: int, out: Path, *, jobs: int = 1, time_limit: flo
         _warm_up(work)
     counts: Counter = Counter()
     stage_counts: Counter = Counter()
+    stage_seconds: Counter = Counter()
     findings: list[dict] = []
     slowest: list[tuple[float, int]] = []
     running: dict[int, Running] = {}
+    seen: set[bytes] = set()  # digests of the model texts run so far
+    duplicates = [0]
     started = time.monotonic()
     total = len(replay) if replay else cases
 
@@ -450,7 +457,15 @@ def campaign(cases: int, seed: int, out: Path, *, jobs: int = 1, time_limit: flo
             text, meta = replay[number].read_text(encoding="utf-8", errors="surrogateescape"), \
                 {"example": replay[number].name, "mutations": ["replay"]}
         else:
-            name, text, mutations = make_case(rng, sources, str(canary))
+            # A text already run would run the same way again (the stages are deterministic): drawn
+            # again instead, so that every case is a new input (1 draw in ~10 repeats an earlier one).
+            for _ in range(100):
+                name, text, mutations = make_case(rng, sources, str(canary))
+                digest = hashlib.blake2b(text.encode("utf-8", "surrogateescape"), digest_size=16).digest()
+                if digest not in seen:
+                    break
+                duplicates[0] += 1
+            seen.add(digest)
             meta = {"example": name, "mutations": mutations}
         command = COMMANDS[(number if replay else rng.randrange(len(COMMANDS))) % len(COMMANDS)]
         meta.update(case=number, command=command)
@@ -468,6 +483,7 @@ def campaign(cases: int, seed: int, out: Path, *, jobs: int = 1, time_limit: flo
         counts[outcome] += 1
         for entry in record.get("stages", []):
             stage_counts[(entry["stage"], entry["outcome"])] += 1
+            stage_seconds[entry["stage"]] += entry.get("seconds", 0.0)
         slowest.append((record["seconds"], run.number))
         if outcome in BAD:
             name = f"{outcome}-{run.number:06d}"
@@ -484,9 +500,11 @@ def campaign(cases: int, seed: int, out: Path, *, jobs: int = 1, time_limit: flo
     def summary() -> dict:
         done = sum(counts.values())
         record = {"cases": done, "planned": total, "seed": seed, "seconds": round(time.monotonic() - started, 1),
+                  "duplicates_redrawn": duplicates[0],
                   "time_limit_s": time_limit, "memory_gib": memory_gib,
                   "outcomes": {k: counts.get(k, 0) for k in OUTCOMES},
                   "stages": {f"{s}:{o}": n for (s, o), n in sorted(stage_counts.items())},
+                  "stage_seconds": {s: round(v, 2) for s, v in sorted(stage_seconds.items())},
                   "slowest": [{"case": c, "seconds": s} for s, c in sorted(slowest, reverse=True)[:10]],
                   "findings": findings}
         _write_json(str(out / "summary.json"), record)  # after every case: a stopped campaign keeps its count

@@ -94,14 +94,18 @@ class SimulationError(LagrangianError):
     ----------
     t : the time reached when it stopped, when it had started.
     state : the state (q, q̇) at that time, when known.
+    trajectory : the part computed before a run stopped early (stiff equations, ``max_steps``),
+        its status saying so, or None.
     """
 
     exit_code = 4
 
-    def __init__(self, message: str, *, fix: str | None = None, t: float | None = None, state=None) -> None:
+    def __init__(self, message: str, *, fix: str | None = None, t: float | None = None, state=None,
+                 trajectory=None) -> None:
         super().__init__(message, fix=fix)
         self.t = t
         self.state = state
+        self.trajectory = trajectory
 
 
 class Interrupted(KeyboardInterrupt):

@@ -51,6 +51,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="record the times where EXPR crosses zero, e.g. --event theta_dot (repeatable)")
     s.add_argument("--stop-when", action="append", default=[], metavar="EXPR",
                    help="stop at the first zero crossing of EXPR, e.g. --stop-when 'theta - 1.2'")
+    s.add_argument("--stiffness-check", action=argparse.BooleanOptionalAction, default=True,
+                   help="dop853: stop with an error when the equations turn out stiff (Hairer's test: the step "
+                        "limited by stability, not accuracy), where --method Radau is the tool (default: on; "
+                        "--no-stiffness-check integrates a knowingly stiff problem with dop853 all the same)")
     s.add_argument("--tolerance", type=number_argument, default=None, metavar="TOL",
                    help="warn when a first integral drifts by more than TOL (relative, > 0; default "
                         "min(1e3 rtol, 1e-6), 1e-6 for gauss-legendre)")
@@ -136,12 +140,18 @@ def run(args: argparse.Namespace) -> str:
         traj = simulate(system, args.t_end, t_start=args.t_start, initial=initial,
                         parameters=parameters, method=args.method, rtol=args.rtol, atol=args.atol, dt=args.dt,
                         n_out=args.n_out, events=events, tolerance=args.tolerance, progress=progress,
-                        stabilization=args.stabilization)
+                        stabilization=args.stabilization, stiffness_check=args.stiffness_check)
     except Interrupted as exc:
         # Ctrl-C: what was computed is kept in the file asked for, its header saying
         # "interrupted ... (partial)"; `main` prints the one line and exits 130.
         if args.out and exc.trajectory is not None:
             exc.written = str(save_trajectory(exc.trajectory, args.out))
+        raise
+    except SimulationError as exc:
+        # Stopped early (stiff equations, max steps): the part computed so far is kept the same way.
+        if args.out and exc.trajectory is not None:
+            written = save_trajectory(exc.trajectory, args.out)
+            exc.message += f" The part computed so far is in {written} (marked partial)."
         raise
     elapsed = time.perf_counter() - start
     # What the reactions are for: the course's pin and contact reactions (R_O of the top). A

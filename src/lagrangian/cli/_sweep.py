@@ -98,6 +98,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     s.add_argument("--t-start", type=number_argument, default=0.0, metavar="T0", help="start time (default 0)")
     add_set_option(s)
     s.add_argument("--method", choices=("dop853", "gauss-legendre"), default="dop853")
+    s.add_argument("--stiffness-check", action=argparse.BooleanOptionalAction, default=True,
+                   help="dop853: stop a member whose equations turn out stiff (status `stiff`) rather than let it "
+                        "crawl (default: on)")
     s.add_argument("--rtol", type=number_argument, default=1e-10, help="relative tolerance (default 1e-10)")
     s.add_argument("--atol", type=number_argument, default=1e-10, help="absolute tolerance (default 1e-10)")
     s.add_argument("--dt", type=number_argument, default=None, help="fixed step (gauss-legendre)")
@@ -170,7 +173,7 @@ def _sweep(args, model, axes, parameters, initial, out, client) -> str:
     g = grid(**axes)
     start = time.perf_counter()
     ds = ensemble(source, args.t_end, t_start=args.t_start, initial=g, parameters=parameters or None,
-                  method=args.method, rtol=args.rtol, atol=args.atol,
+                  method=args.method, rtol=args.rtol, atol=args.atol, stiffness_check=args.stiffness_check,
                   dt=args.dt, n_out=args.n_out, events=events, workers=args.workers, scheduler=client,
                   out=out, resume=args.resume, progress=progress, backend=args.backend)
     elapsed = time.perf_counter() - start

@@ -44,10 +44,11 @@ STATUS = {
     4: "singular",          # the mass matrix became singular
     5: "step-underflow",    # the step size fell below the resolution of t
     6: "no-convergence",    # the implicit stages of gauss-legendre did not converge
+    7: "stiff",             # dop853's stiffness test stopped it (an implicit method is needed)
 }
 PENDING = -1
 # C status (`_integrators.c`) -> member status
-_FROM_C = {0: 0, 4: 1, 2: 2, 5: 3, 1: 4, 3: 5, 6: 6}
+_FROM_C = {0: 0, 4: 1, 2: 2, 5: 3, 1: 4, 3: 5, 6: 6, 8: 7}
 _INTERRUPTED = 7
 _B_SIZE = 6  # lg_batch's info row: status, t, steps, nfev, rows, pivot
 

@@ -128,6 +128,7 @@ def ensemble(
     dt: float | None = None,
     max_step: float | None = None,
     max_steps: int = 10_000_000,
+    stiffness_check: bool = True,
     events: Sequence[EventSpec | str] = (),
     keep: str = "summary",
     workers: int | None = None,
@@ -147,9 +148,10 @@ def ensemble(
     initial, parameters : the members: dicts of per-member arrays (scalars broadcast),
         (members x names) arrays with ``initial_names``/``parameter_names``, or a `grid`
         (given as either; its axes are sorted into state and parameters by name).
-    n_out, t_eval, method, rtol, atol, dt, max_step, max_steps : as in `simulate`
+    n_out, t_eval, method, rtol, atol, dt, max_step, max_steps, stiffness_check : as in `simulate`
         (``method``: ``"dop853"`` or ``"gauss-legendre"``, the compiled integrators). The
-        summaries are taken over the output times.
+        summaries are taken over the output times. A member that dop853's stiffness test stops
+        gets the status ``stiff`` (its summaries cover the part computed); the others go on.
     events : `EventSpec` items or expressions (``"theta_dot"``); their first time and their
         count are kept per member; a terminal event ends the member (status ``stopped``).
     keep : ``"summary"`` (default; memory independent of the number of members) or
@@ -199,7 +201,7 @@ def ensemble(
     try:
         return _ensemble(source, t_end, t_start, initial, parameters, initial_names, parameter_names, n_out, t_eval,
                          method, rtol, atol, dt, max_step, max_steps, events, keep == "trajectories", workers,
-                         chunk_size, client, out_path, resume, progress, backend)
+                         chunk_size, client, out_path, resume, progress, backend, stiffness_check)
     finally:
         if own_client:
             client.close()
@@ -273,7 +275,7 @@ def _kernel(system, specs, method, ctl, t_out, t_start, t_end) -> Kernel:
 
 def _ensemble(source, t_end, t_start, initial, parameters, initial_names, parameter_names, n_out, t_eval, method,
               rtol, atol, dt, max_step, max_steps, events, keep, workers, chunk_size, client, out_path, resume,
-              progress, backend="c"):
+              progress, backend="c", stiffness_check=True):
     source, constrained = constrained_source(source)  # a file is read here, once
     if constrained is not None or exact_contact_model(source) is not None:
         raise SimulationError("Ensembles run models without complementary constraints or exact (ε = 0) "
@@ -293,7 +295,8 @@ def _ensemble(source, t_end, t_start, initial, parameters, initial_names, parame
     group = members(system, initial, parameters, initial_names=initial_names, parameter_names=parameter_names)
     n2 = 2 * system.n
     t_out = _output_times(float(t_start), float(t_end), n_out, t_eval, 2 * n2 + len(system.monitors))
-    ctl = control_block(method, float(t_start), float(t_end), t_out, rtol, atol, dt, max_step, max_steps)
+    ctl = control_block(method, float(t_start), float(t_end), t_out, rtol, atol, dt, max_step, max_steps,
+                        stiffness_check=stiffness_check)
     kernel = _kernel(system, specs, method, ctl, t_out, t_start, t_end)
 
     count = group.count
@@ -307,6 +310,8 @@ def _ensemble(source, t_end, t_start, initial, parameters, initial_names, parame
            "t_end": float(t_end), "n_out": len(t_out), "t_out": _digest(t_out), "method": method, "rtol": rtol,
            "atol": atol, "dt": dt, "max_step": max_step, "max_steps": int(max_steps), "keep": keep,
            "events": [[s.name, str(s.expression), s.direction, bool(s.terminal)] for s in specs]}
+    if not stiffness_check:  # only when off, so that stores written before the option still resume
+        run["stiffness_check"] = False
     grid_axes = tuple((name, len(values)) for name, values in group.grid.axes) if isinstance(group.grid, Grid) \
         else None
     layout = Layout(count, t_out, states, tuple(system.events), tuple(system.integrals), keep, group.swept,

@@ -25,6 +25,7 @@
  * Status codes (the Python side turns them into messages):
  *   0 reached t_stop   1 mass matrix singular   2 non-finite state   3 step size underflow
  *   4 terminal event   5 too many steps         6 implicit stage did not converge
+ *   7 interrupted      8 stiff (dop853's stiffness test, see lg_dop_stiff)
  */
 #include <math.h>
 #include <string.h>
@@ -32,16 +33,18 @@
 #define LG_NY (2 * LG_N)
 
 enum { LG_DONE = 0, LG_SINGULAR = 1, LG_NONFINITE = 2, LG_UNDERFLOW = 3, LG_EVENT = 4,
-       LG_MAXSTEPS = 5, LG_NOCONVERGE = 6, LG_INTERRUPTED = 7 };
+       LG_MAXSTEPS = 5, LG_NOCONVERGE = 6, LG_INTERRUPTED = 7, LG_STIFF = 8 };
 
 /* Control block shared with Python (doubles, so one array carries it):
  * [0] t  [1] h (0: choose)  [2] rtol  [3] atol  [4] max_step  [5] nfev  [6] accepted steps
  * [7] rejected steps  [8] fixed step (0: adaptive)  [9] max steps  [10] events found
  * [11] event capacity  [12] worst relative pivot seen (Cholesky)
  * [13] stop request: set non-zero by another thread (Ctrl-C); the run returns LG_INTERRUPTED
- *      at its next step, so it is read through a volatile pointer on every step. */
+ *      at its next step, so it is read through a volatile pointer on every step.
+ * [14] stiffness test every this many accepted steps (dop853's NSTIFF; 0: never)
+ * [15] [16] [17] the test's state: consecutive stiff steps (IASTI), non-stiff ones (NONSTI), last h|lambda| */
 enum { C_T, C_H, C_RTOL, C_ATOL, C_MAXSTEP, C_NFEV, C_STEPS, C_REJECTED, C_FIXED, C_MAXSTEPS, C_NEV,
-       C_EVCAP, C_PIVOT, C_STOP, C_SIZE };
+       C_EVCAP, C_PIVOT, C_STOP, C_NSTIFF, C_IASTI, C_NONSTI, C_HLAMB, C_SIZE };
 
 static int lg_stop_requested(const volatile double *stop)
 {
@@ -254,6 +257,35 @@ static void lg_dop_interp(const void *ctx, double t, double *y)
     }
 }
 
+/* Hairer's stiffness detection, as in dop853.f (Hairer, Norsett & Wanner, Solving ODEs I,
+ * Sec. IV.2; the IASTI/NONSTI/HLAMB block after an accepted step).  The last stage (c = 1,
+ * state y12, slope f12) and the new state y1 with its slope f1 give
+ *     h|lambda| ~ h ||f1 - f12|| / ||y1 - y12||,
+ * an estimate of h times the dominant eigenvalue of the Jacobian.  Above 6.1 (the edge of
+ * DOP853's stability domain) the step is limited by stability, not accuracy.  Tested every
+ * NSTIFF accepted steps, then at every step while suspected: 15 such steps in a row declare
+ * the problem stiff; 6 non-stiff ones clear the suspicion.  Returns 1 when stiff. */
+static int lg_dop_stiff(double *ctl, double h, const double *f1, const double *f12, const double *y1,
+                        const double *y12)
+{
+    const double nstiff = ctl[C_NSTIFF];
+    if (!(nstiff > 0) || (fmod(ctl[C_STEPS], nstiff) != 0.0 && !(ctl[C_IASTI] > 0))) return 0;
+    double num = 0.0, den = 0.0;
+    for (int j = 0; j < LG_NY; ++j) {
+        num += (f1[j] - f12[j]) * (f1[j] - f12[j]);
+        den += (y1[j] - y12[j]) * (y1[j] - y12[j]);
+    }
+    if (den > 0.0) ctl[C_HLAMB] = fabs(h) * sqrt(num / den);
+    if (ctl[C_HLAMB] > 6.1) {
+        ctl[C_NONSTI] = 0;
+        ctl[C_IASTI] += 1;
+        return ctl[C_IASTI] >= 15;
+    }
+    ctl[C_NONSTI] += 1;
+    if (ctl[C_NONSTI] == 6) ctl[C_IASTI] = 0;
+    return 0;
+}
+
 static double lg_rms(const double *v, const double *scale)
 {
     double s = 0.0;
@@ -318,10 +350,11 @@ static int lg_dop853_run(double *ctl, const volatile double *stop, double *y, co
         const double min_step = 10 * fabs(nextafter(t, INFINITY) - t);
         if (h_abs > max_step) h_abs = max_step;
         if (!fixed && h_abs < min_step) h_abs = min_step;
-        int rejected = 0;
+        int rejected = 0, overflowed = 0;
         double h, t_new;
         for (;;) {
-            if (!fixed && h_abs < min_step) { ctl[C_T] = t; ctl[C_H] = h_abs; return LG_UNDERFLOW; }
+            /* a step that only ever overflowed is a blow-up, reported as one */
+            if (!fixed && h_abs < min_step) { ctl[C_T] = t; ctl[C_H] = h_abs; return overflowed ? LG_NONFINITE : LG_UNDERFLOW; }
             t_new = t + h_abs;
             if (t_new > t_stop) t_new = t_stop;
             h = t_new - t;
@@ -333,16 +366,27 @@ static int lg_dop853_run(double *ctl, const volatile double *stop, double *y, co
                 }
                 status = lg_rhs(t + C[s] * h, y_stage, p, K[s], &ctl[C_PIVOT]);
                 ctl[C_NFEV] += 1;
-                if (status) { ctl[C_T] = t; ctl[C_H] = h_abs; return status; }
+                if (status) break;
             }
-            for (int j = 0; j < LG_NY; ++j) {
-                double acc = 0.0;
-                for (int r = 0; r < LG_DOP_STAGES; ++r) acc += B[r] * K[r][j];
-                y_new[j] = y[j] + h * acc;
+            if (!status) {
+                for (int j = 0; j < LG_NY; ++j) {
+                    double acc = 0.0;
+                    for (int r = 0; r < LG_DOP_STAGES; ++r) acc += B[r] * K[r][j];
+                    y_new[j] = y[j] + h * acc;
+                }
+                status = lg_rhs(t_new, y_new, p, K[LG_DOP_STAGES], &ctl[C_PIVOT]);
+                ctl[C_NFEV] += 1;
             }
-            status = lg_rhs(t_new, y_new, p, K[LG_DOP_STAGES], &ctl[C_PIVOT]);
-            ctl[C_NFEV] += 1;
+            /* A trial step whose stages overflow is too long (an error estimate of infinity, as
+             * SciPy's would be): rejected, the step cut by the largest factor, 0.2. */
+            if (status == LG_NONFINITE && !fixed) {
+                h_abs *= 0.2;
+                rejected = overflowed = 1;
+                ctl[C_REJECTED] += 1;
+                continue;
+            }
             if (status) { ctl[C_T] = t; ctl[C_H] = h_abs; return status; }
+            overflowed = 0;
             if (fixed) break;
             for (int j = 0; j < LG_NY; ++j) {
                 scale[j] = atol + fmax(fabs(y[j]), fabs(y_new[j])) * rtol;
@@ -365,6 +409,11 @@ static int lg_dop853_run(double *ctl, const volatile double *stop, double *y, co
             ctl[C_REJECTED] += 1;
         }
         ctl[C_STEPS] += 1;
+        /* dop853.f returns IDID = -4 with the state at the start of the step (y_stage holds the
+         * last stage's state, K[STAGES - 1] its slope, K[STAGES] the slope at y_new) */
+        if (!fixed && lg_dop_stiff(ctl, h, K[LG_DOP_STAGES], K[LG_DOP_STAGES - 1], y_new, y_stage)) {
+            ctl[C_T] = t; ctl[C_H] = h_abs; return LG_STIFF;
+        }
 
         const int need_dense = (*i_out < n_out && t_out[*i_out] <= t_new) || LG_NE > 0;
         if (need_dense) {

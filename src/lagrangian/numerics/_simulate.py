@@ -67,6 +67,10 @@ _STATUS = {
     5: "the maximum number of steps was reached",
     6: "the implicit stages of the Gauss-Legendre step did not converge",
 }
+_STIFF = 8  # LG_STIFF: dop853's stiffness test fired (`_integrators.c`, lg_dop_stiff)
+#: dop853's NSTIFF: the stiffness test runs every this many accepted steps (then at every step while
+#: the problem looks stiff), as in Hairer's dop853.f.
+STIFFNESS_TEST_PERIOD = 1000
 _INTERRUPTED = 7  # LG_INTERRUPTED: the stop request ctl[_C_STOP] was seen
 _C_STOP = 13
 
@@ -298,6 +302,7 @@ def simulate(
     backend: str = "auto",
     stabilization: str | None = None,
     baumgarte: tuple[float, float] = BAUMGARTE,
+    stiffness_check: bool = True,
 ) -> Trajectory:
     """Integrate the equations of motion from t_start to t_end.
 
@@ -324,6 +329,10 @@ def simulate(
     stabilization, baumgarte : for models with complementary constraints only, how the
         drift from the constraints is controlled (``"projection"``, ``"baumgarte"``,
         ``"both"``, ``"none"``) and Baumgarte's rates (α, β); see `numerics._dae`.
+    stiffness_check : ``"dop853"`` only: Hairer's stiffness test (as in dop853.f), which stops
+        the run with a `SimulationError` once the step is limited by stability rather than
+        accuracy (h|λ| > 6.1 for 15 steps in a row), where an implicit method (``"Radau"``)
+        is the tool. False integrates a knowingly stiff problem explicitly all the same.
 
     Returns
     -------
@@ -335,7 +344,9 @@ def simulate(
     SimulationError
         Missing or non-finite values, a time span that does not increase or is not finite,
         tolerances that cannot be met, an output grid too large for memory, a singular mass
-        matrix (before or during the run: never a silent NaN), step-size underflow, overflow.
+        matrix (before or during the run: never a silent NaN), step-size underflow, overflow,
+        stiff equations (``stiffness_check``) or ``max_steps`` reached; for the last two its
+        ``trajectory`` is the part computed so far (status ``"... (partial)"``), or None.
     """
     check_options(rtol, atol, tolerance)
     from ._stickslip import exact_contact_model, simulate_stick_slip  # late: `_stickslip` imports this module
@@ -354,7 +365,7 @@ def simulate(
     traj = _simulate(source, t_end, t_start=t_start, initial=initial, parameters=parameters, method=method,
                      rtol=rtol, atol=atol, dt=dt, max_step=max_step, n_out=n_out, t_eval=t_eval, events=events,
                      tolerance=tolerance, max_steps=max_steps, progress=progress, backend=backend,
-                     stabilization=stabilization, baumgarte=baumgarte)
+                     stabilization=stabilization, baumgarte=baumgarte, stiffness_check=stiffness_check)
     if not watched:
         return traj
     eom = source if isinstance(source, EquationsOfMotion) else getattr(source, "eom", None)
@@ -362,7 +373,8 @@ def simulate(
 
 
 def _simulate(source, t_end, *, t_start, initial, parameters, method, rtol, atol, dt, max_step, n_out, t_eval,
-              events, tolerance, max_steps, progress, backend, stabilization, baumgarte) -> Trajectory:
+              events, tolerance, max_steps, progress, backend, stabilization, baumgarte,
+              stiffness_check) -> Trajectory:
     """`simulate` once the source is read: the stick-slip, constrained or plain run."""
     from ._stickslip import exact_contact_model, simulate_stick_slip  # late: `_stickslip` imports this module
 
@@ -372,7 +384,7 @@ def _simulate(source, t_end, *, t_start, initial, parameters, method, rtol, atol
                                    method=method, rtol=rtol, atol=atol, dt=dt, max_step=max_step, n_out=n_out,
                                    t_eval=t_eval, events=events, tolerance=tolerance, max_steps=max_steps,
                                    progress=progress, backend=backend, stabilization=stabilization,
-                                   baumgarte=baumgarte)
+                                   baumgarte=baumgarte, stiffness_check=stiffness_check)
     # Complementary constraints make it a differential-algebraic system: `_dae` integrates it.
     source, constrained = constrained_source(source)
     if constrained is not None:
@@ -415,7 +427,14 @@ def _simulate(source, t_end, *, t_start, initial, parameters, method, rtol, atol
         conditioning = _pivot(system, t_o, Y, p)
     else:
         t_o, Y, evs, nfev, steps, status, conditioning = _run_builtin(
-            system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, max_step, max_steps, specs, progress)
+            system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, max_step, max_steps, specs, progress,
+            stiffness_check)
+        if isinstance(status, SimulationError):  # stiff, or max_steps: the part computed so far goes with it
+            if len(t_o) > 0:
+                status.trajectory = _trajectory(system, p, t_o, Y, evs, method, steps, nfev, tolerance,
+                                                f"stopped at t = {status.t:.9g} (partial): {status.reason}",
+                                                conditioning)
+            raise status
     if isinstance(status, Interrupted):
         if len(t_o) > 0:
             status.trajectory = _trajectory(system, p, t_o, Y, evs, method, steps, nfev, tolerance,
@@ -456,7 +475,8 @@ def _gauss_step(t_start: float, t_end: float, t_out: np.ndarray, dt: float | Non
 
 
 def control_block(method: str, t_start: float, t_end: float, t_out: np.ndarray, rtol: float, atol: float,
-                  dt: float | None, max_step: float | None, max_steps: int, h: float | None = None) -> np.ndarray:
+                  dt: float | None, max_step: float | None, max_steps: int, h: float | None = None,
+                  stiffness_check: bool = True) -> np.ndarray:
     """The C integrators' control block (``_integrators.c``) at the start of a run.
 
     One place for it, so that `ensemble` starts each member exactly as `simulate` starts
@@ -465,8 +485,9 @@ def control_block(method: str, t_start: float, t_end: float, t_out: np.ndarray, 
     """
     if dt is not None and not dt > 0:
         raise SimulationError(f"dt = {dt} must be positive.", fix="give a positive step, e.g. dt=1e-3")
-    ctl = np.zeros(14)
+    ctl = np.zeros(18)
     ctl[0] = t_start
+    ctl[14] = STIFFNESS_TEST_PERIOD if stiffness_check else 0.0
     ctl[2], ctl[3] = rtol, atol
     ctl[4] = np.inf if max_step is None else float(max_step)
     ctl[9] = float(max_steps)
@@ -480,7 +501,7 @@ def control_block(method: str, t_start: float, t_end: float, t_out: np.ndarray, 
 
 
 def _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, max_step, max_steps, specs,
-                 progress):
+                 progress, stiffness_check=True):
     if dt is not None and not dt > 0:
         raise SimulationError(f"dt = {dt} must be positive.", fix="give a positive step, e.g. dt=1e-3")
     given = dt is not None
@@ -489,7 +510,8 @@ def _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, m
     halvings = 0
     while True:
         code, ctl, y, Y, i_out, ev_out, capacity = _attempt(system, p, y0, t_start, t_end, t_out, method, rtol, atol,
-                                                            dt, h, max_step, max_steps, specs, reporter)
+                                                            dt, h, max_step, max_steps, specs, reporter,
+                                                            stiffness_check)
         # The default step failed (stages not converging, or a blow-up): the same fixed-step run with
         # half the step, from the start, so that every step of the result has the same length.
         if method != "gauss-legendre" or given or code not in (2, 6) or halvings == GAUSS_HALVINGS:
@@ -508,10 +530,12 @@ def _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, m
         return t_out[:m], Y[:m], evs, int(ctl[5]), int(ctl[6]), "completed" if code == 0 else \
             "stopped by a terminal event", float(ctl[12])
     t_fail = float(ctl[0])
+    if code in (_STIFF, 5):  # stopped early, not failed: what was computed so far is returned with the error
+        m = int(i_out[0])
+        return t_out[:m], Y[:m], evs, int(ctl[5]), int(ctl[6]), _early_stop(system, code, ctl, y), float(ctl[12])
     if code == 1 or (code in (2, 3) and _collapsed(system, t_start, y0, t_fail, y, p)):
         raise _singularity(system, t_fail, y, p, "during the integration")
-    fixes = {3: "the equations may be stiff or singular there: try method='Radau', or check the model",
-             5: "raise max_steps, or shorten the time span"}
+    fixes = {3: "the equations may be stiff or singular there: try method='Radau', or check the model"}
     if method == "gauss-legendre" and code in (2, 6):
         if given:  # the user's step is too long for the fastest motion (a stiff spring, a fast spin)
             fixes[code] = (f"reduce the step: dt = {h:.3g} is too long for the fastest motion of the model "
@@ -526,10 +550,33 @@ def _run_builtin(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, m
         fix=fixes.get(code, "check the model and the initial state"), t=t_fail, state=y.copy())
 
 
-def _attempt(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, h, max_step, max_steps, specs, reporter):
+def _early_stop(system, code: int, ctl: np.ndarray, y: np.ndarray) -> SimulationError:
+    """The error of a run that dop853's stiffness test (code 8) or ``max_steps`` (code 5) stopped."""
+    t = float(ctl[0])
+    if code == _STIFF:
+        reason = "the equations are stiff"
+        err = SimulationError(
+            f"The integration stopped at t = {t:.9g} ({_state_text(system, y)}): the equations are stiff there. "
+            f"dop853's stiffness test (Hairer) found the step limited by stability, not by accuracy: "
+            f"h|λ| ≈ {ctl[17]:.3g} > 6.1 for 15 steps in a row (step h = {ctl[1]:.3g}), so an explicit method "
+            f"would crawl at that step to the end.",
+            fix="use an implicit method: --method Radau (or BDF, LSODA; method='Radau'), or make the stiff part "
+                "softer (a smaller stiffness or damping coefficient); --no-stiffness-check (stiffness_check=False) "
+                "goes on with dop853 all the same", t=t, state=y.copy())
+    else:
+        reason = "the maximum number of steps was reached"
+        err = SimulationError(f"The integration stopped at t = {t:.9g} ({_state_text(system, y)}): {_STATUS[5]} "
+                              f"({int(ctl[9])}).", fix="raise max_steps, or shorten the time span",
+                              t=t, state=y.copy())
+    err.reason = reason  # type: ignore[attr-defined]
+    return err
+
+
+def _attempt(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, h, max_step, max_steps, specs, reporter,
+             stiffness_check=True):
     """One call of the compiled integrator over the whole span (gauss-legendre with the step ``h``)."""
     n2 = 2 * system.n
-    ctl = control_block(method, t_start, t_end, t_out, rtol, atol, dt, max_step, max_steps, h)
+    ctl = control_block(method, t_start, t_end, t_out, rtol, atol, dt, max_step, max_steps, h, stiffness_check)
     y = y0.copy()
     Y = np.full((len(t_out), n2), np.nan)
     i_out = np.zeros(1, dtype=np.intc)

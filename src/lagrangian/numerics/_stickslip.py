@@ -222,6 +222,7 @@ def simulate_stick_slip(
     stabilization: str | None = None,
     baumgarte: tuple[float, float] = BAUMGARTE,
     max_switches: int = 100_000,
+    stiffness_check: bool = True,
 ) -> Trajectory:
     """Integrate a model with one exact Coulomb contact, switching between slip and stick (module docstring).
 
@@ -229,7 +230,7 @@ def simulate_stick_slip(
     ----------
     source : a model file, a `Model`, or its equations, whose contact has ``regularization = 0``.
     t_end, t_start, initial, parameters, method, rtol, atol, max_step, n_out, t_eval, events,
-    tolerance, max_steps, progress, backend : as for `simulate` (``dt`` and ``gauss-legendre``
+    tolerance, max_steps, progress, backend, stiffness_check : as for `simulate` (``dt`` and ``gauss-legendre``
         are refused: the phases end at events, not on a fixed grid).
     stabilization, baumgarte : the drift control of the stuck phases (`simulate_dae`).
     max_switches : the most phases a run may have.
@@ -287,7 +288,8 @@ def simulate_stick_slip(
         else:
             ends = [EventSpec(SWITCH, mode * w, -1, True)]
             piece = simulate(system.slip_eom(mode), float(t_end), t_start=t, initial=start, t_eval=t_seg,
-                             events=ends + user, progress=False, **common)  # type: ignore[arg-type]
+                             events=ends + user, progress=False, stiffness_check=stiffness_check,
+                             **common)  # type: ignore[arg-type]
         pieces.append((mode, piece))
         if progress:
             (_bar if progress is True else progress)(min(1.0, (piece.t[-1] - t_start) / (t_end - t_start)),
