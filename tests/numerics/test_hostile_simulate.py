@@ -124,3 +124,42 @@ def test_nonholonomic_integrals_of_a_rotation_through_asin(tmp_path: Path) -> No
     eom = lagrangian.derive(lagrangian.load_model(path))
     lagrangian.first_integrals(eom)  # no error; no speed claimed constant from a complex sample
     assert main(["derive", str(path)]) == 0
+
+
+def test_a_rotation_through_abs_compiles_with_the_sign_of_its_angle(tmp_path: Path) -> None:
+    # Found by tools/fuzz.py (seed 101, case 7230): SymEngine leaves d|psi|/dpsi unevaluated and the C
+    # printer raised a bare ValueError in `compile`. d|u|/du is sign(u), its higher derivatives 0.
+    import numpy as np
+
+    path = _top(tmp_path, "spherical_pendulum.toml", 'rotation = ["psi", "z"]', 'rotation = ["abs(psi)", "z"]')
+    eom = lagrangian.derive(lagrangian.load_model(path))
+    plain = lagrangian.derive(lagrangian.load_model(ROOT / "examples" / "spherical_pendulum.toml"))
+    start = {"psi": 0.4, "psi_dot": 0.7}  # psi > 0: |psi| = psi, the same motion as the example's
+    ours = lagrangian.simulate(eom, 0.5, n_out=6, initial=start)
+    ref = lagrangian.simulate(plain, 0.5, n_out=6, initial=start)
+    np.testing.assert_allclose(ours.q, ref.q, rtol=1e-9, atol=1e-9)
+    with pytest.raises(SimulationError, match="singular"):  # at psi = 0, sign(0) = 0: no inertia along psi
+        lagrangian.simulate(eom, 0.5, n_out=6, initial={"psi": 0.0})
+
+
+def test_a_backslash_in_an_axis_name_is_refused_at_load(tmp_path: Path) -> None:
+    # Found by tools/fuzz.py (seed 101, case 6195): axes = ["x1", "\\y1", "z0"] was accepted, then a
+    # regular-expression template met `\y` in `derive`'s text (re.error). Axis names are identifiers.
+    path = _top(tmp_path, "rolling_coin.toml", 'axes = ["x1", "y1", "z0"]', 'axes = ["x1", "\\\\y1", "z0"]')
+    with pytest.raises(lagrangian.ModelError, match="is not a name") as info:
+        lagrangian.load_model(path)
+    assert info.value.line == 32
+    assert main(["derive", str(path)]) == 2
+
+
+def test_linearize_with_a_denormal_mass_is_a_clean_error(tmp_path: Path) -> None:
+    # Found by tools/fuzz.py (seed 101, case 5296): mass = "5e-324" made NumPy's SVD fail inside
+    # the rank test of M; `equilibria` printed a traceback. Now a LinearizationError, and the
+    # equilibria are still listed.
+    from lagrangian.analysis import LinearizationError
+
+    path = _top(tmp_path, "cart_pendulum.toml", 'mass = "m"', 'mass = "5e-324"')
+    eom = lagrangian.derive(lagrangian.load_model(path))
+    with pytest.raises(LinearizationError):
+        lagrangian.linearize(eom, {"x": 0.0, "theta": 0.0})
+    assert main(["equilibria", str(path)]) == 0

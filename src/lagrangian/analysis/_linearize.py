@@ -291,6 +291,10 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
     zero_u = {u: given_inputs.get(str(u), _ZERO) for u in u_syms}  # u0, 0 unless given
     F0 = F0.subs(zero_u) if u_syms else F0
     Mn = _to_numpy(M0, generic)
+    if not np.all(np.isfinite(Mn)):
+        raise LinearizationError("the mass matrix M is not finite at the point (a number of the model overflows, or an "
+                                 "entry is undefined there).",
+                                 fix="check the masses and inertias (e.g. a denormal 5e-324 mass) and the point")
     if np.linalg.matrix_rank(Mn, tol=RANK_RTOL * max(1.0, np.abs(Mn).max(initial=0.0))) < n:
         raise LinearizationError("the mass matrix M is singular at the point (the coordinates are singular there, "
                                  "e.g. Euler angles at θ = 0).",

@@ -336,6 +336,13 @@ class Assembler:
                                  or not all(isinstance(a, str) for a in axes)):
             raise self.error(raw, f"`axes` of frame `{raw.name}` must list three names, not `{axes}`",
                              symbol=raw.name, fix='e.g. axes = ["u", "w", "z"]', key="axes")
+        if axes is not None:
+            for a in axes:
+                # Axis names are printed in the equations and matched in text: identifiers only.
+                if not a.isidentifier() or not a.isascii() or a.startswith("_"):
+                    raise self.error(raw, f"axis name `{a[:40]!r}` of frame `{raw.name}` is not a name (ASCII letters, "
+                                     "digits and `_`, starting with a letter)", symbol=raw.name,
+                                     fix='e.g. axes = ["u", "w", "z"] or ["x1", "y1", "z0"]', key="axes")
 
     def rotation_chain(self, raw: Raw) -> list[Frame]:
         rot = raw.data["rotation"]

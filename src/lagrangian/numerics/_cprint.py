@@ -94,11 +94,19 @@ def c_expression(expr: se.Basic, names: Mapping[se.Basic, str]) -> str:
         return f"(1.0/{_RECIPROCALS[name]}({c_expression(expr.args[0], names)}))"
     if name in _INVERSE_RECIPROCALS and len(expr.args) == 1:
         return f"{_INVERSE_RECIPROCALS[name]}(1.0/({c_expression(expr.args[0], names)}))"
-    if name == "Sign":
+    if name in ("Sign", "sign"):
         x = c_expression(expr.args[0], names)
         return f"(({x}) > 0.0 ? 1.0 : (({x}) < 0.0 ? -1.0 : 0.0))"
-    raise ValueError(f"cannot generate C for `{expr}` ({name}); the numeric code supports "
-                     f"{', '.join(sorted([*_FUNCTIONS, *_RECIPROCALS, *_INVERSE_RECIPROCALS]))}, powers and sign")
+    if name == "Derivative" and type(expr.args[0]).__name__ == "Abs" \
+            and all(v == expr.args[0].args[0] for v in expr.args[1:]):
+        # d|u|/du, left unevaluated by SymEngine: sign(u) (0 at u = 0, where |u| has no derivative);
+        # the higher ones are 0 away from u = 0.
+        return c_expression(se.sign(expr.args[1]), names) if len(expr.args) == 2 else "0.0"
+    raise ModelError(f"the equations of motion contain `{str(expr)[:200]}` ({name}), which the compiled code cannot "
+                     "evaluate; it supports "
+                     f"{', '.join(sorted([*_FUNCTIONS, *_RECIPROCALS, *_INVERSE_RECIPROCALS]))}, powers and sign.",
+                     fix="write the model with these functions (e.g. a derivative that SymEngine leaves unevaluated "
+                         "comes from a function of a coordinate that is not differentiable there)")
 
 
 def c_block(outputs: Sequence[tuple[str, se.Basic]], names: Mapping[se.Basic, str], prefix: str = "x") -> list[str]:

@@ -211,7 +211,7 @@ def as_declared(n: Notation) -> Notation:
 def greek(n: Notation, form: CourseForm, sentence: str) -> str:
     """Write the coordinate names of a sentence in the course's letters (psi → ψ)."""
     for name in form.coordinates:
-        sentence = re.sub(rf"(?<![A-Za-z0-9]){re.escape(name)}(?![A-Za-z0-9])", n.symbol(name), sentence)
+        sentence = re.sub(rf"(?<![A-Za-z0-9]){re.escape(name)}(?![A-Za-z0-9])", lambda _: n.symbol(name), sentence)
     return sentence
 
 
@@ -299,8 +299,9 @@ def _multipliers_readable(text: str, extra: Supplement | None) -> str:
     if extra is None:
         return text
     for name, _ in extra.multipliers:
-        text = re.sub(rf"(?<![A-Za-z0-9_]){re.escape(name)}(?![A-Za-z0-9_])", "λ_" + name.removeprefix("lambda_"),
-                      text)
+        readable = "λ_" + name.removeprefix("lambda_")
+        # A function, not a template: the name is the model's text, and `\y` in it is not an escape.
+        text = re.sub(rf"(?<![A-Za-z0-9_]){re.escape(name)}(?![A-Za-z0-9_])", lambda _: readable, text)
     return text
 
 
