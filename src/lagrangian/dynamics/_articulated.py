@@ -247,6 +247,15 @@ def articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, co
             A = [[I.A[r][c] - blocks[0][r][c] for c in range(3)] for r in range(3)]
             B = [[I.B[r][c] - blocks[1][r][c] for c in range(3)] for r in range(3)]
             C = [[I.C[r][c] - blocks[2][r][c] for c in range(3)] for r in range(3)]
+            s6 = (*sw, *sv)
+            along = [i for i in range(6) if not _zero(s6[i])]
+            if len(along) == 1:  # I^a s = 0: along a constant axis, that row and column of I^a vanish exactly
+                i = along[0]
+                for r in range(3):
+                    if i < 3:
+                        A[i][r] = A[r][i] = B[i][r] = _ZERO
+                    else:
+                        C[i - 3][r] = C[r][i - 3] = B[r][i - 3] = _ZERO
             I = _Spatial(A, B, C).named(w)
             steps[k].append((j, sw, sv, Vw, Vv, u, inv))
             pivots[j] = D

@@ -417,6 +417,11 @@ def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence, events: Seq
         ("static void lg_hamilton_force(double t, const double *y, const double *p, double *g)",
          [(f"g[{i}]", e) for i, e in enumerate(rec.dL_dq)], "dT/dq - dU/dq + Q"),
     ]
+    if rec.qdd is not None:  # the articulated-body algorithm: q'' in O(n), M neither formed nor factorised
+        bodies.append((
+            "static void lg_aba(double t, const double *y, const double *p, double *qdd, double *piv)",
+            [(f"qdd[{i}]", e) for i, e in enumerate(rec.qdd)]
+            + [(f"piv[{2 * i + k}]", pair[k]) for i, pair in enumerate(rec.pivots) for k in range(2)], "q''"))
     staged = [(signature, with_intermediates(outputs), what) for signature, outputs, what in bodies]
     for k, sym in enumerate(hoist.constants.values()):
         named[sym] = str(sym)
@@ -431,8 +436,9 @@ def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence, events: Seq
         f"    for (int i = 0; i < {n}; i++) {{ yq[i] = y[i]; yq[{n} + i] = 0.0; b[i] = 0.0; }}\n"
         "    lg_mass_forces(t, yq, p, M, F);  /* only q is read from y */\n}\n")
     functions = [function(signature, outs, what, defs) for signature, (defs, outs), what in staged]
-    return _assemble(eom, monitors, events, params, constants, [*functions[:3], hamilton_mass, functions[3]],
-                     function)
+    aba = ["#define LG_ABA 1", functions[4]] if rec.qdd is not None else []
+    return _assemble(eom, monitors, events, params, constants,
+                     [*functions[:3], hamilton_mass, functions[3], *aba], function)
 
 
 def _assemble(eom: EquationsOfMotion, monitors, events, params, constants, functions: list[str],
