@@ -156,8 +156,10 @@ class _Spatial:
 
 
 def articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, couples, tau,
-                              composite) -> tuple[tuple[se.Basic, ...], tuple[tuple[se.Basic, se.Basic], ...]] | None:
-    """q̈ and the pivots (D_j, M_jj) of the tree's articulated-body algorithm, or None where it does not apply.
+                              composite) -> tuple[tuple[se.Basic, ...], tuple[tuple[se.Basic, se.Basic], ...], int] | None:
+    """q̈, the pivots (D_j, M_jj) and the position of the first intermediate of the forward pass, or None.
+
+    None where the articulated-body algorithm does not apply (see below).
 
     Parameters (from `_recursive.recursive_form`)
     ----------
@@ -280,6 +282,7 @@ def articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, co
     for k in range(count - 1, 0, -1):
         if has_dofs_below[k]:
             has_dofs_below[nodes[k].parent] = True  # type: ignore[index]
+    start = len(w.items)
     acc_w: list[Vec] = [(_ZERO,) * 3] * count
     acc_v: list[Vec] = [(_ZERO,) * 3] * count
     qdd: list[se.Basic] = [_ZERO] * n
@@ -310,4 +313,4 @@ def articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, co
         fv = _add3(_scale(mass[k], sv), _cross(sw, first[k]))
         nv = _add3(tuple(_dot(inertia_c[k][r], sw) for r in range(3)), _cross(first[k], sv))
         out_pivots.append((pivots[j], w(_dot(sw, nv) + _dot(sv, fv))))
-    return tuple(qdd), tuple(out_pivots)
+    return tuple(qdd), tuple(out_pivots), start

@@ -288,6 +288,8 @@ class RecursiveForm:
     qdd : q̈ by the articulated-body algorithm (`_articulated`), in the names, when every
         coordinate drives one joint of its own; else None (then q̈ solves M q̈ = F).
     pivots : with ``qdd``, (D_j, M_jj) for each j: the articulated pivot and M's diagonal entry.
+    qdd_forward : with ``qdd``, the position in ``intermediates`` where its forward pass starts (what
+        comes before, the backward pass, is computed first: the C code splits there).
     """
 
     intermediates: tuple[tuple[se.Symbol, se.Basic], ...]
@@ -300,10 +302,14 @@ class RecursiveForm:
     loads: tuple[LoadForces, ...]
     qdd: tuple[se.Basic, ...] | None = None
     pivots: tuple[tuple[se.Basic, se.Basic], ...] = ()
+    qdd_forward: int = 0
 
-    def needed(self, exprs: Sequence[se.Basic]) -> list[tuple[se.Symbol, se.Basic]]:
-        """The intermediates ``exprs`` depend on, in order (what a function that computes them must define)."""
-        position = {s: k for k, (s, _) in enumerate(self.intermediates)}
+    def needed(self, exprs: Sequence[se.Basic], after: int = 0) -> list[tuple[se.Symbol, se.Basic]]:
+        """The intermediates ``exprs`` depend on, in order (what a function that computes them must define).
+
+        With ``after``, only those at that position or later (the earlier ones are given).
+        """
+        position = {s: k for k, (s, _) in enumerate(self.intermediates) if k >= after}
         keep: set[int] = set()
         stack = [position[s] for e in exprs for s in e.free_symbols if s in position]
         while stack:
@@ -534,7 +540,7 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
     M_out = tuple(tuple(sum_of(M[i][j]) for j in range(n)) for i in range(n))
     aba = articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, couples, Q_other,
                                     (mass, first, inertia))
-    qdd, pivots = aba if aba is not None else (None, ())
+    qdd, pivots, forward = aba if aba is not None else (None, (), 0)
 
     T = sum_of(T_terms)
     U_gravity = sum_of(U_terms)
@@ -543,7 +549,7 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
     U_other = [f.potential for f in other if f.potential is not None]
     conservative = all(f.potential is not None for f in other) and not tree.couples
     return RecursiveForm(tuple(w.items), M_out, F, T, U_gravity + sum_of(U_other), dL_dq, conservative, other,
-                         qdd, pivots)
+                         qdd, pivots, forward)
 
 
 def require_tree(kin: Kinematics) -> TreeStructure:
