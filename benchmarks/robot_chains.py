@@ -18,9 +18,12 @@ The script
    (relative difference ≤ ``--rtol``, else it stops: a benchmark of different physics is
    worthless), then times one state per call (ours: ``CompiledSystem.rhs_c``; Pinocchio:
    ``pin.aba`` and ``pin.rnea`` + ``pin.crba`` + a linear solve, from Python) and states in
-   batches (ours: ``rhs`` on a (100, 2n) array; Pinocchio has no batched call in Python, so its
-   batch is the loop over the states).  Target: ours at least 2× faster than ``pin.aba``
-   (ratio ours/aba ≤ 0.5) at every n from 2 to 30, single and batched.
+   batches (ours: ``rhs`` on a (100, 2n) array; Pinocchio: a Python loop over ``pin.aba`` and its
+   own batched call ``pin.abaInParallel`` on one thread, the faster of the two is the peer).
+   Target: ours at least 2× faster than ``pin.aba`` (ratio ours/aba ≤ 0.5) at every n from 2
+   to 30, single and batched.  The ``M⁻¹F`` columns time, in the same run, our route before the
+   articulated-body algorithm (`dynamics._articulated`): M and F compiled, then the Cholesky
+   solve (the same system with ``recursive.qdd`` removed); its q̈ is checked equal too.
 
 Times are the minimum over short timing blocks (`rhs_vs_peers.per_call`), so a busy shared
 machine shows the cost of the code, not other processes' time slices; CPU times of the
