@@ -5,8 +5,9 @@ composite-rigid-body entries; for a tree whose every coordinate drives one joint
 articulated-body algorithm (Featherstone, *Rigid Body Dynamics Algorithms*, 2008, §7.3,
 Table 7.1; Featherstone 1983) gives the same q̈ in O(n) without forming M.  Here it is
 written symbolically over the nodes of `_recursive.tree_structure`, each node's quantities
-one named intermediate, so that the generated C code is a straight line of about 300
-operations per joint, most structural zeros (constant axes, zero offsets) never formed.
+one named intermediate, so that the generated C code is a straight line of about 260
+multiplications and 170 additions per joint of a 3D arm, structural zeros (constant axes,
+zero offsets) never formed.
 
 Spatial vectors at a node's origin O, components in its basis: motions (ω̇, a_O) with the
 *classical* acceleration a_O of the origin, forces (n_O, f).  A rigid body with mass m,
@@ -71,10 +72,6 @@ def _neg(v: Vec) -> Vec:
 
 def _col(X: Mat, c: int) -> Vec:
     return (X[0][c], X[1][c], X[2][c])
-
-
-def _transpose(X: Mat) -> Mat:
-    return [list(_col(X, c)) for c in range(3)]
 
 
 def _madd(X: Mat, Y: Mat) -> Mat:
