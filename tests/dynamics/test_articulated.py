@@ -91,8 +91,7 @@ def test_articulated_accelerations_solve_the_course_equations(model) -> None:
 
 
 def test_a_coordinate_shared_by_several_joints_keeps_the_solve() -> None:
-    # A mimic joint turns with another joint's coordinate; the URDF slider moves each of the
-    # cart's child frames by the same offset: no joint has a coordinate of its own there.
+    # A mimic joint turns with another joint's coordinate: no joint of its own for it.
     eom = lagrangian.derive(_urdf(TREE), formulation="recursive")
     assert eom.recursive is not None and eom.recursive.qdd is None and eom.recursive.pivots == ()
     assert "#define LG_ABA" not in compile_system(eom).source
@@ -104,12 +103,17 @@ def _urdf(text: str) -> lagrangian.Model:
         return parse_urdf(text, source="robot.urdf", damping=False)
 
 
-#: `urdf_robots.TREE` with its mimic joint made a joint of its own and its slider a hinge about the
-#: same general axis: a branched tree with welded and massless links, every coordinate a joint of its own.
-BRANCHED = re.sub(r'<mimic [^>]*/>', "", TREE).replace('name="slide" type="prismatic"', 'name="slide" type="revolute"')
+#: `urdf_robots.TREE` with its mimic joint made a joint of its own: a branched tree with welded and
+#: massless links, and a slider along a general axis whose link carries two branches (the slide is
+#: in both child frames' offsets: `_shared_slides` gives it a joint of its own).
+BRANCHED = re.sub(r'<mimic [^>]*/>', "", TREE)
+#: The same with its base turning about z (the slide's moment arms then count), or its slider made a
+#: hinge about the same axis.
+TURNING = BRANCHED.replace('<joint name="bolt" type="fixed">', '<joint name="bolt" type="continuous"><axis xyz="0 0 1"/>')
+HINGED = BRANCHED.replace('name="slide" type="prismatic"', 'name="slide" type="revolute"')
 
 
-@pytest.mark.parametrize("text", [SPATIAL_ARM, BRANCHED], ids=["spatial_arm", "branched_tree"])
+@pytest.mark.parametrize("text", [SPATIAL_ARM, TURNING, HINGED], ids=["spatial_arm", "branched_tree", "hinged_tree"])
 def test_compiled_articulated_rhs_is_pinocchios_aba(text: str) -> None:
     pin = pytest.importorskip("pinocchio", reason="Pinocchio (`pip install pin`) is the referee")
     eom = lagrangian.derive(_urdf(text), formulation="recursive")
@@ -148,3 +152,7 @@ def test_a_vanishing_pivot_is_a_singular_mass_matrix() -> None:
     M, F = system.mass_forces(0.0, y, system.parameter_vector())
     np.testing.assert_allclose(system.rhs(0.0, y, system.parameter_vector())[n:],
                                np.linalg.solve(np.reshape(M, (n, n)), F), rtol=RTOL, atol=RTOL)
+
+
+def test_a_slide_shared_by_two_branches_solves_the_course_equations() -> None:
+    _check_against_course(_urdf(TURNING))

@@ -32,6 +32,10 @@ as joints in series joined by massless links):
 forward, root to leaves (A_0 = 0: gravity is a force here):
     q̈_j = (u − Uᵀ (X_k A_P + c_k))/D,   A_k = X_k A_P + c_k + s q̈_j.
 
+It applies when every coordinate drives one node; a slide shared alike by the children of one
+frame (a URDF prismatic joint whose link has several children) gets a massless node of its
+own first (`_shared_slides`).
+
 D_j is the pivot of eliminating the coordinates of the subtree below j first: D_j/M_jj
 is reported as the relative pivot (M_jj from the composite inertia), which the Cholesky
 factorisation reports otherwise, and D_j ≤ 10⁻¹³ M_jj as a singular mass matrix.
@@ -39,6 +43,7 @@ factorisation reports otherwise, and D_j ≤ 10⁻¹³ M_jj as a singular mass m
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 
 import symengine as se
@@ -152,8 +157,76 @@ class _Spatial:
         return _Spatial(A_P, _madd(B, _cross_cols(d, C)), C)
 
 
+def _identity(v):
+    return v
+
+
+def _shared_slides(nodes, q, omega, grav, to_child, to_parent, couples, composite):
+    """The tree with a joint of its own for each coordinate that slides several siblings alike.
+
+    A URDF prismatic joint whose child link has several children is read as the same offset
+    u q_j in each child frame's origin: one virtual node V between the parent P and those
+    children (no rotation, origin at O_P + u q_j, no mass) gives q_j a joint of its own, and
+    the children the offsets d − u q_j from it.  Returns the arguments rebuilt, the same ones
+    when no coordinate is shared, or None when a shared coordinate is not such a slide.
+    """
+    where: dict[int, list[int]] = {}
+    for k, node in enumerate(nodes):
+        for j in (*node.rates, *node.offset_rates):
+            where.setdefault(j, []).append(k)
+    groups = {j: ks for j, ks in where.items() if len(ks) > 1}
+    if not groups:
+        return nodes, omega, grav, to_child, to_parent, couples, composite
+    first_child: dict[int, int] = {}
+    for j, ks in groups.items():
+        u = nodes[ks[0]].offset_rates.get(j)
+        if (len({nodes[k].parent for k in ks}) != 1 or any(j in nodes[k].rates for k in ks) or u is None
+                or any(any(se.expand(a - b) != 0 for a, b in zip(nodes[k].offset_rates.get(j, u), u)) for k in ks)
+                or ks[0] in first_child):
+            return None
+        first_child[ks[0]] = j
+    mass, first, inertia = composite
+    order: list[tuple[int | None, int]] = []  # (old index or None for a virtual node, its coordinate)
+    for k in range(len(nodes)):
+        if k in first_child:
+            order.append((None, first_child[k]))
+        order.append((k, -1))
+    new_index = {k: i for i, (k, _) in enumerate(order) if k is not None}
+    virtual = {j: i for i, (k, j) in enumerate(order) if k is None}
+    zero3 = (_ZERO,) * 3
+    out = ([], [], [], [], [], [], ([], [], []))
+    for k, j in order:
+        if k is None:
+            ks = groups[j]
+            parent = nodes[ks[0]].parent
+            u = nodes[ks[0]].offset_rates[j]
+            node = dataclasses.replace(nodes[parent], name=f"slide of {nodes[ks[0]].name}", parent=new_index[parent],
+                                       axis=None, angle=_ZERO, rates={}, offset=tuple(c * q[j] for c in u),
+                                       offset_rates={j: u}, mass=_ZERO, inertia=None, gravity=(), children=ks)
+            values = (omega[parent], grav[parent], _identity, _identity, zero3,
+                      (sum_of([mass[i] for i in ks]), zero3, [[_ZERO] * 3 for _ in range(3)]))
+        else:
+            node = nodes[k]
+            shared = [i for i in node.offset_rates if i in groups]
+            parent = None if node.parent is None else new_index[node.parent]
+            offset = node.offset
+            if shared:
+                (j2,) = shared
+                parent = virtual[j2]
+                offset = tuple(c - a * q[j2] for c, a in zip(node.offset, node.offset_rates[j2]))
+            node = dataclasses.replace(node, parent=parent, offset=offset,
+                                       offset_rates={i: u for i, u in node.offset_rates.items() if i not in groups})
+            values = (omega[k], grav[k], to_child[k], to_parent[k], couples[k], (mass[k], first[k], inertia[k]))
+        out[0].append(node)
+        for lst, value in zip(out[1:6], values[:5]):
+            lst.append(value)
+        for lst, value in zip(out[6], values[5]):
+            lst.append(value)
+    return out
+
+
 def articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, couples, tau,
-                              composite) -> tuple[tuple[se.Basic, ...], tuple[tuple[se.Basic, se.Basic], ...], int] | None:
+                              composite, q=()) -> tuple[tuple[se.Basic, ...], tuple[tuple[se.Basic, se.Basic], ...], int] | None:
     """q̈, the pivots (D_j, M_jj) and the position of the first intermediate of the forward pass, or None.
 
     None where the articulated-body algorithm does not apply (see below).
@@ -172,6 +245,11 @@ def articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, co
     It applies when every coordinate drives exactly one node (a joint of its own); a coordinate
     shared by several nodes (absolute angles, coupled joints) leaves M q̈ = F to the solver.
     """
+    shared = _shared_slides(nodes, q, omega, grav, to_child, to_parent, couples, composite) if q else None
+    if shared is None and q:
+        return None
+    if shared is not None:
+        nodes, omega, grav, to_child, to_parent, couples, composite = shared
     count, n = len(nodes), len(qd)
     dofs: list[list[tuple[int, Vec, Vec]]] = [[] for _ in range(count)]
     owner = [-1] * n

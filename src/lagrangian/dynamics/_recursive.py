@@ -539,7 +539,7 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
                 a, same = nodes[a].parent, False  # type: ignore[assignment]
     M_out = tuple(tuple(sum_of(M[i][j]) for j in range(n)) for i in range(n))
     aba = articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, couples, Q_other,
-                                    (mass, first, inertia))
+                                    (mass, first, inertia), kin.q)
     qdd, pivots, forward = aba if aba is not None else (None, (), 0)
 
     T = sum_of(T_terms)
