@@ -177,12 +177,14 @@ def _shared_slides(nodes, q, omega, grav, to_child, to_parent, couples, composit
     groups = {j: ks for j, ks in where.items() if len(ks) > 1}
     if not groups:
         return nodes, omega, grav, to_child, to_parent, couples, composite
+    members = [k for ks in groups.values() for k in ks]
+    if len(members) != len(set(members)):  # a node slid by two shared coordinates: not handled
+        return None
     first_child: dict[int, int] = {}
     for j, ks in groups.items():
         u = nodes[ks[0]].offset_rates.get(j)
         if (len({nodes[k].parent for k in ks}) != 1 or any(j in nodes[k].rates for k in ks) or u is None
-                or any(any(se.expand(a - b) != 0 for a, b in zip(nodes[k].offset_rates.get(j, u), u)) for k in ks)
-                or ks[0] in first_child):
+                or any(any(se.expand(a - b) != 0 for a, b in zip(nodes[k].offset_rates.get(j, u), u)) for k in ks)):
             return None
         first_child[ks[0]] = j
     mass, first, inertia = composite
