@@ -18,9 +18,12 @@ The script
    (relative difference ≤ ``--rtol``, else it stops: a benchmark of different physics is
    worthless), then times one state per call (ours: ``CompiledSystem.rhs_c``; Pinocchio:
    ``pin.aba`` and ``pin.rnea`` + ``pin.crba`` + a linear solve, from Python) and states in
-   batches (ours: ``rhs`` on a (100, 2n) array; Pinocchio has no batched call in Python, so its
-   batch is the loop over the states).  Target: ours at least 2× faster than ``pin.aba``
-   (ratio ours/aba ≤ 0.5) at every n from 2 to 30, single and batched.
+   batches (ours: ``rhs`` on a (100, 2n) array; Pinocchio: a Python loop over ``pin.aba`` and its
+   own batched call ``pin.abaInParallel`` on one thread, the faster of the two is the peer).
+   Target: ours at least 2× faster than ``pin.aba`` (ratio ours/aba ≤ 0.5) at every n from 2
+   to 30, single and batched.  The ``M⁻¹F`` columns time, in the same run, our route before the
+   articulated-body algorithm (`dynamics._articulated`): M and F compiled, then the Cholesky
+   solve (the same system with ``recursive.qdd`` removed); its q̈ is checked equal too.
 
 Times are the minimum over short timing blocks (`rhs_vs_peers.per_call`), so a busy shared
 machine shows the cost of the code, not other processes' time slices; CPU times of the
@@ -32,6 +35,8 @@ Run:  .venv/bin/python benchmarks/robot_chains.py [--sizes 2 5 10 20 30] [--syst
 from __future__ import annotations
 
 import argparse
+import copy
+import dataclasses
 import json
 import os
 import subprocess
@@ -181,10 +186,30 @@ def compare(kind: str, n: int, rng: np.random.Generator, rtol: float, quick: boo
         for q, v in zip(Qc, Vc):
             pin.aba(pm, data, q, v, tau)
 
-    aba_batch = per_call(aba_loop, [(np.ascontiguousarray(c[:, :n]), np.ascontiguousarray(c[:, n:]))
-                                    for c in chunks], budget) / CHUNK
+    aba_loop_batch = per_call(aba_loop, [(np.ascontiguousarray(c[:, :n]), np.ascontiguousarray(c[:, n:]))
+                                         for c in chunks], budget) / CHUNK
+    # Pinocchio's own batched call: abaInParallel on one thread (ours is one thread too), states as columns.
+    pool = pin.ModelPool(pm, 1)
+    taus = np.asfortranarray(np.tile(tau[:, None], (1, CHUNK)))
+    acc = np.asfortranarray(np.empty((n, CHUNK)))
+    pool_rows = [(1, pool, np.asfortranarray(c[:, :n].T), np.asfortranarray(c[:, n:].T), taus, acc) for c in chunks]
+    pin.abaInParallel(*pool_rows[0])
+    if not np.allclose(acc.T, system.rhs(0.0, chunks[0], p)[:, n:], rtol=1e-8, atol=1e-8):
+        raise SystemExit(f"{kind}{n}: pin.abaInParallel disagrees with our q''")
+    pool_batch = per_call(pin.abaInParallel, pool_rows, budget) / CHUNK
+    # The route before the articulated-body algorithm, in the same run: M q'' = F by Cholesky.
+    solve_single = solve_batch = float("nan")
+    if system.eom.recursive is not None and system.eom.recursive.qdd is not None:
+        eom_m = copy.copy(system.eom)  # not dataclasses.replace: that would derive the course's form
+        object.__setattr__(eom_m, "recursive", dataclasses.replace(system.eom.recursive, qdd=None, pivots=()))
+        solve = compile_system(eom_m)
+        if not np.allclose(solve.rhs(0.0, Y, p)[:, n:], ours, rtol=1e-9, atol=1e-9 * float(np.max(np.abs(ours)))):
+            raise SystemExit(f"{kind}{n}: the articulated-body q'' and M^-1 F differ")
+        solve_single = per_call(solve.rhs_c, rows, budget)
+        solve_batch = per_call(solve.rhs, [(0.0, c, p) for c in chunks], budget) / CHUNK
     return {"n": n, "diff": diff, "ours": ours_single, "aba": aba_single, "rnea_crba": rnea_single,
-            "ours_batch": ours_batch, "aba_batch": aba_batch}
+            "ours_batch": ours_batch, "aba_batch": min(aba_loop_batch, pool_batch), "aba_loop_batch": aba_loop_batch,
+            "pool_batch": pool_batch, "solve": solve_single, "solve_batch": solve_batch}
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -230,15 +255,16 @@ def main(argv: list[str] | None = None) -> int:
         return 0 if ok else 1
     print(f"\n2. q'' per state against Pinocchio {pin.__version__} (µs; ratio ours/aba, target ≤ {TARGET_RATIO})")
     for kind in args.systems:
-        print(f"\n{kind}: {'n':>3} {'|Δq̈|':>8} {'ours':>7} {'aba':>7} {'rnea+crba':>10} {'ratio':>6} "
-              f"{'ours N':>7} {'aba N':>7} {'ratio N':>8}")
+        print(f"\n{kind}: {'n':>3} {'|Δq̈|':>8} {'ours':>7} {'M⁻¹F':>7} {'aba':>7} {'rnea+crba':>10} {'ratio':>6} "
+              f"{'(M⁻¹F)':>7} {'ours N':>7} {'M⁻¹F N':>7} {'loop N':>7} {'pool N':>7} {'ratio N':>8} {'(M⁻¹F)':>7}")
         for n in args.sizes:
             r = compare(kind, n, rng, args.rtol, args.quick)
             single, batch = r["ours"] / r["aba"], r["ours_batch"] / r["aba_batch"]
             ok = ok and single <= TARGET_RATIO and batch <= TARGET_RATIO
-            print(f"{'':7}{n:3d} {r['diff']:8.1e} {r['ours'] * 1e6:7.2f} {r['aba'] * 1e6:7.2f} "
-                  f"{r['rnea_crba'] * 1e6:10.2f} {single:6.2f} {r['ours_batch'] * 1e6:7.3f} "
-                  f"{r['aba_batch'] * 1e6:7.2f} {batch:8.3f}")
+            print(f"{'':7}{n:3d} {r['diff']:8.1e} {r['ours'] * 1e6:7.2f} {r['solve'] * 1e6:7.2f} {r['aba'] * 1e6:7.2f} "
+                  f"{r['rnea_crba'] * 1e6:10.2f} {single:6.2f} {r['solve'] / r['aba']:7.2f} "
+                  f"{r['ours_batch'] * 1e6:7.3f} {r['solve_batch'] * 1e6:7.3f} {r['aba_loop_batch'] * 1e6:7.2f} "
+                  f"{r['pool_batch'] * 1e6:7.2f} {batch:8.3f} {r['solve_batch'] / r['aba_batch']:7.3f}")
     print("\nall targets met" if ok else "\nsome targets NOT met (see above)")
     return 0 if ok else 1
 

@@ -49,6 +49,7 @@ from ..kinematics import Kinematics
 from ..kinematics._frames import _add3, _cross, _turn
 from ..model import GALILEAN_FRAME, Gravity, JointDamper, Torque, Vector
 from ..model._vector import AXES, sum_of
+from ._articulated import articulated_accelerations
 from ._energy import _transport, rigid_inertia
 from ._forces import LoadForces, _q_of
 
@@ -300,6 +301,11 @@ class RecursiveForm:
         side of ṗ in Hamilton's form, see `_codegen`), in the names.
     conservative : every load derives from a potential (then T + U is the energy integral).
     loads : the Q_i of the loads the recursion does not handle (all but uniform gravity).
+    qdd : q̈ by the articulated-body algorithm (`_articulated`), in the names, when every
+        coordinate drives one joint of its own; else None (then q̈ solves M q̈ = F).
+    pivots : with ``qdd``, (D_j, M_jj) for each j: the articulated pivot and M's diagonal entry.
+    qdd_forward : with ``qdd``, the position in ``intermediates`` where its forward pass starts (what
+        comes before, the backward pass, is computed first: the C code splits there).
     """
 
     intermediates: tuple[tuple[se.Symbol, se.Basic], ...]
@@ -310,10 +316,16 @@ class RecursiveForm:
     dL_dq: tuple[se.Basic, ...]
     conservative: bool
     loads: tuple[LoadForces, ...]
+    qdd: tuple[se.Basic, ...] | None = None
+    pivots: tuple[tuple[se.Basic, se.Basic], ...] = ()
+    qdd_forward: int = 0
 
-    def needed(self, exprs: Sequence[se.Basic]) -> list[tuple[se.Symbol, se.Basic]]:
-        """The intermediates ``exprs`` depend on, in order (what a function that computes them must define)."""
-        position = {s: k for k, (s, _) in enumerate(self.intermediates)}
+    def needed(self, exprs: Sequence[se.Basic], after: int = 0) -> list[tuple[se.Symbol, se.Basic]]:
+        """The intermediates ``exprs`` depend on, in order (what a function that computes them must define).
+
+        With ``after``, only those at that position or later (the earlier ones are given).
+        """
+        position = {s: k for k, (s, _) in enumerate(self.intermediates) if k >= after}
         keep: set[int] = set()
         stack = [position[s] for e in exprs for s in e.free_symbols if s in position]
         while stack:
@@ -542,6 +554,9 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
                 nv = w.vec(_add3(up(nv), _cross(d, fv)))
                 a, same = nodes[a].parent, False  # type: ignore[assignment]
     M_out = tuple(tuple(sum_of(M[i][j]) for j in range(n)) for i in range(n))
+    aba = articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, couples, Q_other,
+                                    (mass, first, inertia), kin.q)
+    qdd, pivots, forward = aba if aba is not None else (None, (), 0)
 
     T = sum_of(T_terms)
     U_gravity = sum_of(U_terms)
@@ -549,7 +564,8 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
     dL_dq = tuple(a + q + c for a, q, c in zip(dL, Q_other, Q_couples))
     U_other = [f.potential for f in other if f.potential is not None]
     conservative = all(f.potential is not None for f in other) and not tree.couples
-    return RecursiveForm(tuple(w.items), M_out, F, T, U_gravity + sum_of(U_other), dL_dq, conservative, other)
+    return RecursiveForm(tuple(w.items), M_out, F, T, U_gravity + sum_of(U_other), dL_dq, conservative, other,
+                         qdd, pivots, forward)
 
 
 def require_tree(kin: Kinematics) -> TreeStructure:

@@ -89,13 +89,25 @@ static int lg_cholesky_solve(double *M, double *F, double *worst)
     return LG_DONE;
 }
 
-/* y' = (q', q'') with q'' from M q'' = F, never from a symbolic inverse. */
+/* y' = (q', q'') with q'' from M q'' = F, never from a symbolic inverse.  A kinematic tree
+ * whose coordinates each drive one joint (LG_ABA) has lg_aba instead: the articulated-body
+ * algorithm, O(n), its pivots D_j checked against M_jj as the Cholesky pivots are. */
 static int lg_rhs(double t, const double *y, const double *p, double *dy, double *worst)
 {
+#ifdef LG_ABA
+    double F[LG_N], piv[2 * LG_N];
+    lg_aba(t, y, p, F, piv);
+    for (int j = 0; j < LG_N; ++j) {
+        const double d = piv[2 * j], diag = fabs(piv[2 * j + 1]);
+        if (!(d > 1e-13 * diag) || diag == 0.0) return LG_SINGULAR;
+        if (d / diag < *worst) *worst = d / diag;
+    }
+#else
     double M[LG_N * LG_N], F[LG_N];
     lg_mass_forces(t, y, p, M, F);
     int status = lg_cholesky_solve(M, F, worst);
     if (status) return status;
+#endif
     for (int i = 0; i < LG_N; ++i) {
         dy[i] = y[LG_N + i];
         dy[LG_N + i] = F[i];
