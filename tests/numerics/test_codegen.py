@@ -67,8 +67,11 @@ def test_c_printer_writes_doubles_and_products():
     assert c_expression(x**-2, names) == "(1.0/(x*x))"
     assert c_expression(se.Integer(10)**20 * x, names) == "(1e+20*x)"
     assert c_expression(se.sqrt(x), names) == "sqrt(x)"
-    with pytest.raises(ValueError, match="cannot generate C"):
+    with pytest.raises(lagrangian.ModelError, match="the compiled code cannot evaluate"):
         c_expression(se.gamma(x), names)
+    # d|x|/dx, which SymEngine leaves unevaluated, is sign(x); the higher derivatives are 0 (x ≠ 0).
+    assert c_expression(se.Abs(x).diff(x), names) == "((x) > 0.0 ? 1.0 : ((x) < 0.0 ? -1.0 : 0.0))"
+    assert c_expression(se.Abs(x).diff(x).diff(x), names) == "0.0"
 
 
 def test_the_generated_source_is_the_same_at_every_compile():
