@@ -10,6 +10,10 @@ Each case is an example model file (``examples/*.toml``) with one to three mutat
 - *structural* mutations of the TOML: lines and tables deleted, duplicated, swapped or
   renamed, a value of another type, the file cut short, odd characters inserted, deep
   nesting;
+- with ``--format urdf``, the robots of ``examples/*.urdf`` instead: attribute values replaced (extreme
+  numbers, axes of zero length, names of other links, payloads), joint types swapped, lines deleted,
+  duplicated or cut, and XML attacks (entity expansion, external entities, deep nesting), a parent
+  made its own child (a cycle), elements URDF readers skip (transmissions, mimic of nothing);
 - the known *bombs* of issue 15 (``((theta+2)^1000)^1000``, ``1e400``, ``sqrt(-1)``,
   ``exp(exp(exp(1000)))``, ``a = [[[…]]]`` 500 deep, …) and *payloads* that would create
   a canary file if any text were ever evaluated or handed to a shell.
@@ -223,13 +227,79 @@ def _mutate_structure(rng: random.Random, text: str, canary: str) -> str:
     return "\n".join(lines)
 
 
+#: XML fragments that broke XML readers (or would read a file, or the canary, if entities were expanded).
+URDF_FRAGMENTS = (
+    '<!DOCTYPE robot [<!ENTITY a "aaaaaaaaaa"><!ENTITY b "&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;">'
+    '<!ENTITY c "&b;&b;&b;&b;&b;&b;&b;&b;&b;&b;"><!ENTITY d "&c;&c;&c;&c;&c;&c;&c;&c;&c;&c;">]>',
+    '<!DOCTYPE robot [<!ENTITY x SYSTEM "file:///etc/passwd">]>', '<!DOCTYPE robot [<!ENTITY x SYSTEM "file://{canary}">]>',
+    '<!DOCTYPE robot [<!ENTITY % p SYSTEM "http://127.0.0.1:9/x.dtd"> %p;]>', "<a>" * 3000 + "</a>" * 3000,
+    '<joint name="free" type="floating"><parent link="base"/><child link="extra"/></joint><link name="extra"/>',
+    '<joint name="flat" type="planar"><parent link="base"/><child link="extra"/></joint><link name="extra"/>',
+    '<joint name="copy" type="revolute"><parent link="base"/><child link="twin"/><axis xyz="0 0 1"/>'
+    '<mimic joint="nowhere" multiplier="2"/></joint><link name="twin"/>',
+    '<transmission name="t"><type>SimpleTransmission</type></transmission>', '<gazebo reference="base"/>',
+    "<?xml-stylesheet href='x'?>", "<![CDATA[ <robot> ]]>", "&x;", "<robot name='second'/>", "<link/>", "<joint/>",
+    '<link name="heavy"><inertial><mass value="1e308"/><inertia ixx="1e308" ixy="0" ixz="0" iyy="1e308" iyz="0" '
+    'izz="1e308"/></inertial></link>',
+)
+URDF_VALUES = ("0 0 0", "0 0 1e400", "nan 0 1", "1 2", "1 2 3 4", "0,0,1", "", " ", "-1", "0", "1e-320", "1e308",
+               "inf", "x", "base", "world", "revolute", "floating", "planar", "continuous", "prismatic", "fixed", "bogus",
+               "&amp;", "${pi/2}", "$(arg x)", "1_0", "٣", "x" * 5000)
+
+
+def _mutate_urdf(rng: random.Random, text: str, canary: str) -> tuple[str, str]:
+    """One mutation of a URDF file: (text, what)."""
+    attributes = list(re.finditer(r'(\w+)="([^"]*)"', text))
+    names = sorted(set(re.findall(r'name="([^"]*)"', text))) or ["base"]
+    kind = rng.randrange(10)
+    if kind < 5 and attributes:  # an attribute's value replaced
+        m = rng.choice(attributes)
+        old = m.group(2).split()
+        choice = rng.randrange(6)
+        if choice == 0 and len(old) == 3:  # one component of a vector
+            old[rng.randrange(3)] = rng.choice(NUMBERS)
+            new = " ".join(old)
+        elif choice == 1:
+            new = rng.choice(names)  # a link of another joint: cycles, a child with two parents, itself
+        elif choice == 2:
+            new = rng.choice(PAYLOADS).format(canary=canary).replace('"', "&quot;").replace("<", "&lt;")
+        elif choice == 3:
+            new = rng.choice(NUMBERS)
+        else:
+            new = rng.choice(URDF_VALUES)
+        return text[:m.start(2)] + new + text[m.end(2):], "attribute"
+    lines = text.split("\n")
+    i, j = rng.randrange(len(lines)), rng.randrange(len(lines))
+    if kind == 5:
+        del lines[i]
+    elif kind == 6:
+        lines.insert(j, lines[i])
+    elif kind == 7:  # a fragment, after the XML declaration when it is a DOCTYPE
+        fragment = rng.choice(URDF_FRAGMENTS).format(canary=canary)
+        at = 1 if fragment.startswith("<!DOCTYPE") else rng.randrange(1, len(lines) + 1)
+        lines.insert(at, fragment)
+        if fragment.startswith("<!DOCTYPE") and "ENTITY" in fragment:
+            entity = re.search(r"ENTITY (?:% )?(\w+)", fragment).group(1)  # type: ignore[union-attr]
+            k = rng.randrange(2, len(lines))
+            lines[k] = lines[k].replace('name="', f'name="&{entity};', 1) if 'name="' in lines[k] else \
+                lines[k] + f"&{entity};"
+    elif kind == 8:
+        return text[:rng.randrange(len(text) + 1)], "structure"
+    else:
+        at = rng.randrange(len(text) + 1)
+        return text[:at] + rng.choice(ODD) + text[at:], "structure"
+    return "\n".join(lines), "structure"
+
+
 def make_case(rng: random.Random, sources: dict[str, str], canary: str) -> tuple[str, str, list[str]]:
     """A mutated model: (the example's name, the text, the mutations applied)."""
     name = rng.choice(sorted(sources))
     text = sources[name]
     done = []
     for _ in range(rng.choice((1, 1, 1, 2, 2, 3))):
-        if rng.random() < 0.6:
+        if name.endswith(".urdf"):
+            text, what = _mutate_urdf(rng, text, canary)
+        elif rng.random() < 0.6:
             text, what = _mutate_token(rng, text, canary), "token"
         else:
             text, what = _mutate_structure(rng, text, canary), "structure"
@@ -349,7 +419,7 @@ def _write_json(path: str, record: dict) -> None:
     os.replace(tmp, path)
 
 
-def _child(case_dir: Path, command: list[str], memory: int) -> None:
+def _child(case_dir: Path, model_file: Path, command: list[str], memory: int) -> None:
     """In the forked child: cap the memory, send the output to files, run the case, never return."""
     code = 0
     try:
@@ -363,7 +433,7 @@ def _child(case_dir: Path, command: list[str], memory: int) -> None:
             os.close(handle)
         faulthandler.enable()  # a crash's Python stack goes to the case's stderr.txt (not the campaign's)
         os.chdir(case_dir)
-        run_case(str(case_dir / "model.toml"), str(case_dir), command, str(case_dir / "result.json"))
+        run_case(str(model_file), str(case_dir), command, str(case_dir / "result.json"))
     except MemoryError:
         code = 71
     except BaseException:  # noqa: BLE001
@@ -420,7 +490,8 @@ def _classify(run: Running, status: int, canary: Path) -> dict:
 
 def campaign(cases: int, seed: int, out: Path, *, jobs: int = 1, time_limit: float = 30.0,
              memory_gib: float = 4.0, examples: list[str] | None = None, exclude: list[str] = (),
-             quiet: bool = False, replay: list[Path] | None = None, warm_up: bool = True) -> dict:
+             quiet: bool = False, replay: list[Path] | None = None, warm_up: bool = True,
+             model_format: str = "toml") -> dict:
     """Run ``cases`` mutated models (or the files of ``replay``); return the summary (also in OUT/summary.json)."""
     import lagrangian  # noqa: F401 -- imported once here, shared by every forked case
 
@@ -429,11 +500,12 @@ def campaign(cases: int, seed: int, out: Path, *, jobs: int = 1, time_limit: flo
     (out / "findings").mkdir(exist_ok=True)
     work = Path(tempfile.mkdtemp(prefix="cases-", dir=out))
     os.environ.setdefault("LAGRANGIAN_CACHE", str(out / "cache"))
-    chosen = sorted(EXAMPLES.glob("*.toml"))
+    chosen = sorted(EXAMPLES.glob(f"*.{model_format}"))
     if examples:
         chosen = [p for p in chosen if p.stem in examples]
     chosen = [p for p in chosen if p.stem not in exclude]
-    sources = {p.stem: p.read_text(encoding="utf-8") for p in chosen}
+    # URDF sources keep their suffix in the name: the case file must end in .urdf to be read as one.
+    sources = {(p.name if model_format == "urdf" else p.stem): p.read_text(encoding="utf-8") for p in chosen}
     rng = random.Random(seed)
     memory = int(memory_gib * 2**30)
     if warm_up:
@@ -469,12 +541,14 @@ def campaign(cases: int, seed: int, out: Path, *, jobs: int = 1, time_limit: flo
             meta = {"example": name, "mutations": mutations}
         command = COMMANDS[(number if replay else rng.randrange(len(COMMANDS))) % len(COMMANDS)]
         meta.update(case=number, command=command)
-        (case_dir / "model.toml").write_text(text, encoding="utf-8", errors="surrogateescape")
+        suffix = replay[number].suffix if replay else (".urdf" if meta["example"].endswith(".urdf") else ".toml")
+        model_file = case_dir / f"model{suffix}"
+        model_file.write_text(text, encoding="utf-8", errors="surrogateescape")
         sys.stdout.flush()
         sys.stderr.flush()
         pid = os.fork()
         if pid == 0:
-            _child(case_dir, command, memory)
+            _child(case_dir, model_file, command, memory)
         running[pid] = Running(number, pid, case_dir, meta)
 
     def finish(run: Running, status: int) -> None:
@@ -487,9 +561,10 @@ def campaign(cases: int, seed: int, out: Path, *, jobs: int = 1, time_limit: flo
         slowest.append((record["seconds"], run.number))
         if outcome in BAD:
             name = f"{outcome}-{run.number:06d}"
-            shutil.copyfile(run.case_dir / "model.toml", out / "findings" / f"{name}.toml")
+            (model_file,) = [p for p in run.case_dir.iterdir() if p.stem == "model" and p.suffix in (".toml", ".urdf")]
+            shutil.copyfile(model_file, out / "findings" / f"{name}{model_file.suffix}")
             (out / "findings" / f"{name}.json").write_text(json.dumps(record, indent=1), encoding="utf-8")
-            findings.append({"case": run.number, "outcome": outcome, "file": f"findings/{name}.toml",
+            findings.append({"case": run.number, "outcome": outcome, "file": f"findings/{name}{model_file.suffix}",
                              "stage": next((e["stage"] for e in record.get("stages", []) if e["outcome"] in BAD),
                                            record.get("running")),
                              "what": _what(record)})
@@ -598,13 +673,15 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--memory", type=float, default=4.0, help="memory cap per case, GiB (default 4)")
     parser.add_argument("--example", action="append", help="mutate only this example (repeatable)")
     parser.add_argument("--exclude", action="append", default=[], help="do not mutate this example (repeatable)")
+    parser.add_argument("--format", dest="model_format", choices=("toml", "urdf"), default="toml",
+                        help="mutate the TOML examples (default) or the URDF robots of examples/*.urdf")
     parser.add_argument("--out", type=Path, default=Path("fuzz-out"), help="folder for the summary and findings")
     parser.add_argument("--replay", nargs="+", type=Path, help="run these model files instead of mutations")
     parser.add_argument("--quiet", action="store_true")
     args = parser.parse_args(argv)
     summary = campaign(args.cases, args.seed, args.out, jobs=args.jobs, time_limit=args.time_limit,
                        memory_gib=args.memory, examples=args.example, exclude=args.exclude, quiet=args.quiet,
-                       replay=args.replay)
+                       replay=args.replay, model_format=args.model_format)
     print_summary(summary)
     return 1 if any(summary["outcomes"][k] for k in BAD) else 0
 

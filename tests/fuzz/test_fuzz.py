@@ -53,6 +53,30 @@ def test_short_campaign_finds_no_defect(tmp_path: Path) -> None:
     assert stages.get("cli:ok", 0) == CASES
 
 
+def test_short_urdf_campaign_finds_no_defect(tmp_path: Path) -> None:
+    # URDF files from strangers (examples/*.urdf mutated: values, joint types, entities, cycles, cuts).
+    env = dict(os.environ, PYTHONPATH=str(ROOT / "src"), OPENBLAS_NUM_THREADS="1",
+               LAGRANGIAN_CACHE=str(tmp_path / "cache"))
+    run = subprocess.run([sys.executable, str(TOOL), "--format", "urdf", "--cases", "40", "--seed", "1",
+                          "--time-limit", "60", "--jobs", "2", "--quiet", "--out", str(tmp_path / "out")],
+                         capture_output=True, text=True, env=env, timeout=600)
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text(encoding="utf-8"))
+    bad = {k: summary["outcomes"][k] for k in ("traceback", "hang", "memory", "signal", "code")}
+    assert summary["cases"] == 40 and bad == dict.fromkeys(bad, 0), (bad, summary["findings"])
+    assert run.returncode == 0 and summary["stages"].get("load:error", 0) > 0 and summary["stages"].get("simulate:ok")
+
+
+def test_urdf_mutations_are_seeded_and_keep_the_suffix() -> None:
+    import random
+
+    fuzz = _tool()
+    sources = {p.name: p.read_text(encoding="utf-8") for p in sorted((ROOT / "examples").glob("*.urdf"))}
+    assert sources, "examples/*.urdf"
+    first = [fuzz.make_case(random.Random(5), sources, "/c") for _ in range(5)]
+    assert first == [fuzz.make_case(random.Random(5), sources, "/c") for _ in range(5)]
+    assert all(name.endswith(".urdf") and text != sources[name] for name, text, _ in first)
+
+
 def test_same_seed_same_cases() -> None:
     import random
 
