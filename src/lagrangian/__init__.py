@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING
 _WHERE = {
     **dict.fromkeys(("EnergyBalance", "Equilibrium", "FirstIntegral", "LinearizationError", "LinearModel", "Modes",
                      "Stability", "Sweep", "TopAnalysis", "Verification", "analyse_top", "energy_balance",
-                     "equilibria", "first_integrals", "linearize", "modes", "routh_reduction", "stability",
+                     "equilibria", "first_integrals", "holding_inputs", "linearize", "modes", "routh_reduction", "stability",
                      "steady_motions", "sweep", "verify"), ".analysis"),
     **dict.fromkeys(("EquationsOfMotion", "LagrangeEquation", "derive"), ".dynamics"),
     **dict.fromkeys(("DerivationError", "ExportError", "KinematicsError", "LagrangianError", "ModelError",
@@ -82,6 +82,7 @@ __all__ = [
     "analyse_top",
     "TopAnalysis",
     "linearize",
+    "holding_inputs",
     "LinearModel",
     "LinearizationError",
     "modes",

@@ -103,3 +103,17 @@ def test_no_torque_holds_an_unactuated_joint_away_from_equilibrium():
     eom = lagrangian.derive(model)
     with pytest.raises(LinearizationError, match="no values of the inputs tau_shoulder hold the point"):
         holding_inputs(eom, {"shoulder": 0.5, "elbow": 0.3, "tau_elbow": 0.0}, inputs=["tau_shoulder"])
+
+
+def test_a_point_held_by_computed_torques_shows_no_rounding_as_circulatory_forces() -> None:
+    # The held point's K is numeric; its skew part N was 1e-16 entries of rounding (examples/rrr_arm.urdf).
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    eom = lagrangian.derive(lagrangian.load_model(root / "examples" / "rrr_arm.urdf"))
+    at = {"waist": 0.0, "shoulder": 0.5, "elbow": -0.3}
+    lin = lagrangian.linearize(eom, {**at, **lagrangian.holding_inputs(eom, at)})
+    N = lin.second_order.N
+    assert all(N[i, j] == 0 for i in range(N.rows) for j in range(N.cols))
+    K = lin.second_order.K
+    assert float(K[1, 1]) > 0 and float(K[1, 2]) == float(K[2, 1])

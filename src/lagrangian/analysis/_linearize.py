@@ -462,6 +462,20 @@ def _nearest(eom: EquationsOfMotion, at_q: Mapping, point_subs: Mapping, generic
     return " The nearest equilibrium found: " + ", ".join(f"{s} = {v:.10g}" for s, v in zip(q, sol.x)) + "."
 
 
+def _rounding_to_zero(skew: se.DenseMatrix, whole: se.DenseMatrix) -> se.DenseMatrix:
+    """The skew part of a numeric matrix (a point held by computed torques) with its rounding dropped:
+    entries below 1e-12 of the matrix's largest are 0, so that a symmetric K does not show N ≈ 1e−16."""
+    entries = [whole[i, j] for i in range(whole.rows) for j in range(whole.cols)]
+    if any(e.free_symbols for e in entries) or any(skew[i, j].free_symbols for i in range(skew.rows)
+                                                   for j in range(skew.cols)):
+        return skew
+    try:
+        scale = max((abs(float(e)) for e in entries), default=0.0)
+    except (TypeError, RuntimeError):  # complex or not a number: left as it is
+        return skew
+    return skew.applyfunc(lambda e: se.Integer(0) if abs(float(e)) <= 1e-12 * scale else e)
+
+
 def _second_order(coords: Sequence[str], ind_c: Sequence[int], ind_s: Sequence[int], Mr: se.DenseMatrix,
                   Cr: se.DenseMatrix, Kr: se.DenseMatrix, Br: se.DenseMatrix, kin_c, ignorable: Sequence[str],
                   generic: Mapping) -> tuple[SecondOrderForm | None, str]:
@@ -486,6 +500,7 @@ def _second_order(coords: Sequence[str], ind_c: Sequence[int], ind_s: Sequence[i
     Gskew = (Cr - Cr.T) / 2
     Ksym = (K_full + K_full.T) / 2
     Nskew = (K_full - K_full.T) / 2
+    Gskew, Nskew = _rounding_to_zero(Gskew, Cr), _rounding_to_zero(Nskew, K_full)
     form = SecondOrderForm(tuple(coords[i] for i in kept), _tidy(Msym), _tidy(Dsym), _tidy(Gskew), _tidy(Ksym),
                            _tidy(Nskew), _tidy(Br))
     return form, ""
