@@ -108,3 +108,16 @@ def test_a_constant_subtracted_comes_last():
     n = Notation(("x", "y"), ("m", "l", "g"))
     assert n.text(x**2 + y**2 - symbols("l")**2) == "x² + y² − l²"
     assert n.latex(x**2 + y**2 - symbols("l")**2) == "x^{2} + y^{2} - l^{2}"
+
+
+def test_like_terms_are_collected_as_a_teacher_would() -> None:
+    # The double pendulum's ∂T/∂θ̇2 as derived writes (θ̇1 + θ̇2) twice; a teacher writes
+    # ⅓ m2 l2² (θ̇1 + θ̇2) + ½ m2 l1 l2 θ̇1 cosθ2 (rule 4), and leaves a square as it is.
+    m2, l1, l2, a, b, t2, C, p, s, th = sympy.symbols("m2 l1 l2 theta1_dot theta2_dot theta2 C phi_dot psi_dot theta")
+    derived = sympy.Rational(1, 2) * m2 * l2 * (l1 * a * sympy.cos(t2) + sympy.Rational(1, 2) * l2 * (a + b)) \
+        + sympy.Rational(1, 12) * m2 * l2**2 * (a + b)
+    shown = display_form(derived, ["m2", "l1", "l2"])
+    assert shown == sympy.Rational(1, 3) * m2 * l2**2 * (a + b) + sympy.Rational(1, 2) * m2 * l1 * l2 * a * sympy.cos(t2)
+    assert sympy.expand(shown - derived) == 0
+    spin = sympy.Rational(1, 2) * C * (p + s * sympy.cos(th)) ** 2  # ½ C (φ̇ + ψ̇ cosθ)²: nothing to collect
+    assert display_form(spin, ["C"]) == spin

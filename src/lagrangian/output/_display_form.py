@@ -10,10 +10,12 @@ identity, so the value never changes:
    up to sign: cos u cos v ∓ sin u sin v → cos(u ± v), sin u cos v ± cos u sin v → sin(u ± v);
    so −l1 cosθ2 cos(θ1 + θ2) − l1 sinθ2 sin(θ1 + θ2) → −l1 cosθ1;
 3. **common factors out** (SymPy's ``factor_terms``), then terms that differ only by their
-   parameters gathered: θ̇ sinθ (C φ̇ + 2 (C − A) ψ̇ cosθ).
+   parameters gathered: θ̇ sinθ (C φ̇ + 2 (C − A) ψ̇ cosθ);
+4. **like terms collected**: when the expansion merges terms (the derived form wrote one quantity in
+   two places, ½ m2 l2 (l1 θ̇1 cosθ2 + ½ l2 (θ̇1 + θ̇2)) + 1/12 m2 l2² (θ̇1 + θ̇2)), the rewritten form is kept.
 
 Rules 1 and 2 are applied on the expanded sum until none applies.  The rewritten form is kept
-when a rule applied, or when it is at most two thirds of the original's size (nodes of the
+when rule 1, 2 or 4 applied, or when it is at most two thirds of the original's size (nodes of the
 expression tree) and the expanded sum has at most `FEW_TERMS` terms; otherwise the expression is printed as derived (the seed's
 A θ̈ − A ψ̇² sinθ cosθ + C ψ̇ sinθ (φ̇ + ψ̇ cosθ) keeps its conserved spin φ̇ + ψ̇ cosθ).
 
@@ -27,6 +29,7 @@ Reference: the identities are those of any trigonometry table (e.g. Abramowitz &
 from __future__ import annotations
 
 import functools
+import math
 from collections.abc import Collection
 
 import sympy
@@ -68,9 +71,18 @@ def _display_form(expr: sympy.Expr, parameters: frozenset[str]) -> sympy.Expr:
     if len(terms) > MAX_TERMS or len(terms) < 2:
         return expr
     reduced, fired = _reduce(terms)
+    # Like terms met on expanding (½ l2 (θ̇1 + θ̇2) + 1/12 l2 (θ̇1 + θ̇2) is ⅓ l2 (θ̇1 + θ̇2)): the derived form
+    # wrote one quantity twice, which a teacher collects; an expansion that merges nothing is no news.
+    fired = fired or len(terms) < _expanded_terms(expr)
     if not fired and len(reduced) > FEW_TERMS:
         return expr
     form = _refactor(sympy.Add(*reduced), parameters)
+    if fired:
+        # The shorter of "common factors out" and "terms with the same constant factor together"
+        # (½ m2 l1 l2 θ̇1 cosθ2 + ⅓ m2 l2² (θ̇1 + θ̇2), not ⅙ m2 l2 (3 l1 θ̇1 cosθ2 + 2 l2 θ̇1 + 2 l2 θ̇2)).
+        other = _by_constants(reduced, parameters)
+        if _terms_shown(other) < _terms_shown(form):
+            form = other
     if fired or (_size(form, MAX_OPS) or MAX_OPS) <= SHORTER * size:
         return form
     return expr
@@ -86,7 +98,9 @@ def _expanded_terms(e: sympy.Expr) -> int:
             out *= _expanded_terms(a)
         return out
     if isinstance(e, sympy.Pow) and e.exp.is_Integer and e.exp > 0:
-        return _expanded_terms(e.base) ** int(e.exp)
+        # (a + b)² has 3 monomials, not 4: a power of a sum of n terms has C(n + k − 1, k) distinct ones.
+        n, k = _expanded_terms(e.base), int(e.exp)
+        return math.comb(n + k - 1, k)
     return 1
 
 
@@ -183,6 +197,38 @@ def _refactor(expr: sympy.Expr, parameters: frozenset[str]) -> sympy.Expr:
             f = _gather(f, parameters)
         out.append(f)
     return sympy.Mul(*out)
+
+
+def _terms_shown(e: sympy.Expr) -> int:
+    """How many terms the eye reads in a sum: a product with a sum in it counts that sum's terms."""
+    if isinstance(e, sympy.Add):
+        return len(e.args)
+    inner = [f for f in sympy.Mul.make_args(e) if isinstance(f, sympy.Add)]
+    return max((len(f.args) for f in inner), default=1)
+
+
+def _constant_part(t: sympy.Expr, parameters: frozenset[str]) -> tuple[sympy.Expr, sympy.Expr]:
+    """(numbers and parameters, the rest) of a term: ⅓ m2 l2² θ̇1 → (⅓ m2 l2², θ̇1)."""
+    constant, moving = [], []
+    for f in sympy.Mul.make_args(t):
+        (constant if f.is_Number or (f.free_symbols and {s.name for s in f.free_symbols} <= parameters)
+         else moving).append(f)
+    return sympy.Mul(*constant), sympy.Mul(*moving)
+
+
+def _by_constants(terms: list[sympy.Expr], parameters: frozenset[str]) -> sympy.Expr:
+    """Rates (or accelerations) with the same constant factor written once: ⅓ m2 l2² θ̇1 + ⅓ m2 l2² θ̇2 →
+    ⅓ m2 l2² (θ̇1 + θ̇2), as in a momentum or the inertia terms of an equation; other terms as they are
+    (T keeps its coefficients of θ̇1², θ̇1 θ̇2, θ̇2², which `_gather` makes)."""
+    groups: dict[sympy.Expr, list[sympy.Expr]] = {}
+    rest = []
+    for t in terms:
+        constant, moving = _constant_part(t, parameters)
+        if moving.is_Symbol:
+            groups.setdefault(constant, []).append(moving)
+        else:
+            rest.append(t)
+    return sympy.Add(*(c * sympy.Add(*ms) for c, ms in groups.items()), *rest)
 
 
 def _gather(total: sympy.Add, parameters: frozenset[str]) -> sympy.Expr:
