@@ -155,3 +155,19 @@ def test_a_huge_file_is_refused_before_it_is_parsed(tmp_path):
     path.write_text(robot(*ok_parts(), "<!--" + "x" * (6 * 2**20) + "-->"))
     with pytest.raises(ModelError, match="more than the 5 MB read"):
         lagrangian.load_urdf(path)
+
+
+def test_an_offset_whose_huygens_term_overflows_is_refused_with_the_joint(tmp_path) -> None:
+    # Found by `tools/fuzz.py --format urdf` (seed 201, case 577): a fixed joint's origin 1e308 m
+    # away merges its link with m d² = inf; the reader raised OverflowError in `_number`.
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[2] / "examples" / "rrr_arm.urdf").read_text(encoding="utf-8")
+    bad = text.replace('<origin xyz="0.4 0 0"/>\n  </joint>\n</robot>', '<origin xyz="0.4 1e308 0"/>\n  </joint>\n</robot>')
+    assert bad != text
+    path = tmp_path / "arm.urdf"
+    path.write_text(bad, encoding="utf-8")
+    with pytest.raises(ModelError, match="overflows a double") as info:
+        lagrangian.load_model(path)
+    assert info.value.line is not None and "origin" in info.value.fix
+    assert main(["derive", str(path)]) == 2

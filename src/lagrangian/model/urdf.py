@@ -28,8 +28,8 @@ Algorithms* (2008), §2.12.
 
 from __future__ import annotations
 
-import math
 from fractions import Fraction
+import math
 import re
 import warnings
 from dataclasses import dataclass, field
@@ -400,9 +400,17 @@ class _Translation:
             mass = sum(m for m, _, _ in carrier.masses)
             center = sum(m * c for m, c, _ in carrier.masses) / mass
             inertia = np.zeros((3, 3))
-            for m, c, i_g in carrier.masses:
-                d = c - center
-                inertia += i_g + m * (float(d @ d) * np.eye(3) - np.outer(d, d))
+            with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused just below
+                for m, c, i_g in carrier.masses:
+                    d = c - center
+                    inertia += i_g + m * (float(d @ d) * np.eye(3) - np.outer(d, d))
+            if not (np.all(np.isfinite(inertia)) and np.all(np.isfinite(center)) and math.isfinite(mass)):
+                # Each number of the file is finite, their products (m d² of Huygens' theorem) are not.
+                raise ModelError(f"the links fixed to the frame of `{carrier.body}` (merged by their fixed joints) "
+                                 "have a centre of mass or an inertia that overflows a double (an offset or a mass "
+                                 "too large: m d² past 1e308)", file=self.robot.source, line=carrier.line,
+                                 symbol=carrier.body, fix="check the <origin> offsets and masses of these links "
+                                                          "(metres and kilograms)")
             inertia = _clean((inertia + inertia.T) / 2)
             center = _clean(center, max(1e-3, float(np.max(np.abs(center)))))
             matrix = [[_number(float(x)) for x in row] for row in inertia]
