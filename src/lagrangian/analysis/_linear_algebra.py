@@ -13,6 +13,8 @@ import symengine as se
 import sympy
 from symengine.lib.symengine_wrapper import sympy2symengine
 
+from .._big_numbers import has_big_numbers
+
 __all__ = ["RANK_RTOL", "TIDY_MAX_CHARS", "choose", "solve", "jacobian", "tidy", "sub", "stack"]
 
 #: Relative size below which a singular value counts as zero when columns are chosen.
@@ -77,7 +79,7 @@ def tidy(m: se.DenseMatrix) -> se.DenseMatrix:
             x = se.expand(e)
             if len(str(x)) <= size:
                 best, size = x, len(str(x))
-            if e.free_symbols and size <= TIDY_MAX_CHARS:
+            if e.free_symbols and size <= TIDY_MAX_CHARS and not has_big_numbers(best):
                 y = sympy2symengine(sympy.factor(sympy.cancel(best._sympy_())))
                 if len(str(y)) <= size:
                     best = y

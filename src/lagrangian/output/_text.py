@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 import sympy
 
+from .._big_numbers import has_big_numbers
 from ..analysis import energy_balance
 from ..dynamics import EquationsOfMotion, multiplier_formulas
 from ..dynamics._constraints import FORMULA_MAX_SIZE, describe_constraints
@@ -128,7 +129,7 @@ SHORTEN_MAX_OPS = 120
 def _shortest(e: object) -> sympy.Basic:
     """`to_sympy`, then cancelled and factored when that is shorter: λ = m (g y − ẋ² − ẏ²)/(2 (x² + y²))."""
     expr = to_sympy(e)  # type: ignore[arg-type]
-    if sympy.count_ops(expr) > SHORTEN_MAX_OPS:
+    if sympy.count_ops(expr) > SHORTEN_MAX_OPS or has_big_numbers(expr):
         return expr
     cancelled = sympy.cancel(expr)
     candidates = [expr, cancelled, sympy.factor(cancelled), to_sympy(sympy.expand(cancelled))]

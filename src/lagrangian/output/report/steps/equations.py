@@ -19,6 +19,7 @@ import re
 import symengine as se
 import sympy
 
+from ...._big_numbers import has_big_numbers
 from ...._identity import are_zero
 from ....analysis import Verification
 from ..._course import EquationRow, IntegralRow
@@ -316,7 +317,7 @@ SIMPLIFY_MAX_OPS = 120
 
 def _simple(c: Context, e: se.Basic, limit: int = SIMPLIFY_MAX_OPS) -> sympy.Basic:
     shown = c.ex(e)
-    if isinstance(shown, sympy.Basic) and sympy.count_ops(shown) <= limit:
+    if isinstance(shown, sympy.Basic) and sympy.count_ops(shown) <= limit and not has_big_numbers(shown):
         return sympy.factor(sympy.simplify(shown))
     return shown
 
