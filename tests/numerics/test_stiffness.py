@@ -137,3 +137,21 @@ def test_a_first_step_that_overflows_is_rejected_not_fatal(tmp_path: Path) -> No
     with pytest.raises(SimulationError) as info:
         lagrangian.simulate(eom, 10.0, initial={"x": 0.0}, max_steps=2000)
     assert "maximum number of steps" in info.value.message and info.value.t > 0
+
+
+def test_steps_below_1e_14_of_the_span_are_an_underflow_not_a_crawl(tmp_path) -> None:
+    # Found by `tools/fuzz.py --format urdf` (seed 203, case 1329): a joint damping of 1e308 needs
+    # steps of 1e-309 s; near t = 0 the resolution of t is a denormal, so dop853 crawled until
+    # max_steps (minutes). A step below 1e-14 of the span can never finish it: stopped at once.
+    from pathlib import Path
+
+    import lagrangian
+    from lagrangian import SimulationError
+
+    text = (Path(__file__).resolve().parents[2] / "examples" / "rrr_arm.urdf").read_text(encoding="utf-8")
+    path = tmp_path / "arm.urdf"
+    path.write_text(text.replace('<dynamics damping="0.2"/>', '<dynamics damping="1e308"/>'), encoding="utf-8")
+    eom = lagrangian.derive(lagrangian.load_model(path))
+    with pytest.raises(SimulationError, match="stopped at t = 0 ") as info:
+        lagrangian.simulate(eom, 0.3, n_out=7, max_steps=10**6)
+    assert info.value.trajectory is None or info.value.trajectory.t[-1] == 0.0

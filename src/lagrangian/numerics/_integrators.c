@@ -326,6 +326,10 @@ static int lg_dop853_run(double *ctl, const volatile double *stop, double *y, co
     double t = ctl[C_T];
     const double rtol = ctl[C_RTOL], atol = ctl[C_ATOL], max_step = ctl[C_MAXSTEP];
     const int fixed = ctl[C_FIXED] != 0.0;
+    /* Steps shorter than 1e-14 of the span can never finish it (10^14 steps): an underflow, as is a
+     * step below the resolution of t.  Near t = 0 that resolution alone is a denormal, and a damping
+     * of 1e308 made steps of 1e-309 s crawl until max_steps (found by tools/fuzz.py --format urdf). */
+    const double span_floor = 1e-14 * fabs(t_stop - t);
     int status;
 
     if (t >= t_stop) return LG_DONE;
@@ -359,7 +363,7 @@ static int lg_dop853_run(double *ctl, const volatile double *stop, double *y, co
     while (t < t_stop) {
         if (ctl[C_STEPS] >= ctl[C_MAXSTEPS]) { ctl[C_T] = t; ctl[C_H] = h_abs; return LG_MAXSTEPS; }
         if (lg_stop_requested(stop)) { ctl[C_T] = t; ctl[C_H] = h_abs; return LG_INTERRUPTED; }
-        const double min_step = 10 * fabs(nextafter(t, INFINITY) - t);
+        const double min_step = fmax(10 * fabs(nextafter(t, INFINITY) - t), span_floor);
         if (h_abs > max_step) h_abs = max_step;
         if (!fixed && h_abs < min_step) h_abs = min_step;
         int rejected = 0, overflowed = 0;

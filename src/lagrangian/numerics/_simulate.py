@@ -63,7 +63,7 @@ OUTPUT_MEMORY_CAP = 8 * 2**30
 _STATUS = {
     1: "the mass matrix M became singular",
     2: "the state stopped being finite (overflow)",
-    3: "the step size fell below the resolution of t (step size underflow)",
+    3: "the step size fell below the resolution of t, or below 1e-14 of the time span (step size underflow)",
     5: "the maximum number of steps was reached",
     6: "the implicit stages of the Gauss-Legendre step did not converge",
 }
