@@ -229,6 +229,10 @@ def test_block_on_incline_rests_anywhere_iff_tan_alpha_is_at_most_f_s(alpha: flo
 def test_block_on_incline_without_enough_friction_has_no_rest(capsys: pytest.CaptureFixture[str]) -> None:
     assert lagrangian.equilibria(derive("block_on_incline"), parameters={"alpha": 0.5}) == ()
     from lagrangian.cli.main import main
-    assert main(["equilibria", str(ROOT / "examples" / "block_on_incline.toml")]) == 0
+    path = str(ROOT / "examples" / "block_on_incline.toml")
+    assert main(["equilibria", path]) == 0
     out = capsys.readouterr().out
     assert "x any" in out and "tan" in out and "nan" not in out
+    assert main(["equilibria", path, "--set", "alpha=0.5"]) == 0  # tan 0.5 = 0.55 > f_s = 0.4
+    out = capsys.readouterr().out
+    assert "none found" in out and "would be one if |tanα| ≤ f_s, which does not hold" in out

@@ -103,7 +103,17 @@ def run(args: argparse.Namespace) -> str:
     verdicts = [_stability(eom, e, parameters) for e in found]
     if args.json:
         return json.dumps(_document(model.name, eom.coordinates, values, found, verdicts), indent=2) + "\n"
-    return _text(model.name, eom.coordinates, [p.name for p in model.parameters], found, verdicts)
+    text = _text(model.name, eom.coordinates, [p.name for p in model.parameters], found, verdicts)
+    if not found:
+        # Say why: a closed-form branch may exist at other values (R Ω² > g, |tan α| ≤ f_s).
+        absent = [e for e in equilibria(eom, parameters=parameters or None, ranges=ranges, all_branches=True)
+                  if e.exists is False and e.condition is not None]
+        n = Notation(list(eom.coordinates), [p.name for p in model.parameters])
+        for e in absent:
+            where = ", ".join(f"{n.symbol(q)} any" if q in e.free else f"{n.symbol(q)} = {n.text(to_sympy(e.values[q]))}"
+                              for q in eom.coordinates)
+            text += f"  ({where} would be one if {_condition(n, e.condition)}, which does not hold at these values)\n"
+    return text
 
 
 def _stability(eom, e: Equilibrium, parameters: dict) -> tuple[bool | None, str, str] | None:  # type: ignore[no-untyped-def]
