@@ -79,3 +79,22 @@ def test_the_examples_texts_are_in_the_reports_language():
                 cells = " ".join(run for s in doc.sections for b in walk(s.blocks) if isinstance(b, Table)
                                  for row in b.rows for cell in row for run in cell if isinstance(run, str))
                 assert not _words(" ".join([doc.title, doc.subtitle, cells]), foreign), (lang, doc.title)
+
+
+def test_a_urdf_robots_texts_are_in_the_reports_language():
+    # A URDF has no French: the loader writes the robot's, the joints' and the inputs' texts in both
+    # languages (liaison pivot, glissière, encastrement; couple de l'actionneur), the loads are named.
+    import re
+
+    model = lagrangian.load_model(EXAMPLES_DIR / "rrr_arm.urdf")
+    english = {"joint", "torque", "actuator", "actuators", "weight", "damping", "link", "links", "limits", "speed",
+               "the", "of", "with", "along", "robot with", "gravitational"}
+    french = {"liaison", "couple", "actionneur", "actionneurs", "poids", "amortissement", "corps", "limites",
+              "vitesse", "de la", "du", "selon", "pesanteur"}
+    for lang, foreign in (("fr", english), ("en", french)):
+        text = report(model, lang=lang).markdown()
+        prose = re.sub(r"```math.*?```", "", re.sub(r"\$`.*?`\$", "", text), flags=re.S)
+        prose = re.sub(r"`[^`]*`", "", prose)  # the joints' names, as the file writes them
+        assert not _words(prose, foreign), (lang, _words(prose, foreign))
+    fr = report(model, lang="fr").markdown()
+    assert "liaison pivot" in fr and "couple de l'actionneur de la liaison" in fr and "« actionneurs »" in fr

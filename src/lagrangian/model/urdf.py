@@ -40,6 +40,7 @@ import symengine as se
 
 from ..errors import ModelError
 from ._assemble import RESERVED
+from ._texts import Text
 from ._urdf_read import UrdfJoint, UrdfRobot, read_urdf_file, read_urdf_text
 from ._vector import Vector
 from .build import ModelBuilder
@@ -163,6 +164,11 @@ def rotation_steps(c: np.ndarray) -> list[tuple[se.Basic, str]]:
     return [(a, axis) for a, axis in steps if a is not None]
 
 
+#: URDF joint types as a French mechanics course names the joints (liaison pivot, glissière…).
+_KIND_FR = {"revolute": "pivot", "continuous": "pivot (sans butée)", "prismatic": "glissière",
+            "fixed": "encastrement", "floating": "libre", "planar": "appui plan"}
+
+
 def _number(x: float) -> se.Basic:
     """A float as an exact SymEngine rational, its 15 significant digits (the file's decimals, as written).
 
@@ -255,7 +261,10 @@ class _Translation:
         for joint in self.robot.joints.values():
             kinds[joint.type] = kinds.get(joint.type, 0) + 1
         joints = ", ".join(f"{n} {kind}" for kind, n in kinds.items()) or "no"
-        return f"URDF robot with {len(self.robot.links)} links and {joints} joints"
+        fr = ", ".join(f"{n} encastrement{'s' * (n > 1)}" if kind == "fixed" else
+                       f"{n} liaison{'s' * (n > 1)} {_KIND_FR.get(kind, kind)}" for kind, n in kinds.items()) or "aucune"
+        return Text({"fr": f"robot URDF à {len(self.robot.links)} corps ; liaisons : {fr}",
+                     "en": f"URDF robot with {len(self.robot.links)} links and {joints} joints"})
 
     def model(self) -> Model:
         robot, b = self.robot, self.b
@@ -267,7 +276,9 @@ class _Translation:
                              symbol=moving[MAX_JOINTS].name, fix="fix some joints (type=\"fixed\"), or split "
                              "the robot")
         self.check_masses_move()
-        b.parameter("g", GRAVITY, unit="m/s^2", description="gravitational acceleration, along -z of the root link")
+        b.parameter("g", GRAVITY, unit="m/s^2", description=Text({
+            "fr": "accélération de la pesanteur, selon −z du corps de base",
+            "en": "gravitational acceleration, along -z of the root link"}))
         for joint in order:  # coordinates, rates and inputs first: the mimics refer to them
             if joint.moves and joint.mimic is None:
                 q = self.names.take(joint.name, suffixes=("_dot", "_ddot"))
@@ -302,18 +313,28 @@ class _Translation:
         return out
 
     @staticmethod
-    def joint_text(joint: UrdfJoint) -> str:
+    def joint_text(joint: UrdfJoint) -> Text:
         lim = joint.limits
         unit, effort = ("m", "N") if joint.type == "prismatic" else ("rad", "N·m")
         speed = "m/s" if joint.type == "prismatic" else "rad/s"
-        text = f"{joint.type} joint `{joint.name}` ({joint.parent} → {joint.child})"
-        if joint.type != "continuous" and lim.lower is not None and lim.upper is not None and lim.lower < lim.upper:
-            text += f", limits [{lim.lower:g}, {lim.upper:g}] {unit}"
-        if lim.effort:
-            text += f", effort ≤ {lim.effort:g} {effort}"
-        if lim.velocity:
-            text += f", speed ≤ {lim.velocity:g} {speed}"
-        return text
+
+        def num(x: float, lang: str) -> str:
+            return f"{x:g}".replace(".", ",") if lang == "fr" else f"{x:g}"
+
+        texts = {}
+        for lang, (head, limits, force, pace) in {
+                "fr": (f"liaison {_KIND_FR.get(joint.type, joint.type)} `{joint.name}`", "limites", "effort", "vitesse"),
+                "en": (f"{joint.type} joint `{joint.name}`", "limits", "effort", "speed")}.items():
+            text = f"{head} ({joint.parent} → {joint.child})"
+            if joint.type != "continuous" and lim.lower is not None and lim.upper is not None and lim.lower < lim.upper:
+                sep = " ; " if lang == "fr" else ", "  # the French interval [a ; b]: its numbers have decimal commas
+                text += f", {limits} [{num(lim.lower, lang)}{sep}{num(lim.upper, lang)}] {unit}"
+            if lim.effort:
+                text += f", {force} ≤ {num(lim.effort, lang)} {effort}"
+            if lim.velocity:
+                text += f", {pace} ≤ {num(lim.velocity, lang)} {speed}"
+            texts[lang] = text
+        return Text(texts)
 
     def check_masses_move(self) -> None:
         """Every independent joint must move some mass, or its Lagrange equation reads 0 = 0 (M singular)."""
@@ -426,9 +447,11 @@ class _Translation:
         for joint_name, q in self.coordinate.items():
             joint = self.robot.joints[joint_name]
             tau = self.names.take(joint_name, "tau_")
-            what = "force" if joint.type == "prismatic" else "torque"
+            what, quoi = ("force", "effort") if joint.type == "prismatic" else ("torque", "couple")
             self.b.input(tau, unit="N" if joint.type == "prismatic" else "N*m",
-                         description=f"actuator {what} of joint `{joint_name}`", location=self.where(joint.line))
+                         description=Text({"fr": f"{quoi} de l'actionneur de la liaison `{joint_name}`",
+                                           "en": f"actuator {what} of joint `{joint_name}`"}),
+                         location=self.where(joint.line))
             components[q] = se.Symbol(tau)
         if components:
             self.b.generalized_force("actuators", components)

@@ -69,7 +69,8 @@ def _axis_latex(name: str, frames: Collection[str] = ()) -> str:
     """
     if "_" in name.strip("_"):
         head, _, tail = name.partition("_")
-        return rf"\vec{{{head}}}_{{{tail}}}"
+        # z_R_column (a URDF link's frame): the index is itself a name with an index, R_{\mathrm{column}}.
+        return rf"\vec{{{head}}}_{{{_base_latex(tail) if '_' in tail else tail}}}"
     rest = name[1:]
     if name[:1].isalpha() and rest and (rest in frames or (rest[0].isupper() and rest.isalnum())):
         return rf"\vec{{{name[0]}}}_{{{rest}}}"

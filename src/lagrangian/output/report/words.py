@@ -732,6 +732,8 @@ _LOAD_NAMES: dict[str, tuple[str, str]] = {
     "drag": ("traînée", "drag"),
     "torque": ("couple", "torque"),
     "motor": ("moteur", "motor"),
+    "actuators": ("actionneurs", "actuators"),  # a URDF robot's joint torques (model/urdf.py)
+    "joint_damping": ("amortissement des liaisons", "joint damping"),
 }
 
 
