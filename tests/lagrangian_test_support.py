@@ -247,3 +247,14 @@ def interrupt_when_started(command: Sequence[str], env: dict[str, str], ready: b
     stderr = b"".join(chunks).decode()
     return Interrupted(subprocess.CompletedProcess(list(command), proc.returncode, stdout, stderr), stopped,
                        heard[0] - sent if heard else None)
+
+
+def random_point(eom: lagrangian.EquationsOfMotion, rng: np.random.Generator) -> dict:
+    """Random q, q̇, t and parameter values (each parameter its value × [0.6, 1.4]; inputs in [−1, 1]),
+    symbol → number: where two formulations of M and F (the course's, the recursive one) are compared."""
+    values = {s: float(rng.uniform(-np.pi, np.pi)) for s in eom.q}
+    values.update({s: float(rng.uniform(-2, 2)) for s in eom.qd})
+    values[eom.t] = 0.3
+    for p in eom.model.parameters:
+        values[p.symbol] = float(rng.uniform(-1, 1)) if p.input else float(p.value) * float(rng.uniform(0.6, 1.4))
+    return values

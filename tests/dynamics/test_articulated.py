@@ -22,18 +22,11 @@ from lagrangian.model.build import ModelBuilder
 from lagrangian.model.urdf import UrdfNote, parse_urdf
 from lagrangian.model.zoo import lagrange_top, relative_chain, serial_arm
 from lagrangian.numerics import compile_system
+from lagrangian_test_support import random_point
 from urdf_robots import SPATIAL_ARM, TREE, Peer
 
 RTOL = 1e-10
 
-
-def _point(eom, rng: np.random.Generator) -> dict:
-    values = {s: float(rng.uniform(-np.pi, np.pi)) for s in eom.q}
-    values.update({s: float(rng.uniform(-2, 2)) for s in eom.qd})
-    values[eom.t] = 0.3
-    for p in eom.model.parameters:
-        values[p.symbol] = float(rng.uniform(-1, 1)) if p.input else float(p.value) * float(rng.uniform(0.6, 1.4))
-    return values
 
 
 def _close(a, b) -> None:
@@ -74,7 +67,7 @@ def _check_against_course(model, states: int = 2, seed: int = 3) -> None:
     n = len(course.q)
     rng = np.random.default_rng(seed)
     for _ in range(states):
-        values = _point(course, rng)
+        values = random_point(course, rng)
         sub = {k: se.RealDouble(v) for k, v in values.items()}
         M = np.array([[float(e.xreplace(sub)) for e in row] for row in course.M])
         F = np.array([float(e.xreplace(sub)) for e in course.F])

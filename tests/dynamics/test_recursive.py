@@ -18,19 +18,10 @@ from lagrangian.errors import DerivationError
 from lagrangian.model.build import ModelBuilder
 from lagrangian.model.zoo import ARM_AXES, lagrange_top, planar_chain, relative_chain, serial_arm
 from lagrangian.numerics import compile_system, simulate
-from lagrangian_test_support import EXAMPLES_DIR
+from lagrangian_test_support import EXAMPLES_DIR, random_point
 
 RTOL = 1e-10
 
-
-def _point(eom, rng: np.random.Generator) -> dict:
-    """Random q, q̇, t and parameter values (each parameter its value × [0.6, 1.4]; inputs in [−1, 1])."""
-    values = {s: float(rng.uniform(-np.pi, np.pi)) for s in eom.q}
-    values.update({s: float(rng.uniform(-2, 2)) for s in eom.qd})
-    values[eom.t] = 0.3
-    for p in eom.model.parameters:
-        values[p.symbol] = float(rng.uniform(-1, 1)) if p.input else float(p.value) * float(rng.uniform(0.6, 1.4))
-    return values
 
 
 def _course(exprs, values: dict) -> np.ndarray:
@@ -51,7 +42,7 @@ def _check_against_course(model, states: int = 3, seed: int = 1) -> None:
     n = len(course.q)
     rng = np.random.default_rng(seed)
     for _ in range(states):
-        values = _point(course, rng)
+        values = random_point(course, rng)
         M = rec.evaluate([e for row in rec.M for e in row], values)
         _close(M, _course([e for row in course.M for e in row], values))
         _close(np.reshape(M, (n, n)), np.reshape(M, (n, n)).T)
@@ -157,7 +148,7 @@ def test_course_form_stays_available() -> None:
     assert eom.formulation == "recursive"
     assert [eq.coordinate for eq in eom.equations] == [f"q{k}" for k in range(1, 6)]
     course = lagrangian.derive(serial_arm(5), formulation="lagrange")
-    values = _point(course, np.random.default_rng(3))
+    values = random_point(course, np.random.default_rng(3))
     _close(_course([e for row in eom.M for e in row], values), _course([e for row in course.M for e in row], values))
     _close(_course([eom.T, eom.U], values), _course([course.T, course.U], values))
     assert "E" in {fi.name for fi in lagrangian.first_integrals(lagrangian.derive(relative_chain(5)))}
@@ -200,7 +191,7 @@ def test_compiled_recursive_code_agrees_and_simulates() -> None:
 def test_expanded_form_and_the_symengine_backend() -> None:
     eom = lagrangian.derive(relative_chain(4))
     rec = eom.recursive
-    values = _point(eom, np.random.default_rng(7))
+    values = random_point(eom, np.random.default_rng(7))
     flat = [e for row in rec.M for e in row]
     expanded = rec.expand(flat + list(rec.F))
     assert all(s in values for e in expanded for s in e.free_symbols)  # no intermediate left
