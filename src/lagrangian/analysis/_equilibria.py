@@ -400,9 +400,7 @@ def _within_friction_cone(system: _StaticSystem, eq: Equilibrium, branch: Mappin
             break
         # Coulomb's adherence |T| ≤ f_s N, written as a teacher does: |T|/N ≤ f_s (tan α ≤ f_s).
         ratio = sympy.simplify(sympy.Abs(value) / sympy.Abs(N._sympy_().xreplace(positive)))
-        fs_ = fs._sympy_().xreplace(positive)
-        rel = sympy.Le(ratio, fs_)
-        conds.append(rel if rel not in (sympy.true, sympy.false) else rel)
+        conds.append(sympy.Le(ratio, fs._sympy_().xreplace(positive)))
     if not conds:
         if eq.numeric is not None and not system.holds_by_friction(eq.numeric, numbers):
             return replace(eq, exists=False)
