@@ -50,6 +50,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import faulthandler
+import gc
 import hashlib
 import io
 import json
@@ -491,7 +492,7 @@ def _classify(run: Running, status: int, canary: Path) -> dict:
 def campaign(cases: int, seed: int, out: Path, *, jobs: int = 1, time_limit: float = 30.0,
              memory_gib: float = 4.0, examples: list[str] | None = None, exclude: list[str] = (),
              quiet: bool = False, replay: list[Path] | None = None, warm_up: bool = True,
-             model_format: str = "toml") -> dict:
+             model_format: str = "toml", slow_s: float = 10.0) -> dict:
     """Run ``cases`` mutated models (or the files of ``replay``); return the summary (also in OUT/summary.json)."""
     import lagrangian  # noqa: F401 -- imported once here, shared by every forked case
 
@@ -510,11 +511,15 @@ def campaign(cases: int, seed: int, out: Path, *, jobs: int = 1, time_limit: flo
     memory = int(memory_gib * 2**30)
     if warm_up:
         _warm_up(work)
+    # The objects imported so far go to the collector's permanent generation: a forked case's
+    # collections then leave them alone instead of touching (and so copying) their pages.
+    gc.freeze()
     counts: Counter = Counter()
     stage_counts: Counter = Counter()
     stage_seconds: Counter = Counter()
     findings: list[dict] = []
     slowest: list[tuple[float, int]] = []
+    slow: list[dict] = []  # the cases over slow_s: not defects (a loaded machine slows them), kept to replay
     running: dict[int, Running] = {}
     seen: set[bytes] = set()  # digests of the model texts run so far
     duplicates = [0]
@@ -570,6 +575,12 @@ def campaign(cases: int, seed: int, out: Path, *, jobs: int = 1, time_limit: flo
                              "what": _what(record)})
             if not quiet:
                 print(f"case {run.number}: {outcome} ({findings[-1]['stage']}): {findings[-1]['what']}", flush=True)
+        elif record["seconds"] > slow_s:
+            (model_file,) = [p for p in run.case_dir.iterdir() if p.stem == "model" and p.suffix in (".toml", ".urdf")]
+            name = f"slow-{run.number:06d}{model_file.suffix}"
+            shutil.copyfile(model_file, out / "findings" / name)
+            slow.append({"case": run.number, "seconds": record["seconds"], "file": f"findings/{name}",
+                         "stage": record["stages"][-1]["stage"] if record.get("stages") else None})
         shutil.rmtree(run.case_dir, ignore_errors=True)
 
     def summary() -> dict:
@@ -581,6 +592,7 @@ def campaign(cases: int, seed: int, out: Path, *, jobs: int = 1, time_limit: flo
                   "stages": {f"{s}:{o}": n for (s, o), n in sorted(stage_counts.items())},
                   "stage_seconds": {s: round(v, 2) for s, v in sorted(stage_seconds.items())},
                   "slowest": [{"case": c, "seconds": s} for s, c in sorted(slowest, reverse=True)[:10]],
+                  "slow_s": slow_s, "slow": slow,
                   "findings": findings}
         _write_json(str(out / "summary.json"), record)  # after every case: a stopped campaign keeps its count
         return record
@@ -657,6 +669,8 @@ def print_summary(summary: dict) -> None:
           f"{summary['time_limit_s']} s, memory cap {summary['memory_gib']} GiB)")
     for outcome in OUTCOMES:
         print(f"  {outcome:<10} {summary['outcomes'][outcome]}")
+    if summary["slow"]:
+        print(f"  over {summary['slow_s']} s (not defects; kept under findings/ to replay): {len(summary['slow'])}")
     if summary["findings"]:
         print("findings:")
         for f in summary["findings"][:50]:
@@ -670,6 +684,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seed", type=int, default=0, help="random seed: the same seed makes the same cases")
     parser.add_argument("--jobs", type=int, default=1, help="cases run at once (default 1)")
     parser.add_argument("--time-limit", type=float, default=30.0, help="seconds per case before it is a hang")
+    parser.add_argument("--slow", type=float, default=10.0,
+                        help="a case longer than this (s) is kept under findings/slow-*.toml (default 10)")
     parser.add_argument("--memory", type=float, default=4.0, help="memory cap per case, GiB (default 4)")
     parser.add_argument("--example", action="append", help="mutate only this example (repeatable)")
     parser.add_argument("--exclude", action="append", default=[], help="do not mutate this example (repeatable)")
@@ -681,7 +697,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     summary = campaign(args.cases, args.seed, args.out, jobs=args.jobs, time_limit=args.time_limit,
                        memory_gib=args.memory, examples=args.example, exclude=args.exclude, quiet=args.quiet,
-                       replay=args.replay, model_format=args.model_format)
+                       replay=args.replay, model_format=args.model_format, slow_s=args.slow)
     print_summary(summary)
     return 1 if any(summary["outcomes"][k] for k in BAD) else 0
 
