@@ -42,9 +42,43 @@ enum { LG_DONE = 0, LG_SINGULAR = 1, LG_NONFINITE = 2, LG_UNDERFLOW = 3, LG_EVEN
  * [13] stop request: set non-zero by another thread (Ctrl-C); the run returns LG_INTERRUPTED
  *      at its next step, so it is read through a volatile pointer on every step.
  * [14] stiffness test every this many accepted steps (dop853's NSTIFF; 0: never)
- * [15] [16] [17] the test's state: consecutive stiff steps (IASTI), non-stiff ones (NONSTI), last h|lambda| */
+ * [15] [16] [17] the test's state: consecutive stiff steps (IASTI), non-stiff ones (NONSTI), last h|lambda|
+ * [18] [19] the pace check's state (lg_pace_hopeless): t at its last window's start, windows in a row
+ *      that projected past max steps
+ * [20] the steps the run would have needed, when the pace check stopped it (0 otherwise) */
 enum { C_T, C_H, C_RTOL, C_ATOL, C_MAXSTEP, C_NFEV, C_STEPS, C_REJECTED, C_FIXED, C_MAXSTEPS, C_NEV,
-       C_EVCAP, C_PIVOT, C_STOP, C_NSTIFF, C_IASTI, C_NONSTI, C_HLAMB, C_SIZE };
+       C_EVCAP, C_PIVOT, C_STOP, C_NSTIFF, C_IASTI, C_NONSTI, C_HLAMB, C_PACE_T, C_PACE_OVER, C_PROJECTED,
+       C_SIZE };
+
+/* Accepted steps per window of the pace check. */
+#define LG_PACE_WINDOW 1048576.0
+
+/* The pace check: is a run that cannot reach t_stop within max steps already plain?
+ *
+ * A run limited by accuracy on a motion far faster than its span (an undamped spring of
+ * 1e17 N/m over 0.3 s needs some 4e8 steps) is not stiff, so the stiffness test lets it go on;
+ * it used to crawl for minutes until max steps stopped it with the same error this gives
+ * at once.  At the end of every window of LG_PACE_WINDOW accepted steps, the steps still
+ * needed at the window's mean step are projected; two windows in a row past max steps stop
+ * the run (a transient's small steps, which later grow, rarely fill two windows).  A fixed
+ * step knows its count from the start.  Returns 1 when hopeless, the projection in ctl. */
+static int lg_pace_hopeless(double *ctl, double t, double t_stop, double fixed_h)
+{
+    const double steps = ctl[C_STEPS];
+    if (steps == 0.0) ctl[C_PACE_T] = t;
+    if (fixed_h > 0.0) {
+        const double needed = steps + ceil((t_stop - t) / fixed_h - 1e-9);
+        if (steps == 0.0 && needed > ctl[C_MAXSTEPS]) { ctl[C_PROJECTED] = needed; return 1; }
+        return 0;
+    }
+    if (steps == 0.0 || fmod(steps, LG_PACE_WINDOW) != 0.0 || t == ctl[C_PACE_T]) return 0;
+    const double needed = steps + (t_stop - t) / ((t - ctl[C_PACE_T]) / LG_PACE_WINDOW);
+    ctl[C_PACE_T] = t;
+    ctl[C_PACE_OVER] = needed > ctl[C_MAXSTEPS] ? ctl[C_PACE_OVER] + 1 : 0.0;
+    if (ctl[C_PACE_OVER] < 2) return 0;
+    ctl[C_PROJECTED] = needed;
+    return 1;
+}
 
 static int lg_stop_requested(const volatile double *stop)
 {
@@ -361,7 +395,9 @@ static int lg_dop853_run(double *ctl, const volatile double *stop, double *y, co
     }
 
     while (t < t_stop) {
-        if (ctl[C_STEPS] >= ctl[C_MAXSTEPS]) { ctl[C_T] = t; ctl[C_H] = h_abs; return LG_MAXSTEPS; }
+        if (ctl[C_STEPS] >= ctl[C_MAXSTEPS] || lg_pace_hopeless(ctl, t, t_stop, fixed ? h_abs : 0.0)) {
+            ctl[C_T] = t; ctl[C_H] = h_abs; return LG_MAXSTEPS;
+        }
         if (lg_stop_requested(stop)) { ctl[C_T] = t; ctl[C_H] = h_abs; return LG_INTERRUPTED; }
         const double min_step = fmax(10 * fabs(nextafter(t, INFINITY) - t), span_floor);
         if (h_abs > max_step) h_abs = max_step;
@@ -569,7 +605,7 @@ static int lg_gauss_run(double *ctl, const volatile double *stop, double *y, con
         ++*i_out;
     }
     while (t < t_stop) {
-        if (ctl[C_STEPS] >= ctl[C_MAXSTEPS]) return LG_MAXSTEPS;
+        if (ctl[C_STEPS] >= ctl[C_MAXSTEPS] || lg_pace_hopeless(ctl, t, t_stop, h)) { ctl[C_T] = t; return LG_MAXSTEPS; }
         if (lg_stop_requested(stop)) { ctl[C_T] = t; return LG_INTERRUPTED; }
         const double k_index = floor((t - t_origin) / h + 0.5) + 1.0;
         double t_new = t_origin + k_index * h;
