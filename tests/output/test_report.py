@@ -227,6 +227,32 @@ def test_a_dissipative_system_is_not_conservative():
     assert "n'est pas conservatif" in text and "frottement de Coulomb" in text
 
 
+def test_the_exact_coulomb_law_keeps_sgn_in_the_power_balance(tmp_path):
+    # tools/fuzz.py seed 103, case 3020: block_on_belt with regularization = 0 (the exact law) crashed the
+    # report, SymPy's simplify having rewritten sgn(ẋ − v_b) by cases.  The friction's power in R0 is
+    # T·V(B) = (−f m g sgn(ẋ − v_b) x0)·(ẋ x0).
+    text = (EXAMPLES_DIR / "block_on_belt.toml").read_text(encoding="utf-8")
+    assert 'regularization = "eps"' in text
+    path = tmp_path / "exact.toml"
+    path.write_text(text.replace('regularization = "eps"', 'regularization = "0"'), encoding="utf-8")
+    r = report(lagrangian.derive(lagrangian.load_model(path)), lang="en")
+    assert _norm(r"P(\text{friction}) = -m f g \dot{x} \operatorname{sgn}\left(\dot{x} - v_{b}\right)") \
+        in _norm(_all_math(r))
+
+
+def test_a_function_by_cases_is_printed():
+    import sympy
+
+    from lagrangian.output._notation import Notation
+
+    x, v = sympy.symbols("x_dot v_b")
+    e = sympy.Piecewise((0, sympy.Eq(v, x)), (x**2 / abs(v - x), True))
+    n = Notation(("x",), ("v_b",))
+    xd = n.symbol("x_dot")  # x with a combining dot
+    assert n.text(e) == f"{{0 if v_b = {xd}; {xd}²/|v_b − {xd}| otherwise}}"
+    assert n.latex(e).startswith(r"\begin{cases} 0 & \text{if } v_{b} = \dot{x} \\ ")
+
+
 # -- long expressions --------------------------------------------------------------------------------
 def test_a_40_link_chain_is_quick_and_summarized():
     eom = lagrangian.derive(planar_chain(40))

@@ -433,12 +433,39 @@ class Notation:
             return self._number(f, latex)
         if isinstance(f, sympy.Pow):
             return self._power(f, latex)
+        if isinstance(f, sympy.Piecewise):  # a Function whose arguments are (value, condition) pairs
+            return self._piecewise(f, latex)
         if isinstance(f, sympy.Function):
             return self._function(f, latex)
         if isinstance(f, (sympy.Add, sympy.Mul)):
             inner = self._render(f, latex)
             return rf"\left({inner}\right)" if latex else f"({inner})"
         return sympy.latex(f) if latex else str(f)
+
+    def _piecewise(self, f: sympy.Piecewise, latex: bool) -> str:
+        """A function defined by cases (SymPy's simplification of sgn(v) makes one: 0 where v = 0)."""
+        rows = []
+        for value, condition in f.args:
+            shown = self._render(value, latex)
+            if condition == sympy.true:
+                rows.append(rf"{shown} & \text{{otherwise}}" if latex else f"{shown} otherwise")
+            else:
+                rows.append(rf"{shown} & \text{{if }} {self._condition(condition, latex)}" if latex
+                            else f"{shown} if {self._condition(condition, latex)}")
+        if latex:
+            return r"\begin{cases} " + r" \\ ".join(rows) + r" \end{cases}"
+        return "{" + "; ".join(rows) + "}"
+
+    def _condition(self, condition: sympy.Basic, latex: bool) -> str:
+        if isinstance(condition, sympy.core.relational.Relational):
+            op = {"==": "=", "!=": r"\neq" if latex else "≠", ">=": r"\geq" if latex else "≥",
+                  "<=": r"\leq" if latex else "≤"}.get(condition.rel_op, condition.rel_op)
+            return f"{self._render(condition.lhs, latex)} {op} {self._render(condition.rhs, latex)}"
+        if isinstance(condition, (sympy.And, sympy.Or)):
+            word = (r"\ \text{and}\ " if latex else " and ") if isinstance(condition, sympy.And) else \
+                (r"\ \text{or}\ " if latex else " or ")
+            return word.join(self._condition(c, latex) for c in condition.args)
+        return sympy.latex(condition) if latex else str(condition)
 
     def _power(self, f: sympy.Pow, latex: bool) -> str:
         base, exp = f.base, f.exp
