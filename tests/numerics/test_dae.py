@@ -117,6 +117,19 @@ def test_initial_state_off_the_constraint_is_refused_with_the_residual_and_a_fix
     assert x**2 + y**2 == pytest.approx(0.25, abs=1e-12)
 
 
+def test_a_constraint_with_no_real_solution_is_refused_without_a_suggestion(tmp_path) -> None:
+    # tools/fuzz.py seed 103, case 4496: x² + y² + l² = 0 (a "--" for "-"); the search for the nearest
+    # consistent state met a singular Jacobian at x = y = 0 and escaped as numpy's LinAlgError.
+    text = PENDULUM.read_text(encoding="utf-8")
+    assert 'holonomic = "x^2 + y^2 - l^2"' in text
+    path = tmp_path / "no_solution.toml"
+    path.write_text(text.replace('holonomic = "x^2 + y^2 - l^2"', 'holonomic = "x^2 + y^2 -- l^2"'), encoding="utf-8")
+    with pytest.raises(SimulationError) as exc:
+        simulate(path, 0.3)
+    assert "violates the holonomic constraint `length`" in exc.value.message
+    assert "none was found near these" in exc.value.fix and "real solution" in exc.value.fix
+
+
 def test_initial_rates_off_a_nonholonomic_constraint_are_refused() -> None:
     with pytest.raises(SimulationError) as exc:
         simulate(EXAMPLES_DIR / "rolling_coin.toml", 1.0, initial={"y_dot": 0.5})

@@ -45,8 +45,11 @@ def project_many(system: ConstrainedSystem, t, Y: np.ndarray, p: np.ndarray, tol
             if not bad.any():
                 break
             Ah = A[bad][:, hol]
-            X = np.linalg.solve(M[bad], np.swapaxes(Ah, 1, 2))  # M⁻¹ A_hᵀ
-            Y[bad, :n] -= (X @ np.linalg.solve(Ah @ X, fh[bad][..., None]))[..., 0]
+            try:
+                X = np.linalg.solve(M[bad], np.swapaxes(Ah, 1, 2))  # M⁻¹ A_hᵀ
+                Y[bad, :n] -= (X @ np.linalg.solve(Ah @ X, fh[bad][..., None]))[..., 0]
+            except np.linalg.LinAlgError:
+                raise _singular(t, Y, bad, fh) from None
             changed = True
         else:
             k = int(np.argmax(np.max(np.abs(fh), axis=1)))
@@ -58,10 +61,25 @@ def project_many(system: ConstrainedSystem, t, Y: np.ndarray, p: np.ndarray, tol
     M, _, A, _, g, _ = system.parts(t, Y, p)
     bad = np.max(np.abs(g), axis=1) > tol
     if bad.any():
-        X = np.linalg.solve(M[bad], np.swapaxes(A[bad], 1, 2))
-        Y[bad, n:] -= (X @ np.linalg.solve(A[bad] @ X, g[bad][..., None]))[..., 0]
+        try:
+            X = np.linalg.solve(M[bad], np.swapaxes(A[bad], 1, 2))
+            Y[bad, n:] -= (X @ np.linalg.solve(A[bad] @ X, g[bad][..., None]))[..., 0]
+        except np.linalg.LinAlgError:
+            raise _singular(t, Y, bad, g) from None
         changed = True
     return Y, changed
+
+
+def _singular(t, Y: np.ndarray, bad: np.ndarray, residual: np.ndarray) -> SimulationError:  # type: ignore[no-untyped-def]
+    """A_h M⁻¹ A_hᵀ (or M) singular on the way: the Newton step is not defined there."""
+    k = int(np.flatnonzero(bad)[0])
+    t_k = float(np.broadcast_to(t, (len(Y),))[k])
+    return SimulationError(
+        f"The projection onto the constraints met a singular Jacobian at t = {t_k:.9g} (residual "
+        f"{np.max(np.abs(residual[k])):.3g}): the constraint rows are dependent there, or the constraints "
+        "have no solution near this state (a sum of squares set equal to a negative number).",
+        fix="check the constraint expressions, and start from a state that satisfies them",
+        t=t_k, state=Y[k].copy())
 
 
 def project(system: ConstrainedSystem, t: float, y: np.ndarray, p: np.ndarray, tol: float) -> tuple[np.ndarray, bool]:
@@ -114,16 +132,25 @@ def check_initial(system: ConstrainedSystem, t0: float, y0: np.ndarray, p: np.nd
     bad_g = [k for k in range(system.m) if abs(g[k]) > CONSISTENCY_TOL]
     if not bad_f and not bad_g:
         return
-    fixed, _ = project(system, t0, y0, p, tol=1e-14)
+    try:  # the nearest consistent state, as a suggestion
+        fixed: np.ndarray | None = project(system, t0, y0, p, tol=1e-14)[0]
+    except SimulationError:
+        fixed = None
     if bad_f:
         k = bad_f[0]
-        changes = [f"{c} = {fixed[i]:.15g}" for i, c in enumerate(system.coordinates) if abs(fixed[i] - y0[i]) > 1e-15]
         row = eom.constraints[k]
+        if fixed is None:
+            hint = ("give initial values that satisfy it; none was found near these (check that the constraint "
+                    "has a real solution: a sum of squares cannot equal a negative number)")
+        else:
+            changes = [f"{c} = {fixed[i]:.15g}" for i, c in enumerate(system.coordinates)
+                       if abs(fixed[i] - y0[i]) > 1e-15]
+            hint = "give initial values that satisfy it, e.g. the nearest such state: " + ", ".join(changes)
         raise SimulationError(
             f"The initial state violates the holonomic constraint `{row.name}`{_where(eom, row.name)}: "
-            f"`{row.expression}` = {f[k]:.6g} at t = {t0:g}, not 0.",
-            fix="give initial values that satisfy it, e.g. the nearest such state: " + ", ".join(changes),
-            t=t0, state=y0.copy())
+            f"`{row.expression}` = {f[k]:.6g} at t = {t0:g}, not 0.", fix=hint, t=t0, state=y0.copy())
+    if fixed is None:  # pragma: no cover - the velocity step is linear: singular only where the rows are redundant
+        fixed = np.array(y0, dtype=float)
     k = bad_g[0]
     changes = [f"{c}_dot = {fixed[n + i]:.15g}" for i, c in enumerate(system.coordinates)
                if abs(fixed[n + i] - y0[n + i]) > 1e-15]
