@@ -234,7 +234,7 @@ def _rows_of(kin: Kinematics, c: Constraint) -> tuple[list[ConstraintRow], list[
     rows = [_row(kin, c, name, e) for name, _, e in kept]
     for row in rows:
         if all(are_zero(row.coefficients)):
-            raise _error(kin, c, f"constraint row `{row.name}` = `{row.expression}` involves no coordinate "
+            raise _error(kin, c, f"constraint row `{row.name}` = `{str(row.expression).replace('**', '^')}` involves no coordinate "
                          f"{'' if c.kind == 'holonomic' else 'rate '}, so it cannot be satisfied by the motion",
                          fix="check the expression: it must involve the coordinates "
                              + ("(f(q, t) = 0)" if c.kind == "holonomic" else "through their rates (a·q̇ + b = 0)"))

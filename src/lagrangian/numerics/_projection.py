@@ -148,7 +148,8 @@ def check_initial(system: ConstrainedSystem, t0: float, y0: np.ndarray, p: np.nd
             hint = "give initial values that satisfy it, e.g. the nearest such state: " + ", ".join(changes)
         raise SimulationError(
             f"The initial state violates the holonomic constraint `{row.name}`{_where(eom, row.name)}: "
-            f"`{row.expression}` = {f[k]:.6g} at t = {t0:g}, not 0.", fix=hint, t=t0, state=y0.copy())
+            f"`{str(row.expression).replace('**', '^')}` = {f[k]:.6g} at t = {t0:g}, not 0.",  # in the file's syntax
+            fix=hint, t=t0, state=y0.copy())
     if fixed is None:  # pragma: no cover - the velocity step is linear: singular only where the rows are redundant
         fixed = np.array(y0, dtype=float)
     k = bad_g[0]
