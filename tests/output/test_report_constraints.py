@@ -359,3 +359,23 @@ def test_a_constraint_without_description_is_named_by_its_rank_not_its_identifie
         whole = _all(_report(eom, lang=lang))
         assert "rod_len" not in whole and r"rod\_len" not in whole and r"\mathrm{rod}" not in whole
         assert label in whole
+
+
+def test_the_pendulums_multiplier_is_written_on_the_constraint():
+    # λ is printed with x² + y² replaced by l² (the constraint holds all along the motion); on the circle
+    # x = l sin θ, y = −l cos θ it is −N/(2l) with the rod's tension N = m (g cos θ + l θ̇²), the closed
+    # form of the simple pendulum (R = 2λ OP, N = −R·OP/l).
+    import sympy
+
+    from lagrangian.output.report.build import Context
+    from lagrangian.output.report.steps.equations import _multipliers, _on_the_constraints, _simple
+
+    eom = eom_of("pendulum_tension.toml")
+    c = Context(eom, (), "en")
+    (shown,) = [_on_the_constraints(c, _simple(c, f)) for f in _multipliers(c)]
+    names = {s.name: s for s in shown.free_symbols}
+    assert "l" in names and not {"x"} & set(names)  # the denominator is 2 l², not 2 (x² + y²)
+    m, g, l, th, w = sympy.symbols("m g l theta omega")
+    on_circle = shown.subs({names["y"]: -l * sympy.cos(th), names["x_dot"]: l * w * sympy.cos(th),
+                            names["y_dot"]: l * w * sympy.sin(th), names["m"]: m, names["g"]: g, names["l"]: l})
+    assert sympy.simplify(on_circle + m * (g * sympy.cos(th) + l * w**2) / (2 * l)) == 0

@@ -23,6 +23,7 @@ from ...._big_numbers import has_big_numbers
 from ...._identity import are_zero
 from ....analysis import Verification
 from ..._course import EquationRow, IntegralRow
+from ..._notation import Opaque
 from ..build import Context
 from ..document import Block, Display, Equation, Math, Para, Runs, Section
 from ....model import ORIGIN
@@ -274,8 +275,8 @@ def step7(c: Context) -> Section:
             twice = rows[0].kind == "holonomic"
             times = {"fr": ("deux fois", "une fois"), "en": ("twice", "once")}[c.lang][0 if twice else 1]
             blocks.append(Para(w("multiplier is", times=times)))
-        blocks += c.show([c.equation(f"{c.tex(r.multiplier)} = ", _simple(c, f)) for r, f in zip(rows, formulas)],
-                         "λ")
+        blocks += c.show([c.equation(f"{c.tex(r.multiplier)} = ", _on_the_constraints(c, _simple(c, f)))
+                          for r, f in zip(rows, formulas)], "λ")
     for reaction in c.eom.reactions:
         if not reaction.physical:
             continue
@@ -309,6 +310,48 @@ def _multipliers(c: Context) -> tuple[se.Basic, ...] | None:
         return multiplier_formulas(c.eom)  # type: ignore[no-any-return]
     except DerivationError:
         return None
+
+
+def _on_the_constraints(c: Context, e: sympy.Basic) -> sympy.Basic:
+    """``e`` with each factor of its numerator and denominator reduced modulo the holonomic constraints
+    f_k(q, t) = 0, which hold all along the motion, where that shortens the factor.
+
+    The pendulum's λ = m (g y − ẋ² − ẏ²) / (2 (x² + y²)) is written m (g y − ẋ² − ẏ²) / (2 l²), as a
+    teacher would (x² + y² − l² = 0).  The reduction is the remainder of the division by the
+    constraints' Gröbner basis (Cox, Little & O'Shea, *Ideals, Varieties, and Algorithms*, §2.3),
+    tried only where every constraint is a polynomial in the coordinates.
+    """
+    holonomic = [r.expression for r in c.eom.constraints if r.kind == "holonomic"]
+    if not holonomic or not isinstance(e, sympy.Basic) or e.atoms(Opaque) or len(holonomic) > 3:
+        return e
+    try:
+        # the same symbols as in e (the printed forms may carry assumptions: x real, l positive)
+        own = {s.name: s for s in e.free_symbols}
+        fs = [f.xreplace({s: own.get(s.name, s) for s in f.free_symbols}) for f in map(sympy.sympify, map(c.ex, holonomic))]
+        names = set(c.eom.coordinates)
+        q = sorted({s for f in fs for s in f.free_symbols if s.name in names}, key=lambda s: s.name)
+        if not q or not all(f.is_polynomial(*q) for f in fs):
+            return e
+        basis = list(sympy.groebner(fs, *q, order="grevlex").exprs)
+    except (sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError):  # pragma: no cover - kept as is
+        return e
+
+    def reduced(product: sympy.Basic) -> sympy.Basic:
+        out = []
+        for factor in sympy.Mul.make_args(product):
+            base, power = factor.as_base_exp()
+            if base.is_polynomial(*q) and base.free_symbols & set(q):
+                try:  # (reduced builds a domain holding the factor's other symbols, rates and parameters)
+                    shorter = sympy.factor(sympy.reduced(sympy.expand(base), basis, *q, order="grevlex")[1])
+                except (sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError):  # pragma: no cover
+                    shorter = base
+                if sympy.count_ops(shorter) < sympy.count_ops(base):
+                    base = shorter
+            out.append(base**power)
+        return sympy.Mul(*out)
+
+    numerator, denominator = sympy.fraction(sympy.factor(e))
+    return reduced(numerator) / reduced(denominator)
 
 
 #: Largest expression (operations) that the report simplifies with SymPy before printing it.
