@@ -209,7 +209,9 @@ def _top_form(red: CyclicReduction, eom: EquationsOfMotion, numbers: dict[se.Bas
     else:
         checks.append(red.block[0][0] - A * se.sin(th) ** 2)
     U = red.regular_part
-    up, down = U.subs({th: 0}), U.subs({th: se.pi})
+    up, down = _at(U, th, se.Integer(0)), _at(U, th, se.pi)
+    if up is None or down is None:  # U undefined at a pole (cos(log θ)): not the top's U0 + m g a cos θ
+        return None
     U0, mga = se.expand((up + down) / 2), se.expand((up - down) / 2)
     checks.append(U - U0 - mga * se.cos(th))
     if not all(are_zero(checks)):
@@ -312,43 +314,54 @@ def _sleeping(red: CyclicReduction, top: TopForm | None, numbers: dict[se.Basic,
     """
     if not red.angle or len(red.cyclic) > 2:
         return ()
-    th, P = red.symbol, red.momentum_symbols
-    ip = red.cyclic.index(red.precession)
     out = []
     for theta_s, at in ((0.0, se.Integer(0)), (math.pi, se.pi)):
-        if not are_zero([red.determinant.subs({th: at})])[0]:
-            continue
-        if red.spin is not None:  # (K_s − B_ψ, H − B_φ) in the range of M_cc(θ_s)
-            is_ = red.cyclic.index(red.spin)
-            m_ss = red.block[is_][is_].subs({th: at})
-            if are_zero([m_ss])[0]:
-                continue
-            K_s = red.offset[ip] + (P[is_] - red.offset[is_]) * red.block[ip][is_].subs({th: at}) / m_ss
-        else:
-            K_s = red.offset[ip]
-        K_s = se.expand(K_s.subs({th: at}))
-        n = _taylor(red.numerator.subs({P[ip]: K_s}), th, at, 4)
-        d = _taylor(red.determinant, th, at, 4)
-        w = _taylor(red.regular_part, th, at, 2)
-        if not all(are_zero(n[:2] + d[:2])) or are_zero([d[2]])[0]:
-            continue
-        q0 = n[2] / d[2]
-        q1 = (n[3] - q0 * d[3]) / d[2]
-        q2 = (n[4] - q0 * d[4] - q1 * d[3]) / d[2]
-        if not are_zero([q1 / 2 + w[1]])[0]:  # not an equilibrium of θ
-            continue
-        stiffness = tidy(q2 + 2 * w[2], P)
-        value = float(stiffness.subs(numbers))
-        stable = None if value == 0.0 else value > 0
-        spin = criterion = critical = None
-        if top is not None and top.C is not None:
-            A, C, mga, _ = top.values
-            spin = numbers[P[red.cyclic.index(red.spin)]] / C  # type: ignore[arg-type]
-            rhs = 4 * A * mga * math.cos(theta_s)
-            criterion = ((C * spin) ** 2, rhs)  # type: ignore[operator]
-            critical = math.sqrt(rhs) / C if rhs > 0 else None  # type: ignore[operator]
-        out.append(SleepingTop(theta_s, stiffness, value, stable, spin, criterion, critical))
+        try:
+            entry = _sleeping_at(red, top, numbers, theta_s, at)
+        except RuntimeError:  # SymEngine: an expression undefined at the pole (log θ at θ = 0)
+            entry = None
+        if entry is not None:
+            out.append(entry)
     return tuple(out)
+
+
+def _sleeping_at(red: CyclicReduction, top: TopForm | None, numbers: dict[se.Basic, float], theta_s: float,
+                 at: se.Basic) -> SleepingTop | None:
+    """`_sleeping` at one pole θ_s (0 or π), or None where the top cannot sleep there."""
+    th, P = red.symbol, red.momentum_symbols
+    ip = red.cyclic.index(red.precession)
+    if not are_zero([red.determinant.subs({th: at})])[0]:
+        return None
+    if red.spin is not None:  # (K_s − B_ψ, H − B_φ) in the range of M_cc(θ_s)
+        is_ = red.cyclic.index(red.spin)
+        m_ss = red.block[is_][is_].subs({th: at})
+        if are_zero([m_ss])[0]:
+            return None
+        K_s = red.offset[ip] + (P[is_] - red.offset[is_]) * red.block[ip][is_].subs({th: at}) / m_ss
+    else:
+        K_s = red.offset[ip]
+    K_s = se.expand(K_s.subs({th: at}))
+    n = _taylor(red.numerator.subs({P[ip]: K_s}), th, at, 4)
+    d = _taylor(red.determinant, th, at, 4)
+    w = _taylor(red.regular_part, th, at, 2)
+    if not all(are_zero(n[:2] + d[:2])) or are_zero([d[2]])[0]:
+        return None
+    q0 = n[2] / d[2]
+    q1 = (n[3] - q0 * d[3]) / d[2]
+    q2 = (n[4] - q0 * d[4] - q1 * d[3]) / d[2]
+    if not are_zero([q1 / 2 + w[1]])[0]:  # not an equilibrium of θ
+        return None
+    stiffness = tidy(q2 + 2 * w[2], P)
+    value = float(stiffness.subs(numbers))
+    stable = None if value == 0.0 else value > 0
+    spin = criterion = critical = None
+    if top is not None and top.C is not None:
+        A, C, mga, _ = top.values
+        spin = numbers[P[red.cyclic.index(red.spin)]] / C  # type: ignore[arg-type]
+        rhs = 4 * A * mga * math.cos(theta_s)
+        criterion = ((C * spin) ** 2, rhs)  # type: ignore[operator]
+        critical = math.sqrt(rhs) / C if rhs > 0 else None  # type: ignore[operator]
+    return SleepingTop(theta_s, stiffness, value, stable, spin, criterion, critical)
 
 
 def _steady(red: CyclicReduction, numbers: dict[se.Basic, float], theta0: float) -> SteadyPrecession | None:
@@ -378,8 +391,16 @@ def _singular_angles(red: CyclicReduction) -> tuple[float, ...]:
     """θ = 0 and/or π when det M_cc vanishes there identically (the axis along the vertical)."""
     if not red.angle:
         return ()
-    return tuple(v for v, at in ((0.0, se.Integer(0)), (math.pi, se.pi))
-                 if are_zero([red.determinant.subs({red.symbol: at})])[0])
+    values = ((v, _at(red.determinant, red.symbol, at)) for v, at in ((0.0, se.Integer(0)), (math.pi, se.pi)))
+    return tuple(v for v, det in values if det is not None and are_zero([det])[0])
+
+
+def _at(e: se.Basic, symbol: se.Symbol, at: se.Basic) -> se.Basic | None:
+    """e at symbol = at, or None where SymEngine finds it undefined (log θ at θ = 0: cos of an infinity)."""
+    try:
+        return e.subs({symbol: at})
+    except RuntimeError:
+        return None
 
 
 def _nutation(red: CyclicReduction, curve: Curve, slopes: Curve, level: float, theta0: float,
