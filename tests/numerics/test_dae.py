@@ -214,3 +214,23 @@ def test_property_drift_stays_bounded_and_tension_holds(pendulum, theta0: float,
     theta_dot = (x * traj.qd[:, 1] - y * traj.qd[:, 0]) / l**2
     assert np.allclose(-2 * l * traj.extra["lambda_length"], g * np.cos(theta) + l * theta_dot**2,
                        rtol=1e-8, atol=1e-8)
+
+
+def test_a_mass_of_1e308_is_a_singular_mass_matrix_not_a_lapack_failure(tmp_path) -> None:
+    # tools/fuzz.py seed 104, case 2448: top_reaction with mass = "(m)*1e308": LAPACK's eigenvalue
+    # iteration did not converge on M (numpy's LinAlgError); scaled first, M is found singular in double
+    # precision (its smallest eigenvalue below 1e-12 of its largest), which it is.
+    from lagrangian.numerics._mass_spectrum import mass_eigenvalues
+
+    text = (EXAMPLES_DIR / "top_reaction.toml").read_text(encoding="utf-8")
+    assert '\nmass = "m"\n' in text
+    path = tmp_path / "heavy.toml"
+    path.write_text(text.replace('\nmass = "m"\n', '\nmass = "(m)*1e308"\n', 1), encoding="utf-8")
+    with pytest.raises(SimulationError) as exc:
+        simulate(path, 0.3)
+    assert "singular" in exc.value.message and "1e12 apart" in exc.value.fix
+    # The scaled eigenvalues are those of the matrix (checked on one LAPACK handles unscaled).
+    rng = np.random.default_rng(3)
+    B = rng.normal(size=(4, 4))
+    M = B @ B.T + np.eye(4)
+    assert np.allclose(mass_eigenvalues(M * 1e300) / 1e300, np.linalg.eigvalsh(M), rtol=1e-12)

@@ -19,6 +19,7 @@ import numpy as np
 
 from ..dynamics import EquationsOfMotion
 from ..errors import SimulationError
+from ._mass_spectrum import mass_eigenvalues
 
 if TYPE_CHECKING:  # pragma: no cover
     from ._dae import ConstrainedSystem
@@ -109,10 +110,12 @@ def check_initial(system: ConstrainedSystem, t0: float, y0: np.ndarray, p: np.nd
             "a function of the model (log or sqrt of a non-positive number, a division by zero) or a value overflows.",
             fix="start from a state where every expression of the model is defined, or correct the expression",
             t=t0, state=np.array(y0, dtype=float))
-    w = np.linalg.eigvalsh(0.5 * (M + M.T))
+    w = mass_eigenvalues(M)
     if not w[0] > 1e-12 * max(abs(w[-1]), 1e-300):
-        raise SimulationError(f"The mass matrix M is singular at the initial state (smallest eigenvalue {w[0]:.3g}).",
-                              fix="start away from this configuration, or choose coordinates regular there")
+        raise SimulationError(f"The mass matrix M is singular at the initial state (smallest eigenvalue {w[0]:.3g}, "
+                              f"largest {w[-1]:.3g}: below 1e-12 of it, singular in double precision).",
+                              fix="start away from this configuration, or choose coordinates regular there; masses or "
+                                  "inertias more than 1e12 apart make M singular too")
     # Redundant rows at this state: each row must add to the rank of A M⁻¹ Aᵀ.
     Wt = np.linalg.solve(M, A.T)
     scale = max(1.0, float(np.max(np.abs(A))))

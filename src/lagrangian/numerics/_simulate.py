@@ -38,6 +38,7 @@ from ..model import load_model
 from ..model._assumptions import check_sign
 from ..model._expr import ExpressionError, parse_expression
 from ..model.spec import Model
+from ._mass_spectrum import mass_eigenvalues, mass_eigh
 from ._dae import BAUMGARTE, ConstrainedSystem, constrained_source, simulate_dae
 from ._progress import Reporter, Watch, make_reporter
 from ._ranges import watch_ranges
@@ -182,7 +183,7 @@ def _singularity(system: CompiledSystem, t: float, y: np.ndarray, p: np.ndarray,
             "non-positive number, a division by zero) or a value overflows.",
             fix="start from a state where every expression of the model is defined, or correct the expression",
             t=t, state=y.copy())
-    w, v = np.linalg.eigh(0.5 * (M + M.T))
+    w, v = mass_eigh(M)
     null = v[:, 0]
     parts = [f"{c:+.2f} {name}_dot" for c, name in zip(null, system.coordinates) if abs(c) > 0.1]
     involved = [name for c, name in zip(null, system.coordinates) if abs(c) > 0.1]
@@ -197,7 +198,8 @@ def _singularity(system: CompiledSystem, t: float, y: np.ndarray, p: np.ndarray,
         f"The mass matrix M is singular {where} (t = {t:.9g}, {_state_text(system, y)}; smallest "
         f"eigenvalue {w[0]:.3g}, largest {w[-1]:.3g}): {why}",
         fix="start away from this configuration, or describe the system with coordinates that are regular "
-            "there (e.g. rotate the reference frame so the motion stays away from the singular angle)",
+            "there (e.g. rotate the reference frame so the motion stays away from the singular angle); masses or "
+            "inertias more than 1e12 apart make M singular in double precision too",
         t=t, state=y.copy())
 
 
@@ -418,7 +420,7 @@ def _simulate(source, t_end, *, t_start, initial, parameters, method, rtol, atol
     M, F0 = system.mass_forces(t_start, y0, p)
     if not (np.isfinite(M).all() and np.isfinite(F0).all()):  # nan: no eigenvalue (LinAlgError), say why
         raise _singularity(system, t_start, y0, p, "at the initial state")
-    w = np.linalg.eigvalsh(0.5 * (M + M.T))
+    w = mass_eigenvalues(M)
     if not w[0] > 1e-12 * max(abs(w[-1]), 1e-300):
         raise _singularity(system, t_start, y0, p, "at the initial state")
 
@@ -643,8 +645,8 @@ def _collapsed(system, t0, y0, t, y, p) -> bool:
     M0, M = system.mass_forces(t0, y0, p)[0], system.mass_forces(t, y, p)[0]
     if not (np.isfinite(M0).all() and np.isfinite(M).all()):
         return True  # M undefined there: `_singularity` says which entries
-    w0 = np.linalg.eigvalsh(M0)
-    w = np.linalg.eigvalsh(M)
+    w0 = mass_eigenvalues(M0)
+    w = mass_eigenvalues(M)
     return bool(w[0] < 1e-8 * w0[-1])
 
 
