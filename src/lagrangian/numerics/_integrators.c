@@ -43,12 +43,12 @@ enum { LG_DONE = 0, LG_SINGULAR = 1, LG_NONFINITE = 2, LG_UNDERFLOW = 3, LG_EVEN
  *      at its next step, so it is read through a volatile pointer on every step.
  * [14] stiffness test every this many accepted steps (dop853's NSTIFF; 0: never)
  * [15] [16] [17] the test's state: consecutive stiff steps (IASTI), non-stiff ones (NONSTI), last h|lambda|
- * [18] [19] the pace check's state (lg_pace_hopeless): t at its last window's start, windows in a row
- *      that projected past max steps
- * [20] the steps the run would have needed, when the pace check stopped it (0 otherwise) */
+ * [18] [19] [20] the pace check's state (lg_pace_hopeless): t at its last window's start, windows in a
+ *      row that projected past max steps, the step count that ends the window
+ * [21] the steps the run would have needed, when the pace check stopped it (0 otherwise) */
 enum { C_T, C_H, C_RTOL, C_ATOL, C_MAXSTEP, C_NFEV, C_STEPS, C_REJECTED, C_FIXED, C_MAXSTEPS, C_NEV,
-       C_EVCAP, C_PIVOT, C_STOP, C_NSTIFF, C_IASTI, C_NONSTI, C_HLAMB, C_PACE_T, C_PACE_OVER, C_PROJECTED,
-       C_SIZE };
+       C_EVCAP, C_PIVOT, C_STOP, C_NSTIFF, C_IASTI, C_NONSTI, C_HLAMB, C_PACE_T, C_PACE_OVER, C_PACE_END,
+       C_PROJECTED, C_SIZE };
 
 /* Accepted steps per window of the pace check. */
 #define LG_PACE_WINDOW 1048576.0
@@ -65,13 +65,19 @@ enum { C_T, C_H, C_RTOL, C_ATOL, C_MAXSTEP, C_NFEV, C_STEPS, C_REJECTED, C_FIXED
 static int lg_pace_hopeless(double *ctl, double t, double t_stop, double fixed_h)
 {
     const double steps = ctl[C_STEPS];
-    if (steps == 0.0) ctl[C_PACE_T] = t;
-    if (fixed_h > 0.0) {
-        const double needed = steps + ceil((t_stop - t) / fixed_h - 1e-9);
-        if (steps == 0.0 && needed > ctl[C_MAXSTEPS]) { ctl[C_PROJECTED] = needed; return 1; }
+    if (steps < ctl[C_PACE_END]) return 0;   /* one comparison on every other step */
+    if (steps == 0.0) {                       /* the first step: the first window starts */
+        ctl[C_PACE_T] = t;
+        ctl[C_PACE_END] = LG_PACE_WINDOW;
+        if (fixed_h > 0.0) {
+            const double needed = ceil((t_stop - t) / fixed_h - 1e-9);
+            ctl[C_PACE_END] = INFINITY;
+            if (needed > ctl[C_MAXSTEPS]) { ctl[C_PROJECTED] = needed; return 1; }
+        }
         return 0;
     }
-    if (steps == 0.0 || fmod(steps, LG_PACE_WINDOW) != 0.0 || t == ctl[C_PACE_T]) return 0;
+    ctl[C_PACE_END] = steps + LG_PACE_WINDOW;
+    if (t == ctl[C_PACE_T]) return 0;
     const double needed = steps + (t_stop - t) / ((t - ctl[C_PACE_T]) / LG_PACE_WINDOW);
     ctl[C_PACE_T] = t;
     ctl[C_PACE_OVER] = needed > ctl[C_MAXSTEPS] ? ctl[C_PACE_OVER] + 1 : 0.0;

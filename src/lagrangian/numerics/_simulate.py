@@ -73,7 +73,7 @@ _STIFF = 8  # LG_STIFF: dop853's stiffness test fired (`_integrators.c`, lg_dop_
 #: the problem looks stiff), as in Hairer's dop853.f.
 STIFFNESS_TEST_PERIOD = 1000
 #: Doubles in the control block, C_SIZE in `_integrators.c` (`lg_batch` copies that many from it).
-CONTROL_SIZE = 21
+CONTROL_SIZE = 22
 _INTERRUPTED = 7  # LG_INTERRUPTED: the stop request ctl[_C_STOP] was seen
 _C_STOP = 13
 
@@ -567,11 +567,11 @@ def _early_stop(system, code: int, ctl: np.ndarray, y: np.ndarray) -> Simulation
             fix="use an implicit method: --method Radau (or BDF, LSODA; method='Radau'), or make the stiff part "
                 "softer (a smaller stiffness or damping coefficient); --no-stiffness-check (stiffness_check=False) "
                 "goes on with dop853 all the same", t=t, state=y.copy())
-    elif ctl[20] > 0:  # the pace check: max_steps could not be enough, said at once rather than at the end
+    elif ctl[21] > 0:  # the pace check: max_steps could not be enough, said at once rather than at the end
         reason = "the maximum number of steps would be reached"
         err = SimulationError(
             f"The integration stopped at t = {t:.9g} ({_state_text(system, y)}): at its step size (h ≈ {ctl[1]:.3g} now) the run "
-            f"would need about {ctl[20]:.3g} steps, more than max_steps ({int(ctl[9])}). The model moves much "
+            f"would need about {ctl[21]:.3g} steps, more than max_steps ({int(ctl[9])}). The model moves much "
             f"faster than the time span: its fastest motion (a very stiff spring, a fast spin) lasts a few steps.",
             fix="shorten the time span, soften the fast part (a smaller stiffness), or raise max_steps",
             t=t, state=y.copy())
