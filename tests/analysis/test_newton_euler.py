@@ -327,3 +327,17 @@ def test_forces_are_taken_as_forces_not_from_the_generalized_forces() -> None:
     kept = {"well", "friction"}  # no force form: these two are read by their Q_i
     blank = tuple(f if f.name in kept else dataclasses.replace(f, Q=(0,) * len(f.Q)) for f in eom.loads)
     assert verify(dataclasses.replace(eom, loads=blank)).agrees
+
+
+def test_an_angle_of_1e308_theta_is_still_checked(tmp_path):
+    # tools/fuzz.py seed 105, case 11158: the double pendulum's R2 turned by 1e308 θ2.  The quick numeric
+    # rejection overflowed (OverflowError), and the random-point identity test cannot evaluate
+    # cos(1e308 θ2) (its argument is rounded by far more than 2π): the exact expansion decides, and the
+    # equations agree with the theorems, as they must.
+    text = (EXAMPLES_DIR / "double_pendulum.toml").read_text(encoding="utf-8")
+    old = 'rotation = ["theta2", "x"]'
+    assert old in text
+    path = tmp_path / "fast.toml"
+    path.write_text(text.replace(old, 'rotation = ["(theta2)*1e308", "x"]'), encoding="utf-8")
+    v = verify(lagrangian.derive(lagrangian.load_model(path)))
+    assert all(c.agrees for c in v.checks) and len(v.checks) == 2

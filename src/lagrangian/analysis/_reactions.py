@@ -138,10 +138,18 @@ def _rank(kin: Kinematics, vectors: Sequence[Vector]) -> int:
     comps = [kin.frames.express(w, GALILEAN_FRAME) for w in vectors]
     symbols = sorted(set().union(*(c.free_symbols for row in comps for c in row)), key=str)
     rng = random.Random(11)
-    point = {s: se.RealDouble(rng.uniform(0.3, 1.7)) for s in symbols}
-    matrix = np.array([[float(c.subs(point)) for c in row] for row in comps], dtype=float)
-    s = np.linalg.svd(matrix, compute_uv=False)
-    return int(np.sum(s > RANK_RTOL * max(s[0], 1e-300)))
+    # A few random points, until one where every component is a finite real number: asin(φ) has
+    # none at φ > 1 (SymEngine's "Not Implemented"), 1e308 θ overflows.
+    for low, high in ((0.3, 1.7), (0.3, 1.7), (0.05, 0.95), (0.05, 0.95), (-0.95, -0.05)):
+        point = {s: se.RealDouble(rng.uniform(low, high)) for s in symbols}
+        try:
+            matrix = np.array([[float(c.subs(point)) for c in row] for row in comps], dtype=float)
+        except (RuntimeError, TypeError, ValueError, OverflowError):
+            continue
+        if np.isfinite(matrix).all():
+            s = np.linalg.svd(matrix, compute_uv=False)
+            return int(np.sum(s > RANK_RTOL * max(s[0], 1e-300)))
+    return len(vectors)  # no point where they are all defined: taken as independent, as declared
 
 
 def _shortest_frame(kin: Kinematics, v: Vector) -> tuple[str, tuple[se.Basic, se.Basic, se.Basic]]:
