@@ -308,6 +308,53 @@ def make_case(rng: random.Random, sources: dict[str, str], canary: str) -> tuple
     return name, text, done
 
 
+def draw(rng: random.Random, sources: dict[str, str], canary: str, seen: set[bytes]) -> tuple[str, str, list[str], int]:
+    """The campaign's next new case: (example, text, mutations, redraws).
+
+    A text already run would run the same way again (the stages are deterministic): drawn again
+    instead, so that every case is a new input (1 draw in ~10 repeats an earlier one).
+    """
+    redraws = 0
+    for _ in range(100):
+        name, text, mutations = make_case(rng, sources, canary)
+        digest = hashlib.blake2b(text.encode("utf-8", "surrogateescape"), digest_size=16).digest()
+        if digest not in seen:
+            break
+        redraws += 1
+    seen.add(digest)
+    return name, text, mutations, redraws
+
+
+def _sources(model_format: str, examples: list[str] | None, exclude: list[str]) -> dict[str, str]:
+    chosen = sorted(EXAMPLES.glob(f"*.{model_format}"))
+    if examples:
+        chosen = [p for p in chosen if p.stem in examples]
+    chosen = [p for p in chosen if p.stem not in exclude]
+    # URDF sources keep their suffix in the name: the case file must end in .urdf to be read as one.
+    return {(p.name if model_format == "urdf" else p.stem): p.read_text(encoding="utf-8") for p in chosen}
+
+
+def show_case(seed: int, number: int, out: Path, *, examples: list[str] | None = None, exclude: list[str] = (),
+              model_format: str = "toml") -> tuple[str, dict]:
+    """Case ``number`` of the campaign of ``seed`` written to ``out`` (same examples): its text and what it
+    is, without running any; for a case that was not kept (a slow one under the threshold, an error
+    worth reading).
+
+    A payload's canary path is part of the text, and its length moves the positions drawn by the
+    mutations after it: the cases are drawn again with canary paths as long as the campaign's
+    (``OUT/cases-XXXXXXXX/NNNNNN/CANARY``, the eight characters of `tempfile.mkdtemp`), so the same
+    ``--out`` gives the same cases, but for the eight characters in the payloads.
+    """
+    sources = _sources(model_format, examples, list(exclude))
+    rng = random.Random(seed)
+    seen: set[bytes] = set()
+    work = Path(out).resolve() / "cases-xxxxxxxx"
+    for k in range(number + 1):
+        name, text, mutations, _ = draw(rng, sources, str(work / f"{k:06d}" / "CANARY"), seen)
+        command = COMMANDS[rng.randrange(len(COMMANDS))]
+    return text, {"example": name, "mutations": mutations, "command": command, "case": number}
+
+
 # -- one case, in a forked child ---------------------------------------------------------------------
 
 #: The command-line runs of the last stage (MODEL and OUT are replaced).
@@ -499,14 +546,9 @@ def campaign(cases: int, seed: int, out: Path, *, jobs: int = 1, time_limit: flo
     out = Path(out).resolve()  # each case chdirs into its own folder: a relative --out would be lost
     out.mkdir(parents=True, exist_ok=True)
     (out / "findings").mkdir(exist_ok=True)
-    work = Path(tempfile.mkdtemp(prefix="cases-", dir=out))
+    work = Path(tempfile.mkdtemp(prefix="cases-", dir=out))  # cases-XXXXXXXX: see _canary
     os.environ.setdefault("LAGRANGIAN_CACHE", str(out / "cache"))
-    chosen = sorted(EXAMPLES.glob(f"*.{model_format}"))
-    if examples:
-        chosen = [p for p in chosen if p.stem in examples]
-    chosen = [p for p in chosen if p.stem not in exclude]
-    # URDF sources keep their suffix in the name: the case file must end in .urdf to be read as one.
-    sources = {(p.name if model_format == "urdf" else p.stem): p.read_text(encoding="utf-8") for p in chosen}
+    sources = _sources(model_format, examples, list(exclude))
     rng = random.Random(seed)
     memory = int(memory_gib * 2**30)
     if warm_up:
@@ -534,15 +576,8 @@ def campaign(cases: int, seed: int, out: Path, *, jobs: int = 1, time_limit: flo
             text, meta = replay[number].read_text(encoding="utf-8", errors="surrogateescape"), \
                 {"example": replay[number].name, "mutations": ["replay"]}
         else:
-            # A text already run would run the same way again (the stages are deterministic): drawn
-            # again instead, so that every case is a new input (1 draw in ~10 repeats an earlier one).
-            for _ in range(100):
-                name, text, mutations = make_case(rng, sources, str(canary))
-                digest = hashlib.blake2b(text.encode("utf-8", "surrogateescape"), digest_size=16).digest()
-                if digest not in seen:
-                    break
-                duplicates[0] += 1
-            seen.add(digest)
+            name, text, mutations, redraws = draw(rng, sources, str(canary), seen)
+            duplicates[0] += redraws
             meta = {"example": name, "mutations": mutations}
         command = COMMANDS[(number if replay else rng.randrange(len(COMMANDS))) % len(COMMANDS)]
         meta.update(case=number, command=command)
@@ -693,8 +728,17 @@ def main(argv: list[str] | None = None) -> int:
                         help="mutate the TOML examples (default) or the URDF robots of examples/*.urdf")
     parser.add_argument("--out", type=Path, default=Path("fuzz-out"), help="folder for the summary and findings")
     parser.add_argument("--replay", nargs="+", type=Path, help="run these model files instead of mutations")
+    parser.add_argument("--show-case", type=int, metavar="N",
+                        help="print case N of the campaign of this --seed and --out (--example/--exclude/--format as "
+                             "it had them) and run nothing")
     parser.add_argument("--quiet", action="store_true")
     args = parser.parse_args(argv)
+    if args.show_case is not None:
+        text, meta = show_case(args.seed, args.show_case, args.out, examples=args.example, exclude=args.exclude,
+                               model_format=args.model_format)
+        print(json.dumps(meta), file=sys.stderr)
+        sys.stdout.write(text)
+        return 0
     summary = campaign(args.cases, args.seed, args.out, jobs=args.jobs, time_limit=args.time_limit,
                        memory_gib=args.memory, examples=args.example, exclude=args.exclude, quiet=args.quiet,
                        replay=args.replay, model_format=args.model_format, slow_s=args.slow)

@@ -459,3 +459,26 @@ def test_step7_gives_the_reaction_of_the_fixed_point():
         assert n.latex(x._sympy_()) in shown and axis in shown
     tension = report(eom_of("pendulum_tension.toml"), lang="fr", verification=True).document
     assert not any(r"\vec{\gamma}(" in m for m in math_of(tension.section("step7").blocks))
+
+
+def test_deeply_nested_functions_are_printed_as_derived(tmp_path, monkeypatch):
+    # tools/fuzz.py seed 105, case 6148: Kapitza's pendulum turned by sin∘…∘sin θ (eight deep); SymPy's
+    # simplify spent 25 s on each term of its power balance.  The report simplifies nothing nested
+    # deeper than SIMPLIFY_MAX_NESTING (the course's expressions nest one or two deep).
+    import sympy
+
+    from lagrangian.output.report.steps import equations
+
+    assert equations._nesting(sympy.sympify("x*sin(sin(y))**2 + cos(x)")) == 2
+    assert equations._nesting(sympy.sympify("x**2 + y")) == 0
+    text = (EXAMPLES_DIR / "kapitza_pendulum.toml").read_text(encoding="utf-8")
+    old = 'rotation = ["theta", "x"]'
+    assert old in text
+    path = tmp_path / "nested.toml"
+    path.write_text(text.replace(old, 'rotation = ["' + "sin(" * 8 + "theta" + ")" * 8 + '", "x"]'), encoding="utf-8")
+    simplified = []
+    real = sympy.simplify
+    monkeypatch.setattr(equations.sympy, "simplify", lambda e, *a, **k: simplified.append(e) or real(e, *a, **k))
+    md = report(lagrangian.derive(lagrangian.load_model(path)), lang="en").markdown()
+    assert "dE/dt" in md or r"\frac{dE}{dt}" in md
+    assert max((equations._nesting(e) for e in simplified), default=0) <= equations.SIMPLIFY_MAX_NESTING
