@@ -429,3 +429,13 @@ def test_an_integrable_row_without_a_closed_form_is_still_holonomic() -> None:
     # y ẋ − x ẏ = 0: y/x = cste (factor 1/x², not among those tried); Frobenius decides.
     (info,) = describe_constraints(derive_text(PENDULUM + 'c = { nonholonomic = "y*x_dot - x*y_dot" }\n'))
     assert (info.kind, info.integrals) == ("holonomic", ())
+
+
+def test_rows_undefined_at_the_random_state_are_taken_as_declared():
+    # A coefficient that is nan at the random state (NumPy's SVD fails on it) does not decide the rank.
+    import numpy as np
+
+    from lagrangian.dynamics._constraints import _rank
+
+    assert _rank(np.array([[np.nan, 1.0], [0.0, 1.0]])) == 2
+    assert _rank(np.array([[1.0, 1.0], [2.0, 2.0]])) == 1

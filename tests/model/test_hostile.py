@@ -124,6 +124,14 @@ def test_constants_must_be_finite_real_doubles(text: str, column: int) -> None:
     assert "finite" in err.message and err.column == column
 
 
+@pytest.mark.parametrize("text, column", [("theta^1e-400", 7), ("theta*1e-400", 7), ("1e-200*1e-200 + theta", 7)])
+def test_nonzero_numbers_a_double_rounds_to_0_are_refused(text: str, column: int) -> None:
+    # tools/fuzz.py seed 106, case 8148: pendulum_tension's constraint x^1e-400 + y^2 − l^2.  Kept exact,
+    # 1e-400 made the derivative 1e-400·x^(1e-400 − 1), nan at a double; NumPy's SVD failed on it.
+    err = refused(text)
+    assert "too small for a double" in err.message and err.column == column and "5e-324" in err.fix
+
+
 def test_a_sum_that_overflows_a_double_is_refused() -> None:
     assert "finite" in refused("9^323 + 9^323 + theta").message
 

@@ -184,7 +184,7 @@ class _Parser:
             shown = excerpt(written or str(value), width=60)
             raise ExpressionError(f"`{shown}` is not a finite real number: {exc}", column,
                                   fix="correct the constant: every constant must be a real number that a double "
-                                  "holds (at most about 1.8e308 in absolute value)") from None
+                                  "holds (0, or between about 5e-324 and 1.8e308 in absolute value)") from None
         return value
 
     def expr(self) -> se.Basic | Vector:
@@ -343,7 +343,8 @@ def _exact_number(tok: _Token) -> se.Basic:
         real_value(value)
     except NotFinite as exc:
         raise ExpressionError(f"the number `{_short(tok.text)}` is not a finite double: {exc}", tok.column,
-                              fix="write a number at most about 1.8e308 in absolute value") from None
+                              fix="write a number that a double holds: 0, or between about 5e-324 and 1.8e308 "
+                                  "in absolute value") from None
     if value.denominator == 1:
         return se.Integer(value.numerator)
     return se.Rational(value.numerator, value.denominator)

@@ -13,7 +13,7 @@ expression read from a file is measured before it is accepted:
   (``(a+b+c+d)^5`` has 56, ``(a+b)*(c+d)`` 4).  At most `MAX_TERMS`;
 - every constant sub-expression (no coordinate, rate, parameter or time in it) must be
   a finite real number as a double: ``sqrt(-1)``, ``log(-1)``, ``exp(exp(1000))`` and
-  ``1e400`` are refused.
+  ``1e400`` are refused, and so is a nonzero number that a double rounds to 0 (``1e-400``).
 
 `real_value` is the one check of a number's value: the parser uses it for constants,
 the model's assembly for parameter values and initial conditions.
@@ -65,7 +65,8 @@ def real_value(value: object) -> float:
     ------
     NotFinite
         When the value is infinite, not a number, too large for a double (``1e400``,
-        ``10**400``), or not real (``sqrt(-1)``); the message says which.
+        ``10**400``), an exact number too small for one (``1e-400``), or not real (``sqrt(-1)``);
+        the message says which.
     """
     if isinstance(value, bool):
         raise NotFinite("a truth value, not a number")
@@ -79,6 +80,11 @@ def real_value(value: object) -> float:
         if math.isinf(number):
             raise NotFinite("infinite" if isinstance(value, float)
                             else "too large for a double (at most about 1.8e308)")
+        if number == 0.0 and value != 0:
+            # 1e-400 is 0 in every computation, while the exact value stays in the symbolic work
+            # (x^1e-400 is 1 numerically, its derivative 1e-400 x^-1 is not)
+            raise NotFinite("too small for a double: it would be 0 in every computation (the smallest is about "
+                            "5e-324); write 0 if that is meant")
         return number
     if not isinstance(value, se.Basic):
         raise NotFinite(f"not a number: `{excerpt(str(value))}`")
