@@ -52,6 +52,17 @@ def example_text(name: str) -> str:
     return (EXAMPLES_DIR / name).read_text(encoding="utf-8")
 
 
+def mutated_example(folder: Path, name: str, old: str, new: str) -> Path:
+    """examples/``name`` with its one ``old`` replaced by ``new``, written under ``folder`` (a fuzz case's
+    reproducer: the tests check that ``old`` is still in the example, so that a reworded example fails
+    loudly rather than testing nothing)."""
+    text = example_text(name)
+    assert text.count(old) == 1, f"{old!r} is not once in examples/{name}"
+    path = folder / f"mutated_{name}"
+    path.write_text(text.replace(old, new), encoding="utf-8")
+    return path
+
+
 @functools.cache
 def eom_of(name: str) -> lagrangian.EquationsOfMotion:
     """The engine's derivation for one example file (cached)."""

@@ -14,7 +14,7 @@ import textwrap
 import numpy as np
 import pytest
 import sympy as sp
-from lagrangian_test_support import EXAMPLES_DIR, example_names
+from lagrangian_test_support import EXAMPLES_DIR, example_names, mutated_example
 
 import lagrangian
 from lagrangian.analysis import check_trajectory, reaction_history, reactions, verify
@@ -189,10 +189,6 @@ def test_a_spin_angle_asin_phi_still_gives_a_ball_joint(tmp_path) -> None:
     # tools/fuzz.py seed 105, case 10414: the sleeping top's R turned by asin(φ).  The rank of the free axes
     # was taken at one random point, φ > 1 there, where asin has no real value (SymEngine's "Not
     # Implemented"); points are now drawn until one is defined.  The top still turns freely about O.
-    text = (EXAMPLES_DIR / "sleeping_top.toml").read_text(encoding="utf-8")
-    old = 'rotation = ["phi", "z"]'
-    assert old in text
-    path = tmp_path / "asin.toml"
-    path.write_text(text.replace(old, 'rotation = ["asin(phi)", "z"]'), encoding="utf-8")
+    path = mutated_example(tmp_path, "sleeping_top.toml", 'rotation = ["phi", "z"]', 'rotation = ["asin(phi)", "z"]')
     [r] = reactions(lagrangian.derive(lagrangian.load_model(path)))
     assert r.pinned == "S" and r.free_rotations == 3

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from lagrangian_test_support import EXAMPLES_DIR
+from lagrangian_test_support import EXAMPLES_DIR, mutated_example
 
 import lagrangian
 from lagrangian.errors import SimulationError
@@ -120,10 +120,8 @@ def test_initial_state_off_the_constraint_is_refused_with_the_residual_and_a_fix
 def test_a_constraint_with_no_real_solution_is_refused_without_a_suggestion(tmp_path) -> None:
     # tools/fuzz.py seed 103, case 4496: x² + y² + l² = 0 (a "--" for "-"); the search for the nearest
     # consistent state met a singular Jacobian at x = y = 0 and escaped as numpy's LinAlgError.
-    text = PENDULUM.read_text(encoding="utf-8")
-    assert 'holonomic = "x^2 + y^2 - l^2"' in text
-    path = tmp_path / "no_solution.toml"
-    path.write_text(text.replace('holonomic = "x^2 + y^2 - l^2"', 'holonomic = "x^2 + y^2 -- l^2"'), encoding="utf-8")
+    path = mutated_example(tmp_path, "pendulum_tension.toml", 'holonomic = "x^2 + y^2 - l^2"',
+                           'holonomic = "x^2 + y^2 -- l^2"')
     with pytest.raises(SimulationError) as exc:
         simulate(path, 0.3)
     assert "violates the holonomic constraint `length`" in exc.value.message
@@ -222,10 +220,7 @@ def test_a_mass_of_1e308_is_a_singular_mass_matrix_not_a_lapack_failure(tmp_path
     # precision (its smallest eigenvalue below 1e-12 of its largest), which it is.
     from lagrangian.numerics._mass_spectrum import mass_eigenvalues
 
-    text = (EXAMPLES_DIR / "top_reaction.toml").read_text(encoding="utf-8")
-    assert '\nmass = "m"\n' in text
-    path = tmp_path / "heavy.toml"
-    path.write_text(text.replace('\nmass = "m"\n', '\nmass = "(m)*1e308"\n', 1), encoding="utf-8")
+    path = mutated_example(tmp_path, "top_reaction.toml", '\nmass = "m"\n', '\nmass = "(m)*1e308"\n')
     with pytest.raises(SimulationError) as exc:
         simulate(path, 0.3)
     assert "singular" in exc.value.message and "1e12 apart" in exc.value.fix

@@ -17,6 +17,7 @@ import pytest
 
 import lagrangian
 from lagrangian import SimulationError
+from lagrangian_test_support import mutated_example
 
 ROOT = Path(__file__).resolve().parents[2]
 WINDOW = 2**20
@@ -84,11 +85,7 @@ def test_a_fixed_step_knows_its_count_at_once(oscillator) -> None:
 def test_the_fuzz_case_of_an_undamped_spring_of_exp_40(tmp_path: Path) -> None:
     # tools/fuzz.py seed 102, case 20375: examples/cart_pendulum.toml with stiffness = "exp(k)",
     # k = 40 (2.4e17 N/m): 100 s to reach max_steps; now the error after 2^21 steps.
-    text = (ROOT / "examples" / "cart_pendulum.toml").read_text(encoding="utf-8")
-    old = 'stiffness = "k"'
-    assert old in text
-    path = tmp_path / "cart.toml"
-    path.write_text(text.replace(old, 'stiffness = "exp(k)"'), encoding="utf-8")
+    path = mutated_example(tmp_path, "cart_pendulum.toml", 'stiffness = "k"', 'stiffness = "exp(k)"')
     with pytest.raises(SimulationError) as info:
         lagrangian.simulate(lagrangian.derive(lagrangian.load_model(path)), 0.3, n_out=7)
     assert "would need about" in info.value.message and info.value.trajectory.steps == 2 * WINDOW

@@ -22,7 +22,7 @@ from lagrangian.output.report.build import multiplier_names, report_notation
 from lagrangian.output.report.document import Display, Fold, Items, Para, math_of, walk
 from lagrangian.output.report.render.markdown import render_markdown
 from lagrangian.output.report.size import SMALL_OPS, Summary
-from lagrangian_test_support import EXAMPLES_DIR, eom_of, example_names, integrals_of
+from lagrangian_test_support import EXAMPLES_DIR, eom_of, example_names, integrals_of, mutated_example
 
 GOLDEN = Path(__file__).parent / "golden" / "lagrange_top.fr.md"
 #: Seconds a 40-link chain's report may take on a slow shared machine (about 5 s measured).
@@ -231,10 +231,7 @@ def test_the_exact_coulomb_law_keeps_sgn_in_the_power_balance(tmp_path):
     # tools/fuzz.py seed 103, case 3020: block_on_belt with regularization = 0 (the exact law) crashed the
     # report, SymPy's simplify having rewritten sgn(ẋ − v_b) by cases.  The friction's power in R0 is
     # T·V(B) = (−f m g sgn(ẋ − v_b) x0)·(ẋ x0).
-    text = (EXAMPLES_DIR / "block_on_belt.toml").read_text(encoding="utf-8")
-    assert 'regularization = "eps"' in text
-    path = tmp_path / "exact.toml"
-    path.write_text(text.replace('regularization = "eps"', 'regularization = "0"'), encoding="utf-8")
+    path = mutated_example(tmp_path, "block_on_belt.toml", 'regularization = "eps"', 'regularization = "0"')
     r = report(lagrangian.derive(lagrangian.load_model(path)), lang="en")
     assert _norm(r"P(\text{friction}) = -m f g \dot{x} \operatorname{sgn}\left(\dot{x} - v_{b}\right)") \
         in _norm(_all_math(r))
@@ -471,11 +468,8 @@ def test_deeply_nested_functions_are_printed_as_derived(tmp_path, monkeypatch):
 
     assert equations._nesting(sympy.sympify("x*sin(sin(y))**2 + cos(x)")) == 2
     assert equations._nesting(sympy.sympify("x**2 + y")) == 0
-    text = (EXAMPLES_DIR / "kapitza_pendulum.toml").read_text(encoding="utf-8")
-    old = 'rotation = ["theta", "x"]'
-    assert old in text
-    path = tmp_path / "nested.toml"
-    path.write_text(text.replace(old, 'rotation = ["' + "sin(" * 8 + "theta" + ")" * 8 + '", "x"]'), encoding="utf-8")
+    path = mutated_example(tmp_path, "kapitza_pendulum.toml", 'rotation = ["theta", "x"]',
+                           'rotation = ["' + "sin(" * 8 + "theta" + ")" * 8 + '", "x"]')
     simplified = []
     real = sympy.simplify
     monkeypatch.setattr(equations.sympy, "simplify", lambda e, *a, **k: simplified.append(e) or real(e, *a, **k))
