@@ -14,7 +14,7 @@ import pytest
 import symengine as se
 import sympy as sp
 import sympy.physics.mechanics as me
-from lagrangian_test_support import EXAMPLES_DIR
+from lagrangian_test_support import EXAMPLES_DIR, mutated_example
 
 import lagrangian
 from lagrangian._identity import is_zero
@@ -439,3 +439,12 @@ def test_rows_undefined_at_the_random_state_are_taken_as_declared():
 
     assert _rank(np.array([[np.nan, 1.0], [0.0, 1.0]])) == 2
     assert _rank(np.array([[1.0, 1.0], [2.0, 2.0]])) == 1
+
+
+def test_a_rotation_by_abs_psi_derives(tmp_path):
+    # tools/fuzz.py seed 107, case 16912: top_reaction's R1 turned by |ψ|.  SymEngine leaves d|ψ|/dψ
+    # unevaluated and will not substitute a number into it (RuntimeError in the rank test of the ball
+    # joint's rows); the rows are taken as declared, and the derivation goes on to the 3 multipliers.
+    path = mutated_example(tmp_path, "top_reaction.toml", 'rotation = ["psi", "z"]', 'rotation = ["abs(psi)", "z"]')
+    eom = lagrangian.derive(lagrangian.load_model(path))
+    assert len([r for r in eom.constraints if r.constraint == "pivot"]) == 3

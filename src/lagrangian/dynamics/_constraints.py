@@ -29,6 +29,7 @@ are solved from  R·∂V(P)/∂q̇_i + C·∂Ω(S)/∂q̇_i = Σ_k λ_k A_ki  fo
 from __future__ import annotations
 
 import dataclasses
+import math
 import random
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -346,8 +347,17 @@ def _random_values(symbols: set[se.Basic], model_values: dict[str, float | None]
 
 
 def _numeric(matrix: Sequence[Sequence[se.Basic]], values: dict[se.Basic, float]) -> np.ndarray:
+    """The matrix at ``values``; nan where SymEngine cannot evaluate an entry (d|ψ|/dψ, which it leaves
+    unevaluated and will not substitute into), so that the rank tests take the rows as declared."""
     sub = {k: se.RealDouble(v) for k, v in values.items()}
-    return np.array([[complex(e.xreplace(sub)).real for e in row] for row in matrix], dtype=float)
+
+    def value(e: se.Basic) -> float:
+        try:
+            return complex(e.xreplace(sub)).real
+        except (RuntimeError, TypeError, ValueError, OverflowError):
+            return math.nan
+
+    return np.array([[value(e) for e in row] for row in matrix], dtype=float)
 
 
 def _solve_reaction(kin: Kinematics, c: Constraint, rows: list[ConstraintRow],
