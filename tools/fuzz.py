@@ -580,6 +580,10 @@ def campaign(cases: int, seed: int, out: Path, *, jobs: int = 1, time_limit: flo
             duplicates[0] += redraws
             meta = {"example": name, "mutations": mutations}
         command = COMMANDS[(number if replay else rng.randrange(len(COMMANDS))) % len(COMMANDS)]
+        if replay:  # a finding replays with the command it had (its record beside it), others take turns
+            record = replay[number].with_suffix(".json")
+            with contextlib.suppress(OSError, ValueError, KeyError, TypeError):
+                command = [str(a) for a in json.loads(record.read_text(encoding="utf-8"))["command"]]
         meta.update(case=number, command=command)
         suffix = replay[number].suffix if replay else (".urdf" if meta["example"].endswith(".urdf") else ".toml")
         model_file = case_dir / f"model{suffix}"
