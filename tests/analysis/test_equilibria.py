@@ -236,3 +236,17 @@ def test_block_on_incline_without_enough_friction_has_no_rest(capsys: pytest.Cap
     assert main(["equilibria", path, "--set", "alpha=0.5"]) == 0  # tan 0.5 = 0.55 > f_s = 0.4
     out = capsys.readouterr().out
     assert "none found" in out and "would be one if |tanα| ≤ f_s, which does not hold" in out
+
+
+def test_a_closed_form_with_no_value_at_the_parameters_is_skipped(tmp_path):
+    # tools/fuzz.py seed 108, case 12483: inverted_pendulum_cart with its particles' names swapped (the force
+    # F then acts on the bob).  One closed-form branch, 2 arctan((m g − √(m² g² + F²))/F), is 0/0 at F = 0;
+    # its NaN reached round() (ValueError).  It has no value there; the rests are θ = 0 and θ = π.
+    text = (ROOT / "examples" / "inverted_pendulum_cart.toml").read_text(encoding="utf-8")
+    assert text.count("[particles.C]") == 1 and text.count("[particles.P]") == 1
+    swapped = text.replace("[particles.C]", "[particles.@]").replace("[particles.P]", "[particles.C]")
+    path = tmp_path / "swapped.toml"
+    path.write_text(swapped.replace("[particles.@]", "[particles.P]"), encoding="utf-8")
+    found = lagrangian.equilibria(lagrangian.derive(lagrangian.load_model(path)))
+    thetas = sorted(abs(e.numeric["theta"]) for e in found if e.numeric is not None)
+    assert thetas == pytest.approx([0.0, math.pi], abs=1e-12)

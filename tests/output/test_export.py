@@ -23,7 +23,7 @@ from lagrangian.cli.main import main
 from lagrangian.model import zoo
 from lagrangian.numerics._dae import ConstrainedSystem
 from lagrangian.output._export import model_identifier
-from lagrangian_test_support import EXAMPLES_DIR, Numeric, random_states
+from lagrangian_test_support import EXAMPLES_DIR, Numeric, mutated_example, random_states
 
 # Different but exact expression forms of M and F (the in-package C hoists and regroups them):
 # the results agree to rounding, amplified at most by M's condition number at these states.
@@ -86,6 +86,24 @@ def test_numpy_export_reproduces_the_package(case, tmp_path):
     M = module.mass_matrix(y[:, :n], None, t)
     assert M.shape == (len(y), n, n)
     np.testing.assert_allclose(M, np.swapaxes(M, -1, -2), rtol=0, atol=0)
+
+
+def test_an_angle_abs_theta_is_exported_with_sign(tmp_path):
+    # tools/fuzz.py seed 108, case 12549: the spherical pendulum's R2 turned by |θ|.  M and F held d|θ|/dθ,
+    # which SymPy's printers cannot print; it is written sign(θ).  Where θ > 0 the model is the example
+    # itself, and where θ < 0 its mirror: the exported right-hand side is the example's (θ ↦ |θ|).
+    path = mutated_example(tmp_path, "spherical_pendulum.toml", 'rotation = ["theta", "x"]',
+                           'rotation = ["abs(theta)", "x"]')
+    (exported,) = lagrangian.export(lagrangian.derive(lagrangian.load_model(path)), "numpy", tmp_path / "out")
+    module = _import(exported)
+    (plain,) = lagrangian.export(_eom("spherical_pendulum.toml"), "numpy", tmp_path / "plain")
+    reference = _import(plain)
+    assert module.STATE == ("psi", "theta", "psi_dot", "theta_dot")
+    for y in ([0.3, 0.7, 1.1, -0.4], [-1.2, 1.9, -0.5, 0.8]):
+        np.testing.assert_allclose(module.rhs(0.0, np.array(y)), reference.rhs(0.0, np.array(y)), rtol=1e-13)
+    mirrored = module.rhs(0.0, np.array([0.3, -0.7, 1.1, 0.4]))  # θ < 0: |θ| = −θ, d|θ|/dt = −θ̇
+    expected = reference.rhs(0.0, np.array([0.3, 0.7, 1.1, -0.4]))
+    np.testing.assert_allclose(mirrored, expected * np.array([1, -1, 1, -1]), rtol=1e-13)
 
 
 def test_numpy_export_parameters(tmp_path):

@@ -357,6 +357,9 @@ def _from_closed_form(system: _StaticSystem, branch: Mapping[str, sympy.Basic], 
             x = float(_se(v).subs(numbers))
         except (RuntimeError, TypeError, ValueError):
             continue  # a parameter without value
+        if not math.isfinite(x):  # no real value at these parameters (asin of 2, a division by 0)
+            exists = False
+            continue
         if n in angles:  # into (−π, π], the expression too (−π is written π)
             k = round((_wrap(x) - x) / (2 * math.pi))
             if k:

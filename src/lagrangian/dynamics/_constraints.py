@@ -39,6 +39,7 @@ import symengine as se
 from symengine.lib.symengine_wrapper import sympy2symengine
 import sympy
 
+from .._abs_derivative import settled
 from .._identity import are_zero, is_zero
 from ..errors import DerivationError, ModelError
 from ..kinematics import Kinematics
@@ -347,13 +348,13 @@ def _random_values(symbols: set[se.Basic], model_values: dict[str, float | None]
 
 
 def _numeric(matrix: Sequence[Sequence[se.Basic]], values: dict[se.Basic, float]) -> np.ndarray:
-    """The matrix at ``values``; nan where SymEngine cannot evaluate an entry (d|ψ|/dψ, which it leaves
-    unevaluated and will not substitute into), so that the rank tests take the rows as declared."""
+    """The matrix at ``values`` (d|ψ|/dψ as sign ψ, `settled`); nan where SymEngine cannot evaluate an
+    entry, so that the rank tests take the rows as declared."""
     sub = {k: se.RealDouble(v) for k, v in values.items()}
 
     def value(e: se.Basic) -> float:
         try:
-            return complex(e.xreplace(sub)).real
+            return complex(settled(e).xreplace(sub)).real
         except (RuntimeError, TypeError, ValueError, OverflowError):
             return math.nan
 

@@ -43,6 +43,7 @@ from typing import Any
 
 import symengine as se
 
+from .._abs_derivative import settled
 from ..dynamics import EquationsOfMotion
 from ..errors import ExportError, OutputError
 from ..model.spec import CoulombFriction
@@ -165,7 +166,7 @@ def exported_symbols(eom: EquationsOfMotion, target: str = "numpy") -> ExportedS
         if unknown:
             raise ExportError(f"{what} contains `{unknown[0]}`, which is neither a coordinate, a rate, a parameter "
                               "nor t.", fix="declare it as a parameter of the model")
-        return expr.xreplace(private)
+        return settled(expr).xreplace(private)  # d|u|/dx as sign(u) du/dx: SymPy's printers have no Derivative
 
     M = [rename(eom.M[i][j], f"M[{i}][{j}]") for i in range(n) for j in range(n)]
     F = [rename(eom.F[i], f"F[{i}]") for i in range(n)]
