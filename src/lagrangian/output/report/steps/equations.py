@@ -327,7 +327,10 @@ def _on_the_constraints(c: Context, e: sympy.Basic) -> sympy.Basic:
     try:
         # the same symbols as in e (the printed forms may carry assumptions: x real, l positive)
         own = {s.name: s for s in e.free_symbols}
-        fs = [f.xreplace({s: own.get(s.name, s) for s in f.free_symbols}) for f in map(sympy.sympify, map(c.ex, holonomic))]
+        shown = [c.ex(f) for f in holonomic]  # SymPy objects (never text)
+        if not all(isinstance(f, sympy.Basic) and not f.atoms(Opaque) for f in shown):
+            return e
+        fs = [f.xreplace({s: own.get(s.name, s) for s in f.free_symbols}) for f in shown]
         names = set(c.eom.coordinates)
         q = sorted({s for f in fs for s in f.free_symbols if s.name in names}, key=lambda s: s.name)
         if not q or not all(f.is_polynomial(*q) for f in fs):
