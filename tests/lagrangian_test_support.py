@@ -194,16 +194,19 @@ def other_orders(n: int) -> list[tuple[int, ...]]:
     return list(dict.fromkeys(o for o in orders if o != tuple(range(n))))
 
 
-def wall_spring(initial: float) -> str:
+def wall_spring(initial: float = 0.1, *, L: str = "L = { value = 1.0, positive = true }",
+                x: str | None = None) -> str:
     """A particle P on a spring fixed to a wall at x = −L (ω = √(k/m) = √2), with L declared positive and
-    x ranging over [−0.5, 0.5]: the model of the sign-assumption and coordinate-range tests."""
+    x ranging over [−0.5, 0.5]: the model of the sign-assumption and coordinate-range tests.  ``L`` and
+    ``x`` replace the declaration lines of L and x (the tests of how they are read)."""
+    x = x if x is not None else f"x = {{ initial = {initial}, rate = 0.0, range = [-0.5, 0.5] }}"
     return f"""
 [parameters]
 m = 1.0
 k = 2.0
-L = {{ value = 1.0, positive = true }}
+{L}
 [coordinates]
-x = {{ initial = {initial}, rate = 0.0, range = [-0.5, 0.5] }}
+{x}
 [points]
 W = "-L*R0.x"
 [particles.P]

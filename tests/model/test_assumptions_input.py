@@ -7,26 +7,11 @@ import symengine as se
 
 import lagrangian
 from lagrangian import ModelBuilder, ModelError
-
-BASE = """
-[parameters]
-m = 1.0
-k = 2.0
-{L}
-[coordinates]
-{x}
-[points]
-W = "-L*R0.x"
-[particles.P]
-mass = "m"
-position = "x*R0.x"
-[loads]
-spring = {{ spring = ["W", "P"], stiffness = "k", rest_length = "L" }}
-"""
+from lagrangian_test_support import wall_spring
 
 
 def parse(L: str = 'L = { value = 1.0, positive = true }', x: str = 'x = { initial = 0.1, range = [-0.5, 0.5] }'):
-    return lagrangian.parse_model(BASE.format(L=L, x=x), source="model.toml")
+    return lagrangian.parse_model(wall_spring(L=L, x=x), source="model.toml")
 
 
 def test_signs_and_ranges_are_read() -> None:
@@ -81,7 +66,7 @@ def test_the_builder_declares_the_same() -> None:
     ("L = 1.0", 'x = { initial = 0.1, range = ["-q", 1] }', "unknown symbol `q`", "x ="),
 ])
 def test_bad_declarations_name_the_file_line_and_fix(L: str, x: str, words: str, line_of: str) -> None:
-    text = BASE.format(L=L, x=x)
+    text = wall_spring(L=L, x=x)
     with pytest.raises(ModelError) as exc:
         lagrangian.parse_model(text, source="model.toml")
     err = exc.value

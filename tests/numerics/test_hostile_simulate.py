@@ -14,21 +14,14 @@ import pytest
 import lagrangian
 from lagrangian import SimulationError
 from lagrangian.cli.main import main
+from lagrangian_test_support import mutated_example
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def _top(tmp_path: Path, example: str, old: str, new: str) -> Path:
-    text = (ROOT / "examples" / example).read_text(encoding="utf-8")
-    assert old in text
-    path = tmp_path / example
-    path.write_text(text.replace(old, new), encoding="utf-8")
-    return path
-
-
 @pytest.mark.parametrize("example", ["lagrange_top.toml", "top_reaction.toml"])
 def test_m_not_finite_at_the_start_is_a_simulation_error(tmp_path: Path, example: str) -> None:
-    path = _top(tmp_path, example, 'rotation = ["phi", "z"]', 'rotation = ["phi^phi", "z"]')
+    path = mutated_example(tmp_path, example, 'rotation = ["phi", "z"]', 'rotation = ["phi^phi", "z"]')
     eom = lagrangian.derive(lagrangian.load_model(path))
     with pytest.raises(SimulationError) as info:
         lagrangian.simulate(eom, 0.1, n_out=3)
@@ -37,7 +30,7 @@ def test_m_not_finite_at_the_start_is_a_simulation_error(tmp_path: Path, example
 
 
 def test_the_command_line_says_it_in_one_message(tmp_path: Path, capsys) -> None:
-    path = _top(tmp_path, "lagrange_top.toml", 'rotation = ["phi", "z"]', 'rotation = ["phi^phi", "z"]')
+    path = mutated_example(tmp_path, "lagrange_top.toml", 'rotation = ["phi", "z"]', 'rotation = ["phi^phi", "z"]')
     assert main(["simulate", str(path), "--t-end", "0.1"]) == 4
     err = capsys.readouterr().err
     assert "not finite" in err and "Traceback" not in err
@@ -88,7 +81,7 @@ def test_a_stiff_spring_says_reduce_dt_and_the_default_step_adapts(tmp_path: Pat
 def test_finite_numbers_that_overflow_once_multiplied_are_a_model_error(tmp_path: Path) -> None:
     # Found by tools/fuzz.py: 1e308 is a finite double, but T has its square; code generation
     # raised a bare ValueError ("non-finite number inf").
-    path = _top(tmp_path, "block_on_incline.toml", 'position = "x*I.x"', 'position = "(x*I.x)*1e308"')
+    path = mutated_example(tmp_path, "block_on_incline.toml", 'position = "x*I.x"', 'position = "(x*I.x)*1e308"')
     eom = lagrangian.derive(lagrangian.load_model(path))
     with pytest.raises(lagrangian.ModelError) as info:
         lagrangian.compile_system(eom)
@@ -98,7 +91,7 @@ def test_finite_numbers_that_overflow_once_multiplied_are_a_model_error(tmp_path
 def test_first_integrals_of_a_rotation_through_abs(tmp_path: Path) -> None:
     # Found by tools/fuzz.py: SymEngine cannot evaluate d|theta|/dtheta numerically ("Not
     # Implemented"); the identity test now leaves such an expression "not shown zero".
-    path = _top(tmp_path, "lagrange_top.toml", 'rotation = ["theta", "x"]', 'rotation = ["abs(theta)", "x"]')
+    path = mutated_example(tmp_path, "lagrange_top.toml", 'rotation = ["theta", "x"]', 'rotation = ["abs(theta)", "x"]')
     eom = lagrangian.derive(lagrangian.load_model(path))
     names = {i.name for i in lagrangian.first_integrals(eom)}
     assert {"K", "H"} <= names  # psi and phi stay cyclic
@@ -120,7 +113,8 @@ def test_nonholonomic_integrals_of_a_rotation_through_asin(tmp_path: Path) -> No
     # Found by tools/fuzz.py (campaign seed 101, case 1578): asin(phi) in the disk's rotation is not
     # real at the random sample point of the rolling constraint's rows (phi > 1); SymEngine's
     # float() raised "Not Implemented" in `first_integrals` and in `derive` on the command line.
-    path = _top(tmp_path, "rolling_disk_incline.toml", 'rotation = ["phi", "y"]', 'rotation = ["asin(phi)", "y"]')
+    path = mutated_example(tmp_path, "rolling_disk_incline.toml", 'rotation = ["phi", "y"]',
+                           'rotation = ["asin(phi)", "y"]')
     eom = lagrangian.derive(lagrangian.load_model(path))
     lagrangian.first_integrals(eom)  # no error; no speed claimed constant from a complex sample
     assert main(["derive", str(path)]) == 0
@@ -131,7 +125,8 @@ def test_a_rotation_through_abs_compiles_with_the_sign_of_its_angle(tmp_path: Pa
     # printer raised a bare ValueError in `compile`. d|u|/du is sign(u), its higher derivatives 0.
     import numpy as np
 
-    path = _top(tmp_path, "spherical_pendulum.toml", 'rotation = ["psi", "z"]', 'rotation = ["abs(psi)", "z"]')
+    path = mutated_example(tmp_path, "spherical_pendulum.toml", 'rotation = ["psi", "z"]',
+                           'rotation = ["abs(psi)", "z"]')
     eom = lagrangian.derive(lagrangian.load_model(path))
     plain = lagrangian.derive(lagrangian.load_model(ROOT / "examples" / "spherical_pendulum.toml"))
     start = {"psi": 0.4, "psi_dot": 0.7}  # psi > 0: |psi| = psi, the same motion as the example's
@@ -145,7 +140,7 @@ def test_a_rotation_through_abs_compiles_with_the_sign_of_its_angle(tmp_path: Pa
 def test_a_backslash_in_an_axis_name_is_refused_at_load(tmp_path: Path) -> None:
     # Found by tools/fuzz.py (seed 101, case 6195): axes = ["x1", "\\y1", "z0"] was accepted, then a
     # regular-expression template met `\y` in `derive`'s text (re.error). Axis names are identifiers.
-    path = _top(tmp_path, "rolling_coin.toml", 'axes = ["x1", "y1", "z0"]', 'axes = ["x1", "\\\\y1", "z0"]')
+    path = mutated_example(tmp_path, "rolling_coin.toml", 'axes = ["x1", "y1", "z0"]', 'axes = ["x1", "\\\\y1", "z0"]')
     with pytest.raises(lagrangian.ModelError, match="is not a name") as info:
         lagrangian.load_model(path)
     assert info.value.line == 32
@@ -158,7 +153,7 @@ def test_linearize_with_a_denormal_mass_is_a_clean_error(tmp_path: Path) -> None
     # equilibria are still listed.
     from lagrangian.analysis import LinearizationError
 
-    path = _top(tmp_path, "cart_pendulum.toml", 'mass = "m"', 'mass = "5e-324"')
+    path = mutated_example(tmp_path, "cart_pendulum.toml", 'mass = "m"', 'mass = "5e-324"')
     eom = lagrangian.derive(lagrangian.load_model(path))
     with pytest.raises(LinearizationError):
         lagrangian.linearize(eom, {"x": 0.0, "theta": 0.0})

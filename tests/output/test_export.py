@@ -358,14 +358,19 @@ def test_numpy_export_of_a_constrained_model_solves_for_the_multipliers(case, tm
         _assert_close(np.concatenate([A[k].ravel(), b[k], c[k], f[k]]), rows_at(state))
 
 
-@pytest.mark.parametrize("case", ["pendulum_tension.toml", "rolling_coin.toml"])
-def test_jax_export_of_a_constrained_model(case, tmp_path):
+def _jax_and_numpy(case: str, tmp_path: Path):  # type: ignore[no-untyped-def]
+    """JAX in double precision (skipped without it), the case's derivation, its JAX and NumPy exports."""
     jax = pytest.importorskip("jax")
     jax.config.update("jax_enable_x64", True)
     eom = _eom(case)
     (path,) = lagrangian.export(eom, "jax", tmp_path / "jax")
     (np_path,) = lagrangian.export(eom, "numpy", tmp_path / "np")
-    module, reference = _import(path), _import(np_path)
+    return jax, eom, _import(path), _import(np_path)
+
+
+@pytest.mark.parametrize("case", ["pendulum_tension.toml", "rolling_coin.toml"])
+def test_jax_export_of_a_constrained_model(case, tmp_path):
+    jax, _, module, reference = _jax_and_numpy(case, tmp_path)
     t, y = _states(case, 6, seed=9)
     p = reference.parameter_array()
     f = jax.jit(jax.vmap(lambda ti, yi: module.rhs_multipliers(ti, yi, p, 2.0, 3.0)))
@@ -461,12 +466,7 @@ def test_jax_export_logic_on_numpy(case, tmp_path, monkeypatch):
 def test_jax_export(case, tmp_path):
     """JAX itself (the `jax` extra, in `test`): rhs, mass_matrix and forcing jitted and vmapped in
     double precision, against the NumPy export and the package to 1e-12."""
-    jax = pytest.importorskip("jax")
-    jax.config.update("jax_enable_x64", True)
-    eom = _eom(case)
-    (path,) = lagrangian.export(eom, "jax", tmp_path / "jax")
-    (np_path,) = lagrangian.export(eom, "numpy", tmp_path / "np")
-    module, reference = _import(path), _import(np_path)
+    jax, eom, module, reference = _jax_and_numpy(case, tmp_path)
     t, y = _states(case, 8, seed=7)
     n, p = len(eom.q), reference.parameter_array()
     expected = reference.rhs(t, y, p)

@@ -372,7 +372,7 @@ def test_the_pendulums_multiplier_is_written_on_the_constraint():
 
     eom = eom_of("pendulum_tension.toml")
     c = Context(eom, (), "en")
-    (shown,) = [_on_the_constraints(c, _simple(c, f)) for f in _multipliers(c)]
+    (shown,) = _on_the_constraints(c, [_simple(c, f) for f in _multipliers(c)])
     names = {s.name: s for s in shown.free_symbols}
     assert "l" in names and not {"x"} & set(names)  # the denominator is 2 l², not 2 (x² + y²)
     m, g, l, th, w = sympy.symbols("m g l theta omega")

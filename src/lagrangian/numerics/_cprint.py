@@ -12,6 +12,7 @@ from collections.abc import Mapping, Sequence
 
 import symengine as se
 
+from .._abs_derivative import settled
 from ..errors import ModelError
 
 __all__ = ["c_block", "c_expression", "c_sequence"]
@@ -97,11 +98,10 @@ def c_expression(expr: se.Basic, names: Mapping[se.Basic, str]) -> str:
     if name in ("Sign", "sign"):
         x = c_expression(expr.args[0], names)
         return f"(({x}) > 0.0 ? 1.0 : (({x}) < 0.0 ? -1.0 : 0.0))"
-    if name == "Derivative" and type(expr.args[0]).__name__ == "Abs" \
-            and all(v == expr.args[0].args[0] for v in expr.args[1:]):
-        # d|u|/du, left unevaluated by SymEngine: sign(u) (0 at u = 0, where |u| has no derivative);
-        # the higher ones are 0 away from u = 0.
-        return c_expression(se.sign(expr.args[1]), names) if len(expr.args) == 2 else "0.0"
+    if name == "Derivative":  # d|u|/dx, left unevaluated by SymEngine: sign(u) du/dx (`settled`)
+        plain = settled(expr)
+        if plain != expr:
+            return c_expression(plain, names)
     raise ModelError(f"the equations of motion contain `{str(expr)[:200]}` ({name}), which the compiled code cannot "
                      "evaluate; it supports "
                      f"{', '.join(sorted([*_FUNCTIONS, *_RECIPROCALS, *_INVERSE_RECIPROCALS]))}, powers and sign.",

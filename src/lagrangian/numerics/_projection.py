@@ -71,7 +71,8 @@ def project_many(system: ConstrainedSystem, t, Y: np.ndarray, p: np.ndarray, tol
     return Y, changed
 
 
-def _singular(t, Y: np.ndarray, bad: np.ndarray, residual: np.ndarray) -> SimulationError:  # type: ignore[no-untyped-def]
+def _singular(t, Y: np.ndarray, bad: np.ndarray,  # type: ignore[no-untyped-def]
+              residual: np.ndarray) -> SimulationError:
     """A_h M⁻¹ A_hᵀ (or M) singular on the way: the Newton step is not defined there."""
     k = int(np.flatnonzero(bad)[0])
     t_k = float(np.broadcast_to(t, (len(Y),))[k])

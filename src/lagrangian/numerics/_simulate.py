@@ -570,8 +570,8 @@ def _early_stop(system, code: int, ctl: np.ndarray, y: np.ndarray) -> Simulation
     elif ctl[21] > 0:  # the pace check: max_steps could not be enough, said at once rather than at the end
         reason = "the maximum number of steps would be reached"
         err = SimulationError(
-            f"The integration stopped at t = {t:.9g} ({_state_text(system, y)}): at its step size (h ≈ {ctl[1]:.3g} now) the run "
-            f"would need about {ctl[21]:.3g} steps, more than max_steps ({int(ctl[9])}). The model moves much "
+            f"The integration stopped at t = {t:.9g} ({_state_text(system, y)}): at its step size "
+            f"(h ≈ {ctl[1]:.3g} now) the run would need about {ctl[21]:.3g} steps, more than max_steps ({int(ctl[9])}). The model moves much "
             f"faster than the time span: its fastest motion (a very stiff spring, a fast spin) lasts a few steps.",
             fix="shorten the time span, soften the fast part (a smaller stiffness), or raise max_steps",
             t=t, state=y.copy())

@@ -275,8 +275,8 @@ def step7(c: Context) -> Section:
             twice = rows[0].kind == "holonomic"
             times = {"fr": ("deux fois", "une fois"), "en": ("twice", "once")}[c.lang][0 if twice else 1]
             blocks.append(Para(w("multiplier is", times=times)))
-        blocks += c.show([c.equation(f"{c.tex(r.multiplier)} = ", _on_the_constraints(c, _simple(c, f)))
-                          for r, f in zip(rows, formulas)], "λ")
+        shown = _on_the_constraints(c, [_simple(c, f) for f in formulas])
+        blocks += c.show([c.equation(f"{c.tex(r.multiplier)} = ", e) for r, e in zip(rows, shown)], "λ")
     for reaction in c.eom.reactions:
         if not reaction.physical:
             continue
@@ -312,9 +312,9 @@ def _multipliers(c: Context) -> tuple[se.Basic, ...] | None:
         return None
 
 
-def _on_the_constraints(c: Context, e: sympy.Basic) -> sympy.Basic:
-    """``e`` with each factor of its numerator and denominator reduced modulo the holonomic constraints
-    f_k(q, t) = 0, which hold all along the motion, where that shortens the factor.
+def _on_the_constraints(c: Context, exprs: list[sympy.Basic]) -> list[sympy.Basic]:
+    """``exprs`` with each factor of their numerators and denominators reduced modulo the holonomic
+    constraints f_k(q, t) = 0, which hold all along the motion, where that shortens the factor.
 
     The pendulum's λ = m (g y − ẋ² − ẏ²) / (2 (x² + y²)) is written m (g y − ẋ² − ẏ²) / (2 l²), as a
     teacher would (x² + y² − l² = 0).  The reduction is the remainder of the division by the
@@ -322,22 +322,23 @@ def _on_the_constraints(c: Context, e: sympy.Basic) -> sympy.Basic:
     tried only where every constraint is a polynomial in the coordinates.
     """
     holonomic = [r.expression for r in c.eom.constraints if r.kind == "holonomic"]
-    if not holonomic or not isinstance(e, sympy.Basic) or e.atoms(Opaque) or len(holonomic) > 3:
-        return e
+    plain = [e for e in exprs if isinstance(e, sympy.Basic) and not e.atoms(Opaque)]
+    if not holonomic or not plain or len(holonomic) > 3:
+        return exprs
     try:
-        # the same symbols as in e (the printed forms may carry assumptions: x real, l positive)
-        own = {s.name: s for s in e.free_symbols}
+        # the same symbols as in the expressions (the printed forms may carry assumptions: x real, l positive)
+        own = {s.name: s for e in plain for s in e.free_symbols}
         shown = [c.ex(f) for f in holonomic]  # SymPy objects (never text)
         if not all(isinstance(f, sympy.Basic) and not f.atoms(Opaque) for f in shown):
-            return e
+            return exprs
         fs = [f.xreplace({s: own.get(s.name, s) for s in f.free_symbols}) for f in shown]
         names = set(c.eom.coordinates)
         q = sorted({s for f in fs for s in f.free_symbols if s.name in names}, key=lambda s: s.name)
         if not q or not all(f.is_polynomial(*q) for f in fs):
-            return e
-        basis = list(sympy.groebner(fs, *q, order="grevlex").exprs)
+            return exprs
+        basis = list(sympy.groebner(fs, *q, order="grevlex").exprs)  # once for all the multipliers
     except (sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError):  # pragma: no cover - kept as is
-        return e
+        return exprs
 
     def reduced(product: sympy.Basic) -> sympy.Basic:
         out = []
@@ -353,8 +354,13 @@ def _on_the_constraints(c: Context, e: sympy.Basic) -> sympy.Basic:
             out.append(base**power)
         return sympy.Mul(*out)
 
-    numerator, denominator = sympy.fraction(sympy.factor(e))
-    return reduced(numerator) / reduced(denominator)
+    def on_them(e: sympy.Basic) -> sympy.Basic:
+        if not isinstance(e, sympy.Basic) or e.atoms(Opaque):
+            return e
+        numerator, denominator = sympy.fraction(sympy.factor(e))
+        return reduced(numerator) / reduced(denominator)
+
+    return [on_them(e) for e in exprs]
 
 
 #: Largest expression (operations) that the report simplifies with SymPy before printing it.
