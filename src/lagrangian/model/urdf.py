@@ -19,7 +19,13 @@ T, U, Q_i and L(q_i) are derived for it as for any other system:
 - ``<dynamics damping>`` becomes the Rayleigh function D = ½ Σ c_j q̇_j²;
 - a ``<mimic>`` joint follows its leader: its value is multiplier·q_leader + offset,
   no coordinate of its own (Pinocchio's ``mimic=True``);
-- joint limits are recorded in each coordinate's description and in `UrdfRobot`.
+- joint limits are recorded in each coordinate's description and in `UrdfRobot`;
+- with ``inertial_parameters=True``, each body's ten standard inertial parameters are model
+  parameters instead of numbers (`INERTIAL_PARAMETERS`): its mass m, first moment m c and inertia
+  I_O about the origin of its frame, in that frame, valued from the file — the convention of
+  Pinocchio's ``Inertia.toDynamicParameters`` and of robot identification (Khalil & Dombre,
+  *Modeling, Identification and Control of Robots*, 2002, §9.3), in which the joint torques are
+  linear (`lagrangian.identify`).
 
 Reference: URDF XML specification, http://wiki.ros.org/urdf/XML; the composition of
 inertias: the seed's course (théorème de Huygens), Featherstone, *Rigid Body Dynamics
@@ -46,7 +52,8 @@ from ._vector import Vector
 from .build import ModelBuilder
 from .spec import GALILEAN_FRAME, ORIGIN, Location, Model
 
-__all__ = ["load_urdf", "parse_urdf", "read_urdf", "UrdfRobot", "UrdfNote", "GRAVITY"]
+__all__ = ["load_urdf", "parse_urdf", "read_urdf", "UrdfRobot", "UrdfNote", "GRAVITY", "INERTIAL_PARAMETERS",
+           "inertial_parameter_names"]
 
 #: Most joints with a coordinate: the derivation expands M's n² entries, and a file from a stranger
 #: must not start an endless one (as `lagrangian.model.zoo.MAX_LINKS` for the zoo's chains).
@@ -55,6 +62,11 @@ MAX_JOINTS = 100
 GRAVITY = 9.81
 #: Below this (relative to the largest entry), a computed rotation or inertia entry is rounding noise.
 _NOISE = 1e-14
+#: The ten standard inertial parameters of a body (``inertial_parameters=True``), each named
+#: ``<prefix>_<body>``: m, the first moment m c (c: centre of mass from the frame's origin) and the
+#: inertia matrix I_O about that origin, components in the body's frame (Pinocchio's order is
+#: m, mx, my, mz, Ixx, Ixy, Iyy, Ixz, Iyz, Izz).
+INERTIAL_PARAMETERS = ("m", "mx", "my", "mz", "Ixx", "Ixy", "Ixz", "Iyy", "Iyz", "Izz")
 
 
 class UrdfNote(UserWarning):
@@ -75,12 +87,16 @@ def read_urdf(path: str | Path) -> UrdfRobot:
     return read_urdf_file(path)
 
 
-def load_urdf(path: str | Path, *, damping: bool = True) -> Model:
+def load_urdf(path: str | Path, *, damping: bool = True, inertial_parameters: bool = False) -> Model:
     """Read the URDF file at ``path`` into a `Model` (see the module docstring).
 
     ``damping=False`` leaves out the joints' ``<dynamics damping>`` (Pinocchio's ``aba``
-    ignores it too).  What is skipped (transmissions, dry friction, ``<gazebo>``...) is
-    said by a `UrdfNote` warning each.
+    ignores it too).  ``inertial_parameters=True`` declares each body's ten standard inertial
+    parameters (`INERTIAL_PARAMETERS`: m, m c, I_O in the body's frame, about its origin) as
+    parameters named ``m_<body>``, ``mx_<body>``, ..., ``Izz_<body>`` (`inertial_parameter_names`),
+    valued from the file, instead of numbers: the motion is the same, and the joint torques are
+    linear in them (identification).  What is skipped (transmissions, dry friction,
+    ``<gazebo>``...) is said by a `UrdfNote` warning each.
 
     Raises
     ------
@@ -101,12 +117,28 @@ def load_urdf(path: str | Path, *, damping: bool = True) -> Model:
     >>> [c.name for c in model.coordinates], model.inputs
     (['hinge'], ('tau_hinge',))
     """
-    return _Translation(_warn(read_urdf_file(path)), damping=damping).model()
+    return _Translation(_warn(read_urdf_file(path)), damping=damping, inertial=inertial_parameters).model()
 
 
-def parse_urdf(text: str | bytes, *, source: str | None = None, damping: bool = True) -> Model:
+def parse_urdf(text: str | bytes, *, source: str | None = None, damping: bool = True,
+               inertial_parameters: bool = False) -> Model:
     """`load_urdf` of URDF ``text`` (``source`` names it in error messages)."""
-    return _Translation(_warn(read_urdf_text(text, source=source)), damping=damping).model()
+    return _Translation(_warn(read_urdf_text(text, source=source)), damping=damping,
+                        inertial=inertial_parameters).model()
+
+
+def inertial_parameter_names(model: Model) -> dict[str, tuple[str, ...]]:
+    """Body name → the names of its ten standard inertial parameters, in `INERTIAL_PARAMETERS` order.
+
+    Empty for a model read without ``inertial_parameters=True``.
+    """
+    names = {p.name for p in model.parameters}
+    out = {}
+    for body in model.bodies:
+        mine = tuple(f"{prefix}_{body.name}" for prefix in INERTIAL_PARAMETERS)
+        if all(name in names for name in mine):
+            out[body.name] = mine
+    return out
 
 
 # -- numbers and rotations --------------------------------------------------------------------------------------
@@ -241,9 +273,10 @@ class _Names:
 class _Translation:
     """Declares the robot on a `ModelBuilder`, joint by joint from the root (module docstring)."""
 
-    def __init__(self, robot: UrdfRobot, *, damping: bool) -> None:
+    def __init__(self, robot: UrdfRobot, *, damping: bool, inertial: bool = False) -> None:
         self.robot = robot
         self.damping = damping
+        self.inertial = inertial
         self.names = _Names()
         self.b = ModelBuilder(robot.name or "robot", self.description(), source=robot.source)
         self.coordinate: dict[str, str] = {}  # independent joint -> coordinate name
@@ -434,12 +467,48 @@ class _Translation:
                                                           "(metres and kilograms)")
             inertia = _clean((inertia + inertia.T) / 2)
             center = _clean(center, max(1e-3, float(np.max(np.abs(center)))))
+            if self.inertial:
+                self.symbolic_body(carrier, mass, center, inertia)
+                continue
             matrix = [[_number(float(x)) for x in row] for row in inertia]
             self.b.body(carrier.body, frame=carrier.frame, mass=_number(mass), center=_vector(carrier.frame, center),
                         center_from=carrier.point, inertia={"at": "G", "frame": carrier.frame, "matrix": matrix},
                         location=self.where(carrier.line))
         if any(carrier.masses for carrier in self.carriers):
             self.b.gravity("weight", Vector.basis(GALILEAN_FRAME, "z") * -se.Symbol("g"))
+
+    def symbolic_body(self, carrier: _Carrier, mass: float, center: np.ndarray, inertia: np.ndarray) -> None:
+        """The body of ``carrier`` over its ten standard inertial parameters (`INERTIAL_PARAMETERS`).
+
+        m, h = m c and I_O = I_G + m (|c|² 1 − c cᵀ) (Huygens), c = OG in the carrier's frame from
+        its point O; the body is then declared with G = O + h/m and its inertia at O, so that T,
+        M and F are those of the file's numbers for the default values.
+        """
+        body = carrier.body
+        names = [self.names.take(f"{prefix}_{body}") for prefix in INERTIAL_PARAMETERS]
+        if names != [f"{prefix}_{body}" for prefix in INERTIAL_PARAMETERS]:
+            raise ModelError(f"the inertial parameters of link `{body}` cannot be named `m_{body}`, ...: a "
+                             "name is taken by a joint or another link", file=self.robot.source,
+                             line=carrier.line, symbol=body, fix="rename the link or joint whose name clashes")
+        first = mass * center
+        at_origin = _clean(inertia + mass * (float(center @ center) * np.eye(3) - np.outer(center, center)))
+        values = [mass, *first, at_origin[0, 0], at_origin[0, 1], at_origin[0, 2], at_origin[1, 1],
+                  at_origin[1, 2], at_origin[2, 2]]
+        units = ["kg", *["kg*m"] * 3, *["kg*m^2"] * 6]
+        for name, value, unit, prefix in zip(names, values, units, INERTIAL_PARAMETERS):
+            what = {"m": ("masse", "mass"), "mx": ("moment statique m c_x", "first moment m c_x"),
+                    "my": ("moment statique m c_y", "first moment m c_y"),
+                    "mz": ("moment statique m c_z", "first moment m c_z")}.get(
+                prefix, (f"inertie {prefix[1:]} en l'origine", f"inertia {prefix[1:]} about the origin"))
+            self.b.parameter(name, float(value), unit=unit,
+                             description=Text({"fr": f"{what[0]} du corps `{body}` (repère {carrier.frame})",
+                                               "en": f"{what[1]} of body `{body}` (frame {carrier.frame})"}))
+        m, mx, my, mz, ixx, ixy, ixz, iyy, iyz, izz = (se.Symbol(name) for name in names)
+        self.b.body(body, frame=carrier.frame, mass=m, center=Vector({carrier.frame: (mx / m, my / m, mz / m)}),
+                    center_from=carrier.point,
+                    inertia={"at": carrier.point, "frame": carrier.frame,
+                             "matrix": [[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]]},
+                    location=self.where(carrier.line))
 
     def efforts(self) -> None:
         """The actuators' τ_j (Q_j = τ_j, an input each) and the joints' viscous damping D = ½ Σ c_j q̇_j²."""

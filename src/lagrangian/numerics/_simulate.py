@@ -28,6 +28,7 @@ import threading
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import symengine as se
@@ -44,6 +45,9 @@ from ._progress import Reporter, Watch, make_reporter
 from ._ranges import watch_ranges
 from ._system import CompiledSystem, _ptr, known_values
 from ._trajectory import Event, Trajectory, conservation
+
+if TYPE_CHECKING:
+    from ._sensitivity import Sensitivities
 
 __all__ = ["simulate", "EventSpec", "initial_state", "METHODS", "default_tolerance", "control_block"]
 
@@ -307,6 +311,7 @@ def simulate(
     stabilization: str | None = None,
     baumgarte: tuple[float, float] = BAUMGARTE,
     stiffness_check: bool = True,
+    sensitivities: Sequence[str] | Sensitivities | None = None,
 ) -> Trajectory:
     """Integrate the equations of motion from t_start to t_end.
 
@@ -337,6 +342,10 @@ def simulate(
         the run with a `SimulationError` once the step is limited by stability rather than
         accuracy (h|λ| > 6.1 for 15 steps in a row), where an implicit method (``"Radau"``)
         is the tool. False integrates a knowingly stiff problem explicitly all the same.
+    sensitivities : parameter names and initial values (``["l", "m", "theta(t0)"]``, or a
+        `lagrangian.numerics.Sensitivities`): ∂y(t)/∂x for each, integrated with the state
+        (``dop853`` only; `numerics._sensitivity`), as the columns ``d(theta)/d(l)``...;
+        ``trajectory.sensitivity("l")`` has shape (N, 2n).
 
     Returns
     -------
@@ -366,10 +375,19 @@ def simulate(
         check_sign(model, parameters or {})  # type: ignore[arg-type]
         if isinstance(source, Model) and exact_contact_model(source) is None:
             source = derive(source)  # derived here once, for the signs it used
-    traj = _simulate(source, t_end, t_start=t_start, initial=initial, parameters=parameters, method=method,
-                     rtol=rtol, atol=atol, dt=dt, max_step=max_step, n_out=n_out, t_eval=t_eval, events=events,
-                     tolerance=tolerance, max_steps=max_steps, progress=progress, backend=backend,
-                     stabilization=stabilization, baumgarte=baumgarte, stiffness_check=stiffness_check)
+    if sensitivities is not None:
+        from ._sensitivity import simulate_sensitivities
+
+        traj = simulate_sensitivities(source, t_end, sensitivities, t_start=t_start, initial=initial,
+                                      parameters=parameters, method=method, rtol=rtol, atol=atol, dt=dt,
+                                      max_step=max_step, n_out=n_out, t_eval=t_eval, events=events,
+                                      tolerance=tolerance, max_steps=max_steps, progress=progress, backend=backend,
+                                      stabilization=stabilization, stiffness_check=stiffness_check)
+    else:
+        traj = _simulate(source, t_end, t_start=t_start, initial=initial, parameters=parameters, method=method,
+                         rtol=rtol, atol=atol, dt=dt, max_step=max_step, n_out=n_out, t_eval=t_eval, events=events,
+                         tolerance=tolerance, max_steps=max_steps, progress=progress, backend=backend,
+                         stabilization=stabilization, baumgarte=baumgarte, stiffness_check=stiffness_check)
     if not watched:
         return traj
     eom = source if isinstance(source, EquationsOfMotion) else getattr(source, "eom", None)

@@ -138,6 +138,9 @@ class Trajectory:
     #: Where the motion left a declared coordinate range or broke a sign the derivation used
     #: (`lagrangian.numerics._ranges.RangeExit`), each also in `warnings`.
     range_exits: tuple[Any, ...] = ()
+    #: The parameters and initial values (``"theta(t0)"``) whose sensitivities are in `extra`
+    #: (``simulate(..., sensitivities=...)``), in the order asked.
+    sensitivity_names: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         n, N = len(self.coordinates), len(self.t)
@@ -164,6 +167,18 @@ class Trajectory:
         if name in self.extra:
             return self.extra[name]
         raise KeyError(f"no column `{name}`; columns are {', '.join(self.columns())}")
+
+    def sensitivity(self, name: str) -> np.ndarray:
+        """∂y(t)/∂x for the parameter or initial value ``name``: shape (N, 2n), y = (q, q̇).
+
+        Column i is ∂y_i/∂x at each output time, the columns ``d(theta)/d(l)``... of the table
+        (``simulate(..., sensitivities=[...])``).
+        """
+        if name not in self.sensitivity_names:
+            raise KeyError(f"no sensitivity to `{name}`; computed: {', '.join(self.sensitivity_names) or 'none'} "
+                           "(simulate(..., sensitivities=[...]))")
+        states = [*self.coordinates, *(c + "_dot" for c in self.coordinates)]
+        return np.column_stack([self.extra[f"d({s})/d({name})"] for s in states])
 
     def columns(self) -> list[str]:
         """Every column name, in file order."""
