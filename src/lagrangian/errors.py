@@ -19,6 +19,7 @@ __all__ = [
     "OutputError",
     "ExportError",
     "VerificationError",
+    "IdentificationError",
 ]
 
 
@@ -151,3 +152,11 @@ class VerificationError(LagrangianError):
     """A cross-check failed: the Lagrange equations disagree with the Newton–Euler theorems."""
 
     exit_code = 5
+
+
+class IdentificationError(LagrangianError):
+    """Parameters cannot be identified from the measurements given: unreadable or inconsistent data
+    (a missing value, times that do not increase, an unknown column), an unknown or unidentifiable
+    parameter (the combinations that can be identified are listed), a fit that does not converge."""
+
+    exit_code = 2
