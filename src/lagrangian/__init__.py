@@ -32,15 +32,16 @@ _WHERE = {
                      "equilibria", "first_integrals", "holding_inputs", "linearize", "modes", "routh_reduction", "stability",
                      "steady_motions", "sweep", "verify"), ".analysis"),
     **dict.fromkeys(("EquationsOfMotion", "LagrangeEquation", "derive"), ".dynamics"),
-    **dict.fromkeys(("DerivationError", "ExportError", "KinematicsError", "LagrangianError", "ModelError",
-                     "OutputError", "SimulationError", "VerificationError"), ".errors"),
+    **dict.fromkeys(("DerivationError", "ExportError", "IdentificationError", "KinematicsError", "LagrangianError",
+                     "ModelError", "OutputError", "SimulationError", "VerificationError"), ".errors"),
+    **dict.fromkeys(("Identification", "identify"), ".identification"),
     "Kinematics": ".kinematics",
     **dict.fromkeys(("ModelBuilder", "load_model", "load_urdf", "parse_model"), ".model"),
     "Model": ".model.spec",
     "lagrange_top": ".model.zoo",
     **dict.fromkeys(("Report", "report", "export"), ".output"),
-    **dict.fromkeys(("CompiledSystem", "EventSpec", "Trajectory", "compile_system", "ensemble", "grid",
-                     "open_ensemble", "save_trajectory", "simulate"), ".numerics"),
+    **dict.fromkeys(("CompiledSystem", "EventSpec", "Sensitivities", "Trajectory", "compile_system", "ensemble",
+                     "grid", "open_ensemble", "save_trajectory", "simulate"), ".numerics"),
 }
 
 if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
@@ -49,14 +50,15 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
                            first_integrals, linearize, modes, routh_reduction, stability, steady_motions, sweep,
                            verify)
     from .dynamics import EquationsOfMotion, LagrangeEquation, derive
-    from .errors import (DerivationError, ExportError, KinematicsError, LagrangianError, ModelError, OutputError,
-                         SimulationError, VerificationError)
+    from .errors import (DerivationError, ExportError, IdentificationError, KinematicsError, LagrangianError,
+                         ModelError, OutputError, SimulationError, VerificationError)
+    from .identification import Identification, identify
     from .kinematics import Kinematics
     from .model import ModelBuilder, load_model, load_urdf, parse_model
     from .model.spec import Model
     from .model.zoo import lagrange_top
-    from .numerics import (CompiledSystem, EventSpec, Trajectory, compile_system, ensemble, grid, open_ensemble,
-                           save_trajectory, simulate)
+    from .numerics import (CompiledSystem, EventSpec, Sensitivities, Trajectory, compile_system, ensemble, grid,
+                           open_ensemble, save_trajectory, simulate)
     from .output import Report, export, report
 
 __version__ = "0.1.0"
@@ -98,6 +100,9 @@ __all__ = [
     "compile_system",
     "CompiledSystem",
     "simulate",
+    "Sensitivities",
+    "identify",
+    "Identification",
     "ensemble",
     "grid",
     "open_ensemble",
@@ -115,6 +120,7 @@ __all__ = [
     "OutputError",
     "ExportError",
     "VerificationError",
+    "IdentificationError",
 ]
 
 

@@ -100,10 +100,14 @@ def format_combination(names: Sequence[str], row: np.ndarray, digits: int = 6) -
     return " ".join([first, *(f"{s} {t}" for s, t in parts[1:])])
 
 
-def base_parameters(Y: np.ndarray, names: Sequence[str], priority: Sequence[int] = ()) -> BaseParameters:
+def base_parameters(Y: np.ndarray, names: Sequence[str]) -> BaseParameters:
     """The base parameters of the stacked regressor ``Y`` (rows: equations at many states; columns: ``names``).
 
-    ``priority``: indices of columns to lead their combinations where they can (tried first).
+    The rank comes from the QR factorisation with column pivoting (module docstring).  The r
+    columns kept are then the first ones, in the order of ``names``, that are independent of those
+    kept before them (Gram–Schmidt with the same tolerance), so that the combinations do not depend
+    on the states Y was evaluated at: each is led by its earliest parameter
+    (``mx_upper_arm + 0.5 m_forearm``).  Should the two disagree, the pivots of the QR are kept.
     """
     Y = np.asarray(Y, dtype=float)
     P = Y.shape[1]
@@ -113,21 +117,36 @@ def base_parameters(Y: np.ndarray, names: Sequence[str], priority: Sequence[int]
     live = [j for j in range(P) if j not in zero]
     if not live:
         return BaseParameters(tuple(names), (), tuple(range(P)), np.zeros((0, P)), zero)
-    order = [j for j in priority if j in live] + [j for j in live if j not in priority]
-    scaled = Y[:, order] / norms[order]
+    scaled = Y[:, live] / norms[live]
     _, R, piv = scipy.linalg.qr(scaled, mode="economic", pivoting=True)
     diag = np.abs(np.diag(R))
     rank = int(np.sum(diag > RANK_TOLERANCE * diag[0]))
-    independent = [order[k] for k in piv[:rank]]
-    dependent = [order[k] for k in piv[rank:]] + list(zero)
-    beta_scaled = scipy.linalg.solve_triangular(R[:rank, :rank], R[:rank, rank:]) if rank < len(live) else \
-        np.zeros((rank, 0))
-    beta_scaled[np.abs(beta_scaled) < COEFFICIENT_TOLERANCE] = 0.0
-    # back to the parameters' own units: Y₂ = Y₁ β with Y = scaled · norms
-    beta = beta_scaled * norms[[order[k] for k in piv[rank:]]][None, :] / norms[independent][:, None]
-    beta = np.hstack([beta, np.zeros((rank, len(zero)))])
-    # each combination led by its first parameter in the names' order reads more naturally
-    sort = np.argsort(independent)
-    independent = [independent[k] for k in sort]
-    beta = beta[sort]
-    return BaseParameters(tuple(names), tuple(independent), tuple(dependent), beta, zero)
+    independent = _first_independent(scaled, rank)
+    if independent is None:
+        independent = sorted(int(k) for k in piv[:rank])
+    independent = [live[k] for k in independent]
+    dependent = [j for j in live if j not in independent]
+    beta = np.zeros((rank, P - rank))
+    if dependent:
+        coef, *_ = np.linalg.lstsq(Y[:, independent] / norms[independent], Y[:, dependent] / norms[dependent],
+                                   rcond=None)
+        coef[np.abs(coef) < COEFFICIENT_TOLERANCE] = 0.0
+        # back to the parameters' own units: Y₂ = Y₁ β with Y = scaled · norms
+        beta[:, : len(dependent)] = coef * norms[dependent][None, :] / norms[independent][:, None]
+    return BaseParameters(tuple(names), tuple(independent), tuple(dependent) + zero, beta, zero)
+
+
+def _first_independent(scaled: np.ndarray, rank: int) -> list[int] | None:
+    """Indices of the first ``rank`` columns, in order, each independent of those before it; None if they
+    are not exactly ``rank``."""
+    basis = np.zeros((scaled.shape[0], 0))
+    kept = []
+    for j in range(scaled.shape[1]):
+        column = scaled[:, j]
+        residual = column - basis @ (basis.T @ column)
+        residual -= basis @ (basis.T @ residual)  # twice is enough (Kahan, Parlett)
+        size = float(np.linalg.norm(residual))
+        if size > RANK_TOLERANCE:
+            kept.append(j)
+            basis = np.column_stack([basis, residual / size])
+    return kept if len(kept) == rank else None

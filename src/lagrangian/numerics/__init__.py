@@ -18,6 +18,7 @@ from ._simulate import EventSpec as EventSpec
 from ._simulate import default_tolerance as default_tolerance
 from ._simulate import initial_state as initial_state
 from ._simulate import simulate as simulate
+from ._sensitivity import Sensitivities as Sensitivities
 from ._stickslip import simulate_stick_slip as simulate_stick_slip
 from ._system import CompiledSystem as CompiledSystem
 from ._system import compile_system as compile_system
@@ -29,7 +30,7 @@ from ._top_check import simulation_check as simulation_check
 from ._trajectory import Event as Event
 from ._trajectory import Trajectory as Trajectory
 
-__all__ = ["simulate", "ensemble", "grid", "Grid", "open_ensemble", "flip_events", "simulate_stick_slip", "save_trajectory", "check_output_path", "EventSpec", "initial_state", "METHODS",
+__all__ = ["simulate", "Sensitivities", "ensemble", "grid", "Grid", "open_ensemble", "flip_events", "simulate_stick_slip", "save_trajectory", "check_output_path", "EventSpec", "initial_state", "METHODS",
            "STABILIZATIONS", "default_tolerance", "CompiledSystem", "compile_system", "Trajectory", "Event",
            "SimulationCheck", "simulation_check", "reaction_columns_along",
            "reaction_history_along", "check_trajectory_along"]

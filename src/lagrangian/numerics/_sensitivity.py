@@ -30,8 +30,9 @@ from importlib import resources
 import numpy as np
 import symengine as se
 
-from ..dynamics import EquationsOfMotion
+from ..dynamics import EquationsOfMotion, derive
 from ..errors import Interrupted, SimulationError
+from ..model.spec import Model
 from ._cfunction import c_function
 from ._compile import compile_library
 from ._forward import forward_jacobian
@@ -324,11 +325,14 @@ def simulate_sensitivities(source, t_end: float, sensitivities: Sensitivities | 
                               "and this model keeps complementary constraints (a differential-algebraic system).",
                               fix="choose principal coordinates that satisfy the constraints, or leave out the "
                                   "sensitivities")
+    if isinstance(source, Model):
+        source = derive(source)
+    # the names are checked before anything is compiled
+    columns = parse_sensitivities(source.eom if isinstance(source, CompiledSystem) else source, options.names)
     system = _resolve(source, [], backend)
     if system.backend != "c":
         raise SimulationError("Sensitivities are integrated in compiled C, and no C compiler was found.",
                               fix="install a C compiler (e.g. gcc)")
-    columns = parse_sensitivities(system.eom, options.names)
     if tolerance is None:
         tolerance = default_tolerance(method, rtol)
     p = system.parameter_vector(parameters)
