@@ -155,8 +155,6 @@ def _table(data, columns: Sequence[str] | None) -> tuple[dict[str, object], str]
         return table, f"trajectory of `{data.model_name}`"
     if isinstance(data, (str, Path)):
         return _read_csv(Path(data)), f"`{data}`"
-    if isinstance(data, Mapping):
-        return {str(k): v for k, v in data.items()}, "the arrays given"
     try:
         import xarray as xr
     except ImportError:  # pragma: no cover - xarray is a dependency
@@ -173,6 +171,8 @@ def _table(data, columns: Sequence[str] | None) -> tuple[dict[str, object], str]
                                           f"({time},).", fix="select one record (e.g. ds.sel(member=0))")
             table[str(name)] = var.values
         return table, "the xarray Dataset"
+    if isinstance(data, Mapping):  # after xarray's Dataset, which is a Mapping of its variables
+        return {str(k): v for k, v in data.items()}, "the arrays given"
     raise IdentificationError(f"The measurements are a {type(data).__name__}, which identify does not read.",
                               fix="give a Trajectory, an xarray Dataset, a CSV file or a dict of arrays")
 

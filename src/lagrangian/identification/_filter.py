@@ -61,10 +61,9 @@ class SavitzkyGolay:
         if np.ptp(spacing) <= 1e-9 * np.mean(spacing):
             # A uniform grid: the fit depends only on where the sample sits in its window (w cases).
             where = np.arange(N) - start
-            pinv = np.empty((N, d + 1, w))
-            for k in np.unique(where):
-                rows = np.flatnonzero(where == k)
-                pinv[rows] = np.linalg.pinv(powers[rows[0]])
+            cases = np.unique(where)
+            first = np.array([np.flatnonzero(where == k)[0] for k in cases])
+            pinv = np.linalg.pinv(powers[first])[np.searchsorted(cases, where)]
         else:
             pinv = np.linalg.pinv(powers)  # (N, d + 1, w)
         coef = np.einsum("nkw,nwc->nkc", pinv, flat[index])  # (N, d + 1, k)

@@ -102,6 +102,14 @@ def fit_regressor(eom: EquationsOfMotion, meas: Measurements, fitted: Sequence[s
     r, Y = regressor.evaluate(t[keep], y[keep], qdd[keep], P)
     r0 = r - np.einsum("nij,j->ni", Y, theta0)
     n = regressor.n
+    # Y θ = −r₀ with r₀ ≡ 0 is solved by θ = 0: nothing sets the parameters' scale (a free motion determines
+    # masses only up to a common factor, without a known force or a known mass)
+    if not np.abs(r0).max(initial=0.0) > 1e-10 * np.abs(r).max(initial=0.0):
+        raise IdentificationError(
+            f"The equations are homogeneous in {', '.join(fitted)}: with nothing else in them (no measured input, "
+            "no known mass, spring or weight acting), the motion determines these parameters only up to a common "
+            "factor.", fix="measure an input (a force, a torque) or keep a parameter known (values={...}) to set "
+                           "the scale, or fit ratios (e.g. g/l) instead")
     base = structural_base(regressor, fitted, values, y[keep], meas, keep, rng)
     if not base.full and deficient != "base":
         raise unidentifiable(base)

@@ -75,7 +75,8 @@ class Identification:
             raise IdentificationError(f"`{name}` was not among the parameters fitted.",
                                       fix="the parameters fitted are " + ", ".join(self.parameters))
         combos = [b.text for b in self.base if name in b.coefficients]
-        where = f"it enters only {combos[0]}" if combos else "it does not act on the motion at all"
+        where = ("it enters only " + "; ".join(f"`{c}`" for c in combos)) if combos else \
+            "it does not act on the motion at all"
         raise IdentificationError(f"`{name}` is not identifiable on its own: {where}.",
                                   fix="read the combinations in fit.base, or fix the other parameters of the "
                                       "combination at known values")

@@ -257,22 +257,19 @@ def _result(system: CompiledSystem, problem: _Problem, sol, r: np.ndarray, J: np
     data_rows = N * k
     dof = max(data_rows - J.shape[1] + (problem.segments - 1) * problem.n2, 1)
     s2 = float(r[:data_rows] @ r[:data_rows]) / dof
-    JTJ = J.T @ J
-    condition = float(np.linalg.cond(J))
-    try:
-        cov = s2 * np.linalg.inv(JTJ)
-    except np.linalg.LinAlgError:
-        cov = np.full(JTJ.shape, np.inf)
     theta, starts = problem.unpack(sol.x)
+    typical = np.concatenate([np.where(theta != 0, np.abs(theta), 1.0), np.tile(problem.scale, problem.segments)])
+    cov, condition, null = _covariance(J, s2, typical)
     std = np.sqrt(np.abs(np.diag(cov)))
     fitted = problem.fitted
-    unidentified = [name for name, s in zip(fitted, std[:P]) if not np.isfinite(s) or condition > 1e14]
+    unidentified = [name for k, name in enumerate(fitted) if null[k]]
     if unidentified:
         raise IdentificationError(
-            f"The record does not determine {', '.join(unidentified)}: the Jacobian of the residuals is singular "
-            f"at the fit (condition number {condition:.1e}).",
+            f"The record does not determine {', '.join(unidentified)}: the residuals do not change along some "
+            f"combination of {'it' if len(unidentified) == 1 else 'them'} (and of the initial states) at the fit.",
             fix="fit fewer parameters (fix the others at known values), measure more of the state, or use a richer "
                 "motion")
+    hidden = [name for k, name in enumerate(problem.states) if null[P + k]]
     data = r[:data_rows].reshape(N, k)
     residuals = np.column_stack([data[:, c] * problem.sigma[name] for c, (_, name) in enumerate(problem.measured)])
     names_cov = tuple(fitted) + tuple(f"{s}(t{j})" for j in range(problem.segments) for s in problem.states)
@@ -284,6 +281,10 @@ def _result(system: CompiledSystem, problem: _Problem, sol, r: np.ndarray, J: np
                      "state's scale)")
     if meas.inputs:
         notes.append(f"inputs {', '.join(meas.inputs)} interpolated linearly between samples")
+    if hidden:
+        notes.append(f"{', '.join(hidden)} at t0 not determined by the record (the measured motion does not depend on "
+                     "{}): kept at {}".format("it" if len(hidden) == 1 else "them",
+                                             "its first value" if len(hidden) == 1 else "their first values"))
     status = "converged" if sol.status > 0 else f"not converged after {evaluations} evaluations ({sol.message})"
     return Identification(
         model_name=system.eom.model.name, route="shooting", parameters=tuple(fitted),
@@ -295,3 +296,36 @@ def _result(system: CompiledSystem, problem: _Problem, sol, r: np.ndarray, J: np
         sigma={name: float(np.sqrt(np.mean(residuals[:, c] ** 2))) for c, (_, name) in enumerate(problem.measured)},
         status=status, iterations=evaluations, condition=condition,
         initial={s: float(v) for s, v in zip(problem.states, starts[0])}, notes=tuple(notes))
+
+
+#: Singular values of the column-scaled Jacobian below this fraction of the largest are its null space.
+NULL_TOLERANCE = 1e-10
+
+
+def _covariance(J: np.ndarray, s2: float, typical: np.ndarray) -> tuple[np.ndarray, float, np.ndarray]:
+    """(σ̂² (JᵀJ)⁺, condition number, which unknowns the null space moves) from the SVD of J, columns scaled.
+
+    A direction that the residuals do not see (the position of a cyclic coordinate that is not
+    measured; a mass that cancels out of q̈) has no variance: its unknowns get no standard deviation
+    (NaN), and the others the covariance of the directions that are seen.  ``typical``: each unknown's
+    size, so that a column whose effect on the residuals, ‖J_k‖ × typical_k, is round-off counts as zero
+    before the columns are scaled to unit norm.
+    """
+    norms = np.linalg.norm(J, axis=0)
+    effect = norms * typical
+    dead = effect <= 1e-9 * effect.max(initial=0.0)
+    norms = np.where(dead | (norms == 0), 1.0, norms)
+    live = np.flatnonzero(~dead)
+    _, s, Vt = np.linalg.svd(J[:, live] / norms[live], full_matrices=False)
+    keep = s > NULL_TOLERANCE * s[0]
+    V = np.zeros((J.shape[1], int(keep.sum())))
+    V[live] = Vt[keep].T / norms[live][:, None]
+    cov = s2 * (V / s[keep] ** 2) @ V.T
+    null = Vt[~keep]
+    moved = dead.copy()
+    if len(null):
+        moved[live] |= np.abs(null).max(axis=0) > 1e-6
+    cov[moved, :] = np.nan
+    cov[:, moved] = np.nan
+    condition = float(s[0] / s[keep][-1])
+    return cov, condition, moved
