@@ -4,10 +4,10 @@ import json
 
 import numpy as np
 import pytest
+from lagrangian_test_support import EXAMPLES_DIR
 from scipy.integrate import solve_ivp
 
 from lagrangian.cli.main import main
-from lagrangian_test_support import EXAMPLES_DIR
 
 PENDULUM = str(EXAMPLES_DIR / "simple_pendulum.toml")
 

@@ -14,12 +14,12 @@ import functools
 
 import numpy as np
 import pytest
+from lagrangian_test_support import EXAMPLES_DIR
 from scipy.integrate import solve_ivp
 
 import lagrangian
 from lagrangian.errors import IdentificationError
 from lagrangian.identification import SavitzkyGolay, Shooting, identify
-from lagrangian_test_support import EXAMPLES_DIR
 
 CART_POLE = """
 [model]
@@ -54,16 +54,16 @@ TRUE = {"mc": 1.3, "m": 0.25, "l": 0.55, "c": 0.4}
 G = 9.81
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _exact_record(t_end: float, rate: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(t, F, y) from SciPy on the equations written above, sample interval by sample interval (F is linear
     on each, so every piece is smooth for DOP853's error control)."""
-    t = np.linspace(0.0, t_end, int(round(t_end * rate)) + 1)
+    t = np.linspace(0.0, t_end, round(t_end * rate) + 1)
     F = 2 * np.sin(2.1 * t) + 1.5 * np.sin(5.3 * t + 1) + 0.8 * np.sin(11 * t)
     mc, m, l, c = (TRUE[k] for k in ("mc", "m", "l", "c"))
 
     def f(time, y, k):
-        x, th, xd, thd = y
+        _, th, xd, thd = y
         force = F[k] + (F[k + 1] - F[k]) * (time - t[k]) / (t[k + 1] - t[k])
         a11, a12, a22 = mc + m, m * l * np.cos(th), m * l * l
         r1, r2 = force - c * xd + m * l * np.sin(th) * thd**2, m * G * l * np.sin(th)
@@ -82,7 +82,7 @@ def cart_pole_record(t_end: float, rate: float, noise: float, seed: int, span: f
                      ) -> dict[str, np.ndarray]:
     """Samples of x, θ (with white noise) and F over [0, span] of the record of [0, t_end]."""
     t, F, y = _exact_record(t_end, rate)
-    keep = slice(None) if span is None else slice(0, int(round(span * rate)) + 1)
+    keep = slice(None) if span is None else slice(0, round(span * rate) + 1)
     rng = np.random.default_rng(seed)
     t, F, y = t[keep], F[keep], y[keep]
     return {"t": t, "x": y[:, 0] + rng.normal(scale=noise, size=len(t)),

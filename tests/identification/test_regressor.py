@@ -11,12 +11,12 @@ import warnings
 
 import numpy as np
 import pytest
+from lagrangian_test_support import EXAMPLES_DIR
+from urdf_robots import Peer, robot_data_file
 
 import lagrangian
 from lagrangian.identification import Regressor, base_parameters
 from lagrangian.model.urdf import INERTIAL_PARAMETERS, inertial_parameter_names, parse_urdf, read_urdf
-from lagrangian_test_support import EXAMPLES_DIR
-from urdf_robots import Peer, robot_data_file
 
 pin = pytest.importorskip("pinocchio", reason="Pinocchio (`pip install pin`) is the referee of these tests")
 

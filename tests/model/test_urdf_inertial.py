@@ -9,11 +9,11 @@ import warnings
 
 import numpy as np
 import pytest
+from lagrangian_test_support import EXAMPLES_DIR
+from urdf_robots import DOUBLE_PENDULUM, SPATIAL_ARM, Ours
 
 import lagrangian
 from lagrangian.model.urdf import INERTIAL_PARAMETERS, inertial_parameter_names, parse_urdf
-from lagrangian_test_support import EXAMPLES_DIR
-from urdf_robots import DOUBLE_PENDULUM, SPATIAL_ARM, Ours
 
 pin = pytest.importorskip("pinocchio", reason="Pinocchio (`pip install pin`) is the referee of these tests")
 

@@ -12,14 +12,14 @@ import warnings
 import numpy as np
 import pytest
 import symengine as se
+from lagrangian_test_support import EXAMPLES_DIR as EXAMPLES
+from urdf_robots import DOUBLE_PENDULUM
 
 import lagrangian
 from lagrangian.errors import SimulationError
-from lagrangian.numerics import Sensitivities, compile_system, simulate
 from lagrangian.model.urdf import parse_urdf
+from lagrangian.numerics import Sensitivities, compile_system, simulate
 from lagrangian.numerics._forward import forward_jacobian
-from lagrangian_test_support import EXAMPLES_DIR as EXAMPLES
-from urdf_robots import DOUBLE_PENDULUM
 
 #: Central-difference step, relative: ε^(1/3) balances the O(h²) truncation against round-off ε/h.
 FD_STEP = np.finfo(float).eps ** (1 / 3)

@@ -17,5 +17,15 @@ from ._result import BaseEstimate as BaseEstimate
 from ._result import Identification as Identification
 from ._shooting import Shooting as Shooting
 
-__all__ = ["identify", "Identification", "BaseEstimate", "Measurements", "read_measurements", "SavitzkyGolay",
-           "Shooting", "Regressor", "BaseParameters", "base_parameters"]
+__all__ = [
+           "BaseEstimate",
+           "BaseParameters",
+           "Identification",
+           "Measurements",
+           "Regressor",
+           "SavitzkyGolay",
+           "Shooting",
+           "base_parameters",
+           "identify",
+           "read_measurements",
+]

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg
 
-__all__ = ["BaseParameters", "base_parameters", "RANK_TOLERANCE"]
+__all__ = ["RANK_TOLERANCE", "BaseParameters", "base_parameters"]
 
 #: |R_kk| / |R_00| below this (columns scaled to unit norm) counts as zero: the column depends on the
 #: earlier ones.  Round-off in Y is near 1e-14; a genuinely independent column rarely falls below 1e-6.

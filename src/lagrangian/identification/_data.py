@@ -26,7 +26,7 @@ import numpy as np
 from ..errors import IdentificationError
 from ..model.spec import Model
 
-__all__ = ["Measurements", "read_measurements", "MIN_SAMPLES"]
+__all__ = ["MIN_SAMPLES", "Measurements", "read_measurements"]
 
 #: Fewest samples a record may have.
 MIN_SAMPLES = 5

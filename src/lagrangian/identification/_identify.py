@@ -33,9 +33,12 @@ from ._filter import SavitzkyGolay
 from ._result import Identification
 from ._shooting import Shooting
 
-__all__ = ["identify", "ROUTES", "DEFICIENT"]
+__all__ = ["DEFICIENT", "ROUTES", "identify"]
 
 ROUTES = ("auto", "regressor", "shooting")
+#: The default derivative filter and shooting options (frozen values, shared).
+DEFAULT_DERIVATIVES = SavitzkyGolay()
+DEFAULT_SHOOTING = Shooting()
 #: What to do when the parameters are identifiable only in combinations: refuse (naming them), or
 #: estimate the combinations (the base parameters).
 DEFICIENT = ("error", "base")
@@ -54,8 +57,8 @@ def identify(
     initial: Mapping[str, float] | None = None,
     columns: Sequence[str] | None = None,
     noise: Mapping[str, float] | None = None,
-    derivatives: SavitzkyGolay = SavitzkyGolay(),
-    shooting: Shooting = Shooting(),
+    derivatives: SavitzkyGolay = DEFAULT_DERIVATIVES,
+    shooting: Shooting = DEFAULT_SHOOTING,
     deficient: str = "error",
     seed: int = 0,
 ) -> Identification:

@@ -29,7 +29,7 @@ from ._filter import SavitzkyGolay
 from ._regressor import Regressor
 from ._result import BaseEstimate, Identification
 
-__all__ = ["fit_regressor", "sample_arrays", "CONDITION_LIMIT"]
+__all__ = ["CONDITION_LIMIT", "fit_regressor", "sample_arrays"]
 
 #: A weighted base regressor of the record with a larger condition number than this does not
 #: determine the combinations: the motion did not excite them.

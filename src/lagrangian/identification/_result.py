@@ -10,7 +10,7 @@ import numpy as np
 
 from ..errors import IdentificationError
 
-__all__ = ["Identification", "BaseEstimate"]
+__all__ = ["BaseEstimate", "Identification"]
 
 
 @dataclass(frozen=True)
@@ -129,7 +129,7 @@ class Identification:
                            "matrix": [[float(x) for x in row] for row in np.asarray(self.covariance)]},
             "iterations": int(self.iterations),
             "condition": float(self.condition),
-            "samples": int(len(self.t)),
+            "samples": len(self.t),
             "notes": list(self.notes),
         }
 

@@ -161,7 +161,7 @@ class _Problem:
         if key in self.cache:
             return self.cache[key]
         runs = self.simulate(x)
-        theta, starts = self.unpack(x)
+        _, starts = self.unpack(x)
         N, P, n2 = len(self.meas.t), self.P, self.n2
         k = len(self.measured)
         rows = N * k + (self.segments - 1) * n2
@@ -203,7 +203,7 @@ class _Problem:
 
 def segment_bounds(samples: int, segments: int) -> list[int]:
     """Sample indices where the segments start, then the last sample."""
-    return [int(round(k * (samples - 1) / segments)) for k in range(segments)] + [samples - 1]
+    return [round(k * (samples - 1) / segments) for k in range(segments)] + [samples - 1]
 
 
 def fit_shooting(system: CompiledSystem, sens: SensitivitySystem, meas: Measurements, fitted: Sequence[str],
@@ -274,8 +274,8 @@ def _result(system: CompiledSystem, problem: _Problem, sol, r: np.ndarray, J: np
     residuals = np.column_stack([data[:, c] * problem.sigma[name] for c, (_, name) in enumerate(problem.measured)])
     names_cov = tuple(fitted) + tuple(f"{s}(t{j})" for j in range(problem.segments) for s in problem.states)
     defects = r[data_rows:]
-    notes = [f"{problem.segments} segment{'s' if problem.segments > 1 else ''} "
-             f"({'multiple' if problem.segments > 1 else 'single'} shooting), {evaluations} evaluations"]
+    notes = [(f"{problem.segments} segment{'s' if problem.segments > 1 else ''} "
+              f"({'multiple' if problem.segments > 1 else 'single'} shooting), {evaluations} evaluations")]
     if len(defects):
         notes.append(f"largest continuity defect {np.max(np.abs(defects)) / CONTINUITY_WEIGHT:.1e} (relative to each "
                      "state's scale)")

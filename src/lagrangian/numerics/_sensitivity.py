@@ -38,8 +38,15 @@ from ._compile import compile_library
 from ._forward import forward_jacobian
 from ._system import CompiledSystem, _ptr
 
-__all__ = ["Sensitivities", "SensitivitySystem", "SensitivityRun", "sensitivity_system", "inverse_dynamics",
-           "parse_sensitivities", "column_name"]
+__all__ = [
+    "Sensitivities",
+    "SensitivityRun",
+    "SensitivitySystem",
+    "column_name",
+    "inverse_dynamics",
+    "parse_sensitivities",
+    "sensitivity_system",
+]
 
 _P = ctypes.c_void_p
 #: The suffix that names an initial value among the sensitivities: ``"theta(t0)"``, ``"theta_dot(t0)"``.
@@ -302,8 +309,20 @@ def simulate_sensitivities(source, t_end: float, sensitivities: Sensitivities | 
     """
     from ._dae import constrained_source
     from ._progress import Watch, make_reporter
-    from ._simulate import (BUILTIN, _early_stop, _output_times, _resolve, _singularity, _STATUS, _state_text,
-                            _trajectory, _interruptible, control_block, default_tolerance, initial_state)
+    from ._simulate import (
+        _STATUS,
+        BUILTIN,
+        _early_stop,
+        _interruptible,
+        _output_times,
+        _resolve,
+        _singularity,
+        _state_text,
+        _trajectory,
+        control_block,
+        default_tolerance,
+        initial_state,
+    )
     from ._stickslip import exact_contact_model
 
     options = sensitivities if isinstance(sensitivities, Sensitivities) else Sensitivities(tuple(sensitivities))
