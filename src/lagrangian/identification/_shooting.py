@@ -277,8 +277,8 @@ def _result(system: CompiledSystem, problem: _Problem, sol, r: np.ndarray, J: np
     notes = [(f"{problem.segments} segment{'s' if problem.segments > 1 else ''} "
               f"({'multiple' if problem.segments > 1 else 'single'} shooting), {evaluations} evaluations")]
     if len(defects):
-        notes.append(f"largest continuity defect {np.max(np.abs(defects)) / CONTINUITY_WEIGHT:.1e} (relative to each "
-                     "state's scale)")
+        notes.append(f"largest continuity defect between segments {np.max(np.abs(defects)) / CONTINUITY_WEIGHT:.1e} "
+                     "of the noise level")
     if meas.inputs:
         notes.append(f"inputs {', '.join(meas.inputs)} interpolated linearly between samples")
     if hidden:
