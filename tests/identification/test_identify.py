@@ -206,9 +206,13 @@ def test_bad_requests_are_refused_clearly(swing, cart_pole):
     record = cart_pole_record(4.0, 100.0, 1e-4, seed=1, span=1.0)
     with pytest.raises(IdentificationError, match="`F` is an input"):
         identify(cart_pole, record, ["F"])
+    with pytest.raises(IdentificationError, match="needs every coordinate measured, and x is not"):
+        identify(cart_pole, {k: v for k, v in record.items() if k != "x"}, ["c"], route="regressor")
     del record["F"]
     with pytest.raises(IdentificationError, match="The input `F` is neither in the measurements"):
         identify(cart_pole, record, ["l"])
+    with pytest.raises(IdentificationError, match="complementary constraints"):
+        identify(EXAMPLES_DIR / "pendulum_tension.toml", {"t": t, "x": theta, "y": theta}, ["l"])
 
 
 def test_an_arms_unidentifiable_parameters_are_refused_or_fitted_as_combinations():

@@ -30,6 +30,7 @@ from ..model.spec import Model
 from ..model.urdf import load_urdf
 from ._data import Measurements, read_measurements
 from ._filter import SavitzkyGolay
+from ._regressor import built_for
 from ._result import Identification
 from ._shooting import Shooting
 
@@ -113,17 +114,21 @@ def identify(
                                   fix="deficient='error' (refuse) or 'base' (estimate the combinations)")
     eom = _equations(source)
     model = eom.model
+    if model.constraints:
+        raise IdentificationError(
+            f"`{model.name}` keeps complementary constraints (a differential-algebraic system), which identify "
+            "does not fit yet.", fix="describe the system with principal coordinates only (the constraints solved)")
     fitted = _fitted(model, parameters)
     meas = read_measurements(data, model, columns=columns)
     base = _values(model, fitted, meas, values, inputs)
     rng = np.random.default_rng(seed)
     names = [p.name for p in model.parameters]
     all_measured = all(c in meas.states for c in eom.coordinates)
-    if route != "shooting" and all_measured and eom.model.constraints == ():
+    if route != "shooting" and all_measured:
         from ._linear import fit_regressor
-        from ._regressor import Regressor
+        from ._regressor import regressor_of
 
-        regressor = Regressor(eom, fitted)
+        regressor = regressor_of(eom, fitted)
         p = np.array([base[name] if base[name] is not None else 1.0 for name in names])
         nonlinear = regressor.linear_in(p, rng)
         if not nonlinear:
@@ -135,9 +140,9 @@ def identify(
                                       fix="fit by simulation (route='shooting'), or fit parameters the equations are "
                                           "linear in (e.g. m l² rather than l)")
     elif route == "regressor":
-        why = "it keeps complementary constraints" if eom.model.constraints else \
-            "not every coordinate is measured: " + ", ".join(c for c in eom.coordinates if c not in meas.states)
-        raise IdentificationError(f"The regressor does not apply: {why}.", fix="use route='shooting'")
+        missing = ", ".join(c for c in eom.coordinates if c not in meas.states)
+        raise IdentificationError(f"The regressor needs every coordinate measured, and {missing} "
+                                  f"{'is' if ',' not in missing else 'are'} not.", fix="use route='shooting'")
     return _shoot(eom, meas, fitted, base, guess, bounds, initial, noise, derivatives, shooting)
 
 
@@ -153,6 +158,7 @@ def _equations(source) -> EquationsOfMotion:  # type: ignore[no-untyped-def]
     from ..numerics import CompiledSystem
 
     if isinstance(source, CompiledSystem):
+        built_for(source.eom).setdefault("system", source)
         return source.eom
     raise IdentificationError(f"identify() takes a model file, a Model or an EquationsOfMotion, not a "
                               f"{type(source).__name__}.", fix="give the model the data was measured on")
@@ -242,7 +248,12 @@ def _shoot(eom, meas, fitted, base, guess, bounds, initial, noise, derivatives, 
                                       fix=f"give a first guess (guess={{'{name}': ...}}, --guess {name}=...)")
         theta0.append(float(value))
     lower, upper = _bounds(model, fitted, bounds)
-    system = CompiledSystem(eom)
+    # one compiled system per set of equations (and with it its sensitivity libraries): a second fit of
+    # the same model generates nothing again
+    built = built_for(eom)
+    system = built.get("system")
+    if system is None:
+        system = built["system"] = CompiledSystem(eom)
     sens = sensitivity_system(system, fitted)
     numbers = {name: (v if v is not None else theta0[fitted.index(name)]) for name, v in base.items()}
     numbers.update({name: v for name, v in zip(fitted, theta0)})

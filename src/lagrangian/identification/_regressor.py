@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import ctypes
 import hashlib
+import weakref
 from collections.abc import Sequence
 
 import numpy as np
@@ -37,7 +38,7 @@ from ..numerics._compile import load_verified
 from ..numerics._forward import forward_jacobian
 from ..numerics._sensitivity import inverse_dynamics
 
-__all__ = ["Regressor"]
+__all__ = ["Regressor", "regressor_of"]
 
 _P = ctypes.c_void_p
 #: Above this many characters of C, the regressor is compiled without optimization: gcc's time on one
@@ -136,3 +137,27 @@ class Regressor:
         scale = np.maximum(np.abs(Y1).max(axis=(0, 1)), max(1e-6 * top, 1e-300))
         moved = np.abs(Y2 - Y1).max(axis=(0, 1)) / scale
         return [name for name, d in zip(self.fitted, moved) if not d <= LINEARITY_TOLERANCE]
+
+
+#: id(equations) → (a weak reference to them, what was built for them).  Keyed by identity, not by
+#: value: `EquationsOfMotion` holds dicts (unhashable), and two derivations are two objects anyway.
+_BUILT: dict[int, tuple[weakref.ref, dict]] = {}
+
+
+def built_for(eom: EquationsOfMotion) -> dict:
+    """A dict that lives as long as ``eom``, for what is built from it (compiled code)."""
+    key = id(eom)
+    entry = _BUILT.get(key)
+    if entry is None or entry[0]() is not eom:
+        entry = (weakref.ref(eom, lambda _, key=key: _BUILT.pop(key, None)), {})
+        _BUILT[key] = entry
+    return entry[1]
+
+
+def regressor_of(eom: EquationsOfMotion, fitted: Sequence[str]) -> Regressor:
+    """The `Regressor` of ``eom`` for ``fitted``, generated once per pair while ``eom`` lives."""
+    mine = built_for(eom)
+    key = ("regressor", *fitted)
+    if key not in mine:
+        mine[key] = Regressor(eom, fitted)
+    return mine[key]
