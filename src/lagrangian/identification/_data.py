@@ -78,12 +78,12 @@ def read_measurements(data, model: Model, *, columns: Sequence[str] | None = Non
         strictly increase, columns of different lengths, or a column that is neither a
         coordinate, a rate, an acceleration nor an input of the model.
     """
-    table, source = _table(data, columns)
+    inputs = [p.name for p in model.parameters if p.input]
+    table, source = _table(data, columns, inputs)
     if "t" not in table:
         raise IdentificationError(f"The measurements ({source}) have no column `t` (the sample times).",
                                   fix="name the time column `t`")
     coords = [c.name for c in model.coordinates]
-    inputs = [p.name for p in model.parameters if p.input]
     wanted = table if columns is None else {k: v for k, v in table.items() if k in set(columns) | {"t"}}
     if columns is not None:
         missing = [c for c in columns if c not in table]
@@ -138,7 +138,7 @@ def _vector(name: str, values, source: str) -> np.ndarray:
     return out
 
 
-def _table(data, columns: Sequence[str] | None) -> tuple[dict[str, object], str]:
+def _table(data, columns: Sequence[str] | None, inputs: Sequence[str]) -> tuple[dict[str, object], str]:
     """Column name → values, and a description of the source."""
     from ..numerics import Trajectory
 
@@ -149,8 +149,8 @@ def _table(data, columns: Sequence[str] | None) -> tuple[dict[str, object], str]
             table[c + "_dot"] = data.qd[:, k]
         for name, values in data.extra.items():
             table[name] = values
-        if columns is None:  # its q and q̇ (the monitors and reactions are not measurements)
-            keep = {"t", *data.coordinates, *(c + "_dot" for c in data.coordinates)}
+        if columns is None:  # its q, q̇ and inputs (the monitors and reactions are not measurements)
+            keep = {"t", *data.coordinates, *(c + "_dot" for c in data.coordinates), *inputs}
             table = {k: v for k, v in table.items() if k in keep}
         return table, f"trajectory of `{data.model_name}`"
     if isinstance(data, (str, Path)):

@@ -149,7 +149,8 @@ def built_for(eom: EquationsOfMotion) -> dict:
     key = id(eom)
     entry = _BUILT.get(key)
     if entry is None or entry[0]() is not eom:
-        entry = (weakref.ref(eom, lambda _, key=key: _BUILT.pop(key, None)), {})
+        # the dict is bound now: at interpreter exit the module's globals may already be gone
+        entry = (weakref.ref(eom, lambda _, key=key, table=_BUILT: table.pop(key, None)), {})
         _BUILT[key] = entry
     return entry[1]
 

@@ -112,23 +112,27 @@ class Identification:
         return "\n".join(lines)
 
     def to_dict(self) -> dict[str, Any]:
-        """A JSON-ready document (schema ``lagrangian.identify/1``)."""
+        """A JSON-ready document (schema ``lagrangian.identify/1``); what is not determined (NaN) is null."""
+
+        def number(x: float) -> float | None:
+            return float(x) if np.isfinite(x) else None
+
         return {
             "schema": "lagrangian.identify/1",
             "model": self.model_name,
             "route": self.route,
             "status": self.status,
             "parameters": list(self.parameters),
-            "estimates": {k: float(v) for k, v in self.estimates.items()},
-            "std": {k: float(v) for k, v in self.std.items()},
+            "estimates": {k: number(v) for k, v in self.estimates.items()},
+            "std": {k: number(v) for k, v in self.std.items()},
             "identifiable": [{"combination": b.text, "coefficients": {k: float(c) for k, c in b.coefficients.items()},
-                              "estimate": float(b.estimate), "std": float(b.std)} for b in self.base],
-            "initial": {k: float(v) for k, v in self.initial.items()},
-            "sigma": {k: float(v) for k, v in self.sigma.items()},
+                              "estimate": number(b.estimate), "std": number(b.std)} for b in self.base],
+            "initial": {k: number(v) for k, v in self.initial.items()},
+            "sigma": {k: number(v) for k, v in self.sigma.items()},
             "covariance": {"names": list(self.covariance_names),
-                           "matrix": [[float(x) for x in row] for row in np.asarray(self.covariance)]},
+                           "matrix": [[number(x) for x in row] for row in np.asarray(self.covariance)]},
             "iterations": int(self.iterations),
-            "condition": float(self.condition),
+            "condition": number(self.condition),
             "samples": len(self.t),
             "notes": list(self.notes),
         }

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import ctypes
 import dataclasses
+import hashlib
 import weakref
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -179,8 +180,6 @@ class SensitivitySystem:
                               "the derivative of M q'' = F")
         source = "\n".join([system.source, f"#define LG_NV {width}", function,
                             resources.files(__package__).joinpath("_sensitivity.c").read_text(encoding="utf-8")])
-        import hashlib
-
         self._lib = lib = compile_library(source, hashlib.sha256(source.encode("utf-8")).hexdigest())
         lib.lg_sens_dop853.restype = ctypes.c_int
         lib.lg_sens_dop853.argtypes = [_P, _P, _P, ctypes.c_int, _P, _P, ctypes.c_int, _P, _P, ctypes.c_double,
