@@ -127,10 +127,12 @@ def uncontrollable_modes(A: np.ndarray, B: np.ndarray) -> list[tuple[complex, np
     return out
 
 
-def _describe(w: np.ndarray, states: Sequence[str]) -> str:
-    a = np.abs(w)
-    keep = [states[i] for i in np.argsort(-a) if a[i] > 0.1 * a.max()]
-    return ", ".join(keep[:4])
+def _describe(A: np.ndarray, lam: complex, w: np.ndarray, states: Sequence[str]) -> str:
+    """The states the mode moves: those of its left eigenvector w (what the inputs cannot reach) and of
+    its right eigenvector (the motion itself; for a double λ = 0, a coordinate and its rate)."""
+    v = np.linalg.svd(A - lam * np.eye(len(A)))[2][-1].conj()
+    weight = np.maximum(np.abs(w) / np.abs(w).max(), np.abs(v) / np.abs(v).max())
+    return ", ".join(s for s, a in zip(states, weight) if a > 0.1)
 
 
 def lqr(source: Any, at: Mapping[str, Any] | None = None, *, Q: Any = None, R: Any = None,
@@ -198,7 +200,7 @@ def lqr(source: Any, at: Mapping[str, Any] | None = None, *, Q: Any = None, R: A
     for lam, w in uncontrollable_modes(A, B):
         if lam.real >= -1e-9 * max(1.0, abs(lam)):
             raise ControlError(
-                f"the pair (A, B) is not stabilizable: the mode λ = {_complex(lam)} (in {_describe(w, states)}) is "
+                f"the pair (A, B) is not stabilizable: the mode λ = {_complex(lam)} (in {_describe(A, lam, w, states)}) is "
                 f"not moved by the inputs {', '.join(inputs)} (wᵀB = 0 for its left eigenvector w) and does not "
                 "decay by itself, so no feedback of these inputs can hold the point.",
                 fix="act on that motion with another input, or linearize a model without the coordinates the "

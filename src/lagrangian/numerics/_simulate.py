@@ -430,6 +430,7 @@ def _simulate(source, t_end, *, t_start, initial, parameters, method, rtol, atol
 
     # A singular M at the start is reported before anything runs.
     M, F0 = system.mass_forces(t_start, y0, p)
+    check_callback(system)  # a Python input function that fails at the start says so itself
     if not (np.isfinite(M).all() and np.isfinite(F0).all()):  # nan: no eigenvalue (LinAlgError), say why
         raise _singularity(system, t_start, y0, p, "at the initial state")
     w = mass_eigenvalues(M)
