@@ -65,7 +65,7 @@ def main() -> None:
     closed = compile_system(eom, inputs=fb)
 
     print("1. closed loop (LQR compiled in) vs open loop, cart-pole")
-    kw = dict(initial={"theta": 0.2}, dt=1e-4, n_out=11)  # 10^5 fixed steps of dop853: same steps budget
+    kw = {"initial": {"theta": 0.2}, "dt": 1e-4, "n_out": 11}  # 10^5 fixed steps of dop853: same steps budget
     a = simulate(open_loop, 10.0, **kw)
     b = simulate(closed, 10.0, inputs=fb, **kw)
     assert a.steps == b.steps and a.rhs_calls == b.rhs_calls
@@ -94,7 +94,7 @@ def main() -> None:
           f"(includes its set-up), ratio {t_slow / t_fast:.0f}x; max |q difference| "
           f"{np.abs(fast.q - slow.q).max():.1e}")
 
-    side = int(round(math.sqrt(args.members)))
+    side = round(math.sqrt(args.members))
     print(f"3. basin map: {side} x {side} = {side * side} closed-loop cart-poles x 5 s, 2 threads")
     members = grid(theta=np.linspace(-1.4, 1.4, side), theta_dot=np.linspace(-4.0, 4.0, side))
     fell = lagrangian.EventSpec("fell", "abs(theta) - 1.5", direction=1, terminal=True)

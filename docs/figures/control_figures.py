@@ -11,10 +11,10 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
 
-import lagrangian  # noqa: E402
+import lagrangian
 
 HERE = Path(__file__).resolve().parent
 CART_POLE = HERE.parents[1] / "examples" / "inverted_pendulum_cart.toml"

@@ -15,11 +15,11 @@ import warnings
 import numpy as np
 import pytest
 import symengine as se
+from lagrangian_test_support import example_text
 
 import lagrangian
 from lagrangian.analysis import first_integrals
 from lagrangian.numerics import simulate
-from lagrangian_test_support import example_text
 
 FURUTA = "examples/furuta_pendulum.toml"
 
@@ -91,7 +91,7 @@ def test_a_constant_input_given_as_a_parameter_monitors_the_integrals_of_a_const
 def test_a_robot_in_the_recursive_form_monitors_its_energy_with_its_motors_off():
     from lagrangian.model.urdf import UrdfNote, parse_urdf
 
-    text = open("examples/rrr_arm.urdf", encoding="utf-8").read()
+    text = example_text("rrr_arm.urdf")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UrdfNote)
         model = parse_urdf(text, source="rrr_arm.urdf", damping=False)

@@ -12,10 +12,10 @@ import json
 import control
 import numpy as np
 import pytest
+from lagrangian_test_support import EXAMPLES_DIR
 
 import lagrangian
 from lagrangian.cli.main import main
-from lagrangian_test_support import EXAMPLES_DIR
 
 CART_POLE = str(EXAMPLES_DIR / "inverted_pendulum_cart.toml")
 

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import pytest
 import symengine as se
+from lagrangian_test_support import example_text
 
 import lagrangian
 from lagrangian.errors import ModelError
-from lagrangian_test_support import example_text
 
 BASE = example_text("inverted_pendulum_cart.toml").replace(
     'g = { value = 9.81', 'k1 = 2.0\nk2 = 3.0\ng = { value = 9.81')

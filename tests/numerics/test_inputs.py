@@ -10,6 +10,7 @@ the compiled one.
 from __future__ import annotations
 
 import math
+from itertools import pairwise
 
 import numpy as np
 import pytest
@@ -150,7 +151,7 @@ def test_a_table_drives_the_oscillator_as_the_hand_written_equations_piece_by_pi
     # By hand: one solve per interval between samples, each with its own piece (no kink inside a step).
     edges = [0.0, *SAMPLES_T[1:], 3.5]
     y, xs = [0.1, 0.0], []
-    for a, b in zip(edges[:-1], edges[1:]):
+    for a, b in pairwise(edges):
         mid = 0.5 * (a + b)
         piece = (lambda s, m=mid: SAMPLES_V[np.searchsorted(SAMPLES_T, m, side="right") - 1]) if kind == "zoh" else \
             (lambda s: float(_definition(kind, np.array([s]))[0]))

@@ -26,7 +26,7 @@ import numpy as np
 
 from ._effective_potential import AnalysisError
 
-__all__ = ["Feedback", "ControlError", "FEEDBACK_SCHEMA", "FEEDBACK_VERSION"]
+__all__ = ["FEEDBACK_SCHEMA", "FEEDBACK_VERSION", "ControlError", "Feedback"]
 
 FEEDBACK_SCHEMA = "lagrangian.feedback"
 FEEDBACK_VERSION = 1

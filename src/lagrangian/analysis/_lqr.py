@@ -31,7 +31,7 @@ from ._feedback import ControlError, Feedback
 from ._linear_model import LinearizationError
 from ._linearize import holding_inputs, linearize
 
-__all__ = ["lqr", "weights", "uncontrollable_modes"]
+__all__ = ["lqr", "uncontrollable_modes", "weights"]
 
 #: A mode is not moved by the inputs when the smallest singular value of [A − λI, B] is below this
 #: fraction of the pair's scale (the PBH rank test in floating point).

@@ -22,7 +22,7 @@ from ._point import add_parameter_option, add_point_options, parse_names, point_
 from ._settings import SettingError, plain_number
 from ._source import MODEL_HELP, load_source
 
-__all__ = ["register", "run", "parse_weights"]
+__all__ = ["parse_weights", "register", "run"]
 
 SUMMARY = "the LQR state feedback u = u* - K (x - x*) about an equilibrium (--at theta=0):\n" \
           "gains, closed-loop eigenvalues; -o feedback.json for simulate --feedback"

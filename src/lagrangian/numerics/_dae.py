@@ -46,6 +46,7 @@ from ..model import load_model
 from ..model.spec import Model
 from ._codegen import monitor_expressions
 from ._codegen_dae import generate_dae_c
+from ._input_run import InputsAt, rowwise
 from ._inputs import resolve_inputs
 from ._compile import compile_library, compiler
 from ._projection import check_initial, project, project_many
@@ -391,7 +392,7 @@ def simulate_dae(
     p = system.parameter_vector(given)
     # Inputs that vary are computed here, in Python, at each evaluation: this path steps in Python
     # anyway (SciPy's solver, the projection), and a table's interval is the current segment's.
-    applied = _InputsAt(law, eom, system.parameters, p)
+    applied = InputsAt(law, eom, system.parameters, p)
     y0 = initial_state(eom, initial)
     t_out = _output_times(float(t_start), float(t_end), n_out, t_eval,
                           4 * system.n + 3 * system.m + len(system.monitors) + len(system.reactions) + 1)
@@ -494,47 +495,9 @@ def simulate_dae(
                        tolerance, status, residual_tolerance=residual_tolerance, applied=applied)
 
 
-class _InputsAt:
-    """p with the driven inputs written in at (t, y), computed by the law in Python (`InputLaw.evaluator`);
-    ``window`` is a time inside the current interval between the tables' breakpoints (None: none)."""
-
-    def __init__(self, law, eom: EquationsOfMotion, parameters: tuple[str, ...], p: np.ndarray) -> None:  # type: ignore[no-untyped-def]
-        self.law, self.p = law, p
-        self.names = tuple(s.name for s in law.driven)
-        self.slots = [parameters.index(u) for u in self.names]
-        self.evaluate = law.evaluator(eom, parameters) if self.names else None
-        self.window: float | None = None
-
-    def __call__(self, t: float, y: np.ndarray) -> np.ndarray:
-        if self.evaluate is None:
-            return self.p
-        pu = self.p.copy()
-        pu[self.slots] = self.evaluate(t, y, self.p, self.window)[0]
-        return pu
-
-    def columns(self, t: np.ndarray, Y: np.ndarray) -> dict[str, np.ndarray]:
-        """The applied inputs at the output times (driven and constant), for the trajectory."""
-        out: dict[str, np.ndarray] = {}
-        if self.evaluate is not None and len(t):
-            values = self.evaluate(t, Y, self.p)
-            out = {name: values[:, k].copy() for k, name in enumerate(self.names)}
-        out.update({name: np.full(len(t), v) for name, v in self.law.constants.items()})
-        return out
-
-
-def _rowwise(fn, t: np.ndarray, Y: np.ndarray, applied: _InputsAt | None):  # type: ignore[no-untyped-def]
-    """``fn(t, Y, p)`` with each row's own p when inputs vary (one call otherwise)."""
-    if applied is None or applied.evaluate is None or not len(t):
-        return fn(t, Y, applied.p if applied is not None else None)
-    rows = [fn(t[k:k + 1], Y[k:k + 1], applied(float(t[k]), Y[k])) for k in range(len(t))]
-    if isinstance(rows[0], tuple):
-        return tuple(np.concatenate([r[j] for r in rows]) for j in range(len(rows[0])))
-    return np.concatenate(rows)
-
-
 def _trajectory(system: ConstrainedSystem, p, t, Y, stab, evs, method, stabilization, steps, nfev,  # type: ignore[no-untyped-def]
                 tolerance, status, *, residual_tolerance: float | None = None,
-                applied: _InputsAt | None = None) -> Trajectory:
+                applied: InputsAt | None = None) -> Trajectory:
     """The `Trajectory` of a run; ``tolerance`` for the first integrals, ``residual_tolerance``
     (default ``tolerance``) for the constraint residuals."""
     from ._simulate import momenta
@@ -546,10 +509,10 @@ def _trajectory(system: ConstrainedSystem, p, t, Y, stab, evs, method, stabiliza
     M = None
     if len(t):
         if applied is None:
-            applied = _InputsAt(resolve_inputs(system.eom, {}), system.eom, system.parameters, p)
-        dY, LAM = _rowwise(lambda t_, Y_, p_: system.rhs(t_, Y_, p_, stab), t, Y, applied)
+            applied = InputsAt(resolve_inputs(system.eom, {}), system.eom, system.parameters, p)
+        dY, LAM = rowwise(lambda t_, Y_, p_: system.rhs(t_, Y_, p_, stab), t, Y, applied)
         M, _, _, _, g, f = system.parts(t, Y, p)
-        values = _rowwise(system.monitor_values, t, Y, applied)
+        values = rowwise(system.monitor_values, t, Y, applied)
         reactions = np.concatenate([system.reaction_values(t[k:k + 1], Y[k:k + 1], LAM[k:k + 1], applied(t[k], Y[k]))
                                     for k in range(len(t))]) if applied.evaluate is not None else \
             system.reaction_values(t, Y, LAM, p)

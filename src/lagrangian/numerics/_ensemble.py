@@ -419,7 +419,7 @@ def _open_sink(layout: Layout, out_path: Path | None, chunk_size: int, resume: b
     if layout.keep and (out_path is None or out_path.suffix != ".zarr"):
         need = 8.0 * count * len(layout.t_out) * n2
         if need > _memory_limit():
-            raise SimulationError(f"Keeping {count} trajectories of {len(t_out)} times would take about "
+            raise SimulationError(f"Keeping {count} trajectories of {len(layout.t_out)} times would take about "
                                   f"{need / 2**30:.1f} GiB of memory.",
                                   fix="stream them to a Zarr store (out='....zarr'), use fewer output times, or "
                                       "keep='summary'")

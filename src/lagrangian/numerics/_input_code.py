@@ -33,7 +33,7 @@ from ..errors import SimulationError
 from ._cprint import c_block
 from ._inputs import InputLaw
 
-__all__ = ["LawCode", "law_code", "WRAPPED"]
+__all__ = ["WRAPPED", "LawCode", "law_code"]
 
 #: The model functions a law wraps, with their extra arguments (``lg_aba`` only where it exists).
 WRAPPED = (
@@ -88,7 +88,7 @@ def _check(eom: EquationsOfMotion, law: InputLaw) -> None:
         for e in row:
             hit = e.free_symbols & driven
             if hit:
-                raise SimulationError(f"The input `{sorted(map(str, hit))[0]}` appears in the mass matrix M; an input "
+                raise SimulationError(f"The input `{min(map(str, hit))}` appears in the mass matrix M; an input "
                                       "that varies must be the magnitude of a load (a force or a torque).",
                                       fix="use the input in a load, or give it a constant value")
 

@@ -8,6 +8,7 @@
   tables, as the compiled integrators do in C (`_integrators.c`, ``lg_run``), with the tables
   reading the piece of the current interval (the hint).
 * `input_columns` gives the applied inputs along the output grid, for the `Trajectory`.
+* `InputsAt` computes the law in Python for the constrained (DAE) path, which steps in Python.
 """
 
 from __future__ import annotations
@@ -15,14 +16,26 @@ from __future__ import annotations
 import copy
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
+from itertools import pairwise
 
 import numpy as np
 
+from ..dynamics import EquationsOfMotion
 from ..errors import SimulationError
+from ..model.spec import Model
 from ._inputs import InputLaw, resolve_inputs
 from ._system import CompiledSystem
 
-__all__ = ["system_for", "solve_in_segments", "input_columns", "check_callback"]
+__all__ = [
+    "InputsAt",
+    "arm_callback",
+    "check_callback",
+    "constant_inputs_only",
+    "input_columns",
+    "rowwise",
+    "solve_in_segments",
+    "system_for",
+]
 
 
 def _constant_inputs(eom, law: InputLaw, parameters: Mapping[str, float] | None) -> tuple[str, ...]:  # type: ignore[no-untyped-def]
@@ -104,7 +117,7 @@ def solve_in_segments(solve: Callable, t_start: float, t_end: float, t_out: np.n
     y_events: list[list] = [[] for _ in range(n_events)]
     nfev, status, message, y = 0, 0, "", np.asarray(y0, dtype=float)
     try:
-        for k, (a, b) in enumerate(zip(edges[:-1], edges[1:])):
+        for k, (a, b) in enumerate(pairwise(edges)):
             keep = (t_out <= b) & ((t_out > a) if k else (t_out >= a))
             grid = t_out[keep]
             wanted = np.append(grid, b) if not len(grid) or grid[-1] < b else grid
@@ -131,8 +144,58 @@ def solve_in_segments(solve: Callable, t_start: float, t_end: float, t_out: np.n
                              message)
 
 
-def refuse_varying(law: InputLaw, where: str, fix: str) -> None:
-    """A path that cannot run inputs that vary says so (their constants are parameter values there)."""
-    if law.driven:
-        s = law.driven[0]
-        raise SimulationError(f"The input `{s.name}` varies ({s.kind}), and {where}.", fix=fix)
+def _refuse_varying(what: str) -> None:
+    raise SimulationError(f"The input {what} varies, and exact Coulomb friction (stick and slip by events) runs with "
+                          "constant inputs only.",
+                          fix="give the inputs constant values, or a regularized friction (regularization > 0)")
+
+
+def constant_inputs_only(source, inputs, parameters):  # type: ignore[no-untyped-def]
+    """The parameters of a path that runs constant inputs only (exact friction's stick/slip phases):
+    the inputs' numbers join them; an input that varies (or a ``[controls]`` law) is refused."""
+    model = source if isinstance(source, Model) else getattr(getattr(source, "eom", source), "model", None)
+    if inputs is not None and not isinstance(inputs, Mapping):
+        _refuse_varying("a feedback")
+    given = {**dict(getattr(model, "controls", ()) or ()), **dict(inputs or {})}
+    for name, value in given.items():
+        if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+            _refuse_varying(f"`{name}`")
+    return {**(parameters or {}), **{k: float(v) for k, v in (given or {}).items()}}
+
+
+class InputsAt:
+    """p with the driven inputs written in at (t, y), computed by the law in Python (`InputLaw.evaluator`);
+    ``window`` is a time inside the current interval between the tables' breakpoints (None: none)."""
+
+    def __init__(self, law, eom: EquationsOfMotion, parameters: tuple[str, ...], p: np.ndarray) -> None:  # type: ignore[no-untyped-def]
+        self.law, self.p = law, p
+        self.names = tuple(s.name for s in law.driven)
+        self.slots = [parameters.index(u) for u in self.names]
+        self.evaluate = law.evaluator(eom, parameters) if self.names else None
+        self.window: float | None = None
+
+    def __call__(self, t: float, y: np.ndarray) -> np.ndarray:
+        if self.evaluate is None:
+            return self.p
+        pu = self.p.copy()
+        pu[self.slots] = self.evaluate(t, y, self.p, self.window)[0]
+        return pu
+
+    def columns(self, t: np.ndarray, Y: np.ndarray) -> dict[str, np.ndarray]:
+        """The applied inputs at the output times (driven and constant), for the trajectory."""
+        out: dict[str, np.ndarray] = {}
+        if self.evaluate is not None and len(t):
+            values = self.evaluate(t, Y, self.p)
+            out = {name: values[:, k].copy() for k, name in enumerate(self.names)}
+        out.update({name: np.full(len(t), v) for name, v in self.law.constants.items()})
+        return out
+
+
+def rowwise(fn, t: np.ndarray, Y: np.ndarray, applied: InputsAt | None):  # type: ignore[no-untyped-def]
+    """``fn(t, Y, p)`` with each row's own p when inputs vary (one call otherwise)."""
+    if applied is None or applied.evaluate is None or not len(t):
+        return fn(t, Y, applied.p if applied is not None else None)
+    rows = [fn(t[k:k + 1], Y[k:k + 1], applied(float(t[k]), Y[k])) for k in range(len(t))]
+    if isinstance(rows[0], tuple):
+        return tuple(np.concatenate([r[j] for r in rows]) for j in range(len(rows[0])))
+    return np.concatenate(rows)

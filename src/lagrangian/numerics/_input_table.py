@@ -32,7 +32,7 @@ import numpy as np
 
 from ..errors import SimulationError
 
-__all__ = ["InputTable", "INTERPOLATIONS"]
+__all__ = ["INTERPOLATIONS", "InputTable"]
 
 #: The interpolation kinds, in the order of their smoothness.
 INTERPOLATIONS = ("zoh", "linear", "cubic")
@@ -139,7 +139,7 @@ class InputTable:
         for name in (time_column, column):
             if name not in header:
                 raise SimulationError(f"`{path}` has no column `{name}` (its columns: {', '.join(header)}).",
-                                      fix=f"name the column in the file's header, or choose one of its columns")
+                                      fix="name the column in the file's header, or choose one of its columns")
         i, j = header.index(time_column), header.index(column)
         times, values = [], []
         for line, row in enumerate(rows[1:], start=2):

@@ -40,7 +40,7 @@ from ..errors import SimulationError
 from ..model._expr import ExpressionError, parse_expression
 from ._input_table import InputTable
 
-__all__ = ["InputSource", "InputLaw", "resolve_inputs", "law_names", "Callback"]
+__all__ = ["Callback", "InputLaw", "InputSource", "law_names", "resolve_inputs"]
 
 #: The kinds of a source, in the order of the law's code.
 KINDS = ("constant", "expression", "table", "feedback", "callable")
@@ -217,7 +217,7 @@ def _call(source: InputSource, t: float, y: np.ndarray) -> float:
     try:
         value = source.value(t, y.copy())
         value = float(value)
-    except Exception as exc:  # noqa: BLE001 - the user's function: its failure is reported, with it
+    except Exception as exc:
         raise SimulationError(f"The input function of `{source.name}` failed at t = {t:.9g}: "
                               f"{type(exc).__name__}: {exc}.",
                               fix=f"make `{source.text}` return a number for every (t, y) of the run") from exc

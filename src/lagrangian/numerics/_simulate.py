@@ -44,7 +44,8 @@ from ..model._expr import ExpressionError, parse_expression
 from ..model.spec import Model
 from ._mass_spectrum import mass_eigenvalues, mass_eigh
 from ._dae import BAUMGARTE, ConstrainedSystem, constrained_source, simulate_dae
-from ._input_run import arm_callback, check_callback, input_columns, solve_in_segments, system_for
+from ._input_run import arm_callback, check_callback, constant_inputs_only, input_columns, solve_in_segments, \
+    system_for
 from ._progress import Reporter, Watch, make_reporter
 from ._ranges import watch_ranges
 from ._system import CompiledSystem, _ptr, known_values
@@ -395,7 +396,7 @@ def _simulate(source, t_end, *, t_start, initial, parameters, method, rtol, atol
 
     exact = exact_contact_model(source)
     if exact is not None:  # an exact Coulomb contact (regularization = 0): stick/slip phases by events
-        parameters = _constant_inputs_only(source, inputs, parameters)
+        parameters = constant_inputs_only(source, inputs, parameters)
         return simulate_stick_slip(exact, t_end, t_start=t_start, initial=initial, parameters=parameters,
                                    method=method, rtol=rtol, atol=atol, dt=dt, max_step=max_step, n_out=n_out,
                                    t_eval=t_eval, events=events, tolerance=tolerance, max_steps=max_steps,
@@ -786,25 +787,6 @@ def _trajectory(system, p, t, Y, evs, method, steps, nfev, tolerance, status, co
         rhs_calls=nfev, tolerance=tolerance, warnings=warnings, events=events, status=status,
         conditioning=conditioning, scales=scales, extra=columns,
     )
-
-
-def _constant_inputs_only(source, inputs, parameters):  # type: ignore[no-untyped-def]
-    """The parameters of a path that runs constant inputs only (exact friction's stick/slip phases):
-    the inputs' numbers join them; an input that varies (or a ``[controls]`` law) is refused."""
-    model = source if isinstance(source, Model) else getattr(getattr(source, "eom", source), "model", None)
-    given = inputs if isinstance(inputs, Mapping) else ({} if inputs is None else None)
-    controls = dict(getattr(model, "controls", ()) or ())
-    for name in controls:
-        given = given if given is None or name in given else {**given, name: controls[name]}
-    varying = None if given is not None else "a feedback"
-    for name, value in (given or {}).items():
-        if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-            varying = f"`{name}`"
-    if varying is not None:
-        raise SimulationError(f"The input {varying} varies, and exact Coulomb friction (stick and slip by events) "
-                              "runs with constant inputs only.",
-                              fix="give the inputs constant values, or a regularized friction (regularization > 0)")
-    return {**(parameters or {}), **{k: float(v) for k, v in (given or {}).items()}}
 
 
 def momenta(eom: EquationsOfMotion, integrals: Sequence[str]) -> dict[str, int]:
