@@ -190,3 +190,19 @@ def test_the_feedback_file_round_trips(tmp_path, feedback):
     doc["K"] = [[1.0, 2.0]]
     with pytest.raises(ControlError, match=r"`K` of the feedback has shape \(1, 2\), expected \(1, 4\)"):
         Feedback.from_dict(doc)
+
+
+def test_about_a_steady_motion_the_reference_advances_with_it():
+    # The Furuta arm spinning at Ω with the pendulum hanging (α = 0): φ is absent from the equations,
+    # so this is a steady motion; the law regulates about φ*(t) = φ0 + Ω t, not about φ0.
+    eom = lagrangian.derive(lagrangian.load_model("examples/furuta_pendulum.toml"))
+    omega = 2.0
+    fb = lqr(eom, {"phi": 0, "alpha": 0, "phi_dot": omega}, Q={"phi": 1, "alpha": 10}, R=1e5)
+    assert fb.x_star_rate.tolist() == [omega, 0, 0, 0] and fb.u_star[0] == pytest.approx(0, abs=1e-15)
+    K, _, _ = control.lqr(fb.A, fb.B, fb.Q, fb.R)
+    assert np.allclose(fb.K, K, rtol=1e-9, atol=1e-12)
+    traj = simulate(eom, 20.0, inputs=fb, initial={"phi": 0.0, "alpha": 0.3, "phi_dot": omega}, n_out=201)
+    assert abs(traj.qd[-1, 0] - omega) < 1e-4 and abs(traj.q[-1, 1]) < 1e-4
+    assert abs(traj.q[-1, 0] - omega * traj.t[-1]) < 1e-3  # back on φ*(t)
+    x = np.column_stack([traj.q, traj.qd])
+    assert np.allclose(traj.column("tau"), fb(x, traj.t)[:, 0], rtol=0, atol=1e-12)

@@ -1,4 +1,8 @@
-"""`Feedback`: a linear state feedback u = u* − K (x − x*) about a point, as a value.
+"""`Feedback`: a linear state feedback u = u* − K (x − x*(t)) about a point, as a value.
+
+About an equilibrium x* is constant; about a steady motion the coordinates that move (absent
+from the equations: a spinning arm's angle) advance at their steady rates, x*(t) = x* + ẋ* t,
+so that the law regulates the motion about the steady one, not about its start.
 
 `lagrangian.lqr` (`_lqr`) makes one; `simulate(..., inputs=feedback)` runs the nonlinear closed
 loop with the law compiled into the right-hand side (`lagrangian.numerics._inputs`).  It lives
@@ -9,7 +13,7 @@ atomically::
 
     {"schema": "lagrangian.feedback", "version": 1, "model": "...",
      "states": ["x", "theta", "x_dot", "theta_dot"], "inputs": ["F"],
-     "K": [[...]], "x_star": [...], "u_star": [...], "A": [[...]], "B": [[...]],
+     "K": [[...]], "x_star": [...], "x_star_rate": [...], "u_star": [...], "A": [[...]], "B": [[...]],
      "Q": [[...]], "R": [[...]], "eigenvalues": [[re, im], ...], "parameters": {"m": 0.2, ...}}
 """
 
@@ -55,7 +59,7 @@ def _matrix(value: Any, shape: tuple[int, ...], what: str) -> np.ndarray:
 
 @dataclass(frozen=True, eq=False)
 class Feedback:
-    """u = u* − K (x − x*) about the point x* held by the inputs u* (module docstring).
+    """u = u* − K (x − x*(t)) about the point x* held by the inputs u* (module docstring).
 
     Attributes
     ----------
@@ -68,6 +72,8 @@ class Feedback:
     Q, R : the weights of the cost ∫ (δxᵀ Q δx + δuᵀ R δu) dt the gain minimizes (LQR).
     eigenvalues : shape (nx,), complex: those of A − B K (the closed loop, linearized).
     parameters : the parameter values the linearization used.
+    x_star_rate : shape (nx,): ẋ*, the rate of each coordinate state along the steady motion
+        (0 about an equilibrium; a rate state's entry is always 0): x*(t) = x* + ẋ* t.
     """
 
     model: str
@@ -82,6 +88,7 @@ class Feedback:
     R: np.ndarray
     eigenvalues: np.ndarray = field(default_factory=lambda: np.zeros(0, complex))
     parameters: Mapping[str, float] = field(default_factory=dict)
+    x_star_rate: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         nx, m = len(self.states), len(self.inputs)
@@ -91,6 +98,8 @@ class Feedback:
             shape = {"K": (m, nx), "x_star": (nx,), "u_star": (m,), "A": (nx, nx), "B": (nx, m), "Q": (nx, nx),
                      "R": (m, m)}[name]
             object.__setattr__(self, name, _matrix(getattr(self, name), shape, name))
+        rate = np.zeros(nx) if self.x_star_rate is None else self.x_star_rate
+        object.__setattr__(self, "x_star_rate", _matrix(rate, (nx,), "x_star_rate"))
         eig = np.asarray(self.eigenvalues, dtype=complex)
         if eig.size == 0:
             eig = np.linalg.eigvals(self.A - self.B @ self.K)
@@ -101,10 +110,12 @@ class Feedback:
         object.__setattr__(self, "inputs", tuple(self.inputs))
         object.__setattr__(self, "parameters", dict(self.parameters))
 
-    def __call__(self, x: np.ndarray) -> np.ndarray:
-        """u = u* − K (x − x*) for a state x (nx,) or states (N, nx), in `states` order."""
+    def __call__(self, x: np.ndarray, t: float | np.ndarray = 0.0) -> np.ndarray:
+        """u = u* − K (x − x*(t)) for a state x (nx,) or states (N, nx), in `states` order, at t (N,)."""
         x = np.asarray(x, dtype=float)
-        return self.u_star - (x - self.x_star) @ self.K.T
+        t = np.asarray(t, dtype=float)
+        reference = self.x_star + (t[..., None] if t.ndim else t) * self.x_star_rate
+        return self.u_star - (x - reference) @ self.K.T
 
     @property
     def stable(self) -> bool:
@@ -117,7 +128,8 @@ class Feedback:
         return {
             "schema": FEEDBACK_SCHEMA, "version": FEEDBACK_VERSION, "model": self.model,
             "states": list(self.states), "inputs": list(self.inputs),
-            "K": self.K.tolist(), "x_star": self.x_star.tolist(), "u_star": self.u_star.tolist(),
+            "K": self.K.tolist(), "x_star": self.x_star.tolist(), "x_star_rate": self.x_star_rate.tolist(),
+            "u_star": self.u_star.tolist(),
             "A": self.A.tolist(), "B": self.B.tolist(), "Q": self.Q.tolist(), "R": self.R.tolist(),
             "eigenvalues": [[float(z.real), float(z.imag)] for z in self.eigenvalues],
             "parameters": {k: float(v) for k, v in self.parameters.items()},
@@ -160,7 +172,8 @@ class Feedback:
                                fix="write it with Feedback.save")
         try:
             return cls(str(doc["model"]), tuple(states), tuple(inputs), doc["K"], doc["x_star"], doc["u_star"],
-                       doc["A"], doc["B"], doc["Q"], doc["R"], eigenvalues, dict(parameters))
+                       doc["A"], doc["B"], doc["Q"], doc["R"], eigenvalues, dict(parameters),
+                       doc.get("x_star_rate"))
         except ControlError as exc:
             raise ControlError(f"In {where}: {exc.message}", fix=exc.fix) from None
 

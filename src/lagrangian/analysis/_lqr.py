@@ -13,7 +13,8 @@ the continuous algebraic Riccati equation
 (Kalman, Bol. Soc. Mat. Mexicana 5 (1960) 102–119; Anderson & Moore, *Optimal Control: Linear
 Quadratic Methods*, §3.3).  It exists when (A, B) is stabilizable: every mode the inputs cannot
 move (Popov–Belevitch–Hautus: wᵀ A = λ wᵀ and wᵀ B = 0) is asymptotically stable.  The law
-applied to the nonlinear system is u = u* − K (x − x*), a `Feedback`.
+applied to the nonlinear system is u = u* − K (x − x*(t)), a `Feedback`; about a steady motion the
+coordinates that move advance along it, x*(t) = x* + ẋ* t.
 """
 
 from __future__ import annotations
@@ -220,8 +221,10 @@ def lqr(source: Any, at: Mapping[str, Any] | None = None, *, Q: Any = None, R: A
     point = lin.point
     x_star = np.array([float(point[name]) for name in states])
     u_star = np.array([float(point[u]) if u in point else 0.0 for u in inputs])
+    # Along a steady motion the moving coordinates advance: x*(t) = x* + ẋ* t.
+    rate = np.array([float(point.get(name + "_dot", 0.0)) if name in eom.coordinates else 0.0 for name in states])
     values = {k: float(v) for k, v in lin.values.items() if k not in inputs}
-    return Feedback(model.name, states, inputs, K, x_star, u_star, A, B, Qm, Rm, closed, values)
+    return Feedback(model.name, states, inputs, K, x_star, u_star, A, B, Qm, Rm, closed, values, rate)
 
 
 def _complex(z: complex) -> str:

@@ -17,7 +17,8 @@ constants (LG_NK) | law (LG_NX)], the law's block laid out by `InputLaw.layout`:
     law[0]         the hint: a time inside the interval the integrator is in (NaN outside a run);
                    a table reads the piece of that interval, even at its right end
     law[1]         the address of the Python callback, its bits read as a double (the slow path)
-    K, x*, u*      the feedback's gain (m × nx, row-major), point and inputs
+    K, x*, u*, ẋ*  the feedback's gain (m × nx, row-major), point, inputs, and the rates of the point's
+                   coordinates along a steady motion (x*(t) = x* + ẋ* t)
     tables         per table: times (N), values (N), then for "cubic" the (N − 1) × 4 coefficients
     breaks         the sorted sample times of every table: the integrators stop and start there
 """
@@ -128,9 +129,10 @@ def law_code(eom: EquationsOfMotion, law: InputLaw) -> LawCode:
             assert fb is not None
             i = fb.inputs.index(s.name)
             nx = len(fb.states)
-            terms = " + ".join(f"law[{lay['K'] + i * nx + k}] * (y[{index[x]}] - law[{lay['x_star'] + k}])"
+            terms = " + ".join(f"law[{lay['K'] + i * nx + k}] * (y[{index[x]}] - law[{lay['x_star'] + k}]"
+                               + (f" - law[{lay['x_rate'] + k}] * t)" if x in eom.coordinates else ")")
                                for k, x in enumerate(fb.states))
-            lines.append(f"    u[{j}] = law[{lay['u_star'] + i}] - ({terms});  /* {s.name} = u* - K (x - x*) */")
+            lines.append(f"    u[{j}] = law[{lay['u_star'] + i}] - ({terms});  /* {s.name} = u* - K (x - x*(t)) */")
         else:
             lines.append(f"    u[{j}] = uc[{callables.index(s.name)}];  /* {s.name}: a Python function */")
     body = c_block(outputs, names, prefix="w") if outputs else []

@@ -140,8 +140,8 @@ class InputLaw:
         fb = self.feedback
         if fb is not None and any(s.kind == "feedback" for s in self.driven):
             m, nx = fb.K.shape
-            offsets.update(K=k, x_star=k + m * nx, u_star=k + m * nx + nx)
-            k += m * nx + nx + m
+            offsets.update(K=k, x_star=k + m * nx, u_star=k + m * nx + nx, x_rate=k + m * nx + nx + m)
+            k += m * nx + nx + m + nx
         for s in self.tables:
             offsets["table:" + s.name] = k
             k += len(s.value.data())
@@ -163,6 +163,7 @@ class InputLaw:
             out[lay["K"]:lay["K"] + m * nx] = fb.K.ravel()
             out[lay["x_star"]:lay["x_star"] + nx] = fb.x_star
             out[lay["u_star"]:lay["u_star"] + m] = fb.u_star
+            out[lay["x_rate"]:lay["x_rate"] + nx] = fb.x_star_rate
         for s in self.tables:
             a = lay["table:" + s.name]
             d = s.value.data()
@@ -174,7 +175,6 @@ class InputLaw:
     def evaluator(self, eom: EquationsOfMotion, parameters: tuple[str, ...]) -> Callable:
         """``f(t, Y, p, window=None) -> U`` (N, len(driven)): the driven inputs at each state, p the
         model's parameter values; ``window`` a time inside the tables' current interval (as the hint)."""
-        n = len(eom.q)
         args = [eom.t, *eom.q, *eom.qd, *(se.Symbol(name) for name in parameters)]
         exprs = [s for s in self.driven if s.kind == "expression"]
         lam = se.Lambdify(args, [s.value for s in exprs], cse=True) if exprs else None
@@ -196,13 +196,12 @@ class InputLaw:
                 elif s.kind == "feedback":
                     assert fb is not None
                     x = Y[:, [index[name] for name in fb.states]]
-                    out[:, j] = fb(x)[:, fb.inputs.index(s.name)]
+                    out[:, j] = fb(x, T)[:, fb.inputs.index(s.name)]
                 else:
                     for i in range(len(Y)):
                         out[i, j] = _call(s, float(T[i]), Y[i])
             return out
 
-        del n
         return f
 
 
