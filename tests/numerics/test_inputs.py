@@ -283,3 +283,10 @@ def test_the_symengine_fallback_applies_the_same_law(oscillator):
     rng = np.random.default_rng(3)
     T, Y = rng.uniform(0, 2, 7), rng.normal(size=(7, 2))
     assert np.allclose(s.rhs(T, Y, s.parameter_vector()), c.rhs(T, Y, c.parameter_vector()), rtol=1e-13, atol=1e-13)
+
+
+def test_the_analytic_jacobian_refuses_a_law_it_cannot_see(oscillator):
+    f = compile_system(oscillator, inputs={"F": "-k1*x"}).rhs_function()
+    assert np.allclose(f(0.0, np.array([0.1, 0.0])), [0.0, (-K * 0.1 - 3.0 * 0.1) / M])
+    with pytest.raises(SimulationError, match="analytic Jacobian differentiates M and F with the inputs as constants"):
+        f.jac(0.0, np.array([0.1, 0.0]))
