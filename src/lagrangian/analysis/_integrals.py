@@ -35,11 +35,11 @@ import symengine as se
 
 from .._identity import are_zero
 from ..dynamics import EquationsOfMotion
-from ..dynamics._inertial import rotating_frame
 from ..dynamics._constraints import admissible_integrals
+from ..dynamics._inertial import rotating_frame
 from ._noether import nonholonomic_integrals, symmetry_integrals
 
-__all__ = ["FirstIntegral", "first_integrals", "INPUT_REGIMES", "inputs_off"]
+__all__ = ["INPUT_REGIMES", "FirstIntegral", "first_integrals", "input_regime", "inputs_off"]
 
 #: What a declared input does during a motion (`first_integrals`' ``inputs``).
 INPUT_REGIMES = ("off", "constant", "varying")

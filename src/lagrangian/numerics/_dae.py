@@ -456,11 +456,13 @@ def simulate_dae(
                 solver.y = y_new
                 solver.f = fun(t_new, y_new)  # the first stage of the next step (FSAL)
 
-        def state(t: float) -> np.ndarray:
+        # This step's dense output, end and solver, bound now (the loop moves on to the next ones).
+        def state(t: float, dense=dense, t_new=t_new, solver=solver) -> np.ndarray:  # type: ignore[no-untyped-def]
             y = dense(t) if t < t_new else solver.y.copy()
             return project(system, t, y, p, tol)[0] if projecting else y
 
-        def raw_state(t: float) -> np.ndarray:  # projected with all the outputs at the end
+        def raw_state(t: float, dense=dense, t_new=t_new, solver=solver) -> np.ndarray:  # type: ignore[no-untyped-def]
+            # projected with all the outputs at the end
             return dense(t) if t < t_new else solver.y.copy()
 
         t_stop = None
@@ -473,7 +475,7 @@ def simulate_dae(
                     continue
                 from scipy.optimize import brentq
 
-                te = brentq(lambda s: event_fn(s, state(s))[k], t_old, t_new, xtol=4e-16 * max(1.0, abs(t_new)))
+                te = brentq(lambda s, k=k: event_fn(s, state(s))[k], t_old, t_new, xtol=4e-16 * max(1.0, abs(t_new)))
                 evs.append((spec.name, float(te), state(te)))
                 if spec.terminal:
                     t_stop = te if t_stop is None else min(t_stop, te)
