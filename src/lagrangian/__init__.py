@@ -27,10 +27,10 @@ from typing import TYPE_CHECKING
 # so that Ctrl-C while those load reaches the command line's handler (one line, exit 130), not a
 # traceback from the middle of an import.
 _WHERE = {
-    **dict.fromkeys(("EnergyBalance", "Equilibrium", "FirstIntegral", "LinearizationError", "LinearModel", "Modes",
-                     "Stability", "Sweep", "TopAnalysis", "Verification", "analyse_top", "energy_balance",
-                     "equilibria", "first_integrals", "holding_inputs", "linearize", "modes", "routh_reduction", "stability",
-                     "steady_motions", "sweep", "verify"), ".analysis"),
+    **dict.fromkeys(("ControlError", "EnergyBalance", "Equilibrium", "Feedback", "FirstIntegral", "LinearizationError",
+                     "LinearModel", "Modes", "Stability", "Sweep", "TopAnalysis", "Verification", "analyse_top",
+                     "energy_balance", "equilibria", "first_integrals", "holding_inputs", "linearize", "lqr", "modes",
+                     "routh_reduction", "stability", "steady_motions", "sweep", "verify"), ".analysis"),
     **dict.fromkeys(("EquationsOfMotion", "LagrangeEquation", "derive"), ".dynamics"),
     **dict.fromkeys(("DerivationError", "ExportError", "IdentificationError", "KinematicsError", "LagrangianError",
                      "ModelError", "OutputError", "SimulationError", "VerificationError"), ".errors"),
@@ -40,15 +40,15 @@ _WHERE = {
     "Model": ".model.spec",
     "lagrange_top": ".model.zoo",
     **dict.fromkeys(("Report", "report", "export"), ".output"),
-    **dict.fromkeys(("CompiledSystem", "EventSpec", "Sensitivities", "Trajectory", "compile_system", "ensemble",
+    **dict.fromkeys(("CompiledSystem", "EventSpec", "InputTable", "Sensitivities", "Trajectory", "compile_system", "ensemble",
                      "grid", "open_ensemble", "save_trajectory", "simulate"), ".numerics"),
 }
 
 if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
-    from .analysis import (EnergyBalance, Equilibrium, FirstIntegral, LinearizationError, LinearModel, Modes,
-                           Stability, Sweep, TopAnalysis, Verification, analyse_top, energy_balance, equilibria,
-                           first_integrals, linearize, modes, routh_reduction, stability, steady_motions, sweep,
-                           verify)
+    from .analysis import (ControlError, EnergyBalance, Equilibrium, Feedback, FirstIntegral, LinearizationError,
+                           LinearModel, Modes, Stability, Sweep, TopAnalysis, Verification, analyse_top,
+                           energy_balance, equilibria, first_integrals, holding_inputs, linearize, lqr, modes,
+                           routh_reduction, stability, steady_motions, sweep, verify)
     from .dynamics import EquationsOfMotion, LagrangeEquation, derive
     from .errors import (DerivationError, ExportError, IdentificationError, KinematicsError, LagrangianError,
                          ModelError, OutputError, SimulationError, VerificationError)
@@ -57,7 +57,7 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from .model import ModelBuilder, load_model, load_urdf, parse_model
     from .model.spec import Model
     from .model.zoo import lagrange_top
-    from .numerics import (CompiledSystem, EventSpec, Sensitivities, Trajectory, compile_system, ensemble, grid,
+    from .numerics import (CompiledSystem, EventSpec, InputTable, Sensitivities, Trajectory, compile_system, ensemble, grid,
                            open_ensemble, save_trajectory, simulate)
     from .output import Report, export, report
 
@@ -97,6 +97,9 @@ __all__ = [
     "routh_reduction",
     "steady_motions",
     "equilibria",
+    "lqr",
+    "Feedback",
+    "ControlError",
     "compile_system",
     "CompiledSystem",
     "simulate",
@@ -107,6 +110,7 @@ __all__ = [
     "grid",
     "open_ensemble",
     "EventSpec",
+    "InputTable",
     "Trajectory",
     "save_trajectory",
     "report",

@@ -259,6 +259,28 @@ def inverted_pendulum_cart() -> Oracle:
     return [x, theta], T, [(C, -mc * g * N.z + F * N.x), (P, -m * g * N.z)], N
 
 
+def furuta_pendulum() -> Oracle:
+    # The arm (a rod from O along x1, inertia given at O) turned about z0 by the motor's torque τ, whose
+    # reaction is on the ground; the pendulum (a rod hinged at the tip A about x1, its centre G at −lp z2).
+    ma, r, mp, lp, g, tau = _params("ma r mp lp g tau")
+    phi, alpha = me.dynamicsymbols("phi alpha")
+    N = me.ReferenceFrame("N")
+    R1 = N.orientnew("R1", "Axis", (phi, N.z))
+    R2 = R1.orientnew("R2", "Axis", (alpha, R1.x))
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    Ga = O.locatenew("Ga", r / 2 * R1.x)
+    Ga.v2pt_theory(O, N, R1)
+    A = O.locatenew("A", r * R1.x)
+    A.v2pt_theory(O, N, R1)
+    Gp = A.locatenew("Gp", -lp * R2.z)
+    Gp.v2pt_theory(A, N, R2)
+    arm = me.RigidBody("arm", Ga, R1, ma, (me.inertia(R1, 0, ma * r**2 / 3, ma * r**2 / 3), O))
+    pendulum = me.RigidBody("pendulum", Gp, R2, mp, (me.inertia(R2, mp * lp**2 / 3, mp * lp**2 / 3, 0), Gp))
+    T = arm.kinetic_energy(N) + pendulum.kinetic_energy(N)
+    return [phi, alpha], T, [(Ga, -ma * g * N.z), (Gp, -mp * g * N.z), (R1, tau * N.z)], N
+
+
 def sleeping_top() -> Oracle:
     m, g, a, A, C = _params("m g a A C")
     alpha, beta, phi = me.dynamicsymbols("alpha beta phi")
@@ -328,6 +350,7 @@ ORACLES: dict[str, Callable[[], Oracle]] = {
     "double_pendulum.toml": double_pendulum,
     "cart_pendulum.toml": cart_pendulum,
     "inverted_pendulum_cart.toml": inverted_pendulum_cart,
+    "furuta_pendulum.toml": furuta_pendulum,
     "lagrange_top.toml": lagrange_top,
     "sleeping_top.toml": sleeping_top,
     "bead_rotating_hoop.toml": bead_rotating_hoop,

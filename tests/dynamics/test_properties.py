@@ -277,7 +277,9 @@ EXPECTED_INTEGRALS = {
     "spherical_pendulum.toml": {"Lz", "E"},
     "double_pendulum.toml": {"E"},
     "cart_pendulum.toml": {"E"},
-    "inverted_pendulum_cart.toml": {"E"},  # a constant push F derives from U = −F x: E, but no p_x
+    # With its push F off (an input's default), x is cyclic: p_x and E (a constant F would leave E only).
+    "inverted_pendulum_cart.toml": {"p_x", "E"},
+    "furuta_pendulum.toml": {"p_phi", "E"},  # the motor off: the momentum about its axis, and the energy
     "lagrange_top.toml": {"K", "H", "E"},
     "sleeping_top.toml": {"p_phi", "E", "sigma_O_z0"},  # the spin's momentum, and σ_O·z0 by Noether
     "bead_rotating_hoop.toml": {"h"},  # Jacobi: energy in the hoop's frame, with the entrainment potential

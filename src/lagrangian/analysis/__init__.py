@@ -14,6 +14,8 @@ from ._energy_balance import energy_balance as energy_balance
 from ._equilibria import Equilibrium as Equilibrium
 from ._equilibria import EquilibriumError as EquilibriumError
 from ._equilibria import equilibria as equilibria
+from ._feedback import ControlError as ControlError
+from ._feedback import Feedback as Feedback
 from ._integrals import FirstIntegral as FirstIntegral
 from ._integrals import first_integrals as first_integrals
 from ._newton_euler import CoordinateCheck as CoordinateCheck
@@ -31,6 +33,7 @@ from ._linear_model import LinearModel as LinearModel
 from ._linear_model import SecondOrderForm as SecondOrderForm
 from ._linearize import linearize as linearize
 from ._linearize import holding_inputs as holding_inputs
+from ._lqr import lqr as lqr
 from ._modes import Mode as Mode
 from ._modes import Modes as Modes
 from ._modes import Stability as Stability
@@ -53,4 +56,4 @@ __all__ = ["FirstIntegral", "first_integrals", "CoordinateCheck", "ElementTheore
            "SecondOrderForm", "LinearizationError", "Mode", "Modes", "Stability", "StabilityChange", "Sweep", "modes",
            "stability", "sweep", "Equilibrium", "EquilibriumError", "equilibria", "bifurcation",
            "BifurcationDiagram", "Branch", "routh_reduction", "RouthReduction", "steady_motions",
-           "SteadyMotion"]
+           "SteadyMotion", "Feedback", "ControlError", "lqr"]

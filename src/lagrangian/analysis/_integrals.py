@@ -12,23 +12,37 @@ From L(q_i):  d/dt(∂T/∂q̇_i) = ∂T/∂q_i − ∂U/∂q_i + Q_i(nc).  So
 
 "≡ 0" is decided by a randomized high-precision identity test (`_identity`), which
 does not miss zeros that only appear after simplification.
+
+**Inputs.**  A declared input u (``[inputs]``) is a symbol in the loads.  What holds depends
+on what u does (`first_integrals`' ``inputs``): *off* (u = 0, the default, as `simulate` runs
+a model) — the search runs on the equations with u = 0, so a Furuta pendulum's momentum about
+its motor axis is found; *constant* — u is a parameter like any other; *varying* (an input in
+time or a feedback u(t, q, q̇)) — u enters each Q_i pointwise, so the tests of the momenta,
+of Noether's integrals and of the nonholonomic speeds hold for every value of u at once
+(a symbol) and stay valid, while the energy test ∂L/∂t ≡ 0 does not see a u(t) inside U:
+an energy-like integral is then kept only when no varying input is in T or U (and the
+power test Σ Q_i q̇_i ≡ 0, with u a symbol, already drops it when u works).
 """
 
 from __future__ import annotations
 
+import dataclasses
 from collections import OrderedDict
-
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import symengine as se
 
 from .._identity import are_zero
 from ..dynamics import EquationsOfMotion
-from ..dynamics._inertial import rotating_frame
 from ..dynamics._constraints import admissible_integrals
+from ..dynamics._inertial import rotating_frame
 from ._noether import nonholonomic_integrals, symmetry_integrals
 
-__all__ = ["FirstIntegral", "first_integrals"]
+__all__ = ["INPUT_REGIMES", "FirstIntegral", "first_integrals", "input_regime", "inputs_off"]
+
+#: What a declared input does during a motion (`first_integrals`' ``inputs``).
+INPUT_REGIMES = ("off", "constant", "varying")
 
 
 @dataclass(frozen=True, slots=True)
@@ -57,26 +71,101 @@ class FirstIntegral:
 #: The last derivations' integrals, by identity: `simulate` asks for them on every run, and the
 #: symmetry tests cost tens of milliseconds.  The equations are immutable and held here, so an
 #: identity cannot be reused while its entry lives.
-_RECENT: OrderedDict[int, tuple[EquationsOfMotion, tuple[FirstIntegral, ...]]] = OrderedDict()
+_RECENT: OrderedDict[tuple, tuple[EquationsOfMotion, tuple[FirstIntegral, ...]]] = OrderedDict()
 _RECENT_SIZE = 16
 
 
-def first_integrals(eom: EquationsOfMotion) -> tuple[FirstIntegral, ...]:
+def first_integrals(eom: EquationsOfMotion, *,
+                    inputs: Mapping[str, str] | None = None) -> tuple[FirstIntegral, ...]:
     """The first integrals of the motion that the structure of L guarantees.
+
+    Parameters
+    ----------
+    eom : the equations (`lagrangian.derive`).
+    inputs : what each declared input does (module docstring): ``"off"`` (u = 0; the default
+        for every input not named), ``"constant"`` or ``"varying"``.  The expressions of the
+        integrals have the inputs that are off set to 0.
+
+    Raises
+    ------
+    ValueError
+        A name that is not a declared input, or an unknown regime.
 
     Examples
     --------
     For the seed's top: K (ψ cyclic), H (φ cyclic) and the energy T + U.
     """
-    hit = _RECENT.get(id(eom))
+    regime = input_regime(eom, inputs)
+    key = (id(eom), tuple(sorted(regime.items())))
+    hit = _RECENT.get(key)
     if hit is not None and hit[0] is eom:
-        _RECENT.move_to_end(id(eom))
+        _RECENT.move_to_end(key)
         return hit[1]
-    found = _first_integrals(eom)
-    _RECENT[id(eom)] = (eom, found)
+    found = _with_inputs(eom, regime)
+    _RECENT[key] = (eom, found)
     while len(_RECENT) > _RECENT_SIZE:
         _RECENT.popitem(last=False)
     return found
+
+
+def input_regime(eom: EquationsOfMotion, inputs: Mapping[str, str] | None) -> dict[str, str]:
+    """Every declared input of ``eom``'s model with its regime (``"off"`` unless given)."""
+    declared = tuple(eom.model.inputs)
+    regime = {u: "off" for u in declared}
+    for name, what in (inputs or {}).items():
+        if name not in regime:
+            raise ValueError(f"`{name}` is not a declared input of `{eom.model.name}` "
+                             f"(inputs: {', '.join(declared) or 'none'})")
+        if what not in INPUT_REGIMES:
+            raise ValueError(f"the regime of `{name}` must be one of {', '.join(INPUT_REGIMES)}, not {what!r}")
+        regime[name] = what
+    return regime
+
+
+def _with_inputs(eom: EquationsOfMotion, regime: Mapping[str, str]) -> tuple[FirstIntegral, ...]:
+    off = [u for u, what in regime.items() if what == "off"]
+    varying = {se.Symbol(u) for u, what in regime.items() if what == "varying"}
+    view = inputs_off(eom, off)
+    found = _first_integrals(view)
+    if varying:
+        in_energy = (view.T.free_symbols | view.U.free_symbols) & varying
+        if in_energy:
+            found = tuple(fi for fi in found if fi.kind not in ("energy", "jacobi"))
+    if view is eom:
+        return found
+    # What holds only because some input is off says so.
+    held_on = {fi.name for fi in _first_integrals(eom)}
+    names = ", ".join(f"{u} = 0" for u in off)
+    return tuple(fi if fi.name in held_on else dataclasses.replace(fi, reason=f"{fi.reason} (with the inputs off: "
+                                                                           f"{names})")
+                 for fi in found)
+
+
+def inputs_off(eom: EquationsOfMotion, off: list[str] | tuple[str, ...]) -> EquationsOfMotion:
+    """``eom`` with the inputs ``off`` set to 0 in the loads, the equations, M and F (``eom`` itself
+    when none of them appears).  The copy has no recursive form: it is for analysis, not for code."""
+    zero = {se.Symbol(u): se.Integer(0) for u in off}
+    if not zero:
+        return eom
+    present = set()
+    for load in eom.loads:
+        for q in load.Q:
+            present |= q.free_symbols
+        if load.potential is not None:
+            present |= load.potential.free_symbols
+    if not present & set(zero):
+        return eom
+
+    def sub(e: se.Basic) -> se.Basic:
+        return e.xreplace(zero) if e.free_symbols & set(zero) else e
+
+    loads = tuple(dataclasses.replace(f, Q=tuple(sub(q) for q in f.Q), virtual_power=sub(f.virtual_power),
+                                      potential=None if f.potential is None else sub(f.potential))
+                  for f in eom.loads)
+    equations = tuple(dataclasses.replace(eq, dU_dq=sub(eq.dU_dq), Q_nc=sub(eq.Q_nc), rhs=sub(eq.rhs))
+                      for eq in eom.equations)
+    return dataclasses.replace(eom, loads=loads, equations=equations, F=tuple(sub(f) for f in eom.F),
+                               M=tuple(tuple(sub(e) for e in row) for row in eom.M), recursive=None)
 
 
 def _first_integrals(eom: EquationsOfMotion) -> tuple[FirstIntegral, ...]:

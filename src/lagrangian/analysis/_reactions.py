@@ -229,9 +229,10 @@ def _need_masses(model, bodies: Sequence[str]) -> None:  # type: ignore[no-untyp
 class _Numeric:
     """Expressions of (q, q̇, q̈, t) as one LLVM-compiled function of the trajectory's states."""
 
-    def __init__(self, eom: EquationsOfMotion, parameters: Mapping[str, float], exprs: Sequence[se.Basic]) -> None:
+    def __init__(self, eom: EquationsOfMotion, parameters: Mapping[str, float], exprs: Sequence[se.Basic],
+                 inputs: Sequence[str] = ()) -> None:
         values = {se.Symbol(k): float(x) for k, x in parameters.items()}
-        args = [*eom.q, *eom.qd, *eom.qdd, eom.t, *eom.multipliers]
+        args = [*eom.q, *eom.qd, *eom.qdd, eom.t, *eom.multipliers, *(se.Symbol(u) for u in inputs)]
         subbed = [as_expr(e).subs(values) for e in exprs]
         left = set().union(*(e.free_symbols for e in subbed)) - set(args) if subbed else set()
         if left:
@@ -248,14 +249,21 @@ class _Numeric:
         return np.asarray(self._f(states), dtype=float).reshape(len(states), self.size)
 
 
+def _varying_inputs(trajectory: Trajectory, eom: EquationsOfMotion) -> list[str]:
+    """The inputs whose values are columns of the trajectory (they varied), not parameter values."""
+    return [u for u in eom.model.inputs if u not in trajectory.parameters and u in trajectory.extra]
+
+
 def _states(trajectory: Trajectory, eom: EquationsOfMotion) -> np.ndarray:
-    # With complementary constraints, the multipliers λ_k are columns of the trajectory too.
+    # With complementary constraints, the multipliers λ_k are columns of the trajectory too; so are
+    # the inputs that varied along the motion.
     missing = [s.name for s in eom.multipliers if s.name not in trajectory.extra]
     if missing:
         raise SimulationError(f"The trajectory has no values of the multiplier `{missing[0]}`.",
                               fix="simulate the model with its complementary constraints (lagrangian.simulate)")
     lam = [trajectory.extra[s.name] for s in eom.multipliers]
-    return np.column_stack([trajectory.q, trajectory.qd, trajectory.qdd, trajectory.t, *lam])
+    inputs = [trajectory.extra[u] for u in _varying_inputs(trajectory, eom)]
+    return np.column_stack([trajectory.q, trajectory.qd, trajectory.qdd, trajectory.t, *lam, *inputs])
 
 
 def _r0(kin: Kinematics, v: Vector) -> list[se.Basic]:
@@ -283,7 +291,8 @@ def reaction_history(source: Verification | EquationsOfMotion,
     out = {}
     states = _states(trajectory, v.eom)
     for r in reactions(v, display=False):
-        values = _Numeric(v.eom, trajectory.parameters, _r0(kin, r.force) + _r0(kin, r.moment))(states)
+        values = _Numeric(v.eom, trajectory.parameters, _r0(kin, r.force) + _r0(kin, r.moment),
+                          _varying_inputs(trajectory, v.eom))(states)
         out[r.name] = ReactionHistory(r.name, r.point, trajectory.t, values[:, :3], values[:, 3:])
     return out
 
@@ -365,7 +374,7 @@ def check_trajectory(source: Verification | EquationsOfMotion, trajectory: Traje
         exprs += [c for th_name in r.elements for c in _r0(kin, kin.position(v.element(th_name).point)
                                                           - kin.position(r.point))]
         exprs += [c for w in r.free_axes for c in _r0(kin, w)]
-    values = _Numeric(eom, trajectory.parameters, exprs)(_states(trajectory, eom))
+    values = _Numeric(eom, trajectory.parameters, exprs, _varying_inputs(trajectory, eom))(_states(trajectory, eom))
     N, E = len(values), len(v.theorems)
     element_vectors = values[:, :12 * E].reshape(N, E, 4, 3)
     at = 12 * E

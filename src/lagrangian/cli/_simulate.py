@@ -1,4 +1,5 @@
-"""``lagrangian simulate MODEL.toml --t-end 10 [--set NAME=VALUE ...] [--out traj.csv|traj.npz] [--plot [DIR]]``.
+"""``lagrangian simulate MODEL.toml --t-end 10 [--set NAME=VALUE ...] [--input NAME=VALUE ...] [--feedback FILE.json]
+[--out traj.csv|traj.npz] [--plot [DIR]]``.
 
 Everything that can be checked before the run is (the output's suffix and folder, the plot
 folder, ffmpeg for an MP4), so that a bad option never costs a run or an older file.
@@ -17,6 +18,7 @@ from ..dynamics import derive
 from ..errors import Interrupted, OutputError, SimulationError
 from ..numerics import METHODS, STABILIZATIONS, EventSpec, check_output_path, compile_system, save_trajectory, \
     simulate
+from ._input_option import add_input_options, parse_inputs
 from ._settings import add_set_option, number_argument, parse_settings
 from ._source import MODEL_HELP, load_source
 
@@ -37,6 +39,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     s.add_argument("--t-end", type=number_argument, default=10.0, metavar="T", help="end time (default 10)")
     s.add_argument("--t-start", type=number_argument, default=0.0, metavar="T0", help="start time (default 0)")
     add_set_option(s)
+    add_input_options(s)
     s.add_argument("--method", choices=METHODS, default="dop853",
                    help="dop853 (adaptive, default), gauss-legendre (fixed step, symplectic) or a SciPy method")
     s.add_argument("--rtol", type=number_argument, default=1e-10, help="relative tolerance (default 1e-10)")
@@ -127,20 +130,21 @@ def _check_outputs(args: argparse.Namespace, plots: Path | None) -> None:
 def run(args: argparse.Namespace) -> str:
     model = load_source(args.model)
     parameters, initial = parse_settings(args.set, model)
+    inputs = parse_inputs(args.input, model, time_column=args.input_time_column, feedback=args.feedback)
     plots = plot_folder(args)
     _check_outputs(args, plots)
     eom = derive(model)
     events = [EventSpec(text, text) for text in args.event]
     events += [EventSpec(f"stop: {text}", text, terminal=True) for text in args.stop_when]
     # simulate compiles events in, and sends constrained models to its DAE path
-    system = eom if events or eom.constraints else compile_system(eom)
+    system = eom if events or eom.constraints else compile_system(eom, inputs=inputs)
     progress = sys.stderr.isatty() if args.progress is None else args.progress
     start = time.perf_counter()
     try:
         traj = simulate(system, args.t_end, t_start=args.t_start, initial=initial,
                         parameters=parameters, method=args.method, rtol=args.rtol, atol=args.atol, dt=args.dt,
                         n_out=args.n_out, events=events, tolerance=args.tolerance, progress=progress,
-                        stabilization=args.stabilization, stiffness_check=args.stiffness_check)
+                        stabilization=args.stabilization, stiffness_check=args.stiffness_check, inputs=inputs)
     except Interrupted as exc:
         # Ctrl-C: what was computed is kept in the file asked for, its header saying
         # "interrupted ... (partial)"; `main` prints the one line and exits 130.
@@ -165,6 +169,9 @@ def run(args: argparse.Namespace) -> str:
         f"{traj.rhs_calls} right-hand-side calls, {elapsed * 1e3:.1f} ms",
         "conservation: " + (traj.drift_summary() or "no first integral to monitor"),
     ]
+    applied = describe_inputs(inputs, model)
+    if applied:
+        lines.insert(1, "inputs: " + applied)
     constraint = {k[len("drift_"):]: v for k, v in traj.drift.items() if k.startswith("drift_")}
     if constraint:
         lines.append("constraint drift (max residual): "
@@ -197,6 +204,23 @@ def run(args: argparse.Namespace) -> str:
     for row in traj.table():
         text.write(",".join(f"{v:.17g}" for v in row) + "\n")
     return text.getvalue()
+
+
+def describe_inputs(inputs, model) -> str:  # type: ignore[no-untyped-def]
+    """``F = 2*sin(3*t), G = feedback`` for the summary: the inputs given, then the model's [controls]."""
+    from ..analysis import Feedback
+
+    parts = []
+    given = dict(inputs or {})
+    for name in model.inputs:
+        value = given.get(name)
+        if isinstance(value, Feedback):
+            parts.append(f"{name} = u* - K (x - x*) (feedback)")
+        elif value is not None:
+            parts.append(f"{name} = {value!r}" if not isinstance(value, str) else f"{name} = {value}")
+        elif name in dict(model.controls):
+            parts.append(f"{name} = {dict(model.controls)[name]} ([controls])")
+    return ", ".join(parts)
 
 
 def _with_reactions(traj, eom):

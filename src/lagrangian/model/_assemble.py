@@ -22,6 +22,7 @@ from ._limits import NotFinite, excerpt, real_value
 from ._assumptions import read_range, read_sign
 from ._constraints import build_constraints
 from ._friction import FRICTION_KINDS, build_friction_load
+from ._controls import build_controls
 from ._operating_point import build_operating_point, check_inputs_used
 from ._reference import check_reference
 from ._vector import Vector, as_expr
@@ -172,6 +173,7 @@ class Assembler:
         constraints = build_constraints(self, self.of("constraint"), coordinates, all_points,
                                         [b.name for b in bodies], {f.name: f.axes for f in frames})
         operating = build_operating_point(self, self.b._operating_point, parameters, coordinates)
+        controls = build_controls(self, getattr(self.b, "_controls", None), parameters, coordinates)
         model = Model(
             name=self.b.name,
             description=self.b.description,
@@ -188,6 +190,7 @@ class Assembler:
             constraints=constraints,
             reference=self.reference(all_points, frames, coordinates),
             **operating,
+            controls=controls,
         )
         self.check_coordinates_used(model)
         check_inputs_used(model)

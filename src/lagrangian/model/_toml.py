@@ -10,6 +10,7 @@ The file's tables map onto the course's vocabulary::
     [bodies.S]     frame, mass, center, fixed_point, inertia = { at, frame, diagonal | matrix }
     [particles.P]  mass, position
     [loads]        weight = { gravity = "-g*R0.z" }, push = { force = "...", at = "P" }, ...
+    [controls]     F = "-k1*x - k2*x_dot"   (a law per declared input, run by `simulate`)
 
 See ``docs/model-format.md`` for every key.  `tomllib` gives no positions for
 values, so the line of each declaration is found by scanning the text for its key.
@@ -43,7 +44,7 @@ from .urdf import load_urdf
 __all__ = ["load_model", "parse_model"]
 
 _TABLES = ("model", "parameters", "inputs", "coordinates", "frames", "points", "bodies", "particles", "loads",
-           "constraints", "reference", "operating_point")
+           "constraints", "reference", "operating_point", "controls")
 _LOAD_KINDS = {
     "gravity": {"gravity", "on"},
     "force": {"force", "at"},
@@ -363,6 +364,8 @@ class _Reader:
             read_constraint(self, b, name, value)
         if "operating_point" in self.data:
             self.operating_point(b)
+        if "controls" in self.data:
+            self.controls(b)
         if "reference" in self.data:
             frame, origin, where = read_reference(self.data["reference"], self.index, self.source)
             b.reference(frame, origin=origin, location=where)
@@ -385,6 +388,20 @@ class _Reader:
         values = {k: v for k, v in table.items() if k not in ("independent", "dependent")}
         b.operating_point(values, independent=table.get("independent"), dependent=table.get("dependent"),
                           location=where)
+
+    def controls(self, b: ModelBuilder) -> None:
+        """``[controls]``: a law (an expression in quotes) per declared input, with each key's line and column."""
+        table = self.table("controls")
+        keys = {}
+        for key, value in table.items():
+            hit = self.index.get(("controls", key))
+            if hit is not None:
+                line, column = hit
+                text = self.lines[line - 1]
+                if not (column and isinstance(value, str) and text[column - 1:column - 1 + len(value)] == value):
+                    column = 0
+                keys[key] = (line, column)
+        b.controls(table, location=located(self.source, self.at("controls").line, keys))
 
     def names(self, load: str, key: str, value: Any) -> tuple[str, ...]:
         """A name or a list of names (the ends of a spring, the bodies gravity acts on)."""

@@ -46,6 +46,7 @@ class ModelBuilder:
         self._decl: list[Raw] = []
         self._reference: tuple[Any, Any, Location] | None = None  # (R, O', where): see `reference`
         self._operating_point: Raw | None = None  # see `operating_point`
+        self._controls: Raw | None = None  # see `controls`
 
     # -- declarations -------------------------------------------------------------------
     def _add(self, what: str, name: str, location: Location | None, **data: Any) -> None:
@@ -198,6 +199,12 @@ class ModelBuilder:
         self._operating_point = Raw("operating point", "operating_point",
                                     {"values": values, "independent": independent, "dependent": dependent},
                                     location or Location(self.source))
+
+    def controls(self, values: Mapping[str, Any], *, location: Location | None = None) -> None:
+        """A control law per declared input: ``{"F": "-k1*x - k2*x_dot"}`` (expressions of t, the
+        coordinates, their rates and the parameters), run by `simulate` unless its ``inputs=`` name
+        the input.  Given once; a second call replaces the first."""
+        self._controls = Raw("controls", "controls", {"values": values}, location or Location(self.source))
 
     def constraint(self, name: str, form: str, value: Any, *, on: str | None = None, frame: str = GALILEAN_FRAME,
                    axes: Sequence[str] | None = None, principal: bool = False, reaction: Mapping[str, Any] | None = None,

@@ -414,6 +414,9 @@ class Model:
     dependent_coordinates: tuple[str, ...] = ()
     #: The report's title (``[model] title``, a `Text` when given per language); None: from ``name``.
     title: str | None = None
+    #: A control law per declared input (``[controls]``): input name → expression of t, the
+    #: coordinates, their rates and the parameters, in file order (`lagrangian.model._controls`).
+    controls: tuple[tuple[str, se.Basic], ...] = ()
 
     def __post_init__(self) -> None:
         if not self.frames or self.frames[0].name != GALILEAN_FRAME:

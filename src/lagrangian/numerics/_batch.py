@@ -73,6 +73,8 @@ class Kernel:
     t_out: tuple[float, ...]
     t_start: float
     t_end: float
+    #: The inputs' law's numbers (`_input_code`), the same for every member unless a chunk gives its own.
+    law: tuple[float, ...] = ()
 
 
 _libraries: dict[str, ctypes.CDLL] = {}
@@ -94,8 +96,11 @@ def _library(kernel: Kernel) -> ctypes.CDLL:
 
 
 def run_chunk(kernel: Kernel, Y0: np.ndarray, P: np.ndarray, keep: bool = False,
-              stop: np.ndarray | None = None) -> dict[str, np.ndarray]:
+              stop: np.ndarray | None = None, L: np.ndarray | None = None) -> dict[str, np.ndarray]:
     """Integrate the members ``Y0`` (m, 2n), ``P`` (m, n_params) in one C call; their summaries.
+
+    ``L`` (m, law size): each member's numbers of the inputs' law (its feedback gains), else the
+    kernel's ``law`` for all.
 
     ``keep``: also return ``state`` (m, n_out, 2n), NaN after a member's end.  ``stop``: a
     one-number array; setting it non-zero from another thread stops the call at the next
@@ -107,8 +112,10 @@ def run_chunk(kernel: Kernel, Y0: np.ndarray, P: np.ndarray, keep: bool = False,
     t_out = np.asarray(kernel.t_out, dtype=float)
     n_out, nm, ne = len(t_out), max(len(kernel.monitors), 1), max(len(kernel.events), 1)
     Y0 = np.ascontiguousarray(Y0, dtype=float)
-    Pext = np.zeros((m, kernel.n_params + kernel.n_constants))
+    Pext = np.zeros((m, kernel.n_params + kernel.n_constants + len(kernel.law)))
     Pext[:, : kernel.n_params] = P
+    if kernel.law:
+        Pext[:, kernel.n_params + kernel.n_constants:] = kernel.law if L is None else L
     ctl = np.asarray(kernel.ctl, dtype=float)
     Y_fin = np.empty((m, n2))
     Y_out = np.full((m, n_out, n2), np.nan)

@@ -243,7 +243,8 @@ def mass_forces_form(eom: EquationsOfMotion) -> MassForcesForm:
               for e in [eom.M[i][j] for i in range(n) for j in range(n)]]
     shared, F = _shared_bias(eom)
     flat = expand_angle_sums(M_flat + list(F) + [e for _, e in shared], eom.q)
-    hoist = _Hoist([se.Symbol(p.name) for p in eom.model.parameters])
+    # Inputs are not hoisted: an input law (`_input_code`) overwrites them state by state.
+    hoist = _Hoist([se.Symbol(p.name) for p in eom.model.parameters if not p.input])
     flat = [hoist(e) for e in flat]
     return MassForcesForm(
         shared=tuple((sym, e) for (sym, _), e in zip(shared, flat[n * n + n:])),
@@ -278,6 +279,7 @@ def generate_c(
     eom: EquationsOfMotion,
     integrals: Sequence = (),
     events: Sequence[tuple[str, se.Basic]] = (),
+    law=None,  # type: ignore[no-untyped-def]
 ) -> GeneratedSource:
     """Generate the C translation unit of ``eom``.
 
@@ -286,6 +288,7 @@ def generate_c(
     eom : the equations of motion (`lagrangian.derive`).
     integrals : the first integrals to monitor (`lagrangian.first_integrals`).
     events : (name, g) pairs; an event occurs where g(t, q, q̇) changes sign.
+    law : the inputs' law (`_input_code.LawCode`): its C goes around the model's functions.
 
     Raises
     ------
@@ -346,7 +349,7 @@ def generate_c(
         return signature + " {\n" + "\n".join([*decls, *body]) + "\n}\n"
 
     if eom.recursive is not None:
-        return _generate_recursive(eom, integrals, events, named, header, function)
+        return _generate_recursive(eom, integrals, events, named, header, function, law)
     form = mass_forces_form(eom)
     for k, (sym, _) in enumerate(form.shared):
         private[sym] = se.Symbol(f"_s{k}")
@@ -375,11 +378,11 @@ def generate_c(
                  M_out + [(f"b[{i}]", e) for i, e in enumerate(b)], "dT/dq'"),
         function("static void lg_hamilton_force(double t, const double *y, const double *p, double *g)",
                  [(f"g[{i}]", e) for i, e in enumerate(g)], "dT/dq - dU/dq + Q"),
-    ], function)
+    ], function, law)
 
 
 def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence, events: Sequence[tuple[str, se.Basic]],
-                        named: dict, header: dict, function) -> GeneratedSource:
+                        named: dict, header: dict, function, law=None) -> GeneratedSource:
     """`generate_c` for an ``eom`` with a recursive form: each function defines the intermediates it
     needs, in order, as ``const double`` locals, then its outputs; CSE runs on both.
 
@@ -392,7 +395,7 @@ def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence, events: Seq
     params = tuple(p.name for p in eom.model.parameters)
     for k, (sym, _) in enumerate(rec.intermediates):
         named[sym] = f"_w{k}"
-    hoist = _Hoist([se.Symbol(name) for name in params])
+    hoist = _Hoist([se.Symbol(p.name) for p in eom.model.parameters if not p.input])  # inputs vary (`_input_code`)
     M = [rec.M[i][j] for i in range(n) for j in range(n)]
     monitors = monitor_expressions(eom, integrals, recursive=True)
     hoisted: dict[se.Basic, se.Basic] = {}
@@ -462,11 +465,11 @@ def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence, events: Seq
         aba = ["#define LG_ABA 1\n#if defined(__GNUC__)\n#define LG_NOINLINE __attribute__((noinline))\n#else\n"
                "#define LG_NOINLINE\n#endif", *functions[4:], *aba]
     return _assemble(eom, monitors, events, params, constants,
-                     [*functions[:3], hamilton_mass, functions[3], *aba], function)
+                     [*functions[:3], hamilton_mass, functions[3], *aba], function, law)
 
 
 def _assemble(eom: EquationsOfMotion, monitors, events, params, constants, functions: list[str],
-              function) -> GeneratedSource:
+              function, law=None) -> GeneratedSource:
     """The translation unit: dimensions, DOP853's tableau, the constants, the model's functions, the integrators."""
     n = len(eom.q)
     parts = [
@@ -482,7 +485,9 @@ def _assemble(eom: EquationsOfMotion, monitors, events, params, constants, funct
         "/* The parameter-only subexpressions, p[LG_NP + j] = k[j], computed once per parameter set. */",
         function("void lg_constants(const double *p, double *k)", constants, "a constant").replace(
             " {\n", " {\n    const double t = 0.0; const double *y = 0;\n", 1),  # neither is read
+        *([law.prelude] if law is not None else []),
         *functions,
+        *([law.epilogue] if law is not None else []),
         resources.files(__package__).joinpath("_integrators.c").read_text(encoding="utf-8"),
     ]
     source = "\n".join(parts)

@@ -46,6 +46,8 @@ from ..model import load_model
 from ..model.spec import Model
 from ._codegen import monitor_expressions
 from ._codegen_dae import generate_dae_c
+from ._input_run import InputsAt, rowwise
+from ._inputs import resolve_inputs
 from ._compile import compile_library, compiler
 from ._projection import check_initial, project, project_many
 from ._progress import progress_bar
@@ -107,7 +109,8 @@ class ConstrainedSystem:
     backend : ``"c"`` or ``"symengine"``.
     """
 
-    def __init__(self, eom: EquationsOfMotion, *, backend: str = "auto") -> None:
+    def __init__(self, eom: EquationsOfMotion, *, backend: str = "auto", inputs: Mapping[str, str] | None = None
+                 ) -> None:
         if not eom.constraints:
             raise ValueError("ConstrainedSystem needs a model with complementary constraints")
         if backend not in ("auto", "c", "symengine"):
@@ -118,7 +121,7 @@ class ConstrainedSystem:
         self.parameters = tuple(p.name for p in eom.model.parameters)
         self.rows = tuple(r.name for r in eom.constraints)
         self.holonomic = np.array([r.kind == "holonomic" for r in eom.constraints])
-        integrals = first_integrals(eom)
+        integrals = first_integrals(eom, inputs=inputs)  # inputs: each input's regime (off by default)
         self.integrals = tuple(fi.name for fi in integrals)
         monitor_items = monitor_expressions(eom, integrals)
         self.monitors = tuple(name for name, _ in monitor_items)
@@ -320,6 +323,7 @@ def simulate_dae(
     backend: str = "auto",
     stabilization: str | None = None,
     baumgarte: tuple[float, float] = BAUMGARTE,
+    inputs=None,
 ) -> Trajectory:
     """Integrate a model with complementary constraints (module docstring); `simulate`'s options, plus:
 
@@ -373,8 +377,22 @@ def simulate_dae(
     if tolerance is None:
         tolerance = default_tolerance(method, rtol)
     stab = np.array(baumgarte if stabilization in ("baumgarte", "both") else (0.0, 0.0), dtype=float)
-    system = source if isinstance(source, ConstrainedSystem) else ConstrainedSystem(eom, backend=backend)
-    p = system.parameter_vector(parameters)
+    law = resolve_inputs(eom, inputs)
+    given = {**(parameters or {})}
+    twice = sorted(set(given) & {s.name for s in law.sources})
+    if twice:
+        raise SimulationError(f"The input `{twice[0]}` is given both as a parameter value and by the inputs' law.",
+                              fix="give it once: in inputs= (--input) or in parameters= (--set)")
+    given.update(law.constants)
+    regime = law.regime(given, tuple(eom.model.inputs))
+    if not isinstance(source, ConstrainedSystem) or any(r != "off" for r in regime.values()):
+        system = ConstrainedSystem(eom, backend=backend, inputs=regime)
+    else:
+        system = source
+    p = system.parameter_vector(given)
+    # Inputs that vary are computed here, in Python, at each evaluation: this path steps in Python
+    # anyway (SciPy's solver, the projection), and a table's interval is the current segment's.
+    applied = InputsAt(law, eom, system.parameters, p)
     y0 = initial_state(eom, initial)
     t_out = _output_times(float(t_start), float(t_end), n_out, t_eval,
                           4 * system.n + 3 * system.m + len(system.monitors) + len(system.reactions) + 1)
@@ -386,20 +404,24 @@ def simulate_dae(
         lam = se.Lambdify(args, [s.expression for s in specs])
 
         def event_fn(t: float, y: np.ndarray) -> np.ndarray:
-            return np.asarray(lam(np.concatenate([[t], y, p])), dtype=float).ravel()
+            return np.asarray(lam(np.concatenate([[t], y, applied(t, y)])), dtype=float).ravel()
 
     calls = [0]
 
     def fun(t: float, y: np.ndarray) -> np.ndarray:
         calls[0] += 1
         try:
-            return system.rhs(t, y, p, stab)[0]
+            return system.rhs(t, y, applied(t, y), stab)[0]
         except SimulationError as exc:
             raise SimulationError(f"At t = {t:.9g}: {exc.message}", fix=exc.fix, t=t, state=y.copy()) from None
 
     solver_class = getattr(integrate, EXPLICIT.get(method, method))
     tol = max(1e-3 * atol, 1e-15)
-    solver = solver_class(fun, float(t_start), y0, float(t_end), rtol=rtol, atol=atol,
+    # A table's samples are breakpoints: the solver starts again at each (`_input_run`).
+    edges = [float(t_start), *(float(b) for b in law.breakpoints if t_start < b < t_end), float(t_end)]
+    segment = 0
+    applied.window = 0.5 * (edges[0] + edges[1])
+    solver = solver_class(fun, float(t_start), y0, edges[1], rtol=rtol, atol=atol,
                           max_step=np.inf if max_step is None else max_step)
     N = len(t_out)
     Y = np.full((N, 2 * system.n), np.nan)
@@ -411,7 +433,12 @@ def simulate_dae(
     steps, status = 0, "completed"
     evs: list[tuple[str, float, np.ndarray]] = []
     g_old = event_fn(t_start, y0) if event_fn else None
-    while solver.status == "running":
+    while solver.status == "running" or (solver.status == "finished" and segment + 2 < len(edges)):
+        if solver.status == "finished":  # the next interval between two breakpoints of the inputs
+            segment += 1
+            applied.window = 0.5 * (edges[segment] + edges[segment + 1])
+            solver = solver_class(fun, edges[segment], solver.y.copy(), edges[segment + 1], rtol=rtol, atol=atol,
+                                  max_step=np.inf if max_step is None else max_step)
         message = solver.step()
         if solver.status == "failed":
             raise SimulationError(f"The integration stopped at t = {solver.t:.9g}: {message}.",
@@ -429,11 +456,13 @@ def simulate_dae(
                 solver.y = y_new
                 solver.f = fun(t_new, y_new)  # the first stage of the next step (FSAL)
 
-        def state(t: float) -> np.ndarray:
+        # This step's dense output, end and solver, bound now (the loop moves on to the next ones).
+        def state(t: float, dense=dense, t_new=t_new, solver=solver) -> np.ndarray:  # type: ignore[no-untyped-def]
             y = dense(t) if t < t_new else solver.y.copy()
             return project(system, t, y, p, tol)[0] if projecting else y
 
-        def raw_state(t: float) -> np.ndarray:  # projected with all the outputs at the end
+        def raw_state(t: float, dense=dense, t_new=t_new, solver=solver) -> np.ndarray:  # type: ignore[no-untyped-def]
+            # projected with all the outputs at the end
             return dense(t) if t < t_new else solver.y.copy()
 
         t_stop = None
@@ -446,7 +475,7 @@ def simulate_dae(
                     continue
                 from scipy.optimize import brentq
 
-                te = brentq(lambda s: event_fn(s, state(s))[k], t_old, t_new, xtol=4e-16 * max(1.0, abs(t_new)))
+                te = brentq(lambda s, k=k: event_fn(s, state(s))[k], t_old, t_new, xtol=4e-16 * max(1.0, abs(t_new)))
                 evs.append((spec.name, float(te), state(te)))
                 if spec.terminal:
                     t_stop = te if t_stop is None else min(t_stop, te)
@@ -463,12 +492,14 @@ def simulate_dae(
     evs.sort(key=lambda e: e[1])
     if projecting and i_out:
         Y[:i_out] = project_many(system, t_out[:i_out], Y[:i_out], p, tol)[0]
+    applied.window = None
     return _trajectory(system, p, t_out[:i_out], Y[:i_out], stab, evs, method, stabilization, steps, calls[0],
-                       tolerance, status, residual_tolerance=residual_tolerance)
+                       tolerance, status, residual_tolerance=residual_tolerance, applied=applied)
 
 
 def _trajectory(system: ConstrainedSystem, p, t, Y, stab, evs, method, stabilization, steps, nfev,  # type: ignore[no-untyped-def]
-                tolerance, status, *, residual_tolerance: float | None = None) -> Trajectory:
+                tolerance, status, *, residual_tolerance: float | None = None,
+                applied: InputsAt | None = None) -> Trajectory:
     """The `Trajectory` of a run; ``tolerance`` for the first integrals, ``residual_tolerance``
     (default ``tolerance``) for the constraint residuals."""
     from ._simulate import momenta
@@ -479,10 +510,14 @@ def _trajectory(system: ConstrainedSystem, p, t, Y, stab, evs, method, stabiliza
     Y = np.ascontiguousarray(Y)
     M = None
     if len(t):
-        dY, LAM = system.rhs(t, Y, p, stab)
+        if applied is None:
+            applied = InputsAt(resolve_inputs(system.eom, {}), system.eom, system.parameters, p)
+        dY, LAM = rowwise(lambda t_, Y_, p_: system.rhs(t_, Y_, p_, stab), t, Y, applied)
         M, _, _, _, g, f = system.parts(t, Y, p)
-        values = system.monitor_values(t, Y, p)
-        reactions = system.reaction_values(t, Y, LAM, p)
+        values = rowwise(system.monitor_values, t, Y, applied)
+        reactions = np.concatenate([system.reaction_values(t[k:k + 1], Y[k:k + 1], LAM[k:k + 1], applied(t[k], Y[k]))
+                                    for k in range(len(t))]) if applied.evaluate is not None else \
+            system.reaction_values(t, Y, LAM, p)
     else:
         dY, LAM = np.zeros((0, 2 * n)), np.zeros((0, system.m))
         g = f = np.zeros((0, system.m))
@@ -505,12 +540,15 @@ def _trajectory(system: ConstrainedSystem, p, t, Y, stab, evs, method, stabiliza
         f"{residual_tolerance:.1e}"
         for name in constraint_drift if residual_tolerance is not None and drift[name] > residual_tolerance)
     extra = {f"lambda_{row}": LAM[:, k].copy() for k, row in enumerate(system.rows)}
+    if applied is not None:
+        extra.update(applied.columns(t, Y))
     extra.update({name: reactions[:, k].copy() for k, name in enumerate(system.reactions)})
     events = tuple(Event(name, te, np.array(ye[:n]), np.array(ye[n:])) for name, te, ye in evs)
     label = EXPLICIT.get(method, method).lower() if method in EXPLICIT else method
     return Trajectory(
         model_name=system.eom.model.name, coordinates=tuple(system.coordinates),
-        parameters=known_values(system.parameters, p),
+        parameters={k: v for k, v in known_values(system.parameters, p).items()
+                    if applied is None or k not in applied.names},
         t=np.asarray(t, dtype=float), q=Y[:, :n].copy(), qd=Y[:, n:].copy(), qdd=dY[:, n:].copy(),
         monitors=monitors, integrals=tuple(system.integrals), drift=drift,
         method=f"{label} + {stabilization}", steps=steps, rhs_calls=nfev, tolerance=tolerance, warnings=warnings,

@@ -53,6 +53,7 @@ import sys
 import threading
 import time
 from collections.abc import Sequence
+from dataclasses import replace
 from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor
 from concurrent.futures import wait as wait_threads
 from pathlib import Path
@@ -67,6 +68,7 @@ from ._members import Grid, members
 from ._progress import Reporter
 from ._simulate import BUILTIN, EventSpec, _memory_limit, _output_times, _resolve, check_options, control_block, \
     momenta
+from ._system import CompiledSystem
 from ._stickslip import exact_contact_model
 
 __all__ = ["ensemble", "flip_events", "connect_scheduler", "register_backend", "EnsembleInterrupted"]
@@ -138,6 +140,7 @@ def ensemble(
     resume: bool = False,
     progress=False,
     backend: str = "c",
+    inputs=None,
 ):
     """Integrate many members of one model (module docstring) and return their results as an ``xarray.Dataset``.
 
@@ -166,6 +169,9 @@ def ensemble(
         rhs vmapped over a chunk and integrated by diffrax's Dopri8: the GPU route, see
         `lagrangian.output._ensemble_jax`; no events or drift, no ``scheduler``, equal to the
         C path to the tolerance).
+    inputs : as in `simulate` (numbers, expressions, tables, a `Feedback`; not Python functions),
+        the same for every member; or a sequence of `Feedback` values of one shape, one per member
+        (each member's own gains: the law is compiled once, the gains follow the parameters).
 
     Raises
     ------
@@ -185,6 +191,9 @@ def ensemble(
     check_options(rtol, atol, None)
     if backend != "c":
         _check_backend(backend, method, events, scheduler)
+        if inputs is not None:
+            raise SimulationError(f"backend={backend!r} runs the model with its inputs off; inputs need the "
+                                  "compiled C ensembles.", fix="use backend='c' (the default) with inputs")
     out_path = Path(out) if out is not None else None
     if out_path is not None and out_path.suffix not in (".zarr", ".nc"):
         raise OutputError(f"`{out_path}`: an ensemble is written to a Zarr store (.zarr) or a NetCDF file (.nc).",
@@ -201,7 +210,7 @@ def ensemble(
     try:
         return _ensemble(source, t_end, t_start, initial, parameters, initial_names, parameter_names, n_out, t_eval,
                          method, rtol, atol, dt, max_step, max_steps, events, keep == "trajectories", workers,
-                         chunk_size, client, out_path, resume, progress, backend, stiffness_check)
+                         chunk_size, client, out_path, resume, progress, backend, stiffness_check, inputs)
     finally:
         if own_client:
             client.close()
@@ -262,6 +271,24 @@ def _client(scheduler):
     return client, True
 
 
+def _member_inputs(inputs):  # type: ignore[no-untyped-def]
+    """(the law for the compiled system, the per-member feedbacks or None) of ``ensemble``'s ``inputs``."""
+    from ..analysis import Feedback
+
+    if isinstance(inputs, (list, tuple)):
+        if not inputs or not all(isinstance(f, Feedback) for f in inputs):
+            raise SimulationError("Per-member inputs are a sequence of Feedback values, one per member.",
+                                  fix="e.g. inputs=[lqr(model, Q=q) for q in weights], or one law for all members")
+        first = inputs[0]
+        for f in inputs[1:]:
+            if f.states != first.states or f.inputs != first.inputs:
+                raise SimulationError("The members' feedbacks must have the same states and inputs (one compiled law "
+                                      f"for all): {first.states}/{first.inputs} and {f.states}/{f.inputs} differ.",
+                                      fix="design every member's feedback on the same states and inputs")
+        return first, list(inputs)
+    return inputs, None
+
+
 def _kernel(system, specs, method, ctl, t_out, t_start, t_end) -> Kernel:
     integrals = tuple(system.integrals)
     return Kernel(
@@ -270,12 +297,13 @@ def _kernel(system, specs, method, ctl, t_out, t_start, t_end) -> Kernel:
         integrals=integrals, momenta=tuple(momenta(system.eom, integrals).items()), events=tuple(system.events),
         ev_dir=tuple(int(s.direction) for s in specs), ev_terminal=tuple(int(s.terminal) for s in specs),
         method=method, ctl=tuple(float(v) for v in ctl), t_out=tuple(float(v) for v in t_out),
-        t_start=float(t_start), t_end=float(t_end))
+        t_start=float(t_start), t_end=float(t_end),
+        law=tuple(float(v) for v in system.law.data()) if system._law_size else ())
 
 
 def _ensemble(source, t_end, t_start, initial, parameters, initial_names, parameter_names, n_out, t_eval, method,
               rtol, atol, dt, max_step, max_steps, events, keep, workers, chunk_size, client, out_path, resume,
-              progress, backend="c", stiffness_check=True):
+              progress, backend="c", stiffness_check=True, inputs=None):
     source, constrained = constrained_source(source)  # a file is read here, once
     if constrained is not None or exact_contact_model(source) is not None:
         raise SimulationError("Ensembles run models without complementary constraints or exact (ε = 0) "
@@ -286,13 +314,30 @@ def _ensemble(source, t_end, t_start, initial, parameters, initial_names, parame
         return _ensemble_backend(system, backend, t_end, t_start, initial, parameters, initial_names,
                                  parameter_names, n_out, t_eval, method, rtol, atol, max_step, max_steps, keep,
                                  chunk_size, out_path, resume, progress)
-    system = _resolve(source, specs, "c")
+    law_inputs, feedbacks = _member_inputs(inputs)
+    system = _resolve(source, specs, "c", law_inputs)
     if not specs:
         specs = [EventSpec(name, name) for name in system.events]
     if system.backend != "c":
         raise SimulationError("Ensembles run in compiled C, and no C compiler was found.",
                               fix="install a C compiler (e.g. gcc)")
+    if system.law.callables:
+        raise SimulationError(f"The input `{system.law.callables[0].name}` is a Python function; ensembles run "
+                              "compiled laws only (their members run in parallel, without Python).",
+                              fix="write the input as an expression or an InputTable, or use simulate for each motion")
     group = members(system, initial, parameters, initial_names=initial_names, parameter_names=parameter_names)
+    # Inputs held at a value other than 0 by some member are constant inputs (their integrals).
+    driven = set(system.inputs)
+    constant = [u for u in system.eom.model.inputs
+                if u not in driven and np.any(group.P[:, system.parameters.index(u)] != 0)]
+    if constant and any(system.regime[u] == "off" for u in constant):
+        system = CompiledSystem(system.eom, events=list(system._events),
+                                backend="c", inputs=system.law, constant_inputs=constant)
+    if feedbacks is not None:
+        if len(feedbacks) != group.count:
+            raise SimulationError(f"{len(feedbacks)} feedbacks were given for {group.count} members.",
+                                  fix="give one feedback per member, or one for all")
+        group = replace(group, L=np.stack([system.law.data(f) for f in feedbacks]))
     n2 = 2 * system.n
     t_out = _output_times(float(t_start), float(t_end), n_out, t_eval, 2 * n2 + len(system.monitors))
     ctl = control_block(method, float(t_start), float(t_end), t_out, rtol, atol, dt, max_step, max_steps,
@@ -306,12 +351,15 @@ def _ensemble(source, t_end, t_start, initial, parameters, initial_names, parame
         chunk_size = max(1, min(256 if client is None else 4096, math.ceil(count / (4 * n_workers))))
     chunk_size = int(max(1, min(chunk_size, CHUNK_MEMORY // width or 1)))
     states = tuple(system.coordinates) + tuple(c + "_dot" for c in system.coordinates)
-    run = {"model": kernel.key[:16], "members": _digest(group.Y0, group.P), "t_start": float(t_start),
+    run = {"model": kernel.key[:16], "members": _digest(group.Y0, group.P, *([] if group.L is None else [group.L])),
+           "t_start": float(t_start),
            "t_end": float(t_end), "n_out": len(t_out), "t_out": _digest(t_out), "method": method, "rtol": rtol,
            "atol": atol, "dt": dt, "max_step": max_step, "max_steps": int(max_steps), "keep": keep,
            "events": [[s.name, str(s.expression), s.direction, bool(s.terminal)] for s in specs]}
     if not stiffness_check:  # only when off, so that stores written before the option still resume
         run["stiffness_check"] = False
+    if system.law:  # likewise: only with inputs
+        run["inputs"] = [repr(system.law.structure()), _digest(np.array(kernel.law))]
     grid_axes = tuple((name, len(values)) for name, values in group.grid.axes) if isinstance(group.grid, Grid) \
         else None
     layout = Layout(count, t_out, states, tuple(system.events), tuple(system.integrals), keep, group.swept,
@@ -371,7 +419,7 @@ def _open_sink(layout: Layout, out_path: Path | None, chunk_size: int, resume: b
     if layout.keep and (out_path is None or out_path.suffix != ".zarr"):
         need = 8.0 * count * len(layout.t_out) * n2
         if need > _memory_limit():
-            raise SimulationError(f"Keeping {count} trajectories of {len(t_out)} times would take about "
+            raise SimulationError(f"Keeping {count} trajectories of {len(layout.t_out)} times would take about "
                                   f"{need / 2**30:.1f} GiB of memory.",
                                   fix="stream them to a Zarr store (out='....zarr'), use fewer output times, or "
                                       "keep='summary'")
@@ -474,7 +522,8 @@ def _run_threads(kernel, group, chunks, keep, sink, reporter, done, n_workers, s
         while todo or running:
             while todo and len(running) < 2 * n_workers and not guard.hit:
                 a, b = todo.pop()
-                running[pool.submit(run_chunk, kernel, group.Y0[a:b], group.P[a:b], keep, stop)] = (a, b)
+                running[pool.submit(run_chunk, kernel, group.Y0[a:b], group.P[a:b], keep, stop,
+                                    None if group.L is None else group.L[a:b])] = (a, b)
             if not running:
                 break
             finished, _ = wait_threads(list(running), timeout=0.1, return_when=FIRST_COMPLETED)
@@ -512,7 +561,8 @@ def _run_dask(client, kernel, group, chunks, keep, sink, reporter, done) -> bool
             while todo or running:
                 while todo and len(running) < window and not guard.hit:
                     i, (a, b) = todo.pop()
-                    future = client.submit(run_chunk, kernel_future, group.Y0[a:b], group.P[a:b], keep,
+                    future = client.submit(run_chunk, kernel_future, group.Y0[a:b], group.P[a:b], keep, None,
+                                           None if group.L is None else group.L[a:b],
                                            key=f"lagrangian-chunk-{token}-{i}", retries=3, pure=False)
                     running[future] = (a, b)
                 if guard.hit or not running:

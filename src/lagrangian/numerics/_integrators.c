@@ -31,6 +31,14 @@
 #include <string.h>
 
 #define LG_NY (2 * LG_N)
+/* An inputs' law (`_input_code`) defines its block of p (LG_NX numbers after the constants) and
+ * the times where its tables jump (LG_NBREAK of them, at law[LG_BREAKS]); none by default. */
+#ifndef LG_NX
+#define LG_NX 0
+#endif
+#ifndef LG_NBREAK
+#define LG_NBREAK 0
+#endif
 
 enum { LG_DONE = 0, LG_SINGULAR = 1, LG_NONFINITE = 2, LG_UNDERFLOW = 3, LG_EVENT = 4,
        LG_MAXSTEPS = 5, LG_NOCONVERGE = 6, LG_INTERRUPTED = 7, LG_STIFF = 8 };
@@ -526,11 +534,48 @@ static int lg_dop853_run(double *ctl, const volatile double *stop, double *y, co
     return LG_DONE;
 }
 
+static int lg_gauss_run(double *ctl, const volatile double *stop, double *y, const double *p,
+                        const double *t_out, int n_out, int *i_out, double *Y_out, double t_stop,
+                        const int *ev_dir, const int *ev_terminal, double *ev_out, double t_origin);
+
+/* One run from ctl[C_T] to t_stop (method 0: dop853, 1: gauss-legendre).  With an inputs' law whose
+ * tables jump (LG_NBREAK > 0), the run stops at every breakpoint and starts again there: no step
+ * straddles a jump of u or of its derivatives, and between two breakpoints the law reads the piece
+ * of that interval (its hint, law[0], is a time inside it), so the last stage of a step that ends on
+ * a sample of a zero-order hold still sees the value before the jump.  p is the caller's array
+ * (writable: the hint is written there, and set back to NaN at the end). */
+static int lg_run(int method, double *ctl, const volatile double *stop, double *y, double *p, const double *t_out,
+                  int n_out, int *i_out, double *Y_out, double t_stop, const int *ev_dir, const int *ev_terminal,
+                  double *ev_out, double t_origin)
+{
+#if LG_NBREAK > 0
+    double *law = p + LG_NP + LG_NK;
+    const double *breaks = law + LG_BREAKS;
+    int j = 0, status = LG_DONE;
+    while (j < LG_NBREAK && breaks[j] <= ctl[C_T]) ++j;
+    for (;;) {
+        const double end = (j < LG_NBREAK && breaks[j] < t_stop) ? breaks[j] : t_stop;
+        law[0] = 0.5 * (ctl[C_T] + end);
+        status = method == 0
+            ? lg_dop853_run(ctl, stop, y, p, t_out, n_out, i_out, Y_out, end, ev_dir, ev_terminal, ev_out)
+            : lg_gauss_run(ctl, stop, y, p, t_out, n_out, i_out, Y_out, end, ev_dir, ev_terminal, ev_out, t_origin);
+        if (status != LG_DONE || end >= t_stop) break;
+        ++j;
+    }
+    law[0] = NAN;
+    return status;
+#else
+    return method == 0
+        ? lg_dop853_run(ctl, stop, y, p, t_out, n_out, i_out, Y_out, t_stop, ev_dir, ev_terminal, ev_out)
+        : lg_gauss_run(ctl, stop, y, p, t_out, n_out, i_out, Y_out, t_stop, ev_dir, ev_terminal, ev_out, t_origin);
+#endif
+}
+
 int lg_dop853(double *ctl, double *y, const double *p, const double *t_out, int n_out, int *i_out,
               double *Y_out, double t_stop, const int *ev_dir, const int *ev_terminal, double *ev_out)
 {
-    return lg_dop853_run(ctl, ctl + C_STOP, y, p, t_out, n_out, i_out, Y_out, t_stop, ev_dir, ev_terminal,
-                         ev_out);
+    return lg_run(0, ctl, ctl + C_STOP, y, (double *)p, t_out, n_out, i_out, Y_out, t_stop, ev_dir, ev_terminal,
+                  ev_out, 0.0);
 }
 
 /* ---- Gauss-Legendre in (q, p) -------------------------------------------------------- */
@@ -680,8 +725,8 @@ int lg_gauss(double *ctl, double *y, const double *p, const double *t_out, int n
              double *Y_out, double t_stop, const int *ev_dir, const int *ev_terminal, double *ev_out,
              double t_origin)
 {
-    return lg_gauss_run(ctl, ctl + C_STOP, y, p, t_out, n_out, i_out, Y_out, t_stop, ev_dir, ev_terminal,
-                        ev_out, t_origin);
+    return lg_run(1, ctl, ctl + C_STOP, y, (double *)p, t_out, n_out, i_out, Y_out, t_stop, ev_dir, ev_terminal,
+                  ev_out, t_origin);
 }
 
 /* ---- ensembles: many members in one call ----------------------------------------------
@@ -689,8 +734,8 @@ int lg_gauss(double *ctl, double *y, const double *p, const double *t_out, int n
  * lg_gauss call of `simulate` would (same control block ctl0, same output grid, its own
  * adaptive step), so a member's result is bit for bit the single run's.  Per member k:
  *   Y0[k]   (2n)            initial state; Y_fin[k] receives the state where the run ended
- *   P[k]    (LG_NP + LG_NK) the parameter values; the hoisted constants p[LG_NP..] are
- *                           computed here (lg_constants), once per member
+ *   P[k]    (LG_NP + LG_NK + LG_NX) the parameter values; the hoisted constants p[LG_NP..] are
+ *                           computed here (lg_constants), once per member; then the inputs' law
  *   Y_out[k] (n_out x 2n)  the state at the output times (rows after the end are left as given)
  *   mon[k]  (n_out x NM)    the monitors (first integrals, T, U) at those rows
  *   mom[k]  (n_out x 2n)    for each row i: (sum_j |M_ij q'_j|, sum_j M_ij q'_j), the terms of
@@ -709,7 +754,7 @@ int lg_batch(int method, int count, const double *ctl0, const double *Y0, double
              double *Y_fin, double *Y_out, double *mon, double *mom, double *ev, double *info,
              const double *stop)
 {
-    const int np = LG_NP + LG_NK, nm = LG_NM > 0 ? LG_NM : 1;
+    const int np = LG_NP + LG_NK + LG_NX, nm = LG_NM > 0 ? LG_NM : 1;
     for (int k = 0; k < count; ++k) {
         if (lg_stop_requested(stop)) return LG_INTERRUPTED;
         double ctl[C_SIZE];
@@ -720,11 +765,8 @@ int lg_batch(int method, int count, const double *ctl0, const double *Y0, double
         if (LG_NK > 0) lg_constants(p, p + LG_NP);
         memcpy(y, Y0 + (long)k * LG_NY, LG_NY * sizeof(double));
         int i_out = 0, status;
-        if (method == 0)
-            status = lg_dop853_run(ctl, stop, y, p, t_out, n_out, &i_out, rows, t_stop, ev_dir, ev_terminal, evk);
-        else
-            status = lg_gauss_run(ctl, stop, y, p, t_out, n_out, &i_out, rows, t_stop, ev_dir, ev_terminal, evk,
-                                  t_origin);
+        status = lg_run(method, ctl, stop, y, p, t_out, n_out, &i_out, rows, t_stop, ev_dir, ev_terminal, evk,
+                        t_origin);
         double *out = info + (long)k * B_SIZE;
         for (int i = 0; i < i_out; ++i) {
             const double *row = rows + (long)i * LG_NY;

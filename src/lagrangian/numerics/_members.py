@@ -89,13 +89,15 @@ class Members:
     """N members as arrays: ``Y0`` (N, 2n) initial states, ``P`` (N, n_params) parameter values.
 
     ``swept`` maps each name that varies (or was given per member) to its values (N,);
-    ``grid`` is the `Grid` they came from, or None for a plain list of members.
+    ``grid`` is the `Grid` they came from, or None for a plain list of members; ``L`` (N, law
+    size) each member's numbers of the inputs' law (its own feedback gains), or None.
     """
 
     Y0: np.ndarray
     P: np.ndarray
     swept: dict[str, np.ndarray]
     grid: Grid | None
+    L: np.ndarray | None = None
 
     @property
     def count(self) -> int:

@@ -74,6 +74,11 @@ class RhsFunction:
 
     def jac(self, t: float, y: np.ndarray) -> np.ndarray:
         """∂ẏ/∂y, shape (2n, 2n), analytic (module docstring)."""
+        if self.system.inputs:
+            raise SimulationError(f"The analytic Jacobian differentiates M and F with the inputs as constants, and "
+                                  f"{', '.join(self.system.inputs)} follow a law here (u(t, q, q̇)).",
+                                  fix="leave jac out (solve_ivp then differences f itself), or compile the system "
+                                      "without the law")
         n = self.n
         y = np.ascontiguousarray(y, dtype=float).reshape(2 * n)
         M, F = self.system.mass_forces(t, y, self.p)

@@ -18,6 +18,10 @@ Methods
     symplectic, for long conservative runs whose energy must not drift.
 ``"RK45"``, ``"RK23"``, ``"DOP853"``, ``"Radau"``, ``"BDF"``, ``"LSODA"``
     SciPy's ``solve_ivp`` with that method, driven by the compiled right-hand side.
+
+Inputs (``inputs=``, `_inputs`): numbers, expressions, tables and feedbacks are compiled into
+the right-hand side; a table's sample times are breakpoints where every method stops and
+starts again (`_input_run`).  The applied inputs are columns of the `Trajectory`.
 """
 
 from __future__ import annotations
@@ -41,6 +45,8 @@ from ..model._expr import ExpressionError, parse_expression
 from ..model.spec import Model
 from ._mass_spectrum import mass_eigenvalues, mass_eigh
 from ._dae import BAUMGARTE, ConstrainedSystem, constrained_source, simulate_dae
+from ._input_run import arm_callback, check_callback, constant_inputs_only, input_columns, solve_in_segments, \
+    system_for
 from ._progress import Reporter, Watch, make_reporter
 from ._ranges import watch_ranges
 from ._system import CompiledSystem, _ptr, known_values
@@ -272,10 +278,9 @@ def _output_times(t_start: float, t_end: float, n_out: int | None, t_eval, width
     return np.linspace(t_start, t_end, n_out)
 
 
-def _resolve(source, events: Sequence[EventSpec], backend: str) -> CompiledSystem:
+def _resolve(source, events: Sequence[EventSpec], backend: str, inputs=None,
+             parameters: Mapping[str, float] | None = None) -> CompiledSystem:
     if isinstance(source, CompiledSystem):
-        if not events:
-            return source
         eom = source.eom
     elif isinstance(source, EquationsOfMotion):
         eom = source
@@ -285,8 +290,8 @@ def _resolve(source, events: Sequence[EventSpec], backend: str) -> CompiledSyste
         eom = derive(load_model(source))
     else:
         raise TypeError("simulate() takes a model file, a Model, an EquationsOfMotion or a CompiledSystem")
-    return CompiledSystem(eom, events=[(e.name, e.expression) for e in _event_expressions(eom, events)],
-                          backend=backend)
+    compiled = [(e.name, e.expression) for e in _event_expressions(eom, events)] if events else []
+    return system_for(source, eom, compiled, backend, inputs, parameters)
 
 
 def simulate(
@@ -312,6 +317,7 @@ def simulate(
     baumgarte: tuple[float, float] = BAUMGARTE,
     stiffness_check: bool = True,
     sensitivities: Sequence[str] | Sensitivities | None = None,
+    inputs=None,
 ) -> Trajectory:
     """Integrate the equations of motion from t_start to t_end.
 
@@ -342,6 +348,11 @@ def simulate(
         the run with a `SimulationError` once the step is limited by stability rather than
         accuracy (h|λ| > 6.1 for 15 steps in a row), where an implicit method (``"Radau"``)
         is the tool. False integrates a knowingly stiff problem explicitly all the same.
+    inputs : what the declared inputs do (`lagrangian.numerics._inputs`): a dict by input name of
+        numbers, expressions (``"2*sin(3*t)"``, ``"-k1*x - k2*x_dot"``), `InputTable` values, or
+        Python functions ``u(t, y)`` (the slow path); or a `Feedback` (``lagrangian.lqr``), the
+        closed loop compiled in.  Inputs not named follow the model's ``[controls]``, else stay
+        at their value (0).  The applied inputs are columns of the result (``traj.column("F")``).
     sensitivities : parameter names and initial values (``["l", "m", "theta(t0)"]``, or a
         `lagrangian.numerics.Sensitivities`): ∂y(t)/∂x for each, integrated with the state
         (``dop853`` only; `numerics._sensitivity`), as the columns ``d(theta)/d(l)``...;
@@ -378,6 +389,12 @@ def simulate(
     if sensitivities is not None:
         from ._sensitivity import simulate_sensitivities
 
+        if inputs is not None:
+            raise SimulationError("Sensitivities are integrated with the inputs at their values: `inputs=` cannot "
+                                  "be given with `sensitivities=`.",
+                                  fix="give constant inputs as parameters (parameters={'F': 1.0}), or run the "
+                                      "sensitivities without the inputs")
+
         traj = simulate_sensitivities(source, t_end, sensitivities, t_start=t_start, initial=initial,
                                       parameters=parameters, method=method, rtol=rtol, atol=atol, dt=dt,
                                       max_step=max_step, n_out=n_out, t_eval=t_eval, events=events,
@@ -387,7 +404,8 @@ def simulate(
         traj = _simulate(source, t_end, t_start=t_start, initial=initial, parameters=parameters, method=method,
                          rtol=rtol, atol=atol, dt=dt, max_step=max_step, n_out=n_out, t_eval=t_eval, events=events,
                          tolerance=tolerance, max_steps=max_steps, progress=progress, backend=backend,
-                         stabilization=stabilization, baumgarte=baumgarte, stiffness_check=stiffness_check)
+                         stabilization=stabilization, baumgarte=baumgarte, stiffness_check=stiffness_check,
+                         inputs=inputs)
     if not watched:
         return traj
     eom = source if isinstance(source, EquationsOfMotion) else getattr(source, "eom", None)
@@ -396,12 +414,13 @@ def simulate(
 
 def _simulate(source, t_end, *, t_start, initial, parameters, method, rtol, atol, dt, max_step, n_out, t_eval,
               events, tolerance, max_steps, progress, backend, stabilization, baumgarte,
-              stiffness_check) -> Trajectory:
+              stiffness_check, inputs=None) -> Trajectory:
     """`simulate` once the source is read: the stick-slip, constrained or plain run."""
     from ._stickslip import exact_contact_model, simulate_stick_slip  # late: `_stickslip` imports this module
 
     exact = exact_contact_model(source)
     if exact is not None:  # an exact Coulomb contact (regularization = 0): stick/slip phases by events
+        parameters = constant_inputs_only(source, inputs, parameters)
         return simulate_stick_slip(exact, t_end, t_start=t_start, initial=initial, parameters=parameters,
                                    method=method, rtol=rtol, atol=atol, dt=dt, max_step=max_step, n_out=n_out,
                                    t_eval=t_eval, events=events, tolerance=tolerance, max_steps=max_steps,
@@ -414,7 +433,7 @@ def _simulate(source, t_end, *, t_start, initial, parameters, method, rtol, atol
                             t_start=t_start, initial=initial, parameters=parameters, method=method, rtol=rtol,
                             atol=atol, dt=dt, max_step=max_step, n_out=n_out, t_eval=t_eval, events=events,
                             tolerance=tolerance, max_steps=max_steps, progress=progress, backend=backend,
-                            stabilization=stabilization, baumgarte=baumgarte)
+                            stabilization=stabilization, baumgarte=baumgarte, inputs=inputs)
     if stabilization is not None:
         raise SimulationError(f"stabilization={stabilization!r} applies to models with complementary constraints, "
                               "and this one keeps none complementary.",
@@ -424,7 +443,7 @@ def _simulate(source, t_end, *, t_start, initial, parameters, method, rtol, atol
     if tolerance is None:
         tolerance = default_tolerance(method, rtol)
     specs = [EventSpec(e, e) if isinstance(e, str) else e for e in events]
-    system = _resolve(source, specs, backend)
+    system = _resolve(source, specs, backend, inputs, parameters)
     if not specs:  # events compiled into the system: both directions, none terminal
         specs = [EventSpec(name, name) for name in system.events]
     if method in BUILTIN and system.backend != "c":
@@ -436,6 +455,7 @@ def _simulate(source, t_end, *, t_start, initial, parameters, method, rtol, atol
 
     # A singular M at the start is reported before anything runs.
     M, F0 = system.mass_forces(t_start, y0, p)
+    check_callback(system)  # a Python input function that fails at the start says so itself
     if not (np.isfinite(M).all() and np.isfinite(F0).all()):  # nan: no eigenvalue (LinAlgError), say why
         raise _singularity(system, t_start, y0, p, "at the initial state")
     w = mass_eigenvalues(M)
@@ -443,6 +463,7 @@ def _simulate(source, t_end, *, t_start, initial, parameters, method, rtol, atol
         raise _singularity(system, t_start, y0, p, "at the initial state")
 
     if method in SCIPY:
+        arm_callback(system, None)
         t_o, Y, evs, nfev, steps, code = _run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol,
                                                     max_step, specs, progress)
         status = "completed" if code == 0 else "stopped by a terminal event"
@@ -626,8 +647,10 @@ def _attempt(system, p, y0, t_start, t_end, t_out, method, rtol, atol, dt, h, ma
         def call():
             return lib.lg_gauss(_ptr(ctl), _ptr(y), _ptr(p), _ptr(t_out), len(t_out), _ptr(i_out), _ptr(Y),
                                 float(t_end), _ptr(ev_dir), _ptr(ev_term), _ptr(ev_out), float(t_start))
+    arm_callback(system, ctl)
     with Watch(reporter, ctl):
         code = _interruptible(call, ctl)
+    check_callback(system)  # a Python input function failed: its error, not an interruption
     return code, ctl, y, Y, i_out, ev_out, capacity
 
 
@@ -695,7 +718,11 @@ def _run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol, max_ste
     from scipy.integrate import solve_ivp
 
     def fun(t, y):
-        return system.rhs(t, y, p)
+        try:
+            return system.rhs(t, y, p)
+        except SimulationError:
+            check_callback(system)  # a Python input function's error first: it caused this one
+            raise
 
     def make_event(k, spec):
         def g(t, y):
@@ -713,9 +740,14 @@ def _run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol, max_ste
     try:
         # A failure is raised as a SimulationError below; NumPy's floating-point warnings on the way add nothing.
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            sol = solve_ivp(fun, (t_start, t_end), y0, method=_counting_solver(method, count, reporter),
-                            t_eval=t_out, rtol=rtol, atol=atol, max_step=np.inf if max_step is None else max_step,
-                            events=[make_event(k, s) for k, s in enumerate(specs)] or None)
+            def solve(a: float, b: float, y: np.ndarray, grid: np.ndarray):  # type: ignore[no-untyped-def]
+                return solve_ivp(fun, (a, b), y, method=_counting_solver(method, count, reporter),
+                                 t_eval=grid, rtol=rtol, atol=atol, max_step=np.inf if max_step is None else max_step,
+                                 events=[make_event(k, s) for k, s in enumerate(specs)] or None)
+
+            # A table's samples are breakpoints: one solve_ivp per interval (`_input_run`).
+            law = system.law_block(p) if system.law.tables else None
+            sol = solve_in_segments(solve, t_start, t_end, t_out, y0, system.law.breakpoints, law, len(specs))
     except KeyboardInterrupt:
         # SciPy's loop runs in Python, so Ctrl-C stops it at once; what it had is inside
         # solve_ivp and lost, so the Interrupted carries no trajectory.
@@ -754,6 +786,7 @@ def _run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol, max_ste
 def _trajectory(system, p, t, Y, evs, method, steps, nfev, tolerance, status, conditioning) -> Trajectory:
     n = system.n
     Y = np.ascontiguousarray(Y)
+    columns = input_columns(system, t, Y, p)
     qdd = system.rhs(t, Y, p)[:, n:] if len(t) else np.zeros((0, n))
     values = system.monitor_values(t, Y, p) if len(t) else np.zeros((0, len(system.monitors)))
     monitors = {name: values[:, k].copy() for k, name in enumerate(system.monitors)}
@@ -768,14 +801,15 @@ def _trajectory(system, p, t, Y, evs, method, steps, nfev, tolerance, status, co
                      f"relative pivot fell to {conditioning:.1e}): accuracy may be lost there; check the drift "
                      f"of the first integrals, or choose coordinates that are regular along this motion",)
     events = tuple(Event(name, float(te), np.array(ye[:n]), np.array(ye[n:])) for name, te, ye in evs)
+    parameters = {k: v for k, v in known_values(system.parameters, p).items() if k not in system.inputs}
     return Trajectory(
         model_name=system.eom.model.name,
         coordinates=tuple(system.coordinates),
-        parameters=known_values(system.parameters, p),
+        parameters=parameters,
         t=np.asarray(t, dtype=float), q=Y[:, :n].copy(), qd=Y[:, n:].copy(), qdd=qdd,
         monitors=monitors, integrals=tuple(system.integrals), drift=drift, method=method, steps=steps,
         rhs_calls=nfev, tolerance=tolerance, warnings=warnings, events=events, status=status,
-        conditioning=conditioning, scales=scales,
+        conditioning=conditioning, scales=scales, extra=columns,
     )
 
 

@@ -9,6 +9,11 @@ fraction of a microsecond.
 Where no C compiler exists, ``backend="symengine"`` (chosen automatically) evaluates the
 same expressions with SymEngine's ``Lambdify`` (LLVM when available); only the built-in
 integrators need the C backend.
+
+Inputs that vary (``inputs=``, or the model's ``[controls]``: `_inputs`) are compiled in with
+the model (`_input_code`); their numbers (gains, tables) follow the parameters in ``p``, so
+`parameter_vector` appends them.  The first integrals monitored are those that hold with the
+inputs as the law leaves them (off, constant or varying: `lagrangian.first_integrals`).
 """
 
 from __future__ import annotations
@@ -20,12 +25,14 @@ import numpy as np
 import symengine as se
 
 from ..analysis import first_integrals
-from ..analysis._integrals import FirstIntegral
+from ..analysis._integrals import FirstIntegral, input_regime
 from ..dynamics import EquationsOfMotion
 from ..errors import SimulationError
 from ._codegen import generate_c, monitor_expressions
 from ._compile import compile_library, compiler
 from ._fastcall import rhs_caller
+from ._input_code import law_code
+from ._inputs import InputLaw, resolve_inputs
 
 __all__ = ["CompiledSystem", "compile_system", "unused_parameters", "known_values"]
 
@@ -59,6 +66,8 @@ _SIGNATURES = {
     "lg_gauss": (ctypes.c_int, [_P, _P, _P, _P, ctypes.c_int, _P, _P, ctypes.c_double, _P, _P, _P,
                                 ctypes.c_double]),
 }
+#: The evaluator of the inputs' law, in a library compiled with one.
+_INPUT_SIGNATURE = (ctypes.c_int, [ctypes.c_int, _P, _P, _P, _P])
 
 
 def _ptr(a: np.ndarray) -> int:
@@ -75,10 +84,16 @@ class CompiledSystem:
     coordinates, parameters, monitors, events : names, in array order.
     integrals : the first integrals among the monitors.
     backend : ``"c"`` or ``"symengine"``.
+    law : the inputs' `InputLaw` (`_inputs`); ``inputs`` the names of the inputs it drives, in
+        the order of `input_values`' columns.
+    regime : each declared input's regime (``"off"``, ``"constant"``, ``"varying"``) the
+        integrals were found for; ``constant_inputs`` names inputs held at a value other than 0
+        by the parameters (so that their integrals are those of a constant input).
     """
 
     def __init__(self, eom: EquationsOfMotion, *, integrals: Sequence | None = None,
-                 events: Sequence[tuple[str, se.Basic]] = (), backend: str = "auto") -> None:
+                 events: Sequence[tuple[str, se.Basic]] = (), backend: str = "auto", inputs=None,
+                 constant_inputs: Sequence[str] = ()) -> None:
         if backend not in ("auto", "c", "symengine"):
             raise ValueError(f"backend must be 'auto', 'c' or 'symengine', not {backend!r}")
         self.eom = eom
@@ -87,11 +102,18 @@ class CompiledSystem:
         if backend == "auto":
             backend = "c" if compiler() is not None else "symengine"
         self.backend = backend
+        self.law = inputs if isinstance(inputs, InputLaw) else resolve_inputs(eom, inputs)
+        self.inputs = tuple(s.name for s in self.law.driven)
+        # Inputs held at a value other than 0 are parameters like any other; the others are off.
+        values = {**{u: v for u, v in eom.model.parameter_values.items() if u in eom.model.inputs},
+                  **self.law.constants, **dict.fromkeys(constant_inputs, 1.0)}
+        self.regime = self.law.regime(values, tuple(eom.model.inputs))
         # With a recursive form the C code monitors its energy integral, T and U; the course's
         # search (`first_integrals`) and its T, U would first make the whole course derivation.
         recursive = eom.recursive is not None and backend == "c"
         if integrals is None:
-            integrals = _recursive_integrals(eom) if recursive else first_integrals(eom)
+            integrals = _recursive_integrals(eom, self.regime) if recursive else \
+                first_integrals(eom, inputs=self.regime)
         self.first_integrals = tuple(integrals)
         self.integrals = tuple(fi.name for fi in self.first_integrals)
         self.parameters = tuple(p.name for p in eom.model.parameters)
@@ -100,21 +122,26 @@ class CompiledSystem:
         self.events = tuple(name for name, _ in self._events)
         self.monitors = tuple(name for name, _ in monitor_expressions(eom, self.first_integrals,
                                                                        recursive=recursive))
+        self._law_size = 0
         if backend == "c":
-            generated = generate_c(eom, self.first_integrals, self._events)
+            code = law_code(eom, self.law) if self.law.driven else None
+            generated = generate_c(eom, self.first_integrals, self._events, law=code)
             self.source = generated.source
             self._constants = generated.constants
             self._lib = compile_library(generated.source, generated.key)
             for name, (restype, argtypes) in _SIGNATURES.items():
                 fn = getattr(self._lib, name)
                 fn.restype, fn.argtypes = restype, argtypes
+            if code is not None:
+                self._law_size = code.size
+                self._lib.lg_eval_inputs.restype, self._lib.lg_eval_inputs.argtypes = _INPUT_SIGNATURE
             dims = np.zeros(3, dtype=np.intc)
             self._lib.lg_dimensions(_ptr(dims))
             assert tuple(dims) == (self.n, len(self.monitors), len(self.events)), "stale compiled library"
             # The one-state call through ctypes costs ~4 µs, mostly Python's; the vectorcall
             # wrapper brings it to the C evaluation plus ~0.1 µs (`_fastcall`).
-            caller = rhs_caller(self._lib.lg_eval_rhs, 2 * self.n, len(self.parameters) + self._constants,
-                                 self._lib)
+            caller = rhs_caller(self._lib.lg_eval_rhs, 2 * self.n,
+                                len(self.parameters) + self._constants + self._law_size, self._lib)
             if caller is not None:
                 self.rhs_c = caller
         else:
@@ -122,6 +149,7 @@ class CompiledSystem:
             self._lib = None
             self._constants = 0
             self._lambdify()
+            self._law_python = self.law.evaluator(eom, self.parameters) if self.law.driven else None
         self._t1 = np.zeros(1)
 
     # -- parameter values -------------------------------------------------------------
@@ -140,6 +168,11 @@ class CompiledSystem:
             raise SimulationError(
                 f"`{unknown[0]}` is not a parameter of `{self.eom.model.name}`.",
                 fix="the parameters are " + (", ".join(self.parameters) or "(none)"))
+        twice = sorted(set(values) & ({s.name for s in self.law.sources}))
+        if twice:
+            raise SimulationError(f"The input `{twice[0]}` is given both as a parameter value and by the inputs' law.",
+                                  fix="give it once: in inputs= (--input) or in parameters= (--set)")
+        values.update(self.law.constants)
         model_values = self.eom.model.parameter_values
         out = np.empty(len(self.parameters))
         for k, name in enumerate(self.parameters):
@@ -157,13 +190,42 @@ class CompiledSystem:
                 raise SimulationError(f"The parameter `{name}` = {value} is not a finite number.",
                                       fix=f"give `{name}` a finite value")
             out[k] = value
-        if self._constants:
-            # The parameter-only subexpressions of M and F follow the values (`_codegen._Hoist`).
-            extended = np.empty(len(out) + self._constants)
+        if self._constants or self._law_size:
+            # The parameter-only subexpressions of M and F follow the values (`_codegen._Hoist`),
+            # then the numbers of the inputs' law (`_input_code`).
+            extended = np.empty(len(out) + self._constants + self._law_size)
             extended[: len(out)] = out
-            self._lib.lg_constants(_ptr(extended), _ptr(extended[len(out):]))
+            if self._constants:
+                self._lib.lg_constants(_ptr(extended), _ptr(extended[len(out):]))
+            if self._law_size:
+                extended[len(out) + self._constants:] = self.law.data()
             return extended
         return out
+
+    def law_block(self, p: np.ndarray) -> np.ndarray:
+        """The inputs' law's numbers in ``p`` (a view: its hint, ``[0]``, may be written)."""
+        start = len(self.parameters) + self._constants
+        return p[start:start + self._law_size]
+
+    def input_values(self, t, y, p: np.ndarray) -> np.ndarray:
+        """The driven inputs (`inputs`) at each state: shape (N, len(inputs)), as the compiled law gives them."""
+        T, Y, single = self._batch(t, y, 2 * self.n)
+        k = len(self.inputs)
+        if not k:
+            out = np.zeros((len(Y), 0))
+        elif self._lib is not None:
+            out = np.empty((len(Y), k))
+            self._lib.lg_eval_inputs(len(Y), _ptr(T), _ptr(Y), _ptr(p), _ptr(out))
+        else:
+            out = self._law_python(T, Y, p)
+        return out[0] if single else out
+
+    def _rows(self, T: np.ndarray, Y: np.ndarray, p: np.ndarray) -> np.ndarray:
+        """The SymEngine evaluators' argument rows (t, y, parameters), the driven inputs written in."""
+        P = np.array(np.broadcast_to(p[: len(self.parameters)], (len(Y), len(self.parameters))))
+        if self.inputs:
+            P[:, [self.parameters.index(u) for u in self.inputs]] = self._law_python(T, Y, p)
+        return np.column_stack([T, Y, P])
 
     @property
     def unused_parameters(self) -> frozenset[str]:
@@ -246,7 +308,7 @@ class CompiledSystem:
             F = np.empty((len(Y), n))
             self._lib.lg_eval_mass_forces(len(Y), _ptr(T), _ptr(Y), _ptr(p), _ptr(M), _ptr(F))
         else:
-            out = self._se_mf(np.column_stack([T, Y, np.broadcast_to(p, (len(Y), len(p)))]))
+            out = self._se_mf(self._rows(T, Y, p))
             out = np.asarray(out).reshape(len(Y), -1)
             M, F = out[:, : n * n].reshape(-1, n, n), out[:, n * n:]
         return (M[0], F[0]) if single else (M, F)
@@ -266,8 +328,7 @@ class CompiledSystem:
             if self._lib is not None:
                 getattr(self._lib, c_name)(len(Y), _ptr(T), _ptr(Y), _ptr(p), _ptr(out))
             else:
-                args = np.column_stack([T, Y, np.broadcast_to(p, (len(Y), len(p)))])
-                out = np.asarray(getattr(self, se_name)(args)).reshape(len(Y), width)
+                out = np.asarray(getattr(self, se_name)(self._rows(T, Y, p))).reshape(len(Y), width)
         out = out[:, :width]
         return out[0] if single else out
 
@@ -287,19 +348,43 @@ class CompiledSystem:
         self._se_ev = make([e for _, e in self._events])
 
 
-def _recursive_integrals(eom: EquationsOfMotion) -> tuple[FirstIntegral, ...]:
+def _recursive_integrals(eom: EquationsOfMotion, regime: Mapping[str, str] | None = None
+                         ) -> tuple[FirstIntegral, ...]:
     """The energy integral T + U of a kinematic tree, over the recursive form's intermediates.
 
     A tree has no time in its kinematics, so T is homogeneous quadratic in q̇; T + U is then
-    constant when every load derives from a potential U(q) (no t in it).  The expression is in
-    the intermediates of ``eom.recursive``: it is for the generated code, not for display.
+    constant when every load derives from a potential U(q) (no t in it) — or, ``regime`` saying
+    which inputs are off, when the loads that do not (a joint's motor torque τ) vanish with them.
+    The expression is in the intermediates of ``eom.recursive``: it is for the generated code,
+    not for display.
     """
     rec = eom.recursive
-    if rec is None or not rec.conservative or eom.t in rec.U.free_symbols:
+    regime = input_regime(eom, regime)
+    if rec is None or eom.t in rec.U.free_symbols or "varying" in regime.values():
+        return ()
+    if not rec.conservative and not _conservative_with_off(eom, [u for u, r in regime.items() if r == "off"]):
         return ()
     return (FirstIntegral("E", "energy", rec.T + rec.U,
                           "energy integral T + U = cste: a kinematic tree with no time in it, every load "
                           "derives from a potential"),)
+
+
+def _conservative_with_off(eom: EquationsOfMotion, off: Sequence[str]) -> bool:
+    """Every load of the model derives from a potential once the inputs ``off`` are 0: the torques
+    (couples of the recursion) vanish with them, and so do the other loads' forces without a potential."""
+    from ..model.spec import JointDamper, Torque
+
+    if not off:
+        return False
+    zero = {se.Symbol(u): se.Integer(0) for u in off}
+    for load in eom.model.loads:
+        if isinstance(load, JointDamper):
+            return False
+        if isinstance(load, Torque) and not load.torque.subs(zero).is_zero():
+            return False
+    rec = eom.recursive
+    return rec is not None and all(f.potential is not None or all(q.xreplace(zero) == 0 for q in f.Q)
+                                   for f in rec.loads)
 
 
 def _rhs_failure(status: int, T: np.ndarray, Y: np.ndarray) -> SimulationError:
@@ -321,6 +406,10 @@ def _rhs_failure(status: int, T: np.ndarray, Y: np.ndarray) -> SimulationError:
 
 
 def compile_system(eom: EquationsOfMotion, *, events: Sequence[tuple[str, se.Basic]] = (),
-                   backend: str = "auto") -> CompiledSystem:
-    """`CompiledSystem` of ``eom`` (compiled C when a compiler exists, else SymEngine)."""
-    return CompiledSystem(eom, events=events, backend=backend)
+                   backend: str = "auto", inputs=None) -> CompiledSystem:
+    """`CompiledSystem` of ``eom`` (compiled C when a compiler exists, else SymEngine).
+
+    ``inputs``: the inputs' law compiled in (a dict by input name or a `Feedback`, as `simulate`
+    takes it); None: the model's ``[controls]``, if any.
+    """
+    return CompiledSystem(eom, events=events, backend=backend, inputs=inputs)

@@ -318,8 +318,10 @@ def course_form(eom: EquationsOfMotion, integrals: tuple[FirstIntegral, ...], *,
     integral_rows = []
     for i in integrals:
         expr = convert(i.expression)
-        # The energy is written T + U from the displayed T and U, as the seed writes it.
-        parts = (convert(eom.T), convert(eom.U)) if i.kind == "energy" else (expr,)
+        # The energy is written T + U from the displayed T and U, as the seed writes it; U with the
+        # inputs the integral holds off at 0 (`first_integrals`: inputs are off by default).
+        off = {se.Symbol(u): se.Integer(0) for u in model.inputs if se.Symbol(u) not in i.expression.free_symbols}
+        parts = (convert(eom.T), convert(eom.U.xreplace(off) if off else eom.U)) if i.kind == "energy" else (expr,)
         integral_rows.append(IntegralRow(i.name, i.kind, expr, tuple(p for p in parts if p != 0), i.reason,
                                          i.coordinate))
     T_total, U_total = convert(eom.T), convert(eom.U)

@@ -456,6 +456,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "cyclic": ("{q} est un paramètre cyclique : {why}, donc {eq} s'intègre :", "{q} is cyclic: {why}, so {eq} "
                "integrates:"),
     "momentum": ("{why}, donc {eq} s'intègre :", "{why}, so {eq} integrates:"),
+    "inputs off": ("Les entrées coupées ({zero}), ", "With the inputs off ({zero}), "),
     "energy integral": ("{L} ne dépend pas explicitement du temps et {cond} ; {T} étant une forme quadratique "
                         "homogène des vitesses, l'intégrale première de l'énergie s'écrit :",
                         "{L} does not depend explicitly on time and {cond}; since {T} is a homogeneous "

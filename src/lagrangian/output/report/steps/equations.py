@@ -473,7 +473,10 @@ def _momentum(c: Context, row: IntegralRow) -> list[Block]:
     w = c.w
     q = row.coordinate or ""
     eq = c.eom.equation(q)
-    cyclic = are_zero([eq.dT_dq - eq.dU_dq])[0]
+    # An integral found with the inputs off (`first_integrals`) says so: τ's potential −τ φ is then 0.
+    off = [u for u in c.eom.model.inputs if se.Symbol(u) in (eq.dU_dq + eq.Q_nc).free_symbols]
+    zero = {se.Symbol(u): se.Integer(0) for u in off}
+    cyclic = are_zero([(eq.dT_dq - eq.dU_dq).xreplace(zero)])[0]
     Lq = Math(rf"L({c.sym(q)})")
     if cyclic:
         why = w.join([Math(rf"\frac{{\partial L}}{{\partial {c.sym(q)}}} = 0"), Math(f"{c.Q_nc(q)} = 0")])
@@ -482,6 +485,8 @@ def _momentum(c: Context, row: IntegralRow) -> list[Block]:
         why = (Math(rf"\frac{{\partial T}}{{\partial {c.sym(q)}}} - \frac{{\partial U_P}}{{\partial {c.sym(q)}}}"
                     rf" + {c.Q_nc(q)} = 0"),)
         head = w("momentum", why=why, eq=Lq)
+    if off:
+        head = w("inputs off", zero=Math(", ".join(f"{c.sym(u)} = 0" for u in off))) + head
     name = c.n.symbol(row.name, latex=True)
     return [Para(head)] + c.show([c.equation("", row.expression, f" = {name}")], row.name)
 

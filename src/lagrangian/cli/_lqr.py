@@ -1,0 +1,132 @@
+"""``lagrangian lqr MODEL [--at theta=0 ...] [--set NAME=VALUE] [--inputs F] [--Q SPEC] [--R SPEC] [--json]
+[-o feedback.json]``: the LQR state feedback about an equilibrium or a steady motion.
+
+Prints the gain K of u = u* − K (x − x*), the point x* and the inputs u* that hold it, the
+weights and the closed-loop eigenvalues; ``--json`` prints the feedback document (schema
+``lagrangian.feedback``), which ``-o FILE`` writes (atomically) for ``lagrangian simulate
+MODEL --feedback FILE``.  A weight SPEC is a diagonal in state (input) order, ``1,1,10,1``,
+or named entries of the identity, ``theta=10,x=2``; a formula is not read.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+from typing import Any
+
+import numpy as np
+
+from ..dynamics import derive
+from ._point import add_parameter_option, add_point_options, parse_names, point_settings
+from ._settings import SettingError, plain_number
+from ._source import MODEL_HELP, load_source
+
+__all__ = ["parse_weights", "register", "run"]
+
+SUMMARY = "the LQR state feedback u = u* - K (x - x*) about an equilibrium (--at theta=0):\n" \
+          "gains, closed-loop eigenvalues; -o feedback.json for simulate --feedback"
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "lqr", help="the LQR state feedback about an equilibrium or a steady motion",
+        description="Linearize about the point (--at, or the model's [operating_point]; the inputs not given take "
+                    "the values that hold it), then minimize the integral of dx' Q dx + du' R du: the gain K of "
+                    "u = u* - K (x - x*), from the continuous algebraic Riccati equation. A pair (A, B) that is not "
+                    "stabilizable is refused, naming the mode the inputs cannot move.")
+    p.add_argument("model", nargs="?", help=MODEL_HELP)
+    add_point_options(p, symbolic=False)
+    add_parameter_option(p)
+    p.add_argument("--Q", dest="Q", metavar="SPEC",
+                   help="state weights: a diagonal in state order (1,1,10,1) or named entries of the identity "
+                        "(theta=10,x=2); default the identity")
+    p.add_argument("--R", dest="R", metavar="SPEC", help="input weights, likewise (default the identity)")
+    p.add_argument("--json", action="store_true",
+                   help="print the feedback document (schema lagrangian.feedback/1) that -o writes")
+    p.add_argument("-o", "--output", metavar="FILE",
+                   help="write the feedback document to FILE (atomically), for `simulate --feedback FILE`")
+    p.set_defaults(run=run)
+
+
+def parse_weights(spec: str | None, option: str) -> Any:
+    """``"1,1,10,1"`` → [1, 1, 10, 1]; ``"theta=10,x=2"`` → {"theta": 10, "x": 2}; None → None.
+
+    Raises
+    ------
+    SettingError
+        A part that is not a plain finite number, or a mix of the two forms.
+    """
+    if spec is None:
+        return None
+    parts = [s.strip() for s in spec.split(",") if s.strip()]
+    if not parts:
+        raise SettingError(f"`{option} {spec}` is empty.", fix=f"e.g. {option} 1,1,10,1 or {option} theta=10")
+    named = ["=" in s for s in parts]
+    if any(named) and not all(named):
+        raise SettingError(f"`{option} {spec}` mixes a diagonal and named weights.",
+                           fix=f"give all of them by name ({option} theta=10,x=2) or none ({option} 1,1,10,1)")
+    out: dict[str, float] = {}
+    values: list[float] = []
+    for part in parts:
+        name, _, text = part.rpartition("=")
+        try:
+            value = plain_number(text)
+        except ValueError:
+            raise SettingError(f"In `{option} {spec}`, `{text}` is not a plain decimal number.",
+                               fix=f"write numbers, e.g. {option} theta=10") from None
+        if not math.isfinite(value):
+            raise SettingError(f"In `{option} {spec}`, `{text}` is not finite.", fix="give finite weights")
+        if name:
+            out[name.strip()] = value
+        else:
+            values.append(value)
+    return out if any(named) else values
+
+
+def run(args: argparse.Namespace) -> str:
+    from ..analysis import lqr
+
+    model = load_source(args.model)
+    eom = derive(model)
+    point, parameters = point_settings(args, model)
+    inputs = getattr(args, "inputs", None)
+    names = parse_names(inputs) if inputs is not None else None
+    fb = lqr(eom, point, Q=parse_weights(args.Q, "--Q"), R=parse_weights(args.R, "--R"), inputs=names,
+             parameters=parameters)
+    if args.json or args.output:
+        return json.dumps(fb.to_dict(), indent=2) + "\n"
+    return render(fb)
+
+
+def _number(v: float) -> str:
+    return f"{v:.6g}" if v != 0 else "0"
+
+
+def _complex(z: complex) -> str:
+    return _number(z.real) if abs(z.imag) < 1e-12 * max(1.0, abs(z)) else f"{z.real:.6g} {z.imag:+.6g}i"
+
+
+def render(fb: Any) -> str:
+    """The feedback as text: the point, the law, K by row, the weights, the eigenvalues."""
+    lines = [f"{fb.model}: LQR state feedback u = u* - K (x - x*)",
+             "point x*: " + ", ".join(f"{s} = {_number(v)}" for s, v in zip(fb.states, fb.x_star)),
+             "inputs u*: " + ", ".join(f"{u} = {_number(v)}" for u, v in zip(fb.inputs, fb.u_star)), "gain K:"]
+    width = max(len(s) for s in fb.states)
+    for i, u in enumerate(fb.inputs):
+        lines.append(f"  row of {u}:")
+        lines += [f"    {s:<{width}}  {_number(k)}" for k, s in zip(fb.K[i], fb.states)]
+    diag = np.allclose(fb.Q, np.diag(np.diag(fb.Q))) and np.allclose(fb.R, np.diag(np.diag(fb.R)))
+    if diag:
+        lines.append("weights: Q = diag(" + ", ".join(f"{s}: {_number(v)}" for s, v in zip(fb.states, np.diag(fb.Q)))
+                     + "), R = diag(" + ", ".join(f"{u}: {_number(v)}" for u, v in zip(fb.inputs, np.diag(fb.R)))
+                     + ")")
+    else:
+        lines.append(f"weights: Q = {np.array2string(fb.Q, precision=6)}, R = {np.array2string(fb.R, precision=6)}")
+    open_loop = np.linalg.eigvals(fb.A)
+    lines.append("open-loop eigenvalues (A): " + ", ".join(_complex(z) for z in sorted(open_loop, key=lambda z: z.real)))
+    lines.append("closed-loop eigenvalues (A - B K): "
+                 + ", ".join(_complex(z) for z in sorted(fb.eigenvalues, key=lambda z: z.real)))
+    lines.append("verdict: " + ("the closed loop is asymptotically stable about the point (linearized)" if fb.stable
+                                else "NOT stable"))
+    return "\n".join(lines) + "\n"
