@@ -217,7 +217,7 @@ class _TreeBuilder:
         moving = {self.kin.q[c] for c in range(len(self.kin.q))} - set(self.q)
         moving |= {self.kin.qd[c] for c in range(len(self.kin.qd))} - set(self.qd)
         total = _ZERO3
-        for frame, comps in vector.pieces:
+        for frame, comps in vector.pieces.items():
             if any(c.free_symbols & moving for c in comps):
                 raise DerivationError(f"a couple on free body `{self.tree.joint.body}` depends on the coordinates of a "
                                       "free body, which the quaternion route does not integrate",

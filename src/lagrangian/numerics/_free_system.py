@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import ctypes
 from collections.abc import Mapping, Sequence
+from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
@@ -28,7 +29,7 @@ from ._euler import SINGULAR, euler_from_matrix, euler_matrix, matrix_from_quate
 from ._fastcall import rhs_caller
 from ._system import unused_parameters
 
-__all__ = ["FreeBodySystem", "has_free_body"]
+__all__ = ["FreeBodySystem", "compile_free_system", "has_free_body"]
 
 _P = ctypes.c_void_p
 _SIGNATURES = {
@@ -248,10 +249,9 @@ class FreeBodySystem:
         """Each free body's quaternion (w, x, y, z) and ω (in its basis) along states Y."""
         out: dict[str, np.ndarray] = {}
         for fj, oq, ov, *_ in self.blocks:
-            axes = self.model.frame(fj.frame).axes
             for k, part in enumerate("wxyz"):
                 out[f"{fj.body}_e{part}"] = Y[:, oq + 3 + k].copy()
-            for k, axis in enumerate(axes):
+            for k, axis in enumerate("xyz"):  # along the body frame's x, y, z
                 out[f"{fj.body}_omega_{axis}"] = Y[:, ov + 3 + k].copy()
         return out
 
@@ -301,3 +301,27 @@ class FreeBodySystem:
             getattr(self._lib, name)(len(Y), _ptr(T), _ptr(Y), _ptr(p), _ptr(out))
         out = out[:, :width]
         return out[0] if single else out
+
+
+def compile_free_system(source, *, events: Sequence[tuple[str, se.Basic]] = ()) -> FreeBodySystem:  # type: ignore[no-untyped-def]
+    """`FreeBodySystem` of a model with free bodies: a path, a `Model` or its `EquationsOfMotion`.
+
+    ``simulate`` takes it as a source (and builds one by itself from a model with free bodies).
+    Its `mass_forces` gives M and the forces in the velocities (v, ω, q̇), MuJoCo's for a free joint.
+
+    Raises
+    ------
+    SimulationError
+        When the model has no free body (`compile_system` is its route).
+    DerivationError
+        When the quaternion route does not apply to it (`dynamics._floating_tree` says why).
+    """
+    from ..model import load_model
+
+    if isinstance(source, (str, Path)):
+        source = load_model(source)
+    model = source if isinstance(source, Model) else getattr(source, "model", None)
+    if not has_free_body(model):
+        raise SimulationError(f"`{getattr(model, 'name', source)}` has no free body: nothing to integrate on "
+                              "quaternions.", fix="use compile_system(derive(model)), or declare a body free = true")
+    return FreeBodySystem(model, events=events)  # type: ignore[arg-type]
