@@ -189,3 +189,8 @@ def test_a_free_body_with_a_zero_inertia_is_refused_in_the_file() -> None:
     with pytest.raises(ModelError, match="free") as info:
         lagrangian.parse_model(text, source="handle.toml")
     assert info.value.line is not None
+
+
+def test_ensembles_refuse_a_free_body_rather_than_meet_its_singularity() -> None:
+    with pytest.raises(SimulationError, match="unit quaternion"):
+        lagrangian.ensemble(EXAMPLE, 1.0, initial=lagrangian.grid(x=np.linspace(0.0, 1.0, 2)))
