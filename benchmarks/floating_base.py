@@ -39,14 +39,14 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent / "tests"))
-from urdf_robots import robot_data_file  # noqa: E402  (tests/urdf_robots.py, before benchmarks/ is first)
+from urdf_robots import robot_data_file
 
 sys.path.insert(0, str(HERE))
-from rhs_vs_peers import per_call  # noqa: E402
+from rhs_vs_peers import per_call
 
-import lagrangian  # noqa: E402
-from lagrangian.model.urdf import UrdfNote  # noqa: E402
-from lagrangian.numerics._euler import matrix_from_quaternion  # noqa: E402
+import lagrangian
+from lagrangian.model.urdf import UrdfNote
+from lagrangian.numerics._euler import matrix_from_quaternion
 
 #: (ANYmal B and C, Go1, HyQ and B1 are refused by `lagrangian.model._urdf_read`: a link of each has principal
 #: moments that break the triangle inequality A + B ≥ C, which no mass distribution has; the message gives the line.)

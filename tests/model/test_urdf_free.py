@@ -22,7 +22,7 @@ from lagrangian.numerics._euler import matrix_from_quaternion, rate_matrix, rate
 mujoco = pytest.importorskip("mujoco", reason="MuJoCo (`pip install mujoco`) is a referee of these tests")
 pin = pytest.importorskip("pinocchio", reason="Pinocchio (`pip install pin`) is a referee of these tests")
 
-from urdf_robots import robot_data_file  # noqa: E402
+from urdf_robots import robot_data_file
 
 #: A base thrown with a two-link leg and an arm: rpy origins, full inertias off the joint axes, a general
 #: axis, a continuous joint about −z; the floating joint is placed by its origin (where the base starts).
@@ -130,7 +130,7 @@ def test_a_floating_joint_makes_its_child_a_free_body_starting_at_its_origin(wal
     model = walker.model
     assert [c.name for c in model.coordinates] == ["free_x", "free_y", "free_z", "free_yaw", "free_pitch",
                                                    "free_roll", *JOINTS]
-    assert [(b.name, b.free) for b in model.bodies][0] == ("base", True)
+    assert (model.bodies[0].name, model.bodies[0].free) == ("base", True)
     assert model.inputs == ("tau_hip", "tau_knee", "tau_shoulder")  # a free body has no actuator
     mj = MuJoCo(WALKER)
     y0 = walker.initial_state()
@@ -208,8 +208,8 @@ def test_the_courses_equations_in_yaw_pitch_roll_are_mujocos_dynamics(walker) ->
 
 
 def _without_meshes(text: str) -> str:
-    text = re.sub(r"<visual>.*?</visual>", "", text, flags=re.S)
-    return re.sub(r"<collision>.*?</collision>", "", text, flags=re.S)
+    text = re.sub(r"<visual>.*?</visual>", "", text, flags=re.DOTALL)
+    return re.sub(r"<collision>.*?</collision>", "", text, flags=re.DOTALL)
 
 
 def test_a_quadruped_with_a_floating_base_is_pinocchios_free_flyer_and_mujocos() -> None:

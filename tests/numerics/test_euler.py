@@ -6,8 +6,14 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from lagrangian.numerics._euler import euler_from_matrix, euler_matrix, matrix_from_quaternion, \
-    quaternion_from_matrix, rate_matrix, rate_matrix_derivative
+from lagrangian.numerics._euler import (
+    euler_from_matrix,
+    euler_matrix,
+    matrix_from_quaternion,
+    quaternion_from_matrix,
+    rate_matrix,
+    rate_matrix_derivative,
+)
 
 SEQUENCES = ["zxz", "zyx", "xyz", "yzy", "xzx"]
 

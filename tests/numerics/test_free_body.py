@@ -88,7 +88,7 @@ def test_the_angles_rates_and_accelerations_are_the_quaternions(handle) -> None:
     q = np.column_stack([handle.column(c) for c in ("psi", "theta", "phi")])
     R = _rotation(np.column_stack([handle.extra[k] for k in QUATERNION]))
     assert np.max(np.abs(euler_matrix("zxz", q) - R)) < 1e-12
-    psi, theta, phi = q.T
+    _, theta, phi = q.T
     dpsi, dtheta, dphi = (handle.column(c + "_dot") for c in ("psi", "theta", "phi"))
     omega_x = dpsi * np.sin(theta) * np.sin(phi) + dtheta * np.cos(phi)  # the course's Ω(R/R0) in R's basis
     omega_z = dphi + dpsi * np.cos(theta)

@@ -47,7 +47,7 @@ from ._articulated import _Spatial, articulated_accelerations
 from ._floating_tree import FloatingTree, floating_trees
 from ._recursive import _dot, _matvec, _Names, _scale, _unit
 
-__all__ = ["FloatingForm", "BaseState", "floating_form"]
+__all__ = ["BaseState", "FloatingForm", "floating_form"]
 
 Vec = tuple
 _ZERO = se.Integer(0)

@@ -30,7 +30,7 @@ import symengine as se
 from ..errors import ModelError
 from .spec import GALILEAN_FRAME, Body, Model
 
-__all__ = ["FreeJoint", "free_joints", "check_free_bodies", "inertia_problem"]
+__all__ = ["FreeJoint", "check_free_bodies", "free_joints", "inertia_problem"]
 
 #: A principal moment below this fraction of the largest one is zero: no inertia about that axis.
 _ZERO_MOMENT = 1e-12

@@ -31,8 +31,16 @@ import warnings
 
 import numpy as np
 
-__all__ = ["elementary", "euler_matrix", "quaternion_from_matrix", "matrix_from_quaternion", "euler_from_matrix",
-           "rate_matrix", "rate_matrix_derivative", "SINGULAR"]
+__all__ = [
+    "SINGULAR",
+    "elementary",
+    "euler_from_matrix",
+    "euler_matrix",
+    "matrix_from_quaternion",
+    "quaternion_from_matrix",
+    "rate_matrix",
+    "rate_matrix_derivative",
+]
 
 #: Where |det J| (|sin θ2| or |cos θ2|) is below this, the angles' rates are not defined (NaN).
 SINGULAR = 1e-9

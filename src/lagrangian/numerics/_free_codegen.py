@@ -138,8 +138,8 @@ def generate_free_c(form: FloatingForm, events: Sequence[tuple[str, se.Basic]] =
     offset = 0
     for t, tree in enumerate(form.trees):
         e, record = offset + 3, nq + nv + t
-        project += [f"    {{ const double n = sqrt(y[{e}] * y[{e}] + y[{e + 1}] * y[{e + 1}] + y[{e + 2}] * y[{e + 2}]"
-                    f" + y[{e + 3}] * y[{e + 3}]);",
+        project += [(f"    {{ const double n = sqrt(y[{e}] * y[{e}] + y[{e + 1}] * y[{e + 1}] + y[{e + 2}] * y[{e + 2}]"
+                     f" + y[{e + 3}] * y[{e + 3}]);"),
                     f"      if (fabs(n - 1.0) > y[{record}]) y[{record}] = fabs(n - 1.0);",
                     f"      if (n > 0.0) for (int i = {e}; i < {e + 4}; ++i) y[i] /= n; }}"]
         offset += 7 + len(tree.joints)

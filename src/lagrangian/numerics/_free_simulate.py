@@ -66,8 +66,18 @@ def simulate_free(source, t_end: float, *, t_start: float = 0.0, initial: Mappin
                   max_steps: int = 100_000_000, progress=False, backend: str = "auto",
                   stabilization: str | None = None, stiffness_check: bool = True, **_: object) -> Trajectory:
     """`simulate` of a model with free bodies (module docstring); the arguments are `simulate`'s."""
-    from ._simulate import METHODS, SCIPY, EventSpec, _event_expressions, _interruptible, _output_times, \
-        _run_scipy, control_block, default_tolerance, initial_state
+    from ._simulate import (
+        METHODS,
+        SCIPY,
+        EventSpec,
+        _event_expressions,
+        _interruptible,
+        _output_times,
+        _run_scipy,
+        control_block,
+        default_tolerance,
+        initial_state,
+    )
 
     if method not in METHODS:
         raise SimulationError(f"Unknown method `{method}`.", fix="use one of " + ", ".join(METHODS))
@@ -193,16 +203,17 @@ def _trajectory(system: FreeBodySystem, p, t, Y, evs, method, steps, nfev, toler
     warnings = tuple(f"{name} drifted by {drift[name]:.2e} (relative), more than the tolerance {tolerance:.1e}"
                      for name in system.integrals if tolerance is not None and drift.get(name, 0.0) > tolerance)
     if conditioning < 1e-6:
-        warnings += (f"the articulated inertia of a free body came close to losing its rank (smallest relative "
-                     f"pivot {conditioning:.1e}): accuracy may be lost there",)
-    for (fj, *_), (body, det) in zip(system.blocks, system.singular_rows(q).items()):
+        warnings += ((f"the articulated inertia of a free body came close to losing its rank (smallest relative "
+                      f"pivot {conditioning:.1e}): accuracy may be lost there"),)
+    for fj, *_ in system.blocks:
+        body = fj.body
         bad = ~np.isfinite(qd[:, [system.coordinates.index(a) for a in fj.angles]]).all(axis=1)
         if bad.any():
             k = int(np.argmax(bad))
-            warnings += (f"the Euler angles {', '.join(fj.angles)} of free body `{body}` are singular at "
+            warnings += ((f"the Euler angles {', '.join(fj.angles)} of free body `{body}` are singular at "
                          f"{int(bad.sum())} output time(s), first t = {t[k]:.9g}: their rates and accelerations are "
                          f"not defined there (NaN); the motion itself is integrated on a unit quaternion (columns "
-                         f"{body}_ew..., {body}_omega_...), which is regular",)
+                         f"{body}_ew..., {body}_omega_...), which is regular"),)
     n = len(system.coordinates)
     events = []
     for name, te, ye in evs:

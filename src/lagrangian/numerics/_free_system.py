@@ -24,8 +24,15 @@ from ..errors import SimulationError
 from ..model import Model
 from ..model._free import inertia_problem
 from ._compile import compile_library
-from ._euler import SINGULAR, euler_from_matrix, euler_matrix, matrix_from_quaternion, quaternion_from_matrix, \
-    rate_matrix, rate_matrix_derivative
+from ._euler import (
+    SINGULAR,
+    euler_from_matrix,
+    euler_matrix,
+    matrix_from_quaternion,
+    quaternion_from_matrix,
+    rate_matrix,
+    rate_matrix_derivative,
+)
 from ._fastcall import rhs_caller
 from ._system import unused_parameters
 
@@ -230,11 +237,6 @@ class FreeBodySystem:
                 accel[regular] = np.linalg.solve(J[regular], (omega_dot - bias)[..., None])[..., 0]
             q[:, ang], qd[:, ang], qdd[:, ang] = angles, rates, accel
         return q, qd, qdd
-
-    def singular_rows(self, q: np.ndarray) -> dict[str, np.ndarray]:
-        """For each free body, |det J| along rows of model coordinates (how far its angles are from singular)."""
-        return {fj.body: np.abs(np.linalg.det(rate_matrix(fj.sequence, q[:, ang])))
-                for fj, _, _, _, ang, _ in self.blocks}
 
     def quaternion_norms(self, Y: np.ndarray) -> dict[str, np.ndarray]:
         """|e| of each free body's quaternion along states Y."""
