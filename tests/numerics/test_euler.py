@@ -54,15 +54,22 @@ def test_matrix_is_scipys_intrinsic_rotation_and_quaternions_round_trip(sequence
     assert np.allclose(matrix_from_quaternion(2.5 * e), R, atol=1e-14)  # R of e/|e|: the norm does not matter
 
 
-@pytest.mark.parametrize("sequence", ["zxz", "zyx"])
-def test_angles_follow_a_motion_continuously_on_either_branch(sequence: str) -> None:
-    # A motion whose angles leave (−π, π] and whose middle angle changes sign (proper angles) or passes
-    # π/2 - 0.3 (Cardan): SciPy's angles jump by 2π or to the other branch; ours follow the motion.
-    t = np.linspace(0, 4, 400)
-    middle = (-0.6 + 0.5 * t) if sequence == "zxz" else (1.2 - 0.4 * t)
-    angles = np.column_stack([-2.5 - 1.5 * t, middle, 3.0 + 2.0 * t])
-    back = euler_from_matrix(sequence, euler_matrix(sequence, angles), angles[0])
-    assert np.allclose(back, angles, atol=1e-9)
+@pytest.mark.parametrize(("sequence", "middle"), [("zxz", (0.3, 0.5)), ("zxz", (-0.3, -0.5)), ("zyx", (1.2, -0.4)),
+                                                 ("zyx", (2.0, 0.3))])
+def test_angles_follow_a_motion_on_its_branch_and_turns(sequence: str, middle: tuple[float, float]) -> None:
+    # A motion whose angles leave (−π, π] and whose middle angle is on either branch (θ < 0 for z-x-z;
+    # pitch beyond π/2 for z-y-x): SciPy's angles jump by 2π or to the other branch; ours follow the motion,
+    # the turns of the fast angle too on sparse outputs, from the angular velocity.
+    t = np.linspace(0, 2.4, 400)
+    angles = np.column_stack([-2.5 - 1.5 * t, middle[0] + middle[1] * t, 3.0 + 2.0 * t])
+    R = euler_matrix(sequence, angles)
+    assert np.allclose(euler_from_matrix(sequence, R, angles[0]), angles, atol=1e-9)
+    sparse = slice(None, None, 57)  # 0.34 s apart: the third angle turns by 0.7 rad between samples, ψ by 0.5
+    fast = angles * [1, 1, 6.0]
+    rates = np.tile([-1.5, middle[1], 12.0], (len(t), 1))
+    omega = np.einsum("nij,nj->ni", rate_matrix(sequence, fast), rates)
+    back = euler_from_matrix(sequence, euler_matrix(sequence, fast)[sparse], fast[0], omega[sparse], t[sparse])
+    assert np.allclose(back, fast[sparse], atol=1e-9)
 
 
 def test_rate_matrix_is_singular_where_the_angles_are() -> None:

@@ -194,3 +194,54 @@ def test_a_free_body_with_a_zero_inertia_is_refused_in_the_file() -> None:
 def test_ensembles_refuse_a_free_body_rather_than_meet_its_singularity() -> None:
     with pytest.raises(SimulationError, match="unit quaternion"):
         lagrangian.ensemble(EXAMPLE, 1.0, initial=lagrangian.grid(x=np.linspace(0.0, 1.0, 2)))
+
+
+_PARAMETERS = "[parameters]\nm = 0.25\nA = 0.002\nB = 0.006\nC = 0.004\ng = 9.81\n"
+_S = ("""x = { initial = 0.0, rate = 0.5 }
+y = { initial = 0.0, rate = 0.0 }
+z = { initial = 1.5, rate = 4.0 }
+psi = { initial = 0.0, rate = 10.000019999980001 }
+theta = { initial = 0.4, rate = 0.0 }
+phi = { initial = 1.5707963267948966, rate = -5.000000000000002 }
+""", 'R = { from = "R0", rotation = [["psi", "z"], ["theta", "x"], ["phi", "z"]] }\n', """[bodies.S]
+frame = "R"
+free = true
+mass = "m"
+center = "x*R0.x + y*R0.y + z*R0.z"
+inertia = { frame = "R", diagonal = ["A", "B", "C"] }
+""")
+_T = ("""x2 = { initial = 1.0, rate = -1.0 }
+y2 = { initial = 0.0, rate = 0.0 }
+z2 = { initial = 0.0, rate = 2.0 }
+psi2 = { initial = 0.3, rate = 1.0 }
+theta2 = { initial = 1.0, rate = 2.0 }
+phi2 = { initial = 0.0, rate = 3.0 }
+""", 'R2 = { from = "R0", rotation = [["psi2", "z"], ["theta2", "y"], ["phi2", "x"]] }\n', """[bodies.T]
+frame = "R2"
+free = true
+mass = "2*m"
+center = "x2*R0.x + y2*R0.y + z2*R0.z + 0.1*R2.x"
+inertia = { frame = "R2", diagonal = ["B", "C", "A"] }
+""")
+
+
+def _model(*parts: tuple[str, str, str]) -> str:
+    return (_PARAMETERS + "[coordinates]\n" + "".join(c for c, _, _ in parts) + "[frames]\n"
+            + "".join(f for _, f, _ in parts) + "".join(b for _, _, b in parts)
+            + '[loads]\nweight = { gravity = "-g*R0.z" }\n')
+
+
+def test_two_free_bodies_move_each_as_if_alone() -> None:
+    # Two bodies in one model: each its own quaternion, its own σ_G (named after it), its own drift;
+    # the second has Cardan angles and G off its frame's origin.
+    both = lagrangian.simulate(lagrangian.parse_model(_model(_S, _T)), 3.0, rtol=1e-12, atol=1e-12, n_out=7)
+    assert {"sigma_G_S_z0", "sigma_G_T_z0"} <= set(both.integrals) and set(both.quaternion_drift) == {"S", "T"}
+    assert max(both.drift.values()) < 1e-9
+    alone = lagrangian.simulate(lagrangian.load_model(EXAMPLE), 3.0, initial={"theta": 0.4}, rtol=1e-12,
+                                atol=1e-12, n_out=7)
+    assert np.allclose(both.q[:, :6], alone.q, atol=1e-9)
+    assert np.allclose(both.extra["S_omega_z"], alone.extra["S_omega_z"], atol=1e-9)
+    # T alone, integrated in its own coordinates (regular along this short motion)
+    course = lagrangian.simulate(lagrangian.parse_model(_model(_T).replace("free = true\n", "")), 3.0, rtol=1e-12,
+                                 atol=1e-12, n_out=7)
+    assert np.allclose(both.q[:, 6:], course.q, atol=1e-8)

@@ -18,9 +18,11 @@ the same line.  Differentiating the columns (dR_aᵀ/dα = −[e_a∧] R_aᵀ),
 with c1, c2 the first two columns, so θ̈ = J⁻¹(ω̇ − J̇ θ̇) where J is regular.
 
 The angles of a rotation matrix are those of SciPy's `Rotation.as_euler` (intrinsic, Bernardes
-& Viollet 2022), taken on the branch and the turn (2πk) nearest to the previous sample, so that
-a motion's angles are continuous wherever they are regular (the second solution is
-(θ1 + π, −θ2, θ3 + π) for proper angles, (θ1 + π, π − θ2, θ3 + π) for Cardan angles).
+& Viollet 2022), or the second solution, (θ1 + π, −θ2, θ3 + π) for proper angles and
+(θ1 + π, π − θ2, θ3 + π) for Cardan angles: along a motion, the one on the branch of the initial
+angles (sin θ2, or cos θ2, keeps its sign unless the motion goes exactly through the
+singularity), each angle on the turn (2πk) nearest to its value predicted from the previous
+sample and its rate, so that a motion's angles are continuous and count their turns.
 
 Quaternions are (w, x, y, z), Hamilton's convention: R v = e ⊗ (0, v) ⊗ e*.
 """
@@ -110,24 +112,44 @@ def _nearest_turn(angles: np.ndarray, previous: np.ndarray) -> np.ndarray:
     return angles + 2 * np.pi * np.round((previous - angles) / (2 * np.pi))
 
 
-def euler_from_matrix(sequence: str, R: np.ndarray, start: np.ndarray) -> np.ndarray:
-    """The angles (N, 3) of rotations R (N, 3, 3), continuous from ``start`` (3,): see the module docstring."""
+def euler_from_matrix(sequence: str, R: np.ndarray, start: np.ndarray, omega: np.ndarray | None = None,
+                      t: np.ndarray | None = None) -> np.ndarray:
+    """The angles (N, 3) of rotations R (N, 3, 3) along a motion, from ``start`` (3,): see the module docstring.
+
+    The branch is that of ``start`` throughout: sin θ2 (proper angles) or cos θ2 (Cardan angles)
+    keeps its sign along a motion that does not go exactly through the singularity, where it
+    vanishes.  Each angle takes the turn (2πk) nearest to its value predicted from the previous
+    sample, θ + (t_k − t_{k−1}) θ̇ with θ̇ = J⁻¹ ω when ``omega`` (N, 3) and ``t`` are given (else the
+    previous value itself): so the outputs must be dense enough for that prediction to be within π.
+    """
     from scipy.spatial.transform import Rotation
 
     with warnings.catch_warnings():  # at a singular configuration SciPy says so; the rates are NaN there anyway
         warnings.simplefilter("ignore", UserWarning)
         raw = Rotation.from_matrix(np.asarray(R, dtype=float).reshape(-1, 3, 3)).as_euler(sequence.upper())
     candidates = (raw, _alternative(sequence, raw))
+    proper = sequence[0] == sequence[2]
+
+    def side(angles: np.ndarray) -> float:
+        return float(np.sign(np.sin(angles[1]) if proper else np.cos(angles[1])))
+
     out = np.empty_like(raw)
     previous = np.asarray(start, dtype=float)
+    branch = side(previous)
+    predicted = previous
     for k in range(len(raw)):
-        best, distance = None, np.inf
-        for c in candidates:
-            moved = _nearest_turn(c[k], previous)
-            d = float(np.sum(np.abs(moved - previous)))
-            if d < distance:
-                best, distance = moved, d
-        out[k] = previous = best  # type: ignore[assignment]
+        chosen = [c[k] for c in candidates if branch == 0 or side(c[k]) == branch]
+        if len(chosen) != 1:  # exactly singular (or the start is): the candidate nearest the prediction
+            chosen = sorted((c[k] for c in candidates),
+                            key=lambda c: float(np.sum(np.abs(_nearest_turn(c, predicted) - predicted))))
+        out[k] = previous = _nearest_turn(chosen[0], predicted)
+        if branch == 0:
+            branch = side(previous)
+        predicted = previous
+        if omega is not None and t is not None and k + 1 < len(raw):
+            J = rate_matrix(sequence, previous)
+            if abs(np.linalg.det(J)) >= SINGULAR:
+                predicted = previous + (t[k + 1] - t[k]) * np.linalg.solve(J, omega[k])
     return out
 
 

@@ -192,7 +192,7 @@ def _trajectory(system: FreeBodySystem, p, t, Y, evs, method, steps, nfev, toler
                 start) -> Trajectory:
     Y = np.ascontiguousarray(Y)
     dY = system.rhs(t, Y, p) if len(t) else np.zeros((0, system.width))
-    q, qd, qdd = system.coordinates_of(Y, dY, start)
+    q, qd, qdd = system.coordinates_of(Y, dY, start, np.asarray(t, dtype=float))
     values = system.monitor_values(t, Y, p) if len(t) else np.zeros((0, len(system.monitors)))
     monitors = {name: values[:, k].copy() for k, name in enumerate(system.monitors)}
     drift, scales = _drift(system, monitors) if len(t) else ({}, {})

@@ -211,12 +211,14 @@ class FreeBodySystem:
             out[:, ov + 6:ov + 6 + len(joints)] = qd[:, joints]
         return out
 
-    def coordinates_of(self, Y: np.ndarray, dY: np.ndarray, start: np.ndarray) -> tuple[np.ndarray, ...]:
-        """(q, q̇, q̈) in the model's coordinates along states Y with derivatives dY (N, width).
+    def coordinates_of(self, Y: np.ndarray, dY: np.ndarray, start: np.ndarray, t: np.ndarray | None = None
+                       ) -> tuple[np.ndarray, ...]:
+        """(q, q̇, q̈) in the model's coordinates along states Y with derivatives dY (N, width), at times t.
 
         ``start`` (2n,) gives the branch and turn of the angles at the first row.  Each
-        body's angles come from its quaternion, continuous; their rates and accelerations
-        are NaN where |det J| < `SINGULAR` (within about 1e-9 rad of their singularity).
+        body's angles come from its quaternion, on that branch, each turn followed from row to
+        row (`_euler.euler_from_matrix`); their rates and accelerations are NaN where
+        |det J| < `SINGULAR` (within about 1e-9 rad of their singularity).
         """
         n, N = len(self.coordinates), len(Y)
         q, qd, qdd = (np.empty((N, n)) for _ in range(3))
@@ -225,7 +227,8 @@ class FreeBodySystem:
             k = len(joints)
             q[:, joints], qd[:, joints] = Y[:, oq + 7:oq + 7 + k], Y[:, ov + 6:ov + 6 + k]
             qdd[:, joints] = dY[:, ov + 6:ov + 6 + k]
-            angles = euler_from_matrix(fj.sequence, matrix_from_quaternion(Y[:, oq + 3:oq + 7]), start[ang])
+            angles = euler_from_matrix(fj.sequence, matrix_from_quaternion(Y[:, oq + 3:oq + 7]), start[ang],
+                                       Y[:, ov + 3:ov + 6], t)
             J = rate_matrix(fj.sequence, angles)
             regular = np.abs(np.linalg.det(J)) >= SINGULAR
             rates = np.full((N, 3), np.nan)
