@@ -182,12 +182,12 @@ def test_free_fall_is_mujocos_and_keeps_energy_and_angular_momentum(walker) -> N
     y = walker.state_of(np.concatenate([traj.q[-1], traj.qd[-1]])[None, :])[0]
     e = np.array([traj.extra[f"base_e{k}"][-1] for k in "wxyz"])
     omega = np.array([traj.extra[f"base_omega_{a}"][-1] for a in "xyz"])
-    assert np.max(np.abs(mj.data.qpos[:3] - traj.q[-1, :3])) < 1e-9
-    assert np.max(np.abs(mj.data.qpos[3:7] * np.sign(mj.data.qpos[3] * e[0]) - e)) < 1e-9
-    assert np.max(np.abs(mj.data.qpos[qpos] - traj.q[-1, 6:])) < 1e-9
-    assert np.max(np.abs(mj.data.qvel[order][:3] - y[10:13])) < 1e-8
-    assert np.max(np.abs(mj.data.qvel[order][3:6] - omega)) < 1e-8
-    assert np.max(np.abs(mj.data.qvel[order][6:] - traj.qd[-1, 6:])) < 1e-8
+    assert np.max(np.abs(mj.data.qpos[:3] - traj.q[-1, :3])) < 1e-10
+    assert np.max(np.abs(mj.data.qpos[3:7] * np.sign(mj.data.qpos[3] * e[0]) - e)) < 1e-10
+    assert np.max(np.abs(mj.data.qpos[qpos] - traj.q[-1, 6:])) < 1e-10
+    assert np.max(np.abs(mj.data.qvel[order][:3] - y[10:13])) < 1e-10
+    assert np.max(np.abs(mj.data.qvel[order][3:6] - omega)) < 1e-10
+    assert np.max(np.abs(mj.data.qvel[order][6:] - traj.qd[-1, 6:])) < 1e-10
 
 
 def test_the_courses_equations_in_yaw_pitch_roll_are_mujocos_dynamics(walker) -> None:

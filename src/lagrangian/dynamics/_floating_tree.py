@@ -181,6 +181,12 @@ def floating_trees(model: Model) -> tuple[Kinematics, tuple[FloatingTree, ...], 
             for t in trees:
                 if t is not None:
                     out[t].internal = False
+    for load, _ in tree.gravity:  # a field on some of a tree's masses only has a moment about its centre of mass
+        if load.on:
+            for ft in out:
+                massive = {n.name for n in ft.nodes[1:] if n.axis is None and (n.mass != 0 or n.inertia is not None)}
+                if massive - set(load.on) and massive & set(load.on):
+                    ft.internal = False
     # The loads outside the recursion: generalized forces on joint coordinates only.
     other = generalized_forces(kin, Assumptions(model), only=tree.other_loads)
     free_symbols = {kin.q[position[c]] for c in free_coordinates} | {kin.qd[position[c]] for c in free_coordinates}
