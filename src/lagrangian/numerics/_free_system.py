@@ -294,12 +294,12 @@ class FreeBodySystem:
         return (M[0], F[0]) if single else (M, F)
 
     def monitor_values(self, t, y, p: np.ndarray) -> np.ndarray:
-        return self._eval(t, y, p, "lg_eval_monitors", len(self.monitors))
+        return self._evaluate(t, y, p, "lg_eval_monitors", len(self.monitors))
 
     def event_values(self, t, y, p: np.ndarray) -> np.ndarray:
-        return self._eval(t, y, p, "lg_eval_events", len(self.events))
+        return self._evaluate(t, y, p, "lg_eval_events", len(self.events))
 
-    def _eval(self, t, y, p, name: str, width: int) -> np.ndarray:
+    def _evaluate(self, t, y, p, name: str, width: int) -> np.ndarray:
         T, Y, single = self._batch(t, y)
         out = np.zeros((len(Y), max(width, 1)))
         if width:
