@@ -40,6 +40,8 @@ DOMAINS: dict[str, dict[str, tuple[float, float]]] = {
     # The exact Coulomb law T = −f N v_s/|v_s| is set-valued at v_s = 0 (sticking is the stuck
     # model's business, tests/dynamics/test_stick_slip.py): sliding states only.
     "block_on_incline.toml": {"x_dot": (0.05, 3.0)},
+    # The course's equations of a free body, in its Euler angles: regular away from θ = 0 and π.
+    "tumbling_body.toml": {"theta": (0.3, 2.8)},
 }
 
 

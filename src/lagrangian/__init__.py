@@ -40,8 +40,8 @@ _WHERE = {
     "Model": ".model.spec",
     "lagrange_top": ".model.zoo",
     **dict.fromkeys(("Report", "report", "export"), ".output"),
-    **dict.fromkeys(("CompiledSystem", "EventSpec", "InputTable", "Sensitivities", "Trajectory", "compile_system", "ensemble",
-                     "grid", "open_ensemble", "save_trajectory", "simulate"), ".numerics"),
+    **dict.fromkeys(("CompiledSystem", "EventSpec", "FreeBodySystem", "InputTable", "Sensitivities", "Trajectory", "compile_free_system",
+                     "compile_system", "ensemble", "grid", "open_ensemble", "save_trajectory", "simulate"), ".numerics"),
 }
 
 if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
@@ -57,8 +57,8 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from .model import ModelBuilder, load_model, load_urdf, parse_model
     from .model.spec import Model
     from .model.zoo import lagrange_top
-    from .numerics import (CompiledSystem, EventSpec, InputTable, Sensitivities, Trajectory, compile_system, ensemble, grid,
-                           open_ensemble, save_trajectory, simulate)
+    from .numerics import (CompiledSystem, EventSpec, FreeBodySystem, InputTable, Sensitivities, Trajectory, compile_free_system,
+                           compile_system, ensemble, grid, open_ensemble, save_trajectory, simulate)
     from .output import Report, export, report
 
 __version__ = "0.1.0"
@@ -102,6 +102,8 @@ __all__ = [
     "ControlError",
     "compile_system",
     "CompiledSystem",
+    "compile_free_system",
+    "FreeBodySystem",
     "simulate",
     "Sensitivities",
     "identify",

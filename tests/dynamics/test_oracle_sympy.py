@@ -340,7 +340,22 @@ def whipple_bicycle() -> Oracle:
     return q, sum(body.kinetic_energy(N) for body in bodies), forces, N
 
 
+def tumbling_body() -> Oracle:
+    # A free rigid body: G at (x, y, z), the course's Euler angles ψ, θ, φ about z0, x, z, moments A, B, C.
+    m, g, A, B, C = _params("m g A B C")
+    x, y, z, psi, theta, phi = me.dynamicsymbols("x y z psi theta phi")
+    N = me.ReferenceFrame("N")
+    R = N.orientnew("R", "Body", (psi, theta, phi), "ZXZ")
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    G = O.locatenew("G", x * N.x + y * N.y + z * N.z)
+    G.set_vel(N, G.pos_from(O).dt(N))
+    S = me.RigidBody("S", G, R, m, (me.inertia(R, A, B, C), G))
+    return [x, y, z, psi, theta, phi], S.kinetic_energy(N), [(G, -m * g * N.z)], N
+
+
 ORACLES: dict[str, Callable[[], Oracle]] = {
+    "tumbling_body.toml": tumbling_body,
     "pendulum_tension.toml": pendulum_tension,
     "rolling_disk_incline.toml": rolling_disk_incline,
     "rolling_coin.toml": rolling_coin,

@@ -63,12 +63,26 @@ CASES = {
                           JOINT.format(name="j3", parent="a", child="c"),
                           JOINT.format(name="j4", parent="b", child="c")),
                     '<joint name="j4"', "closed loop"),
-    "floating joint": (robot('<link name="base"/>', LINK.format(name="a"),
-                             '<joint name="free" type="floating"><parent link="base"/><child link="a"/></joint>'),
-                       '<joint name="free"', "floating"),
-    "planar joint": (robot('<link name="base"/>', LINK.format(name="a"),
-                           '<joint name="flat" type="planar"><parent link="base"/><child link="a"/></joint>'),
-                     '<joint name="flat"', "planar"),
+    "floating joint below a moving link": (
+        robot('<link name="base"/>', LINK.format(name="a"), LINK.format(name="b"),
+              JOINT.format(name="j1", parent="base", child="a"),
+              '<joint name="free" type="floating"><parent link="a"/><child link="b"/></joint>'),
+        '<joint name="free"', "its parent link `a` moves"),
+    "floating link without mass": (
+        robot('<link name="base"/>', '<link name="a"/>', LINK.format(name="b"),
+              '<joint name="free" type="floating"><parent link="base"/><child link="a"/></joint>',
+              JOINT.format(name="j1", parent="a", child="b")),
+        '<joint name="free"', "carries no mass"),
+    "free link with a zero inertia": (
+        robot('<link name="base"/>', '<link name="a"><inertial><mass value="1"/><inertia ixx="0" ixy="0" ixz="0" '
+              'iyy="0" iyz="0" izz="0"/></inertial></link>',
+              '<joint name="free" type="floating"><parent link="base"/><child link="a"/></joint>'),
+        '<joint name="free"', "its inertia at G is zero"),
+    "mimic of a planar joint": (
+        robot('<link name="base"/>', LINK.format(name="a"), LINK.format(name="b"),
+              '<joint name="flat" type="planar"><parent link="base"/><child link="a"/></joint>',
+              '<joint name="j2" type="revolute"><parent link="a"/><child link="b"/>\n<mimic joint="flat"/></joint>'),
+        '<mimic joint="flat"', "follow the planar joint `flat`"),
     "unknown joint type": (robot('<link name="base"/>', LINK.format(name="a"),
                                  '<joint name="odd" type="ball"><parent link="base"/><child link="a"/></joint>'),
                            '<joint name="odd"', "type `ball`"),

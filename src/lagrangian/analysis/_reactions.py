@@ -351,8 +351,10 @@ def check_trajectory(source: Verification | EquationsOfMotion, trajectory: Traje
     """The Newton–Euler theorems evaluated along ``trajectory`` (residuals ≈ rounding, ≤ 1e-9 relative).
 
     Each residual is divided by the sum of the sizes of the terms it balances (|m γ||∂V| +
-    |δ||∂Ω| + |F||∂V| + |M||∂Ω| for a projection), so it measures the cancellation, not
-    the motion's scale.  Vectors are evaluated in R0 components from one compiled function.
+    (|δ| + |Ω||σ|)|∂Ω| + |F||∂V| + |M||∂Ω| for a projection), so it measures the cancellation, not
+    the motion's scale: |Ω||σ| bounds the gyroscopic part Ω ∧ σ of δ = dσ/dt, whose two parts
+    cancel for a body turning freely (δ = 0 = M), where |δ| alone would measure rounding by
+    rounding.  Vectors are evaluated in R0 components from one compiled function.
     """
     v = source if isinstance(source, Verification) else verify(source)
     _check_coordinates(v, trajectory)
@@ -360,8 +362,9 @@ def check_trajectory(source: Verification | EquationsOfMotion, trajectory: Traje
     model = kin.model
     n = kin.n
     exprs: list[se.Basic] = []
-    for th in v.theorems:  # per element: m γ, F, δ_P, M_P (R0 components)
-        for vec in (th.mass_acceleration, th.force, th.dynamic_moment, th.moment):
+    for th in v.theorems:  # per element: m γ, F, δ_P, M_P, σ_P and Ω (R0 components)
+        omega = kin.omega(model.body(th.name).frame) if th.kind == "body" else Vector.zero()
+        for vec in (th.mass_acceleration, th.force, th.dynamic_moment, th.moment, th.angular_momentum, omega):
             exprs += _r0(kin, vec)
     for th in v.theorems:  # per element and coordinate: ∂V(P)/∂q̇_i, ∂Ω/∂q̇_i
         dw = kin.partial_omegas(model.body(th.name).frame) if th.kind == "body" else (Vector.zero(),) * n
@@ -376,19 +379,20 @@ def check_trajectory(source: Verification | EquationsOfMotion, trajectory: Traje
         exprs += [c for w in r.free_axes for c in _r0(kin, w)]
     values = _Numeric(eom, trajectory.parameters, exprs, _varying_inputs(trajectory, eom))(_states(trajectory, eom))
     N, E = len(values), len(v.theorems)
-    element_vectors = values[:, :12 * E].reshape(N, E, 4, 3)
-    at = 12 * E
+    element_vectors = values[:, :18 * E].reshape(N, E, 6, 3)
+    at = 18 * E
     partial = values[:, at:at + 6 * E * n].reshape(N, E, n, 2, 3)
     at += 6 * E * n
     extra = values[:, at:at + n]
     at += n
-    m_gamma, force, delta, moment = (element_vectors[:, :, k, :] for k in range(4))
+    m_gamma, force, delta, moment, sigma, omega = (element_vectors[:, :, k, :] for k in range(6))
     dv, dw = partial[:, :, :, 0, :], partial[:, :, :, 1, :]
     dyn = np.einsum("nej,neij->ni", m_gamma, dv) + np.einsum("nej,neij->ni", delta, dw)
     given = np.einsum("nej,neij->ni", force, dv) + np.einsum("nej,neij->ni", moment, dw) + extra
     norm = np.linalg.norm
     scale = (np.einsum("ne,nei->ni", norm(m_gamma, axis=2) + norm(force, axis=2), norm(dv, axis=3))
-             + np.einsum("ne,nei->ni", norm(delta, axis=2) + norm(moment, axis=2), norm(dw, axis=3))
+             + np.einsum("ne,nei->ni", norm(delta, axis=2) + norm(moment, axis=2)
+                         + norm(omega, axis=2) * norm(sigma, axis=2), norm(dw, axis=3))
              + np.abs(extra))
     projections = np.abs(dyn - given) / np.maximum(scale, np.finfo(float).tiny)
     histories, resultant, moment_res = {}, {}, {}

@@ -136,8 +136,9 @@ def run(args: argparse.Namespace) -> str:
     eom = derive(model)
     events = [EventSpec(text, text) for text in args.event]
     events += [EventSpec(f"stop: {text}", text, terminal=True) for text in args.stop_when]
-    # simulate compiles events in, and sends constrained models to its DAE path
-    system = eom if events or eom.constraints else compile_system(eom, inputs=inputs)
+    # simulate compiles events in, sends constrained models to its DAE path and free bodies to their quaternions
+    free = any(b.free for b in model.bodies)
+    system = eom if events or eom.constraints or free else compile_system(eom, inputs=inputs)
     progress = sys.stderr.isatty() if args.progress is None else args.progress
     start = time.perf_counter()
     try:
@@ -161,7 +162,7 @@ def run(args: argparse.Namespace) -> str:
     # What the reactions are for: the course's pin and contact reactions (R_O of the top). A
     # robot's only one is the ground's wrench on the whole arm, whose expanded Newton–Euler
     # formula grows steeply with the joints (seconds at 12): asked for, not by default.
-    reactions = args.reactions if args.reactions is not None else eom.formulation != "recursive"
+    reactions = args.reactions if args.reactions is not None else eom.formulation != "recursive" and not free
     if reactions:
         traj = _with_reactions(traj, eom)
     lines = [
@@ -176,7 +177,7 @@ def run(args: argparse.Namespace) -> str:
     if constraint:
         lines.append("constraint drift (max residual): "
                      + ", ".join(f"{name} {value:.1e}" for name, value in constraint.items()))
-    if args.reactions is None and not reactions:
+    if args.reactions is None and not reactions and not free:
         lines.append("reactions: not computed for a kinematic tree (the ground's wrench on it); --reactions adds "
                      "them")
     lines += [f"warning: {w}" for w in traj.warnings]

@@ -228,7 +228,8 @@ def _shared_slides(nodes, q, omega, grav, to_child, to_parent, couples, composit
 
 
 def articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, couples, tau,
-                              composite, q=()) -> tuple[tuple[se.Basic, ...], tuple[tuple[se.Basic, se.Basic], ...], int] | None:
+                              composite, q=(), floating=None
+                              ) -> tuple[tuple[se.Basic, ...], tuple[tuple[se.Basic, se.Basic], ...], int] | None:
     """q̈, the pivots (D_j, M_jj) and the position of the first intermediate of the forward pass, or None.
 
     None where the articulated-body algorithm does not apply (see below).
@@ -243,6 +244,10 @@ def articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, co
     couples : each node's couple (torques, joint dampers), in its basis.
     tau : Q_j of the loads outside the recursion.
     composite : (mass, first moment, inertia about the origin) of each node's subtree (the CRBA's).
+    floating : None for a root fixed in R0 (A_0 = 0).  For a free root (a floating base,
+        `_floating`), a function of the root's articulated inertia I^A_0 (a `_Spatial`) and bias
+        force (p_ω, p_v) that returns its acceleration A_0 = −(I^A_0)⁻¹ p^A_0 = (ω̇, a_O); the
+        forward pass starts from it (Featherstone 2008, §9.4).
 
     It applies when every coordinate drives exactly one node (a joint of its own); a coordinate
     shared by several nodes (absolute angles, coupled joints) leaves M q̈ = F to the solver.
@@ -355,13 +360,15 @@ def articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, co
         bias_w[p] = _add3(bias_w[p], _add3(up(pw), _cross(d, fv)))
 
     # -- forward: accelerations and q̈ -------------------------------------------------------------------
+    acc_w: list[Vec] = [(_ZERO,) * 3] * count
+    acc_v: list[Vec] = [(_ZERO,) * 3] * count
+    if floating is not None:
+        acc_w[0], acc_v[0] = floating(inertia[0], bias_w[0], bias_v[0])
     has_dofs_below = [bool(dofs[k]) for k in range(count)]
     for k in range(count - 1, 0, -1):
         if has_dofs_below[k]:
             has_dofs_below[nodes[k].parent] = True  # type: ignore[index]
     start = len(w.items)
-    acc_w: list[Vec] = [(_ZERO,) * 3] * count
-    acc_v: list[Vec] = [(_ZERO,) * 3] * count
     qdd: list[se.Basic] = [_ZERO] * n
     for k, node in enumerate(nodes):
         if node.parent is None or not has_dofs_below[k]:

@@ -144,6 +144,8 @@ def _find_potential(kin: Kinematics, Q: tuple[se.Basic, ...]) -> se.Basic | None
         return None
     if all(x == 0 for x in Q):
         return se.Integer(0)
+    if not free & set(kin.q):  # constant Q_i (a robot's joint torques): U = −Σ Q_i q_i, without SymPy's integrator
+        return sum_of([-x * q for x, q in zip(Q, kin.q) if x != 0])
     n = kin.n
     curl = [Q[i].diff(kin.q[j]) - Q[j].diff(kin.q[i]) for i in range(n) for j in range(i + 1, n)]
     if not all(are_zero(curl)):

@@ -21,6 +21,7 @@ from ._expr import CONSTANTS, FUNCTIONS, ExpressionError, parse_expression
 from ._limits import NotFinite, excerpt, real_value
 from ._assumptions import read_range, read_sign
 from ._constraints import build_constraints
+from ._free import check_free_bodies
 from ._friction import FRICTION_KINDS, build_friction_load
 from ._controls import build_controls
 from ._operating_point import build_operating_point, check_inputs_used
@@ -194,6 +195,7 @@ class Assembler:
         )
         self.check_coordinates_used(model)
         check_inputs_used(model)
+        check_free_bodies(model)
         return model
 
     def check_names(self) -> None:
@@ -487,7 +489,11 @@ class Assembler:
                                  key="fixed_point")
             if not given:
                 self.check_mass_not_needed(raw, center, inertia)
-            out.append(Body(raw.name, d["frame"], mass, center, inertia, fixed, mass_given=given))
+            free = d.get("free", False)
+            if not isinstance(free, bool):
+                raise self.error(raw, f"`free` of body `{raw.name}` must be true or false, not `{free}`",
+                                 symbol=raw.name, key="free", fix="write free = true (without quotes)")
+            out.append(Body(raw.name, d["frame"], mass, center, inertia, fixed, mass_given=given, free=free))
             self._points.setdefault(raw.name, Point(raw.name, center))  # its centre, for later `from`
         return tuple(out)
 

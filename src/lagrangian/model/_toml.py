@@ -7,7 +7,7 @@ The file's tables map onto the course's vocabulary::
     [coordinates]  theta = { initial = 0.5, rate = 0.0, momentum = "K" }
     [frames]       R1 = { from = "R0", rotation = ["psi", "z"], axes = ["u", "v", "z0"] }
     [points]       A = "l*R1.x"   or   B = { from = "A", position = "l*R2.x" }
-    [bodies.S]     frame, mass, center, fixed_point, inertia = { at, frame, diagonal | matrix }
+    [bodies.S]     frame, mass, center, fixed_point, free, inertia = { at, frame, diagonal | matrix }
     [particles.P]  mass, position
     [loads]        weight = { gravity = "-g*R0.z" }, push = { force = "...", at = "P" }, ...
     [controls]     F = "-k1*x - k2*x_dot"   (a law per declared input, run by `simulate`)
@@ -342,13 +342,13 @@ class _Reader:
                     location=self.located("points", name, value, "position"))
         for name, value in self.table("bodies").items():
             v = self.entry("bodies", name, value,
-                           {"frame", "mass", "center", "center_from", "inertia", "fixed_point"}, "frame")
+                           {"frame", "mass", "center", "center_from", "inertia", "fixed_point", "free"}, "frame")
             for key in ("frame", "center"):  # `mass` may be left out where it cannot enter (`Assembler.bodies`)
                 if key not in v:
                     raise self.fail(("bodies", name), f"body `{name}` has no `{key}`", symbol=name,
                                     fix=f"add `{key} = ...` to [bodies.{name}]")
             b.body(name, frame=v["frame"], mass=v.get("mass"), center=v["center"], center_from=v.get("center_from", "O"),
-                   inertia=v.get("inertia"), fixed_point=v.get("fixed_point"),
+                   inertia=v.get("inertia"), fixed_point=v.get("fixed_point"), free=v.get("free", False),
                    location=self.located("bodies", name, value, "frame"))
         for name, value in self.table("particles").items():
             v = self.entry("particles", name, value, {"mass", "position", "from"}, "position")

@@ -35,8 +35,8 @@ __all__ = ["UrdfInertial", "UrdfLink", "UrdfLimits", "UrdfMimic", "UrdfJoint", "
 #: Largest URDF accepted, in bytes: the largest robot of example-robot-data (TIAGo dual) is 210 kB,
 #: and a 5 MB file of tens of thousands of links already takes seconds to read.
 MAX_BYTES = 5 * 2**20
-#: Joint types that become the model's joints; floating and planar ones are refused.
-SUPPORTED_JOINTS = ("revolute", "continuous", "prismatic", "fixed")
+#: Joint types that become the model's joints (a floating joint makes its child link a free body).
+SUPPORTED_JOINTS = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 #: A plain decimal number (Python's float() also reads "1_0", "infinity" and other digits).
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?\Z", re.ASCII)
 #: Relative tolerance of the physical checks of an inertia matrix (rounding of the file's digits).
@@ -315,16 +315,10 @@ class _Reader:
         name = self.name(element, "joint")
         owner = f"joint `{name}`"
         kind = element.attrib.get("type")
-        if kind in ("floating", "planar"):
-            free = "6" if kind == "floating" else "3"
-            raise self.fail(element, f"{owner} is {kind} ({free} degrees of freedom): floating and planar joints "
-                            "are not supported", symbol=name,
-                            fix="fix the base to the world (make the joint `fixed`, or remove it and its "
-                                "world link), or describe the free body with a TOML model")
         if kind not in SUPPORTED_JOINTS:
             raise self.fail(element, f"{owner} has type `{kind}`, which is not a URDF joint type" if kind else
                             f"{owner} has no `type`", symbol=name,
-                            fix="use revolute, continuous, prismatic or fixed")
+                            fix="use revolute, continuous, prismatic, fixed, floating or planar")
         ends = {}
         for end in ("parent", "child"):
             el = element.find(end)
@@ -483,6 +477,9 @@ class _Reader:
                        if (joint.type == "prismatic") != (led.type == "prismatic") else None)
             if joint.type == "fixed":
                 problem = "is fixed and cannot follow another joint"
+            elif led is not None and {"floating", "planar"} & {joint.type, led.type}:
+                problem = (f"makes the {joint.type} joint `{joint.name}` follow the {led.type} joint `{led.name}`: "
+                           "only revolute, continuous and prismatic joints follow each other")
             if problem:
                 raise self.fail(mimic.line, f"the <mimic> of joint `{joint.name}` {problem}", symbol=mimic.joint,
                                 fix="name a moving joint of the same kind that follows no other joint")

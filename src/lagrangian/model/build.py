@@ -110,16 +110,20 @@ class ModelBuilder:
         self._add("point", name, location, position=position, relative_to=relative_to)
 
     def body(self, name: str, *, frame: str, mass: Any = None, center: Any, inertia: Mapping[str, Any] | None,
-             center_from: str = ORIGIN, fixed_point: str | None = None, location: Location | None = None) -> None:
+             center_from: str = ORIGIN, fixed_point: str | None = None, free: bool = False,
+             location: Location | None = None) -> None:
         """Declare a rigid body fixed to ``frame``.
 
         ``inertia`` is ``{"at": point or "G", "frame": name, "diagonal": [I1, I2, I3]}`` or
         with ``"matrix": [[...], [...], [...]]`` instead of ``"diagonal"``.  ``mass`` may be
         left out (None) for a body whose centre of mass G is fixed (a pulley on a fixed axle):
         it then enters neither T nor the generalized forces; the reactions ask for it.
+        ``free=True`` declares a free body (six degrees of freedom): ``frame`` turns from R0 by three
+        Euler angles and its origin moves along R0's axes by three coordinates
+        (`lagrangian.model._free`); `simulate` then integrates its orientation as a unit quaternion.
         """
         self._add("body", name, location, frame=frame, mass=mass, center=center, center_from=center_from,
-                  inertia=inertia, fixed_point=fixed_point)
+                  inertia=inertia, fixed_point=fixed_point, free=free)
 
     def particle(self, name: str, *, mass: Any, position: Any, relative_to: str = ORIGIN,
                  location: Location | None = None) -> None:

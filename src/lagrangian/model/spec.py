@@ -228,6 +228,11 @@ class Body:
     (a pulley on a fixed axle): ``mass`` is then 0, exact for everything the Lagrange
     equations use — T = ½ Ω·Π_G·Ω and m g·∂OG/∂q_i = 0 whatever m — while the reactions,
     which need it, refuse to be computed (`lagrangian.analysis.reactions`).
+
+    ``free`` marks a body declared free (six degrees of freedom: three translations of its
+    frame's origin along R0's axes and three Euler angles, checked by `lagrangian.model._free`):
+    the equations keep those coordinates, and `simulate` integrates its orientation as a unit
+    quaternion, which has no singular configuration (`lagrangian.numerics._free_simulate`).
     """
 
     name: str
@@ -237,6 +242,7 @@ class Body:
     inertia: Inertia
     fixed_point: str | None = None
     mass_given: bool = True
+    free: bool = False
 
 
 @dataclass(frozen=True, slots=True)

@@ -26,6 +26,15 @@ T, U, Q_i and L(q_i) are derived for it as for any other system:
   Pinocchio's ``Inertia.toDynamicParameters`` and of robot identification (Khalil & Dombre,
   *Modeling, Identification and Control of Robots*, 2002, §9.3), in which the joint torques are
   linear (`lagrangian.identify`).
+- a ``floating`` joint (six degrees of freedom) makes its child link a free body
+  (`lagrangian.model._free`): the coordinates ``<joint>_x, _y, _z`` place its origin along R0's
+  axes and ``<joint>_yaw, _pitch, _roll`` turn it (URDF's rpy convention, R = Rz·Ry·Rx), starting
+  at the joint's origin; ``load_urdf(path, floating_base=True)`` does the same for the root
+  link (Pinocchio's ``root_joint=JointModelFreeFlyer()``), so that a legged robot, whose file
+  has no joint to the world, flies free; `simulate` integrates such a body on a unit quaternion;
+- a ``planar`` joint (three degrees of freedom) moves its child link in the plane normal to its
+  axis: ``<joint>_x``, ``<joint>_y`` along the joint frame's first two axes, then turns it by
+  ``<joint>_theta`` about the axis (MuJoCo's slide, slide, hinge).
 
 Reference: URDF XML specification, http://wiki.ros.org/urdf/XML; the composition of
 inertias: the seed's course (théorème de Huygens), Featherstone, *Rigid Body Dynamics
@@ -87,7 +96,8 @@ def read_urdf(path: str | Path) -> UrdfRobot:
     return read_urdf_file(path)
 
 
-def load_urdf(path: str | Path, *, damping: bool = True, inertial_parameters: bool = False) -> Model:
+def load_urdf(path: str | Path, *, damping: bool = True, inertial_parameters: bool = False,
+              floating_base: bool = False) -> Model:
     """Read the URDF file at ``path`` into a `Model` (see the module docstring).
 
     ``damping=False`` leaves out the joints' ``<dynamics damping>`` (Pinocchio's ``aba``
@@ -95,14 +105,17 @@ def load_urdf(path: str | Path, *, damping: bool = True, inertial_parameters: bo
     parameters (`INERTIAL_PARAMETERS`: m, m c, I_O in the body's frame, about its origin) as
     parameters named ``m_<body>``, ``mx_<body>``, ..., ``Izz_<body>`` (`inertial_parameter_names`),
     valued from the file, instead of numbers: the motion is the same, and the joint torques are
-    linear in them (identification).  What is skipped (transmissions, dry friction,
-    ``<gazebo>``...) is said by a `UrdfNote` warning each.
+    linear in them (identification).  ``floating_base=True`` makes the root link a free body (six
+    coordinates ``base_x, base_y, base_z, base_yaw, base_pitch, base_roll``), as a floating joint
+    from the world would.  What is skipped (transmissions, dry friction, ``<gazebo>``...) is said
+    by a `UrdfNote` warning each.
 
     Raises
     ------
     ModelError
         Naming the file, line and element of the first problem: malformed XML, an
-        entity declaration, a floating or planar joint, a cycle, a bad mass, inertia or axis.
+        entity declaration, a cycle, a bad mass, inertia or axis, a floating joint below a
+        moving link or carrying no mass.
 
     Examples
     --------
@@ -117,14 +130,15 @@ def load_urdf(path: str | Path, *, damping: bool = True, inertial_parameters: bo
     >>> [c.name for c in model.coordinates], model.inputs
     (['hinge'], ('tau_hinge',))
     """
-    return _Translation(_warn(read_urdf_file(path)), damping=damping, inertial=inertial_parameters).model()
+    return _Translation(_warn(read_urdf_file(path)), damping=damping, inertial=inertial_parameters,
+                        floating_base=floating_base).model()
 
 
 def parse_urdf(text: str | bytes, *, source: str | None = None, damping: bool = True,
-               inertial_parameters: bool = False) -> Model:
+               inertial_parameters: bool = False, floating_base: bool = False) -> Model:
     """`load_urdf` of URDF ``text`` (``source`` names it in error messages)."""
     return _Translation(_warn(read_urdf_text(text, source=source)), damping=damping,
-                        inertial=inertial_parameters).model()
+                        inertial=inertial_parameters, floating_base=floating_base).model()
 
 
 def inertial_parameter_names(model: Model) -> dict[str, tuple[str, ...]]:
@@ -174,6 +188,14 @@ def _exact_angle(angle: float) -> se.Basic | None:
         eighth = (eighth + 3) % 8 - 3  # in (−π, π]: −3 ... 4
         return None if eighth == 0 else se.pi * se.Rational(eighth, 4)
     return _number(angle)
+
+
+def _yaw_pitch_roll(c: np.ndarray) -> tuple[float, float, float]:
+    """(yaw, pitch, roll) with c = Rz(yaw) Ry(pitch) Rx(roll) (URDF's rpy read backwards), pitch in [−π/2, π/2]."""
+    pitch = math.asin(max(-1.0, min(1.0, -c[2, 0])))
+    if math.cos(pitch) > 1e-9:
+        return math.atan2(c[1, 0], c[0, 0]), pitch, math.atan2(c[2, 1], c[2, 2])
+    return math.atan2(-c[0, 1], c[1, 1]), pitch, 0.0
 
 
 def rotation_steps(c: np.ndarray) -> list[tuple[se.Basic, str]]:
@@ -250,6 +272,7 @@ class _Carrier:
     body: str | None = None
     line: int | None = None
     masses: list[tuple[float, np.ndarray, np.ndarray]] = field(default_factory=list)  # (m, OG, I_G) in `frame`
+    free: bool = False  # carried by a floating joint: a free body
 
 
 class _Names:
@@ -273,13 +296,16 @@ class _Names:
 class _Translation:
     """Declares the robot on a `ModelBuilder`, joint by joint from the root (module docstring)."""
 
-    def __init__(self, robot: UrdfRobot, *, damping: bool, inertial: bool = False) -> None:
+    def __init__(self, robot: UrdfRobot, *, damping: bool, inertial: bool = False,
+                 floating_base: bool = False) -> None:
         self.robot = robot
         self.damping = damping
         self.inertial = inertial
+        self.floating_base = floating_base
         self.names = _Names()
         self.b = ModelBuilder(robot.name or "robot", self.description(), source=robot.source)
-        self.coordinate: dict[str, str] = {}  # independent joint -> coordinate name
+        self.coordinate: dict[str, str] = {}  # independent joint -> coordinate name (its first, for planar)
+        self.coordinates: dict[str, list[str]] = {}  # independent joint -> its coordinate names
         self.value: dict[str, se.Basic] = {}  # moving joint -> its value q_j, or the mimic's expression
         self.rate: dict[str, se.Basic] = {}  # moving joint -> its rate
         self.carriers: list[_Carrier] = []
@@ -312,10 +338,15 @@ class _Translation:
         b.parameter("g", GRAVITY, unit="m/s^2", description=Text({
             "fr": "accélération de la pesanteur, selon −z du corps de base",
             "en": "gravitational acceleration, along -z of the root link"}))
+        if self.floating_base:
+            self.free_coordinates("base", None, self.robot.root)
         for joint in order:  # coordinates, rates and inputs first: the mimics refer to them
-            if joint.moves and joint.mimic is None:
+            if joint.type in ("floating", "planar"):
+                self.free_coordinates(joint.name, joint, joint.child)
+            elif joint.moves and joint.mimic is None:
                 q = self.names.take(joint.name, suffixes=("_dot", "_ddot"))
                 self.coordinate[joint.name] = q
+                self.coordinates[joint.name] = [q]
                 unit = "m" if joint.type == "prismatic" else "rad"
                 b.coordinate(q, initial=0.0, rate=0.0, unit=unit, description=self.joint_text(joint),
                              location=self.where(joint.line))
@@ -328,6 +359,8 @@ class _Translation:
                 self.rate[joint.name] = _number(m.multiplier) * self.rate[m.joint]
         root = _Carrier(GALILEAN_FRAME, ORIGIN)
         self.pose[robot.root] = (root, np.eye(3), np.zeros(3))
+        if self.floating_base:
+            self.pose[robot.root] = (self.free_carrier(robot.root, None), np.eye(3), np.zeros(3))
         for joint in order:
             self.joint(joint)
         self.bodies()
@@ -398,6 +431,92 @@ class _Translation:
                         fix=f"give `{joint.child}` (or a link after it) an <inertial> with its mass and inertia, "
                             "or make the joint fixed")
 
+    # -- free and planar joints --------------------------------------------------------------------
+    #: The coordinates of a floating joint (and of ``floating_base``): position along R0, yaw-pitch-roll.
+    _FREE = (("x", "m"), ("y", "m"), ("z", "m"), ("yaw", "rad"), ("pitch", "rad"), ("roll", "rad"))
+    _PLANAR = (("x", "m"), ("y", "m"), ("theta", "rad"))
+
+    def free_coordinates(self, prefix: str, joint: UrdfJoint | None, child: str) -> None:
+        """Declare the coordinates of a floating (or planar) joint, or of the root made free.
+
+        A floating joint's coordinates start at its placement in R0 (through the fixed joints
+        above it), so that the child starts where the file puts it.
+        """
+        kind = joint.type if joint is not None else "floating"
+        start = [0.0] * 6
+        if kind == "floating" and joint is not None:
+            r, p = self.fixed_placement(joint)
+            start = [*p, *_yaw_pitch_roll(r)]
+        names = []
+        for k, (suffix, unit) in enumerate(self._FREE if kind == "floating" else self._PLANAR):
+            q = self.names.take(f"{prefix}_{suffix}", suffixes=("_dot", "_ddot"))
+            names.append(q)
+            what = {"x": "x", "y": "y", "z": "z", "theta": "θ", "yaw": "yaw", "pitch": "pitch", "roll": "roll"}[suffix]
+            base = f"`{joint.name}`" if joint is not None else "of the base"
+            text = Text({"fr": f"liaison {_KIND_FR[kind]} {base} ({child}) : {what}",
+                         "en": f"{kind} joint {base} ({child}): {what}"})
+            self.b.coordinate(q, initial=float(start[k]), rate=0.0, unit=unit, description=text,
+                              location=self.where(joint.line if joint is not None else None))
+        self.coordinates[joint.name if joint is not None else ""] = names
+        if joint is not None:
+            self.coordinate[joint.name] = names[0]
+
+    def fixed_placement(self, joint: UrdfJoint) -> tuple[np.ndarray, np.ndarray]:
+        """(R, p) of ``joint``'s frame in R0, through the fixed joints from the root; refused below a moving one."""
+        parent_joint = {j.child: j for j in self.robot.joints.values()}
+        chain, link = [joint], joint.parent
+        while link in parent_joint:
+            above = parent_joint[link]
+            if above.moves:
+                raise ModelError(f"joint `{joint.name}` is floating, but its parent link `{joint.parent}` moves (with "
+                                 f"joint `{above.name}`): a free body hangs from the world, not from a moving link",
+                                 file=self.robot.source, line=joint.line, symbol=joint.name,
+                                 fix="make the floating joint's parent the root link (the world), or fix the joints "
+                                     "above it")
+            chain.append(above)
+            link = above.parent
+        r, p = np.eye(3), np.zeros(3)
+        for j in reversed(chain):
+            p = p + r @ np.array(j.xyz)
+            r = r @ rpy_matrix(j.rpy)
+        return r, _clean(p, max(1e-3, float(np.max(np.abs(p)))))
+
+    def free_carrier(self, child: str, joint: UrdfJoint | None) -> _Carrier:
+        """The free body of a floating joint: its origin at x R0.x + y R0.y + z R0.z, turned by yaw, pitch, roll."""
+        names = self.coordinates[joint.name if joint is not None else ""]
+        line = joint.line if joint is not None else None
+        where = self.where(line)
+        x, y, z, yaw, pitch, roll = (se.Symbol(q) for q in names)
+        point = self.names.take(child, "O_")
+        self.b.point(point, Vector({GALILEAN_FRAME: (x, y, z)}), location=where)
+        frame = self.names.take(child, "R_")
+        self.b.frame(frame, GALILEAN_FRAME, rotation=[(yaw, "z"), (pitch, "y"), (roll, "x")], location=where)
+        carrier = _Carrier(frame, point, self.names.take(child), line, free=True)
+        self.carriers.append(carrier)
+        return carrier
+
+    def planar(self, joint: UrdfJoint, carrier: _Carrier, r_joint: np.ndarray, p_joint: np.ndarray) -> None:
+        """A planar joint: x, y along the joint frame's first two axes (z along the axis), then θ about it."""
+        where = self.where(joint.line)
+        x, y, theta = (se.Symbol(q) for q in self.coordinates[joint.name])
+        align = _axis_to(np.array(joint.axis))
+        base = carrier.point
+        if np.any(np.abs(p_joint) > 0):
+            base = self.names.take(joint.child, "O_")
+            self.b.point(base, _vector(carrier.frame, p_joint), relative_to=carrier.point, location=where)
+        steps = rotation_steps(_clean(r_joint @ align, 1.0))
+        plane = carrier.frame
+        if steps:
+            plane = self.names.take(joint.child, "P_")
+            self.b.frame(plane, carrier.frame, rotation=steps, location=where)
+        slider = self.names.take(joint.child, "S_")
+        self.b.point(slider, Vector({plane: (x, y, se.Integer(0))}), relative_to=base, location=where)
+        frame = self.names.take(joint.child, "R_")
+        self.b.frame(frame, plane, rotation=[(theta, "z")], location=where)
+        new = _Carrier(frame, slider, self.names.take(joint.child), joint.line)
+        self.pose[joint.child] = (new, align.T, np.zeros(3))
+        self.carriers.append(new)
+
     # -- geometry ----------------------------------------------------------------------------------
     def joint(self, joint: UrdfJoint) -> None:
         carrier, r_parent, p_parent = self.pose[joint.parent]
@@ -405,6 +524,12 @@ class _Translation:
         p_joint = _clean(p_parent + r_parent @ np.array(joint.xyz), max(1e-3, float(np.max(np.abs(p_parent)))))
         if not joint.moves:
             self.pose[joint.child] = (carrier, r_joint, p_joint)
+            return
+        if joint.type == "floating":  # its parent is fixed in R0 (checked by `fixed_placement`)
+            self.pose[joint.child] = (self.free_carrier(joint.child, joint), np.eye(3), np.zeros(3))
+            return
+        if joint.type == "planar":
+            self.planar(joint, carrier, r_joint, p_joint)
             return
         child = self.names.take(joint.child)
         frame, point = self.names.take(joint.child, "R_"), self.names.take(joint.child, "O_")
@@ -449,6 +574,12 @@ class _Translation:
             carrier.masses.append((inertial.mass, p + r @ np.array(inertial.xyz),
                                    r_com @ inertial.inertia @ r_com.T))
         for carrier in self.carriers:
+            if not carrier.masses and carrier.free:
+                raise ModelError(f"link `{carrier.body}` is free (a floating joint, or the floating base) but carries no "
+                                 "mass: neither it nor a link fixed to it has an <inertial>", file=self.robot.source,
+                                 line=carrier.line, symbol=carrier.body,
+                                 fix="give the link its <inertial> (mass and inertia), or make free the link that has "
+                                     "them (the robot's base)")
             if not carrier.masses:
                 continue
             mass = sum(m for m, _, _ in carrier.masses)
@@ -473,7 +604,7 @@ class _Translation:
             matrix = [[_number(float(x)) for x in row] for row in inertia]
             self.b.body(carrier.body, frame=carrier.frame, mass=_number(mass), center=_vector(carrier.frame, center),
                         center_from=carrier.point, inertia={"at": "G", "frame": carrier.frame, "matrix": matrix},
-                        location=self.where(carrier.line))
+                        free=carrier.free, location=self.where(carrier.line))
         if any(carrier.masses for carrier in self.carriers):
             self.b.gravity("weight", Vector.basis(GALILEAN_FRAME, "z") * -se.Symbol("g"))
 
@@ -513,20 +644,24 @@ class _Translation:
     def efforts(self) -> None:
         """The actuators' τ_j (Q_j = τ_j, an input each) and the joints' viscous damping D = ½ Σ c_j q̇_j²."""
         components = {}
-        for joint_name, q in self.coordinate.items():
-            joint = self.robot.joints[joint_name]
-            tau = self.names.take(joint_name, "tau_")
-            what, quoi = ("force", "effort") if joint.type == "prismatic" else ("torque", "couple")
-            self.b.input(tau, unit="N" if joint.type == "prismatic" else "N*m",
-                         description=Text({"fr": f"{quoi} de l'actionneur de la liaison `{joint_name}`",
-                                           "en": f"actuator {what} of joint `{joint_name}`"}),
-                         location=self.where(joint.line))
-            components[q] = se.Symbol(tau)
+        for joint_name, names in self.coordinates.items():
+            joint = self.robot.joints.get(joint_name)
+            if joint is None or joint.type == "floating":
+                continue  # a free body has no actuator
+            for q in names:
+                tau = self.names.take(q if joint.type == "planar" else joint_name, "tau_")
+                force = joint.type == "prismatic" or (joint.type == "planar" and not q.endswith("theta"))
+                what, quoi = ("force", "effort") if force else ("torque", "couple")
+                self.b.input(tau, unit="N" if force else "N*m",
+                             description=Text({"fr": f"{quoi} de l'actionneur de la liaison `{joint_name}`",
+                                               "en": f"actuator {what} of joint `{joint_name}`"}),
+                             location=self.where(joint.line))
+                components[q] = se.Symbol(tau)
         if components:
             self.b.generalized_force("actuators", components)
         if not self.damping:
             return
-        terms = [se.Rational(1, 2) * _number(j.damping) * self.rate[j.name] ** 2
-                 for j in self.robot.joints.values() if j.moves and j.damping > 0]
+        terms = [se.Rational(1, 2) * _number(j.damping) * self.rate[j.name] ** 2  # not of a floating or planar joint
+                 for j in self.robot.joints.values() if j.moves and j.damping > 0 and j.name in self.rate]
         if terms:
             self.b.dissipation("joint_damping", se.Add(*terms))

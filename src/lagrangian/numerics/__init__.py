@@ -1,6 +1,7 @@
 """Numerics: the equations of motion as compiled code, integrators, simulation results.
 
 ``compile_system(eom)`` → `CompiledSystem` (M, F, q̈, monitors, events; C or SymEngine);
+``compile_free_system(model)`` → `FreeBodySystem`: a model with free bodies on unit quaternions (C);
 ``simulate(model_or_eom, t_end, ...)`` → `Trajectory`;
 ``ensemble(model_or_eom, t_end, initial=grid(...), ...)`` → many motions as an ``xarray.Dataset``.
 """
@@ -13,6 +14,8 @@ from ._members import Grid as Grid
 from ._members import grid as grid
 from ._files import check_output_path as check_output_path
 from ._input_table import InputTable as InputTable
+from ._free_system import FreeBodySystem as FreeBodySystem
+from ._free_system import compile_free_system as compile_free_system
 from ._files import save_trajectory as save_trajectory
 from ._simulate import METHODS as METHODS
 from ._simulate import EventSpec as EventSpec
@@ -32,6 +35,6 @@ from ._trajectory import Event as Event
 from ._trajectory import Trajectory as Trajectory
 
 __all__ = ["simulate", "Sensitivities", "ensemble", "grid", "Grid", "open_ensemble", "flip_events", "simulate_stick_slip", "save_trajectory", "check_output_path", "EventSpec", "InputTable", "initial_state", "METHODS",
-           "STABILIZATIONS", "default_tolerance", "CompiledSystem", "compile_system", "Trajectory", "Event",
+           "STABILIZATIONS", "default_tolerance", "CompiledSystem", "compile_system", "FreeBodySystem", "compile_free_system", "Trajectory", "Event",
            "SimulationCheck", "simulation_check", "reaction_columns_along",
            "reaction_history_along", "check_trajectory_along"]

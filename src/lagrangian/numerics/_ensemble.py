@@ -308,6 +308,12 @@ def _ensemble(source, t_end, t_start, initial, parameters, initial_names, parame
     if constrained is not None or exact_contact_model(source) is not None:
         raise SimulationError("Ensembles run models without complementary constraints or exact (ε = 0) "
                               "friction; this one has them.", fix="use `simulate` for each motion of this model")
+    from ._free_simulate import free_source  # late: it imports `_simulate`, as this module does
+
+    if free_source(source) is not None:  # its Euler angles would meet their singularity, unsaid
+        raise SimulationError("Ensembles integrate a model in its own coordinates, and this one has a free body, "
+                              "whose Euler angles are singular somewhere: `simulate` integrates it on a unit "
+                              "quaternion instead.", fix="use `simulate` for each motion of this model")
     specs = [EventSpec(e, e) if isinstance(e, str) else e for e in events]
     if backend != "c":
         system = _resolve(source, [], "symengine")  # for its names only: no C compiler needed

@@ -36,6 +36,8 @@ def _metadata(traj: Trajectory) -> dict:
     }
     if traj.range_exits:  # where the motion left a declared range (`_ranges`)
         out["range_exits"] = [e.as_dict() for e in traj.range_exits]
+    if traj.quaternion_drift:  # free bodies: the largest |1 - |e|| before each projection (`_free_simulate`)
+        out["quaternion_drift"] = dict(traj.quaternion_drift)
     return out
 
 

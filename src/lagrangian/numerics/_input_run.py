@@ -146,22 +146,31 @@ def solve_in_segments(solve: Callable, t_start: float, t_end: float, t_out: np.n
                              message)
 
 
-def _refuse_varying(what: str) -> None:
-    raise SimulationError(f"The input {what} varies, and exact Coulomb friction (stick and slip by events) runs with "
-                          "constant inputs only.",
-                          fix="give the inputs constant values, or a regularized friction (regularization > 0)")
+#: The paths that run constant inputs only, and the way out each offers.
+_CONSTANT_ONLY = {
+    "friction": ("exact Coulomb friction (stick and slip by events)",
+                 "give the inputs constant values, or a regularized friction (regularization > 0)"),
+    "free": ("the free bodies' quaternion route",
+             "give the inputs constant values (parameters={'tau': 1.0}, --set tau=1)"),
+}
 
 
-def constant_inputs_only(source, inputs, parameters):  # type: ignore[no-untyped-def]
-    """The parameters of a path that runs constant inputs only (exact friction's stick/slip phases):
-    the inputs' numbers join them; an input that varies (or a ``[controls]`` law) is refused."""
+def _refuse_varying(what: str, route: str = "friction") -> None:
+    path, fix = _CONSTANT_ONLY[route]
+    raise SimulationError(f"The input {what} varies, and {path} runs with constant inputs only.", fix=fix)
+
+
+def constant_inputs_only(source, inputs, parameters, route: str = "friction"):  # type: ignore[no-untyped-def]
+    """The parameters of a path that runs constant inputs only (``route``: exact friction's stick/slip
+    phases, or free bodies): the inputs' numbers join them; an input that varies (or a ``[controls]``
+    law) is refused."""
     model = source if isinstance(source, Model) else getattr(getattr(source, "eom", source), "model", None)
     if inputs is not None and not isinstance(inputs, Mapping):
-        _refuse_varying("a feedback")
+        _refuse_varying("a feedback", route)
     given = {**dict(getattr(model, "controls", ()) or ()), **dict(inputs or {})}
     for name, value in given.items():
         if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-            _refuse_varying(f"`{name}`")
+            _refuse_varying(f"`{name}`", route)
     return {**(parameters or {}), **{k: float(v) for k, v in (given or {}).items()}}
 
 

@@ -7,7 +7,11 @@
  *   lg_events(t, y, p, g)              event functions g_k(t, y)
  *   lg_hamilton_mass(t, y, p, M, b)    M and b = dT/dq' at q' = 0 (only q is read from y)
  *   lg_hamilton_force(t, y, p, g)      g = dT/dq - dU/dq + Q(nc)
- * with y = (q_1..q_n, q'_1..q'_n) and p the parameter values.  Nothing here calls
+ * with y = (q_1..q_n, q'_1..q'_n) and p the parameter values.  A model with free bodies
+ * (LG_FREE, `_free_codegen.py`) defines instead LG_NY, its own state (positions with unit
+ * quaternions, velocities, and a record of the quaternions' drift), lg_free_rhs and
+ * lg_free_project (LG_PROJECT: the quaternions put back on |e| = 1 after each accepted
+ * step); it has no Hamilton form, so no Gauss-Legendre method and no ensembles.  Nothing here calls
  * back into Python: a whole integration runs in C, which is what makes a 10^4-step run
  * cost milliseconds rather than the ~100 ms that Python's per-call overhead would add.
  *
@@ -30,7 +34,9 @@
 #include <math.h>
 #include <string.h>
 
+#ifndef LG_NY
 #define LG_NY (2 * LG_N)
+#endif
 /* An inputs' law (`_input_code`) defines its block of p (LG_NX numbers after the constants) and
  * the times where its tables jump (LG_NBREAK of them, at law[LG_BREAKS]); none by default. */
 #ifndef LG_NX
@@ -142,6 +148,9 @@ static int lg_cholesky_solve(double *M, double *F, double *worst)
  * algorithm, O(n), its pivots D_j checked against M_jj as the Cholesky pivots are. */
 static int lg_rhs(double t, const double *y, const double *p, double *dy, double *worst)
 {
+#if defined(LG_FREE)
+    return lg_free_rhs(t, y, p, dy, worst);
+#else
 #ifdef LG_ABA
     double F[LG_N], piv[2 * LG_N];
     lg_aba(t, y, p, F, piv);
@@ -162,6 +171,7 @@ static int lg_rhs(double t, const double *y, const double *p, double *dy, double
         if (!isfinite(F[i]) || !isfinite(dy[i])) return LG_NONFINITE;
     }
     return LG_DONE;
+#endif
 }
 
 /* ---- batched evaluation, for benchmarks, monitors and vectorised use ---------------- */
@@ -475,6 +485,9 @@ static int lg_dop853_run(double *ctl, const volatile double *stop, double *y, co
             ctl[C_REJECTED] += 1;
         }
         ctl[C_STEPS] += 1;
+#ifdef LG_PROJECT
+        LG_PROJECT(y_new);  /* back on the constraint manifold (|e| = 1) before the step is used */
+#endif
         /* dop853.f returns IDID = -4 with the state at the start of the step (y_stage holds the
          * last stage's state, K[STAGES - 1] its slope, K[STAGES] the slope at y_new) */
         if (!fixed && lg_dop_stiff(ctl, h, K[LG_DOP_STAGES], K[LG_DOP_STAGES - 1], y_new, y_stage)) {
@@ -578,6 +591,7 @@ int lg_dop853(double *ctl, double *y, const double *p, const double *t_out, int 
                   ev_out, 0.0);
 }
 
+#ifndef LG_FREE
 /* ---- Gauss-Legendre in (q, p) -------------------------------------------------------- */
 
 /* z = (q, p) -> z' = (q', p'): q' from M q' = p - b, p' = dT/dq - dU/dq + Q(nc) at (q, q'). */
@@ -795,3 +809,4 @@ int lg_batch(int method, int count, const double *ctl0, const double *Y0, double
     }
     return LG_DONE;
 }
+#endif  /* LG_FREE */

@@ -141,6 +141,9 @@ class Trajectory:
     #: The parameters and initial values (``"theta(t0)"``) whose sensitivities are in `extra`
     #: (``simulate(..., sensitivities=...)``), in the order asked.
     sensitivity_names: tuple[str, ...] = ()
+    #: For a model with free bodies (integrated on unit quaternions, `numerics._free_simulate`): body →
+    #: the largest |1 − |e|| of its quaternion e met along the run, before each projection back on |e| = 1.
+    quaternion_drift: Mapping[str, float] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         n, N = len(self.coordinates), len(self.t)
@@ -219,4 +222,7 @@ class Trajectory:
             value = self.drift[name]
             text = "0" if value == 0 else f"{value:.1e}"
             parts.append(f"{name} relative drift {text}" if i == 0 else f"{name} {text}")
+        if self.quaternion_drift:
+            parts.append("quaternion norm drift " + ", ".join(f"{body} {value:.1e}" for body, value
+                                                              in self.quaternion_drift.items()))
         return ", ".join(parts)
