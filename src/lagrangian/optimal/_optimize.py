@@ -162,8 +162,8 @@ def _result(tr: Transcription, run: SolverRun, transcribed: float, verify: bool,
                               replay_tolerance)
         seconds["replay"] = time.perf_counter() - start
         if not replay.within:
-            warnings.append(f"the replayed motion departs from the optimum by {replay.max_error:.1e} (tolerance "
-                            f"{replay.tolerance:.0e}): the mesh is too coarse for this motion; use more nodes"
+            warnings.append(f"the inputs replayed over one interval depart from the optimum by {replay.local_error:.1e} "
+                            f"(tolerance {replay.tolerance:.0e}): the mesh is too coarse for this motion; use more nodes"
                             + ("" if tr.scheme.name == "hermite-simpson" else " or method=\"hermite-simpson\""))
     if run.status != "optimal":
         warnings.append(STATUS_MESSAGES[run.status])
