@@ -114,7 +114,11 @@ class ProblemError(ModelError):
     """An optimal-control problem is ill-stated: an unknown name, reversed bounds, too few nodes, a model
     without inputs, a value or an expression that cannot be read (`lagrangian.optimize`, a problem file).
 
-    A `ModelError`, so that a problem file's mistake is printed with its file and line."""
+    A `ModelError`, so that a problem file's mistake is printed with its file and line; ``table`` is the
+    problem file's table the offending ``symbol`` is a key of (``"final"``, ``"bounds"``...), when known.
+    """
+
+    table: str | None = None
 
 
 class OptimizationError(LagrangianError):

@@ -24,7 +24,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from ..errors import ModelError, ProblemError
+from ..errors import ProblemError
 from ..model._toml_guard import check_nesting
 from ._problem import Problem
 
@@ -135,7 +135,7 @@ def parse_problem(text: str, *, source: str | None = None) -> Problem:
         raise locate(exc, source, lines) from None
 
 
-def locate(error: ModelError, source: str | None, lines: list[str] | None = None) -> ModelError:
+def locate(error: ProblemError, source: str | None, lines: list[str] | None = None) -> ProblemError:
     """``error`` with the file and the line of its symbol in the problem file ``source`` (when it names one)."""
     if source is None or error.line is not None:
         return error
@@ -145,7 +145,9 @@ def locate(error: ModelError, source: str | None, lines: list[str] | None = None
         except (OSError, UnicodeDecodeError):
             return error
     error.file = source
-    if error.symbol:
+    if error.symbol and error.table is not None:
+        error.line = _line_of(lines, error.table, error.symbol, exact=True)
+    elif error.symbol:
         for table in _TABLES:
             line = _line_of(lines, table, error.symbol, exact=True)
             if line is not None:

@@ -16,7 +16,8 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any
 
@@ -28,7 +29,7 @@ from ..errors import ProblemError
 from ..model._expr import ExpressionError, parse_expression
 
 __all__ = ["Layout", "layout_of", "parameter_values", "resolve_value", "resolve_expression", "resolve_path",
-           "T_END"]
+           "T_END", "at"]
 
 #: The name of the duration's bounds in ``bounds`` (a free final time).
 T_END = "t_end"
@@ -90,6 +91,17 @@ class Layout:
         names.update(self.parameters)
         names["t"] = self.t
         return names
+
+
+@contextmanager
+def at(table: str, key: str) -> Iterator[None]:
+    """A `ProblemError` raised inside is about ``key`` of the problem's ``table`` (a problem file's line)."""
+    try:
+        yield
+    except ProblemError as exc:
+        if exc.table is None:
+            exc.table, exc.symbol = table, str(key)
+        raise
 
 
 def layout_of(eom: EquationsOfMotion) -> Layout:

@@ -148,6 +148,15 @@ def _result(tr: Transcription, run: SolverRun, transcribed: float, verify: bool,
     Z, T = tr.unpack(run.w)
     t = tr.t0 + tr.tau * T
     energies = np.asarray(tr.functions.energies.map(tr.P)(Z, t.reshape(1, -1)))
+    monitors = {"T": energies[0], "U": energies[1]}
+    drift: dict[str, float] = {}
+    if tr.functions.manifold is not None:  # the constraints at position and velocity level, along the motion
+        rows = tr.eom.constraints
+        names = [f"drift_{r.name}" for r in rows if r.kind == "holonomic"] + [f"drift_{r.name}_dot" for r in rows]
+        residuals = np.asarray(tr.functions.manifold.map(tr.P)(Z, t.reshape(1, -1)))
+        for name, values in zip(names, residuals):
+            monitors[name] = values
+            drift[name] = float(np.max(np.abs(values)))
     nodes = tr.scheme.nodes(tr.N)
     U = Z[layout.slice("u")].T
     extra = {name: Z[k].copy() for k, name in enumerate(layout.names) if k >= 3 * n}
@@ -171,8 +180,7 @@ def _result(tr: Transcription, run: SolverRun, transcribed: float, verify: bool,
     return OptimalTrajectory(
         model_name=tr.eom.model.name, coordinates=layout.coordinates,
         parameters={**tr.values}, t=t, q=Z[layout.slice("q")].T.copy(), qd=Z[layout.slice("qd")].T.copy(),
-        qdd=Z[layout.slice("qdd")].T.copy(), monitors={"T": energies[0], "U": energies[1]}, integrals=(),
-        drift={}, method=tr.scheme.name, steps=tr.N - 1, rhs_calls=run.evaluations, warnings=tuple(warnings),
+        qdd=Z[layout.slice("qdd")].T.copy(), monitors=monitors, integrals=(), drift=drift, method=tr.scheme.name, steps=tr.N - 1, rhs_calls=run.evaluations, warnings=tuple(warnings),
         status=run.status, extra=extra, inputs=layout.inputs, objective=run.objective, success=run.success,
         solver_status=run.solver_status, message=message, iterations=run.iterations, violation=run.violation,
         nodes=tr.N, t_end=float(t[-1]), free_time=tr.free_time, node_rows=nodes, hessian=tr.problem.hessian,

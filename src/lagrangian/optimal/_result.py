@@ -120,7 +120,10 @@ class OptimalTrajectory(Trajectory):
                  f"objective J = {self.objective:.10g}, {self.iterations} IPOPT iterations, constraint violation "
                  f"{self.violation:.1e} ({self.hessian} Hessian, {self.solver})",
                  "times: " + ", ".join(f"{k} {v * 1e3:.1f} ms" for k, v in self.seconds.items())]
+        if self.drift:
+            lines.append("constraint drift (max residual): "
+                         + ", ".join(f"{name[len('drift_'):]} {value:.1e}" for name, value in self.drift.items()))
         if self.replay is not None:
             lines.append(self.replay.summary())
-        lines += [f"warning: {w}" for w in self.warnings]
+        lines += [f"warning: {w}" for w in self.warnings if w not in self.message]  # the status said it
         return "\n".join(lines)

@@ -49,11 +49,14 @@ STATUS_MESSAGES = {
                       "a better guess.",
     "failed": "IPOPT stopped without a solution",
 }
-#: IPOPT's options for a warm start from a previous optimum (primal and dual): start near the bounds
-#: and with a small barrier parameter, so that the iterate is not pushed away from where it is.
-_WARM = {"warm_start_init_point": "yes", "warm_start_bound_push": 1e-9, "warm_start_bound_frac": 1e-9,
-         "warm_start_slack_bound_push": 1e-9, "warm_start_slack_bound_frac": 1e-9,
-         "warm_start_mult_bound_push": 1e-9, "mu_init": 1e-6}
+#: IPOPT's options for a warm start from a previous optimum (primal and dual): start close to the bounds
+#: and with a small barrier parameter, so that the iterate is not pushed away from where it is.  The
+#: values were chosen on the pendulum swing-up: the same problem again converges in 2 iterations, the
+#: mass changed by 2 % in 9 (20 cold), by 10 % in 13 (19 cold); smaller pushes do worse on the latter.
+_PUSH = 1e-5
+_WARM = {"warm_start_init_point": "yes", "warm_start_bound_push": _PUSH, "warm_start_bound_frac": _PUSH,
+         "warm_start_slack_bound_push": _PUSH, "warm_start_slack_bound_frac": _PUSH,
+         "warm_start_mult_bound_push": _PUSH, "mu_init": 1e-3}
 
 
 @dataclass(frozen=True)

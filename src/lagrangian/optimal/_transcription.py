@@ -32,7 +32,7 @@ from ..errors import ProblemError
 from ..numerics import Trajectory
 from ._casadi import casadi, casadi_expressions
 from ._dynamics import PointFunctions, point_functions
-from ._layout import T_END, Layout, layout_of, parameter_values, resolve_bound, resolve_expression, resolve_path, \
+from ._layout import T_END, Layout, at, layout_of, parameter_values, resolve_bound, resolve_expression, resolve_path, \
     resolve_value
 from ._problem import Objective, Problem, objective_of
 from ._schemes import Scheme, scheme
@@ -190,21 +190,23 @@ def _box(problem: Problem, layout: Layout, values: Mapping[str, float], P: int) 
     for name, (lo, hi) in problem.bounds.items():
         if name == T_END:
             continue
-        k = layout.index(name, "`bounds`")
-        low[k] = resolve_bound(lo, layout, values, f"the low bound of `{name}`", -math.inf)
-        high[k] = resolve_bound(hi, layout, values, f"the high bound of `{name}`", math.inf)
-        if low[k] > high[k]:
-            raise ProblemError(f"The bounds of `{name}` are reversed: low {low[k]:g} > high {high[k]:g}.",
-                               symbol=str(name), fix=f"write {name} = [{high[k]:g}, {low[k]:g}]")
+        with at("bounds", name):
+            k = layout.index(name, "`bounds`")
+            low[k] = resolve_bound(lo, layout, values, f"the low bound of `{name}`", -math.inf)
+            high[k] = resolve_bound(hi, layout, values, f"the high bound of `{name}`", math.inf)
+            if low[k] > high[k]:
+                raise ProblemError(f"The bounds of `{name}` are reversed: low {low[k]:g} > high {high[k]:g}.",
+                                   fix=f"write {name} = [{high[k]:g}, {low[k]:g}]")
     lbx, ubx = np.tile(low, (P, 1)).T.copy(), np.tile(high, (P, 1)).T.copy()
     for what, conditions, column in (("initial", problem.initial, 0), ("final", problem.final, P - 1)):
         for name, value in conditions.items():
-            k = layout.index(name, f"`{what}`")
-            v = resolve_value(value, layout, values, f"the {what} value of `{name}`")
-            if not low[k] <= v <= high[k]:
-                raise ProblemError(f"The {what} value {name} = {v:g} is outside its bounds [{low[k]:g}, {high[k]:g}]: "
-                                   "no motion can meet both.", symbol=str(name),
-                                   fix=f"widen the bounds of `{name}` or change its {what} value")
+            with at(what, name):
+                k = layout.index(name, f"`{what}`")
+                v = resolve_value(value, layout, values, f"the {what} value of `{name}`")
+                if not low[k] <= v <= high[k]:
+                    raise ProblemError(f"The {what} value {name} = {v:g} is outside its bounds "
+                                       f"[{low[k]:g}, {high[k]:g}]: no motion can meet both.",
+                                       fix=f"widen the bounds of `{name}` or change its {what} value")
             lbx[k, column] = ubx[k, column] = v
     return lbx.T.ravel(), ubx.T.ravel()
 
