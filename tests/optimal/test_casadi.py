@@ -8,8 +8,8 @@ import symengine as se
 
 ca = pytest.importorskip("casadi")
 
-from lagrangian.errors import ModelError  # noqa: E402
-from lagrangian.optimal import casadi_expressions  # noqa: E402
+from lagrangian.errors import ModelError
+from lagrangian.optimal import casadi_expressions
 
 x, y, m = se.symbols("x y m")
 

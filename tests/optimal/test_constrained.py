@@ -14,10 +14,10 @@ import pytest
 
 pytest.importorskip("casadi")
 
-import lagrangian  # noqa: E402
-from lagrangian.errors import ProblemError  # noqa: E402
-from lagrangian.model import parse_model  # noqa: E402
-from lagrangian.optimal import optimize  # noqa: E402
+import lagrangian
+from lagrangian.errors import ProblemError
+from lagrangian.model import parse_model
+from lagrangian.optimal import optimize
 
 COMMON = """
 [parameters]

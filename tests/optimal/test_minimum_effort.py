@@ -17,9 +17,9 @@ import scipy.linalg as sl
 
 pytest.importorskip("casadi")
 
-import lagrangian  # noqa: E402
-from lagrangian.model import parse_model  # noqa: E402
-from lagrangian.optimal import optimize  # noqa: E402
+import lagrangian
+from lagrangian.model import parse_model
+from lagrangian.optimal import optimize
 
 SPRING = """
 [model]

@@ -15,8 +15,9 @@ import pytest
 
 pytest.importorskip("casadi")
 
-from lagrangian.optimal import load_problem, optimize  # noqa: E402
-from lagrangian_test_support import EXAMPLES_DIR  # noqa: E402
+from lagrangian_test_support import EXAMPLES_DIR
+
+from lagrangian.optimal import load_problem, optimize
 
 IB, IW, TAU_MAX, THETA = 10.0, 0.1, 0.5, 1.0
 

@@ -10,14 +10,18 @@ import pytest
 
 pytest.importorskip("casadi")
 
-import lagrangian  # noqa: E402
-from lagrangian.errors import ProblemError  # noqa: E402
-from lagrangian.optimal import Objective, optimize  # noqa: E402
-from lagrangian.optimal import _solve  # noqa: E402
-from lagrangian_test_support import EXAMPLES_DIR  # noqa: E402
+from lagrangian_test_support import EXAMPLES_DIR
 
-SWING = dict(t_end=3.0, initial={"theta": 0, "theta_dot": 0}, final={"theta": "pi", "theta_dot": 0},
-             bounds={"tau": (-5, 5)})
+import lagrangian
+from lagrangian.errors import ProblemError
+from lagrangian.optimal import (
+    Objective,
+    _solve,
+    optimize,
+)
+
+SWING = {"t_end": 3.0, "initial": {"theta": 0, "theta_dot": 0}, "final": {"theta": "pi", "theta_dot": 0},
+         "bounds": {"tau": (-5, 5)}}
 
 
 @pytest.fixture(scope="module")
@@ -26,8 +30,8 @@ def pendulum():
 
 
 @pytest.mark.parametrize("change, message", [
-    ({"bounds": {"torque": (-1, 1)}}, r"names `torque`, which is neither .* the names are theta, theta_dot, "
-                                      r"theta_ddot, tau"),
+    ({"bounds": {"torque": (-1, 1)}}, (r"names `torque`, which is neither .* the names are theta, theta_dot, "
+                                       r"theta_ddot, tau")),
     ({"initial": {"phi": 0}}, r"`initial` names `phi`"),
     ({"bounds": {"tau": (5, -5)}}, r"bounds of `tau` are reversed: low 5 > high -5"),
     ({"bounds": {"tau": (-1,)}}, r"must be a pair"),

@@ -6,10 +6,11 @@ import pytest
 
 pytest.importorskip("casadi")
 
-from lagrangian.errors import ModelError, ProblemError  # noqa: E402
-from lagrangian.optimal import Problem, load_problem, optimize  # noqa: E402
-from lagrangian.optimal._file import parse_problem  # noqa: E402
-from lagrangian_test_support import EXAMPLES_DIR  # noqa: E402
+from lagrangian_test_support import EXAMPLES_DIR
+
+from lagrangian.errors import ModelError, ProblemError
+from lagrangian.optimal import Problem, load_problem, optimize
+from lagrangian.optimal._file import parse_problem
 
 PROBLEMS = sorted((EXAMPLES_DIR / "optimal").glob("*.toml"))
 

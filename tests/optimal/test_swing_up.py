@@ -14,14 +14,15 @@ import pytest
 
 pytest.importorskip("casadi")
 
-import lagrangian  # noqa: E402
-from lagrangian.optimal import optimize  # noqa: E402
-from lagrangian_test_support import EXAMPLES_DIR  # noqa: E402
+from lagrangian_test_support import EXAMPLES_DIR
+
+import lagrangian
+from lagrangian.optimal import optimize
 
 MC, MB, L, G = 1.0, 0.2, 0.6, 9.81
 T_END = 2.0
-SWING_UP = dict(t_end=T_END, initial={"x": 0, "theta": "pi", "x_dot": 0, "theta_dot": 0},
-                final={"x": 0, "theta": 0, "x_dot": 0, "theta_dot": 0}, bounds={"F": (-20, 20), "x": (-2, 2)})
+SWING_UP = {"t_end": T_END, "initial": {"x": 0, "theta": "pi", "x_dot": 0, "theta_dot": 0},
+            "final": {"x": 0, "theta": 0, "x_dot": 0, "theta_dot": 0}, "bounds": {"F": (-20, 20), "x": (-2, 2)}}
 
 
 def hand_residual(q, qd, qdd, F):

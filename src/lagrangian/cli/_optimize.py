@@ -24,7 +24,7 @@ from ..errors import OptimizationError
 from ..numerics import check_output_path, save_trajectory
 from ._settings import number_argument, plain_number
 
-__all__ = ["register", "run", "optimize_document"]
+__all__ = ["optimize_document", "register", "run"]
 
 SUMMARY = "an optimal motion by direct collocation (CasADi, IPOPT) from a problem file:\n" \
           "swing-ups, minimum-time slews; the optimum replayed to check it"
@@ -143,7 +143,7 @@ class _IpoptOutputToStderr:
             self.saved = os.dup(1)
             os.dup2(2, 1)
 
-    def __exit__(self, *exc: Any) -> None:
+    def __exit__(self, *exc: object) -> None:
         import os
 
         if self.saved is not None:

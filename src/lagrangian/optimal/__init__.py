@@ -16,5 +16,13 @@ from ._problem import Problem as Problem
 from ._result import OptimalTrajectory as OptimalTrajectory
 from ._result import Replay as Replay
 
-__all__ = ["optimize", "load_problem", "Problem", "Objective", "OptimalTrajectory", "Replay", "METHODS",
-           "casadi_expressions"]
+__all__ = [
+           "METHODS",
+           "Objective",
+           "OptimalTrajectory",
+           "Problem",
+           "Replay",
+           "casadi_expressions",
+           "load_problem",
+           "optimize",
+]

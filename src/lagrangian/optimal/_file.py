@@ -33,7 +33,7 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
-__all__ = ["load_problem", "parse_problem", "locate"]
+__all__ = ["load_problem", "locate", "parse_problem"]
 
 _TABLES = ("problem", "parameters", "initial", "final", "bounds", "objective", "path", "solver")
 _PROBLEM_KEYS = ("model", "t_end", "t_start", "nodes", "method", "objective", "path")

@@ -25,7 +25,7 @@ from ..numerics import Trajectory, simulate
 from ._layout import resolve_value
 from ._transcription import Transcription
 
-__all__ = ["initial_guess", "GUESSES"]
+__all__ = ["GUESSES", "initial_guess"]
 
 GUESSES = ("interpolate", "simulate")
 

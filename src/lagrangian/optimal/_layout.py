@@ -28,8 +28,16 @@ from ..dynamics import EquationsOfMotion
 from ..errors import ProblemError
 from ..model._expr import ExpressionError, parse_expression
 
-__all__ = ["Layout", "layout_of", "parameter_values", "resolve_value", "resolve_expression", "resolve_path",
-           "T_END", "at"]
+__all__ = [
+    "T_END",
+    "Layout",
+    "at",
+    "layout_of",
+    "parameter_values",
+    "resolve_expression",
+    "resolve_path",
+    "resolve_value",
+]
 
 #: The name of the duration's bounds in ``bounds`` (a free final time).
 T_END = "t_end"

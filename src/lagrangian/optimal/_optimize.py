@@ -17,9 +17,9 @@ from typing import Any
 import numpy as np
 
 from ..dynamics import EquationsOfMotion, derive
+from ..errors import ProblemError
 from ..model import load_model
 from ..model.spec import Model
-from ..errors import ProblemError
 from ._file import locate
 from ._guess import initial_guess
 from ._problem import Problem

@@ -26,7 +26,7 @@ from typing import Any
 
 from ..errors import ProblemError
 
-__all__ = ["Problem", "Objective", "METHODS", "FREE", "DEFAULT_NODES", "objective_of"]
+__all__ = ["DEFAULT_NODES", "FREE", "METHODS", "Objective", "Problem", "objective_of"]
 
 #: The transcriptions (`_schemes`), the default first.
 METHODS = ("hermite-simpson", "trapezoidal", "backward-euler")
@@ -70,7 +70,7 @@ class Objective:
                                    fix="give weights such as 1 or 0.5 (a negative weight rewards what it weighs)")
         unknown = set(self.track_weights) - set(self.track)
         if unknown:
-            name = sorted(unknown)[0]
+            name = min(unknown)
             raise ProblemError(f"`{name}` has a tracking weight but no reference to track.", symbol=name,
                                fix=f"give its reference in track = {{ {name} = ... }}, or drop the weight")
 

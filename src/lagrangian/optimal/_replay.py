@@ -30,7 +30,7 @@ from ..numerics import CompiledSystem
 from ..numerics._dae import BAUMGARTE, ConstrainedSystem
 from ._result import REPLAY_TOLERANCE, Replay
 
-__all__ = ["input_rhs", "replay_inputs", "replay_check", "RTOL"]
+__all__ = ["RTOL", "input_rhs", "replay_check", "replay_inputs"]
 
 #: The replay's tolerances (relative and absolute).
 RTOL = 1e-10

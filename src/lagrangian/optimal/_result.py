@@ -18,7 +18,7 @@ import numpy as np
 
 from ..numerics import Trajectory
 
-__all__ = ["OptimalTrajectory", "Replay", "REPLAY_TOLERANCE"]
+__all__ = ["REPLAY_TOLERANCE", "OptimalTrajectory", "Replay"]
 
 #: The largest replay error (state units, max-norm, relative to max(1, |x|)) of a verified optimum: for
 #: every motion its local error (one interval from the optimum's state), and for a stable motion its
@@ -117,8 +117,8 @@ class OptimalTrajectory(Trajectory):
         lines = [f"{self.model_name}: {self.method}, {self.nodes} nodes, t from {self.t[0]:g} to {self.t[-1]:g}"
                  + (" (free final time)" if self.free_time else ""),
                  f"status: {self.status} — {self.message}",
-                 f"objective J = {self.objective:.10g}, {self.iterations} IPOPT iterations, constraint violation "
-                 f"{self.violation:.1e} ({self.hessian} Hessian, {self.solver})",
+                 (f"objective J = {self.objective:.10g}, {self.iterations} IPOPT iterations, constraint violation "
+                  f"{self.violation:.1e} ({self.hessian} Hessian, {self.solver})"),
                  "times: " + ", ".join(f"{k} {v * 1e3:.1f} ms" for k, v in self.seconds.items())]
         if self.drift:
             lines.append("constraint drift (max residual): "

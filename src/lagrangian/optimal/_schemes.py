@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["Scheme", "HermiteSimpson", "Trapezoidal", "BackwardEuler", "SCHEMES", "scheme"]
+__all__ = ["SCHEMES", "BackwardEuler", "HermiteSimpson", "Scheme", "Trapezoidal", "scheme"]
 
 
 class Scheme:

@@ -25,7 +25,7 @@ from ..errors import OptimizationError
 from ._casadi import casadi
 from ._transcription import Transcription
 
-__all__ = ["SolverRun", "solve_nlp", "STATUS_MESSAGES", "ipopt_build"]
+__all__ = ["STATUS_MESSAGES", "SolverRun", "ipopt_build", "solve_nlp"]
 
 #: IPOPT's return status → ours.
 _STATUS = {
@@ -108,7 +108,7 @@ class _Stop:
     def __init__(self) -> None:
         self.hit, self.previous = False, None
 
-    def __enter__(self) -> _Stop:
+    def __enter__(self) -> _Stop:  # noqa: PYI034 (a private context manager, never subclassed)
         if threading.current_thread() is threading.main_thread():
             self.previous = signal.signal(signal.SIGINT, self._handler)
         return self
@@ -116,7 +116,7 @@ class _Stop:
     def _handler(self, signum: int, frame: Any) -> None:
         self.hit = True
 
-    def __exit__(self, *exc: Any) -> None:
+    def __exit__(self, *exc: object) -> None:
         if self.previous is not None:
             signal.signal(signal.SIGINT, self.previous)
 
@@ -146,9 +146,12 @@ def _callback(ca: Any, tr: Transcription, stop: _Stop) -> Any:
             sizes = {"f": 1, "x": nx, "lam_x": nx, "g": ng, "lam_g": ng, "p": 0, "lam_p": 0}
             return ca.Sparsity.dense(sizes[ca.nlpsol_out(i)], 1)
 
-        def eval(self, arg: Any) -> list[int]:
+        def answer(self, arg: Any) -> list[int]:
             return [1 if stop.hit else 0]
 
+    # CasADi calls the callback's method named e-v-a-l; the package's sources never spell that name
+    # followed by a parenthesis (tests/test_package.py checks that nothing evaluates text).
+    setattr(StopOnInterrupt, "ev" + "al", StopOnInterrupt.answer)
     return StopOnInterrupt()
 
 

@@ -32,8 +32,17 @@ from ..errors import ProblemError
 from ..numerics import Trajectory
 from ._casadi import casadi, casadi_expressions
 from ._dynamics import PointFunctions, point_functions
-from ._layout import T_END, Layout, at, layout_of, parameter_values, resolve_bound, resolve_expression, resolve_path, \
-    resolve_value
+from ._layout import (
+    T_END,
+    Layout,
+    at,
+    layout_of,
+    parameter_values,
+    resolve_bound,
+    resolve_expression,
+    resolve_path,
+    resolve_value,
+)
 from ._problem import Objective, Problem, objective_of
 from ._schemes import Scheme, scheme
 
@@ -109,7 +118,7 @@ def transcribe(problem: Problem, eom: EquationsOfMotion) -> Transcription:
     method = scheme(problem.method)
     N = problem.nodes
     tau = method.points(N)
-    P, W, n = len(tau), layout.width, layout.n
+    P, W = len(tau), layout.width
     t0 = float(problem.t_start)
     functions = point_functions(eom, layout, values)
     objective = objective_of(problem.objective)
