@@ -24,7 +24,8 @@ differentiation makes of them, as in `numerics._cprint`); anything else is a `Mo
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
+import math
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import symengine as se
@@ -45,45 +46,33 @@ def casadi() -> Any:
     return ca
 
 
-def _functions(ca: Any) -> dict[str, Callable[[Any], Any]]:
-    """SymEngine function name → its CasADi counterpart (one argument each)."""
-    return {
-        "sin": ca.sin, "cos": ca.cos, "tan": ca.tan, "asin": ca.asin, "acos": ca.acos, "atan": ca.atan,
-        "sinh": ca.sinh, "cosh": ca.cosh, "tanh": ca.tanh, "asinh": ca.asinh, "acosh": ca.acosh,
-        "atanh": ca.atanh, "exp": ca.exp, "log": ca.log, "Abs": ca.fabs, "Sign": ca.sign, "sign": ca.sign,
-        # What SymEngine makes of the model's functions without being asked (see `_cprint`).
-        "cot": lambda x: 1 / ca.tan(x), "sec": lambda x: 1 / ca.cos(x), "csc": lambda x: 1 / ca.sin(x),
-        "coth": lambda x: 1 / ca.tanh(x), "sech": lambda x: 1 / ca.cosh(x), "csch": lambda x: 1 / ca.sinh(x),
-        "acot": lambda x: ca.atan(1 / x), "asec": lambda x: ca.acos(1 / x), "acsc": lambda x: ca.asin(1 / x),
-        "acoth": lambda x: ca.atanh(1 / x), "asech": lambda x: ca.acosh(1 / x),
-        "acsch": lambda x: ca.asinh(1 / x),
-    }
-
-
-def _power(ca: Any, base: Any, exponent: se.Basic) -> Any:
-    """base**exponent, small integer powers as products (exact, and cheaper to differentiate)."""
-    if isinstance(exponent, se.Integer):
-        k = int(exponent)
-        if 1 <= abs(k) <= 6:
-            out = base
-            for _ in range(abs(k) - 1):
-                out = out * base
-            return out if k > 0 else 1 / out
-    if exponent == se.Rational(1, 2):
-        return ca.sqrt(base)
-    if exponent == se.Rational(-1, 2):
-        return 1 / ca.sqrt(base)
-    return base ** float(exponent) if exponent.is_Number else ca.power(base, exponent)
+#: SymEngine function name → CasADi's unary operation code, or (code, reciprocal) for what SymEngine makes
+#: of the model's functions without being asked (sec(x) = 1/cos(x), acot(x) = atan(1/x): see `_cprint`).
+_UNARY = {"sin": "SIN", "cos": "COS", "tan": "TAN", "asin": "ASIN", "acos": "ACOS", "atan": "ATAN", "sinh": "SINH",
+          "cosh": "COSH", "tanh": "TANH", "asinh": "ASINH", "acosh": "ACOSH", "atanh": "ATANH", "exp": "EXP",
+          "log": "LOG", "Abs": "FABS", "Sign": "SIGN", "sign": "SIGN"}
+_RECIPROCAL = {"cot": "TAN", "sec": "COS", "csc": "SIN", "coth": "TANH", "sech": "COSH", "csch": "SINH"}
+_OF_RECIPROCAL = {"acot": "ATAN", "asec": "ACOS", "acsc": "ASIN", "acoth": "ATANH", "asech": "ACOSH",
+                  "acsch": "ASINH"}
 
 
 class _Converter:
-    """One conversion: the symbol map, the memo of converted nodes, and the values of named symbols."""
+    """One conversion: the symbol map, the memo of converted nodes, and the values of named symbols.
+
+    Nodes are made with ``SX.binary``/``SX.unary`` and CasADi's operation codes: the same graph as
+    ``x * y`` or ``casadi.sin(x)`` (with the same simplifications, 0·x = 0), without the overload
+    resolution of CasADi's Python operators, which costs five times the operation.
+    """
 
     def __init__(self, symbols: Mapping[se.Basic, Any], named: Mapping[se.Basic, se.Basic]) -> None:
-        self.ca = casadi()
-        self.functions = _functions(self.ca)
-        self.done: dict[se.Basic, Any] = dict(symbols)
+        ca = self.ca = casadi()
+        self.binary, self.unary = ca.SX.binary, ca.SX.unary
+        self.op = {name: getattr(ca, f"OP_{name}") for name in ("ADD", "MUL", "DIV", "SQ", "SQRT", "POW",
+                                                               "CONSTPOW", "INV")}
+        self.ops = {k: getattr(ca, f"OP_{v}") for k, v in {**_UNARY, **_RECIPROCAL, **_OF_RECIPROCAL}.items()}
+        self.done: dict[se.Basic, Any] = {k: v if isinstance(v, ca.SX) else ca.SX(float(v)) for k, v in symbols.items()}
         self.named = named  # symbol → expression (cse's replacements, the caller's intermediates)
+        self.numbers: dict[float, Any] = {}
 
     def __call__(self, root: se.Basic) -> Any:
         """The ``SX`` of ``root``; every node is converted after its arguments (post-order, iterative)."""
@@ -122,37 +111,64 @@ class _Converter:
             return (node.args[0],) if node.args[1].is_Number else tuple(node.args)
         return tuple(node.args)
 
+    def _number(self, value: float) -> Any:
+        out = self.numbers.get(value)
+        if out is None:
+            out = self.numbers[value] = self.ca.SX(value)
+        return out
+
+    def _fold(self, code: int, args: list[Any]) -> Any:
+        out = args[0]
+        for a in args[1:]:
+            out = self.binary(code, out, a)
+        return out
+
+    def _power(self, base: Any, exponent: se.Basic) -> Any:
+        """base**exponent, small integer powers as products (exact, and cheaper to differentiate)."""
+        op, binary = self.op, self.binary
+        if isinstance(exponent, se.Integer) and 1 <= abs(int(exponent)) <= 6:
+            k = abs(int(exponent))
+            out = self.unary(op["SQ"], base) if k >= 2 else base
+            for _ in range(k - 2):
+                out = binary(op["MUL"], out, base)
+            return out if exponent > 0 else self.unary(op["INV"], out)
+        if exponent == se.Rational(1, 2):
+            return self.unary(op["SQRT"], base)
+        if exponent == se.Rational(-1, 2):
+            return self.unary(op["INV"], self.unary(op["SQRT"], base))
+        return binary(op["CONSTPOW"], base, self._number(float(exponent)))
+
     def _build(self, node: se.Basic, args: list[Any]) -> Any:
-        ca = self.ca
         if node.is_Number:
             try:
-                return float(node)  # a complex number raises here: it has no place in M or F
+                return self._number(float(node))  # a complex number raises here: it has no place in M or F
             except (TypeError, RuntimeError, OverflowError):
                 raise ModelError(f"the equations contain the number `{str(node)[:60]}`, which is not a finite "
                                  "real double.", fix="use smaller numbers in the model") from None
         if node == se.pi:
-            return ca.pi
+            return self._number(math.pi)
         if node == se.E:
-            return ca.exp(1.0)
+            return self._number(math.e)
         if isinstance(node, se.Add):
-            out = args[0]
-            for a in args[1:]:
-                out = out + a
-            return out
+            return self._fold(self.op["ADD"], args)
         if isinstance(node, se.Mul):
-            out = args[0]
-            for a in args[1:]:
-                out = out * a
-            return out
+            return self._fold(self.op["MUL"], args)
         if isinstance(node, se.Pow):
-            return _power(ca, args[0], node.args[1]) if node.args[1].is_Number else ca.power(args[0], args[1])
+            if node.args[1].is_Number:
+                return self._power(args[0], node.args[1])
+            return self.binary(self.op["POW"], args[0], args[1])
         name = type(node).__name__
         if name == "Derivative" and args:  # d|u|/dx, left unevaluated by SymEngine: sign(u) du/dx
             return args[0]
-        if name in self.functions and len(args) == 1:
-            return self.functions[name](args[0])
+        if name in self.ops and len(args) == 1:
+            if name in _RECIPROCAL:
+                return self.unary(self.op["INV"], self.unary(self.ops[name], args[0]))
+            if name in _OF_RECIPROCAL:
+                return self.unary(self.ops[name], self.unary(self.op["INV"], args[0]))
+            return self.unary(self.ops[name], args[0])
+        known = sorted([*_UNARY, *_RECIPROCAL, *_OF_RECIPROCAL])
         raise ModelError(f"the equations contain `{str(node)[:200]}` ({name}), which cannot be handed to CasADi; "
-                         f"it supports {', '.join(sorted(self.functions))}, powers and sign.",
+                         f"it supports {', '.join(known)}, powers and sign.",
                          fix="write the model with these functions")
 
 
