@@ -184,8 +184,8 @@ def optimize_document(result: Any, problem: str | None = None) -> dict[str, Any]
         "free_time": result.free_time, "hessian": result.hessian, "solver": result.solver,
         "seconds": dict(result.seconds), "parameters": dict(result.parameters), "inputs": list(result.inputs),
         "replay": None if replay is None else {
-            "max_error": replay.max_error, "final_error": replay.final_error, "tolerance": replay.tolerance,
-            "within": replay.within, "integrator": replay.integrator},
+            "max_error": replay.max_error, "final_error": replay.final_error, "local_error": replay.local_error,
+            "tolerance": replay.tolerance, "within": replay.within, "integrator": replay.integrator},
         "warnings": list(result.warnings), "node_rows": [int(k) for k in result.node_rows],
         "columns": {name: _floats(result.column(name)) for name in result.columns()},
     }
