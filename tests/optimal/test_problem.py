@@ -129,3 +129,20 @@ def test_objective_terms_weigh_what_they_say(pendulum):
     slow = optimize(pendulum, nodes=30, verify=False, path=[f"-{0.9 * top} <= theta_dot <= {0.9 * top}"], **SWING)
     assert slow.status == "optimal" and np.max(np.abs(slow.qd)) <= 0.9 * top + 1e-6
     assert slow.objective > base.objective
+
+
+def test_an_input_inside_a_parameter_only_subexpression_is_replayed_right():
+    # The C code computes parameter-only subexpressions once per parameter set (2 F l here): the replay
+    # must remake them as the input changes, or it would integrate F = 0.
+    from lagrangian.model import parse_model
+
+    text = (EXAMPLES_DIR / "torque_pendulum.toml").read_text(encoding="utf-8").replace(
+        'motor = { torque = "tau*R0.y"', 'motor = { torque = "2*tau*l*R0.y"')
+    eom = lagrangian.derive(parse_model(text))
+    best = optimize(eom, nodes=30, **{**SWING, "bounds": {"tau": (-2.5, 2.5)}})
+    assert best.status == "optimal" and best.replay.within and best.replay.max_error < 1e-3
+
+
+def test_conditions_must_be_mappings(pendulum):
+    with pytest.raises(ProblemError, match="`initial` must map names to values, not list"):
+        optimize(pendulum, t_end=1.0, initial=[0, 0])

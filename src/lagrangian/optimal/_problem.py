@@ -182,6 +182,11 @@ class Problem:
                 or self.max_iterations < 1:
             raise ProblemError(f"max_iterations = {self.max_iterations!r} must be a positive whole number.",
                                fix="e.g. 3000", **where)
+        for name in ("initial", "final", "bounds", "parameters"):
+            if not isinstance(getattr(self, name), Mapping):
+                raise ProblemError(f"`{name}` must map names to values, not {type(getattr(self, name)).__name__}.",
+                                   fix=f"e.g. {name}={{\"theta\": 0}}" if name != "bounds" else
+                                   "e.g. bounds={\"F\": (-20, 20)}", **where)
         for name, pair in self.bounds.items():
             if isinstance(pair, (str, bytes)) or not isinstance(pair, Sequence) or len(pair) != 2:
                 raise ProblemError(f"The bounds of `{name}` must be a pair (low, high), not `{pair!r}`.",
