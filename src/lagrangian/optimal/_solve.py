@@ -11,6 +11,7 @@ back with the status ``interrupted`` — the best motion it has, not an optimum.
 
 from __future__ import annotations
 
+import functools
 import re
 import signal
 import threading
@@ -92,6 +93,7 @@ class SolverRun:
         return self.status == "optimal"
 
 
+@functools.cache
 def ipopt_build() -> str:
     """The IPOPT that runs, e.g. ``"IPOPT 3.14.19 (CasADi 3.8.2's, MUMPS)"``: the version is read off the
     name of the library in CasADi's package (``libipopt.so.3.14.19``), CasADi having no call that says it."""

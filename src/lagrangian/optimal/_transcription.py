@@ -50,6 +50,9 @@ __all__ = ["Transcription", "transcribe"]
 
 #: Lower bound of a free duration when none is given: T must stay positive.
 MIN_DURATION = 1e-6
+#: Largest residual (relative to the state's size) of the complementary constraints at a fully given
+#: initial state: values typed with 8 or more significant digits (`l*sin(1)`, 0.4207355) pass.
+CONSISTENT = 1e-8
 
 
 @dataclass
@@ -184,7 +187,7 @@ def _manifold_at_start(ca: Any, problem: Problem, layout: Layout, functions: Poi
     z0 = np.where(np.isfinite(lbx[: layout.width]), lbx[: layout.width], 0.0)
     residual = np.asarray(functions.manifold(z0, t0)).ravel()
     scale = max(1.0, float(np.max(np.abs(z0[: 2 * layout.n]))))
-    if np.max(np.abs(residual), initial=0.0) > 1e-8 * scale:
+    if np.max(np.abs(residual), initial=0.0) > CONSISTENT * scale:
         raise ProblemError("The initial conditions break the complementary constraints (largest residual "
                            f"{np.max(np.abs(residual)):.2e}).",
                            fix="give initial values on the constraints, or give the independent coordinates "
@@ -227,7 +230,6 @@ def _objective(ca: Any, objective: Objective, problem: Problem, layout: Layout, 
         raise ProblemError("The objective weighs the duration, but the final time is fixed.",
                            fix="write t_end = \"free\" (with bounds = { t_end = [low, high] }), or drop the time term")
     z, ts = functions.z, functions.t
-    u = z[layout.slice("u")]
     terms: list[Any] = []
     effort = objective.effort
     if isinstance(effort, Mapping):
@@ -235,10 +237,16 @@ def _objective(ca: Any, objective: Objective, problem: Problem, layout: Layout, 
             if name not in layout.inputs:
                 raise ProblemError(f"The effort weighs `{name}`, which is not an input.", symbol=str(name),
                                    fix="the inputs are " + ", ".join(layout.inputs))
-        weights = {name: float(effort.get(name, 0.0)) for name in layout.inputs}
+        weights = [float(effort.get(name, 0.0)) for name in layout.inputs]
     else:
-        weights = dict.fromkeys(layout.inputs, float(effort))
-    terms += [weights[name] * u[k] ** 2 for k, name in enumerate(layout.inputs) if weights[name]]
+        weights = [float(effort)] * len(layout.inputs)
+    quadrature = ca.DM(method.weights(N))
+    cost: Any = 0.0
+    if any(weights):
+        # Σ_i w_i Σ_j ω_j u_ij² on the input rows of Z directly: the effort alone (the usual objective)
+        # needs no mapped function, whose evaluation would cost more than the sum
+        U = Z[layout.slice("u"), :]
+        cost = T * ca.dot(ca.DM(weights), ca.mtimes(U * U, quadrature))
     exprs = []
     if objective.running is not None:
         exprs.append(resolve_expression(objective.running, layout, "the running cost"))
@@ -257,12 +265,10 @@ def _objective(ca: Any, objective: Objective, problem: Problem, layout: Layout, 
             terms.append(weight * (z[k] - r[len(sampled)]) ** 2)
             sampled.append(_sample(ref, name, t0 + tau * float(T)))
     terms += casadi_expressions(exprs, functions.symbols) if exprs else []
-    cost: Any = 0.0
-    if terms:
+    if terms:  # the other running terms: one function of a point, mapped
         running = ca.Function("running", [z, ts, r], [sum(terms[1:], terms[0])])
         R = np.vstack(sampled) if sampled else np.zeros((0, len(tau)))
-        L = running.map(len(tau))(Z, t, R)
-        cost = T * ca.mtimes(L, ca.DM(method.weights(N)))
+        cost = cost + T * ca.mtimes(running.map(len(tau))(Z, t, R), quadrature)
     if objective.time:
         cost = cost + objective.time * T
     if objective.terminal is not None:
