@@ -101,7 +101,7 @@ def run(args: argparse.Namespace) -> str | None:
     overrides: dict[str, Any] = {"nodes": args.nodes, "method": args.method, "hessian": args.hessian,
                                  "tolerance": args.tolerance, "max_iterations": args.max_iterations}
     if args.set:
-        overrides["parameters"] = {**problem.parameters, **_parameters(args.set)}
+        overrides["parameters"] = _parameters(args.set)  # merged with the file's by `optimize`
     with _IpoptOutputToStderr(args.verbose):
         result = optimize(problem, guess=args.guess, verify=args.verify, verbose=args.verbose,
                           **{k: v for k, v in overrides.items() if v is not None})

@@ -62,7 +62,7 @@ def optimize(source: Any, *, t_end: float | str | None = None, t_start: float | 
     Parameters
     ----------
     source : a model file, a `Model`, an `EquationsOfMotion`, or a `Problem` (`load_problem`), whose
-        fields the other arguments given here override.
+        fields the other arguments given here replace (``parameters`` are merged with its own).
     t_end : the final time, or ``"free"`` (then ``bounds["t_end"]`` bounds it).
     t_start : the initial time (default 0).
     initial, final : column → value at t0 and at the final time (numbers, or text such as ``"pi"``);
@@ -114,6 +114,8 @@ def optimize(source: Any, *, t_end: float | str | None = None, t_start: float | 
              "tolerance": tolerance, "max_iterations": max_iterations, "hessian": hessian, "t_guess": t_guess}
     given = {k: v for k, v in given.items() if v is not None}
     if isinstance(source, Problem):
+        if parameters is not None:  # merged with the problem's own values, not in place of them
+            given["parameters"] = {**source.parameters, **parameters}
         problem = dataclasses.replace(source, **given)
     else:
         if t_end is None:
