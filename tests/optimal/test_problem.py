@@ -146,3 +146,14 @@ def test_an_input_inside_a_parameter_only_subexpression_is_replayed_right():
 def test_conditions_must_be_mappings(pendulum):
     with pytest.raises(ProblemError, match="`initial` must map names to values, not list"):
         optimize(pendulum, t_end=1.0, initial=[0, 0])
+
+
+def test_without_casadi_the_error_says_how_to_install_it(monkeypatch):
+    import sys
+
+    from lagrangian.errors import OptimizationError
+    from lagrangian.optimal._casadi import casadi
+
+    monkeypatch.setitem(sys.modules, "casadi", None)  # import casadi now raises ImportError
+    with pytest.raises(OptimizationError, match=r"pip install 'lagrangian\[optimize\]'"):
+        casadi()
