@@ -4,7 +4,7 @@ PYTHON ?= python3
 VENV ?= .venv
 PY := $(VENV)/bin/python
 
-.PHONY: demo test bench clean browser octave tex
+.PHONY: demo test bench clean browser octave tex peers
 
 $(VENV)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -15,7 +15,7 @@ $(VENV)/.installed: pyproject.toml
 demo: $(VENV)/.installed   ## derive the seed's Lagrange top
 	$(VENV)/bin/lagrangian derive
 
-test: $(VENV)/.installed browser octave tex   ## run the test suite
+test: $(VENV)/.installed browser octave tex peers   ## run the test suite
 	$(PY) -m pytest src tests
 
 # The HTML report's tests open the page in a headless browser (Debian's chromium). Install it when it
@@ -66,6 +66,25 @@ tex:
 	else \
 	    echo "note: pdflatex is not installed (installing it needs root and apt-get);" \
 	         "the LaTeX and PDF report tests will be skipped"; \
+	fi
+
+# The optimal-control tests compare with opty (direct collocation on SymPy mechanics), which runs IPOPT through
+# cyipopt, built against the system's IPOPT. Install them when missing and we are root with apt-get, unless
+# SKIP_PEERS=1; otherwise the comparison tests are skipped (the others run: CasADi ships its own IPOPT).
+PEER_PACKAGES := coinor-libipopt-dev libmumps-seq-dev liblapack-dev libblas-dev gfortran pkg-config
+peers: $(VENV)/.installed
+	@if $(PY) -c "import cyipopt, opty" >/dev/null 2>&1 || [ -n "$(SKIP_PEERS)" ]; then :; \
+	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	    echo "installing IPOPT, cyipopt and opty (the optimal-control peers; SKIP_PEERS=1 to skip)..."; \
+	    ((DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends $(PEER_PACKAGES) >/dev/null 2>&1 \
+	      || (apt-get update -q >/dev/null 2>&1 \
+	          && DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends $(PEER_PACKAGES) \
+	             >/dev/null 2>&1)) \
+	     && $(PY) -m pip install --quiet -e '.[peers]') \
+	    || echo "note: cyipopt and opty could not be installed; the comparisons with opty will be skipped"; \
+	else \
+	    echo "note: opty is not installed (its IPOPT needs root and apt-get);" \
+	         "the comparisons with opty will be skipped"; \
 	fi
 
 bench: $(VENV)/.installed   ## derivation benchmark against SymPy's LagrangesMethod (slow: minutes)

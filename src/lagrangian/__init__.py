@@ -2,10 +2,10 @@
 
 The pipeline, one stage per subpackage (imports flow one way)::
 
-    model  →  kinematics  →  dynamics  →  analysis  →  numerics  →  output/plotting  →  cli
+    model  →  kinematics  →  dynamics  →  analysis  →  numerics  →  output/plotting/optimal  →  cli
     (spec)    (Ω, V, V*)     (T, U, Q,     (first        (C code,     (text, LaTeX, JSON,
-                              L(q_i), M,F)  integrals,    integrators,  report, plots)
-                                            Newton–Euler, simulate)
+                              L(q_i), M,F)  integrals,    integrators,  report, plots; optimal
+                                            Newton–Euler, simulate)     motions by collocation)
                                             top analysis)
 
 Typical use::
@@ -33,13 +33,15 @@ _WHERE = {
                      "routh_reduction", "stability", "steady_motions", "sweep", "verify"), ".analysis"),
     **dict.fromkeys(("EquationsOfMotion", "LagrangeEquation", "derive"), ".dynamics"),
     **dict.fromkeys(("DerivationError", "ExportError", "IdentificationError", "KinematicsError", "LagrangianError",
-                     "ModelError", "OutputError", "SimulationError", "VerificationError"), ".errors"),
+                     "ModelError", "OptimizationError", "OutputError", "ProblemError", "SimulationError",
+                     "VerificationError"), ".errors"),
     **dict.fromkeys(("Identification", "identify"), ".identification"),
     "Kinematics": ".kinematics",
     **dict.fromkeys(("ModelBuilder", "load_model", "load_urdf", "parse_model"), ".model"),
     "Model": ".model.spec",
     "lagrange_top": ".model.zoo",
     **dict.fromkeys(("Report", "report", "export"), ".output"),
+    **dict.fromkeys(("optimize", "load_problem", "OptimalTrajectory", "Objective", "Problem"), ".optimal"),
     **dict.fromkeys(("CompiledSystem", "EventSpec", "FreeBodySystem", "InputTable", "Sensitivities", "Trajectory", "compile_free_system",
                      "compile_system", "ensemble", "grid", "open_ensemble", "save_trajectory", "simulate"), ".numerics"),
 }
@@ -51,7 +53,7 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
                            routh_reduction, stability, steady_motions, sweep, verify)
     from .dynamics import EquationsOfMotion, LagrangeEquation, derive
     from .errors import (DerivationError, ExportError, IdentificationError, KinematicsError, LagrangianError,
-                         ModelError, OutputError, SimulationError, VerificationError)
+                         ModelError, OptimizationError, OutputError, ProblemError, SimulationError, VerificationError)
     from .identification import Identification, identify
     from .kinematics import Kinematics
     from .model import ModelBuilder, load_model, load_urdf, parse_model
@@ -59,6 +61,7 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from .model.zoo import lagrange_top
     from .numerics import (CompiledSystem, EventSpec, FreeBodySystem, InputTable, Sensitivities, Trajectory, compile_free_system,
                            compile_system, ensemble, grid, open_ensemble, save_trajectory, simulate)
+    from .optimal import Objective, OptimalTrajectory, Problem, load_problem, optimize
     from .output import Report, export, report
 
 __version__ = "0.1.0"
@@ -115,6 +118,11 @@ __all__ = [
     "InputTable",
     "Trajectory",
     "save_trajectory",
+    "optimize",
+    "load_problem",
+    "Problem",
+    "Objective",
+    "OptimalTrajectory",
     "report",
     "Report",
     "export",
@@ -127,6 +135,8 @@ __all__ = [
     "ExportError",
     "VerificationError",
     "IdentificationError",
+    "ProblemError",
+    "OptimizationError",
 ]
 
 

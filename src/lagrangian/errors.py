@@ -14,6 +14,8 @@ __all__ = [
     "KinematicsError",
     "DerivationError",
     "SimulationError",
+    "ProblemError",
+    "OptimizationError",
     "Interrupted",
     "EnsembleInterrupted",
     "OutputError",
@@ -107,6 +109,26 @@ class SimulationError(LagrangianError):
         self.t = t
         self.state = state
         self.trajectory = trajectory
+
+
+class ProblemError(ModelError):
+    """An optimal-control problem is ill-stated: an unknown name, reversed bounds, too few nodes, a model
+    without inputs, a value or an expression that cannot be read (`lagrangian.optimize`, a problem file).
+
+    A `ModelError`, so that a problem file's mistake is printed with its file and line; ``table`` is the
+    problem file's table the offending ``symbol`` is a key of (``"final"``, ``"bounds"``...), when known.
+    """
+
+    table: str | None = None
+
+
+class OptimizationError(LagrangianError):
+    """An optimization cannot be run: CasADi is missing, or the solver stopped on an error of its own.
+
+    A problem that has no solution is not an error: `lagrangian.optimize` returns the solver's last
+    iterate with its status (``infeasible``) for the caller to look at."""
+
+    exit_code = 4
 
 
 class Interrupted(KeyboardInterrupt):

@@ -281,6 +281,75 @@ def furuta_pendulum() -> Oracle:
     return [phi, alpha], T, [(Ga, -ma * g * N.z), (Gp, -mp * g * N.z), (R1, tau * N.z)], N
 
 
+def torque_pendulum() -> Oracle:
+    m, l, g, tau = _params("m l g tau")
+    theta = me.dynamicsymbols("theta")
+    N = me.ReferenceFrame("N")
+    R1 = N.orientnew("R1", "Axis", (theta, N.y))
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    P = O.locatenew("P", -l * R1.z)
+    P.v2pt_theory(O, N, R1)
+    bob = me.Particle("bob", P, m)
+    return [theta], bob.kinetic_energy(N), [(P, -m * g * N.z), (R1, tau * N.y)], N
+
+
+def double_pendulum_cart() -> Oracle:
+    mc, m1, m2, l1, l2, g, F = _params("mc m1 m2 l1 l2 g F")
+    x, th1, th2 = me.dynamicsymbols("x theta1 theta2")
+    N = me.ReferenceFrame("N")
+    R1 = N.orientnew("R1", "Axis", (th1, N.y))
+    R2 = N.orientnew("R2", "Axis", (th2, N.y))
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    C = O.locatenew("C", x * N.x)
+    C.set_vel(N, x.diff() * N.x)
+    P1 = C.locatenew("P1", l1 * R1.z)
+    P1.v2pt_theory(C, N, R1)
+    P2 = P1.locatenew("P2", l2 * R2.z)
+    P2.v2pt_theory(P1, N, R2)
+    parts = [me.Particle("cart", C, mc), me.Particle("b1", P1, m1), me.Particle("b2", P2, m2)]
+    T = sum(p.kinetic_energy(N) for p in parts)
+    return [x, th1, th2], T, [(C, -mc * g * N.z + F * N.x), (P1, -m1 * g * N.z), (P2, -m2 * g * N.z)], N
+
+
+def acrobot() -> Oracle:
+    # Two rods as rigid bodies (inertia I1, I2 about their centres, about y), the elbow angle relative.
+    m1, m2, l1, lc1, lc2, I1, I2, g, tau = _params("m1 m2 l1 lc1 lc2 I1 I2 g tau")
+    th1, th2 = me.dynamicsymbols("theta1 theta2")
+    N = me.ReferenceFrame("N")
+    R1 = N.orientnew("R1", "Axis", (th1, N.y))
+    R2 = R1.orientnew("R2", "Axis", (th2, R1.y))
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    A = O.locatenew("A", -l1 * R1.z)
+    A.v2pt_theory(O, N, R1)
+    G1 = O.locatenew("G1", -lc1 * R1.z)
+    G1.v2pt_theory(O, N, R1)
+    G2 = A.locatenew("G2", -lc2 * R2.z)
+    G2.v2pt_theory(A, N, R2)
+    L1 = me.RigidBody("L1", G1, R1, m1, (me.inertia(R1, I1, I1, 0), G1))
+    L2 = me.RigidBody("L2", G2, R2, m2, (me.inertia(R2, I2, I2, 0), G2))
+    T = L1.kinetic_energy(N) + L2.kinetic_energy(N)
+    return [th1, th2], T, [(G1, -m1 * g * N.z), (G2, -m2 * g * N.z), (R2, tau * R1.y), (R1, -tau * R1.y)], N
+
+
+def satellite_reaction_wheel() -> Oracle:
+    # The body B and the wheel W turn about z through their common centre of mass; the motor's couple
+    # acts on W and, reacted, on B; no other load (a satellite's attitude, weightless about its centre).
+    Ib, Iw, M, mw, tau = _params("Ib Iw M mw tau")
+    theta, phi = me.dynamicsymbols("theta phi")
+    N = me.ReferenceFrame("N")
+    R1 = N.orientnew("R1", "Axis", (theta, N.z))
+    R2 = R1.orientnew("R2", "Axis", (phi, R1.z))
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    B = me.RigidBody("B", O, R1, M, (me.inertia(R1, Ib, Ib, Ib), O))
+    W = me.RigidBody("W", O, R2, mw, (me.inertia(R2, Iw / 2, Iw / 2, Iw), O))
+    T = B.kinetic_energy(N) + W.kinetic_energy(N)
+    return [theta, phi], T, [(R2, tau * R1.z), (R1, -tau * R1.z)], N
+
+
 def sleeping_top() -> Oracle:
     m, g, a, A, C = _params("m g a A C")
     alpha, beta, phi = me.dynamicsymbols("alpha beta phi")
@@ -366,6 +435,10 @@ ORACLES: dict[str, Callable[[], Oracle]] = {
     "cart_pendulum.toml": cart_pendulum,
     "inverted_pendulum_cart.toml": inverted_pendulum_cart,
     "furuta_pendulum.toml": furuta_pendulum,
+    "torque_pendulum.toml": torque_pendulum,
+    "double_pendulum_cart.toml": double_pendulum_cart,
+    "acrobot.toml": acrobot,
+    "satellite_reaction_wheel.toml": satellite_reaction_wheel,
     "lagrange_top.toml": lagrange_top,
     "sleeping_top.toml": sleeping_top,
     "bead_rotating_hoop.toml": bead_rotating_hoop,

@@ -9,7 +9,7 @@ files return a short summary.
 Exit codes: 0 success, 1 usage error (argparse), 2 bad model or derivation error,
 3 output file (or standard output: a full device) could not be written, 4 simulation could
 not start or go on, 5 a cross-check (Newton–Euler against Lagrange) failed, 130 interrupted
-by Ctrl-C (also while the package is still loading), 141 standard output closed by its
+by Ctrl-C (also while the package is still loading; `optimize` writes the solver's last iterate), 141 standard output closed by its
 reader (``| head``).
 """
 
@@ -30,8 +30,8 @@ from ._atomic import check_output, write_output
 __all__ = ["main", "entrypoint"]
 
 # The commands, in the order `--help` lists them; each name is a module `cli/_<name>.py`.
-COMMANDS = ("derive", "simulate", "sweep", "verify", "analyse", "equilibria", "linearize", "modes", "lqr", "identify", "report",
-            "export")
+COMMANDS = ("derive", "simulate", "sweep", "verify", "analyse", "equilibria", "linearize", "modes", "lqr", "optimize",
+            "identify", "report", "export")
 
 
 def _commands() -> list:
