@@ -2,10 +2,10 @@
 
 The pipeline, one stage per subpackage (imports flow one way)::
 
-    model  →  kinematics  →  dynamics  →  analysis  →  numerics  →  output/plotting  →  cli
-    (spec)    (Ω, V, V*)     (T, U, Q,     (first        (C code,     (text, LaTeX, JSON,
-                              L(q_i), M,F)  integrals,    integrators,  report, plots)
-                                            Newton–Euler, simulate)
+    model  →  kinematics  →  dynamics  →  analysis  →  numerics  →  view3d  →  output/plotting  →  cli
+    (spec)    (Ω, V, V*)     (T, U, Q,     (first        (C code,     (3-D      (text, LaTeX, JSON,
+                              L(q_i), M,F)  integrals,    integrators,  scene,   report, plots)
+                                            Newton–Euler, simulate)     page)
                                             top analysis)
 
 Typical use::
@@ -39,8 +39,9 @@ _WHERE = {
     "Model": ".model.spec",
     "lagrange_top": ".model.zoo",
     **dict.fromkeys(("Report", "report", "export"), ".output"),
+    **dict.fromkeys(("View", "view"), ".view3d"),
     **dict.fromkeys(("CompiledSystem", "EventSpec", "Trajectory", "compile_system", "ensemble", "grid",
-                     "open_ensemble", "save_trajectory", "simulate"), ".numerics"),
+                     "load_trajectory", "open_ensemble", "save_trajectory", "simulate"), ".numerics"),
 }
 
 if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
@@ -55,9 +56,10 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from .model import ModelBuilder, load_model, load_urdf, parse_model
     from .model.spec import Model
     from .model.zoo import lagrange_top
-    from .numerics import (CompiledSystem, EventSpec, Trajectory, compile_system, ensemble, grid, open_ensemble,
-                           save_trajectory, simulate)
+    from .numerics import (CompiledSystem, EventSpec, Trajectory, compile_system, ensemble, grid, load_trajectory,
+                           open_ensemble, save_trajectory, simulate)
     from .output import Report, export, report
+    from .view3d import View, view
 
 __version__ = "0.1.0"
 
@@ -104,9 +106,12 @@ __all__ = [
     "EventSpec",
     "Trajectory",
     "save_trajectory",
+    "load_trajectory",
     "report",
     "Report",
     "export",
+    "view",
+    "View",
     "LagrangianError",
     "ModelError",
     "KinematicsError",

@@ -1,7 +1,7 @@
 """Greek letters by name, as the course writes them: ``psi`` → ψ, ``theta1`` → θ1, ``phi`` → φ.
 
 One table for every printer: the terminal and LaTeX notation (`lagrangian.output._notation`) and
-the labels of the 3-D view (`lagrangian.view`).
+the labels of the 3-D view (`lagrangian.view3d`).
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """Declaring how bodies and particles look: ``[shapes]`` of a model file, read into `Shape` values.
 
 A shape plays no part in the dynamics: the 3-D view and the animation draw it
-(`lagrangian.view`), and infer one from the inertia and the points wherever the model
+(`lagrangian.view3d`), and infer one from the inertia and the points wherever the model
 gives none.  In a model file::
 
     [shapes]

@@ -455,7 +455,7 @@ class Model:
     #: The report's title (``[model] title``, a `Text` when given per language); None: from ``name``.
     title: str | None = None
     #: How bodies and particles look (``[shapes]``, URDF ``<visual>``); what is not given is inferred
-    #: by `lagrangian.view` from the inertia and the points.
+    #: by `lagrangian.view3d` from the inertia and the points.
     shapes: tuple[Shape, ...] = ()
 
     def __post_init__(self) -> None:

@@ -12,6 +12,7 @@ from ._ensemble_store import open_ensemble as open_ensemble
 from ._members import Grid as Grid
 from ._members import grid as grid
 from ._files import check_output_path as check_output_path
+from ._files import load_trajectory as load_trajectory
 from ._files import save_trajectory as save_trajectory
 from ._simulate import METHODS as METHODS
 from ._simulate import EventSpec as EventSpec
@@ -29,7 +30,7 @@ from ._top_check import simulation_check as simulation_check
 from ._trajectory import Event as Event
 from ._trajectory import Trajectory as Trajectory
 
-__all__ = ["simulate", "ensemble", "grid", "Grid", "open_ensemble", "flip_events", "simulate_stick_slip", "save_trajectory", "check_output_path", "EventSpec", "initial_state", "METHODS",
+__all__ = ["simulate", "ensemble", "grid", "Grid", "open_ensemble", "flip_events", "simulate_stick_slip", "save_trajectory", "load_trajectory", "check_output_path", "EventSpec", "initial_state", "METHODS",
            "STABILIZATIONS", "default_tolerance", "CompiledSystem", "compile_system", "Trajectory", "Event",
            "SimulationCheck", "simulation_check", "reaction_columns_along",
            "reaction_history_along", "check_trajectory_along"]

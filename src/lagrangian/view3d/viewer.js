@@ -557,6 +557,7 @@ var LagrangianView = (function () {
       play: function () { setPlaying(true); },
       pause: function () { setPlaying(false); },
       playing: function () { return state.playing; },
+      controls: function (on) { bar.style.display = on ? "" : "none"; render(); },
       setSpeed: function (s) { state.speed = Number(s); speed.value = String(s); },
       show: function (key, on) { state[key] = !!on; render(); },
       showVector: function (name, on) {
@@ -583,7 +584,6 @@ var LagrangianView = (function () {
             var a = performance.now();
             state.time = t0 + ((now - start) / 1000) % Math.max(t1 - t0, 1e-300);
             render();
-            renderer.getContext().finish();
             work.push(performance.now() - a);
             frames++;
             if (now - start < 1000 * seconds) requestAnimationFrame(step);

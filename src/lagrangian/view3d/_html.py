@@ -36,7 +36,7 @@ _ids = count(1)
 
 
 def _read(name: str) -> str:
-    return resources.files("lagrangian.view").joinpath(name).read_text(encoding="utf-8")
+    return resources.files("lagrangian.view3d").joinpath(name).read_text(encoding="utf-8")
 
 
 def _exports_as_object(source: str, what: str) -> tuple[str, str]:
