@@ -20,8 +20,6 @@ import html
 import json
 import re
 from importlib import resources
-from itertools import count
-
 from ._scene import Scene
 
 __all__ = ["THREE_VERSION", "library", "page", "fragment", "scene_json", "CSP"]
@@ -31,9 +29,6 @@ THREE_VERSION = "0.170.0"
 #: What a page of the view may load: nothing from anywhere, but its inline script, styles and images.
 CSP = ("default-src 'none'; script-src 'unsafe-inline'; style-src 'unsafe-inline'; img-src data: blob:; "
        "connect-src 'none'; base-uri 'none'; form-action 'none'")
-
-_ids = count(1)
-
 
 def _read(name: str) -> str:
     return resources.files("lagrangian.view3d").joinpath(name).read_text(encoding="utf-8")
@@ -84,9 +79,9 @@ def scene_json(scene: Scene) -> str:
             .replace("\u2028", "\\u2028").replace("\u2029", "\\u2029"))
 
 
-def fragment(scene: Scene, *, height: str = "480px", caption: str = "") -> str:
-    """A ``<figure>`` holding the view of ``scene``; the page must hold `library` once (before or after)."""
-    ident = f"lgv-{next(_ids)}"
+def fragment(scene: Scene, *, ident: str = "lgv-1", height: str = "480px", caption: str = "") -> str:
+    """A ``<figure>`` holding the view of ``scene``, its element named ``ident`` (one per page); the page
+    must hold `library` once (before or after)."""
     cap = f"<figcaption>{html.escape(caption)}</figcaption>" if caption else ""
     return (f'<figure class="lgv-figure"><div id="{ident}" style="height: {height}"></div>{cap}</figure>\n'
             f'<script type="application/json" id="{ident}-data">{scene_json(scene)}</script>\n'
