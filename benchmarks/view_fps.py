@@ -3,8 +3,8 @@
     .venv/bin/python benchmarks/view_fps.py              # 30-body chain, 10 s at 100 frames/s, 5 s of play
     .venv/bin/python benchmarks/view_fps.py --bodies 50 --seconds 8
 
-The page of a chain of N rigid rods (`lagrangian.model.zoo.planar_chain`, each rod a body with
-its inertia's solid and its hinge) moving for 10 s, sampled at 100 frames/s, is opened in
+The page of a chain of N rigid rods (`lagrangian.model.zoo.spatial_chain`: each rod a body, the
+solid of its inertia, joined to the next by a ball joint) moving for 10 s, sampled at 100 frames/s, is opened in
 headless Chromium (software WebGL, SwiftShader) at 800 × 600; the page's own benchmark plays it
 for the given seconds, drawing every animation frame the browser asks for
 (``requestAnimationFrame``), and reports the frames per second and the milliseconds each frame's
@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from lagrangian.model.zoo import planar_chain, serial_arm
+from lagrangian.model.zoo import serial_arm, spatial_chain
 from lagrangian.view3d import Motion, View, build_scene
 from lagrangian.view3d._chromium import Browser
 
@@ -39,9 +39,9 @@ window.rafRate = s => new Promise(r => { let n = 0, t0 = null;
 
 
 def chain_view(bodies: int, seconds: float = 10.0, rate: float = 100.0) -> View:
-    model = planar_chain(bodies)
+    model = spatial_chain(bodies)
     t = np.linspace(0.0, seconds, int(seconds * rate) + 1)
-    k = np.arange(1, bodies + 1)
+    k = np.arange(1, len(model.coordinates) + 1)
     q = 0.4 * np.sin(np.outer(t, 0.5 + 0.05 * k))
     qd = 0.4 * (0.5 + 0.05 * k) * np.cos(np.outer(t, 0.5 + 0.05 * k))
     values = {p.name: p.value for p in model.parameters}
@@ -60,7 +60,7 @@ def arm_size() -> int:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--bodies", type=int, default=30)
+    parser.add_argument("--bodies", type=int, default=30, help="rods of the chain (default 30)")
     parser.add_argument("--seconds", type=float, default=5.0, help="seconds of play measured")
     args = parser.parse_args()
     folder = Path(tempfile.mkdtemp(prefix="view-fps-"))

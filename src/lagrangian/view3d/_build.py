@@ -28,6 +28,10 @@ from ._scene import Carrier, Part, Run, Scene, Track
 
 __all__ = ["Motion", "build_scene", "MAX_FRAMES"]
 
+#: Most paths drawn when none are asked for.
+DEFAULT_TRACES = 4
+#: Up to this many bodies, every body's tip is followed and every velocity drawable; beyond, the free ends'.
+FEW = 8
 #: Most frames kept from a run's output times (evenly chosen among them): 100 frames/s for a minute.
 MAX_FRAMES = 6000
 #: Sizes of what has no size of its own, as fractions of the scene's length L.
@@ -176,10 +180,9 @@ def build_scene(model: Model, motions: Sequence[Motion], values: Mapping[str, fl
         declared.setdefault(shape.on, []).append(shape)
     # Bodies: a carrier at G turning with the body's frame; their shapes; their tips.
     anchors: dict[str, str] = {}
-    tips: list[int] = []
     meshes: dict[str, Mesh] = {}
-    attached_to = {body.name: attached_points(model, body, ev) for body in model.bodies}
-    anchors = {body.name: _anchor(model, body, attached_to[body.name]) for body in model.bodies}
+    attached_to = attached_points(model, ev)
+    anchors = {body.name: _anchor(model, body, attached_to) for body in model.bodies}
     solids = {body.name: body_solid(b, body, attached_to[body.name], anchors[body.name]) for body in model.bodies
               if body.name not in declared}
     length = b.L = max([b.length()] + [max(s.size) for s in solids.values() if s is not None])
@@ -192,12 +195,14 @@ def build_scene(model: Model, motions: Sequence[Motion], values: Mapping[str, fl
                 b.parts.append(_declared_part(b, shape, k, body.center, body.frame, color, meshes))
             continue
         extent = inferred_parts(b, body, k, attached, anchor, color, length, solids[body.name])
-        if anchor != body.name and extent is not None:
+        others = {anchors[o.name] for o in model.bodies if o.name != body.name}
+        leaf = not set(attached) & others  # nothing hangs from it: its tip is a free end (the top's apex)
+        if anchor != body.name and extent is not None and (leaf or len(model.bodies) <= FEW):
             gp = attached.get(anchor)
             if gp is not None and np.linalg.norm(gp) > 1e-12:
                 unit = -gp / np.linalg.norm(gp)
                 tip = Vector({body.frame: tuple(se.Float(float(x)) for x in unit * extent)}) + body.center
-                tips.append(b.track(f"tip:{body.name}", "", "tip", tip))
+                b.track(f"tip:{body.name}", "", "tip", tip)
     for particle in model.particles:
         k = b.carrier(particle.name, particle.name, "particle", GALILEAN_FRAME, particle.position)
         color = b.colors[particle.name]
@@ -212,17 +217,23 @@ def build_scene(model: Model, motions: Sequence[Motion], values: Mapping[str, fl
             k = b.carrier(owner, owner, "ground" if owner == GALILEAN_FRAME else "frame", owner, shape.center)
             b.parts.append(_declared_part(b, shape, k, shape.center, owner, "#9a9a9a", meshes))
     found_links = links(b, length)
-    found_triads = triads(b, anchors, length)
+    found_triads = triads(b, anchors, attached_to, length)
     b.evaluate()
     fixed = fixed_tracks(b, found_links, anchors)
     b.tracks = [Track(tr.name, tr.label, tr.kind, k in fixed) for k, tr in enumerate(b.tracks)]
     up = up_direction(b)
     found_arcs = arcs(b, found_triads, length)
-    found_arrows = arrows(b, vectors, length)
     if traces is None:
-        traced = [b.track(p.name, "", "", None) for p in model.particles] + tips
-        if not traced:
-            traced = [b.track(body.name, "", "", None) for body in model.bodies]
+        # The free ends: the particles no rod hangs from and the bodies nothing hangs from (the second rod
+        # of a double pendulum, the top, a chain's last link: their tip, else their G), at most DEFAULT_TRACES.
+        pivots = {link.a for link in found_links if link.kind == "rod"}
+        index = {tr.name: k for k, tr in enumerate(b.tracks)}
+        traced = [index[p.name] for p in model.particles if index[p.name] not in pivots]
+        for body in model.bodies:
+            others = {anchors[o.name] for o in model.bodies if o.name != body.name}
+            if not set(attached_to[body.name]) & others:
+                traced.append(index.get(f"tip:{body.name}", index[body.name]))
+        traced = traced[-DEFAULT_TRACES:]
     else:
         names = {tr.name: k for k, tr in enumerate(b.tracks)}
         unknown = [n for n in traces if n not in names]
@@ -231,6 +242,7 @@ def build_scene(model: Model, motions: Sequence[Motion], values: Mapping[str, fl
                               fix="trace a declared point, a body (its centre G), a particle or tip:BODY; points: "
                                   + ", ".join(sorted(names)))
         traced = [names[n] for n in traces]
+    found_arrows = arrows(b, vectors, length, traced)
     centre, radius, direction = framing(b, up, length)
     runs = []
     offset_axis = np.cross(up, direction)
@@ -261,36 +273,14 @@ def _centre_labels(model: Model) -> dict[str, str]:
     return {n: f"G_{n}" for n in names}
 
 
-def _anchor(model: Model, body, attached: Mapping[str, np.ndarray]) -> str:  # type: ignore[no-untyped-def]
-    """The body's joint point: its fixed point, else a point it shares with another body or the ground."""
+def _anchor(model: Model, body, attached: Mapping[str, Mapping[str, np.ndarray]]) -> str:  # type: ignore[no-untyped-def]
+    """The body's joint point: its fixed point, else a point it shares with another body or the ground (O)."""
     if body.fixed_point:
         return body.fixed_point
-    shared = []
-    others = [b for b in model.bodies if b.name != body.name]
-    for name in attached:
-        if name == ORIGIN or any(name in _cached_attached(model, o) for o in others):
-            shared.append(name)
-    if shared:
-        return shared[0]
+    for name in attached[body.name]:
+        if name == ORIGIN or any(name in attached[o.name] for o in model.bodies if o.name != body.name):
+            return name
     return body.name
-
-
-_ATTACHED: dict[tuple[int, str], set[str]] = {}
-
-
-def _cached_attached(model: Model, body) -> set[str]:  # type: ignore[no-untyped-def]
-    """The names of the points fixed in ``body`` (declared ones: GP has no coordinate on the body's frame)."""
-    key = (id(model), body.name)
-    if key not in _ATTACHED:
-        from ..kinematics._frames import FrameTree
-        from ..kinematics._time import TimeDerivative
-        from ..model import TIME
-
-        tree = FrameTree(model, TimeDerivative.of((), (), (), TIME))
-        moving = {TIME} | {c.symbol for c in model.coordinates}
-        _ATTACHED[key] = {p.name for p in model.points
-                          if not any(c.free_symbols & moving for c in tree.express(p.position - body.center, body.frame))}
-    return _ATTACHED[key]
 
 
 def _declared_part(b: _Builder, shape: Shape, carrier: int, origin: Vector, frame: str, color: str,

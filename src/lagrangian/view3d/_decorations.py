@@ -104,8 +104,17 @@ def fixed_tracks(b: _Builder, found_links: Sequence[Link], anchors: Mapping[str,
     return {k for k in holding if b.tracks[k].kind == "point" and _still(pts[:, k], scale)}
 
 
-def triads(b: _Builder, anchors: Mapping[str, str], length: float) -> list[Triad]:
-    """A triad per frame of the model (not the ``_`` frames of a rotation sequence), at its origin."""
+#: Most bodies for which the frames between bodies' frames (the top's R1, R2) get a triad of their own.
+INTERMEDIATE_TRIADS = 6
+
+
+def triads(b: _Builder, anchors: Mapping[str, str], attached: Mapping[str, Mapping[str, np.ndarray]],
+           length: float) -> list[Triad]:
+    """A triad per frame of the model (not the ``_`` frames of a rotation sequence), at its origin.
+
+    A body's frame is drawn on the body itself (its carrier, at its joint point); a frame between two
+    bodies' (the top's R1 and R2) gets a carrier of its own, for models of at most `INTERMEDIATE_TRIADS`
+    bodies."""
     model = b.model
     parents = {f.name: f.parent for f in model.frames}
 
@@ -122,21 +131,29 @@ def triads(b: _Builder, anchors: Mapping[str, str], length: float) -> list[Triad
     for frame in model.frames:
         if frame.name.startswith("_"):
             continue
+        position = (0.0, 0.0, 0.0)
+        own = next((body for body in model.bodies if body.frame == frame.name), None)
         if frame.name == GALILEAN_FRAME:
             anchor = ORIGIN
+            k = b.carrier(f"frame:{frame.name}", frame.name, "frame", frame.name, model_point(model, anchor))
+        elif own is not None:
+            anchor = anchors[own.name]
+            k = b.carrier(own.name, own.name, "body", own.frame, own.center)
+            if anchor in attached[own.name]:
+                position = tuple(float(x) for x in attached[own.name][anchor])  # type: ignore[assignment]
         else:
             owner = next((body for body in model.bodies if descends(body.frame, frame.name)), None)
-            if owner is None:
+            if owner is None or len(model.bodies) > INTERMEDIATE_TRIADS:
                 continue  # a frame no body turns with (a reference frame, a massless link's): not drawn
             anchor = anchors[owner.name]
-        k = b.carrier(f"frame:{frame.name}", frame.name, "frame", frame.name, model_point(model, anchor))
+            k = b.carrier(f"frame:{frame.name}", frame.name, "frame", frame.name, model_point(model, anchor))
         seen = drawn.setdefault(anchor, set())
         # x_R_column (a URDF link's frame): the letter alone, the frame's name being shown at its origin.
         axes = tuple("" if name in seen else (name[0] if name == f"{name[0]}_{frame.name}" else name)
                      for name in frame.axes)
         seen.update(frame.axes)
         size = (0.35 if frame.name == GALILEAN_FRAME else 0.25) * length
-        out.append(Triad(frame.name, k, axes, size))  # type: ignore[arg-type]
+        out.append(Triad(frame.name, k, axes, size, position))  # type: ignore[arg-type]
     return out
 
 
@@ -201,8 +218,11 @@ def arcs(b: _Builder, found: Sequence[Triad], length: float) -> list[Arc]:
     return out
 
 
-def arrows(b: _Builder, shown: Sequence[str] | None, length: float) -> list[Arrow]:
-    """Velocities of particles and centres of mass, the run's reaction columns, the forces at points."""
+def arrows(b: _Builder, shown: Sequence[str] | None, length: float, traced: Sequence[int] = ()) -> list[Arrow]:
+    """Velocities of particles and centres of mass (of the traced ones only, past `FEW` of them), the run's
+    reaction columns, the forces at points."""
+    from ._build import FEW
+
     from ..kinematics import Kinematics
 
     model = b.model
@@ -210,6 +230,9 @@ def arrows(b: _Builder, shown: Sequence[str] | None, length: float) -> list[Arro
     q, qd = b.states[0]
     found: list[tuple[str, str, str, int, np.ndarray, str]] = []  # name, label, kind, track, values, unit
     movers = [body.name for body in model.bodies] + [p.name for p in model.particles]
+    if len(movers) > FEW:
+        ends = {b.tracks[k].name.removeprefix("tip:") for k in traced}
+        movers = [name for name in movers if name in ends or f"V({name})" in (shown or ())]
     if movers:
         kin = Kinematics(model)
         values = b.ev.vectors([kin.velocity(name) for name in movers], b.t, q, qd)

@@ -134,17 +134,34 @@ def model_point(model: Model, name: str) -> Vector:
     return model.body(name).center
 
 
-def attached_points(model: Model, body: Body, ev: Evaluator) -> dict[str, np.ndarray]:
-    """The declared points fixed in ``body`` (GP constant on its frame), with GP on that frame."""
-    out = {}
-    for point in model.points:
-        gp = ev.constant_in(point.position - body.center, body.frame)
-        if gp is not None:
-            out[point.name] = np.array(gp)
-    if body.fixed_point and body.fixed_point not in out:
-        gp = ev.constant_in(model_point(model, body.fixed_point) - body.center, body.frame)
-        if gp is not None:
-            out[body.fixed_point] = np.array(gp)
+def attached_points(model: Model, ev: Evaluator, states: int = 5) -> dict[str, dict[str, np.ndarray]]:
+    """For each body, the declared points fixed in it (GP constant on its frame), with GP on that frame.
+
+    Decided numerically on a few random states (seeded): GP = C_Bᵀ (OP − OG) the same at each, to
+    1e-9 of the model's size — O(bodies × points) numbers, where a symbolic test costs a derivative per
+    coordinate of each component.
+    """
+    if not model.bodies:
+        return {}
+    rng = np.random.default_rng(20261127)
+    n = len(model.coordinates)
+    q0 = np.array([c.initial or 0.0 for c in model.coordinates])
+    q = q0 + rng.uniform(-1.0, 1.0, (states, n))
+    qd = rng.uniform(-1.0, 1.0, (states, n))
+    t = rng.uniform(0.0, 1.0, states)
+    names = [p.name for p in model.points]
+    fixed = {b.fixed_point for b in model.bodies if b.fixed_point and b.fixed_point not in names}
+    names += sorted(fixed)
+    where = ev.vectors([model_point(model, name) for name in names] + [b.center for b in model.bodies], t, q, qd)
+    bases = ev.bases([b.frame for b in model.bodies], t, q, qd)
+    scale = max(float(np.max(np.abs(where))), 1e-300)
+    out: dict[str, dict[str, np.ndarray]] = {}
+    for k, body in enumerate(model.bodies):
+        g = where[:, len(names) + k]
+        c = np.asarray(bases[body.frame])
+        local = np.einsum("sji,spj->spi", c, where[:, :len(names)] - g[:, None, :])  # Cᵀ (P − G), (states, P, 3)
+        still = np.ptp(local, axis=0).max(axis=1) <= 1e-9 * scale
+        out[body.name] = {name: local[0, j] for j, name in enumerate(names) if still[j]}
     return out
 
 

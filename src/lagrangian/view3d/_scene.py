@@ -89,13 +89,14 @@ class Link:
 
 @dataclass(frozen=True)
 class Triad:
-    """The axes of ``frame`` at the origin of carrier ``carrier``; an axis named ``""`` is not drawn (another
-    triad at the same place already draws it)."""
+    """The axes of ``frame`` on carrier ``carrier``, at ``position`` in its frame (a body's frame at its joint
+    point); an axis named ``""`` is not drawn (another triad at the same place already draws it)."""
 
     frame: str
     carrier: int
     axes: tuple[str, str, str]
     length: float
+    position: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
 
 @dataclass(frozen=True)
@@ -211,8 +212,8 @@ class Scene:
                       "ghost": r.ghost} for r in self.runs],
             "links": [{"name": k.name, "kind": k.kind, "a": k.a, "b": k.b, "color": k.color, "radius": k.radius}
                       for k in self.links],
-            "triads": [{"frame": t.frame, "carrier": t.carrier, "axes": list(t.axes), "length": t.length}
-                       for t in self.triads],
+            "triads": [{"frame": t.frame, "carrier": t.carrier, "axes": list(t.axes), "length": t.length,
+                        "position": list(t.position)} for t in self.triads],
             "arcs": [{"label": a.label, "points": np.round(a.points, 6).tolist(), "at": list(a.at)} for a in self.arcs],
             "arrows": [{"name": a.name, "label": a.label, "kind": a.kind, "track": a.track, "values": b64(a.values),
                         "scale": a.scale, "unit": a.unit, "color": a.color, "shown": a.shown} for a in self.arrows],

@@ -131,7 +131,7 @@ def wireframe(scene: Scene, *, view: str = "auto", run: int = 0) -> Wireframe:
         if triad.carrier >= poses.shape[1] or scene.carriers[triad.carrier].frame == "R0":
             continue
         frames = _matrices(poses[:, triad.carrier, :])
-        origin = frames[:, :3, 3] + np.array(scene.runs[run].offset)
+        origin = frames[:, :3, :3] @ np.array(triad.position) + frames[:, :3, 3] + np.array(scene.runs[run].offset)
         ends = origin[:, None, :] + 0.6 * triad.length * np.transpose(frames[:, :3, :3], (0, 2, 1))
         axes.append(np.stack([np.broadcast_to(origin[:, None, :], ends.shape), ends], axis=2))
     trails = tuple(points[:, k] for k in scene.traces)

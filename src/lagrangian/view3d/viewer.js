@@ -36,7 +36,7 @@ var LagrangianView = (function () {
     ".lgv-stage{position:relative;flex:1 1 auto;min-height:200px}",
     ".lgv-stage canvas{display:block;width:100%;height:100%;outline:none}",
     ".lgv-labels{position:absolute;left:0;top:0;right:0;bottom:0;pointer-events:none;overflow:hidden}",
-    ".lgv-label{position:absolute;transform:translate(4px,-50%);white-space:nowrap;font-size:12px;",
+    ".lgv-label{position:absolute;left:0;top:0;white-space:nowrap;font-size:12px;will-change:transform;",
     "color:#222;text-shadow:0 0 2px #fff,0 0 2px #fff}",
     ".lgv-label.lgv-axis{color:#555;font-style:italic}.lgv-label.lgv-arc{color:#a0522d;font-style:italic}",
     ".lgv-label.lgv-body{color:#444;font-weight:600}",
@@ -81,7 +81,12 @@ var LagrangianView = (function () {
     var L = doc.size;
 
     // -- renderer, camera, lights ---------------------------------------------------------------------------
-    var renderer = new THREE.WebGLRenderer({antialias: true});
+    // Multisampling on a software renderer (SwiftShader, llvmpipe: no GPU) costs more than the rest of a frame.
+    var probe = document.createElement("canvas").getContext("webgl2") || document.createElement("canvas").getContext("webgl");
+    var info = probe && probe.getExtension("WEBGL_debug_renderer_info");
+    var software = !!(info && /SwiftShader|llvmpipe|softpipe|Software/i.test(probe.getParameter(info.UNMASKED_RENDERER_WEBGL)));
+    if (probe && probe.getExtension("WEBGL_lose_context")) probe.getExtension("WEBGL_lose_context").loseContext();
+    var renderer = new THREE.WebGLRenderer({antialias: !software});
     renderer.setPixelRatio(1);
     renderer.setClearColor(0xffffff, 1);
     stage.appendChild(renderer.domElement);
@@ -223,6 +228,7 @@ var LagrangianView = (function () {
                                           0.12 * tr.length, 0.06 * tr.length);
         group.add(arrow);
       });
+      group.position.fromArray(tr.position);
       runGroups[0][tr.carrier].add(group);
       return group;
     });
@@ -276,11 +282,12 @@ var LagrangianView = (function () {
       }
     });
     doc.triads.forEach(function (tr, j) {
+      var origin = new THREE.Vector3().fromArray(tr.position);
       if (tr.axes.every(function (n) { return n.length === 1; }))
-        label(tr.frame, "lgv-axis", {carrier: tr.carrier, local: new THREE.Vector3(), frameLabel: true});
+        label(tr.frame, "lgv-axis", {carrier: tr.carrier, local: origin.clone(), frameLabel: true});
       tr.axes.forEach(function (name, k) {
-        var local = new THREE.Vector3();
-        local.setComponent(k, tr.length * 1.08);
+        var local = origin.clone();
+        local.setComponent(k, local.getComponent(k) + tr.length * 1.08);
         label(name, "lgv-axis", {carrier: tr.carrier, local: local});
       });
     });
@@ -288,8 +295,10 @@ var LagrangianView = (function () {
     arrows.forEach(function (a, j) { label(a.doc.label, "lgv-vector", {arrow: j}); });
 
     // -- state ------------------------------------------------------------------------------------------------
-    var state = {time: t0, playing: false, speed: 1, frames: true, labels: true, angles: true, traces: true,
-                 ghosts: true, last: null, frameCount: 0};
+    var bodies = doc.carriers.filter(function (c) { return c.kind === "body" || c.kind === "particle"; }).length;
+    // A large model starts without its labels and triads (they would hide it); each can be switched on.
+    var state = {time: t0, playing: false, speed: 1, frames: doc.triads.length <= 5, labels: bodies <= 8,
+                 angles: true, traces: true, ghosts: true, last: null, frameCount: 0};
     var traceShown = doc.traces.map(function () { return true; });
     var qa = new THREE.Quaternion(), pa = new THREE.Vector3(), m4 = new THREE.Matrix4(), one = new THREE.Vector3(1, 1, 1);
     var quat = new Float32Array(4);
@@ -423,9 +432,12 @@ var LagrangianView = (function () {
         }
         proj.project(camera);
         if (!show || proj.z > 1 || proj.z < -1) { l.span.style.display = "none"; return; }
-        l.span.style.display = "";
-        l.span.style.left = ((proj.x + 1) / 2 * size.width).toFixed(1) + "px";
-        l.span.style.top = ((1 - proj.y) / 2 * size.height).toFixed(1) + "px";
+        if (l.span.style.display) l.span.style.display = "";
+        var x = Math.round((proj.x + 1) / 2 * size.width) + 4, y = Math.round((1 - proj.y) / 2 * size.height) - 8;
+        if (x !== l.x || y !== l.y) {  // moved: a transform, which needs no layout of the page
+          l.span.style.transform = "translate(" + x + "px," + y + "px)";
+          l.x = x; l.y = y;
+        }
       });
     }
     var timeText, slider;
