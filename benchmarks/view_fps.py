@@ -81,7 +81,7 @@ def main() -> None:
         for name in ("one", "chain"):
             page = browser.open(folder / f"{name}.html")
             page.wait_for("window.lagrangianView !== undefined")
-            page.evaluate(f"lagrangianView.benchmark(1)", await_promise=True, timeout=120)  # warm up
+            page.evaluate("lagrangianView.benchmark(1)", await_promise=True, timeout=120)  # warm up
             results[name] = page.evaluate(f"lagrangianView.benchmark({args.seconds})", await_promise=True,
                                           timeout=120)
     print(f"empty page's requestAnimationFrame rate (the display's cadence): {display:.1f} frames/s")

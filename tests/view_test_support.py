@@ -13,11 +13,10 @@ import io
 from pathlib import Path
 
 import numpy as np
-import pytest
+from lagrangian_test_support import EXAMPLES_DIR
 
 import lagrangian
 from lagrangian.view3d._chromium import Browser
-from lagrangian_test_support import EXAMPLES_DIR
 
 #: What the software renderer writes to the log on every frame it composites: a performance note of the
 #: GL driver (ANGLE on SwiftShader reads the canvas back), not a message of the page.
@@ -63,7 +62,7 @@ def pixels(png: bytes) -> np.ndarray:
 
 def hue_at(image: np.ndarray, xy: tuple[float, float], radius: int = 1) -> list[tuple[float, float]]:
     """(hue in degrees, saturation) of the pixels around ``xy``."""
-    x, y = int(round(xy[0])), int(round(xy[1]))
+    x, y = round(xy[0]), round(xy[1])
     out = []
     for j in range(y - radius, y + radius + 1):
         for i in range(x - radius, x + radius + 1):

@@ -21,7 +21,7 @@ def require_matplotlib() -> ModuleType:
     """The ``matplotlib`` module, or a `MissingPlotDependency` that says how to install it."""
     try:
         import matplotlib
-        import matplotlib.figure  # noqa: F401  (the Figure class)
+        import matplotlib.figure
         from matplotlib.backends import backend_agg  # noqa: F401  (the Agg canvas)
     except ImportError as exc:
         raise MissingPlotDependency(

@@ -7,12 +7,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from lagrangian_test_support import EXAMPLES_DIR, example_text
 
 import lagrangian
 from lagrangian.cli.main import main
 from lagrangian.errors import ModelError
 from lagrangian.view3d import view
-from lagrangian_test_support import EXAMPLES_DIR, example_text
 
 PENDULUM = example_text("double_pendulum.toml")
 

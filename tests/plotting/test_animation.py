@@ -10,8 +10,8 @@ from PIL import Image
 
 from lagrangian.errors import OutputError
 from lagrangian.plotting import animate
-from lagrangian.plotting._geometry import point_positions
 from lagrangian.plotting._animation import motion_scene
+from lagrangian.plotting._geometry import point_positions
 
 
 def test_gif_has_the_requested_frames_and_rate(run, tmp_path):
@@ -92,10 +92,13 @@ def test_top_is_drawn_in_3d_with_a_spinning_disk(run):
     scene = motion_scene(traj, eom, traj.t[::50])
     assert scene.dimension == 3
     (_, stem), = [(n, a) for n, _, a in scene.lines]
-    o, g = stem[:, 0], stem[:, -1]
+    o, apex = stem[:, 0], stem[:, -1]  # the axle, from O through G to the apex
     np.testing.assert_allclose(o, 0.0, atol=1e-7)
-    np.testing.assert_allclose(np.linalg.norm(g, axis=1), traj.parameters["a"], atol=1e-6)
+    g = point_positions(traj, eom, ["S"])["S"][::50]
+    np.testing.assert_allclose(np.linalg.norm(g, axis=1), traj.parameters["a"], atol=1e-12)
     axis = g / np.linalg.norm(g, axis=1)[:, None]
+    np.testing.assert_allclose(np.cross(apex, axis), 0.0, atol=1e-6)  # G on the axle, the apex beyond it
+    assert np.all(np.einsum("fj,fj->f", apex, axis) > traj.parameters["a"])
     (_, disk), = scene.disks
     np.testing.assert_allclose(np.einsum("fmj,fj->fm", disk - g[:, None, :], axis), 0.0, atol=1e-6)
     # The disk's radius r gives its C: C = m r²/2, with C the top's moment about its axis.

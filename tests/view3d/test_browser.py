@@ -15,10 +15,10 @@ import time
 
 import numpy as np
 import pytest
+from view_test_support import has_colour, motion, open_view, page_messages, pixels, project
 
 import lagrangian
 from lagrangian.view3d import view
-from view_test_support import has_colour, motion, open_view, page_messages, pixels, project
 
 BLUE, RED, GREEN = "#1f77b4", "#d62728", "#2ca02c"
 
@@ -161,7 +161,7 @@ def _toml(text: str) -> str:
 def test_the_notebook_display_is_the_page_in_an_iframe(browser, tmp_path):
     shown = view(lagrangian.lagrange_top())
     fragment = shown._repr_html_()
-    match = re.fullmatch(r'<iframe srcdoc="([^"]*)" (.*)></iframe>', fragment, re.S)
+    match = re.fullmatch(r'<iframe srcdoc="([^"]*)" (.*)></iframe>', fragment, re.DOTALL)
     assert match and 'sandbox="allow-scripts"' in match.group(2)
     assert html.unescape(match.group(1)) == shown.html()
     # A notebook's output cell: the iframe alone in a page; it draws the top (pixels other than white).

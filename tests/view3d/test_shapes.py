@@ -9,12 +9,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from lagrangian_test_support import EXAMPLES_DIR
 
 import lagrangian
 from lagrangian import ModelBuilder
 from lagrangian.view3d import view
 from lagrangian.view3d._infer import solid_of_inertia
-from lagrangian_test_support import EXAMPLES_DIR
 
 
 def _parts(scene, owner, source="inertia"):
@@ -50,10 +50,17 @@ def test_top_disk_radius_is_that_of_its_moment_c():
     assert disk.kind == "disk"
     assert v["m"] * disk.size[0] ** 2 / 2 == pytest.approx(v["C"])  # C = m r²/2
     assert abs(_axis(disk) @ [0, 0, 1]) == pytest.approx(1.0)  # across its axis z
+    # The axle: from O through G (OG = a z) to the apex, past the disk; the apex is traced.
     (stem,) = _parts(scene, "S", "points")
-    assert stem.size[1] == pytest.approx(v["a"])  # OG = a
+    half = stem.size[1] / 2
+    start = np.array(stem.position) - half * _axis(stem)
+    end = np.array(stem.position) + half * _axis(stem)
+    np.testing.assert_allclose(start, [0, 0, -v["a"]], atol=1e-12)  # O, seen from G on the body's frame
+    assert end @ [0, 0, 1] > disk.size[0] / 2 and np.allclose(end[:2], 0, atol=1e-12)  # beyond G, on z
     (tip,) = [t for t in scene.tracks if t.kind == "tip"]
-    assert scene.traces == (scene.track(tip.name),)  # the apex is traced
+    assert scene.traces == (scene.track(tip.name),)
+    np.testing.assert_allclose(scene.runs[0].points[0, scene.track(tip.name)],
+                               scene.runs[0].points[0, scene.track("S")] * (v["a"] + end[2]) / v["a"], atol=1e-6)
 
 
 def test_rolling_coin_is_a_disk_of_its_radius():

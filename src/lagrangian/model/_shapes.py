@@ -40,8 +40,15 @@ if TYPE_CHECKING:  # pragma: no cover
     from ._toml import _Reader
     from .build import ModelBuilder
 
-__all__ = ["build_shapes", "declare_shapes_from_toml", "parse_color", "SHAPE_KEYS", "MESH_SUFFIXES",
-           "MAX_MESH_BYTES", "COLORS"]
+__all__ = [
+    "COLORS",
+    "MAX_MESH_BYTES",
+    "MESH_SUFFIXES",
+    "SHAPE_KEYS",
+    "build_shapes",
+    "declare_shapes_from_toml",
+    "parse_color",
+]
 
 #: The keys each kind takes, beside the common ones (`_COMMON`).
 SHAPE_KEYS = {

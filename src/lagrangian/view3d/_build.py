@@ -20,13 +20,13 @@ import symengine as se
 
 from ..errors import OutputError
 from ..model import GALILEAN_FRAME, ORIGIN, Model, Shape, Vector
+from ._decorations import arcs, arrows, fixed_tracks, framing, links, triads, up_direction
 from ._evaluate import Evaluator, quaternions
 from ._infer import PALETTE, attached_points, body_solid, inferred_parts, model_point
 from ._mesh import Mesh, read_mesh
-from ._decorations import arcs, arrows, fixed_tracks, framing, links, triads, up_direction
 from ._scene import Carrier, Part, Run, Scene, Track
 
-__all__ = ["Motion", "build_scene", "MAX_FRAMES"]
+__all__ = ["MAX_FRAMES", "Motion", "build_scene"]
 
 #: Most paths drawn when none are asked for.
 DEFAULT_TRACES = 4

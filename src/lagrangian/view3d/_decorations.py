@@ -221,9 +221,8 @@ def arcs(b: _Builder, found: Sequence[Triad], length: float) -> list[Arc]:
 def arrows(b: _Builder, shown: Sequence[str] | None, length: float, traced: Sequence[int] = ()) -> list[Arrow]:
     """Velocities of particles and centres of mass (of the traced ones only, past `FEW` of them), the run's
     reaction columns, the forces at points."""
-    from ._build import FEW
-
     from ..kinematics import Kinematics
+    from ._build import FEW
 
     model = b.model
     index = {tr.name: k for k, tr in enumerate(b.tracks)}

@@ -20,7 +20,7 @@ import symengine as se
 from ..errors import OutputError
 from ..model import GALILEAN_FRAME, TIME, Model, Vector
 
-__all__ = ["Evaluator", "rotation_matrices", "quaternions"]
+__all__ = ["Evaluator", "quaternions", "rotation_matrices"]
 
 
 def rotation_matrices(axis: int | np.ndarray, angle: np.ndarray) -> np.ndarray:

@@ -20,9 +20,10 @@ import html
 import json
 import re
 from importlib import resources
+
 from ._scene import Scene
 
-__all__ = ["THREE_VERSION", "library", "page", "fragment", "scene_json", "CSP"]
+__all__ = ["CSP", "THREE_VERSION", "fragment", "library", "page", "scene_json"]
 
 #: The vendored three.js release (npm ``three@0.170.0``, r170).
 THREE_VERSION = "0.170.0"
@@ -66,8 +67,8 @@ def library() -> str:
     return "\n".join([
         f"/* three.js r{THREE_VERSION.split('.')[1]} ({THREE_VERSION}), https://threejs.org\n{license_}\n*/",
         f'var THREE = (function () {{ "use strict";\n{three}\nreturn {exports};\n}})();',
-        f'var OrbitControls = (function () {{ "use strict";\nconst {{ {names} }} = THREE;\n{body}\n'
-        f"return {controls_exports}.OrbitControls;\n}})();",
+        (f'var OrbitControls = (function () {{ "use strict";\nconst {{ {names} }} = THREE;\n{body}\n'
+         f"return {controls_exports}.OrbitControls;\n}})();"),
         _read("viewer.js"),
     ])
 

@@ -33,11 +33,23 @@ import symengine as se
 from ..model import GALILEAN_FRAME, Body, Model, Vector
 from ._evaluate import Evaluator
 
-__all__ = ["PALETTE", "Solid", "attached_points", "inertia_at_g", "inferred_parts", "joint_axis", "model_point",
-           "solid_of_inertia", "body_solid"]
+__all__ = [
+    "PALETTE",
+    "Solid",
+    "attached_points",
+    "body_solid",
+    "inertia_at_g",
+    "inferred_parts",
+    "joint_axis",
+    "model_point",
+    "solid_of_inertia",
+]
 
 #: Relative tolerance under which two principal moments are equal (or a moment is zero).
 EQUAL = 1e-6
+#: The opacity of the solid of a body turning about a fixed point (a top): its axis, its fixed point and the
+#: frames there stay visible through it.
+SEE_THROUGH = 0.8
 #: A cylinder shorter than this fraction of its radius is drawn as a disk.
 FLAT = 0.25
 #: The colours of bodies then particles, in model order (matplotlib's tab10: the GIF uses the same).
@@ -240,14 +252,20 @@ def inferred_parts(builder, body: Body, carrier: int, attached: dict[str, np.nda
         elif kind == "disk":
             size = (size[0], max(size[1], size[0] / 12))
         builder.parts.append(Part(body.name, carrier, kind, tuple(float(x) for x in size), (0.0, 0.0, 0.0),
-                                  _quat(solid.axes), color, 1.0, "inertia", spoke=kind in ("disk", "cylinder")))
+                                  _quat(solid.axes), color, SEE_THROUGH if body.fixed_point else 1.0, "inertia",
+                                  spoke=kind in ("disk", "cylinder")))
         if direction is not None:
             reach = _extent_along(solid, direction)
-    # Rods from the joint point to the body's other points (the course's rod OA), or to G.
+            if solid.kind in ("disk", "cylinder", "sphere"):  # a top's axle goes through its disk to its apex
+                reach = max(reach, 0.6 * max(solid.size))
+    # Rods from the joint point to the body's other points (the course's rod OA), or to G (to the apex, beyond
+    # it, for a body turning about a point: the top's axle).
     start = attached.get(anchor) if anchor != body.name else None
     if start is not None:
         others = [gp for name, gp in attached.items() if name != anchor and np.linalg.norm(gp - start) > 1e-9 * length]
-        for end in others or [np.zeros(3)]:
+        through = [direction * reach] if reach is not None and direction is not None and solid is not None and \
+            solid.kind != "rod" else [np.zeros(3)]
+        for end in others or through:
             if solid is not None and solid.kind == "rod" and _inside_rod(solid, start, end):
                 continue
             axis = end - start

@@ -19,7 +19,7 @@ from .._matplotlib import require_matplotlib
 from ._scene import Scene
 from ._wireframe import Wireframe, wireframe
 
-__all__ = ["Renderer", "still_matplotlib", "AXIS_COLOURS"]
+__all__ = ["AXIS_COLOURS", "Renderer", "still_matplotlib"]
 
 #: Colours of a body frame's axes x, y, z (those of the 3-D page's triads).
 AXIS_COLOURS = ("#d62728", "#2ca02c", "#1f77b4")
@@ -28,7 +28,7 @@ AXIS_COLOURS = ("#d62728", "#2ca02c", "#1f77b4")
 def _time_format(times: np.ndarray) -> str:
     """Enough decimals that consecutive frame times print differently."""
     step = float(np.min(np.diff(times))) if len(times) > 1 else 1.0
-    decimals = max(2, int(math.ceil(-math.log10(step))) + 1) if step > 0 else 2
+    decimals = max(2, math.ceil(-math.log10(step)) + 1) if step > 0 else 2
     return f"t = {{:.{min(decimals, 12)}f}} s"
 
 
@@ -104,7 +104,7 @@ class Renderer:
                 line(lambda i, a=a, k=k: a[i, k], color=AXIS_COLOURS[k], lw=1.5)
         for _, colour, a in shape.dots:
             line(lambda i, a=a: a[i][None, :], ls="", marker="o", ms=9, color=colour)
-        place = dict(transform=ax.transAxes, fontsize="medium", va="top", ha="left")
+        place = {"transform": ax.transAxes, "fontsize": "medium", "va": "top", "ha": "left"}
         self.text = (ax.text2D if three else ax.text)(0.02, 0.98, "", **place)
         self.time_format = _time_format(shape.t)
         self._background = None

@@ -26,7 +26,7 @@ import numpy as np
 from ..errors import ModelError
 from ..model import Location
 
-__all__ = ["Mesh", "read_mesh", "MAX_TRIANGLES"]
+__all__ = ["MAX_TRIANGLES", "Mesh", "read_mesh"]
 
 #: Most triangles a mesh may have (the Panda arm's eleven visual meshes have 170,000 in all).
 MAX_TRIANGLES = 2_000_000

@@ -23,7 +23,7 @@ import numpy as np
 
 from ._mesh import Mesh
 
-__all__ = ["Arc", "Arrow", "Carrier", "Link", "Part", "Run", "Scene", "Track", "Triad", "FORMAT"]
+__all__ = ["FORMAT", "Arc", "Arrow", "Carrier", "Link", "Part", "Run", "Scene", "Track", "Triad"]
 
 #: The version of `Scene.document`, read by the viewer.
 FORMAT = "lagrangian.view/1"
@@ -197,7 +197,7 @@ class Scene:
                                     "opacity": p.opacity, "source": p.source, "spoke": p.spoke}
             if p.mesh is not None:
                 small = len(p.mesh.vertices) < 65536
-                item["mesh"] = {"vertices": b64(p.mesh.vertices), "count": int(len(p.mesh.triangles)),
+                item["mesh"] = {"vertices": b64(p.mesh.vertices), "count": len(p.mesh.triangles),
                                 "triangles": b64(p.mesh.triangles, np.uint16 if small else np.uint32),
                                 "index": "uint16" if small else "uint32",
                                 "groups": [[a, n, c] for a, n, c in p.mesh.groups]}

@@ -17,7 +17,7 @@ from ..errors import OutputError
 from ._chromium import Browser, find_chromium
 from ._scene import Scene
 
-__all__ = ["still_png", "still_by_browser"]
+__all__ = ["still_by_browser", "still_png"]
 
 
 def still_by_browser(scene: Scene, *, width: int, height: int, time: float | None = None) -> bytes:

@@ -25,7 +25,7 @@ from ..numerics import Trajectory
 from ._build import MAX_FRAMES, Motion, build_scene
 from ._scene import Scene
 
-__all__ = ["View", "view", "motion_of", "at_rest"]
+__all__ = ["View", "at_rest", "motion_of", "view"]
 
 
 @dataclass(frozen=True)

@@ -19,7 +19,7 @@ import numpy as np
 
 from ._scene import Scene, _matrices
 
-__all__ = ["Wireframe", "wireframe", "PLANAR"]
+__all__ = ["PLANAR", "Wireframe", "wireframe"]
 
 #: Smallest/largest singular value of the centred point cloud below which it is a plane.
 PLANAR = 1e-9

@@ -118,9 +118,11 @@ var LagrangianView = (function () {
       return materials[key];
     }
     var geometries = [];
+    var small = doc.parts.length > 24;  // many parts: fewer facets each (software renderers draw every one)
     function geometry(part) {
-      var s = part.size, g;
-      if (part.kind === "sphere") g = new THREE.SphereGeometry(s[0], 32, 16);
+      var s = part.size, g, joint = part.source === "hinge" || part.source === "ball";
+      var round = joint ? 12 : (small ? 20 : 32);
+      if (part.kind === "sphere") g = new THREE.SphereGeometry(s[0], round, Math.max(8, round / 2));
       else if (part.kind === "box") g = new THREE.BoxGeometry(s[0], s[1], s[2]);
       else if (part.kind === "cone") g = new THREE.ConeGeometry(s[0], s[1], 24).rotateX(Math.PI / 2);
       else if (part.kind === "mesh") {
@@ -131,7 +133,7 @@ var LagrangianView = (function () {
         g.setIndex(new THREE.BufferAttribute(idx, 1));
         g.computeVertexNormals();
       } else {  // cylinder, disk, rod: along z
-        g = new THREE.CylinderGeometry(s[0], s[0], Math.max(s[1], 1e-9), part.kind === "rod" ? 12 : 40)
+        g = new THREE.CylinderGeometry(s[0], s[0], Math.max(s[1], 1e-9), part.kind === "rod" || joint ? 12 : round + 8)
           .rotateX(Math.PI / 2);
       }
       geometries.push(g);
