@@ -148,7 +148,7 @@ class _Builder:
 def _size(expr: se.Basic | None, values: Mapping[str, float]) -> float | None:
     if expr is None:
         return None
-    value = float(se.sympify(expr).subs({se.Symbol(k): v for k, v in values.items()}))
+    value = float(expr.subs({se.Symbol(k): v for k, v in values.items()}))
     if not (math.isfinite(value) and value > 0):
         raise OutputError(f"A size of a shape is {value:g} with these parameter values; sizes are positive.",
                           fix="check the shape's sizes and the parameters they use")

@@ -123,8 +123,8 @@ def inertia_at_g(model: Model, body: Body, ev: Evaluator, frame_turn: np.ndarray
     """
     subs = {se.Symbol(n): v for n, v in ev.values.items()}
     try:
-        given = np.array([[float(se.sympify(e).subs(subs)) for e in row] for row in body.inertia.matrix])
-        mass = float(se.sympify(body.mass).subs(subs))
+        given = np.array([[float(e.subs(subs)) for e in row] for row in body.inertia.matrix])
+        mass = float(body.mass.subs(subs))
     except (TypeError, RuntimeError, ValueError):
         return None
     if body.inertia.at != "G":
@@ -216,7 +216,7 @@ def body_solid(builder, body: Body, attached: dict[str, np.ndarray], anchor: str
     turn = np.asarray(bases[body.frame][0]).T @ np.asarray(bases[body.inertia.frame][0])
     pi = inertia_at_g(model, body, ev, turn)
     try:
-        mass = float(se.sympify(body.mass).subs({se.Symbol(k): v for k, v in ev.values.items()}))
+        mass = float(body.mass.subs({se.Symbol(k): v for k, v in ev.values.items()}))
     except (TypeError, RuntimeError, ValueError):
         return None
     if pi is None or not mass > 0:
