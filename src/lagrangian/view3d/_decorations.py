@@ -197,7 +197,7 @@ def arcs(b: _Builder, found: Sequence[Triad], length: float) -> list[Arc]:
     if not frames:
         return []
     bases = b.ev.bases([f.name for f in frames], b.t[:1], q0, qd0)
-    angles = b.ev._columns(b.t[:1], q0, qd0, [f.rotation.angle for f in frames])[0]  # type: ignore[union-attr]
+    angles = b.ev.columns(b.t[:1], q0, qd0, [f.rotation.angle for f in frames])[0]  # type: ignore[union-attr]
     out: list[Arc] = []
     rings: dict[int, int] = {}
     for frame, alpha in zip(frames, angles):

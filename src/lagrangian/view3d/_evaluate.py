@@ -109,7 +109,7 @@ class Evaluator:
                               fix=f"give `{name}` a value in the model file or with --set {name}=...")
         return se.Lambdify(self.arguments, list(exprs), backend="lambda", cse=True) if exprs else None
 
-    def _columns(self, t: np.ndarray, q: np.ndarray, qd: np.ndarray, exprs: Sequence[se.Basic]) -> np.ndarray:
+    def columns(self, t: np.ndarray, q: np.ndarray, qd: np.ndarray, exprs: Sequence[se.Basic]) -> np.ndarray:
         """Each expression at each state, shape (N, len(exprs))."""
         n = len(t)
         if not exprs:
@@ -135,7 +135,7 @@ class Evaluator:
             exprs.append(rot.angle)  # type: ignore[union-attr]
             if not rot.elementary:  # type: ignore[union-attr]
                 exprs.extend(rot.direction)  # type: ignore[union-attr,arg-type]
-        values = self._columns(t, q, qd, exprs)
+        values = self.columns(t, q, qd, exprs)
         out: dict[str, np.ndarray] = {GALILEAN_FRAME: np.broadcast_to(np.eye(3), (len(t), 3, 3))}
         k = 0
         for f in needed:
@@ -158,7 +158,7 @@ class Evaluator:
         """Each vector's R0 components at each state, shape (N, len(vectors), 3)."""
         pieces = [(k, frame, comps) for k, v in enumerate(vectors) for frame, comps in v]
         bases = self.bases(sorted({frame for _, frame, _ in pieces}), t, q, qd)
-        values = self._columns(t, q, qd, [c for _, _, comps in pieces for c in comps])
+        values = self.columns(t, q, qd, [c for _, _, comps in pieces for c in comps])
         out = np.zeros((len(t), len(vectors), 3))
         for j, (k, frame, _) in enumerate(pieces):
             out[:, k, :] += np.einsum("nij,nj->ni", bases[frame], values[:, 3 * j:3 * j + 3])

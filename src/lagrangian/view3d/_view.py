@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from .._atomic import write_atomic
+from ..dynamics import EquationsOfMotion
 from ..errors import OutputError
 from ..model import Model, load_model
 from ..numerics import Trajectory
@@ -91,9 +92,8 @@ def _model(source: Any) -> Model:
         return source
     if isinstance(source, (str, os.PathLike)):
         return load_model(source)
-    model = getattr(source, "model", None)  # an EquationsOfMotion
-    if isinstance(model, Model):
-        return model
+    if isinstance(source, EquationsOfMotion):
+        return source.model
     raise OutputError(f"`{type(source).__name__}` is not a model.",
                       fix="give a Model, an EquationsOfMotion or a model file")
 
@@ -129,7 +129,7 @@ def view(motion: Any, model: Any = None, *, ghosts: Sequence[Trajectory] = (), b
     >>> import lagrangian
     >>> v = lagrangian.view(lagrangian.lagrange_top())
     >>> v.scene.at_rest, [p.kind for p in v.scene.parts]
-    (True, ['cylinder', 'rod', 'sphere'])
+    (True, ['disk', 'rod', 'sphere'])
     """
     if isinstance(motion, Trajectory):
         if model is None:
