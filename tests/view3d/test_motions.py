@@ -79,3 +79,18 @@ def test_a_still_by_matplotlib_where_no_browser_is_asked_for():
     red = (image[..., 0] > 180) & (image[..., 1] < 90) & (image[..., 2] < 90)
     blue = (image[..., 2] > 150) & (image[..., 0] < 80)
     assert red.sum() > 30 and blue.sum() > 30  # both rods, in the 3-D page's colours
+
+
+def test_the_latex_report_gets_a_still_drawn_by_matplotlib_where_no_browser_is(monkeypatch, tmp_path):
+    monkeypatch.setattr("lagrangian.view3d._still.find_chromium", lambda: None)
+    r = lagrangian.report(lagrangian.lagrange_top(), lang="en", verification=False)
+    r.save(tmp_path / "top.tex")
+    tex = (tmp_path / "top.tex").read_text(encoding="utf-8")
+    assert r"\includegraphics[width=\linewidth]{top-figure-1.png}" in tex and "The system in its initial position" in tex
+    from io import BytesIO
+
+    from PIL import Image
+
+    image = np.asarray(Image.open(BytesIO((tmp_path / "top-figure-1.png").read_bytes())).convert("RGB"))
+    blue = (image[..., 2] > 150) & (image[..., 0] < 90)
+    assert blue.sum() > 50  # the top's disk, in its colour

@@ -3,7 +3,8 @@
 The LaTeX and PDF reports, and ``lagrangian view -o view.png``, need a picture, not a page.
 Where a Chromium is installed, the page is opened headless (`_chromium`), set to the time
 asked for, its controls hidden, and photographed: the picture is the 3-D view itself.  Where
-none is, matplotlib draws the scene's `Wireframe` (`_matplotlib`), the animation's drawing.
+none is (or it cannot start), matplotlib draws the scene's `Wireframe` (`_matplotlib`), the
+animation's drawing.
 """
 
 from __future__ import annotations
@@ -38,13 +39,16 @@ def still_by_browser(scene: Scene, *, width: int, height: int, time: float | Non
 def still_png(scene: Scene, *, width: int = 800, height: int = 600, time: float | None = None,
               browser: bool | None = None) -> bytes:
     """A PNG of ``scene`` at ``time``: by Chromium when there is one (or ``browser=True``), else by matplotlib."""
-    if browser is None:
-        browser = find_chromium() is not None
-    if browser:
+    if browser or (browser is None and find_chromium() is not None):
         if find_chromium() is None:
             raise OutputError("No Chromium is installed to photograph the view.",
                               fix="install Chromium (Debian: apt install chromium), or draw it with matplotlib")
-        return still_by_browser(scene, width=width, height=height, time=time)
+        try:
+            return still_by_browser(scene, width=width, height=height, time=time)
+        except (OutputError, OSError):
+            if browser:
+                raise
+            # A Chromium that cannot start here (no /dev/shm, a sandbox): the same scene, drawn by matplotlib.
     from ._matplotlib import still_matplotlib
 
     index = 0 if time is None else int(np.argmin(np.abs(scene.t - time)))

@@ -117,30 +117,34 @@ var LagrangianView = (function () {
       }
       return materials[key];
     }
-    var geometries = [];
-    var small = doc.parts.length > 24;  // many parts: fewer facets each (software renderers draw every one)
-    function geometry(part) {
-      var s = part.size, g, joint = part.source === "hinge" || part.source === "ball";
-      var round = joint ? 12 : (small ? 20 : 32);
-      if (part.kind === "sphere") g = new THREE.SphereGeometry(s[0], round, Math.max(8, round / 2));
-      else if (part.kind === "box") g = new THREE.BoxGeometry(s[0], s[1], s[2]);
-      else if (part.kind === "cone") g = new THREE.ConeGeometry(s[0], s[1], 24).rotateX(Math.PI / 2);
-      else if (part.kind === "mesh") {
-        g = new THREE.BufferGeometry();
-        g.setAttribute("position", new THREE.BufferAttribute(f32(part.mesh.vertices), 3));
-        var idx = part.mesh.index === "uint16" ? new Uint16Array(bytes(part.mesh.triangles))
-                                               : new Uint32Array(bytes(part.mesh.triangles));
-        g.setIndex(new THREE.BufferAttribute(idx, 1));
-        g.computeVertexNormals();
-      } else {  // cylinder, disk, rod: along z
-        g = new THREE.CylinderGeometry(s[0], s[0], Math.max(s[1], 1e-9), part.kind === "rod" || joint ? 12 : round + 8)
-          .rotateX(Math.PI / 2);
+    // Shapes of one kind share a unit geometry, drawn in one call per kind and opacity (an InstancedMesh whose
+    // instances are the parts, each placed by its carrier's pose × its own place × its size): a chain of thirty
+    // rods and thirty balls is two draw calls, which software renderers need.
+    var small = doc.parts.length > 24;
+    var UNIT = {};
+    function unit(kind, joint) {
+      var round = joint ? 12 : (small ? 20 : 32), key = kind + (joint ? "/joint" : "");
+      if (!UNIT[key]) {
+        if (kind === "sphere") UNIT[key] = new THREE.SphereGeometry(1, round, Math.max(8, round / 2));
+        else if (kind === "box") UNIT[key] = new THREE.BoxGeometry(1, 1, 1);
+        else if (kind === "cone") UNIT[key] = new THREE.ConeGeometry(1, 1, 24).rotateX(Math.PI / 2);
+        else UNIT[key] = new THREE.CylinderGeometry(1, 1, 1, kind === "rod" || joint ? 12 : round + 8)
+          .rotateX(Math.PI / 2);  // cylinder, disk, rod: along z
       }
-      geometries.push(g);
+      return UNIT[key];
+    }
+    function meshGeometry(part) {
+      var g = new THREE.BufferGeometry();
+      g.setAttribute("position", new THREE.BufferAttribute(f32(part.mesh.vertices), 3));
+      var idx = part.mesh.index === "uint16" ? new Uint16Array(bytes(part.mesh.triangles))
+                                             : new Uint32Array(bytes(part.mesh.triangles));
+      g.setIndex(new THREE.BufferAttribute(idx, 1));
+      g.computeVertexNormals();
       return g;
     }
-    var partGeometry = doc.parts.map(geometry);
-    function buildRun(run, k) {
+    var meshGeometries = doc.parts.map(function (part) { return part.kind === "mesh" ? meshGeometry(part) : null; });
+    var batches = [];  // {mesh: InstancedMesh, run, items: [{carrier, local: Matrix4}]}
+    function buildRun(run, r) {
       var opacity = run.ghost ? 0.28 : 1;
       var groups = [];
       for (var c = 0; c < K; c++) {
@@ -149,29 +153,50 @@ var LagrangianView = (function () {
         scene.add(group);
         groups.push(group);
       }
+      var pending = {};
+      function add(geometry, o, carrier, local, colour) {
+        var key = geometry.uuid + "|" + o;
+        if (!pending[key]) pending[key] = {geometry: geometry, opacity: o, items: []};
+        pending[key].items.push({carrier: carrier, local: local, color: new THREE.Color(colour)});
+      }
       doc.parts.forEach(function (part, i) {
-        var o = Math.min(opacity, part.opacity), m;
-        if (part.kind === "mesh" && part.mesh.groups.length > 1) {
-          var mats = part.mesh.groups.map(function (gr) { return material(gr[2] || part.color, o, true); });
-          partGeometry[i].clearGroups();
-          part.mesh.groups.forEach(function (gr, j) { partGeometry[i].addGroup(3 * gr[0], 3 * gr[1], j); });
-          m = new THREE.Mesh(partGeometry[i], mats);
-        } else {
-          var colour = part.kind === "mesh" && part.mesh.groups.length === 1 && part.mesh.groups[0][2]
-            ? part.mesh.groups[0][2] : part.color;
-          m = new THREE.Mesh(partGeometry[i], material(colour, o, part.kind === "mesh"));
+        var o = Math.min(opacity, part.opacity), m, s = part.size;
+        var place = new THREE.Matrix4().compose(new THREE.Vector3().fromArray(part.position),
+                                                new THREE.Quaternion().fromArray(part.rotation), new THREE.Vector3(1, 1, 1));
+        if (part.kind === "mesh") {
+          if (part.mesh.groups.length > 1) {
+            var mats = part.mesh.groups.map(function (gr) { return material(gr[2] || part.color, o, true); });
+            meshGeometries[i].clearGroups();
+            part.mesh.groups.forEach(function (gr, j) { meshGeometries[i].addGroup(3 * gr[0], 3 * gr[1], j); });
+            m = new THREE.Mesh(meshGeometries[i], mats);
+          } else {
+            var colour = part.mesh.groups.length === 1 && part.mesh.groups[0][2] ? part.mesh.groups[0][2] : part.color;
+            m = new THREE.Mesh(meshGeometries[i], material(colour, o, true));
+          }
+          m.position.fromArray(part.position);
+          m.quaternion.fromArray(part.rotation);
+          groups[part.carrier].add(m);
+          return;
         }
-        m.position.fromArray(part.position);
-        m.quaternion.fromArray(part.rotation);
-        m.userData.part = i;
-        groups[part.carrier].add(m);
+        var joint = part.source === "hinge" || part.source === "ball";
+        var size = part.kind === "sphere" ? [s[0], s[0], s[0]] : part.kind === "box" ? s : [s[0], s[0], Math.max(s[1], 1e-9)];
+        add(unit(part.kind, joint), o, part.carrier,
+            place.clone().multiply(new THREE.Matrix4().makeScale(size[0], size[1], size[2])), part.color);
         if (part.spoke && (part.kind === "disk" || part.kind === "cylinder")) {
-          var r = part.size[0], h = Math.max(part.size[1], r / 12);
-          var spoke = new THREE.Mesh(new THREE.BoxGeometry(0.9 * r, 0.14 * r, h * 1.04),
-                                     material("#" + darker(part.color, 0.45).getHexString(), o));
-          spoke.position.set(0.45 * r, 0, 0);
-          m.add(spoke);
+          var rr = s[0], h = Math.max(s[1], rr / 12);
+          add(unit("box"), o, part.carrier, place.clone().multiply(new THREE.Matrix4().compose(
+            new THREE.Vector3(0.45 * rr, 0, 0), new THREE.Quaternion(), new THREE.Vector3(0.9 * rr, 0.14 * rr, 1.04 * h))),
+            "#" + darker(part.color, 0.45).getHexString());
         }
+      });
+      Object.keys(pending).forEach(function (key) {
+        var b = pending[key];
+        var mesh = new THREE.InstancedMesh(b.geometry, material("#ffffff", b.opacity), b.items.length);
+        b.items.forEach(function (item, j) { mesh.setColorAt(j, item.color); });
+        mesh.instanceColor.needsUpdate = true;
+        mesh.frustumCulled = false;
+        scene.add(mesh);
+        batches.push({mesh: mesh, run: r, items: b.items});
       });
       return groups;
     }
@@ -303,7 +328,7 @@ var LagrangianView = (function () {
                  angles: true, traces: true, ghosts: true, last: null, frameCount: 0};
     var traceShown = doc.traces.map(function () { return true; });
     var qa = new THREE.Quaternion(), pa = new THREE.Vector3(), m4 = new THREE.Matrix4(), one = new THREE.Vector3(1, 1, 1);
-    var quat = new Float32Array(4);
+    var quat = new Float32Array(4), placed = new THREE.Matrix4();
     var index = 0, alpha = 0;
 
     function locate(t) {
@@ -350,6 +375,17 @@ var LagrangianView = (function () {
           g.matrix.compose(pa, qa, one);
           g.matrixWorldNeedsUpdate = true;
         }
+      });
+      batches.forEach(function (b) {
+        var show = !runs[b.run].ghost || state.ghosts;
+        b.mesh.visible = show;
+        if (!show) return;
+        var groups = runGroups[b.run];
+        b.items.forEach(function (item, j) {
+          placed.multiplyMatrices(groups[item.carrier].matrix, item.local);
+          b.mesh.setMatrixAt(j, placed);
+        });
+        b.mesh.instanceMatrix.needsUpdate = true;
       });
       links.forEach(function (l) {
         var run = runs[l.run];
