@@ -86,7 +86,8 @@ var LagrangianView = (function () {
     var info = probe && probe.getExtension("WEBGL_debug_renderer_info");
     var software = !!(info && /SwiftShader|llvmpipe|softpipe|Software/i.test(probe.getParameter(info.UNMASKED_RENDERER_WEBGL)));
     if (probe && probe.getExtension("WEBGL_lose_context")) probe.getExtension("WEBGL_lose_context").loseContext();
-    var renderer = new THREE.WebGLRenderer({antialias: !software});
+    // An opaque canvas (alpha: false) spares the compositor a blend of every pixel.
+    var renderer = new THREE.WebGLRenderer({antialias: !software, alpha: false, stencil: false});
     renderer.setPixelRatio(1);
     renderer.setClearColor(0xffffff, 1);
     stage.appendChild(renderer.domElement);
