@@ -18,11 +18,6 @@ from lagrangian_test_support import EXAMPLES_DIR
 import lagrangian
 from lagrangian.view3d._chromium import Browser
 
-#: What the software renderer writes to the log on every frame it composites: a performance note of the
-#: GL driver (ANGLE on SwiftShader reads the canvas back), not a message of the page.
-DRIVER_NOTE = "GL Driver Message (OpenGL, Performance"
-
-
 @functools.cache
 def motion(name: str, t_end: float, n_out: int, **initial: float):
     """(eom, trajectory) of an example, simulated once per session."""
@@ -40,8 +35,8 @@ def open_view(browser: Browser, view, folder: Path, *, width: int = 800, height:
 
 
 def page_messages(page) -> list[str]:
-    """The page's console messages and log entries, but the GL driver's performance notes."""
-    return [m for m in page.console() if DRIVER_NOTE not in m]
+    """The page's console messages, uncaught exceptions and the browser's log entries about it: all of them."""
+    return page.console()
 
 
 def project(camera: dict, point) -> tuple[float, float]:
