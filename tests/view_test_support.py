@@ -18,6 +18,7 @@ from lagrangian_test_support import EXAMPLES_DIR
 import lagrangian
 from lagrangian.view3d._chromium import Browser
 
+
 @functools.cache
 def motion(name: str, t_end: float, n_out: int, **initial: float):
     """(eom, trajectory) of an example, simulated once per session."""
