@@ -76,6 +76,7 @@ def main() -> None:
     print(f"7-joint arm (zoo serial_arm), 10 s at 100 frames/s: page {arm_size() / 2**20:.2f} MB (target < 3 MB)")
     with Browser() as browser:
         empty = browser.open(folder / "empty.html")
+        empty.front()
         display = empty.evaluate(f"rafRate({args.seconds})", await_promise=True, timeout=120)["fps"]
         results = {}
         for name in ("one", "chain"):

@@ -214,6 +214,10 @@ class Page:
                 raise OutputError(f"The page never made `{expression}` true.", fix="see the browser's console")
             time.sleep(0.05)
 
+    def front(self) -> None:
+        """Make this the visible tab (a hidden one gets no animation frames)."""
+        self.browser.send("Page.bringToFront", session=self.session)
+
     def screenshot(self) -> bytes:
         """The page as PNG bytes."""
         data = self.browser.send("Page.captureScreenshot", {"format": "png"}, self.session)["data"]
