@@ -2,10 +2,10 @@
 
 The pipeline, one stage per subpackage (imports flow one way)::
 
-    model  →  kinematics  →  dynamics  →  analysis  →  numerics  →  output/plotting/optimal  →  cli
-    (spec)    (Ω, V, V*)     (T, U, Q,     (first        (C code,     (text, LaTeX, JSON,
-                              L(q_i), M,F)  integrals,    integrators,  report, plots; optimal
-                                            Newton–Euler, simulate)     motions by collocation)
+    model  →  kinematics  →  dynamics  →  analysis  →  numerics  →  view3d  →  output/plotting/optimal  →  cli
+    (spec)    (Ω, V, V*)     (T, U, Q,     (first        (C code,     (3-D      (text, LaTeX, JSON,
+                              L(q_i), M,F)  integrals,    integrators,  scene,   report, plots; optimal
+                                            Newton–Euler, simulate)     page)    motions by collocation)
                                             top analysis)
 
 Typical use::
@@ -43,7 +43,8 @@ _WHERE = {
     **dict.fromkeys(("Report", "report", "export"), ".output"),
     **dict.fromkeys(("optimize", "load_problem", "OptimalTrajectory", "Objective", "Problem"), ".optimal"),
     **dict.fromkeys(("CompiledSystem", "EventSpec", "FreeBodySystem", "InputTable", "Sensitivities", "Trajectory", "compile_free_system",
-                     "compile_system", "ensemble", "grid", "open_ensemble", "save_trajectory", "simulate"), ".numerics"),
+                     "compile_system", "ensemble", "grid", "load_trajectory", "open_ensemble", "save_trajectory", "simulate"), ".numerics"),
+    **dict.fromkeys(("View", "view"), ".view3d"),
 }
 
 if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
@@ -60,9 +61,10 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from .model.spec import Model
     from .model.zoo import lagrange_top
     from .numerics import (CompiledSystem, EventSpec, FreeBodySystem, InputTable, Sensitivities, Trajectory, compile_free_system,
-                           compile_system, ensemble, grid, open_ensemble, save_trajectory, simulate)
+                           compile_system, ensemble, grid, load_trajectory, open_ensemble, save_trajectory, simulate)
     from .optimal import Objective, OptimalTrajectory, Problem, load_problem, optimize
     from .output import Report, export, report
+    from .view3d import View, view
 
 __version__ = "0.1.0"
 
@@ -118,6 +120,7 @@ __all__ = [
     "InputTable",
     "Trajectory",
     "save_trajectory",
+    "load_trajectory",
     "optimize",
     "load_problem",
     "Problem",
@@ -126,6 +129,8 @@ __all__ = [
     "report",
     "Report",
     "export",
+    "view",
+    "View",
     "LagrangianError",
     "ModelError",
     "KinematicsError",

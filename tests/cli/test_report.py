@@ -79,8 +79,10 @@ def test_simulate_to_tex_writes_the_figures_beside_it_with_french_captions(tmp_p
     assert main(["report", "--simulate", "1", "--set", "theta=0.5", "-o", str(out)]) == 0
     tex = out.read_text(encoding="utf-8")
     pngs = sorted(p.name for p in tmp_path.glob("top-figure-*.png"))
-    assert len(pngs) == 6 and all((tmp_path / p).read_bytes().startswith(b"\x89PNG") for p in pngs)
-    assert tex.count(r"\includegraphics") == 6 and r"\fbox" not in tex and r"\usepackage{graphicx}" in tex
+    # The statement's 3-D view and the motion's (still pictures), then the six plots.
+    assert len(pngs) == 8 and all((tmp_path / p).read_bytes().startswith(b"\x89PNG") for p in pngs)
+    assert tex.count(r"\includegraphics") == 8 and r"\fbox" not in tex and r"\usepackage{graphicx}" in tex
+    assert "Le mouvement simulé (vue 3D" in tex and "Le système dans sa position initiale" in tex
     assert "Trajectoire de l'apex sur la sphère unité" in tex and "Réaction \\(R_{O}(t)\\)" in tex and "R\\_O" not in tex
     assert "Figure 3 : }" not in tex and "Figure 6 : }" not in tex
 

@@ -285,10 +285,11 @@ EXPECTED_INTEGRALS = {
     # With its push F off (an input's default), x is cyclic: p_x and E (a constant F would leave E only).
     "inverted_pendulum_cart.toml": {"p_x", "E"},
     "furuta_pendulum.toml": {"p_phi", "E"},  # the motor off: the momentum about its axis, and the energy
-    "double_pendulum_cart.toml": {"E"},  # the same with two rods
+    "double_pendulum_cart.toml": {"p_x", "E"},  # the same with two rods
     "torque_pendulum.toml": {"E"},  # a constant motor torque derives from U = −τ θ
     "acrobot.toml": {"E"},  # the elbow's constant couple from U = −τ θ2
-    "satellite_reaction_wheel.toml": {"p_theta", "E"},  # θ is cyclic: the angular momentum about z0
+    # θ is cyclic (the angular momentum about z0), and φ too while the motor is off
+    "satellite_reaction_wheel.toml": {"p_theta", "p_phi", "E"},
     "lagrange_top.toml": {"K", "H", "E"},
     "sleeping_top.toml": {"p_phi", "E", "sigma_O_z0"},  # the spin's momentum, and σ_O·z0 by Noether
     "bead_rotating_hoop.toml": {"h"},  # Jacobi: energy in the hoop's frame, with the entrainment potential

@@ -37,3 +37,4 @@ def test_lagrange_top_notebook_runs(tmp_path):
     assert "<table" in data[3][-1]["text/html"]                   # the trajectory's summary
     assert "image/png" in data[5][-1] and "image/png" in data[6][-1]  # the apex and energy figures
     assert (tmp_path / "lagrange_top_report.html").stat().st_size > 10_000
+    assert data[8][-1]["text/html"].startswith("<iframe srcdoc=")  # the 3-D view, a page in an iframe

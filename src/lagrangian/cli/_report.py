@@ -74,12 +74,15 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="add the section on the small motions about the point given by --at (or the model's "
                         "[operating_point]): linearized equations, pulsations, stability")
     add_point_options(r, inputs=False, symbolic=False)
+    r.add_argument("--view", action=argparse.BooleanOptionalAction, default=True,
+                   help="the system in 3-D in the statement, and the motion with --simulate (HTML: interactive, "
+                        "LaTeX/PDF: a still picture; default: on)")
     r.add_argument("-o", "--output", metavar="FILE", help="write to FILE (atomically) instead of standard output")
     r.set_defaults(run=run)
 
 
 def _figures(eom, t_end: float, parameters: dict[str, float], initial: dict[str, float],  # type: ignore[no-untyped-def]
-             lang: str) -> list:
+             lang: str) -> tuple[list, object]:
     from ..numerics import simulate
     from ..plotting import applicable_kinds, figure_caption, plot_trajectory
 
@@ -89,7 +92,7 @@ def _figures(eom, t_end: float, parameters: dict[str, float], initial: dict[str,
                               fix=f"give it one in the model file, or --set {missing[0]}=VALUE")
     traj = simulate(eom, t_end, initial=initial, parameters=parameters, n_out=801)
     return [(figure_caption(kind, eom, lang), plot_trajectory(traj, eom, kind, lang=lang))
-            for kind in applicable_kinds(traj, eom)]
+            for kind in applicable_kinds(traj, eom)], traj
 
 
 def run(args: argparse.Namespace) -> str | None:
@@ -97,7 +100,8 @@ def run(args: argparse.Namespace) -> str | None:
     eom = derive(model)
     fmt = args.format or (format_for(args.output) if args.output else "md")
     check = args.verify if args.verify is not None else len(eom.coordinates) <= VERIFY_AUTO_MAX
-    figures = _figures(eom, args.simulate, parameters, initial, args.lang) if args.simulate is not None else []
+    figures, motion = _figures(eom, args.simulate, parameters, initial, args.lang) if args.simulate is not None \
+        else ([], None)
     small = None
     if args.small_motions:
         from ..analysis import linearize
@@ -107,7 +111,8 @@ def run(args: argparse.Namespace) -> str | None:
         raise SettingError("`--at` gives the point of the small motions, which only `--small-motions` reports.",
                            fix="add --small-motions, or drop --at")
     # The notes name the command that prints every equation in full: lagrangian derive MODEL --json.
-    r = report(eom, lang=args.lang, verification=check, figures=figures, source=args.model or "", small_motions=small)
+    r = report(eom, lang=args.lang, verification=check, figures=figures, source=args.model or "", small_motions=small,
+               view=args.view, motion=motion)
     if not args.output:
         if fmt == "pdf":
             raise OutputError("A PDF report is written to a file, not to the terminal.",

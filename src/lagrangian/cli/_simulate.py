@@ -14,6 +14,7 @@ import sys
 import time
 from pathlib import Path
 
+from .._atomic import check_destination
 from ..dynamics import derive
 from ..errors import Interrupted, OutputError, SimulationError
 from ..numerics import METHODS, STABILIZATIONS, EventSpec, check_output_path, compile_system, save_trajectory, \
@@ -68,6 +69,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     s.add_argument("--plot", metavar="DIR", nargs="?", const="",
                    help="write plots and an animation into DIR (default: MODEL_plots/ after the model file's "
                         "stem, or plots/ for the built-in top); put a bare --plot after the model file")
+    s.add_argument("--view", metavar="FILE.html",
+                   help="write the 3-D view of the motion: one offline HTML page (three.js inline) to play, scrub "
+                        "and turn around (see `lagrangian view`)")
     s.add_argument("--animation", choices=("gif", "mp4", "none"), default="gif",
                    help="the animation --plot writes (default gif; mp4 needs ffmpeg, found on the PATH or "
                         "through the imageio-ffmpeg package)")
@@ -110,6 +114,10 @@ def _check_outputs(args: argparse.Namespace, plots: Path | None) -> None:
     """Refuse, before the run, the outputs that would fail after it."""
     if args.out:
         check_output_path(args.out)
+    if args.view:
+        if Path(args.view).suffix.lower() not in (".html", ".htm"):
+            raise OutputError(f"`--view {args.view}`: the view is an HTML page.", fix="name it e.g. motion.html")
+        check_destination(args.view, name_fix="give a file name after --view")
     if plots is None:
         return
     if plots.exists() and not plots.is_dir():
@@ -189,6 +197,10 @@ def run(args: argparse.Namespace) -> str:
     written = []
     if args.out:
         written.append(str(save_trajectory(traj, args.out)))
+    if args.view:
+        from ..view3d import view
+
+        written.append(str(view(traj, eom).save(args.view)))
     if plots is not None:
         figures = _plots(traj, eom, plots, args.animation)
         lines.append(f"plots: {len(figures)} files in {plots}/")
@@ -196,7 +208,7 @@ def run(args: argparse.Namespace) -> str:
     if written:
         lines.append("wrote " + ", ".join(written))
     summary = "\n".join(lines) + "\n"
-    if args.out or plots is not None:
+    if args.out or plots is not None or args.view:
         return summary
     # No file asked for: the table goes to standard output, the summary to standard error.
     sys.stderr.write(summary)

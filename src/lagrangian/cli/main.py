@@ -30,7 +30,7 @@ from ._atomic import check_output, write_output
 __all__ = ["main", "entrypoint"]
 
 # The commands, in the order `--help` lists them; each name is a module `cli/_<name>.py`.
-COMMANDS = ("derive", "simulate", "sweep", "verify", "analyse", "equilibria", "linearize", "modes", "lqr", "optimize",
+COMMANDS = ("derive", "simulate", "view", "sweep", "verify", "analyse", "equilibria", "linearize", "modes", "lqr", "optimize",
             "identify", "report", "export")
 
 

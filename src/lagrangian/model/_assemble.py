@@ -26,6 +26,7 @@ from ._friction import FRICTION_KINDS, build_friction_load
 from ._controls import build_controls
 from ._operating_point import build_operating_point, check_inputs_used
 from ._reference import check_reference
+from ._shapes import build_shapes
 from ._vector import Vector, as_expr
 from .spec import (
     GALILEAN_FRAME,
@@ -175,6 +176,7 @@ class Assembler:
                                         [b.name for b in bodies], {f.name: f.axes for f in frames})
         operating = build_operating_point(self, self.b._operating_point, parameters, coordinates)
         controls = build_controls(self, getattr(self.b, "_controls", None), parameters, coordinates)
+        shapes = build_shapes(self, self.of("shape"), bodies, particles, frames, all_points)
         model = Model(
             name=self.b.name,
             description=self.b.description,
@@ -190,6 +192,7 @@ class Assembler:
             locations=self.locations,
             constraints=constraints,
             reference=self.reference(all_points, frames, coordinates),
+            shapes=shapes,
             **operating,
             controls=controls,
         )
@@ -201,6 +204,8 @@ class Assembler:
     def check_names(self) -> None:
         seen: dict[str, Raw] = {}
         for raw in self.decl:
+            if raw.kind == "shape":  # a shape is named by its body or particle (`_shapes`)
+                continue
             self.locations[(raw.kind, raw.name)] = raw.location
             if raw.kind == "frame" and raw.name == GALILEAN_FRAME:
                 continue  # R0 may be re-declared to name its axes

@@ -11,6 +11,7 @@ The file's tables map onto the course's vocabulary::
     [particles.P]  mass, position
     [loads]        weight = { gravity = "-g*R0.z" }, push = { force = "...", at = "P" }, ...
     [controls]     F = "-k1*x - k2*x_dot"   (a law per declared input, run by `simulate`)
+    [shapes]       S = { kind = "disk", radius = "r", color = "#d62728" }   (how it looks: `_shapes`)
 
 See ``docs/model-format.md`` for every key.  `tomllib` gives no positions for
 values, so the line of each declaration is found by scanning the text for its key.
@@ -35,6 +36,7 @@ from ._constraints import read_constraint
 from ._friction import FRICTION_KINDS, TOML_KEYS, declare_from_toml
 from ._operating_point import located
 from ._reference import read_reference
+from ._shapes import declare_shapes_from_toml
 from ._texts import LANGUAGES, Text
 from ._toml_guard import check_nesting
 from .build import ModelBuilder
@@ -44,7 +46,7 @@ from .urdf import load_urdf
 __all__ = ["load_model", "parse_model"]
 
 _TABLES = ("model", "parameters", "inputs", "coordinates", "frames", "points", "bodies", "particles", "loads",
-           "constraints", "reference", "operating_point", "controls")
+           "constraints", "reference", "operating_point", "controls", "shapes")
 _LOAD_KINDS = {
     "gravity": {"gravity", "on"},
     "force": {"force", "at"},
@@ -342,7 +344,7 @@ class _Reader:
                     location=self.located("points", name, value, "position"))
         for name, value in self.table("bodies").items():
             v = self.entry("bodies", name, value,
-                           {"frame", "mass", "center", "center_from", "inertia", "fixed_point", "free"}, "frame")
+                           {"frame", "mass", "center", "center_from", "inertia", "fixed_point", "free", "shape"}, "frame")
             for key in ("frame", "center"):  # `mass` may be left out where it cannot enter (`Assembler.bodies`)
                 if key not in v:
                     raise self.fail(("bodies", name), f"body `{name}` has no `{key}`", symbol=name,
@@ -351,7 +353,7 @@ class _Reader:
                    inertia=v.get("inertia"), fixed_point=v.get("fixed_point"), free=v.get("free", False),
                    location=self.located("bodies", name, value, "frame"))
         for name, value in self.table("particles").items():
-            v = self.entry("particles", name, value, {"mass", "position", "from"}, "position")
+            v = self.entry("particles", name, value, {"mass", "position", "from", "shape"}, "position")
             for key in ("mass", "position"):
                 if key not in v:
                     raise self.fail(("particles", name), f"particle `{name}` has no `{key}`", symbol=name,
@@ -369,6 +371,7 @@ class _Reader:
         if "reference" in self.data:
             frame, origin, where = read_reference(self.data["reference"], self.index, self.source)
             b.reference(frame, origin=origin, location=where)
+        declare_shapes_from_toml(self, b)
         return b.build()
 
     def operating_point(self, b: ModelBuilder) -> None:

@@ -28,7 +28,7 @@ import numpy as np
 
 from ..errors import ModelError
 
-__all__ = ["UrdfInertial", "UrdfLink", "UrdfLimits", "UrdfMimic", "UrdfJoint", "UrdfRobot", "read_urdf_text",
+__all__ = ["UrdfInertial", "UrdfVisual", "UrdfLink", "UrdfLimits", "UrdfMimic", "UrdfJoint", "UrdfRobot", "read_urdf_text",
            "read_urdf_file",
            "MAX_BYTES", "SUPPORTED_JOINTS"]
 
@@ -55,12 +55,28 @@ class UrdfInertial:
 
 
 @dataclass(frozen=True, slots=True)
+class UrdfVisual:
+    """``<visual>``: a box (``size``), cylinder (radius, length), sphere (radius) or mesh (file, scale), placed
+    by its origin (xyz, rpy) in the link's frame, with its material's colour (r, g, b, a) when given."""
+
+    kind: str
+    dimensions: tuple[float, ...]
+    xyz: tuple[float, float, float]
+    rpy: tuple[float, float, float]
+    mesh: str | None
+    scale: tuple[float, float, float]
+    rgba: tuple[float, float, float, float] | None
+    line: int
+
+
+@dataclass(frozen=True, slots=True)
 class UrdfLink:
-    """``<link>``: a rigid body, massless when it has no ``<inertial>`` (or a zero one)."""
+    """``<link>``: a rigid body, massless when it has no ``<inertial>`` (or a zero one), and how it looks."""
 
     name: str
     line: int
     inertial: UrdfInertial | None
+    visuals: tuple[UrdfVisual, ...] = ()
 
 
 @dataclass(frozen=True, slots=True)
@@ -207,6 +223,7 @@ class _Reader:
     def __init__(self, source: str | None) -> None:
         self.source = source
         self.notes: list[str] = []
+        self.materials: dict[str, tuple[float, ...]] = {}
 
     def fail(self, element: _Element | int, message: str, *, fix: str, symbol: str | None = None) -> ModelError:
         line = element if isinstance(element, int) else element.line
@@ -261,9 +278,11 @@ class _Reader:
     def link(self, element: _Element) -> UrdfLink:
         name = self.name(element, "link")
         owner = f"link `{name}`"
+        visuals = tuple(v for v in (self.visual(child, owner) for child in element.children
+                                    if child.tag == "visual") if v is not None)
         inertial = element.find("inertial")
         if inertial is None:
-            return UrdfLink(name, element.line, None)
+            return UrdfLink(name, element.line, None, visuals)
         mass_el = inertial.find("mass")
         if mass_el is None:
             raise self.fail(inertial, f"the <inertial> of {owner} has no <mass>", symbol=name,
@@ -284,10 +303,56 @@ class _Reader:
                             "the <inertial> element or set the mass and every inertia entry to 0")
         self.check_inertia(inertia_el, matrix, owner, name)
         if mass == 0:
-            return UrdfLink(name, element.line, None)  # the zero <inertial> of many exported frames
+            return UrdfLink(name, element.line, None, visuals)  # the zero <inertial> of many exported frames
         xyz, rpy = self.origin(inertial, owner)
         inertial_data = UrdfInertial(mass, xyz, rpy, matrix, inertial.line)  # type: ignore[arg-type]
-        return UrdfLink(name, element.line, inertial_data)
+        return UrdfLink(name, element.line, inertial_data, visuals)
+
+    def visual(self, element: _Element, owner: str) -> UrdfVisual | None:
+        """A ``<visual>``'s geometry, origin and colour; None (with a note) for a geometry URDF does not define."""
+        geometry = element.find("geometry")
+        shape = geometry.children[0] if geometry is not None and geometry.children else None
+        if shape is None or shape.tag not in ("box", "cylinder", "sphere", "mesh"):
+            self.note(element, f"a <visual> of {owner} has no box, cylinder, sphere or mesh geometry: not drawn")
+            return None
+        xyz, rpy = self.origin(element, owner)
+        mesh, scale = None, (1.0, 1.0, 1.0)
+        if shape.tag == "box":
+            dims = self.numbers(shape, "size", 3, None, owner)
+        elif shape.tag == "cylinder":
+            dims = (self.numbers(shape, "radius", 1, None, owner)[0], self.numbers(shape, "length", 1, None, owner)[0])
+        elif shape.tag == "sphere":
+            dims = self.numbers(shape, "radius", 1, None, owner)
+        else:
+            dims = ()
+            mesh = shape.attrib.get("filename")
+            if not mesh:
+                raise self.fail(shape, f"the <mesh> of {owner} has no `filename`", symbol="filename",
+                                fix='name the mesh file, e.g. <mesh filename="meshes/link1.stl"/>')
+            scale = self.numbers(shape, "scale", 3, (1.0, 1.0, 1.0), owner)  # type: ignore[assignment]
+        if any(d < 0 for d in dims):
+            raise self.fail(shape, f"a size of the <{shape.tag}> of {owner} is negative", symbol=shape.tag,
+                            fix="sizes are lengths in metres, ≥ 0")
+        material = element.find("material")
+        rgba = None
+        if material is not None:
+            color = material.find("color")
+            if color is not None:
+                rgba = self.numbers(color, "rgba", 4, None, owner)
+                if not all(0 <= c <= 1 for c in rgba):
+                    raise self.fail(color, f"the colour of {owner} has components outside [0, 1]", symbol="rgba",
+                                    fix='rgba holds four numbers in [0, 1], e.g. rgba="0.8 0.1 0.1 1"')
+            elif material.attrib.get("name"):
+                rgba = self.materials.get(material.attrib["name"])
+        return UrdfVisual(shape.tag, dims, xyz, rpy, mesh, scale, rgba, element.line)  # type: ignore[arg-type]
+
+    def read_materials(self, root: _Element) -> None:
+        """The colours of the robot's named ``<material>`` elements, which a visual may refer to by name."""
+        for element in root.children:
+            color = element.find("color") if element.tag == "material" else None
+            if color is not None and element.attrib.get("name") and "rgba" in color.attrib:
+                rgba = self.numbers(color, "rgba", 4, None, f"material `{element.attrib['name']}`")
+                self.materials[element.attrib["name"]] = tuple(min(max(c, 0.0), 1.0) for c in rgba)
 
     def check_inertia(self, element: _Element, matrix: np.ndarray, owner: str, name: str) -> None:
         """I_G must be positive semi-definite with each moment at most the sum of the other two.
@@ -370,6 +435,7 @@ class _Reader:
         joints: dict[str, UrdfJoint] = {}
         elements: dict[str, _Element] = {}
         skipped: dict[str, list[int]] = {}
+        self.read_materials(root)
         for element in root.children:
             if element.tag == "link":
                 link = self.link(element)
@@ -380,7 +446,7 @@ class _Reader:
                 self.unique(element, joint.name, joints, "joint")  # type: ignore[union-attr]
                 joints[joint.name] = joint  # type: ignore[union-attr]
                 elements[joint.name] = element  # type: ignore[union-attr]
-            else:  # transmission, material, gazebo, ros2_control...: actuators, looks and simulator settings
+            elif element.tag != "material":  # transmission, gazebo, ros2_control...: actuators, simulator settings
                 skipped.setdefault(element.tag, []).append(element.line)
         for tag, lines in skipped.items():
             why = ("the joint efforts are the model's inputs tau_<joint> instead; gearing and motor inertia are "

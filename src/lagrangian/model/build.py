@@ -183,6 +183,36 @@ class ModelBuilder:
                   surface_velocity=surface_velocity, normal=normal, regularization=regularization,
                   static_coefficient=static_coefficient)
 
+    def shape(self, on: str, kind: str | None = None, *, radius: Any = None, length: Any = None,
+              thickness: Any = None, size: Sequence[Any] | None = None, axis: Any = None, center: Any = None,
+              between: Sequence[str] | None = None, mesh: str | None = None, scale: Any = None,
+              color: Any = None, opacity: float | None = None, from_point: str | None = None,
+              rotation: Sequence[Sequence[float]] | None = None, location: Location | None = None,
+              **given: Any) -> None:
+        """How body or particle ``on`` looks in the 3-D view and the animation (no part in the dynamics).
+
+        ``kind`` is ``"sphere"`` (``radius``), ``"cylinder"`` (``radius``, ``length``, ``axis``),
+        ``"disk"`` (``radius``, ``thickness``, ``axis``), ``"box"`` (``size``: three sides along the
+        frame's x, y, z), ``"rod"`` (``between`` two points, or ``length`` and ``axis``; ``radius``)
+        or ``"mesh"`` (``mesh``: an STL, OBJ or DAE file, ``scale``).  ``center`` places the shape's
+        centre from ``from`` (default: the body's G, the particle); ``axis`` is ``"x"``, ``"-y"``...
+        of the body's frame or three numbers; ``color`` a ``#rrggbb`` / CSS name / [r, g, b];
+        ``opacity`` in [0, 1]; ``from_point`` is the model file's ``from``; ``rotation`` (instead of
+        ``axis``) a constant rotation whose columns are the shape's x, y, z in the frame (URDF's rpy).
+        Sizes are numbers or expressions in the parameters.  Several calls give a body several
+        shapes.  See ``docs/view.md``.
+        """
+        if not isinstance(on, str):
+            raise ModelError(f"a shape belongs to a body or particle named by text, not `{on}`", symbol=str(on),
+                             fix='e.g. b.shape("S", "disk", radius=0.1)', **location_keys(location or Location(self.source)))
+        data = dict(kind=kind, radius=radius, length=length, thickness=thickness, size=size, axis=axis,
+                    center=center, between=between, mesh=mesh, scale=scale, color=color, opacity=opacity,
+                    rotation=rotation)
+        if from_point is not None:
+            data["from"] = from_point
+        data.update(given)  # the model file's keys as written (`from`, or a key no kind has: refused when built)
+        self._decl.append(Raw("shape", on, data, location or Location(self.source)))
+
     def reference(self, frame: str, *, origin: str = ORIGIN, location: Location | None = None) -> None:
         """Write the equations relative to ``frame`` (R) of origin ``origin`` (O'), not R0 (seed, Remarque 3).
 

@@ -43,6 +43,8 @@ __all__ = [
     "CoulombFriction",
     "Reference",
     "Load",
+    "Shape",
+    "SHAPE_KINDS",
     "Model",
     "Constraint",
     "ReactionSpec",
@@ -371,6 +373,44 @@ Load = (Gravity | PointForce | Torque | Spring | Damper | Potential | Generalize
         | CoulombFriction)
 
 
+#: The kinds of a declared `Shape`, each with its size keys: what the 3-D view and the animation draw.
+SHAPE_KINDS = ("sphere", "cylinder", "disk", "box", "rod", "mesh")
+
+
+@dataclass(frozen=True, slots=True)
+class Shape:
+    """How a body or particle looks (``[shapes]`` of a model file, URDF ``<visual>``): no part in the dynamics.
+
+    The shape is fixed in ``frame``; its own axes are that frame's turned by ``rotation`` (a
+    constant 3×3 matrix whose columns are the shape's x, y, z in ``frame``'s basis; None: the
+    same axes) and its centre is at ``center`` (OP, from O).  Conventions of each kind, in the
+    shape's own axes: a ``cylinder``, ``disk`` or ``rod`` lies along z, centred on its centre;
+    a ``box`` has ``size`` along x, y, z; a ``mesh`` is drawn as its file gives it, times
+    ``scale``, its origin at the centre.  ``ends`` (a rod between two points) replaces
+    ``center`` and the axis when given.  ``on`` is the body or particle it belongs to, or a
+    frame (a URDF link fixed to the ground).  Sizes are expressions in the parameters.
+    """
+
+    on: str
+    kind: str
+    frame: str
+    center: Vector
+    rotation: tuple[tuple[float, float, float], ...] | None = None
+    radius: se.Basic | None = None
+    length: se.Basic | None = None
+    size: tuple[se.Basic, se.Basic, se.Basic] | None = None
+    ends: tuple[str, str] | None = None
+    mesh: str | None = None
+    scale: tuple[float, float, float] = (1.0, 1.0, 1.0)
+    color: str | None = None
+    opacity: float | None = None
+    location: Location = field(default=Location(), compare=False)
+
+    def __post_init__(self) -> None:
+        if self.kind not in SHAPE_KINDS:
+            raise ValueError(f"shape kind must be one of {SHAPE_KINDS}, not {self.kind!r}")
+
+
 @dataclass(frozen=True, slots=True)
 class Reference:
     """The equations are written relative to frame ``frame`` (R) of origin ``origin`` (O') — seed, Remarque 3.
@@ -423,6 +463,9 @@ class Model:
     #: A control law per declared input (``[controls]``): input name → expression of t, the
     #: coordinates, their rates and the parameters, in file order (`lagrangian.model._controls`).
     controls: tuple[tuple[str, se.Basic], ...] = ()
+    #: How bodies and particles look (``[shapes]``, URDF ``<visual>``); what is not given is inferred
+    #: by `lagrangian.view3d` from the inertia and the points.
+    shapes: tuple[Shape, ...] = ()
 
     def __post_init__(self) -> None:
         if not self.frames or self.frames[0].name != GALILEAN_FRAME:

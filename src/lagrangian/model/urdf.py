@@ -35,6 +35,10 @@ T, U, Q_i and L(q_i) are derived for it as for any other system:
 - a ``planar`` joint (three degrees of freedom) moves its child link in the plane normal to its
   axis: ``<joint>_x``, ``<joint>_y`` along the joint frame's first two axes, then turns it by
   ``<joint>_theta`` about the axis (MuJoCo's slide, slide, hinge).
+- each ``<visual>`` (box, cylinder, sphere, mesh) becomes a `Shape` of the body (or frame) its
+  link is carried by, placed by the link's pose and the visual's origin; a mesh path is
+  resolved beside the file (``package://name/...`` in the folder ``name`` above it), and a
+  mesh that cannot be found is left out with a note (the view then infers the link's shape).
 
 Reference: URDF XML specification, http://wiki.ros.org/urdf/XML; the composition of
 inertias: the seed's course (théorème de Huygens), Featherstone, *Rigid Body Dynamics
@@ -365,6 +369,7 @@ class _Translation:
             self.joint(joint)
         self.bodies()
         self.efforts()
+        self.visuals()
         return b.build()
 
     def tree_order(self) -> list[UrdfJoint]:
@@ -640,6 +645,63 @@ class _Translation:
                     inertia={"at": carrier.point, "frame": carrier.frame,
                              "matrix": [[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]]},
                     location=self.where(carrier.line))
+
+    def visuals(self) -> None:
+        """Each link's ``<visual>`` elements as shapes of the body (or frame) that carries the link."""
+        declared = {carrier.body for carrier in self.carriers if carrier.masses}
+        for link in self.robot.links.values():
+            carrier, r, p = self.pose[link.name]
+            on = carrier.body if carrier.body in declared else carrier.frame
+            for visual in link.visuals:
+                where = self.where(visual.line)
+                mesh = None
+                if visual.kind == "mesh":
+                    mesh = self.mesh_path(visual, link.name)
+                    if mesh is None:
+                        continue
+                r_visual = _clean(r @ rpy_matrix(visual.rpy), 1.0)
+                center = _clean(p + r @ np.array(visual.xyz), max(1e-3, float(np.max(np.abs(p)))))
+                dims = visual.dimensions
+                size = dict(box={"size": [_number(x) for x in dims]},
+                            cylinder={"radius": _number(dims[0]) if dims else None,
+                                      "length": _number(dims[1]) if len(dims) > 1 else None},
+                            sphere={"radius": _number(dims[0]) if dims else None},
+                            mesh={"mesh": mesh, "scale": list(visual.scale)})[visual.kind]
+                color = opacity = None
+                if visual.rgba is not None:
+                    color, opacity = list(visual.rgba[:3]), visual.rgba[3]
+                if any(v is not None and v == 0 for k, v in size.items() if k in ("radius", "length")) or (
+                        visual.kind == "box" and 0 in dims):
+                    continue  # a flat or empty visual (some exporters write them): nothing to draw
+                self.b.shape(on, visual.kind, center=_vector(carrier.frame, center), from_point=carrier.point,
+                             rotation=tuple(tuple(float(x) for x in row) for row in r_visual), color=color,
+                             opacity=opacity, location=where, **size)
+
+    def mesh_path(self, visual, link: str) -> str | None:  # type: ignore[no-untyped-def]
+        """The mesh file of ``visual``: beside the URDF, absolute (``file://``), or ``package://name/...`` resolved
+        in the first folder named ``name`` above the URDF; None, with a note, when it cannot be read."""
+        from ._shapes import resolve_mesh
+
+        name = visual.mesh
+        base = Path(self.robot.source).resolve().parent if self.robot.source else Path.cwd()
+        if name.startswith("package://"):
+            package, _, rest = name[len("package://"):].partition("/")
+            folder = next((d for d in (base, *base.parents) if d.name == package), None)
+            if folder is None:
+                warnings.warn(f"{self.robot.source or '<urdf>'}:{visual.line}: note: the mesh `{name}` of link "
+                              f"`{link}` is in package `{package}`, which is no folder above the URDF: not drawn",
+                              UrdfNote, stacklevel=4)
+                return None
+            name, base = rest, folder
+        elif name.startswith("file://"):
+            name = name[len("file://"):]
+        try:
+            return str(resolve_mesh(name, Location(self.robot.source, visual.line), owner=f"the mesh of link `{link}`",
+                                    base=base))
+        except ModelError as exc:
+            warnings.warn(f"{self.robot.source or '<urdf>'}:{visual.line}: note: {exc.message}: not drawn", UrdfNote,
+                          stacklevel=4)
+            return None
 
     def efforts(self) -> None:
         """The actuators' τ_j (Q_j = τ_j, an input each) and the joints' viscous damping D = ½ Σ c_j q̇_j²."""

@@ -16,6 +16,7 @@ from ._files import check_output_path as check_output_path
 from ._input_table import InputTable as InputTable
 from ._free_system import FreeBodySystem as FreeBodySystem
 from ._free_system import compile_free_system as compile_free_system
+from ._files import load_trajectory as load_trajectory
 from ._files import save_trajectory as save_trajectory
 from ._simulate import METHODS as METHODS
 from ._simulate import EventSpec as EventSpec
@@ -34,7 +35,7 @@ from ._top_check import simulation_check as simulation_check
 from ._trajectory import Event as Event
 from ._trajectory import Trajectory as Trajectory
 
-__all__ = ["simulate", "Sensitivities", "ensemble", "grid", "Grid", "open_ensemble", "flip_events", "simulate_stick_slip", "save_trajectory", "check_output_path", "EventSpec", "InputTable", "initial_state", "METHODS",
+__all__ = ["simulate", "Sensitivities", "ensemble", "grid", "Grid", "open_ensemble", "flip_events", "simulate_stick_slip", "save_trajectory", "load_trajectory", "check_output_path", "EventSpec", "InputTable", "initial_state", "METHODS",
            "STABILIZATIONS", "default_tolerance", "CompiledSystem", "compile_system", "FreeBodySystem", "compile_free_system", "Trajectory", "Event",
            "SimulationCheck", "simulation_check", "reaction_columns_along",
            "reaction_history_along", "check_trajectory_along"]

@@ -21,7 +21,7 @@ from .._atomic import check_destination, write_atomic_with
 from ..errors import OutputError
 from ._trajectory import Trajectory
 
-__all__ = ["save_trajectory", "check_output_path", "FORMATS"]
+__all__ = ["save_trajectory", "load_trajectory", "check_output_path", "FORMATS"]
 
 FORMATS = (".csv", ".npz")
 
@@ -33,6 +33,7 @@ def _metadata(traj: Trajectory) -> dict:
         "integrals": list(traj.integrals), "drift": dict(traj.drift), "steps": traj.steps,
         "rhs_calls": traj.rhs_calls, "status": traj.status,
         "events": [{"name": e.name, "t": e.t} for e in traj.events],
+        "extra": list(traj.extra),  # the columns after the monitors: reactions, multipliers
     }
     if traj.range_exits:  # where the motion left a declared range (`_ranges`)
         out["range_exits"] = [e.as_dict() for e in traj.range_exits]
@@ -103,3 +104,68 @@ def save_trajectory(traj: Trajectory, path: str | Path) -> Path:
                           fix="check that the folder exists and is writable; the old file, if any, is unchanged") \
             from exc
     return path
+
+
+def load_trajectory(path: str | Path) -> Trajectory:
+    """Read a trajectory written by `save_trajectory` (``.csv`` or ``.npz``): t, q, q̇, q̈, monitors, extra columns.
+
+    The file's metadata gives the coordinates, parameters, method and drift; nothing in it is
+    executed (NPZ is read with ``allow_pickle=False``, CSV as numbers and one JSON line).
+
+    Raises
+    ------
+    OutputError
+        A missing or unreadable file, or one that is not a lagrangian trajectory.
+    """
+    path = Path(path)
+    suffix = path.suffix.lower()
+    fix = "give a file written by `lagrangian simulate -o FILE.csv|.npz` or `save_trajectory`"
+    if suffix not in FORMATS:
+        raise OutputError(f"Cannot tell the format of `{path}` from its suffix `{path.suffix}`.", fix=fix)
+    try:
+        if suffix == ".npz":
+            with np.load(path, allow_pickle=False) as data:
+                meta = json.loads(str(data["metadata"]))
+                columns = [str(c) for c in data["columns"]]
+                table = np.asarray(data["table"], dtype=float)
+        else:
+            text = path.read_text(encoding="utf-8")
+            lines = text.splitlines()
+            found = next((ln for ln in lines if ln.startswith("# metadata: ")), None)
+            if found is None:
+                raise ValueError("no `# metadata:` line")
+            meta = json.loads(found[len("# metadata: "):])
+            header = next(k for k, ln in enumerate(lines) if not ln.startswith("#"))
+            columns = lines[header].split(",")
+            table = np.loadtxt(io.StringIO("\n".join(lines[header + 1:])), delimiter=",", ndmin=2)
+    except FileNotFoundError:
+        raise OutputError(f"The trajectory file `{path}` does not exist.", fix=fix) from None
+    except (OSError, ValueError, KeyError, StopIteration, json.JSONDecodeError) as exc:
+        raise OutputError(f"`{path}` is not a trajectory that can be read: {exc}.", fix=fix) from None
+    if meta.get("format") != "lagrangian.trajectory" or not isinstance(meta.get("coordinates"), list):
+        raise OutputError(f"`{path}` is not a lagrangian trajectory (its metadata says otherwise).", fix=fix)
+    coords = tuple(str(c) for c in meta["coordinates"])
+    if table.shape[1] != len(columns) or columns[0] != "t":
+        raise OutputError(f"`{path}` has {table.shape[1]} columns of numbers but names {len(columns)}.", fix=fix)
+    col = {name: table[:, k] for k, name in enumerate(columns)}
+
+    def block(suffix: str) -> np.ndarray:
+        try:
+            return np.column_stack([col[c + suffix] for c in coords]) if coords else np.zeros((len(table), 0))
+        except KeyError as exc:
+            raise OutputError(f"`{path}` has no column `{exc.args[0]}`.", fix=fix) from None
+
+    known = {"t", *coords, *(c + "_dot" for c in coords), *(c + "_ddot" for c in coords)}
+    integrals = tuple(str(i) for i in meta.get("integrals", []))
+    rest = [c for c in columns if c not in known]
+    extra_names = set(meta["extra"]) if isinstance(meta.get("extra"), list) else {
+        c for c in rest if c.startswith(("R_", "M_")) and c not in integrals}  # files written before "extra"
+    monitors = {c: col[c] for c in rest if c not in extra_names}
+    extra = {c: col[c] for c in rest if c in extra_names}
+    return Trajectory(model_name=str(meta.get("model", "")), coordinates=coords,
+                      parameters={str(k): float(v) for k, v in dict(meta.get("parameters", {})).items()},
+                      t=col["t"].copy(), q=block(""), qd=block("_dot"), qdd=block("_ddot"), monitors=monitors,
+                      integrals=integrals, drift={str(k): float(v) for k, v in dict(meta.get("drift", {})).items()},
+                      method=str(meta.get("method", "")), steps=int(meta.get("steps", 0)),
+                      rhs_calls=int(meta.get("rhs_calls", 0)), status=str(meta.get("status", "completed")),
+                      extra=extra)

@@ -24,18 +24,10 @@ from dataclasses import dataclass, field
 
 import sympy
 
+from .._greek import GREEK as _GREEK
+
 __all__ = ["Notation", "Opaque"]
 
-_GREEK = {
-    "alpha": ("α", r"\alpha"), "beta": ("β", r"\beta"), "gamma": ("γ", r"\gamma"), "delta": ("δ", r"\delta"),
-    "epsilon": ("ε", r"\varepsilon"), "eps": ("ε", r"\varepsilon"), "zeta": ("ζ", r"\zeta"), "eta": ("η", r"\eta"), "theta": ("θ", r"\theta"),
-    "iota": ("ι", r"\iota"), "kappa": ("κ", r"\kappa"), "lambda": ("λ", r"\lambda"), "lam": ("λ", r"\lambda"),
-    "mu": ("μ", r"\mu"), "nu": ("ν", r"\nu"), "xi": ("ξ", r"\xi"), "rho": ("ρ", r"\rho"),
-    "sigma": ("σ", r"\sigma"), "tau": ("τ", r"\tau"), "phi": ("φ", r"\varphi"), "chi": ("χ", r"\chi"),
-    "psi": ("ψ", r"\psi"), "omega": ("ω", r"\omega"), "Gamma": ("Γ", r"\Gamma"), "Delta": ("Δ", r"\Delta"),
-    "Theta": ("Θ", r"\Theta"), "Lambda": ("Λ", r"\Lambda"), "Xi": ("Ξ", r"\Xi"), "Pi": ("Π", r"\Pi"),
-    "Sigma": ("Σ", r"\Sigma"), "Phi": ("Φ", r"\Phi"), "Psi": ("Ψ", r"\Psi"), "Omega": ("Ω", r"\Omega"),
-}
 _SUPERSCRIPT = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
 _FRACTIONS = {(1, 2): "½", (1, 3): "⅓", (2, 3): "⅔", (1, 4): "¼", (3, 4): "¾"}
 _FUNCTION_RANK = {"sin": 0, "cos": 1, "tan": 2}

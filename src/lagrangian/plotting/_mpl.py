@@ -7,29 +7,11 @@ was), and nothing to close afterwards.
 
 from __future__ import annotations
 
-from types import ModuleType
 from typing import Any
 
-from ..errors import OutputError
+from .._matplotlib import MissingPlotDependency, require_matplotlib
 
 __all__ = ["require_matplotlib", "new_figure", "suptitle", "MissingPlotDependency"]
-
-
-class MissingPlotDependency(OutputError):
-    """matplotlib (the ``plot`` extra) is not installed."""
-
-
-def require_matplotlib() -> ModuleType:
-    """The ``matplotlib`` module, or a `MissingPlotDependency` that says how to install it."""
-    try:
-        import matplotlib
-        import matplotlib.figure  # noqa: F401  (the Figure class)
-        from matplotlib.backends import backend_agg  # noqa: F401  (the Agg canvas)
-    except ImportError as exc:
-        raise MissingPlotDependency(
-            f"Plots need matplotlib, which cannot be imported ({exc}).",
-            fix="install the plot extra: pip install 'lagrangian[plot]'") from None
-    return matplotlib
 
 
 def new_figure(width: float, height: float, *, margins: tuple[float, float, float, float] = (0.8, 0.2, 0.55, 0.5),

@@ -37,7 +37,7 @@ from ...errors import OutputError
 from ...model import Model, load_model
 from ...model._texts import in_language
 from .build import Context
-from .document import Document, Image, Section, map_math, walk
+from .document import Document, Scene3D, Section, map_math, pictures
 from .steps.equations import integrals_section, pin_reaction, step6, step7
 from .steps.extras import ReportFigure, check_section, matrix_section, notes_section, simulation_section
 from .steps.forces import step5
@@ -95,7 +95,7 @@ class Report:
 
     def pdf(self) -> bytes:
         """The PDF of the LaTeX report, compiled by pdflatex (or lualatex) installed on this machine."""
-        images = [b for s in self.document.sections for b in walk(s.blocks) if isinstance(b, Image)]
+        images = pictures(self.document)
         names = [f"report-figure-{k}.png" for k in range(1, len(images) + 1)]
         return compile_pdf(self.latex(names), {name: image.png for name, image in zip(names, images)})
 
@@ -123,7 +123,7 @@ class Report:
         fmt = format or format_for(path)
         try:
             if fmt in ("tex", "md"):
-                images = [b for s in self.document.sections for b in walk(s.blocks) if isinstance(b, Image)]
+                images = pictures(self.document, scenes=fmt == "tex")  # Markdown leaves the 3-D figures out
                 names = [f"{path.stem}-figure-{k}.png" for k in range(1, len(images) + 1)]
                 for name, image in zip(names, images):
                     _atomic.write_atomic(path.with_name(name), image.png)
@@ -173,10 +173,26 @@ def _figure(item: Any) -> ReportFigure:
                     f"not {type(item).__name__}")
 
 
+def _scene_block(eom: EquationsOfMotion, lang: str, motion: Any = None) -> Scene3D | None:
+    """The system in 3-D (at rest, or moving along ``motion``), or None where it cannot be drawn (a parameter
+    without a value): the report goes on without it."""
+    from ...errors import LagrangianError
+    from ...view3d import view
+    from .words import Words
+
+    w = Words(lang)
+    try:
+        shown = view(motion, eom, lang=lang) if motion is not None else view(eom.model, lang=lang)
+    except LagrangianError:
+        return None
+    key = "scene motion" if motion is not None else "scene statement"
+    return Scene3D(shown.scene, (w.text(key),), w.text(key))
+
+
 def report(model: Model | EquationsOfMotion | str | os.PathLike[str], *, lang: str = "fr",
            verification: Verification | bool | None = None, figures: Sequence[Any] = (),
            integrals: Sequence[FirstIntegral] | None = None, source: str | None = None,
-           small_motions: Any = None) -> Report:
+           small_motions: Any = None, view: bool = True, motion: Any = None) -> Report:
     r"""The step-by-step derivation of ``model`` in the course's order, ready to write as HTML, LaTeX or Markdown.
 
     Parameters
@@ -193,6 +209,10 @@ def report(model: Model | EquationsOfMotion | str | os.PathLike[str], *, lang: s
     small_motions : adds the section "Petits mouvements au voisinage d'une position d'équilibre" /
         "Small motions about an equilibrium": a `LinearModel` (`lagrangian.linearize`), a point
         ``{"theta": 0}``, or True for the model's ``[operating_point]``; None (default) leaves it out.
+    view : the statement shows the system in 3-D in its initial configuration, frames, points and
+        angles labelled (`lagrangian.view3d`): interactive in HTML, a still picture in LaTeX and PDF
+        (headless Chromium's, else matplotlib's); left out of Markdown.  ``False`` leaves it out.
+    motion : a simulated `Trajectory` of the model, shown in 3-D at the head of the simulation's figures.
 
     Returns
     -------
@@ -213,8 +233,12 @@ def report(model: Model | EquationsOfMotion | str | os.PathLike[str], *, lang: s
     found = tuple(integrals) if integrals is not None else first_integrals(eom)
     c = Context(eom, found, lang, source=source)
     checked = verify(eom) if verification is True else (verification or None)
-    pictures = [_figure(f) for f in figures]
-    sections = [system_section(c), step1(c), step2(c), step3(c), step4(c), step5(c), step6(c), step7(c),
+    figures_in = [_figure(f) for f in figures]
+    statement = system_section(c)
+    still = _scene_block(eom, lang) if view else None
+    if still is not None:
+        statement = Section(statement.key, statement.title, statement.blocks + (still,))
+    sections = [statement, step1(c), step2(c), step3(c), step4(c), step5(c), step6(c), step7(c),
                 integrals_section(c)]
     if checked is not None:  # the reaction of a fixed point, after step 7
         extra = pin_reaction(c, checked)
@@ -224,8 +248,12 @@ def report(model: Model | EquationsOfMotion | str | os.PathLike[str], *, lang: s
         sections.append(small_motions_section(c, as_linear_model(eom, small_motions)))
     if checked is not None:
         sections.append(check_section(c, checked))
-    if pictures:
-        sections.append(simulation_section(c, pictures))
+    moving = _scene_block(eom, lang, motion) if motion is not None and view else None
+    if figures_in or moving is not None:
+        section = simulation_section(c, figures_in)
+        if moving is not None:
+            section = Section(section.key, section.title, (moving, *section.blocks))
+        sections.append(section)
     sections.append(matrix_section(c))
     notes = notes_section(c)
     if notes is not None:

@@ -9,10 +9,11 @@ content without parsing any output.
 from __future__ import annotations
 
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import Any
 
-__all__ = ["Math", "Run", "Runs", "Para", "Equation", "Display", "Items", "Table", "Fold", "FullForms", "Image", "Block",
-           "Section", "Document", "walk", "math_of", "map_math"]
+__all__ = ["Math", "Run", "Runs", "Para", "Equation", "Display", "Items", "Table", "Fold", "FullForms", "Image",
+           "Scene3D", "Block", "Section", "Document", "walk", "math_of", "map_math", "pictures"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -98,7 +99,29 @@ class Image:
     alt: str
 
 
-Block = Para | Display | Items | Table | Fold | FullForms | Image
+@dataclass(frozen=True)
+class Scene3D:
+    """A 3-D figure: the scene of `lagrangian.view3d`, drawn by the page (HTML) or as a still picture (LaTeX, PDF).
+
+    ``png`` is made on first use (headless Chromium's screenshot of the page, else matplotlib's
+    drawing of the same scene: `lagrangian.view3d._still`) and kept.
+    """
+
+    scene: Any
+    caption: Runs
+    alt: str
+    _still: dict = field(default_factory=dict, compare=False, repr=False)
+
+    @property
+    def png(self) -> bytes:
+        if "png" not in self._still:
+            from ...view3d._still import still_png
+
+            self._still["png"] = still_png(self.scene, width=900, height=600)
+        return self._still["png"]
+
+
+Block = Para | Display | Items | Table | Fold | FullForms | Image | Scene3D
 
 
 @dataclass(frozen=True, slots=True)
@@ -157,9 +180,15 @@ def math_of(blocks: tuple[Block, ...]) -> list[str]:
             for row in (b.header, *b.rows):
                 for cell in row:
                     runs(cell)
-        elif isinstance(b, Image):
+        elif isinstance(b, (Image, Scene3D)):
             runs(b.caption)
     return out
+
+
+def pictures(doc: Document, *, scenes: bool = True) -> list[Image | Scene3D]:
+    """The figures of ``doc`` in order: images and (with ``scenes``) 3-D figures, whose ``png`` each has."""
+    kinds = (Image, Scene3D) if scenes else (Image,)
+    return [b for s in doc.sections for b in walk(s.blocks) if isinstance(b, kinds)]
 
 
 def map_math(section: Section, fn: Callable[[str], str]) -> Section:
@@ -186,6 +215,8 @@ def map_math(section: Section, fn: Callable[[str], str]) -> Section:
             return FullForms(b.title, b.summary, tuple((ref, eq(e)) for ref, e in b.forms))
         if isinstance(b, Image):
             return Image(b.png, runs(b.caption), b.alt)
+        if isinstance(b, Scene3D):
+            return Scene3D(b.scene, runs(b.caption), b.alt, b._still)
         raise TypeError(f"unknown block {type(b).__name__}")  # pragma: no cover
 
     return Section(section.key, section.title, tuple(block(b) for b in section.blocks))

@@ -591,6 +591,11 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "whole system": ("(Σ)", "(Σ)"),
     # -- simulation, appendix, sizes --------------------------------------------------------------
     "figure": ("Figure {k} : {caption}", "Figure {k}: {caption}"),
+    "scene statement": ("Le système dans sa position initiale : repères, points et angles (vue 3D, à tourner "
+                        "à la souris)", "The system in its initial position: frames, points and angles (3-D view, "
+                        "turn it with the mouse)"),
+    "scene motion": ("Le mouvement simulé (vue 3D : lecture, curseur du temps, traces, vecteurs)",
+                     "The simulated motion (3-D view: play, time slider, traces, vectors)"),
     "matrix large": ("Les équations de Lagrange s'écrivent {form} ; la matrice {n} a {k} coefficients non nuls "
                      "(triangle supérieur), trop pour les écrire ici : la commande {cmd} les donne, avec F.",
                      "The Lagrange equations read {form}; the {n} matrix has {k} nonzero entries (upper "

@@ -14,7 +14,7 @@ import re
 from latex2mathml.converter import convert
 
 from ....errors import OutputError
-from ..document import Block, Display, Document, Fold, FullForms, Image, Items, Math, Para, Runs, Section, Table
+from ..document import Block, Display, Document, Fold, FullForms, Image, Items, Math, Para, Runs, Scene3D, Section, Table
 
 __all__ = ["render_html"]
 
@@ -158,7 +158,7 @@ def _runs(runs: Runs) -> str:
     return "".join(_mathml(r.latex, "inline") if isinstance(r, Math) else html.escape(r) for r in runs)
 
 
-def _block(b: Block) -> str:
+def _block(b: Block, scenes: list[int] | None = None) -> str:
     if isinstance(b, Para):
         cls = f' class="{b.style}"' if b.style else ""
         return f"<p{cls}>{_runs(b.runs)}</p>"
@@ -176,7 +176,7 @@ def _block(b: Block) -> str:
         body = "".join("<tr>" + "".join(f"<td>{_runs(cell)}</td>" for cell in row) + "</tr>" for row in b.rows)
         return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
     if isinstance(b, Fold):
-        inner = "".join(_block(x) for x in b.blocks)
+        inner = "".join(_block(x, scenes) for x in b.blocks)
         return f"<details><summary>{html.escape(b.summary)}</summary>{inner}</details>"
     if isinstance(b, FullForms):
         forms = "".join(f'<div class="full-form"><p class="ref">{html.escape(ref)}</p>{_block(Display((eq,)))}</div>'
@@ -186,29 +186,56 @@ def _block(b: Block) -> str:
         data = base64.b64encode(b.png).decode("ascii")
         return (f'<figure><img src="data:image/png;base64,{data}" alt="{html.escape(b.alt, quote=True)}">'
                 f"<figcaption>{_runs(b.caption)}</figcaption></figure>")
+    if isinstance(b, Scene3D):
+        return _scene(b, scenes)
     raise TypeError(f"unknown block {type(b).__name__}")  # pragma: no cover
 
 
-def _section(s: Section) -> str:
-    return f'<section id="{s.key}"><h2>{html.escape(s.title)}</h2>' + "".join(_block(b) for b in s.blocks) + "</section>"
+def _scene(b: Scene3D, scenes: list[int] | None) -> str:
+    """A 3-D figure: in a page, the viewer's element and data (the library once, at the end of the page); in a
+    notebook (``scenes`` None), the view's own page in an iframe, which needs no script of the notebook's."""
+    from ....view3d import View
+    from ....view3d._html import fragment
+
+    caption = f'<figcaption>{_runs(b.caption)}</figcaption>'
+    if scenes is None:
+        return f'<figure class="scene3d">{View(b.scene)._repr_html_()}{caption}</figure>'
+    scenes.append(len(scenes) + 1)
+    inner = fragment(b.scene, ident=f"lgv-{len(scenes)}", height="460px")
+    return inner.replace("</figure>", caption + "</figure>", 1)
 
 
-def _body(doc: Document, footer: str) -> str:
+def _section(s: Section, scenes: list[int] | None) -> str:
+    return (f'<section id="{s.key}"><h2>{html.escape(s.title)}</h2>' + "".join(_block(b, scenes) for b in s.blocks)
+            + "</section>")
+
+
+def _body(doc: Document, footer: str, scenes: list[int] | None = None) -> str:
     # A list without numbers: the titles carry the course's own ("1. Choix des liaisons principales").
     toc = "".join(f'<li><a href="#{s.key}">{html.escape(s.title)}</a></li>' for s in doc.sections)
     subtitle = f'<p class="subtitle">{html.escape(doc.subtitle)}</p>' if doc.subtitle else ""
     return (f'<div class="lagrangian-report"><h1>{html.escape(doc.title)}</h1>{subtitle}'
-            f"<nav><ul>{toc}</ul></nav>" + "".join(_section(s) for s in doc.sections)
+            f"<nav><ul>{toc}</ul></nav>" + "".join(_section(s, scenes) for s in doc.sections)
             + f"<footer>{html.escape(footer)}</footer></div>")
 
 
 def render_html(doc: Document, *, footer: str = "", fragment: bool = False) -> str:
-    """The report as a complete HTML page, or (``fragment=True``) as a ``<div>`` with its style for a notebook."""
-    body = _body(doc, footer)
+    """The report as a complete HTML page, or (``fragment=True``) as a ``<div>`` with its style for a notebook.
+
+    A page with 3-D figures holds the viewer (three.js) once, at its end, and a Content-Security-Policy
+    that lets it load nothing but its own inline code, styles and images."""
     if fragment:
-        return f"<style>{_CSS}</style>{body}"
+        return f"<style>{_CSS}</style>{_body(doc, footer)}"
+    scenes: list[int] = []
+    body = _body(doc, footer, scenes)
+    head, tail = "", ""
+    if scenes:
+        from ....view3d._html import CSP, library
+
+        head = f'<meta http-equiv="Content-Security-Policy" content="{CSP}">'
+        tail = f"<script>\n{library()}\n</script>"
     return ("<!DOCTYPE html>\n"
-            f'<html lang="{doc.lang}"><head><meta charset="utf-8">'
+            f'<html lang="{doc.lang}"><head><meta charset="utf-8">{head}'
             '<meta name="viewport" content="width=device-width, initial-scale=1">'
             f"<title>{html.escape(doc.title)}</title><style>{_CSS}</style></head>"
-            f"<body>{body}</body></html>\n")
+            f"<body>{body}{tail}</body></html>\n")

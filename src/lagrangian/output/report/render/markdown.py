@@ -14,7 +14,8 @@ import re
 from collections.abc import Sequence
 from urllib.parse import quote
 
-from ..document import (Block, Display, Document, Equation, Fold, FullForms, Image, Items, Math, Para, Runs, Section,
+from ..document import (Block, Display, Document, Equation, Fold, FullForms, Image, Items, Math, Para, Runs, Scene3D,
+                        Section,
                           Table)
 
 __all__ = ["render_markdown", "display_math", "fenced_math", "inline_math"]
@@ -79,7 +80,7 @@ def _block(b: Block, figures: Sequence[str] | None = None, counter: list[int] | 
             return "| " + " | ".join(_runs(cell, in_table=True).replace("\n", " ") for cell in cells) + " |"
         return "\n".join([row(b.header), "|" + "---|" * len(b.header)] + [row(r) for r in b.rows])
     if isinstance(b, Fold):
-        inner = "\n\n".join(_block(x, figures, counter) for x in b.blocks)
+        inner = "\n\n".join(_block(x, figures, counter) for x in b.blocks if not isinstance(x, Scene3D))
         summary = b.summary.replace("<", "&lt;").replace(">", "&gt;")
         return f"<details><summary>{summary}</summary>\n\n{inner}\n\n</details>"
     if isinstance(b, FullForms):
@@ -98,7 +99,9 @@ def _block(b: Block, figures: Sequence[str] | None = None, counter: list[int] | 
 
 
 def _section(s: Section, figures: Sequence[str] | None, counter: list[int]) -> str:
-    return f"## {s.title}\n\n" + "\n\n".join(_block(b, figures, counter) for b in s.blocks)
+    # A 3-D figure has no Markdown form (its still would be a large data: URI): left out, as GitHub shows no page.
+    return f"## {s.title}\n\n" + "\n\n".join(_block(b, figures, counter) for b in s.blocks
+                                                 if not isinstance(b, Scene3D))
 
 
 def render_markdown(doc: Document, *, footer: str = "", figures: Sequence[str] | None = None) -> str:

@@ -10,7 +10,8 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from ..document import (Block, Display, Document, Equation, Fold, FullForms, Image, Items, Math, Para, Runs, Section,
+from ..document import (Block, Display, Document, Equation, Fold, FullForms, Image, Items, Math, Para, Runs, Scene3D,
+                        Section,
                           Table, walk)
 
 __all__ = ["render_tex"]
@@ -115,7 +116,7 @@ def _block(b: Block, figures: Sequence[str] | None, counter: list[int]) -> str:
         return "".join(_block(x, figures, counter) for x in b.blocks)
     if isinstance(b, FullForms):
         return ""  # in the appendix (`_appendix`)
-    if isinstance(b, Image):
+    if isinstance(b, (Image, Scene3D)):
         counter[0] += 1
         caption = _runs(b.caption)
         if figures is not None and counter[0] <= len(figures):

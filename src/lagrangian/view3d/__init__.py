@@ -1,0 +1,15 @@
+"""Stage 6 — the 3-D view: a model at rest or in motion, in one offline HTML page (three.js inline).
+
+``view(traj, eom)`` (or ``view(model)`` at rest) returns a `View`: ``html()``, ``save(path)``,
+``png()``, and it displays itself in Jupyter.  Its `Scene` — carriers and their poses, parts,
+tracks, links, triads, arcs, arrows — is the one description that the page and the matplotlib
+animation (`lagrangian.plotting.animate`) both draw.  See ``docs/view.md``.
+"""
+
+from ._build import Motion as Motion
+from ._build import build_scene as build_scene
+from ._scene import Scene as Scene
+from ._view import View as View
+from ._view import view as view
+
+__all__ = ["Motion", "Scene", "View", "build_scene", "view"]
