@@ -89,7 +89,7 @@ def _figures(eom, t_end: float, parameters: dict[str, float], initial: dict[str,
                               fix=f"give it one in the model file, or --set {missing[0]}=VALUE")
     traj = simulate(eom, t_end, initial=initial, parameters=parameters, n_out=801)
     return [(figure_caption(kind, eom, lang), plot_trajectory(traj, eom, kind, lang=lang))
-            for kind in applicable_kinds(traj, eom)]
+            for kind in applicable_kinds(traj, eom)], traj.events
 
 
 def run(args: argparse.Namespace) -> str | None:
@@ -97,7 +97,8 @@ def run(args: argparse.Namespace) -> str | None:
     eom = derive(model)
     fmt = args.format or (format_for(args.output) if args.output else "md")
     check = args.verify if args.verify is not None else len(eom.coordinates) <= VERIFY_AUTO_MAX
-    figures = _figures(eom, args.simulate, parameters, initial, args.lang) if args.simulate is not None else []
+    figures, events = _figures(eom, args.simulate, parameters, initial, args.lang) if args.simulate is not None \
+        else ([], ())
     small = None
     if args.small_motions:
         from ..analysis import linearize
@@ -107,7 +108,8 @@ def run(args: argparse.Namespace) -> str | None:
         raise SettingError("`--at` gives the point of the small motions, which only `--small-motions` reports.",
                            fix="add --small-motions, or drop --at")
     # The notes name the command that prints every equation in full: lagrangian derive MODEL --json.
-    r = report(eom, lang=args.lang, verification=check, figures=figures, source=args.model or "", small_motions=small)
+    r = report(eom, lang=args.lang, verification=check, figures=figures, source=args.model or "", small_motions=small,
+               events=events)
     if not args.output:
         if fmt == "pdf":
             raise OutputError("A PDF report is written to a file, not to the terminal.",

@@ -533,7 +533,11 @@ def complementary_constraints(kin: Kinematics, equations: tuple) -> tuple[tuple,
         if r.multiplier.name in taken:
             raise _error(kin, by_name[r.constraint], f"the multiplier `{r.multiplier.name}` of constraint row "
                          f"`{r.name}` has the name of a parameter or coordinate", fix="rename one of them")
-    _check_rank(kin, rows, by_name)
+    # The rows of unilateral contacts may be dependent (a ball between two walls): which of them act is
+    # decided along the motion (`numerics._contact`); the bilateral ones must be independent.
+    bilateral = [r for r in rows if not by_name[r.constraint].unilateral]
+    if bilateral:
+        _check_rank(kin, bilateral, by_name)
     out = []
     for i, eq in enumerate(equations):
         terms = sum_of([r.multiplier * r.coefficients[i] for r in rows if type(r.coefficients[i]) is not _ZERO_TYPE])
@@ -567,6 +571,9 @@ def admissible_integrals(eom, integrals: Sequence) -> tuple:  # type: ignore[no-
                 out.append(dataclasses.replace(fi, reason=fi.reason + why))
         elif b_zero:
             why = "; the reactions of the complementary constraints do no work (b_k = 0: Σ_k λ_k A_k q̇ = 0)"
+            if any(c.unilateral for c in eom.model.constraints):
+                why += ("; between impacts (an impact takes ½ Σ_k P_k (1 − e_k) |ġ_k⁻| of it, and friction at "
+                        "an impact some more)")
             out.append(dataclasses.replace(fi, reason=fi.reason + why))
     return tuple(out)
 
