@@ -39,8 +39,8 @@ _WHERE = {
     "Model": ".model.spec",
     "lagrange_top": ".model.zoo",
     **dict.fromkeys(("Report", "report", "export"), ".output"),
-    **dict.fromkeys(("CompiledSystem", "EventSpec", "Trajectory", "compile_system", "ensemble", "grid",
-                     "open_ensemble", "save_trajectory", "simulate"), ".numerics"),
+    **dict.fromkeys(("CompiledSystem", "ContactEvent", "EventSpec", "ImpactSweep", "Trajectory", "compile_system",
+                     "ensemble", "grid", "impact_sweep", "open_ensemble", "save_trajectory", "simulate"), ".numerics"),
 }
 
 if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
@@ -55,8 +55,8 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from .model import ModelBuilder, load_model, load_urdf, parse_model
     from .model.spec import Model
     from .model.zoo import lagrange_top
-    from .numerics import (CompiledSystem, EventSpec, Trajectory, compile_system, ensemble, grid, open_ensemble,
-                           save_trajectory, simulate)
+    from .numerics import (CompiledSystem, ContactEvent, EventSpec, ImpactSweep, Trajectory, compile_system, ensemble,
+                           grid, impact_sweep, open_ensemble, save_trajectory, simulate)
     from .output import Report, export, report
 
 __version__ = "0.1.0"
@@ -102,6 +102,9 @@ __all__ = [
     "grid",
     "open_ensemble",
     "EventSpec",
+    "ContactEvent",
+    "impact_sweep",
+    "ImpactSweep",
     "Trajectory",
     "save_trajectory",
     "report",
