@@ -353,7 +353,8 @@ def _join(cs: ContactSystem, p: np.ndarray, out: Outputs, phases: list[np.ndarra
         for name in integrals:
             if d[name] >= drift[name]:
                 drift[name], scales[name] = d[name], s[name]
-    for k, row in enumerate(cs.eom.constraints):
+    for k in cs.bilateral:
+        row = cs.eom.constraints[k]
         drift[f"drift_{row.name}"] = float(np.max(np.abs(f[:, k]), initial=0.0)) if row.kind == "holonomic" else 0.0
         drift[f"drift_{row.name}_dot"] = float(np.max(np.abs(g[:, k]), initial=0.0))
     for i, name in enumerate(cs.names):
@@ -361,8 +362,7 @@ def _join(cs: ContactSystem, p: np.ndarray, out: Outputs, phases: list[np.ndarra
     warnings = [f"{name} drifted by {drift[name]:.2e} (relative), more than the tolerance {tolerance:.1e}"
                 for name in integrals if tolerance is not None and drift[name] > tolerance]
     for ev in events:
-        if isinstance(ev, ContactEvent) and ev.kind == "impact" and \
-                cs.contacts[cs.names.index(ev.contact)].tangent is None:
+        if isinstance(ev, ContactEvent) and ev.kind == "impact" and cs.tangent[cs.names.index(ev.contact)] < 0:
             gain = ev.energy_after - ev.energy_before
             if gain > 1e-9 * max(abs(ev.energy_before), abs(ev.energy_after), 1e-300):
                 warnings.append(f"the impact of `{ev.contact}` at t = {ev.t:.9g} increased the energy by {gain:.3g}")

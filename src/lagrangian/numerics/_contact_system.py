@@ -1,8 +1,8 @@
 """A model with unilateral contacts as numeric functions: every row at once, any subset active.
 
-`ContactSystem` derives the model without its contacts once, appends every contact row (the gap's
-row, and the sliding row of a contact with friction; `dynamics._unilateral`) to its bilateral
-complementary rows, and compiles the whole into C once (`ConstrainedSystem`): M, F, and for each
+`ContactSystem` derives the model once — every contact row with the bilateral complementary rows:
+the gap's row, and the sliding row of a contact with friction (`dynamics._constraints.sliding_row`),
+whatever their rank — and compiles the whole into C once (`ConstrainedSystem`): M, F, and for each
 row A_k, b_k (through ġ = A q̇ + b), the bias c_k (g̈ = A q̈ + c) and the gap g_k.  The rows that
 act at an instant — the bilateral ones, the closed contacts, the sticking ones — are a subset,
 solved from
@@ -25,7 +25,7 @@ import numpy as np
 import symengine as se
 
 from ..dynamics import EquationsOfMotion, derive
-from ..dynamics._unilateral import ContactRows, contact_rows, with_contact_rows
+from ..dynamics._constraints import SLIDING_SUFFIX
 from ..errors import ModelError, SimulationError
 from ..model._unilateral import coefficient_values_error
 from ..model.spec import Model
@@ -120,8 +120,8 @@ class ContactSystem:
 
     Attributes
     ----------
-    model : the model; ``contacts`` : its contacts' rows (`ContactRows`), ``names`` their names.
-    eom : the model without its contacts, derived (its rows are the bilateral ones).
+    model : the model; ``contacts`` : its unilateral constraints, ``names`` their names.
+    eom : the model derived: its rows are the bilateral ones and every contact's (gap, sliding).
     full : `ConstrainedSystem` of every row; ``n`` coordinates.
     bilateral, normal, tangent : indices of the bilateral rows, of each contact's gap row, and of
         each contact's sliding row (−1 without friction) in ``full.rows``.
@@ -130,46 +130,45 @@ class ContactSystem:
     """
 
     def __init__(self, model: Model, *, backend: str = "auto") -> None:
-        declared = contacts_of(model)
-        if not declared:
+        self.contacts = contacts_of(model)
+        if not self.contacts:
             raise ModelError("The model has no unilateral contact.", fix="use lagrangian.simulate")
         self.model = model
-        self.eom: EquationsOfMotion = derive(replace(model, constraints=tuple(
-            c for c in model.constraints if not getattr(c, "unilateral", False))))
-        self.contacts: tuple[ContactRows, ...] = contact_rows(self.eom, declared)
-        self.names = tuple(c.contact.name for c in self.contacts)
-        full_eom = with_contact_rows(self.eom, self.contacts)
-        self.full = ConstrainedSystem(full_eom, backend=backend)
+        self.names = tuple(c.name for c in self.contacts)
+        # Every row at once: the bilateral ones, each contact's gap and, with friction, its sliding row.
+        self.eom: EquationsOfMotion = derive(model)
+        self.full = ConstrainedSystem(self.eom, backend=backend)
         rows = list(self.full.rows)
         self.n = self.full.n
-        self.bilateral = np.arange(len(self.eom.constraints), dtype=int)
-        self.normal = np.array([rows.index(c.normal.name) for c in self.contacts], dtype=int)
-        self.tangent = np.array([rows.index(c.tangent.name) if c.tangent is not None else -1 for c in self.contacts],
-                                dtype=int)
+        self.bilateral = np.array([k for k, r in enumerate(self.eom.constraints) if r.constraint not in self.names],
+                                  dtype=int)
+        self.normal = np.array([rows.index(c.name) for c in self.contacts], dtype=int)
+        self.tangent = np.array([rows.index(c.name + SLIDING_SUFFIX) if c.slip is not None else -1
+                                 for c in self.contacts], dtype=int)
         params = [se.Symbol(name) for name in self.full.parameters]
-        coefficients = [c.contact.restitution for c in self.contacts]
-        coefficients += [c.contact.friction if c.contact.friction is not None else se.Integer(0)
-                         for c in self.contacts]
+        coefficients = [c.restitution for c in self.contacts]
+        coefficients += [c.friction if c.friction is not None else se.Integer(0) for c in self.contacts]
         self._coefficients = se.Lambdify(params, coefficients) if params else None
         self._coefficient_exprs = coefficients
         # No t in M, F and the rows: a state at rest in equilibrium stays at rest (`_contact_phase`).
         t = self.eom.t
-        exprs = [*(e for row in full_eom.M for e in row), *full_eom.F,
-                 *(x for r in full_eom.constraints for x in (*r.coefficients, r.b, r.bias, r.expression))]
+        exprs = [*(e for row in self.eom.M for e in row), *self.eom.F,
+                 *(x for r in self.eom.constraints for x in (*r.coefficients, r.b, r.bias, r.expression))]
         self.autonomous = all(t not in e.free_symbols for e in exprs)
         self._use_c = backend == "c" or (backend == "auto" and compiler() is not None)
         self._fast: dict[tuple, CompiledSystem] = {}
         self.fast = self.fast_system(())
 
     def fast_system(self, events: Sequence[tuple[str, se.Basic]]) -> CompiledSystem | None:
-        """The compiled model without contacts, its events the gaps then ``events`` (None with bilateral rows
-        or without a C compiler); compiled once per set of events."""
+        """The compiled model without its contacts, its events the gaps then ``events`` (None with bilateral rows
+        or without a C compiler); derived and compiled once per set of events."""
         if len(self.bilateral) or not self._use_c:
             return None
         key = tuple((name, str(expr)) for name, expr in events)
         if key not in self._fast:
-            gaps = [(GAP_EVENT + c.contact.name, c.contact.expression) for c in self.contacts]
-            self._fast[key] = CompiledSystem(self.eom, events=gaps + list(events), backend="c")
+            open_eom = derive(replace(self.model, constraints=()))  # every constraint is a contact here
+            gaps = [(GAP_EVENT + c.name, c.expression) for c in self.contacts]
+            self._fast[key] = CompiledSystem(open_eom, events=gaps + list(events), backend="c")
         return self._fast[key]
 
     # -- values ------------------------------------------------------------------------------
@@ -188,10 +187,9 @@ class ContactSystem:
             values = np.asarray(self._coefficients(p[: len(self.full.parameters)]), dtype=float).ravel()
         e, mu = values[:m], values[m:]
         for k, c in enumerate(self.contacts):
-            problem = coefficient_values_error(c.contact.name, float(e[k]),
-                                               float(mu[k]) if c.tangent is not None else None)
+            problem = coefficient_values_error(c.name, float(e[k]), float(mu[k]) if c.slip is not None else None)
             if problem is not None or not np.isfinite(e[k]):
-                loc = self.model.where("constraint", c.contact.name)
+                loc = self.model.where("constraint", c.name)
                 where = f" (declared at {loc.file}:{loc.line})" if loc.file and loc.line else ""
                 raise SimulationError(f"{problem or f'e = {e[k]} is not a number'}{where}.",
                                       fix="0 ≤ e ≤ 1 (0: plastic, 1: elastic), μ ≥ 0")

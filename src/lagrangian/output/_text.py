@@ -264,7 +264,9 @@ def _step7_text(n: Notation, form: CourseForm, extra: Supplement) -> list[str]:
              "is what the constraint exerts on the body):"]
     for c in extra.constraints:
         for row, _, equation in c.rows:
-            lines.append(f"  {n.text(equation)} = 0    [{row}" + (", while the contact is closed]" if c.contact else "]"))
+            when = "" if not c.contact else (", while the contact is closed" if row == c.name
+                                              else ", while the contact is closed and sticks")
+            lines.append(f"  {n.text(equation)} = 0    [{row}{when}]")
     lines += [f"  {r.constraint}: {r.row_choice}" for r in extra.reactions if r.row_choice]
     unsolved = [name for name, formula in extra.multipliers if formula is None]
     for name, formula in extra.multipliers:

@@ -36,7 +36,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
         "(pesanteur, ressorts, réactions bilatérales régulières) ont une percussion nulle. En intégrant les "
         "équations de Lagrange {L} sur la durée du choc, il ne reste que les percussions {P} des liaisons "
         "unilatérales qui se ferment (théorème des percussions sous la forme de Lagrange) :",
-        "During an impact of vanishing duration the parameters {q} do not change, and the finite efforts "
+        "During an impact of vanishing duration the parameters {q} do not change, and the finite forces "
         "(gravity, springs, regular bilateral reactions) have no percussion. Integrating Lagrange's equations "
         "{L} over the impact leaves only the percussions {P} of the unilateral constraints that close (the "
         "theorem of percussions in Lagrange's form):"),
@@ -49,9 +49,11 @@ _PHRASES: dict[str, tuple[str, str]] = {
         "problem:"),
     "friction": (
         "Avec frottement de Coulomb au contact, la percussion tangentielle est bornée, {bound} : le contact "
-        "adhère ({stick}) ou glisse à l'opposé de sa vitesse de glissement.",
+        "adhère ({stick}) ou glisse à l'opposé de sa vitesse de glissement. Fermé, il adhère tant que sa "
+        "réaction tangentielle reste dans le cône, {cone}.",
         "With Coulomb friction at the contact, the tangential percussion is bounded, {bound}: the contact sticks "
-        "({stick}) or slides against its sliding velocity."),
+        "({stick}) or slides against its sliding velocity. Closed, it sticks as long as its tangential reaction "
+        "stays within the cone, {cone}."),
     "energy": (
         "L'énergie cinétique perdue au choc en résulte (sans frottement) ; elle est nulle pour {e1} :",
         "The kinetic energy lost at the impact follows (without friction); it vanishes for {e1}:"),
@@ -102,7 +104,7 @@ def has_contacts(c: Context) -> bool:
 def contact_note(c: Context, con: Constraint) -> list[Block]:
     """Step 1: the complementarity of the contact ``con`` (module docstring)."""
     w = _Words(c.lang)
-    row = next(r for r in c.eom.constraints if r.constraint == con.name)
+    row = next(r for r in c.eom.constraints if r.name == con.name)
     g, lam = c.tex(row.expression), c.tex(row.multiplier)
     return [Para(w("unilateral", g=Math(rf"g = {g}"), g0=Math(r"g = 0"), lam=Math(lam),
                    cond=Math(rf"{lam} \geq 0,\; g \geq 0,\; {lam}\, g = 0"), gdot=Math(r"\dot{g} < 0")))]
@@ -134,7 +136,8 @@ def _theorem(c: Context, w: _Words, friction: bool) -> list[Block]:
     ]
     if friction:
         blocks.append(Para(w("friction", bound=Math(r"\left|P_{t,k}\right| \leq \mu_{k} P_{k}"),
-                             stick=Math(r"w_{k}^{+} = 0"))))
+                             stick=Math(r"w_{k}^{+} = 0"), cone=Math(r"\left|\lambda_{t,k}\right| \leq \mu_{k} "
+                                                                   r"\lambda_{k}"))))
     blocks += [
         Para(w("energy", e1=Math(r"e_{k} = 1"))),
         Display((Equation((r"T^{+} - T^{-} = \tfrac{1}{2} \sum_{k} P_{k}\left(\dot{g}_{k}^{+} + \dot{g}_{k}^{-}\right)"
@@ -149,7 +152,7 @@ def _coefficients(c: Context, w: _Words) -> Table:
     for con in c.model.constraints:
         if not con.unilateral:
             continue
-        row = next(r for r in c.eom.constraints if r.constraint == con.name)
+        row = next(r for r in c.eom.constraints if r.name == con.name)
         mu = (Math(c.tex(con.friction)),) if con.friction is not None else (w.text("none"),)
         rows.append(((c.constraint_label(con.name),), (Math(rf"{c.tex(row.expression)} \geq 0"),),
                      (Math(c.tex(con.restitution)),), mu))
