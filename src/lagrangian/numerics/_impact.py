@@ -19,8 +19,9 @@ where J stacks the normal (and tangential) rows of the candidate contacts and
 N = M⁻¹ − M⁻¹A_Bᵀ(A_B M⁻¹ A_Bᵀ)⁻¹A_B M⁻¹ is the inverse inertia left by the bilateral rows
 (`delassus`), so that q̇⁺ = q̇⁻ + N Jᵀ z.  W is symmetric positive semi-definite, so without
 friction the post-impact velocity is unique (the minimum of the kinetic-energy distance
-½(q̇⁺ − q̇⁻)ᵀM(q̇⁺ − q̇⁻) under A q̇⁺ ≥ −e s⁻) and the energy never increases for e ≤ 1:
-T⁺ − T⁻ = ½ Σ_k P_k (1 − e_k) s_k⁻ ≤ 0.
+½(q̇⁺ − q̇⁻)ᵀM(q̇⁺ − q̇⁻) under A q̇⁺ ≥ −e s⁻), and T⁺ − T⁻ = ½ Σ_k P_k (s_k⁺ + s_k⁻): when the
+contacts that receive a percussion approach (s_k⁻ ≤ 0) it is −½ Σ_k (1 − e_k) P_k |s_k⁻| ≤ 0 for
+e ≤ 1 (the simulation warns of any increase).
 
 **Persistent contact.** The same W decides which contacts stay closed in a smooth motion: with
 the accelerations a = J q̈ + ċ of the closed gaps, a = a_free + W λ ≥ 0, λ ≥ 0, λᵀa = 0
