@@ -98,14 +98,14 @@ def ladder() -> lagrangian.Trajectory:
 def test_the_ladder_leaves_the_wall_at_two_thirds_of_its_height(ladder: lagrangian.Trajectory) -> None:
     a, th0 = 1.5, np.radians(70.0)
     [lift] = _events(ladder, "liftoff_wall")
-    x, y, th = lift.q
+    _, y, th = lift.q
     top = y + a * np.sin(th)  # the height of A
     assert top / (2 * a * np.sin(th0)) == pytest.approx(2 / 3, abs=1e-8)
     assert lift.qd[2] ** 2 == pytest.approx(3 * G / (2 * a) * (np.sin(th0) - np.sin(th)), rel=1e-8)
 
 
 def test_the_walls_reaction_is_the_closed_form_until_lift_off(ladder: lagrangian.Trajectory) -> None:
-    m, a, th0 = 10.0, 1.5, np.radians(70.0)
+    m, th0 = 10.0, np.radians(70.0)
     [lift] = _events(ladder, "liftoff_wall")
     before = ladder.t < lift.t
     th = ladder.column("theta")[before]

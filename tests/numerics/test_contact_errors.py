@@ -43,7 +43,7 @@ def test_a_restitution_outside_zero_one_is_refused(e: float) -> None:
         lagrangian.simulate(BALL, 1.0, parameters={"e": e})
 
 
-def test_simultaneous_impacts_with_no_solution_are_refused(tmp_path) -> None:  # noqa: ANN001
+def test_simultaneous_impacts_with_no_solution_are_refused(tmp_path) -> None:
     path = tmp_path / "wedge.toml"
     path.write_text(WEDGE.format(e=0.5))
     with pytest.raises(SimulationError, match="has no solution") as info:
@@ -104,7 +104,7 @@ def test_exact_coulomb_friction_beside_contacts_is_refused() -> None:
         lagrangian.simulate(lagrangian.parse_model(text, source="ball.toml"), 1.0)
 
 
-def test_the_trajectory_file_keeps_the_contact_events(tmp_path, capsys) -> None:  # noqa: ANN001
+def test_the_trajectory_file_keeps_the_contact_events(tmp_path, capsys) -> None:
     out = tmp_path / "ball.npz"
     assert main(["simulate", str(BALL), "--t-end", "1", "-o", str(out)]) == 0
     assert "impact_floor at t = 0.451523641" in capsys.readouterr().out

@@ -18,8 +18,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from lagrangian.numerics._impact import (CLOSED, OPEN, SLIDE_NEG, SLIDE_POS, delassus, enumerate_modes, lemke,
-                                         solve_lcp)
+from lagrangian.numerics._impact import CLOSED, OPEN, SLIDE_NEG, SLIDE_POS, delassus, enumerate_modes, lemke, solve_lcp
 
 
 def _check_lcp(W: np.ndarray, q: np.ndarray, z: np.ndarray, tol: float = 1e-9) -> None:

@@ -64,7 +64,7 @@ def test_bad_sweeps_are_refused(model: lagrangian.Model) -> None:
         lagrangian.sweep(model, "e", [0.5])
 
 
-def test_the_command_line_sweeps_a_contact_model_to_csv(tmp_path, capsys) -> None:  # noqa: ANN001
+def test_the_command_line_sweeps_a_contact_model_to_csv(tmp_path, capsys) -> None:
     out = tmp_path / "bounces.csv"
     assert main(["sweep", str(BALL), "--grid", "e=0.5:0.8:2", "--t-end", "10", "--min-speed", "0.1",
                  "--out", str(out)]) == 0

@@ -52,7 +52,7 @@ def test_the_report_of_a_model_with_contacts_has_no_event_table_without_a_simula
     assert "impacts" not in [s.key for s in lagrangian.report(EXAMPLES_DIR / "simple_pendulum.toml").document.sections]
 
 
-def test_the_report_command_lists_the_events_of_its_simulation(tmp_path) -> None:  # noqa: ANN001
+def test_the_report_command_lists_the_events_of_its_simulation(tmp_path) -> None:
     pytest.importorskip("matplotlib")
     out = tmp_path / "ladder.md"
     assert main(["report", str(EXAMPLES_DIR / "sliding_ladder.toml"), "--lang", "en", "--simulate", "1.2",
@@ -61,7 +61,7 @@ def test_the_report_command_lists_the_events_of_its_simulation(tmp_path) -> None
     assert "| lift-off | the wall: A stays on the side x ≥ 0 |" in text and "| impact |" in text
 
 
-def test_derive_writes_the_complementarity_of_each_contact(capsys) -> None:  # noqa: ANN001
+def test_derive_writes_the_complementarity_of_each_contact(capsys) -> None:
     assert main(["derive", str(EXAMPLES_DIR / "rocking_block.toml")]) == 0
     text = capsys.readouterr().out
     assert "left (complementary, unilateral): y − b sinθ − h cosθ ≥ 0, λ_left ≥ 0" in text
@@ -70,7 +70,7 @@ def test_derive_writes_the_complementarity_of_each_contact(capsys) -> None:  # n
     assert "depend on which contacts are closed" in text  # no single formula for λ with two contacts
 
 
-def test_the_json_gives_each_contacts_law(capsys) -> None:  # noqa: ANN001
+def test_the_json_gives_each_contacts_law(capsys) -> None:
     assert main(["derive", str(EXAMPLES_DIR / "rocking_block.toml"), "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)
     jsonschema.validate(doc, SCHEMA)

@@ -23,7 +23,7 @@ from ..errors import OutputError
 from ..numerics._impact_sweep import OUTCOMES, ImpactSweep, impact_sweep
 from ._settings import SettingError
 
-__all__ = ["run_impact_sweep", "SUFFIXES"]
+__all__ = ["SUFFIXES", "run_impact_sweep"]
 
 SUFFIXES = (".nc", ".csv")
 
@@ -92,8 +92,8 @@ def run_impact_sweep(args: argparse.Namespace, model: Any, axes: dict[str, np.nd
         ds = result.to_dataset()
         write_atomic_with(out, lambda f: f.write(ds.to_netcdf()))
     ok = int(np.sum(result.status == "ok"))
-    lines = [f"{model.name}: {result.status.size} members ({' x '.join(f'{n} {len(v)}' for n, v in axes.items())}), "
-             f"t from {args.t_start:g} to {args.t_end:g}, {elapsed:.2f} s; {ok} ok"]
+    lines = [(f"{model.name}: {result.status.size} members ({' x '.join(f'{n} {len(v)}' for n, v in axes.items())}), "
+             f"t from {args.t_start:g} to {args.t_end:g}, {elapsed:.2f} s; {ok} ok")]
     if len(axes) == 1:
         (name, values), = axes.items()
         lines.append(f"{name:>12}  impacts  bounces  rest time")

@@ -236,21 +236,27 @@ class _Run:
         at most a quarter of the flight 2 ġ/|g̈| of each contact that starts touching and opening
         (0: the integrator chooses).
         """
-        cs = self.cs
-        M, F, A, c, g, f, gap_tol, _ = self.laws.parts(t, y)
-        opening = np.flatnonzero(~closed & (np.abs(f[cs.normal]) <= gap_tol) & (g[cs.normal] > 0))
-        if not len(opening):
+        cs, laws = self.cs, self.laws
+        M, F, A, c, g, f, gap_tol, _ = laws.parts(t, y)
+        opening = [k for k in laws.touching(f, gap_tol) if not closed[k] and g[laws.rows_n[k]] > 0]
+        if not opening:
             return 0.0
-        rows = cs.normal[opening]
-        if not closed.any() and self.laws.simple:
+        if laws.simple and not closed.any():
             qdd = solve_small(M, F)
         else:
-            qdd = cs.accelerations(t, y, self.laws.p, cs.active_rows(closed))[0][cs.n:]
-        a = A[rows] @ qdd + c[rows]
-        flights = [2 * s / -acc for s, acc in zip(g[rows], a) if acc < 0]
+            rows = cs.active_rows(closed)
+            qdd = cs.solve(M, F, A, c, y, rows, cs.core(A, rows))[0][cs.n:]
+        flights = []
+        for k in opening:
+            r = laws.rows_n[k]
+            acc = float(A[r] @ qdd + c[r])
+            if acc < 0:
+                flights.append(2 * float(g[r]) / -acc)
         return 0.25 * min(flights) if flights else 0.0
 
     def _closed_state(self, t: float, y: np.ndarray, closed: np.ndarray) -> np.ndarray:
+        if not closed.any() and not len(self.cs.bilateral):
+            return y  # nothing to project onto
         rows = self.cs.active_rows(closed)
         core = self.cs.core(self.laws.parts(t, y)[2], rows)
         return self.cs.project_active(t, y, self.laws.p, core, self.tol, self.laws.probe)[0]
@@ -330,29 +336,26 @@ def _join(cs: ContactSystem, p: np.ndarray, out: Outputs, phases: list[np.ndarra
     dY = np.zeros((N, 2 * n))
     lam = np.zeros((N, len(rows_all)))
     closed = np.zeros((N, len(cs.contacts)), dtype=bool)
-    for k in sorted(set(which.tolist())):
-        mask = which == k
-        if k < 0 or not mask.any():
-            continue
-        dY[mask], lam[mask] = cs.accelerations_many(t[mask], Y[mask], p, cs.active_rows(phases[k]))
-        closed[mask] = phases[k]
+    sets: dict[bytes, list[int]] = {}  # the phases with the same closed contacts, solved together
+    for k in set(which.tolist()) - {-1}:
+        sets.setdefault(phases[k].tobytes(), []).append(k)
+    for group in sets.values():
+        mask = np.isin(which, group)
+        dY[mask], lam[mask] = cs.accelerations_many(t[mask], Y[mask], p, cs.active_rows(phases[group[0]]))
+        closed[mask] = phases[group[0]]
     monitors_all = cs.full.monitor_values(t, Y, p) if N else np.zeros((0, len(cs.full.monitors)))
     monitors = {name: monitors_all[:, k].copy() for k, name in enumerate(cs.full.monitors)}
     M, _, _, _, g, f = cs.full.parts(t, Y, p) if N else (np.zeros((0, n, n)),) + (np.zeros((0, len(rows_all))),) * 5
     integrals = tuple(cs.full.integrals)
     # The first integrals hold between impacts: their drift is measured piece by piece.
-    cuts = sorted({ev.t for ev in events if isinstance(ev, ContactEvent) and ev.kind == "impact"})
+    cuts = sorted({ev.t for ev in events if isinstance(ev, ContactEvent) and ev.kind in ("impact", "rest")})
     piece = np.searchsorted(np.asarray(cuts), t, side="left") if cuts else np.zeros(N, dtype=int)
-    drift = {name: 0.0 for name in integrals}
-    scales = {name: 1.0 for name in integrals}
-    mom = momenta(cs.eom, integrals)
-    for j in sorted(set(piece.tolist())):
-        mask = piece == j
-        d, s = conservation({k: v[mask] for k, v in monitors.items()}, integrals, momenta=mom,
-                            M=np.asarray(M)[mask], qd=Y[mask, n:])
-        for name in integrals:
-            if d[name] >= drift[name]:
-                drift[name], scales[name] = d[name], s[name]
+    # The scale of each integral over the whole run (`conservation`), its drift from the start of each piece.
+    drift, scales = conservation(monitors, integrals, momenta=momenta(cs.eom, integrals), M=np.asarray(M), qd=Y[:, n:])
+    first = np.searchsorted(piece, piece, side="left")  # the first output of each output's piece
+    for name in integrals:
+        values = monitors[name]
+        drift[name] = float(np.max(np.abs(values - values[first]), initial=0.0)) / scales[name]
     for k in cs.bilateral:
         row = cs.eom.constraints[k]
         drift[f"drift_{row.name}"] = float(np.max(np.abs(f[:, k]), initial=0.0)) if row.kind == "holonomic" else 0.0

@@ -101,7 +101,7 @@ class FastPhases:
         self.p = np.ascontiguousarray(p_fast, dtype=float)
         self.ev_dir = np.array([-1] * m + [e.direction for e in user], dtype=np.intc)
         self.ev_term = np.array([1] * m + [int(e.terminal) for e in user], dtype=np.intc)
-        self.ev_out = np.zeros((EVENT_CAPACITY, 2 + 2 * system.n))
+        self.ev_out = np.empty((EVENT_CAPACITY, 2 + 2 * system.n))  # rows written by the C before they are read
         self.i_out = np.zeros(1, dtype=np.intc)
         args = [a.ctypes.data for a in (self.ctl, self.y, self.p, out.t)] + [len(out.t)] + \
             [a.ctypes.data for a in (self.i_out, out.Y)] + [self.t_end] + \

@@ -111,6 +111,9 @@ class ContactLaws:
         self.probe = Probe(self.cs.full, self.p)
         self.simple = not len(self.cs.bilateral)
         self.eps = np.zeros(len(self.cs.contacts))
+        # Plain lists for the loops over a handful of contacts (NumPy's call costs more than their work).
+        self.rows_n = [int(k) for k in self.cs.normal]
+        self.frictional = [bool(self.cs.tangent[k] >= 0 and self.mu[k] > 0) for k in range(len(self.cs.contacts))]
         self._key: tuple = ()
         self._parts: tuple = ()
 
@@ -121,9 +124,9 @@ class ContactLaws:
         """
         key = (t, y.tobytes())
         if key != self._key:
-            M, F, A, c, g, f = (a.copy() for a in self.probe.parts(t, y))
-            norms = np.sqrt(np.einsum("ij,ij->i", A[self.cs.normal], A[self.cs.normal]))
-            tol = 10 * self.atol * np.maximum(norms, 1.0)
+            M, F, A, c, g, f = [a.copy() for a in self.probe.parts(t, y)]
+            An = A[self.cs.normal]
+            tol = 10 * self.atol * np.maximum(np.sqrt((An * An).sum(axis=1)), 1.0)
             self._key, self._parts = key, (M, F, A, c, g, f, tol, tol)
         return self._parts
 
@@ -131,7 +134,11 @@ class ContactLaws:
         return A[self.cs.bilateral] if len(self.cs.bilateral) else None
 
     def _frictional(self, k: int) -> bool:
-        return bool(self.cs.tangent[k] >= 0 and self.mu[k] > 0)
+        return self.frictional[k]
+
+    def touching(self, f: np.ndarray, gap_tol: np.ndarray, also: int = -1) -> list[int]:
+        """The contacts whose gap is 0 to the tolerance (and ``also``)."""
+        return [k for k, r in enumerate(self.rows_n) if k == also or abs(f[r]) <= gap_tol[k]]
 
     # -- impacts -------------------------------------------------------------------------------------------
     def impact(self, t: float, y: np.ndarray, trigger: int, plastic: bool = False
@@ -139,11 +146,11 @@ class ContactLaws:
         """(y⁺, events): the percussions at a touch-down of contact ``trigger`` (module docstring of `_impact`)."""
         cs, n = self.cs, self.cs.n
         M, _, A, _, g, f, gap_tol, v_tol = self.parts(t, y)
-        index = np.arange(len(cs.contacts))
-        cand = np.flatnonzero((np.abs(f[cs.normal]) <= gap_tol) | (index == trigger))
-        fr = [int(k) for k in cand if self._frictional(int(k))]
-        if len(cand) == 1 and not fr and self.simple:
-            return self._single(t, y, int(cand[0]), M, A, g, 0.0 if plastic else float(self.e[cand[0]]), v_tol)
+        near = self.touching(f, gap_tol, trigger)
+        fr = [k for k in near if self.frictional[k]]
+        if len(near) == 1 and not fr and self.simple:
+            return self._single(t, y, near[0], M, A, g, 0.0 if plastic else float(self.e[near[0]]), v_tol)
+        cand = np.array(near, dtype=int)
         rows = [int(cs.normal[k]) for k in cand] + [int(cs.tangent[k]) for k in fr]
         tangent = [len(cand) + fr.index(int(k)) if int(k) in fr else -1 for k in cand]
         W, X = delassus(M, A[rows], self._bilateral(A))
@@ -189,14 +196,15 @@ class ContactLaws:
                 v_tol: np.ndarray) -> tuple[np.ndarray, list[ContactEvent]]:
         """One frictionless contact, no bilateral row: P = max(0, −(1 + e) ġ⁻ / (A M⁻¹ Aᵀ)) in closed form."""
         cs, n = self.cs, self.cs.n
-        row = int(cs.normal[k])
+        row = self.rows_n[k]
         a = A[row]
         x = solve_small(M, a)
         s = float(g[row])
         need = -s - e * min(s, 0.0)  # ġ⁺ − ġ⁻ asked for by Newton's law
         P = need / float(a @ x) if need > v_tol[k] else 0.0
         y_plus = y.copy()
-        y_plus[n:] += x * P
+        if P:
+            y_plus[n:] += x * P
         E = self.probe.energy(t, y, y_plus)
         return y_plus, [ContactEvent(f"impact_{cs.names[k]}", t, y[:n].copy(), y[n:].copy(), kind="impact",
                                      contact=cs.names[k], percussion=P, speed=s, qd_after=y_plus[n:].copy(),
@@ -225,9 +233,10 @@ class ContactLaws:
         m = len(cs.contacts)
         M, F, A, c, g, f, gap_tol, v_tol = self.parts(t, y)
         closed = np.zeros(m, dtype=bool)
-        cand = np.flatnonzero((np.abs(f[cs.normal]) <= gap_tol) & (np.abs(g[cs.normal]) <= v_tol))
-        if not len(cand):
+        resting = [k for k in self.touching(f, gap_tol) if abs(g[self.rows_n[k]]) <= v_tol[k]]
+        if not resting:
             return closed
+        cand = np.array(resting, dtype=int)
         qdd = cs.solve(M, F, A, c, y, cs.bilateral)[0][n:]
         a_all = A[cs.normal] @ qdd + c[cs.normal]
         self.acc_scale = max(self.acc_scale, float(np.max(np.abs(a_all), initial=0.0)))

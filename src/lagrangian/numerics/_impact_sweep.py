@@ -25,7 +25,7 @@ from ..errors import SimulationError
 from ._contact import contact_model, contact_system, simulate_contact
 from ._contact_switch import ContactEvent
 
-__all__ = ["ImpactSweep", "impact_sweep", "OUTCOMES"]
+__all__ = ["OUTCOMES", "ImpactSweep", "impact_sweep"]
 
 #: The outcomes kept per member, each an array over the grid.
 OUTCOMES = ("impacts", "bounces", "first_impact", "rest_time", "liftoffs", "energy_lost")

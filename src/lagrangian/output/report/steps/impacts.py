@@ -23,50 +23,50 @@ __all__ = ["closed_note", "contact_note", "has_contacts", "impacts_section", "in
 _PHRASES: dict[str, tuple[str, str]] = {
     "impacts": ("Chocs : théorème des percussions", "Impacts: the theorem of percussions"),
     "unilateral": (
-        "Cette liaison est unilatérale : l'écart {g} reste positif ou nul. Tant que le contact est fermé "
+        ("Cette liaison est unilatérale : l'écart {g} reste positif ou nul. Tant que le contact est fermé "
         "({g0}), c'est une liaison complémentaire holonome dont le multiplicateur {lam} est la réaction normale, "
         "qui pousse sans jamais tirer : {cond}. Le contact s'ouvre (décollage) quand {lam} s'annule et se "
-        "referme par un choc quand {g} s'annule avec {gdot}.",
-        "This constraint is unilateral: the gap {g} stays positive or zero. While the contact is closed ({g0}) it "
+        "referme par un choc quand {g} s'annule avec {gdot}."),
+        ("This constraint is unilateral: the gap {g} stays positive or zero. While the contact is closed ({g0}) it "
         "is a complementary holonomic constraint whose multiplier {lam} is the normal reaction, which pushes and "
         "never pulls: {cond}. The contact opens (lift-off) when {lam} vanishes, and closes again through an "
-        "impact when {g} vanishes with {gdot}."),
+        "impact when {g} vanishes with {gdot}.")),
     "percussion intro": (
-        "Pendant un choc de durée infiniment petite, les paramètres {q} ne varient pas et les efforts finis "
+        ("Pendant un choc de durée infiniment petite, les paramètres {q} ne varient pas et les efforts finis "
         "(pesanteur, ressorts, réactions bilatérales régulières) ont une percussion nulle. En intégrant les "
         "équations de Lagrange {L} sur la durée du choc, il ne reste que les percussions {P} des liaisons "
-        "unilatérales qui se ferment (théorème des percussions sous la forme de Lagrange) :",
-        "During an impact of vanishing duration the parameters {q} do not change, and the finite forces "
+        "unilatérales qui se ferment (théorème des percussions sous la forme de Lagrange) :"),
+        ("During an impact of vanishing duration the parameters {q} do not change, and the finite forces "
         "(gravity, springs, regular bilateral reactions) have no percussion. Integrating Lagrange's equations "
         "{L} over the impact leaves only the percussions {P} of the unilateral constraints that close (the "
-        "theorem of percussions in Lagrange's form):"),
+        "theorem of percussions in Lagrange's form):")),
     "newton": (
-        "Chaque contact fermé au choc obéit à la loi de Newton, de coefficient de restitution {e} (0 : choc mou, "
+        ("Chaque contact fermé au choc obéit à la loi de Newton, de coefficient de restitution {e} (0 : choc mou, "
         "1 : choc élastique) ; quand plusieurs contacts se ferment ensemble, les percussions sont la solution du "
-        "problème de complémentarité linéaire :",
-        "Each contact closed at the impact obeys Newton's law, with the restitution coefficient {e} (0: plastic, "
+        "problème de complémentarité linéaire :"),
+        ("Each contact closed at the impact obeys Newton's law, with the restitution coefficient {e} (0: plastic, "
         "1: elastic); when several contacts close together, the percussions solve the linear complementarity "
-        "problem:"),
+        "problem:")),
     "friction": (
-        "Avec frottement de Coulomb au contact, la percussion tangentielle est bornée, {bound} : le contact "
+        ("Avec frottement de Coulomb au contact, la percussion tangentielle est bornée, {bound} : le contact "
         "adhère ({stick}) ou glisse à l'opposé de sa vitesse de glissement. Fermé, il adhère tant que sa "
-        "réaction tangentielle reste dans le cône, {cone}.",
-        "With Coulomb friction at the contact, the tangential percussion is bounded, {bound}: the contact sticks "
+        "réaction tangentielle reste dans le cône, {cone}."),
+        ("With Coulomb friction at the contact, the tangential percussion is bounded, {bound}: the contact sticks "
         "({stick}) or slides against its sliding velocity. Closed, it sticks as long as its tangential reaction "
-        "stays within the cone, {cone}."),
+        "stays within the cone, {cone}.")),
     "energy": (
         "L'énergie cinétique perdue au choc en résulte (sans frottement) ; elle est nulle pour {e1} :",
         "The kinetic energy lost at the impact follows (without friction); it vanishes for {e1}:"),
-    "closed": ("Les équations des liaisons unilatérales ne valent que tant que leur contact est fermé, avec "
+    "closed": (("Les équations des liaisons unilatérales ne valent que tant que leur contact est fermé, avec "
                "{cond} ; les multiplicateurs dépendent des contacts fermés dans chaque phase du mouvement, que la "
-               "simulation détermine (la commande lagrangian simulate les donne le long du mouvement).",
-               "The equations of the unilateral constraints hold only while their contact is closed, with {cond}; "
+               "simulation détermine (la commande lagrangian simulate les donne le long du mouvement)."),
+               ("The equations of the unilateral constraints hold only while their contact is closed, with {cond}; "
                "the multipliers depend on which contacts are closed in each phase of the motion, which the "
-               "simulation finds (the command lagrangian simulate gives them along the motion)."),
-    "between impacts": ("Avec des liaisons unilatérales, ces intégrales premières valent entre deux chocs : un choc "
-                        "conserve les positions mais change les vitesses (section suivante).",
-                        "With unilateral constraints these first integrals hold between two impacts: an impact "
-                        "keeps the positions but changes the velocities (next section)."),
+               "simulation finds (the command lagrangian simulate gives them along the motion).")),
+    "between impacts": (("Avec des liaisons unilatérales, ces intégrales premières valent entre deux chocs : un choc "
+                        "conserve les positions mais change les vitesses (section suivante)."),
+                        ("With unilateral constraints these first integrals hold between two impacts: an impact "
+                        "keeps the positions but changes the velocities (next section).")),
     "coefficients": ("Contacts du système :", "Contacts of the system:"),
     "contact": ("contact", "contact"),
     "gap": ("écart", "gap"),
@@ -126,13 +126,13 @@ def _theorem(c: Context, w: _Words, friction: bool) -> list[Block]:
     dT = r"\frac{\partial T}{\partial \dot{q}_{i}}"
     blocks: list[Block] = [
         Para(w("percussion intro", q=Math(qi), L=Math(rf"L({qi})"), P=Math(r"P_{k} = \int \lambda_{k}\,dt"))),
-        Display((Equation((rf"\left[{dT}\right]_{{t^{{-}}}}^{{t^{{+}}}} = \sum_{{k}} P_{{k}}\, a_{{k,i}}"
+        Display((Equation(((rf"\left[{dT}\right]_{{t^{{-}}}}^{{t^{{+}}}} = \sum_{{k}} P_{{k}}\, a_{{k,i}}"
                            r"\quad\Longleftrightarrow\quad M(q)\left(\dot{q}^{+} - \dot{q}^{-}\right) = "
-                           r"A^{\mathsf{T}} P",)),)),
+                           r"A^{\mathsf{T}} P"),)),)),
         Para(w("newton", e=Math(r"e_{k}"))),
-        Display((Equation((r"\dot{g}_{k} = a_{k}\,\dot{q} + b_{k},\qquad P_{k} \geq 0,\qquad "
+        Display((Equation(((r"\dot{g}_{k} = a_{k}\,\dot{q} + b_{k},\qquad P_{k} \geq 0,\qquad "
                            r"\dot{g}_{k}^{+} + e_{k}\,\dot{g}_{k}^{-} \geq 0,\qquad "
-                           r"P_{k}\left(\dot{g}_{k}^{+} + e_{k}\,\dot{g}_{k}^{-}\right) = 0",)),)),
+                           r"P_{k}\left(\dot{g}_{k}^{+} + e_{k}\,\dot{g}_{k}^{-}\right) = 0"),)),)),
     ]
     if friction:
         blocks.append(Para(w("friction", bound=Math(r"\left|P_{t,k}\right| \leq \mu_{k} P_{k}"),
@@ -140,9 +140,9 @@ def _theorem(c: Context, w: _Words, friction: bool) -> list[Block]:
                                                                    r"\lambda_{k}"))))
     blocks += [
         Para(w("energy", e1=Math(r"e_{k} = 1"))),
-        Display((Equation((r"T^{+} - T^{-} = \tfrac{1}{2} \sum_{k} P_{k}\left(\dot{g}_{k}^{+} + \dot{g}_{k}^{-}\right)"
+        Display((Equation(((r"T^{+} - T^{-} = \tfrac{1}{2} \sum_{k} P_{k}\left(\dot{g}_{k}^{+} + \dot{g}_{k}^{-}\right)"
                            r" = -\tfrac{1}{2} \sum_{k} \left(1 - e_{k}\right) P_{k} \left|\dot{g}_{k}^{-}\right|"
-                           r" \leq 0",)),)),
+                           r" \leq 0"),)),)),
     ]
     return blocks
 
