@@ -34,6 +34,7 @@ from ..model.spec import Model
 from ._contact_phase import FastPhases, Options, Outputs, PhaseEnd, dae_phase
 from ._contact_switch import REST, ContactEvent, ContactLaws, accumulation
 from ._contact_system import ContactSystem, contacts_of, solve_small
+from ._progress import make_reporter
 from ._projection import check_initial
 from ._trajectory import Event, Trajectory, conservation
 
@@ -108,7 +109,8 @@ def simulate_contact(
         ``"dop853"`` and ``dt`` None (phases end at events), ``stabilization`` None or
         ``"projection"`` (the closed contacts are kept by projection).
     rest : the last approach speed, relative to the first of a geometric series of impacts, at
-        which the accumulation is summed and the contacts closed (`_contact_switch`).
+        which the accumulation is summed and the contacts closed (or sooner, once the bounces are
+        lower than the gap tolerance; `_contact_switch`).
     max_phases : the most smooth phases a run may have.
 
     Returns
@@ -160,7 +162,7 @@ def simulate_contact(
     run = _Run(cs, laws, rest)
     phases: list[np.ndarray] = []
     status = "completed"
-    report = None if not progress else (progress if callable(progress) else _bar)
+    reporter = make_reporter(progress, float(t_start), float(t_end))
     try:
         y, closed = run.start(t, y)
         short = 0
@@ -174,8 +176,8 @@ def simulate_contact(
                 end = dae_phase(cs, p, t, y, float(t_end), closed, mu, laws.eps, out, index, opts, user_values, h,
                                 laws.probe, laws.acc_scale)
             run.account(end)
-            if report:
-                report(min(1.0, (end.t - t_start) / (t_end - t_start)), end.t)
+            if reporter:
+                reporter.update(end.t)
             if end.reason in ("end", "event"):
                 status = "completed" if end.reason == "end" else "stopped by a terminal event"
                 break
@@ -190,16 +192,14 @@ def simulate_contact(
             if t >= t_end:
                 break
     except KeyboardInterrupt:
-        partial = _join(cs, p, out, phases, run.events, "interrupted (partial)", run, tolerance, rtol)
+        if reporter:
+            reporter.finish(t, False)
+        partial = _join(cs, p, out, phases, run.events, f"interrupted at t = {t:.9g} (partial)", run, tolerance)
         raise Interrupted(t, partial) from None
-    return _join(cs, p, out, phases, run.events, status, run, tolerance if tolerance is not None
-                 else default_tolerance(method, rtol), rtol)
-
-
-def _bar(fraction: float, t: float) -> None:
-    from ._progress import progress_bar
-
-    progress_bar(fraction, t)
+    if reporter:
+        reporter.finish(float(t_end) if status == "completed" else t, True)
+    return _join(cs, p, out, phases, run.events, status, run,
+                 tolerance if tolerance is not None else default_tolerance(method, rtol))
 
 
 def _user_functions(cs: ContactSystem, specs: Sequence, p: np.ndarray) -> Callable | None:
@@ -326,7 +326,7 @@ class _Run:
 
 
 def _join(cs: ContactSystem, p: np.ndarray, out: Outputs, phases: list[np.ndarray], events: list[Event], status: str,
-          run: _Run, tolerance: float | None, rtol: float) -> Trajectory:
+          run: _Run, tolerance: float | None) -> Trajectory:
     """One `Trajectory` on the grid from the phases (module docstring)."""
     from ._simulate import momenta
 
