@@ -237,3 +237,42 @@ def test_the_rope_goes_slack_the_bob_flies_on_a_parabola_and_the_rope_jerks_taut
     assert taut.percussion == pytest.approx(m * abs(radial), rel=1e-9)  # the rope pulls: P ≥ 0
     taut_after = tr.t > taut.t
     assert np.all(tr.column("closed_rope")[taut_after] == 1) and np.all(tr.column("lambda_rope")[taut_after] > 0)
+
+
+# -- friction at an impact ------------------------------------------------------------------------------------------------
+OBLIQUE = """
+[parameters]
+m = 0.2
+g = 9.81
+e = 0.5
+mu = 0.3
+[coordinates]
+x = { initial = 0.0, rate = 1.0 }
+z = { initial = 0.5, rate = 0.0 }
+[particles.P]
+mass = "m"
+position = "x*R0.x + z*R0.z"
+[loads]
+weight = { gravity = "-g*R0.z" }
+[constraints]
+floor = { unilateral = "z", restitution = "e", friction = "mu", slip = "x_dot" }
+"""
+
+
+@pytest.mark.parametrize(("vx", "stick"), [(0.5, True), (3.0, False)])
+def test_a_ball_hitting_a_rough_floor_sticks_or_slides_at_the_impact(vx: float, stick: bool) -> None:
+    # Coulomb at the impact: P_n = m (1 + e) v, |P_t| ≤ μ P_n; v = √(2 g h) = 3.13 m/s, μ (1 + e) v = 1.41 m/s.
+    model = lagrangian.parse_model(OBLIQUE, source="oblique.toml")
+    m, e, mu = 0.2, 0.5, 0.3
+    tr = lagrangian.simulate(model, 0.5, initial={"x_dot": vx}, n_out=51)
+    [impact] = _events(tr, "impact_floor")
+    v = np.sqrt(2 * G * 0.5)
+    assert impact.qd[1] == pytest.approx(-v, rel=1e-9) and impact.percussion == pytest.approx(m * (1 + e) * v, rel=1e-9)
+    assert impact.qd_after[1] == pytest.approx(e * v, rel=1e-9)  # it bounces off
+    if stick:
+        assert abs(impact.qd_after[0]) <= 1e-12 and impact.tangential == pytest.approx(-m * vx, rel=1e-9)
+    else:
+        assert impact.qd_after[0] == pytest.approx(vx - mu * (1 + e) * v, rel=1e-9)
+        assert impact.tangential == pytest.approx(-mu * impact.percussion, rel=1e-9)
+    lost = 0.5 * m * (impact.qd @ impact.qd - impact.qd_after @ impact.qd_after)
+    assert impact.energy_before - impact.energy_after == pytest.approx(lost, rel=1e-9) and lost > 0
