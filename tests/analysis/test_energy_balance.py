@@ -79,7 +79,7 @@ def _admissible(eom: lagrangian.EquationsOfMotion, values: dict, point: list[flo
     Ab = np.asarray(f(point[:2 * n + 1]), dtype=float).reshape(len(rows), n + 1)
     A, b = Ab[:, :n], Ab[:, n]
     qd = np.asarray(point[n:2 * n])
-    qd = qd - A.T @ np.linalg.solve(A @ A.T, A @ qd + b)
+    qd = qd - np.linalg.pinv(A) @ (A @ qd + b)  # rows may be dependent: a block's two corners stuck on the ground
     return point[:n] + list(qd) + point[2 * n:]
 
 

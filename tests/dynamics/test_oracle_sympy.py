@@ -423,8 +423,73 @@ def tumbling_body() -> Oracle:
     return [x, y, z, psi, theta, phi], S.kinetic_energy(N), [(G, -m * g * N.z)], N
 
 
+# -- examples with unilateral contacts: the oracle is the system with every contact open (M q̈ = F);
+# tests/numerics/test_contact.py checks the motions, impacts and reactions against closed forms.
+def bouncing_ball() -> Oracle:
+    m, g = _params("m g")
+    z = me.dynamicsymbols("z")
+    N = me.ReferenceFrame("N")
+    P = me.Point("P")
+    P.set_vel(N, z.diff() * N.z)
+    return [z], me.Particle("ball", P, m).kinetic_energy(N), [(P, -m * g * N.z)], N
+
+
+def sliding_ladder() -> Oracle:
+    m, a, g = _params("m a g")
+    x, y, theta = me.dynamicsymbols("x y theta")
+    N = me.ReferenceFrame("N")
+    R = N.orientnew("R", "Axis", (-theta, N.z))
+    G = me.Point("G")
+    G.set_vel(N, x.diff() * N.x + y.diff() * N.y)
+    rod = me.RigidBody("S", G, R, m, (me.inertia(R, 0, m * a**2 / 3, m * a**2 / 3), G))
+    return [x, y, theta], rod.kinetic_energy(N), [(G, -m * g * N.y)], N
+
+
+def rocking_block() -> Oracle:
+    m, b, h, g = _params("m b h g")
+    x, y, theta = me.dynamicsymbols("x y theta")
+    N = me.ReferenceFrame("N")
+    R = N.orientnew("R", "Axis", (theta, N.z))
+    G = me.Point("G")
+    G.set_vel(N, x.diff() * N.x + y.diff() * N.y)
+    block = me.RigidBody("S", G, R, m, (me.inertia(R, m * h**2 / 3, m * b**2 / 3, m * (b**2 + h**2) / 3), G))
+    return [x, y, theta], block.kinetic_energy(N), [(G, -m * g * N.y)], N
+
+
+def newtons_cradle() -> Oracle:
+    m, l, d, g = _params("m l d g")
+    thetas = me.dynamicsymbols("theta1 theta2 theta3")
+    N = me.ReferenceFrame("N")
+    O = me.Point("O")
+    O.set_vel(N, 0)
+    T, forces = 0, []
+    for k, th in enumerate(thetas):
+        R = N.orientnew(f"R{k}", "Axis", (th, N.z))
+        pivot = O.locatenew(f"O{k}", k * d * N.x)
+        pivot.set_vel(N, 0)
+        P = pivot.locatenew(f"P{k}", -l * R.y)
+        P.v2pt_theory(pivot, N, R)
+        T += me.Particle(f"B{k}", P, m).kinetic_energy(N)
+        forces.append((P, -m * g * N.y))
+    return list(thetas), T, forces, N
+
+
+def slack_rope_pendulum() -> Oracle:
+    m, g = _params("m g")
+    x, y = me.dynamicsymbols("x y")
+    N = me.ReferenceFrame("N")
+    P = me.Point("P")
+    P.set_vel(N, x.diff() * N.x + y.diff() * N.y)
+    return [x, y], me.Particle("bob", P, m).kinetic_energy(N), [(P, -m * g * N.y)], N
+
+
 ORACLES: dict[str, Callable[[], Oracle]] = {
     "tumbling_body.toml": tumbling_body,
+    "bouncing_ball.toml": bouncing_ball,
+    "sliding_ladder.toml": sliding_ladder,
+    "rocking_block.toml": rocking_block,
+    "newtons_cradle.toml": newtons_cradle,
+    "slack_rope_pendulum.toml": slack_rope_pendulum,
     "pendulum_tension.toml": pendulum_tension,
     "rolling_disk_incline.toml": rolling_disk_incline,
     "rolling_coin.toml": rolling_coin,

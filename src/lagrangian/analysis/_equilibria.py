@@ -105,8 +105,16 @@ def equilibria(eom: EquationsOfMotion, parameters: Mapping[str, float] | None = 
     ------
     EquilibriumError
         The model depends on t explicitly, a name in ``parameters`` or ``ranges`` is unknown,
-        or the closed form failed and a coordinate that is not an angle has no range.
+        or the closed form failed and a coordinate that is not an angle has no range; or it has
+        unilateral contacts (which of them hold at an equilibrium, with λ ≥ 0, is not sought).
     """
+    contacts = [c.name for c in eom.model.constraints if c.unilateral]
+    if contacts:
+        raise EquilibriumError(
+            f"the model has unilateral contacts ({', '.join(f'`{n}`' for n in contacts)}): at an equilibrium some "
+            "of them are closed with a reaction λ ≥ 0 and the others open, and which is not sought here",
+            fix="declare the contacts that hold as bilateral constraints (holonomic = \"...\") and remove the others, "
+                "or find the rest states by simulating (lagrangian simulate: an accumulation of impacts ends at rest)")
     system = _StaticSystem(eom)
     values = _values(eom, parameters)
     ranges = _ranges(eom, ranges)

@@ -338,7 +338,22 @@ def sweep(lin: LinearModel, name: str, values: Sequence[float], **fixed: float) 
     sign, the crossing is found by Brent's method; where the number of non-real eigenvalues
     changes (a pair merging on the real axis, the bicycle's weave at 0.684 m/s), by bisection
     to the last representable digit.
+
+    Given a model with unilateral contacts (a file, a `Model` or its equations) instead of a
+    linearization, ``sweep(model, "e", values, t_end=10)`` maps the impact outcomes against
+    ``name`` — impacts, bounces, rest time, energy lost (`lagrangian.numerics.impact_sweep`,
+    whose keywords it takes) — and returns an `ImpactSweep`.
     """
+    if not isinstance(lin, LinearModel):
+        from ..numerics._impact_sweep import impact_sweep  # late: numerics is a later stage, used on demand
+
+        t_end = fixed.pop("t_end", None)
+        if t_end is None:
+            raise LinearizationError("sweep() takes a linearization (lagrangian.linearize), or a model with "
+                                     "unilateral contacts and t_end.",
+                                     fix='e.g. sweep(linearize(eom, point, symbolic=("Omega",)), "Omega", values), '
+                                         'or sweep("examples/bouncing_ball.toml", "e", values, t_end=10)')
+        return impact_sweep(lin, {name: values}, t_end, **fixed)  # type: ignore[return-value]
     values = np.asarray(values, dtype=float)
     if values.ndim != 1 or values.size == 0:
         raise LinearizationError("the sweep has no point.", fix="give a range with at least one value, e.g. v=0:10:0.01")

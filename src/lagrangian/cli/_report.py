@@ -112,7 +112,8 @@ def run(args: argparse.Namespace) -> str | None:
                            fix="add --small-motions, or drop --at")
     # The notes name the command that prints every equation in full: lagrangian derive MODEL --json.
     r = report(eom, lang=args.lang, verification=check, figures=figures, source=args.model or "", small_motions=small,
-               view=args.view, motion=motion)
+               view=args.view, motion=motion,
+               events=motion.events if motion is not None else ())
     if not args.output:
         if fmt == "pdf":
             raise OutputError("A PDF report is written to a file, not to the terminal.",

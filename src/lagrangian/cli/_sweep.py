@@ -110,7 +110,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="record the first time EXPR crosses zero (e.g. theta_dot); `flip`: an angle passing ±pi")
     s.add_argument("--stop-when", action="append", default=[], metavar="EXPR",
                    help="end each member at the first zero crossing of EXPR (or `flip`)")
-    s.add_argument("--out", metavar="FILE", required=True, help="results: a Zarr store (.zarr) or NetCDF (.nc)")
+    s.add_argument("--out", metavar="FILE", required=True,
+                   help="results: a Zarr store (.zarr) or NetCDF (.nc); for a model with contacts NetCDF or CSV")
+    s.add_argument("--min-speed", type=number_argument, default=0.0, metavar="V",
+                   help="a model with contacts: count as bounces the impacts with an approach speed >= V")
     s.add_argument("--plot", metavar="IMAGE", help="draw the 2-D map (two axes) or min/max diagram (one axis)")
     s.add_argument("--workers", type=int, default=None, metavar="N", help="local threads (default: every core)")
     s.add_argument("--scheduler", metavar="ADDRESS", help="run on a Dask cluster, e.g. tcp://HOST:8786")
@@ -140,6 +143,12 @@ def run(args: argparse.Namespace) -> str:
     twice = sorted(set(axes) & (set(parameters) | set(initial)))
     if twice:
         raise SettingError(f"`{twice[0]}` is both swept and set.", fix="give it once")
+    from ..numerics._contact import contact_model
+
+    if contact_model(model) is not None:  # phases switched by impacts: one motion after the other
+        from ._impact_sweep import run_impact_sweep
+
+        return run_impact_sweep(args, model, axes, parameters, initial)
     out = Path(args.out)
     if out.suffix not in (".zarr", ".nc"):
         raise OutputError(f"`--out {out}`: a sweep writes a Zarr store (.zarr) or a NetCDF file (.nc).",

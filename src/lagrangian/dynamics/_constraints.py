@@ -47,6 +47,7 @@ from ..model import GALILEAN_FRAME, Constraint, Vector
 from ..model._vector import sum_of
 
 __all__ = ["ConstraintRow", "ConstraintReaction", "RowChoice", "complementary_constraints", "multiplier_symbol",
+           "sliding_row", "SLIDING_SUFFIX",
            "admissible_integrals", "multiplier_formulas", "reaction_efforts", "ConstraintInfo",
            "describe_constraints", "integrate_row", "MULTIPLIER_PREFIX"]
 
@@ -234,6 +235,9 @@ def _rows_of(kin: Kinematics, c: Constraint) -> tuple[list[ConstraintRow], list[
                      "it has no multiplier and no reaction to find",
                      fix="declare it principal (`principal = true`), or remove it")
     rows = [_row(kin, c, name, e) for name, _, e in kept]
+    if c.unilateral and c.slip is not None:  # a contact with friction: its sliding row, active while it sticks
+        rows.append(sliding_row(kin, c))
+        kept.append((rows[-1].name, None, c.slip))
     for row in rows:
         if all(are_zero(row.coefficients)):
             raise _error(kin, c, f"constraint row `{row.name}` = `{str(row.expression).replace('**', '^')}` involves no coordinate "
@@ -241,6 +245,17 @@ def _rows_of(kin: Kinematics, c: Constraint) -> tuple[list[ConstraintRow], list[
                          fix="check the expression: it must involve the coordinates "
                              + ("(f(q, t) = 0)" if c.kind == "holonomic" else "through their rates (a·q̇ + b = 0)"))
     return _independent_rows(kin, c, rows, [axis for _, axis, _ in kept])
+
+
+#: The sliding row of the contact ``c`` (with friction) is named ``c_t``, its multiplier ``lambda_c_t``.
+SLIDING_SUFFIX = "_t"
+
+
+def sliding_row(kin: Kinematics, c: Constraint) -> ConstraintRow:
+    """The row w = a(q, t)·q̇ + b(q, t) = 0 of a unilateral contact with friction: while closed it sticks, and its
+    multiplier is the tangential reaction, bounded by Coulomb's law (`lagrangian.numerics._contact`)."""
+    return _row(kin, dataclasses.replace(c, form="nonholonomic", expression=c.slip), c.name + SLIDING_SUFFIX,
+                c.slip)  # type: ignore[arg-type]
 
 
 # -- rows chosen by the engine ---------------------------------------------------------------------
@@ -529,11 +544,20 @@ def complementary_constraints(kin: Kinematics, equations: tuple) -> tuple[tuple,
     if not rows:
         return equations, (), ()
     taken = {p.name for p in kin.model.parameters} | {str(s) for s in (*kin.q, *kin.qd, *kin.qdd)}
+    seen: set[str] = set()
     for r in rows:
         if r.multiplier.name in taken:
             raise _error(kin, by_name[r.constraint], f"the multiplier `{r.multiplier.name}` of constraint row "
                          f"`{r.name}` has the name of a parameter or coordinate", fix="rename one of them")
-    _check_rank(kin, rows, by_name)
+        if r.name in seen:  # a contact `c` with friction has the row `c_t`: a constraint of that name repeats it
+            raise _error(kin, by_name[r.constraint], f"two constraint rows are named `{r.name}`",
+                         fix="rename the constraint (the sliding row of a contact `c` with friction is `c_t`)")
+        seen.add(r.name)
+    # The rows of unilateral contacts may be dependent (a ball between two walls): which of them act is
+    # decided along the motion (`numerics._contact`); the bilateral ones must be independent.
+    bilateral = [r for r in rows if not by_name[r.constraint].unilateral]
+    if bilateral:
+        _check_rank(kin, bilateral, by_name)
     out = []
     for i, eq in enumerate(equations):
         terms = sum_of([r.multiplier * r.coefficients[i] for r in rows if type(r.coefficients[i]) is not _ZERO_TYPE])
@@ -567,6 +591,9 @@ def admissible_integrals(eom, integrals: Sequence) -> tuple:  # type: ignore[no-
                 out.append(dataclasses.replace(fi, reason=fi.reason + why))
         elif b_zero:
             why = "; the reactions of the complementary constraints do no work (b_k = 0: Σ_k λ_k A_k q̇ = 0)"
+            if any(c.unilateral for c in eom.model.constraints):
+                why += ("; between impacts (an impact takes ½ Σ_k P_k (1 − e_k) |ġ_k⁻| of it, and friction at "
+                        "an impact some more)")
             out.append(dataclasses.replace(fi, reason=fi.reason + why))
     return tuple(out)
 

@@ -34,6 +34,7 @@ from typing import TYPE_CHECKING, Any
 import symengine as se
 
 from ..errors import ModelError
+from ._unilateral import UNILATERAL_KEYS, unilateral_parts
 from ._vector import Vector
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -47,15 +48,17 @@ GALILEAN_FRAME = "R0"
 HOLONOMIC = "holonomic"
 NONHOLONOMIC = "nonholonomic"
 #: The forms a constraint may take, and the kind (holonomic or not) of each.
-FORMS = {"holonomic": HOLONOMIC, "nonholonomic": NONHOLONOMIC, "no_slip": NONHOLONOMIC, "coincide": HOLONOMIC}
+FORMS = {"holonomic": HOLONOMIC, "nonholonomic": NONHOLONOMIC, "no_slip": NONHOLONOMIC, "coincide": HOLONOMIC,
+         "unilateral": HOLONOMIC}
 #: Keys every form accepts besides its own.
 _COMMON = {"frame", "axes", "principal", "reaction", "description"}
-_EXTRA = {"no_slip": {"on"}}
+_EXTRA = {"no_slip": {"on"}, "unilateral": UNILATERAL_KEYS}
 _EXAMPLES = {
     "holonomic": 'length = { holonomic = "x^2 + y^2 - l^2" }',
     "nonholonomic": 'rolling = { nonholonomic = { x = "1", phi = "-r" } }',
     "no_slip": 'contact = { no_slip = "I", on = "S", frame = "R0" }',
     "coincide": 'pivot = { coincide = ["Q", "O"], frame = "R0" }',
+    "unilateral": 'floor = { unilateral = "z", restitution = "e" }',
 }
 
 
@@ -85,6 +88,9 @@ class Constraint:
     axes : for a vector constraint, the indices (0, 1, 2) of the axes of ``frame`` whose rows are
         kept; None keeps all three.  A wheel on the ground keeps its two tangential rows when its
         normal row is the derivative of a holonomic contact constraint declared beside it.
+    restitution, friction, slip : of a ``unilateral`` constraint (a contact, gap ``expression`` ≥ 0):
+        Newton's coefficient e, the Coulomb coefficient μ (or None) and the sliding velocity w
+        (linear in the rates; None without friction).  See `lagrangian.model._unilateral`.
     """
 
     name: str
@@ -97,6 +103,9 @@ class Constraint:
     reaction: ReactionSpec | None = None
     description: str | None = None
     axes: tuple[int, ...] | None = None
+    restitution: se.Basic | None = None
+    friction: se.Basic | None = None
+    slip: se.Basic | None = None
 
     def __post_init__(self) -> None:
         if self.form not in FORMS:
@@ -106,6 +115,11 @@ class Constraint:
     def kind(self) -> str:
         """``"holonomic"`` (f(q, t) = 0) or ``"nonholonomic"`` (linear in the rates)."""
         return FORMS[self.form]
+
+    @property
+    def unilateral(self) -> bool:
+        """True for a one-sided contact g(q, t) ≥ 0 (`lagrangian.model._unilateral`)."""
+        return self.form == "unilateral"
 
     @property
     def is_vector(self) -> bool:
@@ -134,7 +148,7 @@ def read_constraint(reader: Any, builder: ModelBuilder, name: str, value: Any) -
                        axes=value.get("axes"), principal=value.get("principal", False),
                        reaction=value.get("reaction"),
                        description=reader.text(("constraints", name, "description"), value.get("description")),
-                       location=where)
+                       location=where, **{k: value[k] for k in UNILATERAL_KEYS if k in value})
 
 
 # -- the build stage ------------------------------------------------------------------------------
@@ -186,7 +200,10 @@ class _Checker:
         frame = self.frame(raw, d["frame"])
         value = d["value"]
         expression, points, body = None, (), None
-        if form == "holonomic":
+        contact: tuple = (None, None, None)
+        if form == "unilateral":
+            expression, *contact = unilateral_parts(self, raw, d)
+        elif form == "holonomic":
             expression = self.a.expr(raw, "the holonomic constraint", value, vector=None, key=form)
             self.check_holonomic(raw, expression)
         elif form == "nonholonomic":
@@ -208,7 +225,8 @@ class _Checker:
         reaction = self.reaction(raw, d["reaction"], form)
         vector = form in ("no_slip", "coincide") or isinstance(expression, Vector)
         axes = self.axes(raw, d.get("axes"), frame, vector)
-        return Constraint(raw.name, form, expression, points, body, frame, principal, reaction, description, axes)
+        return Constraint(raw.name, form, expression, points, body, frame, principal, reaction, description, axes,
+                          *contact)
 
     def axes(self, raw: Any, value: Any, frame: str, vector: bool) -> tuple[int, ...] | None:
         """The indices of the rows kept (`axes` = names of axes of `frame`, or x, y, z), in the frame's order."""

@@ -242,16 +242,19 @@ class ModelBuilder:
 
     def constraint(self, name: str, form: str, value: Any, *, on: str | None = None, frame: str = GALILEAN_FRAME,
                    axes: Sequence[str] | None = None, principal: bool = False, reaction: Mapping[str, Any] | None = None,
-                   description: str | None = None, location: Location | None = None) -> None:
+                   description: str | None = None, location: Location | None = None, restitution: Any = None,
+                   friction: Any = None, slip: Any = None) -> None:
         """A constraint kept complementary (with a multiplier), or declared ``principal``.
 
-        ``form`` is ``"holonomic"``, ``"nonholonomic"``, ``"no_slip"`` or ``"coincide"``; see
+        ``form`` is ``"holonomic"``, ``"nonholonomic"``, ``"no_slip"``, ``"coincide"`` or
+        ``"unilateral"`` (a contact: ``value`` is the gap g(q, t) ≥ 0, with ``restitution`` e and
+        optionally ``friction`` μ and ``slip`` w; `lagrangian.model._unilateral`); see
         `lagrangian.model._constraints` and ``docs/constraints.md``.  ``axes`` keeps, of a vector
         constraint, only the rows along those axes of ``frame``.
         """
         self._add("constraint", name, location, form=form, value=value, on=on, frame=frame, axes=axes,
-                  principal=principal,
-                  reaction=reaction, description=description)
+                  principal=principal, reaction=reaction, description=description, restitution=restitution,
+                  friction=friction, slip=slip)
 
     # -- build ----------------------------------------------------------------------------
     def build(self) -> Model:

@@ -3,9 +3,13 @@
 ``compile_system(eom)`` → `CompiledSystem` (M, F, q̈, monitors, events; C or SymEngine);
 ``compile_free_system(model)`` → `FreeBodySystem`: a model with free bodies on unit quaternions (C);
 ``simulate(model_or_eom, t_end, ...)`` → `Trajectory`;
-``ensemble(model_or_eom, t_end, initial=grid(...), ...)`` → many motions as an ``xarray.Dataset``.
+``ensemble(model_or_eom, t_end, initial=grid(...), ...)`` → many motions as an ``xarray.Dataset``;
+a model with unilateral contacts is simulated by phases between impacts (`simulate_contact`, called by
+``simulate``), and ``impact_sweep`` maps what its contacts do against a parameter.
 """
 
+from ._contact import simulate_contact as simulate_contact
+from ._contact_switch import ContactEvent as ContactEvent
 from ._dae import STABILIZATIONS as STABILIZATIONS
 from ._ensemble import ensemble as ensemble
 from ._ensemble import flip_events as flip_events
@@ -17,6 +21,8 @@ from ._input_table import InputTable as InputTable
 from ._free_system import FreeBodySystem as FreeBodySystem
 from ._free_system import compile_free_system as compile_free_system
 from ._files import load_trajectory as load_trajectory
+from ._impact_sweep import ImpactSweep as ImpactSweep
+from ._impact_sweep import impact_sweep as impact_sweep
 from ._files import save_trajectory as save_trajectory
 from ._simulate import METHODS as METHODS
 from ._simulate import EventSpec as EventSpec
@@ -38,4 +44,5 @@ from ._trajectory import Trajectory as Trajectory
 __all__ = ["simulate", "Sensitivities", "ensemble", "grid", "Grid", "open_ensemble", "flip_events", "simulate_stick_slip", "save_trajectory", "load_trajectory", "check_output_path", "EventSpec", "InputTable", "initial_state", "METHODS",
            "STABILIZATIONS", "default_tolerance", "CompiledSystem", "compile_system", "FreeBodySystem", "compile_free_system", "Trajectory", "Event",
            "SimulationCheck", "simulation_check", "reaction_columns_along",
-           "reaction_history_along", "check_trajectory_along"]
+           "reaction_history_along", "check_trajectory_along", "simulate_contact", "ContactEvent", "impact_sweep",
+           "ImpactSweep"]

@@ -305,6 +305,10 @@ def _ensemble(source, t_end, t_start, initial, parameters, initial_names, parame
               rtol, atol, dt, max_step, max_steps, events, keep, workers, chunk_size, client, out_path, resume,
               progress, backend="c", stiffness_check=True, inputs=None):
     source, constrained = constrained_source(source)  # a file is read here, once
+    if constrained is not None and any(c.unilateral for c in constrained.model.constraints):
+        raise SimulationError("Ensembles run in compiled batches, and a model with unilateral contacts switches "
+                              "its phases at impacts.", fix="use lagrangian.impact_sweep (or `lagrangian sweep`, "
+                                                            "which runs it for such a model)")
     if constrained is not None or exact_contact_model(source) is not None:
         raise SimulationError("Ensembles run models without complementary constraints or exact (ε = 0) "
                               "friction; this one has them.", fix="use `simulate` for each motion of this model")

@@ -32,7 +32,8 @@ def _metadata(traj: Trajectory) -> dict:
         "coordinates": list(traj.coordinates), "parameters": dict(traj.parameters),
         "integrals": list(traj.integrals), "drift": dict(traj.drift), "steps": traj.steps,
         "rhs_calls": traj.rhs_calls, "status": traj.status,
-        "events": [{"name": e.name, "t": e.t} for e in traj.events],
+        # A contact's event says more: its kind, the percussion, the energy before and after (`_contact_switch`).
+        "events": [e.as_dict() if hasattr(e, "as_dict") else {"name": e.name, "t": e.t} for e in traj.events],
         "extra": list(traj.extra),  # the columns after the monitors: reactions, multipliers
     }
     if traj.range_exits:  # where the motion left a declared range (`_ranges`)

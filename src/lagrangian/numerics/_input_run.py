@@ -152,6 +152,8 @@ _CONSTANT_ONLY = {
                  "give the inputs constant values, or a regularized friction (regularization > 0)"),
     "free": ("the free bodies' quaternion route",
              "give the inputs constant values (parameters={'tau': 1.0}, --set tau=1)"),
+    "contact": ("the unilateral contacts' route (smooth phases between impacts)",
+                "give the inputs constant values (parameters={'F': 1.0}, --set F=1)"),
 }
 
 

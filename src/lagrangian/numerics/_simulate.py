@@ -415,7 +415,8 @@ def simulate(
 def _simulate(source, t_end, *, t_start, initial, parameters, method, rtol, atol, dt, max_step, n_out, t_eval,
               events, tolerance, max_steps, progress, backend, stabilization, baumgarte,
               stiffness_check, inputs=None) -> Trajectory:
-    """`simulate` once the source is read: the free-body, stick-slip, constrained or plain run."""
+    """`simulate` once the source is read: the free-body, contact, stick-slip, constrained or plain run."""
+    from ._contact import contact_model, simulate_contact  # late: `_contact` imports this module
     from ._free_simulate import free_source, simulate_free  # late: both import this module
     from ._stickslip import exact_contact_model, simulate_stick_slip
 
@@ -426,6 +427,14 @@ def _simulate(source, t_end, *, t_start, initial, parameters, method, rtol, atol
                              rtol=rtol, atol=atol, dt=dt, max_step=max_step, n_out=n_out, t_eval=t_eval,
                              events=events, tolerance=tolerance, max_steps=max_steps, progress=progress,
                              backend=backend, stabilization=stabilization, stiffness_check=stiffness_check)
+    contacts = contact_model(source)
+    if contacts is not None:  # unilateral contacts: smooth phases between impacts and lift-offs
+        parameters = constant_inputs_only(source, inputs, parameters, route="contact")
+        return simulate_contact(contacts, t_end, t_start=t_start, initial=initial, parameters=parameters,
+                                method=method, rtol=rtol, atol=atol, dt=dt, max_step=max_step, n_out=n_out,
+                                t_eval=t_eval, events=events, tolerance=tolerance, max_steps=max_steps,
+                                progress=progress, backend=backend, stabilization=stabilization,
+                                stiffness_check=stiffness_check)
     exact = exact_contact_model(source)
     if exact is not None:  # an exact Coulomb contact (regularization = 0): stick/slip phases by events
         parameters = constant_inputs_only(source, inputs, parameters)

@@ -65,6 +65,11 @@ def constraints_section(eom: EquationsOfMotion) -> dict[str, Any]:
             item["row_choice"] = {"declared_frame": choice.declared_frame, "declared_rows": list(choice.declared_rows),
                                   "rank": choice.rank, "frame": choice.frame, "kept": list(choice.kept),
                                   "note": choice.text}
+        declared = next(c for c in eom.model.constraints if c.name == info.name)
+        if declared.unilateral:  # a contact: its law (optional key)
+            item["contact"] = {"restitution": _s(declared.restitution),
+                               "friction": None if declared.friction is None else _s(declared.friction),
+                               "slip": None if declared.slip is None else _s(declared.slip)}
         if info.integrals:  # velocity rows that integrate: φ_k(q, t) = cste (optional key)
             item["integrals"] = [_s(phi) for phi in info.integrals]
         items.append(item)
@@ -73,7 +78,8 @@ def constraints_section(eom: EquationsOfMotion) -> dict[str, Any]:
         "multipliers": [m.name for m in eom.multipliers],
         "multiplier_terms": [_s(eq.multiplier_terms) for eq in eom.equations],
     }
-    formulas = multiplier_formulas(eom) if eom.constraints else None
+    contacts = sum(1 for c in eom.model.constraints if c.unilateral)  # several: λ depends on which are closed
+    formulas = multiplier_formulas(eom) if eom.constraints and contacts < 2 else None
     if formulas is not None:
         out["multiplier_formulas"] = {m.name: _s(f) for m, f in zip(eom.multipliers, formulas)}
     return out

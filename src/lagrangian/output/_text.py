@@ -66,7 +66,8 @@ class ConstraintLine:
     that vanishes; a principal constraint's is the declared relation, not simplified (after
     substitution of the coordinates it is identically zero).  ``rows`` are (row, multiplier,
     equation = 0).  ``kind`` is holonomic for velocity rows that integrate, with ``integrals``
-    their φ_k(q, t) = cste when found (`describe_constraints`).
+    their φ_k(q, t) = cste when found (`describe_constraints`).  ``contact`` is (e, μ or None) for a
+    unilateral constraint, whose statement is the gap g ≥ 0.
     """
 
     name: str
@@ -77,6 +78,7 @@ class ConstraintLine:
     axes: tuple[str, ...] | None
     rows: tuple[tuple[str, str, sympy.Basic], ...]
     integrals: tuple[sympy.Basic, ...] = ()
+    contact: tuple[sympy.Basic, sympy.Basic | None] | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -143,6 +145,7 @@ def _declared(e: object) -> sympy.Basic:
 
 def _constraint_lines(eom: EquationsOfMotion) -> tuple[ConstraintLine, ...]:
     out = []
+    declared = {c.name: c for c in eom.model.constraints}
     for info in describe_constraints(eom):
         principal = info.role == "principal"
         convert = _declared if principal else to_sympy
@@ -153,8 +156,11 @@ def _constraint_lines(eom: EquationsOfMotion) -> tuple[ConstraintLine, ...]:
         else:
             statement, axes = (convert(info.statement),), None
         rows = tuple((r.name, r.multiplier.name, to_sympy(r.expression)) for r in info.rows)
+        c = declared[info.name]
+        contact = (to_sympy(c.restitution), None if c.friction is None else to_sympy(c.friction)) \
+            if c.unilateral else None
         out.append(ConstraintLine(info.name, info.role, info.form, info.kind, statement, axes, rows,
-                                  tuple(to_sympy(phi) for phi in info.integrals)))
+                                  tuple(to_sympy(phi) for phi in info.integrals), contact))
     return tuple(out)
 
 
@@ -174,7 +180,9 @@ def supplement(eom: EquationsOfMotion, form: CourseForm) -> Supplement:
     kin = eom.kinematics
     reference_omega = (_vector_row(eom, kin.frame_omega)
                        if isinstance(kin, RelativeKinematics) and not kin.frame_omega.is_zero() else None)
-    formulas = multiplier_formulas(eom) if eom.constraints else None
+    # With several contacts, which of them are closed changes along the motion: no single formula for λ.
+    contacts = sum(1 for c in eom.model.constraints if c.unilateral)
+    formulas = multiplier_formulas(eom) if eom.constraints and contacts < 2 else None
     multipliers = tuple((m.name, None if formulas is None else _shortest(f))
                         for m, f in zip(eom.multipliers, formulas or (None,) * len(eom.multipliers)))
     balance: tuple[PowerRow, ...] | None = None
@@ -218,6 +226,12 @@ def greek(n: Notation, form: CourseForm, sentence: str) -> str:
 
 def _statement(n: Notation, line: ConstraintLine) -> str:
     n = as_declared(n)  # the relation the user wrote, never rewritten (l² sin²θ + l² cos²θ − l² is not 0 = 0)
+    if line.contact is not None:  # a contact: g ≥ 0, λ ≥ 0, λ g = 0, Newton's e (and Coulomb's μ) at impacts
+        e, mu = line.contact
+        lam = line.rows[0][1] if line.rows else "λ"
+        law = f"e = {n.text(e)}" + (f", μ = {n.text(mu)}" if mu is not None else "")
+        return (f"{n.text(line.statement[0])} ≥ 0, {lam} ≥ 0, {lam}·({n.text(line.statement[0])}) = 0; "
+                f"impacts: {law}")
     if line.axes is None:
         return f"{n.text(line.statement[0])} = 0"
     return "; ".join(f"{n.text(c)} = 0 ({axis})" for c, axis in zip(line.statement, line.axes) if c != 0) or "0 = 0"
@@ -250,13 +264,18 @@ def _step7_text(n: Notation, form: CourseForm, extra: Supplement) -> list[str]:
              "is what the constraint exerts on the body):"]
     for c in extra.constraints:
         for row, _, equation in c.rows:
-            lines.append(f"  {n.text(equation)} = 0    [{row}]")
+            when = "" if not c.contact else (", while the contact is closed" if row == c.name
+                                              else ", while the contact is closed and sticks")
+            lines.append(f"  {n.text(equation)} = 0    [{row}{when}]")
     lines += [f"  {r.constraint}: {r.row_choice}" for r in extra.reactions if r.row_choice]
     unsolved = [name for name, formula in extra.multipliers if formula is None]
     for name, formula in extra.multipliers:
         if formula is not None:
             lines.append(f"  {name} = {n.text(formula)}")
-    if unsolved:
+    if unsolved and sum(1 for c in extra.constraints if c.contact) > 1:
+        lines.append(f"  {', '.join(unsolved)}: depend on which contacts are closed (each phase of the motion has "
+                     "its own); `lagrangian simulate` gives them along a motion")
+    elif unsolved:
         lines.append(f"  {', '.join(unsolved)}: not solved symbolically (n + m > {FORMULA_MAX_SIZE}); "
                      "`lagrangian simulate` gives them along a motion")
     for r in extra.reactions:

@@ -14,7 +14,8 @@ course's words and notation) or in English:
    the system is conservative);
 7. the complementary equations;
 
-then the first integrals, the small motions about an equilibrium (opt-in: ``small_motions``),
+then the first integrals, the theorem of percussions for a model with unilateral contacts (with
+the contact events of a simulation, ``events``), the small motions about an equilibrium (opt-in: ``small_motions``),
 the Newton–Euler cross-check (``verification``), the simulation's
 figures (``figures``) and the matrix form M q̈ = F.  Everything is computed by the engine;
 this module only arranges and writes it.
@@ -41,6 +42,7 @@ from .document import Document, Scene3D, Section, map_math, pictures
 from .steps.equations import integrals_section, pin_reaction, step6, step7
 from .steps.extras import ReportFigure, check_section, matrix_section, notes_section, simulation_section
 from .steps.forces import step5
+from .steps.impacts import has_contacts, impacts_section
 from .render.html import render_html
 from .steps.kinematics import step3, step4
 from .render.markdown import display_math, render_markdown
@@ -192,7 +194,8 @@ def _scene_block(eom: EquationsOfMotion, lang: str, motion: Any = None) -> Scene
 def report(model: Model | EquationsOfMotion | str | os.PathLike[str], *, lang: str = "fr",
            verification: Verification | bool | None = None, figures: Sequence[Any] = (),
            integrals: Sequence[FirstIntegral] | None = None, source: str | None = None,
-           small_motions: Any = None, view: bool = True, motion: Any = None) -> Report:
+           small_motions: Any = None, view: bool = True, motion: Any = None,
+           events: Sequence[Any] = ()) -> Report:
     r"""The step-by-step derivation of ``model`` in the course's order, ready to write as HTML, LaTeX or Markdown.
 
     Parameters
@@ -213,6 +216,9 @@ def report(model: Model | EquationsOfMotion | str | os.PathLike[str], *, lang: s
         angles labelled (`lagrangian.view3d`): interactive in HTML, a still picture in LaTeX and PDF
         (headless Chromium's, else matplotlib's); left out of Markdown.  ``False`` leaves it out.
     motion : a simulated `Trajectory` of the model, shown in 3-D at the head of the simulation's figures.
+    events : the events of a simulated motion (``trajectory.events``): for a model with unilateral
+        contacts, its impacts, lift-offs and rests are listed in the section on the theorem of percussions
+        (which every model with contacts has).
 
     Returns
     -------
@@ -240,6 +246,8 @@ def report(model: Model | EquationsOfMotion | str | os.PathLike[str], *, lang: s
         statement = Section(statement.key, statement.title, statement.blocks + (still,))
     sections = [statement, step1(c), step2(c), step3(c), step4(c), step5(c), step6(c), step7(c),
                 integrals_section(c)]
+    if has_contacts(c):  # unilateral constraints: what an impact does (theorem of percussions), the events
+        sections.append(impacts_section(c, events))
     if checked is not None:  # the reaction of a fixed point, after step 7
         extra = pin_reaction(c, checked)
         if extra:

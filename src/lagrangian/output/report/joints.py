@@ -363,8 +363,11 @@ def constraint_counts(eom: EquationsOfMotion) -> tuple[int, int, int]:
     from ...dynamics._constraints import describe_constraints
 
     holonomic_names = {info.name for info in describe_constraints(eom) if info.kind == "holonomic"}
-    h = sum(1 for row in eom.constraints if row.kind == "holonomic" or row.constraint in holonomic_names)
-    return len(eom.coordinates), h, len(eom.constraints) - h
+    # A unilateral contact is an inequality g ≥ 0: it removes no parameter (only while closed).
+    contacts = {c.name for c in eom.model.constraints if c.unilateral}
+    rows = [row for row in eom.constraints if row.constraint not in contacts]
+    h = sum(1 for row in rows if row.kind == "holonomic" or row.constraint in holonomic_names)
+    return len(eom.coordinates), h, len(rows) - h
 
 
 def planar_normal(eom: EquationsOfMotion) -> int | None:

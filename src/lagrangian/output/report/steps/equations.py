@@ -25,6 +25,7 @@ from ....analysis import Verification
 from ..._course import EquationRow, IntegralRow
 from ..._notation import Opaque
 from ..build import Context
+from .impacts import closed_note, has_contacts, integrals_note
 from ..document import Block, Display, Equation, Math, Para, Runs, Section
 from ....model import ORIGIN
 from ..joints import _root
@@ -257,6 +258,8 @@ def step7(c: Context) -> Section:
     else:
         blocks = [Para(w("complementary rows", n=Math(str(n)), m=Math(str(len(rows))), lams=lams))]
     blocks += c.show([c.equation("", c.ex(r.expression), " = 0") for r in rows], "7")
+    if has_contacts(c):  # a contact's row holds while it is closed, its λ ≥ 0
+        blocks += closed_note(c)
     for reaction in c.eom.reactions:  # rows the engine chose of a vector constraint, and why
         choice = reaction.row_choice
         if choice is not None:
@@ -306,6 +309,8 @@ def _multipliers(c: Context) -> tuple[se.Basic, ...] | None:
     from ....dynamics._constraints import multiplier_formulas
     from ....errors import DerivationError
 
+    if sum(1 for con in c.model.constraints if con.unilateral) > 1:
+        return None  # which contacts are closed changes along the motion: no single formula
     try:
         return multiplier_formulas(c.eom)  # type: ignore[no-any-return]
     except DerivationError:
@@ -579,6 +584,8 @@ def integrals_section(c: Context) -> Section:
             why.append(w.text("why constraints"))
         blocks.append(Para(w("no integral", why=" ; ".join(why) if c.lang == "fr" else "; ".join(why))))
         blocks += _balance(c)
+    if has_contacts(c):  # between impacts only: an impact takes energy
+        blocks += integrals_note(c)
     return Section("integrals", w.text("integrals"), tuple(blocks))
 
 

@@ -102,7 +102,8 @@ def _constraint_given(c: Context, con: Constraint) -> Runs:
         equation = rf"\overrightarrow{{{Q}{P}}} = \vec{{0}}"
     else:
         rows = [r for r in c.eom.constraints if r.constraint == con.name]
-        parts = [rf"{c.tex(r.expression)} = 0" for r in rows]
+        parts = [rf"{c.tex(r.expression)} " + (r"\geq 0" if con.unilateral and r.name == con.name else "= 0")
+                 for r in rows]  # a contact: its gap g ≥ 0
         if not parts and con.expression is not None and not isinstance(con.expression, Vector):
             parts = [rf"{c.tex(con.expression)} = 0"]
         equation = r",\quad ".join(parts)
@@ -296,7 +297,9 @@ def _declared(c: Context, con: Constraint, one: bool) -> list[Block]:
     """A constraint of the model's [constraints] table: its equation, its kind, principal or complementary."""
     w, kin = c.w, c.kin
     rows = [r for r in c.eom.constraints if r.constraint == con.name]
-    shown = [Equation((rf"{c.tex(r.expression)} = 0",)) for r in rows]
+    # A contact: its gap g ≥ 0 (and, with friction, its sliding velocity w = 0 while it sticks).
+    shown = [Equation((rf"{c.tex(r.expression)} " + (r"\geq 0" if con.unilateral and r.name == con.name else "= 0"),))
+             for r in rows]
     if not shown and con.expression is not None and not isinstance(con.expression, Vector):
         shown = [Equation((rf"{c.tex(con.expression)} = 0",))]
     equation = Math(r"\quad".join(e.lines[0] for e in shown)) if len(shown) == 1 else ""
@@ -326,6 +329,10 @@ def _declared(c: Context, con: Constraint, one: bool) -> list[Block]:
         # A velocity row that integrates (rolling on a line: ẋ − r φ̇ = 0 gives x − r φ = cste).
         phi = r",\quad ".join(rf"{c.tex(f)} = \text{{cste}}" for f in info.integrals)
         blocks.append(Para(_capitalize(w("integrable", phi=Math(phi))) + (".",)))
+    if con.unilateral:
+        from .impacts import contact_note
+
+        blocks += contact_note(c, con)
     if not con.principal:
         Q = ", ".join(rf"Q_{{{c.sym(q)}}} = {c.tex(sum(r.multiplier * r.coefficients[i] for r in rows))}"
                       for i, q in enumerate(c.eom.coordinates)
