@@ -457,7 +457,7 @@ class _Translation:
             self.b.generalized_force("actuators", components)
         if not self.damping:
             return
-        terms = [se.Rational(1, 2) * _number(j.damping) * self.rate[j.name] ** 2
-                 for j in self.robot.joints.values() if j.moves and j.damping > 0]
-        if terms:
-            self.b.dissipation("joint_damping", se.Add(*terms))
+        damped = [j for j in self.robot.joints.values() if j.moves and j.damping > 0]
+        terms = [se.Rational(1, 2) * _number(j.damping) * self.rate[j.name] ** 2 for j in damped]
+        if terms:  # viscous friction in each of those joints: they are not perfect (the report says so)
+            self.b.dissipation("joint_damping", se.Add(*terms), joints=[self.coordinate[j.name] for j in damped if j.name in self.coordinate])

@@ -29,6 +29,7 @@ from ..document import Block, Display, Equation, Math, Para, Runs, Section
 from ....model import ORIGIN
 from ..joints import _root
 from ..size import visible_width, wrap_many
+from .contact import contact_blocks
 
 __all__ = ["step6", "step7", "integrals_section", "ordered_equations", "left_out_note"]
 
@@ -249,8 +250,8 @@ def step7(c: Context) -> Section:
     n = len(c.eom.coordinates)
     rows = c.eom.constraints
     if not rows:
-        return Section("step7", w.text("step7"), (Para(w("no complementary" if n > 1 else "no complementary one",
-                                                                n=Math(str(n)))),))
+        blocks = [Para(w("no complementary" if n > 1 else "no complementary one", n=Math(str(n))))]
+        return Section("step7", w.text("step7"), tuple(blocks + contact_blocks(c)))
     lams = Math(", ".join(c.tex(r.multiplier) for r in rows))
     if len(rows) == 1:
         blocks: list[Block] = [Para(w("complementary row", n=Math(str(n)), lams=lams))]
@@ -298,7 +299,7 @@ def step7(c: Context) -> Section:
             blocks.append(Display(tuple(eqs)))
         if formulas is not None:
             blocks += _tension(c, reaction, formulas)
-    return Section("step7", w.text("step7"), tuple(blocks))
+    return Section("step7", w.text("step7"), tuple(blocks + contact_blocks(c)))
 
 
 def _multipliers(c: Context) -> tuple[se.Basic, ...] | None:
@@ -475,12 +476,20 @@ def _momentum(c: Context, row: IntegralRow) -> list[Block]:
     eq = c.eom.equation(q)
     cyclic = are_zero([eq.dT_dq - eq.dU_dq])[0]
     Lq = Math(rf"L({c.sym(q)})")
+    # With complementary constraints, L(q) also holds Σ λ_k a_{k,q}: it integrates only when no row has q̇ (the
+    # coin's x is cyclic and free of given efforts, but λ_1 cos ψ − λ_2 sin ψ drives it).
+    rows: Runs = ()
+    if c.eom.constraints:
+        a = rf"a_{{{c.sym(q)}}} = 0" if len(c.eom.constraints) == 1 else rf"a_{{k,{c.sym(q)}}} = 0"
+        rows = w("no row", qd=Math(c.sym(q, "dot")), a=Math(a))
     if cyclic:
-        why = w.join([Math(rf"\frac{{\partial L}}{{\partial {c.sym(q)}}} = 0"), Math(f"{c.Q_nc(q)} = 0")])
+        parts = [Math(rf"\frac{{\partial L}}{{\partial {c.sym(q)}}} = 0"), Math(f"{c.Q_nc(q)} = 0")]
+        why = w.join(parts + ([rows] if rows else []))
         head = w("cyclic", q=Math(c.sym(q)), why=why, eq=Lq)
     else:
         why = (Math(rf"\frac{{\partial T}}{{\partial {c.sym(q)}}} - \frac{{\partial U_P}}{{\partial {c.sym(q)}}}"
                     rf" + {c.Q_nc(q)} = 0"),)
+        why = w.join([why, rows]) if rows else why
         head = w("momentum", why=why, eq=Lq)
     name = c.n.symbol(row.name, latex=True)
     return [Para(head)] + c.show([c.equation("", row.expression, f" = {name}")], row.name)

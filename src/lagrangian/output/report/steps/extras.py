@@ -44,6 +44,7 @@ def check_section(c: Context, v: Verification) -> Section:
     blocks: list[Block] = [Para(w("check intro moving" if moving else "check intro", R0=Math(R)))]
     liaisons = w.text("constraint actions")
     stated: set[tuple[str, str, tuple[str, ...]]] = set()
+    noted = False  # the note on the efforts given by their generalized forces, once
     theorems = {(th.name, th.point): th for th in v.theorems}
     lambdas = {r.multiplier for r in c.eom.constraints}
     with_lambda = any(set(ch.newton_euler_efforts.free_symbols) & lambdas for ch in v.checks)
@@ -60,7 +61,13 @@ def check_section(c: Context, v: Verification) -> Section:
         key = (check.theorem, check.point or "", tuple(names))
         if check.theorem in ("moment", "resultant") and key not in stated:
             stated.add(key)
-            blocks += _theorem(c, check.theorem, check.point, names, theorems, liaisons)
+            # The efforts that go by their generalized forces (a potential, given Q_i, a dissipation function) but
+            # act on this coordinate are part of the theorem too: the projection uses them.
+            i = c.eom.coordinates.index(check.coordinate)
+            by_power = [f.name for f in c.eom.loads if f.name in v.virtual_power_loads and f.Q[i] != 0]
+            blocks += _theorem(c, check.theorem, check.point, names, theorems, liaisons, by_power,
+                               note=not noted and bool(by_power))
+            noted = noted or bool(by_power)
         of: Runs = () if check.whole_system else w("of", names=w.join([Math(c.element(e)) for e in check.elements]))
         if check.axis is not None:
             direction = Math(c.axis(check.axis))
@@ -115,8 +122,18 @@ def _fixed_axis(c: Context, check, theorems: dict) -> list[Block]:  # type: igno
 
 
 def _theorem(c: Context, kind: str, point: str | None, names: tuple[str, ...], theorems: dict,  # type: ignore[type-arg]
-             liaisons: str) -> list[Block]:
-    """The statement of the resultant or moment theorem for ``names`` (at ``point``), in the frame R."""
+             liaisons: str, by_power: list[str] | tuple[str, ...] = (), note: bool = True) -> list[Block]:
+    """The statement of the resultant or moment theorem for ``names`` (at ``point``), in the frame R; ``by_power``
+    names the efforts given by their generalized forces (actuators, dissipation), which enter it too."""
+    out = _theorem_statement(c, kind, point, names, theorems, liaisons, by_power)
+    if by_power and note:
+        loads = c.w.join([c.w("quoted", name=c.load_name(x)) for x in by_power])
+        out.append(Para(c.w("by power note" if len(by_power) > 1 else "by power note one", names=loads)))
+    return out
+
+
+def _theorem_statement(c: Context, kind: str, point: str | None, names: tuple[str, ...], theorems: dict,  # type: ignore[type-arg]
+                       liaisons: str, by_power: list[str] | tuple[str, ...]) -> list[Block]:
     w, R = c.w, c.R
     elements = w.join([Math(f"({c.element(e)})" if e in c.bodies else c.element(e)) for e in names])
     label = names[0] if len(names) == 1 else r"\Sigma"
@@ -126,13 +143,13 @@ def _theorem(c: Context, kind: str, point: str | None, names: tuple[str, ...], t
         masses = [th.mass for th in theorems.values() if th.name in names]
         G = c.point_label(names[0]) if len(names) == 1 else "G"
         m = c.tex(masses[0]) if len(masses) == 1 else r"\sum m"
-        forces = " + ".join(c.reaction_tex(e) if c.is_constraint(e) else rf"\vec{{F}}({c.load_tex(e)})"
-                            for e in efforts) or r"\vec{0}"
+        forces = " + ".join([c.reaction_tex(e) if c.is_constraint(e) else rf"\vec{{F}}({c.load_tex(e)})"
+                             for e in efforts] + [rf"\vec{{F}}({c.load_tex(e)})" for e in by_power]) or r"\vec{0}"
         return [Para(w("resultant theorem", P=elements)),
                 Display((Equation((rf"{m}\,\vec{{\gamma}}({G}/{R}) = {forces} + \vec{{R}}(\text{{{liaisons}}})",)),))]
     P = _point(c, point, names[0])
-    moments = " + ".join(rf"\vec{{M}}_{{{P}}}({c.reaction_tex(e) if c.is_constraint(e) else c.load_tex(e)})"
-                         for e in efforts) or r"\vec{0}"
+    moments = " + ".join([rf"\vec{{M}}_{{{P}}}({c.reaction_tex(e) if c.is_constraint(e) else c.load_tex(e)})"
+                          for e in efforts] + [rf"\vec{{M}}_{{{P}}}({c.load_tex(e)})" for e in by_power]) or r"\vec{0}"
     fixed = next((j for j in c.joints if j.kind == "fixed point" and j.support is None and names == (j.element,)
                   and j.point is not None and c.point_label(j.point) == P), None)
     th = theorems.get((names[0], point)) if len(names) == 1 else None
@@ -141,7 +158,7 @@ def _theorem(c: Context, kind: str, point: str | None, names: tuple[str, ...], t
         # The seed: δ_O = d/dt[σ_O]_{R0} = M_O(P) + M_O(R_O) = OG∧P + OO∧R_O, soit d/dt[σ_O]_{R0} = OG∧P.
         out.append(Para(w("top moment", R0=Math(R), O=Math(P), S=Math(E))))
         arms, named = [], []
-        for load in efforts:
+        for load in [*efforts, *by_power]:
             spec = next((x for x in c.model.loads if x.name == load), None)
             from ....model import Gravity
 

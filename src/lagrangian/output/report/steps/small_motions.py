@@ -30,6 +30,7 @@ from ....errors import LagrangianError
 from ..build import Context
 from ..document import Block, Display, Equation, Items, Math, Para, Runs, Section
 from ..size import LINE_WIDTH, visible_width, wrap_many
+from .precession import precession_blocks
 
 __all__ = ["small_motions_section", "as_linear_model"]
 
@@ -292,4 +293,5 @@ def small_motions_section(c: Context, lin: Any) -> Section:
         stability, modes = num.stability(), num.modes()
         blocks += _pulsations(c, so if shown is sym else None, modes)
         blocks += _stability(c, num, stability, modes)
+    blocks += precession_blocks(c, so)  # Larmor: the turning plane of oscillation (Foucault's pendulum)
     return Section("small motions", w.text("small title steady" if lin.steady else "small title"), tuple(blocks))

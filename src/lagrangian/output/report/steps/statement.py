@@ -228,7 +228,7 @@ def _losses(c: Context, j: Joint) -> list[Block]:
             why.append(w("why coulomb", name=w.load(name), P=Math(c.point_label(j.element))))
         else:
             why.append(w("why damper", name=w.load(name)))
-    Q = Math(rf"Q_{{i}}^{{\mathrm{{nc}}}}")
+    Q = Math(r"Q_{i,\,\mathrm{nc}}")
     return [Para(w("not perfect", why=w.join(why), Q=Q))]
 
 
@@ -279,7 +279,11 @@ def _perfect(c: Context, j: Joint) -> list[Block]:
         G = c.point_label(j.element)
         n = w.join([Math(c.axis(a)) for a in j.normals])
         cond = w.join([Math(rf"{c.axis(a)}\cdot\vec{{V}}^{{*}}({G}) = 0") for a in j.normals])
-        return [Para(w("perfect body plane", n=n, cond=cond))]
+        blocks = [Para(w("perfect body plane", n=n, cond=cond))]
+        rolling = next((con for con in c.model.constraints if con.form == "no_slip" and con.body == j.element), None)
+        if rolling is not None:  # the contact's tangential action is the rolling constraint's reaction, not zero
+            blocks.append(Para(w("adherence", S=Math(c.element(j.element)), I=Math(c.point_label(rolling.points[0])))))
+        return blocks
     return [Para(w("perfect assumed"))]
 
 
@@ -342,10 +346,12 @@ def _declared(c: Context, con: Constraint, one: bool) -> list[Block]:
                 R = Math(rf"{c.reaction_tex(con.name)} = {c.vector(reaction.force)}")
                 body = reaction.body or getattr(con, "body", None)
                 if body is not None and body != reaction.point and body in c.bodies:
-                    blocks.append(Para(w("reaction on at", S=Math(c.element(body)),
-                                         E=Math(c.point_label(reaction.point)), R=R)))
+                    runs = w("reaction on at", S=Math(c.element(body)), E=Math(c.point_label(reaction.point)), R=R)
                 else:
-                    blocks.append(Para(w("reaction is", E=Math(c.point_label(reaction.point)), R=R)))
+                    runs = w("reaction is", E=Math(c.point_label(reaction.point)), R=R)
+                if con.form == "no_slip":  # the tangential reaction that rolling needs: adherence
+                    runs = runs + (" ",) + w("adherence reaction")
+                blocks.append(Para(runs))
     else:
         blocks.append(Para(w("perfect assumed")))
     return blocks
