@@ -37,6 +37,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "matrix": ("Annexe : forme matricielle", "Appendix: matrix form"),
     # -- the system -------------------------------------------------------------------------------
     "galilean": ("{R0} est un repère galiléen.", "{R0} is a Galilean (inertial) frame."),
+    "vertical up": ("{axis} est la verticale ascendante : la pesanteur est {g}.",
+                    "{axis} is the ascending vertical: gravity is {g}."),
+    "vertical down": ("{axis} est la verticale descendante : la pesanteur est {g}.",
+                      "{axis} is the descending vertical (it points down): gravity is {g}."),
     "reference": ("Les équations sont écrites par rapport au repère {R}, qui n'est pas galiléen : aux efforts "
                   "donnés s'ajoutent les efforts d'inertie de Coriolis et d'entraînement (Remarque 3).",
                   "The equations are written relative to the frame {R}, which is not Galilean: the Coriolis "
@@ -419,6 +423,21 @@ _PHRASES: dict[str, tuple[str, str]] = {
                           "where {gamma} is the acceleration relative to {R0} of the origin {O} of {R}, {G} the "
                           "centre of mass{many}, {Omega} the rotation of {R} relative to {R0} and {Pi} the inertia "
                           "operator of (Σ) at {O}."),
+    "entrainment potential fixed": ("Cette énergie potentielle existe parce que la rotation {Omega} est constante, {rate} : le terme "
+                                    "{term} de l'accélération d'entraînement, qui ne dérive d'aucune énergie "
+                                    "potentielle, est nul ; l'origine {O} étant fixe dans {R0}, {gamma}, il ne reste "
+                                    "que la force centrifuge.",
+                                    "This potential energy exists because the rotation {Omega} is constant, {rate}: the term {term} of the "
+                                    "transport acceleration, which derives from no potential energy, vanishes; the "
+                                    "origin {O} being fixed in {R0}, {gamma}, only the centrifugal force is left."),
+    "entrainment potential moving": ("Cette énergie potentielle existe parce que la rotation {Omega} est constante, {rate} : le terme {term} de "
+                                     "l'accélération d'entraînement, qui ne dérive d'aucune énergie potentielle, est "
+                                     "nul ; l'accélération {gamma} de l'origine {O}, uniforme, donne le terme en "
+                                     "{gamma}, qui dépend du temps.",
+                                     "This potential energy exists because the rotation {Omega} is constant, {rate}: the term {term} of the "
+                                     "transport acceleration, which derives from no potential energy, vanishes; the "
+                                     "acceleration {gamma} of the origin {O}, uniform, gives the term in {gamma}, which "
+                                     "depends on the time."),
     "each element": (" de chaque élément, de masse m", " of each element, of mass m"),
     "coulomb exact": ("C'est la loi exacte (sans régularisation), valable en glissement, {v}, où N est la composante "
                       "normale de l'action du support (étape 7) ; quand le glissement cesse, {v0}, la simulation "
@@ -630,6 +649,18 @@ _PHRASES: dict[str, tuple[str, str]] = {
                           "{names}, given by its generalized forces, enters each projection through those (its "
                           "virtual power)."),
     "of": (" de {names}", " of {names}"),
+    "check summarized": ("la projection des quantités d'accélération, {G} ({k} termes), et celle des efforts, "
+                         "{Q} ({k2} termes), trop longues pour être écrites ici, redonnent, développées, les deux "
+                         "membres de {eq} (étape 6) :",
+                         "the projection of the mass-times-accelerations, {G} ({k} terms), and that of the efforts, "
+                         "{Q} ({k2} terms), too long to print here, give back, expanded, the two members of {eq} "
+                         "(step 6):"),
+    "check summarized left": ("la projection des quantités d'accélération, {G} ({k} termes), trop longue pour être "
+                              "écrite ici, redonne, développée, le premier membre de {eq} (étape 6), et celle des "
+                              "efforts, {Q}, son second membre :",
+                              "the projection of the mass-times-accelerations, {G} ({k} terms), too long to print "
+                              "here, gives back, expanded, the left member of {eq} (step 6), and that of the efforts, "
+                              "{Q}, its right member:"),
     "check failed": ("Désaccord : la projection ne redonne pas {eq}.", "Disagreement: the projection does not give "
                      "{eq} back."),
     "constraint actions": ("liaisons", "constraints"),

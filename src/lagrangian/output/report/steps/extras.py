@@ -12,7 +12,11 @@ import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+import symengine as se
+import sympy
+
 from ...._identity import are_zero
+from ..._notation import Opaque
 from ....analysis import Verification
 from ....model import Vector
 from ..build import Context
@@ -83,13 +87,42 @@ def check_section(c: Context, v: Verification) -> Section:
         else:
             head = w("by power", eq=eq, of=of, q=Math(q))
         blocks += _fixed_axis(c, check, theorems)
-        blocks.append(Para(head))
         mark = r"\quad\checkmark" if check.agrees else r"\quad\times"
-        blocks += c.show([c.relation("", c.ex(check.newton_euler), c.ex(check.newton_euler_efforts), mark)],
-                         f"L({check.coordinate})")
+        left, right = c.ex(check.newton_euler), c.ex(check.newton_euler_efforts)
+        long_left, long_right = (isinstance(x, sympy.Basic) and bool(x.atoms(Opaque)) for x in (left, right))
+        if check.agrees and (long_left or long_right):
+            # ⟨24 termes⟩ = … ✓ cannot be checked by a reader: say what was compared, member by member.
+            G, Q = rf"\Gamma^{{\mathrm{{NE}}}}_{{{q}}}", rf"Q^{{\mathrm{{NE}}}}_{{{q}}}"
+            key = "check summarized" if long_right else "check summarized left"
+            blocks.append(Para(head + (" ",) + w(key, eq=eq, k=str(_terms(check.newton_euler)),
+                                                 k2=str(_terms(check.newton_euler_efforts)), G=Math(G), Q=Math(Q))))
+            gamma, forces = _identity_line(c, check.coordinate)
+            lines = [gamma, forces] if long_right else [gamma]
+            blocks.append(Display(tuple(Equation((line,)) for line in lines)))
+            if not long_right:
+                blocks += c.show([c.equation(f"{Q} = ", right, mark)], f"L({check.coordinate})")
+        else:
+            blocks.append(Para(head))
+            blocks += c.show([c.relation("", left, right, mark)], f"L({check.coordinate})")
         if not check.agrees:
             blocks.append(Para(w("check failed", eq=eq), style="note"))
     return Section("check", w.text("check"), tuple(blocks))
+
+
+def _terms(e: se.Basic) -> int:
+    return len(e.args) if isinstance(e, se.Add) else 1
+
+
+def _identity_line(c: Context, q: str) -> tuple[str, str]:
+    """Γ_q^NE − Γ_q = 0 ✓ and Q_q^NE − Q_q = 0 ✓, Γ_q and Q_q the two members of L(q) at step 6."""
+    qs, qd = c.sym(q), c.sym(q, "dot")
+    R = c.R
+    gamma = (rf"\frac{{d}}{{dt}}\left[\frac{{\partial T(\Sigma/{R})}}{{\partial {qd}}}\right] - "
+             rf"\frac{{\partial T(\Sigma/{R})}}{{\partial {qs}}}")
+    lam = f" + {c.multiplier_sum(qs)}" if c.eom.equation(q).multiplier_terms != 0 else ""
+    forces = rf"-\frac{{\partial U_P(\Sigma/{R})}}{{\partial {qs}}} + {c.Q_nc(q)}{lam}"
+    return (rf"\Gamma^{{\mathrm{{NE}}}}_{{{qs}}} - \left({gamma}\right) = 0\quad\checkmark",
+            rf"Q^{{\mathrm{{NE}}}}_{{{qs}}} - \left({forces}\right) = 0\quad\checkmark")
 
 
 def _fixed_axis(c: Context, check, theorems: dict) -> list[Block]:  # type: ignore[no-untyped-def,type-arg]

@@ -423,12 +423,42 @@ def _inertia_centre(c: Context) -> str:
     return c.point_label(elements[0]) if len(elements) == 1 else "G"
 
 
-def _entrainment_terms(c: Context) -> Para:
-    """What the entrainment potential's symbols are (Remarque 3)."""
+def entrainment_conditions(c: Context) -> tuple[bool, bool]:
+    """(dΩ(R/R0)/dt = 0, γ(O/R0) = 0) for the frame R of the equations: the two terms of the entrainment force that
+    decide whether it derives from a potential (Remarque 3)."""
+    from ...._identity import are_zero
+    from ....dynamics._inertial import RelativeKinematics
+
+    kin = c.kin
+    if not isinstance(kin, RelativeKinematics):
+        return True, True
+    comps = lambda v: list(kin.frames.absolute.express(v, "R0")) if not v.is_zero() else []  # noqa: E731
+    constant = all(are_zero(comps(kin.frame_omega_rate))) if comps(kin.frame_omega_rate) else True
+    fixed = all(are_zero(comps(kin.origin_acceleration))) if comps(kin.origin_acceleration) else True
+    return constant, fixed
+
+
+def _entrainment_terms(c: Context) -> list[Block]:
+    """What the entrainment potential's symbols are (Remarque 3), and why it exists: Ω(R/R0) constant, so the term
+    dΩ/dt ∧ OP (which derives from no potential) vanishes; with O fixed in R0, the γ(O/R0) term vanishes too."""
+    w = c.w
     O, G = c.name(c.origin), _inertia_centre(c)
-    return Para(c.w("entrainment terms", gamma=Math(rf"\vec{{\gamma}}({O}/R_{{0}})"), O=Math(O), R=Math(c.R),
-                    R0=Math("R_{0}"), G=Math(G), Omega=Math(rf"\vec{{\Omega}}({c.R}/R_{{0}})"),
-                    Pi=Math(rf"\Pi_{{{O}}}(\Sigma)"), many="" if G != "G" else c.w.text("each element")))
+    Omega = rf"\vec{{\Omega}}({c.R}/R_{{0}})"
+    out: list[Block] = [Para(w("entrainment terms", gamma=Math(rf"\vec{{\gamma}}({O}/R_{{0}})"), O=Math(O), R=Math(c.R),
+                               R0=Math("R_{0}"), G=Math(G), Omega=Math(Omega),
+                               Pi=Math(rf"\Pi_{{{O}}}(\Sigma)"), many="" if G != "G" else w.text("each element")))]
+    constant, fixed = entrainment_conditions(c)
+    if constant:
+        rate = Math(rf"\frac{{d{Omega}}}{{dt}} = \vec{{0}}")
+        term = Math(rf"\frac{{d{Omega}}}{{dt}}\wedge\overrightarrow{{{O}P}}")
+        if fixed:
+            out.append(Para(w("entrainment potential fixed", rate=rate, term=term, O=Math(O), R0=Math("R_{0}"),
+                              Omega=Math(Omega),
+                              gamma=Math(rf"\vec{{\gamma}}({O}/R_{{0}}) = \vec{{0}}"))))
+        else:
+            out.append(Para(w("entrainment potential moving", rate=rate, term=term, O=Math(O), Omega=Math(Omega),
+                              gamma=Math(rf"\vec{{\gamma}}({O}/R_{{0}})"))))
+    return out
 
 
 def _potential(c: Context) -> list[Block]:
@@ -459,7 +489,7 @@ def _potential(c: Context) -> list[Block]:
         blocks.append(Para(w("potential of")))
     blocks += c.show(rows, "U_P") + alone
     if any(f.kind == "inertial: entrainment" for f, _ in loads):
-        blocks.append(_entrainment_terms(c))
+        blocks += _entrainment_terms(c)
     # The total U_P(Σ/R), under its own name, when it sums at least two terms that are not zero.
     if sum(1 for _, row in loads if row.expression != 0) > 1:
         total = rf"U_P(\Sigma/{c.R}) = "

@@ -110,6 +110,27 @@ def _constraint_given(c: Context, con: Constraint) -> Runs:
     return w("constraint item", label=label, equation=Math(equation) if equation else "")
 
 
+def _vertical(c: Context) -> Runs | None:
+    """« O z0 est la verticale ascendante » (or descendante: the bicycle's z0 points down), when the weight is along
+    one axis of R0; its sign is read at the model's values (g > 0), else from the expression."""
+    from ....model import Gravity
+
+    fields = [load.field for load in c.model.loads if isinstance(load, Gravity)]
+    if len(fields) != 1:
+        return None
+    frames = c.kin.frames.absolute if hasattr(c.kin.frames, "absolute") else c.kin.frames
+    comps = list(frames.express(fields[0], "R0"))
+    nonzero = [k for k, x in enumerate(comps) if x != 0]
+    if len(nonzero) != 1:
+        return None
+    k = nonzero[0]
+    value = c.initial_value(comps[k])
+    down = value > 0 if value is not None else not comps[k]._sympy_().could_extract_minus_sign()
+    axis = Math(rf"O{c.axis(c.kin.frames.axes('R0')[k])}")
+    g = Math(rf"\vec{{g}} = {c.vector(fields[0])}")
+    return c.w("vertical down" if down else "vertical up", axis=axis, g=g)
+
+
 def system_section(c: Context) -> Section:
     """The statement (« Énoncé ») a teacher hands out: the system, R0, the bodies, the constants, the loads, the
     constraints, all as the model declares them (before any step of the démarche)."""
@@ -122,6 +143,9 @@ def system_section(c: Context) -> Section:
             what = what[0].lower() + what[1:]
         blocks.append(Para(w("statement intro", what=what)))
     blocks.append(Para(w("galilean", R0=Math(_frame_with_axes(c, "R0", "O")))))
+    vertical = _vertical(c)
+    if vertical is not None:
+        blocks.append(Para(vertical))
     if c.ref != "R0":
         blocks.append(Para(w("reference", R=Math(_frame_with_axes(c, c.ref, c.origin)))))
     items: list[Runs] = []
