@@ -318,13 +318,13 @@ class _Translation:
         unit, effort = ("m", "N") if joint.type == "prismatic" else ("rad", "N·m")
         speed = "m/s" if joint.type == "prismatic" else "rad/s"
 
-        def num(x: float, lang: str) -> str:
-            return f"{x:g}".replace(".", ",") if lang == "fr" else f"{x:g}"
+        def num(x: float, lang: str) -> str:  # French: decimal comma and a minus sign, not a hyphen
+            return f"{x:g}".replace(".", ",").replace("-", "\u2212") if lang == "fr" else f"{x:g}"
 
         texts = {}
         for lang, (head, limits, force, pace) in {
-                "fr": (f"liaison {_KIND_FR.get(joint.type, joint.type)} `{joint.name}`", "limites", "effort", "vitesse"),
-                "en": (f"{joint.type} joint `{joint.name}`", "limits", "effort", "speed")}.items():
+                "fr": (f"liaison {_KIND_FR.get(joint.type, joint.type)} « {joint.name} »", "limites", "effort", "vitesse"),
+                "en": (f"{joint.type} joint “{joint.name}”", "limits", "effort", "speed")}.items():
             text = f"{head} ({joint.parent} → {joint.child})"
             if joint.type != "continuous" and lim.lower is not None and lim.upper is not None and lim.lower < lim.upper:
                 sep = " ; " if lang == "fr" else ", "  # the French interval [a ; b]: its numbers have decimal commas
@@ -449,8 +449,8 @@ class _Translation:
             tau = self.names.take(joint_name, "tau_")
             what, quoi = ("force", "effort") if joint.type == "prismatic" else ("torque", "couple")
             self.b.input(tau, unit="N" if joint.type == "prismatic" else "N*m",
-                         description=Text({"fr": f"{quoi} de l'actionneur de la liaison `{joint_name}`",
-                                           "en": f"actuator {what} of joint `{joint_name}`"}),
+                         description=Text({"fr": f"{quoi} de l'actionneur de la liaison « {joint_name} »",
+                                           "en": f"actuator {what} of joint “{joint_name}”"}),
                          location=self.where(joint.line))
             components[q] = se.Symbol(tau)
         if components:

@@ -24,7 +24,7 @@ from ...._identity import are_zero
 from ....analysis import Verification
 from ..._course import EquationRow, IntegralRow
 from ..._notation import Opaque
-from ..build import Context
+from ..build import _SI, Context
 from ..document import Block, Display, Equation, Math, Para, Runs, Section
 from ....model import ORIGIN
 from ..joints import _root
@@ -44,9 +44,6 @@ def _dT(c: Context, q: str, deco: str = "", U: bool = False) -> str:
     return rf"\frac{{\partial {what}}}{{\partial {c.sym(q, deco)}}}"
 
 
-#: SI units a model's parameters may be written in for `_unit` to name the unit of an integral.
-_SI = {"m", "kg", "s", "rad", "N", "J", "W", "Pa", "kg m^2", "kg*m^2", "kg·m²", "m/s", "m/s^2", "m/s²", "rad/s",
-       "N m", "N*m", "N·m", "N/m", "N s/m", "N*s/m", "kg/s", "1", ""}
 
 
 def _unit(c: Context, kind: str, coordinate: str | None = None) -> str:
@@ -237,7 +234,7 @@ def pin_reaction(c: Context, v: Verification) -> list[Block]:
         P, G, S, R = c.name(r.point), c.point_label(body), c.element(body), c.R
         RO = rf"\vec{{R}}_{{{P}}}"
         given = " - ".join(rf"\vec{{F}}({c.load_tex(e)})" for e in th.efforts)
-        head = rf"{RO} = {c.tex(th.mass)}\,\vec{{\gamma}}({G}/{R})" + (f" - {given}" if given else "") + " = "
+        head = rf"{RO} = {c.mass_tex(body)}\,\vec{{\gamma}}({G}/{R})" + (f" - {given}" if given else "") + " = "
         axes = c.kin.frames.axes(r.frame)
         terms = tuple((c.ex(x), a) for x, a in zip(r.force_components, axes) if not c.is_zero(x))
         out.append(Para(c.w("pin reaction", R=Math(RO), O=Math(P), S=Math(f"({S})"))))

@@ -173,9 +173,8 @@ def _theorem_statement(c: Context, kind: str, point: str | None, names: tuple[st
     E = c.element(label) if len(names) == 1 else label
     efforts = sorted({e for th in theorems.values() if th.name in names for e in th.efforts})
     if kind == "resultant":
-        masses = [th.mass for th in theorems.values() if th.name in names]
         G = c.point_label(names[0]) if len(names) == 1 else "G"
-        m = c.tex(masses[0]) if len(masses) == 1 else r"\sum m"
+        m = c.mass_tex(names[0]) if len(names) == 1 else r"\sum m"
         forces = " + ".join([c.reaction_tex(e) if c.is_constraint(e) else rf"\vec{{F}}({c.load_tex(e)})"
                              for e in efforts] + [rf"\vec{{F}}({c.load_tex(e)})" for e in by_power]) or r"\vec{0}"
         return [Para(w("resultant theorem", P=elements)),
@@ -219,7 +218,7 @@ def _theorem_statement(c: Context, kind: str, point: str | None, names: tuple[st
     drift = ""
     if moving:
         masses = {th.name: th.mass for th in theorems.values() if th.name in names}
-        m = c.tex(masses[names[0]]) if len(names) == 1 else "m"
+        m = c.mass_tex(names[0]) if len(names) == 1 else "m"
         G = c.point_label(names[0]) if len(names) == 1 else "G"
         term = rf"{m}\,\vec{{V}}({P}/{R})\wedge\vec{{V}}({G}/{R})"
         # m V(P) ∧ V(G) = V(P) ∧ Σ m_k V(G_k): it vanishes when P moves with G (the coin's contact point).

@@ -29,10 +29,7 @@ def _elements(c: Context, load: Gravity) -> tuple[str, ...]:
 
 
 def _mass(c: Context, name: str) -> str:
-    for b in c.model.bodies:
-        if b.name == name:
-            return c.tex(b.mass)
-    return c.tex(next(p.mass for p in c.model.particles if p.name == name))
+    return c.mass_tex(name)
 
 
 def _formula(c: Context, f: LoadForces, load: object) -> tuple[str, str]:

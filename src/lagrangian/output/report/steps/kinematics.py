@@ -339,7 +339,7 @@ def _kinetic(c: Context) -> list[Block]:
                     next((p.mass for p in c.model.particles if p.name == term.name), None))
         P = c.point_label(term.inertia.point) if term.inertia is not None and term.inertia.point != "G" else ""
         formula = _T_FORMULA.get(term.formula, "").format(S=S, R=c.R, P=P, G=c.point_label(term.name),
-                                                          m=c.tex(mass) if mass is not None else "m")
+                                                          m=c.mass_tex(term.name) if mass is not None else "m")
         head = rf"T({S}/{c.R}) = " + (f"{formula} = " if formula else "")
         rows.append(c.equation(head, shown.expression))
     blocks = c.many(c.show(rows, "T"), len(rows), "T") + single
@@ -382,14 +382,16 @@ def _gravity_formula(c: Context, load: Gravity) -> str:
         axis = c.axis(c.kin.frames.axes(frame)[k])
         terms = []
         for name in names:
-            coeff = c.tex(-comp * masses[name])
+            mass = masses[name]
+            # a number (a URDF's 8 kg) is written m_S: m_S g OG·z0, not 8 g OG·z0
+            coeff = c.tex(-comp * mass) if mass.free_symbols else f"{c.mass_tex(name)}\\,{c.tex(-comp)}"
             terms.append(rf"{coeff}\,\overrightarrow{{{O}{c.point_label(name)}}}\cdot{axis}")
         text = terms[0]
         for t in terms[1:]:
             text += f" - {t[1:]}" if t.startswith("-") else f" + {t}"
         return text
     if len(names) == 1:
-        return rf"-{c.tex(masses[names[0]])}\,\vec{{g}}\cdot\overrightarrow{{{O}{c.point_label(names[0])}}}"
+        return rf"-{c.mass_tex(names[0])}\,\vec{{g}}\cdot\overrightarrow{{{O}{c.point_label(names[0])}}}"
     return rf"-\sum_{{k}} m_{{k}}\,\vec{{g}}\cdot\overrightarrow{{{O}G_{{k}}}}"
 
 

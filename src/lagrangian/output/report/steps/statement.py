@@ -39,17 +39,27 @@ def _frame_with_axes(c: Context, frame: str, origin: str | None) -> str:
     return f"{c.name(frame)}({c.name(origin)};\\ {axes})" if origin else f"{c.name(frame)}({axes})"
 
 
+def _mass_given(c: Context, name: str, mass) -> str:  # type: ignore[no-untyped-def]
+    """m, or m_S = 8 kg for a number (so that later formulas can write m_S)."""
+    if mass.free_symbols:
+        return c.tex(mass)
+    return f"{c.mass_tex(name)} = {c.quantity(mass, 'kg')}"
+
+
 def _inertia_given(c: Context, body) -> Runs:  # type: ignore[no-untyped-def]
     """The inertia of a body as the model gives it: principal moments, or the matrix, at a point in a basis."""
     i = body.inertia
     P = Math(c.point_label(body.name) if i.at == "G" else c.point_label(i.at))
     basis = Math(c.basis(i.frame))
     m = i.matrix
+    numbers = c.si and not any(x.free_symbols for row in m for x in row)
+    unit = r"\ \mathrm{kg\cdot m^{2}}" if numbers else ""  # a URDF's inertias: numbers in kg·m²
     if all(m[r][k] == 0 for r in range(3) for k in range(3) if r != k):
         return c.w("inertia principal given", P=P, basis=basis,
-                   values=Math(r",\ ".join(c.tex(m[k][k]) for k in range(3))))
+                   values=Math(r",\ ".join(c.tex(m[k][k]) for k in range(3)) + unit))
     rows = r" \\ ".join(" & ".join(c.tex(x) for x in row) for row in m)
-    return c.w("inertia matrix given", P=P, basis=basis, matrix=Math(rf"\begin{{bmatrix}} {rows} \end{{bmatrix}}"))
+    return c.w("inertia matrix given", P=P, basis=basis,
+               matrix=Math(rf"\begin{{bmatrix}} {rows} \end{{bmatrix}}" + unit))
 
 
 def _load_given(c: Context, load: object) -> Runs | None:  # noqa: PLR0911 - one phrase per kind of load
@@ -154,22 +164,30 @@ def system_section(c: Context) -> Section:
         G = c.point_label(b.name)
         OG = Math(rf"\overrightarrow{{{origin}{G}}} = {c.short_vector(c.kin.position(b.name))}")
         if b.mass_given:
-            item = w("body item", S=Math(c.element(b.name)), m=Math(c.tex(b.mass)), G=Math(G), OG=OG)
+            item = w("body item", S=Math(c.element(b.name)), m=Math(_mass_given(c, b.name, b.mass)), G=Math(G), OG=OG)
         else:
             item = w("body item no mass", S=Math(c.element(b.name)), G=Math(G), OG=OG)
         items.append(item + (", ",) + _inertia_given(c, b))
     for p in model.particles:
         OP = Math(rf"\overrightarrow{{{origin}{c.element(p.name)}}} = {c.short_vector(c.kin.position(p.name))}")
-        items.append(w("particle item", P=Math(c.element(p.name)), m=Math(c.tex(p.mass)), OP=OP))
+        items.append(w("particle item", P=Math(c.element(p.name)), m=Math(_mass_given(c, p.name, p.mass)), OP=OP))
     if items:
         blocks.append(Para(w("constituents")))
         blocks += c.many([Items(tuple(items))], len(items), w.text("constituents").rstrip(" :"))
-    if model.parameters:
-        rows = tuple((( Math(c.sym(p.name)),), ("" if p.value is None else w.number(p.value),), (_unit(p.unit),),
-                      (in_language(p.description, c.lang) or "",)) for p in model.parameters)
+    constants = [p for p in model.parameters if not p.input]
+    if constants:
+        rows = tuple(((Math(c.sym(p.name)),), ("" if p.value is None else w.number(p.value),), (_unit(p.unit),),
+                      (in_language(p.description, c.lang) or "",)) for p in constants)
         header = tuple((w.text(k),) for k in ("col symbol", "col value", "col unit", "col description"))
         blocks.append(Para(w("parameters")))
         blocks += c.many([Table(header, rows)], len(rows), w.text("parameters").rstrip(" :"))
+    inputs = [p for p in model.parameters if p.input]
+    if inputs:  # a motor's τ(t), a push F(t): given functions of time, not constants
+        rows = tuple(((Math(c.sym(p.name)),), (_unit(p.unit),), (in_language(p.description, c.lang) or "",))
+                     for p in inputs)
+        header = tuple((w.text(k),) for k in ("col symbol", "col unit", "col description"))
+        blocks.append(Para(w("inputs")))
+        blocks += c.many([Table(header, rows)], len(rows), w.text("inputs").rstrip(" :"))
     loads = [(load, _load_given(c, load)) for load in model.loads]
     load_items = tuple(w("load item", name=w.load(load.name), what=what) for load, what in loads  # type: ignore[attr-defined]
                        if what is not None)
@@ -490,12 +508,15 @@ def step2(c: Context) -> Section:
         blocks = [Para(w("n params euler", n=n, list=w.join(symbols), S=Math(c.element(euler))))]
     else:
         blocks = [Para(w("n params", n=n, list=w.join(symbols)))]
-    header = tuple((w.text(k),) for k in ("col symbol", "col description", "col initial", "col rate"))
+    named = bool(c.coordinate_names)  # q₁, q₂… stand for the joints: their names in a column
+    keys = ("col symbol",) + (("col name",) if named else ()) + ("col description", "col initial", "col rate")
+    header = tuple((w.text(k),) for k in keys)
     rows = []
     for coord in c.model.coordinates:
-        rows.append(((Math(c.sym(coord.name)),), (in_language(coord.description, c.lang) or "",),
-                     ("" if coord.initial is None else w.number(coord.initial),),
-                     ("" if coord.rate is None else w.number(coord.rate),)))
+        rows.append(((Math(c.sym(coord.name)),),) + (((coord.name,),) if named else ())
+                    + ((in_language(coord.description, c.lang) or "",),
+                       ("" if coord.initial is None else w.number(coord.initial),),
+                       ("" if coord.rate is None else w.number(coord.rate),)))
     blocks += c.many([Table(header, tuple(rows))], len(rows), w.text("step2"))
     m = len(c.eom.constraints)
     if m == 1:
