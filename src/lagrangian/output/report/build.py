@@ -31,6 +31,9 @@ from .._text import notation
 
 __all__ = ["Context", "tex_name", "tex_text"]
 
+#: Letters the report uses for its own quantities: a frame with such a name is written R_E, R_L…
+_TAKEN = frozenset({"E", "L", "T", "U", "H", "K", "h", "M", "F", "Q"})
+
 
 def tex_text(name: str) -> str:
     """A load or constraint name as text inside math: ``\\text{weight}``, ``my_load`` → ``\\text{my}\\_\\text{load}``.
@@ -151,6 +154,7 @@ class Context:
         self.origin = reference.origin if relative else ORIGIN  # type: ignore[union-attr]
         self.joints: tuple[Joint, ...] = joints(eom)
         self.bodies = {b.name for b in self.model.bodies}
+        self.frames = {f.name for f in self.model.frames}
         units = [p.unit.strip() for p in self.model.parameters if p.unit is not None]
         #: The model is in SI units (a URDF, or every declared unit SI): its bare numbers get theirs (8 kg).
         self.si = is_urdf(self.model) or (bool(units) and all(u in _SI for u in units))
@@ -174,10 +178,33 @@ class Context:
     @property
     def R(self) -> str:
         """LaTeX of the frame the equations are written in: R_{0} (or R)."""
-        return tex_name(self.ref)
+        return self.name(self.ref)
 
     def name(self, name: str) -> str:
+        """A point or frame in formulas; a frame named like a quantity of the report (E, L, T, U, H, K: the energy, the
+        Lagrangian…) is written R_E, R_L…"""
+        if name in _TAKEN and name in self.frames:
+            return rf"R_{{{name}}}"
         return tex_name(name)
+
+    def _used_letters(self) -> set[str]:
+        plain = Notation()
+        own = [p.name for p in self.model.parameters] + list(self.eom.coordinates)
+        shown = {plain.symbol(n, latex=True).split("_")[0] for n in own}
+        shown |= {tex_name(x) for x in [*self.frames, *(p.name for p in self.model.points), *self.bodies,
+                                          *(p.name for p in self.model.particles)]}
+        shown |= {x[1].split("_")[0] for x in self.multiplier_names.values()}
+        return shown
+
+    def free_letter(self, *candidates: str) -> str:
+        """The first of ``candidates`` that no symbol, point, body or frame of the model is written as."""
+        used = self._used_letters()
+        return next((x for x in candidates if x not in used), candidates[-1])
+
+    @property
+    def eigen(self) -> str:
+        """The eigenvalues' letter: λ, or s when λ is taken (a multiplier, the latitude of Foucault's pendulum)."""
+        return r"\lambda" if r"\lambda" not in self._used_letters() else "s"
 
     def load_name(self, name: str) -> str:
         """A load's name in the report's language (the engine's and usual names translated)."""

@@ -260,9 +260,9 @@ _PHRASES: dict[str, tuple[str, str]] = {
                       "points où s'appliquent les efforts donnés :", "The virtual velocity field compatible with "
                       "the principal constraints is {field}; at the points where the applied forces act:"),
     "virtual torsor": ("Le champ des vitesses virtuelles de chaque solide (S) est un torseur, le torseur cinématique "
-                       "virtuel, donné par ses éléments de réduction en un point A de (S), tel que {field} :",
+                       "virtuel, donné par ses éléments de réduction en un point {A} de (S), tel que {field} :",
                        "The virtual velocity field of each rigid body (S) is a screw (the virtual kinematic screw, or "
-                       "twist), given by its reduction elements at a point A of (S), such that {field}:"),
+                       "twist), given by its reduction elements at a point {A} of (S), such that {field}:"),
     "comoment intro": ("Les liaisons principales parfaites ne travaillent pas dans ce champ : la puissance virtuelle "
                        "des actions d'une liaison est le comoment du torseur de ses actions {torsor}, réduit en un "
                        "point X, et du torseur cinématique virtuel : {P}.",

@@ -77,7 +77,7 @@ def _value(c: Context, name: str, expr_engine: se.Basic, unit: str = "") -> Runs
     value = c.initial_value(expr_engine)
     if value is None:
         return ()
-    return (" (",) + c.w("with values", value=(Math(name), f" ≈ {c.w.number(value)}{unit}")) + (")",)
+    return (" (",) + c.w("with values", value=(Math(name), f" ≈ {c.w.number(value, 4)}{unit}")) + (")",)
 
 
 def _partials(c: Context, row: EquationRow) -> tuple[list[Equation], list[Block]]:
@@ -211,7 +211,7 @@ def _coriolis(c: Context, jacobi: bool) -> list[Block]:
 
 def left_out_note(c: Context, left: list) -> Runs:  # type: ignore[type-arg]
     """The note on the summaries whose full forms the budget left out, and where to find them."""
-    budget = f"{c.book.budget:,}".replace(",", " " if c.lang == "fr" else ",")
+    budget = f"{c.book.budget:,}".replace(",", "\u202f" if c.lang == "fr" else ",")  # 300 000: a narrow space
     return c.w("full forms left", budget=budget, k=str(len(left)),
                sample=Math(left[0].plain_latex), cmd=c.derive_command, fn="lagrangian.derive")
 

@@ -174,9 +174,15 @@ _RELATION = {"positive": ">", "nonnegative": r"\geq", "negative": "<", "nonposit
 
 
 def _interval(c: Context, bounds: tuple) -> str:  # type: ignore[type-arg]
-    """[a, b] in LaTeX (numbers as decimals, as the file wrote them), an open side as ∞."""
-    lower, upper = (None if b is None else f"{float(b):g}" if not b.free_symbols else c.tex(b) for b in bounds)
-    return ((rf"\left[{lower}, " if lower is not None else r"\left]-\infty, ")
+    """[a, b] in LaTeX (numbers as decimals, as the file wrote them), an open side as ∞; in French [a ; b] with
+    decimal commas."""
+    def number(b) -> str:  # type: ignore[no-untyped-def]
+        text = f"{float(b):g}"
+        return text.replace(".", "{,}") if c.lang == "fr" else text
+
+    lower, upper = (None if b is None else number(b) if not b.free_symbols else c.tex(b) for b in bounds)
+    sep = r"\,;\, " if c.lang == "fr" else ", "
+    return ((rf"\left[{lower}{sep}" if lower is not None else rf"\left]-\infty{sep}")
             + (rf"{upper}\right]" if upper is not None else r"+\infty\right["))
 
 

@@ -312,8 +312,10 @@ def step3(c: Context) -> Section:
         blocks += c.many(c.show(rows, r"V*"), len(rows), "V*")
     torsors = _virtual_torsors(c)
     if torsors:
-        AP = rf"\vec{{V}}^{{*}}(P\in S/{c.R}) = \vec{{V}}^{{*}}(A\in S/{c.R}) + \vec{{\Omega}}^{{*}}(S/{c.R})\wedge\overrightarrow{{AP}}"
-        blocks.append(Para(w("virtual torsor", field=Math(AP))))
+        A, P = c.free_letter("A", "B", "D", "J"), c.free_letter("P", "M", "Y")  # not the top's A, the bob P
+        AP = (rf"\vec{{V}}^{{*}}({P}\in S/{c.R}) = \vec{{V}}^{{*}}({A}\in S/{c.R}) + \vec{{\Omega}}^{{*}}(S/{c.R})"
+              rf"\wedge\overrightarrow{{{A}{P}}}")
+        blocks.append(Para(w("virtual torsor", field=Math(AP), A=Math(A))))
         blocks += c.many(torsors, len(c.model.bodies), w.text("virtual torsor short"), limit=6)
     comoments = _comoments(c)
     blocks += c.many(comoments, len(c.joints), w.text("comoment short"), limit=8)

@@ -207,7 +207,7 @@ def _eigenvalues(c: Context, lam: np.ndarray) -> Runs:
         text = _eigenvalue(c.w, complex(z))
         if text not in shown:
             shown.append(text)
-    return c.w.join([Math(rf"\lambda = {t}") for t in shown])
+    return c.w.join([Math(rf"{c.eigen} = {t}") for t in shown])
 
 
 def _essential_KG(lin: Any, modes: Any) -> tuple[np.ndarray, np.ndarray] | None:
@@ -256,7 +256,7 @@ def _stability(c: Context, lin: Any, stability: Any, modes: Any) -> list[Block]:
     if lam.size:
         listed = "small eigenvalues left" if modes.neutral else "small eigenvalues"
         blocks.append(Para(w(listed, lam=_eigenvalues(c, lam))))
-    blocks.append(Para(w(key, K=K, U=Math("U_P"), q0=Math("q_{0}"), lam=Math(rf"\lambda = {_eigenvalue(w, worst)}"),
+    blocks.append(Para(w(key, K=K, U=Math("U_P"), q0=Math("q_{0}"), lam=Math(rf"{c.eigen} = {_eigenvalue(w, worst)}"),
                          kmin=Math(w.number(kmin if kmin is not None else 0.0)))))
     return blocks
 
