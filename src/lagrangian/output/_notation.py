@@ -135,8 +135,10 @@ def _base_latex(name: str) -> str:
 
 
 def _is_word(part: str) -> bool:
-    """A word (``upper``, ``arm``), not a symbol (``x1``, ``theta``, ``G``): it is set upright, joined by ``\_``."""
-    return len(part) > 1 and part.isalpha() and part not in _GREEK and _greek_index(part) is None
+    """A word (``upper``, ``arm``, ``waist``), not a symbol (``x1``, ``xG``, ``theta``, ``G``): set upright, joined by
+    ``\\_``."""
+    return (len(part) > 2 and part.isalpha() and part.islower() and part not in _GREEK
+            and _greek_index(part) is None)
 
 
 def _split_index(latex: str) -> tuple[str, str]:

@@ -168,7 +168,7 @@ class Context:
         return rf"m_{{{tex_name(name)}}}"
 
     def quantity(self, value: se.Basic, unit: str) -> str:
-        """A number with its SI unit when the model is in SI units: 8 → ``8\ \mathrm{kg}``; a symbol as is."""
+        """A number with its SI unit when the model is in SI units: 8 → ``8\\ \\mathrm{kg}``; a symbol as is."""
         text = self.tex(value)
         if value.free_symbols or not self.si or not unit:
             return text
