@@ -307,7 +307,15 @@ def test_simulate_cli_runs_with_no_reactions_and_says_why_otherwise(tmp_path, ca
     model.write_text(textwrap.dedent(atwood(mass='mass = "M"', extra="M = {}", center="0.5*R0.y")))
     assert main(["simulate", str(model), "--t-end", "0.2", "--n-out", "3", "--no-reactions",
                  "-o", str(tmp_path / "out.csv")]) == 0
-    assert main(["simulate", str(model), "--t-end", "0.2", "--n-out", "3", "-o", str(tmp_path / "r.csv")]) != 0
+    capsys.readouterr()
+    # Without --no-reactions the run goes on too, and one line says what the reactions would need.
+    assert main(["simulate", str(model), "--t-end", "0.2", "--n-out", "3", "-o", str(tmp_path / "r.csv")]) == 0
+    out = capsys.readouterr()
+    line = next(x for x in (out.out + out.err).splitlines() if x.startswith("reactions:"))
+    assert "`M` have no value" in line and "--set" in line
+    # Asked for with --reactions, they stop the run and say how to go without them.
+    assert main(["simulate", str(model), "--t-end", "0.2", "--n-out", "3", "--reactions",
+                 "-o", str(tmp_path / "r.csv")]) != 0
     err = capsys.readouterr().err
     assert "`M` have no value" in err and "--no-reactions" in err
 
