@@ -99,7 +99,7 @@ def test_exact_coulomb_friction_shows_its_law_without_epsilon():
     step5 = _section(_md("block_on_incline"), "5.")
     assert r"\varepsilon" not in step5
     # R_t, the tangential part of the support's action: T is the kinetic energy; N is found at step 7.
-    assert r"\vec{R}_t = -f N\,\vec{v}_s / \|\vec{v}_s\|,\ N = m g \cos\alpha" in step5
+    assert r"\vec{R}_t = -f N\,\vec{v}_s / \|\vec{v}_s\|,\ \vec{v}_s = \vec{V}(B/R_{0}),\ N = m g \cos\alpha" in step5
     assert r"\|\vec{R}_t\| \le f_{s}\, N" in step5 and "adhérence" in step5 and r"\vec{T}" not in step5
     assert "switches to sticking" in _md("block_on_incline", "en")
 

@@ -201,6 +201,14 @@ class Context:
         used = self._used_letters()
         return next((x for x in candidates if x not in used), candidates[-1])
 
+    def field_tex(self, load) -> str:  # type: ignore[no-untyped-def]
+        """The vector of a uniform field: g⃗ when it is ± g along one axis (the weight), else another letter (the
+        Foucault pendulum's attraction −g u + Ω² l u⊥ is not the apparent gravity g)."""
+        comps = [x for _, cs in self.kin.frames.lift(load.field) for x in cs if x != 0]
+        if len(comps) == 1 and comps[0].free_symbols == {se.Symbol("g")}:
+            return r"\vec{g}"
+        return rf"\vec{{{self.free_letter('a', 'b', 'h')}}}"
+
     @property
     def eigen(self) -> str:
         """The eigenvalues' letter: λ, or s when λ is taken (a multiplier, the latitude of Foucault's pendulum)."""

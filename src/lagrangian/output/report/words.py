@@ -47,6 +47,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
                   "and transport inertial forces are added to the applied forces (Remark 3 of the course)."),
     "statement intro": ("On étudie le système (Σ) suivant : {what}.", "We study the following system (Σ): {what}."),
     "constituents": ("(Σ) est formé de :", "(Σ) is made of:"),
+    "points given": ("Points nommés :", "Named points:"),
     "inertia principal given": ("moments principaux d'inertie en {P} dans la base {basis} : {values}",
                                 "principal moments of inertia at {P} in the basis {basis}: {values}"),
     "inertia matrix given": ("matrice d'inertie en {P} dans la base {basis} : {matrix}",
@@ -55,6 +56,8 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "load item": ("« {name} » : {what}", "“{name}”: {what}"),
     "load gravity": ("pesanteur {g}", "gravity {g}"),
     "load on": ("pesanteur {g}, sur {on}", "gravity {g}, on {on}"),
+    "load field": ("champ uniforme {g}, sur tous les éléments", "uniform field {g}, on every element"),
+    "load field on": ("champ uniforme {g}, sur {on}", "uniform field {g}, on {on}"),
     "load force": ("force {F} appliquée en {P}", "force {F} applied at {P}"),
     "load torque": ("couple {C} exercé sur ({S})", "torque {C} exerted on ({S})"),
     "load torque reaction": ("couple {C} exercé sur ({S}) par ({S2})", "torque {C} exerted on ({S}) by ({S2})"),
@@ -108,10 +111,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "rotation about": ("la rotation autour de {axes}", "the rotation about {axes}"),
     "perfect body plane": ("Elle est parfaite : ses actions se réduisent à une force selon {n} et à un couple "
                            "orthogonal aux rotations permises, dont la puissance virtuelle est nulle dans tout champ "
-                           "compatible avec elle, puisque {cond}.",
+                           "compatible avec elle, puisque {cond} et que {rot}.",
                            "It is ideal (workless): its actions reduce to a force along {n} and a couple orthogonal "
                            "to the allowed rotations, whose virtual power is zero in every virtual field compatible "
-                           "with it, since {cond}."),
+                           "with it, since {cond} and {rot}."),
     "adherence": ("Ce n'est pas un contact sans frottement : le roulement sans glissement exige l'adhérence au "
                   "contact, composante tangentielle de l'action du support sur ({S}) ; c'est la réaction de la "
                   "liaison de roulement sans glissement en {I}, gardée comme liaison complémentaire (étape 7).",
@@ -174,13 +177,14 @@ _PHRASES: dict[str, tuple[str, str]] = {
                      "It is ideal (workless): the mutual constraint actions reduce to a force at {X}, a point common to "
                      "both bodies, whose virtual power is zero."),
     "perfect rod": ("Elle est parfaite (sans frottement) : la réaction sur {P} n'a de composante que selon {dirs}, "
-                    "{orth} à son champ de vitesses virtuelles puisque {XP2} est constant :",
+                    "{orth} à son champ de vitesses virtuelles puisque {XP2} est constant{plane} :",
                     "It is ideal (workless), being frictionless: the reaction on {P} only has components along {dirs}, "
-                    "{orth} to its virtual velocity field since {XP2} is constant:"),
+                    "{orth} to its virtual velocity field since {XP2} is constant{plane}:"),
+    "rod in plane": (" et que {P} reste dans le plan normal à {n}", " and {P} stays in the plane normal to {n}"),
     "orth one": ("direction orthogonale", "a direction orthogonal"),
     "orth many": ("directions orthogonales", "directions orthogonal"),
-    "perfect smooth": ("Elle est parfaite (contact sans frottement) : la réaction est normale à {where}, qui contient "
-                       "{V}.", "It is ideal (workless), the contact being frictionless: the reaction is normal to {where}, which "
+    "perfect smooth": ("Elle est parfaite (sans frottement) : la réaction est normale à {where}, qui contient "
+                       "{V}.", "It is ideal (workless), being frictionless: the reaction is normal to {where}, which "
                        "contains {V}."),
     "the plane": ("ce plan", "that plane"),
     "the line": ("cette droite", "that line"),
@@ -283,8 +287,8 @@ _PHRASES: dict[str, tuple[str, str]] = {
                      "réaction n'a de composante que selon {dirs} ;",
                      "Constraint on {P} (a particle, whose kinematic screw reduces to its velocity): frictionless, "
                      "the reaction only has components along {dirs};"),
-    "comoment plane": ("Contact de {P} avec le plan sans frottement : la réaction est portée par {dirs} ;",
-                       "Frictionless contact of {P} with the plane: the reaction is along {dirs};"),
+    "comoment plane": ("Liaison de {P} avec le plan, sans frottement : la réaction est portée par {dirs} ;",
+                       "Frictionless constraint of {P} to the plane: the reaction is along {dirs};"),
     "comoment line": ("Glissière de {P} sans frottement : la réaction est orthogonale à {dirs} ;",
                       "Frictionless slider of {P}: the reaction is orthogonal to {dirs};"),
     "comoment body plane": ("Liaison de ({S}) avec son support : ses actions, réduites en {G}, sont une force selon {n} "
@@ -341,6 +345,7 @@ _PHRASES: dict[str, tuple[str, str]] = {
                          "forces enter {Q}."),
     "load title": ("« {name} » ({kind}{extra}) :", "“{name}” ({kind}{extra}):"),
     "kind gravity": ("pesanteur", "gravity"),
+    "kind field": ("champ uniforme", "uniform field"),
     "kind pointforce": ("force", "force"),
     "kind torque": ("couple", "couple"),
     "kind spring": ("ressort", "spring"),
@@ -608,6 +613,12 @@ _PHRASES: dict[str, tuple[str, str]] = {
                         " The Jacobi integral {h} is therefore conserved (see “First integrals”)."),
     "no integral": ("Aucune intégrale première n'apparaît : aucun paramètre n'est cyclique, et {why}.",
                     "No first integral appears: no parameter is cyclic, and {why}."),
+    "no integral but cyclic": ("Aucune intégrale première n'apparaît : aucun paramètre cyclique ne donne d'intégrale "
+                               "(ci-dessus), et {why}.",
+                               "No first integral appears: no cyclic parameter gives one (above), and {why}."),
+    "cyclic driven": ("{q} est un paramètre cyclique, {dL}, mais {eq} ne s'intègre pas : {why}.",
+                      "{q} is cyclic, {dL}, but {eq} does not integrate: {why}."),
+    "row acts": ("une liaison complémentaire agit sur lui, {a}", "a complementary constraint acts on it, {a}"),
     "why time": ("le lagrangien dépend explicitement du temps", "the Lagrangian depends on the time explicitly"),
     "why work": ("des efforts non conservatifs travaillent", "non-conservative forces do work"),
     "why constraints": ("les réactions des liaisons complémentaires travaillent",
@@ -858,7 +869,8 @@ _LOAD_NAMES: dict[str, tuple[str, str]] = {
     "drag": ("traînée", "drag"),
     "torque": ("couple", "torque"),
     "motor": ("moteur", "motor"),
-    "actuators": ("actionneurs", "actuators"),  # a URDF robot's joint torques (model/urdf.py)
+    "actuators": ("actionneurs", "actuators"),
+    "push": ("poussée", "push"),  # a URDF robot's joint torques (model/urdf.py)
     "joint_damping": ("amortissement des liaisons", "joint damping"),
 }
 

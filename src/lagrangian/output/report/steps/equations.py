@@ -560,6 +560,33 @@ def _other_integral(c: Context, row: IntegralRow) -> list[Block]:
     return blocks
 
 
+def _cyclic_but_driven(c: Context) -> tuple[list[str], list[Runs]]:
+    """The coordinates with ∂L/∂q = 0 whose L(q) does not integrate, and why: a non-conservative effort works on
+    them (the cart pushed by F), or a complementary row acts on them (the coin's x and y)."""
+    w = c.w
+    integrating = {row.coordinate for row in c.form.integrals if row.kind == "momentum"}
+    candidates = [(q, eq) for q, eq in zip(c.eom.coordinates, c.eom.equations) if q not in integrating]
+    if not candidates:
+        return [], []
+    cyclic = are_zero([eq.dT_dq - eq.dU_dq for _, eq in candidates])
+    names: list[str] = []
+    reasons: list[Runs] = []
+    for (q, eq), flat in zip(candidates, cyclic):
+        if not flat:
+            continue
+        why: list[Runs] = []
+        if not are_zero([eq.Q_nc])[0]:
+            why.append((Math(rf"{c.Q_nc(q)} \neq 0"),))
+        if eq.multiplier_terms != 0 and not are_zero([eq.multiplier_terms])[0]:
+            a = rf"a_{{{c.sym(q)}}}" if len(c.eom.constraints) == 1 else rf"a_{{k,{c.sym(q)}}}"
+            why.append(w("row acts", a=Math(rf"{a} \neq 0")))
+        if why:
+            names.append(q)
+            reasons.append(w("cyclic driven", q=Math(c.sym(q)), dL=Math(rf"\frac{{\partial L}}{{\partial {c.sym(q)}}} = 0"),
+                             why=w.join(why), eq=Math(rf"L({c.sym(q)})")))
+    return names, reasons
+
+
 def integrals_section(c: Context) -> Section:
     w = c.w
     blocks: list[Block] = []
@@ -568,7 +595,10 @@ def integrals_section(c: Context) -> Section:
             blocks += _other_integral(c, row)
             continue
         blocks += _momentum(c, row) if row.kind == "momentum" else _energy(c, row)
-    if not blocks:
+    driven, reasons = _cyclic_but_driven(c)
+    found = bool(blocks)
+    blocks += [Para(r) for r in reasons]
+    if not found:
         kin = c.kin
         L = c.eom.T - c.eom.U
         power = se.Add(*(q * qd for q, qd in zip(c.eom.Q_nc, kin.qd)))
@@ -578,7 +608,8 @@ def integrals_section(c: Context) -> Section:
             why.append(w.text("why work"))
         if timed and no_work and c.eom.constraints:
             why.append(w.text("why constraints"))
-        blocks.append(Para(w("no integral", why=" ; ".join(why) if c.lang == "fr" else "; ".join(why))))
+        key = "no integral" if not driven else "no integral but cyclic"
+        blocks.append(Para(w(key, why=" ; ".join(why) if c.lang == "fr" else "; ".join(why))))
         blocks += _balance(c)
     return Section("integrals", w.text("integrals"), tuple(blocks))
 

@@ -37,10 +37,11 @@ def _formula(c: Context, f: LoadForces, load: object) -> tuple[str, str]:
     R = c.R
     if isinstance(load, Gravity):
         names = _elements(c, load)
-        extra = rf"\vec{{g}} = {c.vector(load.field)}"
+        g = c.field_tex(load)
+        extra = rf"{g} = {c.vector(load.field)}"
         if len(names) <= 3:
-            return " + ".join(rf"{_mass(c, x)}\,\vec{{g}}\cdot\vec{{V}}^{{*}}({c.point_label(x)})" for x in names), extra
-        return r"\sum_{k} m_{k}\,\vec{g}\cdot\vec{V}^{*}(G_{k})", extra
+            return " + ".join(rf"{_mass(c, x)}\,{g}\cdot\vec{{V}}^{{*}}({c.point_label(x)})" for x in names), extra
+        return rf"\sum_{{k}} m_{{k}}\,{g}\cdot\vec{{V}}^{{*}}(G_{{k}})", extra
     if isinstance(load, PointForce):
         return rf"\vec{{F}}\cdot\vec{{V}}^{{*}}({c.point_label(load.at)})", rf"\vec{{F}} = {c.vector(load.force)}"
     if isinstance(load, Torque):
@@ -68,12 +69,16 @@ def _formula(c: Context, f: LoadForces, load: object) -> tuple[str, str]:
                 rf"\vec{{\Omega}}^{{*}}({s1}/{R})\right)", "")
     if isinstance(load, CoulombFriction):
         # R_t, the tangential part of the support's action (T is the kinetic energy), N its normal part (step 7).
-        power = rf"\vec{{R}}_t\cdot\vec{{V}}^{{*}}({c.point_label(load.at)})"
+        P = c.point_label(load.at)
+        power = rf"\vec{{R}}_t\cdot\vec{{V}}^{{*}}({P})"
         f, N = c.tex(load.coefficient), c.tex(load.normal_force)
+        # v_s, the sliding velocity: V(P) less the surface's own (a belt's v_b x0)
+        surface = "" if load.surface_velocity.is_zero() else f" - {c.vector(load.surface_velocity)}"
+        slide = rf",\ \vec{{v}}_s = \vec{{V}}({P}/{R}){surface}"
         if load.exact:
-            return power, rf"\vec{{R}}_t = -{f} N\,\vec{{v}}_s / \|\vec{{v}}_s\|,\ N = {N}"
+            return power, rf"\vec{{R}}_t = -{f} N\,\vec{{v}}_s / \|\vec{{v}}_s\|{slide},\ N = {N}"
         return power, (rf"\vec{{R}}_t = -{f} N\,\vec{{v}}_s / \sqrt{{\|\vec{{v}}_s\|^{{2}} + "
-                       rf"{c.tex(load.regularization)}^{{2}}}},\ N = {N}")
+                       rf"{c.tex(load.regularization)}^{{2}}}}{slide},\ N = {N}")
     if isinstance(load, GeneralizedForce):
         return r"\sum_{i} Q_i\, q_i^{*}", ""
     if f.kind == "inertial: Coriolis":
@@ -246,6 +251,8 @@ def step5(c: Context) -> Section:
         load = spec.get(f.name)
         formula, extra = _formula(c, f, load)
         kind = w.text(f"kind {f.kind}") if w.has(f"kind {f.kind}") else f.kind
+        if isinstance(load, Gravity) and c.field_tex(load) != r"\vec{g}":
+            kind = w.text("kind field")  # an attraction that is not the weight ± g along an axis
         name = c.load_name(f.name)
         blocks.append(Para(w("load title", name=name, kind=kind, extra=(", ", Math(extra)) if extra else "")))
         head = rf"P^{{*}}({c.load_tex(f.name)}) = " + (f"{formula} = " if formula else "")

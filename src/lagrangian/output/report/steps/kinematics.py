@@ -393,8 +393,8 @@ def _gravity_formula(c: Context, load: Gravity) -> str:
             text += f" - {t[1:]}" if t.startswith("-") else f" + {t}"
         return text
     if len(names) == 1:
-        return rf"-{c.mass_tex(names[0])}\,\vec{{g}}\cdot\overrightarrow{{{O}{c.point_label(names[0])}}}"
-    return rf"-\sum_{{k}} m_{{k}}\,\vec{{g}}\cdot\overrightarrow{{{O}G_{{k}}}}"
+        return rf"-{c.mass_tex(names[0])}\,{c.field_tex(load)}\cdot\overrightarrow{{{O}{c.point_label(names[0])}}}"
+    return rf"-\sum_{{k}} m_{{k}}\,{c.field_tex(load)}\cdot\overrightarrow{{{O}G_{{k}}}}"
 
 
 def _potential_formula(c: Context, kind: str, name: str) -> str:

@@ -69,10 +69,11 @@ def _load_given(c: Context, load: object) -> Runs | None:  # noqa: PLR0911 - one
 
     w = c.w
     if isinstance(load, Gravity):
-        g = Math(rf"\vec{{g}} = {c.vector(load.field)}")
+        g = Math(rf"{c.field_tex(load)} = {c.vector(load.field)}")
+        weight = c.field_tex(load) == r"\vec{g}"  # else a uniform field that is not ± g along an axis
         if load.on:
-            return w("load on", g=g, on=w.join([Math(c.element(x)) for x in load.on]))
-        return w("load gravity", g=g)
+            return w("load on" if weight else "load field on", g=g, on=w.join([Math(c.element(x)) for x in load.on]))
+        return w("load gravity" if weight else "load field", g=g)
     if isinstance(load, PointForce):
         return w("load force", F=Math(rf"\vec{{F}} = {c.vector(load.force)}"), P=Math(c.point_label(load.at)))
     if isinstance(load, Torque):
@@ -174,6 +175,13 @@ def system_section(c: Context) -> Section:
     if items:
         blocks.append(Para(w("constituents")))
         blocks += c.many([Items(tuple(items))], len(items), w.text("constituents").rstrip(" :"))
+    # The points the constraints and loads name (A of a hinge, the contact point I): where they are.
+    points = [p.name for p in model.points if p.name not in ("O", c.origin) and not p.name.startswith("_")]
+    if points:
+        rows = tuple((Math(rf"\overrightarrow{{{origin}{c.point_label(p)}}} = {c.short_vector(c.kin.position(p))}"),)
+                     for p in points)
+        blocks.append(Para(w("points given")))
+        blocks += c.many([Items(rows)], len(rows), w.text("points given").rstrip(" :"))
     constants = [p for p in model.parameters if not p.input]
     if constants:
         rows = tuple(((Math(c.sym(p.name)),), ("" if p.value is None else w.number(p.value),), (_unit(p.unit),),
@@ -312,7 +320,8 @@ def _perfect(c: Context, j: Joint) -> list[Block]:
         dirs = [Math(XP)] + [Math(c.axis(a)) for a in j.normals]
         conditions = [rf"{XP}\cdot{v} = 0"] + [rf"{c.axis(a)}\cdot{v} = 0" for a in j.normals]
         orth = w.text("orth one" if len(dirs) == 1 else "orth many")
-        return [Para(w("perfect rod", P=Math(P), dirs=w.join(dirs), orth=orth, XP2=Math(rf"{XP}^{{2}}"))),
+        plane = w("rod in plane", P=Math(P), n=Math(c.axis(j.normals[0]))) if j.normals else ""
+        return [Para(w("perfect rod", P=Math(P), dirs=w.join(dirs), orth=orth, XP2=Math(rf"{XP}^{{2}}"), plane=plane)),
                 Display((Equation((r",\qquad ".join(conditions),)),))]
     if j.kind in ("line", "plane"):
         where = w.text("the line") if j.kind == "line" else w.text("the plane")
@@ -321,7 +330,9 @@ def _perfect(c: Context, j: Joint) -> list[Block]:
         G = c.point_label(j.element)
         n = w.join([Math(c.axis(a)) for a in j.normals])
         cond = w.join([Math(rf"{c.axis(a)}\cdot\vec{{V}}^{{*}}({G}) = 0") for a in j.normals])
-        blocks = [Para(w("perfect body plane", n=n, cond=cond))]
+        rot = Math(rf"\vec{{\Omega}}^{{*}}({c.element(j.element)}/{c.R}) \in \mathrm{{vect}}("
+                   + ", ".join(c.axis(a) for a in j.turns) + ")")
+        blocks = [Para(w("perfect body plane", n=n, cond=cond, rot=rot))]
         rolling = next((con for con in c.model.constraints if con.form == "no_slip" and con.body == j.element), None)
         if rolling is not None:  # the contact's tangential action is the rolling constraint's reaction, not zero
             blocks.append(Para(w("adherence", S=Math(c.element(j.element)), I=Math(c.point_label(rolling.points[0])))))
