@@ -81,7 +81,8 @@ def test_golden_french_report_of_the_top(top):
 #: (δ_A = d/dt σ_A + m V(A) ∧ V(G)), the multiplier from the constraint differentiated twice, the Jacobi integral
 #: h = T(Σ/R1) + U_P(Σ/R1) of the hoop, the multipliers λ / λ_1 … λ_k and the constraints by their description,
 #: the comoments of step 3 and Π at step 4.  Regenerate with LAGRANGIAN_UPDATE_GOLDEN=1 and review the diff.
-GOLDEN_EXAMPLES = ["pendulum_tension", "double_pendulum", "rolling_coin", "bead_rotating_hoop"]
+GOLDEN_EXAMPLES = ["pendulum_tension", "double_pendulum", "rolling_coin", "bead_rotating_hoop", "block_on_incline",
+                   "foucault_pendulum"]
 
 
 @pytest.mark.parametrize("lang", ["fr", "en"])

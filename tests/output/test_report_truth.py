@@ -161,20 +161,36 @@ def test_the_blocks_stick_condition_is_tan_alpha_below_fs_and_the_simulation_agr
 
 # -- a cyclic coordinate with multipliers ----------------------------------------------------------------------
 def test_a_coordinate_integrates_only_when_no_complementary_row_acts_on_it():
-    """The coin: x and ψ both have ∂L/∂q = 0 and Q_nc = 0; only ψ is free of the rows (a_{k,ψ} = 0), so only L(ψ)
-    integrates, and the report says it for ψ with that third condition, never for x."""
+    """The coin: x, y, ψ, φ all have ∂L/∂q = 0 and Q_nc = 0; only ψ is free of the rows (a_{k,ψ} = 0), so only L(ψ)
+    integrates: the report says it for ψ with that third condition, and says why x, y and φ do not integrate."""
     eom = _eom("rolling_coin.toml")
-    claimed = []
+    symbols = ("x", "y", r"\psi", r"\varphi")
+    integrates, driven = [], []
     for words, formulas in _paras(_report("rolling_coin.toml"), "integrals"):
-        if "paramètre cyclique" in words:
+        if "paramètre cyclique :" in words:
             assert "ne figure dans aucune équation de liaison complémentaire" in words
-            claimed.append(next(i for i, q in enumerate(("x", "y", r"\psi", r"\varphi")) if formulas[0] == q))
-    assert claimed == [2]
+            integrates.append(symbols.index(formulas[0]))
+        elif "mais cela ne suffit pas pour intégrer" in words:
+            assert "une liaison complémentaire agit sur lui" in words
+            driven.append(symbols.index(formulas[0]))
+    assert integrates == [2] and sorted(driven) == [0, 1, 3]
     for i, eq in enumerate(eom.equations):
-        free_of_rows = eq.multiplier_terms == 0 or se.expand(eq.multiplier_terms) == 0
         cyclic = se.expand(eq.dT_dq - eq.dU_dq) == 0 and se.expand(eq.Q_nc) == 0
-        assert (cyclic and free_of_rows) == (i in claimed), eom.coordinates[i]
-    assert se.expand(eom.equations[0].dT_dq) == 0 and eom.equations[0].multiplier_terms != 0  # x: cyclic, driven
+        rows_act = eq.multiplier_terms != 0 and se.expand(eq.multiplier_terms) != 0
+        assert cyclic  # all four, which is why ∂L/∂q = 0 and Q_nc = 0 are not enough
+        assert rows_act == (i in driven) and (not rows_act) == (i in integrates), eom.coordinates[i]
+
+
+def test_a_cyclic_coordinate_driven_by_an_effort_is_said_not_to_integrate():
+    """The cart pushed by F(t): ∂L/∂x = 0, but Q_x,nc = F, so L(x) does not integrate and no integral is claimed."""
+    eom = _eom("inverted_pendulum_cart.toml")
+    eq = eom.equation("x")
+    assert se.expand(eq.dT_dq - eq.dU_dq) == 0 and eq.Q_nc == se.Symbol("F")
+    assert lagrangian.first_integrals(eom) == ()
+    text = _words(report(eom, lang="fr"), "integrals")
+    assert (r"$x$ est un paramètre cyclique, $\frac{\partial L}{\partial x} = 0$, mais cela ne suffit pas pour "
+            r"intégrer $L(x)$") in text
+    assert r"Q_{x,\,\mathrm{nc}} \neq 0" in text and "aucun paramètre n'est cyclique" not in text
 
 
 # -- actuators: given non-conservative efforts; constants derive from −C q ---------------------------------------

@@ -185,6 +185,8 @@ class Context:
         Lagrangian…) is written R_E, R_L…"""
         if name in _TAKEN and name in self.frames:
             return rf"R_{{{name}}}"
+        if name in self.frames and re.fullmatch(r"R[A-Z][A-Za-z0-9]*", name):
+            return rf"R_{{{name[1:]}}}"  # the bicycle's RB, RHg: R_B, R_Hg, as its axes x_B, x_Hg
         return tex_name(name)
 
     def _used_letters(self) -> set[str]:

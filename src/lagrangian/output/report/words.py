@@ -616,8 +616,8 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "no integral but cyclic": ("Aucune intégrale première n'apparaît : aucun paramètre cyclique ne donne d'intégrale "
                                "(ci-dessus), et {why}.",
                                "No first integral appears: no cyclic parameter gives one (above), and {why}."),
-    "cyclic driven": ("{q} est un paramètre cyclique, {dL}, mais {eq} ne s'intègre pas : {why}.",
-                      "{q} is cyclic, {dL}, but {eq} does not integrate: {why}."),
+    "cyclic driven": ("{q} est un paramètre cyclique, {dL}, mais cela ne suffit pas pour intégrer {eq} : {why}.",
+                      "{q} is cyclic, {dL}, but that does not suffice to integrate {eq}: {why}."),
     "row acts": ("une liaison complémentaire agit sur lui, {a}", "a complementary constraint acts on it, {a}"),
     "why time": ("le lagrangien dépend explicitement du temps", "the Lagrangian depends on the time explicitly"),
     "why work": ("des efforts non conservatifs travaillent", "non-conservative forces do work"),

@@ -561,8 +561,9 @@ def _other_integral(c: Context, row: IntegralRow) -> list[Block]:
 
 
 def _cyclic_but_driven(c: Context) -> tuple[list[str], list[Runs]]:
-    """The coordinates with ∂L/∂q = 0 whose L(q) does not integrate, and why: a non-conservative effort works on
-    them (the cart pushed by F), or a complementary row acts on them (the coin's x and y)."""
+    """The coordinates with ∂L/∂q = 0 for which that does not suffice to integrate L(q), and why: a non-conservative
+    effort works on them (the cart pushed by F), or a complementary row acts on them (the coin's x and y).  (The
+    coin's φ̇ is still constant, by its reduced equations: only the cyclic argument fails.)"""
     w = c.w
     integrating = {row.coordinate for row in c.form.integrals if row.kind == "momentum"}
     candidates = [(q, eq) for q, eq in zip(c.eom.coordinates, c.eom.equations) if q not in integrating]

@@ -72,7 +72,8 @@ def check_section(c: Context, v: Verification) -> Section:
             blocks += _theorem(c, check.theorem, check.point, names, theorems, liaisons, by_power,
                                note=not noted and bool(by_power))
             noted = noted or bool(by_power)
-        of: Runs = () if check.whole_system else w("of", names=w.join([Math(c.element(e)) for e in check.elements]))
+        of: Runs = () if check.whole_system else w("of", names=w.join(
+            [Math(f"({c.element(e)})" if e in c.bodies else c.element(e)) for e in check.elements]))
         if check.axis is not None:
             direction = Math(c.axis(check.axis))
         elif check.direction is not None:
