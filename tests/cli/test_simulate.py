@@ -245,8 +245,8 @@ def test_a_gyroscope_whose_rings_leave_out_their_masses_is_simulated_and_says_wh
     err = capsys.readouterr()
     text = err.out + err.err
     lines = [line for line in text.splitlines() if line.startswith("reactions:")]
-    assert lines == ["reactions: not computed: they need the masses of bodies `outer`, `inner`, which the model "
-                     'leaves out (give mass = "..." under [bodies.outer]; the motion does not need it)']
+    assert lines == [("reactions: not computed: they need the masses of bodies `outer`, `inner`, which the model "
+                      'leaves out (give mass = "..." under [bodies.outer]; the motion does not need it)')]
     lines = [line for line in out.read_text().splitlines() if not line.startswith("#")]
     header = lines[0].split(",")
     assert "psi" in header and not any(name.startswith("R_") for name in header)

@@ -77,7 +77,8 @@ def test_a_pdf_goes_to_a_file_not_the_terminal(capsys):
 
 needs_fonts = pytest.mark.skipif(_report_pdf.tex_engine() is None or shutil.which("pdffonts") is None
                                  or shutil.which("kpsewhich") is None
-                                 or subprocess.run(["kpsewhich", "lmodern.sty"], capture_output=True).returncode != 0,
+                                 or subprocess.run(["kpsewhich", "lmodern.sty"], capture_output=True,
+                                                   check=False).returncode != 0,
                                  reason="no TeX engine, pdffonts or the lmodern package here (`make test` installs them)")
 
 

@@ -9,29 +9,29 @@ from __future__ import annotations
 
 import math
 import re
-import tomllib
 import xml.etree.ElementTree as ET
-from functools import lru_cache
+from functools import cache
 
 import numpy as np
 import pytest
 import symengine as se
 import sympy
+import tomllib
+from lagrangian_test_support import EXAMPLES_DIR, mutated_example, plain
 
 import lagrangian
 from lagrangian.output import report
 from lagrangian.output.report.document import Math, Para, walk
-from lagrangian_test_support import EXAMPLES_DIR, mutated_example, plain
 
 URDF = EXAMPLES_DIR / "rrr_arm.urdf"
 
 
-@lru_cache(maxsize=None)
+@cache
 def _eom(name: str) -> lagrangian.EquationsOfMotion:
     return lagrangian.derive(lagrangian.load_model(EXAMPLES_DIR / name))
 
 
-@lru_cache(maxsize=None)
+@cache
 def _report(name: str, verification: bool = False, small: bool = False):  # type: ignore[no-untyped-def]
     return report(_eom(name), lang="fr", verification=verification or None, small_motions=True if small else None)
 
@@ -274,7 +274,7 @@ def test_larmor_precession_rate_is_what_the_linear_motion_does():
     rate, order = precession_rate(Form)
     assert order is None and float(rate) == pytest.approx(gamma / (2 * mu))
 
-    def rhs(t, y):  # noqa: ANN001, ANN202
+    def rhs(t, y):
         q, v = y[:2], y[2:]
         return [*v, *(-(np.array([[0, gamma], [-gamma, 0]]) @ v + kappa * q) / mu)]
 

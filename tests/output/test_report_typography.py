@@ -4,19 +4,19 @@ decimal commas in text and in formulas, minus signs — in every format."""
 from __future__ import annotations
 
 import re
-from functools import lru_cache
+from functools import cache
 
 import pytest
 import sympy
+from lagrangian_test_support import EXAMPLES_DIR
 
 from lagrangian.output import report
 from lagrangian.output._notation import Notation
 from lagrangian.output.report.document import Math, Para, french_typography, walk
 from lagrangian.output.report.render.tex import escape
-from lagrangian_test_support import EXAMPLES_DIR
 
 
-@lru_cache(maxsize=None)
+@cache
 def _fr(name: str):  # type: ignore[no-untyped-def]
     return report(EXAMPLES_DIR / name, lang="fr")
 

@@ -21,7 +21,7 @@ from pathlib import Path
 
 from ....errors import OutputError
 
-__all__ = ["ENGINES", "MAX_RUNS", "tex_engine", "compile_pdf", "compile_pdf_and_log", "needs_rerun"]
+__all__ = ["ENGINES", "MAX_RUNS", "compile_pdf", "compile_pdf_and_log", "needs_rerun", "tex_engine"]
 
 #: The engines tried, in order: the report's preamble (inputenc, T1 fonts) is written for pdflatex;
 #: lualatex compiles it too.
@@ -47,12 +47,12 @@ def needs_rerun(log: str) -> bool:
     return "Rerun LaTeX" in log or "Rerun to get" in log or "Table widths have changed" in log
 
 
-def compile_pdf(latex: str, figures: Mapping[str, bytes] = {}) -> bytes:  # noqa: B006 (read only)
+def compile_pdf(latex: str, figures: Mapping[str, bytes] = {}) -> bytes:
     """The PDF of the LaTeX document ``latex``; ``figures`` are the files it includes, by name."""
     return compile_pdf_and_log(latex, figures)[0]
 
 
-def compile_pdf_and_log(latex: str, figures: Mapping[str, bytes] = {}) -> tuple[bytes, str, int]:  # noqa: B006
+def compile_pdf_and_log(latex: str, figures: Mapping[str, bytes] = {}) -> tuple[bytes, str, int]:
     """(PDF, the last run's log, number of runs): the engine runs until the document settles (`needs_rerun`),
     `MAX_RUNS` times at most, so that every longtable's header sits on its columns."""
     engine = tex_engine()

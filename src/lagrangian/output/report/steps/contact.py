@@ -24,7 +24,7 @@ import symengine as se
 import sympy
 
 from ...._identity import are_zero
-from ....model import CoulombFriction, Vector
+from ....model import CoulombFriction
 from ..build import Context
 from ..document import Block, Display, Equation, Math, Para
 
@@ -44,7 +44,7 @@ def _element(c: Context, load: CoulombFriction) -> str | None:
 
 
 def _mass(c: Context, name: str) -> se.Basic:
-    return next((e.mass for e in (*c.model.bodies, *c.model.particles) if e.name == name))
+    return next(e.mass for e in (*c.model.bodies, *c.model.particles) if e.name == name)
 
 
 def normal_force(c: Context, load: CoulombFriction) -> tuple[str, se.Basic, se.Basic, se.Basic] | None:
@@ -123,8 +123,8 @@ def contact_blocks(c: Context) -> list[Block]:
         forces = " + ".join(rf"\vec{{F}}({c.load_tex(e)})" for e in efforts) or r"\vec{0}"
         forces = rf"\left({forces}\right)" if len(efforts) > 1 else forces
         lines = (rf"{m}\,\vec{{\gamma}}({P}/{R})\cdot{n} = {forces}\cdot{n} + N",
-                 rf"{m}\,\vec{{\gamma}}({P}/{R})\cdot{n} = {c.tex(inertia)},\qquad {forces}\cdot{n} = "
-                 rf"{c.tex(given)}",
+                 (rf"{m}\,\vec{{\gamma}}({P}/{R})\cdot{n} = {c.tex(inertia)},\qquad {forces}\cdot{n} = "
+                  rf"{c.tex(given)}"),
                  rf"\Rightarrow\quad N = {c.tex(N)}")
         out.append(Para(w("normal force", P=Math(P), n=Math(n), name=w("quoted", name=w.load(load.name)))))
         out.append(Display(tuple(Equation((line,)) for line in lines)))

@@ -436,7 +436,10 @@ def entrainment_conditions(c: Context) -> tuple[bool, bool]:
     kin = c.kin
     if not isinstance(kin, RelativeKinematics):
         return True, True
-    comps = lambda v: list(kin.frames.absolute.express(v, "R0")) if not v.is_zero() else []  # noqa: E731
+
+    def comps(v: Vector) -> list[se.Basic]:
+        return list(kin.frames.absolute.express(v, "R0")) if not v.is_zero() else []
+
     constant = all(are_zero(comps(kin.frame_omega_rate))) if comps(kin.frame_omega_rate) else True
     fixed = all(are_zero(comps(kin.origin_acceleration))) if comps(kin.origin_acceleration) else True
     return constant, fixed

@@ -27,7 +27,7 @@ from ...._identity import are_zero
 from ..build import Context
 from ..document import Block, Display, Equation, Math, Para
 
-__all__ = ["precession_rate", "precession_blocks"]
+__all__ = ["precession_blocks", "precession_rate"]
 
 
 def _second_order_small(e: se.Basic, s: se.Symbol) -> bool:
