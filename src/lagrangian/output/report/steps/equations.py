@@ -560,13 +560,21 @@ def _other_integral(c: Context, row: IntegralRow) -> list[Block]:
     return blocks
 
 
+#: Longest ∂L/∂q (operations) tested for being identically zero when q appears in T or U.
+CYCLIC_MAX_OPS = 400
+
+
 def _cyclic_but_driven(c: Context) -> tuple[list[str], list[Runs]]:
     """The coordinates with ∂L/∂q = 0 for which that does not suffice to integrate L(q), and why: a non-conservative
     effort works on them (the cart pushed by F), or a complementary row acts on them (the coin's x and y).  (The
     coin's φ̇ is still constant, by its reduced equations: only the cyclic argument fails.)"""
     w = c.w
     integrating = {row.coordinate for row in c.form.integrals if row.kind == "momentum"}
-    candidates = [(q, eq) for q, eq in zip(c.eom.coordinates, c.eom.equations) if q not in integrating]
+    # Cyclic: ∂L/∂q ≡ 0, tested where q is in T or U only when ∂L/∂q is short (this sentence only adds to the
+    # integrals found; an identity test on each of a 40-link chain's long ∂L/∂q would cost a second).
+    in_L = set(c.eom.T.free_symbols) | set(c.eom.U.free_symbols)
+    candidates = [(q, eq) for q, s, eq in zip(c.eom.coordinates, c.kin.q, c.eom.equations)
+                  if q not in integrating and (s not in in_L or se.count_ops(eq.dT_dq - eq.dU_dq) <= CYCLIC_MAX_OPS)]
     if not candidates:
         return [], []
     cyclic = are_zero([eq.dT_dq - eq.dU_dq for _, eq in candidates])
