@@ -52,10 +52,13 @@ octave:
 	fi
 
 # The LaTeX report's tests compile it (pdflatex, from Debian's TeX Live: about 100 MB) and read the PDF back
-# (pdftotext, poppler-utils). Installed like chromium: when missing and we are root with apt-get; else skipped.
-TEX_PACKAGES := texlive-latex-base texlive-latex-recommended texlive-lang-french poppler-utils
+# (pdftotext and pdffonts, poppler-utils). lmodern gives the Type 1 Latin Modern fonts, so that the text is not
+# in bitmap Type 3 fonts (the EC fonts' default without it). Installed like chromium: when missing and we are
+# root with apt-get; else those tests are skipped.
+TEX_PACKAGES := texlive-latex-base texlive-latex-recommended texlive-lang-french lmodern poppler-utils
 tex:
-	@if command -v pdflatex >/dev/null 2>&1 && command -v pdftotext >/dev/null 2>&1; then :; \
+	@if command -v pdflatex >/dev/null 2>&1 && command -v pdftotext >/dev/null 2>&1 \
+	    && command -v pdffonts >/dev/null 2>&1 && kpsewhich lmodern.sty >/dev/null 2>&1; then :; \
 	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
 	    echo "installing TeX Live and poppler-utils (LaTeX and PDF report tests)..."; \
 	    (DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends $(TEX_PACKAGES) >/dev/null 2>&1 \

@@ -276,3 +276,9 @@ def random_point(eom: lagrangian.EquationsOfMotion, rng: np.random.Generator) ->
     for p in eom.model.parameters:
         values[p.symbol] = float(rng.uniform(-1, 1)) if p.input else float(p.value) * float(rng.uniform(0.6, 1.4))
     return values
+
+
+def plain(text: str) -> str:
+    """A French report's text with its typography undone (non-breaking spaces, typographic apostrophes), for tests
+    that pin its words; `tests/output/test_report_typography.py` checks the typography itself."""
+    return text.replace("\u00a0", " ").replace("\u202f", " ").replace("\u2019", "'")

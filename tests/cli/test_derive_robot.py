@@ -40,7 +40,8 @@ def test_intermediates_listing_defines_every_name_before_use(capsys):
         assert set(re.findall(r"\bw\d+\b", formula)) <= seen, name
         seen.add(name)
     assert set(re.findall(r"\bw\d+\b", head)) <= seen
-    assert "F[q5] = τ5 − w" in head and "U = " in head and "− τ1 q1" in head  # the motors' potential
+    # the motors' τ_j are inputs: in F, never in U (no potential −τ_j q_j)
+    assert "F[q5] = τ5 − w" in head and "U = " in head and "τ1 q1" not in head
 
 
 def test_intermediates_of_a_model_without_them_is_a_clear_error(capsys):

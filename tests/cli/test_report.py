@@ -24,7 +24,7 @@ def test_default_is_the_top_in_french_markdown(capsys):
     assert main(["report"]) == 0
     out = capsys.readouterr().out
     assert out.startswith("# Mouvement de Lagrange\n")  # the model's French title
-    assert "angles d'Euler" in out and r"\checkmark" in out  # the Newton–Euler check runs for 3 coordinates
+    assert "angles d’Euler" in out and r"\checkmark" in out  # the Newton–Euler check runs for 3 coordinates
 
 
 def test_format_from_the_suffix_and_language(tmp_path, capsys):
@@ -83,7 +83,7 @@ def test_simulate_to_tex_writes_the_figures_beside_it_with_french_captions(tmp_p
     assert len(pngs) == 8 and all((tmp_path / p).read_bytes().startswith(b"\x89PNG") for p in pngs)
     assert tex.count(r"\includegraphics") == 8 and r"\fbox" not in tex and r"\usepackage{graphicx}" in tex
     assert "Le mouvement simulé (vue 3D" in tex and "Le système dans sa position initiale" in tex
-    assert "Trajectoire de l'apex sur la sphère unité" in tex and "Réaction \\(R_{O}(t)\\)" in tex and "R\\_O" not in tex
+    assert "Trajectoire de l’apex sur la sphère unité" in tex and "Réaction \\(R_{O}(t)\\)" in tex and "R\\_O" not in tex
     assert "Figure 3 : }" not in tex and "Figure 6 : }" not in tex
 
 

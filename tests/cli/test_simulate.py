@@ -199,3 +199,61 @@ def test_stabilization_flag_reaches_the_dae(capsys, tmp_path):
     assert "dop853 + baumgarte" in capsys.readouterr().out
     assert main(["simulate", PENDULUM_FILE, "--t-end", "0.2", "--stabilization", "both"]) == 4
     assert "complementary" in capsys.readouterr().err
+
+
+# A gimbal gyroscope: the outer ring turns about z0, the inner ring about x1 in it, the rotor about z2 in the
+# inner ring; every centre is at O, so the rings may leave out their masses (the motion does not need them).
+GYROSCOPE = """
+[parameters]
+A = 0.01
+C = 0.02
+J1 = 0.003
+J2 = 0.002
+m = 0.5
+g = 9.81
+[coordinates]
+psi = { initial = 0.0, rate = 0.5 }
+theta = { initial = 0.3, rate = 0.0 }
+phi = { initial = 0.0, rate = 100.0 }
+[frames]
+R1 = { from = "R0", rotation = ["psi", "z"] }
+R2 = { from = "R1", rotation = ["theta", "x"] }
+R3 = { from = "R2", rotation = ["phi", "z"] }
+[bodies.outer]
+frame = "R1"
+center = "0*R1.z"
+inertia = { diagonal = ["J1", "J1", "J1"] }
+[bodies.inner]
+frame = "R2"
+center = "0*R2.z"
+inertia = { diagonal = ["J2", "J2", "J2"] }
+[bodies.rotor]
+frame = "R3"
+mass = "m"
+center = "0*R3.z"
+inertia = { diagonal = ["A", "A", "C"] }
+[loads]
+weight = { gravity = "-g*R0.z", on = ["rotor"] }
+"""
+
+
+def test_a_gyroscope_whose_rings_leave_out_their_masses_is_simulated_and_says_what_reactions_need(tmp_path, capsys):
+    model = tmp_path / "gyroscope.toml"
+    model.write_text(GYROSCOPE)
+    out = tmp_path / "run.csv"
+    assert main(["simulate", str(model), "--t-end", "0.2", "-o", str(out)]) == 0
+    err = capsys.readouterr()
+    text = err.out + err.err
+    lines = [line for line in text.splitlines() if line.startswith("reactions:")]
+    assert lines == [("reactions: not computed: they need the masses of bodies `outer`, `inner`, which the model "
+                      'leaves out (give mass = "..." under [bodies.outer]; the motion does not need it)')]
+    lines = [line for line in out.read_text().splitlines() if not line.startswith("#")]
+    header = lines[0].split(",")
+    assert "psi" in header and not any(name.startswith("R_") for name in header)
+    # The motion itself: the balanced rotor keeps its spin rate (φ̇ + ψ̇ cos θ is a first integral, C times it H).
+    rows = np.loadtxt(lines[1:], delimiter=",")
+    spin = rows[:, header.index("phi_dot")] + rows[:, header.index("psi_dot")] * np.cos(rows[:, header.index("theta")])
+    assert np.allclose(spin, spin[0], rtol=1e-6)
+    # Asked for explicitly, the reactions still stop the run with the error and its fix.
+    assert main(["simulate", str(model), "--t-end", "0.2", "--reactions", "-o", str(out)]) != 0
+    assert "the reactions need the mass of body `outer`" in capsys.readouterr().err

@@ -231,7 +231,7 @@ def test_top_pivot_rows_and_reaction_at_O() -> None:
     assert [r.name for r in eom.constraints] == ["pivot_x0", "pivot_y0", "pivot_z0"]
     assert all(r.kind == "holonomic" for r in eom.constraints)
     (reaction,) = eom.reactions
-    assert reaction.point == "Q" and reaction.counter_point is None  # O is fixed
+    assert reaction.point == "O_S" and reaction.counter_point is None  # O is fixed
     assert reaction.force_components == tuple(S(f"lambda_pivot_{a}") for a in ("x0", "y0", "z0"))
     # L(x_G): m ẍ_G = λ_x: the resultant theorem along x0, with R_O the only other force.
     assert is_zero(eom.equation("xG").rhs - S("lambda_pivot_x0"))

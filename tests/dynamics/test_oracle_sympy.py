@@ -136,7 +136,7 @@ def bead_rotating_hoop() -> Oracle:
 
 def foucault_pendulum() -> Oracle:
     # The engine writes it in the Earth's frame E; the oracle in R0, E turning as Omega t.
-    m, l, g, Omega, lam = _params("m l g Omega lat")
+    m, l, g, Omega, lam = _params("m l g Omega lam")
     alpha, beta = me.dynamicsymbols("alpha beta")
     t = me.dynamicsymbols._t
     N = me.ReferenceFrame("N")
@@ -148,7 +148,9 @@ def foucault_pendulum() -> Oracle:
     O.set_vel(N, 0)
     P = O.locatenew("P", -l * R2.z)
     P.v2pt_theory(O, N, R2)
-    return [alpha, beta], me.Particle("bob", P, m).kinetic_energy(N), [(P, -m * g * L.z)], N
+    # The attraction: the apparent gravity −g u at the bob's rest place, less the centrifugal Ω² OP⊥ there.
+    attraction = -(g - Omega**2 * l) * L.z - Omega**2 * l * sp.sin(lam) * N.z
+    return [alpha, beta], me.Particle("bob", P, m).kinetic_energy(N), [(P, m * attraction)], N
 
 
 def kapitza_pendulum() -> Oracle:

@@ -1,8 +1,9 @@
-"""A robot driven by constant joint torques: U holds −τ·q in both forms, and T + U is monitored.
+"""A robot driven by joint torques: inputs τ_j(t) are given non-conservative efforts, constants derive from −τ·q.
 
-With the torques τ_j as inputs (constant along a run), d/dt (T + U_gravity) = Σ τ_j q̇_j, the
-power of the actuators, so E = T + U_gravity − Σ τ_j q_j is a first integral: the closed form
-the monitored E is checked against, with T and U_gravity from Pinocchio.
+An input is any given function of time: d/dt (T + U_gravity) = Σ τ_j q̇_j, the power of the actuators,
+so E = T + U_gravity is the mechanical energy and changes by their work (checked with T and U_gravity
+from Pinocchio).  A torque that is a constant of the model (a parameter) derives from U = −τ q: then
+T + U_gravity − Σ τ_j q_j is a first integral, monitored by `simulate`, in both forms.
 """
 
 from __future__ import annotations
@@ -67,25 +68,58 @@ def test_a_motor_torque_is_a_load_with_a_potential_and_a_couple_fixed_in_r0_stay
         np.testing.assert_allclose(got, want, rtol=1e-10, atol=1e-10)
 
 
-def test_zoo_arm_motors_give_the_course_potential_and_the_energy_integral():
+def test_zoo_arm_motors_are_inputs_so_no_potential_and_no_energy_integral():
     eom = lagrangian.derive(serial_arm(5), formulation="recursive")
-    assert eom.recursive.conservative and not tree_structure(eom.kinematics).couples
-    run = lagrangian.simulate(eom, 1.0, parameters={"tau1": 0.8, "tau3": -0.5}, n_out=5)
-    assert "E" in run.integrals and run.drift["E"] < 1e-8
+    assert not eom.recursive.conservative and not tree_structure(eom.kinematics).couples
+    motors = [f for f in eom.loads if f.kind == "torque"]
+    assert motors and all(f.potential is None for f in motors)
+    assert "E" not in {i.name for i in lagrangian.first_integrals(eom)}
+
+
+def _chain_with_constant_motors(inputs: bool) -> lagrangian.Model:
+    """Three links about z, y, y with a motor between each pair: its torque a constant (or an input)."""
+    b = ModelBuilder("arm with constant motors")
+    for name, value in (("m", 1.0), ("L", 0.4), ("g", 9.81), ("A", 0.01)):
+        b.parameter(name, value)
+    for k in (2, 3):
+        (b.input if inputs else b.parameter)(f"tau{k}", **({} if inputs else {"value": 0.8 - 0.5 * k}))
+    b.frame("R0", None)
+    center = ""
+    for k, axis in enumerate("zyy", start=1):
+        b.coordinate(f"q{k}", initial=0.2 * k, rate=0.3)
+        b.frame(f"R{k}", f"R{k - 1}", rotation=(f"q{k}", axis))
+        center += f"{' + ' if k > 1 else ''}L*R{k}.z"
+        b.body(f"link{k}", frame=f"R{k}", mass="m", center=center + f" + L/3*R{k}.x",
+               inertia={"at": "G", "frame": f"R{k}", "diagonal": ["A", "2*A", "3*A"]})
+    b.gravity("weight", "-g*R0.z")
+    for k in (2, 3):
+        b.torque(f"motor{k}", f"tau{k}*R{k}.y", on=f"link{k}", reaction_on=f"link{k - 1}")
+    return b.build()
 
 
 @pytest.mark.parametrize("formulation", ["recursive", "lagrange"])
-def test_monitored_energy_is_the_closed_form_with_constant_torques(formulation):
+def test_constant_motor_torques_derive_from_minus_tau_q_and_the_energy_is_monitored(formulation):
+    eom = lagrangian.derive(_chain_with_constant_motors(inputs=False), formulation=formulation)
+    motors = [f for f in eom.loads if f.name.startswith("motor")]
+    for f, (k, q) in zip(motors, ((2, eom.q[1]), (3, eom.q[2]))):
+        assert se.expand(f.potential + se.Symbol(f"tau{k}") * q) == 0  # U = −τ q, the course's potential
+    run = lagrangian.simulate(eom, 1.0, n_out=5)
+    assert "E" in run.integrals and run.drift["E"] < 1e-8
+    driven = lagrangian.derive(_chain_with_constant_motors(inputs=True), formulation=formulation)
+    assert all(f.potential is None for f in driven.loads if f.name.startswith("motor"))
+    assert "E" not in {i.name for i in lagrangian.first_integrals(driven)}
+
+
+@pytest.mark.parametrize("formulation", ["recursive", "lagrange"])
+def test_mechanical_energy_of_a_urdf_robot_changes_by_the_actuators_work(formulation):
     pin = pytest.importorskip("pinocchio", reason="Pinocchio gives T and U_gravity independently")
     model = _pendulum()
     eom = lagrangian.derive(model, formulation=formulation)
+    assert all(f.potential is None for f in eom.loads if f.name == "actuators")  # τ(t): no potential energy
     run = lagrangian.simulate(eom, 2.0, parameters=TAU, initial={"shoulder": 0.4, "elbow": -0.3}, n_out=41)
+    assert "E" not in run.integrals  # T + U_gravity − τ·q is constant only for constant τ, which inputs are not
     peer = Peer(pin, DOUBLE_PENDULUM, list(eom.coordinates))
     tau = np.array([TAU["tau_shoulder"], TAU["tau_elbow"]])
-    closed = np.array([sum(peer.energies(q, v)) - tau @ q for q, v in zip(run.q, run.qd)])
-    E = run.column("E")
-    np.testing.assert_allclose(E - E[0], closed - closed[0], atol=1e-8 * np.abs(closed).max())
-    assert run.drift["E"] < 1e-9
     # The actuators' power: T + U_gravity changes by the work Σ τ_j Δq_j.
     work = (run.q - run.q[0]) @ tau
     assert np.abs(work).max() > 0.1  # the torques do work: T + U_gravity alone is not constant
@@ -93,17 +127,19 @@ def test_monitored_energy_is_the_closed_form_with_constant_torques(formulation):
     np.testing.assert_allclose(physical - physical[0], work, atol=1e-8 * np.abs(physical).max())
 
 
-def test_energy_balance_of_a_damped_urdf_robot_is_the_dampers_power():
-    # The course's balance dE/dt = P_nc with E = T + U, U holding −τ·q: only the damper works.
+def test_energy_balance_of_a_damped_urdf_robot_is_the_actuators_and_dampers_power():
+    # The course's balance dE/dt = P_nc with E = T + U_gravity, the mechanical energy: the actuators and the damper work.
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UrdfNote)
         model = parse_urdf(DOUBLE_PENDULUM, source="pendulum.urdf")  # <dynamics damping="0.2"> on the elbow
     eom = lagrangian.derive(model)
     balance = lagrangian.energy_balance(eom)
     assert not balance.conserved
-    working = [t for t in balance.terms if t.power != 0]
-    assert [t.name for t in working] == ["joint_damping"]
+    working = {t.name: t.power for t in balance.terms if t.power != 0}
+    assert sorted(working) == ["actuators", "joint_damping"]
     rates = {s: float(x) for s, x in zip(eom.qd, (0.7, -1.3))}
-    assert float(working[0].power.subs(rates)) == pytest.approx(-0.2 * 1.3**2, rel=1e-12)
-    for name, q in zip(TAU, eom.q):  # E holds the actuators' potential −τ_j q_j
-        assert se.expand(balance.E.diff(se.Symbol(name)) + q) == 0
+    assert float(working["joint_damping"].subs(rates)) == pytest.approx(-0.2 * 1.3**2, rel=1e-12)
+    taus = {se.Symbol(name): value for name, value in TAU.items()}
+    assert float(working["actuators"].subs(rates | taus)) == pytest.approx(1.3 * 0.7 + 0.6 * 1.3, rel=1e-12)
+    for name in TAU:  # E is the mechanical energy: no −τ_j q_j
+        assert balance.E.diff(se.Symbol(name)) == 0

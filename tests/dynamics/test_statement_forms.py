@@ -121,18 +121,19 @@ def test_couple_on_an_unknown_name_names_bodies_and_frames() -> None:
 # -- item 1: a rotation about a constant axis of the parent ------------------------------------
 FOUCAULT_AXIS = """
     # The Foucault pendulum as its statement says: the Earth E turns at Omega about its polar
-    # axis, cos(lat) north + sin(lat) up in the local frame R0 (x east, y north, z up).
+    # axis, cos(lam) north + sin(lam) up in the local frame R0 (x east, y north, z up); the attraction
+    # is the apparent gravity −g z at the bob's rest place, less the centrifugal Ω² OP⊥ there.
     [parameters]
     m = 1.0
     l = 1.0
     g = 9.81
     Omega = 0.2
-    lat = 0.7853981633974483
+    lam = 0.7853981633974483
     [coordinates]
     alpha = { initial = 0.0 }
     beta = { initial = 0.1 }
     [frames]
-    E = { from = "R0", rotation = ["Omega*t", "cos(lat)*R0.y + sin(lat)*R0.z"] }
+    E = { from = "R0", rotation = ["Omega*t", "cos(lam)*R0.y + sin(lam)*R0.z"] }
     R1 = { from = "E", rotation = ["-alpha", "y"] }
     R2 = { from = "R1", rotation = ["beta", "x"] }
     [reference]
@@ -141,7 +142,7 @@ FOUCAULT_AXIS = """
     mass = "m"
     position = "-l*R2.z"
     [loads]
-    weight = { gravity = "-g*E.z" }
+    weight = { gravity = "-(g - Omega^2*l)*E.z - Omega^2*l*sin(lam)*cos(lam)*E.y - Omega^2*l*sin(lam)^2*E.z" }
 """
 
 
@@ -160,29 +161,29 @@ def test_foucault_about_the_polar_axis_is_the_chained_formulation() -> None:
 
 def test_builder_takes_the_axis_too() -> None:
     b = lagrangian.ModelBuilder("Foucault")
-    for name, value in (("m", 1.0), ("l", 1.0), ("g", 9.81), ("Omega", 0.2), ("lat", 0.785)):
+    for name, value in (("m", 1.0), ("l", 1.0), ("g", 9.81), ("Omega", 0.2), ("lam", 0.785)):
         b.parameter(name, value)
     b.coordinate("alpha")
     b.coordinate("beta")
-    b.frame("E", "R0", rotation=("Omega*t", "cos(lat)*R0.y + sin(lat)*R0.z"))
+    b.frame("E", "R0", rotation=("Omega*t", "cos(lam)*R0.y + sin(lam)*R0.z"))
     b.frame("R1", "E", rotation=("-alpha", "y"))
     b.frame("R2", "R1", rotation=("beta", "x"))
     b.reference("E")
     b.particle("P", mass="m", position="-l*R2.z")
-    b.gravity("weight", "-g*E.z")
+    b.gravity("weight", "-(g - Omega^2*l)*E.z - Omega^2*l*sin(lam)*cos(lam)*E.y - Omega^2*l*sin(lam)^2*E.z")
     assert_same_equations(lagrangian.derive(b.build()), derive(FOUCAULT_AXIS.replace("0.7853981633974483", "0.785")),
                           states=1)
 
 
 def test_axis_not_unit_is_normalized_and_basis_vector_is_elementary() -> None:
-    tilted = parse(FOUCAULT_AXIS.replace("cos(lat)*R0.y + sin(lat)*R0.z", "3*R0.y + 4*R0.z")).frame("E").rotation
+    tilted = parse(FOUCAULT_AXIS.replace("cos(lam)*R0.y + sin(lam)*R0.z", "3*R0.y + 4*R0.z")).frame("E").rotation
     assert tilted.normalized and [sp.nsimplify(sym(c)) for c in tilted.direction] == [0, sp.Rational(3, 5),
                                                                                        sp.Rational(4, 5)]
-    assert parse(FOUCAULT_AXIS.replace("cos(lat)*R0.y + sin(lat)*R0.z", "R0.z")).frame("E").rotation.axis == "z"
+    assert parse(FOUCAULT_AXIS.replace("cos(lam)*R0.y + sin(lam)*R0.z", "R0.z")).frame("E").rotation.axis == "z"
     # a symbolic axis that is not provably unit is divided by its norm, and the frames say so
     from lagrangian.output import course_form, render_latex, render_text
 
-    eom = derive(FOUCAULT_AXIS.replace("cos(lat)*R0.y + sin(lat)*R0.z", "l*R0.y + R0.z"))
+    eom = derive(FOUCAULT_AXIS.replace("cos(lam)*R0.y + sin(lam)*R0.z", "l*R0.y + R0.z"))
     form = course_form(eom, ())
     assert "(the axis given, divided by its norm)" in render_text(form)
     assert r"\text{(the axis given, divided by its norm)}" in render_latex(form)
@@ -197,7 +198,7 @@ def test_axis_not_unit_is_normalized_and_basis_vector_is_elementary() -> None:
 ])
 def test_bad_axes_are_refused_clearly(axis: str, message: str) -> None:
     with pytest.raises(ModelError, match=message):
-        parse(FOUCAULT_AXIS.replace("cos(lat)*R0.y + sin(lat)*R0.z", axis))
+        parse(FOUCAULT_AXIS.replace("cos(lam)*R0.y + sin(lam)*R0.z", axis))
 
 
 # -- item 6: conservative with multipliers -----------------------------------------------------
@@ -306,7 +307,15 @@ def test_simulate_cli_runs_with_no_reactions_and_says_why_otherwise(tmp_path, ca
     model.write_text(textwrap.dedent(atwood(mass='mass = "M"', extra="M = {}", center="0.5*R0.y")))
     assert main(["simulate", str(model), "--t-end", "0.2", "--n-out", "3", "--no-reactions",
                  "-o", str(tmp_path / "out.csv")]) == 0
-    assert main(["simulate", str(model), "--t-end", "0.2", "--n-out", "3", "-o", str(tmp_path / "r.csv")]) != 0
+    capsys.readouterr()
+    # Without --no-reactions the run goes on too, and one line says what the reactions would need.
+    assert main(["simulate", str(model), "--t-end", "0.2", "--n-out", "3", "-o", str(tmp_path / "r.csv")]) == 0
+    out = capsys.readouterr()
+    line = next(x for x in (out.out + out.err).splitlines() if x.startswith("reactions:"))
+    assert "`M` have no value" in line and "--set" in line
+    # Asked for with --reactions, they stop the run and say how to go without them.
+    assert main(["simulate", str(model), "--t-end", "0.2", "--n-out", "3", "--reactions",
+                 "-o", str(tmp_path / "r.csv")]) != 0
     err = capsys.readouterr().err
     assert "`M` have no value" in err and "--no-reactions" in err
 

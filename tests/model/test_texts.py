@@ -42,7 +42,7 @@ def test_texts_in_both_languages_and_a_plain_one():
     assert in_language(model.title, "fr") == "Pendule simple" and str(model.title) == "Simple pendulum"
     assert pickle.loads(pickle.dumps(m)).in_language("fr") == "masse de P"
     fr, en = report(model, lang="fr").document, report(model, lang="en").document
-    assert (fr.title, fr.subtitle) == ("Pendule simple", "Un point au bout d'une tige")
+    assert (fr.title, fr.subtitle) == ("Pendule simple", "Un point au bout d\u2019une tige")  # French apostrophe
     assert (en.title, en.subtitle) == ("Simple pendulum", "A point on a rod")
     assert "masse de P" in report(model, lang="fr").markdown() and "mass of P" not in report(model, lang="fr").markdown()
     assert "angle from the downward vertical" in report(model, lang="en").markdown()
@@ -97,4 +97,4 @@ def test_a_urdf_robots_texts_are_in_the_reports_language():
         prose = re.sub(r"`[^`]*`", "", prose)  # the joints' names, as the file writes them
         assert not _words(prose, foreign), (lang, _words(prose, foreign))
     fr = report(model, lang="fr").markdown()
-    assert "liaison pivot" in fr and "couple de l'actionneur de la liaison" in fr and "« actionneurs »" in fr
+    assert "liaison pivot" in fr and "couple de l\u2019actionneur de la liaison" in fr and "«\u00a0actionneurs\u00a0»" in fr

@@ -271,5 +271,8 @@ def test_constant_joint_torques_run_on_the_quaternion_route_and_a_varying_one_is
     model = walker.model
     held = lagrangian.simulate(model, 0.05, inputs={"tau_hip": 0.5}, n_out=3)
     assert held.status == "completed"
+    # The hip's motor works while it pushes: E is no integral of that run; σ_G still is (an internal torque).
+    assert "E" not in held.integrals and "sigma_G_z0" in held.integrals
+    assert "E" in lagrangian.simulate(model, 0.05, n_out=3).integrals  # motors off
     with pytest.raises(lagrangian.SimulationError, match="quaternion route runs with constant inputs only"):
         lagrangian.simulate(model, 0.05, inputs={"tau_hip": "0.5*sin(t)"}, n_out=3)

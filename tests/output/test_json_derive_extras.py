@@ -45,7 +45,7 @@ def test_multiplier_formulas_give_the_tension(capsys) -> None:
 
 def test_reference_frame_and_load_notes(capsys) -> None:
     doc = document(capsys, EXAMPLES / "foucault_pendulum.toml")
-    assert doc["reference"] == {"frame": "E", "origin": "O"}
+    assert doc["reference"] == {"frame": "R_T", "origin": "O"}
     notes = {f["load"]: f["note"] for f in doc["generalized_forces"]}
     assert "virtual power Σ Q_i q_i* not zero" in notes["Coriolis"]
     assert "reference" not in document(capsys, EXAMPLES / "simple_pendulum.toml")

@@ -22,7 +22,7 @@ from lagrangian.output.report.build import multiplier_names, report_notation
 from lagrangian.output.report.document import Display, Fold, Items, Para, math_of, walk
 from lagrangian.output.report.render.markdown import render_markdown
 from lagrangian.output.report.size import SMALL_OPS, Summary
-from lagrangian_test_support import EXAMPLES_DIR, eom_of, example_names, integrals_of, mutated_example
+from lagrangian_test_support import EXAMPLES_DIR, eom_of, example_names, integrals_of, mutated_example, plain
 
 GOLDEN = Path(__file__).parent / "golden" / "lagrange_top.fr.md"
 #: Seconds a 40-link chain's report may take on a slow shared machine (about 5 s measured).
@@ -53,7 +53,7 @@ def _text(r: Report) -> str:
         for b in walk(s.blocks):
             runs = b.runs if isinstance(b, Para) else [x for item in b.items for x in item] if isinstance(b, Items) else []
             out.append("".join(x if isinstance(x, str) else f"${x.latex}$" for x in runs))
-    return "\n".join(out)
+    return plain("\n".join(out))
 
 
 @pytest.fixture(scope="module")
@@ -81,7 +81,8 @@ def test_golden_french_report_of_the_top(top):
 #: (δ_A = d/dt σ_A + m V(A) ∧ V(G)), the multiplier from the constraint differentiated twice, the Jacobi integral
 #: h = T(Σ/R1) + U_P(Σ/R1) of the hoop, the multipliers λ / λ_1 … λ_k and the constraints by their description,
 #: the comoments of step 3 and Π at step 4.  Regenerate with LAGRANGIAN_UPDATE_GOLDEN=1 and review the diff.
-GOLDEN_EXAMPLES = ["pendulum_tension", "double_pendulum", "rolling_coin", "bead_rotating_hoop"]
+GOLDEN_EXAMPLES = ["pendulum_tension", "double_pendulum", "rolling_coin", "bead_rotating_hoop", "block_on_incline",
+                   "foucault_pendulum"]
 
 
 @pytest.mark.parametrize("lang", ["fr", "en"])

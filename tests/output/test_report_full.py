@@ -89,7 +89,7 @@ def test_html_folds_the_full_forms_and_markdown_too(chain6):
     html, md = r.html(), r.markdown()
     assert html.count('<details class="full">') == sum(1 for s in r.document.sections for b in walk(s.blocks)
                                                          if isinstance(b, FullForms))
-    assert "<summary>L(θ1) : formes complètes A.2 — afficher</summary>" in html
+    assert "<summary>L(θ1)\u00a0: formes complètes A.2 — afficher</summary>" in html  # French: no break before :
     assert "(voir&#x000A0;A.2)" in html  # MathML of \text{termes (voir A.2)}
     # Markdown: a collapsed <details> holding ```math blocks.
     fold = md[md.index("formes complètes A.2"):]
@@ -118,7 +118,7 @@ def test_a_40_link_chain_stays_within_the_budget_and_quick():
     # The rest stays summarized, and the report says where the complete equations are.
     text = " ".join(x for s in r.document.sections for b in walk(s.blocks) if hasattr(b, "runs")
                     for x in b.runs if isinstance(x, str))
-    assert "lagrangian derive MODEL --json" in text and "300 000 caractères" in text
+    assert "lagrangian derive MODEL --json" in text and "300\u202f000 caractères" in text  # a narrow space
     step6 = " ".join(math_of(r.document.section("step6").blocks))
     assert r"\text{termes} \rangle" in step6  # summaries left as they were
 

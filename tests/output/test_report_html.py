@@ -198,7 +198,7 @@ def test_top_in_french_renders_in_a_browser(tmp_path):
     r = report(lagrangian.lagrange_top(), lang="fr", verification=True,
                figures=[ReportFigure(buffer.getvalue(), "θ(t)")])
     result = _check_page(r.html(), _math_count(r), tmp_path, images=1)
-    assert "Équations de Lagrange" in result["text"] and "angles d'Euler" in result["text"]
+    assert "Équations de Lagrange" in result["text"] and "angles d\u2019Euler" in result["text"]
     _screenshot(tmp_path / "report.html", tmp_path)
 
 

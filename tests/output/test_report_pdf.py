@@ -73,3 +73,34 @@ def test_no_engine_says_how_to_install_one(tmp_path, monkeypatch):
 def test_a_pdf_goes_to_a_file_not_the_terminal(capsys):
     assert main(["report", str(EXAMPLES_DIR / "simple_pendulum.toml"), "--format", "pdf"]) != 0
     assert "-o report.pdf" in capsys.readouterr().err
+
+
+needs_fonts = pytest.mark.skipif(_report_pdf.tex_engine() is None or shutil.which("pdffonts") is None
+                                 or shutil.which("kpsewhich") is None
+                                 or subprocess.run(["kpsewhich", "lmodern.sty"], capture_output=True,
+                                                   check=False).returncode != 0,
+                                 reason="no TeX engine, pdffonts or the lmodern package here (`make test` installs them)")
+
+
+@needs_fonts
+def test_pdf_text_is_in_vector_fonts_and_the_tables_have_settled(tmp_path):
+    """Every font of the PDF is Type 1 (Latin Modern), none a bitmap Type 3; the engine ran until longtable's
+    column widths settled (its log no longer asks for a rerun), which takes a second run for a report's tables."""
+    latex = report(EXAMPLES_DIR / "rolling_coin.toml", lang="fr").latex()
+    assert r"\begin{longtable}" in latex
+    data, log, runs = _report_pdf.compile_pdf_and_log(latex)
+    assert runs >= 2 and not _report_pdf.needs_rerun(log)  # one run leaves "Table widths have changed"
+    out = tmp_path / "coin.pdf"
+    out.write_bytes(data)
+    fonts = subprocess.run(["pdffonts", str(out)], capture_output=True, text=True, check=True).stdout.splitlines()[2:]
+    kinds = {line.split()[1] if line.split()[1] != "Type" else " ".join(line.split()[1:3]) for line in fonts}
+    assert fonts and "Type 3" not in kinds, fonts
+    assert any("LMRoman" in line for line in fonts), fonts
+    text = subprocess.run(["pdftotext", str(out), "-"], capture_output=True, text=True, check=True).stdout
+    assert "Pièce roulant debout" in text and "d’une énergie potentielle" in text  # text, with its apostrophes
+
+
+def test_rerun_is_asked_by_longtable_and_references_only():
+    assert _report_pdf.needs_rerun("Package longtable Warning: Table widths have changed. Rerun LaTeX.")
+    assert _report_pdf.needs_rerun("LaTeX Warning: Label(s) may have changed. Rerun to get cross-references right.")
+    assert not _report_pdf.needs_rerun("Output written on report.pdf (4 pages, 120000 bytes).")

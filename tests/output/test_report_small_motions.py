@@ -22,7 +22,8 @@ from lagrangian.output._text import notation
 from lagrangian.output import course_form
 from lagrangian_test_support import EXAMPLES_DIR
 
-TITLES = {"fr": "Petits mouvements au voisinage d'une position d'équilibre", "en": "Small motions about an equilibrium"}
+TITLES = {"fr": "Petits mouvements au voisinage d\u2019une position d\u2019équilibre",
+          "en": "Small motions about an equilibrium"}
 
 
 def _pendulum():

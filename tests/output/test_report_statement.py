@@ -19,7 +19,7 @@ from lagrangian.output.report.build import report_notation, tex_name
 from lagrangian.output._course import course_form
 from lagrangian.output.report.document import Items, Math, Para, Table, math_of, walk
 from lagrangian.output.report.words import _PHRASES, Words
-from lagrangian_test_support import eom_of
+from lagrangian_test_support import eom_of, plain
 
 EXAMPLES = ["lagrange_top.toml", "pendulum_tension.toml"]
 
@@ -47,7 +47,7 @@ def _runs(blocks):
 
 def _prose(blocks) -> str:
     """The statement's words, mathematics left out."""
-    return " ".join(r for r in _runs(blocks) if isinstance(r, str))
+    return plain(" ".join(r for r in _runs(blocks) if isinstance(r, str)))
 
 
 def _norm(latex: str) -> str:
@@ -89,7 +89,7 @@ def test_every_parameter_is_given_with_its_value_unit_and_description(case):
     for p in eom.model.parameters:
         row = rows[notation.symbol(p.name, latex=True)]
         assert "".join(row[1]) == w.number(p.value)
-        assert "".join(row[2]) != "" and "".join(row[3]) == in_language(p.description, lang)
+        assert "".join(row[2]) != "" and plain("".join(row[3])) == in_language(p.description, lang)
     assert len(rows) == len(eom.model.parameters)
 
 

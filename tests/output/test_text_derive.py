@@ -62,7 +62,7 @@ def test_labels_in_a_rotating_reference_frame(capsys) -> None:
 def test_the_coriolis_note_is_printed(capsys) -> None:
     out = derive(capsys, EXAMPLES / "foucault_pendulum.toml")
     assert "Σ Q_i q̇_i ≡ 0; virtual power Σ Q_i q_i* not zero" in out
-    assert "Ω(E/R0) = Ω z0    (prescribed)" in out and "T(P/E)" in out
+    assert "Ω(R_T/R0) = Ω z0    (prescribed)" in out and "T(P/R_T)" in out
 
 
 def test_energy_balance_kinds_and_notes_of_a_damped_driven_pendulum(capsys, tmp_path) -> None:

@@ -95,7 +95,7 @@ def test_bead_oscillates_about_its_equilibrium_with_the_jacobi_integral_constant
 def precession_rate(latitude: float) -> tuple[float, float]:
     """(measured rate of the plane of oscillation, −Ω sin λ) over 10 swings."""
     eom = eom_of("foucault_pendulum.toml")
-    tr = simulate(eom, 20.0, parameters={"lat": latitude}, n_out=20001)
+    tr = simulate(eom, 20.0, parameters={"lam": latitude}, n_out=20001)
     alpha, beta = tr.column("alpha"), tr.column("beta")
     x, y = -np.sin(beta), np.sin(alpha) * np.cos(beta)  # the bob in the horizontal plane (south, east)
     r = np.hypot(x, y)

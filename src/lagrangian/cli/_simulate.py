@@ -171,7 +171,12 @@ def run(args: argparse.Namespace) -> str:
     # robot's only one is the ground's wrench on the whole arm, whose expanded Newton–Euler
     # formula grows steeply with the joints (seconds at 12): asked for, not by default.
     reactions = args.reactions if args.reactions is not None else eom.formulation != "recursive" and not free
-    if reactions:
+    left_out = ""
+    if reactions and args.reactions is None:
+        # Asked for by default only: a value they alone need (a ring's mass a gyroscope leaves out) does not stop
+        # the simulation; one line says what they would need.
+        traj, left_out = _with_reactions_if_possible(traj, eom)
+    elif reactions:
         traj = _with_reactions(traj, eom)
     lines = [
         f"{model.name}: t from {traj.t[0]:g} to {traj.t[-1]:g} with {traj.method}, {traj.steps} steps, "
@@ -188,6 +193,8 @@ def run(args: argparse.Namespace) -> str:
     if args.reactions is None and not reactions and not free:
         lines.append("reactions: not computed for a kinematic tree (the ground's wrench on it); --reactions adds "
                      "them")
+    if left_out:
+        lines.append(left_out)
     lines += [f"warning: {w}" for w in traj.warnings]
     if traj.events:
         lines.append(f"events: {len(traj.events)} — " + ", ".join(f"{e.name} at t = {e.t:.9g}" for e in traj.events[:8])
@@ -249,6 +256,27 @@ def _with_reactions(traj, eom):
         exc.fix = (exc.fix + "; " if exc.fix else "") + "or simulate without the reactions: --no-reactions"
         raise
     return replace(traj, extra={**traj.extra, **columns})
+
+
+def _with_reactions_if_possible(traj, eom):
+    """(trajectory with the reactions, "") or, when they need values the model leaves out, (trajectory, the one
+    line saying which): the bodies without a mass (their weight bears on their axle), or the error's own words."""
+    from dataclasses import replace
+
+    from ..errors import LagrangianError
+    from ..numerics import reaction_columns_along
+
+    try:
+        columns = reaction_columns_along(eom, traj)
+    except LagrangianError as exc:
+        missing = [b.name for b in eom.model.bodies if not b.mass_given]
+        if missing and "mass of body" in exc.message:
+            names = ", ".join(f"`{name}`" for name in missing)
+            what = "the mass of body" if len(missing) == 1 else "the masses of bodies"
+            return traj, (f"reactions: not computed: they need {what} {names}, which the model leaves out (give "
+                          f'mass = "..." under [bodies.{missing[0]}]; the motion does not need it)')
+        return traj, f"reactions: not computed: {exc.message}" + (f" ({exc.fix})" if exc.fix else "")
+    return replace(traj, extra={**traj.extra, **columns}), ""
 
 
 def _plots(traj, eom, directory: Path, animation: str) -> list:

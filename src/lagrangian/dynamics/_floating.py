@@ -101,6 +101,9 @@ class FloatingForm:
     monitors: tuple[tuple[str, se.Basic], ...]
     integrals: tuple[str, ...]
     momentum: tuple[tuple[str, ...], ...]
+    #: The inputs whose loads are the only non-conservative ones: E is a first integral while they
+    #: are off (0), the simulation's default; a run that gives one a value drops E from `integrals`.
+    energy_inputs: tuple[str, ...] = ()
 
     def needed(self, exprs: Sequence[se.Basic]) -> list[tuple[se.Symbol, se.Basic]]:
         """The intermediates ``exprs`` depend on, in order."""
@@ -402,8 +405,14 @@ def floating_form(model: Model) -> FloatingForm:
         monitors += list(zip(names, sigma)) + [(f"P{tag}_{a}", p_a) for a, p_a in zip(axes, P)]
     U_other = sum_of([f.potential for f in other if f.potential is not None])
     T, U = sum_of(T_all), sum_of(U_all) + U_other
-    conservative = (all(f.potential is not None for f in other) and not any(t.couples for t in trees)
-                    and kin.t not in U.free_symbols)
+    # An actuator's load is a given non-conservative effort (`_forces`), which does no work while its
+    # input is off: the energy is an integral of the runs that leave those inputs at 0.
+    inputs = {se.Symbol(u) for u in model.inputs}
+    off = dict.fromkeys(inputs, _ZERO)
+    driven = [f for f in other if f.potential is None]
+    vanish = all(all(se.expand(q.xreplace(off)) == 0 for q in f.Q) for f in driven)
+    energy_inputs = tuple(sorted(s.name for f in driven for q in f.Q for s in q.free_symbols if s in inputs))
+    conservative = (vanish and not any(t.couples for t in trees) and kin.t not in U.free_symbols)
     first = [(name, expr) for name, expr in monitors if name in integrals]
     rest = [(name, expr) for name, expr in monitors if name not in integrals]
     energy = [("E", T + U)] if conservative else []
@@ -419,7 +428,8 @@ def floating_form(model: Model) -> FloatingForm:
     return FloatingForm(model, trees, tuple(bases), tuple(positions), tuple(velocities), tuple(w.items),
                         tuple(derivative_q + derivative_v), tuple(derivative_v), tuple(pivots),
                         tuple(tuple(row) for row in M), tuple(energy + first + rest + [("T", T), ("U", U)]),
-                        tuple(["E"] * bool(energy) + [name for name, _ in first]), tuple(momentum))
+                        tuple(["E"] * bool(energy) + [name for name, _ in first]), tuple(momentum),
+                        tuple(dict.fromkeys(energy_inputs)))
 
 
 def _field(gravity: Sequence[Vec]) -> tuple[bool, bool, bool]:

@@ -11,7 +11,11 @@ detected, not declared: each load proposes the potential of its physics (gravity
 U = −m g·OG, spring ½k(ℓ − ℓ0)², constant force −F·OP...) or, for couples and given
 generalized forces, a potential is sought by integration, and the identity
 Q_i + ∂U/∂q_i ≡ 0 is then verified for every i (so virtual power and −∂U/∂q check
-each other).
+each other).  A load driven by a declared input (``[inputs]``: a motor torque τ, a push F)
+is never conservative: an input is any given function of time u(t), so −u q is no potential
+energy of the system (its "energy" would change with u at fixed q and q̇); such a load stays
+among the non-conservative efforts, and T + U_P is the mechanical energy.  A load whose
+magnitude is a constant of the model (a parameter, not an input) does derive from −C q.
 """
 
 from __future__ import annotations
@@ -183,6 +187,7 @@ def generalized_forces(kin: Kinematics, assumptions: Assumptions | None = None, 
     x ≥ −L gives −k x, not −k sgn(x + L)(|x + L| − L) (`lagrangian.model._assumptions`).
     """
     out = []
+    inputs = {p.symbol for p in kin.model.parameters if p.input}
     loads = kin.model.loads if only is None else [kin.model.loads[k] for k in only]
     for load in loads:
         Q, candidate, note = _q_of(kin, load)
@@ -198,6 +203,8 @@ def generalized_forces(kin: Kinematics, assumptions: Assumptions | None = None, 
                 potential = None
         if potential is not None and potential.free_symbols & set(kin.qd):
             potential = None
+        if potential is not None and any(set(x.free_symbols) & inputs for x in Q):
+            potential = None  # driven by an input u(t): a given non-conservative effort
         power = sum_of([q * s for q, s in zip(Q, kin.q_star) if type(q) is not _ZERO_TYPE])
         out.append(LoadForces(load.name, type(load).__name__.lower(), Q, power, potential, note))
     return tuple(out)

@@ -208,7 +208,7 @@ def tree_structure(kin: Kinematics) -> TreeStructure | str:
     for k in other:
         load = model.loads[k]
         if isinstance(load, Torque) and _constant_q(kin, load):
-            kept.append(k)  # a motor's τ about its joint axis: Q_j = τ, potential −τ q_j (see `_constant_q`)
+            kept.append(k)  # a motor's τ about its joint axis: Q_j = τ (potential −τ q_j if τ is no input: `_constant_q`)
         elif isinstance(load, Torque):
             couples.append((leaf_of.get(load.on, index.get(load.on, 0)), load.torque))
             if load.reaction_on is not None:
@@ -229,10 +229,11 @@ def _constant_q(kin: Kinematics, load: Torque) -> bool:
     """The torque's Q_j = C⃗·∂Ω(S/S')/∂q̇_j (course, virtual power) hold no q, q̇ nor t.
 
     That is a motor's constant τ about the axis of the joint between the two bodies it acts on:
-    Q_j = τ a_j, whose potential is −τ α.  Such a torque is kept among the loads with their
-    Q_i (a constant each) and potential, as the course's derivation has it, so that U holds
-    −τ·q and T + U is the energy integral of a robot driven by constant torques, in both forms
-    (by d/dt (T + U_gravity) = Σ τ_j q̇_j).  Any other torque is a couple in the recursion.
+    Q_j = τ a_j, whose potential is −τ α when τ is a constant of the model.  Such a torque is kept
+    among the loads with their Q_i (a constant each) and potential, as the course's derivation has it,
+    so that U holds −τ·q and T + U is the energy integral of a robot driven by constant torques, in
+    both forms (by d/dt (T + U_gravity) = Σ τ_j q̇_j); a τ declared as an input u(t) is kept the same
+    way, without a potential (`generalized_forces`).  Any other torque is a couple in the recursion.
     """
     Q, _, _ = _q_of(kin, load)
     moving = set(kin.q) | set(kin.qd) | {kin.t}

@@ -61,6 +61,13 @@ if TYPE_CHECKING:  # pragma: no cover
 
 RESERVED = {"t", *CONSTANTS, *FUNCTIONS, GALILEAN_FRAME, ORIGIN, "G"}
 
+#: How a position relative to a point is written, by kind of declaration: one spelling, `from`.
+_FROM_EXAMPLES = {
+    "point": 'write B = { from = "A", position = "l*R2.x" }: the point it starts from is `from`',
+    "particle": 'write from = "A" and position = "l*R2.x" as two keys of [particles.NAME]',
+    "body": 'write from = "A" and center = "a*R.z" as two keys of [bodies.NAME] (AG from the point A)',
+}
+
 
 @dataclass(frozen=True, slots=True)
 class Raw:
@@ -127,6 +134,11 @@ class Assembler:
                 ) from None
         elif isinstance(value, Vector):
             parsed = value
+        elif isinstance(value, Mapping):  # { from = "A", position = "…" } where an expression is expected
+            raise self.error(raw, f"in {what} of {raw.kind} `{raw.name}`: a table is not an expression; a position "
+                                  "relative to a point is given with `from` beside it", symbol=raw.name, key=key,
+                             fix=_FROM_EXAMPLES.get(raw.kind, 'write the expression in quotes, e.g. "l*R1.x", and '
+                                                               'the point it starts from as from = "A"'))
         else:
             try:
                 parsed = as_expr(value)

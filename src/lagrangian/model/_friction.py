@@ -60,7 +60,14 @@ def build_friction_load(asm: Assembler, raw: Raw, points: Mapping[str, Point], b
             raise asm.error(raw, f"the dissipation function of `{raw.name}` depends on no rate q̇, so its "
                             "generalized forces Q_i = −∂D/∂q̇_i would all be zero", symbol=raw.name, key="function",
                             fix='write D in terms of the rates, e.g. dissipation = "1/2*c*x_dot^2"')
-        return Dissipation(raw.name, D)
+        joints = tuple(str(q) for q in d.get("joints", ()))
+        known = {c for c in asm.symbols if c + "_dot" in asm.symbols}
+        for q in joints:
+            if q not in known:
+                raise asm.error(raw, f"the dissipation function `{raw.name}` names `{q}` as one of its joints, "
+                                "which is not a coordinate", symbol=q, key="joints",
+                                fix="name the coordinates of the joints it acts in")
+        return Dissipation(raw.name, D, joints)
     if kind == "joint_damper":
         ends = d["bodies"]
         if isinstance(ends, str) or not isinstance(ends, (tuple, list)) or len(ends) != 2:

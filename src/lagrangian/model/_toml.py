@@ -344,12 +344,18 @@ class _Reader:
                     location=self.located("points", name, value, "position"))
         for name, value in self.table("bodies").items():
             v = self.entry("bodies", name, value,
-                           {"frame", "mass", "center", "center_from", "inertia", "fixed_point", "free", "shape"}, "frame")
+                           {"frame", "mass", "center", "from", "center_from", "inertia", "fixed_point", "free", "shape"}, "frame")
             for key in ("frame", "center"):  # `mass` may be left out where it cannot enter (`Assembler.bodies`)
                 if key not in v:
                     raise self.fail(("bodies", name), f"body `{name}` has no `{key}`", symbol=name,
                                     fix=f"add `{key} = ...` to [bodies.{name}]")
-            b.body(name, frame=v["frame"], mass=v.get("mass"), center=v["center"], center_from=v.get("center_from", "O"),
+            # `from` gives G from another point, as for points and particles; `center_from` is its older spelling.
+            if "from" in v and "center_from" in v:
+                raise self.fail(("bodies", name, "center_from"), f"body `{name}` gives both `from` and `center_from`, "
+                                "two spellings of the point its center is measured from", symbol=name,
+                                fix="keep `from` (`center_from` is its older spelling)")
+            b.body(name, frame=v["frame"], mass=v.get("mass"), center=v["center"],
+                   center_from=v.get("from", v.get("center_from", "O")),
                    inertia=v.get("inertia"), fixed_point=v.get("fixed_point"), free=v.get("free", False),
                    location=self.located("bodies", name, value, "frame"))
         for name, value in self.table("particles").items():

@@ -162,9 +162,12 @@ class ModelBuilder:
         """Given generalized-force components, e.g. ``{"theta": "-c*theta_dot"}``."""
         self._add("load", name, location, kind="generalized_force", components=dict(components))
 
-    def dissipation(self, name: str, function: Any, *, location: Location | None = None) -> None:
-        """A Rayleigh dissipation function D(q, q̇, t): Q_i = −∂D/∂q̇_i (e.g. ``"1/2*c*x_dot^2"``)."""
-        self._add("load", name, location, kind="dissipation", function=function)
+    def dissipation(self, name: str, function: Any, *, joints: Sequence[str] = (),
+                    location: Location | None = None) -> None:
+        """A Rayleigh dissipation function D(q, q̇, t): Q_i = −∂D/∂q̇_i (e.g. ``"1/2*c*x_dot^2"``).
+
+        ``joints``: the coordinates whose joint it acts in (viscous friction in those joints), if any."""
+        self._add("load", name, location, kind="dissipation", function=function, joints=tuple(joints))
 
     def joint_damper(self, name: str, bodies: Sequence[str], *, coefficient: Any,
                      location: Location | None = None) -> None:

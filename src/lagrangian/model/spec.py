@@ -322,10 +322,16 @@ class GeneralizedForce:
 
 @dataclass(frozen=True, slots=True)
 class Dissipation:
-    """A Rayleigh dissipation function D(q, q̇, t): Q_i = −∂D/∂q̇_i (e.g. D = ½ c ẋ²)."""
+    """A Rayleigh dissipation function D(q, q̇, t): Q_i = −∂D/∂q̇_i (e.g. D = ½ c ẋ²).
+
+    ``joints`` names the coordinates whose joint the dissipation acts in (a URDF's ``<dynamics
+    damping>``: viscous friction in the joint of q_j, so that joint is not perfect); empty when D says
+    nothing of where it acts (air drag on a particle, say).
+    """
 
     name: str
     function: se.Basic
+    joints: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True, slots=True)

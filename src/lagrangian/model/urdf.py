@@ -389,13 +389,13 @@ class _Translation:
         unit, effort = ("m", "N") if joint.type == "prismatic" else ("rad", "N·m")
         speed = "m/s" if joint.type == "prismatic" else "rad/s"
 
-        def num(x: float, lang: str) -> str:
-            return f"{x:g}".replace(".", ",") if lang == "fr" else f"{x:g}"
+        def num(x: float, lang: str) -> str:  # French: decimal comma and a minus sign, not a hyphen
+            return f"{x:g}".replace(".", ",").replace("-", "\u2212") if lang == "fr" else f"{x:g}"
 
         texts = {}
         for lang, (head, limits, force, pace) in {
-                "fr": (f"liaison {_KIND_FR.get(joint.type, joint.type)} `{joint.name}`", "limites", "effort", "vitesse"),
-                "en": (f"{joint.type} joint `{joint.name}`", "limits", "effort", "speed")}.items():
+                "fr": (f"liaison {_KIND_FR.get(joint.type, joint.type)} « {joint.name} »", "limites", "effort", "vitesse"),
+                "en": (f"{joint.type} joint “{joint.name}”", "limits", "effort", "speed")}.items():
             text = f"{head} ({joint.parent} → {joint.child})"
             if joint.type != "continuous" and lim.lower is not None and lim.upper is not None and lim.lower < lim.upper:
                 sep = " ; " if lang == "fr" else ", "  # the French interval [a ; b]: its numbers have decimal commas
@@ -715,15 +715,17 @@ class _Translation:
                 force = joint.type == "prismatic" or (joint.type == "planar" and not q.endswith("theta"))
                 what, quoi = ("force", "effort") if force else ("torque", "couple")
                 self.b.input(tau, unit="N" if force else "N*m",
-                             description=Text({"fr": f"{quoi} de l'actionneur de la liaison `{joint_name}`",
-                                               "en": f"actuator {what} of joint `{joint_name}`"}),
+                             description=Text({"fr": f"{quoi} de l’actionneur de la liaison « {joint_name} »",
+                                               "en": f"actuator {what} of joint “{joint_name}”"}),
                              location=self.where(joint.line))
                 components[q] = se.Symbol(tau)
         if components:
             self.b.generalized_force("actuators", components)
         if not self.damping:
             return
-        terms = [se.Rational(1, 2) * _number(j.damping) * self.rate[j.name] ** 2  # not of a floating or planar joint
-                 for j in self.robot.joints.values() if j.moves and j.damping > 0 and j.name in self.rate]
-        if terms:
-            self.b.dissipation("joint_damping", se.Add(*terms))
+        # Not of a floating or planar joint (no rate of its own in `self.rate`).
+        damped = [j for j in self.robot.joints.values() if j.moves and j.damping > 0 and j.name in self.rate]
+        terms = [se.Rational(1, 2) * _number(j.damping) * self.rate[j.name] ** 2 for j in damped]
+        if terms:  # viscous friction in each of those joints: they are not perfect (the report says so)
+            self.b.dissipation("joint_damping", se.Add(*terms),
+                               joints=[self.coordinate[j.name] for j in damped if j.name in self.coordinate])

@@ -170,7 +170,8 @@ def _symbols(model: Model, suffix: str) -> tuple[se.Symbol, ...]:
     return tuple(se.Symbol(c.name + suffix) for c in model.coordinates)
 
 
-def _drift(system: FreeBodySystem, monitors: dict[str, np.ndarray]) -> tuple[dict[str, float], dict[str, float]]:
+def _drift(system: FreeBodySystem, monitors: dict[str, np.ndarray],
+           integrals: tuple[str, ...]) -> tuple[dict[str, float], dict[str, float]]:
     """(drift, scale) of each first integral, each against the size of what it adds up (module docstring)."""
     drift, scales = {}, {}
     size = np.abs(monitors["T"]) + np.abs(monitors["U"])
@@ -178,7 +179,7 @@ def _drift(system: FreeBodySystem, monitors: dict[str, np.ndarray]) -> tuple[dic
     for names in system.form.momentum:
         norm = np.sqrt(sum(monitors[name] ** 2 for name in names))
         groups.update({name: norm for name in names})
-    for name in system.integrals:
+    for name in integrals:
         if name.startswith("P"):
             family = [m for m in monitors if m.rsplit("_", 1)[0] == name.rsplit("_", 1)[0]]
             groups[name] = np.sqrt(sum(monitors[m] ** 2 for m in family))
@@ -195,13 +196,14 @@ def _trajectory(system: FreeBodySystem, p, t, Y, evs, method, steps, nfev, toler
     q, qd, qdd = system.coordinates_of(Y, dY, start, np.asarray(t, dtype=float))
     values = system.monitor_values(t, Y, p) if len(t) else np.zeros((0, len(system.monitors)))
     monitors = {name: values[:, k].copy() for k, name in enumerate(system.monitors)}
-    drift, scales = _drift(system, monitors) if len(t) else ({}, {})
+    integrals = system.integrals_for(p)
+    drift, scales = _drift(system, monitors, integrals) if len(t) else ({}, {})
     norms = system.quaternion_norms(Y)
     records = system.drift_records(Y) if method == "dop853" else {}
     quaternion = {body: max(records.get(body, 0.0), float(np.max(np.abs(n - 1.0), initial=0.0)))
                   for body, n in norms.items()}
     warnings = tuple(f"{name} drifted by {drift[name]:.2e} (relative), more than the tolerance {tolerance:.1e}"
-                     for name in system.integrals if tolerance is not None and drift.get(name, 0.0) > tolerance)
+                     for name in integrals if tolerance is not None and drift.get(name, 0.0) > tolerance)
     if conditioning < 1e-6:
         warnings += ((f"the articulated inertia of a free body came close to losing its rank (smallest relative "
                       f"pivot {conditioning:.1e}): accuracy may be lost there"),)
@@ -225,7 +227,7 @@ def _trajectory(system: FreeBodySystem, p, t, Y, evs, method, steps, nfev, toler
     return Trajectory(
         model_name=system.model.name, coordinates=system.coordinates,
         parameters={k: float(v) for k, v in zip(system.parameters, p) if not np.isnan(v)},
-        t=np.asarray(t, dtype=float), q=q, qd=qd, qdd=qdd, monitors=monitors, integrals=tuple(system.integrals),
+        t=np.asarray(t, dtype=float), q=q, qd=qd, qdd=qdd, monitors=monitors, integrals=integrals,
         drift=drift, method=method, steps=steps, rhs_calls=nfev, tolerance=tolerance, warnings=warnings,
         events=tuple(events), status=status, conditioning=conditioning, extra=system.extra_columns(Y),
         scales=scales, quaternion_drift=quaternion)

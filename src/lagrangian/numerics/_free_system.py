@@ -140,6 +140,14 @@ class FreeBodySystem:
             self._unused = unused_parameters(self.parameters, exprs)
         return self._unused
 
+    def integrals_for(self, p: np.ndarray) -> tuple[str, ...]:
+        """The first integrals of a run with parameter values ``p``: without E when an input whose load
+        is not conservative has a value other than 0 (`FloatingForm.energy_inputs`)."""
+        values = dict(zip(self.parameters, p))
+        if any(values.get(u, 0.0) != 0.0 for u in self.form.energy_inputs):
+            return tuple(name for name in self.integrals if name != "E")
+        return tuple(self.integrals)
+
     def parameter_vector(self, values: Mapping[str, float] | None = None) -> np.ndarray:
         """The ``p`` array (as `CompiledSystem.parameter_vector`), the free bodies' inertias checked.
 

@@ -105,9 +105,17 @@ def _base_latex(name: str) -> str:
     if name in _GREEK:
         return _GREEK[name][1]
     if "_" in name:
-        # One level of index, its parts separated by commas: lambda_rolling_x1 → λ_{rolling, x₁}.
+        # One level of index, its parts separated by commas: lambda_rolling_x1 → λ_{rolling, x₁}; words joined by
+        # an underscore stay one name (a URDF link's frame R_upper_arm → R_{upper_arm}, not R_{upper, arm}).
         head, _, tail = name.partition("_")
-        parts = [_base_latex(part) for part in tail.split("_") if part]
+        words = [part for part in tail.split("_") if part]
+        if _is_word(head) and all(_is_word(part) for part in words):
+            joined = "\\_".join([head, *words])
+            return rf"\mathrm{{{joined}}}"  # upper_arm: one name, not upper with the index arm
+        if len(words) > 1 and all(_is_word(part) for part in words):
+            joined = "\\_".join(words)
+            return rf"{_base_latex(head)}_{{\mathrm{{{joined}}}}}"
+        parts = [_base_latex(part) for part in words]
         return f"{_base_latex(head)}_{{{','.join(parts)}}}"
     split = _greek_index(name)
     if split:
@@ -116,6 +124,13 @@ def _base_latex(name: str) -> str:
     if head and head != name:
         return f"{_base_latex(head)}_{{{name[len(head):]}}}"
     return name if len(name) == 1 else rf"\mathrm{{{name}}}"
+
+
+def _is_word(part: str) -> bool:
+    """A word (``upper``, ``arm``, ``waist``), not a symbol (``x1``, ``xG``, ``theta``, ``G``): set upright, joined by
+    ``\\_``."""
+    return (len(part) > 2 and part.isalpha() and part.islower() and part not in _GREEK
+            and _greek_index(part) is None)
 
 
 def _split_index(latex: str) -> tuple[str, str]:
@@ -170,6 +185,10 @@ class Notation:
     #: Rewrites an expression into the form to print, keeping its value (the report's `display_form`); none by default.
     rewrite: Callable[[sympy.Basic], sympy.Basic] | None = None
     names: Mapping[str, tuple[str, str]] = field(default_factory=dict)
+    #: Rationals with a finite decimal expansion written as decimals (17/250 → 0.068, not ⅓): a URDF's numbers.
+    decimals: bool = False
+    #: French: a decimal comma in numbers (0{,}068 in LaTeX), and floats to 6 significant digits (else 12, a point).
+    comma: bool = False
     _cache: dict[tuple[str, str], str] = field(default_factory=dict, repr=False)
     _keys: dict[tuple[sympy.Basic, bool | None], tuple] = field(default_factory=dict, repr=False)
 
@@ -378,7 +397,9 @@ class Notation:
                 num.append(f)
         self._sort_factors(num)
         self._sort_factors(den)
-        if isinstance(coeff, sympy.Rational) and coeff.q != 1 and not den:
+        if isinstance(coeff, sympy.Rational) and coeff.q != 1 and not den and self._decimal(coeff):
+            head = [self._number(sympy.Float(coeff, 15), latex)]
+        elif isinstance(coeff, sympy.Rational) and coeff.q != 1 and not den:
             p, q = int(coeff.p), int(coeff.q)
             if latex:
                 c = rf"\frac{{{p}}}{{{q}}}"
@@ -402,9 +423,26 @@ class Notation:
             numerator = numerator
         return f"{numerator}/{denominator}"
 
+    def _decimal(self, r: sympy.Rational) -> bool:
+        """Whether ``r`` is written as a decimal: in `decimals` mode, when its expansion is finite (½, not ⅓)."""
+        if not self.decimals:
+            return False
+        q = int(r.q)
+        for f in (2, 5):
+            while q % f == 0:
+                q //= f
+        return q == 1
+
     def _number(self, n: sympy.Basic, latex: bool) -> str:
         if isinstance(n, sympy.Float):
-            return f"{float(n):.12g}"
+            text = f"{float(n):.6g}" if self.comma or self.decimals else f"{float(n):.12g}"
+            if "e" in text:  # 5e-05 → 5·10⁻⁵
+                mantissa, _, exponent = text.partition("e")
+                text = (rf"{mantissa} \cdot 10^{{{int(exponent)}}}" if latex
+                        else f"{mantissa}·10{str(int(exponent)).translate(_SUPERSCRIPT)}")
+            return text.replace(".", "{,}" if latex else ",") if self.comma else text
+        if isinstance(n, sympy.Rational) and n.q != 1 and self._decimal(n):
+            return self._number(sympy.Float(n, 15), latex)
         if n == sympy.pi:
             return r"\pi" if latex else "π"
         return str(n)
@@ -485,7 +523,7 @@ class Notation:
         # sgn(ẋ) keeps its parentheses: "sgn ẋ" reads as a product.
         simple = len(args) == 1 and isinstance(args[0], sympy.Symbol) and name != "sgn"
         # cos lat, not coslat: a symbol written as a word is set apart from the function's name.
-        gap = (r"\," if latex else " ") if simple and _wordlike(args[0].name) else ""
+        gap = (r"\," if latex else " ") if simple and _wordlike(args[0].name) and args[0].name not in self.names else ""
         if simple and not gap and self.symbol(args[0].name, latex)[:1].isascii() and \
                 self.symbol(args[0].name, latex)[:1].isalpha():
             gap = " "  # \cos x_{1}, not the unknown command \cosx; cos x in text

@@ -38,7 +38,7 @@ from ...errors import OutputError
 from ...model import Model, load_model
 from ...model._texts import in_language
 from .build import Context
-from .document import Document, Scene3D, Section, map_math, pictures
+from .document import Document, Image, Scene3D, Section, french_typography, map_math, map_text, pictures, walk
 from .steps.equations import integrals_section, pin_reaction, step6, step7
 from .steps.extras import ReportFigure, check_section, matrix_section, notes_section, simulation_section
 from .steps.forces import step5
@@ -271,4 +271,8 @@ def report(model: Model | EquationsOfMotion | str | os.PathLike[str], *, lang: s
         sections = [map_math(s, lambda latex: latex.replace(r"\wedge", r"\times")) for s in sections]
     # The model's own title in the report's language ("Mouvement de Lagrange"), else one made from its name.
     title = in_language(eom.model.title, lang) or c.w.text("title", name=eom.model.name)
-    return Report(Document(lang, title, in_language(eom.model.description, lang) or "", tuple(sections)), eom)
+    subtitle = in_language(eom.model.description, lang) or ""
+    if lang == "fr":  # non-breaking spaces before : ; ! ? and inside « », typographic apostrophes
+        sections = [map_text(s, french_typography) for s in sections]
+        title, subtitle = french_typography(title), french_typography(subtitle)
+    return Report(Document(lang, title, subtitle, tuple(sections)), eom)

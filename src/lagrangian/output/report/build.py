@@ -20,7 +20,7 @@ from ...dynamics import EquationsOfMotion
 from ...model import GALILEAN_FRAME, ORIGIN, Vector
 from .._course import CourseForm, _vector_row, course_form
 from .._display_form import display_form
-from .._notation import Notation, _axis_latex, _base_latex
+from .._notation import Notation, _axis_latex, _base_latex, _is_word
 from .joints import Joint, joints
 from .document import Block, Display, Equation, Fold, Math
 from . import size as _report_size
@@ -30,6 +30,9 @@ from .words import Words
 from .._text import notation
 
 __all__ = ["Context", "tex_name", "tex_text"]
+
+#: Letters the report uses for its own quantities: a frame with such a name is written R_E, R_L…
+_TAKEN = frozenset({"E", "L", "T", "U", "H", "K", "h", "M", "F", "Q"})
 
 
 def tex_text(name: str) -> str:
@@ -48,20 +51,59 @@ def tex_name(name: str) -> str:
         head, _, k = name[1:].rpartition("_")
         return tex_name(head) + "'" * int(k) if k.isdigit() else tex_name(name[1:])
     head, sep, tail = name.partition("_")
-    if sep and head and tail:
+    if sep and head and tail and not all(_is_word(part) for part in name.split("_")):
         return f"{tex_name(head)}_{{{tex_name(tail)}}}"
-    return _base_latex(name)
+    return _base_latex(name)  # upper_arm, a URDF link: one upright name
 
 
-def report_notation(form: CourseForm, model, names: dict[str, tuple[str, str]] | None = None) -> Notation:
+_SUBSCRIPTS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+
+
+def coordinate_names(model) -> dict[str, tuple[str, str]]:  # type: ignore[no-untyped-def]
+    """q₁, q₂, … for the coordinates when one of them is a word (a URDF joint, ``shoulder``): a dot over a word
+    (``shoulderṫ``) is no notation.  Each decorated form gets its own entry (q̇₁, q̈₁, q₁*), and so does a constant
+    named after a coordinate (the actuator ``tau_shoulder`` → τ₂).  Step 2 lists the names beside the q_k."""
+    from .._notation import _is_word
+
+    coordinates = [c.name for c in model.coordinates]
+    if not any(_is_word(name.partition("_")[0]) for name in coordinates):
+        return {}
+    out: dict[str, tuple[str, str]] = {}
+    for k, name in enumerate(coordinates, 1):
+        sub = str(k).translate(_SUBSCRIPTS)
+        out[name] = (f"q{sub}", f"q_{{{k}}}")
+        out[f"{name}_dot"] = (f"q\u0307{sub}", rf"\dot{{q}}_{{{k}}}")
+        out[f"{name}_ddot"] = (f"q\u0308{sub}", rf"\ddot{{q}}_{{{k}}}")
+        out[f"{name}_star"] = (f"q{sub}*", f"q_{{{k}}}^{{*}}")
+        for p in model.parameters:  # tau_shoulder → τ₂
+            head, sep, tail = p.name.partition("_")
+            if sep and tail == name:
+                text, tex = Notation().symbol(head), Notation().symbol(head, latex=True)
+                out[p.name] = (f"{text}{sub}", f"{tex}_{{{k}}}")
+    return out
+
+
+def report_notation(form: CourseForm, model, names: dict[str, tuple[str, str]] | None = None,  # type: ignore[no-untyped-def]
+                    lang: str = "en") -> Notation:
     """The report's notation: masses before the other constants (m2 l1 l2, m g a), and forms a teacher would
-    write (`display_form`); ``names`` writes some symbols otherwise (the multipliers, `multiplier_names`)."""
+    write (`display_form`); ``names`` writes some symbols otherwise (the multipliers, `multiplier_names`).
+    French numbers take a decimal comma; a URDF robot's numbers (its masses, inertias, lengths) are decimals."""
     base = notation(form)
     masses = [p.name for p in model.parameters if (p.unit or "").replace(" ", "") == "kg"]
     order = tuple(masses) + tuple(p for p in base.parameters if p not in masses)
     constants = frozenset(order)
     return Notation(base.coordinates, order, rewrite=functools.partial(display_form, parameters=constants),
-                    names=dict(names or {}))
+                    names=dict(names or {}), decimals=is_urdf(model), comma=lang == "fr")
+
+
+#: SI units a model's parameters may be written in: then its numbers (a body's mass 8) are in SI units (8 kg).
+_SI = {"m", "kg", "s", "rad", "N", "J", "W", "Pa", "kg m^2", "kg*m^2", "kg·m²", "m/s", "m/s^2", "m/s²", "rad/s",
+       "N m", "N*m", "N·m", "N/m", "N s/m", "N*s/m", "kg/s", "1", ""}
+
+
+def is_urdf(model) -> bool:  # type: ignore[no-untyped-def]
+    """A robot read from a URDF file: its numbers are the file's decimals, in SI units."""
+    return str(model.source or "").lower().endswith(".urdf")
 
 
 #: Letters for the multipliers, the first one the model's symbols leave free (the bicycle's steer axis tilt is λ).
@@ -102,7 +144,9 @@ class Context:
         self.gate = SizeGate(self.w.text("terms"), self.w.text("long expression"))
         self.form: CourseForm = course_form(eom, integrals, convert=self.gate)
         self.multiplier_names = multiplier_names(eom)
-        self.n: Notation = report_notation(self.form, self.model, self.multiplier_names)
+        self.coordinate_names = coordinate_names(eom.model)
+        self.n: Notation = report_notation(self.form, self.model, {**self.coordinate_names, **self.multiplier_names},
+                                           lang)
         self.book = FullFormBook(self.n, self.w.text("see"))
         reference = self.model.reference
         relative = reference is not None and not reference.is_galilean_frame
@@ -110,15 +154,67 @@ class Context:
         self.origin = reference.origin if relative else ORIGIN  # type: ignore[union-attr]
         self.joints: tuple[Joint, ...] = joints(eom)
         self.bodies = {b.name for b in self.model.bodies}
+        self.frames = {f.name for f in self.model.frames}
+        units = [p.unit.strip() for p in self.model.parameters if p.unit is not None]
+        #: The model is in SI units (a URDF, or every declared unit SI): its bare numbers get theirs (8 kg).
+        self.si = is_urdf(self.model) or (bool(units) and all(u in _SI for u in units))
+
+    def mass_tex(self, name: str) -> str:
+        """A body's or particle's mass in formulas: its symbol (m, m1), or m_S when the model gives a number (a URDF's
+        8), so that T reads ½ m_S V² and not ½ 8 V²."""
+        mass = next(e.mass for e in (*self.model.bodies, *self.model.particles) if e.name == name)
+        if mass.free_symbols:
+            return self.tex(mass)
+        return rf"m_{{{tex_name(name)}}}"
+
+    def quantity(self, value: se.Basic, unit: str) -> str:
+        """A number with its SI unit when the model is in SI units: 8 → ``8\\ \\mathrm{kg}``; a symbol as is."""
+        text = self.tex(value)
+        if value.free_symbols or not self.si or not unit:
+            return text
+        return rf"{text}\ \mathrm{{{unit}}}"
 
     # -- words and names ---------------------------------------------------------------------------
     @property
     def R(self) -> str:
         """LaTeX of the frame the equations are written in: R_{0} (or R)."""
-        return tex_name(self.ref)
+        return self.name(self.ref)
 
     def name(self, name: str) -> str:
+        """A point or frame in formulas; a frame named like a quantity of the report (E, L, T, U, H, K: the energy, the
+        Lagrangian…) is written R_E, R_L…"""
+        if name in _TAKEN and name in self.frames:
+            return rf"R_{{{name}}}"
+        if name in self.frames and re.fullmatch(r"R[A-Z][A-Za-z0-9]*", name):
+            return rf"R_{{{name[1:]}}}"  # the bicycle's RB, RHg: R_B, R_Hg, as its axes x_B, x_Hg
         return tex_name(name)
+
+    def _used_letters(self) -> set[str]:
+        plain = Notation()
+        own = [p.name for p in self.model.parameters] + list(self.eom.coordinates)
+        shown = {plain.symbol(n, latex=True).split("_")[0] for n in own}
+        shown |= {tex_name(x) for x in [*self.frames, *(p.name for p in self.model.points), *self.bodies,
+                                          *(p.name for p in self.model.particles)]}
+        shown |= {x[1].split("_")[0] for x in self.multiplier_names.values()}
+        return shown
+
+    def free_letter(self, *candidates: str) -> str:
+        """The first of ``candidates`` that no symbol, point, body or frame of the model is written as."""
+        used = self._used_letters()
+        return next((x for x in candidates if x not in used), candidates[-1])
+
+    def field_tex(self, load) -> str:  # type: ignore[no-untyped-def]
+        """The vector of a uniform field: g⃗ when it is ± g along one axis (the weight), else another letter (the
+        Foucault pendulum's attraction −g u + Ω² l u⊥ is not the apparent gravity g)."""
+        comps = [x for _, cs in self.kin.frames.lift(load.field) for x in cs if x != 0]
+        if len(comps) == 1 and comps[0].free_symbols == {se.Symbol("g")}:
+            return r"\vec{g}"
+        return rf"\vec{{{self.free_letter('a', 'b', 'h')}}}"
+
+    @property
+    def eigen(self) -> str:
+        """The eigenvalues' letter: λ, or s when λ is taken (a multiplier, the latitude of Foucault's pendulum)."""
+        return r"\lambda" if r"\lambda" not in self._used_letters() else "s"
 
     def load_name(self, name: str) -> str:
         """A load's name in the report's language (the engine's and usual names translated)."""

@@ -8,12 +8,14 @@ content without parsing any output.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
 __all__ = ["Math", "Run", "Runs", "Para", "Equation", "Display", "Items", "Table", "Fold", "FullForms", "Image",
-           "Scene3D", "Block", "Section", "Document", "walk", "math_of", "map_math", "pictures"]
+           "Scene3D", "Block", "Section", "Document", "walk", "math_of", "map_math", "map_text", "pictures",
+           "french_typography"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -220,3 +222,44 @@ def map_math(section: Section, fn: Callable[[str], str]) -> Section:
         raise TypeError(f"unknown block {type(b).__name__}")  # pragma: no cover
 
     return Section(section.key, section.title, tuple(block(b) for b in section.blocks))
+
+
+def map_text(section: Section, fn: Callable[[str], str]) -> Section:
+    """``section`` with ``fn`` applied to every piece of text (titles, paragraphs, cells, fold summaries, captions),
+    never to mathematics."""
+
+    def runs(rs: Runs) -> Runs:
+        return tuple(r if isinstance(r, Math) else fn(r) for r in rs)
+
+    def block(b: Block) -> Block:
+        if isinstance(b, Para):
+            return Para(runs(b.runs), b.style)
+        if isinstance(b, Items):
+            return Items(tuple(runs(i) for i in b.items))
+        if isinstance(b, Table):
+            return Table(tuple(runs(c) for c in b.header), tuple(tuple(runs(c) for c in row) for row in b.rows))
+        if isinstance(b, Fold):
+            return Fold(fn(b.summary), tuple(block(x) for x in b.blocks))
+        if isinstance(b, FullForms):
+            return FullForms(fn(b.title), fn(b.summary), b.forms)
+        if isinstance(b, Image):
+            return Image(b.png, runs(b.caption), fn(b.alt))
+        return b  # Display: mathematics only
+
+    return Section(section.key, fn(section.title), tuple(block(b) for b in section.blocks))
+
+
+#: Non-breaking space before « : » and after « (and before »); a narrow one before ; ! ? (French typography).
+NBSP, NNBSP = "\u00a0", "\u202f"
+_BEFORE = re.compile(r"[ \u00a0\u202f]([:;!?»])")
+
+
+def french_typography(text: str) -> str:
+    """French typography on plain text: no line break before : ; ! ? », nor after «; typographic apostrophes.
+
+    « a : b » → «\u00a0a\u00a0: b\u00a0» (U+00A0 before : and inside the guillemets, the narrow U+202F
+    before ; ! ?), and l'énergie → l’énergie.  A colon or mark with no space before it (a time, a URL) is left.
+    """
+    text = _BEFORE.sub(lambda m: (NBSP if m.group(1) in ":»" else NNBSP) + m.group(1), text)
+    text = re.sub(r"«[ \u00a0]?", "«" + NBSP, text)
+    return text.replace("'", "\u2019")

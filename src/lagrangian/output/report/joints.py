@@ -21,8 +21,9 @@ about fewer than three axes (a coin kept upright on a plane, a disk on an inclin
 "body plane": the report writes those components and the rotations left.  Anything else is
 reported as "the placement of E" with its count.  Every constraint here is holonomic (the
 model gives positions, not velocity relations) and principal; it is perfect unless a
-Coulomb friction load acts at the element or a joint damper acts across it (then
-``losses`` names them: their virtual power is not zero and they enter Q_i(nc)).
+Coulomb friction load acts at the element, a joint damper acts across it, or a dissipation
+function declares that it acts in that joint (a URDF's damping): then ``losses`` names them,
+their virtual power is not zero and they enter Q_i(nc).
 """
 
 from __future__ import annotations
@@ -273,24 +274,30 @@ def _particle_joint(r: _Reader, name: str, support: str | None, new: tuple[str, 
         anchors = [support]
     else:
         anchors = [p for p in r.points() if r.fixed_in(p, support)] + [support]
-    axes = r.frames[r.base].axes
+    # The axes of the base frame first, then those of the frames turned from it by constant angles (a block
+    # on an incline stays on a line of the incline's frame, not of R0's).
+    frames = _fixed_frames(r)
     for anchor in anchors:
         d = kin.position(name) - kin.position(anchor)
-        comps = list(kin.frames.express(d, r.base))
         squared = kin.frames.dot(d, d)
-        *flat, rigid = _constant(kin, comps + [squared])
-        normals = tuple(axes[k] for k in range(3) if flat[k])
-        if rigid and len(normals) <= 1 and 1 + len(normals) == wanted:
-            # |XP|² is constant as a function: its value at q = 0, t = 0 is its simplest form (l² rather
-            # than l² cos²θ + l² sin²θ).
-            at_zero = se.expand(squared.xreplace({s: se.Integer(0) for s in (*kin.q, kin.t)}))
-            length = _root(at_zero if at_zero != 0 else squared)
-            return Joint("rod", name, False, support, anchor, None, normals, length, wanted, new, timed)
-        if len(normals) == 2 and wanted == 2:
-            direction = next(axes[k] for k in range(3) if not flat[k])
-            return Joint("line", name, False, support, anchor, direction, normals, None, 2, new, timed)
-        if len(normals) == 1 and wanted == 1:
-            return Joint("plane", name, False, support, anchor, None, normals, None, 1, new, timed)
+        for frame in frames:
+            axes = r.frames[frame].axes
+            comps = list(kin.frames.express(d, frame))
+            *flat, rigid = _constant(kin, comps + [squared])
+            normals = tuple(axes[k] for k in range(3) if flat[k])
+            if rigid and len(normals) <= 1 and 1 + len(normals) == wanted:
+                # |XP|² is constant as a function: its value at q = 0, t = 0 is its simplest form (l² rather
+                # than l² cos²θ + l² sin²θ).
+                at_zero = se.expand(squared.xreplace({s: se.Integer(0) for s in (*kin.q, kin.t)}))
+                length = _root(at_zero if at_zero != 0 else squared)
+                return Joint("rod", name, False, support, anchor, None, normals, length, wanted, new, timed,
+                             frame=frame)
+            if len(normals) == 2 and wanted == 2:
+                direction = next(axes[k] for k in range(3) if not flat[k])
+                return Joint("line", name, False, support, anchor, direction, normals, None, 2, new, timed,
+                             frame=frame)
+            if len(normals) == 1 and wanted == 1:
+                return Joint("plane", name, False, support, anchor, None, normals, None, 1, new, timed, frame=frame)
     return Joint("placement", name, False, support, None, None, (), None, wanted, new, timed)
 
 
@@ -321,11 +328,14 @@ def _with_losses(r: _Reader, joint: Joint) -> Joint:
     """The joint with the friction loads that act in it: Coulomb friction at the element, a damper across it."""
     from dataclasses import replace
 
-    from ...model import CoulombFriction, JointDamper
+    from ...model import CoulombFriction, Dissipation, JointDamper
 
     losses: list[tuple[str, str]] = []
     points = {p.name for p in r.model.points}
     for load in r.model.loads:
+        if isinstance(load, Dissipation) and set(load.joints) & set(joint.coordinates):
+            losses.append((load.name, "damper"))  # a URDF's <dynamics damping>: viscous friction in the joint
+            continue
         if isinstance(load, CoulombFriction):
             at_element = load.at == joint.element or (
                 joint.is_body and load.at in points and r.fixed_in(load.at, joint.element))

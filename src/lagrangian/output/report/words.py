@@ -37,12 +37,17 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "matrix": ("Annexe : forme matricielle", "Appendix: matrix form"),
     # -- the system -------------------------------------------------------------------------------
     "galilean": ("{R0} est un repère galiléen.", "{R0} is a Galilean (inertial) frame."),
+    "vertical up": ("{axis} est la verticale ascendante : la pesanteur est {g}.",
+                    "{axis} is the ascending vertical: gravity is {g}."),
+    "vertical down": ("{axis} est la verticale descendante : la pesanteur est {g}.",
+                      "{axis} is the descending vertical (it points down): gravity is {g}."),
     "reference": ("Les équations sont écrites par rapport au repère {R}, qui n'est pas galiléen : aux efforts "
                   "donnés s'ajoutent les efforts d'inertie de Coriolis et d'entraînement (Remarque 3).",
                   "The equations are written relative to the frame {R}, which is not Galilean: the Coriolis "
                   "and transport inertial forces are added to the applied forces (Remark 3 of the course)."),
     "statement intro": ("On étudie le système (Σ) suivant : {what}.", "We study the following system (Σ): {what}."),
     "constituents": ("(Σ) est formé de :", "(Σ) is made of:"),
+    "points given": ("Points nommés :", "Named points:"),
     "inertia principal given": ("moments principaux d'inertie en {P} dans la base {basis} : {values}",
                                 "principal moments of inertia at {P} in the basis {basis}: {values}"),
     "inertia matrix given": ("matrice d'inertie en {P} dans la base {basis} : {matrix}",
@@ -51,6 +56,8 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "load item": ("« {name} » : {what}", "“{name}”: {what}"),
     "load gravity": ("pesanteur {g}", "gravity {g}"),
     "load on": ("pesanteur {g}, sur {on}", "gravity {g}, on {on}"),
+    "load field": ("champ uniforme {g}, sur tous les éléments", "uniform field {g}, on every element"),
+    "load field on": ("champ uniforme {g}, sur {on}", "uniform field {g}, on {on}"),
     "load force": ("force {F} appliquée en {P}", "force {F} applied at {P}"),
     "load torque": ("couple {C} exercé sur ({S})", "torque {C} exerted on ({S})"),
     "load torque reaction": ("couple {C} exercé sur ({S}) par ({S2})", "torque {C} exerted on ({S}) by ({S2})"),
@@ -76,7 +83,9 @@ _PHRASES: dict[str, tuple[str, str]] = {
                           "enter the Lagrange equations), {OG}"),
     "particle item": ("le point matériel {P} : masse {m}, {OP}", "the particle {P}: mass {m}, {OP}"),
     "parameters": ("Constantes du problème :", "Constants of the problem:"),
+    "inputs": ("Entrées (commandes, fonctions du temps données) :", "Inputs (controls, given functions of time):"),
     "col symbol": ("symbole", "symbol"),
+    "col name": ("nom", "name"),
     "col value": ("valeur", "value"),
     "col unit": ("unité", "unit"),
     "col description": ("description", "description"),
@@ -100,18 +109,25 @@ _PHRASES: dict[str, tuple[str, str]] = {
                    "the constraint that imposes {cond} and leaves ({S}) only {rot}"),
     "rotations about": ("les rotations autour de {axes}", "the rotations about {axes}"),
     "rotation about": ("la rotation autour de {axes}", "the rotation about {axes}"),
-    "perfect body plane": ("Elle est supposée parfaite (sans frottement) : ses actions se réduisent à une force "
-                           "selon {n} et à un couple orthogonal aux rotations permises, de puissance virtuelle nulle "
-                           "puisque {cond}.",
-                           "It is assumed ideal (workless), being frictionless: its actions reduce to a force along {n} and a "
-                           "couple orthogonal to the allowed rotations, whose virtual power is zero since {cond}."),
-    "not perfect": ("Elle n'est pas parfaite : la puissance virtuelle de ses efforts n'est pas nulle ({why}) ; "
-                    "ils figurent dans {Q} (étape 5).",
-                    "It is not ideal (not workless): the virtual power of its forces is not zero ({why}); they enter {Q} "
-                    "(step 5)."),
+    "perfect body plane": ("Elle est parfaite : ses actions se réduisent à une force selon {n} et à un couple "
+                           "orthogonal aux rotations permises, dont la puissance virtuelle est nulle dans tout champ "
+                           "compatible avec elle, puisque {cond} et que {rot}.",
+                           "It is ideal (workless): its actions reduce to a force along {n} and a couple orthogonal "
+                           "to the allowed rotations, whose virtual power is zero in every virtual field compatible "
+                           "with it, since {cond} and {rot}."),
+    "adherence": ("Ce n'est pas un contact sans frottement : le roulement sans glissement exige l'adhérence au "
+                  "contact, composante tangentielle de l'action du support sur ({S}) ; c'est la réaction de la "
+                  "liaison de roulement sans glissement en {I}, gardée comme liaison complémentaire (étape 7).",
+                  "This is not a frictionless contact: rolling without slipping needs adherence at the contact, "
+                  "the tangential part of the support's action on ({S}); it is the reaction of the rolling "
+                  "constraint at {I}, kept as a complementary constraint (step 7)."),
+    "not perfect": ("Elle n'est pas parfaite : son frottement ({why}) a une puissance virtuelle non nulle et figure "
+                    "dans {Q} (étape 5) ; ses autres actions ont une puissance virtuelle nulle.",
+                    "It is not ideal (not workless): its friction ({why}) has a nonzero virtual power and enters {Q} "
+                    "(step 5); its other actions have zero virtual power."),
     "why coulomb": ("frottement de Coulomb « {name} » en {P}, opposé au glissement",
                     "Coulomb friction “{name}” at {P}, opposing the sliding"),
-    "why damper": ("amortissement visqueux « {name} » dans la liaison", "viscous damping “{name}” in the joint"),
+    "why damper": ("frottement visqueux « {name} » dans la liaison", "viscous friction “{name}” in the joint"),
     "line": ("la liaison glissière de {P} sur la droite {line}", "the slider of {P} along the line {line}"),
     "plane": ("la liaison de {P} avec le plan passant par {X} et normal à {n}",
               "the constraint keeping {P} in the plane through {X} normal to {n}"),
@@ -161,19 +177,22 @@ _PHRASES: dict[str, tuple[str, str]] = {
                      "It is ideal (workless): the mutual constraint actions reduce to a force at {X}, a point common to "
                      "both bodies, whose virtual power is zero."),
     "perfect rod": ("Elle est parfaite (sans frottement) : la réaction sur {P} n'a de composante que selon {dirs}, "
-                    "{orth} à son champ de vitesses virtuelles puisque {XP2} est constant :",
+                    "{orth} à son champ de vitesses virtuelles puisque {XP2} est constant{plane} :",
                     "It is ideal (workless), being frictionless: the reaction on {P} only has components along {dirs}, "
-                    "{orth} to its virtual velocity field since {XP2} is constant:"),
+                    "{orth} to its virtual velocity field since {XP2} is constant{plane}:"),
+    "rod in plane": (" et que {P} reste dans le plan normal à {n}", " and {P} stays in the plane normal to {n}"),
     "orth one": ("direction orthogonale", "a direction orthogonal"),
     "orth many": ("directions orthogonales", "directions orthogonal"),
-    "perfect smooth": ("Elle est parfaite (contact sans frottement) : la réaction est normale à {where}, qui contient "
-                       "{V}.", "It is ideal (workless), the contact being frictionless: the reaction is normal to {where}, which "
+    "perfect smooth": ("Elle est parfaite (sans frottement) : la réaction est normale à {where}, qui contient "
+                       "{V}.", "It is ideal (workless), being frictionless: the reaction is normal to {where}, which "
                        "contains {V}."),
     "the plane": ("ce plan", "that plane"),
     "the line": ("cette droite", "that line"),
-    "perfect assumed": ("Elle est supposée parfaite (sans frottement) : ses efforts n'entrent dans aucune "
-                        "composante généralisée.", "It is assumed ideal (workless), being frictionless: its forces enter no "
-                        "generalized force."),
+    "perfect assumed": ("Elle est supposée parfaite : la puissance virtuelle de ses actions est nulle dans tout "
+                        "champ de vitesses virtuelles compatible avec elle, et elles n'entrent dans aucune "
+                        "composante généralisée.",
+                        "It is assumed ideal (workless): the virtual power of its actions is zero in every virtual "
+                        "velocity field compatible with it, and they enter no generalized force."),
     "perfect complementary": ("Elle est parfaite : sa réaction a une puissance virtuelle nulle dans tout champ "
                               "compatible avec elle, et ses composantes généralisées sont {Q}.",
                               "It is ideal (workless): its reaction has zero virtual power in every virtual field "
@@ -184,6 +203,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
                         "field compatible with it: {P}. Its generalized forces are {Q}."),
     "reaction is": ("La réaction exercée sur {E} est {R}.", "The reaction exerted on {E} is {R}."),
     "reaction on at": ("La réaction exercée sur ({S}) en {E} est {R}.", "The reaction exerted on ({S}) at {E} is {R}."),
+    "adherence reaction": ("C'est la force d'adhérence au contact : le roulement sans glissement n'a lieu que tant "
+                           "que le contact peut la fournir.",
+                           "It is the adherence (static friction) force at the contact: rolling without slipping "
+                           "lasts only as long as the contact can supply it."),
     "parameter count": ("Bilan des paramètres (6 par solide, 3 par point matériel, moins un par équation de liaison "
                         "principale) : {count}.",
                         "Parameter count (6 per rigid body and 3 per particle, minus one for each scalar equation of a "
@@ -241,9 +264,9 @@ _PHRASES: dict[str, tuple[str, str]] = {
                       "points où s'appliquent les efforts donnés :", "The virtual velocity field compatible with "
                       "the principal constraints is {field}; at the points where the applied forces act:"),
     "virtual torsor": ("Le champ des vitesses virtuelles de chaque solide (S) est un torseur, le torseur cinématique "
-                       "virtuel, donné par ses éléments de réduction en un point A de (S), tel que {field} :",
+                       "virtuel, donné par ses éléments de réduction en un point {A} de (S), tel que {field} :",
                        "The virtual velocity field of each rigid body (S) is a screw (the virtual kinematic screw, or "
-                       "twist), given by its reduction elements at a point A of (S), such that {field}:"),
+                       "twist), given by its reduction elements at a point {A} of (S), such that {field}:"),
     "comoment intro": ("Les liaisons principales parfaites ne travaillent pas dans ce champ : la puissance virtuelle "
                        "des actions d'une liaison est le comoment du torseur de ses actions {torsor}, réduit en un "
                        "point X, et du torseur cinématique virtuel : {P}.",
@@ -264,14 +287,14 @@ _PHRASES: dict[str, tuple[str, str]] = {
                      "réaction n'a de composante que selon {dirs} ;",
                      "Constraint on {P} (a particle, whose kinematic screw reduces to its velocity): frictionless, "
                      "the reaction only has components along {dirs};"),
-    "comoment plane": ("Contact de {P} avec le plan sans frottement : la réaction est portée par {dirs} ;",
-                       "Frictionless contact of {P} with the plane: the reaction is along {dirs};"),
+    "comoment plane": ("Liaison de {P} avec le plan, sans frottement : la réaction est portée par {dirs} ;",
+                       "Frictionless constraint of {P} to the plane: the reaction is along {dirs};"),
     "comoment line": ("Glissière de {P} sans frottement : la réaction est orthogonale à {dirs} ;",
                       "Frictionless slider of {P}: the reaction is orthogonal to {dirs};"),
-    "comoment body plane": ("Contact de ({S}) sans frottement : ses actions, réduites en {G}, sont une force selon {n} "
+    "comoment body plane": ("Liaison de ({S}) avec son support : ses actions, réduites en {G}, sont une force selon {n} "
                             "et un moment orthogonal à {turns} ;",
-                            "Frictionless contact of ({S}): its actions, reduced at {G}, are a force along {n} and a "
-                            "moment orthogonal to {turns};"),
+                            "Constraint of ({S}) on its support: its actions, reduced at {G}, are a force along {n} "
+                            "and a moment orthogonal to {turns};"),
     "inertia operator": ("où {Pi} est l'opérateur d'inertie de ({S}) en {P} : {op} (moment cinétique en {P}) ; sa "
                          "matrice dans la base {basis} est donnée à l'étape 3.",
                          "where {Pi} is the inertia operator (inertia tensor) of ({S}) at {P}: {op} (the angular momentum "
@@ -303,11 +326,26 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "derives": ("« {name} » dérive d'une énergie potentielle : {Q} pour tout {i} (vérifié) ; il est pris en compte "
                 "par {UP} à l'étape 6.", "“{name}” derives from a potential energy: {Q} for every {i} (checked); "
                 "it enters through {UP} in step 6."),
+    "derives constant": ("« {name} » est constant ({why}) : il dérive d'une énergie potentielle, {Q} pour tout {i} "
+                         "(vérifié) ; il est pris en compte par {UP} à l'étape 6.",
+                         "“{name}” is constant ({why}): it derives from a potential energy, {Q} for every {i} "
+                         "(checked); it enters through {UP} in step 6."),
+    "constant because": ("{names} {verb} une constante du problème", "{names} {verb} a constant of the problem"),
+    "is one": ("est", "is"),
+    "are one": ("sont chacun", "are each"),
+    "driven": ("« {name} » est commandé par {u}, {what} : il ne dérive pas d'une énergie potentielle ({why}) ; ses "
+               "composantes généralisées figurent dans {Q}.",
+               "“{name}” is driven by {u}, {what}: it does not derive from a potential energy ({why}); its "
+               "generalized forces enter {Q}."),
+    "driven one": ("une entrée, fonction du temps donnée", "an input, a given function of time"),
+    "driven many": ("des entrées, fonctions du temps données", "inputs, given functions of time"),
+    "driven why": ("{U} n'en serait une que pour une entrée {u} constante", "{U} would be one only for a constant input {u}"),
     "not conservative": ("« {name} » ne dérive pas d'une énergie potentielle : ses composantes généralisées "
                          "figurent dans {Q}.", "“{name}” does not derive from a potential energy: its generalized "
                          "forces enter {Q}."),
     "load title": ("« {name} » ({kind}{extra}) :", "“{name}” ({kind}{extra}):"),
     "kind gravity": ("pesanteur", "gravity"),
+    "kind field": ("champ uniforme", "uniform field"),
     "kind pointforce": ("force", "force"),
     "kind torque": ("couple", "couple"),
     "kind spring": ("ressort", "spring"),
@@ -336,10 +374,25 @@ _PHRASES: dict[str, tuple[str, str]] = {
                             "where {lam} is its multiplier and {a} the coefficient of the rate {qd} in its equation "
                             "({f} for a holonomic constraint {fk})."),
     "perfect no Q but": ("Les autres liaisons principales étant parfaites, la puissance virtuelle de leurs efforts "
-                         "est nulle ; les efforts des liaisons non parfaites (frottement) sont ceux des efforts "
-                         "non conservatifs ci-dessus.", "The other principal constraints being ideal (workless), the "
-                         "virtual power of their forces is zero; the forces of the constraints that are not "
-                         "perfect (friction) are among the non-conservative forces above."),
+                         "est nulle. Dans les liaisons qui ne le sont pas, seuls les frottements travaillent : ils "
+                         "figurent ci-dessus parmi les efforts non conservatifs, et les autres actions de ces "
+                         "liaisons ont une puissance virtuelle nulle.",
+                         "The other principal constraints being ideal (workless), the virtual power of their forces "
+                         "is zero. In the constraints that are not, only the friction works: it is among the "
+                         "non-conservative forces above, and the other actions of those constraints have zero "
+                         "virtual power."),
+    "perfect no Q none": ("Aucune liaison principale n'est parfaite, mais dans chacune seul le frottement ({names}) "
+                          "travaille : il figure ci-dessus parmi les efforts non conservatifs, et les autres actions "
+                          "de ces liaisons ont une puissance virtuelle nulle.",
+                          "No principal constraint is ideal, but in each only the friction ({names}) works: it is "
+                          "among the non-conservative forces above, and the other actions of those constraints "
+                          "have zero virtual power."),
+    "perfect no Q none one": ("La liaison principale n'est pas parfaite, mais seul son frottement ({names}) travaille : "
+                              "il figure ci-dessus parmi les efforts non conservatifs, et les autres actions de la "
+                              "liaison ont une puissance virtuelle nulle.",
+                              "The principal constraint is not ideal, but only its friction ({names}) works: it is "
+                              "among the non-conservative forces above, and the other actions of the constraint "
+                              "have zero virtual power."),
     "multiplier def": ("{sum} : les composantes généralisées des réactions des liaisons complémentaires (étape 5).",
                        "{sum}: the generalized forces of the complementary constraints' reactions (step 5)."),
     "multiplier def one": ("{sum} : les composantes généralisées de la réaction de la liaison complémentaire (étape 5).",
@@ -377,11 +430,28 @@ _PHRASES: dict[str, tuple[str, str]] = {
                           "where {gamma} is the acceleration relative to {R0} of the origin {O} of {R}, {G} the "
                           "centre of mass{many}, {Omega} the rotation of {R} relative to {R0} and {Pi} the inertia "
                           "operator of (Σ) at {O}."),
+    "entrainment potential fixed": ("Cette énergie potentielle existe parce que la rotation {Omega} est constante, {rate} : le terme "
+                                    "{term} de l'accélération d'entraînement, qui ne dérive d'aucune énergie "
+                                    "potentielle, est nul ; l'origine {O} étant fixe dans {R0}, {gamma}, il ne reste "
+                                    "que la force centrifuge.",
+                                    "This potential energy exists because the rotation {Omega} is constant, {rate}: the term {term} of the "
+                                    "transport acceleration, which derives from no potential energy, vanishes; the "
+                                    "origin {O} being fixed in {R0}, {gamma}, only the centrifugal force is left."),
+    "entrainment potential moving": ("Cette énergie potentielle existe parce que la rotation {Omega} est constante, {rate} : le terme {term} de "
+                                     "l'accélération d'entraînement, qui ne dérive d'aucune énergie potentielle, est "
+                                     "nul ; l'accélération {gamma} de l'origine {O}, uniforme, donne le terme en "
+                                     "{gamma}, qui dépend du temps.",
+                                     "This potential energy exists because the rotation {Omega} is constant, {rate}: the term {term} of the "
+                                     "transport acceleration, which derives from no potential energy, vanishes; the "
+                                     "acceleration {gamma} of the origin {O}, uniform, gives the term in {gamma}, which "
+                                     "depends on the time."),
     "each element": (" de chaque élément, de masse m", " of each element, of mass m"),
-    "coulomb exact": ("C'est la loi exacte (sans régularisation), valable en glissement, {v} ; quand le glissement "
-                      "cesse, {v0}, la simulation passe à l'adhérence tant que {stick}.",
-                      "This is the exact law (no regularization), valid while sliding, {v}; when the sliding stops, "
-                      "{v0}, the simulation switches to sticking as long as {stick}."),
+    "coulomb exact": ("C'est la loi exacte (sans régularisation), valable en glissement, {v}, où N est la composante "
+                      "normale de l'action du support (étape 7) ; quand le glissement cesse, {v0}, la simulation "
+                      "passe à l'adhérence tant que {stick}.",
+                      "This is the exact law (no regularization), valid while sliding, {v}, where N is the normal "
+                      "component of the support's action (step 7); when the sliding stops, {v0}, the simulation "
+                      "switches to sticking as long as {stick}."),
     "conservative timed": ("Les liaisons dépendant du temps, {L} dépend explicitement de {t} ({dL}) : les équations "
                            "gardent cette forme, mais l'énergie n'est pas une intégrale première.",
                            "The constraints depending on the time, {L} depends on {t} explicitly ({dL}): the "
@@ -448,6 +518,27 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "tension angle": ("soit, en posant {sub} ({theta} angle de {XP} avec la verticale descendante, opposée à {e}) :",
                       "that is, with {sub} ({theta} the angle of {XP} from the descending vertical, opposite to "
                       "{e}):"),
+    "normal force": ("La composante normale N de l'action du support sur {P}, qui ne travaille pas et n'entre donc "
+                     "pas dans les équations de Lagrange, s'obtient en projetant le théorème de la résultante "
+                     "dynamique appliqué à {P} sur la normale {n} au contact (la force de frottement {name} lui est "
+                     "orthogonale) :",
+                     "The normal component N of the support's action on {P}, which does no work and so does not "
+                     "enter Lagrange's equations, follows from the resultant theorem applied to {P}, projected on "
+                     "the contact's normal {n} (the friction force {name} is orthogonal to it):"),
+    "normal agrees": ("C'est la valeur {N} que la loi de frottement du modèle utilise.",
+                      "This is the value {N} that the model's friction law uses."),
+    "normal differs": ("La loi de frottement du modèle utilise {N}, qui n'est pas cette valeur : elle ne décrit ce "
+                       "contact que si le modèle le justifie autrement.",
+                       "The model's friction law uses {N}, which is not this value: it describes this contact only "
+                       "if the model justifies it otherwise."),
+    "stick": ("À l'arrêt ({rest}), {q} donne la force tangentielle que le contact doit fournir, {Rt} selon {e} ; "
+              "le contact adhère tant qu'elle reste dans le cône de frottement, {cone}, soit :",
+              "At rest ({rest}), {q} gives the tangential force the contact must supply, {Rt} along {e}; the "
+              "contact sticks as long as it stays within the friction cone, {cone}, that is:"),
+    "stick holds": ("Avec les valeurs du modèle, {value} ≤ {limit} : une fois arrêté, {P} reste immobile.",
+                    "With the model's values, {value} ≤ {limit}: once stopped, {P} stays at rest."),
+    "stick fails": ("Avec les valeurs du modèle, {value} > {limit} : {P} ne peut rester immobile et repart.",
+                    "With the model's values, {value} > {limit}: {P} cannot stay at rest and slides again."),
     "multiplier is": ("En éliminant les accélérations entre les équations de Lagrange et l'équation de liaison "
                       "dérivée {times} par rapport au temps, le multiplicateur vaut :",
                       "Eliminating the accelerations between the Lagrange equations and the constraint equation "
@@ -455,6 +546,8 @@ _PHRASES: dict[str, tuple[str, str]] = {
     # -- integrals --------------------------------------------------------------------------------
     "cyclic": ("{q} est un paramètre cyclique : {why}, donc {eq} s'intègre :", "{q} is cyclic: {why}, so {eq} "
                "integrates:"),
+    "no row": ("{qd} ne figure dans aucune équation de liaison complémentaire ({a})",
+               "{qd} appears in no complementary constraint equation ({a})"),
     "momentum": ("{why}, donc {eq} s'intègre :", "{why}, so {eq} integrates:"),
     "inputs off": ("Les entrées coupées ({zero}), ", "With the inputs off ({zero}), "),
     "energy integral": ("{L} ne dépend pas explicitement du temps et {cond} ; {T} étant une forme quadratique "
@@ -521,6 +614,12 @@ _PHRASES: dict[str, tuple[str, str]] = {
                         " The Jacobi integral {h} is therefore conserved (see “First integrals”)."),
     "no integral": ("Aucune intégrale première n'apparaît : aucun paramètre n'est cyclique, et {why}.",
                     "No first integral appears: no parameter is cyclic, and {why}."),
+    "no integral but cyclic": ("Aucune intégrale première n'apparaît : aucun paramètre cyclique ne donne d'intégrale "
+                               "(ci-dessus), et {why}.",
+                               "No first integral appears: no cyclic parameter gives one (above), and {why}."),
+    "cyclic driven": ("{q} est un paramètre cyclique, {dL}, mais cela ne suffit pas pour intégrer {eq} : {why}.",
+                      "{q} is cyclic, {dL}, but that does not suffice to integrate {eq}: {why}."),
+    "row acts": ("une liaison complémentaire agit sur lui, {a}", "a complementary constraint acts on it, {a}"),
     "why time": ("le lagrangien dépend explicitement du temps", "the Lagrangian depends on the time explicitly"),
     "why work": ("des efforts non conservatifs travaillent", "non-conservative forces do work"),
     "why constraints": ("les réactions des liaisons complémentaires travaillent",
@@ -555,7 +654,27 @@ _PHRASES: dict[str, tuple[str, str]] = {
                      "{eq} by projecting the resultant theorem{of} onto {e}:"),
     "by power": ("{eq} par projection des théorèmes{of} sur les vitesses partielles de {q} (puissance virtuelle) :",
                  "{eq} by projecting the theorems{of} onto the partial velocities of {q} (virtual power):"),
+    "by power note": ("{names}, donnés par leurs composantes généralisées, entrent dans chaque projection par ces "
+                      "composantes (leur puissance virtuelle).",
+                      "{names}, given by their generalized forces, enter each projection through those (their "
+                      "virtual power)."),
+    "by power note one": ("{names}, donné par ses composantes généralisées, entre dans chaque projection par ces "
+                          "composantes (sa puissance virtuelle).",
+                          "{names}, given by its generalized forces, enters each projection through those (its "
+                          "virtual power)."),
     "of": (" de {names}", " of {names}"),
+    "check summarized": ("la projection des quantités d'accélération, {G} ({k} termes), et celle des efforts, "
+                         "{Q} ({k2} termes), trop longues pour être écrites ici, redonnent, développées, les deux "
+                         "membres de {eq} (étape 6) :",
+                         "the projection of the mass-times-accelerations, {G} ({k} terms), and that of the efforts, "
+                         "{Q} ({k2} terms), too long to print here, give back, expanded, the two members of {eq} "
+                         "(step 6):"),
+    "check summarized left": ("la projection des quantités d'accélération, {G} ({k} termes), trop longue pour être "
+                              "écrite ici, redonne, développée, le premier membre de {eq} (étape 6), et celle des "
+                              "efforts, {Q}, son second membre :",
+                              "the projection of the mass-times-accelerations, {G} ({k} terms), too long to print "
+                              "here, gives back, expanded, the left member of {eq} (step 6), and that of the efforts, "
+                              "{Q}, its right member:"),
     "check failed": ("Désaccord : la projection ne redonne pas {eq}.", "Disagreement: the projection does not give "
                      "{eq} back."),
     "constraint actions": ("liaisons", "constraints"),
@@ -566,10 +685,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
                                "projection ; celles des liaisons complémentaires y restent, par les multiplicateurs.",
                                "The principal constraints being ideal (workless), their actions drop out of every "
                                "projection; those of the complementary constraints stay, through the multipliers."),
-    "drop not perfect": ("Les actions des liaisons parfaites disparaissent de chaque projection ; celles des "
-                         "liaisons non parfaites y restent, avec les efforts donnés.",
-                         "The actions of the ideal (workless) constraints drop out of every projection; those of the "
-                         "constraints that are not ideal stay, with the applied forces."),
+    "drop not perfect": ("Les actions des liaisons disparaissent de chaque projection, sauf leurs frottements, qui "
+                         "y restent avec les efforts donnés.",
+                         "The actions of the constraints drop out of every projection, except their friction, which "
+                         "stays with the applied forces."),
     "fixed axis": ("{e} étant fixe dans {R0} et {O} fixe, la projection du moment dynamique sur {e} est la dérivée de "
                    "celle du moment cinétique, qui est la quantité de mouvement généralisée :",
                    "Since {e} and {O} are fixed in {R0}, the projection of the dynamic moment onto {e} is the derivative "
@@ -719,6 +838,24 @@ _PHRASES: dict[str, tuple[str, str]] = {
                        "linéarisation ne permet pas de conclure sur la stabilité (cas critique).",
                        "The eigenvalues lie on the imaginary axis (or one is zero or repeated): the linearization "
                        "does not decide the stability (critical case)."),
+    "precession": ("Précession du plan d'oscillation : M étant isotrope et G antisymétrique, le changement de "
+                   "variables {change}, où R est la rotation d'angle {angle} dans le plan {plane}, de {q1} vers {q2}, "
+                   "élimine les termes gyroscopiques pour la vitesse {wp} ci-dessous (théorème de Larmor) : p oscille "
+                   "dans un plan fixe, et le plan d'oscillation de δq tourne à la vitesse angulaire",
+                   "Precession of the plane of oscillation: M being isotropic and G skew, the change of variables "
+                   "{change}, R the rotation by {angle} in the plane {plane}, from {q1} towards {q2}, removes the "
+                   "gyroscopic terms for the rate {wp} below (Larmor's theorem): p oscillates in a fixed plane, and "
+                   "the plane of oscillation of δq turns at the angular rate"),
+    "precession first order": ("Précession du plan d'oscillation : M étant isotrope et G antisymétrique, le "
+                               "changement de variables {change}, où R est la rotation d'angle {angle} dans le plan "
+                               "{plane}, de {q1} vers {q2}, élimine les termes gyroscopiques pour la vitesse {wp} "
+                               "ci-dessous (théorème de Larmor) ; K n'étant isotrope qu'à des termes d'ordre 2 en "
+                               "{s} près, le plan d'oscillation tourne, au premier ordre en {s}, à la vitesse angulaire",
+                               "Precession of the plane of oscillation: M being isotropic and G skew, the change of "
+                               "variables {change}, R the rotation by {angle} in the plane {plane}, from {q1} towards "
+                               "{q2}, removes the gyroscopic terms for the rate {wp} below (Larmor's theorem); K "
+                               "being isotropic up to terms of second order in {s}, the plane of oscillation turns, "
+                               "to first order in {s}, at the angular rate"),
     "summaries": ("{sample} : expression trop longue pour être écrite ici ; la commande {cmd} (ou la fonction "
                   "{fn}) la donne en entier.", "{sample}: an expression too long to print here; the command "
                   "{cmd} (or the function {fn}) gives it in full."),
@@ -738,7 +875,8 @@ _LOAD_NAMES: dict[str, tuple[str, str]] = {
     "drag": ("traînée", "drag"),
     "torque": ("couple", "torque"),
     "motor": ("moteur", "motor"),
-    "actuators": ("actionneurs", "actuators"),  # a URDF robot's joint torques (model/urdf.py)
+    "actuators": ("actionneurs", "actuators"),
+    "push": ("poussée", "push"),  # a URDF robot's joint torques (model/urdf.py)
     "joint_damping": ("amortissement des liaisons", "joint damping"),
 }
 
@@ -798,9 +936,10 @@ class Words:
         pair = _LOAD_NAMES.get(name)
         return pair[self._index] if pair is not None else name
 
-    def number(self, value: float) -> str:
-        """A number as this language writes it (decimal comma in French, 5·10⁻⁵ rather than 5e-05)."""
-        text = f"{value:.6g}"
+    def number(self, value: float, digits: int = 6) -> str:
+        """A number as this language writes it (decimal comma in French, 5·10⁻⁵ rather than 5e-05), with at
+        most ``digits`` significant digits (4 for a value computed from the model: K ≈ 0,4388 J·s)."""
+        text = f"{value:.{digits}g}"
         mantissa, e, exponent = text.partition("e")
         if e:
             power = str(int(exponent)).translate(_SUPERSCRIPTS)

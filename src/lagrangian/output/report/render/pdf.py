@@ -3,7 +3,9 @@
 The LaTeX of `render_tex` is written with its figures into a private temporary folder and compiled
 there with shell escape off (``-no-shell-escape``: the texts of a model file come from strangers and
 are escaped by the renderer; nothing they say can run a program), in batch mode, with a time limit.
-The PDF's bytes are returned; `Report.save` writes them atomically.  No TeX engine: an `OutputError`
+The engine runs until the document settles (longtable's columns need a second run).  The fonts are the
+Latin Modern Type 1 fonts (the TeX package ``lmodern``, which ``make test`` installs), so that the text
+is not in bitmap Type 3 fonts.  The PDF's bytes are returned; `Report.save` writes them atomically.  No TeX engine: an `OutputError`
 saying how to install one (Debian: ``texlive-latex-base``, ``texlive-latex-recommended``,
 ``texlive-lang-french``; ``make test`` installs them) or to write ``--format tex`` instead.
 """
@@ -19,7 +21,7 @@ from pathlib import Path
 
 from ....errors import OutputError
 
-__all__ = ["ENGINES", "tex_engine", "compile_pdf"]
+__all__ = ["ENGINES", "MAX_RUNS", "compile_pdf", "compile_pdf_and_log", "needs_rerun", "tex_engine"]
 
 #: The engines tried, in order: the report's preamble (inputenc, T1 fonts) is written for pdflatex;
 #: lualatex compiles it too.
@@ -35,8 +37,24 @@ def tex_engine() -> str | None:
     return next((p for p in map(shutil.which, ENGINES) if p), None)
 
 
-def compile_pdf(latex: str, figures: Mapping[str, bytes] = {}) -> bytes:  # noqa: B006 (read only)
+#: Most runs of the engine: longtable needs two to settle its column widths ("Table widths have changed.
+#: Rerun LaTeX."), and a third when a page break moves a table; beyond, the document does not settle.
+MAX_RUNS = 4
+
+
+def needs_rerun(log: str) -> bool:
+    """Whether TeX's log asks for another run (longtable's column widths, labels, references)."""
+    return "Rerun LaTeX" in log or "Rerun to get" in log or "Table widths have changed" in log
+
+
+def compile_pdf(latex: str, figures: Mapping[str, bytes] = {}) -> bytes:
     """The PDF of the LaTeX document ``latex``; ``figures`` are the files it includes, by name."""
+    return compile_pdf_and_log(latex, figures)[0]
+
+
+def compile_pdf_and_log(latex: str, figures: Mapping[str, bytes] = {}) -> tuple[bytes, str, int]:
+    """(PDF, the last run's log, number of runs): the engine runs until the document settles (`needs_rerun`),
+    `MAX_RUNS` times at most, so that every longtable's header sits on its columns."""
     engine = tex_engine()
     if engine is None:
         raise OutputError("Cannot write a PDF: no TeX engine (pdflatex or lualatex) is installed.", fix=_INSTALL)
@@ -48,18 +66,23 @@ def compile_pdf(latex: str, figures: Mapping[str, bytes] = {}) -> bytes:  # noqa
         command = [engine, "-interaction=batchmode", "-halt-on-error", "-no-shell-escape", "report.tex"]
         # TEXMFOUTPUT and openout_any: TeX writes only in its folder; HOME there too (font caches).
         env = {**os.environ, "TEXMFOUTPUT": folder, "openout_any": "p", "HOME": folder}
-        try:
-            run = subprocess.run(command, cwd=work, capture_output=True, timeout=TIME_LIMIT, env=env,
-                                 stdin=subprocess.DEVNULL, check=False)
-        except subprocess.TimeoutExpired:
-            raise OutputError(f"Cannot write a PDF: {Path(engine).name} took more than {TIME_LIMIT} s.",
-                              fix="write the LaTeX with --format tex and compile it by hand") from None
-        pdf = work / "report.pdf"
-        if run.returncode != 0 or not pdf.exists():
-            raise OutputError(f"Cannot write a PDF: {Path(engine).name} failed: {_first_error(work / 'report.log')}",
-                              fix="report this model to the lagrangian developers; --format tex writes the LaTeX "
-                                  "to compile by hand (a LaTeX package may be missing: " + _INSTALL + ")")
-        return pdf.read_bytes()
+        pdf, log = work / "report.pdf", ""
+        for runs in range(1, MAX_RUNS + 1):
+            try:
+                run = subprocess.run(command, cwd=work, capture_output=True, timeout=TIME_LIMIT, env=env,
+                                     stdin=subprocess.DEVNULL, check=False)
+            except subprocess.TimeoutExpired:
+                raise OutputError(f"Cannot write a PDF: {Path(engine).name} took more than {TIME_LIMIT} s.",
+                                  fix="write the LaTeX with --format tex and compile it by hand") from None
+            if run.returncode != 0 or not pdf.exists():
+                raise OutputError(f"Cannot write a PDF: {Path(engine).name} failed: "
+                                  f"{_first_error(work / 'report.log')}",
+                                  fix="report this model to the lagrangian developers; --format tex writes the LaTeX "
+                                      "to compile by hand (a LaTeX package may be missing: " + _INSTALL + ")")
+            log = (work / "report.log").read_text(encoding="utf-8", errors="replace")
+            if not needs_rerun(log):
+                break
+        return pdf.read_bytes(), log, runs
 
 
 def _first_error(log: Path) -> str:

@@ -8,6 +8,7 @@ beside the ``.tex`` file (`Report.save`), or a note when there are none.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
 
 from ..document import (Block, Display, Document, Equation, Fold, FullForms, Image, Items, Math, Para, Runs, Scene3D,
@@ -41,7 +42,7 @@ _ESCAPES = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": 
             "}": r"\}", "~": r"\textasciitilde{}", "^": r"\^{}"}
 # Characters that T1 + utf8 do not know, written as LaTeX (what a model's description may hold).
 _UNICODE = {"Σ": r"\ensuremath{\Sigma}", "Ω": r"\ensuremath{\Omega}", "Π": r"\ensuremath{\Pi}", "·": r"\ensuremath{\cdot}",
-            "−": "-", "→": r"\ensuremath{\to}", "⇒": r"\ensuremath{\Rightarrow}", "≤": r"\ensuremath{\le}",
+            "−": r"\ensuremath{-}", "\u00a0": "~", "\u202f": r"\,", "→": r"\ensuremath{\to}", "⇒": r"\ensuremath{\Rightarrow}", "≤": r"\ensuremath{\le}",
             "≥": r"\ensuremath{\ge}", "≈": r"\ensuremath{\approx}", "²": r"\textsuperscript{2}", "³": r"\textsuperscript{3}",
             "½": r"\ensuremath{\tfrac{1}{2}}", "×": r"\ensuremath{\times}", "∂": r"\ensuremath{\partial}",
             "⟨": r"\ensuremath{\langle}", "⟩": r"\ensuremath{\rangle}", "—": "---", "–": "--", "…": r"\dots{}",
@@ -69,6 +70,9 @@ def _char(ch: str) -> str:
 
 
 def escape(text: str) -> str:
+    # French spacing: babel's french puts its own non-breaking space before : ; ! ? (a space typed there is
+    # replaced by it); elsewhere a non-breaking space is a tie, the narrow one a thin space.
+    text = re.sub("[\u00a0\u202f]([:;!?])", r" \1", text)
     return "".join(_char(ch) for ch in text)
 
 

@@ -24,12 +24,13 @@ from ...._identity import are_zero
 from ....analysis import Verification
 from ..._course import EquationRow, IntegralRow
 from ..._notation import Opaque
-from ..build import Context
+from ..build import _SI, Context
 from .impacts import closed_note, has_contacts, integrals_note
 from ..document import Block, Display, Equation, Math, Para, Runs, Section
 from ....model import ORIGIN
 from ..joints import _root
 from ..size import visible_width, wrap_many
+from .contact import contact_blocks
 
 __all__ = ["step6", "step7", "integrals_section", "ordered_equations", "left_out_note"]
 
@@ -44,9 +45,6 @@ def _dT(c: Context, q: str, deco: str = "", U: bool = False) -> str:
     return rf"\frac{{\partial {what}}}{{\partial {c.sym(q, deco)}}}"
 
 
-#: SI units a model's parameters may be written in for `_unit` to name the unit of an integral.
-_SI = {"m", "kg", "s", "rad", "N", "J", "W", "Pa", "kg m^2", "kg*m^2", "kg·m²", "m/s", "m/s^2", "m/s²", "rad/s",
-       "N m", "N*m", "N·m", "N/m", "N s/m", "N*s/m", "kg/s", "1", ""}
 
 
 def _unit(c: Context, kind: str, coordinate: str | None = None) -> str:
@@ -80,7 +78,7 @@ def _value(c: Context, name: str, expr_engine: se.Basic, unit: str = "") -> Runs
     value = c.initial_value(expr_engine)
     if value is None:
         return ()
-    return (" (",) + c.w("with values", value=(Math(name), f" ≈ {c.w.number(value)}{unit}")) + (")",)
+    return (" (",) + c.w("with values", value=(Math(name), f" ≈ {c.w.number(value, 4)}{unit}")) + (")",)
 
 
 def _partials(c: Context, row: EquationRow) -> tuple[list[Equation], list[Block]]:
@@ -214,7 +212,7 @@ def _coriolis(c: Context, jacobi: bool) -> list[Block]:
 
 def left_out_note(c: Context, left: list) -> Runs:  # type: ignore[type-arg]
     """The note on the summaries whose full forms the budget left out, and where to find them."""
-    budget = f"{c.book.budget:,}".replace(",", " " if c.lang == "fr" else ",")
+    budget = f"{c.book.budget:,}".replace(",", "\u202f" if c.lang == "fr" else ",")  # 300 000: a narrow space
     return c.w("full forms left", budget=budget, k=str(len(left)),
                sample=Math(left[0].plain_latex), cmd=c.derive_command, fn="lagrangian.derive")
 
@@ -237,7 +235,7 @@ def pin_reaction(c: Context, v: Verification) -> list[Block]:
         P, G, S, R = c.name(r.point), c.point_label(body), c.element(body), c.R
         RO = rf"\vec{{R}}_{{{P}}}"
         given = " - ".join(rf"\vec{{F}}({c.load_tex(e)})" for e in th.efforts)
-        head = rf"{RO} = {c.tex(th.mass)}\,\vec{{\gamma}}({G}/{R})" + (f" - {given}" if given else "") + " = "
+        head = rf"{RO} = {c.mass_tex(body)}\,\vec{{\gamma}}({G}/{R})" + (f" - {given}" if given else "") + " = "
         axes = c.kin.frames.axes(r.frame)
         terms = tuple((c.ex(x), a) for x, a in zip(r.force_components, axes) if not c.is_zero(x))
         out.append(Para(c.w("pin reaction", R=Math(RO), O=Math(P), S=Math(f"({S})"))))
@@ -250,8 +248,8 @@ def step7(c: Context) -> Section:
     n = len(c.eom.coordinates)
     rows = c.eom.constraints
     if not rows:
-        return Section("step7", w.text("step7"), (Para(w("no complementary" if n > 1 else "no complementary one",
-                                                                n=Math(str(n)))),))
+        blocks = [Para(w("no complementary" if n > 1 else "no complementary one", n=Math(str(n))))]
+        return Section("step7", w.text("step7"), tuple(blocks + contact_blocks(c)))
     lams = Math(", ".join(c.tex(r.multiplier) for r in rows))
     if len(rows) == 1:
         blocks: list[Block] = [Para(w("complementary row", n=Math(str(n)), lams=lams))]
@@ -301,7 +299,7 @@ def step7(c: Context) -> Section:
             blocks.append(Display(tuple(eqs)))
         if formulas is not None:
             blocks += _tension(c, reaction, formulas)
-    return Section("step7", w.text("step7"), tuple(blocks))
+    return Section("step7", w.text("step7"), tuple(blocks + contact_blocks(c)))
 
 
 def _multipliers(c: Context) -> tuple[se.Basic, ...] | None:
@@ -483,12 +481,20 @@ def _momentum(c: Context, row: IntegralRow) -> list[Block]:
     zero = {se.Symbol(u): se.Integer(0) for u in off}
     cyclic = are_zero([(eq.dT_dq - eq.dU_dq).xreplace(zero)])[0]
     Lq = Math(rf"L({c.sym(q)})")
+    # With complementary constraints, L(q) also holds Σ λ_k a_{k,q}: it integrates only when no row has q̇ (the
+    # coin's x is cyclic and free of given efforts, but λ_1 cos ψ − λ_2 sin ψ drives it).
+    rows: Runs = ()
+    if c.eom.constraints:
+        a = rf"a_{{{c.sym(q)}}} = 0" if len(c.eom.constraints) == 1 else rf"a_{{k,{c.sym(q)}}} = 0"
+        rows = w("no row", qd=Math(c.sym(q, "dot")), a=Math(a))
     if cyclic:
-        why = w.join([Math(rf"\frac{{\partial L}}{{\partial {c.sym(q)}}} = 0"), Math(f"{c.Q_nc(q)} = 0")])
+        parts = [Math(rf"\frac{{\partial L}}{{\partial {c.sym(q)}}} = 0"), Math(f"{c.Q_nc(q)} = 0")]
+        why = w.join(parts + ([rows] if rows else []))
         head = w("cyclic", q=Math(c.sym(q)), why=why, eq=Lq)
     else:
         why = (Math(rf"\frac{{\partial T}}{{\partial {c.sym(q)}}} - \frac{{\partial U_P}}{{\partial {c.sym(q)}}}"
                     rf" + {c.Q_nc(q)} = 0"),)
+        why = w.join([why, rows]) if rows else why
         head = w("momentum", why=why, eq=Lq)
     if off:
         head = w("inputs off", zero=Math(", ".join(f"{c.sym(u)} = 0" for u in off))) + head
@@ -564,6 +570,42 @@ def _other_integral(c: Context, row: IntegralRow) -> list[Block]:
     return blocks
 
 
+#: Longest ∂L/∂q (operations) tested for being identically zero when q appears in T or U.
+CYCLIC_MAX_OPS = 400
+
+
+def _cyclic_but_driven(c: Context) -> tuple[list[str], list[Runs]]:
+    """The coordinates with ∂L/∂q = 0 for which that does not suffice to integrate L(q), and why: a non-conservative
+    effort works on them (the cart pushed by F), or a complementary row acts on them (the coin's x and y).  (The
+    coin's φ̇ is still constant, by its reduced equations: only the cyclic argument fails.)"""
+    w = c.w
+    integrating = {row.coordinate for row in c.form.integrals if row.kind == "momentum"}
+    # Cyclic: ∂L/∂q ≡ 0, tested where q is in T or U only when ∂L/∂q is short (this sentence only adds to the
+    # integrals found; an identity test on each of a 40-link chain's long ∂L/∂q would cost a second).
+    in_L = set(c.eom.T.free_symbols) | set(c.eom.U.free_symbols)
+    candidates = [(q, eq) for q, s, eq in zip(c.eom.coordinates, c.kin.q, c.eom.equations)
+                  if q not in integrating and (s not in in_L or se.count_ops(eq.dT_dq - eq.dU_dq) <= CYCLIC_MAX_OPS)]
+    if not candidates:
+        return [], []
+    cyclic = are_zero([eq.dT_dq - eq.dU_dq for _, eq in candidates])
+    names: list[str] = []
+    reasons: list[Runs] = []
+    for (q, eq), flat in zip(candidates, cyclic):
+        if not flat:
+            continue
+        why: list[Runs] = []
+        if not are_zero([eq.Q_nc])[0]:
+            why.append((Math(rf"{c.Q_nc(q)} \neq 0"),))
+        if eq.multiplier_terms != 0 and not are_zero([eq.multiplier_terms])[0]:
+            a = rf"a_{{{c.sym(q)}}}" if len(c.eom.constraints) == 1 else rf"a_{{k,{c.sym(q)}}}"
+            why.append(w("row acts", a=Math(rf"{a} \neq 0")))
+        if why:
+            names.append(q)
+            reasons.append(w("cyclic driven", q=Math(c.sym(q)), dL=Math(rf"\frac{{\partial L}}{{\partial {c.sym(q)}}} = 0"),
+                             why=w.join(why), eq=Math(rf"L({c.sym(q)})")))
+    return names, reasons
+
+
 def integrals_section(c: Context) -> Section:
     w = c.w
     blocks: list[Block] = []
@@ -572,7 +614,10 @@ def integrals_section(c: Context) -> Section:
             blocks += _other_integral(c, row)
             continue
         blocks += _momentum(c, row) if row.kind == "momentum" else _energy(c, row)
-    if not blocks:
+    driven, reasons = _cyclic_but_driven(c)
+    found = bool(blocks)
+    blocks += [Para(r) for r in reasons]
+    if not found:
         kin = c.kin
         L = c.eom.T - c.eom.U
         power = se.Add(*(q * qd for q, qd in zip(c.eom.Q_nc, kin.qd)))
@@ -582,7 +627,8 @@ def integrals_section(c: Context) -> Section:
             why.append(w.text("why work"))
         if timed and no_work and c.eom.constraints:
             why.append(w.text("why constraints"))
-        blocks.append(Para(w("no integral", why=" ; ".join(why) if c.lang == "fr" else "; ".join(why))))
+        key = "no integral" if not driven else "no integral but cyclic"
+        blocks.append(Para(w(key, why=" ; ".join(why) if c.lang == "fr" else "; ".join(why))))
         blocks += _balance(c)
     if has_contacts(c):  # between impacts only: an impact takes energy
         blocks += integrals_note(c)

@@ -12,7 +12,11 @@ import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+import symengine as se
+import sympy
+
 from ...._identity import are_zero
+from ..._notation import Opaque
 from ....analysis import Verification
 from ....model import Vector
 from ..build import Context
@@ -44,6 +48,7 @@ def check_section(c: Context, v: Verification) -> Section:
     blocks: list[Block] = [Para(w("check intro moving" if moving else "check intro", R0=Math(R)))]
     liaisons = w.text("constraint actions")
     stated: set[tuple[str, str, tuple[str, ...]]] = set()
+    noted = False  # the note on the efforts given by their generalized forces, once
     theorems = {(th.name, th.point): th for th in v.theorems}
     lambdas = {r.multiplier for r in c.eom.constraints}
     with_lambda = any(set(ch.newton_euler_efforts.free_symbols) & lambdas for ch in v.checks)
@@ -60,8 +65,15 @@ def check_section(c: Context, v: Verification) -> Section:
         key = (check.theorem, check.point or "", tuple(names))
         if check.theorem in ("moment", "resultant") and key not in stated:
             stated.add(key)
-            blocks += _theorem(c, check.theorem, check.point, names, theorems, liaisons)
-        of: Runs = () if check.whole_system else w("of", names=w.join([Math(c.element(e)) for e in check.elements]))
+            # The efforts that go by their generalized forces (a potential, given Q_i, a dissipation function) but
+            # act on this coordinate are part of the theorem too: the projection uses them.
+            i = c.eom.coordinates.index(check.coordinate)
+            by_power = [f.name for f in c.eom.loads if f.name in v.virtual_power_loads and f.Q[i] != 0]
+            blocks += _theorem(c, check.theorem, check.point, names, theorems, liaisons, by_power,
+                               note=not noted and bool(by_power))
+            noted = noted or bool(by_power)
+        of: Runs = () if check.whole_system else w("of", names=w.join(
+            [Math(f"({c.element(e)})" if e in c.bodies else c.element(e)) for e in check.elements]))
         if check.axis is not None:
             direction = Math(c.axis(check.axis))
         elif check.direction is not None:
@@ -76,13 +88,42 @@ def check_section(c: Context, v: Verification) -> Section:
         else:
             head = w("by power", eq=eq, of=of, q=Math(q))
         blocks += _fixed_axis(c, check, theorems)
-        blocks.append(Para(head))
         mark = r"\quad\checkmark" if check.agrees else r"\quad\times"
-        blocks += c.show([c.relation("", c.ex(check.newton_euler), c.ex(check.newton_euler_efforts), mark)],
-                         f"L({check.coordinate})")
+        left, right = c.ex(check.newton_euler), c.ex(check.newton_euler_efforts)
+        long_left, long_right = (isinstance(x, sympy.Basic) and bool(x.atoms(Opaque)) for x in (left, right))
+        if check.agrees and (long_left or long_right):
+            # ⟨24 termes⟩ = … ✓ cannot be checked by a reader: say what was compared, member by member.
+            G, Q = rf"\Gamma^{{\mathrm{{NE}}}}_{{{q}}}", rf"Q^{{\mathrm{{NE}}}}_{{{q}}}"
+            key = "check summarized" if long_right else "check summarized left"
+            blocks.append(Para(head + (" ",) + w(key, eq=eq, k=str(_terms(check.newton_euler)),
+                                                 k2=str(_terms(check.newton_euler_efforts)), G=Math(G), Q=Math(Q))))
+            gamma, forces = _identity_line(c, check.coordinate)
+            lines = [gamma, forces] if long_right else [gamma]
+            blocks.append(Display(tuple(Equation((line,)) for line in lines)))
+            if not long_right:
+                blocks += c.show([c.equation(f"{Q} = ", right, mark)], f"L({check.coordinate})")
+        else:
+            blocks.append(Para(head))
+            blocks += c.show([c.relation("", left, right, mark)], f"L({check.coordinate})")
         if not check.agrees:
             blocks.append(Para(w("check failed", eq=eq), style="note"))
     return Section("check", w.text("check"), tuple(blocks))
+
+
+def _terms(e: se.Basic) -> int:
+    return len(e.args) if isinstance(e, se.Add) else 1
+
+
+def _identity_line(c: Context, q: str) -> tuple[str, str]:
+    """Γ_q^NE − Γ_q = 0 ✓ and Q_q^NE − Q_q = 0 ✓, Γ_q and Q_q the two members of L(q) at step 6."""
+    qs, qd = c.sym(q), c.sym(q, "dot")
+    R = c.R
+    gamma = (rf"\frac{{d}}{{dt}}\left[\frac{{\partial T(\Sigma/{R})}}{{\partial {qd}}}\right] - "
+             rf"\frac{{\partial T(\Sigma/{R})}}{{\partial {qs}}}")
+    lam = f" + {c.multiplier_sum(qs)}" if c.eom.equation(q).multiplier_terms != 0 else ""
+    forces = rf"-\frac{{\partial U_P(\Sigma/{R})}}{{\partial {qs}}} + {c.Q_nc(q)}{lam}"
+    return (rf"\Gamma^{{\mathrm{{NE}}}}_{{{qs}}} - \left({gamma}\right) = 0\quad\checkmark",
+            rf"Q^{{\mathrm{{NE}}}}_{{{qs}}} - \left({forces}\right) = 0\quad\checkmark")
 
 
 def _fixed_axis(c: Context, check, theorems: dict) -> list[Block]:  # type: ignore[no-untyped-def,type-arg]
@@ -115,24 +156,33 @@ def _fixed_axis(c: Context, check, theorems: dict) -> list[Block]:  # type: igno
 
 
 def _theorem(c: Context, kind: str, point: str | None, names: tuple[str, ...], theorems: dict,  # type: ignore[type-arg]
-             liaisons: str) -> list[Block]:
-    """The statement of the resultant or moment theorem for ``names`` (at ``point``), in the frame R."""
+             liaisons: str, by_power: list[str] | tuple[str, ...] = (), note: bool = True) -> list[Block]:
+    """The statement of the resultant or moment theorem for ``names`` (at ``point``), in the frame R; ``by_power``
+    names the efforts given by their generalized forces (actuators, dissipation), which enter it too."""
+    out = _theorem_statement(c, kind, point, names, theorems, liaisons, by_power)
+    if by_power and note:
+        loads = c.w.join([c.w("quoted", name=c.load_name(x)) for x in by_power])
+        out.append(Para(c.w("by power note" if len(by_power) > 1 else "by power note one", names=loads)))
+    return out
+
+
+def _theorem_statement(c: Context, kind: str, point: str | None, names: tuple[str, ...], theorems: dict,  # type: ignore[type-arg]
+                       liaisons: str, by_power: list[str] | tuple[str, ...]) -> list[Block]:
     w, R = c.w, c.R
     elements = w.join([Math(f"({c.element(e)})" if e in c.bodies else c.element(e)) for e in names])
     label = names[0] if len(names) == 1 else r"\Sigma"
     E = c.element(label) if len(names) == 1 else label
     efforts = sorted({e for th in theorems.values() if th.name in names for e in th.efforts})
     if kind == "resultant":
-        masses = [th.mass for th in theorems.values() if th.name in names]
         G = c.point_label(names[0]) if len(names) == 1 else "G"
-        m = c.tex(masses[0]) if len(masses) == 1 else r"\sum m"
-        forces = " + ".join(c.reaction_tex(e) if c.is_constraint(e) else rf"\vec{{F}}({c.load_tex(e)})"
-                            for e in efforts) or r"\vec{0}"
+        m = c.mass_tex(names[0]) if len(names) == 1 else r"\sum m"
+        forces = " + ".join([c.reaction_tex(e) if c.is_constraint(e) else rf"\vec{{F}}({c.load_tex(e)})"
+                             for e in efforts] + [rf"\vec{{F}}({c.load_tex(e)})" for e in by_power]) or r"\vec{0}"
         return [Para(w("resultant theorem", P=elements)),
                 Display((Equation((rf"{m}\,\vec{{\gamma}}({G}/{R}) = {forces} + \vec{{R}}(\text{{{liaisons}}})",)),))]
     P = _point(c, point, names[0])
-    moments = " + ".join(rf"\vec{{M}}_{{{P}}}({c.reaction_tex(e) if c.is_constraint(e) else c.load_tex(e)})"
-                         for e in efforts) or r"\vec{0}"
+    moments = " + ".join([rf"\vec{{M}}_{{{P}}}({c.reaction_tex(e) if c.is_constraint(e) else c.load_tex(e)})"
+                          for e in efforts] + [rf"\vec{{M}}_{{{P}}}({c.load_tex(e)})" for e in by_power]) or r"\vec{0}"
     fixed = next((j for j in c.joints if j.kind == "fixed point" and j.support is None and names == (j.element,)
                   and j.point is not None and c.point_label(j.point) == P), None)
     th = theorems.get((names[0], point)) if len(names) == 1 else None
@@ -141,7 +191,7 @@ def _theorem(c: Context, kind: str, point: str | None, names: tuple[str, ...], t
         # The seed: δ_O = d/dt[σ_O]_{R0} = M_O(P) + M_O(R_O) = OG∧P + OO∧R_O, soit d/dt[σ_O]_{R0} = OG∧P.
         out.append(Para(w("top moment", R0=Math(R), O=Math(P), S=Math(E))))
         arms, named = [], []
-        for load in efforts:
+        for load in [*efforts, *by_power]:
             spec = next((x for x in c.model.loads if x.name == load), None)
             from ....model import Gravity
 
@@ -169,7 +219,7 @@ def _theorem(c: Context, kind: str, point: str | None, names: tuple[str, ...], t
     drift = ""
     if moving:
         masses = {th.name: th.mass for th in theorems.values() if th.name in names}
-        m = c.tex(masses[names[0]]) if len(names) == 1 else "m"
+        m = c.mass_tex(names[0]) if len(names) == 1 else "m"
         G = c.point_label(names[0]) if len(names) == 1 else "G"
         term = rf"{m}\,\vec{{V}}({P}/{R})\wedge\vec{{V}}({G}/{R})"
         # m V(P) ∧ V(G) = V(P) ∧ Σ m_k V(G_k): it vanishes when P moves with G (the coin's contact point).

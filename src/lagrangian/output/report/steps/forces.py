@@ -29,10 +29,7 @@ def _elements(c: Context, load: Gravity) -> tuple[str, ...]:
 
 
 def _mass(c: Context, name: str) -> str:
-    for b in c.model.bodies:
-        if b.name == name:
-            return c.tex(b.mass)
-    return c.tex(next(p.mass for p in c.model.particles if p.name == name))
+    return c.mass_tex(name)
 
 
 def _formula(c: Context, f: LoadForces, load: object) -> tuple[str, str]:
@@ -40,10 +37,11 @@ def _formula(c: Context, f: LoadForces, load: object) -> tuple[str, str]:
     R = c.R
     if isinstance(load, Gravity):
         names = _elements(c, load)
-        extra = rf"\vec{{g}} = {c.vector(load.field)}"
+        g = c.field_tex(load)
+        extra = rf"{g} = {c.vector(load.field)}"
         if len(names) <= 3:
-            return " + ".join(rf"{_mass(c, x)}\,\vec{{g}}\cdot\vec{{V}}^{{*}}({c.point_label(x)})" for x in names), extra
-        return r"\sum_{k} m_{k}\,\vec{g}\cdot\vec{V}^{*}(G_{k})", extra
+            return " + ".join(rf"{_mass(c, x)}\,{g}\cdot\vec{{V}}^{{*}}({c.point_label(x)})" for x in names), extra
+        return rf"\sum_{{k}} m_{{k}}\,{g}\cdot\vec{{V}}^{{*}}(G_{{k}})", extra
     if isinstance(load, PointForce):
         return rf"\vec{{F}}\cdot\vec{{V}}^{{*}}({c.point_label(load.at)})", rf"\vec{{F}} = {c.vector(load.force)}"
     if isinstance(load, Torque):
@@ -70,10 +68,17 @@ def _formula(c: Context, f: LoadForces, load: object) -> tuple[str, str]:
         return (rf"-{c.tex(load.coefficient)}\,\vec{{\Omega}}({s2}/{s1})\cdot\left(\vec{{\Omega}}^{{*}}({s2}/{R}) - "
                 rf"\vec{{\Omega}}^{{*}}({s1}/{R})\right)", "")
     if isinstance(load, CoulombFriction):
-        power = rf"\vec{{T}}\cdot\vec{{V}}^{{*}}({c.point_label(load.at)})"
+        # R_t, the tangential part of the support's action (T is the kinetic energy), N its normal part (step 7).
+        P = c.point_label(load.at)
+        power = rf"\vec{{R}}_t\cdot\vec{{V}}^{{*}}({P})"
+        f, N = c.tex(load.coefficient), c.tex(load.normal_force)
+        # v_s, the sliding velocity: V(P) less the surface's own (a belt's v_b x0)
+        surface = "" if load.surface_velocity.is_zero() else f" - {c.vector(load.surface_velocity)}"
+        slide = rf",\ \vec{{v}}_s = \vec{{V}}({P}/{R}){surface}"
         if load.exact:
-            return power, r"\vec{T} = -f N\,\vec{v}_s / \|\vec{v}_s\|"
-        return power, r"\vec{T} = -f N\,\vec{v}_s / \sqrt{\|\vec{v}_s\|^{2} + \varepsilon^{2}}"
+            return power, rf"\vec{{R}}_t = -{f} N\,\vec{{v}}_s / \|\vec{{v}}_s\|{slide},\ N = {N}"
+        return power, (rf"\vec{{R}}_t = -{f} N\,\vec{{v}}_s / \sqrt{{\|\vec{{v}}_s\|^{{2}} + "
+                       rf"{c.tex(load.regularization)}^{{2}}}}{slide},\ N = {N}")
     if isinstance(load, GeneralizedForce):
         return r"\sum_{i} Q_i\, q_i^{*}", ""
     if f.kind == "inertial: Coriolis":
@@ -174,10 +179,59 @@ _RELATION = {"positive": ">", "nonnegative": r"\geq", "negative": "<", "nonposit
 
 
 def _interval(c: Context, bounds: tuple) -> str:  # type: ignore[type-arg]
-    """[a, b] in LaTeX (numbers as decimals, as the file wrote them), an open side as ∞."""
-    lower, upper = (None if b is None else f"{float(b):g}" if not b.free_symbols else c.tex(b) for b in bounds)
-    return ((rf"\left[{lower}, " if lower is not None else r"\left]-\infty, ")
+    """[a, b] in LaTeX (numbers as decimals, as the file wrote them), an open side as ∞; in French [a ; b] with
+    decimal commas."""
+    def number(b) -> str:  # type: ignore[no-untyped-def]
+        text = f"{float(b):g}"
+        return text.replace(".", "{,}") if c.lang == "fr" else text
+
+    lower, upper = (None if b is None else number(b) if not b.free_symbols else c.tex(b) for b in bounds)
+    sep = r"\,;\, " if c.lang == "fr" else ", "
+    return ((rf"\left[{lower}{sep}" if lower is not None else rf"\left]-\infty{sep}")
             + (rf"{upper}\right]" if upper is not None else r"+\infty\right["))
+
+
+#: The loads whose magnitude a model gives as a value: constant when it holds no q, q̇, t, nor input.
+_GIVEN = (Torque, GeneralizedForce, PointForce)
+
+
+def _conservative_or_not(c: Context, f: LoadForces, load: object, name: str) -> Para:
+    """Whether the load derives from U_P, and why: a constant couple or force does (its magnitude is a constant
+    of the problem), a load driven by an input u(t) does not (−u q is a potential only for a constant u)."""
+    w = c.w
+    i_math, UP = Math("i"), Math(rf"U_P(\Sigma/{c.R})")
+    Q = Math(rf"Q_i({c.load_tex(f.name)}) = -\frac{{\partial U_P({c.load_tex(f.name)})}}{{\partial q_i}}")
+    if f.potential is not None:
+        constants = sorted({s for x in f.Q for s in x.free_symbols}, key=str)
+        if isinstance(load, _GIVEN) and constants:
+            names = w.join([Math(c.tex(s)) for s in constants])
+            why = w("constant because", names=names, verb=w.text("is one" if len(constants) == 1 else "are one"))
+            return Para(w("derives constant", name=name, why=why, Q=Q, i=i_math, UP=UP))
+        return Para(w("derives", name=name, Q=Q, i=i_math, UP=UP))
+    inputs = {p.symbol for p in c.model.parameters if p.input}
+    used = {s for x in f.Q for s in x.free_symbols} & inputs
+    driving = [p.symbol for p in c.model.parameters if p.symbol in used]  # in the model's order
+    nc = Math(r"Q_{i,\,\mathrm{nc}}")
+    if driving:
+        u = w.join([Math(c.tex(s)) for s in driving])
+        what = w.text("driven one" if len(driving) == 1 else "driven many")
+        why = w("driven why", U=Math(r"-u\, q"), u=Math("u"))
+        return Para(w("driven", name=name, u=u, what=what, why=why, Q=nc), style="note")
+    return Para(w("not conservative", name=name, Q=nc), style="note")
+
+
+def _perfect_constraints(c: Context) -> list[Block]:
+    """The principal constraints' actions: none works when all are perfect; in those that are not, only their
+    friction works (the Coulomb or viscous loads above), their other actions still do no virtual work."""
+    w = c.w
+    lossy = [j for j in c.joints if not j.perfect]
+    if not lossy:
+        return [Para(w("perfect no Q"))]
+    if len(lossy) < len(c.joints):
+        return [Para(w("perfect no Q but"))]
+    names = list(dict.fromkeys(name for j in lossy for name, _ in j.losses))
+    quoted = w.join([w("quoted", name=w.load(n)) for n in names])
+    return [Para(w("perfect no Q none one" if len(lossy) == 1 else "perfect no Q none", names=quoted))]
 
 
 def step5(c: Context) -> Section:
@@ -197,6 +251,8 @@ def step5(c: Context) -> Section:
         load = spec.get(f.name)
         formula, extra = _formula(c, f, load)
         kind = w.text(f"kind {f.kind}") if w.has(f"kind {f.kind}") else f.kind
+        if isinstance(load, Gravity) and c.field_tex(load) != r"\vec{g}":
+            kind = w.text("kind field")  # an attraction that is not the weight ± g along an axis
         name = c.load_name(f.name)
         blocks.append(Para(w("load title", name=name, kind=kind, extra=(", ", Math(extra)) if extra else "")))
         head = rf"P^{{*}}({c.load_tex(f.name)}) = " + (f"{formula} = " if formula else "")
@@ -207,21 +263,14 @@ def step5(c: Context) -> Section:
         if isinstance(load, CoulombFriction) and load.exact:
             fs = load.static_coefficient if load.static_coefficient is not None else load.coefficient
             blocks.append(Para(w("coulomb exact", v=Math(r"\vec{v}_s \neq \vec{0}"),
-                                 stick=Math(rf"\|\vec{{T}}\| \le {c.tex(fs)}\, N"), v0=Math(r"\vec{v}_s = \vec{0}"))))
+                                 stick=Math(rf"\|\vec{{R}}_t\| \le {c.tex(fs)}\, N"), v0=Math(r"\vec{v}_s = \vec{0}"))))
         zeros = [i for i, x in enumerate(row.Q) if x == 0]
         if zeros and len(row.Q) <= ZERO_REASONS_MAX:
             items = tuple(w("zero because", Q=Math(f"{c.Q_of(c.eom.coordinates[i], f.name)} = 0"),
                             why=_why_zero(c, f, load, i)) for i in zeros)
             blocks += c.many([Items(items)], len(items), f.name)
-        i_math = Math("i")
-        if f.potential is not None:
-            blocks.append(Para(w("derives", name=name, Q=Math(rf"Q_i({c.load_tex(f.name)}) = -\frac{{\partial "
-                                                             rf"U_P({c.load_tex(f.name)})}}{{\partial q_i}}"), i=i_math,
-                                 UP=Math(rf"U_P(\Sigma/{c.R})"))))
-        else:
-            blocks.append(Para(w("not conservative", name=name, Q=Math(r"Q_{i,\,\mathrm{nc}}")), style="note"))
-    lossy = [j for j in c.joints if not j.perfect]
-    blocks.append(Para(w("perfect no Q" if not lossy else "perfect no Q but")))
+        blocks.append(_conservative_or_not(c, f, load, name))
+    blocks += _perfect_constraints(c)
     if c.eom.constraints:
         one = len(c.eom.constraints) == 1
         k = "" if one else "k"

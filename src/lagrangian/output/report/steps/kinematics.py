@@ -312,8 +312,10 @@ def step3(c: Context) -> Section:
         blocks += c.many(c.show(rows, r"V*"), len(rows), "V*")
     torsors = _virtual_torsors(c)
     if torsors:
-        AP = rf"\vec{{V}}^{{*}}(P\in S/{c.R}) = \vec{{V}}^{{*}}(A\in S/{c.R}) + \vec{{\Omega}}^{{*}}(S/{c.R})\wedge\overrightarrow{{AP}}"
-        blocks.append(Para(w("virtual torsor", field=Math(AP))))
+        A, P = c.free_letter("A", "B", "D", "J"), c.free_letter("P", "M", "Y")  # not the top's A, the bob P
+        AP = (rf"\vec{{V}}^{{*}}({P}\in S/{c.R}) = \vec{{V}}^{{*}}({A}\in S/{c.R}) + \vec{{\Omega}}^{{*}}(S/{c.R})"
+              rf"\wedge\overrightarrow{{{A}{P}}}")
+        blocks.append(Para(w("virtual torsor", field=Math(AP), A=Math(A))))
         blocks += c.many(torsors, len(c.model.bodies), w.text("virtual torsor short"), limit=6)
     comoments = _comoments(c)
     blocks += c.many(comoments, len(c.joints), w.text("comoment short"), limit=8)
@@ -339,7 +341,7 @@ def _kinetic(c: Context) -> list[Block]:
                     next((p.mass for p in c.model.particles if p.name == term.name), None))
         P = c.point_label(term.inertia.point) if term.inertia is not None and term.inertia.point != "G" else ""
         formula = _T_FORMULA.get(term.formula, "").format(S=S, R=c.R, P=P, G=c.point_label(term.name),
-                                                          m=c.tex(mass) if mass is not None else "m")
+                                                          m=c.mass_tex(term.name) if mass is not None else "m")
         head = rf"T({S}/{c.R}) = " + (f"{formula} = " if formula else "")
         rows.append(c.equation(head, shown.expression))
     blocks = c.many(c.show(rows, "T"), len(rows), "T") + single
@@ -382,15 +384,17 @@ def _gravity_formula(c: Context, load: Gravity) -> str:
         axis = c.axis(c.kin.frames.axes(frame)[k])
         terms = []
         for name in names:
-            coeff = c.tex(-comp * masses[name])
+            mass = masses[name]
+            # a number (a URDF's 8 kg) is written m_S: m_S g OG·z0, not 8 g OG·z0
+            coeff = c.tex(-comp * mass) if mass.free_symbols else f"{c.mass_tex(name)}\\,{c.tex(-comp)}"
             terms.append(rf"{coeff}\,\overrightarrow{{{O}{c.point_label(name)}}}\cdot{axis}")
         text = terms[0]
         for t in terms[1:]:
             text += f" - {t[1:]}" if t.startswith("-") else f" + {t}"
         return text
     if len(names) == 1:
-        return rf"-{c.tex(masses[names[0]])}\,\vec{{g}}\cdot\overrightarrow{{{O}{c.point_label(names[0])}}}"
-    return rf"-\sum_{{k}} m_{{k}}\,\vec{{g}}\cdot\overrightarrow{{{O}G_{{k}}}}"
+        return rf"-{c.mass_tex(names[0])}\,{c.field_tex(load)}\cdot\overrightarrow{{{O}{c.point_label(names[0])}}}"
+    return rf"-\sum_{{k}} m_{{k}}\,{c.field_tex(load)}\cdot\overrightarrow{{{O}G_{{k}}}}"
 
 
 def _potential_formula(c: Context, kind: str, name: str) -> str:
@@ -423,12 +427,45 @@ def _inertia_centre(c: Context) -> str:
     return c.point_label(elements[0]) if len(elements) == 1 else "G"
 
 
-def _entrainment_terms(c: Context) -> Para:
-    """What the entrainment potential's symbols are (Remarque 3)."""
+def entrainment_conditions(c: Context) -> tuple[bool, bool]:
+    """(dΩ(R/R0)/dt = 0, γ(O/R0) = 0) for the frame R of the equations: the two terms of the entrainment force that
+    decide whether it derives from a potential (Remarque 3)."""
+    from ...._identity import are_zero
+    from ....dynamics._inertial import RelativeKinematics
+
+    kin = c.kin
+    if not isinstance(kin, RelativeKinematics):
+        return True, True
+
+    def comps(v: Vector) -> list[se.Basic]:
+        return list(kin.frames.absolute.express(v, "R0")) if not v.is_zero() else []
+
+    constant = all(are_zero(comps(kin.frame_omega_rate))) if comps(kin.frame_omega_rate) else True
+    fixed = all(are_zero(comps(kin.origin_acceleration))) if comps(kin.origin_acceleration) else True
+    return constant, fixed
+
+
+def _entrainment_terms(c: Context) -> list[Block]:
+    """What the entrainment potential's symbols are (Remarque 3), and why it exists: Ω(R/R0) constant, so the term
+    dΩ/dt ∧ OP (which derives from no potential) vanishes; with O fixed in R0, the γ(O/R0) term vanishes too."""
+    w = c.w
     O, G = c.name(c.origin), _inertia_centre(c)
-    return Para(c.w("entrainment terms", gamma=Math(rf"\vec{{\gamma}}({O}/R_{{0}})"), O=Math(O), R=Math(c.R),
-                    R0=Math("R_{0}"), G=Math(G), Omega=Math(rf"\vec{{\Omega}}({c.R}/R_{{0}})"),
-                    Pi=Math(rf"\Pi_{{{O}}}(\Sigma)"), many="" if G != "G" else c.w.text("each element")))
+    Omega = rf"\vec{{\Omega}}({c.R}/R_{{0}})"
+    out: list[Block] = [Para(w("entrainment terms", gamma=Math(rf"\vec{{\gamma}}({O}/R_{{0}})"), O=Math(O), R=Math(c.R),
+                               R0=Math("R_{0}"), G=Math(G), Omega=Math(Omega),
+                               Pi=Math(rf"\Pi_{{{O}}}(\Sigma)"), many="" if G != "G" else w.text("each element")))]
+    constant, fixed = entrainment_conditions(c)
+    if constant:
+        rate = Math(rf"\frac{{d{Omega}}}{{dt}} = \vec{{0}}")
+        term = Math(rf"\frac{{d{Omega}}}{{dt}}\wedge\overrightarrow{{{O}P}}")
+        if fixed:
+            out.append(Para(w("entrainment potential fixed", rate=rate, term=term, O=Math(O), R0=Math("R_{0}"),
+                              Omega=Math(Omega),
+                              gamma=Math(rf"\vec{{\gamma}}({O}/R_{{0}}) = \vec{{0}}"))))
+        else:
+            out.append(Para(w("entrainment potential moving", rate=rate, term=term, O=Math(O), Omega=Math(Omega),
+                              gamma=Math(rf"\vec{{\gamma}}({O}/R_{{0}})"))))
+    return out
 
 
 def _potential(c: Context) -> list[Block]:
@@ -459,7 +496,7 @@ def _potential(c: Context) -> list[Block]:
         blocks.append(Para(w("potential of")))
     blocks += c.show(rows, "U_P") + alone
     if any(f.kind == "inertial: entrainment" for f, _ in loads):
-        blocks.append(_entrainment_terms(c))
+        blocks += _entrainment_terms(c)
     # The total U_P(Σ/R), under its own name, when it sums at least two terms that are not zero.
     if sum(1 for _, row in loads if row.expression != 0) > 1:
         total = rf"U_P(\Sigma/{c.R}) = "

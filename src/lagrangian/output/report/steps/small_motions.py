@@ -30,6 +30,7 @@ from ....errors import LagrangianError
 from ..build import Context
 from ..document import Block, Display, Equation, Items, Math, Para, Runs, Section
 from ..size import LINE_WIDTH, visible_width, wrap_many
+from .precession import precession_blocks
 
 __all__ = ["small_motions_section", "as_linear_model"]
 
@@ -206,7 +207,7 @@ def _eigenvalues(c: Context, lam: np.ndarray) -> Runs:
         text = _eigenvalue(c.w, complex(z))
         if text not in shown:
             shown.append(text)
-    return c.w.join([Math(rf"\lambda = {t}") for t in shown])
+    return c.w.join([Math(rf"{c.eigen} = {t}") for t in shown])
 
 
 def _essential_KG(lin: Any, modes: Any) -> tuple[np.ndarray, np.ndarray] | None:
@@ -255,7 +256,7 @@ def _stability(c: Context, lin: Any, stability: Any, modes: Any) -> list[Block]:
     if lam.size:
         listed = "small eigenvalues left" if modes.neutral else "small eigenvalues"
         blocks.append(Para(w(listed, lam=_eigenvalues(c, lam))))
-    blocks.append(Para(w(key, K=K, U=Math("U_P"), q0=Math("q_{0}"), lam=Math(rf"\lambda = {_eigenvalue(w, worst)}"),
+    blocks.append(Para(w(key, K=K, U=Math("U_P"), q0=Math("q_{0}"), lam=Math(rf"{c.eigen} = {_eigenvalue(w, worst)}"),
                          kmin=Math(w.number(kmin if kmin is not None else 0.0)))))
     return blocks
 
@@ -292,4 +293,5 @@ def small_motions_section(c: Context, lin: Any) -> Section:
         stability, modes = num.stability(), num.modes()
         blocks += _pulsations(c, so if shown is sym else None, modes)
         blocks += _stability(c, num, stability, modes)
+    blocks += precession_blocks(c, so)  # Larmor: the turning plane of oscillation (Foucault's pendulum)
     return Section("small motions", w.text("small title steady" if lin.steady else "small title"), tuple(blocks))

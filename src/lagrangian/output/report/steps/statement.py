@@ -39,17 +39,27 @@ def _frame_with_axes(c: Context, frame: str, origin: str | None) -> str:
     return f"{c.name(frame)}({c.name(origin)};\\ {axes})" if origin else f"{c.name(frame)}({axes})"
 
 
+def _mass_given(c: Context, name: str, mass) -> str:  # type: ignore[no-untyped-def]
+    """m, or m_S = 8 kg for a number (so that later formulas can write m_S)."""
+    if mass.free_symbols:
+        return c.tex(mass)
+    return f"{c.mass_tex(name)} = {c.quantity(mass, 'kg')}"
+
+
 def _inertia_given(c: Context, body) -> Runs:  # type: ignore[no-untyped-def]
     """The inertia of a body as the model gives it: principal moments, or the matrix, at a point in a basis."""
     i = body.inertia
     P = Math(c.point_label(body.name) if i.at == "G" else c.point_label(i.at))
     basis = Math(c.basis(i.frame))
     m = i.matrix
+    numbers = c.si and not any(x.free_symbols for row in m for x in row)
+    unit = r"\ \mathrm{kg\cdot m^{2}}" if numbers else ""  # a URDF's inertias: numbers in kg·m²
     if all(m[r][k] == 0 for r in range(3) for k in range(3) if r != k):
         return c.w("inertia principal given", P=P, basis=basis,
-                   values=Math(r",\ ".join(c.tex(m[k][k]) for k in range(3))))
+                   values=Math(r",\ ".join(c.tex(m[k][k]) for k in range(3)) + unit))
     rows = r" \\ ".join(" & ".join(c.tex(x) for x in row) for row in m)
-    return c.w("inertia matrix given", P=P, basis=basis, matrix=Math(rf"\begin{{bmatrix}} {rows} \end{{bmatrix}}"))
+    return c.w("inertia matrix given", P=P, basis=basis,
+               matrix=Math(rf"\begin{{bmatrix}} {rows} \end{{bmatrix}}" + unit))
 
 
 def _load_given(c: Context, load: object) -> Runs | None:  # noqa: PLR0911 - one phrase per kind of load
@@ -59,10 +69,11 @@ def _load_given(c: Context, load: object) -> Runs | None:  # noqa: PLR0911 - one
 
     w = c.w
     if isinstance(load, Gravity):
-        g = Math(rf"\vec{{g}} = {c.vector(load.field)}")
+        g = Math(rf"{c.field_tex(load)} = {c.vector(load.field)}")
+        weight = c.field_tex(load) == r"\vec{g}"  # else a uniform field that is not ± g along an axis
         if load.on:
-            return w("load on", g=g, on=w.join([Math(c.element(x)) for x in load.on]))
-        return w("load gravity", g=g)
+            return w("load on" if weight else "load field on", g=g, on=w.join([Math(c.element(x)) for x in load.on]))
+        return w("load gravity" if weight else "load field", g=g)
     if isinstance(load, PointForce):
         return w("load force", F=Math(rf"\vec{{F}} = {c.vector(load.force)}"), P=Math(c.point_label(load.at)))
     if isinstance(load, Torque):
@@ -111,6 +122,27 @@ def _constraint_given(c: Context, con: Constraint) -> Runs:
     return w("constraint item", label=label, equation=Math(equation) if equation else "")
 
 
+def _vertical(c: Context) -> Runs | None:
+    """« O z0 est la verticale ascendante » (or descendante: the bicycle's z0 points down), when the weight is along
+    one axis of R0; its sign is read at the model's values (g > 0), else from the expression."""
+    from ....model import Gravity
+
+    fields = [load.field for load in c.model.loads if isinstance(load, Gravity)]
+    if len(fields) != 1:
+        return None
+    frames = c.kin.frames.absolute if hasattr(c.kin.frames, "absolute") else c.kin.frames
+    comps = list(frames.express(fields[0], "R0"))
+    nonzero = [k for k, x in enumerate(comps) if x != 0]
+    if len(nonzero) != 1:
+        return None
+    k = nonzero[0]
+    value = c.initial_value(comps[k])
+    down = value > 0 if value is not None else not comps[k]._sympy_().could_extract_minus_sign()
+    axis = Math(rf"O{c.axis(c.kin.frames.axes('R0')[k])}")
+    g = Math(rf"\vec{{g}} = {c.vector(fields[0])}")
+    return c.w("vertical down" if down else "vertical up", axis=axis, g=g)
+
+
 def system_section(c: Context) -> Section:
     """The statement (« Énoncé ») a teacher hands out: the system, R0, the bodies, the constants, the loads, the
     constraints, all as the model declares them (before any step of the démarche)."""
@@ -123,6 +155,9 @@ def system_section(c: Context) -> Section:
             what = what[0].lower() + what[1:]
         blocks.append(Para(w("statement intro", what=what)))
     blocks.append(Para(w("galilean", R0=Math(_frame_with_axes(c, "R0", "O")))))
+    vertical = _vertical(c)
+    if vertical is not None:
+        blocks.append(Para(vertical))
     if c.ref != "R0":
         blocks.append(Para(w("reference", R=Math(_frame_with_axes(c, c.ref, c.origin)))))
     items: list[Runs] = []
@@ -131,22 +166,37 @@ def system_section(c: Context) -> Section:
         G = c.point_label(b.name)
         OG = Math(rf"\overrightarrow{{{origin}{G}}} = {c.short_vector(c.kin.position(b.name))}")
         if b.mass_given:
-            item = w("body item", S=Math(c.element(b.name)), m=Math(c.tex(b.mass)), G=Math(G), OG=OG)
+            item = w("body item", S=Math(c.element(b.name)), m=Math(_mass_given(c, b.name, b.mass)), G=Math(G), OG=OG)
         else:
             item = w("body item no mass", S=Math(c.element(b.name)), G=Math(G), OG=OG)
         items.append(item + (", ",) + _inertia_given(c, b))
     for p in model.particles:
         OP = Math(rf"\overrightarrow{{{origin}{c.element(p.name)}}} = {c.short_vector(c.kin.position(p.name))}")
-        items.append(w("particle item", P=Math(c.element(p.name)), m=Math(c.tex(p.mass)), OP=OP))
+        items.append(w("particle item", P=Math(c.element(p.name)), m=Math(_mass_given(c, p.name, p.mass)), OP=OP))
     if items:
         blocks.append(Para(w("constituents")))
         blocks += c.many([Items(tuple(items))], len(items), w.text("constituents").rstrip(" :"))
-    if model.parameters:
-        rows = tuple((( Math(c.sym(p.name)),), ("" if p.value is None else w.number(p.value),), (_unit(p.unit),),
-                      (in_language(p.description, c.lang) or "",)) for p in model.parameters)
+    # The points the constraints and loads name (A of a hinge, the contact point I): where they are.
+    points = [p.name for p in model.points if p.name not in ("O", c.origin) and not p.name.startswith("_")]
+    if points:
+        rows = tuple((Math(rf"\overrightarrow{{{origin}{c.point_label(p)}}} = {c.short_vector(c.kin.position(p))}"),)
+                     for p in points)
+        blocks.append(Para(w("points given")))
+        blocks += c.many([Items(rows)], len(rows), w.text("points given").rstrip(" :"))
+    constants = [p for p in model.parameters if not p.input]
+    if constants:
+        rows = tuple(((Math(c.sym(p.name)),), ("" if p.value is None else w.number(p.value),), (_unit(p.unit),),
+                      (in_language(p.description, c.lang) or "",)) for p in constants)
         header = tuple((w.text(k),) for k in ("col symbol", "col value", "col unit", "col description"))
         blocks.append(Para(w("parameters")))
         blocks += c.many([Table(header, rows)], len(rows), w.text("parameters").rstrip(" :"))
+    inputs = [p for p in model.parameters if p.input]
+    if inputs:  # a motor's τ(t), a push F(t): given functions of time, not constants
+        rows = tuple(((Math(c.sym(p.name)),), (_unit(p.unit),), (in_language(p.description, c.lang) or "",))
+                     for p in inputs)
+        header = tuple((w.text(k),) for k in ("col symbol", "col unit", "col description"))
+        blocks.append(Para(w("inputs")))
+        blocks += c.many([Table(header, rows)], len(rows), w.text("inputs").rstrip(" :"))
     loads = [(load, _load_given(c, load)) for load in model.loads]
     load_items = tuple(w("load item", name=w.load(load.name), what=what) for load, what in loads  # type: ignore[attr-defined]
                        if what is not None)
@@ -229,7 +279,7 @@ def _losses(c: Context, j: Joint) -> list[Block]:
             why.append(w("why coulomb", name=w.load(name), P=Math(c.point_label(j.element))))
         else:
             why.append(w("why damper", name=w.load(name)))
-    Q = Math(rf"Q_{{i}}^{{\mathrm{{nc}}}}")
+    Q = Math(r"Q_{i,\,\mathrm{nc}}")
     return [Para(w("not perfect", why=w.join(why), Q=Q))]
 
 
@@ -271,7 +321,8 @@ def _perfect(c: Context, j: Joint) -> list[Block]:
         dirs = [Math(XP)] + [Math(c.axis(a)) for a in j.normals]
         conditions = [rf"{XP}\cdot{v} = 0"] + [rf"{c.axis(a)}\cdot{v} = 0" for a in j.normals]
         orth = w.text("orth one" if len(dirs) == 1 else "orth many")
-        return [Para(w("perfect rod", P=Math(P), dirs=w.join(dirs), orth=orth, XP2=Math(rf"{XP}^{{2}}"))),
+        plane = w("rod in plane", P=Math(P), n=Math(c.axis(j.normals[0]))) if j.normals else ""
+        return [Para(w("perfect rod", P=Math(P), dirs=w.join(dirs), orth=orth, XP2=Math(rf"{XP}^{{2}}"), plane=plane)),
                 Display((Equation((r",\qquad ".join(conditions),)),))]
     if j.kind in ("line", "plane"):
         where = w.text("the line") if j.kind == "line" else w.text("the plane")
@@ -280,7 +331,13 @@ def _perfect(c: Context, j: Joint) -> list[Block]:
         G = c.point_label(j.element)
         n = w.join([Math(c.axis(a)) for a in j.normals])
         cond = w.join([Math(rf"{c.axis(a)}\cdot\vec{{V}}^{{*}}({G}) = 0") for a in j.normals])
-        return [Para(w("perfect body plane", n=n, cond=cond))]
+        rot = Math(rf"\vec{{\Omega}}^{{*}}({c.element(j.element)}/{c.R}) \in \mathrm{{vect}}("
+                   + ", ".join(c.axis(a) for a in j.turns) + ")")
+        blocks = [Para(w("perfect body plane", n=n, cond=cond, rot=rot))]
+        rolling = next((con for con in c.model.constraints if con.form == "no_slip" and con.body == j.element), None)
+        if rolling is not None:  # the contact's tangential action is the rolling constraint's reaction, not zero
+            blocks.append(Para(w("adherence", S=Math(c.element(j.element)), I=Math(c.point_label(rolling.points[0])))))
+        return blocks
     return [Para(w("perfect assumed"))]
 
 
@@ -349,10 +406,12 @@ def _declared(c: Context, con: Constraint, one: bool) -> list[Block]:
                 R = Math(rf"{c.reaction_tex(con.name)} = {c.vector(reaction.force)}")
                 body = reaction.body or getattr(con, "body", None)
                 if body is not None and body != reaction.point and body in c.bodies:
-                    blocks.append(Para(w("reaction on at", S=Math(c.element(body)),
-                                         E=Math(c.point_label(reaction.point)), R=R)))
+                    runs = w("reaction on at", S=Math(c.element(body)), E=Math(c.point_label(reaction.point)), R=R)
                 else:
-                    blocks.append(Para(w("reaction is", E=Math(c.point_label(reaction.point)), R=R)))
+                    runs = w("reaction is", E=Math(c.point_label(reaction.point)), R=R)
+                if con.form == "no_slip":  # the tangential reaction that rolling needs: adherence
+                    runs = runs + (" ",) + w("adherence reaction")
+                blocks.append(Para(runs))
     else:
         blocks.append(Para(w("perfect assumed")))
     return blocks
@@ -467,12 +526,15 @@ def step2(c: Context) -> Section:
         blocks = [Para(w("n params euler", n=n, list=w.join(symbols), S=Math(c.element(euler))))]
     else:
         blocks = [Para(w("n params", n=n, list=w.join(symbols)))]
-    header = tuple((w.text(k),) for k in ("col symbol", "col description", "col initial", "col rate"))
+    named = bool(c.coordinate_names)  # q₁, q₂… stand for the joints: their names in a column
+    keys = ("col symbol",) + (("col name",) if named else ()) + ("col description", "col initial", "col rate")
+    header = tuple((w.text(k),) for k in keys)
     rows = []
     for coord in c.model.coordinates:
-        rows.append(((Math(c.sym(coord.name)),), (in_language(coord.description, c.lang) or "",),
-                     ("" if coord.initial is None else w.number(coord.initial),),
-                     ("" if coord.rate is None else w.number(coord.rate),)))
+        rows.append(((Math(c.sym(coord.name)),),) + (((coord.name,),) if named else ())
+                    + ((in_language(coord.description, c.lang) or "",),
+                       ("" if coord.initial is None else w.number(coord.initial),),
+                       ("" if coord.rate is None else w.number(coord.rate),)))
     blocks += c.many([Table(header, tuple(rows))], len(rows), w.text("step2"))
     m = len(c.eom.constraints)
     if m == 1:
