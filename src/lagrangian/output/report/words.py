@@ -650,6 +650,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
                       "n'est d'équilibre que pour ces valeurs.",
                       "The coefficients are written with the numerical values of the constants: the position is "
                       "an equilibrium for these values only."),
+    "small numeric long": ("Les coefficients sont écrits avec les valeurs numériques des constantes : écrit avec "
+                           "les lettres, le plus long compterait {n} caractères.",
+                           "The coefficients are written with the numerical values of the constants: in letters, the "
+                           "longest would run to {n} characters."),
     "small first order": ("Les équations réduites ne sont que du premier ordre ({why}) ; elles s'écrivent {x}.",
                           "The reduced equations are first order only ({why}); they read {x}."),
     "small one pulsation": ("L'équation est celle d'un oscillateur harmonique en {q}, de pulsation propre :",

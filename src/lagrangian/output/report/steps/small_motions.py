@@ -35,6 +35,10 @@ __all__ = ["small_motions_section", "as_linear_model"]
 
 #: Most coordinates for which the matrices M and K are displayed as well as the equations.
 MATRIX_MAX = 3
+#: Longest coefficient (characters of its text) written in letters: past it (the bicycle's
+#: reduced K, 10⁴ characters an entry) the equations are written with the numbers, which a reader
+#: can use, and nothing slower than a matrix product is spent on the letters.
+LETTERS_MAX_CHARS = 1500
 
 
 def as_linear_model(eom: Any, small_motions: Any) -> Any:
@@ -95,7 +99,7 @@ def _positive(lin: Any) -> Any:
     back = {v: k for k, v in positive.items()}
 
     def tidy(e: se.Basic) -> se.Basic:
-        if not e.free_symbols:
+        if not e.free_symbols or len(str(e)) > LETTERS_MAX_CHARS:
             return e
         x = e._sympy_().xreplace(positive)
         y = sympy.factor(sympy.cancel(x)).xreplace(back)
@@ -107,6 +111,12 @@ def _positive(lin: Any) -> Any:
         return se.DenseMatrix([[tidy(m[i, j]) for j in range(m.cols)] for i in range(m.rows)])
 
     return dataclasses.replace(so, **{k: matrix(getattr(so, k)) for k in ("M", "D", "G", "K", "N", "B")})
+
+
+def _longest(so: Any) -> int:
+    """The length of the longest coefficient of the second-order form, as text."""
+    return max((len(str(m[i, j])) for m in (so.M, so.D, so.G, so.K, so.N, so.B)
+                for i in range(m.rows) for j in range(m.cols)), default=0)
 
 
 def _var(c: Context, name: str, deco: str = "") -> str:
@@ -265,6 +275,10 @@ def small_motions_section(c: Context, lin: Any) -> Section:
     w = c.w
     sym = _symbolic(lin)
     num = _numeric(lin)
+    longest = _longest(sym.second_order) if sym is not None and sym.second_order is not None else 0
+    long = longest > LETTERS_MAX_CHARS
+    if long:
+        sym = None
     shown = sym if sym is not None and sym.second_order is not None else (num or lin)
     intro = "small intro steady" if lin.steady else "small intro"
     blocks: list[Block] = [Para(w(intro, point=_point(c, lin), dq=Math(r"q = q_{0} + \delta q")))]
@@ -283,7 +297,8 @@ def small_motions_section(c: Context, lin: Any) -> Section:
             blocks.append(Para(w("small matrices")))
             blocks.append(Display(tuple(Equation((m,)) for m in matrices)))
         if shown is not sym:
-            blocks.append(Para(w("small numeric"), style="note"))
+            note = w("small numeric long", n=w.number(longest)) if long else w("small numeric")
+            blocks.append(Para(note, style="note"))
     else:
         blocks.append(Para(w("small first order", x=Math(r"\dot{x} = A\,x"), why=lin.second_order_reason)))
     if num is None:  # a symbol without a value: no eigenvalue, no verdict
