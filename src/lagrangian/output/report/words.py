@@ -713,6 +713,14 @@ _PHRASES: dict[str, tuple[str, str]] = {
                          "petits mouvements s'amortissent, le mouvement est asymptotiquement stable.",
                          "Every eigenvalue has a negative real part (the largest: {lam}): small motions decay, the "
                          "motion is asymptotically stable."),
+    "small secular": ("La valeur propre 0 n'est pas semi-simple : une fois mises à part les coordonnées ignorables, "
+                      "la matrice A a pour elle un bloc de Jordan de taille {k}, de sorte qu'une perturbation {start} "
+                      "fait croître {end} comme {t}. Le mouvement linéarisé n'est pas borné, bien qu'aucune valeur "
+                      "propre n'ait de partie réelle positive : il est instable (croissance séculaire).",
+                      "The eigenvalue 0 is not semisimple: once the ignorable coordinates are set aside, the matrix A "
+                      "has a Jordan block of size {k} for it, so that a perturbation {start} makes {end} grow like "
+                      "{t}. The linearized motion is unbounded, although no eigenvalue has a positive real part: it "
+                      "is unstable (secular growth)."),
     "small marginal": ("Les valeurs propres sont sur l'axe imaginaire (ou l'une est nulle ou multiple) : la "
                        "linéarisation ne permet pas de conclure sur la stabilité (cas critique).",
                        "The eigenvalues lie on the imaginary axis (or one is zero or repeated): the linearization "

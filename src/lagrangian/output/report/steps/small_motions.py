@@ -31,7 +31,7 @@ from ..build import Context
 from ..document import Block, Display, Equation, Items, Math, Para, Runs, Section
 from ..size import LINE_WIDTH, visible_width, wrap_many
 
-__all__ = ["small_motions_section", "as_linear_model"]
+__all__ = ["as_linear_model", "small_motions_section"]
 
 #: Most coordinates for which the matrices M and K are displayed as well as the equations.
 MATRIX_MAX = 3
@@ -251,11 +251,13 @@ def _stability(c: Context, lin: Any, stability: Any, modes: Any) -> list[Block]:
         key = "small unstable no minimum" if kmin is not None and kmin < 0 else "small unstable"
     elif verdict == "asymptotically stable":
         key = "small asymptotic"
+    elif verdict == "unstable (secular growth)":
+        key = "small secular"
     else:
         key = "small marginal"
     worst = complex(lam[np.argmax(lam.real)]) if lam.size else 0j
     blocks: list[Block] = []
-    neutral = [x for x, _ in modes.neutral if x != "momentum"]
+    neutral = [x for x, why in modes.neutral if x != "momentum" and "Jordan chain" not in why]
     momenta = sum(1 for x, _ in modes.neutral if x == "momentum")
     if neutral or momenta:
         names: list[Any] = [Math(c.sym(x[:-4], "dot") if x.endswith("_dot") else c.sym(x)) for x in neutral]
@@ -265,8 +267,15 @@ def _stability(c: Context, lin: Any, stability: Any, modes: Any) -> list[Block]:
     if lam.size:
         listed = "small eigenvalues left" if modes.neutral else "small eigenvalues"
         blocks.append(Para(w(listed, lam=_eigenvalues(c, lam))))
+    zero = modes.zero
+    chain = {}
+    if key == "small secular" and zero is not None:
+        def var(x: str) -> Math:
+            return Math(_var(c, x[:-4], "dot") if x.endswith("_dot") else _var(c, x))
+        chain = {"k": str(max(zero.blocks)), "start": var(zero.start), "end": var(zero.end),
+                 "t": Math("t" if zero.growth == 1 else f"t^{{{zero.growth}}}")}
     blocks.append(Para(w(key, K=K, U=Math("U_P"), q0=Math("q_{0}"), lam=Math(rf"\lambda = {_eigenvalue(w, worst)}"),
-                         kmin=Math(w.number(kmin if kmin is not None else 0.0)))))
+                         kmin=Math(w.number(kmin if kmin is not None else 0.0)), **chain)))
     return blocks
 
 
