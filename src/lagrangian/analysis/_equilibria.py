@@ -31,7 +31,6 @@ See docs/equilibria.md.
 
 from __future__ import annotations
 
-import itertools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
@@ -39,7 +38,6 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import symengine as se
 import sympy
-from scipy import optimize
 from symengine.lib.symengine_wrapper import sympy2symengine
 
 from ..dynamics import EquationsOfMotion
@@ -48,13 +46,22 @@ from ..model import CoulombFriction
 from ._effective_potential import AnalysisError
 from ._equilibria_closed_form import SOLVE_TIMEOUT, closed_form, principal
 from ._equilibria_closed_form import condition as branch_condition
+from ._equilibria_search import STARTS, Region, Search, near_curve, region_of
+from ._equilibria_search import angles as _angles
+from ._equilibria_search import same as _same
+from ._equilibria_search import search as _search
+from ._equilibria_search import wrap as _wrap
 
-__all__ = ["Equilibrium", "EquilibriumError", "equilibria", "SOLVE_TIMEOUT", "STARTS"]
-
-#: About how many starting points the numeric search uses.
-STARTS = 240
-#: A root is accepted when ‖residual‖ ≤ TOLERANCE × (typical ‖residual‖ over the range).
-TOLERANCE = 1e-9
+__all__ = [
+    "SOLVE_TIMEOUT",
+    "STARTS",
+    "Equilibria",
+    "Equilibrium",
+    "EquilibriumError",
+    "Region",
+    "Search",
+    "equilibria",
+]
 
 
 class EquilibriumError(AnalysisError):
@@ -75,7 +82,13 @@ class Equilibrium:
     exists : the condition at the parameter values (None when some value is missing).
     numeric : q* at the parameter values (angles in (−π, π]), or None without all values.
     residual : max |F(q*, 0) + Aᵀλ|, |f(q*)| at ``numeric`` (None without values).
-    free : coordinates absent from the static equations: any value is an equilibrium.
+    free : coordinates along which every value is an equilibrium: absent from the static equations, left
+        free by SymPy, or found so by the numeric search (the bead on a turning parabola at Ω² = 2 g a:
+        "r any").
+    family : the dimension of a curved family of equilibria through ``numeric`` (0: none; the static
+        equations' Jacobian is singular there and the rests form a curve, which this one stands for).
+    aliases : other values of the coordinates that put every body and particle in the same place
+        (the elastic pendulum's r = −0.63, θ = π is its r = 0.63, θ = 0): listed here, not as rests.
     """
 
     values: Mapping[str, se.Basic | float]
@@ -86,11 +99,24 @@ class Equilibrium:
     numeric: Mapping[str, float] | None = None
     residual: float | None = None
     free: tuple[str, ...] = field(default=())
+    family: int = 0
+    aliases: tuple[Mapping[str, float], ...] = ()
+
+
+class Equilibria(tuple):  # type: ignore[type-arg]
+    """The equilibria found (a tuple of `Equilibrium`), with ``search``: what was searched (`Search`)."""
+
+    search: Search
+
+    def __new__(cls, items: Sequence[Equilibrium], search: Search) -> Equilibria:  # noqa: PYI034
+        out = super().__new__(cls, items)
+        out.search = search
+        return out
 
 
 def equilibria(eom: EquationsOfMotion, parameters: Mapping[str, float] | None = None,
                ranges: Mapping[str, tuple[float, float]] | None = None, *,
-               all_branches: bool = False) -> tuple[Equilibrium, ...]:
+               all_branches: bool = False, numeric: bool = True) -> Equilibria:
     """Every static equilibrium of ``eom`` (q̇ = 0, q̈ = 0), closed form when possible.
 
     Parameters
@@ -98,20 +124,28 @@ def equilibria(eom: EquationsOfMotion, parameters: Mapping[str, float] | None = 
     eom : `lagrangian.derive`'s result, for an autonomous model.
     parameters : values overriding the model's (name → number).
     ranges : coordinate name → (a, b), where the numeric search looks (and where closed-form
-        roots are kept); angles default to (−π, π], other coordinates have no default.
+        roots are kept); angles default to (−π, π], other coordinates to their declared ``range``,
+        else to starting points over every scale (`lagrangian.analysis._equilibria_search`).
     all_branches : keep closed-form branches whose condition is false at the values.
+    numeric : run the numeric search (when every parameter has a value); False: the closed form only.
+
+    Returns
+    -------
+    Equilibria
+        A tuple of `Equilibrium`, whose ``search`` says what was searched: the list holds what was
+        found there, and a root beyond the starting points' reach may be missing.
 
     Raises
     ------
     EquilibriumError
-        The model depends on t explicitly, a name in ``parameters`` or ``ranges`` is unknown,
-        or the closed form failed and a coordinate that is not an angle has no range.
+        The model depends on t explicitly (once the parameters have their values), a name in
+        ``parameters`` or ``ranges`` is unknown, or the closed form failed and a parameter has no value.
     """
-    system = _StaticSystem(eom)
     values = _values(eom, parameters)
-    ranges = _ranges(eom, ranges)
     known = all(v is not None for v in values.values())
     numbers = {se.Symbol(k): v for k, v in values.items() if v is not None}
+    system = _StaticSystem(eom, numbers)
+    ranges = _ranges(eom, ranges)
     angles = system.angles(numbers)
     out: list[Equilibrium] = []
     branches = closed_form(system.equations, system.q, system.active, system.lam, values)
@@ -126,29 +160,113 @@ def equilibria(eom: EquationsOfMotion, parameters: Mapping[str, float] | None = 
                 continue
             if not any(_duplicate(o, eq, angles) for o in out):
                 out.append(eq)
-    searchable = [n for n in system.active if n in angles or n in ranges]
     continuum = any(len(e.free) > len(system.free) for e in out)  # sample points of it are no news
-    if known and not continuum and (branches is None or len(searchable) == len(system.active)):
-        missing = [n for n in system.active if n not in searchable]
-        if missing:
-            raise EquilibriumError(
-                f"no closed form was found and coordinate `{missing[0]}` is not an angle, so the numeric search "
-                "needs a range for it", fix=f"give one: ranges={{'{missing[0]}': (a, b)}} "
-                f"(CLI: --range {missing[0]}=a:b)")
-        found = [e.numeric for e in out if e.numeric is not None and e.exists is not False]
-        for root, res in _search(system, numbers, ranges, angles):
-            if not any(_same(f, root, angles) for f in found):
-                found.append(root)
-                vals = {n: root[n] if n in root else se.Symbol(n) for n in system.names}
-                if system.sticking and not system.holds_by_friction(root, numbers):
-                    continue  # the contacts would need more friction than f_s N: it slides away
-                out.append(Equilibrium(vals, False, numeric=root, residual=res, free=system.free))
+    report = Search(branches is not None, False)
+    if known and numeric and not continuum:
+        declared = {c.name: c.range for c in eom.model.coordinates}
+        regions = [region_of(n, n in angles, ranges.get(n), declared.get(n), numbers) for n in system.active]
+        roots, starts = _search(system.active, system.residual_function(numbers), system.size_function(numbers),
+                                regions, angles, numbers)
+        report = Search(branches is not None, True, tuple(Region(n, kind, bounds, starts) for n, (kind, bounds)
+                                                          in zip(system.active, regions)), starts)
+        out = _identify(system, _merge(system, out, roots, numbers, angles), numbers, angles)
     elif not known and branches is None:
         missing = sorted(k for k, v in values.items() if v is None)
         raise EquilibriumError(f"no closed form was found, and parameter `{missing[0]}` has no value for a "
                                "numeric search", fix=f"give it one: parameters={{'{missing[0]}': ...}} "
                                f"(CLI: --set {missing[0]}=...)")
-    return tuple(out)
+    return Equilibria(out, report)
+
+
+def _configuration(system: _StaticSystem, numbers: Mapping[se.Basic, float]):  # type: ignore[no-untyped-def]
+    """q ↦ the positions of every particle and body centre and the axes of every body, in R0's basis."""
+    kin = system.eom.kinematics
+    model = system.eom.model
+    frame = model.frames[0].name if model.frames else "R0"
+    parts: list[se.Basic] = []
+    for name in [p.name for p in model.particles] + [b.name for b in model.bodies]:
+        parts += list(kin.frames.express(kin.position(name), frame))
+    for b in model.bodies:
+        for axis in ((1, 0, 0), (0, 1, 0), (0, 0, 1)):
+            parts += list(kin.frames.convert(tuple(se.Integer(x) for x in axis), b.frame, frame))
+    parts = [se.sympify(e).subs(dict(numbers)).subs({kin.t: 0}) for e in parts]
+    return _lambdify(list(system.q), parts)
+
+
+def _identify(system: _StaticSystem, out: list[Equilibrium], numbers: Mapping[se.Basic, float],
+              angles: set[str]) -> list[Equilibrium]:
+    """Each configuration once: rests whose coordinates put every body in the same place (r and θ against
+    −r and θ + π) are one rest, written with lengths ≥ 0 and closed form first; the others become its
+    ``aliases``."""
+    points = [e for e in out if e.numeric is not None and not e.free]
+    if len(points) < 2:
+        return out
+    try:
+        place = _configuration(system, numbers)
+    except (RuntimeError, TypeError, ValueError, KeyError, AttributeError):  # pragma: no cover - no kinematics
+        return out
+    names = system.names
+    at = {e_id: np.asarray(place(np.array([e.numeric.get(n, 0.0) for n in names])), dtype=float).ravel()
+          for e_id, e in ((id(e), e) for e in points)}
+    groups: list[list[Equilibrium]] = []
+    for e in points:
+        for g in groups:
+            a, b = at[id(g[0])], at[id(e)]
+            if np.all(np.abs(a - b) <= 1e-9 * (1.0 + np.abs(a))):
+                g.append(e)
+                break
+        else:
+            groups.append([e])
+
+    def key(e: Equilibrium) -> tuple:  # type: ignore[type-arg]
+        negative = sum(1 for n, v in e.numeric.items() if n not in angles and v < -1e-12)
+        return (negative, not e.closed_form, sum(1 for v in e.numeric.values() if v < -1e-12))
+
+    keep: dict[int, Equilibrium] = {}
+    for g in groups:
+        best = min(g, key=key)
+        keep[id(best)] = replace(best, aliases=tuple(dict(x.numeric) for x in g if x is not best))
+    return [keep.get(id(e), e) for e in out if id(e) in keep or e.numeric is None or e.free]
+
+
+def _merge(system: _StaticSystem, out: list[Equilibrium], roots: Sequence, numbers: Mapping[se.Basic, float],
+           angles: set[str]) -> list[Equilibrium]:
+    """The closed-form equilibria and the numeric roots, each rest once: a numeric family ("r any") takes
+    the place of the closed-form points on it; a numeric point already given in closed form is dropped."""
+    families = [r for r in roots if r.free]
+    kept = []
+    curves = {id(r): r for r in roots if r.curve is not None}
+    for e in out:
+        on_family = e.numeric is not None and not e.free and any(
+            _same(f.point, {n: e.numeric[n] for n in f.point}, angles) for f in families)
+        if on_family:
+            continue
+        on_curve = [k for k, r in curves.items() if e.numeric is not None and not e.free
+                    and near_curve(r.curve, np.array([e.numeric[n] for n in system.active]))]
+        if on_curve:  # a closed-form point of a curved family stands for it, once
+            if not any(curves[k].family == -1 for k in on_curve):
+                kept.append(replace(e, family=curves[on_curve[0]].family))
+            for k in on_curve:
+                curves[k] = replace(curves[k], family=-1)  # taken: its numeric point is not listed
+            continue
+        kept.append(e)
+    taken = {k for k, r in curves.items() if r.family == -1}
+    roots = [r for r in roots if id(r) not in taken]
+    found = [e.numeric for e in kept if e.numeric is not None and e.exists is not False]
+    for root in roots:
+        point = root.point
+        if not root.free and any(_same(f, point, angles) for f in found):
+            continue
+        full = {**point, **{n: 0.0 for n in root.free}}
+        if system.sticking and not system.holds_by_friction(full, numbers):
+            continue  # the contacts would need more friction than f_s N: it slides away
+        free = tuple(n for n in system.names if n in system.free or n in root.free)
+        vals = {n: point[n] if n in point else se.Symbol(n) for n in system.names}
+        numeric = point if not root.free else None
+        kept.append(Equilibrium(vals, False, numeric=numeric, residual=root.residual, free=free,
+                                family=root.family))
+        found.append(point)
+    return kept
 
 
 # -- the static system ---------------------------------------------------------------------
@@ -165,8 +283,9 @@ def _lambdify(q: list[se.Basic], exprs: list[se.Basic]):  # type: ignore[no-unty
 class _StaticSystem:
     """F(q, 0) + Aᵀλ = 0, f(q) = 0, b(q) = 0, with the checks that it is autonomous."""
 
-    def __init__(self, eom: EquationsOfMotion) -> None:
+    def __init__(self, eom: EquationsOfMotion, numbers: Mapping[se.Basic, float] | None = None) -> None:
         t = eom.t
+        numbers = dict(numbers or {})
         rest = {qd: 0 for qd in eom.qd}
         self.eom = eom
         self.q = list(eom.q)
@@ -176,20 +295,19 @@ class _StaticSystem:
         for load in eom.loads:
             if load.name in sticking:  # its sliding law is undefined at rest: replaced by T (below)
                 F = [se.expand(f - q) for f, q in zip(F, load.Q)]
-        F = [f.subs(rest) for f in F]
-        for name, f in zip(self.names, F):
-            _autonomous(f, t, f"the generalized force on `{name}` at rest")
+        F = [_autonomous(f.subs(rest), t, f"the generalized force on `{name}` at rest", numbers)
+             for name, f in zip(self.names, F)]
         for row in eom.M:
             for m in row:
-                _autonomous(_se(m), t, "the mass matrix M")
+                _autonomous(_se(m), t, "the mass matrix M", numbers)
         self.A = [[_se(a) for a in r.coefficients] for r in eom.constraints]
         self.lam = [r.multiplier for r in eom.constraints]
         extra = []
         for r in eom.constraints:
-            e = _se(r.expression if r.kind == "holonomic" else r.b).subs(rest)
-            _autonomous(e, t, f"constraint row `{r.name}`")
+            e = _autonomous(_se(r.expression if r.kind == "holonomic" else r.b).subs(rest), t,
+                            f"constraint row `{r.name}`", numbers)
             for a in r.coefficients:
-                _autonomous(_se(a), t, f"constraint row `{r.name}`")
+                _autonomous(_se(a), t, f"constraint row `{r.name}`", numbers)
             if e != 0:
                 extra.append(e)
         #: Per exact contact: (name, multiplier T, f_s, N); T is the friction force along e.
@@ -249,29 +367,17 @@ class _StaticSystem:
         return True
 
     def angles(self, numbers: Mapping[se.Basic, float]) -> set[str]:
-        """Coordinates in which every static equation is 2π-periodic (at two random points)."""
-        rng = np.random.default_rng(1)
-        symbols = set().union(*(e.free_symbols for e in self.equations)) if self.equations else set()
-        out = set()
-        for name, q in zip(self.names, self.q):
-            if name in self.free:
-                continue
-            ok = True
-            for _ in range(2):
-                point = {s: numbers.get(s, float(rng.uniform(0.5, 2.0))) for s in symbols}
-                point.update({s: float(rng.uniform(-3, 3)) for s in symbols if s in self.q or s in self.lam})
-                shifted = dict(point)
-                shifted[q] = point[q] + 2 * math.pi
-                for e in self.equations:
-                    a, b = complex(e.subs(point)), complex(e.subs(shifted))
-                    if abs(a - b) > 1e-9 * (1 + abs(a)):
-                        ok = False
-            if ok:
-                out.add(name)
-        return out
+        """Coordinates that enter the equations (M, F at any rates, the rows) only through 2π-periodic
+        sin, cos, tan (`_equilibria_search.angles`): only those wrap."""
+        eom = self.eom
+        everything = [_se(m) for row in eom.M for m in row] + [_se(f) for f in eom.F] + self.equations
+        for r in eom.constraints:
+            everything += [_se(a) for a in r.coefficients] + [_se(r.b)]
+        return _angles(everything, self.q, self.names, numbers, self.free)
 
     def residual_function(self, numbers: Mapping[se.Basic, float]):  # type: ignore[no-untyped-def]
-        """r(q_active) with λ eliminated: (I − Aᵀ(Aᵀ)⁺) F, then the holonomic and b rows."""
+        """r(q_active) with λ eliminated: (I − Aᵀ(Aᵀ)⁺) F, then the holonomic and b rows; q_active one point
+        (shape (d,)) or a batch of points (shape (N, d), for the search's Levenberg–Marquardt)."""
         q = [s for n, s in zip(self.names, self.q) if n in self.active]
         zero = {se.Symbol(n): 0.0 for n in self.free}
         F = _lambdify(q, [f.subs(numbers).subs(zero) for f in self.F])
@@ -280,18 +386,38 @@ class _StaticSystem:
         n, m = len(self.names), len(self.A)
 
         def r(x: np.ndarray) -> np.ndarray:
-            f = np.asarray(F(x), dtype=float).ravel()
-            parts = []
+            xs = np.atleast_2d(np.asarray(x, dtype=float))
+            f = np.asarray(F(xs), dtype=float).reshape(len(xs), n)
             if A is not None:
-                At = np.asarray(A(x), dtype=float).reshape(m, n).T
-                lam, *_ = np.linalg.lstsq(At, -f, rcond=None)
-                f = f + At @ lam
-            parts.append(f)
+                At = np.swapaxes(np.asarray(A(xs), dtype=float).reshape(len(xs), m, n), 1, 2)
+                with np.errstate(all="ignore"):
+                    ok = np.all(np.isfinite(At), axis=(1, 2))
+                    lam = np.zeros((len(xs), m))
+                    if ok.any():
+                        lam[ok] = -np.einsum("kij,kj->ki", np.linalg.pinv(At[ok]), f[ok])
+                    lam[~ok] = np.nan
+                    f = f + np.einsum("kij,kj->ki", At, lam)
             if X is not None:
-                parts.append(np.asarray(X(x), dtype=float).ravel())
-            return np.concatenate(parts)
+                f = np.concatenate([f, np.asarray(X(xs), dtype=float).reshape(len(xs), -1)], axis=1)
+            return f if np.ndim(x) == 2 else f[0]
 
         return r
+
+    def size_function(self, numbers: Mapping[se.Basic, float]):  # type: ignore[no-untyped-def]
+        """s(q_active): per equation of `residual_function`, the sum of the sizes of its terms (F's, then the
+        rows'), against which a residual is small."""
+        q = [s for n, s in zip(self.names, self.q) if n in self.active]
+        zero = {se.Symbol(n): 0.0 for n in self.free}
+        terms = [se.Add(*[abs(x) for x in se.Add.make_args(se.expand(e.subs(numbers).subs(zero)))])
+                 for e in self.F + self.extra]
+        fn = _lambdify(q, terms)
+
+        def size(x: np.ndarray) -> np.ndarray:
+            out = np.abs(np.asarray(fn(np.atleast_2d(np.asarray(x, dtype=float))), dtype=float))
+            out = out.reshape(len(np.atleast_2d(x)), -1)
+            return out if np.ndim(x) == 2 else out[0]
+
+        return size
 
 
 def _se(x: object) -> se.Basic:
@@ -303,12 +429,25 @@ def _se(x: object) -> se.Basic:
     return se.Integer(x) if isinstance(x, int) else se.RealDouble(float(x))  # type: ignore[arg-type]
 
 
-def _autonomous(e: se.Basic, t: se.Symbol, where: str) -> None:
-    if t in e.free_symbols:
-        raise EquilibriumError(
-            f"the model depends on t explicitly ({where} contains t), so it has no static equilibrium in "
-            "the sense q̇ = 0 for all t", fix="write the equations in a frame where the motion is steady "
-            "([reference]), or study the motion by simulation")
+def _autonomous(e: se.Basic, t: se.Symbol, where: str, numbers: Mapping[se.Basic, float]) -> se.Basic:
+    """``e`` without its terms in t that vanish at the parameters' values (F0 cos ω t with F0 = 0), or
+    the refusal when t is still there."""
+    if t not in e.free_symbols:
+        return e
+    kept = []
+    for term in se.Add.make_args(se.expand(e)):
+        if t in term.free_symbols:
+            at = se.expand(term.subs(dict(numbers)))
+            if at == 0 or (not at.free_symbols and complex(at) == 0):  # 0.0 (a float value) is not == 0
+                continue
+            if t in at.free_symbols:
+                raise EquilibriumError(
+                    f"the model depends on t explicitly ({where} contains t), so it has no static equilibrium in "
+                    "the sense q̇ = 0 for all t", fix="write the equations in a frame where the motion is steady "
+                    "([reference]), give the parameters that switch the time dependence off their value "
+                    "(--set F0=0), or study the motion by simulation")
+        kept.append(term)
+    return se.Add(*kept)
 
 
 def _values(eom: EquationsOfMotion, parameters: Mapping[str, float] | None) -> dict[str, float | None]:
@@ -442,12 +581,6 @@ def _duplicate(a: Equilibrium, b: Equilibrium, angles: set[str]) -> bool:
     return True
 
 
-def _wrap(x: float) -> float:
-    """x modulo 2π in (−π, π]."""
-    y = math.remainder(x, 2 * math.pi)
-    return math.pi if y <= -math.pi + 1e-12 else y
-
-
 def _in_ranges(point: Mapping[str, float], ranges: Mapping[str, tuple[float, float]], angles: set[str]) -> bool:
     for n, x in point.items():
         if n in ranges and n not in angles:
@@ -455,44 +588,3 @@ def _in_ranges(point: Mapping[str, float], ranges: Mapping[str, tuple[float, flo
             if not (a - 1e-12 * (1 + abs(a)) <= x <= b + 1e-12 * (1 + abs(b))):
                 return False
     return True
-
-
-def _same(a: Mapping[str, float], b: Mapping[str, float], angles: set[str]) -> bool:
-    for n in a:
-        d = a[n] - b.get(n, math.nan)
-        if n in angles:
-            d = math.remainder(d, 2 * math.pi)
-        if not abs(d) <= 1e-6 * (1 + abs(a[n])):
-            return False
-    return True
-
-
-def _search(system: _StaticSystem, numbers: Mapping[se.Basic, float], ranges: Mapping[str, tuple[float, float]],
-            angles: set[str]) -> list[tuple[dict[str, float], float]]:
-    """All roots of the static system in the ranges, from a grid of starting points."""
-    names = system.active
-    if not names:
-        return []
-    box = [(-math.pi, math.pi) if n in angles and n not in ranges else ranges[n] for n in names]
-    d = len(names)
-    k = max(2, int(round(STARTS ** (1 / d))))
-    rng = np.random.default_rng(0)
-    axes = [np.linspace(a, b, k, endpoint=False) + (b - a) / (2 * k) for a, b in box]
-    starts = [np.array(p) for p in itertools.product(*axes)] if k ** d <= 4 * STARTS else \
-        [np.array([rng.uniform(a, b) for a, b in box]) for _ in range(STARTS)]
-    r = system.residual_function(numbers)
-    scale = float(np.median([np.linalg.norm(r(x)) for x in starts[:: max(1, len(starts) // 30)]])) or 1.0
-    found: list[tuple[dict[str, float], float]] = []
-    for x0 in starts:
-        try:
-            sol = optimize.least_squares(r, x0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15)
-        except (ValueError, np.linalg.LinAlgError):
-            continue
-        res = float(np.max(np.abs(r(sol.x))))
-        if not np.isfinite(res) or np.linalg.norm(r(sol.x)) > TOLERANCE * scale:
-            continue
-        point = {n: (_wrap(x) if n in angles else float(x)) for n, x in zip(names, sol.x)}
-        if _in_ranges(point, ranges, angles) and not any(_same(p, point, angles) for p, _ in found):
-            found.append((point, res))
-    found.sort(key=lambda pr: tuple(pr[0][n] for n in names))
-    return found

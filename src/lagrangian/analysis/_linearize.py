@@ -187,10 +187,12 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
     everything = [e for row in eom.M for e in row] + list(eom.F)
     for r in rows:
         everything += list(r.coefficients) + [r.b]
-    if any(t in e.free_symbols for e in everything):
+    # Checked once the parameters have their values: F0 cos(ω t) with F0 = 0 leaves no t.
+    if any(t in e.subs(psubs).free_symbols for e in everything if t in e.free_symbols):
         raise LinearizationError("the equations depend on the time t explicitly (a prescribed motion or a "
                                  "time-dependent load): there is no equilibrium or steady motion to linearize about.",
-                                 fix="linearize a model whose equations do not depend on t")
+                                 fix="linearize a model whose equations do not depend on t, or give the parameters "
+                                     "that switch the time dependence off their value (e.g. --set F0=0)")
     for u in u_syms:
         if not any(u in e.free_symbols for e in eom.F):
             raise LinearizationError(f"no load uses the input `{u}`: its column of B would be zero.",

@@ -48,8 +48,9 @@ __all__ = ["CLUSTER_RTOL", "ZERO_RTOL", "ZeroStructure", "ignorable_columns", "s
 #: Relative size (to the largest |A| entry) below which an entry of A counts as zero.
 ZERO_RTOL = 1e-12
 #: Relative size (to the largest |A| entry) below which an eigenvalue counts as 0: a Jordan
-#: block of size 3 perturbed by rounding (1e-16) splits into eigenvalues of size 5e-6.
-CLUSTER_RTOL = 1e-4
+#: block of size 2 perturbed by rounding (1e-16) splits into eigenvalues of size 1e-8, of size 3
+#: into 5e-6 (structural zeros of A keep them exact in most models).
+CLUSTER_RTOL = 1e-6
 #: Relative size below which a singular value of a power of the zero block counts as zero.
 RANK_RTOL = 1e-8
 
