@@ -6,12 +6,12 @@ any rates, the constraint rows) only inside sin, cos or tan, and they are 2π-pe
 identified modulo 2π.  A length never is, even where the static equations happen to vanish for
 every value (the bead on a turning parabola at Ω² = 2 g a).
 
-**Where the other coordinates are searched** (`Region`), in this order: the range given to
+**Where the other coordinates are searched** (`SearchRegion`), in this order: the range given to
 `equilibria` (``ranges``, ``--range``), else the model's declared ``range`` (its bounds at the
 parameter values), else — no range at all — starting points spread over every scale: 0, ±s·10ʲ
 (s = 1, 1.5, 2, 3, 5, 7; j = −3 … 2) and ± each parameter value, with no bound on where a root
 may be.  The elastic pendulum's upright rest r = L − m g/k is found so, without a range.  What
-was searched is reported (`Search`): a root beyond the starts' reach can still be missed, and
+was searched is reported (`EquilibriumSearch`): a root beyond the starts' reach can still be missed, and
 the list is never presented as complete.
 
 **Families.**  At each root q*, the residual is evaluated along each coordinate q_j over its
@@ -33,7 +33,7 @@ import numpy as np
 import symengine as se
 from scipy import optimize
 
-__all__ = ["Region", "Root", "Search", "angles", "near_curve", "region_of", "same", "search", "wrap"]
+__all__ = ["EquilibriumSearch", "Root", "SearchRegion", "angles", "near_curve", "region_of", "same", "search", "wrap"]
 
 #: About how many starting points the search uses (the product of the coordinates' start values,
 #: sampled when it is larger).
@@ -50,7 +50,7 @@ _TRIG = (se.sin, se.cos, se.tan)
 
 
 @dataclass(frozen=True, slots=True)
-class Region:
+class SearchRegion:
     """Where one coordinate was searched: ``kind`` is "angle" ((−π, π]), "range" (given), "declared"
     (the model's range) or "scales" (no range: starts over every scale); ``bounds`` the interval
     searched (±inf for an open side)."""
@@ -62,13 +62,13 @@ class Region:
 
 
 @dataclass(frozen=True, slots=True)
-class Search:
+class EquilibriumSearch:
     """What `equilibria` did: ``closed_form`` whether SymPy solved the static equations, ``numeric``
     whether the numeric search ran (every parameter has a value), its ``regions`` and ``starts``."""
 
     closed_form: bool
     numeric: bool
-    regions: tuple[Region, ...] = ()
+    regions: tuple[SearchRegion, ...] = ()
     starts: int = 0
 
     @property

@@ -44,12 +44,17 @@ import symengine as se
 from .._identity import are_zero
 from ..dynamics import EquationsOfMotion
 from ..model._expr import ExpressionError, parse_expression
-from ._linear_algebra import RANK_RTOL, choose as _choose, jacobian as _jacobian, solve as _solve, stack as _stack
-from ._linear_algebra import sub as _sub, tidy as _tidy
+from ._linear_algebra import RANK_RTOL
+from ._linear_algebra import choose as _choose
+from ._linear_algebra import jacobian as _jacobian
+from ._linear_algebra import solve as _solve
+from ._linear_algebra import stack as _stack
+from ._linear_algebra import sub as _sub
+from ._linear_algebra import tidy as _tidy
 from ._linear_model import LinearizationError, LinearModel, SecondOrderForm, _is_structural_zero
 from ._linear_model import to_numpy as _to_numpy
 
-__all__ = ["LinearizationError", "SecondOrderForm", "LinearModel", "linearize", "holding_inputs", "POINT_RTOL"]
+__all__ = ["POINT_RTOL", "LinearModel", "LinearizationError", "SecondOrderForm", "holding_inputs", "linearize"]
 
 #: A point is an equilibrium (steady motion) when its residual force is below this fraction
 #: of the forces' scale: `--at theta=3.14159` is the inverted pendulum, within 3e-6.

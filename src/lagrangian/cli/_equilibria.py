@@ -16,8 +16,8 @@ import symengine as se
 import sympy
 
 from ..analysis import Equilibrium, LinearizationError, bifurcation, equilibria, linearize
-from ..errors import OutputError
 from ..dynamics import derive
+from ..errors import OutputError
 from ..output import Notation
 from ..output._course import to_sympy
 from ._modes import _check_plot_folder as check_plot_folder
@@ -25,7 +25,7 @@ from ._modes import parse_sweep
 from ._settings import SettingError, add_set_option, parse_settings, plain_number
 from ._source import MODEL_HELP, load_source
 
-__all__ = ["register", "run", "parse_ranges", "SCHEMA"]
+__all__ = ["SCHEMA", "parse_ranges", "register", "run"]
 
 SUMMARY = "every static equilibrium (closed form with its condition of existence, or numeric)"
 #: Name of the JSON document ``--json`` writes (version 1).
@@ -85,7 +85,7 @@ def run(args: argparse.Namespace) -> str:
     model = load_source(args.model)
     parameters, initial = parse_settings(args.set, model)
     if initial:
-        name = sorted(initial)[0]
+        name = min(initial)
         raise SettingError(f"--set {name}=...: an equilibrium is found, not given; --set takes parameters only",
                            fix="remove it, or use --range to say where to look")
     ranges = parse_ranges(args.range, tuple(c.name for c in model.coordinates))
@@ -299,8 +299,8 @@ def _sweep(eom, swept, parameters: dict, folder: Path | None, lang: str, as_json
                             for b in diagram.branches]}
         return json.dumps(doc, indent=2) + "\n"
     sym = n.symbol(name)
-    lines = [f"Equilibria of {eom.model.name} against {sym} from {values[0]:g} to {values[-1]:g} "
-             f"({len(values)} values)", ""]
+    lines = [(f"Equilibria of {eom.model.name} against {sym} from {values[0]:g} to {values[-1]:g} "
+              f"({len(values)} values)"), ""]
     for k, b in enumerate(diagram.branches, start=1):
         parts = ", ".join(f"{n.symbol(c)} = {n.text(to_sympy(v))}" for c, v in b.equilibrium.values.items())
         lines.append(f"  {k}. {parts}")
