@@ -20,14 +20,14 @@ import numpy as np
 import symengine as se
 
 from ..analysis import first_integrals
-from ..analysis._integrals import FirstIntegral
+from ..analysis._tree_integrals import tree_integrals
 from ..dynamics import EquationsOfMotion
 from ..errors import SimulationError
 from ._codegen import generate_c, monitor_expressions
 from ._compile import compile_library, compiler
 from ._fastcall import rhs_caller
 
-__all__ = ["CompiledSystem", "compile_system", "unused_parameters", "known_values"]
+__all__ = ["CompiledSystem", "compile_system", "known_values", "unused_parameters"]
 
 
 def unused_parameters(parameters: Sequence[str], expressions: Sequence[se.Basic]) -> frozenset[str]:
@@ -87,11 +87,12 @@ class CompiledSystem:
         if backend == "auto":
             backend = "c" if compiler() is not None else "symengine"
         self.backend = backend
-        # With a recursive form the C code monitors its energy integral, T and U; the course's
-        # search (`first_integrals`) and its T, U would first make the whole course derivation.
+        # With a recursive form the C code monitors the integrals found from it (`tree_integrals`: the
+        # momenta, the energy and Noether's, over its intermediates), T and U; the course's search
+        # (`first_integrals`) and its T, U would first make the whole course derivation.
         recursive = eom.recursive is not None and backend == "c"
         if integrals is None:
-            integrals = _recursive_integrals(eom) if recursive else first_integrals(eom)
+            integrals = tree_integrals(eom) if recursive else first_integrals(eom)
         self.first_integrals = tuple(integrals)
         self.integrals = tuple(fi.name for fi in self.first_integrals)
         self.parameters = tuple(p.name for p in eom.model.parameters)
@@ -285,21 +286,6 @@ class CompiledSystem:
         self._se_mf = make([eom.M[i][j] for i in range(n) for j in range(n)] + list(eom.F))
         self._se_mon = make([e for _, e in monitor_expressions(eom, self.first_integrals)])
         self._se_ev = make([e for _, e in self._events])
-
-
-def _recursive_integrals(eom: EquationsOfMotion) -> tuple[FirstIntegral, ...]:
-    """The energy integral T + U of a kinematic tree, over the recursive form's intermediates.
-
-    A tree has no time in its kinematics, so T is homogeneous quadratic in q̇; T + U is then
-    constant when every load derives from a potential U(q) (no t in it).  The expression is in
-    the intermediates of ``eom.recursive``: it is for the generated code, not for display.
-    """
-    rec = eom.recursive
-    if rec is None or not rec.conservative or eom.t in rec.U.free_symbols:
-        return ()
-    return (FirstIntegral("E", "energy", rec.T + rec.U,
-                          "energy integral T + U = cste: a kinematic tree with no time in it, every load "
-                          "derives from a potential"),)
 
 
 def _rhs_failure(status: int, T: np.ndarray, Y: np.ndarray) -> SimulationError:
