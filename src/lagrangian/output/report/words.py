@@ -59,6 +59,8 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "load damper": ("amortisseur entre {A} et {B}, de coefficient {c}",
                     "damper between {A} and {B}, of coefficient {c}"),
     "load potential": ("énergie potentielle {U}", "potential energy {U}"),
+    "load generalized potential": ("potentiel généralisé {U}, qui dépend des vitesses",
+                                   "generalized potential {U}, which depends on the rates"),
     "load dissipation": ("fonction de dissipation {D}", "dissipation function {D}"),
     "load joint damper": ("frottement visqueux entre ({S1}) et ({S2}), de coefficient {c}",
                           "viscous friction between ({S1}) and ({S2}), of coefficient {c}"),
@@ -313,6 +315,17 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "kind spring": ("ressort", "spring"),
     "kind damper": ("amortisseur visqueux", "viscous damper"),
     "kind potential": ("énergie potentielle donnée", "given potential energy"),
+    "kind generalized potential": ("potentiel généralisé donné, dépendant des vitesses",
+                                   "given generalized potential, depending on the rates"),
+    "generalized potential": ("« {name} » dérive d'un potentiel généralisé {U}, qui dépend des vitesses : ses "
+                              "composantes sont {Q} (et non {Q0}, qui en oublierait le premier terme). Ce n'est pas "
+                              "une énergie potentielle {UP} : ses composantes figurent dans {Qnc}. La partie de "
+                              "{U} linéaire en les vitesses est gyroscopique : elle ne travaille pas lorsque ses "
+                              "coefficients ne dépendent pas de t.",
+                              "“{name}” derives from a generalized potential {U}, which depends on the rates: its "
+                              "components are {Q} (not {Q0}, which would drop the first term). It is not a potential "
+                              "energy {UP}: its components enter {Qnc}. The part of {U} linear in the rates is "
+                              "gyroscopic: it does no work when its coefficients do not depend on t."),
     "kind generalizedforce": ("composantes généralisées données", "given generalized forces"),
     "kind dissipation": ("fonction de dissipation de Rayleigh", "Rayleigh dissipation function"),
     "kind jointdamper": ("frottement visqueux dans une liaison", "viscous friction in a joint"),

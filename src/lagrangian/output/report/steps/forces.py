@@ -61,6 +61,9 @@ def _formula(c: Context, f: LoadForces, load: object) -> tuple[str, str]:
                 return rf"-{c.tex(load.stiffness)}\,\ell\, {rel}", ell
             return rf"-{c.tex(load.stiffness)} \left(\ell - {c.tex(load.rest_length)}\right) {rel}", ell
         return rf"-{c.tex(load.coefficient)}\,\dot{{\ell}}\,{rel}", ell
+    if isinstance(load, Potential) and f.generalized is not None:  # Q_i = d/dt(∂U/∂q̇_i) − ∂U/∂q_i
+        return (r"\sum_{i} \left(\frac{d}{dt}\frac{\partial U}{\partial \dot{q}_i} - \frac{\partial U}{\partial q_i}"
+                r"\right) q_i^{*}", rf"U = {c.tex(load.energy)}")
     if isinstance(load, Potential):
         return r"-\sum_{i} \frac{\partial U}{\partial q_i}\, q_i^{*}", rf"U = {c.tex(load.energy)}"
     if isinstance(load, Dissipation):
@@ -218,6 +221,12 @@ def step5(c: Context) -> Section:
             blocks.append(Para(w("derives", name=name, Q=Math(rf"Q_i({c.load_tex(f.name)}) = -\frac{{\partial "
                                                              rf"U_P({c.load_tex(f.name)})}}{{\partial q_i}}"), i=i_math,
                                  UP=Math(rf"U_P(\Sigma/{c.R})"))))
+        elif f.generalized is not None:
+            blocks.append(Para(w("generalized potential", name=name, U=Math("U"),
+                                 Q=Math(r"Q_i = \frac{d}{dt}\frac{\partial U}{\partial \dot{q}_i} - "
+                                        r"\frac{\partial U}{\partial q_i}"),
+                                 Q0=Math(r"-\frac{\partial U}{\partial q_i}"), UP=Math(rf"U_P(\Sigma/{c.R})"),
+                                 Qnc=Math(r"Q_{i,\,\mathrm{nc}}"))))
         else:
             blocks.append(Para(w("not conservative", name=name, Q=Math(r"Q_{i,\,\mathrm{nc}}")), style="note"))
     lossy = [j for j in c.joints if not j.perfect]
