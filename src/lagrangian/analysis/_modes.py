@@ -254,12 +254,20 @@ def stability(lin: LinearModel, **values: float) -> Stability:
                          f"every eigenvalue has a negative real part (the largest is {worst.real:.6g}): small motions "
                          "decay, asymptotically stable (Lyapunov's first method)." + note, lam)
     if so is not None:
-        _, M, D, G, K, N = so
+        E, M, D, G, K, N = so
         scale = max(float(np.abs(K).max(initial=0.0)), float(np.abs(M).max(initial=0.0)), 1e-300)
         small = 1e-10 * scale
         kmin = float(np.linalg.eigvalsh((K + K.T) / 2).min())
         no_D, no_N, no_G = (float(np.abs(x).max(initial=0.0)) <= small for x in (D, N, G))
         if no_D and no_N and kmin > small:
+            if no_G and any(n != "momentum" and not n.endswith("_dot") for n, _ in neutral):
+                names = ", ".join(E)
+                return Stability(True, "stable",
+                                 f"K = ∂²U/∂q², restricted to the coordinates left once the neutral ones are set aside "
+                                 f"({names}), is positive definite: U_P has a strict minimum in them, and the "
+                                 "equilibrium is stable in them (Lagrange–Dirichlet), also for the nonlinear motion; "
+                                 "the neutral directions may drift (a shift along one is another equilibrium)." + note,
+                                 lam)
             if no_G:
                 return Stability(True, "stable",
                                  "K = ∂²U/∂q² is positive definite: U_P has a strict minimum at the equilibrium, "

@@ -659,6 +659,41 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "small equations": ("Les équations linéarisées, de la forme {form}, sont :",
                         "The linearized equations, of the form {form}, are:"),
     "small matrices": ("soit, sous forme matricielle :", "that is, in matrix form:"),
+    "small matrices defined": ("{M} est la matrice de masse en {q0} ; {D} et {G}, parties symétrique et "
+                               "antisymétrique de {dF}, sont l'amortissement et les termes gyroscopiques ; {K} et {N}, "
+                               "parties symétrique et antisymétrique de {dFq}, sont la raideur ({KU} quand les efforts "
+                               "dérivent d'une énergie potentielle) et les termes circulatoires.",
+                               "{M} is the mass matrix at {q0}; {D} and {G}, the symmetric and skew parts of {dF}, are "
+                               "the damping and the gyroscopic terms; {K} and {N}, the symmetric and skew parts of "
+                               "{dFq}, are the stiffness ({KU} when the efforts derive from a potential energy) and the "
+                               "circulatory terms."),
+    "small matrices defined reduced": ("Ces matrices portent sur les paramètres indépendants, les autres étant "
+                                       "éliminés par les liaisons complémentaires : {M} est la matrice de masse "
+                                       "réduite ; {D} et {G} sont les parties symétrique et antisymétrique des termes "
+                                       "en {dqd} (amortissement et termes gyroscopiques), {K} et {N} celles des termes "
+                                       "en {dq} (raideur et termes circulatoires).",
+                                       "These matrices act on the independent coordinates, the others being "
+                                       "eliminated by the complementary constraints: {M} is the reduced mass matrix; "
+                                       "{D} and {G} are the symmetric and skew parts of the terms in {dqd} (damping and "
+                                       "gyroscopic terms), {K} and {N} those of the terms in {dq} (stiffness and "
+                                       "circulatory terms)."),
+    "small B defined": (" {B} donne l'action des entrées {u}.", " {B} gives the action of the inputs {u}."),
+    "small closed point": ("Cette position d'équilibre s'écrit {defs}, c'est-à-dire {rels}.",
+                           "This equilibrium is {defs}, that is {rels}."),
+    "small closed point condition": ("Cette position d'équilibre s'écrit {defs}, c'est-à-dire {rels} ; elle n'existe "
+                                     "que si {cond}.",
+                                     "This equilibrium is {defs}, that is {rels}; it exists only if {cond}."),
+    "small closed point eliminated": ("Cette position d'équilibre s'écrit {defs}, c'est-à-dire {rels}. Les "
+                                      "coefficients ci-dessous sont écrits avec elle, en remplaçant {subs} d'après "
+                                      "cette relation.",
+                                      "This equilibrium is {defs}, that is {rels}. The coefficients below are "
+                                      "written with it, replacing {subs} by that relation."),
+    "small closed point condition eliminated": ("Cette position d'équilibre s'écrit {defs}, c'est-à-dire {rels} ; "
+                                                "elle n'existe que si {cond}. Les coefficients ci-dessous sont écrits "
+                                                "avec elle, en remplaçant {subs} d'après cette relation.",
+                                                "This equilibrium is {defs}, that is {rels}; it exists only if {cond}. "
+                                                "The coefficients below are written with it, replacing {subs} by "
+                                                "that relation."),
     "small numeric": ("Les coefficients sont écrits avec les valeurs numériques des constantes : la position "
                       "n'est d'équilibre que pour ces valeurs.",
                       "The coefficients are written with the numerical values of the constants: the position is "
@@ -682,6 +717,17 @@ _PHRASES: dict[str, tuple[str, str]] = {
                                  "est stable.",
                                  "The matrix {K} is positive definite: the potential energy {U} has a strict minimum "
                                  "at {q0}. By the Lagrange–Dirichlet theorem, the equilibrium is stable."),
+    "small lagrange dirichlet neutral": ("La matrice {K}, restreinte aux coordonnées {names} qui restent une fois "
+                                         "mises à part les directions neutres, est définie positive : l'énergie "
+                                         "potentielle {U} admet un minimum strict en ces coordonnées. D'après le "
+                                         "théorème de Lagrange–Dirichlet, la position d'équilibre est stable pour "
+                                         "elles ; les directions neutres, elles, peuvent dériver (un décalage le long "
+                                         "de l'une d'elles est un autre équilibre).",
+                                         "The matrix {K}, restricted to the coordinates {names} left once the neutral "
+                                         "directions are set aside, is positive definite: the potential energy {U} has "
+                                         "a strict minimum in those coordinates. By the Lagrange–Dirichlet theorem, the "
+                                         "equilibrium is stable in them; the neutral directions may drift (a shift "
+                                         "along one of them is another equilibrium)."),
     "small kelvin tait": ("La matrice K est définie positive et les autres termes sont gyroscopiques (G "
                           "antisymétrique, de puissance nulle) : l'équilibre est stable (théorème de "
                           "Kelvin–Tait–Chetaev).",
