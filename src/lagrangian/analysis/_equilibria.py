@@ -153,8 +153,9 @@ def equilibria(eom: EquationsOfMotion, parameters: Mapping[str, float] | None = 
             if not any(_duplicate(o, eq, angles) for o in out):
                 out.append(eq)
     continuum = any(len(e.free) > len(system.free) for e in out)  # sample points of it are no news
-    report = EquilibriumSearch(branches is not None, False)
-    if known and numeric and not continuum:
+    skipped = "not asked" if not numeric else "values" if not known else "continuum" if continuum else None
+    report = EquilibriumSearch(branches is not None, False, skipped=skipped)
+    if skipped is None:
         declared = {c.name: c.range for c in eom.model.coordinates}
         regions = [region_of(n, n in angles, ranges.get(n), declared.get(n), numbers) for n in system.active]
         roots, starts = _search(system.active, system.residual_function(numbers), system.size_function(numbers),

@@ -70,6 +70,9 @@ class EquilibriumSearch:
     numeric: bool
     regions: tuple[SearchRegion, ...] = ()
     starts: int = 0
+    #: Why the numeric search did not run: "values" (a parameter has no value), "continuum" (the closed
+    #: form gives a family of rests already), "not asked" (``numeric=False``); None when it ran.
+    skipped: str | None = None
 
     @property
     def unbounded(self) -> tuple[str, ...]:

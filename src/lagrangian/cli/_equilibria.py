@@ -18,6 +18,7 @@ import sympy
 from ..analysis import Equilibrium, LinearizationError, bifurcation, equilibria, linearize
 from ..dynamics import derive
 from ..errors import OutputError
+from ..model import CoulombFriction
 from ..output import Notation
 from ..output._course import to_sympy
 from ._modes import _check_plot_folder as check_plot_folder
@@ -129,6 +130,10 @@ def _stability(eom, e: Equilibrium, parameters: dict) -> tuple[bool | None, str,
     point = _point(eom, e, parameters)
     if point is None:
         return None
+    if any(isinstance(load, CoulombFriction) and load.exact for load in eom.model.loads):
+        return None, "undecided", ("held by dry friction: Coulomb's law is not differentiable at rest, so no "
+                                   "linearization applies; the rest holds while the friction it needs stays in the "
+                                   "cone |T| ≤ f_s N.")
     try:
         st = linearize(eom, point, parameters=parameters or None).stability()
     except LinearizationError as exc:
@@ -166,7 +171,8 @@ def _document(name: str, coordinates: tuple[str, ...], values: dict, found: tupl
         "schema": SCHEMA, "version": 1, "model": name, "coordinates": list(coordinates), "parameters": values,
         # What was searched: the list holds what was found there (a rest beyond the starting points' reach, or
         # between them, may be missing: `unbounded` names the coordinates searched without a bound).
-        "search": {"closed_form": search.closed_form, "numeric": search.numeric, "starts": search.starts,
+        "search": {"closed_form": search.closed_form, "numeric": search.numeric, "skipped": search.skipped,
+                   "starts": search.starts,
                    "regions": [{"coordinate": r.coordinate, "kind": r.kind,
                                 "bounds": [bound(r.bounds[0]), bound(r.bounds[1])]} for r in search.regions],
                    "unbounded": list(search.unbounded)},
@@ -221,7 +227,11 @@ def _searched(n: Notation, search) -> str:  # type: ignore[no-untyped-def]
     """What was searched, so that the list is never read as complete when it may not be."""
     how = "closed form (SymPy)" if search.closed_form else "no closed form (SymPy failed)"
     if not search.numeric:
-        return f"Searched: {how}; no numeric search (a parameter has no value).\n"
+        why = {"values": "a parameter has no value", "continuum": "the closed form gives a family of rests",
+               "not asked": "not asked"}.get(search.skipped, "not made")
+        return f"Searched: {how}; no numeric search ({why}).\n"
+    if not search.regions:
+        return f"Searched: {how}; every coordinate is free, none is left to search numerically.\n"
     where = []
     for r in search.regions:
         a, b = r.bounds
