@@ -82,7 +82,8 @@ def _assumed(eom: EquationsOfMotion, values: Mapping[str, float]) -> dict[sympy.
 
 
 def _simplify(e: sympy.Basic, positive: Mapping, back: Mapping) -> sympy.Basic:
-    x = sympy.factor(sympy.trigsimp(sympy.cancel(sympy.sympify(e).xreplace(positive))))
+    e = sympy.Integer(e) if isinstance(e, int) else e  # Matrix entries are SymPy objects, or 0
+    x = sympy.factor(sympy.trigsimp(sympy.cancel(e.xreplace(positive))))
     return x.xreplace(back)
 
 

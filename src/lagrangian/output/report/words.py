@@ -751,6 +751,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
                       "quantités conservées) ; elles sont mises à part.",
                       "The directions {names} are neutral (eigenvalue 0: ignorable coordinates or conserved "
                       "quantities); they are set aside."),
+    "small neutral one": ("La direction {names} est neutre (valeur propre nulle : coordonnée ignorable ou quantité "
+                          "conservée) ; elle est mise à part.",
+                          "The direction {names} is neutral (eigenvalue 0: an ignorable coordinate or a conserved "
+                          "quantity); it is set aside."),
     "small no values": ("Les pulsations et la stabilité demandent une valeur pour {names}.",
                         "The pulsations and the stability need a value for {names}."),
     "small momentum": ("un moment conservé", "a conserved momentum"),

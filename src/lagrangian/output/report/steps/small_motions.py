@@ -214,7 +214,7 @@ def _letters(c: Context, so: Any, modes: Any, at: Mapping) -> list[sympy.Basic] 
     if not roots or len(roots) != len(modes.pulsations):
         return None
     try:
-        values = [float(sympy.sympify(r).xreplace(at)) for r in roots]
+        values = [float(r.xreplace(at)) for r in roots]
     except (TypeError, ValueError):
         return None
     order = []
@@ -293,7 +293,7 @@ def _stability(c: Context, lin: Any, stability: Any, modes: Any) -> list[Block]:
         names: list[Any] = [Math(c.sym(x[:-4], "dot") if x.endswith("_dot") else c.sym(x)) for x in neutral]
         if momenta:
             names.append(w.text("small momenta", k=str(momenta)) if momenta > 1 else w.text("small momentum"))
-        blocks.append(Para(w("small neutral", names=w.join(names))))
+        blocks.append(Para(w("small neutral" if len(names) > 1 else "small neutral one", names=w.join(names))))
     if lam.size:
         listed = "small eigenvalues left" if modes.neutral else "small eigenvalues"
         blocks.append(Para(w(listed, lam=_eigenvalues(c, lam))))
