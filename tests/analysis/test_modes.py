@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 import scipy.linalg
 from lagrangian_test_support import EXAMPLES_DIR
+from more_systems import TWO_CARTS as TWO_CARTS_FREE
 from more_systems import eom as system_eom
 
 import lagrangian
@@ -108,3 +109,13 @@ def test_a_drift_of_the_ignorable_cart_and_of_two_carts_together_stays_neutral()
     st = carts.stability()
     assert st.verdict != "unstable (secular growth)" and not carts.modes().zero.secular
     assert carts.modes().pulsations == pytest.approx([math.sqrt(2 * 4.0 / 1.0)], rel=1e-12)
+
+
+def test_a_point_of_a_circle_of_rests_drifts_along_it_and_is_not_called_unstable():
+    # U = k (x² + y² − a²)²: at a point of the circle K has the tangent as null direction, a Jordan block of
+    # size 2 (a change of momentum along the circle, a drift), split by rounding into eigenvalues ±1e-8.
+    text = TWO_CARTS_FREE.replace("k/2*(x2 - x1)^2", "k*(x1^2 + x2^2 - 1)^2")
+    eom = lagrangian.derive(lagrangian.parse_model(text))
+    lin = linearize(eom, {"x1": math.cos(0.3), "x2": math.sin(0.3)})
+    assert lin.modes().zero.blocks == (2,) and not lin.modes().zero.secular
+    assert lin.stability().verdict not in ("unstable", "unstable (secular growth)")

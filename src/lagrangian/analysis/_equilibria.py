@@ -11,10 +11,14 @@ placed there at rest stays there: q̈ = 0 at q̇ = 0, i.e.
 
 Closed form first (`_equilibria_closed_form`: SymPy on the factors of each equation, with
 each branch's condition of existence, R Ω² > g for the bead's tilted positions).  Then a
-numeric multi-start search (``scipy.optimize.least_squares`` from a grid over the ranges)
-finds all roots when every parameter has a value; it fills in what the closed form missed
-(SymPy's solvers are not complete: ``solve`` alone loses θ = π of the bead) or replaces it
-when SymPy fails.  Roots are deduplicated, angles modulo 2π.
+numeric multi-start search (`_equilibria_search`: Levenberg–Marquardt from starting points
+over each coordinate's region) whenever every parameter has a value; it fills in what the
+closed form missed (SymPy's solvers are not complete: ``solve`` alone loses θ = π of the bead,
+and the elastic pendulum's upright rest with |r| in its spring) or replaces it when SymPy fails.
+Roots are deduplicated, angles modulo 2π; families of rests ("r any", a curve) are given once,
+and rests that put every body in the same place (r, θ and −r, θ + π) are one rest with aliases.
+What was searched is returned with the list (`EquilibriumSearch`), which is never presented as
+complete.
 
 Dry friction (an exact Coulomb contact, ``regularization = 0``): at rest the contact sticks,
 so its law T = −f N v_s/|v_s| (undefined at v_s = 0) is replaced by the sticking constraint
@@ -23,10 +27,10 @@ where the force it needs stays in the friction cone, |T| ≤ f_s N (Coulomb's la
 adherence).  For a block on an incline of angle α: T = −m g sin α, so every x is an
 equilibrium when |sin α|/cos α = tan α ≤ f_s.
 
-An *angle* is a coordinate in which the static equations are 2π-periodic (checked
-numerically); it ranges over (−π, π] — π rather than −π, as the course writes the upper
-position.  Other coordinates need a range for the numeric search (``ranges={"x": (a, b)}``).
-See docs/equilibria.md.
+An *angle* is a coordinate that enters the equations only through 2π-periodic sin, cos, tan;
+it ranges over (−π, π] — π rather than −π, as the course writes the upper position.  Other
+coordinates are searched over the range given (``ranges={"x": (a, b)}``), else the model's
+declared ``range``, else from starting points over every scale.  See docs/equilibria.md.
 """
 
 from __future__ import annotations
@@ -160,8 +164,8 @@ def equilibria(eom: EquationsOfMotion, parameters: Mapping[str, float] | None = 
         regions = [region_of(n, n in angles, ranges.get(n), declared.get(n), numbers) for n in system.active]
         roots, starts = _search(system.active, system.residual_function(numbers), system.size_function(numbers),
                                 regions, angles, numbers)
-        report = EquilibriumSearch(branches is not None, True, tuple(SearchRegion(n, kind, bounds, starts) for n, (kind, bounds)
-                                                          in zip(system.active, regions)), starts)
+        where = tuple(SearchRegion(n, kind, bounds, starts) for n, (kind, bounds) in zip(system.active, regions))
+        report = EquilibriumSearch(branches is not None, True, where, starts)
         out = _identify(system, _merge(system, out, roots, numbers, angles), numbers, angles)
     elif not known and branches is None:
         missing = sorted(k for k, v in values.items() if v is None)

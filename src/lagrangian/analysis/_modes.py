@@ -35,7 +35,7 @@ from scipy import linalg, optimize
 
 from ._linear_model import LinearizationError, LinearModel
 from ._linear_model import to_numpy as _to_numpy
-from ._zero_modes import ZeroStructure, ignorable_columns, split_off, zero_structure
+from ._zero_modes import CLUSTER_RTOL, ZeroStructure, ignorable_columns, split_off, zero_structure
 
 __all__ = ["Mode", "Modes", "Stability", "StabilityChange", "Sweep", "modes", "stability", "sweep"]
 
@@ -119,7 +119,7 @@ def _momenta(lin: LinearModel, keep: Sequence[int], neutral: Sequence[tuple[str,
 
 def _essential(lin: LinearModel, A: np.ndarray) -> tuple[list[int], list[tuple[str, str]], np.ndarray,
                                                          ZeroStructure]:
-    keep, neutral, = _reduce(A, lin.state, lin)
+    keep, neutral = _reduce(A, lin.state, lin)
     lam = np.linalg.eigvals(A[np.ix_(keep, keep)]) if keep else np.zeros(0, complex)
     zeros = _momenta(lin, keep, neutral)
     if zeros:
@@ -130,6 +130,8 @@ def _essential(lin: LinearModel, A: np.ndarray) -> tuple[list[int], list[tuple[s
             lam = np.delete(lam, small)
             neutral = neutral + [("momentum", "the conserved momentum of an ignorable coordinate (eigenvalue 0)")] * zeros
     zero = zero_structure(A, lin.state, len(lin.coordinates))
+    if any(b >= 2 for b in zero.blocks):  # a Jordan block of 0 split by rounding into ±1e-8: those are 0
+        lam = np.where(np.abs(lam) <= CLUSTER_RTOL * max(1.0, float(np.abs(A).max(initial=0.0))), 0.0, lam)
     if zero.secular:  # the variables split off after the ignorable ones carry a defective 0: not neutral
         ign = set(ignorable_columns(A, len(lin.coordinates)))
         neutral = [(x, why) if x == "momentum" or lin.state.index(x) in ign else
