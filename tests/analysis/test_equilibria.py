@@ -127,13 +127,16 @@ torsion = { potential = "1/2*k*(theta - alpha)^2" }
 """
 
 
-def test_torsion_pendulum_numeric_roots_match_a_sign_change_scan() -> None:
+@pytest.mark.parametrize("given", [True, False])
+def test_torsion_pendulum_numeric_roots_match_a_sign_change_scan(given: bool) -> None:
+    # θ is not an angle here (θ − α is not 2π-periodic): without a range it is searched from starting points
+    # over every scale, and the search says so.  Every root has |θ| ≤ 10.3 (|0.1 (θ − 0.3)| ≤ 1).
     eom = lagrangian.derive(lagrangian.parse_model(TORSION))
-    with pytest.raises(EquilibriumError) as info:
-        lagrangian.equilibria(eom)
-    assert "coordinate `theta` is not an angle" in info.value.message and "--range theta=a:b" in info.value.fix
     lo, hi = -12.0, 12.0
-    found = lagrangian.equilibria(eom, ranges={"theta": (lo, hi)})
+    found = lagrangian.equilibria(eom, ranges={"theta": (lo, hi)} if given else None)
+    region = found.search.regions[0]
+    assert (region.kind, region.bounds) == (("range", (lo, hi)) if given else ("scales", (-math.inf, math.inf)))
+    assert found.search.unbounded == (() if given else ("theta",))
 
     def f(th: float) -> float:  # Q_θ = −k(θ − α) − m g l sinθ, written here from the physics
         return -0.1 * (th - 0.3) - math.sin(th)

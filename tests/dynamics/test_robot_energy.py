@@ -68,12 +68,15 @@ def test_a_motor_torque_is_a_load_with_a_potential_and_a_couple_fixed_in_r0_stay
         np.testing.assert_allclose(got, want, rtol=1e-10, atol=1e-10)
 
 
-def test_zoo_arm_motors_are_inputs_so_no_potential_and_no_energy_integral():
+def test_zoo_arm_motors_are_inputs_so_no_potential_and_an_energy_integral_only_with_them_off():
     eom = lagrangian.derive(serial_arm(5), formulation="recursive")
     assert not eom.recursive.conservative and not tree_structure(eom.kinematics).couples
     motors = [f for f in eom.loads if f.kind == "torque"]
     assert motors and all(f.potential is None for f in motors)
-    assert "E" not in {i.name for i in lagrangian.first_integrals(eom)}
+    off = {i.name: i for i in lagrangian.first_integrals(eom)}  # the inputs' default regime: off
+    assert "E" in off and "with the inputs off" in off["E"].reason
+    driven = lagrangian.first_integrals(eom, inputs=dict.fromkeys(eom.model.inputs, "varying"))
+    assert "E" not in {i.name for i in driven}
 
 
 def _chain_with_constant_motors(inputs: bool) -> lagrangian.Model:
@@ -107,7 +110,14 @@ def test_constant_motor_torques_derive_from_minus_tau_q_and_the_energy_is_monito
     assert "E" in run.integrals and run.drift["E"] < 1e-8
     driven = lagrangian.derive(_chain_with_constant_motors(inputs=True), formulation=formulation)
     assert all(f.potential is None for f in driven.loads if f.name.startswith("motor"))
-    assert "E" not in {i.name for i in lagrangian.first_integrals(driven)}
+    assert "E" not in {i.name for i in lagrangian.first_integrals(driven, inputs=dict.fromkeys(("tau2", "tau3"),
+                                                                                                "varying"))}
+    # Held constant, the inputs' torques derive from −τ q again: the same energy integral as the parameters'.
+    held = {i.name: i for i in lagrangian.first_integrals(driven, inputs=dict.fromkeys(("tau2", "tau3"),
+                                                                                         "constant"))}
+    if formulation == "lagrange":
+        want = {i.name: i for i in lagrangian.first_integrals(eom)}["E"].expression
+        assert se.expand(held["E"].expression - want) == 0
 
 
 @pytest.mark.parametrize("formulation", ["recursive", "lagrange"])
@@ -117,7 +127,8 @@ def test_mechanical_energy_of_a_urdf_robot_changes_by_the_actuators_work(formula
     eom = lagrangian.derive(model, formulation=formulation)
     assert all(f.potential is None for f in eom.loads if f.name == "actuators")  # τ(t): no potential energy
     run = lagrangian.simulate(eom, 2.0, parameters=TAU, initial={"shoulder": 0.4, "elbow": -0.3}, n_out=41)
-    assert "E" not in run.integrals  # T + U_gravity − τ·q is constant only for constant τ, which inputs are not
+    # Held at constant values, the torques derive from −τ·q: the run monitors T + U_gravity − τ·q.
+    assert "E" in run.integrals and run.drift["E"] < 1e-8
     peer = Peer(pin, DOUBLE_PENDULUM, list(eom.coordinates))
     tau = np.array([TAU["tau_shoulder"], TAU["tau_elbow"]])
     # The actuators' power: T + U_gravity changes by the work Σ τ_j Δq_j.
@@ -125,6 +136,8 @@ def test_mechanical_energy_of_a_urdf_robot_changes_by_the_actuators_work(formula
     assert np.abs(work).max() > 0.1  # the torques do work: T + U_gravity alone is not constant
     physical = np.array([sum(peer.energies(q, v)) for q, v in zip(run.q, run.qd)])
     np.testing.assert_allclose(physical - physical[0], work, atol=1e-8 * np.abs(physical).max())
+    np.testing.assert_allclose(run.monitors["E"] - run.monitors["E"][0], physical - physical[0] - work,
+                               atol=1e-8 * np.abs(physical).max())
 
 
 def test_energy_balance_of_a_damped_urdf_robot_is_the_actuators_and_dampers_power():

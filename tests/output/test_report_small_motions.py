@@ -12,15 +12,14 @@ import math
 
 import pytest
 import sympy
+from lagrangian_test_support import EXAMPLES_DIR
 
 import lagrangian
 from lagrangian.cli.main import main
-from lagrangian.output import report
+from lagrangian.output import course_form, report
+from lagrangian.output._text import notation
 from lagrangian.output.report.document import Display, Para, math_of, walk
 from lagrangian.output.report.words import Words
-from lagrangian.output._text import notation
-from lagrangian.output import course_form
-from lagrangian_test_support import EXAMPLES_DIR
 
 TITLES = {"fr": "Petits mouvements au voisinage d\u2019une position d\u2019équilibre",
           "en": "Small motions about an equilibrium"}
@@ -70,15 +69,20 @@ def test_the_bead_at_the_bottom_of_a_fast_hoop_is_unstable():
     assert w.number(math.sqrt(6.0**2 - 9.81 / 0.5)) in maths
 
 
-def test_a_point_that_holds_for_the_given_values_only_is_written_with_numbers():
-    # cos θ0 = g/(R Ω²) is an equilibrium for the model's numbers, not for every g, R, Ω: the coefficients are numbers.
+def test_a_point_that_holds_for_the_given_values_only_is_written_in_closed_form():
+    # cos θ0 = g/(R Ω²) is an equilibrium for the model's numbers, not for every g, R, Ω; it exists iff R Ω² > g.
+    # By hand: m R² δθ̈ = (m R² Ω² cos 2θ0 − m g R cos θ0) δθ, and with g = R Ω² cos θ0 the stiffness is
+    # m R² Ω² (cos²θ0 − cos 2θ0) = m R² Ω² sin²θ0: ω0² = Ω² sin²θ0 (5.0306 rad/s with the model's numbers).
     eom = lagrangian.derive(lagrangian.load_model(EXAMPLES_DIR / "bead_rotating_hoop.toml"))
     theta0 = math.acos(9.81 / (0.5 * 36.0))
     section = report(eom, lang="fr", small_motions={"theta": theta0}).document.section("small motions")
-    notes = [b for b in section.blocks if isinstance(b, Para) and b.style == "note"]
-    assert notes and "valeurs numériques" in "".join(x for x in notes[0].runs if isinstance(x, str))
+    assert not [b for b in section.blocks if isinstance(b, Para) and b.style == "note"]  # letters, not numbers
+    maths = math_of(section.blocks)
+    assert r"\cos\theta_{0} = \frac{g}{R \Omega^{2}}" in maths and r"R \Omega^{2} > g" in maths
+    assert r"\omega_{0}^{2} = \Omega^{2} \sin^{2}\theta_{0}" in maths
     w = Words("fr")
-    assert any(w.number(6.0 * math.sin(theta0)) in m for m in math_of(section.blocks))
+    assert any(w.number(6.0 * math.sin(theta0)) in m for m in maths)  # ω0 = Ω sin θ0, numerically
+    assert any(r"\mathrm{s^{-1}}" in m for m in maths)  # the eigenvalues of A carry their unit
 
 
 def test_without_the_option_the_report_has_no_such_section():

@@ -11,7 +11,10 @@ from ._effective_potential import reduce_cyclic as reduce_cyclic
 from ._energy_balance import EnergyBalance as EnergyBalance
 from ._energy_balance import PowerTerm as PowerTerm
 from ._energy_balance import energy_balance as energy_balance
+from ._equilibria import Equilibria as Equilibria
 from ._equilibria import Equilibrium as Equilibrium
+from ._equilibria import EquilibriumSearch as EquilibriumSearch
+from ._equilibria import SearchRegion as SearchRegion
 from ._equilibria import EquilibriumError as EquilibriumError
 from ._equilibria import equilibria as equilibria
 from ._feedback import ControlError as ControlError
@@ -54,6 +57,7 @@ __all__ = ["FirstIntegral", "first_integrals", "CoordinateCheck", "ElementTheore
            "reactions", "analyse_top", "TopAnalysis", "reduce_cyclic", "CyclicReduction", "AnalysisError",
            "StructureError", "EnergyBalance", "PowerTerm", "energy_balance", "linearize", "holding_inputs", "LinearModel",
            "SecondOrderForm", "LinearizationError", "Mode", "Modes", "Stability", "StabilityChange", "Sweep", "modes",
-           "stability", "sweep", "Equilibrium", "EquilibriumError", "equilibria", "bifurcation",
+           "stability", "sweep", "Equilibria", "Equilibrium", "EquilibriumError", "EquilibriumSearch", "SearchRegion",
+           "equilibria", "bifurcation",
            "BifurcationDiagram", "Branch", "routh_reduction", "RouthReduction", "steady_motions",
            "SteadyMotion", "Feedback", "ControlError", "lqr"]

@@ -22,7 +22,7 @@ from ._linear_model import LinearizationError
 from ._linearize import linearize
 from ._modes import _bisect
 
-__all__ = ["Branch", "BifurcationDiagram", "bifurcation"]
+__all__ = ["BifurcationDiagram", "Branch", "bifurcation"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -83,7 +83,8 @@ def bifurcation(eom: EquationsOfMotion, parameter: str, values: Sequence[float],
     fixed = {p.name: p.value for p in eom.model.parameters if p.value is not None}
     fixed.update(parameters or {})
     fixed.pop(parameter, None)
-    found = [e for e in equilibria(eom, parameters={**fixed, parameter: float(values[0])}, all_branches=True)
+    found = [e for e in equilibria(eom, parameters={**fixed, parameter: float(values[0])}, all_branches=True,
+                                   numeric=False)
              if e.closed_form and not e.free]
     if not found:
         raise EquilibriumError("no equilibrium of this model has a closed form to follow along the parameter.",

@@ -11,10 +11,14 @@ placed there at rest stays there: q̈ = 0 at q̇ = 0, i.e.
 
 Closed form first (`_equilibria_closed_form`: SymPy on the factors of each equation, with
 each branch's condition of existence, R Ω² > g for the bead's tilted positions).  Then a
-numeric multi-start search (``scipy.optimize.least_squares`` from a grid over the ranges)
-finds all roots when every parameter has a value; it fills in what the closed form missed
-(SymPy's solvers are not complete: ``solve`` alone loses θ = π of the bead) or replaces it
-when SymPy fails.  Roots are deduplicated, angles modulo 2π.
+numeric multi-start search (`_equilibria_search`: Levenberg–Marquardt from starting points
+over each coordinate's region) whenever every parameter has a value; it fills in what the
+closed form missed (SymPy's solvers are not complete: ``solve`` alone loses θ = π of the bead,
+and the elastic pendulum's upright rest with |r| in its spring) or replaces it when SymPy fails.
+Roots are deduplicated, angles modulo 2π; families of rests ("r any", a curve) are given once,
+and rests that put every body in the same place (r, θ and −r, θ + π) are one rest with aliases.
+What was searched is returned with the list (`EquilibriumSearch`), which is never presented as
+complete.
 
 Dry friction (an exact Coulomb contact, ``regularization = 0``): at rest the contact sticks,
 so its law T = −f N v_s/|v_s| (undefined at v_s = 0) is replaced by the sticking constraint
@@ -23,15 +27,14 @@ where the force it needs stays in the friction cone, |T| ≤ f_s N (Coulomb's la
 adherence).  For a block on an incline of angle α: T = −m g sin α, so every x is an
 equilibrium when |sin α|/cos α = tan α ≤ f_s.
 
-An *angle* is a coordinate in which the static equations are 2π-periodic (checked
-numerically); it ranges over (−π, π] — π rather than −π, as the course writes the upper
-position.  Other coordinates need a range for the numeric search (``ranges={"x": (a, b)}``).
-See docs/equilibria.md.
+An *angle* is a coordinate that enters the equations only through 2π-periodic sin, cos, tan;
+it ranges over (−π, π] — π rather than −π, as the course writes the upper position.  Other
+coordinates are searched over the range given (``ranges={"x": (a, b)}``), else the model's
+declared ``range``, else from starting points over every scale.  See docs/equilibria.md.
 """
 
 from __future__ import annotations
 
-import itertools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
@@ -39,26 +42,26 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import symengine as se
 import sympy
-from scipy import optimize
-from symengine.lib.symengine_wrapper import sympy2symengine
 
 from ..dynamics import EquationsOfMotion
-from ..dynamics._friction import sliding_direction
-from ..model import CoulombFriction
-from ._effective_potential import AnalysisError
 from ._equilibria_closed_form import SOLVE_TIMEOUT, closed_form, principal
 from ._equilibria_closed_form import condition as branch_condition
+from ._equilibria_search import STARTS, EquilibriumSearch, SearchRegion, near_curve, region_of
+from ._equilibria_search import same as _same
+from ._equilibria_search import search as _search
+from ._equilibria_search import wrap as _wrap
+from ._static_system import EquilibriumError, StaticSystem, configuration, to_symengine
 
-__all__ = ["Equilibrium", "EquilibriumError", "equilibria", "SOLVE_TIMEOUT", "STARTS"]
-
-#: About how many starting points the numeric search uses.
-STARTS = 240
-#: A root is accepted when ‖residual‖ ≤ TOLERANCE × (typical ‖residual‖ over the range).
-TOLERANCE = 1e-9
-
-
-class EquilibriumError(AnalysisError):
-    """Equilibria cannot be sought: a model that depends on t, an unknown parameter, a missing range."""
+__all__ = [
+    "SOLVE_TIMEOUT",
+    "STARTS",
+    "Equilibria",
+    "Equilibrium",
+    "EquilibriumError",
+    "EquilibriumSearch",
+    "SearchRegion",
+    "equilibria",
+]
 
 
 @dataclass(frozen=True)
@@ -75,7 +78,13 @@ class Equilibrium:
     exists : the condition at the parameter values (None when some value is missing).
     numeric : q* at the parameter values (angles in (−π, π]), or None without all values.
     residual : max |F(q*, 0) + Aᵀλ|, |f(q*)| at ``numeric`` (None without values).
-    free : coordinates absent from the static equations: any value is an equilibrium.
+    free : coordinates along which every value is an equilibrium: absent from the static equations, left
+        free by SymPy, or found so by the numeric search (the bead on a turning parabola at Ω² = 2 g a:
+        "r any").
+    family : the dimension of a curved family of equilibria through ``numeric`` (0: none; the static
+        equations' Jacobian is singular there and the rests form a curve, which this one stands for).
+    aliases : other values of the coordinates that put every body and particle in the same place
+        (the elastic pendulum's r = −0.63, θ = π is its r = 0.63, θ = 0): listed here, not as rests.
     """
 
     values: Mapping[str, se.Basic | float]
@@ -86,11 +95,24 @@ class Equilibrium:
     numeric: Mapping[str, float] | None = None
     residual: float | None = None
     free: tuple[str, ...] = field(default=())
+    family: int = 0
+    aliases: tuple[Mapping[str, float], ...] = ()
+
+
+class Equilibria(tuple):  # type: ignore[type-arg]
+    """The equilibria found (a tuple of `Equilibrium`), with ``search``: what was searched (`EquilibriumSearch`)."""
+
+    search: EquilibriumSearch
+
+    def __new__(cls, items: Sequence[Equilibrium], search: EquilibriumSearch) -> Equilibria:  # noqa: PYI034
+        out = super().__new__(cls, items)
+        out.search = search
+        return out
 
 
 def equilibria(eom: EquationsOfMotion, parameters: Mapping[str, float] | None = None,
                ranges: Mapping[str, tuple[float, float]] | None = None, *,
-               all_branches: bool = False) -> tuple[Equilibrium, ...]:
+               all_branches: bool = False, numeric: bool = True) -> Equilibria:
     """Every static equilibrium of ``eom`` (q̇ = 0, q̈ = 0), closed form when possible.
 
     Parameters
@@ -98,15 +120,23 @@ def equilibria(eom: EquationsOfMotion, parameters: Mapping[str, float] | None = 
     eom : `lagrangian.derive`'s result, for an autonomous model.
     parameters : values overriding the model's (name → number).
     ranges : coordinate name → (a, b), where the numeric search looks (and where closed-form
-        roots are kept); angles default to (−π, π], other coordinates have no default.
+        roots are kept); angles default to (−π, π], other coordinates to their declared ``range``,
+        else to starting points over every scale (`lagrangian.analysis._equilibria_search`).
     all_branches : keep closed-form branches whose condition is false at the values.
+    numeric : run the numeric search (when every parameter has a value); False: the closed form only.
+
+    Returns
+    -------
+    Equilibria
+        A tuple of `Equilibrium`, whose ``search`` says what was searched: the list holds what was
+        found there, and a root beyond the starting points' reach may be missing.
 
     Raises
     ------
     EquilibriumError
-        The model depends on t explicitly, a name in ``parameters`` or ``ranges`` is unknown,
-        or the closed form failed and a coordinate that is not an angle has no range; or it has
-        unilateral contacts (which of them hold at an equilibrium, with λ ≥ 0, is not sought).
+        The model depends on t explicitly (once the parameters have their values), a name in
+        ``parameters`` or ``ranges`` is unknown, or the closed form failed and a parameter has no value;
+        or it has unilateral contacts (which of them hold at an equilibrium, with λ ≥ 0, is not sought).
     """
     contacts = [c.name for c in eom.model.constraints if c.unilateral]
     if contacts:
@@ -115,11 +145,11 @@ def equilibria(eom: EquationsOfMotion, parameters: Mapping[str, float] | None = 
             "of them are closed with a reaction λ ≥ 0 and the others open, and which is not sought here",
             fix="declare the contacts that hold as bilateral constraints (holonomic = \"...\") and remove the others, "
                 "or find the rest states by simulating (lagrangian simulate: an accumulation of impacts ends at rest)")
-    system = _StaticSystem(eom)
     values = _values(eom, parameters)
-    ranges = _ranges(eom, ranges)
     known = all(v is not None for v in values.values())
     numbers = {se.Symbol(k): v for k, v in values.items() if v is not None}
+    system = StaticSystem(eom, numbers)
+    ranges = _ranges(eom, ranges)
     angles = system.angles(numbers)
     out: list[Equilibrium] = []
     branches = closed_form(system.equations, system.q, system.active, system.lam, values)
@@ -134,189 +164,99 @@ def equilibria(eom: EquationsOfMotion, parameters: Mapping[str, float] | None = 
                 continue
             if not any(_duplicate(o, eq, angles) for o in out):
                 out.append(eq)
-    searchable = [n for n in system.active if n in angles or n in ranges]
     continuum = any(len(e.free) > len(system.free) for e in out)  # sample points of it are no news
-    if known and not continuum and (branches is None or len(searchable) == len(system.active)):
-        missing = [n for n in system.active if n not in searchable]
-        if missing:
-            raise EquilibriumError(
-                f"no closed form was found and coordinate `{missing[0]}` is not an angle, so the numeric search "
-                "needs a range for it", fix=f"give one: ranges={{'{missing[0]}': (a, b)}} "
-                f"(CLI: --range {missing[0]}=a:b)")
-        found = [e.numeric for e in out if e.numeric is not None and e.exists is not False]
-        for root, res in _search(system, numbers, ranges, angles):
-            if not any(_same(f, root, angles) for f in found):
-                found.append(root)
-                vals = {n: root[n] if n in root else se.Symbol(n) for n in system.names}
-                if system.sticking and not system.holds_by_friction(root, numbers):
-                    continue  # the contacts would need more friction than f_s N: it slides away
-                out.append(Equilibrium(vals, False, numeric=root, residual=res, free=system.free))
+    skipped = "not asked" if not numeric else "values" if not known else "continuum" if continuum else None
+    report = EquilibriumSearch(branches is not None, False, skipped=skipped)
+    if skipped is None:
+        declared = {c.name: c.range for c in eom.model.coordinates}
+        regions = [region_of(n, n in angles, ranges.get(n), declared.get(n), numbers) for n in system.active]
+        roots, starts = _search(system.active, system.residual_function(numbers), system.size_function(numbers),
+                                regions, angles, numbers)
+        where = tuple(SearchRegion(n, kind, bounds, starts) for n, (kind, bounds) in zip(system.active, regions))
+        report = EquilibriumSearch(branches is not None, True, where, starts)
+        out = _identify(system, _merge(system, out, roots, numbers, angles), numbers, angles)
     elif not known and branches is None:
         missing = sorted(k for k, v in values.items() if v is None)
         raise EquilibriumError(f"no closed form was found, and parameter `{missing[0]}` has no value for a "
                                "numeric search", fix=f"give it one: parameters={{'{missing[0]}': ...}} "
                                f"(CLI: --set {missing[0]}=...)")
-    return tuple(out)
+    return Equilibria(out, report)
 
 
-# -- the static system ---------------------------------------------------------------------
-
-def _lambdify(q: list[se.Basic], exprs: list[se.Basic]):  # type: ignore[no-untyped-def]
-    """`symengine.Lambdify` of ``exprs`` in ``q``, also when ``q`` is empty (every coordinate fixed
-    or free, e.g. a block held on an incline): SymEngine refuses zero arguments, so a dummy one."""
-    if q:
-        return se.Lambdify(q, exprs)
-    f = se.Lambdify([se.Symbol("_unused_")], exprs)
-    return lambda x: f(np.zeros(1))
-
-
-class _StaticSystem:
-    """F(q, 0) + Aᵀλ = 0, f(q) = 0, b(q) = 0, with the checks that it is autonomous."""
-
-    def __init__(self, eom: EquationsOfMotion) -> None:
-        t = eom.t
-        rest = {qd: 0 for qd in eom.qd}
-        self.eom = eom
-        self.q = list(eom.q)
-        self.names = [str(s) for s in self.q]
-        F = [_se(f) for f in eom.F]
-        sticking = self._sticking_contacts(eom)
-        for load in eom.loads:
-            if load.name in sticking:  # its sliding law is undefined at rest: replaced by T (below)
-                F = [se.expand(f - q) for f, q in zip(F, load.Q)]
-        F = [f.subs(rest) for f in F]
-        for name, f in zip(self.names, F):
-            _autonomous(f, t, f"the generalized force on `{name}` at rest")
-        for row in eom.M:
-            for m in row:
-                _autonomous(_se(m), t, "the mass matrix M")
-        self.A = [[_se(a) for a in r.coefficients] for r in eom.constraints]
-        self.lam = [r.multiplier for r in eom.constraints]
-        extra = []
-        for r in eom.constraints:
-            e = _se(r.expression if r.kind == "holonomic" else r.b).subs(rest)
-            _autonomous(e, t, f"constraint row `{r.name}`")
-            for a in r.coefficients:
-                _autonomous(_se(a), t, f"constraint row `{r.name}`")
-            if e != 0:
-                extra.append(e)
-        #: Per exact contact: (name, multiplier T, f_s, N); T is the friction force along e.
-        self.sticking: list[tuple[str, se.Symbol, se.Basic, se.Basic]] = []
-        for name, (speed, fs, N) in sticking.items():
-            # Sticking: w = a·q̇ + b = 0, a nonholonomic row whose multiplier is T (seed, Q_i = T ∂w/∂q̇_i).
-            self.A.append([_se(speed.diff(qd)) for qd in eom.qd])
-            T = se.Symbol(f"T_{name}")
-            self.lam.append(T)
-            self.sticking.append((name, T, fs, N))
-
-        self.F = F
-        self.extra = extra
-        #: F + Aᵀλ per coordinate, then the holonomic rows and the rate-free parts b.
-        self.equations = [f + sum((lam * row[i] for lam, row in zip(self.lam, self.A)), se.Integer(0))
-                          for i, f in enumerate(F)] + extra
-        used: set[se.Basic] = set()
-        for e in self.equations:
-            used |= e.free_symbols
-        self.free = tuple(n for n, s in zip(self.names, self.q) if s not in used)
-        self.active = [n for n in self.names if n not in self.free]
-
-    @staticmethod
-    def _sticking_contacts(eom: EquationsOfMotion) -> dict[str, tuple[se.Basic, se.Basic, se.Basic]]:
-        """Exact Coulomb contacts that can stick at rest: name → (sliding speed w = v_s·e, f_s, N).
-
-        A contact whose surface moves (a belt) still slides when the system is at rest, with a
-        friction force that is then well defined: it keeps its sliding law.
-        """
-        out = {}
-        rest = {qd: 0 for qd in eom.qd}
-        for load in eom.model.loads:
-            if isinstance(load, CoulombFriction) and load.exact:
-                if se.expand(_se(sliding_direction(eom.kinematics, load).speed).subs(rest)) != 0:
-                    continue
-                fs = load.static_coefficient if load.static_coefficient is not None else load.coefficient
-                out[load.name] = (sliding_direction(eom.kinematics, load).speed, _se(fs), _se(load.normal_force))
+def _identify(system: StaticSystem, out: list[Equilibrium], numbers: Mapping[se.Basic, float],
+              angles: set[str]) -> list[Equilibrium]:
+    """Each configuration once: rests whose coordinates put every body in the same place (r and θ against
+    −r and θ + π) are one rest, written with lengths ≥ 0 and closed form first; the others become its
+    ``aliases``."""
+    points = [e for e in out if e.numeric is not None and not e.free]
+    if len(points) < 2:
         return out
-
-    def multipliers_at(self, point: Mapping[str, float], numbers: Mapping[se.Basic, float]) -> np.ndarray:
-        """λ (then the friction forces T) at a rest point, by least squares on F + Aᵀλ = 0."""
-        at = {**numbers, **{s: point.get(n, 0.0) for n, s in zip(self.names, self.q)}}
-        f = np.array([float(e.subs(at)) for e in self.F])
-        At = np.array([[float(a.subs(at)) for a in row] for row in self.A]).T
-        lam, *_ = np.linalg.lstsq(At, -f, rcond=None)
-        return lam
-
-    def holds_by_friction(self, point: Mapping[str, float], numbers: Mapping[se.Basic, float]) -> bool:
-        """|T| ≤ f_s N at every sticking contact (with a relative margin for rounding)."""
-        lam = self.multipliers_at(point, numbers)
-        at = {**numbers, **{s: point.get(n, 0.0) for n, s in zip(self.names, self.q)}}
-        k0 = len(self.lam) - len(self.sticking)
-        for (_, _, fs, N), T in zip(self.sticking, lam[k0:]):
-            b = abs(float((fs * N).subs(at)))
-            if abs(T) > b * (1 + 1e-12) + 1e-300:
-                return False
-        return True
-
-    def angles(self, numbers: Mapping[se.Basic, float]) -> set[str]:
-        """Coordinates in which every static equation is 2π-periodic (at two random points)."""
-        rng = np.random.default_rng(1)
-        symbols = set().union(*(e.free_symbols for e in self.equations)) if self.equations else set()
-        out = set()
-        for name, q in zip(self.names, self.q):
-            if name in self.free:
-                continue
-            ok = True
-            for _ in range(2):
-                point = {s: numbers.get(s, float(rng.uniform(0.5, 2.0))) for s in symbols}
-                point.update({s: float(rng.uniform(-3, 3)) for s in symbols if s in self.q or s in self.lam})
-                shifted = dict(point)
-                shifted[q] = point[q] + 2 * math.pi
-                for e in self.equations:
-                    a, b = complex(e.subs(point)), complex(e.subs(shifted))
-                    if abs(a - b) > 1e-9 * (1 + abs(a)):
-                        ok = False
-            if ok:
-                out.add(name)
+    try:
+        place = configuration(system, numbers)
+    except (RuntimeError, TypeError, ValueError, KeyError, AttributeError):  # pragma: no cover - no kinematics
         return out
+    names = system.names
+    at = {e_id: np.asarray(place(np.array([e.numeric.get(n, 0.0) for n in names])), dtype=float).ravel()
+          for e_id, e in ((id(e), e) for e in points)}
+    groups: list[list[Equilibrium]] = []
+    for e in points:
+        for g in groups:
+            a, b = at[id(g[0])], at[id(e)]
+            if np.all(np.abs(a - b) <= 1e-9 * (1.0 + np.abs(a))):
+                g.append(e)
+                break
+        else:
+            groups.append([e])
 
-    def residual_function(self, numbers: Mapping[se.Basic, float]):  # type: ignore[no-untyped-def]
-        """r(q_active) with λ eliminated: (I − Aᵀ(Aᵀ)⁺) F, then the holonomic and b rows."""
-        q = [s for n, s in zip(self.names, self.q) if n in self.active]
-        zero = {se.Symbol(n): 0.0 for n in self.free}
-        F = _lambdify(q, [f.subs(numbers).subs(zero) for f in self.F])
-        A = _lambdify(q, [a.subs(numbers).subs(zero) for row in self.A for a in row]) if self.A else None
-        X = _lambdify(q, [e.subs(numbers).subs(zero) for e in self.extra]) if self.extra else None
-        n, m = len(self.names), len(self.A)
+    def key(e: Equilibrium) -> tuple:  # type: ignore[type-arg]
+        negative = sum(1 for n, v in e.numeric.items() if n not in angles and v < -1e-12)
+        return (negative, not e.closed_form, sum(1 for v in e.numeric.values() if v < -1e-12))
 
-        def r(x: np.ndarray) -> np.ndarray:
-            f = np.asarray(F(x), dtype=float).ravel()
-            parts = []
-            if A is not None:
-                At = np.asarray(A(x), dtype=float).reshape(m, n).T
-                lam, *_ = np.linalg.lstsq(At, -f, rcond=None)
-                f = f + At @ lam
-            parts.append(f)
-            if X is not None:
-                parts.append(np.asarray(X(x), dtype=float).ravel())
-            return np.concatenate(parts)
-
-        return r
-
-
-def _se(x: object) -> se.Basic:
-    """Our SymEngine or SymPy objects (or numbers) as SymEngine, structurally (no text is parsed)."""
-    if isinstance(x, se.Basic):
-        return x
-    if isinstance(x, sympy.Basic):
-        return sympy2symengine(x)
-    return se.Integer(x) if isinstance(x, int) else se.RealDouble(float(x))  # type: ignore[arg-type]
+    keep: dict[int, Equilibrium] = {}
+    for g in groups:
+        best = min(g, key=key)
+        keep[id(best)] = replace(best, aliases=tuple(dict(x.numeric) for x in g if x is not best))
+    return [keep.get(id(e), e) for e in out if id(e) in keep or e.numeric is None or e.free]
 
 
-def _autonomous(e: se.Basic, t: se.Symbol, where: str) -> None:
-    if t in e.free_symbols:
-        raise EquilibriumError(
-            f"the model depends on t explicitly ({where} contains t), so it has no static equilibrium in "
-            "the sense q̇ = 0 for all t", fix="write the equations in a frame where the motion is steady "
-            "([reference]), or study the motion by simulation")
+def _merge(system: StaticSystem, out: list[Equilibrium], roots: Sequence, numbers: Mapping[se.Basic, float],
+           angles: set[str]) -> list[Equilibrium]:
+    """The closed-form equilibria and the numeric roots, each rest once: a numeric family ("r any") takes
+    the place of the closed-form points on it; a numeric point already given in closed form is dropped."""
+    families = [r for r in roots if r.free]
+    kept = []
+    curves = {id(r): r for r in roots if r.curve is not None}
+    for e in out:
+        on_family = e.numeric is not None and not e.free and any(
+            _same(f.point, {n: e.numeric[n] for n in f.point}, angles) for f in families)
+        if on_family:
+            continue
+        on_curve = [k for k, r in curves.items() if e.numeric is not None and not e.free
+                    and near_curve(r.curve, np.array([e.numeric[n] for n in system.active]))]
+        if on_curve:  # a closed-form point of a curved family stands for it, once
+            if not any(curves[k].family == -1 for k in on_curve):
+                kept.append(replace(e, family=curves[on_curve[0]].family))
+            for k in on_curve:
+                curves[k] = replace(curves[k], family=-1)  # taken: its numeric point is not listed
+            continue
+        kept.append(e)
+    taken = {k for k, r in curves.items() if r.family == -1}
+    roots = [r for r in roots if id(r) not in taken]
+    found = [e.numeric for e in kept if e.numeric is not None and e.exists is not False]
+    for root in roots:
+        point = root.point
+        if not root.free and any(_same(f, point, angles) for f in found):
+            continue
+        full = {**point, **{n: 0.0 for n in root.free}}
+        if system.sticking and not system.holds_by_friction(full, numbers):
+            continue  # the contacts would need more friction than f_s N: it slides away
+        free = tuple(n for n in system.names if n in system.free or n in root.free)
+        vals = {n: point[n] if n in point else se.Symbol(n) for n in system.names}
+        numeric = point if not root.free else None
+        kept.append(Equilibrium(vals, False, numeric=numeric, residual=root.residual, free=free,
+                                family=root.family))
+        found.append(point)
+    return kept
 
 
 def _values(eom: EquationsOfMotion, parameters: Mapping[str, float] | None) -> dict[str, float | None]:
@@ -342,7 +282,7 @@ def _ranges(eom: EquationsOfMotion, ranges: Mapping[str, tuple[float, float]] | 
     return out
 
 
-def _from_closed_form(system: _StaticSystem, branch: Mapping[str, sympy.Basic], branches: Sequence[Mapping],
+def _from_closed_form(system: StaticSystem, branch: Mapping[str, sympy.Basic], branches: Sequence[Mapping],
                       numbers: Mapping[se.Basic, float], angles: set[str], known: bool) -> Equilibrium | None:
     conds: list[sympy.Basic] = []
     for name, v in branch.items():
@@ -353,7 +293,7 @@ def _from_closed_form(system: _StaticSystem, branch: Mapping[str, sympy.Basic], 
     free = tuple(n for n in system.names if n in system.free or n not in branch)
     branch = {n: principal(v) if n in angles else v for n, v in branch.items()}
     plain = {s: sympy.Symbol(s.name) for v in branch.values() for s in v.free_symbols}
-    values: dict[str, se.Basic | float] = {n: _se(v.xreplace(plain)) for n, v in branch.items()}
+    values: dict[str, se.Basic | float] = {n: to_symengine(v.xreplace(plain)) for n, v in branch.items()}
     exists: bool | None = True
     if condition != sympy.true:
         at = condition.xreplace({s: numbers[se.Symbol(s.name)] for s in condition.free_symbols
@@ -362,7 +302,7 @@ def _from_closed_form(system: _StaticSystem, branch: Mapping[str, sympy.Basic], 
     at_values: dict[str, float] = {}
     for n, v in values.items():
         try:
-            x = float(_se(v).subs(numbers))
+            x = float(to_symengine(v).subs(numbers))
         except (RuntimeError, TypeError, ValueError):
             continue  # a parameter without value
         if not math.isfinite(x):  # no real value at these parameters (asin of 2, a division by 0)
@@ -372,7 +312,7 @@ def _from_closed_form(system: _StaticSystem, branch: Mapping[str, sympy.Basic], 
             k = round((_wrap(x) - x) / (2 * math.pi))
             if k:
                 x += 2 * k * math.pi
-                values[n] = _se(v) + 2 * k * se.pi
+                values[n] = to_symengine(v) + 2 * k * se.pi
         at_values[n] = x
     numeric = residual = None
     if known and exists is not False and len(free) == len(system.free):
@@ -386,7 +326,7 @@ def _from_closed_form(system: _StaticSystem, branch: Mapping[str, sympy.Basic], 
                        None if condition == sympy.true else sympy.sstr(condition), exists, numeric, residual, free)
 
 
-def _within_friction_cone(system: _StaticSystem, eq: Equilibrium, branch: Mapping[str, sympy.Basic],
+def _within_friction_cone(system: StaticSystem, eq: Equilibrium, branch: Mapping[str, sympy.Basic],
                           numbers: Mapping[se.Basic, float]) -> Equilibrium:
     """Add |T|/N ≤ f_s, Coulomb's condition of adherence, to a closed-form rest with sticking contacts.
 
@@ -444,16 +384,10 @@ def _duplicate(a: Equilibrium, b: Equilibrium, angles: set[str]) -> bool:
     if a.free != b.free or a.condition != b.condition:
         return False
     for n, v in a.values.items():
-        d = se.expand(_se(v) - _se(b.values[n]))
+        d = se.expand(to_symengine(v) - to_symengine(b.values[n]))
         if d != 0 and not (n in angles and d.is_number and abs(math.remainder(float(d), 2 * math.pi)) < 1e-12):
             return False
     return True
-
-
-def _wrap(x: float) -> float:
-    """x modulo 2π in (−π, π]."""
-    y = math.remainder(x, 2 * math.pi)
-    return math.pi if y <= -math.pi + 1e-12 else y
 
 
 def _in_ranges(point: Mapping[str, float], ranges: Mapping[str, tuple[float, float]], angles: set[str]) -> bool:
@@ -463,44 +397,3 @@ def _in_ranges(point: Mapping[str, float], ranges: Mapping[str, tuple[float, flo
             if not (a - 1e-12 * (1 + abs(a)) <= x <= b + 1e-12 * (1 + abs(b))):
                 return False
     return True
-
-
-def _same(a: Mapping[str, float], b: Mapping[str, float], angles: set[str]) -> bool:
-    for n in a:
-        d = a[n] - b.get(n, math.nan)
-        if n in angles:
-            d = math.remainder(d, 2 * math.pi)
-        if not abs(d) <= 1e-6 * (1 + abs(a[n])):
-            return False
-    return True
-
-
-def _search(system: _StaticSystem, numbers: Mapping[se.Basic, float], ranges: Mapping[str, tuple[float, float]],
-            angles: set[str]) -> list[tuple[dict[str, float], float]]:
-    """All roots of the static system in the ranges, from a grid of starting points."""
-    names = system.active
-    if not names:
-        return []
-    box = [(-math.pi, math.pi) if n in angles and n not in ranges else ranges[n] for n in names]
-    d = len(names)
-    k = max(2, int(round(STARTS ** (1 / d))))
-    rng = np.random.default_rng(0)
-    axes = [np.linspace(a, b, k, endpoint=False) + (b - a) / (2 * k) for a, b in box]
-    starts = [np.array(p) for p in itertools.product(*axes)] if k ** d <= 4 * STARTS else \
-        [np.array([rng.uniform(a, b) for a, b in box]) for _ in range(STARTS)]
-    r = system.residual_function(numbers)
-    scale = float(np.median([np.linalg.norm(r(x)) for x in starts[:: max(1, len(starts) // 30)]])) or 1.0
-    found: list[tuple[dict[str, float], float]] = []
-    for x0 in starts:
-        try:
-            sol = optimize.least_squares(r, x0, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15)
-        except (ValueError, np.linalg.LinAlgError):
-            continue
-        res = float(np.max(np.abs(r(sol.x))))
-        if not np.isfinite(res) or np.linalg.norm(r(sol.x)) > TOLERANCE * scale:
-            continue
-        point = {n: (_wrap(x) if n in angles else float(x)) for n, x in zip(names, sol.x)}
-        if _in_ranges(point, ranges, angles) and not any(_same(p, point, angles) for p, _ in found):
-            found.append((point, res))
-    found.sort(key=lambda pr: tuple(pr[0][n] for n in names))
-    return found

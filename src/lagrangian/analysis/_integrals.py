@@ -9,6 +9,10 @@ From L(q_i):  d/dt(∂T/∂q̇_i) = ∂T/∂q_i − ∂U/∂q_i + Q_i(nc).  So
   L does not depend on t and the non-conservative efforts do no work, h is constant.
   If T is homogeneous quadratic in q̇ (T = ½ q̇ᵀ M q̇) then h = T + U, the energy;
   otherwise h = T2 − T0 + U, the Painlevé–Jacobi integral.
+* a generalized potential U_g(q, q̇) = U0 + Σ a_j q̇_j (the Lorentz force, `dynamics._forces`)
+  belongs in L = T − U − U_g, its Q_i leaving Q(nc): h = T2 − T0 + U + U0 (the part linear in
+  the rates does no work), and a coordinate absent from that L, with no other effort on it,
+  keeps its canonical momentum ∂L/∂q̇_i = ∂T/∂q̇_i − a_i (Goldstein, §2.6 and §8.2).
 
 "≡ 0" is decided by a randomized high-precision identity test (`_identity`), which
 does not miss zeros that only appear after simplification.
@@ -125,7 +129,8 @@ def input_regime(eom: EquationsOfMotion, inputs: Mapping[str, str] | None) -> di
 def _with_inputs(eom: EquationsOfMotion, regime: Mapping[str, str]) -> tuple[FirstIntegral, ...]:
     off = [u for u, what in regime.items() if what == "off"]
     varying = {se.Symbol(u) for u, what in regime.items() if what == "varying"}
-    view = inputs_off(eom, off)
+    held = [u for u, what in regime.items() if what == "constant"]
+    view = inputs_held(inputs_off(eom, off), held)
     found = _first_integrals(view)
     if varying:
         in_energy = (view.T.free_symbols | view.U.free_symbols) & varying
@@ -168,6 +173,29 @@ def inputs_off(eom: EquationsOfMotion, off: list[str] | tuple[str, ...]) -> Equa
                                M=tuple(tuple(sub(e) for e in row) for row in eom.M), recursive=None)
 
 
+def inputs_held(eom: EquationsOfMotion, held: list[str] | tuple[str, ...]) -> EquationsOfMotion:
+    """``eom`` with the loads driven only by the inputs ``held`` (constant along the motion) taken with
+    the potential they then derive from (`LoadForces.held`, −τ θ of a constant torque): their Q_i move from
+    Q_nc to −∂U/∂q_i, so the energy integral T + U − τ θ is found.  ``eom`` itself when none applies."""
+    constant = {se.Symbol(u) for u in held}
+    inputs = {p.symbol for p in eom.model.parameters if p.input}
+    if not constant:
+        return eom
+    moved = [k for k, f in enumerate(eom.loads) if f.potential is None and f.held is not None
+             and {s for q in f.Q for s in q.free_symbols} & inputs <= constant]
+    if not moved:
+        return eom
+    loads = list(eom.loads)
+    for k in moved:
+        loads[k] = dataclasses.replace(loads[k], potential=loads[k].held)
+    kin = eom.kinematics
+    equations = tuple(dataclasses.replace(
+        eq, dU_dq=eq.dU_dq + se.Add(*(eom.loads[k].held.diff(q) for k in moved)),
+        Q_nc=eq.Q_nc - se.Add(*(eom.loads[k].Q[i] for k in moved)))
+        for i, (eq, q) in enumerate(zip(eom.equations, kin.q)))
+    return dataclasses.replace(eom, loads=tuple(loads), equations=equations, recursive=None)
+
+
 def _first_integrals(eom: EquationsOfMotion) -> tuple[FirstIntegral, ...]:
     kin = eom.kinematics
     out: list[FirstIntegral] = []
@@ -185,25 +213,43 @@ def _first_integrals(eom: EquationsOfMotion) -> tuple[FirstIntegral, ...]:
         out.append(FirstIntegral(coordinate.momentum or f"p_{coordinate.name}", "momentum", eq.dT_dqd, why,
                                  coordinate.name))
 
-    L = eom.T - eom.U
-    power_nc = se.Add(*(q * qd for q, qd in zip(eom.Q_nc, kin.qd)))
+    generalized = [f for f in eom.loads if getattr(f, "generalized", None) is not None]
+    Ug = se.Add(*(f.generalized for f in generalized))  # U_g(q, q̇, t) of the generalized potentials
+    Q_other = [se.Add(q, *(-f.Q[i] for f in generalized)) for i, q in enumerate(eom.Q_nc)]
+    if generalized:  # canonical momenta: ∂(T − U − U_g)/∂q_i + Q_i(other) ≡ 0
+        taken = {fi.coordinate for fi in out}
+        tests = [eq.dT_dq - eq.dU_dq - Ug.diff(q) + Qo for eq, q, Qo in zip(eom.equations, kin.q, Q_other)]
+        for coordinate, eq, qd, ok in zip(eom.model.coordinates, eom.equations, kin.qd, are_zero(tests)):
+            if ok and coordinate.name not in taken:
+                c = coordinate.name
+                out.append(FirstIntegral(coordinate.momentum or f"p_{c}", "momentum", eq.dT_dqd - Ug.diff(qd),
+                                         f"{c} is cyclic in L = T − U − U_g (U_g the generalized potential) and "
+                                         f"no other effort works on it: the canonical momentum ∂L/∂{c}_dot = "
+                                         f"∂T/∂{c}_dot − ∂U_g/∂{c}_dot is constant", c))
+
+    L = eom.T - eom.U - Ug
+    power_nc = se.Add(*(q * qd for q, qd in zip(Q_other, kin.qd)))
     T2 = se.Rational(1, 2) * se.Add(*(eom.M[i][j] * kin.qd[i] * kin.qd[j]
                                        for i in range(n) for j in range(n) if eom.M[i][j] != 0))
     explicit_t, no_work, homogeneous = are_zero([L.diff(kin.t), power_nc, eom.T - T2])
+    # U + U0: the potential energy, with the rate-free part U0 = U_g − Σ q̇ ∂U_g/∂q̇ of the generalized potentials
+    U = eom.U + se.expand(Ug - se.Add(*(qd * Ug.diff(qd) for qd in kin.qd))) if generalized else eom.U
     if explicit_t and no_work:
         condition = ("L does not depend on t explicitly" +
                      (" and the system is conservative" if eom.conservative
                       else " and the non-conservative efforts do no work"))
+        if generalized:
+            condition += " (the part of the generalized potential linear in the rates does none)"
         if homogeneous and rotating_frame(eom):  # seed, Remarque 3: energy relative to R, U with entrainment
-            out.append(FirstIntegral("h", "jacobi", eom.T + eom.U,
+            out.append(FirstIntegral("h", "jacobi", eom.T + U,
                                      f"Jacobi integral T(Σ/R) + U = cste in the rotating frame R, U including the "
                                      f"potential of the entrainment inertial forces: {condition}"))
         elif homogeneous:
-            out.append(FirstIntegral("E", "energy", eom.T + eom.U,
+            out.append(FirstIntegral("E", "energy", eom.T + U,
                                      f"energy integral T + U = cste: {condition}, T homogeneous quadratic in q̇"))
         else:
             T0 = eom.T.subs({qd: 0 for qd in kin.qd})
-            out.append(FirstIntegral("h", "jacobi", T2 - T0 + eom.U,
+            out.append(FirstIntegral("h", "jacobi", T2 - T0 + U,
                                      f"Painlevé–Jacobi integral T2 − T0 + U = cste: {condition}, "
                                      "T not homogeneous in q̇"))
     # Reactions of complementary constraints may work on q_i or on the motion (docs/constraints.md).

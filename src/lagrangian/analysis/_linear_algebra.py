@@ -15,7 +15,7 @@ from symengine.lib.symengine_wrapper import sympy2symengine
 
 from .._big_numbers import has_big_numbers
 
-__all__ = ["RANK_RTOL", "TIDY_MAX_CHARS", "choose", "solve", "jacobian", "tidy", "sub", "stack"]
+__all__ = ["RANK_RTOL", "TIDY_MAX_CHARS", "choose", "jacobian", "solve", "stack", "sub", "tidy"]
 
 #: Relative size below which a singular value counts as zero when columns are chosen.
 RANK_RTOL = 1e-9
@@ -66,6 +66,10 @@ def jacobian(exprs: Sequence[se.Basic], variables: Sequence[se.Symbol], subs: Ma
 #: Symbolic entries up to this many characters are put over a common denominator and factored
 #: (SymPy's `cancel` and `factor`: −g (m1 + m2)/(l1 m1) rather than the LU's nested fractions).
 TIDY_MAX_CHARS = 1500
+#: Entries longer than this are left as they are: expanding a nested fraction of that size (the
+#: symbolic LU of the bicycle's reduced mass matrix, 10⁵ characters an entry) multiplies its
+#: terms out without bound (minutes and gigabytes) to give an entry nobody reads.
+EXPAND_MAX_CHARS = 5000
 
 
 def tidy(m: se.DenseMatrix) -> se.DenseMatrix:
@@ -76,6 +80,9 @@ def tidy(m: se.DenseMatrix) -> se.DenseMatrix:
         for j in range(m.cols):
             e = m[i, j]
             best, size = e, len(str(e))
+            if size > EXPAND_MAX_CHARS:
+                row.append(e)
+                continue
             x = se.expand(e)
             if len(str(x)) <= size:
                 best, size = x, len(str(x))

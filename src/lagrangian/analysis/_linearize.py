@@ -44,12 +44,17 @@ import symengine as se
 from .._identity import are_zero
 from ..dynamics import EquationsOfMotion
 from ..model._expr import ExpressionError, parse_expression
-from ._linear_algebra import RANK_RTOL, choose as _choose, jacobian as _jacobian, solve as _solve, stack as _stack
-from ._linear_algebra import sub as _sub, tidy as _tidy
+from ._linear_algebra import RANK_RTOL
+from ._linear_algebra import choose as _choose
+from ._linear_algebra import jacobian as _jacobian
+from ._linear_algebra import solve as _solve
+from ._linear_algebra import stack as _stack
+from ._linear_algebra import sub as _sub
+from ._linear_algebra import tidy as _tidy
 from ._linear_model import LinearizationError, LinearModel, SecondOrderForm, _is_structural_zero
 from ._linear_model import to_numpy as _to_numpy
 
-__all__ = ["LinearizationError", "SecondOrderForm", "LinearModel", "linearize", "holding_inputs", "POINT_RTOL"]
+__all__ = ["POINT_RTOL", "LinearModel", "LinearizationError", "SecondOrderForm", "holding_inputs", "linearize"]
 
 #: A point is an equilibrium (steady motion) when its residual force is below this fraction
 #: of the forces' scale: `--at theta=3.14159` is the inverted pendulum, within 3e-6.
@@ -187,10 +192,12 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
     everything = [e for row in eom.M for e in row] + list(eom.F)
     for r in rows:
         everything += list(r.coefficients) + [r.b]
-    if any(t in e.free_symbols for e in everything):
+    # Checked once the parameters have their values: F0 cos(ω t) with F0 = 0 leaves no t.
+    if any(t in e.subs(psubs).free_symbols for e in everything if t in e.free_symbols):
         raise LinearizationError("the equations depend on the time t explicitly (a prescribed motion or a "
                                  "time-dependent load): there is no equilibrium or steady motion to linearize about.",
-                                 fix="linearize a model whose equations do not depend on t")
+                                 fix="linearize a model whose equations do not depend on t, or give the parameters "
+                                     "that switch the time dependence off their value (e.g. --set F0=0)")
     for u in u_syms:
         if not any(u in e.free_symbols for e in eom.F):
             raise LinearizationError(f"no load uses the input `{u}`: its column of B would be zero.",

@@ -35,11 +35,10 @@ from scipy import linalg, optimize
 
 from ._linear_model import LinearizationError, LinearModel
 from ._linear_model import to_numpy as _to_numpy
+from ._zero_modes import CLUSTER_RTOL, ZeroStructure, ignorable_columns, split_off, zero_structure
 
 __all__ = ["Mode", "Modes", "Stability", "StabilityChange", "Sweep", "modes", "stability", "sweep"]
 
-#: Relative size (to the largest |A| entry) below which an entry of A counts as zero.
-ZERO_RTOL = 1e-12
 #: Relative size (to the spectral radius) below which a real part counts as zero.
 AXIS_RTOL = 1e-9
 
@@ -71,6 +70,7 @@ class Modes:
     neutral: tuple[tuple[str, str], ...]  # (state variable or "momentum", why)
     pulsations: tuple[float, ...] | None  # ω from K φ = ω² M φ (conservative systems), ascending
     shapes: tuple[dict[str, float], ...] | None  # the matching φ, M-normalised
+    zero: ZeroStructure | None = None  # the eigenvalue 0: its Jordan blocks, and whether it makes the motion grow
 
     @property
     def eigenvalues(self) -> np.ndarray:
@@ -88,25 +88,25 @@ class Stability:
 
 
 def _reduce(A: np.ndarray, state: Sequence[str], lin: LinearModel) -> tuple[list[int], list[tuple[str, str]]]:
-    """Indices of the essential state, and the neutral variables split off with the reason."""
-    keep = list(range(A.shape[0]))
-    neutral: list[tuple[str, str]] = []
-    tol = ZERO_RTOL * max(1.0, float(np.abs(A).max(initial=0.0)))
-    changed = True
-    while changed:
-        changed = False
-        for i in list(keep):
-            sub = A[np.ix_(keep, keep)]
-            k = keep.index(i)
-            if not np.any(np.abs(sub[:, k]) > tol):
-                neutral.append((state[i], "does not act on the motion (eigenvalue 0)" if state[i].endswith("_dot")
-                                else "ignorable: a shift of it is another steady motion (eigenvalue 0)"))
-            elif not np.any(np.abs(sub[k, :]) > tol):
-                neutral.append((state[i], "conserved to first order (eigenvalue 0)"))
-            else:
-                continue
-            keep.remove(i)
-            changed = True
+    """Indices of the essential state, and the neutral variables split off with the reason.
+
+    The ignorable coordinates first (`_zero_modes.ignorable_columns`: a shift of one is another
+    steady motion), then, among the rest, variables whose row (conserved to first order) or column
+    (acting on none of the others) is zero: each carries an eigenvalue 0, which is neutral only when
+    0 is not defective (`_zero_modes.zero_structure`, checked by `_essential`).
+    """
+    ncoord = len(lin.coordinates)
+    ign = ignorable_columns(A, ncoord)
+    neutral = [(state[i], "ignorable: a shift of it is another steady motion (eigenvalue 0)") for i in ign]
+    keep, split = split_off(A, [i for i in range(A.shape[0]) if i not in ign])
+    for i, how in split:
+        if how == "row":
+            why = "conserved to first order (eigenvalue 0)"
+        elif i >= ncoord:
+            why = "does not act on the motion (eigenvalue 0)"
+        else:
+            why = "acts on none of the other variables left (eigenvalue 0)"
+        neutral.append((state[i], why))
     return keep, neutral
 
 
@@ -117,7 +117,8 @@ def _momenta(lin: LinearModel, keep: Sequence[int], neutral: Sequence[tuple[str,
     return sum(1 for c in lin.ignorable if c in gone and c + "_dot" in state and state.index(c + "_dot") in keep)
 
 
-def _essential(lin: LinearModel, A: np.ndarray) -> tuple[list[int], list[tuple[str, str]], np.ndarray]:
+def _essential(lin: LinearModel, A: np.ndarray) -> tuple[list[int], list[tuple[str, str]], np.ndarray,
+                                                         ZeroStructure]:
     keep, neutral = _reduce(A, lin.state, lin)
     lam = np.linalg.eigvals(A[np.ix_(keep, keep)]) if keep else np.zeros(0, complex)
     zeros = _momenta(lin, keep, neutral)
@@ -128,7 +129,14 @@ def _essential(lin: LinearModel, A: np.ndarray) -> tuple[list[int], list[tuple[s
         if len(small) == zeros:
             lam = np.delete(lam, small)
             neutral = neutral + [("momentum", "the conserved momentum of an ignorable coordinate (eigenvalue 0)")] * zeros
-    return keep, neutral, lam
+    zero = zero_structure(A, lin.state, len(lin.coordinates))
+    if any(b >= 2 for b in zero.blocks):  # a Jordan block of 0 split by rounding into ±1e-8: those are 0
+        lam = np.where(np.abs(lam) <= CLUSTER_RTOL * max(1.0, float(np.abs(A).max(initial=0.0))), 0.0, lam)
+    if zero.secular:  # the variables split off after the ignorable ones carry a defective 0: not neutral
+        ign = set(ignorable_columns(A, len(lin.coordinates)))
+        neutral = [(x, why) if x == "momentum" or lin.state.index(x) in ign else
+                   (x, "eigenvalue 0 of a Jordan chain: not neutral (secular growth)") for x, why in neutral]
+    return keep, neutral, lam, zero
 
 
 def _sorted(lam: np.ndarray) -> np.ndarray:
@@ -138,7 +146,7 @@ def _sorted(lam: np.ndarray) -> np.ndarray:
 def modes(lin: LinearModel, **values: float) -> Modes:
     """Eigenvalues, frequencies, damping ratios and mode shapes of the essential motion."""
     A, _ = lin.numeric(**values)
-    keep, neutral, lam = _essential(lin, A)
+    keep, neutral, lam, zero = _essential(lin, A)
     state = lin.state
     essential = tuple(state[i] for i in keep)
     out = []
@@ -155,8 +163,8 @@ def modes(lin: LinearModel, **values: float) -> Modes:
             mag = abs(lamk)
             out.append(Mode(lamk, mag, abs(lamk.imag), 2 * np.pi / abs(lamk.imag) if lamk.imag else None,
                             -lamk.real / mag if mag else 0.0, {essential[i]: complex(v[i]) for i in range(len(keep))}))
-    pulsations, shapes = _conservative(lin, values, essential)
-    return Modes(state, essential, tuple(out), tuple(neutral), pulsations, shapes)
+    pulsations, shapes = _conservative(lin, values, lam)
+    return Modes(state, essential, tuple(out), tuple(neutral), pulsations, shapes, zero)
 
 
 def _second_order_numeric(lin: LinearModel, values: dict, essential: Sequence[str]):  # type: ignore[no-untyped-def]
@@ -174,25 +182,47 @@ def _second_order_numeric(lin: LinearModel, values: dict, essential: Sequence[st
     return (E, *mats)
 
 
-def _conservative(lin: LinearModel, values: dict, essential: Sequence[str]):  # type: ignore[no-untyped-def]
-    so = _second_order_numeric(lin, values, essential)
-    if so is None:
+def _conservative(lin: LinearModel, values: dict, lam: np.ndarray):  # type: ignore[no-untyped-def]
+    """The pulsations ω > 0 with det(K − ω² M) = 0 and their shapes φ, for a conservative linearization
+    (D = G = N = 0, K ≥ 0); else (None, None).
+
+    The generalized eigenproblem K φ = ω² M φ is solved on every coordinate of the second-order form,
+    the ignorable ones included: holding them (restricting M to the others) would give the
+    pulsations with the cart held, √(g/l), not those of the motion, √((mc + m) g/(mc l)).  The zero
+    roots are the neutral directions (a shift of an ignorable coordinate) and are left out.  The
+    pulsations are returned only when ±iω are the essential eigenvalues of A (the same motion, read
+    two ways), so that the text can never disagree with the eigenvalues.
+    """
+    form = lin.second_order
+    if form is None or not form.coordinates:
         return None, None
-    E, M, D, G, K, N = so
+    subs = lin._values(values)
+    M, D, G, K, N = (_to_numpy(m, subs) for m in (form.M, form.D, form.G, form.K, form.N))
     scale = max(1.0, float(np.abs(K).max(initial=0.0)), float(np.abs(M).max(initial=0.0)))
     if any(np.abs(x).max(initial=0.0) > 1e-10 * scale for x in (D, G, N)):
         return None, None
-    w2, phi = linalg.eigh(K, M)
-    if np.any(w2 < -1e-12 * scale):
+    try:
+        w2, phi = linalg.eigh(K, M)
+    except (linalg.LinAlgError, ValueError):  # M not positive definite at the point
         return None, None
-    return tuple(float(np.sqrt(max(x, 0.0))) for x in w2), tuple({c: float(phi[i, k]) for i, c in enumerate(E)}
-                                                                for k in range(len(E)))
+    spread = max(1.0, float(np.abs(w2).max(initial=0.0)))
+    if np.any(w2 < -1e-10 * spread):
+        return None, None
+    kept = [k for k in range(len(w2)) if w2[k] > 1e-10 * spread]
+    omegas = np.sqrt(w2[kept])
+    radius = max(1.0, float(np.abs(lam).max(initial=0.0)))
+    nonzero = np.sort(np.abs(lam[np.abs(lam) > 1e-7 * radius].imag))
+    if np.any(np.abs(lam[np.abs(lam) > 1e-7 * radius].real) > 1e-7 * radius) or \
+            not np.allclose(nonzero, np.sort(np.repeat(omegas, 2)), rtol=1e-6, atol=1e-9 * radius):
+        return None, None  # not ±iω: the second-order form and A do not describe the same motion here
+    E = form.coordinates
+    return tuple(float(w) for w in omegas), tuple({c: float(phi[i, k]) for i, c in enumerate(E)} for k in kept)
 
 
 def stability(lin: LinearModel, **values: float) -> Stability:
     """The verdict on the linearized motion, with the theorem or the eigenvalue that decides it."""
     A, _ = lin.numeric(**values)
-    keep, neutral, lam = _essential(lin, A)
+    keep, neutral, lam, zero = _essential(lin, A)
     lam = _sorted(lam)
     note = ""
     if neutral:
@@ -202,6 +232,8 @@ def stability(lin: LinearModel, **values: float) -> Stability:
         if moms:
             parts.append(f"{moms} conserved {'momenta' if moms > 1 else 'momentum'} (eigenvalue 0)")
         note = " Set aside: " + "; ".join(parts) + "."
+    if zero.secular and not (lam.size and float(lam.real.max()) > AXIS_RTOL * max(1.0, float(np.abs(lam).max()))):
+        return Stability(False, "unstable (secular growth)", _secular(zero), lam)
     if lam.size == 0:
         return Stability(None, "marginal", "every direction is neutral: the linearization does not decide." + note, lam)
     radius = max(1.0, float(np.abs(lam).max()))
@@ -211,7 +243,7 @@ def stability(lin: LinearModel, **values: float) -> Stability:
     if worst.real > tol:
         why = f"the eigenvalue {_c(worst)} has a positive real part, so small motions grow (Lyapunov's first method)."
         if so is not None:
-            E, M, D, G, K, N = so
+            _, _, D, G, K, N = so
             kmin = float(np.linalg.eigvalsh((K + K.T) / 2).min())
             small = max(1e-10 * float(np.abs(K).max(initial=1.0)), 0.0)
             if kmin < -small and np.abs(D).max(initial=0) <= small and np.abs(N).max(initial=0) <= small:
@@ -230,6 +262,14 @@ def stability(lin: LinearModel, **values: float) -> Stability:
         kmin = float(np.linalg.eigvalsh((K + K.T) / 2).min())
         no_D, no_N, no_G = (float(np.abs(x).max(initial=0.0)) <= small for x in (D, N, G))
         if no_D and no_N and kmin > small:
+            if no_G and any(n != "momentum" and not n.endswith("_dot") for n, _ in neutral):
+                names = ", ".join(E)
+                return Stability(True, "stable",
+                                 f"K = ∂²U/∂q², restricted to the coordinates left once the neutral ones are set aside "
+                                 f"({names}), is positive definite: U_P has a strict minimum in them, and the "
+                                 "equilibrium is stable in them (Lagrange–Dirichlet), also for the nonlinear motion; "
+                                 "the neutral directions may drift (a shift along one is another equilibrium)." + note,
+                                 lam)
             if no_G:
                 return Stability(True, "stable",
                                  "K = ∂²U/∂q² is positive definite: U_P has a strict minimum at the equilibrium, "
@@ -257,6 +297,16 @@ def stability(lin: LinearModel, **values: float) -> Stability:
     return Stability(None, "marginal",
                      "an eigenvalue on the imaginary axis is repeated or zero: the linearization does not decide "
                      "(marginal case)." + note, lam)
+
+
+def _secular(zero: ZeroStructure) -> str:
+    """Why a defective eigenvalue 0 makes the linearized motion grow."""
+    size = max(zero.blocks)
+    power = "t" if zero.growth == 1 else f"t^{zero.growth}"
+    return (f"the eigenvalue 0 is defective: once the ignorable coordinates are set aside, A has a Jordan block "
+            f"of size {size} for it (blocks {', '.join(map(str, zero.blocks))}), so a perturbation of {zero.start} "
+            f"makes {zero.end} grow like {power}. A shift along such a direction is not another steady motion, and "
+            "the linearized motion is unbounded although no eigenvalue has a positive real part (secular growth).")
 
 
 def _simple_on_axis(lam: np.ndarray, tol: float) -> bool:
@@ -397,13 +447,13 @@ def sweep(lin: LinearModel, name: str, values: Sequence[float], **fixed: float) 
             if sides[k] * sides[k + 1] < 0:  # through the axis: Brent on the spectral abscissa
                 x = optimize.brentq(abscissa, a, b, xtol=1e-14, rtol=4 * np.finfo(float).eps, maxiter=200)
             else:  # onto or off the axis (a conservative system losing its minimum): bisection on the side
-                x = _bisect(lambda v: side(abscissa(v)) == sides[k], a, b)
+                x = _bisect(lambda v, s=sides[k]: side(abscissa(v)) == s, a, b)
             before, after = sides[k], sides[k + 1]
             kind = ("stability lost" if after > 0 else "stability gained" if before > 0
                     else "becomes asymptotically stable" if after < 0 else "asymptotic stability lost")
             changes.append(StabilityChange(x, kind, essential(x)))
         if counts[k] != counts[k + 1]:
-            x = _bisect(lambda v: complex_count(v) == counts[k], a, b)
+            x = _bisect(lambda v, c=counts[k]: complex_count(v) == c, a, b)
             kind = "eigenvalues become complex" if counts[k + 1] > counts[k] else "eigenvalues become real"
             changes.append(StabilityChange(x, kind, essential(x)))
     changes.sort(key=lambda c: c.value)

@@ -16,7 +16,7 @@ import symengine as se
 
 from ..output import Notation
 
-__all__ = ["render_linearization", "render_modes", "render_sweep", "number", "eigenvalue"]
+__all__ = ["eigenvalue", "number", "render_linearization", "render_modes", "render_sweep"]
 
 #: Entries of a printed matrix wider than this are listed one per line instead.
 CELL_MAX = 40
@@ -132,10 +132,17 @@ def render_linearization(lin: Any, stability: Any, modes: Any) -> str:
                      f"`lagrangian modes ... --sweep {lin.symbols[0]}=a:b:step`).")
         return "\n".join(lines) + "\n"
     neutral = modes is not None and bool(modes.neutral)
-    lines.append(("Eigenvalues of A, the neutral ones (0) set aside: " if neutral else "Eigenvalues of A: ")
-                 + _eigen_list(np.asarray(stability.eigenvalues)))
+    secular = modes is not None and modes.zero is not None and modes.zero.secular
+    lam = np.asarray(stability.eigenvalues)
+    if secular:
+        lines.append("Eigenvalues of A: " + (_eigen_list(lam) + ", and " if lam.size else "")
+                     + f"0, defective (Jordan blocks of sizes {', '.join(map(str, modes.zero.blocks))} once "
+                       "the ignorable coordinates are set aside)")
+    else:
+        lines.append(("Eigenvalues of A, the neutral ones (0) set aside: " if neutral else "Eigenvalues of A: ")
+                     + _eigen_list(lam))
     if modes is not None and modes.neutral:
-        lines.append("  set aside (eigenvalue 0):")
+        lines.append("  set aside (eigenvalue 0):" if not secular else "  eigenvalue 0:")
         lines += [f"    {n.symbol(x) if x != 'momentum' else 'a momentum'}: {why}" for x, why in modes.neutral]
     if modes is not None and modes.pulsations:
         lines.append("Pulsations (K φ = ω² M φ): " + ", ".join(f"ω{_sub(k)} = {number(w)} rad/s"
@@ -189,12 +196,14 @@ def render_modes(lin: Any, stability: Any, modes: Any) -> str:
         lines.append("Values: " + ", ".join(f"{n.symbol(k)} = {number(v)}" for k, v in lin.values.items()))
     lines += [f"State x = {_vector(n, lin.state)}; essential motion: {_vector(n, modes.essential)}", ""]
     if modes.neutral:
-        lines.append("Set aside (eigenvalue 0):")
+        lines.append("Set aside (eigenvalue 0):" if not (modes.zero is not None and modes.zero.secular)
+                     else "Eigenvalue 0 (defective: see the verdict):")
         lines += [f"  {n.symbol(x) if x != 'momentum' else 'a momentum'}: {why}" for x, why in modes.neutral]
         lines.append("")
     lines.append("Eigenvalues λ, natural frequency ω = |λ|, damping ratio ζ = −Re λ/|λ|, period T = 2π/|Im λ|:")
     if not modes.modes:
-        lines.append("  none: every direction is neutral")
+        lines.append("  none but 0 (defective)" if modes.zero is not None and modes.zero.secular
+                     else "  none: every direction is neutral")
     seen: list[complex] = []
     k = 0
     for mode in modes.modes:

@@ -5,6 +5,17 @@ P*(effort) = Σ_i Q_i q_i*  with the virtual velocity field V*(P) = Σ ∂OP/∂
     couple C on S (−C on S'): Q_i = C · (∂Ω(S/R0)/∂q̇_i − ∂Ω(S'/R0)/∂q̇_i), S and S' bodies or frames
     gravity on S:            Q_i = m g · ∂OG/∂q_i
     spring, damper A–B:      Q_i = f · ∂AB/∂q_i with f the force on B along AB
+    potential U(q, t):       Q_i = −∂U/∂q_i
+    potential U(q, q̇, t):   Q_i = d/dt(∂U/∂q̇_i) − ∂U/∂q_i   (a generalized potential, affine in q̇)
+
+A *generalized* (velocity-dependent) potential U = U0(q, t) + Σ_j a_j(q, t) q̇_j gives, from
+the Lagrangian T − U, Q_i = Σ_j (∂a_i/∂q_j − ∂a_j/∂q_i) q̇_j + ∂a_i/∂t − ∂U0/∂q_i (Goldstein,
+*Classical Mechanics*, §1.5): the Lorentz force of a charge, U = qc (V − A·v), and the
+Coriolis inertial force, U = −m Ω·(O'P ∧ V(P/R)), are of that form.  Its rate part is
+gyroscopic (no power when a and U0 do not depend on t), so the load is not a potential energy
+U_P(q) of Remarque 2: its Q_i are non-conservative, and its U is kept as ``generalized``
+(`first_integrals` puts it in L = T − U_P − U).  A U whose ∂U/∂q̇ still holds rates would
+put q̈ in Q: the model reader refuses it (`lagrangian.model._assemble`).
 
 A load is *conservative* when its Q_i are −∂U/∂q_i for some U(q, t); this is
 detected, not declared: each load proposes the potential of its physics (gravity
@@ -54,6 +65,13 @@ class LoadForces:
     virtual_power: se.Basic  # Σ Q_i q_i*
     potential: se.Basic | None  # U with Q_i = −∂U/∂q_i, or None when not conservative
     note: str
+    #: A generalized potential U(q, q̇, t), affine in the rates, with Q_i = d/dt(∂U/∂q̇_i) − ∂U/∂q_i
+    #: (then ``potential`` is None: its Q_i are in Q_nc); None for every other load.
+    generalized: se.Basic | None = None
+    #: For a load driven by declared inputs (then ``potential`` is None): the potential it derives from
+    #: while those inputs are held constant (−τ θ of a motor's torque τ), for the first integrals of a
+    #: run that holds them (`analysis.first_integrals` with ``inputs={"tau": "constant"}``).
+    held: se.Basic | None = None
 
 
 def _dot_partials(kin: Kinematics, force: Vector, point: str) -> tuple[se.Basic, ...]:
@@ -131,7 +149,14 @@ def _q_of(kin: Kinematics, load: Load) -> tuple[tuple[se.Basic, ...], se.Basic |
         factor = -load.coefficient * rate / dd
         return tuple(factor * x for x in d_rel), None, f"force c ℓ̇ along {a}{b}, opposing the elongation rate"
     if isinstance(load, Potential):
-        return tuple(-load.energy.diff(q) for q in kin.q), load.energy, "Q_i = −∂U/∂q_i"
+        U = load.energy
+        if not any(qd in U.free_symbols for qd in kin.qd):
+            return tuple(-U.diff(q) for q in kin.q), U, "Q_i = −∂U/∂q_i"
+        # d/dt(∂U/∂q̇_i) with ∂U/∂q̇_i = a_i(q, t): Σ_j ∂a_i/∂q_j q̇_j + ∂a_i/∂t (no q̈: U is affine in q̇)
+        a = [U.diff(qd) for qd in kin.qd]
+        Q = tuple(se.Add(*[ai.diff(q) * qd for q, qd in zip(kin.q, kin.qd)], ai.diff(kin.t)) - U.diff(q)
+                  for ai, q in zip(a, kin.q))
+        return Q, None, "Q_i = d/dt(∂U/∂q̇_i) − ∂U/∂q_i (a generalized potential, depending on the rates)"
     if isinstance(load, GeneralizedForce):
         comps = dict(load.components)
         names = [c.name for c in kin.model.coordinates]
@@ -203,9 +228,12 @@ def generalized_forces(kin: Kinematics, assumptions: Assumptions | None = None, 
                 potential = None
         if potential is not None and potential.free_symbols & set(kin.qd):
             potential = None
+        held = None
         if potential is not None and any(set(x.free_symbols) & inputs for x in Q):
-            potential = None  # driven by an input u(t): a given non-conservative effort
+            held, potential = potential, None  # driven by an input u(t): a given non-conservative effort
         power = sum_of([q * s for q, s in zip(Q, kin.q_star) if type(q) is not _ZERO_TYPE])
-        out.append(LoadForces(load.name, type(load).__name__.lower(), Q, power, potential, note))
+        generalized = load.energy if isinstance(load, Potential) and load.energy.free_symbols & set(kin.qd) else None
+        kind = "generalized potential" if generalized is not None else type(load).__name__.lower()
+        out.append(LoadForces(load.name, kind, Q, power, potential, note, generalized, held))
     return tuple(out)
 

@@ -704,7 +704,21 @@ class Assembler:
                     out.append(Damper(raw.name, (a, b),
                                       self.expr(raw, "the coefficient", d["coefficient"], key="coefficient")))
             elif kind == "potential":
-                out.append(Potential(raw.name, self.expr(raw, "the potential", d["energy"], key="energy")))
+                energy = self.expr(raw, "the potential", d["energy"], key="energy")
+                # A generalized potential U(q, q̇, t) gives Q_i = d/dt(∂U/∂q̇_i) − ∂U/∂q_i: with U affine in the
+                # rates that holds no q̈ (the Lorentz force, U = qc (V − A·v)); beyond, q̈ would be in Q.
+                rates = [c.rate_symbol for c in coordinates if c.rate_symbol in energy.free_symbols]
+                pairs = [(a, b) for k, a in enumerate(rates) for b in rates[k:]]
+                zero = are_zero([energy.diff(a).diff(b) for a, b in pairs]) if pairs else []
+                bad = [pair for pair, ok in zip(pairs, zero) if not ok]
+                if bad:
+                    a, b = bad[0]
+                    raise self.error(raw, f"the potential `{raw.name}` is not affine in the rates (∂²U/∂{a}∂{b} ≠ 0): "
+                                     "its generalized forces d/dt(∂U/∂q̇_i) − ∂U/∂q_i would hold the accelerations",
+                                     symbol=raw.name, key="energy",
+                                     fix="write the part quadratic in the rates as kinetic energy (a mass or an "
+                                         "inertia), and keep in the potential only terms U0(q, t) + Σ a_j(q, t) q̇_j")
+                out.append(Potential(raw.name, energy))
             elif kind == "generalized_force":
                 names = [c.name for c in coordinates]
                 comps = []

@@ -25,7 +25,8 @@ import numpy as np
 import symengine as se
 
 from ..analysis import first_integrals
-from ..analysis._integrals import FirstIntegral, input_regime
+from ..analysis._integrals import FirstIntegral
+from ..analysis._tree_integrals import tree_integrals
 from ..dynamics import EquationsOfMotion
 from ..errors import SimulationError
 from ._codegen import generate_c, monitor_expressions
@@ -34,7 +35,7 @@ from ._fastcall import rhs_caller
 from ._input_code import law_code
 from ._inputs import InputLaw, resolve_inputs
 
-__all__ = ["CompiledSystem", "compile_system", "unused_parameters", "known_values"]
+__all__ = ["CompiledSystem", "compile_system", "known_values", "unused_parameters"]
 
 
 def unused_parameters(parameters: Sequence[str], expressions: Sequence[se.Basic]) -> frozenset[str]:
@@ -108,11 +109,12 @@ class CompiledSystem:
         values = {**{u: v for u, v in eom.model.parameter_values.items() if u in eom.model.inputs},
                   **self.law.constants, **dict.fromkeys(constant_inputs, 1.0)}
         self.regime = self.law.regime(values, tuple(eom.model.inputs))
-        # With a recursive form the C code monitors its energy integral, T and U; the course's
-        # search (`first_integrals`) and its T, U would first make the whole course derivation.
+        # With a recursive form the C code monitors the integrals found from it (`tree_integrals`: the
+        # momenta, the energy and Noether's, over its intermediates), T and U; the course's search
+        # (`first_integrals`) and its T, U would first make the whole course derivation.
         recursive = eom.recursive is not None and backend == "c"
         if integrals is None:
-            integrals = _recursive_integrals(eom, self.regime) if recursive else \
+            integrals = tree_integrals(eom, self.regime) if recursive else \
                 first_integrals(eom, inputs=self.regime)
         self.first_integrals = tuple(integrals)
         self.integrals = tuple(fi.name for fi in self.first_integrals)
@@ -346,45 +348,6 @@ class CompiledSystem:
         self._se_mf = make([eom.M[i][j] for i in range(n) for j in range(n)] + list(eom.F))
         self._se_mon = make([e for _, e in monitor_expressions(eom, self.first_integrals)])
         self._se_ev = make([e for _, e in self._events])
-
-
-def _recursive_integrals(eom: EquationsOfMotion, regime: Mapping[str, str] | None = None
-                         ) -> tuple[FirstIntegral, ...]:
-    """The energy integral T + U of a kinematic tree, over the recursive form's intermediates.
-
-    A tree has no time in its kinematics, so T is homogeneous quadratic in q̇; T + U is then
-    constant when every load derives from a potential U(q) (no t in it) — or, ``regime`` saying
-    which inputs are off, when the loads that do not (a joint's motor torque τ) vanish with them.
-    The expression is in the intermediates of ``eom.recursive``: it is for the generated code,
-    not for display.
-    """
-    rec = eom.recursive
-    regime = input_regime(eom, regime)
-    if rec is None or eom.t in rec.U.free_symbols or "varying" in regime.values():
-        return ()
-    if not rec.conservative and not _conservative_with_off(eom, [u for u, r in regime.items() if r == "off"]):
-        return ()
-    return (FirstIntegral("E", "energy", rec.T + rec.U,
-                          "energy integral T + U = cste: a kinematic tree with no time in it, every load "
-                          "derives from a potential"),)
-
-
-def _conservative_with_off(eom: EquationsOfMotion, off: Sequence[str]) -> bool:
-    """Every load of the model derives from a potential once the inputs ``off`` are 0: the torques
-    (couples of the recursion) vanish with them, and so do the other loads' forces without a potential."""
-    from ..model.spec import JointDamper, Torque
-
-    if not off:
-        return False
-    zero = {se.Symbol(u): se.Integer(0) for u in off}
-    for load in eom.model.loads:
-        if isinstance(load, JointDamper):
-            return False
-        if isinstance(load, Torque) and not load.torque.subs(zero).is_zero():
-            return False
-    rec = eom.recursive
-    return rec is not None and all(f.potential is not None or all(q.xreplace(zero) == 0 for q in f.Q)
-                                   for f in rec.loads)
 
 
 def _rhs_failure(status: int, T: np.ndarray, Y: np.ndarray) -> SimulationError:

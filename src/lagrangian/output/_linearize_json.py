@@ -24,8 +24,14 @@ import numpy as np
 import symengine as se
 import sympy
 
-__all__ = ["LINEARIZE_SCHEMA_ID", "LINEARIZE_SCHEMA_VERSION", "linearize_document", "modes_section", "sweep_section",
-           "matrix_rows"]
+__all__ = [
+    "LINEARIZE_SCHEMA_ID",
+    "LINEARIZE_SCHEMA_VERSION",
+    "linearize_document",
+    "matrix_rows",
+    "modes_section",
+    "sweep_section",
+]
 
 LINEARIZE_SCHEMA_ID = "lagrangian.linearize"
 LINEARIZE_SCHEMA_VERSION = 1
@@ -145,6 +151,11 @@ def modes_section(m: Any) -> dict[str, Any]:
         "essential": list(m.essential),
         "neutral": [{"name": name, "reason": why} for name, why in m.neutral],
         "pulsations": None if m.pulsations is None else [_number(w) for w in m.pulsations],
+        # The Jordan blocks of the eigenvalue 0 once the ignorable coordinates are set aside, and whether they make
+        # the linearized motion grow like t^growth (a perturbation of `start` makes `end` grow).
+        "zero_eigenvalue": None if m.zero is None else {"blocks": list(m.zero.blocks), "secular": m.zero.secular,
+                                                         "growth": m.zero.growth, "start": m.zero.start,
+                                                         "end": m.zero.end},
         "modes": [{"eigenvalue": _complex(x.eigenvalue), "frequency": _number(x.frequency),
                    "damped_frequency": _number(x.damped_frequency),
                    "period": None if x.period is None else _number(x.period),

@@ -66,6 +66,8 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "load damper": ("amortisseur entre {A} et {B}, de coefficient {c}",
                     "damper between {A} and {B}, of coefficient {c}"),
     "load potential": ("énergie potentielle {U}", "potential energy {U}"),
+    "load generalized potential": ("potentiel généralisé {U}, qui dépend des vitesses",
+                                   "generalized potential {U}, which depends on the rates"),
     "load dissipation": ("fonction de dissipation {D}", "dissipation function {D}"),
     "load joint damper": ("frottement visqueux entre ({S1}) et ({S2}), de coefficient {c}",
                           "viscous friction between ({S1}) and ({S2}), of coefficient {c}"),
@@ -351,6 +353,17 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "kind spring": ("ressort", "spring"),
     "kind damper": ("amortisseur visqueux", "viscous damper"),
     "kind potential": ("énergie potentielle donnée", "given potential energy"),
+    "kind generalized potential": ("potentiel généralisé donné, dépendant des vitesses",
+                                   "given generalized potential, depending on the rates"),
+    "generalized potential": ("« {name} » dérive d'un potentiel généralisé {U}, qui dépend des vitesses : ses "
+                              "composantes sont {Q} (et non {Q0}, qui en oublierait le premier terme). Ce n'est pas "
+                              "une énergie potentielle {UP} : ses composantes figurent dans {Qnc}. La partie de "
+                              "{U} linéaire en les vitesses est gyroscopique : elle ne travaille pas lorsque ses "
+                              "coefficients ne dépendent pas de t.",
+                              "“{name}” derives from a generalized potential {U}, which depends on the rates: its "
+                              "components are {Q} (not {Q0}, which would drop the first term). It is not a potential "
+                              "energy {UP}: its components enter {Qnc}. The part of {U} linear in the rates is "
+                              "gyroscopic: it does no work when its coefficients do not depend on t."),
     "kind generalizedforce": ("composantes généralisées données", "given generalized forces"),
     "kind dissipation": ("fonction de dissipation de Rayleigh", "Rayleigh dissipation function"),
     "kind jointdamper": ("frottement visqueux dans une liaison", "viscous friction in a joint"),
@@ -771,10 +784,49 @@ _PHRASES: dict[str, tuple[str, str]] = {
     "small equations": ("Les équations linéarisées, de la forme {form}, sont :",
                         "The linearized equations, of the form {form}, are:"),
     "small matrices": ("soit, sous forme matricielle :", "that is, in matrix form:"),
+    "small matrices defined": ("{M} est la matrice de masse en {q0} ; {D} et {G}, parties symétrique et "
+                               "antisymétrique de {dF}, sont l'amortissement et les termes gyroscopiques ; {K} et {N}, "
+                               "parties symétrique et antisymétrique de {dFq}, sont la raideur ({KU} quand les efforts "
+                               "dérivent d'une énergie potentielle) et les termes circulatoires.",
+                               "{M} is the mass matrix at {q0}; {D} and {G}, the symmetric and skew parts of {dF}, are "
+                               "the damping and the gyroscopic terms; {K} and {N}, the symmetric and skew parts of "
+                               "{dFq}, are the stiffness ({KU} when the efforts derive from a potential energy) and the "
+                               "circulatory terms."),
+    "small matrices defined reduced": ("Ces matrices portent sur les paramètres indépendants, les autres étant "
+                                       "éliminés par les liaisons complémentaires : {M} est la matrice de masse "
+                                       "réduite ; {D} et {G} sont les parties symétrique et antisymétrique des termes "
+                                       "en {dqd} (amortissement et termes gyroscopiques), {K} et {N} celles des termes "
+                                       "en {dq} (raideur et termes circulatoires).",
+                                       "These matrices act on the independent coordinates, the others being "
+                                       "eliminated by the complementary constraints: {M} is the reduced mass matrix; "
+                                       "{D} and {G} are the symmetric and skew parts of the terms in {dqd} (damping and "
+                                       "gyroscopic terms), {K} and {N} those of the terms in {dq} (stiffness and "
+                                       "circulatory terms)."),
+    "small B defined": (" {B} donne l'action des entrées {u}.", " {B} gives the action of the inputs {u}."),
+    "small closed point": ("Cette position d'équilibre s'écrit {defs}, c'est-à-dire {rels}.",
+                           "This equilibrium is {defs}, that is {rels}."),
+    "small closed point condition": ("Cette position d'équilibre s'écrit {defs}, c'est-à-dire {rels} ; elle n'existe "
+                                     "que si {cond}.",
+                                     "This equilibrium is {defs}, that is {rels}; it exists only if {cond}."),
+    "small closed point eliminated": ("Cette position d'équilibre s'écrit {defs}, c'est-à-dire {rels}. Les "
+                                      "coefficients ci-dessous sont écrits avec elle, en remplaçant {subs} d'après "
+                                      "cette relation.",
+                                      "This equilibrium is {defs}, that is {rels}. The coefficients below are "
+                                      "written with it, replacing {subs} by that relation."),
+    "small closed point condition eliminated": ("Cette position d'équilibre s'écrit {defs}, c'est-à-dire {rels} ; "
+                                                "elle n'existe que si {cond}. Les coefficients ci-dessous sont écrits "
+                                                "avec elle, en remplaçant {subs} d'après cette relation.",
+                                                "This equilibrium is {defs}, that is {rels}; it exists only if {cond}. "
+                                                "The coefficients below are written with it, replacing {subs} by "
+                                                "that relation."),
     "small numeric": ("Les coefficients sont écrits avec les valeurs numériques des constantes : la position "
                       "n'est d'équilibre que pour ces valeurs.",
                       "The coefficients are written with the numerical values of the constants: the position is "
                       "an equilibrium for these values only."),
+    "small numeric long": ("Les coefficients sont écrits avec les valeurs numériques des constantes : écrit avec "
+                           "les lettres, le plus long compterait {n} caractères.",
+                           "The coefficients are written with the numerical values of the constants: in letters, the "
+                           "longest would run to {n} characters."),
     "small first order": ("Les équations réduites ne sont que du premier ordre ({why}) ; elles s'écrivent {x}.",
                           "The reduced equations are first order only ({why}); they read {x}."),
     "small one pulsation": ("L'équation est celle d'un oscillateur harmonique en {q}, de pulsation propre :",
@@ -790,6 +842,17 @@ _PHRASES: dict[str, tuple[str, str]] = {
                                  "est stable.",
                                  "The matrix {K} is positive definite: the potential energy {U} has a strict minimum "
                                  "at {q0}. By the Lagrange–Dirichlet theorem, the equilibrium is stable."),
+    "small lagrange dirichlet neutral": ("La matrice {K}, restreinte aux coordonnées {names} qui restent une fois "
+                                         "mises à part les directions neutres, est définie positive : l'énergie "
+                                         "potentielle {U} admet un minimum strict en ces coordonnées. D'après le "
+                                         "théorème de Lagrange–Dirichlet, la position d'équilibre est stable pour "
+                                         "elles ; les directions neutres, elles, peuvent dériver (un décalage le long "
+                                         "de l'une d'elles est un autre équilibre).",
+                                         "The matrix {K}, restricted to the coordinates {names} left once the neutral "
+                                         "directions are set aside, is positive definite: the potential energy {U} has "
+                                         "a strict minimum in those coordinates. By the Lagrange–Dirichlet theorem, the "
+                                         "equilibrium is stable in them; the neutral directions may drift (a shift "
+                                         "along one of them is another equilibrium)."),
     "small kelvin tait": ("La matrice K est définie positive et les autres termes sont gyroscopiques (G "
                           "antisymétrique, de puissance nulle) : l'équilibre est stable (théorème de "
                           "Kelvin–Tait–Chetaev).",
@@ -813,6 +876,10 @@ _PHRASES: dict[str, tuple[str, str]] = {
                       "quantités conservées) ; elles sont mises à part.",
                       "The directions {names} are neutral (eigenvalue 0: ignorable coordinates or conserved "
                       "quantities); they are set aside."),
+    "small neutral one": ("La direction {names} est neutre (valeur propre nulle : coordonnée ignorable ou quantité "
+                          "conservée) ; elle est mise à part.",
+                          "The direction {names} is neutral (eigenvalue 0: an ignorable coordinate or a conserved "
+                          "quantity); it is set aside."),
     "small no values": ("Les pulsations et la stabilité demandent une valeur pour {names}.",
                         "The pulsations and the stability need a value for {names}."),
     "small momentum": ("un moment conservé", "a conserved momentum"),
@@ -834,6 +901,14 @@ _PHRASES: dict[str, tuple[str, str]] = {
                          "petits mouvements s'amortissent, le mouvement est asymptotiquement stable.",
                          "Every eigenvalue has a negative real part (the largest: {lam}): small motions decay, the "
                          "motion is asymptotically stable."),
+    "small secular": ("La valeur propre 0 n'est pas semi-simple : une fois mises à part les coordonnées ignorables, "
+                      "la matrice A a pour elle un bloc de Jordan de taille {k}, de sorte qu'une perturbation {start} "
+                      "fait croître {end} comme {t}. Le mouvement linéarisé n'est pas borné, bien qu'aucune valeur "
+                      "propre n'ait de partie réelle positive : il est instable (croissance séculaire).",
+                      "The eigenvalue 0 is not semisimple: once the ignorable coordinates are set aside, the matrix A "
+                      "has a Jordan block of size {k} for it, so that a perturbation {start} makes {end} grow like "
+                      "{t}. The linearized motion is unbounded, although no eigenvalue has a positive real part: it "
+                      "is unstable (secular growth)."),
     "small marginal": ("Les valeurs propres sont sur l'axe imaginaire (ou l'une est nulle ou multiple) : la "
                        "linéarisation ne permet pas de conclure sur la stabilité (cas critique).",
                        "The eigenvalues lie on the imaginary axis (or one is zero or repeated): the linearization "

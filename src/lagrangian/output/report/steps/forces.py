@@ -59,6 +59,9 @@ def _formula(c: Context, f: LoadForces, load: object) -> tuple[str, str]:
                 return rf"-{c.tex(load.stiffness)}\,\ell\, {rel}", ell
             return rf"-{c.tex(load.stiffness)} \left(\ell - {c.tex(load.rest_length)}\right) {rel}", ell
         return rf"-{c.tex(load.coefficient)}\,\dot{{\ell}}\,{rel}", ell
+    if isinstance(load, Potential) and f.generalized is not None:  # Q_i = d/dt(∂U/∂q̇_i) − ∂U/∂q_i
+        return (r"\sum_{i} \left(\frac{d}{dt}\frac{\partial U}{\partial \dot{q}_i} - \frac{\partial U}{\partial q_i}"
+                r"\right) q_i^{*}", rf"U = {c.tex(load.energy)}")
     if isinstance(load, Potential):
         return r"-\sum_{i} \frac{\partial U}{\partial q_i}\, q_i^{*}", rf"U = {c.tex(load.energy)}"
     if isinstance(load, Dissipation):
@@ -197,7 +200,8 @@ _GIVEN = (Torque, GeneralizedForce, PointForce)
 
 def _conservative_or_not(c: Context, f: LoadForces, load: object, name: str) -> Para:
     """Whether the load derives from U_P, and why: a constant couple or force does (its magnitude is a constant
-    of the problem), a load driven by an input u(t) does not (−u q is a potential only for a constant u)."""
+    of the problem), a load driven by an input u(t) does not (−u q is a potential only for a constant u); a
+    generalized potential U(q, q̇, t) gives Q_i = d/dt(∂U/∂q̇_i) − ∂U/∂q_i, a force apart from U_P."""
     w = c.w
     i_math, UP = Math("i"), Math(rf"U_P(\Sigma/{c.R})")
     Q = Math(rf"Q_i({c.load_tex(f.name)}) = -\frac{{\partial U_P({c.load_tex(f.name)})}}{{\partial q_i}}")
@@ -208,6 +212,10 @@ def _conservative_or_not(c: Context, f: LoadForces, load: object, name: str) -> 
             why = w("constant because", names=names, verb=w.text("is one" if len(constants) == 1 else "are one"))
             return Para(w("derives constant", name=name, why=why, Q=Q, i=i_math, UP=UP))
         return Para(w("derives", name=name, Q=Q, i=i_math, UP=UP))
+    if f.generalized is not None:  # U(q, q̇, t) affine in the rates: −∂U/∂q alone would drop d/dt ∂U/∂q̇
+        return Para(w("generalized potential", name=name, U=Math("U"),
+                      Q=Math(r"Q_i = \frac{d}{dt}\frac{\partial U}{\partial \dot{q}_i} - \frac{\partial U}{\partial q_i}"),
+                      Q0=Math(r"-\frac{\partial U}{\partial q_i}"), UP=UP, Qnc=Math(r"Q_{i,\,\mathrm{nc}}")))
     inputs = {p.symbol for p in c.model.parameters if p.input}
     used = {s for x in f.Q for s in x.free_symbols} & inputs
     driving = [p.symbol for p in c.model.parameters if p.symbol in used]  # in the model's order

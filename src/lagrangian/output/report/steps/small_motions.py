@@ -26,16 +26,21 @@ import symengine as se
 import sympy
 from symengine.lib.symengine_wrapper import sympy2symengine
 
+from ....analysis._closed_small_motions import pulsations_squared
 from ....errors import LagrangianError
 from ..build import Context
 from ..document import Block, Display, Equation, Items, Math, Para, Runs, Section
 from ..size import LINE_WIDTH, visible_width, wrap_many
 from .precession import precession_blocks
 
-__all__ = ["small_motions_section", "as_linear_model"]
+__all__ = ["as_linear_model", "small_motions_section"]
 
 #: Most coordinates for which the matrices M and K are displayed as well as the equations.
 MATRIX_MAX = 3
+#: Longest coefficient (characters of its text) written in letters: past it (the bicycle's
+#: reduced K, 10⁴ characters an entry) the equations are written with the numbers, which a reader
+#: can use, and nothing slower than a matrix product is spent on the letters.
+LETTERS_MAX_CHARS = 1500
 
 
 def as_linear_model(eom: Any, small_motions: Any) -> Any:
@@ -96,7 +101,7 @@ def _positive(lin: Any) -> Any:
     back = {v: k for k, v in positive.items()}
 
     def tidy(e: se.Basic) -> se.Basic:
-        if not e.free_symbols:
+        if not e.free_symbols or len(str(e)) > LETTERS_MAX_CHARS:
             return e
         x = e._sympy_().xreplace(positive)
         y = sympy.factor(sympy.cancel(x)).xreplace(back)
@@ -108,6 +113,12 @@ def _positive(lin: Any) -> Any:
         return se.DenseMatrix([[tidy(m[i, j]) for j in range(m.cols)] for i in range(m.rows)])
 
     return dataclasses.replace(so, **{k: matrix(getattr(so, k)) for k in ("M", "D", "G", "K", "N", "B")})
+
+
+def _longest(so: Any) -> int:
+    """The length of the longest coefficient of the second-order form, as text."""
+    return max((len(str(m[i, j])) for m in (so.M, so.D, so.G, so.K, so.N, so.B)
+                for i in range(m.rows) for j in range(m.cols)), default=0)
 
 
 def _var(c: Context, name: str, deco: str = "") -> str:
@@ -167,7 +178,7 @@ def _point(c: Context, lin: Any) -> Runs:
     return c.w.join(parts)
 
 
-def _pulsations(c: Context, so: Any, modes: Any) -> list[Block]:
+def _pulsations(c: Context, so: Any, modes: Any, at: Mapping) -> list[Block]:
     w = c.w
     blocks: list[Block] = []
     if not modes.pulsations:
@@ -182,23 +193,50 @@ def _pulsations(c: Context, so: Any, modes: Any) -> list[Block]:
                                     r"\ \mathrm{s}"))))
         return blocks
     blocks.append(Para(w("small pulsations", det=Math(r"\det\left(K - \omega^{2} M\right) = 0"))))
+    letters = _letters(c, so, modes, at) if so is not None else None
     items = []
     for k, om in enumerate(modes.pulsations, 1):
         T = rf",\quad T_{{{k}}} = {w.number(2 * math.pi / om)}\ \mathrm{{s}}" if om > 0 else ""
-        items.append((Math(rf"\omega_{{{k}}} = {w.number(om)}\ \mathrm{{rad/s}}{T}"),))
+        closed = rf"\omega_{{{k}}}^{{2}} = {c.n.latex(letters[k - 1])},\quad " if letters else ""
+        items.append((Math(rf"{closed}\omega_{{{k}}} = {w.number(om)}\ \mathrm{{rad/s}}{T}"),))
     blocks.append(Items(tuple(items)))
     return blocks
+
+
+def _letters(c: Context, so: Any, modes: Any, at: Mapping) -> list[sympy.Basic] | None:
+    """The nonzero roots ω² of det(K − ω² M) = 0 in letters, in the order of ``modes.pulsations`` (matched by their
+    values at ``at``: the parameters' values, θ0's), or None (too large, or not conservative)."""
+    if any(not _is_zero(getattr(so, k)) for k in ("D", "G", "N")):
+        return None
+    M = sympy.Matrix([[so.M[i, j]._sympy_() for j in range(so.M.cols)] for i in range(so.M.rows)])
+    K = sympy.Matrix([[so.K[i, j]._sympy_() for j in range(so.K.cols)] for i in range(so.K.rows)])
+    positive = [p.name for p in c.model.parameters if p.value is not None and p.value > 0]
+    roots = pulsations_squared(M, K, positive)
+    if not roots or len(roots) != len(modes.pulsations):
+        return None
+    try:
+        values = [float(r.xreplace(at)) for r in roots]
+    except (TypeError, ValueError):
+        return None
+    order = []
+    for om in modes.pulsations:
+        k = min(range(len(values)), key=lambda j: abs(values[j] - om * om))
+        if abs(values[k] - om * om) > 1e-6 * max(1.0, om * om) or k in order:
+            return None
+        order.append(k)
+    return [roots[k] for k in order]
 
 
 def _eigenvalue(w: Any, z: complex) -> str:
     scale = max(1.0, abs(z))
     re_ = 0.0 if abs(z.real) < 1e-12 * scale else z.real
     im = 0.0 if abs(z.imag) < 1e-12 * scale else z.imag
+    unit = r"\ \mathrm{s^{-1}}"  # the eigenvalues of A are rates: 1/s
     if im == 0:
-        return w.number(re_)
+        return w.number(re_) + unit
     if re_ == 0:
-        return rf"\pm {w.number(abs(im))}\,i"
-    return rf"{w.number(re_)} \pm {w.number(abs(im))}\,i"
+        return rf"\pm {w.number(abs(im))}\,i" + unit
+    return rf"\left({w.number(re_)} \pm {w.number(abs(im))}\,i\right)" + unit
 
 
 def _eigenvalues(c: Context, lam: np.ndarray) -> Runs:
@@ -234,31 +272,110 @@ def _stability(c: Context, lin: Any, stability: Any, modes: Any) -> list[Block]:
         gyroscopic = bool(np.any(np.abs(G_e) > 1e-10 * max(1.0, float(np.abs(K_e).max(initial=0.0)))))
     K = Math(r"K = \left.\frac{\partial^{2} U_P}{\partial q\,\partial q}\right|_{q_{0}}")
     verdict = stability.verdict
+    set_aside = [x for x, why in modes.neutral if x != "momentum" and not x.endswith("_dot")]
     if verdict == "stable":
-        key = "small kelvin tait" if gyroscopic else "small lagrange dirichlet"
+        key = "small kelvin tait" if gyroscopic else ("small lagrange dirichlet neutral" if set_aside
+                                                      else "small lagrange dirichlet")
     elif verdict == "stable to first order":
         key = "small gyroscopic" if gyroscopic and kmin is not None and kmin < 0 else "small first order stable"
     elif verdict == "unstable":
         key = "small unstable no minimum" if kmin is not None and kmin < 0 else "small unstable"
     elif verdict == "asymptotically stable":
         key = "small asymptotic"
+    elif verdict == "unstable (secular growth)":
+        key = "small secular"
     else:
         key = "small marginal"
     worst = complex(lam[np.argmax(lam.real)]) if lam.size else 0j
     blocks: list[Block] = []
-    neutral = [x for x, _ in modes.neutral if x != "momentum"]
+    neutral = [x for x, why in modes.neutral if x != "momentum" and "Jordan chain" not in why]
     momenta = sum(1 for x, _ in modes.neutral if x == "momentum")
     if neutral or momenta:
         names: list[Any] = [Math(c.sym(x[:-4], "dot") if x.endswith("_dot") else c.sym(x)) for x in neutral]
         if momenta:
             names.append(w.text("small momenta", k=str(momenta)) if momenta > 1 else w.text("small momentum"))
-        blocks.append(Para(w("small neutral", names=w.join(names))))
+        blocks.append(Para(w("small neutral" if len(names) > 1 else "small neutral one", names=w.join(names))))
     if lam.size:
         listed = "small eigenvalues left" if modes.neutral else "small eigenvalues"
         blocks.append(Para(w(listed, lam=_eigenvalues(c, lam))))
+    zero = modes.zero
+    chain = {}
+    if key == "small secular" and zero is not None:
+        def var(x: str) -> Math:
+            return Math(_var(c, x[:-4], "dot") if x.endswith("_dot") else _var(c, x))
+        chain = {"k": str(max(zero.blocks)), "start": var(zero.start), "end": var(zero.end),
+                 "t": Math("t" if zero.growth == 1 else f"t^{{{zero.growth}}}")}
+    essential = [Math(c.sym(x)) for x in modes.essential if not x.endswith("_dot")]
     blocks.append(Para(w(key, K=K, U=Math("U_P"), q0=Math("q_{0}"), lam=Math(rf"{c.eigen} = {_eigenvalue(w, worst)}"),
-                         kmin=Math(w.number(kmin if kmin is not None else 0.0)))))
+                         kmin=Math(w.number(kmin if kmin is not None else 0.0)), names=w.join(essential), **chain)))
     return blocks
+
+
+def _closed(lin: Any, num: Any) -> tuple[Any, Any] | None:
+    """(the closed-form point, its second-order form as SymEngine matrices) when the point is a closed-form
+    equilibrium that holds for some values only (cos θ0 = g/(R Ω²)), else None."""
+    from ....analysis import SecondOrderForm
+    from ....analysis._closed_small_motions import closed_point
+
+    if num is None or lin.steady or num.second_order is None:
+        return None
+    point = {q: float(complex(num.point[q]).real) for q in lin.eom.coordinates}
+    closed = closed_point(lin.eom, point, num.values)
+    if closed is None:
+        return None
+
+    def matrix(m: sympy.Matrix) -> se.DenseMatrix:
+        return se.DenseMatrix([[sympy2symengine(m[i, j]) for j in range(m.cols)] for i in range(m.rows)])
+
+    form = SecondOrderForm(closed.coordinates, *(matrix(getattr(closed, k)) for k in ("M", "D", "G", "K", "N")),
+                           se.zeros(len(closed.coordinates), 0))
+    return closed, form
+
+
+def _defined(c: Context, lin: Any, inputs: bool) -> Para:
+    """What M, D, G, K, N (and B) are."""
+    w = c.w
+    slots = {k: Math(k) for k in ("M", "D", "G", "K", "N")}
+    if lin.dependent_speeds:
+        runs = w("small matrices defined reduced", dqd=Math(r"\delta\dot{q}"), dq=Math(r"\delta q"), **slots)
+    else:
+        runs = w("small matrices defined", q0=Math("q_{0}"), dF=Math(r"-\partial F/\partial \dot{q}"),
+                 dFq=Math(r"-\partial F/\partial q"), KU=Math(r"K = \partial^{2} U_P/\partial q^{2}"), **slots)
+    if inputs:
+        runs = runs + w("small B defined", B=Math(r"B" if lin.dependent_speeds else r"B = \partial F/\partial u"),
+                        u=Math("u"))
+    return Para(runs)
+
+
+def _closed_point_para(c: Context, closed: Any) -> Para:
+    """θ0 = arccos(g/(R Ω²)), i.e. cos θ0 = g/(R Ω²); it exists only if R Ω² > g; g = R Ω² cos θ0 is used."""
+    w = c.w
+    defs = w.join([Math(rf"{c.sym(q)}_{{0}} = {c.n.latex(closed.definitions[q])}") for q in closed.definitions])
+    rels = w.join([Math(_relation(c, closed.relations[q])) for q in closed.relations])
+    parts: dict[str, Any] = {"defs": defs, "rels": rels}
+    key = "small closed point"
+    if closed.condition is not None:
+        key += " condition"
+        parts["cond"] = Math(_relation(c, closed.condition))
+    if closed.eliminated:
+        key += " eliminated"
+        parts["subs"] = w.join([Math(rf"{c.n.latex(p)} = {c.n.latex(v)}") for p, v in closed.eliminated.items()])
+    return Para(w(key, **parts))
+
+
+_RELATIONS = {sympy.Equality: "=", sympy.StrictGreaterThan: ">", sympy.GreaterThan: r"\geq",
+              sympy.StrictLessThan: "<", sympy.LessThan: r"\leq", sympy.Unequality: r"\neq"}
+
+
+def _relation(c: Context, rel: sympy.Basic) -> str:
+    """``cos θ0 = g/(R Ω²)``, ``R Ω² > g``, or the parts of an And joined by commas, in LaTeX."""
+    if isinstance(rel, sympy.And):
+        return r",\ ".join(_relation(c, x) for x in rel.args)
+    op = _RELATIONS.get(type(rel))
+    if op is None:
+        return c.n.latex(rel)
+    plain = {s: sympy.Symbol(s.name) for s in rel.free_symbols}
+    return f"{c.n.latex(rel.lhs.xreplace(plain))} {op} {c.n.latex(rel.rhs.xreplace(plain))}"
 
 
 def small_motions_section(c: Context, lin: Any) -> Section:
@@ -266,6 +383,11 @@ def small_motions_section(c: Context, lin: Any) -> Section:
     w = c.w
     sym = _symbolic(lin)
     num = _numeric(lin)
+    longest = _longest(sym.second_order) if sym is not None and sym.second_order is not None else 0
+    long = longest > LETTERS_MAX_CHARS
+    if long:
+        sym = None
+    closed = _closed(lin, num) if sym is None and not long else None
     shown = sym if sym is not None and sym.second_order is not None else (num or lin)
     intro = "small intro steady" if lin.steady else "small intro"
     blocks: list[Block] = [Para(w(intro, point=_point(c, lin), dq=Math(r"q = q_{0} + \delta q")))]
@@ -273,7 +395,10 @@ def small_motions_section(c: Context, lin: Any) -> Section:
         names = [Math(c.sym(x)) for x in lin.dependent_coordinates] + \
                 [Math(c.sym(x[:-4], "dot")) for x in lin.dependent_speeds]
         blocks.append(Para(w("small dependent", names=w.join(names))))
-    so = _positive(shown) if shown is sym else shown.second_order
+    if closed is not None:
+        blocks.append(_closed_point_para(c, closed[0]))
+    so = closed[1] if closed is not None else _positive(shown) if shown is sym else shown.second_order
+    letters = closed is not None or shown is sym
     if so is not None:
         form = r"M\,\delta\ddot{q} + (D + G)\,\delta\dot{q} + (K + N)\,\delta q = " + (r"B\,u" if so.B.cols else "0")
         blocks.append(Para(w("small equations", form=Math(form))))
@@ -283,15 +408,20 @@ def small_motions_section(c: Context, lin: Any) -> Section:
                 and all(visible_width(m) <= LINE_WIDTH for m in matrices):
             blocks.append(Para(w("small matrices")))
             blocks.append(Display(tuple(Equation((m,)) for m in matrices)))
-        if shown is not sym:
-            blocks.append(Para(w("small numeric"), style="note"))
+        blocks.append(_defined(c, lin, bool(so.B.cols)))
+        if not letters:
+            note = w("small numeric long", n=w.number(longest)) if long else w("small numeric")
+            blocks.append(Para(note, style="note"))
     else:
         blocks.append(Para(w("small first order", x=Math(r"\dot{x} = A\,x"), why=lin.second_order_reason)))
     if num is None:  # a symbol without a value: no eigenvalue, no verdict
         blocks.append(Para(w("small no values", names=w.join([Math(c.sym(str(x))) for x in lin.symbols]))))
     else:
         stability, modes = num.stability(), num.modes()
-        blocks += _pulsations(c, so if shown is sym else None, modes)
+        at: dict[sympy.Basic, float] = {sympy.Symbol(k): v for k, v in num.values.items()}
+        if closed is not None:
+            at.update({s: float(complex(num.point[q]).real) for q, s in closed[0].symbols.items()})
+        blocks += _pulsations(c, so if letters else None, modes, at)
         blocks += _stability(c, num, stability, modes)
     blocks += precession_blocks(c, so)  # Larmor: the turning plane of oscillation (Foucault's pendulum)
     return Section("small motions", w.text("small title steady" if lin.steady else "small title"), tuple(blocks))

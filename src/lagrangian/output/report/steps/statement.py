@@ -88,7 +88,8 @@ def _load_given(c: Context, load: object) -> Runs | None:  # noqa: PLR0911 - one
         A, B = (Math(c.point_label(p)) for p in load.ends)
         return w("load damper", A=A, B=B, c=Math(c.tex(load.coefficient)))
     if isinstance(load, Potential):
-        return w("load potential", U=Math(rf"U = {c.tex(load.energy)}"))
+        rates = any(s in load.energy.free_symbols for s in c.kin.qd)  # a generalized potential U(q, q̇, t)
+        return w("load generalized potential" if rates else "load potential", U=Math(rf"U = {c.tex(load.energy)}"))
     if isinstance(load, Dissipation):
         return w("load dissipation", D=Math(rf"D = {c.tex(load.function)}"))
     if isinstance(load, JointDamper):
