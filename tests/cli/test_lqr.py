@@ -90,3 +90,17 @@ def test_an_interpolation_that_is_not_one_is_refused(tmp_path, capsys):
     csv.write_text("t,F\n0,0\n1,1\n")
     assert main(["simulate", CART_POLE, "--input", f"F=@{csv}:F:spline"]) != 0
     assert "`spline` is not an interpolation" in capsys.readouterr().err
+
+
+def test_the_command_line_offers_every_interpolation_of_a_table(tmp_path, capsys):
+    from lagrangian.cli._input_option import _KINDS
+    from lagrangian.numerics._input_table import INTERPOLATIONS
+
+    assert _KINDS == INTERPOLATIONS
+    csv = tmp_path / "push.csv"
+    csv.write_text("t,F\n0,0\n0.5,2\n1,0\n")
+    out = tmp_path / "q.csv"
+    assert main(["simulate", CART_POLE, "--input", f"F=@{csv}:F:quadratic", "--t-end", "1", "--n-out", "5",
+                 "--no-reactions", "-o", str(out)]) == 0, capsys.readouterr().err
+    header, rows = _table(out)
+    assert np.allclose(rows[:, header.index("F")], 8 * rows[:, 0] * (1 - rows[:, 0]), atol=1e-14)  # the parabola

@@ -5,7 +5,7 @@ VALUE is one of
 * a plain decimal number: the input held there (``--input F=2.5``);
 * ``@FILE[:COLUMN[:KIND]]``: samples from a CSV file with a header row — the column COLUMN
   (default: the input's name) against the time column (``--input-time-column``, default ``t``),
-  read between samples by KIND, ``zoh``, ``linear`` (default) or ``cubic``
+  read between samples by KIND, ``zoh``, ``linear`` (default), ``quadratic`` or ``cubic``
   (``--input F=@run.csv:force:zoh``);
 * anything else: an expression in the model grammar of t, the coordinates, their rates
   ``<q>_dot`` and the parameters (``--input 'F=2*sin(3*t)'``), read by the model's own parser,
@@ -28,7 +28,9 @@ from ._settings import SettingError, plain_number
 
 __all__ = ["add_input_options", "parse_inputs"]
 
-_KINDS = ("zoh", "linear", "cubic")
+#: The interpolations of a table (`InputTable`), said in the help and the messages.
+_KINDS = ("zoh", "linear", "quadratic", "cubic")
+_KIND_LIST = "|".join(_KINDS)
 
 
 def add_input_options(parser: argparse.ArgumentParser) -> None:
@@ -37,7 +39,7 @@ def add_input_options(parser: argparse.ArgumentParser) -> None:
         "--input", dest="input", action="append", default=[], metavar="NAME=VALUE",
         help="what a declared input does: a number (F=2.5), an expression of t, the coordinates, their rates and "
              "the parameters (F='2*sin(3*t)', compiled in), or samples from a CSV file, "
-             "F=@FILE[:COLUMN[:zoh|linear|cubic]] (column default NAME, interpolation default linear); repeatable; "
+             f"F=@FILE[:COLUMN[:{_KIND_LIST}]] (column default NAME, interpolation default linear); repeatable; "
              "overrides the model's [controls]")
     parser.add_argument("--input-time-column", default="t", metavar="NAME",
                         help="the time column of the --input CSV files (default t)")
@@ -58,10 +60,10 @@ def _table_spec(name: str, spec: str) -> tuple[Path, str, str]:
         if Path(path).is_file():
             if kind not in _KINDS:
                 raise SettingError(f"`--input {name}=@{spec}`: `{kind}` is not an interpolation.",
-                                   fix="use zoh, linear or cubic, e.g. --input F=@run.csv:F:zoh")
+                                   fix=f"use one of {', '.join(_KINDS)}, e.g. --input F=@run.csv:F:zoh")
             return Path(path), column or name, kind
     raise SettingError(f"`--input {name}=@{spec}`: no file `{candidates[0][0] if len(parts) == 1 else parts[0]}`.",
-                       fix="give an existing CSV file: --input NAME=@FILE[:COLUMN[:zoh|linear|cubic]]")
+                       fix=f"give an existing CSV file: --input NAME=@FILE[:COLUMN[:{_KIND_LIST}]]")
 
 
 def parse_inputs(values: Sequence[str], model: Model, *, time_column: str = "t",

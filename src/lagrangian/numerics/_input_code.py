@@ -19,7 +19,8 @@ constants (LG_NK) | law (LG_NX)], the law's block laid out by `InputLaw.layout`:
     law[1]         the address of the Python callback, its bits read as a double (the slow path)
     K, x*, u*, ẋ*  the feedback's gain (m × nx, row-major), point, inputs, and the rates of the point's
                    coordinates along a steady motion (x*(t) = x* + ẋ* t)
-    tables         per table: times (N), values (N), then for "cubic" the (N − 1) × 4 coefficients
+    tables         per table: times (N), values (N), then for "quadratic" and "cubic" the (N − 1) × 4
+                   coefficients of its polynomial pieces
     breaks         the sorted sample times of every table: the integrators stop and start there
 """
 
@@ -45,11 +46,13 @@ WRAPPED = (
     ("lg_aba", "double *qdd, double *piv", "qdd, piv"),
 )
 
-_KIND = {"zoh": 0, "linear": 1, "cubic": 2}
+#: A table's kind in C: a hold, a line, or a polynomial piece per sample interval (quadratic and cubic alike).
+_KIND = {"zoh": 0, "linear": 1, "quadratic": 2, "cubic": 2}
 
 # Binary search for the interval of `s` (the hint, or t), then the piece of that interval at t.
 _TABLE = r"""
-/* u(t) of a table (lagrangian.numerics._input_table): tab = times[n], values[n], cubic pieces[n-1][4].
+/* u(t) of a table (lagrangian.numerics._input_table): tab = times[n], values[n], polynomial pieces[n-1][4]
+ * (kind 2: quadratic or cubic).
  * The interval is the one holding `hint` when given (the integrator's current interval between two
  * restarts at the samples), else the one holding t; outside the samples the end values are held. */
 static double lg_table(const double *tab, int n, int kind, double t, double hint)

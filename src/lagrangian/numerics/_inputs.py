@@ -29,6 +29,7 @@ import ctypes
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -111,7 +112,7 @@ class InputLaw:
         driven = {s.name for s in self.driven}
         return {u: "varying" if u in driven else ("constant" if values.get(u) else "off") for u in inputs}
 
-    @property
+    @cached_property
     def breakpoints(self) -> np.ndarray:
         """Every time where a table's value or a derivative jumps, sorted (the integrators restart there)."""
         if not self.tables:

@@ -40,7 +40,8 @@ class Replay:
     local_error : the same measure with each interval replayed from the optimum's state at its first
         node: the scheme's own error, not amplified by an instability.
     tolerance : `REPLAY_TOLERANCE` or the one asked for; ``within`` says whether local_error ≤ tolerance.
-    integrator : what ran it (``"DOP853, rtol = atol = 1e-10"``) and how the input was interpolated.
+    integrator : what ran it (``"simulate: DOP853 in C, rtol = atol = 1e-10"``) and how the inputs were read
+        between the points (the scheme's `InputTable` kind).
     """
 
     t: np.ndarray
