@@ -203,6 +203,9 @@ def test_a_table_from_a_csv_file(tmp_path, oscillator):
     assert np.array_equal(table.t, SAMPLES_T) and np.array_equal(table.values, SAMPLES_V)
     with pytest.raises(SimulationError, match="no column `push`.*its columns: t, force"):
         InputTable.from_csv(path, "push")
+    # a trajectory file written by lagrangian begins with comment lines
+    path.write_text("# lagrangian trajectory\n# parameters: m = 2\nt,force\n0,1\n0.5,2\n")
+    assert InputTable.from_csv(path, "force").values.tolist() == [1.0, 2.0]
     path.write_text("t,force\n0,1\n0.5,oops\n")
     with pytest.raises(SimulationError, match="line 3: `oops` is not a number"):
         InputTable.from_csv(path, "force")
@@ -321,6 +324,16 @@ def test_the_symengine_fallback_applies_the_same_law(oscillator):
     rng = np.random.default_rng(3)
     T, Y = rng.uniform(0, 2, 7), rng.normal(size=(7, 2))
     assert np.allclose(s.rhs(T, Y, s.parameter_vector()), c.rhs(T, Y, c.parameter_vector()), rtol=1e-13, atol=1e-13)
+
+
+def test_without_a_compiler_a_hold_reads_the_interval_the_integrator_is_in(oscillator):
+    # The Python law has its own hint: SciPy's solves between samples see each interval's value to its end.
+    table = InputTable(SAMPLES_T, SAMPLES_V, interpolation="zoh")
+    t = np.linspace(0, 3, 31)
+    compiled = simulate(oscillator, 3.0, t_eval=t, inputs={"F": table})
+    python = simulate(compile_system(oscillator, inputs={"F": table}, backend="symengine"), 3.0, t_eval=t,
+                      method="DOP853")
+    assert np.abs(python.q - compiled.q).max() < 1e-8
 
 
 def test_the_analytic_jacobian_refuses_a_law_it_cannot_see(oscillator):

@@ -12,7 +12,9 @@ VALUE is one of
   never evaluated as Python.
 
 ``--feedback FILE.json`` (written by ``lagrangian lqr ... -o FILE.json``) closes the loop
-u = u* − K (x − x*) on the inputs it computes; ``--input`` gives the others.
+u = u* − K (x − x*) on the inputs it computes; ``--input`` gives the others.  With ``--switch-at
+TIME`` the feedback takes over at TIME: before it, its inputs follow their ``--input`` (0 where none
+is given) — a swing-up's table, then the catch (`lagrangian.Switch`).
 """
 
 from __future__ import annotations
@@ -46,6 +48,9 @@ def add_input_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--feedback", metavar="FILE.json",
                         help="close the loop u = u* - K (x - x*) with the feedback `lagrangian lqr ... -o FILE.json` "
                              "wrote (compiled into the right-hand side)")
+    parser.add_argument("--switch-at", type=float, metavar="TIME",
+                        help="with --feedback: its inputs follow their --input (0 where none) until TIME, then the "
+                             "feedback (e.g. a swing-up's table, then the catch)")
 
 
 def _table_spec(name: str, spec: str) -> tuple[Path, str, str]:
@@ -67,20 +72,34 @@ def _table_spec(name: str, spec: str) -> tuple[Path, str, str]:
 
 
 def parse_inputs(values: Sequence[str], model: Model, *, time_column: str = "t",
-                 feedback: str | None = None) -> dict[str, Any] | None:
-    """The ``inputs=`` of `simulate` from ``--input`` and ``--feedback`` (None when neither is given).
+                 feedback: str | None = None, switch_at: float | None = None) -> dict[str, Any] | None:
+    """The ``inputs=`` of `simulate` from ``--input``, ``--feedback`` and ``--switch-at`` (None when none
+    is given).
 
     Raises
     ------
     SettingError
         Bad form, a name that is not a declared input, given twice, a value that is not finite,
-        a CSV file that does not exist, an unknown interpolation.
+        a CSV file that does not exist, an unknown interpolation, ``--switch-at`` without ``--feedback``
+        or not finite.
     ControlError, SimulationError
         A feedback file or a table that cannot be read.
     """
     from ..analysis import Feedback
-    from ..numerics import InputTable
+    from ..numerics import InputTable, Switch
 
+    if switch_at is not None:
+        if feedback is None:
+            raise SettingError(f"`--switch-at {switch_at:g}` says when a feedback takes over, and no --feedback is given.",
+                               fix="add --feedback FILE.json (written by lagrangian lqr ... -o FILE.json)")
+        if not math.isfinite(switch_at):
+            raise SettingError(f"`--switch-at {switch_at}` is not a finite time.", fix="give the time of the switch")
+        before = parse_inputs(values, model, time_column=time_column) or {}
+        fb = Feedback.load(feedback)
+        out = parse_inputs((), model, feedback=feedback) or {}
+        for name in fb.inputs:
+            out[name] = Switch(before.pop(name, 0.0), fb, at=switch_at)
+        return {**before, **out}
     declared = list(model.inputs)
     out: dict[str, Any] = {}
     if feedback is not None:

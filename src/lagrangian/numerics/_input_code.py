@@ -21,7 +21,11 @@ constants (LG_NK) | law (LG_NX)], the law's block laid out by `InputLaw.layout`:
                    coordinates along a steady motion (x*(t) = x* + ẋ* t)
     tables         per table: times (N), values (N), then for "quadratic" and "cubic" the (N − 1) × 4
                    coefficients of its polynomial pieces
-    breaks         the sorted sample times of every table: the integrators stop and start there
+    switches       per `Switch`: its switching times
+    breaks         the sorted breakpoints of every table and switch: the integrators stop and start there
+
+A switch evaluates each of its sources into a local (``v<j>_<k>``) and keeps the one of the phase that
+the hint (else t) is in.
 """
 
 from __future__ import annotations
@@ -118,27 +122,50 @@ def law_code(eom: EquationsOfMotion, law: InputLaw) -> LawCode:
     lines: list[str] = []
     index = {c: i for i, c in enumerate(eom.coordinates)}
     index.update({c + "_dot": n + i for i, c in enumerate(eom.coordinates)})
-    callables = [s.name for s in law.callables]
-    for j, s in enumerate(driven):
-        if s.kind == "expression":
-            outputs.append((f"u[{j}]", s.value.xreplace({k: v for k, v in private.items()
-                                                         if k in s.value.free_symbols})))
+    callables = list(law.callables)
+    fb = law.feedback
+
+    def leaf(target: str, key: str, s) -> None:  # type: ignore[no-untyped-def]
+        """The C that writes the source ``s`` (``key`` in the law's leaves) into ``target`` (an expression
+        joins the CSE block)."""
+        if s.kind == "constant":
+            lines.append(f"    {target} = {float(s.value)!r};")
+        elif s.kind == "expression":
+            outputs.append((target, s.value.xreplace({k: v for k, v in private.items() if k in s.value.free_symbols})))
         elif s.kind == "table":
             table = s.value
-            lines.append(f"    u[{j}] = lg_table(law + {lay['table:' + s.name]}, {len(table.t)}, "
+            lines.append(f"    {target} = lg_table(law + {lay['table:' + key]}, {len(table.t)}, "
                          f"{_KIND[table.interpolation]}, t, law[0]);  /* {s.name}: {table.interpolation} table */")
         elif s.kind == "feedback":
-            fb = law.feedback
             assert fb is not None
             i = fb.inputs.index(s.name)
             nx = len(fb.states)
             terms = " + ".join(f"law[{lay['K'] + i * nx + k}] * (y[{index[x]}] - law[{lay['x_star'] + k}]"
                                + (f" - law[{lay['x_rate'] + k}] * t)" if x in eom.coordinates else ")")
                                for k, x in enumerate(fb.states))
-            lines.append(f"    u[{j}] = law[{lay['u_star'] + i}] - ({terms});  /* {s.name} = u* - K (x - x*(t)) */")
+            lines.append(f"    {target} = law[{lay['u_star'] + i}] - ({terms});  /* {s.name} = u* - K (x - x*(t)) */")
         else:
-            lines.append(f"    u[{j}] = uc[{callables.index(s.name)}];  /* {s.name}: a Python function */")
+            lines.append(f"    {target} = uc[{callables.index(s)}];  /* {s.name}: a Python function */")
+
+    locals_: list[str] = []
+    selections: list[str] = []
+    for j, s in enumerate(driven):
+        if s.kind != "switch":
+            leaf(f"u[{j}]", s.name, s)
+            continue
+        sources = s.value.sources
+        for k, piece in enumerate(sources):
+            locals_.append(f"v{j}_{k}")
+            leaf(f"v{j}_{k}", f"{s.name}#{k}", piece)
+        at = lay["switch:" + s.name]
+        chosen = f"v{j}_{len(sources) - 1}"
+        for k in reversed(range(len(sources) - 1)):
+            chosen = f"(s < law[{at + k}] ? v{j}_{k} : {chosen})"
+        selections.append(f"    {{  /* {s.name}: a switch, the source of the phase the hint (else t) is in */\n"
+                          f"        const double s = isnan(law[0]) ? t : law[0];\n"
+                          f"        u[{j}] = {chosen};\n    }}")
     body = c_block(outputs, names, prefix="w") if outputs else []
+    declared = [f"    double {', '.join(locals_)};"] if locals_ else []
     call = []
     if callables:
         call = [f"    double uc[{len(callables)}];",
@@ -173,9 +200,11 @@ def law_code(eom: EquationsOfMotion, law: InputLaw) -> LawCode:
         "static void lg_inputs(double t, const double *y, const double *p, double *u)\n{",
         "    const double *law = p + LG_NP + LG_NK;",
         "    (void)t; (void)y; (void)law;",
+        *declared,
         *call,
         *body,
         *lines,
+        *selections,
         "}\n",
         "static void lg_apply_inputs(double t, const double *y, const double *p, double *pu)\n{",
         f"    double u[{nu}];",

@@ -139,7 +139,8 @@ class InputTable:
     @classmethod
     def from_csv(cls, path: str | Path, column: str, *, time_column: str = "t",
                  interpolation: str = "linear") -> InputTable:
-        """The table of ``column`` against ``time_column`` in a CSV file with a header row.
+        """The table of ``column`` against ``time_column`` in a CSV file with a header row (lines that
+        begin with ``#`` are comments: a trajectory written by ``save_trajectory`` or ``-o`` is read as it is).
 
         Raises
         ------
@@ -157,7 +158,8 @@ class InputTable:
         except csv.Error as exc:
             raise SimulationError(f"`{path}` is not a CSV file ({exc}).", fix="write it with comma-separated "
                                   "columns and a header row") from None
-        rows = [r for r in rows if any(cell.strip() for cell in r)]
+        # blank rows, and the comment lines (`#`) that a trajectory file written by lagrangian begins with
+        rows = [r for r in rows if any(cell.strip() for cell in r) and not r[0].lstrip().startswith("#")]
         if not rows:
             raise SimulationError(f"The input file `{path}` is empty.", fix="write a header row (e.g. t,F) and samples")
         header = [cell.strip() for cell in rows[0]]
