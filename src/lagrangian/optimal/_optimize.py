@@ -167,6 +167,7 @@ def _result(tr: Transcription, run: SolverRun, transcribed: float, verify: bool,
     if verify and run.status in _REPLAYED:
         start = time.perf_counter()
         y_nodes = Z[: 2 * n, nodes].T
+        # each input as the scheme stands for it between its points (`OptimalTrajectory.input_table`)
         tables = {name: tr.scheme.input_table(t, U[:, k]) for k, name in enumerate(layout.inputs)}
         kind = next(iter(tables.values())).interpolation
         replay = replay_check(tr.eom, tr.values, tables, t[nodes], y_nodes,
