@@ -84,3 +84,11 @@ def test_the_replay_is_the_hand_written_equation_under_the_schemes_input(spring,
     assert replay.final_error == pytest.approx(np.abs(y[-1] - nodes[-1]).max(), rel=1e-6, abs=1e-12)
     assert replay.local_error == pytest.approx((np.abs(ends - nodes).max(axis=1) / scale).max(), rel=1e-6, abs=1e-12)
     assert "simulate" in replay.integrator
+    # what the replay ran is the optimum's own table
+    table = best.input_table("F")
+    assert table.interpolation == {"hermite-simpson": "quadratic", "trapezoidal": "linear",
+                                   "backward-euler": "zoh"}[method]
+    again = lagrangian.simulate(spring, T, t_eval=t[rows], initial={"x": 1.0, "x_dot": 0.5}, inputs={"F": table})
+    assert np.abs(np.column_stack([again.q[:, 0], again.qd[:, 0]]) - replay.y).max() < 1e-12
+    with pytest.raises(KeyError, match="`G` is not an input"):
+        best.input_table("G")
