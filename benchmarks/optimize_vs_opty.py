@@ -23,9 +23,9 @@ Every figure names its IPOPT build and its Hessian: ours and by hand, CasADi's b
 exact Hessian (CasADi's automatic differentiation); opty, Debian's IPOPT through cyipopt with the
 limited-memory quasi-Newton Hessian (opty gives IPOPT no Hessian).  Times are the best of a few
 runs in one process, ours and by hand taking turns (opty's, one run: each compiles its C extension
-anew).  Last, the replay
-accuracy of backward Euler and Hermite–Simpson (the final state reached by the optimized inputs,
-integrated by DOP853 at 1e-10, against the optimum's), which is why Hermite–Simpson is the default.
+anew).  Last, the replay accuracy of each scheme (the final state reached by the optimized inputs,
+replayed by `simulate`'s compiled DOP853 at 1e-10, against the optimum's), which is why
+Hermite–Simpson is the default.
 """
 
 from __future__ import annotations
@@ -215,8 +215,9 @@ def main() -> None:
             line += f"{op['objective']:>14.8f}" if op is not None else ""
             print(line)
 
-    print("\nreplay accuracy, cart-pole, N = 100: the optimized inputs integrated (DOP853, rtol = atol = 1e-10) "
-          "from the initial state; final-state error |x(T) − x_N|∞")
+    print("\nreplay accuracy, cart-pole, N = 100: the optimized inputs replayed by simulate (DOP853 in C, "
+          "rtol = atol = 1e-10, each input the table of what the scheme stands for) from the initial state; "
+          "final-state error |x(T) − x_N|∞")
     problem = load_problem(PROBLEMS["cart-pole"])
     for method in ("backward-euler", "trapezoidal", "hermite-simpson"):
         best = optimize(problem, nodes=100, method=method)

@@ -42,8 +42,8 @@ _WHERE = {
     "lagrange_top": ".model.zoo",
     **dict.fromkeys(("Report", "report", "export"), ".output"),
     **dict.fromkeys(("optimize", "load_problem", "OptimalTrajectory", "Objective", "Problem"), ".optimal"),
-    **dict.fromkeys(("CompiledSystem", "ContactEvent", "EventSpec", "FreeBodySystem", "ImpactSweep", "InputTable", "Sensitivities", "Trajectory", "compile_free_system",
-                     "compile_system", "ensemble", "grid", "impact_sweep", "load_trajectory", "open_ensemble", "save_trajectory", "simulate"), ".numerics"),
+    **dict.fromkeys(("CompiledSystem", "ContactEvent", "EventSpec", "FreeBodySystem", "ImpactSweep", "InputTable", "Sensitivities", "Switch", "Trajectory",
+                     "compile_free_system", "compile_system", "ensemble", "grid", "impact_sweep", "load_trajectory", "open_ensemble", "save_trajectory", "simulate"), ".numerics"),
     **dict.fromkeys(("View", "view"), ".view3d"),
 }
 
@@ -60,7 +60,7 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from .model import ModelBuilder, load_model, load_urdf, parse_model
     from .model.spec import Model
     from .model.zoo import lagrange_top
-    from .numerics import (CompiledSystem, ContactEvent, EventSpec, FreeBodySystem, ImpactSweep, InputTable, Sensitivities, Trajectory, compile_free_system,
+    from .numerics import (CompiledSystem, ContactEvent, EventSpec, FreeBodySystem, ImpactSweep, InputTable, Sensitivities, Switch, Trajectory, compile_free_system,
                            compile_system, ensemble, grid, impact_sweep, load_trajectory, open_ensemble, save_trajectory, simulate)
     from .optimal import Objective, OptimalTrajectory, Problem, load_problem, optimize
     from .output import Report, export, report
@@ -118,6 +118,7 @@ __all__ = [
     "open_ensemble",
     "EventSpec",
     "InputTable",
+    "Switch",
     "ContactEvent",
     "impact_sweep",
     "ImpactSweep",

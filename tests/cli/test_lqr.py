@@ -90,3 +90,36 @@ def test_an_interpolation_that_is_not_one_is_refused(tmp_path, capsys):
     csv.write_text("t,F\n0,0\n1,1\n")
     assert main(["simulate", CART_POLE, "--input", f"F=@{csv}:F:spline"]) != 0
     assert "`spline` is not an interpolation" in capsys.readouterr().err
+
+
+def test_the_command_line_offers_every_interpolation_of_a_table(tmp_path, capsys):
+    from lagrangian.cli._input_option import _KINDS
+    from lagrangian.numerics._input_table import INTERPOLATIONS
+
+    assert _KINDS == INTERPOLATIONS
+    csv = tmp_path / "push.csv"
+    csv.write_text("t,F\n0,0\n0.5,2\n1,0\n")
+    out = tmp_path / "q.csv"
+    assert main(["simulate", CART_POLE, "--input", f"F=@{csv}:F:quadratic", "--t-end", "1", "--n-out", "5",
+                 "--no-reactions", "-o", str(out)]) == 0, capsys.readouterr().err
+    header, rows = _table(out)
+    assert np.allclose(rows[:, header.index("F")], 8 * rows[:, 0] * (1 - rows[:, 0]), atol=1e-14)  # the parabola
+
+
+def test_a_feedback_takes_over_at_the_switching_time(tmp_path, capsys):
+    fb_path = tmp_path / "fb.json"
+    assert main(["lqr", CART_POLE, "--Q", "theta=10", "-o", str(fb_path)]) == 0
+    csv = tmp_path / "push.csv"
+    csv.write_text("t,F\n0,0\n0.3,1.5\n0.6,-1\n1,0\n")
+    out = tmp_path / "held.csv"
+    assert main(["simulate", CART_POLE, "--input", f"F=@{csv}:F:linear", "--feedback", str(fb_path),
+                 "--switch-at", "0.8", "--set", "theta=0.1", "--t-end", "3", "--n-out", "31", "--no-reactions",
+                 "-o", str(out)]) == 0, capsys.readouterr().err
+    assert "until t = 0.8, then u* - K (x - x*) (feedback)" in capsys.readouterr().out
+    header, rows = _table(out)
+    table = lagrangian.InputTable([0, 0.3, 0.6, 1], [0, 1.5, -1, 0], interpolation="linear")
+    F = lagrangian.Switch(table, lagrangian.Feedback.load(fb_path), at=0.8)
+    ref = lagrangian.simulate(CART_POLE, 3.0, n_out=31, inputs={"F": F}, initial={"theta": 0.1})
+    assert np.allclose(rows[:, header.index("theta")], ref.q[:, 1], rtol=1e-12, atol=1e-15)
+    assert main(["simulate", CART_POLE, "--input", f"F=@{csv}", "--switch-at", "0.8"]) != 0
+    assert "no --feedback is given" in capsys.readouterr().err

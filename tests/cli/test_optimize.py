@@ -22,7 +22,7 @@ def test_the_summary_says_status_objective_and_replay(capsys):
     assert main(["optimize", SLEW, "--nodes", "21"]) == 0
     out = capsys.readouterr().out
     assert "status: optimal" in out and "objective J = 8.944" in out
-    assert "replay (DOP853" in out and "free final time" in out
+    assert "replay (simulate: DOP853" in out and "free final time" in out
 
 
 def test_json_document_and_trajectory_file(capsys, tmp_path):

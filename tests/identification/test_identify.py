@@ -181,7 +181,7 @@ def test_a_pendulums_mass_is_not_identifiable_from_its_swing(swing):
 
 
 @pytest.mark.parametrize("data, message", [
-    ({"t": [0, 0.1, 0.2, 0.2, 0.4, 0.5], "theta": [1, 1, 1, 1, 1, 1]}, "do not increase at row 4"),
+    ({"t": [0, 0.1, 0.2, 0.2, 0.4, 0.5], "theta": [1, 1, 1, 1, 1, 1]}, "do not increase at row 4 \\(.*\\): t = 0.2 then 0.2\\."),
     ({"t": [0, 0.1, 0.2, 0.3, 0.4, 0.5], "theta": [1, 1, np.nan, 1, 1, 1]}, "holds nan at row 3"),
     ({"t": [0, 0.1, 0.2, 0.3, 0.4, 0.5], "theta": [1] * 6, "phi": [0] * 6}, "`phi` of the measurements"),
     ({"theta": [1] * 6}, "no column `t`"),

@@ -3,7 +3,7 @@
 Each motion is held against SciPy's ``solve_ivp`` on equations written by hand in the test
 (a mass on a spring with a damper, m ẍ = −k x − c ẋ + F; a pendulum pushed horizontally),
 never against the engine itself; the tables against their definitions (`numpy.interp`,
-SciPy's ``CubicSpline``, the hold written out); the slow path (a Python function) against
+SciPy's ``CubicSpline``, the hold and Lagrange's quadratic written out); the slow path (a Python function) against
 the compiled one.
 """
 
@@ -106,29 +106,61 @@ def test_a_number_holds_the_input_and_keeps_the_integrals_of_a_constant_force():
 # -- tables --------------------------------------------------------------------------------------------
 SAMPLES_T = np.array([0.0, 0.4, 1.0, 1.3, 2.2, 3.0])
 SAMPLES_V = np.array([0.0, 1.0, -0.5, 0.8, 0.2, 0.0])
+# A quadratic table: knots 0, 1, 2.2, 3 and one sample inside each knot interval (not at its middle).
+QUADRATIC_T = np.array([0.0, 0.4, 1.0, 1.3, 2.2, 2.7, 3.0])
+QUADRATIC_V = np.array([0.0, 1.0, -0.5, 0.8, 0.2, -0.3, 0.0])
+KINDS = ["zoh", "linear", "quadratic", "cubic"]
+
+
+def _samples(kind: str) -> tuple[np.ndarray, np.ndarray]:
+    return (QUADRATIC_T, QUADRATIC_V) if kind == "quadratic" else (SAMPLES_T, SAMPLES_V)
 
 
 def _definition(kind: str, t: np.ndarray) -> np.ndarray:
     """Each interpolation written out (held ends)."""
+    ts, vs = _samples(kind)
     if kind == "zoh":
-        k = np.searchsorted(SAMPLES_T, t, side="right") - 1
-        return SAMPLES_V[np.clip(k, 0, len(SAMPLES_V) - 1)]
+        k = np.searchsorted(ts, t, side="right") - 1
+        return vs[np.clip(k, 0, len(vs) - 1)]
     if kind == "linear":
-        return np.interp(t, SAMPLES_T, SAMPLES_V)
-    inside = np.clip(t, SAMPLES_T[0], SAMPLES_T[-1])
-    return CubicSpline(SAMPLES_T, SAMPLES_V, bc_type="not-a-knot")(inside)
+        return np.interp(t, ts, vs)
+    inside = np.clip(t, ts[0], ts[-1])
+    if kind == "cubic":
+        return CubicSpline(ts, vs, bc_type="not-a-knot")(inside)
+    # Lagrange's quadratic through (a, c, b) = (t_2j, t_2j+1, t_2j+2) on each knot interval
+    j = np.clip((np.searchsorted(ts, inside, side="right") - 1) // 2, 0, (len(ts) - 3) // 2)
+    a, c, b = ts[2 * j], ts[2 * j + 1], ts[2 * j + 2]
+    va, vc, vb = vs[2 * j], vs[2 * j + 1], vs[2 * j + 2]
+    s = inside
+    return (va * (s - c) * (s - b) / ((a - c) * (a - b)) + vc * (s - a) * (s - b) / ((c - a) * (c - b))
+            + vb * (s - a) * (s - c) / ((b - a) * (b - c)))
 
 
-@pytest.mark.parametrize("kind", ["zoh", "linear", "cubic"])
+@pytest.mark.parametrize("kind", KINDS)
 def test_each_interpolation_matches_its_definition_at_and_between_samples(oscillator, kind):
-    table = InputTable(SAMPLES_T, SAMPLES_V, interpolation=kind)
-    t = np.concatenate([SAMPLES_T, np.linspace(-0.5, 3.5, 97)])
+    ts, vs = _samples(kind)
+    table = InputTable(ts, vs, interpolation=kind)
+    t = np.concatenate([ts, np.linspace(-0.5, 3.5, 97)])
     assert np.allclose(table(t), _definition(kind, t), rtol=0, atol=1e-14)
     # the compiled code reads the same numbers
     system = compile_system(oscillator, inputs={"F": table})
     p = system.parameter_vector()
     Y = np.zeros((len(t), 2))
     assert np.allclose(system.input_values(t, Y, p)[:, 0], _definition(kind, t), rtol=0, atol=1e-14)
+
+
+def test_a_quadratic_table_breaks_at_its_knots_only_and_reads_one_parabola_across_its_inner_sample(oscillator):
+    table = InputTable(QUADRATIC_T, QUADRATIC_V, interpolation="quadratic")
+    assert np.array_equal(table.breakpoints, QUADRATIC_T[0::2])
+    # between two restarts (knots 1.0 and 2.2) the hint is their middle, 1.6, past the inner sample 1.3:
+    # the piece read at t = 1.1 is still the knot interval's parabola
+    system = compile_system(oscillator, inputs={"F": table})
+    p = system.parameter_vector()
+    system.law_block(p)[0] = 1.6
+    t = np.array([1.0, 1.1, 1.3, 2.2])
+    assert np.allclose(system.input_values(t, np.zeros((4, 2)), p)[:, 0], _definition("quadratic", t),
+                       rtol=0, atol=1e-14)
+    assert np.allclose(table(t, window=1.6), _definition("quadratic", t), rtol=0, atol=1e-14)
 
 
 def test_a_hold_reads_the_interval_it_is_in_up_to_its_right_end(oscillator):
@@ -142,18 +174,19 @@ def test_a_hold_reads_the_interval_it_is_in_up_to_its_right_end(oscillator):
     assert system.input_values([1.0], np.zeros((1, 2)), p)[0, 0] == SAMPLES_V[2]
 
 
-@pytest.mark.parametrize("kind", ["zoh", "linear", "cubic"])
+@pytest.mark.parametrize("kind", KINDS)
 @pytest.mark.parametrize("method", ["dop853", "RK45"])
 def test_a_table_drives_the_oscillator_as_the_hand_written_equations_piece_by_piece(oscillator, kind, method):
-    table = InputTable(SAMPLES_T, SAMPLES_V, interpolation=kind)
+    ts, vs = _samples(kind)
+    table = InputTable(ts, vs, interpolation=kind)
     t = np.linspace(0, 3.5, 36)
     traj = simulate(oscillator, 3.5, t_eval=t, inputs={"F": table}, method=method, rtol=1e-10, atol=1e-12)
     # By hand: one solve per interval between samples, each with its own piece (no kink inside a step).
-    edges = [0.0, *SAMPLES_T[1:], 3.5]
+    edges = [0.0, *ts[1:], 3.5]
     y, xs = [0.1, 0.0], []
     for a, b in pairwise(edges):
         mid = 0.5 * (a + b)
-        piece = (lambda s, m=mid: SAMPLES_V[np.searchsorted(SAMPLES_T, m, side="right") - 1]) if kind == "zoh" else \
+        piece = (lambda s, m=mid: vs[np.searchsorted(ts, m, side="right") - 1]) if kind == "zoh" else \
             (lambda s: float(_definition(kind, np.array([s]))[0]))
         grid = t[(t >= a) & (t <= b)] if a == 0 else t[(t > a) & (t <= b)]
         wanted = grid if len(grid) and grid[-1] == b else np.append(grid, b)
@@ -170,6 +203,9 @@ def test_a_table_from_a_csv_file(tmp_path, oscillator):
     assert np.array_equal(table.t, SAMPLES_T) and np.array_equal(table.values, SAMPLES_V)
     with pytest.raises(SimulationError, match="no column `push`.*its columns: t, force"):
         InputTable.from_csv(path, "push")
+    # a trajectory file written by lagrangian begins with comment lines
+    path.write_text("# lagrangian trajectory\n# parameters: m = 2\nt,force\n0,1\n0.5,2\n")
+    assert InputTable.from_csv(path, "force").values.tolist() == [1.0, 2.0]
     path.write_text("t,force\n0,1\n0.5,oops\n")
     with pytest.raises(SimulationError, match="line 3: `oops` is not a number"):
         InputTable.from_csv(path, "force")
@@ -186,6 +222,11 @@ def test_a_table_from_a_csv_file(tmp_path, oscillator):
 def test_a_bad_table_is_refused_clearly(t, v, message):
     with pytest.raises(SimulationError, match=message):
         InputTable(t, v)
+
+
+def test_a_quadratic_table_needs_an_odd_number_of_samples():
+    with pytest.raises(SimulationError, match="4 samples; a quadratic table needs an odd number"):
+        InputTable([0.0, 1.0, 2.0, 3.0], [0, 1, 2, 3], interpolation="quadratic")
 
 
 def test_an_unknown_interpolation_is_refused():
@@ -283,6 +324,16 @@ def test_the_symengine_fallback_applies_the_same_law(oscillator):
     rng = np.random.default_rng(3)
     T, Y = rng.uniform(0, 2, 7), rng.normal(size=(7, 2))
     assert np.allclose(s.rhs(T, Y, s.parameter_vector()), c.rhs(T, Y, c.parameter_vector()), rtol=1e-13, atol=1e-13)
+
+
+def test_without_a_compiler_a_hold_reads_the_interval_the_integrator_is_in(oscillator):
+    # The Python law has its own hint: SciPy's solves between samples see each interval's value to its end.
+    table = InputTable(SAMPLES_T, SAMPLES_V, interpolation="zoh")
+    t = np.linspace(0, 3, 31)
+    compiled = simulate(oscillator, 3.0, t_eval=t, inputs={"F": table})
+    python = simulate(compile_system(oscillator, inputs={"F": table}, backend="symengine"), 3.0, t_eval=t,
+                      method="DOP853")
+    assert np.abs(python.q - compiled.q).max() < 1e-8
 
 
 def test_the_analytic_jacobian_refuses_a_law_it_cannot_see(oscillator):

@@ -109,3 +109,38 @@ def test_opty_finds_the_same_objective_with_backward_euler(cart_pole):
     ours = optimize(cart_pole, nodes=N, method="backward-euler", verify=False, **SWING_UP)
     assert ours.status == "optimal"
     assert ours.objective == pytest.approx(info["obj_val"], rel=1e-8)
+
+
+def test_the_plan_then_the_lqr_holds_the_rod_up_as_the_hand_written_equations_do(cart_pole, swing_up):
+    # The plan's force (Lagrange's parabola through each interval's u_k, u_c, u_k+1), then the LQR's
+    # F = −K x from T on, on the cart-pole's equations by hand, integrated by SciPy phase by phase.
+    from scipy.integrate import solve_ivp
+
+    fb = lagrangian.lqr(cart_pole, at={"x": 0, "theta": 0}, Q={"theta": 10}, R=0.5)
+    gains = fb.K[0]
+    t_out = np.linspace(0.0, 5.0, 51)
+    start = {"x": 0, "theta": np.pi, "x_dot": 0, "theta_dot": 0}
+    held = lagrangian.simulate(cart_pole, 5.0, initial=start, t_eval=t_out,
+                               inputs={"F": lagrangian.Switch(swing_up.input_table("F"), fb, at=T_END)})
+
+    def f(s, y, force):
+        th, xd, thd = y[1], y[2], y[3]
+        F = force(s, y)
+        M = np.array([[MC + MB, MB * L * np.cos(th)], [MB * L * np.cos(th), MB * L ** 2]])
+        rhs = np.array([F + MB * L * np.sin(th) * thd ** 2, MB * G * L * np.sin(th)])
+        return [xd, thd, *np.linalg.solve(M, rhs)]
+
+    t, u = swing_up.t, swing_up.column("F")
+    y = np.array([0.0, np.pi, 0.0, 0.0])
+    for k in range(0, len(t) - 1, 2):
+        a, c, b = t[k:k + 3]
+        ua, uc, ub = u[k:k + 3]
+
+        def plan(s, _, a=a, b=b, c=c, ua=ua, uc=uc, ub=ub):
+            return (ua * (s - c) * (s - b) / ((a - c) * (a - b)) + uc * (s - a) * (s - b) / ((c - a) * (c - b))
+                    + ub * (s - a) * (s - c) / ((b - a) * (b - c)))
+        y = solve_ivp(f, (a, b), y, args=(plan,), method="DOP853", rtol=1e-12, atol=1e-12).y[:, -1]
+    late = solve_ivp(f, (T_END, 5.0), y, args=(lambda s, z: -gains @ z,), method="DOP853", rtol=1e-12,
+                     atol=1e-12, t_eval=t_out[t_out >= T_END])
+    assert np.abs(held.q[t_out >= T_END] - late.y[:2].T).max() < 1e-7
+    assert abs(held.q[-1, 1]) < 1e-3 and abs(held.q[-1, 0]) < 1e-2  # caught and held upright

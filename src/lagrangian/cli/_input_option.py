@@ -5,14 +5,16 @@ VALUE is one of
 * a plain decimal number: the input held there (``--input F=2.5``);
 * ``@FILE[:COLUMN[:KIND]]``: samples from a CSV file with a header row — the column COLUMN
   (default: the input's name) against the time column (``--input-time-column``, default ``t``),
-  read between samples by KIND, ``zoh``, ``linear`` (default) or ``cubic``
+  read between samples by KIND, ``zoh``, ``linear`` (default), ``quadratic`` or ``cubic``
   (``--input F=@run.csv:force:zoh``);
 * anything else: an expression in the model grammar of t, the coordinates, their rates
   ``<q>_dot`` and the parameters (``--input 'F=2*sin(3*t)'``), read by the model's own parser,
   never evaluated as Python.
 
 ``--feedback FILE.json`` (written by ``lagrangian lqr ... -o FILE.json``) closes the loop
-u = u* − K (x − x*) on the inputs it computes; ``--input`` gives the others.
+u = u* − K (x − x*) on the inputs it computes; ``--input`` gives the others.  With ``--switch-at
+TIME`` the feedback takes over at TIME: before it, its inputs follow their ``--input`` (0 where none
+is given) — a swing-up's table, then the catch (`lagrangian.Switch`).
 """
 
 from __future__ import annotations
@@ -28,7 +30,9 @@ from ._settings import SettingError, plain_number
 
 __all__ = ["add_input_options", "parse_inputs"]
 
-_KINDS = ("zoh", "linear", "cubic")
+#: The interpolations of a table (`InputTable`), said in the help and the messages.
+_KINDS = ("zoh", "linear", "quadratic", "cubic")
+_KIND_LIST = "|".join(_KINDS)
 
 
 def add_input_options(parser: argparse.ArgumentParser) -> None:
@@ -37,13 +41,16 @@ def add_input_options(parser: argparse.ArgumentParser) -> None:
         "--input", dest="input", action="append", default=[], metavar="NAME=VALUE",
         help="what a declared input does: a number (F=2.5), an expression of t, the coordinates, their rates and "
              "the parameters (F='2*sin(3*t)', compiled in), or samples from a CSV file, "
-             "F=@FILE[:COLUMN[:zoh|linear|cubic]] (column default NAME, interpolation default linear); repeatable; "
+             f"F=@FILE[:COLUMN[:{_KIND_LIST}]] (column default NAME, interpolation default linear); repeatable; "
              "overrides the model's [controls]")
     parser.add_argument("--input-time-column", default="t", metavar="NAME",
                         help="the time column of the --input CSV files (default t)")
     parser.add_argument("--feedback", metavar="FILE.json",
                         help="close the loop u = u* - K (x - x*) with the feedback `lagrangian lqr ... -o FILE.json` "
                              "wrote (compiled into the right-hand side)")
+    parser.add_argument("--switch-at", type=float, metavar="TIME",
+                        help="with --feedback: its inputs follow their --input (0 where none) until TIME, then the "
+                             "feedback (e.g. a swing-up's table, then the catch)")
 
 
 def _table_spec(name: str, spec: str) -> tuple[Path, str, str]:
@@ -58,27 +65,41 @@ def _table_spec(name: str, spec: str) -> tuple[Path, str, str]:
         if Path(path).is_file():
             if kind not in _KINDS:
                 raise SettingError(f"`--input {name}=@{spec}`: `{kind}` is not an interpolation.",
-                                   fix="use zoh, linear or cubic, e.g. --input F=@run.csv:F:zoh")
+                                   fix=f"use one of {', '.join(_KINDS)}, e.g. --input F=@run.csv:F:zoh")
             return Path(path), column or name, kind
     raise SettingError(f"`--input {name}=@{spec}`: no file `{candidates[0][0] if len(parts) == 1 else parts[0]}`.",
-                       fix="give an existing CSV file: --input NAME=@FILE[:COLUMN[:zoh|linear|cubic]]")
+                       fix=f"give an existing CSV file: --input NAME=@FILE[:COLUMN[:{_KIND_LIST}]]")
 
 
 def parse_inputs(values: Sequence[str], model: Model, *, time_column: str = "t",
-                 feedback: str | None = None) -> dict[str, Any] | None:
-    """The ``inputs=`` of `simulate` from ``--input`` and ``--feedback`` (None when neither is given).
+                 feedback: str | None = None, switch_at: float | None = None) -> dict[str, Any] | None:
+    """The ``inputs=`` of `simulate` from ``--input``, ``--feedback`` and ``--switch-at`` (None when none
+    is given).
 
     Raises
     ------
     SettingError
         Bad form, a name that is not a declared input, given twice, a value that is not finite,
-        a CSV file that does not exist, an unknown interpolation.
+        a CSV file that does not exist, an unknown interpolation, ``--switch-at`` without ``--feedback``
+        or not finite.
     ControlError, SimulationError
         A feedback file or a table that cannot be read.
     """
     from ..analysis import Feedback
-    from ..numerics import InputTable
+    from ..numerics import InputTable, Switch
 
+    if switch_at is not None:
+        if feedback is None:
+            raise SettingError(f"`--switch-at {switch_at:g}` says when a feedback takes over, and no --feedback is given.",
+                               fix="add --feedback FILE.json (written by lagrangian lqr ... -o FILE.json)")
+        if not math.isfinite(switch_at):
+            raise SettingError(f"`--switch-at {switch_at}` is not a finite time.", fix="give the time of the switch")
+        before = parse_inputs(values, model, time_column=time_column) or {}
+        fb = Feedback.load(feedback)
+        out = parse_inputs((), model, feedback=feedback) or {}
+        for name in fb.inputs:
+            out[name] = Switch(before.pop(name, 0.0), fb, at=switch_at)
+        return {**before, **out}
     declared = list(model.inputs)
     out: dict[str, Any] = {}
     if feedback is not None:

@@ -17,8 +17,7 @@ from pathlib import Path
 from .._atomic import check_destination
 from ..dynamics import derive
 from ..errors import Interrupted, OutputError, SimulationError
-from ..numerics import METHODS, STABILIZATIONS, EventSpec, check_output_path, compile_system, save_trajectory, \
-    simulate
+from ..numerics import METHODS, STABILIZATIONS, EventSpec, check_output_path, compile_system, save_trajectory, simulate
 from ._input_option import add_input_options, parse_inputs
 from ._settings import add_set_option, number_argument, parse_settings
 from ._source import MODEL_HELP, load_source
@@ -138,7 +137,8 @@ def _check_outputs(args: argparse.Namespace, plots: Path | None) -> None:
 def run(args: argparse.Namespace) -> str:
     model = load_source(args.model)
     parameters, initial = parse_settings(args.set, model)
-    inputs = parse_inputs(args.input, model, time_column=args.input_time_column, feedback=args.feedback)
+    inputs = parse_inputs(args.input, model, time_column=args.input_time_column, feedback=args.feedback,
+                          switch_at=args.switch_at)
     plots = plot_folder(args)
     _check_outputs(args, plots)
     eom = derive(model)
@@ -179,8 +179,8 @@ def run(args: argparse.Namespace) -> str:
     elif reactions:
         traj = _with_reactions(traj, eom)
     lines = [
-        f"{model.name}: t from {traj.t[0]:g} to {traj.t[-1]:g} with {traj.method}, {traj.steps} steps, "
-        f"{traj.rhs_calls} right-hand-side calls, {elapsed * 1e3:.1f} ms",
+        (f"{model.name}: t from {traj.t[0]:g} to {traj.t[-1]:g} with {traj.method}, {traj.steps} steps, "
+         f"{traj.rhs_calls} right-hand-side calls, {elapsed * 1e3:.1f} ms"),
         "conservation: " + (traj.drift_summary() or "no first integral to monitor"),
     ]
     applied = describe_inputs(inputs, model)
@@ -229,6 +229,7 @@ def run(args: argparse.Namespace) -> str:
 def describe_inputs(inputs, model) -> str:  # type: ignore[no-untyped-def]
     """``F = 2*sin(3*t), G = feedback`` for the summary: the inputs given, then the model's [controls]."""
     from ..analysis import Feedback
+    from ..numerics import Switch
 
     parts = []
     given = dict(inputs or {})
@@ -236,6 +237,9 @@ def describe_inputs(inputs, model) -> str:  # type: ignore[no-untyped-def]
         value = given.get(name)
         if isinstance(value, Feedback):
             parts.append(f"{name} = u* - K (x - x*) (feedback)")
+        elif isinstance(value, Switch):
+            before, _ = value.sources
+            parts.append(f"{name} = {before!r} until t = {value.at[0]:g}, then u* - K (x - x*) (feedback)")
         elif value is not None:
             parts.append(f"{name} = {value!r}" if not isinstance(value, str) else f"{name} = {value}")
         elif name in dict(model.controls):

@@ -110,8 +110,8 @@ def read_measurements(data, model: Model, *, columns: Sequence[str] | None = Non
     step = np.diff(t)
     if np.any(~(step > 0)):
         k = int(np.flatnonzero(~(step > 0))[0])
-        raise IdentificationError(f"The sample times do not increase at row {k + 2} ({source}): t = {t[k]!r} "
-                                  f"then {t[k + 1]!r}.", fix="sort the samples by time and remove repeated times")
+        raise IdentificationError(f"The sample times do not increase at row {k + 2} ({source}): t = {float(t[k]):.9g} "
+                                  f"then {float(t[k + 1]):.9g}.", fix="sort the samples by time and remove repeated times")
     states = {k: v for k, v in arrays.items() if k in coords or (k.endswith("_dot") and k[:-4] in coords)}
     accelerations = {k[:-5]: v for k, v in arrays.items() if k.endswith("_ddot") and k[:-5] in coords}
     measured_inputs = {k: v for k, v in arrays.items() if k in inputs}

@@ -17,6 +17,7 @@ from ._ensemble_store import open_ensemble as open_ensemble
 from ._members import Grid as Grid
 from ._members import grid as grid
 from ._files import check_output_path as check_output_path
+from ._input_switch import Switch as Switch
 from ._input_table import InputTable as InputTable
 from ._free_system import FreeBodySystem as FreeBodySystem
 from ._free_system import compile_free_system as compile_free_system
@@ -41,7 +42,7 @@ from ._top_check import simulation_check as simulation_check
 from ._trajectory import Event as Event
 from ._trajectory import Trajectory as Trajectory
 
-__all__ = ["simulate", "Sensitivities", "ensemble", "grid", "Grid", "open_ensemble", "flip_events", "simulate_stick_slip", "save_trajectory", "load_trajectory", "check_output_path", "EventSpec", "InputTable", "initial_state", "METHODS",
+__all__ = ["simulate", "Sensitivities", "ensemble", "grid", "Grid", "open_ensemble", "flip_events", "simulate_stick_slip", "save_trajectory", "load_trajectory", "check_output_path", "EventSpec", "InputTable", "Switch", "initial_state", "METHODS",
            "STABILIZATIONS", "default_tolerance", "CompiledSystem", "compile_system", "FreeBodySystem", "compile_free_system", "Trajectory", "Event",
            "SimulationCheck", "simulation_check", "reaction_columns_along",
            "reaction_history_along", "check_trajectory_along", "simulate_contact", "ContactEvent", "impact_sweep",

@@ -46,15 +46,15 @@ from ..model import load_model
 from ..model.spec import Model
 from ._codegen import monitor_expressions
 from ._codegen_dae import generate_dae_c
+from ._compile import compile_library, compiler
 from ._input_run import InputsAt, rowwise
 from ._inputs import resolve_inputs
-from ._compile import compile_library, compiler
-from ._projection import check_initial, project, project_many
 from ._progress import progress_bar
+from ._projection import check_initial, project, project_many
 from ._system import known_values, unused_parameters
 from ._trajectory import Event, Trajectory, conservation
 
-__all__ = ["ConstrainedSystem", "simulate_dae", "constrained_source", "STABILIZATIONS", "reaction_columns"]
+__all__ = ["STABILIZATIONS", "ConstrainedSystem", "constrained_source", "reaction_columns", "simulate_dae"]
 
 STABILIZATIONS = ("projection", "baumgarte", "both", "none")
 #: Methods whose state may be replaced between steps (the projection needs it).
@@ -107,6 +107,8 @@ class ConstrainedSystem:
     monitors, reactions : names of the monitor and reaction columns.
     integrals : the first integrals among the monitors.
     backend : ``"c"`` or ``"symengine"``.
+    regime : each declared input's regime (``"off"``, ``"constant"``, ``"varying"``) the integrals were
+        found for (``inputs``; off where not given).
     """
 
     def __init__(self, eom: EquationsOfMotion, *, backend: str = "auto", inputs: Mapping[str, str] | None = None
@@ -121,6 +123,7 @@ class ConstrainedSystem:
         self.parameters = tuple(p.name for p in eom.model.parameters)
         self.rows = tuple(r.name for r in eom.constraints)
         self.holonomic = np.array([r.kind == "holonomic" for r in eom.constraints])
+        self.regime = {u: (inputs or {}).get(u, "off") for u in eom.model.inputs}
         integrals = first_integrals(eom, inputs=inputs)  # inputs: each input's regime (off by default)
         self.integrals = tuple(fi.name for fi in integrals)
         monitor_items = monitor_expressions(eom, integrals)
@@ -348,8 +351,7 @@ def simulate_dae(
     """
     from scipy import integrate
 
-    from ._simulate import _event_expressions, _output_times, check_options, default_tolerance, \
-        initial_state
+    from ._simulate import _event_expressions, _output_times, check_options, default_tolerance, initial_state
 
     source, eom = constrained_source(source)
     if eom is None:
@@ -385,10 +387,11 @@ def simulate_dae(
                               fix="give it once: in inputs= (--input) or in parameters= (--set)")
     given.update(law.constants)
     regime = law.regime(given, tuple(eom.model.inputs))
-    if not isinstance(source, ConstrainedSystem) or any(r != "off" for r in regime.values()):
-        system = ConstrainedSystem(eom, backend=backend, inputs=regime)
-    else:
+    # A system given is used when its integrals are those of this run's regime (and its backend the one asked).
+    if isinstance(source, ConstrainedSystem) and source.regime == regime and backend in ("auto", source.backend):
         system = source
+    else:
+        system = ConstrainedSystem(eom, backend=backend, inputs=regime)
     p = system.parameter_vector(given)
     # Inputs that vary are computed here, in Python, at each evaluation: this path steps in Python
     # anyway (SciPy's solver, the projection), and a table's interval is the current segment's.

@@ -19,8 +19,13 @@ constants (LG_NK) | law (LG_NX)], the law's block laid out by `InputLaw.layout`:
     law[1]         the address of the Python callback, its bits read as a double (the slow path)
     K, x*, u*, ẋ*  the feedback's gain (m × nx, row-major), point, inputs, and the rates of the point's
                    coordinates along a steady motion (x*(t) = x* + ẋ* t)
-    tables         per table: times (N), values (N), then for "cubic" the (N − 1) × 4 coefficients
-    breaks         the sorted sample times of every table: the integrators stop and start there
+    tables         per table: times (N), values (N), then for "quadratic" and "cubic" the (N − 1) × 4
+                   coefficients of its polynomial pieces
+    switches       per `Switch`: its switching times
+    breaks         the sorted breakpoints of every table and switch: the integrators stop and start there
+
+A switch evaluates each of its sources into a local (``v<j>_<k>``) and keeps the one of the phase that
+the hint (else t) is in.
 """
 
 from __future__ import annotations
@@ -45,11 +50,13 @@ WRAPPED = (
     ("lg_aba", "double *qdd, double *piv", "qdd, piv"),
 )
 
-_KIND = {"zoh": 0, "linear": 1, "cubic": 2}
+#: A table's kind in C: a hold, a line, or a polynomial piece per sample interval (quadratic and cubic alike).
+_KIND = {"zoh": 0, "linear": 1, "quadratic": 2, "cubic": 2}
 
 # Binary search for the interval of `s` (the hint, or t), then the piece of that interval at t.
 _TABLE = r"""
-/* u(t) of a table (lagrangian.numerics._input_table): tab = times[n], values[n], cubic pieces[n-1][4].
+/* u(t) of a table (lagrangian.numerics._input_table): tab = times[n], values[n], polynomial pieces[n-1][4]
+ * (kind 2: quadratic or cubic).
  * The interval is the one holding `hint` when given (the integrator's current interval between two
  * restarts at the samples), else the one holding t; outside the samples the end values are held. */
 static double lg_table(const double *tab, int n, int kind, double t, double hint)
@@ -115,27 +122,50 @@ def law_code(eom: EquationsOfMotion, law: InputLaw) -> LawCode:
     lines: list[str] = []
     index = {c: i for i, c in enumerate(eom.coordinates)}
     index.update({c + "_dot": n + i for i, c in enumerate(eom.coordinates)})
-    callables = [s.name for s in law.callables]
-    for j, s in enumerate(driven):
-        if s.kind == "expression":
-            outputs.append((f"u[{j}]", s.value.xreplace({k: v for k, v in private.items()
-                                                         if k in s.value.free_symbols})))
+    callables = list(law.callables)
+    fb = law.feedback
+
+    def leaf(target: str, key: str, s) -> None:  # type: ignore[no-untyped-def]
+        """The C that writes the source ``s`` (``key`` in the law's leaves) into ``target`` (an expression
+        joins the CSE block)."""
+        if s.kind == "constant":
+            lines.append(f"    {target} = {float(s.value)!r};")
+        elif s.kind == "expression":
+            outputs.append((target, s.value.xreplace({k: v for k, v in private.items() if k in s.value.free_symbols})))
         elif s.kind == "table":
             table = s.value
-            lines.append(f"    u[{j}] = lg_table(law + {lay['table:' + s.name]}, {len(table.t)}, "
+            lines.append(f"    {target} = lg_table(law + {lay['table:' + key]}, {len(table.t)}, "
                          f"{_KIND[table.interpolation]}, t, law[0]);  /* {s.name}: {table.interpolation} table */")
         elif s.kind == "feedback":
-            fb = law.feedback
             assert fb is not None
             i = fb.inputs.index(s.name)
             nx = len(fb.states)
             terms = " + ".join(f"law[{lay['K'] + i * nx + k}] * (y[{index[x]}] - law[{lay['x_star'] + k}]"
                                + (f" - law[{lay['x_rate'] + k}] * t)" if x in eom.coordinates else ")")
                                for k, x in enumerate(fb.states))
-            lines.append(f"    u[{j}] = law[{lay['u_star'] + i}] - ({terms});  /* {s.name} = u* - K (x - x*(t)) */")
+            lines.append(f"    {target} = law[{lay['u_star'] + i}] - ({terms});  /* {s.name} = u* - K (x - x*(t)) */")
         else:
-            lines.append(f"    u[{j}] = uc[{callables.index(s.name)}];  /* {s.name}: a Python function */")
+            lines.append(f"    {target} = uc[{callables.index(s)}];  /* {s.name}: a Python function */")
+
+    locals_: list[str] = []
+    selections: list[str] = []
+    for j, s in enumerate(driven):
+        if s.kind != "switch":
+            leaf(f"u[{j}]", s.name, s)
+            continue
+        sources = s.value.sources
+        for k, piece in enumerate(sources):
+            locals_.append(f"v{j}_{k}")
+            leaf(f"v{j}_{k}", f"{s.name}#{k}", piece)
+        at = lay["switch:" + s.name]
+        chosen = f"v{j}_{len(sources) - 1}"
+        for k in reversed(range(len(sources) - 1)):
+            chosen = f"(s < law[{at + k}] ? v{j}_{k} : {chosen})"
+        selections.append(f"    {{  /* {s.name}: a switch, the source of the phase the hint (else t) is in */\n"
+                          f"        const double s = isnan(law[0]) ? t : law[0];\n"
+                          f"        u[{j}] = {chosen};\n    }}")
     body = c_block(outputs, names, prefix="w") if outputs else []
+    declared = [f"    double {', '.join(locals_)};"] if locals_ else []
     call = []
     if callables:
         call = [f"    double uc[{len(callables)}];",
@@ -170,9 +200,11 @@ def law_code(eom: EquationsOfMotion, law: InputLaw) -> LawCode:
         "static void lg_inputs(double t, const double *y, const double *p, double *u)\n{",
         "    const double *law = p + LG_NP + LG_NK;",
         "    (void)t; (void)y; (void)law;",
+        *declared,
         *call,
         *body,
         *lines,
+        *selections,
         "}\n",
         "static void lg_apply_inputs(double t, const double *y, const double *p, double *pu)\n{",
         f"    double u[{nu}];",

@@ -55,8 +55,9 @@ def system_for(source, eom, events: Sequence[tuple[str, object]], backend: str, 
                 return source
             twin = copy.copy(source)  # the same library: only the law's numbers differ
             twin.law = law
-            if twin._lib is None:  # the SymEngine fallback computes the law in Python: this law
+            if twin._lib is None:  # the SymEngine fallback computes the law in Python: this law, its own hint
                 twin._law_python = law.evaluator(eom, twin.parameters) if law.driven else None
+                twin._hint = np.full(1, np.nan)
             return twin
     return CompiledSystem(eom, events=events, backend=backend, inputs=law, constant_inputs=constant)
 

@@ -6,6 +6,16 @@ Between the sample times t_0 < t_1 < … < t_{N−1} with values v_k, the input 
     u(t) = v_k on t_k ≤ t < t_{k+1}: right-continuous, a jump at each sample;
 ``"linear"``
     u(t) = v_k + (t − t_k)(v_{k+1} − v_k)/(t_{k+1} − t_k): continuous, its slope jumps at each sample;
+``"quadratic"`` (an odd number of samples N = 2m + 1: knots t_0, t_2, …, t_{2m} and one sample
+    between each two)
+    on t_{2j} ≤ t ≤ t_{2j+2}, the parabola through the three samples (t_{2j}, v_{2j}),
+    (t_{2j+1}, v_{2j+1}), (t_{2j+2}, v_{2j+2}) — Lagrange's quadratic: with a = t_{2j},
+    c = t_{2j+1}, b = t_{2j+2},
+        u(t) = v_{2j} (t − c)(t − b)/((a − c)(a − b)) + v_{2j+1} (t − a)(t − b)/((c − a)(c − b))
+               + v_{2j+2} (t − a)(t − c)/((b − a)(b − c));
+    continuous, its slope jumps at the knots only.  This is the input Hermite–Simpson collocation
+    stands for: u_k, u_c, u_{k+1} at an interval's ends and midpoint (Betts, *Practical Methods for
+    Optimal Control*, 2nd ed., §4.6.2; Kelly, SIAM Review 59(4), 2017, §4.3);
 ``"cubic"``
     the C² cubic spline through the samples with not-a-knot ends (de Boor, *A Practical Guide
     to Splines*, ch. IV; SciPy's ``CubicSpline`` default): its third derivative jumps at each
@@ -14,11 +24,17 @@ Between the sample times t_0 < t_1 < … < t_{N−1} with values v_k, the input 
 Outside [t_0, t_{N−1}] every kind holds the end value (v_0 before, v_{N−1} after): a table
 never extrapolates.
 
-Each kind is smooth between two samples and not across one, so the compiled integrators stop
-at every sample time and start again (`_integrators.c`, ``lg_run``): an error estimate never
-straddles a jump of u (zoh) or of its derivatives (linear, cubic), which would make DOP853
-shrink its step blindly around each sample until the kink is resolved, at the cost of many
-rejected steps and of its order there.
+Each kind is smooth between two breakpoints and not across one — every sample time, or for
+``"quadratic"`` every knot — so the compiled integrators stop at every breakpoint and start
+again (`_integrators.c`, ``lg_run``): an error estimate never straddles a jump of u (zoh) or of
+its derivatives (linear, quadratic, cubic), which would make DOP853 shrink its step blindly
+around each sample until the kink is resolved, at the cost of many rejected steps and of its
+order there.
+
+``"quadratic"`` and ``"cubic"`` are read the same way, by the compiled code as here: a polynomial
+piece per interval between two samples, c0 s³ + c1 s² + c2 s + c3 with s = t − t_k (for the
+parabola, c0 = 0 and both halves of a knot interval hold the same parabola, expanded about their
+own left sample).
 """
 
 from __future__ import annotations
@@ -35,7 +51,9 @@ from ..errors import SimulationError
 __all__ = ["INTERPOLATIONS", "InputTable"]
 
 #: The interpolation kinds, in the order of their smoothness.
-INTERPOLATIONS = ("zoh", "linear", "cubic")
+INTERPOLATIONS = ("zoh", "linear", "quadratic", "cubic")
+#: The kinds read as a polynomial piece per interval (`InputTable.coefficients`).
+_PIECEWISE = ("quadratic", "cubic")
 
 
 def _readonly(a: np.ndarray) -> np.ndarray:
@@ -52,13 +70,13 @@ class InputTable:
     ----------
     t : shape (N,), N ≥ 2, strictly increasing finite times.
     values : shape (N,), finite values.
-    interpolation : ``"zoh"``, ``"linear"`` (default) or ``"cubic"``.
+    interpolation : ``"zoh"``, ``"linear"`` (default), ``"quadratic"`` (N odd ≥ 3) or ``"cubic"``.
 
     Raises
     ------
     SimulationError
         Times that do not increase, a NaN or infinite number, lengths that differ, fewer
-        than two samples, an unknown interpolation.
+        than two samples (an even number for ``"quadratic"``), an unknown interpolation.
 
     Examples
     --------
@@ -67,6 +85,8 @@ class InputTable:
     (1.0, 0.0)
     >>> float(InputTable([0.0, 1.0], [5.0, 7.0], interpolation="zoh")(1.0))
     7.0
+    >>> float(InputTable([0.0, 1.0, 2.0], [0.0, 1.0, 4.0], interpolation="quadratic")(1.5))  # t²
+    2.25
     """
 
     t: np.ndarray
@@ -105,16 +125,22 @@ class InputTable:
             raise SimulationError(f"{what}: the times must increase strictly, but t[{k + 1}] = {t[k + 1]:.9g} "
                                   f"follows t[{k}] = {t[k]:.9g}.",
                                   fix="sort the samples by time and merge repeated times")
+        if self.interpolation == "quadratic" and len(t) % 2 == 0:
+            raise SimulationError(f"{what} has {len(t)} samples; a quadratic table needs an odd number (the knots "
+                                  "and one sample between each two).",
+                                  fix="give the knots t_0, t_2, ... and one sample inside each interval, "
+                                      "or use 'linear' or 'cubic'")
         object.__setattr__(self, "t", _readonly(t))
         object.__setattr__(self, "values", _readonly(v))
-        object.__setattr__(self, "_coefficients", _readonly(_spline(t, v) if self.interpolation == "cubic"
-                                                            else np.zeros((0, 4))))
+        pieces = {"cubic": _spline, "quadratic": _parabolas}.get(self.interpolation)
+        object.__setattr__(self, "_coefficients", _readonly(pieces(t, v) if pieces else np.zeros((0, 4))))
 
     # -- reading -------------------------------------------------------------------------------
     @classmethod
     def from_csv(cls, path: str | Path, column: str, *, time_column: str = "t",
                  interpolation: str = "linear") -> InputTable:
-        """The table of ``column`` against ``time_column`` in a CSV file with a header row.
+        """The table of ``column`` against ``time_column`` in a CSV file with a header row (lines that
+        begin with ``#`` are comments: a trajectory written by ``save_trajectory`` or ``-o`` is read as it is).
 
         Raises
         ------
@@ -132,7 +158,8 @@ class InputTable:
         except csv.Error as exc:
             raise SimulationError(f"`{path}` is not a CSV file ({exc}).", fix="write it with comma-separated "
                                   "columns and a header row") from None
-        rows = [r for r in rows if any(cell.strip() for cell in r)]
+        # blank rows, and the comment lines (`#`) that a trajectory file written by lagrangian begins with
+        rows = [r for r in rows if any(cell.strip() for cell in r) and not r[0].lstrip().startswith("#")]
         if not rows:
             raise SimulationError(f"The input file `{path}` is empty.", fix="write a header row (e.g. t,F) and samples")
         header = [cell.strip() for cell in rows[0]]
@@ -154,12 +181,13 @@ class InputTable:
     # -- values -----------------------------------------------------------------------------------
     @property
     def breakpoints(self) -> np.ndarray:
-        """The times where u or a derivative of it jumps: every sample time."""
-        return self.t
+        """The times where u or a derivative of it jumps: every sample time (``"quadratic"``: every knot)."""
+        return self.t[0::2] if self.interpolation == "quadratic" else self.t
 
     @property
     def coefficients(self) -> np.ndarray:
-        """``"cubic"``: shape (N − 1, 4), piece k is c0 s³ + c1 s² + c2 s + c3 with s = t − t_k; else empty."""
+        """``"quadratic"``, ``"cubic"``: shape (N − 1, 4), piece k is c0 s³ + c1 s² + c2 s + c3 with
+        s = t − t_k; else empty."""
         return self._coefficients
 
     def __call__(self, t: float | np.ndarray, window: float | None = None) -> np.ndarray:
@@ -175,7 +203,7 @@ class InputTable:
             out = v[np.clip(k0, 0, len(ts) - 1)]
         elif self.interpolation == "linear":
             out = v[k] + (t - ts[k]) * (v[k + 1] - v[k]) / (ts[k + 1] - ts[k])
-        else:
+        else:  # a polynomial piece (quadratic, cubic)
             c = self._coefficients[k]
             s = t - ts[k]
             out = ((c[..., 0] * s + c[..., 1]) * s + c[..., 2]) * s + c[..., 3]
@@ -183,7 +211,7 @@ class InputTable:
         return out
 
     def data(self) -> np.ndarray:
-        """The numbers the compiled code reads: times, values, then (cubic) the coefficients."""
+        """The numbers the compiled code reads: times, values, then (quadratic, cubic) the coefficients."""
         return np.concatenate([self.t, self.values, self._coefficients.ravel()])
 
     def __repr__(self) -> str:
@@ -202,6 +230,24 @@ def _cell(row: list[str], k: int) -> float:
     if not math.isfinite(value):
         raise ValueError(f"`{text}` is not a finite number")
     return value
+
+
+def _parabolas(t: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """The quadratic table's pieces (N − 1, 4), highest power first: on each sample interval, the parabola
+    of its knot interval (module docstring) expanded about the interval's left sample.
+
+    In Newton's form on a knot interval (a, c, b), u = v_a + d1 (t − a) + d2 (t − a)(t − c) with the
+    divided differences d1 = (v_c − v_a)/(c − a), d2 = ((v_b − v_c)/(b − c) − d1)/(b − a); about a it is
+    d2 s² + (d1 − d2 (c − a)) s + v_a, about c it is d2 s² + (d1 + d2 (c − a)) s + v_c.
+    """
+    a, c, b = t[0:-1:2], t[1::2], t[2::2]
+    va, vc, vb = v[0:-1:2], v[1::2], v[2::2]
+    d1 = (vc - va) / (c - a)
+    d2 = ((vb - vc) / (b - c) - d1) / (b - a)
+    out = np.zeros((len(t) - 1, 4))
+    out[0::2, 1], out[0::2, 2], out[0::2, 3] = d2, d1 - d2 * (c - a), va
+    out[1::2, 1], out[1::2, 2], out[1::2, 3] = d2, d1 + d2 * (c - a), vc
+    return out
 
 
 def _spline(t: np.ndarray, v: np.ndarray) -> np.ndarray:

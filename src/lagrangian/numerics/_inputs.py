@@ -11,8 +11,10 @@ declared input:
 * a `Feedback` (``inputs=feedback``, or ``{"F": feedback}``): u = u* − K (x − x*), compiled in
   with K, x*, u* read from the parameter block, so one library serves any gains;
 * a Python callable ``u(t, y) -> float``, y = (q, q̇): the slow path, one Python call per
-  right-hand side evaluation, through a C callback (documented, for laws the grammar cannot
-  say).
+  right-hand side evaluation, through a C callback (`_input_callback`; documented, for laws the
+  grammar cannot say);
+* a `Switch` of those sources in turn, at given times (`_input_switch`): a swing-up's table, then
+  a feedback.
 
 A model's ``[controls]`` table gives a law per input in the model grammar; it is used when
 ``inputs=`` does not name that input (``inputs={"F": 0}`` turns it off).
@@ -20,15 +22,15 @@ A model's ``[controls]`` table gives a law per input in the model grammar; it is
 The law's numbers (gains, tables, the callback's address) follow the model's parameters and
 the hoisted constants in the ``p`` array (`_input_code` lays them out), so changing them reuses
 the compiled library: only the *structure* of the law (which inputs, which expressions, the
-tables' kinds and lengths) is in the C source.
+tables' kinds and lengths, the switches' numbers of sources) is in the C source.
 """
 
 from __future__ import annotations
 
-import ctypes
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -38,18 +40,21 @@ from ..analysis import Feedback
 from ..dynamics import EquationsOfMotion
 from ..errors import SimulationError
 from ..model._expr import ExpressionError, parse_expression
+from ._input_callback import Callback, call
+from ._input_switch import Switch
 from ._input_table import InputTable
 
 __all__ = ["Callback", "InputLaw", "InputSource", "law_names", "resolve_inputs"]
 
 #: The kinds of a source, in the order of the law's code.
-KINDS = ("constant", "expression", "table", "feedback", "callable")
+KINDS = ("constant", "expression", "table", "feedback", "callable", "switch")
 
 
 @dataclass(frozen=True, eq=False)
 class InputSource:
     """What one input does: ``kind`` in `KINDS` and its ``value`` (a float, a SymEngine expression,
-    an `InputTable`, a `Feedback` or a callable); ``text`` says it in messages."""
+    an `InputTable`, a `Feedback`, a callable, or a `Switch` whose sources are `InputSource` values);
+    ``text`` says it in messages."""
 
     name: str
     kind: str
@@ -94,13 +99,33 @@ class InputLaw:
     def constants(self) -> dict[str, float]:
         return {s.name: float(s.value) for s in self.sources if s.kind == "constant"}
 
+    @cached_property
+    def leaves(self) -> tuple[tuple[str, InputSource], ...]:
+        """(key, source) of every source the compiled law evaluates, in the law's order: each driven
+        input's own, or each source of a switch (keyed ``F#0``, ``F#1``, ...; the constants among them too)."""
+        out: list[tuple[str, InputSource]] = []
+        for s in self.driven:
+            if s.kind == "switch":
+                out += [(f"{s.name}#{k}", piece) for k, piece in enumerate(s.value.sources)]
+            else:
+                out.append((s.name, s))
+        return tuple(out)
+
     @property
     def tables(self) -> tuple[InputSource, ...]:
-        return tuple(s for s in self.sources if s.kind == "table")
+        return tuple(s for _, s in self.leaves if s.kind == "table")
 
     @property
     def callables(self) -> tuple[InputSource, ...]:
-        return tuple(s for s in self.sources if s.kind == "callable")
+        return tuple(s for _, s in self.leaves if s.kind == "callable")
+
+    @property
+    def switches(self) -> tuple[InputSource, ...]:
+        return tuple(s for s in self.driven if s.kind == "switch")
+
+    @property
+    def _feeds_back(self) -> bool:
+        return self.feedback is not None and any(s.kind == "feedback" for _, s in self.leaves)
 
     def __bool__(self) -> bool:
         return bool(self.sources)
@@ -111,26 +136,27 @@ class InputLaw:
         driven = {s.name for s in self.driven}
         return {u: "varying" if u in driven else ("constant" if values.get(u) else "off") for u in inputs}
 
-    @property
+    @cached_property
     def breakpoints(self) -> np.ndarray:
-        """Every time where a table's value or a derivative jumps, sorted (the integrators restart there)."""
-        if not self.tables:
-            return np.zeros(0)
-        return np.unique(np.concatenate([s.value.breakpoints for s in self.tables]))
+        """Every time where a table's value or a derivative jumps, and every switching time, sorted
+        (the integrators restart there)."""
+        times = [s.value.breakpoints for s in self.tables] + [np.array(s.value.at) for s in self.switches]
+        return np.unique(np.concatenate(times)) if times else np.zeros(0)
 
     def structure(self) -> tuple:
         """What the compiled code depends on (two laws with equal structures share a library)."""
-        out: list[tuple] = []
-        for s in self.driven:
+        def one(s: InputSource) -> tuple:
             if s.kind == "expression":
-                out.append((s.name, s.kind, str(s.value)))
-            elif s.kind == "table":
-                out.append((s.name, s.kind, s.value.interpolation, len(s.value.t)))
-            else:
-                out.append((s.name, s.kind))
+                return (s.name, s.kind, str(s.value))
+            if s.kind == "table":
+                return (s.name, s.kind, s.value.interpolation, len(s.value.t))
+            if s.kind == "switch":
+                return (s.name, s.kind, tuple(one(piece) for piece in s.value.sources))
+            return (s.name, s.kind)
+
         fb = self.feedback
-        shape = (fb.states, fb.inputs) if fb is not None and any(s.kind == "feedback" for s in self.driven) else ()
-        return (tuple(out), shape, len(self.breakpoints))
+        shape = (fb.states, fb.inputs) if self._feeds_back else ()
+        return (tuple(one(s) for s in self.driven), shape, len(self.breakpoints))
 
     # -- the numbers of the law, after the parameters ----------------------------------------------
     def layout(self) -> dict[str, int]:
@@ -138,20 +164,25 @@ class InputLaw:
         offsets = {"hint": 0, "callback": 1}
         k = 2
         fb = self.feedback
-        if fb is not None and any(s.kind == "feedback" for s in self.driven):
+        if fb is not None and self._feeds_back:
             m, nx = fb.K.shape
             offsets.update(K=k, x_star=k + m * nx, u_star=k + m * nx + nx, x_rate=k + m * nx + nx + m)
             k += m * nx + nx + m + nx
-        for s in self.tables:
-            offsets["table:" + s.name] = k
-            k += len(s.value.data())
+        for key, s in self.leaves:
+            if s.kind == "table":
+                offsets["table:" + key] = k
+                k += len(s.value.data())
+        for s in self.switches:
+            offsets["switch:" + s.name] = k
+            k += len(s.value.at)
         offsets["breaks"] = k
         offsets["size"] = k + len(self.breakpoints)
         return offsets
 
     def data(self, feedback: Feedback | None = None) -> np.ndarray:
         """The law's block of ``p``: NaN hint, the callback's address, K, x*, u*, the tables, the
-        breakpoints.  ``feedback``: another feedback of the same shape (an ensemble's member)."""
+        switching times, the breakpoints.  ``feedback``: another feedback of the same shape (an
+        ensemble's member)."""
         lay = self.layout()
         out = np.zeros(lay["size"])
         out[lay["hint"]] = np.nan
@@ -164,19 +195,24 @@ class InputLaw:
             out[lay["x_star"]:lay["x_star"] + nx] = fb.x_star
             out[lay["u_star"]:lay["u_star"] + m] = fb.u_star
             out[lay["x_rate"]:lay["x_rate"] + nx] = fb.x_star_rate
-        for s in self.tables:
-            a = lay["table:" + s.name]
-            d = s.value.data()
-            out[a:a + len(d)] = d
+        for key, s in self.leaves:
+            if s.kind == "table":
+                a = lay["table:" + key]
+                d = s.value.data()
+                out[a:a + len(d)] = d
+        for s in self.switches:
+            a = lay["switch:" + s.name]
+            out[a:a + len(s.value.at)] = s.value.at
         out[lay["breaks"]:] = self.breakpoints
         return out
 
     # -- the same law in Python (constrained models, no C compiler, tests) -----------------------------
     def evaluator(self, eom: EquationsOfMotion, parameters: tuple[str, ...]) -> Callable:
         """``f(t, Y, p, window=None) -> U`` (N, len(driven)): the driven inputs at each state, p the
-        model's parameter values; ``window`` a time inside the tables' current interval (as the hint)."""
+        model's parameter values; ``window`` a time inside the current interval between breakpoints
+        (as the hint): a table's piece and a switch's source are those of that interval."""
         args = [eom.t, *eom.q, *eom.qd, *(se.Symbol(name) for name in parameters)]
-        exprs = [s for s in self.driven if s.kind == "expression"]
+        exprs = [s for _, s in self.leaves if s.kind == "expression"]
         lam = se.Lambdify(args, [s.value for s in exprs], cse=True) if exprs else None
         index = _state_index(eom)
         fb = self.feedback
@@ -188,18 +224,27 @@ class InputLaw:
             if lam is not None:
                 table = np.column_stack([T, Y, np.broadcast_to(p[: len(parameters)], (len(Y), len(parameters)))])
                 values = np.asarray(lam(table), dtype=float).reshape(len(Y), len(exprs))
-            for j, s in enumerate(self.driven):
+
+            def leaf(s: InputSource) -> np.ndarray:
+                if s.kind == "constant":
+                    return np.full(len(Y), float(s.value))
                 if s.kind == "expression":
-                    out[:, j] = values[:, exprs.index(s)]
-                elif s.kind == "table":
-                    out[:, j] = s.value(T, window)
-                elif s.kind == "feedback":
+                    return values[:, exprs.index(s)]
+                if s.kind == "table":
+                    return s.value(T, window)
+                if s.kind == "feedback":
                     assert fb is not None
-                    x = Y[:, [index[name] for name in fb.states]]
-                    out[:, j] = fb(x, T)[:, fb.inputs.index(s.name)]
+                    return fb(Y[:, [index[name] for name in fb.states]], T)[:, fb.inputs.index(s.name)]
+                return np.array([call(s, float(T[i]), Y[i]) for i in range(len(Y))])
+
+            for j, s in enumerate(self.driven):
+                if s.kind == "switch":  # the source of the phase each time (or the window) is in
+                    phase = np.searchsorted(s.value.at, T if window is None else np.full(len(Y), window),
+                                            side="right")
+                    pieces = np.array([leaf(piece) for piece in s.value.sources])
+                    out[:, j] = pieces[phase, np.arange(len(Y))]
                 else:
-                    for i in range(len(Y)):
-                        out[i, j] = _call(s, float(T[i]), Y[i])
+                    out[:, j] = leaf(s)
             return out
 
         return f
@@ -210,63 +255,6 @@ def _state_index(eom: EquationsOfMotion) -> dict[str, int]:
     index = {c: i for i, c in enumerate(eom.coordinates)}
     index.update({c + "_dot": n + i for i, c in enumerate(eom.coordinates)})
     return index
-
-
-def _call(source: InputSource, t: float, y: np.ndarray) -> float:
-    try:
-        value = source.value(t, y.copy())
-        value = float(value)
-    except Exception as exc:
-        raise SimulationError(f"The input function of `{source.name}` failed at t = {t:.9g}: "
-                              f"{type(exc).__name__}: {exc}.",
-                              fix=f"make `{source.text}` return a number for every (t, y) of the run") from exc
-    if not math.isfinite(value):
-        raise SimulationError(f"The input function of `{source.name}` returned {value} at t = {t:.9g}.",
-                              fix="return a finite number") from None
-    return value
-
-
-# -- the C callback of the slow path ------------------------------------------------------------------
-_CALLBACK = ctypes.CFUNCTYPE(None, ctypes.c_double, ctypes.POINTER(ctypes.c_double),
-                             ctypes.POINTER(ctypes.c_double))
-
-
-class Callback:
-    """The one C function pointer through which compiled code calls the Python input functions.
-
-    ``lg_inputs`` calls it with (t, y, u); it fills u with each callable's value.  A Python
-    exception cannot cross C: the first one is kept in ``error``, u gets NaN and the run is
-    asked to stop (``stop``, the control block's stop request), and `simulate` raises it.
-    """
-
-    def __init__(self, sources: tuple[InputSource, ...], n_state: int) -> None:
-        self.sources = sources
-        self.n_state = n_state
-        self.error: SimulationError | None = None
-        self.stop: np.ndarray | None = None
-        self.calls = 0
-        self._function = _CALLBACK(self._call)
-
-    def _call(self, t: float, y_ptr: Any, u_ptr: Any) -> None:
-        self.calls += 1
-        if self.error is not None:
-            for k in range(len(self.sources)):
-                u_ptr[k] = math.nan
-            return
-        y = np.ctypeslib.as_array(y_ptr, shape=(self.n_state,))
-        for k, source in enumerate(self.sources):
-            try:
-                u_ptr[k] = _call(source, t, y)
-            except SimulationError as exc:
-                self.error = exc
-                u_ptr[k] = math.nan
-                if self.stop is not None:
-                    self.stop[0] = 1.0
-
-    def address_as_double(self) -> float:
-        """The function's address, its 64 bits read as a double (the C side reads them back)."""
-        address = ctypes.cast(self._function, ctypes.c_void_p).value or 0
-        return float(np.array([address], dtype=np.uint64).view(np.float64)[0])
 
 
 # -- resolving what the user gave -------------------------------------------------------------------
@@ -313,23 +301,29 @@ def resolve_inputs(eom: EquationsOfMotion, inputs: Any = None) -> InputLaw:
             source = _simplified(source)
         else:
             continue
-        if source.kind == "feedback":
-            if feedback is not None and source.value is not feedback:
-                raise SimulationError("Two different feedbacks were given; one law feeds back all its inputs.",
-                                      fix="design one feedback with all the inputs (lqr(..., inputs=[...]))")
-            feedback = source.value
+        for part in _parts(source):
+            if part.kind == "feedback":
+                if feedback is not None and part.value is not feedback:
+                    raise SimulationError("Two different feedbacks were given; one law feeds back all its inputs.",
+                                          fix="design one feedback with all the inputs (lqr(..., inputs=[...]))")
+                feedback = part.value
         sources.append(source)
     if feedback is not None:
-        _check_feedback(eom, feedback, {s.name for s in sources if s.kind == "feedback"})
-    callables = tuple(s for s in sources if s.kind == "callable")
+        _check_feedback(eom, feedback, {s.name for s in sources if any(p.kind == "feedback" for p in _parts(s))})
+    callables = InputLaw(tuple(sources)).callables  # in the law's order, a switch's among them
     callback = Callback(callables, 2 * len(eom.q)) if callables else None
     return InputLaw(tuple(sources), feedback, callback)
+
+
+def _parts(source: InputSource) -> tuple[InputSource, ...]:
+    """A switch's sources, or the source itself."""
+    return source.value.sources if source.kind == "switch" else (source,)
 
 
 def _source(name: str, value: Any, names: Mapping[str, se.Basic], model: str) -> InputSource:
     if isinstance(value, bool) or value is None:
         raise SimulationError(f"The input `{name}` = {value!r}: give a number, an expression, an InputTable, a "
-                              "Feedback or a function u(t, y).", fix=f"e.g. inputs={{'{name}': 0.5}}")
+                              "Feedback, a function u(t, y) or a Switch of those.", fix=f"e.g. inputs={{'{name}': 0.5}}")
     if isinstance(value, (int, float, np.integer, np.floating)):
         v = float(value)
         if not math.isfinite(v):
@@ -360,10 +354,16 @@ def _source(name: str, value: Any, names: Mapping[str, se.Basic], model: str) ->
             raise SimulationError(f"The feedback given for `{name}` computes {', '.join(value.inputs)}, not `{name}`.",
                                   fix="give each input the feedback that computes it, or inputs=feedback")
         return InputSource(name, "feedback", value, "feedback")
+    if isinstance(value, Switch):  # each source resolved as the input's own (none is a Switch: `Switch` says so)
+        pieces = tuple(_source(name, piece, names, model) for piece in value.sources)
+        text = " then ".join(f"{piece.text} from t = {a:g}" if k else piece.text
+                             for k, (piece, a) in enumerate(zip(pieces, (0.0, *value.at))))
+        return InputSource(name, "switch", Switch(*pieces, at=value.at), text)
     if callable(value):
         return InputSource(name, "callable", value, getattr(value, "__name__", "a function"))
     raise SimulationError(f"The input `{name}` is a {type(value).__name__}; give a number, an expression (text), an "
-                          "InputTable, a Feedback or a function u(t, y).", fix=f"e.g. inputs={{'{name}': '2*sin(3*t)'}}")
+                          "InputTable, a Feedback, a function u(t, y) or a Switch of those.",
+                          fix=f"e.g. inputs={{'{name}': '2*sin(3*t)'}}")
 
 
 def _simplified(source: InputSource) -> InputSource:

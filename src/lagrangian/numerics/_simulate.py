@@ -43,10 +43,9 @@ from ..model import load_model
 from ..model._assumptions import check_sign
 from ..model._expr import ExpressionError, parse_expression
 from ..model.spec import Model
-from ._mass_spectrum import mass_eigenvalues, mass_eigh
 from ._dae import BAUMGARTE, ConstrainedSystem, constrained_source, simulate_dae
-from ._input_run import arm_callback, check_callback, constant_inputs_only, input_columns, solve_in_segments, \
-    system_for
+from ._input_run import arm_callback, check_callback, constant_inputs_only, input_columns, solve_in_segments, system_for
+from ._mass_spectrum import mass_eigenvalues, mass_eigh
 from ._progress import Reporter, Watch, make_reporter
 from ._ranges import watch_ranges
 from ._system import CompiledSystem, _ptr, known_values
@@ -55,7 +54,7 @@ from ._trajectory import Event, Trajectory, conservation
 if TYPE_CHECKING:
     from ._sensitivity import Sensitivities
 
-__all__ = ["simulate", "EventSpec", "initial_state", "METHODS", "default_tolerance", "control_block"]
+__all__ = ["METHODS", "EventSpec", "control_block", "default_tolerance", "initial_state", "simulate"]
 
 BUILTIN = ("dop853", "gauss-legendre")
 SCIPY = ("RK45", "RK23", "DOP853", "Radau", "BDF", "LSODA")
@@ -373,7 +372,7 @@ def simulate(
         ``trajectory`` is the part computed so far (status ``"... (partial)"``), or None.
     """
     check_options(rtol, atol, tolerance)
-    from ._stickslip import exact_contact_model, simulate_stick_slip  # late: `_stickslip` imports this module
+    from ._stickslip import exact_contact_model  # late: `_stickslip` imports this module
 
     # Declared signs and ranges (`model._assumptions`): values that break a sign are refused, and the
     # motion is checked against the ranges and the signs the derivation used (`_ranges`).
@@ -762,8 +761,8 @@ def _run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol, max_ste
                                  t_eval=grid, rtol=rtol, atol=atol, max_step=np.inf if max_step is None else max_step,
                                  events=[make_event(k, s) for k, s in enumerate(specs)] or None)
 
-            # A table's samples are breakpoints: one solve_ivp per interval (`_input_run`).
-            law = system.law_block(p) if system.law.tables else None
+            # A table's samples and a switch's times are breakpoints: one solve_ivp per interval (`_input_run`).
+            law = system.law_block(p) if len(system.law.breakpoints) else None
             sol = solve_in_segments(solve, t_start, t_end, t_out, y0, system.law.breakpoints, law, len(specs))
     except KeyboardInterrupt:
         # SciPy's loop runs in Python, so Ctrl-C stops it at once; what it had is inside
@@ -814,9 +813,9 @@ def _trajectory(system, p, t, Y, evs, method, steps, nfev, tolerance, status, co
         f"{name} drifted by {drift[name]:.2e} (relative), more than the tolerance {tolerance:.1e}"
         for name in system.integrals if tolerance is not None and drift[name] > tolerance)
     if conditioning < 1e-6:
-        warnings += (f"the motion passed close to a singular configuration of the coordinates (M's smallest "
-                     f"relative pivot fell to {conditioning:.1e}): accuracy may be lost there; check the drift "
-                     f"of the first integrals, or choose coordinates that are regular along this motion",)
+        warnings += ((f"the motion passed close to a singular configuration of the coordinates (M's smallest "
+                      f"relative pivot fell to {conditioning:.1e}): accuracy may be lost there; check the drift "
+                      f"of the first integrals, or choose coordinates that are regular along this motion"),)
     events = tuple(Event(name, float(te), np.array(ye[:n]), np.array(ye[n:])) for name, te, ye in evs)
     parameters = {k: v for k, v in known_values(system.parameters, p).items() if k not in system.inputs}
     return Trajectory(

@@ -152,6 +152,9 @@ class CompiledSystem:
             self._constants = 0
             self._lambdify()
             self._law_python = self.law.evaluator(eom, self.parameters) if self.law.driven else None
+        # Without C the law runs in Python, its numbers in the law itself; its hint (a time inside the
+        # current interval between breakpoints, NaN outside a run) is kept here.
+        self._hint = np.full(1, np.nan)
         self._t1 = np.zeros(1)
 
     # -- parameter values -------------------------------------------------------------
@@ -205,9 +208,16 @@ class CompiledSystem:
         return out
 
     def law_block(self, p: np.ndarray) -> np.ndarray:
-        """The inputs' law's numbers in ``p`` (a view: its hint, ``[0]``, may be written)."""
+        """The inputs' law's numbers in ``p`` (a view: its hint, ``[0]``, may be written); without C, the
+        hint alone (the law's numbers are in the law)."""
+        if self._lib is None:
+            return self._hint
         start = len(self.parameters) + self._constants
         return p[start:start + self._law_size]
+
+    def _python_law(self, T: np.ndarray, Y: np.ndarray, p: np.ndarray) -> np.ndarray:
+        hint = float(self._hint[0])
+        return self._law_python(T, Y, p, None if np.isnan(hint) else hint)
 
     def input_values(self, t, y, p: np.ndarray) -> np.ndarray:
         """The driven inputs (`inputs`) at each state: shape (N, len(inputs)), as the compiled law gives them."""
@@ -219,14 +229,14 @@ class CompiledSystem:
             out = np.empty((len(Y), k))
             self._lib.lg_eval_inputs(len(Y), _ptr(T), _ptr(Y), _ptr(p), _ptr(out))
         else:
-            out = self._law_python(T, Y, p)
+            out = self._python_law(T, Y, p)
         return out[0] if single else out
 
     def _rows(self, T: np.ndarray, Y: np.ndarray, p: np.ndarray) -> np.ndarray:
         """The SymEngine evaluators' argument rows (t, y, parameters), the driven inputs written in."""
         P = np.array(np.broadcast_to(p[: len(self.parameters)], (len(Y), len(self.parameters))))
         if self.inputs:
-            P[:, [self.parameters.index(u) for u in self.inputs]] = self._law_python(T, Y, p)
+            P[:, [self.parameters.index(u) for u in self.inputs]] = self._python_law(T, Y, p)
         return np.column_stack([T, Y, P])
 
     @property

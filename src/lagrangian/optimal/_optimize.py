@@ -167,10 +167,11 @@ def _result(tr: Transcription, run: SolverRun, transcribed: float, verify: bool,
     if verify and run.status in _REPLAYED:
         start = time.perf_counter()
         y_nodes = Z[: 2 * n, nodes].T
-        u = tr.scheme.input_between(tr.tau, U)
-        replay = replay_check(tr.eom, tr.values, layout.inputs, lambda s: u((s - tr.t0) / T), t[nodes], y_nodes,
-                              f"inputs interpolated as {tr.scheme.name} stands for them",
-                              replay_tolerance)
+        # each input as the scheme stands for it between its points (`OptimalTrajectory.input_table`)
+        tables = {name: tr.scheme.input_table(t, U[:, k]) for k, name in enumerate(layout.inputs)}
+        kind = next(iter(tables.values())).interpolation
+        replay = replay_check(tr.eom, tr.values, tables, t[nodes], y_nodes,
+                              f"the inputs as {tr.scheme.name} stands for them: {kind} tables", replay_tolerance)
         seconds["replay"] = time.perf_counter() - start
         if not replay.within:
             warnings.append(f"the inputs replayed over one interval depart from the optimum by {replay.local_error:.1e} "

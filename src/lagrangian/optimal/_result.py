@@ -16,7 +16,8 @@ from typing import Any
 
 import numpy as np
 
-from ..numerics import Trajectory
+from ..numerics import InputTable, Trajectory
+from ._schemes import scheme
 
 __all__ = ["REPLAY_TOLERANCE", "OptimalTrajectory", "Replay"]
 
@@ -40,7 +41,8 @@ class Replay:
     local_error : the same measure with each interval replayed from the optimum's state at its first
         node: the scheme's own error, not amplified by an instability.
     tolerance : `REPLAY_TOLERANCE` or the one asked for; ``within`` says whether local_error ≤ tolerance.
-    integrator : what ran it (``"DOP853, rtol = atol = 1e-10"``) and how the input was interpolated.
+    integrator : what ran it (``"simulate: DOP853 in C, rtol = atol = 1e-10"``) and how the inputs were read
+        between the points (the scheme's `InputTable` kind).
     """
 
     t: np.ndarray
@@ -111,6 +113,17 @@ class OptimalTrajectory(Trajectory):
     def input(self, name: str) -> np.ndarray:
         """u(t) of the input ``name`` at every row (the same as ``column(name)``)."""
         return self.column(name)
+
+    def input_table(self, name: str) -> InputTable:
+        """The input ``name`` between the collocation points as the scheme stands for it, an `InputTable`
+        that `simulate` reads (``"quadratic"`` for Hermite–Simpson, ``"linear"`` for trapezoidal, a
+        ``"zoh"`` of the right values for backward Euler): what the replay runs.
+
+        >>> # simulate(eom, 6.0, initial=..., inputs={"F": Switch(best.input_table("F"), feedback, at=2.0)})
+        """
+        if name not in self.inputs:
+            raise KeyError(f"`{name}` is not an input of this optimum (its inputs: {', '.join(self.inputs)})")
+        return scheme(self.method).input_table(self.t, self.column(name))
 
     def summary(self) -> str:
         """A few lines: status, objective, iterations, violation, replay."""

@@ -4,20 +4,22 @@ The time span is cut into N − 1 intervals of equal length h; the state x = (q,
 derivative ẋ = (q̇, q̈), where q̈ is a decision variable held to the implicit rows at every
 collocation point (`_dynamics`).  Each scheme says where its collocation points lie, which equations
 tie the points of an interval together (its *defects*), how it integrates a running cost, and what
-input the optimum stands for between the points (what `_replay` feeds an integrator):
+input the optimum stands for between the points (the `InputTable` that `_replay` gives `simulate`):
 
 ``hermite-simpson`` (default; Betts, *Practical Methods for Optimal Control*, 2nd ed., §4.6.2, its
     separated form; Kelly, SIAM Review 59(4), 2017, §4)
     points: the nodes and each interval's midpoint c, with its own u_c;
         x_c = (x_k + x_{k+1})/2 + h/8 (ẋ_k − ẋ_{k+1})          (the cubic Hermite interpolant at c)
         x_{k+1} = x_k + h/6 (ẋ_k + 4 ẋ_c + ẋ_{k+1})            (Simpson's rule)
-    cost: Simpson's rule; input: the quadratic through u_k, u_c, u_{k+1}.  Fourth order.
+    cost: Simpson's rule; input: the parabola through u_k, u_c, u_{k+1} (a ``"quadratic"`` table).
+    Fourth order.
 ``trapezoidal``
     points: the nodes;  x_{k+1} = x_k + h/2 (ẋ_k + ẋ_{k+1});  cost: the trapezoidal rule;
-    input: linear between nodes.  Second order.
+    input: linear between nodes (a ``"linear"`` table).  Second order.
 ``backward-euler`` (opty's default scheme)
     points: the nodes;  x_{k+1} = x_k + h ẋ_{k+1};  cost: h Σ_{k≥1} L_k (right rectangles);
-    input: u_{k+1} held over (t_k, t_{k+1}].  First order.
+    input: u_{k+1} held over (t_k, t_{k+1}] (a ``"zoh"`` table of u_1, …, u_{N−1}, u_{N−1}: the hold of
+    the value at each interval's right end).  First order.
 
 The implicit midpoint rule is not offered: only (u_k + u_{k+1})/2 enters it, so an input that
 alternates from node to node (u_k + (−1)^k ε) leaves every defect unchanged and the optimum is not
@@ -26,11 +28,11 @@ unique (Kelly 2017, §4.4); Hermite–Simpson does the same work at fourth order
 
 from __future__ import annotations
 
-import bisect
-from collections.abc import Callable
 from typing import Any
 
 import numpy as np
+
+from ..numerics import InputTable
 
 __all__ = ["SCHEMES", "BackwardEuler", "HermiteSimpson", "Scheme", "Trapezoidal", "scheme"]
 
@@ -43,7 +45,8 @@ class Scheme:
     3. ``weights(N)``: quadrature weights w_j with ∫_0^1 L dτ ≈ Σ_j w_j L(τ_j);
     4. ``defects(ca, X, Xdot, h)``: the equations (= 0) tying the points, given the state x and its
        derivative ẋ at every point as matrices (one column per point) and the interval length h;
-    5. ``input_between(tau, U)``: u(τ) as the scheme stands for it, from its values at the points.
+    5. ``input_table(t, u)``: u(t) as the scheme stands for it, from its values ``u`` at the points' times
+       ``t``: an `InputTable` (`simulate` reads it in its compiled right-hand side).
     """
 
     name = ""
@@ -61,7 +64,7 @@ class Scheme:
     def defects(self, ca: Any, X: Any, Xdot: Any, h: Any) -> Any:
         raise NotImplementedError
 
-    def input_between(self, tau: np.ndarray, U: np.ndarray) -> Callable[[float], np.ndarray]:
+    def input_table(self, t: np.ndarray, u: np.ndarray) -> InputTable:
         raise NotImplementedError
 
 
@@ -90,17 +93,8 @@ class HermiteSimpson(Scheme):
         simpson = X[:, k1] - X[:, k] - h / 6 * (Xdot[:, k] + 4 * Xdot[:, c] + Xdot[:, k1])
         return ca.vertcat(interpolation, simpson)
 
-    def input_between(self, tau: np.ndarray, U: np.ndarray) -> Callable[[float], np.ndarray]:
-        nodes = list(tau[0::2])
-        last = len(nodes) - 2
-
-        def u(s: float) -> np.ndarray:
-            k = min(max(bisect.bisect_right(nodes, s) - 1, 0), last)
-            a, b = nodes[k], nodes[k + 1]
-            x = (s - a) / (b - a)  # 0 at u_k, 1/2 at u_c, 1 at u_{k+1}: Lagrange's quadratic
-            return (U[2 * k] * ((2 * x - 1) * (x - 1)) + U[2 * k + 1] * (4 * x * (1 - x))
-                    + U[2 * k + 2] * (x * (2 * x - 1)))
-        return u
+    def input_table(self, t: np.ndarray, u: np.ndarray) -> InputTable:
+        return InputTable(t, u, "quadratic")  # the knots at the even points, a midpoint between each two
 
 
 class Trapezoidal(Scheme):
@@ -115,15 +109,8 @@ class Trapezoidal(Scheme):
     def defects(self, ca: Any, X: Any, Xdot: Any, h: Any) -> Any:
         return X[:, 1:] - X[:, :-1] - h / 2 * (Xdot[:, :-1] + Xdot[:, 1:])
 
-    def input_between(self, tau: np.ndarray, U: np.ndarray) -> Callable[[float], np.ndarray]:
-        nodes = list(tau)
-        last = len(nodes) - 2
-
-        def u(s: float) -> np.ndarray:
-            k = min(max(bisect.bisect_right(nodes, s) - 1, 0), last)
-            x = (s - nodes[k]) / (nodes[k + 1] - nodes[k])
-            return U[k] * (1 - x) + U[k + 1] * x
-        return u
+    def input_table(self, t: np.ndarray, u: np.ndarray) -> InputTable:
+        return InputTable(t, u, "linear")
 
 
 class BackwardEuler(Scheme):
@@ -138,13 +125,9 @@ class BackwardEuler(Scheme):
     def defects(self, ca: Any, X: Any, Xdot: Any, h: Any) -> Any:
         return X[:, 1:] - X[:, :-1] - h * Xdot[:, 1:]
 
-    def input_between(self, tau: np.ndarray, U: np.ndarray) -> Callable[[float], np.ndarray]:
-        nodes = list(tau)
-        last = len(nodes) - 1
-
-        def u(s: float) -> np.ndarray:
-            return U[min(max(bisect.bisect_left(nodes, s), 1), last)]  # u_{k+1} on (t_k, t_{k+1}]
-        return u
+    def input_table(self, t: np.ndarray, u: np.ndarray) -> InputTable:
+        # A zero-order hold reads v_k on [t_k, t_{k+1}], up to the right end between two restarts: v_k = u_{k+1}.
+        return InputTable(t, np.append(u[1:], u[-1]), "zoh")
 
 
 SCHEMES: dict[str, Scheme] = {s.name: s for s in (HermiteSimpson(), Trapezoidal(), BackwardEuler())}
