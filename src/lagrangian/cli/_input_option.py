@@ -17,33 +17,18 @@ u = u* − K (x − x*) on the inputs it computes; ``--input`` gives the others.
 
 from __future__ import annotations
 
-import argparse
 import math
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
 from ..model.spec import Model
+from ._arguments.common import add_input_options
 from ._settings import SettingError, plain_number
 
 __all__ = ["add_input_options", "parse_inputs"]
 
 _KINDS = ("zoh", "linear", "cubic")
-
-
-def add_input_options(parser: argparse.ArgumentParser) -> None:
-    """``--input`` (repeatable), ``--input-time-column`` and ``--feedback``."""
-    parser.add_argument(
-        "--input", dest="input", action="append", default=[], metavar="NAME=VALUE",
-        help="what a declared input does: a number (F=2.5), an expression of t, the coordinates, their rates and "
-             "the parameters (F='2*sin(3*t)', compiled in), or samples from a CSV file, "
-             "F=@FILE[:COLUMN[:zoh|linear|cubic]] (column default NAME, interpolation default linear); repeatable; "
-             "overrides the model's [controls]")
-    parser.add_argument("--input-time-column", default="t", metavar="NAME",
-                        help="the time column of the --input CSV files (default t)")
-    parser.add_argument("--feedback", metavar="FILE.json",
-                        help="close the loop u = u* - K (x - x*) with the feedback `lagrangian lqr ... -o FILE.json` "
-                             "wrote (compiled into the right-hand side)")
 
 
 def _table_spec(name: str, spec: str) -> tuple[Path, str, str]:
