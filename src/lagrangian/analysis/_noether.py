@@ -31,7 +31,6 @@ from collections.abc import Sequence
 
 import numpy as np
 import symengine as se
-import sympy
 from symengine.lib.symengine_wrapper import sympy2symengine
 
 from .._identity import are_zero
@@ -69,6 +68,8 @@ def _tidy(e: se.Basic) -> se.Basic:
     """cancel, trigsimp, cancel (SymPy): the generator's entries are short once simplified."""
     if not e.free_symbols or len(str(e)) > TIDY_MAX_CHARS:
         return e
+    import sympy  # late: SymPy takes most of a second to load, and only this needs it
+
     try:
         return sympy2symengine(sympy.cancel(sympy.trigsimp(sympy.cancel(e._sympy_()))))
     except (TypeError, ValueError, RuntimeError, NotImplementedError, AttributeError):  # pragma: no cover

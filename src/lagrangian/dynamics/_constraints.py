@@ -37,7 +37,6 @@ from dataclasses import dataclass
 import numpy as np
 import symengine as se
 from symengine.lib.symengine_wrapper import sympy2symengine
-import sympy
 
 from .._abs_derivative import settled
 from .._identity import are_zero, is_zero
@@ -643,6 +642,8 @@ def _exact(coefficients: Sequence[se.Basic], variables: Sequence[se.Basic]) -> b
 def _potential(coefficients: Sequence[se.Basic], variables: Sequence[se.Basic]) -> se.Basic | None:
     """φ with dφ = Σ_v c_v dv (the form being closed), integrating one variable after the other; None
     when SymPy finds no closed form."""
+    import sympy  # late: the only use here, and SymPy takes most of a second to load
+
     phi = sympy.Integer(0)
     for c, v in zip(coefficients, variables):
         rest = sympy.expand(c._sympy_() - sympy.diff(phi, v._sympy_()))

@@ -128,7 +128,7 @@ class CompiledSystem:
             generated = generate_c(eom, self.first_integrals, self._events, law=code)
             self.source = generated.source
             self._constants = generated.constants
-            self._lib = compile_library(generated.source, generated.key)
+            self._lib = compile_library(generated.units, generated.key)
             for name, (restype, argtypes) in _SIGNATURES.items():
                 fn = getattr(self._lib, name)
                 fn.restype, fn.argtypes = restype, argtypes
