@@ -39,7 +39,7 @@ from pathlib import Path
 
 from ..errors import SimulationError
 
-__all__ = ["build_shared", "cache_dir", "compile_library", "compiler", "load_verified"]
+__all__ = ["build_shared", "cache_dir", "cached_library", "compile_library", "compiler", "load_verified"]
 
 FLAGS = ("-O2", "-fPIC", "-shared", "-std=c99", "-fno-math-errno")
 #: Added for the units after the first of a split build (`_cparts`: the parts of long generated
@@ -180,6 +180,29 @@ def load_verified(source: str | Sequence[str], key: str, load: Callable[[Path], 
                               fix="report this as a bug of lagrangian, with the model file") from exc
 
 
+def _command_id(command: Sequence[str], key: str, units: int) -> str:
+    """The name of the library built by ``command`` from the ``units`` units whose key is ``key``."""
+    # The number of units enters the name: a split build is another library than a one-unit build.
+    shape = "" if units == 1 else f" units={units} {' '.join(PART_FLAGS)}"
+    return hashlib.sha256((key + " ".join(command) + shape + sys.platform).encode()).hexdigest()[:32]
+
+
+def cached_library(key: str, units: int) -> ctypes.CDLL | None:
+    """The library `compile_library` built from ``units`` units of key ``key``, loaded, when the cache
+    has it and it passes its checks; None otherwise (nothing is built: the caller generates the
+    source and calls `compile_library`)."""
+    cc = compiler()
+    if cc is None:
+        return None
+    library = _usable_cache() / f"lg_{_command_id([*cc, *FLAGS], key, units)}.so"
+    if not library.is_file() or _why_not_verified(library) is not None:
+        return None
+    try:
+        return ctypes.CDLL(str(library))
+    except OSError:
+        return None
+
+
 def build_shared(source: str | Sequence[str], key: str, *, flags: Sequence[str] = (), name: str | None = None,
                  rebuild: bool = False) -> Path:
     """The cached shared object built from ``source`` (built now if it is not there yet or fails its checksum).
@@ -201,9 +224,7 @@ def build_shared(source: str | Sequence[str], key: str, *, flags: Sequence[str] 
                               fix="install one (e.g. `apt-get install gcc`) or use backend='symengine'")
     units = [source] if isinstance(source, str) else list(source)
     command = [*cc, *FLAGS, *flags]
-    # The number of units enters the name: a split build is another library than a one-unit build.
-    shape = "" if len(units) == 1 else f" units={len(units)} {' '.join(PART_FLAGS)}"
-    command_id = hashlib.sha256((key + " ".join(command) + shape + sys.platform).encode()).hexdigest()[:32]
+    command_id = _command_id(command, key, len(units))
     folder = _usable_cache()
     if name is not None:
         try:
