@@ -40,8 +40,18 @@ from ._integrals import first_integrals
 if TYPE_CHECKING:
     import sympy
 
-__all__ = ["AnalysisError", "StructureError", "SingularPassage", "CyclicReduction", "reduce_cyclic", "tidy", "Curve",
-           "EffectivePotential", "turning_points", "well_integrals"]
+__all__ = [
+    "AnalysisError",
+    "Curve",
+    "CyclicReduction",
+    "EffectivePotential",
+    "SingularPassage",
+    "StructureError",
+    "reduce_cyclic",
+    "tidy",
+    "turning_points",
+    "well_integrals",
+]
 
 
 class AnalysisError(LagrangianError):

@@ -14,7 +14,7 @@ from symengine.lib.symengine_wrapper import sympy2symengine
 
 from .._big_numbers import has_big_numbers
 
-__all__ = ["RANK_RTOL", "TIDY_MAX_CHARS", "choose", "solve", "jacobian", "tidy", "sub", "stack"]
+__all__ = ["RANK_RTOL", "TIDY_MAX_CHARS", "choose", "jacobian", "solve", "stack", "sub", "tidy"]
 
 #: Relative size below which a singular value counts as zero when columns are chosen.
 RANK_RTOL = 1e-9

@@ -38,7 +38,7 @@ from ..dynamics import EquationsOfMotion
 from ..model.spec import GALILEAN_FRAME
 from ._linear_algebra import choose
 
-__all__ = ["symmetry_integrals", "nonholonomic_integrals", "MAX_COORDINATES"]
+__all__ = ["MAX_COORDINATES", "nonholonomic_integrals", "symmetry_integrals"]
 
 #: Symmetries are sought up to this many coordinates (the invariance tests differentiate T).
 MAX_COORDINATES = 12

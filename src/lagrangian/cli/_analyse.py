@@ -8,8 +8,7 @@ import re
 
 import sympy
 
-from ..analysis import first_integrals
-from ..analysis import TopAnalysis, analyse_top
+from ..analysis import TopAnalysis, analyse_top, first_integrals
 from ..dynamics import EquationsOfMotion, derive
 from ..errors import SimulationError
 from ..numerics import SimulationCheck, simulation_check

@@ -15,8 +15,8 @@ from pathlib import Path
 import sympy
 
 from ..analysis import Equilibrium, LinearizationError, bifurcation, equilibria, linearize
-from ..errors import OutputError
 from ..dynamics import derive
+from ..errors import OutputError
 from ..output import Notation
 from ..output._course import to_sympy
 from ._arguments.equilibria import SCHEMA

@@ -21,8 +21,8 @@ from ..dynamics import derive
 from ..errors import OutputError
 from ..model.spec import Model
 from ..output import linearize_document
-from ._linear_text import render_modes, render_sweep
 from ._arguments.modes import ANIMATIONS_MAX
+from ._linear_text import render_modes, render_sweep
 from ._point import linearize_from_args
 from ._settings import SettingError, plain_number
 from ._source import load_source

@@ -19,7 +19,7 @@ from ..model.spec import Model
 from ._arguments.common import add_parameter_option, add_point_options
 from ._settings import SettingError, parse_settings, plain_number
 
-__all__ = ["add_point_options", "add_parameter_option", "parse_point", "parse_names", "linearize_from_args", "point_settings", "full_point"]
+__all__ = ["add_parameter_option", "add_point_options", "full_point", "linearize_from_args", "parse_names", "parse_point", "point_settings"]
 
 
 def parse_names(values: Sequence[str] | None) -> list[str]:

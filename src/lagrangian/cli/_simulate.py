@@ -16,8 +16,7 @@ from pathlib import Path
 
 from ..dynamics import derive
 from ..errors import Interrupted, OutputError, SimulationError
-from ..numerics import EventSpec, check_output_path, compile_system, save_trajectory, \
-    simulate
+from ..numerics import EventSpec, check_output_path, compile_system, save_trajectory, simulate
 from ._input_option import parse_inputs
 from ._settings import parse_settings
 from ._source import load_source

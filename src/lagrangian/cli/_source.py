@@ -18,7 +18,7 @@ from ..model.spec import Model
 from ..model.urdf import UrdfNote
 from ._arguments.common import MODEL_HELP
 
-__all__ = ["ZOO", "MODEL_HELP", "load_source"]
+__all__ = ["MODEL_HELP", "ZOO", "load_source"]
 
 #: The zoo's models that ``zoo:NAME[:N]`` names, and whether they take a size N.
 ZOO = {"lagrange_top": (zoo.lagrange_top, False), "planar_chain": (zoo.planar_chain, True),

@@ -45,9 +45,20 @@ from ..kinematics import Kinematics
 from ..model import GALILEAN_FRAME, Constraint, Vector
 from ..model._vector import sum_of
 
-__all__ = ["ConstraintRow", "ConstraintReaction", "RowChoice", "complementary_constraints", "multiplier_symbol",
-           "admissible_integrals", "multiplier_formulas", "reaction_efforts", "ConstraintInfo",
-           "describe_constraints", "integrate_row", "MULTIPLIER_PREFIX"]
+__all__ = [
+    "MULTIPLIER_PREFIX",
+    "ConstraintInfo",
+    "ConstraintReaction",
+    "ConstraintRow",
+    "RowChoice",
+    "admissible_integrals",
+    "complementary_constraints",
+    "describe_constraints",
+    "integrate_row",
+    "multiplier_formulas",
+    "multiplier_symbol",
+    "reaction_efforts",
+]
 
 #: Multipliers are named ``lambda_<row>`` (λ_length, λ_rolling_x0, ...).
 MULTIPLIER_PREFIX = "lambda_"

@@ -45,8 +45,17 @@ if TYPE_CHECKING:  # pragma: no cover
     from ._assemble import Assembler, Raw
     from .spec import Model
 
-__all__ = ["SIGNS", "SIGN_RELATIONS", "SignFact", "Assumptions", "check_sign", "sign_problem", "read_sign",
-           "read_range", "range_text"]
+__all__ = [
+    "SIGNS",
+    "SIGN_RELATIONS",
+    "Assumptions",
+    "SignFact",
+    "check_sign",
+    "range_text",
+    "read_range",
+    "read_sign",
+    "sign_problem",
+]
 
 #: The sign assumptions a parameter may declare (each is also the SymPy assumption of its symbol).
 SIGNS = ("positive", "nonnegative", "negative", "nonpositive")

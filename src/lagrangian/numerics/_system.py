@@ -187,8 +187,13 @@ class CompiledSystem:
 
     @property
     def source(self) -> str | None:
-        """The C source of the library (generated again on first use when the system came from its plan);
-        None with the SymEngine backend."""
+        """The C source of the library; None with the SymEngine backend.
+
+        When the system came from its plan (`_plans`), the source is generated again on first use,
+        from these equations: the same functions as the library's, their subexpressions numbered
+        alike, except in a process that had already derived the model once (SymEngine may then
+        number them otherwise).
+        """
         if self._source is None and self.backend == "c":
             self._source = generate_c(self.eom, self.first_integrals, self._events, law=self._code).source
         return self._source
