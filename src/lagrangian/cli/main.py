@@ -40,7 +40,12 @@ def _commands() -> list:
     return [importlib.import_module(f"{__package__}._arguments.{name}") for name in COMMANDS]
 
 
-def _parser() -> argparse.ArgumentParser:
+def _parser(only: str | None = None) -> argparse.ArgumentParser:
+    """The whole parser; with ``only`` (a command's name), the parser of that command alone under it.
+
+    A command line that starts with a command's name needs no other command's parser (their options
+    are a hundred ``add_argument`` calls); ``lagrangian --help`` lists every command.
+    """
     modules = _commands()
     listing = "\n".join(
         f"  {name:<10} " + module.SUMMARY.replace("\n", "\n" + " " * 13) for name, module in zip(COMMANDS, modules)
@@ -56,8 +61,9 @@ def _parser() -> argparse.ArgumentParser:
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--version", action="version", version=f"lagrangian {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
-    for module in modules:
-        module.register(sub)
+    for name, module in zip(COMMANDS, modules):
+        if only is None or name == only:
+            module.register(sub)
     return parser
 
 
@@ -110,7 +116,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line with ``argv`` (default: ``sys.argv[1:]``); return the exit code."""
     args = None
     try:
-        parser = _parser()
+        argv = sys.argv[1:] if argv is None else list(argv)
+        parser = _parser(argv[0] if argv and argv[0] in COMMANDS else None)
         args = parser.parse_args(argv)
         if args.command is None:
             parser.print_help()

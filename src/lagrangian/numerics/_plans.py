@@ -67,14 +67,18 @@ class Plan:
 @cache
 def code_identity() -> str:
     """SHA-256 of the package's files (path, size, modification time), its version and SymEngine's."""
-    root = Path(__file__).resolve().parents[1]
+    root = str(Path(__file__).resolve().parents[1])
     entries = []
-    for folder, subfolders, files in os.walk(root):
-        subfolders[:] = sorted(d for d in subfolders if d != "__pycache__")
-        for name in files:
-            if name.endswith(_CODE_SUFFIXES):
-                info = os.stat(os.path.join(folder, name))
-                entries.append(f"{os.path.relpath(os.path.join(folder, name), root)} {info.st_size} {info.st_mtime_ns}")
+    folders = [root]
+    while folders:
+        with os.scandir(folders.pop()) as found:
+            for entry in found:
+                if entry.is_dir(follow_symlinks=False):
+                    if entry.name != "__pycache__":
+                        folders.append(entry.path)
+                elif entry.name.endswith(_CODE_SUFFIXES):
+                    info = entry.stat()
+                    entries.append(f"{entry.path[len(root):]} {info.st_size} {info.st_mtime_ns}")
     text = "\n".join([__version__, se.__version__, sys.platform, *sorted(entries)])
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
