@@ -108,8 +108,8 @@ def run(args: argparse.Namespace) -> str:
     if reactions:
         traj = _with_reactions(traj, eom)
     lines = [
-        f"{model.name}: t from {traj.t[0]:g} to {traj.t[-1]:g} with {traj.method}, {traj.steps} steps, "
-        f"{traj.rhs_calls} right-hand-side calls, {elapsed * 1e3:.1f} ms",
+        (f"{model.name}: t from {traj.t[0]:g} to {traj.t[-1]:g} with {traj.method}, {traj.steps} steps, "
+         f"{traj.rhs_calls} right-hand-side calls, {elapsed * 1e3:.1f} ms"),
         "conservation: " + (traj.drift_summary() or "no first integral to monitor"),
     ]
     applied = describe_inputs(inputs, model)
