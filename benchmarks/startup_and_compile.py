@@ -11,7 +11,9 @@
    process with an empty ``LAGRANGIAN_CACHE``: the long functions in parts, compiled as units in
    parallel (`numerics._cparts`; as many compilers at once as the process has cores), against the
    same functions in one unit at -O2 (the build before the parts) in the same run.  Wall time,
-   and the compilers' CPU time.  Target: under 6 s on 2 cores.
+   Python's and the compilers' CPU time, and what these project on idle cores (Python's CPU time,
+   which is serial, plus the compilers' divided by the cores: a loaded shared machine gives the
+   compilers less than its cores).  Target: under 6 s on 2 cores.
 3. q̈ of that arm per state (`CompiledSystem.rhs_c`, one state per call) and M, F (``mass_forces``),
    both builds in one process, measured in turns: the minimum over short timing blocks
    (`rhs_vs_peers.per_call`).  Target: unchanged within noise.  q̈ is checked equal to the last bit
@@ -114,7 +116,8 @@ try:
 except ImportError:
     cores = 1
 print(json.dumps({"compile_wall": t1 - t0, "python_cpu": c1 - c0, "cc_cpu": cc.ru_utime + cc.ru_stime
-                  - before.ru_utime - before.ru_stime, "source_kb": len(system.source) / 1024, "jobs": cores}))
+                  - before.ru_utime - before.ru_stime, "source_kb": len(system.source) / 1024,
+                  "jobs": 1 if whole else cores}))
 """
 
 _RUNTIME = r"""
@@ -194,11 +197,16 @@ def main() -> None:
                                                  "met in CPU time" if cpu < TARGET_STARTUP_S else "missed")
             print(f"   {what:<40} {wall:8.3f} {cpu:8.3f}{mark}")
         compiled, speed = compile_and_run(src, args.joints, args.rounds, Path(pycache))
-    print(f"\n2. the {args.joints}-joint arm compiled, empty cache          wall s  compilers' CPU s  C kB  jobs")
+    print(f"\n2. the {args.joints}-joint arm compiled, empty cache   wall s  Python CPU s  compilers' CPU s  "
+          "on idle cores s  C kB  jobs")
     for build, c in compiled.items():
-        mark = f"  target < {TARGET_COMPILE_S:g} s: {'met' if c['compile_wall'] < TARGET_COMPILE_S else 'missed'}" \
-            if build == "parts" else ""
-        print(f"   {build:<40} {c['compile_wall']:8.2f} {c['cc_cpu']:14.2f} {c['source_kb']:7.0f} {c['jobs']:4d}{mark}")
+        idle = c["python_cpu"] + c["cc_cpu"] / c["jobs"]
+        mark = ""
+        if build == "parts":
+            mark = f"  target < {TARGET_COMPILE_S:g} s: " + ("met" if c["compile_wall"] < TARGET_COMPILE_S else
+                                                          "met on idle cores" if idle < TARGET_COMPILE_S else "missed")
+        print(f"   {build:<33} {c['compile_wall']:8.2f} {c['python_cpu']:12.2f} {c['cc_cpu']:16.2f} {idle:15.2f} "
+              f"{c['source_kb']:5.0f} {c['jobs']:5d}{mark}")
     if len(compiled) == 2:
         print(f"   parts / one unit: wall {compiled['parts']['compile_wall'] / compiled['one-unit']['compile_wall']:.2f}, "
               f"compilers' CPU {compiled['parts']['cc_cpu'] / compiled['one-unit']['cc_cpu']:.2f}")

@@ -101,10 +101,11 @@ def function_text(signature: str, header: Mapping[str, str], body: Sequence[str]
         part = f"{name}_part{c}"
         declaration = f"LG_PART void {part}({arguments}, double *restrict lg_w)"
         lines = [*preamble, "    " + " ".join(f"(void){a};" for a in [*names, "lg_w"])]
+        # What this part writes for a name: an earlier part's local from its slot, an argument's value in place.
+        reads = {**header, **{w: f"lg_w[{k}]" for w, k in slots.items() if defined_in[w] < c}}
         for line in chunk:
             target, _, value = line.partition("=")
-            lines.append(target + "=" + _IDENTIFIER.sub(lambda w, c=c: _read(w[0], c, defined_in, slots, header),
-                                                         value))
+            lines.append(target + "=" + _IDENTIFIER.sub(lambda w, r=reads: r.get(w[0], w[0]), value))
             m = _DEFINITION.match(line)
             if m and m.group(1) in slots:  # a later part reads it: stored once, as soon as it is defined
                 lines.append(f"    lg_w[{slots[m.group(1)]}] = {m.group(1)};")
@@ -112,14 +113,6 @@ def function_text(signature: str, header: Mapping[str, str], body: Sequence[str]
         calls.append(f"    {part}({', '.join([*names, 'lg_w'])});")
     # The values carried between parts, on the caller's stack (as the spill slots of one long function were).
     return signature + " {\n" + f"    double lg_w[{max(len(slots), 1)}];\n" + "\n".join(calls) + "\n}\n"
-
-
-def _read(word: str, part: int, defined_in: Mapping[str, int], slots: Mapping[str, int],
-          header: Mapping[str, str]) -> str:
-    """What a part writes for ``word``: an earlier part's local from its slot, an argument's value in place."""
-    if defined_in.get(word, part) < part:
-        return f"lg_w[{slots[word]}]"
-    return header.get(word, word) if word not in defined_in else word
 
 
 def units_of(parts: Sequence[Part], main: str) -> tuple[str, ...]:
