@@ -43,9 +43,9 @@ __all__ = ["build_shared", "cache_dir", "cached_library", "compile_library", "co
 
 FLAGS = ("-O2", "-fPIC", "-shared", "-std=c99", "-fno-math-errno")
 #: Added for the units after the first of a split build (`_cparts`: the parts of long generated
-#: functions, straight-line arithmetic): -O1 compiles them in about 3/4 of -O2's time, and the
-#: 30-joint arm's q̈ is as fast (benchmarks/startup_and_compile.py).  The first unit (the
-#: integrators' loops) keeps -O2.
+#: functions, straight-line arithmetic): -O1 compiles them in about 60 % of -O2's time, and the
+#: 30-joint arm's q̈ is no slower, M and F as fast (benchmarks/startup_and_compile.py).  The first
+#: unit (the integrators' loops) keeps -O2.
 PART_FLAGS = ("-O1",)
 #: How long to wait between looks at the compilers running in parallel (s).
 _POLL = 0.02

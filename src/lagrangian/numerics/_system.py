@@ -149,9 +149,9 @@ class CompiledSystem:
         integrals = tuple(fi.name for fi in self.first_integrals)
         monitors = tuple(name for name, _ in monitor_expressions(self.eom, self.first_integrals,
                                                                   recursive=self._recursive))
-        bound = self._bind(compile_library(generated.units, generated.key), integrals, monitors,
-                           generated.constants)
-        assert bound, "stale compiled library"
+        if not self._bind(compile_library(generated.units, generated.key), integrals, monitors, generated.constants):
+            raise SimulationError("The compiled library does not have the dimensions of the model it was made for.",
+                                  fix="report this as a bug of lagrangian, with the model file")
         if key is not None:
             write_plan(key, Plan(integrals, monitors, generated.constants, generated.key, len(generated.units)))
 
