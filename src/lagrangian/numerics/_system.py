@@ -28,7 +28,7 @@ from ..analysis import first_integrals
 from ..analysis._integrals import FirstIntegral, input_regime
 from ..dynamics import EquationsOfMotion
 from ..errors import SimulationError
-from ._codegen import generate_c, monitor_expressions
+from ._codegen import GeneratedSource, generate_c, monitor_expressions
 from ._compile import cached_library, compile_library, compiler
 from ._fastcall import rhs_caller
 from ._input_code import law_code
@@ -118,7 +118,7 @@ class CompiledSystem:
         self._events = tuple(events)
         self.events = tuple(name for name, _ in self._events)
         self._law_size = 0
-        self._source: str | None = None
+        self._generated: GeneratedSource | None = None
         self._lib = None
         if backend == "c":
             self._code = law_code(eom, self.law) if self.law.driven else None
@@ -144,8 +144,7 @@ class CompiledSystem:
 
     def _compile(self, key: str | None) -> None:
         """Generate the C source, compile (or find) its library and bind it; store the plan under ``key``."""
-        generated = generate_c(self.eom, self.first_integrals, self._events, law=self._code)
-        self._source = generated.source
+        generated = self._generated = generate_c(self.eom, self.first_integrals, self._events, law=self._code)
         integrals = tuple(fi.name for fi in self.first_integrals)
         monitors = tuple(name for name, _ in monitor_expressions(self.eom, self.first_integrals,
                                                                   recursive=self._recursive))
@@ -186,17 +185,24 @@ class CompiledSystem:
         return self._first_integrals
 
     @property
-    def source(self) -> str | None:
-        """The C source of the library; None with the SymEngine backend.
+    def generated(self) -> GeneratedSource | None:
+        """The generated C of the library (`_codegen.GeneratedSource`: source, units, key); None with the
+        SymEngine backend.
 
-        When the system came from its plan (`_plans`), the source is generated again on first use,
-        from these equations: the same functions as the library's, their subexpressions numbered
-        alike, except in a process that had already derived the model once (SymEngine may then
-        number them otherwise).
+        When the system came from its plan (`_plans`), the C is generated again on first use, from
+        these equations: the same functions as the library's, their subexpressions numbered alike,
+        except in a process that had already derived the model once (SymEngine may then number
+        them otherwise, and the key differs).
         """
-        if self._source is None and self.backend == "c":
-            self._source = generate_c(self.eom, self.first_integrals, self._events, law=self._code).source
-        return self._source
+        if self._generated is None and self.backend == "c":
+            self._generated = generate_c(self.eom, self.first_integrals, self._events, law=self._code)
+        return self._generated
+
+    @property
+    def source(self) -> str | None:
+        """The C source of the library, as one translation unit (`generated`); None with the SymEngine backend."""
+        generated = self.generated
+        return None if generated is None else generated.source
 
     # -- parameter values -------------------------------------------------------------
     def parameter_vector(self, values: Mapping[str, float] | None = None) -> np.ndarray:
