@@ -32,7 +32,7 @@ import numpy as np
 
 from ._compile import compile_library
 
-__all__ = ["Kernel", "run_chunk", "STATUS", "PENDING"]
+__all__ = ["PENDING", "STATUS", "Kernel", "run_chunk"]
 
 #: The status of a member (the CF ``flag_values`` / ``flag_meanings`` of the ``status`` variable).
 STATUS = {
