@@ -78,18 +78,24 @@ system = compile_system(eom)
 t3, c3 = time.perf_counter(), time.process_time()
 me, cc = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
 # The compiler's own peak memory: a child forked from this (large) process counts this process's
-# pages, so the same compile runs again from a small Python process.
+# pages, so the same compiles run again from a small Python process, one unit after the other (the
+# build runs as many at once as there are cores: its peak is at most that many times this one).
 import subprocess, tempfile
-from lagrangian.numerics._compile import FLAGS, compiler
+from lagrangian.numerics._codegen import generate_c
+from lagrangian.numerics._compile import FLAGS, PART_FLAGS, compiler
+units = generate_c(eom, system.first_integrals, ()).units
+cc_rss = 0
 with tempfile.TemporaryDirectory() as tmp:
-    c_file = os.path.join(tmp, "model.c")
-    with open(c_file, "w") as f:
-        f.write(system.source)
-    small = ("import resource, subprocess, sys; subprocess.run(sys.argv[1:], check=True); "
-             "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)")
-    cc_rss = int(subprocess.run([sys.executable, "-S", "-c", small, *compiler(), *FLAGS, "-o",
-                                 os.path.join(tmp, "m.so"), c_file, "-lm"], capture_output=True, text=True,
-                                check=True).stdout.split()[-1])
+    for k, unit in enumerate(units):
+        c_file = os.path.join(tmp, f"unit{k}.c")
+        with open(c_file, "w") as f:
+            f.write(unit)
+        small = ("import resource, subprocess, sys; subprocess.run(sys.argv[1:], check=True); "
+                 "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)")
+        flags = [w for w in FLAGS if w != "-shared"] + (list(PART_FLAGS) if k else [])
+        cc_rss = max(cc_rss, int(subprocess.run([sys.executable, "-S", "-c", small, *compiler(), *flags, "-c", "-o",
+                                                 os.path.join(tmp, f"unit{k}.o"), c_file], capture_output=True,
+                                                text=True, check=True).stdout.split()[-1]))
 print(json.dumps({"derive": t2 - t1, "compile": t3 - t2, "cpu": c3 - c1, "cc_cpu": cc.ru_utime + cc.ru_stime,
                   "rss_mb": me.ru_maxrss / 1024, "cc_rss_mb": cc_rss / 1024,
                   "source_kb": len(system.source) / 1024, "formulation": eom.formulation}))

@@ -9,8 +9,6 @@ are skipped for such expressions: they are printed as derived, which is still ri
 
 from __future__ import annotations
 
-import sympy
-
 __all__ = ["BIG_DIGITS", "has_big_numbers"]
 
 #: More digits than this in a numerator or denominator: no factoring.  Products of a few
@@ -20,6 +18,8 @@ BIG_DIGITS = 100
 
 def has_big_numbers(expr: object, digits: int = BIG_DIGITS) -> bool:
     """Whether a rational number of ``expr`` (SymPy or SymEngine) has more than ``digits`` digits."""
+    import sympy  # late: its users need it only when they simplify, and it takes most of a second to load
+
     e = expr._sympy_() if hasattr(expr, "_sympy_") and not isinstance(expr, sympy.Basic) else expr
     if not isinstance(e, sympy.Basic):
         return False

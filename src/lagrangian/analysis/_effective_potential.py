@@ -24,12 +24,11 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
 import symengine as se
-import sympy
-from scipy import optimize
 from symengine.lib.symengine_wrapper import sympy2symengine
 
 from .._identity import are_zero
@@ -38,8 +37,21 @@ from ..errors import LagrangianError
 from ..model.spec import GALILEAN_FRAME
 from ._integrals import first_integrals
 
-__all__ = ["AnalysisError", "StructureError", "SingularPassage", "CyclicReduction", "reduce_cyclic", "tidy", "Curve",
-           "EffectivePotential", "turning_points", "well_integrals"]
+if TYPE_CHECKING:
+    import sympy
+
+__all__ = [
+    "AnalysisError",
+    "Curve",
+    "CyclicReduction",
+    "EffectivePotential",
+    "SingularPassage",
+    "StructureError",
+    "reduce_cyclic",
+    "tidy",
+    "turning_points",
+    "well_integrals",
+]
 
 
 class AnalysisError(LagrangianError):
@@ -244,6 +256,8 @@ def reduce_cyclic(eom: EquationsOfMotion) -> CyclicReduction:
 
 def _orient(base: sympy.Expr, order: Sequence[sympy.Symbol]) -> tuple[sympy.Expr, int]:
     """±base, with the sign that makes the term of the earliest symbol in ``order`` positive."""
+    import sympy
+
     terms = sympy.Add.make_args(base)
     for symbol in order:
         for term in terms:
@@ -254,6 +268,8 @@ def _orient(base: sympy.Expr, order: Sequence[sympy.Symbol]) -> tuple[sympy.Expr
 
 def _oriented(expr: sympy.Expr, order: Sequence[sympy.Symbol]) -> sympy.Expr:
     """A factored numerator with its sums written K − H cosθ rather than −K + H cosθ."""
+    import sympy
+
     sign = 1
     factors = []
     for f in sympy.Mul.make_args(expr):
@@ -275,6 +291,8 @@ def tidy(expr: se.Basic, order: Sequence[se.Symbol] = ()) -> se.Basic:
     writing changes (expand, group by denominator, factor); ``order`` lists the symbols
     whose term should come first with a + sign (the momenta K, H).
     """
+    import sympy  # late: SymPy takes most of a second to load, and only this needs it
+
     order_sympy = [s._sympy_() for s in order]
     groups: dict[sympy.Expr, list[sympy.Expr]] = {}
     for term in sympy.Add.make_args(sympy.expand(expr._sympy_())):
@@ -368,6 +386,8 @@ def _turning_point(gap: Gap, start: float, direction: int, angle: bool, name: st
                 fix="analyse an initial state for which the axis does not pass through the singular direction")
     if gap(outer) == 0.0:
         return outer
+    from scipy import optimize  # late: SciPy takes tenths of a second to load, and only this needs it
+
     return float(optimize.brentq(lambda x: float(gap(x)), inner, outer, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200))
 
 

@@ -10,7 +10,6 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 import symengine as se
-import sympy
 from symengine.lib.symengine_wrapper import sympy2symengine
 
 from .._big_numbers import has_big_numbers
@@ -74,6 +73,8 @@ EXPAND_MAX_CHARS = 5000
 
 def tidy(m: se.DenseMatrix) -> se.DenseMatrix:
     """Each entry in its shortest form: expanded, or (symbolic and small) cancelled and factored."""
+    import sympy  # late: SymPy takes most of a second to load, and only this needs it
+
     out = []
     for i in range(m.rows):
         row = []

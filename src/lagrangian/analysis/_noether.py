@@ -31,7 +31,6 @@ from collections.abc import Sequence
 
 import numpy as np
 import symengine as se
-import sympy
 from symengine.lib.symengine_wrapper import sympy2symengine
 
 from .._identity import are_zero
@@ -39,7 +38,7 @@ from ..dynamics import EquationsOfMotion
 from ..model.spec import GALILEAN_FRAME
 from ._linear_algebra import choose
 
-__all__ = ["symmetry_integrals", "nonholonomic_integrals", "MAX_COORDINATES"]
+__all__ = ["MAX_COORDINATES", "nonholonomic_integrals", "symmetry_integrals"]
 
 #: Symmetries are sought up to this many coordinates (the invariance tests differentiate T).
 MAX_COORDINATES = 12
@@ -69,6 +68,8 @@ def _tidy(e: se.Basic) -> se.Basic:
     """cancel, trigsimp, cancel (SymPy): the generator's entries are short once simplified."""
     if not e.free_symbols or len(str(e)) > TIDY_MAX_CHARS:
         return e
+    import sympy  # late: SymPy takes most of a second to load, and only this needs it
+
     try:
         return sympy2symengine(sympy.cancel(sympy.trigsimp(sympy.cancel(e._sympy_()))))
     except (TypeError, ValueError, RuntimeError, NotImplementedError, AttributeError):  # pragma: no cover

@@ -19,38 +19,12 @@ from ..dynamics import EquationsOfMotion, derive
 from ..errors import DerivationError
 from ..output import course_form, derive_document, render_latex, render_text
 from ..output._intermediates import listed, render_intermediates
-from ..output.report.size import SizeGate
 from ..output._text import supplement
+from ..output.report.size import SizeGate
 from ._settings import SettingError
-from ._source import MODEL_HELP, load_source
+from ._source import load_source
 
-__all__ = ["register"]
-
-SUMMARY = "derive and print the equations of motion of a model file\n" \
-          "(with no file: the course's heavy symmetric top, the Lagrange top)"
-
-
-def register(sub: argparse._SubParsersAction) -> None:
-    d = sub.add_parser(
-        "derive", help="derive the equations of motion of a model",
-        description="Derive T, U, the generalized forces, the Lagrange equations L(q_i), the first integrals "
-                    "and the matrix form M q'' = F of a model, and print them in the course's notation.",
-    )
-    d.add_argument("model", nargs="?", help=MODEL_HELP)
-    fmt = d.add_mutually_exclusive_group()
-    fmt.add_argument("--latex", action="store_true", help="print a LaTeX document instead of text")
-    fmt.add_argument("--json", action="store_true",
-                     help="print the versioned JSON document (schema lagrangian.derive/1, docs/derive-json.md)")
-    size = d.add_mutually_exclusive_group()
-    size.add_argument("--expanded", action="store_true",
-                      help="a robot (recursive form): print every expression of the course's view in full instead "
-                           "of ⟨24 terms⟩ (slow: 40–50 s at 7 joints)")
-    size.add_argument("--intermediates", action="store_true",
-                      help="a robot (recursive form): print T, U, M and F over the named intermediates of the "
-                           "recursive Newton–Euler and composite-rigid-body algorithms, and each intermediate")
-    d.add_argument("-o", "--output", metavar="FILE", help="write to FILE (atomically) instead of standard output")
-    d.set_defaults(run=run)
-
+__all__ = ["run"]
 
 def run(args: argparse.Namespace) -> str:
     model = load_source(args.model)

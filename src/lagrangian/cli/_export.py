@@ -13,36 +13,12 @@ from dataclasses import replace
 
 from ..dynamics import derive
 from ..model.spec import Model
-from ..output import EXPORT_TARGETS, export
+from ..output import export
 from ..output._export import check_target, model_identifier
-from ._settings import SettingError, add_set_option, parse_settings
-from ._source import MODEL_HELP, load_source
+from ._settings import SettingError, parse_settings
+from ._source import load_source
 
-__all__ = ["register", "run"]
-
-SUMMARY = "write standalone code of M q'' = F and the right-hand side\n(--to numpy | c | jax | octave)"
-
-
-def register(sub: argparse._SubParsersAction) -> None:
-    targets = ", ".join(EXPORT_TARGETS)
-    p = sub.add_parser(
-        "export", help="write the equations as standalone NumPy, C, JAX or Octave code",
-        description="Write M(q, t), F(q, q', t) and the right-hand side y' = (q', q'') of the model as code that "
-                    "needs nothing of lagrangian: --to numpy writes one module needing only NumPy (rhs batched over "
-                    "states), --to c a header and a source needing only libm, --to jax one module of jit-able, "
-                    "vmap-able jax.numpy functions, --to octave .m functions for Octave and MATLAB. Every file "
-                    "names the model, the lagrangian version, the parameters with their defaults and the state "
-                    "order. Every target has the constraint rows of a constrained model and solves for its "
-                    "multipliers; the C export also has the first integrals. All refuse an exact stick/slip "
-                    "contact (docs/export.md).")
-    p.add_argument("model", nargs="?", help=MODEL_HELP)
-    p.add_argument("--to", dest="target", required=True, metavar="TARGET", help=f"the target: {targets}")
-    p.add_argument("-o", "--output-dir", dest="directory", metavar="DIR",
-                   help="the directory to write (atomically; default: <model>_<target> in the current folder); "
-                        "an existing one may hold only the files of an earlier export")
-    add_set_option(p)
-    p.set_defaults(run=run)
-
+__all__ = ["run"]
 
 def _with_defaults(model: Model, values: dict[str, float]) -> Model:
     """The model with the parameter values given by ``--set`` (coordinates' values are refused)."""

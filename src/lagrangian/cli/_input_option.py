@@ -19,13 +19,13 @@ is given) — a swing-up's table, then the catch (`lagrangian.Switch`).
 
 from __future__ import annotations
 
-import argparse
 import math
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
 from ..model.spec import Model
+from ._arguments.common import add_input_options
 from ._settings import SettingError, plain_number
 
 __all__ = ["add_input_options", "parse_inputs"]
@@ -33,24 +33,6 @@ __all__ = ["add_input_options", "parse_inputs"]
 #: The interpolations of a table (`InputTable`), said in the help and the messages.
 _KINDS = ("zoh", "linear", "quadratic", "cubic")
 _KIND_LIST = "|".join(_KINDS)
-
-
-def add_input_options(parser: argparse.ArgumentParser) -> None:
-    """``--input`` (repeatable), ``--input-time-column`` and ``--feedback``."""
-    parser.add_argument(
-        "--input", dest="input", action="append", default=[], metavar="NAME=VALUE",
-        help="what a declared input does: a number (F=2.5), an expression of t, the coordinates, their rates and "
-             "the parameters (F='2*sin(3*t)', compiled in), or samples from a CSV file, "
-             f"F=@FILE[:COLUMN[:{_KIND_LIST}]] (column default NAME, interpolation default linear); repeatable; "
-             "overrides the model's [controls]")
-    parser.add_argument("--input-time-column", default="t", metavar="NAME",
-                        help="the time column of the --input CSV files (default t)")
-    parser.add_argument("--feedback", metavar="FILE.json",
-                        help="close the loop u = u* - K (x - x*) with the feedback `lagrangian lqr ... -o FILE.json` "
-                             "wrote (compiled into the right-hand side)")
-    parser.add_argument("--switch-at", type=float, metavar="TIME",
-                        help="with --feedback: its inputs follow their --input (0 where none) until TIME, then the "
-                             "feedback (e.g. a swing-up's table, then the catch)")
 
 
 def _table_spec(name: str, spec: str) -> tuple[Path, str, str]:

@@ -18,36 +18,11 @@ from typing import Any
 import numpy as np
 
 from ..dynamics import derive
-from ._point import add_parameter_option, add_point_options, parse_names, point_settings
+from ._point import parse_names, point_settings
 from ._settings import SettingError, plain_number
-from ._source import MODEL_HELP, load_source
+from ._source import load_source
 
-__all__ = ["parse_weights", "register", "run"]
-
-SUMMARY = "the LQR state feedback u = u* - K (x - x*) about an equilibrium (--at theta=0):\n" \
-          "gains, closed-loop eigenvalues; -o feedback.json for simulate --feedback"
-
-
-def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser(
-        "lqr", help="the LQR state feedback about an equilibrium or a steady motion",
-        description="Linearize about the point (--at, or the model's [operating_point]; the inputs not given take "
-                    "the values that hold it), then minimize the integral of dx' Q dx + du' R du: the gain K of "
-                    "u = u* - K (x - x*), from the continuous algebraic Riccati equation. A pair (A, B) that is not "
-                    "stabilizable is refused, naming the mode the inputs cannot move.")
-    p.add_argument("model", nargs="?", help=MODEL_HELP)
-    add_point_options(p, symbolic=False)
-    add_parameter_option(p)
-    p.add_argument("--Q", dest="Q", metavar="SPEC",
-                   help="state weights: a diagonal in state order (1,1,10,1) or named entries of the identity "
-                        "(theta=10,x=2); default the identity")
-    p.add_argument("--R", dest="R", metavar="SPEC", help="input weights, likewise (default the identity)")
-    p.add_argument("--json", action="store_true",
-                   help="print the feedback document (schema lagrangian.feedback/1) that -o writes")
-    p.add_argument("-o", "--output", metavar="FILE",
-                   help="write the feedback document to FILE (atomically), for `simulate --feedback FILE`")
-    p.set_defaults(run=run)
-
+__all__ = ["parse_weights", "run"]
 
 def parse_weights(spec: str | None, option: str) -> Any:
     """``"1,1,10,1"`` → [1, 1, 10, 1]; ``"theta=10,x=2"`` → {"theta": 10, "x": 2}; None → None.

@@ -16,34 +16,10 @@ from typing import Any
 
 from ..dynamics import EquationsOfMotion
 from ..model.spec import Model
+from ._arguments.common import add_parameter_option, add_point_options
 from ._settings import SettingError, parse_settings, plain_number
 
-__all__ = ["add_point_options", "add_parameter_option", "parse_point", "parse_names", "linearize_from_args", "point_settings", "full_point"]
-
-
-def add_point_options(parser: argparse.ArgumentParser, *, inputs: bool = True, symbolic: bool = True) -> None:
-    """``--at`` (repeatable), and optionally ``--inputs`` and ``--symbolic``; ``--set`` is added by the caller."""
-    parser.add_argument(
-        "--at", dest="at", action="append", default=[], metavar="NAME=VALUE",
-        help="the point: a coordinate's value (theta=3.14159, theta=pi), a rate (psi_dot=10) or a declared "
-             "input's value (tau_elbow=0.3); repeat for each coordinate (rates and inputs default to 0); default: "
-             "the model's [operating_point]")
-    if inputs:
-        parser.add_argument(
-            "--inputs", dest="inputs", action="append", default=None, metavar="NAME[,NAME...]",
-            help="parameters (or declared [inputs]) that become the inputs u, the columns of B (default: the "
-                 "model's declared inputs)")
-    if symbolic:
-        parser.add_argument(
-            "--symbolic", dest="symbolic", action="append", default=[], metavar="NAME[,NAME...]",
-            help="keep these parameters as symbols in the matrices (A(v)); `all` for every parameter")
-
-
-def add_parameter_option(parser: argparse.ArgumentParser) -> None:
-    """``--set NAME=VALUE`` for parameters only (the point is given with ``--at``); stored in ``args.set``."""
-    parser.add_argument(
-        "--set", dest="set", action="append", default=[], metavar="NAME=VALUE",
-        help="override a parameter value (g=1.62); repeat for several (the point is given with --at)")
+__all__ = ["add_parameter_option", "add_point_options", "full_point", "linearize_from_args", "parse_names", "parse_point", "point_settings"]
 
 
 def parse_names(values: Sequence[str] | None) -> list[str]:

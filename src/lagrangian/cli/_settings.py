@@ -7,54 +7,19 @@ a parameter (``g``), a coordinate for its initial value (``theta``) or a coordin
 
 from __future__ import annotations
 
-import argparse
 import math
-import re
 from collections.abc import Sequence
 
 from ..errors import LagrangianError
 from ..model._assumptions import SIGN_RELATIONS, sign_problem
 from ..model.spec import Model
+from ._arguments.common import add_set_option, number_argument, plain_number
 
-__all__ = ["SettingError", "add_set_option", "parse_settings"]
+__all__ = ["SettingError", "add_set_option", "number_argument", "parse_settings", "plain_number"]
 
 
 class SettingError(LagrangianError):
     """A ``--set NAME=VALUE`` option that cannot be used: bad form, unknown name, not a number."""
-
-
-#: A plain decimal number in ASCII: Python's ``float`` also takes ``1_0``, ``٣`` and ``infinity``.
-_PLAIN = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
-
-
-def plain_number(text: str) -> float:
-    """``text`` as a float when it is a plain decimal number (``-0.5``, ``1e3``, ``.5``); else ValueError."""
-    if not _PLAIN.fullmatch(text.strip()):
-        raise ValueError(f"not a plain decimal number: {text!r}")
-    return float(text)
-
-
-def number_argument(text: str) -> float:
-    """An argparse ``type`` for a numeric option (``--t-end 10``): a plain, finite decimal number.
-
-    ``float`` alone would take ``1_0``, ``٣``, ``nan`` and ``inf``; the error names the text and
-    the form expected, as argparse prints it (``argument --t-end: …``).
-    """
-    try:
-        value = plain_number(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"`{text}` is not a plain decimal number (e.g. 10, -0.5, 1e-3)") from None
-    if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"`{text}` is too large for a double; give a finite number")
-    return value
-
-
-def add_set_option(parser: argparse.ArgumentParser) -> None:
-    """Add the repeatable ``--set NAME=VALUE`` option (stored in ``args.set`` as a list of strings)."""
-    parser.add_argument(
-        "--set", dest="set", action="append", default=[], metavar="NAME=VALUE",
-        help="override a parameter value (g=1.62), an initial coordinate (theta=0.3) or an initial rate "
-             "(phi_dot=80); repeat for several")
 
 
 def _known(model: Model) -> tuple[list[str], list[str], list[str]]:

@@ -16,18 +16,14 @@ from ..errors import ModelError
 from ..model import load_model, zoo
 from ..model.spec import Model
 from ..model.urdf import UrdfNote
+from ._arguments.common import MODEL_HELP
 
-__all__ = ["ZOO", "MODEL_HELP", "load_source"]
+__all__ = ["MODEL_HELP", "ZOO", "load_source"]
 
 #: The zoo's models that ``zoo:NAME[:N]`` names, and whether they take a size N.
 ZOO = {"lagrange_top": (zoo.lagrange_top, False), "planar_chain": (zoo.planar_chain, True),
        "spatial_chain": (zoo.spatial_chain, True), "relative_chain": (zoo.relative_chain, True),
        "serial_arm": (zoo.serial_arm, True)}
-
-MODEL_HELP = ("model file (TOML), a robot's URDF file (.urdf), or a zoo model by name: zoo:lagrange_top, "
-              "zoo:planar_chain:N, zoo:spatial_chain:N, zoo:relative_chain:N, zoo:serial_arm:N; "
-              "default: the seed's Lagrange top")
-
 
 def _zoo_model(name: str) -> Model:
     """``zoo:planar_chain:40`` → ``lagrangian.model.zoo.planar_chain(40)``."""

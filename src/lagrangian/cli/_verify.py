@@ -20,13 +20,10 @@ from ..errors import ModelError, VerificationError
 from ..model import Torque, Vector
 from ..output import Notation
 from ..output._course import reference_label, to_sympy
-from ._settings import SettingError, add_set_option, number_argument, parse_settings
-from ._source import MODEL_HELP, load_source
+from ._settings import SettingError, parse_settings
+from ._source import load_source
 
-__all__ = ["register", "run", "TOLERANCE"]
-
-SUMMARY = "check the Lagrange equations against the Newton–Euler theorems (symbolically,\n" \
-          "and along a simulated motion with --simulate); print the constraint reactions"
+__all__ = ["TOLERANCE", "run"]
 
 #: Largest relative residual accepted along a trajectory: the theorems hold exactly, so
 #: what is left is rounding in the evaluation (about 1e-15 relative).
@@ -34,23 +31,6 @@ TOLERANCE = 1e-9
 #: Longest expression printed in full (characters); longer ones are summarized by their size.
 MAX_PRINTED = 1500
 
-
-
-def register(sub: argparse._SubParsersAction) -> None:
-    v = sub.add_parser(
-        "verify", help="check the Lagrange equations by Newton-Euler",
-        description="Project the resultant and moment theorems of every body on the directions of each "
-                    "coordinate (the partial velocities) and show that they give the Lagrange equations "
-                    "L(q_i), term for term; print the constraint reactions from the resultant theorem. With "
-                    "--simulate, also evaluate the theorems along a simulated motion.",
-    )
-    v.add_argument("model", nargs="?", help=MODEL_HELP)
-    v.add_argument("--simulate", type=number_argument, metavar="T_END", default=None,
-                   help="also check along a motion simulated from t = 0 to T_END (--set changes its values)")
-    add_set_option(v)
-    v.add_argument("--n-out", type=int, default=201, metavar="N", help="states checked with --simulate (default 201)")
-    v.add_argument("-o", "--output", metavar="FILE", help="write the report to FILE (atomically)")
-    v.set_defaults(run=run)
 
 
 class _Printer:

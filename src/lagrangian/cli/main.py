@@ -1,10 +1,11 @@
 """``lagrangian`` command line: one error boundary, nothing below it prints or exits.
 
-Each command lives in its own module ``cli/_<command>.py`` with a ``SUMMARY`` line and a
-``register(subparsers)`` function that adds its parser and sets ``run``:
-``run(args) -> str | bytes | None`` returns what goes to standard output, or to ``-o FILE``
-(written atomically) when the command has that option; commands that write their own
-files return a short summary.
+Each command's arguments are declared in ``cli/_arguments/<command>.py`` (a ``SUMMARY`` line
+and ``register(subparsers)``), which imports nothing of the pipeline, so that ``--help`` and
+the parsing cost milliseconds; its work is the ``run`` of ``cli/_<command>.py``, imported when
+the command runs: ``run(args) -> str | bytes | None`` returns what goes to standard output, or
+to ``-o FILE`` (written atomically) when the command has that option; commands that write
+their own files return a short summary.
 
 Exit codes: 0 success, 1 usage error (argparse), 2 bad model or derivation error,
 3 output file (or standard output: a full device) could not be written, 4 simulation could
@@ -27,18 +28,24 @@ from .. import __version__
 from ..errors import EnsembleInterrupted, Interrupted, LagrangianError, ModelError, OutputError
 from ._atomic import check_output, write_output
 
-__all__ = ["main", "entrypoint"]
+__all__ = ["entrypoint", "main"]
 
-# The commands, in the order `--help` lists them; each name is a module `cli/_<name>.py`.
-COMMANDS = ("derive", "simulate", "view", "sweep", "verify", "analyse", "equilibria", "linearize", "modes", "lqr", "optimize",
-            "identify", "report", "export")
+# The commands, in the order `--help` lists them; each name is a module `cli/_arguments/<name>.py`
+# (its arguments) and a module `cli/_<name>.py` (its work).
+COMMANDS = ("derive", "simulate", "view", "sweep", "verify", "analyse", "equilibria", "linearize", "modes", "lqr",
+            "optimize", "identify", "report", "export")
 
 
 def _commands() -> list:
-    return [importlib.import_module(f"{__package__}._{name}") for name in COMMANDS]
+    return [importlib.import_module(f"{__package__}._arguments.{name}") for name in COMMANDS]
 
 
-def _parser() -> argparse.ArgumentParser:
+def _parser(only: str | None = None) -> argparse.ArgumentParser:
+    """The whole parser; with ``only`` (a command's name), the parser of that command alone under it.
+
+    A command line that starts with a command's name needs no other command's parser (their options
+    are a hundred ``add_argument`` calls); ``lagrangian --help`` lists every command.
+    """
     modules = _commands()
     listing = "\n".join(
         f"  {name:<10} " + module.SUMMARY.replace("\n", "\n" + " " * 13) for name, module in zip(COMMANDS, modules)
@@ -54,8 +61,9 @@ def _parser() -> argparse.ArgumentParser:
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--version", action="version", version=f"lagrangian {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
-    for module in modules:
-        module.register(sub)
+    for name, module in zip(COMMANDS, modules):
+        if only is None or name == only:
+            module.register(sub)
     return parser
 
 
@@ -108,7 +116,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line with ``argv`` (default: ``sys.argv[1:]``); return the exit code."""
     args = None
     try:
-        parser = _parser()  # imports every command, and SymPy, SciPy, ...: Ctrl-C here is handled below too
+        argv = sys.argv[1:] if argv is None else list(argv)
+        parser = _parser(argv[0] if argv and argv[0] in COMMANDS else None)
         args = parser.parse_args(argv)
         if args.command is None:
             parser.print_help()
@@ -116,7 +125,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         output = getattr(args, "output", None)
         if output:  # a read-only or missing folder is said before the work, not after it
             check_output(output)
-        result = args.run(args)
+        result = args.run(args)  # imports the command's work (SymPy, SciPy, ...): Ctrl-C there is handled below too
         if result is not None and output:
             write_output(output, result)
         elif result is not None:

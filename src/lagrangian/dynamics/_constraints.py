@@ -37,7 +37,6 @@ from dataclasses import dataclass
 import numpy as np
 import symengine as se
 from symengine.lib.symengine_wrapper import sympy2symengine
-import sympy
 
 from .._abs_derivative import settled
 from .._identity import are_zero, is_zero
@@ -46,10 +45,22 @@ from ..kinematics import Kinematics
 from ..model import GALILEAN_FRAME, Constraint, Vector
 from ..model._vector import sum_of
 
-__all__ = ["ConstraintRow", "ConstraintReaction", "RowChoice", "complementary_constraints", "multiplier_symbol",
-           "sliding_row", "SLIDING_SUFFIX",
-           "admissible_integrals", "multiplier_formulas", "reaction_efforts", "ConstraintInfo",
-           "describe_constraints", "integrate_row", "MULTIPLIER_PREFIX"]
+__all__ = [
+    "MULTIPLIER_PREFIX",
+    "ConstraintInfo",
+    "ConstraintReaction",
+    "ConstraintRow",
+    "SLIDING_SUFFIX",
+    "RowChoice",
+    "admissible_integrals",
+    "complementary_constraints",
+    "describe_constraints",
+    "integrate_row",
+    "multiplier_formulas",
+    "multiplier_symbol",
+    "reaction_efforts",
+    "sliding_row",
+]
 
 #: Multipliers are named ``lambda_<row>`` (λ_length, λ_rolling_x0, ...).
 MULTIPLIER_PREFIX = "lambda_"
@@ -670,6 +681,8 @@ def _exact(coefficients: Sequence[se.Basic], variables: Sequence[se.Basic]) -> b
 def _potential(coefficients: Sequence[se.Basic], variables: Sequence[se.Basic]) -> se.Basic | None:
     """φ with dφ = Σ_v c_v dv (the form being closed), integrating one variable after the other; None
     when SymPy finds no closed form."""
+    import sympy  # late: the only use here, and SymPy takes most of a second to load
+
     phi = sympy.Integer(0)
     for c, v in zip(coefficients, variables):
         rest = sympy.expand(c._sympy_() - sympy.diff(phi, v._sympy_()))

@@ -35,7 +35,6 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import symengine as se
-import sympy
 from symengine.lib.symengine_wrapper import sympy2symengine
 
 from .._identity import are_zero
@@ -181,6 +180,8 @@ def _find_potential(kin: Kinematics, Q: tuple[se.Basic, ...]) -> se.Basic | None
         return None
     if sum(len(str(x)) for x in Q) > MAX_INTEGRATION_CHARS:
         return None
+    import sympy  # late: the only use here, and SymPy takes most of a second to load
+
     # U = −∫ Q_1 dq_1, then add whatever each later Q_i still needs (classic potential search).
     U = sympy.Integer(0)
     for qi, Qi in zip(kin.q, Q):

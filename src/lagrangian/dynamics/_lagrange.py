@@ -37,7 +37,7 @@ from ._inertia import mass_matrix_and_bias
 from ._inertial import inertial_forces, reference_kinematics
 from ._recursive import AUTO_MIN_DEPTH, RecursiveForm, recursive_form, require_tree, tree_structure
 
-__all__ = ["LagrangeEquation", "EquationsOfMotion", "derive", "FORMULATIONS"]
+__all__ = ["FORMULATIONS", "EquationsOfMotion", "LagrangeEquation", "derive"]
 
 #: `derive`'s formulations: "auto" (recursive for kinematic trees of at least
 #: `AUTO_MIN_DEPTH` moving rotations in series, else the course's), "lagrange", "recursive".
@@ -65,7 +65,7 @@ class LagrangeEquation:
     Q_nc: se.Basic  # Q_i of the non-conservative efforts
     lhs: se.Basic  # Γ_i
     rhs: se.Basic  # −∂U/∂q_i + Q_i(nc) (+ Σ_k λ_k A_ki)
-    multiplier_terms: se.Basic = se.Integer(0)  # Σ_k λ_k A_ki of the complementary constraints
+    multiplier_terms: se.Basic = se.Integer(0)  # noqa: RUF009 (immutable); Σ_k λ_k A_ki of the complementary rows
 
     def _repr_latex_(self) -> str:
         """L(q_i) as display math in the course's notation (Jupyter); long sides are summarized."""
@@ -129,6 +129,9 @@ class EquationsOfMotion:
     recursive : for a kinematic tree, M q̈ = F over named intermediates (`dynamics._recursive`),
         which the compiled code uses; None when the course's derivation is the only one.
     course : makes the course's derivation (`CourseForm`) when the fields above it are left None.
+    derived_with : the ``formulation`` `derive` made these equations with; None for equations
+        made otherwise (by hand, or changed with `dataclasses.replace`, which leaves it out).
+        With the model, it names the equations for the compile plans (`lagrangian.numerics._plans`).
 
     With a recursive form, `derive` leaves T_terms, inertias, loads, equations, M and F to
     ``course``, run on first use of any of them: compiling and simulating a robot need none.
@@ -149,6 +152,7 @@ class EquationsOfMotion:
     assumptions: tuple[SignFact, ...] = ()
     recursive: RecursiveForm | None = field(default=None, repr=False, compare=False)
     course: Callable[[], CourseForm] | None = field(default=None, repr=False, compare=False)
+    derived_with: str | None = field(default=None, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         n = len(self.model.coordinates)
@@ -380,13 +384,18 @@ def derive(model: Model, *, formulation: str = "auto") -> EquationsOfMotion:
         return CourseForm(T_terms, inertias, loads, equations, M, F)
 
     if recursive is not None:
-        return EquationsOfMotion(model, kin, recursive=recursive, course=course,
-                                 assumptions=tuple(assumptions.facts))
+        return _made_by_derive(EquationsOfMotion(model, kin, recursive=recursive, course=course,
+                                                 assumptions=tuple(assumptions.facts)), formulation)
     form = course()
     rows: tuple[ConstraintRow, ...] = ()
     reactions: tuple[ConstraintReaction, ...] = ()
     equations = form.equations
     if model.constraints:  # step 7: the complementary equations, and λ_k A_ki in each L(q_i)
         equations, rows, reactions = complementary_constraints(kin, form.equations)
-    return EquationsOfMotion(model, kin, form.T_terms, form.inertias, form.loads, equations, form.M, form.F, rows,
-                             reactions, tuple(assumptions.facts))
+    return _made_by_derive(EquationsOfMotion(model, kin, form.T_terms, form.inertias, form.loads, equations, form.M,
+                                             form.F, rows, reactions, tuple(assumptions.facts)), formulation)
+
+
+def _made_by_derive(eom: EquationsOfMotion, formulation: str) -> EquationsOfMotion:
+    object.__setattr__(eom, "derived_with", formulation)  # a frozen dataclass's field not given to __init__
+    return eom

@@ -35,17 +35,27 @@ from fractions import Fraction
 from typing import TYPE_CHECKING, Any
 
 import symengine as se
-import sympy
 
 from ..errors import ModelError
 from ._vector import as_expr
 
 if TYPE_CHECKING:  # pragma: no cover
+    import sympy
+
     from ._assemble import Assembler, Raw
     from .spec import Model
 
-__all__ = ["SIGNS", "SIGN_RELATIONS", "SignFact", "Assumptions", "check_sign", "sign_problem", "read_sign",
-           "read_range", "range_text"]
+__all__ = [
+    "SIGNS",
+    "SIGN_RELATIONS",
+    "Assumptions",
+    "SignFact",
+    "check_sign",
+    "range_text",
+    "read_range",
+    "read_sign",
+    "sign_problem",
+]
 
 #: The sign assumptions a parameter may declare (each is also the SymPy assumption of its symbol).
 SIGNS = ("positive", "nonnegative", "negative", "nonpositive")
@@ -207,12 +217,16 @@ class Assumptions:
         self.facts: list[SignFact] = []
         self._proofs: dict[se.Basic, SignFact | None] = {}
         self._refined: dict[se.Basic, se.Basic] = {}
-        # SymPy symbols that carry the declared signs (the others are real); none needed when inactive.
+        # SymPy symbols that carry the declared signs (the others are real); none needed when inactive,
+        # and SymPy (most of a second to load) is then not loaded at all.
         self._sympy = {}
-        for p in model.parameters if self.active else ():
-            self._sympy[p.symbol] = sympy.Symbol(p.name, **{p.sign or "real": True})
-        for c in model.coordinates if self.active else ():
-            self._sympy[c.symbol] = sympy.Symbol(c.name, real=True)
+        if self.active:
+            import sympy
+
+            for p in model.parameters:
+                self._sympy[p.symbol] = sympy.Symbol(p.name, **{p.sign or "real": True})
+            for c in model.coordinates:
+                self._sympy[c.symbol] = sympy.Symbol(c.name, real=True)
 
     # -- simplification --------------------------------------------------------------------------
     def refine(self, e: se.Basic) -> se.Basic:
@@ -267,6 +281,8 @@ class Assumptions:
 
     def _prove(self, u: se.Basic) -> tuple[int, bool, str] | None:
         """(sign, general, reason), or None (module docstring)."""
+        import sympy
+
         symbols = u.free_symbols
         if not symbols or not symbols <= set(self._sympy):
             return None  # a number (SymEngine decides its sign itself), or rates, time...: not here
@@ -314,6 +330,8 @@ class Assumptions:
     def _linear_bounds(self, su: sympy.Basic, ranged: list[se.Basic]) -> tuple[Any, Any] | None:
         """(smallest, largest) of ``su`` over the ranges when it is linear in each ranged coordinate
         with a coefficient free of coordinates and of known sign; None otherwise (an open side: None)."""
+        import sympy
+
         coordinates = {self._sympy[s] for s in self.coordinates}
         low, high = su, su
         for s in ranged:
@@ -336,6 +354,8 @@ class Assumptions:
 
     def _interval(self, su: sympy.Basic, ranged: list[se.Basic], values: dict) -> Any:
         """Interval arithmetic (SymPy's `AccumBounds`) over the ranges, all of them closed and numeric."""
+        import sympy
+
         bounds = {}
         for s in ranged:
             lower, upper = self.ranges[s]  # type: ignore[misc]
@@ -353,4 +373,6 @@ class Assumptions:
 
     def _to_sympy(self, e: se.Basic) -> sympy.Basic:
         """``e`` in SymPy (by structure, `_sympy_`: no text), its symbols carrying the declared signs."""
+        import sympy
+
         return e._sympy_().xreplace({sympy.Symbol(str(k)): v for k, v in self._sympy.items()})

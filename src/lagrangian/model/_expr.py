@@ -34,7 +34,7 @@ import symengine as se
 from ._limits import MAX_DEGREE, MAX_LENGTH, MAX_TERMS, Measure, NotFinite, TooLarge, excerpt, real_value
 from ._vector import AXES, Vector
 
-__all__ = ["ExpressionError", "parse_expression", "FUNCTIONS"]
+__all__ = ["FUNCTIONS", "ExpressionError", "parse_expression"]
 
 #: The only functions a model file may call.
 FUNCTIONS: dict[str, Callable[[se.Basic], se.Basic]] = {
@@ -321,7 +321,9 @@ class _Parser:
             if lv and rv:
                 raise ExpressionError("the product of two vectors is not defined here", op.column,
                                       fix="multiply each basis vector by a scalar, e.g. `l*sin(q)*R0.x`")
-            return self._checked(lhs * rhs, op.column)
+            # The vector on the left: SymEngine's `*` with a vector on its right would first try to
+            # convert it through SymPy (importing it: most of a second) before giving the vector its turn.
+            return self._checked(rhs * lhs if rv else lhs * rhs, op.column)
         # division
         if rv:
             raise ExpressionError("cannot divide by a vector", op.column,

@@ -8,42 +8,104 @@ a model with unilateral contacts is simulated by phases between impacts (`simula
 ``simulate``), and ``impact_sweep`` maps what its contacts do against a parameter.
 """
 
-from ._contact import simulate_contact as simulate_contact
-from ._contact_switch import ContactEvent as ContactEvent
-from ._dae import STABILIZATIONS as STABILIZATIONS
-from ._ensemble import ensemble as ensemble
-from ._ensemble import flip_events as flip_events
-from ._ensemble_store import open_ensemble as open_ensemble
-from ._members import Grid as Grid
-from ._members import grid as grid
-from ._files import check_output_path as check_output_path
-from ._input_switch import Switch as Switch
-from ._input_table import InputTable as InputTable
-from ._free_system import FreeBodySystem as FreeBodySystem
-from ._free_system import compile_free_system as compile_free_system
-from ._files import load_trajectory as load_trajectory
-from ._impact_sweep import ImpactSweep as ImpactSweep
-from ._impact_sweep import impact_sweep as impact_sweep
-from ._files import save_trajectory as save_trajectory
-from ._simulate import METHODS as METHODS
-from ._simulate import EventSpec as EventSpec
-from ._simulate import default_tolerance as default_tolerance
-from ._simulate import initial_state as initial_state
-from ._simulate import simulate as simulate
-from ._sensitivity import Sensitivities as Sensitivities
-from ._stickslip import simulate_stick_slip as simulate_stick_slip
-from ._system import CompiledSystem as CompiledSystem
-from ._system import compile_system as compile_system
-from ._phases import check_trajectory_along as check_trajectory_along
-from ._phases import reaction_history_along as reaction_history_along
-from ._reaction_columns import reaction_columns_along as reaction_columns_along
-from ._top_check import SimulationCheck as SimulationCheck
-from ._top_check import simulation_check as simulation_check
-from ._trajectory import Event as Event
-from ._trajectory import Trajectory as Trajectory
+from __future__ import annotations
 
-__all__ = ["simulate", "Sensitivities", "ensemble", "grid", "Grid", "open_ensemble", "flip_events", "simulate_stick_slip", "save_trajectory", "load_trajectory", "check_output_path", "EventSpec", "InputTable", "Switch", "initial_state", "METHODS",
-           "STABILIZATIONS", "default_tolerance", "CompiledSystem", "compile_system", "FreeBodySystem", "compile_free_system", "Trajectory", "Event",
-           "SimulationCheck", "simulation_check", "reaction_columns_along",
-           "reaction_history_along", "check_trajectory_along", "simulate_contact", "ContactEvent", "impact_sweep",
-           "ImpactSweep"]
+from typing import TYPE_CHECKING
+
+from .._lazy import lazy_names
+
+# Each name is imported from its module on first use (`lagrangian._lazy`): a command that needs one
+# module of this stage does not load the others (nor SymPy, SciPy and what they import).
+_WHERE = {
+    "._contact": ("simulate_contact",),
+    "._contact_switch": ("ContactEvent",),
+    "._dae": ("STABILIZATIONS",),
+    "._ensemble": ("ensemble", "flip_events"),
+    "._ensemble_store": ("open_ensemble",),
+    "._members": ("Grid", "grid"),
+    "._files": ("check_output_path", "load_trajectory", "save_trajectory"),
+    "._free_system": ("FreeBodySystem", "compile_free_system"),
+    "._impact_sweep": ("ImpactSweep", "impact_sweep"),
+    "._input_switch": ("Switch",),
+    "._input_table": ("InputTable",),
+    "._simulate": ("METHODS", "EventSpec", "default_tolerance", "initial_state", "simulate"),
+    "._sensitivity": ("Sensitivities",),
+    "._stickslip": ("simulate_stick_slip",),
+    "._system": ("CompiledSystem", "compile_system"),
+    "._phases": ("check_trajectory_along", "reaction_history_along"),
+    "._reaction_columns": ("reaction_columns_along",),
+    "._top_check": ("SimulationCheck", "simulation_check"),
+    "._trajectory": ("Event", "Trajectory"),
+}
+__getattr__, __dir__ = lazy_names(__name__, _WHERE)
+
+if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
+    from ._contact import simulate_contact as simulate_contact
+    from ._contact_switch import ContactEvent as ContactEvent
+    from ._dae import STABILIZATIONS as STABILIZATIONS
+    from ._ensemble import ensemble as ensemble
+    from ._ensemble import flip_events as flip_events
+    from ._ensemble_store import open_ensemble as open_ensemble
+    from ._files import check_output_path as check_output_path
+    from ._files import load_trajectory as load_trajectory
+    from ._files import save_trajectory as save_trajectory
+    from ._free_system import FreeBodySystem as FreeBodySystem
+    from ._free_system import compile_free_system as compile_free_system
+    from ._impact_sweep import ImpactSweep as ImpactSweep
+    from ._impact_sweep import impact_sweep as impact_sweep
+    from ._input_switch import Switch as Switch
+    from ._input_table import InputTable as InputTable
+    from ._members import Grid as Grid
+    from ._members import grid as grid
+    from ._phases import check_trajectory_along as check_trajectory_along
+    from ._phases import reaction_history_along as reaction_history_along
+    from ._reaction_columns import reaction_columns_along as reaction_columns_along
+    from ._sensitivity import Sensitivities as Sensitivities
+    from ._simulate import METHODS as METHODS
+    from ._simulate import EventSpec as EventSpec
+    from ._simulate import default_tolerance as default_tolerance
+    from ._simulate import initial_state as initial_state
+    from ._simulate import simulate as simulate
+    from ._stickslip import simulate_stick_slip as simulate_stick_slip
+    from ._system import CompiledSystem as CompiledSystem
+    from ._system import compile_system as compile_system
+    from ._top_check import SimulationCheck as SimulationCheck
+    from ._top_check import simulation_check as simulation_check
+    from ._trajectory import Event as Event
+    from ._trajectory import Trajectory as Trajectory
+
+__all__ = [
+    "METHODS",
+    "STABILIZATIONS",
+    "CompiledSystem",
+    "ContactEvent",
+    "Event",
+    "EventSpec",
+    "FreeBodySystem",
+    "Grid",
+    "ImpactSweep",
+    "InputTable",
+    "Sensitivities",
+    "SimulationCheck",
+    "Switch",
+    "Trajectory",
+    "check_output_path",
+    "check_trajectory_along",
+    "compile_free_system",
+    "compile_system",
+    "default_tolerance",
+    "ensemble",
+    "flip_events",
+    "grid",
+    "impact_sweep",
+    "initial_state",
+    "load_trajectory",
+    "open_ensemble",
+    "reaction_columns_along",
+    "reaction_history_along",
+    "save_trajectory",
+    "simulate",
+    "simulate_contact",
+    "simulate_stick_slip",
+    "simulation_check",
+]

@@ -32,7 +32,7 @@ import numpy as np
 
 from ._compile import compile_library
 
-__all__ = ["Kernel", "run_chunk", "STATUS", "PENDING"]
+__all__ = ["PENDING", "STATUS", "Kernel", "run_chunk"]
 
 #: The status of a member (the CF ``flag_values`` / ``flag_meanings`` of the ``status`` variable).
 STATUS = {
@@ -57,7 +57,7 @@ _B_SIZE = 6  # lg_batch's info row: status, t, steps, nfev, rows, pivot
 class Kernel:
     """What a process needs to integrate members of one model (module docstring); picklable."""
 
-    source: str
+    source: tuple[str, ...]  # the translation units (`_codegen.GeneratedSource.units`)
     key: str
     n: int
     n_params: int

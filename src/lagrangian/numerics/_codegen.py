@@ -13,7 +13,6 @@ Parameter values are an input array, not constants folded into the code: changin
 from __future__ import annotations
 
 import hashlib
-import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 from importlib import resources
@@ -23,6 +22,7 @@ import symengine as se
 
 from ..dynamics import EquationsOfMotion
 from ..errors import DerivationError
+from ._cparts import PART_MACROS, Part, function_text, units_of
 from ._cprint import c_block, c_sequence
 
 __all__ = ["GeneratedSource", "MassForcesForm", "generate_c", "mass_forces_form", "monitor_expressions"]
@@ -35,12 +35,15 @@ class GeneratedSource:
     Attributes
     ----------
     source : the complete translation unit.
-    key : SHA-256 of ``source`` (the compile cache's key).
+    key : SHA-256 of ``units`` (of ``source`` when it is the only unit: the compile cache's key).
     n : number of coordinates; the state is y = (q_1..q_n, q̇_1..q̇_n).
     parameters : parameter names, in the order of the ``p`` array.
     monitors : monitor names (first integrals, then ``T`` and ``U``).
     events : event names, in the order of the event functions.
     constants : how many precomputed constants follow the parameters in ``p``.
+    units : the same code as translation units compiled in parallel and linked (`_cparts`): the
+        first holds all but the parts of the long functions, each other one part; ``(source,)``
+        when no function is long enough to be cut.
     """
 
     source: str
@@ -50,6 +53,7 @@ class GeneratedSource:
     monitors: tuple[str, ...]
     events: tuple[str, ...]
     constants: int = 0
+    units: tuple[str, ...] = ()
 
 
 def monitor_expressions(eom: EquationsOfMotion, integrals: Sequence, *,
@@ -96,7 +100,7 @@ def expand_angle_sums(exprs: Sequence[se.Basic], angles: Sequence[se.Symbol]) ->
         if not rest:
             return s1, c1
         s2, c2 = sc(rest[0][0], rest[0][1], rest[1:])
-        key = tuple((sign, angle), ) + tuple(rest)
+        key = (sign, angle) + tuple(rest)
         if key not in memo:
             memo[key] = (s1 * c2 + c1 * s2, c1 * c2 - s1 * s2)
         return memo[key]
@@ -296,7 +300,6 @@ def generate_c(
         When an expression holds a symbol that is neither a coordinate, a rate, a
         parameter nor t (it would have no value at run time).
     """
-    n = len(eom.q)
     params = tuple(p.name for p in eom.model.parameters)
     # Every free symbol gets a private name: `_y3` is y[3], `_p1` is p[1], `_t` is t.
     private: dict[se.Basic, se.Symbol] = {}
@@ -309,7 +312,6 @@ def generate_c(
         header[f"_p{k}"] = f"p[{k}]"
     private[eom.t] = se.Symbol("_t")
     header["_t"] = "t"
-    names = {sym: str(sym) for sym in private.values()}
 
     #: Symbols printed under their own C name, not renamed: the recursive form's intermediates and
     #: the hoisted constants (one `xreplace` with a map of thousands would cost more than the rest).
@@ -331,7 +333,9 @@ def generate_c(
         out = renamed[expr] = expr.xreplace({s: private[s] for s in expr.free_symbols if s in private})
         return out
 
-    def function(signature: str, outputs, what: str, definitions=None) -> str:
+    parts: list[Part] = []  # the long functions' parts (`_cparts`), in order
+
+    def function(signature: str, outputs, what: str, definitions=None, preamble=()) -> str:
         # `outputs` is one list of (target, expression), or several computed in turn
         # (the first defining names the next use); `definitions`, named intermediates
         # (symbol, expression) the outputs use, each defined before its first use.
@@ -343,20 +347,16 @@ def generate_c(
         else:
             body = [line for k, stage in enumerate(stages)
                     for line in c_block([(tg, rename(e, what)) for tg, e in stage], names, prefix="xyz"[k])]
-        used = set(re.findall(r"\b_[ypkt]\w*", "\n".join(body)))
-        decls = [f"    const double {c} = {v};" for c, v in header.items() if c in used]
-        decls.append("    (void)t; (void)y; (void)p;")
-        return signature + " {\n" + "\n".join([*decls, *body]) + "\n}\n"
+        return function_text(signature, header, body, parts, preamble)
 
     if eom.recursive is not None:
-        return _generate_recursive(eom, integrals, events, named, header, function, law)
+        return _generate_recursive(eom, integrals, events, named, header, function, law, parts)
     form = mass_forces_form(eom)
     for k, (sym, _) in enumerate(form.shared):
         private[sym] = se.Symbol(f"_s{k}")
     for k, (sym, _) in enumerate(form.constants):
         private[sym] = sym
         header[str(sym)] = f"p[{len(params) + k}]"
-    names = {sym: str(sym) for sym in private.values()}
     M_out = [(f"M[{k}]", e) for k, e in enumerate(form.M)]
     F_out = [(f"F[{i}]", e) for i, e in enumerate(form.F)]
     S_out = [(f"const double _s{k}", e) for k, (_, e) in enumerate(form.shared)]
@@ -367,7 +367,7 @@ def generate_c(
     b = [se.diff(eom.T, s).xreplace(rates_zero) for s in eom.qd]
     g = [eq.dT_dq - eq.dU_dq + eq.Q_nc for eq in eom.equations]
 
-    return _assemble(eom, monitors, events, params, constants, [
+    return _assemble(eom, monitors, events, params, constants, parts, [
         function("static void lg_mass_forces(double t, const double *y, const double *p, double *M, double *F)",
                  [S_out, M_out + F_out], "M q'' = F"),
         function("static void lg_monitors(double t, const double *y, const double *p, double *out)",
@@ -382,7 +382,8 @@ def generate_c(
 
 
 def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence, events: Sequence[tuple[str, se.Basic]],
-                        named: dict, header: dict, function, law=None) -> GeneratedSource:
+                        named: dict, header: dict, function, law=None, parts: list[Part] | None = None
+                        ) -> GeneratedSource:
     """`generate_c` for an ``eom`` with a recursive form: each function defines the intermediates it
     needs, in order, as ``const double`` locals, then its outputs; CSE runs on both.
 
@@ -436,18 +437,17 @@ def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence, events: Seq
         slots = [se.Symbol(f"_carry{k}") for k in range(len(carried))]
         for k, slot in enumerate(slots):
             named[slot] = f"carry[{k}]"
-        staged.append(("LG_NOINLINE static void lg_aba_backward(double t, const double *y, const double *p, double *carry, "
-                       "double *piv)",
+        arguments = "double t, const double *y, const double *p"
+        staged.append((f"LG_NOINLINE static void lg_aba_backward({arguments}, double *carry, double *piv)",
                        with_intermediates([(f"carry[{k}]", sym) for k, sym in enumerate(carried)]
                                           + [(f"piv[{2 * i + k}]", pair[k]) for i, pair in enumerate(rec.pivots)
                                              for k in range(2)]), "q''"))
-        staged.append(("LG_NOINLINE static void lg_aba_forward(double t, const double *y, const double *p, const double *carry, "
-                       "double *qdd)",
+        staged.append((f"LG_NOINLINE static void lg_aba_forward({arguments}, const double *carry, double *qdd)",
                        (list(zip(carried, slots)) + [(sym, lifted(e)) for sym, e in forward],
                         [(f"qdd[{i}]", lifted(e)) for i, e in enumerate(rec.qdd)]), "q''"))
-        aba = ["static void lg_aba(double t, const double *y, const double *p, double *qdd, double *piv) {\n"
-               f"    double carry[{max(len(carried), 1)}];\n"
-               "    lg_aba_backward(t, y, p, carry, piv);\n    lg_aba_forward(t, y, p, carry, qdd);\n}\n"]
+        aba = [("static void lg_aba(double t, const double *y, const double *p, double *qdd, double *piv) {\n"
+                f"    double carry[{max(len(carried), 1)}];\n"
+                "    lg_aba_backward(t, y, p, carry, piv);\n    lg_aba_forward(t, y, p, carry, qdd);\n}\n")]
     for k, sym in enumerate(hoist.constants.values()):
         named[sym] = str(sym)
         header[str(sym)] = f"p[{len(params) + k}]"
@@ -462,19 +462,23 @@ def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence, events: Seq
         "    lg_mass_forces(t, yq, p, M, F);  /* only q is read from y */\n}\n")
     functions = [function(signature, outs, what, defs) for signature, (defs, outs), what in staged]
     if aba:  # the two halves stay apart (their one caller would inline them)
-        aba = ["#define LG_ABA 1\n#if defined(__GNUC__)\n#define LG_NOINLINE __attribute__((noinline))\n#else\n"
-               "#define LG_NOINLINE\n#endif", *functions[4:], *aba]
-    return _assemble(eom, monitors, events, params, constants,
+        aba = ["#define LG_ABA 1", *functions[4:], *aba]
+    return _assemble(eom, monitors, events, params, constants, [] if parts is None else parts,
                      [*functions[:3], hamilton_mass, functions[3], *aba], function, law)
 
 
-def _assemble(eom: EquationsOfMotion, monitors, events, params, constants, functions: list[str],
-              function, law=None) -> GeneratedSource:
-    """The translation unit: dimensions, DOP853's tableau, the constants, the model's functions, the integrators."""
+def _assemble(eom: EquationsOfMotion, monitors, events, params, constants, parts: list[Part],
+              functions: list[str], function, law=None) -> GeneratedSource:
+    """The translation unit: dimensions, DOP853's tableau, the constants, the model's functions, the integrators.
+
+    The long functions' parts (`_cparts`) come first; ``units`` has them each in a unit of its own.
+    """
     n = len(eom.q)
-    parts = [
-        "/* Generated by lagrangian from the equations of motion of "
-        f"`{eom.model.name}`. Do not edit. */",
+    # `lg_constants`: t and y are read by no constant (they are parameter-only), but declared for the names.
+    constants_text = function("void lg_constants(const double *p, double *k)", constants, "a constant",
+                              preamble=["    const double t = 0.0; const double *y = 0;"])
+    head = [
+        f"/* Generated by lagrangian from the equations of motion of `{eom.model.name}`. Do not edit. */",
         f"#define LG_N {n}",
         f"#define LG_NM {len(monitors)}",
         f"#define LG_NE {len(events)}",
@@ -482,18 +486,27 @@ def _assemble(eom: EquationsOfMotion, monitors, events, params, constants, funct
         f"#define LG_NK {len(constants)}",
         *(f"#define {k} {v}" for k, v in _coefficients().items()),
         "#include <math.h>",
+        "#if defined(__GNUC__)\n#define LG_NOINLINE __attribute__((noinline))\n#else\n#define LG_NOINLINE\n#endif",
+    ]
+    rest = [
         "/* The parameter-only subexpressions, p[LG_NP + j] = k[j], computed once per parameter set. */",
-        function("void lg_constants(const double *p, double *k)", constants, "a constant").replace(
-            " {\n", " {\n    const double t = 0.0; const double *y = 0;\n", 1),  # neither is read
+        constants_text,
         *([law.prelude] if law is not None else []),
         *functions,
         *([law.epilogue] if law is not None else []),
         resources.files(__package__).joinpath("_integrators.c").read_text(encoding="utf-8"),
     ]
-    source = "\n".join(parts)
+    if parts:
+        source = "\n".join([*head, PART_MACROS["source"], *(part.text for part in parts), *rest])
+        main = "\n".join([*head, PART_MACROS["unit"], *(part.declaration + ";" for part in parts), *rest])
+        units = units_of(parts, main)
+    else:
+        source = "\n".join([*head, *rest])
+        units = (source,)
     return GeneratedSource(
         source=source,
-        key=hashlib.sha256(source.encode("utf-8")).hexdigest(),
+        key=hashlib.sha256("\n/* ---- unit ---- */\n".join(units).encode("utf-8")).hexdigest(),
+        units=units,
         n=n,
         parameters=params,
         monitors=tuple(name for name, _ in monitors),

@@ -1,5 +1,8 @@
 """Compile generated C once per source text and load it with `ctypes`.
 
+A source is one translation unit, or several (`_cparts`: a long model's functions in parts),
+compiled in parallel, as many at a time as this process may use cores, and linked.
+
 The shared library is cached under ``$LAGRANGIAN_CACHE`` (default
 ``~/.cache/lagrangian``), named by the SHA-256 of its source and the compiler command,
 so a model compiled once loads in milliseconds afterwards, and a changed model or
@@ -26,19 +29,26 @@ import hashlib
 import os
 import shlex
 import shutil
+import stat
 import subprocess
 import sys
-import stat
 import tempfile
 from collections.abc import Callable, Sequence
-from functools import lru_cache
+from functools import cache
 from pathlib import Path
 
 from ..errors import SimulationError
 
-__all__ = ["compiler", "compile_library", "build_shared", "cache_dir", "load_verified"]
+__all__ = ["build_shared", "cache_dir", "cached_library", "compile_library", "compiler", "load_verified"]
 
 FLAGS = ("-O2", "-fPIC", "-shared", "-std=c99", "-fno-math-errno")
+#: Added for the units after the first of a split build (`_cparts`: the parts of long generated
+#: functions, straight-line arithmetic): -O1 compiles them in about 60 % of -O2's time, and the
+#: 30-joint arm's q̈ is no slower, M and F as fast (benchmarks/startup_and_compile.py).  The first
+#: unit (the integrators' loops) keeps -O2.
+PART_FLAGS = ("-O1",)
+#: How long to wait between looks at the compilers running in parallel (s).
+_POLL = 0.02
 
 
 def compiler() -> list[str] | None:
@@ -92,7 +102,7 @@ def _private_folder(folder: Path) -> Path:
     return folder
 
 
-@lru_cache(maxsize=None)
+@cache
 def _cache_for(configured: Path) -> Path:
     try:
         return _private_folder(configured)
@@ -135,8 +145,10 @@ def _why_not_verified(library: Path) -> str | None:
     return None
 
 
-def compile_library(source: str, key: str) -> ctypes.CDLL:
+def compile_library(source: str | Sequence[str], key: str) -> ctypes.CDLL:
     """Compile ``source`` (or reuse the cached build) and load it.
+
+    ``source`` is one translation unit, or several compiled in parallel and linked together.
 
     Raises
     ------
@@ -146,8 +158,8 @@ def compile_library(source: str, key: str) -> ctypes.CDLL:
     return load_verified(source, key, lambda path: ctypes.CDLL(str(path)))
 
 
-def load_verified(source: str, key: str, load: Callable[[Path], object], *, flags: Sequence[str] = (),
-                  name: str | None = None) -> object:
+def load_verified(source: str | Sequence[str], key: str, load: Callable[[Path], object], *,
+                  flags: Sequence[str] = (), name: str | None = None) -> object:
     """``load(path)`` on the checked build of ``source``; on a load failure, rebuild once and load again.
 
     Raises
@@ -168,9 +180,34 @@ def load_verified(source: str, key: str, load: Callable[[Path], object], *, flag
                               fix="report this as a bug of lagrangian, with the model file") from exc
 
 
-def build_shared(source: str, key: str, *, flags: Sequence[str] = (), name: str | None = None,
+def _command_id(command: Sequence[str], key: str, units: int) -> str:
+    """The name of the library built by ``command`` from the ``units`` units whose key is ``key``."""
+    # The number of units enters the name: a split build is another library than a one-unit build.
+    shape = "" if units == 1 else f" units={units} {' '.join(PART_FLAGS)}"
+    return hashlib.sha256((key + " ".join(command) + shape + sys.platform).encode()).hexdigest()[:32]
+
+
+def cached_library(key: str, units: int) -> ctypes.CDLL | None:
+    """The library `compile_library` built from ``units`` units of key ``key``, loaded, when the cache
+    has it and it passes its checks; None otherwise (nothing is built: the caller generates the
+    source and calls `compile_library`)."""
+    cc = compiler()
+    if cc is None:
+        return None
+    library = _usable_cache() / f"lg_{_command_id([*cc, *FLAGS], key, units)}.so"
+    if not library.is_file() or _why_not_verified(library) is not None:
+        return None
+    try:
+        return ctypes.CDLL(str(library))
+    except OSError:
+        return None
+
+
+def build_shared(source: str | Sequence[str], key: str, *, flags: Sequence[str] = (), name: str | None = None,
                  rebuild: bool = False) -> Path:
     """The cached shared object built from ``source`` (built now if it is not there yet or fails its checksum).
+
+    ``source``: one translation unit, or several (compiled in parallel, `jobs` at a time, and linked).
 
     ``flags`` are added to the compiler's; ``name`` is the file name inside the build's own
     folder (an extension module must be named after its module), default ``lg_<hash>.so``.
@@ -185,8 +222,9 @@ def build_shared(source: str, key: str, *, flags: Sequence[str] = (), name: str 
     if cc is None:
         raise SimulationError("No C compiler was found (looked for $CC, cc, gcc, clang).",
                               fix="install one (e.g. `apt-get install gcc`) or use backend='symengine'")
+    units = [source] if isinstance(source, str) else list(source)
     command = [*cc, *FLAGS, *flags]
-    command_id = hashlib.sha256((key + " ".join(command) + sys.platform).encode()).hexdigest()[:32]
+    command_id = _command_id(command, key, len(units))
     folder = _usable_cache()
     if name is not None:
         try:
@@ -202,15 +240,13 @@ def build_shared(source: str, key: str, *, flags: Sequence[str] = (), name: str 
             return library
         _say_once(f"{reason}; rebuilding it")
     with tempfile.TemporaryDirectory(dir=folder) as tmp:
-        c_file = Path(tmp) / "model.c"
-        c_file.write_text(source, encoding="utf-8")
         built = Path(tmp) / "model.so"
-        result = subprocess.run([*command, "-o", str(built), str(c_file), "-lm"],
-                                capture_output=True, text=True)
-        if result.returncode != 0:
-            first = "\n".join(result.stderr.splitlines()[:8])
-            raise SimulationError(f"The C compiler rejected the generated code:\n{first}",
-                                  fix="report this as a bug of lagrangian, with the model file")
+        if len(units) == 1:
+            c_file = Path(tmp) / "model.c"
+            c_file.write_text(units[0], encoding="utf-8")
+            _check(_run_all([[*command, "-o", str(built), str(c_file), "-lm"]], Path(tmp)))
+        else:
+            _build_units(command, units, Path(tmp), built)
         digest = Path(tmp) / "model.sha256"
         digest.write_text(_digest(built) + "\n", encoding="ascii")
         # Private whatever the umask: with umask 002 the compiler's output is group-writable,
@@ -223,3 +259,65 @@ def build_shared(source: str, key: str, *, flags: Sequence[str] = (), name: str 
         os.replace(built, library)
         os.replace(digest, _sidecar(library))
     return library
+
+
+def jobs() -> int:
+    """How many compilers to run at once: the cores this process may run on."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):  # not Linux
+        return max(1, os.cpu_count() or 1)
+
+
+def _build_units(command: Sequence[str], units: Sequence[str], tmp: Path, built: Path) -> None:
+    """Compile each unit to an object file, `jobs` at a time, then link them into ``built``."""
+    compile_only = [word for word in command if word != "-shared"]
+    objects, commands = [], []
+    for k, unit in enumerate(units):
+        c_file, o_file = tmp / f"unit{k}.c", tmp / f"unit{k}.o"
+        c_file.write_text(unit, encoding="utf-8")
+        objects.append(str(o_file))
+        commands.append([*compile_only, *(PART_FLAGS if k else ()), "-c", "-o", str(o_file), str(c_file)])
+    _check(_run_all(commands, tmp))
+    _check(_run_all([[*command, "-o", str(built), *objects, "-lm"]], tmp))
+
+
+def _run_all(commands: Sequence[Sequence[str]], tmp: Path) -> tuple[int, str]:
+    """Run ``commands``, `jobs` at a time; (0, "") when all succeed, else the first failure's (status, stderr).
+
+    Each compiler's messages go to a file (a pipe per process could fill and block it); on an
+    exception (Ctrl-C) the compilers still running are stopped before it goes on.
+    """
+    pending = list(enumerate(commands))
+    running: dict[int, tuple[subprocess.Popen, Path]] = {}
+    failure: tuple[int, str] = (0, "")
+    try:
+        while pending or running:
+            while pending and len(running) < jobs() and not failure[0]:
+                k, words = pending.pop(0)
+                log = tmp / f"cc{k}.log"
+                with open(log, "w", encoding="utf-8") as handle:
+                    running[k] = (subprocess.Popen(list(words), stdout=handle, stderr=subprocess.STDOUT), log)
+            if failure[0] and not running:
+                break
+            for k, (process, log) in list(running.items()):
+                try:
+                    status = process.wait(timeout=_POLL if len(running) > 1 else None)
+                except subprocess.TimeoutExpired:
+                    continue
+                del running[k]
+                if status != 0 and not failure[0]:
+                    failure = (status, log.read_text(encoding="utf-8", errors="replace"))
+    finally:
+        for process, _ in running.values():
+            process.kill()
+            process.wait()
+    return failure
+
+
+def _check(result: tuple[int, str]) -> None:
+    status, messages = result
+    if status != 0:
+        first = "\n".join(messages.splitlines()[:8])
+        raise SimulationError(f"The C compiler rejected the generated code:\n{first}",
+                              fix="report this as a bug of lagrangian, with the model file")

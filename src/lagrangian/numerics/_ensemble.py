@@ -53,9 +53,9 @@ import sys
 import threading
 import time
 from collections.abc import Sequence
-from dataclasses import replace
 from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor
 from concurrent.futures import wait as wait_threads
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -66,12 +66,11 @@ from ._dae import constrained_source
 from ._ensemble_store import Layout, MemorySink, ZarrSink
 from ._members import Grid, members
 from ._progress import Reporter
-from ._simulate import BUILTIN, EventSpec, _memory_limit, _output_times, _resolve, check_options, control_block, \
-    momenta
-from ._system import CompiledSystem
+from ._simulate import BUILTIN, EventSpec, _memory_limit, _output_times, _resolve, check_options, control_block, momenta
 from ._stickslip import exact_contact_model
+from ._system import CompiledSystem
 
-__all__ = ["ensemble", "flip_events", "connect_scheduler", "register_backend", "EnsembleInterrupted"]
+__all__ = ["EnsembleInterrupted", "connect_scheduler", "ensemble", "flip_events", "register_backend"]
 
 #: Ensemble backends besides the compiled C one, by name: a function(eom, *, t_start, t_end,
 #: t_out, rtol, atol, max_step, max_steps, keep) -> (key, run) with run(Y0, P, size) -> rows.
@@ -292,7 +291,7 @@ def _member_inputs(inputs):  # type: ignore[no-untyped-def]
 def _kernel(system, specs, method, ctl, t_out, t_start, t_end) -> Kernel:
     integrals = tuple(system.integrals)
     return Kernel(
-        source=system.source, key=hashlib.sha256(system.source.encode("utf-8")).hexdigest(), n=system.n,
+        source=system.generated.units, key=system.generated.key, n=system.n,
         n_params=len(system.parameters), n_constants=system._constants, monitors=tuple(system.monitors),
         integrals=integrals, momenta=tuple(momenta(system.eom, integrals).items()), events=tuple(system.events),
         ev_dir=tuple(int(s.direction) for s in specs), ev_terminal=tuple(int(s.terminal) for s in specs),

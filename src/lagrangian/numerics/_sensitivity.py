@@ -157,7 +157,7 @@ class SensitivitySystem:
     """
 
     def __init__(self, system: CompiledSystem, parameters: Sequence[str]) -> None:
-        if system.backend != "c" or system.source is None:
+        if system.backend != "c" or system.generated is None:
             raise SimulationError("Sensitivities are integrated in compiled C, and no C compiler was found.",
                                   fix="install a C compiler (e.g. gcc)")
         eom = system.eom
@@ -178,9 +178,14 @@ class SensitivitySystem:
         function = c_function("static void lg_sens_jacobian(double t, const double *y, const double *p, "
                               "const double *a, double *J)", jac.definitions, outputs, reads,
                               "the derivative of M q'' = F")
-        source = "\n".join([system.source, f"#define LG_NV {width}", function,
-                            resources.files(__package__).joinpath("_sensitivity.c").read_text(encoding="utf-8")])
-        self._lib = lib = compile_library(source, hashlib.sha256(source.encode("utf-8")).hexdigest())
+        # The model's units (`_cparts`: its long functions in parts), the first with the derivative and
+        # the augmented integrator appended.
+        units = system.generated.units
+        first = "\n".join([units[0], f"#define LG_NV {width}", function,
+                           resources.files(__package__).joinpath("_sensitivity.c").read_text(encoding="utf-8")])
+        units = (first, *units[1:])
+        key = hashlib.sha256("\n/* ---- unit ---- */\n".join(units).encode("utf-8")).hexdigest()
+        self._lib = lib = compile_library(units, key)
         lib.lg_sens_dop853.restype = ctypes.c_int
         lib.lg_sens_dop853.argtypes = [_P, _P, _P, ctypes.c_int, _P, _P, ctypes.c_int, _P, _P, ctypes.c_double,
                                        ctypes.c_int, _P, ctypes.c_int, _P, _P, _P]

@@ -29,11 +29,12 @@ from ..analysis._integrals import FirstIntegral
 from ..analysis._tree_integrals import tree_integrals
 from ..dynamics import EquationsOfMotion
 from ..errors import SimulationError
-from ._codegen import generate_c, monitor_expressions
-from ._compile import compile_library, compiler
+from ._codegen import GeneratedSource, generate_c, monitor_expressions
+from ._compile import cached_library, compile_library, compiler
 from ._fastcall import rhs_caller
 from ._input_code import law_code
 from ._inputs import InputLaw, resolve_inputs
+from ._plans import Plan, plan_key, read_plan, write_plan
 
 __all__ = ["CompiledSystem", "compile_system", "known_values", "unused_parameters"]
 
@@ -112,43 +113,32 @@ class CompiledSystem:
         # With a recursive form the C code monitors the integrals found from it (`tree_integrals`: the
         # momenta, the energy and Noether's, over its intermediates), T and U; the course's search
         # (`first_integrals`) and its T, U would first make the whole course derivation.
-        recursive = eom.recursive is not None and backend == "c"
-        if integrals is None:
-            integrals = tree_integrals(eom, self.regime) if recursive else \
-                first_integrals(eom, inputs=self.regime)
-        self.first_integrals = tuple(integrals)
-        self.integrals = tuple(fi.name for fi in self.first_integrals)
+        self._recursive = eom.recursive is not None and backend == "c"
+        self._first_integrals = None if integrals is None else tuple(integrals)
         self.parameters = tuple(p.name for p in eom.model.parameters)
         self._unused: frozenset[str] | None = None  # see `unused_parameters`
         self._events = tuple(events)
         self.events = tuple(name for name, _ in self._events)
-        self.monitors = tuple(name for name, _ in monitor_expressions(eom, self.first_integrals,
-                                                                       recursive=recursive))
         self._law_size = 0
+        self._generated: GeneratedSource | None = None
+        self._lib = None
         if backend == "c":
-            code = law_code(eom, self.law) if self.law.driven else None
-            generated = generate_c(eom, self.first_integrals, self._events, law=code)
-            self.source = generated.source
-            self._constants = generated.constants
-            self._lib = compile_library(generated.source, generated.key)
-            for name, (restype, argtypes) in _SIGNATURES.items():
-                fn = getattr(self._lib, name)
-                fn.restype, fn.argtypes = restype, argtypes
-            if code is not None:
-                self._law_size = code.size
-                self._lib.lg_eval_inputs.restype, self._lib.lg_eval_inputs.argtypes = _INPUT_SIGNATURE
-            dims = np.zeros(3, dtype=np.intc)
-            self._lib.lg_dimensions(_ptr(dims))
-            assert tuple(dims) == (self.n, len(self.monitors), len(self.events)), "stale compiled library"
-            # The one-state call through ctypes costs ~4 µs, mostly Python's; the vectorcall
-            # wrapper brings it to the C evaluation plus ~0.1 µs (`_fastcall`).
-            caller = rhs_caller(self._lib.lg_eval_rhs, 2 * self.n,
-                                len(self.parameters) + self._constants + self._law_size, self._lib)
-            if caller is not None:
-                self.rhs_c = caller
+            self._code = law_code(eom, self.law) if self.law.driven else None
+            if self._code is not None:
+                self._law_size = self._code.size
+            # A run that made this system before left its plan (`_plans`): then neither the first
+            # integrals nor the C source are needed to load the library it compiled.
+            key = None if integrals is not None else plan_key(
+                eom, self.regime, None if self._code is None else self._code.prelude + self._code.epilogue,
+                self._events)
+            plan = read_plan(key) if key else None
+            library = cached_library(plan.library, plan.units) if plan else None
+            if plan is None or library is None or not self._bind(library, plan.integrals, plan.monitors,
+                                                                  plan.constants):
+                self._compile(key)
         else:
-            self.source = None
-            self._lib = None
+            self.integrals = tuple(fi.name for fi in self.first_integrals)
+            self.monitors = tuple(name for name, _ in monitor_expressions(eom, self.first_integrals))
             self._constants = 0
             self._lambdify()
             self._law_python = self.law.evaluator(eom, self.parameters) if self.law.driven else None
@@ -156,6 +146,68 @@ class CompiledSystem:
         # current interval between breakpoints, NaN outside a run) is kept here.
         self._hint = np.full(1, np.nan)
         self._t1 = np.zeros(1)
+
+    def _compile(self, key: str | None) -> None:
+        """Generate the C source, compile (or find) its library and bind it; store the plan under ``key``."""
+        generated = self._generated = generate_c(self.eom, self.first_integrals, self._events, law=self._code)
+        integrals = tuple(fi.name for fi in self.first_integrals)
+        monitors = tuple(name for name, _ in monitor_expressions(self.eom, self.first_integrals,
+                                                                  recursive=self._recursive))
+        if not self._bind(compile_library(generated.units, generated.key), integrals, monitors, generated.constants):
+            raise SimulationError("The compiled library does not have the dimensions of the model it was made for.",
+                                  fix="report this as a bug of lagrangian, with the model file")
+        if key is not None:
+            write_plan(key, Plan(integrals, monitors, generated.constants, generated.key, len(generated.units)))
+
+    def _bind(self, library: ctypes.CDLL, integrals: tuple[str, ...], monitors: tuple[str, ...],
+              constants: int) -> bool:
+        """Use ``library`` for this system, with these names; False (nothing changed) when its dimensions differ."""
+        for name, (restype, argtypes) in _SIGNATURES.items():
+            fn = getattr(library, name)
+            fn.restype, fn.argtypes = restype, argtypes
+        dims = np.zeros(3, dtype=np.intc)
+        library.lg_dimensions(_ptr(dims))
+        if tuple(dims) != (self.n, len(monitors), len(self.events)):
+            return False
+        if self._code is not None:
+            library.lg_eval_inputs.restype, library.lg_eval_inputs.argtypes = _INPUT_SIGNATURE
+        self._lib, self.integrals, self.monitors, self._constants = library, integrals, monitors, constants
+        # The one-state call through ctypes costs ~4 µs, mostly Python's; the vectorcall
+        # wrapper brings it to the C evaluation plus ~0.1 µs (`_fastcall`).
+        caller = rhs_caller(library.lg_eval_rhs, 2 * self.n,
+                            len(self.parameters) + self._constants + self._law_size, library)
+        if caller is not None:
+            self.rhs_c = caller
+        return True
+
+    @property
+    def first_integrals(self) -> tuple[FirstIntegral, ...]:
+        """The first integrals monitored (found on first use when the system came from its plan, `_plans`)."""
+        if self._first_integrals is None:
+            self._first_integrals = tuple(
+                tree_integrals(self.eom, self.regime) if self._recursive
+                else first_integrals(self.eom, inputs=self.regime))
+        return self._first_integrals
+
+    @property
+    def generated(self) -> GeneratedSource | None:
+        """The generated C of the library (`_codegen.GeneratedSource`: source, units, key); None with the
+        SymEngine backend.
+
+        When the system came from its plan (`_plans`), the C is generated again on first use, from
+        these equations: the same functions as the library's, their subexpressions numbered alike,
+        except in a process that had already derived the model once (SymEngine may then number
+        them otherwise, and the key differs).
+        """
+        if self._generated is None and self.backend == "c":
+            self._generated = generate_c(self.eom, self.first_integrals, self._events, law=self._code)
+        return self._generated
+
+    @property
+    def source(self) -> str | None:
+        """The C source of the library, as one translation unit (`generated`); None with the SymEngine backend."""
+        generated = self.generated
+        return None if generated is None else generated.source
 
     # -- parameter values -------------------------------------------------------------
     def parameter_vector(self, values: Mapping[str, float] | None = None) -> np.ndarray:
