@@ -54,3 +54,18 @@ def test_identify_refuses_a_file_with_a_missing_value(tmp_path, capsys):
     path.write_text("t,theta\n0,1\n0.1,0.9\n0.2,\n0.3,0.5\n0.4,0.3\n0.5,0.1\n")
     assert main(["identify", PENDULUM, str(path), "--fit", "l"]) == 2
     assert "holds nan at row 3" in capsys.readouterr().err
+
+
+def test_a_file_written_by_simulate_is_read_whole_and_a_misnamed_column_still_refused(tmp_path, capsys):
+    # `simulate -o` writes T, U, E and the reaction R_to_P besides t, θ, θ̇, θ̈: outputs of the model, set aside.
+    run = tmp_path / "run.csv"
+    assert main(["simulate", PENDULUM, "--t-end", "2", "--n-out", "101", "--set", "l=0.6", "-o", str(run)]) == 0
+    lines = [line for line in run.read_text().splitlines() if not line.startswith("#")]
+    assert "E" in lines[0].split(",") and "R_to_P_x0" in lines[0]
+    capsys.readouterr()
+    assert main(["identify", PENDULUM, str(run), "--fit", "l", "--guess", "l=0.5", "--segments", "1",
+                 "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["estimates"]["l"] == pytest.approx(0.6, rel=1e-6)
+    (tmp_path / "typo.csv").write_text("\n".join([lines[0].replace("theta_dot", "thetadot"), *lines[1:]]) + "\n")
+    assert main(["identify", PENDULUM, str(tmp_path / "typo.csv"), "--fit", "l"]) == 2
+    assert "`thetadot`" in capsys.readouterr().err

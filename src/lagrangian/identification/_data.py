@@ -33,6 +33,10 @@ MIN_SAMPLES = 5
 #: A number of a CSV file: a plain ASCII decimal, or nan/inf (refused later as not finite, with its row);
 #: Python's ``float`` alone would also take ``1_0`` and non-ASCII digits.
 _NUMBER = re.compile(r"[+-]?(?:(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?|nan|inf|infinity)", re.IGNORECASE)
+#: Columns a simulation writes besides its states (`lagrangian simulate -o run.csv`): T, U, the first
+#: integrals (E, H, K, momenta p_q, Noether's J_...) and the reactions and multipliers (R_..., lambda_...).
+#: A record read whole (no ``columns``) sets them aside: they are outputs of the model, not measurements.
+_SIMULATION_OUTPUTS = re.compile(r"(?:T|U|E|H|K|(?:p|J|R|lambda)_\w+)")
 #: Largest CSV file read (bytes): a measured record, not a data lake.
 MAX_CSV_BYTES = 512 * 2**20
 
@@ -68,8 +72,10 @@ def read_measurements(data, model: Model, *, columns: Sequence[str] | None = Non
         coordinate, one variable per column), a path to a CSV file, or a mapping of ``"t"`` and
         column names to 1-D arrays.
     model : the model whose coordinates and inputs the columns name.
-    columns : the columns to use (``t`` is always used); default all of them.  A Trajectory
-        gives its q, q̇ (and its input columns when it has any) unless ``columns`` says otherwise.
+    columns : the columns to use (``t`` is always used); default all of them, except, in a file that
+        `lagrangian simulate` wrote, the columns it computes besides the states (T, U, first
+        integrals such as E or p_x, reactions R_..., multipliers lambda_...).  A Trajectory gives its
+        q, q̇ (and its input columns when it has any) unless ``columns`` says otherwise.
 
     Raises
     ------
@@ -92,6 +98,10 @@ def read_measurements(data, model: Model, *, columns: Sequence[str] | None = Non
                                       fix="the columns are " + ", ".join(table))
     unknown = [k for k in wanted if k != "t" and k not in coords and not (k.endswith("_dot") and k[:-4] in coords)
                and not (k.endswith("_ddot") and k[:-5] in coords) and k not in inputs]
+    if columns is None and unknown and all(_SIMULATION_OUTPUTS.fullmatch(k) for k in unknown):
+        # A simulation's file read whole: its q, q̇, q̈ and inputs are the record, the rest is set aside.
+        wanted = {k: v for k, v in wanted.items() if k not in unknown}
+        unknown = []
     if unknown:
         raise IdentificationError(
             f"The column `{unknown[0]}` of the measurements ({source}) is neither a coordinate, a rate, an "

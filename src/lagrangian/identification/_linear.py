@@ -78,6 +78,12 @@ def sample_arrays(eom: EquationsOfMotion, meas: Measurements, derivatives: Savit
         keep = keep[trim: N - trim]
         notes.append(f"{'; '.join(derived)} estimated by local polynomial fits (Savitzky-Golay, window "
                      f"{derivatives.window}, order {derivatives.order}); the first and last {trim} samples left out")
+        # Least squares assumes the regressor Y(q, q̇, q̈) exact and the error in τ only; noise in the
+        # derivatives enters Y itself (errors in variables), which biases the estimates, more as the noise
+        # grows against the motion.  Shooting compares the motion itself and has no such bias.
+        notes.append("the regressor is built from these estimates: noise in them biases the least-squares fit "
+                     "(errors in variables); with noisy records, check against route='shooting' "
+                     "(--route shooting)")
     return keep, np.hstack([q, qd]), qdd, meas.t, notes
 
 
