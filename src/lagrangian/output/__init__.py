@@ -1,4 +1,4 @@
-"""Stage 7 — output: the derivation in the course's notation, as text, LaTeX and JSON.
+"""Stage 8 — output: the derivation in the course's notation, as text, LaTeX and JSON.
 
 ``export`` and ``EXPORT_TARGETS`` are the code-generation stage's (`lagrangian.codegen`), re-exported here.
 """
