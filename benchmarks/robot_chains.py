@@ -81,7 +81,7 @@ me, cc = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.R
 # pages, so the same compiles run again from a small Python process, one unit after the other (the
 # build runs as many at once as there are cores: its peak is at most that many times this one).
 import subprocess, tempfile
-from lagrangian.numerics._codegen import generate_c
+from lagrangian.codegen import generate_c
 from lagrangian.numerics._compile import FLAGS, PART_FLAGS, compiler
 units = generate_c(eom, system.first_integrals, ()).units
 cc_rss = 0

@@ -9,7 +9,7 @@
    the cached ``simulate``.
 2. The 30-joint arm (`zoo.serial_arm`), derived, then compiled (`compile_system`) in a fresh
    process with an empty ``LAGRANGIAN_CACHE``: the long functions in parts, compiled as units in
-   parallel (`numerics._cparts`; as many compilers at once as the process has cores), against the
+   parallel (`codegen._cparts`; as many compilers at once as the process has cores), against the
    same functions in one unit at -O2 (the build before the parts) in the same run.  Wall time,
    Python's and the compilers' CPU time, and what these project on idle cores (Python's CPU time,
    which is serial, plus the compilers' divided by the cores: a loaded shared machine gives the
@@ -22,7 +22,7 @@
 The children run with Python's bytecode cache (``PYTHONPYCACHEPREFIX`` in a temporary folder,
 warmed by the first run), as an installed package has it, even where ``PYTHONDONTWRITEBYTECODE``
 is set.  ``--src DIR`` runs another source tree (a checkout of an earlier version: the "before"
-figures); where it has no `numerics._cparts`, part 2 and 3 show its one-unit build only.  The
+figures); where it has no `_cparts`, part 2 and 3 show its one-unit build only.  The
 machine's load average is printed before and after: on a shared machine, compare ratios taken
 in the same run.
 
@@ -100,10 +100,14 @@ from lagrangian.numerics import compile_system
 whole = sys.argv[2] == "one-unit"
 if whole:
     try:
-        from lagrangian.numerics import _cparts
+        from lagrangian.codegen import _cparts
+    except ImportError:  # a version before the code-generation stage
+        try:
+            from lagrangian.numerics import _cparts
+        except ImportError:
+            _cparts = None  # a version without parts: one unit anyway
+    if _cparts is not None:
         _cparts.MAX_STATEMENTS = 10**9  # every function whole: one unit, as before the parts
-    except ImportError:
-        pass  # a version without parts: one unit anyway
 eom = lagrangian.derive(serial_arm(int(sys.argv[1])))
 before = resource.getrusage(resource.RUSAGE_CHILDREN)
 t0, c0 = time.perf_counter(), time.process_time()
@@ -154,7 +158,7 @@ print(json.dumps(best))
 
 def compile_and_run(src: Path, joints: int, rounds: int, pycache: Path) -> tuple[dict, dict]:
     """Parts 2 and 3: compile figures per build, then (rhs, mass_forces) seconds per state per build."""
-    has_parts = (src / "lagrangian" / "numerics" / "_cparts.py").is_file()
+    has_parts = any((src / "lagrangian" / stage / "_cparts.py").is_file() for stage in ("codegen", "numerics"))
     builds = ["parts", "one-unit"] if has_parts else ["one-unit"]
     compiled, caches = {}, {}
     with tempfile.TemporaryDirectory() as tmp:

@@ -2,11 +2,16 @@
 
 The pipeline, one stage per subpackage (imports flow one way)::
 
-    model  →  kinematics  →  dynamics  →  analysis  →  numerics  →  view3d  →  output/plotting/optimal  →  cli
-    (spec)    (Ω, V, V*)     (T, U, Q,     (first        (C code,     (3-D      (text, LaTeX, JSON,
-                              L(q_i), M,F)  integrals,    integrators,  scene,   report, plots; optimal
-                                            Newton–Euler, simulate)     page)    motions by collocation)
-                                            top analysis)
+    model → kinematics → dynamics → analysis → codegen → numerics → view3d → output/plotting/optimal → cli
+
+    model        the description (spec)
+    kinematics   Ω, V, V*
+    dynamics     T, U, Q, L(q_i), M, F
+    analysis     first integrals, Newton–Euler, the top's analysis
+    codegen      the equations as code: C for the package, C/NumPy/JAX/Octave for export
+    numerics     the C compiled, integrators, simulate
+    view3d       3-D scene, page
+    output, plotting, optimal   text, LaTeX, JSON, report, plots; optimal motions by collocation
 
 Typical use::
 
@@ -40,7 +45,8 @@ _WHERE = {
     **dict.fromkeys(("ModelBuilder", "load_model", "load_urdf", "parse_model"), ".model"),
     "Model": ".model.spec",
     "lagrange_top": ".model.zoo",
-    **dict.fromkeys(("Report", "report", "export"), ".output"),
+    "export": ".codegen",
+    **dict.fromkeys(("Report", "report"), ".output"),
     **dict.fromkeys(("optimize", "load_problem", "OptimalTrajectory", "Objective", "Problem"), ".optimal"),
     **dict.fromkeys(("CompiledSystem", "ContactEvent", "EventSpec", "FreeBodySystem", "ImpactSweep", "InputTable", "Sensitivities", "Switch", "Trajectory",
                      "compile_free_system", "compile_system", "ensemble", "grid", "impact_sweep", "load_trajectory", "open_ensemble", "save_trajectory", "simulate"), ".numerics"),
@@ -63,7 +69,8 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from .numerics import (CompiledSystem, ContactEvent, EventSpec, FreeBodySystem, ImpactSweep, InputTable, Sensitivities, Switch, Trajectory, compile_free_system,
                            compile_system, ensemble, grid, impact_sweep, load_trajectory, open_ensemble, save_trajectory, simulate)
     from .optimal import Objective, OptimalTrajectory, Problem, load_problem, optimize
-    from .output import Report, export, report
+    from .codegen import export
+    from .output import Report, report
     from .view3d import View, view
 
 __version__ = "0.1.0"

@@ -125,7 +125,7 @@ def test_the_checksum_rejects_a_truncated_library_before_anything_loads_it(cache
     monkeypatch.setattr(_compile.ctypes, "CDLL", lambda path: loaded.append(Path(path).read_bytes()) or path)
     import lagrangian
     from lagrangian.model.zoo import planar_chain
-    from lagrangian.numerics._codegen import generate_c
+    from lagrangian.codegen import generate_c
 
     generated = generate_c(lagrangian.derive(planar_chain(1)), (), ())
     _compile.compile_library(generated.source, generated.key)

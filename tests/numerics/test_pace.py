@@ -1,4 +1,4 @@
-"""The pace check (`lg_pace_hopeless` in `_integrators.c`): a run that ``max_steps`` cannot see through
+"""The pace check (`lg_pace_hopeless` in ``codegen/runtime/integrators.c``): a run that ``max_steps`` cannot see through
 is stopped as soon as that is plain, with the same error ``max_steps`` would give at the end.
 
 An undamped spring of 1e16 N/m on 1 kg (ω = 1e8 rad/s) is not stiff in Hairer's sense: the step
@@ -95,9 +95,10 @@ def test_the_control_block_has_the_size_the_c_side_copies() -> None:
     # lg_batch copies C_SIZE doubles from the block control_block makes: a shorter one would be read past its end.
     import re
 
+    from lagrangian.codegen import runtime_source
     from lagrangian.numerics import _simulate
 
-    source = (ROOT / "src" / "lagrangian" / "numerics" / "_integrators.c").read_text(encoding="utf-8")
+    source = runtime_source("integrators.c")
     names = re.search(r"enum \{ (C_T,[^}]*)\}", source).group(1)
     entries = [name.strip() for name in names.split(",")]
     assert entries.index("C_SIZE") == _simulate.CONTROL_SIZE

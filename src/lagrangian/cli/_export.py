@@ -11,10 +11,9 @@ from __future__ import annotations
 import argparse
 from dataclasses import replace
 
+from ..codegen import check_target, export, model_identifier
 from ..dynamics import derive
 from ..model.spec import Model
-from ..output import export
-from ..output._export import check_target, model_identifier
 from ._settings import SettingError, parse_settings
 from ._source import load_source
 

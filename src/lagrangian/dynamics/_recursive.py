@@ -299,7 +299,7 @@ class RecursiveForm:
     M, F : n×n and n entries in those names.
     T, U : kinetic energy and potential (gravity, plus the potentials of the other loads).
     dL_dq : ∂T/∂q − ∂U_gravity/∂q + Q_i of the other loads, couples included (the right
-        side of ṗ in Hamilton's form, see `_codegen`), in the names.
+        side of ṗ in Hamilton's form, see `codegen._codegen`), in the names.
     conservative : every load derives from a potential (then T + U is the energy integral).
     loads : the Q_i of the loads the recursion does not handle (all but uniform gravity).
     qdd : q̈ by the articulated-body algorithm (`_articulated`), in the names, when every

@@ -32,8 +32,8 @@ from collections.abc import Sequence
 import numpy as np
 import symengine as se
 
+from ..codegen import c_function
 from ..dynamics import EquationsOfMotion
-from ..numerics._cfunction import c_function
 from ..numerics._compile import load_verified
 from ..numerics._forward import forward_jacobian
 from ..numerics._sensitivity import inverse_dynamics

@@ -1,4 +1,4 @@
-"""Numerics: the equations of motion as compiled code, integrators, simulation results.
+"""Stage 6 — numerics: the generated code (`lagrangian.codegen`) compiled and run, simulation results.
 
 ``compile_system(eom)`` → `CompiledSystem` (M, F, q̈, monitors, events; C or SymEngine);
 ``compile_free_system(model)`` → `FreeBodySystem`: a model with free bodies on unit quaternions (C);

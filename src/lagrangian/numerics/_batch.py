@@ -7,7 +7,7 @@ output grid and the events.  It holds no SymPy or ctypes object, so it pickles t
 worker in one message; the worker compiles (or loads from its cache) the library once and
 keeps it (`_library`).
 
-`run_chunk(kernel, Y0, P)` calls ``lg_batch`` (`_integrators.c`): each member runs exactly
+`run_chunk(kernel, Y0, P)` calls ``lg_batch`` (``codegen/runtime/integrators.c``): each member runs exactly
 as `simulate`'s single call would, so its result is the same to the last bit, and the
 summaries are then reduced with NumPy over the chunk:
 
@@ -47,7 +47,7 @@ STATUS = {
     7: "stiff",             # dop853's stiffness test stopped it (an implicit method is needed)
 }
 PENDING = -1
-# C status (`_integrators.c`) -> member status
+# C status (``codegen/runtime/integrators.c``) -> member status
 _FROM_C = {0: 0, 4: 1, 2: 2, 5: 3, 1: 4, 3: 5, 6: 6, 8: 7}
 _INTERRUPTED = 7
 _B_SIZE = 6  # lg_batch's info row: status, t, steps, nfev, rows, pivot
@@ -57,7 +57,7 @@ _B_SIZE = 6  # lg_batch's info row: status, t, steps, nfev, rows, pivot
 class Kernel:
     """What a process needs to integrate members of one model (module docstring); picklable."""
 
-    source: tuple[str, ...]  # the translation units (`_codegen.GeneratedSource.units`)
+    source: tuple[str, ...]  # the translation units (`codegen.GeneratedSource.units`)
     key: str
     n: int
     n_params: int

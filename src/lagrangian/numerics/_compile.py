@@ -1,6 +1,6 @@
 """Compile generated C once per source text and load it with `ctypes`.
 
-A source is one translation unit, or several (`_cparts`: a long model's functions in parts),
+A source is one translation unit, or several (`codegen._cparts`: a long model's functions in parts),
 compiled in parallel, as many at a time as this process may use cores, and linked.
 
 The shared library is cached under ``$LAGRANGIAN_CACHE`` (default
@@ -42,7 +42,7 @@ from ..errors import SimulationError
 __all__ = ["build_shared", "cache_dir", "cached_library", "compile_library", "compiler", "load_verified"]
 
 FLAGS = ("-O2", "-fPIC", "-shared", "-std=c99", "-fno-math-errno")
-#: Added for the units after the first of a split build (`_cparts`: the parts of long generated
+#: Added for the units after the first of a split build (`codegen._cparts`: the parts of long generated
 #: functions, straight-line arithmetic): -O1 compiles them in about 60 % of -O2's time, and the
 #: 30-joint arm's q̈ is no slower, M and F as fast (benchmarks/startup_and_compile.py).  The first
 #: unit (the integrators' loops) keeps -O2.

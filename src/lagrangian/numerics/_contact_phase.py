@@ -12,7 +12,7 @@ not at all, so the motion is smooth; it ends where
 
 A phase in which every contact is open, in a model without bilateral rows, runs in the compiled
 DOP853 with the gaps as terminal event functions (`FastPhases`), each event located on the dense
-output to a few ulp (`_integrators.c`).  Any other phase steps SciPy's DOP853 on q̈ solved with the
+output to a few ulp (`codegen/runtime/integrators.c`).  Any other phase steps SciPy's DOP853 on q̈ solved with the
 acting rows (`ContactSystem.solve`), projects every step onto them (positions onto the
 closed gaps, velocities onto ġ = 0 and w = 0), and locates its events by Brent's method on the
 projected dense output (`dae_phase`), as `_dae.simulate_dae` does.

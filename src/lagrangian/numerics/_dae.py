@@ -1,7 +1,7 @@
 """Simulation of systems with complementary constraints: a differential-algebraic system.
 
 The state is y = (q, q̇) as for any model; the multipliers λ are not integrated but
-solved at each evaluation from the augmented equations (see `_codegen_dae`): the
+solved at each evaluation from the augmented equations (see `codegen._codegen_dae`): the
 constraints are differentiated (index reduction) so that they hold at acceleration
 level, A q̈ + c = 0.  The exact solution then stays on the constraint manifold, but the
 numerical one drifts from it (f(q, t) grows like t² for holonomic rows), so the drift is
@@ -40,12 +40,11 @@ import numpy as np
 import symengine as se
 
 from ..analysis import first_integrals
+from ..codegen import generate_dae_c, monitor_expressions
 from ..dynamics import EquationsOfMotion, derive
 from ..errors import SimulationError
 from ..model import load_model
 from ..model.spec import Model
-from ._codegen import monitor_expressions
-from ._codegen_dae import generate_dae_c
 from ._compile import compile_library, compiler
 from ._input_run import InputsAt, rowwise
 from ._inputs import resolve_inputs

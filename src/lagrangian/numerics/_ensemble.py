@@ -7,7 +7,7 @@
     ds.event_time.min("event").plot()          # the flip-time map
 
 The members (`_members`: arrays or a `grid`) are cut into chunks; each chunk is one call
-of the compiled batch integrator (``lg_batch`` in `_integrators.c`, driven by
+of the compiled batch integrator (``lg_batch`` in `codegen/runtime/integrators.c`, driven by
 `_batch.run_chunk`), which integrates its members one after another, each with its own
 adaptive step, exactly as `simulate` integrates one motion: a member's result equals
 `simulate` on that member to the last bit.  Per member, only summaries are kept by default

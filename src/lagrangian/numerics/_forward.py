@@ -13,7 +13,7 @@ variables each intermediate depends on, and nothing is expanded.  Derivatives th
 are never formed: an intermediate of the kinematics (a link velocity) has none with respect
 to a mass.
 
-The result feeds the C generator (`_cprint.c_sequence`): the forward sensitivities of
+The result feeds the C generator (`codegen.c_sequence`): the forward sensitivities of
 `_sensitivity` (∂(F − M a)/∂(y, p)) and the identification regressor ∂(M a − F)/∂θ
 (`lagrangian.identification._regressor`).
 """

@@ -3,7 +3,7 @@
 A free body's Euler angles are singular somewhere (θ = 0 for the course's z-x-z angles), and
 a tumbling body passes there; its unit quaternion e and its angular velocity ω (in its own
 basis) are not.  So the run integrates the state of `dynamics._floating` (r, e, v, ω and the
-joints of what the body carries), compiled as any model (`_free_codegen`, `FreeBodySystem`),
+joints of what the body carries), compiled as any model (`codegen._free_codegen`, `FreeBodySystem`),
 with DOP853 in C (or a SciPy method on the same right-hand side), and:
 
 * after each accepted step of DOP853, projects each e back on |e| = 1 (e ← e/|e|, the nearest

@@ -1,7 +1,7 @@
 """A model with free bodies as compiled C on its quaternion state: `FreeBodySystem`.
 
 The state is that of `dynamics._floating` (r, e, q_joints; v, ω, q̇_joints; one drift record per
-free body, `_free_codegen`).  This class compiles it once and gives its right-hand side, its
+free body, `codegen._free_codegen`).  This class compiles it once and gives its right-hand side, its
 mass matrix in the velocities (v, ω, q̇), its monitors and events for one state or a batch,
 and the two conversions with the model's own coordinates: a state from the model's initial
 values (Euler angles and their rates: e from R(θ), ω = J(θ) θ̇, regular even where J is not),
@@ -71,7 +71,7 @@ class FreeBodySystem:
     """
 
     def __init__(self, model: Model, *, events: Sequence[tuple[str, se.Basic]] = ()) -> None:
-        from ._free_codegen import generate_free_c
+        from ..codegen import generate_free_c
 
         self.model = model
         self.form: FloatingForm = floating_form(model)

@@ -1,6 +1,6 @@
 """The C of an `InputLaw`: the inputs computed inside the right-hand side, no Python per step.
 
-The model's functions (`_codegen`) read an input u like a parameter, p[i_u].  With a law, they
+The model's functions (`codegen._codegen`) read an input u like a parameter, p[i_u].  With a law, they
 are compiled under other names (``lg_model_mass_forces``, ...; the `prelude` renames them with
 macros) and the names the integrators call become wrappers (the `epilogue`) that copy the
 parameters, write u(t, y) into the copy and call the model's function with it::
@@ -34,9 +34,9 @@ from dataclasses import dataclass
 
 import symengine as se
 
+from ..codegen import c_block
 from ..dynamics import EquationsOfMotion
 from ..errors import SimulationError
-from ._cprint import c_block
 from ._inputs import InputLaw
 
 __all__ = ["WRAPPED", "LawCode", "law_code"]

@@ -5,7 +5,7 @@
   the first integrals monitored follow the inputs' regime (`first_integrals`' ``inputs``), so an
   input held at a value other than 0 by ``parameters=`` gets the integrals of a constant input.
 * `solve_in_segments` runs SciPy's ``solve_ivp`` from breakpoint to breakpoint of the inputs'
-  tables, as the compiled integrators do in C (`_integrators.c`, ``lg_run``), with the tables
+  tables, as the compiled integrators do in C (`codegen/runtime/integrators.c`, ``lg_run``), with the tables
   reading the piece of the current interval (the hint).
 * `input_columns` gives the applied inputs along the output grid, for the `Trajectory`.
 * `InputsAt` computes the law in Python for the constrained (DAE) path, which steps in Python.

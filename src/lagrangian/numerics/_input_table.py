@@ -26,7 +26,7 @@ never extrapolates.
 
 Each kind is smooth between two breakpoints and not across one — every sample time, or for
 ``"quadratic"`` every knot — so the compiled integrators stop at every breakpoint and start
-again (`_integrators.c`, ``lg_run``): an error estimate never straddles a jump of u (zoh) or of
+again (`codegen/runtime/integrators.c`, ``lg_run``): an error estimate never straddles a jump of u (zoh) or of
 its derivatives (linear, quadratic, cubic), which would make DOP853 shrink its step blindly
 around each sample until the kink is resolved, at the cost of many rejected steps and of its
 order there.

@@ -13,9 +13,10 @@ and the rows of ∂f that belong to q̈ come from M q̈ = F differentiated at q�
 The Jacobian J = ∂(F − M a)/∂(q, q̇, p_sel), with a a vector of symbols, is generated
 symbolically (`_forward.forward_jacobian`, through the recursive form's intermediates where
 there is one; never M⁻¹) and compiled after the model's own code, with an augmented DOP853
-(`_sensitivity.c`) that integrates y and every column of S by the same steps.  By default the
-step-size control looks at y only (`Sensitivities.in_error_norm`): y is then the plain run's,
-bit for bit, and S the exact derivative of that numerical solution (see `_sensitivity.c`).
+(the C runtime's ``sensitivity.c``, `codegen.runtime_source`) that integrates y and every column
+of S by the same steps.  By default the step-size control looks at y only
+(`Sensitivities.in_error_norm`): y is then the plain run's, bit for bit, and S the exact
+derivative of that numerical solution (see ``codegen/runtime/sensitivity.c``).
 """
 
 from __future__ import annotations
@@ -26,15 +27,14 @@ import hashlib
 import weakref
 from collections.abc import Sequence
 from dataclasses import dataclass
-from importlib import resources
 
 import numpy as np
 import symengine as se
 
+from ..codegen import c_function, runtime_source
 from ..dynamics import EquationsOfMotion, derive
 from ..errors import Interrupted, SimulationError
 from ..model.spec import Model
-from ._cfunction import c_function
 from ._compile import compile_library
 from ._forward import forward_jacobian
 from ._system import CompiledSystem, _ptr
@@ -178,11 +178,11 @@ class SensitivitySystem:
         function = c_function("static void lg_sens_jacobian(double t, const double *y, const double *p, "
                               "const double *a, double *J)", jac.definitions, outputs, reads,
                               "the derivative of M q'' = F")
-        # The model's units (`_cparts`: its long functions in parts), the first with the derivative and
+        # The model's units (`codegen._cparts`: its long functions in parts), the first with the derivative and
         # the augmented integrator appended.
         units = system.generated.units
         first = "\n".join([units[0], f"#define LG_NV {width}", function,
-                           resources.files(__package__).joinpath("_sensitivity.c").read_text(encoding="utf-8")])
+                           runtime_source("sensitivity.c")])
         units = (first, *units[1:])
         key = hashlib.sha256("\n/* ---- unit ---- */\n".join(units).encode("utf-8")).hexdigest()
         self._lib = lib = compile_library(units, key)

@@ -1,6 +1,6 @@
 """`simulate`: integrate M q̈ = F from the model's initial state, with conservation monitors.
 
-The run itself happens in compiled C (`_integrators.c`): Python sets it up, calls it once,
+The run itself happens in compiled C (`codegen/runtime/integrators.c`): Python sets it up, calls it once,
 and turns the preallocated output arrays into a `Trajectory`.  Memory is the output grid,
 whatever the number of steps.  A progress bar is drawn by a second thread that reads the
 time the C loop reached (ctypes releases the GIL during the call), so the run is the same,
@@ -77,11 +77,11 @@ _STATUS = {
     5: "the maximum number of steps was reached",
     6: "the implicit stages of the Gauss-Legendre step did not converge",
 }
-_STIFF = 8  # LG_STIFF: dop853's stiffness test fired (`_integrators.c`, lg_dop_stiff)
+_STIFF = 8  # LG_STIFF: dop853's stiffness test fired (`codegen/runtime/integrators.c`, lg_dop_stiff)
 #: dop853's NSTIFF: the stiffness test runs every this many accepted steps (then at every step while
 #: the problem looks stiff), as in Hairer's dop853.f.
 STIFFNESS_TEST_PERIOD = 1000
-#: Doubles in the control block, C_SIZE in `_integrators.c` (`lg_batch` copies that many from it).
+#: Doubles in the control block, C_SIZE in `codegen/runtime/integrators.c` (`lg_batch` copies that many from it).
 CONTROL_SIZE = 22
 _INTERRUPTED = 7  # LG_INTERRUPTED: the stop request ctl[_C_STOP] was seen
 _C_STOP = 13
@@ -536,7 +536,7 @@ def _gauss_step(t_start: float, t_end: float, t_out: np.ndarray, dt: float | Non
 def control_block(method: str, t_start: float, t_end: float, t_out: np.ndarray, rtol: float, atol: float,
                   dt: float | None, max_step: float | None, max_steps: int, h: float | None = None,
                   stiffness_check: bool = True) -> np.ndarray:
-    """The C integrators' control block (``_integrators.c``) at the start of a run.
+    """The C integrators' control block (``codegen/runtime/integrators.c``) at the start of a run.
 
     One place for it, so that `ensemble` starts each member exactly as `simulate` starts
     its run (same first step, same fixed step of ``gauss-legendre``; ``h`` overrides that

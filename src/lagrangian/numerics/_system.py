@@ -1,7 +1,7 @@
 """A model's equations as fast numeric functions: `CompiledSystem`.
 
 `compile_system(eom)` turns M(q, t) q̈ = F(q, q̇, t), the monitors (first integrals, T,
-U) and optional event functions into compiled C (see `_codegen`), loaded once.  All
+U) and optional event functions into compiled C (see `codegen._codegen`), loaded once.  All
 evaluators take the parameter values as an array, so one compiled system serves every
 ``--set``; all accept a batch of states, which is how the per-state cost falls to a
 fraction of a microsecond.
@@ -27,9 +27,9 @@ import symengine as se
 from ..analysis import first_integrals
 from ..analysis._integrals import FirstIntegral
 from ..analysis._tree_integrals import tree_integrals
+from ..codegen import GeneratedSource, generate_c, monitor_expressions
 from ..dynamics import EquationsOfMotion
 from ..errors import SimulationError
-from ._codegen import GeneratedSource, generate_c, monitor_expressions
 from ._compile import cached_library, compile_library, compiler
 from ._fastcall import rhs_caller
 from ._input_code import law_code
@@ -191,7 +191,7 @@ class CompiledSystem:
 
     @property
     def generated(self) -> GeneratedSource | None:
-        """The generated C of the library (`_codegen.GeneratedSource`: source, units, key); None with the
+        """The generated C of the library (`codegen.GeneratedSource`: source, units, key); None with the
         SymEngine backend.
 
         When the system came from its plan (`_plans`), the C is generated again on first use, from
@@ -248,7 +248,7 @@ class CompiledSystem:
                                       fix=f"give `{name}` a finite value")
             out[k] = value
         if self._constants or self._law_size:
-            # The parameter-only subexpressions of M and F follow the values (`_codegen._Hoist`),
+            # The parameter-only subexpressions of M and F follow the values (`codegen._rewrite.Hoist`),
             # then the numbers of the inputs' law (`_input_code`).
             extended = np.empty(len(out) + self._constants + self._law_size)
             extended[: len(out)] = out

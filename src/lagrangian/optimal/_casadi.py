@@ -3,7 +3,7 @@
 CasADi differentiates what it is given exactly and sparsely (forward and reverse automatic
 differentiation on its expression graph), so the equations of motion enter an optimization as
 the graph of M(q) q̈ − F(q, q̇, u): no finite differences, no M⁻¹.  `casadi_expressions` builds
-that graph from the expressions `derive` produced, the way `numerics._cprint` prints them as C:
+that graph from the expressions `derive` produced, the way `codegen._cprint` prints them as C:
 
 * SymEngine's ``cse`` pulls out the subexpressions that several outputs share (``sin θ``,
   ``m l cos θ``); each becomes one ``SX`` node that every output refers to, so the graph — and
@@ -19,7 +19,7 @@ The symbols are mapped by the caller: to ``SX`` symbols (decision variables, unk
 to identify) or to numbers (known parameter values, folded into the graph as constants).
 
 Only the functions a model can contain are converted (`lagrangian.model._expr.FUNCTIONS` and what
-differentiation makes of them, as in `numerics._cprint`); anything else is a `ModelError` naming it.
+differentiation makes of them, as in `codegen._cprint`); anything else is a `ModelError` naming it.
 """
 
 from __future__ import annotations

@@ -1,13 +1,16 @@
-"""Stage 5 — output: the derivation in the course's notation, as text, LaTeX and JSON."""
+"""Stage 8 — output: the derivation in the course's notation, as text, LaTeX and JSON.
+
+``export`` and ``EXPORT_TARGETS`` are the code-generation stage's (`lagrangian.codegen`), re-exported here.
+"""
 
 from ._course import CourseForm as CourseForm
 from ._course import course_form as course_form
-from ._export import EXPORT_TARGETS as EXPORT_TARGETS
+from ..codegen import EXPORT_TARGETS as EXPORT_TARGETS
 from ..numerics._ensemble import register_backend as _register_backend
 from ._ensemble_jax import jax_runner as _jax_runner
 
 _register_backend("jax", _jax_runner)  # `ensemble(..., backend="jax")`: built on the JAX export, so registered here
-from ._export import export as export
+from ..codegen import export as export
 from ._json import SCHEMA_ID as SCHEMA_ID
 from ._json import SCHEMA_VERSION as SCHEMA_VERSION
 from ._json import derive_document as derive_document

@@ -4,7 +4,7 @@
 
 The route to a GPU (or any accelerator JAX runs on): the members of a chunk are one
 ``jax.vmap`` of ``diffrax.diffeqsolve`` over y' = rhs(t, y, p), rhs being the `jax` export's
-(q' and q'' from M q'' = F, `_export_jax`), so each member keeps its own adaptive step (the
+(q' and q'' from M q'' = F, `codegen.targets.jax`), so each member keeps its own adaptive step (the
 vmapped while-loop runs until the slowest member is done).  ``method="dop853"`` maps to
 diffrax's ``Dopri8`` (the same Dormand–Prince 8(5,3)-order family; Hairer, Nørsett & Wanner,
 *Solving ODEs I*, II.10) under a ``PIDController`` with the run's rtol and atol; the step
@@ -30,9 +30,9 @@ from pathlib import Path
 
 import numpy as np
 
+from ..codegen import exported_symbols
+from ..codegen.targets.jax import jax_module
 from ..errors import SimulationError
-from ._export import exported_symbols
-from ._export_jax import jax_module
 
 __all__ = ["jax_runner"]
 

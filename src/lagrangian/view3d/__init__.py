@@ -1,4 +1,4 @@
-"""Stage 6 — the 3-D view: a model at rest or in motion, in one offline HTML page (three.js inline).
+"""Stage 7 — the 3-D view: a model at rest or in motion, in one offline HTML page (three.js inline).
 
 ``view(traj, eom)`` (or ``view(model)`` at rest) returns a `View`: ``html()``, ``save(path)``,
 ``png()``, and it displays itself in Jupyter.  Its `Scene` — carriers and their poses, parts,

@@ -8,7 +8,7 @@ from .common import MODEL_HELP, add_set_option, command
 
 __all__ = ["SUMMARY", "TARGETS", "register"]
 
-#: The names of `lagrangian.output.EXPORT_TARGETS`, for the help (a test holds them equal; `--to` is checked
+#: The names of `lagrangian.codegen.EXPORT_TARGETS`, for the help (a test holds them equal; `--to` is checked
 #: by the export itself).
 TARGETS = ("numpy", "c", "jax", "octave")
 

@@ -1,6 +1,6 @@
 """The ``jax`` export: one module of pure ``jax.numpy`` functions (`lagrangian.export`).
 
-The same expressions as the ``numpy`` export (`_export_numpy`), printed by SymPy's
+The same expressions as the ``numpy`` export (`targets.numpy`), printed by SymPy's
 ``JaxPrinter``; since JAX arrays are immutable, M and F are assembled with
 ``jax.numpy.stack`` instead of item assignment.  Every function is jit-able and vmap-able
 (no Python control flow depends on array values), and works on leading batch axes as the
@@ -11,12 +11,12 @@ that global setting itself.
 
 from __future__ import annotations
 
-from sympy.printing.numpy import JaxPrinter
+from typing import final
 
-from ._export import ExportedSymbols
-from ._export_numpy import constrained_functions, module_header, python_function
+from .base import AbstractTarget, ExportedSymbols
+from .numpy import constrained_functions, module_header, python_function
 
-__all__ = ["jax_module"]
+__all__ = ["JaxTarget", "jax_module"]
 
 XP = "jax.numpy"
 
@@ -30,6 +30,8 @@ def _stacked(name: str, count: int, shape: str) -> list[str]:
 def jax_module(symbols: ExportedSymbols) -> str:
     """The text of the module (see the module docstring and docs/export.md)."""
     n = symbols.n
+    from sympy.printing.numpy import JaxPrinter  # SymPy's printers load only when a target prints
+
     printer = JaxPrinter({"fully_qualified_modules": True})
     header = module_header(symbols, "jax",
                            "Needs only JAX; jit-able and vmap-able; enable jax_enable_x64 for double precision.",
@@ -60,3 +62,13 @@ def jax_module(symbols: ExportedSymbols) -> str:
     return {XP}.concatenate([{XP}.broadcast_to(qd, qdd.shape), qdd], axis=-1)
 '''
     return header + "\n" + mass + "\n\n" + forcing + "\n\n" + rhs
+
+
+@final
+class JaxTarget(AbstractTarget):
+    """One module ``<name>.py`` of jit-able, vmap-able ``jax.numpy`` functions (module docstring)."""
+
+    name = "jax"
+
+    def files(self, symbols: ExportedSymbols) -> dict[str, str]:
+        return {f"{symbols.identifier}.py": jax_module(symbols)}

@@ -17,7 +17,8 @@ are regular) and S = A M⁻¹ Aᵀ (positive definite while the rows are indepen
     λ = S⁻¹ (−c − 2α g − β² f − A M⁻¹ F),     q̈ = M⁻¹ (F + Aᵀ λ).
 
 The generated file also evaluates the parts (M, F, A, c, g, f) for the projection onto
-the constraint manifold, the monitors, and the reaction components (linear in λ).
+the constraint manifold, the monitors, and the reaction components (linear in λ).  The
+solve itself is the C runtime's (`_runtime`: ``cholesky.c`` and ``dae.c``, copied whole).
 """
 
 from __future__ import annotations
@@ -31,6 +32,7 @@ import symengine as se
 from ..dynamics import EquationsOfMotion
 from ..errors import DerivationError
 from ._cprint import c_block
+from ._runtime import runtime_source
 
 __all__ = ["GeneratedDAE", "generate_dae_c"]
 
@@ -54,120 +56,6 @@ class GeneratedDAE:
     reactions: int
 
 
-_RUNTIME = r"""
-/* ---- model-independent part: Cholesky solves and the Schur complement ---------------- */
-static int lgd_chol(double *M, int n, double *worst)
-{
-    for (int j = 0; j < n; ++j) {
-        double d = M[j * n + j];
-        const double diag = fabs(d);
-        for (int k = 0; k < j; ++k) d -= M[j * n + k] * M[j * n + k];
-        if (!(d > 1e-13 * diag) || diag == 0.0) return 1;
-        if (d / diag < *worst) *worst = d / diag;
-        d = sqrt(d);
-        M[j * n + j] = d;
-        for (int i = j + 1; i < n; ++i) {
-            double s = M[i * n + j];
-            for (int k = 0; k < j; ++k) s -= M[i * n + k] * M[j * n + k];
-            M[i * n + j] = s / d;
-        }
-    }
-    return 0;
-}
-
-static void lgd_chol_solve(const double *L, int n, double *b)
-{
-    for (int i = 0; i < n; ++i) {
-        double s = b[i];
-        for (int k = 0; k < i; ++k) s -= L[i * n + k] * b[k];
-        b[i] = s / L[i * n + i];
-    }
-    for (int i = n - 1; i >= 0; --i) {
-        double s = b[i];
-        for (int k = i + 1; k < n; ++k) s -= L[k * n + i] * b[k];
-        b[i] = s / L[i * n + i];
-    }
-}
-
-/* dy = (q', q''), lam = multipliers; stab = (alpha, beta).  Returns 0, 1 (M singular),
- * 2 (S singular: rows dependent here) or 3 (non-finite result). */
-static int lgd_rhs(double t, const double *y, const double *p, const double *stab, double *dy, double *lam,
-                   double *worst)
-{
-    double M[LGD_N * LGD_N], F[LGD_N], A[LGD_M * LGD_N], c[LGD_M], g[LGD_M], f[LGD_M];
-    double X[LGD_M * LGD_N], S[LGD_M * LGD_M];
-    lgd_parts(t, y, p, M, F, A, c, g, f);
-    if (lgd_chol(M, LGD_N, worst)) return 1;
-    for (int k = 0; k < LGD_M; ++k) {
-        for (int i = 0; i < LGD_N; ++i) X[k * LGD_N + i] = A[k * LGD_N + i];
-        lgd_chol_solve(M, LGD_N, X + k * LGD_N);          /* row k of X = M^-1 A_k^T */
-    }
-    lgd_chol_solve(M, LGD_N, F);                           /* F <- M^-1 F */
-    for (int k = 0; k < LGD_M; ++k) {
-        double r = -c[k] - 2.0 * stab[0] * g[k] - stab[1] * stab[1] * f[k];
-        for (int i = 0; i < LGD_N; ++i) r -= A[k * LGD_N + i] * F[i];
-        lam[k] = r;
-        for (int l = 0; l < LGD_M; ++l) {
-            double s = 0.0;
-            for (int i = 0; i < LGD_N; ++i) s += A[k * LGD_N + i] * X[l * LGD_N + i];
-            S[k * LGD_M + l] = s;
-        }
-    }
-    double unused = 1.0;
-    if (lgd_chol(S, LGD_M, &unused)) return 2;
-    lgd_chol_solve(S, LGD_M, lam);
-    for (int i = 0; i < LGD_N; ++i) {
-        double a = F[i];
-        for (int k = 0; k < LGD_M; ++k) a += X[k * LGD_N + i] * lam[k];
-        dy[i] = y[LGD_N + i];
-        dy[LGD_N + i] = a;
-        if (!isfinite(a)) return 3;
-    }
-    return 0;
-}
-
-int lgd_eval_rhs(int count, const double *t, const double *Y, const double *p, const double *stab, double *dY,
-                 double *LAM, double *worst)
-{
-    for (int k = 0; k < count; ++k) {
-        int status = lgd_rhs(t[k], Y + (long)k * 2 * LGD_N, p, stab, dY + (long)k * 2 * LGD_N,
-                             LAM + (long)k * LGD_M, worst);
-        if (status) return status;
-    }
-    return 0;
-}
-
-void lgd_eval_parts(int count, const double *t, const double *Y, const double *p, double *M, double *F,
-                    double *A, double *c, double *g, double *f)
-{
-    for (int k = 0; k < count; ++k)
-        lgd_parts(t[k], Y + (long)k * 2 * LGD_N, p, M + (long)k * LGD_N * LGD_N, F + (long)k * LGD_N,
-                  A + (long)k * LGD_M * LGD_N, c + (long)k * LGD_M, g + (long)k * LGD_M, f + (long)k * LGD_M);
-}
-
-void lgd_eval_monitors(int count, const double *t, const double *Y, const double *p, double *out)
-{
-    for (int k = 0; k < count; ++k)
-        lgd_monitors(t[k], Y + (long)k * 2 * LGD_N, p, out + (long)k * (LGD_NM > 0 ? LGD_NM : 1));
-}
-
-void lgd_eval_reactions(int count, const double *t, const double *Y, const double *LAM, const double *p,
-                        double *out)
-{
-    for (int k = 0; k < count; ++k)
-        lgd_reactions(t[k], Y + (long)k * 2 * LGD_N, LAM + (long)k * LGD_M, p,
-                      out + (long)k * (LGD_NR > 0 ? LGD_NR : 1));
-}
-
-int lgd_dimensions(int *out)
-{
-    out[0] = LGD_N;
-    out[1] = LGD_M;
-    out[2] = LGD_NM;
-    out[3] = LGD_NR;
-    return 0;
-}
-"""
 
 
 def generate_dae_c(eom: EquationsOfMotion, monitors: Sequence[se.Basic],
@@ -240,7 +128,8 @@ def generate_dae_c(eom: EquationsOfMotion, monitors: Sequence[se.Basic],
                  [(f"out[{k}]", e) for k, e in enumerate(monitors)], "a monitor"),
         function("static void lgd_reactions(double t, const double *y, const double *lam, const double *p, "
                  "double *out)", [(f"out[{k}]", e) for k, e in enumerate(reactions)], "a reaction", True),
-        _RUNTIME,
+        runtime_source("cholesky.c"),
+        runtime_source("dae.c"),
     ])
     return GeneratedDAE(source, hashlib.sha256(source.encode("utf-8")).hexdigest(), n, m, len(monitors),
                         len(reactions))

@@ -14,20 +14,23 @@ A q̈ + c = 0), the module also has ``CONSTRAINTS``, ``constraint_rows`` and
     [A   0 ] [λ ] = [−c − 2α g − β² f   ],   g = A q̇ + b,  f the holonomic residual,
 
 (Baumgarte's stabilisation with α, β; the rows held exactly at α = β = 0), and ``rhs`` is
-its first half at α = β = 0.  The same text serves the JAX module (`_export_jax`).
+its first half at α = β = 0.  The same text serves the JAX module (`targets.jax`).
 """
 
 from __future__ import annotations
 
 import re
 from collections.abc import Sequence
+from typing import TYPE_CHECKING, final
 
 import symengine as se
-from sympy.printing.numpy import NumPyPrinter
 
-from ._export import ExportedSymbols, cse_lines
+from .base import AbstractTarget, ExportedSymbols, cse_lines
 
-__all__ = ["numpy_module", "python_function", "module_header", "constrained_functions"]
+if TYPE_CHECKING:
+    from sympy.printing.numpy import NumPyPrinter
+
+__all__ = ["NumpyTarget", "constrained_functions", "module_header", "numpy_module", "python_function"]
 
 
 def _assignments(targets: Sequence[str], exprs: Sequence[se.Basic], local: str, printer: NumPyPrinter) -> list[str]:
@@ -40,7 +43,10 @@ def python_function(signature: str, doc: str, prologue: list[str], targets: Sequ
                     printer: NumPyPrinter | None = None) -> str:
     """A function of the exported module: ``prologue``, the arguments' components it reads, the
     expressions assigned to ``targets``, ``epilogue``; ``printer`` is NumPy's by default."""
-    printer = printer or NumPyPrinter({"fully_qualified_modules": True})
+    if printer is None:
+        from sympy.printing.numpy import NumPyPrinter  # SymPy's printers load only when a target prints
+
+        printer = NumPyPrinter({"fully_qualified_modules": True})
     body = _assignments(targets, exprs, "_x", printer)
     text = "\n".join(body)
     used = set(re.findall(r"\b_[ypt]\d*\b", text))
@@ -196,3 +202,13 @@ def rhs(t, y, p=None):
     """y' = (q', q'') with the rows held exactly (rhs_multipliers at alpha = beta = 0)."""
     return rhs_multipliers(t, y, p)[0]
 '''
+
+
+@final
+class NumpyTarget(AbstractTarget):
+    """One module ``<name>.py`` needing only NumPy, batched over leading axes (module docstring)."""
+
+    name = "numpy"
+
+    def files(self, symbols: ExportedSymbols) -> dict[str, str]:
+        return {f"{symbols.identifier}.py": numpy_module(symbols)}

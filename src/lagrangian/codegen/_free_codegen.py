@@ -7,8 +7,9 @@ then the joints' q̇; and per free body δ, the largest |1 − |e|| met before a
 zero derivative, so it costs the error control nothing and travels with the state to the
 output rows: the drift of the quaternions' norm is reported from it.
 
-The model-independent integrators (`_integrators.c`) are appended as for any model; with
-``LG_FREE`` their right-hand side is `lg_free_rhs` and ``LG_PROJECT`` is `lg_free_project`.
+The model-independent integrators (`_runtime`: ``integrators.c``, copied whole) follow as for
+any model; with ``LG_FREE`` their right-hand side is `lg_free_rhs` and ``LG_PROJECT`` is
+`lg_free_project` (no M q̈ = F to solve: q̈ comes from the articulated-body recursion).
 """
 
 from __future__ import annotations
@@ -17,14 +18,14 @@ import hashlib
 import re
 from collections.abc import Sequence
 from dataclasses import dataclass
-from importlib import resources
 
 import symengine as se
 
 from ..dynamics._floating import FloatingForm
 from ..errors import DerivationError
-from ._codegen import _coefficients, _Hoist
 from ._cprint import c_sequence
+from ._rewrite import Hoist
+from ._runtime import dop853_defines, runtime_source
 
 __all__ = ["FreeSource", "generate_free_c"]
 
@@ -72,7 +73,7 @@ def generate_free_c(form: FloatingForm, events: Sequence[tuple[str, se.Basic]] =
     header["_t"] = "t"
     for k, (sym, _) in enumerate(form.intermediates):
         names[sym] = f"_w{k}"
-    hoist = _Hoist([se.Symbol(name) for name in params])
+    hoist = Hoist([se.Symbol(name) for name in params])
     lifted: dict[se.Basic, se.Basic] = {}
 
     def lift(expr: se.Basic) -> se.Basic:
@@ -165,12 +166,12 @@ def generate_free_c(form: FloatingForm, events: Sequence[tuple[str, se.Basic]] =
         "#else",
         "#define LG_COLD",
         "#endif",
-        *(f"#define {k} {v}" for k, v in _coefficients().items()),
+        *(f"#define {k} {v}" for k, v in dop853_defines().items()),
         "#include <math.h>",
         constants,
         *functions,
         "\n".join(project) + "\n",
-        resources.files(__package__).joinpath("_integrators.c").read_text(encoding="utf-8"),
+        runtime_source("integrators.c"),
     ]
     source = "\n".join(parts)
     return FreeSource(source, hashlib.sha256(source.encode("utf-8")).hexdigest(), nq, nv,

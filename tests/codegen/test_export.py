@@ -17,13 +17,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from lagrangian_test_support import EXAMPLES_DIR, Numeric, mutated_example, random_states
 
 import lagrangian
 from lagrangian.cli.main import main
+from lagrangian.codegen import model_identifier
 from lagrangian.model import zoo
 from lagrangian.numerics._dae import ConstrainedSystem
-from lagrangian.output._export import model_identifier
-from lagrangian_test_support import EXAMPLES_DIR, Numeric, mutated_example, random_states
 
 # Different but exact expression forms of M and F (the in-package C hoists and regroups them):
 # the results agree to rounding, amplified at most by M's condition number at these states.

@@ -1,7 +1,7 @@
-/* lagrangian: forward sensitivities, integrated with the state by DOP853.
+/* lagrangian runtime: forward sensitivities, integrated with the state by DOP853.
  *
  * Appended, once per model and set of parameters, after the model's generated code and
- * `_integrators.c` (whose lg_rhs, lg_mass_forces, lg_constants, lg_rms, lg_dop_stiff,
+ * integrators.c (whose lg_rhs, lg_mass_forces, lg_constants, lg_rms, lg_dop_stiff,
  * lg_pace_hopeless and the DOP853 tableau it uses), and after the generated
  *   LG_NV                          2n + the number of parameters differentiated
  *   lg_sens_jacobian(t, y, p, a, J) J (n x LG_NV, row-major) = d(F - M a)/d(y, p_sel) at a fixed

@@ -1,19 +1,19 @@
 """The ``c`` export: ``<name>.h`` and ``<name>.c`` that need nothing but libm (`lagrangian.export`).
 
-M and F are those of the in-package library (`numerics._codegen.mass_forces_form`): each
+M and F are those of the in-package library (`codegen._rewrite.mass_forces_form`): each
 body's γ⁰(G) and dσ⁰/dt computed once, and the coefficients that hold only parameters
 (``(m2 + m3) l1 l2``) lifted into ``<name>_constants(p, k)``, evaluated once per parameter
 set; ``<name>_rhs_k(t, y, p, k, out)`` takes them, ``<name>_rhs(t, y, p, out)`` computes
 them on each call.  Expressions are printed by the package's own C printer
-(`numerics._cprint.c_block`, common subexpressions shared by SymEngine's ``cse``).
+(`codegen._cprint.c_block`, common subexpressions shared by SymEngine's ``cse``).
 
 q̈ is solved from M q̈ = F by a Cholesky factorisation M = L Lᵀ (the package's own
-routine, `numerics/_integrators.c`): M is symmetric positive definite for a mechanical
-system described by independent coordinates (T = ½ q̇ᵀ M q̇ > 0 for q̇ ≠ 0; Golub & Van Loan,
-*Matrix Computations*, §4.2); where it is not, the accelerations are NaN.  With
+routine, ``runtime/solve_mass.c``, copied whole): M is symmetric positive definite for a
+mechanical system described by independent coordinates (T = ½ q̇ᵀ M q̇ > 0 for q̇ ≠ 0; Golub &
+Van Loan, *Matrix Computations*, §4.2); where it is not, the accelerations are NaN.  With
 complementary constraints, M q̈ = F + Aᵀλ and A q̈ + c = 0 are solved through the Schur
-complement S = A M⁻¹ Aᵀ as in the package (`numerics._codegen_dae`), with Baumgarte's
-rates (α, β) optional.  The first integrals (`lagrangian.first_integrals`) and the
+complement S = A M⁻¹ Aᵀ as in the package (`codegen._codegen_dae`; ``runtime/cholesky.c``,
+copied whole), with Baumgarte's rates (α, β) optional.  The first integrals (`lagrangian.first_integrals`) and the
 constraint rows (A, b, c, f) are functions of their own.
 """
 
@@ -22,14 +22,15 @@ from __future__ import annotations
 import json
 import re
 from collections.abc import Sequence
-from importlib import resources
+from typing import final
 
 import symengine as se
 
-from ..numerics._cprint import c_block
-from ._export import ExportedSymbols
+from .._cprint import c_block
+from .._runtime import runtime_source
+from .base import AbstractTarget, ExportedSymbols
 
-__all__ = ["c_files"]
+__all__ = ["CTarget", "c_files", "integral_functions"]
 
 
 def _string(text: str) -> str:
@@ -80,34 +81,9 @@ def _function(signature: str, comment: str, stages: Sequence[Sequence[tuple[str,
     return f"/* {comment} */\n{signature} {{\n    {unused}\n" + "\n".join([*decls, *body]) + "\n}\n"
 
 
-def _runtime(source: str, start: str, replacements: dict[str, str]) -> str:
-    """The C function starting with ``start`` in the package's runtime ``source`` (up to its closing
-    brace at column 0), renamed for the export: one Cholesky routine for the package and the export."""
-    begin = source.index(start)
-    end = source.index("\n}\n", begin) + 3
-    text = source[begin:end]
-    for old, new in replacements.items():
-        text = re.sub(rf"\b{old}\b", new, text)
-    left = re.findall(r"\b(?:lgd?_|LGD?_)\w+", text)  # the runtime grew a dependency this export lacks
-    assert not left, f"{start}: `{left[0]}` has no counterpart in the export"
-    return text
-
-
-def _cholesky(ident: str, up: str) -> str:
-    """The in-package solve of M x = F (`numerics/_integrators.c`), for n = ``<NAME>_N``."""
-    source = resources.files("lagrangian.numerics").joinpath("_integrators.c").read_text(encoding="utf-8")
-    return _runtime(source, "static int lg_cholesky_solve(",
-                    {"lg_cholesky_solve": f"{ident}_cholesky_solve", "LG_N": f"{up}_N",
-                     "LG_SINGULAR": "1", "LG_DONE": "0"})
-
-
-def _schur(ident: str) -> str:
-    """The in-package Cholesky routines for any size (`numerics._codegen_dae`)."""
-    from ..numerics._codegen_dae import _RUNTIME
-
-    renames = {"lgd_chol": f"{ident}_chol", "lgd_chol_solve": f"{ident}_chol_solve"}
-    return (_runtime(_RUNTIME, "static int lgd_chol(", renames) + "\n"
-            + _runtime(_RUNTIME, "static void lgd_chol_solve(", renames))
+def _solve_mass(up: str) -> str:
+    """The package's solve of M x = F (``runtime/solve_mass.c``: ``lg_cholesky_solve``), for n = ``<NAME>_N``."""
+    return f"#define LG_N {up}_N\n" + runtime_source("solve_mass.c")
 
 
 def _header(symbols: ExportedSymbols, banner: str) -> str:
@@ -205,7 +181,8 @@ def integral_functions(symbols: ExportedSymbols) -> list[str]:
 
 def c_files(symbols: ExportedSymbols) -> dict[str, str]:
     """{``<name>.h``: header, ``<name>.c``: source} (module docstring, docs/export.md)."""
-    assert symbols.fast is not None, "exported_symbols(eom, 'c') gives the in-package form"
+    if symbols.fast is None:
+        raise ValueError("the C target prints the in-package form of M and F: exported_symbols(eom, 'c') gives it")
     ident, n, m = symbols.identifier, symbols.n, len(symbols.rows)
     up = ident.upper()
     fast = symbols.fast
@@ -249,14 +226,14 @@ void {ident}_rhs(double t, const double *y, const double *p, double *out) {{
 }}
 """
     if not m:
-        solve = _cholesky(ident, up) + f"""
+        solve = _solve_mass(up) + f"""
 /* y' = (q', q''): M q'' = F solved by Cholesky. */
 void {ident}_rhs_k(double t, const double *y, const double *p, const double *k, double *out) {{
     double M[{up}_N * {up}_N], F[{up}_N], worst = 1.0;
     int i;
     {ident}_parts(t, y, p, k, M, F);
     for (i = 0; i < {up}_N; ++i) out[i] = y[{up}_N + i];
-    if ({ident}_cholesky_solve(M, F, &worst)) {{  /* not positive definite (or NaN): no acceleration */
+    if (lg_cholesky_solve(M, F, &worst)) {{  /* not positive definite (or NaN): no acceleration */
         for (i = 0; i < {up}_N; ++i) out[{up}_N + i] = NAN;
         return;
     }}
@@ -264,7 +241,7 @@ void {ident}_rhs_k(double t, const double *y, const double *p, const double *k, 
 }}
 """
     else:
-        solve = _schur(ident) + f"""
+        solve = runtime_source("cholesky.c") + f"""
 /* [M -A^T; A 0] [q''; lam] = [F; -c - 2 alpha g - beta^2 f] through the Schur complement S = A M^-1 A^T:
    lam = S^-1 (-c - 2 alpha g - beta^2 f - A M^-1 F), q'' = M^-1 (F + A^T lam). */
 int {ident}_rhs_multipliers(double t, const double *y, const double *p, const double *k, double alpha,
@@ -275,13 +252,13 @@ int {ident}_rhs_multipliers(double t, const double *y, const double *p, const do
     {ident}_parts(t, y, p, k, M, F);
     {ident}_constraint_rows(t, y, p, A, b, c, f);
     for (i = 0; i < {up}_N; ++i) out[i] = y[{up}_N + i];
-    if ({ident}_chol(M, {up}_N, &worst)) status = 1;
+    if (lg_chol_factor(M, {up}_N, &worst)) status = 1;
     if (!status) {{
         for (r = 0; r < {up}_NC; ++r) {{
             for (i = 0; i < {up}_N; ++i) X[r * {up}_N + i] = A[r * {up}_N + i];
-            {ident}_chol_solve(M, {up}_N, X + r * {up}_N);          /* row r of X = M^-1 A_r^T */
+            lg_chol_solve(M, {up}_N, X + r * {up}_N);          /* row r of X = M^-1 A_r^T */
         }}
-        {ident}_chol_solve(M, {up}_N, F);                           /* F <- M^-1 F */
+        lg_chol_solve(M, {up}_N, F);                           /* F <- M^-1 F */
         for (r = 0; r < {up}_NC; ++r) {{
             double g = b[r], rhs = -c[r];
             for (i = 0; i < {up}_N; ++i) g += A[r * {up}_N + i] * y[{up}_N + i];
@@ -294,14 +271,14 @@ int {ident}_rhs_multipliers(double t, const double *y, const double *p, const do
                 S[r * {up}_NC + l] = s;
             }}
         }}
-        if ({ident}_chol(S, {up}_NC, &worst)) status = 2;
+        if (lg_chol_factor(S, {up}_NC, &worst)) status = 2;
     }}
     if (status) {{
         for (i = 0; i < {up}_N; ++i) out[{up}_N + i] = NAN;
         for (r = 0; r < {up}_NC; ++r) lam[r] = NAN;
         return status;
     }}
-    {ident}_chol_solve(S, {up}_NC, lam);
+    lg_chol_solve(S, {up}_NC, lam);
     for (i = 0; i < {up}_N; ++i) {{
         double a = F[i];
         for (r = 0; r < {up}_NC; ++r) a += X[r * {up}_N + i] * lam[r];
@@ -334,3 +311,14 @@ void {ident}_rhs_k(double t, const double *y, const double *p, const double *k, 
     source = "\n".join([banner + f'#include "{ident}.h"\n', constants, parts, public, solve, integrals,
                         constraint_rows])
     return {f"{ident}.h": _header(symbols, banner), f"{ident}.c": source}
+
+
+@final
+class CTarget(AbstractTarget):
+    """``<name>.h`` and ``<name>.c``, C99 needing only libm (module docstring)."""
+
+    name = "c"
+    in_package_form = True
+
+    def files(self, symbols: ExportedSymbols) -> dict[str, str]:
+        return c_files(symbols)

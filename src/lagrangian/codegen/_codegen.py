@@ -1,10 +1,11 @@
 """From the equations of motion to one C file: the model's M, F, monitors and events.
 
-The generated functions evaluate M(q, t) and F(q, q̇, t) of M q̈ = F (never M⁻¹), the
-first integrals and T, U as monitors, the event functions, and, for the symplectic
-integrator, Hamilton's form p = ∂T/∂q̇ = M q̇ + b, ṗ = ∂T/∂q − ∂U/∂q + Q(nc).  Each
-function shares its common subexpressions (SymEngine's ``cse``).  The model-independent
-integrators (`_integrators.c`) are appended, so a whole run is one C call.
+The generated functions evaluate M(q, t) and F(q, q̇, t) of M q̈ = F (never M⁻¹), in the
+package's C form of them (`_rewrite.mass_forces_form`), the first integrals and T, U as
+monitors, the event functions, and, for the symplectic integrator, Hamilton's form
+p = ∂T/∂q̇ = M q̇ + b, ṗ = ∂T/∂q − ∂U/∂q + Q(nc).  Each function shares its common
+subexpressions (SymEngine's ``cse``).  The model-independent C runtime (`_runtime`:
+``solve_mass.c`` and ``integrators.c``, copied whole) follows, so a whole run is one C call.
 
 Parameter values are an input array, not constants folded into the code: changing
 ``m`` or ``g`` (``--set g=1.62``) reuses the compiled library.
@@ -15,17 +16,17 @@ from __future__ import annotations
 import hashlib
 from collections.abc import Sequence
 from dataclasses import dataclass
-from importlib import resources
 
-import numpy as np
 import symengine as se
 
 from ..dynamics import EquationsOfMotion
 from ..errors import DerivationError
 from ._cparts import PART_MACROS, Part, function_text, units_of
 from ._cprint import c_block, c_sequence
+from ._rewrite import Hoist, mass_forces_form
+from ._runtime import dop853_defines, runtime_source
 
-__all__ = ["GeneratedSource", "MassForcesForm", "generate_c", "mass_forces_form", "monitor_expressions"]
+__all__ = ["GeneratedSource", "generate_c", "monitor_expressions"]
 
 
 @dataclass(frozen=True)
@@ -70,215 +71,6 @@ def monitor_expressions(eom: EquationsOfMotion, integrals: Sequence, *,
     return out
 
 
-def expand_angle_sums(exprs: Sequence[se.Basic], angles: Sequence[se.Symbol]) -> list[se.Basic]:
-    """Rewrite sin/cos of sums of coordinates by the addition formulas.
-
-    cos(θ_i − θ_j) = cos θ_i cos θ_j + sin θ_i sin θ_j, and so on recursively: an n-link
-    chain's M then needs 2n trigonometric calls instead of one per pair (i, j), and
-    ``cse`` shares the products.  Only arguments that are sums of ±coordinates (at most
-    six terms) are rewritten; anything else (2θ, θ + Ω t) is left as it is.
-    """
-    angle_set = set(angles)
-    memo: dict[se.Basic, se.Basic] = {}
-
-    def split(arg: se.Basic):
-        if not isinstance(arg, se.Add):
-            return None
-        terms = []
-        for term in arg.args:
-            if term in angle_set:
-                terms.append((1, term))
-            elif isinstance(term, se.Mul) and len(term.args) == 2 and term.args[0] == -1 \
-                    and term.args[1] in angle_set:
-                terms.append((-1, term.args[1]))
-            else:
-                return None
-        return sorted(terms, key=lambda t: angles.index(t[1])) if 2 <= len(terms) <= 6 else None
-
-    def sc(sign: int, angle: se.Basic, rest: list) -> tuple[se.Basic, se.Basic]:
-        s1, c1 = sign * se.sin(angle), se.cos(angle)
-        if not rest:
-            return s1, c1
-        s2, c2 = sc(rest[0][0], rest[0][1], rest[1:])
-        key = (sign, angle) + tuple(rest)
-        if key not in memo:
-            memo[key] = (s1 * c2 + c1 * s2, c1 * c2 - s1 * s2)
-        return memo[key]
-
-    mapping = {}
-    for expr in exprs:
-        for atom in expr.atoms(se.sin, se.cos):
-            terms = split(atom.args[0])
-            if terms is None:
-                continue
-            sin_sum, cos_sum = sc(terms[0][0], terms[0][1], terms[1:])
-            mapping[atom] = sin_sum if isinstance(atom, se.sin) else cos_sum
-    return [e.xreplace(mapping) if mapping else e for e in exprs]
-
-
-def _smaller(a: se.Basic, b: se.Basic) -> se.Basic:
-    return b if se.count_ops(b) < se.count_ops(a) else a
-
-
-def collect_by_state(exprs: Sequence[se.Basic], state: Sequence[se.Symbol]) -> list[se.Basic]:
-    """Group each sum's terms by their state-dependent factor, summing the constant coefficients.
-
-    M of an n-link chain comes out of the virtual-power route as Σ over bodies of
-    m_k (∂V_k/∂q̇_i · ∂V_k/∂q̇_j): O(n³) terms sharing O(n²) distinct functions of q.
-    Writing it Σ_g (Σ_k m_k l_i l_j) g(q) makes the per-state cost O(n²): the coefficient
-    sums hold only parameters, and `cse` computes each once.
-    """
-    state_set = set(state)
-    out = []
-    for expr in exprs:
-        if not isinstance(expr, se.Add):
-            out.append(expr)
-            continue
-        groups: dict[se.Basic, list[se.Basic]] = {}
-        for term in expr.args:
-            factors = term.args if isinstance(term, se.Mul) else (term,)
-            const = [f for f in factors if not (f.free_symbols & state_set)]
-            var = [f for f in factors if f.free_symbols & state_set]
-            key = se.Mul(*var) if var else se.Integer(1)
-            groups.setdefault(key, []).append(se.Mul(*const) if const else se.Integer(1))
-        if len(groups) == len(expr.args):
-            out.append(expr)
-        else:
-            out.append(se.Add(*(se.Add(*coeffs) * key for key, coeffs in groups.items())))
-    return out
-
-
-class _Hoist:
-    """Lift the parameter-only parts of expressions out of the per-state code.
-
-    ``(m2 + m3 + m4) l1 l2 cos(θ1 − θ2)`` becomes ``_k7 cos(θ1 − θ2)`` with ``_k7`` computed
-    once per parameter set (`lg_constants`), not at every state: for an n-link chain this
-    removes the O(n³) coefficient arithmetic from M.
-    """
-
-    def __init__(self, parameters: Sequence[se.Symbol]) -> None:
-        self.parameters = set(parameters)
-        self.constants: dict[se.Basic, se.Symbol] = {}
-
-    def _const(self, expr: se.Basic) -> se.Basic:
-        if expr.is_Number or expr.is_Symbol:
-            return expr
-        if expr not in self.constants:
-            self.constants[expr] = se.Symbol(f"_k{len(self.constants)}")
-        return self.constants[expr]
-
-    def __call__(self, expr: se.Basic) -> se.Basic:
-        free = expr.free_symbols
-        if free <= self.parameters:
-            return self._const(expr)
-        if isinstance(expr, (se.Add, se.Mul)):
-            fixed = [a for a in expr.args if a.free_symbols <= self.parameters]
-            varying = [self(a) for a in expr.args if not a.free_symbols <= self.parameters]
-            op = se.Add if isinstance(expr, se.Add) else se.Mul
-            if len(fixed) >= 2 or (fixed and not (fixed[0].is_Number or fixed[0].is_Symbol)):
-                fixed = [self._const(op(*fixed))]
-            return op(*fixed, *varying)
-        if expr.args:
-            return expr.func(*(self(a) for a in expr.args))
-        return expr
-
-
-def _shared_bias(eom: EquationsOfMotion) -> tuple[list[tuple[se.Symbol, se.Basic]], list[se.Basic]]:
-    """F = Q − Γ⁰ with each body's γ⁰(G) and dσ⁰/dt named once (see `mass_matrix_and_bias`).
-
-    Returns the named components (symbol, expression) and F written with them; falls back
-    to ``eom.F`` when the equations carry more than that (e.g. terms the loads do not hold).
-    """
-    from ..dynamics._inertia import mass_matrix_and_bias
-
-    shared: list[tuple[se.Symbol, se.Basic]] = []
-
-    def share(components):
-        out = []
-        for c in components:
-            if c == 0 or c.is_Number or c.is_Symbol or se.count_ops(c) < 4:
-                out.append(c)
-            else:
-                # A named Symbol, not a Dummy: a Dummy's hash holds a per-process counter, so
-                # SymEngine would order the sums that use it differently at every compile (a new
-                # source, a cache miss, results a few ulp apart).  The leading underscore keeps it
-                # apart from model names, which cannot start with one.
-                sym = se.Symbol(f"_shared{len(shared)}")
-                shared.append((sym, c))
-                out.append(sym)
-        return tuple(out)
-
-    n = len(eom.q)
-    _, gamma0 = mass_matrix_and_bias(eom.kinematics, eom.inertias, share=share)
-    Q = [se.Add(*(load.Q[i] for load in eom.loads)) for i in range(n)]
-    F = [q - g for q, g in zip(Q, gamma0)]
-    return shared, F
-
-
-@dataclass(frozen=True)
-class MassForcesForm:
-    """M and F as the C code evaluates them: exact rewritings that make them cheaper.
-
-    Attributes (expressions over the model's own symbols, plus the names below)
-    ----------
-    shared : (symbol, expression) of each body's γ⁰(G) and dσ⁰/dt components (`_shared_bias`),
-        to be computed first; M and F refer to the symbols.
-    M : the n*n entries row by row, grouped by their function of q (`collect_by_state`).
-    F : Q − Γ⁰, written with ``shared``.
-    constants : (``_k<j>``, expression of the parameters only) lifted out of all the above
-        (`_Hoist`): computed once per parameter set, not per state.
-
-    Every sin/cos of a sum of coordinates is expanded (`expand_angle_sums`).
-    """
-
-    shared: tuple[tuple[se.Symbol, se.Basic], ...]
-    M: tuple[se.Basic, ...]
-    F: tuple[se.Basic, ...]
-    constants: tuple[tuple[se.Symbol, se.Basic], ...]
-
-
-def mass_forces_form(eom: EquationsOfMotion) -> MassForcesForm:
-    """The package's C form of M and F (`MassForcesForm`): the in-package library and ``export --to c``."""
-    n = len(eom.q)
-    state = (*eom.q, *eom.qd)
-    # M's entries are sums over bodies of one function of q each: collect them.  F keeps
-    # the nested form of the derivation, which shares more than its expansion would.
-    M_flat = [_smaller(e, collect_by_state([se.expand(e)], state)[0])
-              for e in [eom.M[i][j] for i in range(n) for j in range(n)]]
-    shared, F = _shared_bias(eom)
-    flat = expand_angle_sums(M_flat + list(F) + [e for _, e in shared], eom.q)
-    # Inputs are not hoisted: an input law (`_input_code`) overwrites them state by state.
-    hoist = _Hoist([se.Symbol(p.name) for p in eom.model.parameters if not p.input])
-    flat = [hoist(e) for e in flat]
-    return MassForcesForm(
-        shared=tuple((sym, e) for (sym, _), e in zip(shared, flat[n * n + n:])),
-        M=tuple(flat[: n * n]), F=tuple(flat[n * n: n * n + n]),
-        constants=tuple((sym, expr) for expr, sym in hoist.constants.items()))
-
-
-def _coefficients() -> dict[str, str]:
-    """DOP853's tableau as C initialisers, from SciPy's own coefficient module."""
-    from scipy.integrate._ivp import dop853_coefficients as c
-
-    def init(a: np.ndarray) -> str:
-        if a.ndim == 1:
-            return "{" + ", ".join(repr(float(x)) for x in a) + "}"
-        return "{" + ", ".join(init(row) for row in a) + "}"
-
-    stages, ext = c.N_STAGES, c.N_STAGES_EXTENDED
-    return {
-        "LG_DOP_STAGES": str(stages),
-        "LG_DOP_STAGES_EXT": str(ext),
-        "LG_DOP_POWER": str(c.INTERPOLATOR_POWER),
-        "LG_DOP_A": init(np.asarray(c.A, dtype=float)[:ext, :ext]),
-        "LG_DOP_B": init(np.asarray(c.B, dtype=float)),
-        "LG_DOP_C": init(np.asarray(c.C, dtype=float)[:ext]),
-        "LG_DOP_E3": init(np.asarray(c.E3, dtype=float)),
-        "LG_DOP_E5": init(np.asarray(c.E5, dtype=float)),
-        "LG_DOP_D": init(np.asarray(c.D, dtype=float)),
-    }
-
-
 def generate_c(
     eom: EquationsOfMotion,
     integrals: Sequence = (),
@@ -292,7 +84,7 @@ def generate_c(
     eom : the equations of motion (`lagrangian.derive`).
     integrals : the first integrals to monitor (`lagrangian.first_integrals`).
     events : (name, g) pairs; an event occurs where g(t, q, q̇) changes sign.
-    law : the inputs' law (`_input_code.LawCode`): its C goes around the model's functions.
+    law : the inputs' law (`numerics._input_code.LawCode`): its C goes around the model's functions.
 
     Raises
     ------
@@ -396,7 +188,8 @@ def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence, events: Seq
     params = tuple(p.name for p in eom.model.parameters)
     for k, (sym, _) in enumerate(rec.intermediates):
         named[sym] = f"_w{k}"
-    hoist = _Hoist([se.Symbol(p.name) for p in eom.model.parameters if not p.input])  # inputs vary (`_input_code`)
+    # Inputs are not hoisted: an input law (`numerics._input_code`) overwrites them state by state.
+    hoist = Hoist([se.Symbol(p.name) for p in eom.model.parameters if not p.input])
     M = [rec.M[i][j] for i in range(n) for j in range(n)]
     monitors = monitor_expressions(eom, integrals, recursive=True)
     hoisted: dict[se.Basic, se.Basic] = {}
@@ -484,7 +277,7 @@ def _assemble(eom: EquationsOfMotion, monitors, events, params, constants, parts
         f"#define LG_NE {len(events)}",
         f"#define LG_NP {len(params)}",
         f"#define LG_NK {len(constants)}",
-        *(f"#define {k} {v}" for k, v in _coefficients().items()),
+        *(f"#define {k} {v}" for k, v in dop853_defines().items()),
         "#include <math.h>",
         "#if defined(__GNUC__)\n#define LG_NOINLINE __attribute__((noinline))\n#else\n#define LG_NOINLINE\n#endif",
     ]
@@ -494,7 +287,8 @@ def _assemble(eom: EquationsOfMotion, monitors, events, params, constants, parts
         *([law.prelude] if law is not None else []),
         *functions,
         *([law.epilogue] if law is not None else []),
-        resources.files(__package__).joinpath("_integrators.c").read_text(encoding="utf-8"),
+        runtime_source("solve_mass.c"),
+        runtime_source("integrators.c"),
     ]
     if parts:
         source = "\n".join([*head, PART_MACROS["source"], *(part.text for part in parts), *rest])

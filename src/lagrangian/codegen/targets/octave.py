@@ -17,13 +17,13 @@ from __future__ import annotations
 
 import re
 from collections.abc import Sequence
+from typing import final
 
 import symengine as se
-from sympy.printing.octave import OctaveCodePrinter
 
-from ._export import ExportedSymbols, cse_lines
+from .base import AbstractTarget, ExportedSymbols, cse_lines
 
-__all__ = ["octave_files"]
+__all__ = ["OctaveTarget", "octave_files"]
 
 
 def _octave_string(text: str) -> str:
@@ -33,6 +33,8 @@ def _octave_string(text: str) -> str:
 
 def _body(symbols: ExportedSymbols, targets: Sequence[str], exprs: Sequence[se.Basic]) -> list[str]:
     """Statements: the arguments' components used, the common subexpressions, the outputs."""
+    from sympy.printing.octave import OctaveCodePrinter  # SymPy's printers load only when a target prints
+
     printer = OctaveCodePrinter({"allow_unknown_functions": False})
     rename: dict[se.Basic, se.Basic] = {s: se.Symbol(f"y_{i + 1}") for i, s in enumerate(symbols.y)}
     rename.update({s: se.Symbol(f"p_{k + 1}") for k, s in enumerate(symbols.p)})
@@ -107,3 +109,13 @@ def _constrained(symbols: ExportedSymbols, banner: str) -> dict[str, str]:
            + f"  ydot = {ident}_rhs_multipliers(t, y, p, 0, 0);\nend\n")
     return {f"{ident}_constraint_rows.m": constraint_rows, f"{ident}_rhs_multipliers.m": multipliers,
             f"{ident}_rhs.m": rhs}
+
+
+@final
+class OctaveTarget(AbstractTarget):
+    """``.m`` function files for GNU Octave and MATLAB, one state per call (module docstring)."""
+
+    name = "octave"
+
+    def files(self, symbols: ExportedSymbols) -> dict[str, str]:
+        return octave_files(symbols)

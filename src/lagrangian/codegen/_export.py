@@ -1,22 +1,25 @@
 """Code export: the equations M(q, t) q̈ = F(q, q̇, t) as source files that stand on their own.
 
-``export(eom, target, directory)`` writes, for ``target``:
+``export(eom, target, directory)`` writes, for ``target`` (each an `AbstractTarget` of `targets`):
 
-- ``"numpy"``: one module ``<name>.py`` that needs only NumPy (`_export_numpy`);
-- ``"c"``: ``<name>.h`` and ``<name>.c`` that need only libm (`_export_c`);
-- ``"jax"``: one module ``<name>.py`` of jit-able, vmap-able ``jax.numpy`` functions (`_export_jax`);
-- ``"octave"``: ``.m`` function files for GNU Octave and MATLAB (`_export_octave`).
+- ``"numpy"``: one module ``<name>.py`` that needs only NumPy (`targets.numpy`);
+- ``"c"``: ``<name>.h`` and ``<name>.c`` that need only libm (`targets.c`);
+- ``"jax"``: one module ``<name>.py`` of jit-able, vmap-able ``jax.numpy`` functions (`targets.jax`);
+- ``"octave"``: ``.m`` function files for GNU Octave and MATLAB (`targets.octave`).
+
+This module is the dispatcher: it derives the symbols every target prints (`exported_symbols`),
+hands them to the target, and writes the files; the targets import nothing from it.
 
 Every file names the model, the ``lagrangian`` version, the parameters with their default
 values and the state order y = (q_1..q_n, q̇_1..q̇_n).  The expressions are the derivation's
 M and F, rewritten only by exact identities (M's terms grouped, angle sums expanded, as in
-`numerics._codegen`), each function's common subexpressions shared (SymEngine's ``cse``); q̈
+`_rewrite`), each function's common subexpressions shared (SymEngine's ``cse``); q̈
 is solved from M q̈ = F (never M⁻¹ formed symbolically).
 
 The C export also carries the first integrals (`lagrangian.first_integrals`) and, for a model
 with complementary constraints, their rows A q̇ + b = 0, A q̈ + c = 0 and the augmented solve
 of M q̈ = F + Aᵀλ for q̈ and λ; its M and F are the in-package library's form
-(`numerics._codegen.mass_forces_form`: each body's bias shared, parameter-only coefficients
+(`_rewrite.mass_forces_form`: each body's bias shared, parameter-only coefficients
 computed once per parameter set).
 
 The NumPy, JAX and Octave files also carry the complementary rows (``constraint_rows``) and
@@ -36,8 +39,7 @@ import os
 import re
 import shutil
 import tempfile
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -47,81 +49,21 @@ from .._abs_derivative import settled
 from ..dynamics import EquationsOfMotion
 from ..errors import ExportError, OutputError
 from ..model.spec import CoulombFriction
-from ..numerics._codegen import _smaller as smaller
-from ..numerics._codegen import MassForcesForm, collect_by_state, expand_angle_sums, mass_forces_form
+from ._rewrite import MassForcesForm, collect_by_state, expand_angle_sums, mass_forces_form, smaller
+from .targets.base import AbstractTarget, ExportedRow, ExportedSymbols
+from .targets.c import CTarget
+from .targets.jax import JaxTarget
+from .targets.numpy import NumpyTarget
+from .targets.octave import OctaveTarget
 
-__all__ = ["EXPORT_TARGETS", "ExportedSymbols", "check_target", "export", "export_files", "model_identifier"]
+__all__ = ["EXPORT_TARGETS", "check_target", "export", "export_files", "exported_symbols", "model_identifier",
+           "validate_exportable"]
 
 
 def _version() -> str:
     from .. import __version__  # late: the package's __init__ imports this stage
 
     return __version__
-
-
-@dataclass(frozen=True)
-class ExportedSymbols:
-    """What every target prints: names, defaults, and M, F over private symbols.
-
-    The free symbols of ``M`` and ``F`` are replaced by ``_y<i>`` (y[i], the state), ``_p<k>``
-    (p[k], the parameters) and ``_t``, so that no model name can clash with a name of the
-    generated code (``numpy``, ``sin``, a C keyword).
-    """
-
-    name: str            # the model's name, for comments (printable, no comment terminators)
-    identifier: str      # a C / Python identifier made from it
-    version: str
-    coordinates: tuple[str, ...]
-    state: tuple[str, ...]
-    parameters: tuple[str, ...]
-    defaults: tuple[float | None, ...]
-    M: tuple[se.Basic, ...]     # row by row, n*n entries
-    F: tuple[se.Basic, ...]
-    y: tuple[se.Symbol, ...]
-    p: tuple[se.Symbol, ...]
-    t: se.Symbol
-    # The complementary rows (every target that exports them), then the C target's extras (empty
-    # for the others): the first integrals (name, expression) and M, F in the in-package form, all
-    # over the private symbols.
-    rows: tuple[ExportedRow, ...] = ()
-    integrals: tuple[tuple[str, se.Basic], ...] = ()
-    fast: MassForcesForm | None = None
-
-    @property
-    def n(self) -> int:
-        return len(self.coordinates)
-
-
-@dataclass(frozen=True)
-class ExportedRow:
-    """One complementary constraint row over the private symbols (`dynamics.ConstraintRow`):
-    A q̇ + b = 0 along a motion, A q̈ + c = 0 its derivative, f(q, t) = 0 for a holonomic row
-    (``f`` = 0 for a nonholonomic one)."""
-
-    name: str
-    kind: str
-    multiplier: str
-    A: tuple[se.Basic, ...]
-    b: se.Basic
-    c: se.Basic
-    f: se.Basic
-
-
-def cse_lines(targets: Sequence[str], exprs: Sequence[se.Basic], printer: Any, local: str,
-              indent: str, end: str = "", first: int = 0) -> list[str]:
-    """``target = expression`` lines for ``exprs``, their common subexpressions (SymEngine's ``cse``)
-    first, named ``<local><first>``, ``<local><first + 1>``…; each printed by ``printer`` (a SymPy code
-    printer, fed ``_sympy_()`` objects: no text is parsed), indented and ended as the target language wants."""
-    replacements, reduced = se.cse(list(exprs)) if exprs else ([], [])
-    mapping: dict[se.Basic, se.Basic] = {}
-    lines = []
-    for k, (sym, value) in enumerate(replacements):
-        name = se.Symbol(f"{local}{k + first}")
-        lines.append(f"{indent}{name} = {printer.doprint(value.xreplace(mapping)._sympy_())}{end}")
-        mapping[sym] = name
-    for target, value in zip(targets, reduced):
-        lines.append(f"{indent}{target} = {printer.doprint(value.xreplace(mapping)._sympy_())}{end}")
-    return lines
 
 
 def _comment_safe(text: str) -> str:
@@ -147,8 +89,9 @@ def validate_exportable(eom: EquationsOfMotion, target: str = "numpy") -> None:
 
 
 def exported_symbols(eom: EquationsOfMotion, target: str = "numpy") -> ExportedSymbols:
-    """M and F over private symbols (`ExportedSymbols`), checked for stray symbols; for
-    ``target`` ``"c"``, also the first integrals, the constraint rows and the in-package form."""
+    """M and F over private symbols (`ExportedSymbols`), checked for stray symbols, and the constraint
+    rows; for a ``target`` that prints the in-package form (``"c"``: `AbstractTarget.in_package_form`),
+    also the first integrals and M, F in that form."""
     validate_exportable(eom, target)
     n = len(eom.q)
     params = tuple(p.name for p in eom.model.parameters)
@@ -171,14 +114,14 @@ def exported_symbols(eom: EquationsOfMotion, target: str = "numpy") -> ExportedS
     M = [rename(eom.M[i][j], f"M[{i}][{j}]") for i in range(n) for j in range(n)]
     F = [rename(eom.F[i], f"F[{i}]") for i in range(n)]
     # The compiled package's rewritings, exact identities that make the code cheaper
-    # (`numerics._codegen`): M's entries grouped by their function of q, and sin/cos of
+    # (`_rewrite`): M's entries grouped by their function of q, and sin/cos of
     # sums of coordinates by the addition formulas, so that cse shares 2n trigonometric calls.
     M = [smaller(e, collect_by_state([se.expand(e)], y)[0]) for e in M]
     flat = expand_angle_sums(M + F, list(y[:n]))
     M, F = flat[: n * n], flat[n * n:]
     coords = eom.coordinates
     extras: dict[str, Any] = {"rows": _rows(eom, rename)}
-    if target == "c":
+    if target in EXPORT_TARGETS and EXPORT_TARGETS[target].in_package_form:
         extras.update(_c_extras(eom, private, rename))
     return ExportedSymbols(
         name=_comment_safe(eom.model.name), identifier=model_identifier(eom.model.name), version=_version(),
@@ -190,7 +133,7 @@ def exported_symbols(eom: EquationsOfMotion, target: str = "numpy") -> ExportedS
 def _c_extras(eom: EquationsOfMotion, private: dict[se.Basic, se.Basic],
               rename: Callable[[se.Basic, str], se.Basic]) -> dict[str, Any]:
     """The C target's first integrals and M, F in the in-package form."""
-    from ..analysis import first_integrals  # analysis precedes output; imported when exporting C only
+    from ..analysis import first_integrals  # analysis precedes codegen; imported for the C target only
 
     integrals = tuple((fi.name, rename(fi.expression, f"the first integral `{fi.name}`"))
                       for fi in first_integrals(eom))
@@ -219,33 +162,9 @@ def _rows(eom: EquationsOfMotion, rename: Callable[[se.Basic, str], se.Basic]) -
         for row in eom.constraints)
 
 
-def _numpy_files(symbols: ExportedSymbols) -> dict[str, str]:
-    from ._export_numpy import numpy_module
-
-    return {f"{symbols.identifier}.py": numpy_module(symbols)}
-
-
-def _c_files(symbols: ExportedSymbols) -> dict[str, str]:
-    from ._export_c import c_files
-
-    return c_files(symbols)
-
-
-def _jax_files(symbols: ExportedSymbols) -> dict[str, str]:
-    from ._export_jax import jax_module
-
-    return {f"{symbols.identifier}.py": jax_module(symbols)}
-
-
-def _octave_files(symbols: ExportedSymbols) -> dict[str, str]:
-    from ._export_octave import octave_files
-
-    return octave_files(symbols)
-
-
-#: target name → the files it writes ({file name: text}).
-EXPORT_TARGETS: dict[str, Callable[[ExportedSymbols], dict[str, str]]] = {
-    "numpy": _numpy_files, "c": _c_files, "jax": _jax_files, "octave": _octave_files}
+#: target name → the target (`AbstractTarget`): the files it writes.
+EXPORT_TARGETS: dict[str, AbstractTarget] = {
+    target.name: target for target in (NumpyTarget(), CTarget(), JaxTarget(), OctaveTarget())}
 
 
 def check_target(target: str) -> None:
@@ -258,7 +177,7 @@ def check_target(target: str) -> None:
 def export_files(eom: EquationsOfMotion, target: str) -> dict[str, str]:
     """The files of ``target`` as {file name: text}, nothing written (see `export`)."""
     check_target(target)
-    return EXPORT_TARGETS[target](exported_symbols(eom, target))
+    return EXPORT_TARGETS[target].files(exported_symbols(eom, target))
 
 
 def _write_directory(directory: Path, files: dict[str, str]) -> None:

@@ -7,10 +7,11 @@ import numpy as np
 import pytest
 
 import lagrangian
+from lagrangian.codegen import _cparts
+from lagrangian.codegen._cparts import PART_MACROS, function_text, units_of
 from lagrangian.errors import SimulationError
 from lagrangian.model.zoo import serial_arm
-from lagrangian.numerics import _compile, _cparts, compile_system
-from lagrangian.numerics._cparts import PART_MACROS, function_text, units_of
+from lagrangian.numerics import _compile, compile_system
 
 #: A recurrence long enough to cut: x_k = sin(x_{k-1}) + p_(k mod 3) x_{k-2}, out_j = x_{7j} y_1.
 STEPS = 60

@@ -1,6 +1,7 @@
-/* lagrangian: the model-independent half of a compiled system.
+/* lagrangian runtime: the model-independent half of a compiled system.
  *
- * This file is appended, once per model, to the generated model code, which defines
+ * This file is copied whole, once per model, after the generated model code and solve_mass.c
+ * (lg_cholesky_solve), the model code defining
  *   LG_N (n coordinates), LG_NM (monitors), LG_NE (event functions), and
  *   lg_mass_forces(t, y, p, M, F)      M (n x n, row-major) and F of  M q'' = F
  *   lg_monitors(t, y, p, out)          first integrals, T, U
@@ -8,7 +9,7 @@
  *   lg_hamilton_mass(t, y, p, M, b)    M and b = dT/dq' at q' = 0 (only q is read from y)
  *   lg_hamilton_force(t, y, p, g)      g = dT/dq - dU/dq + Q(nc)
  * with y = (q_1..q_n, q'_1..q'_n) and p the parameter values.  A model with free bodies
- * (LG_FREE, `_free_codegen.py`) defines instead LG_NY, its own state (positions with unit
+ * (LG_FREE, `codegen/_free_codegen.py`) defines instead LG_NY, its own state (positions with unit
  * quaternions, velocities, and a record of the quaternions' drift), lg_free_rhs and
  * lg_free_project (LG_PROJECT: the quaternions put back on |e| = 1 after each accepted
  * step); it has no Hamilton form, so no Gauss-Legendre method and no ensembles.  Nothing here calls
@@ -37,7 +38,7 @@
 #ifndef LG_NY
 #define LG_NY (2 * LG_N)
 #endif
-/* An inputs' law (`_input_code`) defines its block of p (LG_NX numbers after the constants) and
+/* An inputs' law (`numerics/_input_code.py`) defines its block of p (LG_NX numbers after the constants) and
  * the times where its tables jump (LG_NBREAK of them, at law[LG_BREAKS]); none by default. */
 #ifndef LG_NX
 #define LG_NX 0
@@ -103,44 +104,6 @@ static int lg_pace_hopeless(double *ctl, double t, double t_stop, double fixed_h
 static int lg_stop_requested(const volatile double *stop)
 {
     return *stop != 0.0;
-}
-
-/* Solve M x = F in place (F becomes x) by Cholesky: M is symmetric positive definite
- * wherever the coordinates are regular, and a pivot that collapses relative to its
- * diagonal entry is exactly how a singular configuration (e.g. theta = 0 in Euler
- * angles) shows itself. */
-static int lg_cholesky_solve(double *M, double *F, double *worst)
-{
-    const int n = LG_N;
-    double inv[LG_N]; /* 1/L_jj: one division per column, the rest multiplications (divisions
-                         are latency-bound and made half the solve's time for n = 10) */
-    for (int j = 0; j < n; ++j) {
-        double d = M[j * n + j];
-        const double diag = fabs(d);
-        for (int k = 0; k < j; ++k) d -= M[j * n + k] * M[j * n + k];
-        if (!(d > 1e-13 * diag) || diag == 0.0) return LG_SINGULAR;
-        if (d / diag < *worst) *worst = d / diag;
-        d = sqrt(d);
-        M[j * n + j] = d;
-        const double r = 1.0 / d;
-        inv[j] = r;
-        for (int i = j + 1; i < n; ++i) {
-            double s = M[i * n + j];
-            for (int k = 0; k < j; ++k) s -= M[i * n + k] * M[j * n + k];
-            M[i * n + j] = s * r;
-        }
-    }
-    for (int i = 0; i < n; ++i) {
-        double s = F[i];
-        for (int k = 0; k < i; ++k) s -= M[i * n + k] * F[k];
-        F[i] = s * inv[i];
-    }
-    for (int i = n - 1; i >= 0; --i) {
-        double s = F[i];
-        for (int k = i + 1; k < n; ++k) s -= M[k * n + i] * F[k];
-        F[i] = s * inv[i];
-    }
-    return LG_DONE;
 }
 
 /* y' = (q', q'') with q'' from M q'' = F, never from a symbolic inverse.  A kinematic tree

@@ -1,0 +1,61 @@
+"""The C runtime: the model-independent C files that generated code is compiled with.
+
+The files in ``runtime/`` are plain C, each copied whole after the generated functions it
+calls (never cut apart):
+
+- ``solve_mass.c``: M x = F by Cholesky for the model's n (``LG_N``), the integrators' solve and
+  the C export's;
+- ``integrators.c``: DOP853 and the Gauss-Legendre method, events, ensembles (`_codegen`);
+- ``cholesky.c``: the Cholesky factorisation and solve for any n, the Schur complement's
+  (`_codegen_dae` and the C export of a model with complementary constraints);
+- ``dae.c``: q̈ and λ of M q̈ = F + Aᵀλ, A q̈ + c = 0 through the Schur complement (`_codegen_dae`);
+- ``sensitivity.c``: DOP853 on the state and its forward sensitivities (`numerics.Sensitivities`).
+
+Each file's opening comment says what it expects the code before it to define.  DOP853's
+tableau is not written in C: `dop853_defines` takes it from SciPy's own coefficient module
+(Hairer, Nørsett & Wanner, *Solving ODEs I*, II.5), so the compiled method and SciPy's are
+the same method, coefficient for coefficient.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+from importlib import resources
+
+import numpy as np
+
+__all__ = ["RUNTIME_FILES", "dop853_defines", "runtime_source"]
+
+#: The files of ``runtime/``, in the order a translation unit that needs several of them holds them.
+RUNTIME_FILES = ("solve_mass.c", "integrators.c", "cholesky.c", "dae.c", "sensitivity.c")
+
+
+@cache
+def runtime_source(name: str) -> str:
+    """The text of the runtime file ``name`` (one of `RUNTIME_FILES`), whole."""
+    if name not in RUNTIME_FILES:
+        raise ValueError(f"`{name}` is not a runtime file; they are {', '.join(RUNTIME_FILES)}")
+    return resources.files(__package__).joinpath("runtime", name).read_text(encoding="utf-8")
+
+
+def dop853_defines() -> dict[str, str]:
+    """DOP853's tableau as C macros (``LG_DOP_A``: initialisers), from SciPy's own coefficient module."""
+    from scipy.integrate._ivp import dop853_coefficients as c
+
+    def init(a: np.ndarray) -> str:
+        if a.ndim == 1:
+            return "{" + ", ".join(repr(float(x)) for x in a) + "}"
+        return "{" + ", ".join(init(row) for row in a) + "}"
+
+    stages, ext = c.N_STAGES, c.N_STAGES_EXTENDED
+    return {
+        "LG_DOP_STAGES": str(stages),
+        "LG_DOP_STAGES_EXT": str(ext),
+        "LG_DOP_POWER": str(c.INTERPOLATOR_POWER),
+        "LG_DOP_A": init(np.asarray(c.A, dtype=float)[:ext, :ext]),
+        "LG_DOP_B": init(np.asarray(c.B, dtype=float)),
+        "LG_DOP_C": init(np.asarray(c.C, dtype=float)[:ext]),
+        "LG_DOP_E3": init(np.asarray(c.E3, dtype=float)),
+        "LG_DOP_E5": init(np.asarray(c.E5, dtype=float)),
+        "LG_DOP_D": init(np.asarray(c.D, dtype=float)),
+    }
