@@ -56,7 +56,7 @@ from ..kinematics import Kinematics
 from ..model import (ORIGIN, Body, CoulombFriction, Damper, Dissipation, GeneralizedForce, Gravity, JointDamper, Particle,
                      PointForce, Potential, Spring, Torque, Vector)
 from ..model._assumptions import Assumptions
-from ..model._vector import sum_of
+from ..model.vectors import sum_of
 
 __all__ = ["EffortsOnElement", "ElementTheorems", "CoordinateCheck", "Verification", "verify"]
 

@@ -43,7 +43,7 @@ from .._identity import are_zero, is_zero
 from ..errors import DerivationError, ModelError
 from ..kinematics import Kinematics
 from ..model import GALILEAN_FRAME, Constraint, Vector
-from ..model._vector import sum_of
+from ..model.vectors import sum_of
 
 __all__ = [
     "MULTIPLIER_PREFIX",

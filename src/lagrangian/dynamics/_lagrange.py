@@ -29,7 +29,7 @@ from ..kinematics import Kinematics
 from ..model import Model
 from ..model._assumptions import Assumptions, SignFact
 from ..model._limits import MAX_OPS_VARIABLE, equations_size, max_ops
-from ..model._vector import sum_of
+from ..model.vectors import sum_of
 from ._constraints import ConstraintReaction, ConstraintRow, complementary_constraints
 from ._energy import KineticEnergyTerm, RigidInertia, kinetic_energy
 from ._forces import LoadForces, generalized_forces

@@ -5,7 +5,7 @@ from ._expr import ExpressionError as ExpressionError
 from ._expr import parse_expression as parse_expression
 from ._toml import load_model as load_model
 from ._toml import parse_model as parse_model
-from ._vector import Vector as Vector
+from .vectors import Vector as Vector
 from .build import ModelBuilder as ModelBuilder
 from .urdf import load_urdf as load_urdf
 from .urdf import parse_urdf as parse_urdf

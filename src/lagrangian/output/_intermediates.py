@@ -15,7 +15,7 @@ import symengine as se
 
 from ..dynamics import EquationsOfMotion
 from ..dynamics._recursive import RecursiveForm
-from ..model._vector import as_expr
+from ..model.vectors import as_expr
 from ._course import to_sympy
 from ._notation import Notation
 
