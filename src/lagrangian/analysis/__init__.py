@@ -16,15 +16,17 @@ _WHERE = {
     "._equilibria": ("Equilibria", "Equilibrium", "EquilibriumError", "EquilibriumSearch", "SearchRegion", "equilibria"),
     "._feedback": ("ControlError", "Feedback"),
     "._integrals": ("FirstIntegral", "first_integrals"),
-    "._newton_euler": ("CoordinateCheck", "ElementTheorems", "Verification", "verify"),
+    "._newton_euler": ("CoordinateCheck", "ElementTheorems", "Verification", "verify", "given_efforts"),
     "._reactions": ("Reaction", "ReactionHistory", "TrajectoryResiduals", "check_trajectory", "reaction_history",
         "reactions"),
-    "._linear_model": ("LinearizationError", "LinearModel", "SecondOrderForm"),
+    "._linear_model": ("LinearizationError", "LinearModel", "SecondOrderForm", "to_numpy"),
     "._linearize": ("linearize", "holding_inputs"),
     "._lqr": ("lqr",),
     "._modes": ("Mode", "Modes", "Stability", "StabilityChange", "Sweep", "modes", "stability", "sweep"),
     "._steady": ("RouthReduction", "SteadyMotion", "routh_reduction", "steady_motions"),
     "._top": ("TopAnalysis", "analyse_top"),
+    "._tree_integrals": ("tree_integrals",),
+    "._closed_small_motions": ("closed_point", "pulsations_squared"),
 }
 __getattr__, __dir__ = lazy_names(__name__, _WHERE)
 
@@ -79,6 +81,11 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from ._steady import steady_motions as steady_motions
     from ._top import TopAnalysis as TopAnalysis
     from ._top import analyse_top as analyse_top
+    from ._linear_model import to_numpy as to_numpy
+    from ._newton_euler import given_efforts as given_efforts
+    from ._tree_integrals import tree_integrals as tree_integrals
+    from ._closed_small_motions import closed_point as closed_point
+    from ._closed_small_motions import pulsations_squared as pulsations_squared
 
 __all__ = [
     "AnalysisError",
@@ -131,4 +138,9 @@ __all__ = [
     "steady_motions",
     "sweep",
     "verify",
+    "to_numpy",
+    "given_efforts",
+    "tree_integrals",
+    "closed_point",
+    "pulsations_squared",
 ]

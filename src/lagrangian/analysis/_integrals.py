@@ -39,8 +39,8 @@ import symengine as se
 
 from .._identity import are_zero
 from ..dynamics import EquationsOfMotion
-from ..dynamics._constraints import admissible_integrals
-from ..dynamics._inertial import rotating_frame
+from ..dynamics import admissible_integrals
+from ..dynamics import rotating_frame
 from ._noether import nonholonomic_integrals, symmetry_integrals
 
 __all__ = ["INPUT_REGIMES", "FirstIntegral", "first_integrals", "input_regime", "inputs_off"]

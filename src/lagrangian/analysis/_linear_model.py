@@ -160,6 +160,8 @@ class LinearModel:
 
 
 def to_numpy(m: se.DenseMatrix, subs: Mapping[se.Basic, float]) -> np.ndarray:
+    """The matrix ``m`` at ``subs`` as a real float array of its shape; `LinearizationError` if an entry is
+    not a number there, or complex."""
     if m.rows == 0 or m.cols == 0:
         return np.zeros((m.rows, m.cols))
     try:

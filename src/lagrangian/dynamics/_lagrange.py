@@ -27,8 +27,8 @@ from .._identity import are_zero
 from ..errors import DerivationError, ModelError
 from ..kinematics import Kinematics
 from ..model import Model
-from ..model._assumptions import Assumptions, SignFact
-from ..model._limits import MAX_OPS_VARIABLE, equations_size, max_ops
+from ..model import Assumptions, SignFact
+from ..model import MAX_OPS_VARIABLE, equations_size, max_ops
 from ..model.vectors import sum_of
 from ._constraints import ConstraintReaction, ConstraintRow, complementary_constraints
 from ._energy import KineticEnergyTerm, RigidInertia, kinetic_energy

@@ -33,10 +33,10 @@ import numpy as np
 import symengine as se
 
 from ..dynamics import EquationsOfMotion
-from ..numerics._cfunction import c_function
-from ..numerics._compile import load_verified
-from ..numerics._forward import forward_jacobian
-from ..numerics._sensitivity import inverse_dynamics
+from ..numerics import c_function
+from ..numerics import load_verified
+from ..numerics import forward_jacobian
+from ..numerics import inverse_dynamics
 
 __all__ = ["Regressor", "regressor_of"]
 

@@ -29,9 +29,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import IdentificationError, SimulationError
-from ..numerics._sensitivity import Column, SensitivitySystem
+from ..numerics import Column, SensitivitySystem
 from ..numerics._simulate import control_block
-from ..numerics._system import CompiledSystem
+from ..numerics import CompiledSystem
 from ._data import Measurements
 from ._filter import SavitzkyGolay
 from ._result import BaseEstimate, Identification

@@ -17,25 +17,29 @@ from .._lazy import lazy_names
 # Each name is imported from its module on first use (`lagrangian._lazy`): a command that needs one
 # module of this stage does not load the others (nor SymPy, SciPy and what they import).
 _WHERE = {
-    "._contact": ("simulate_contact",),
+    "._contact": ("simulate_contact", "contact_model"),
     "._contact_switch": ("ContactEvent",),
     "._dae": ("STABILIZATIONS",),
-    "._ensemble": ("ensemble", "flip_events"),
+    "._ensemble": ("ensemble", "flip_events", "connect_scheduler"),
     "._ensemble_store": ("open_ensemble",),
     "._members": ("Grid", "grid"),
     "._files": ("check_output_path", "load_trajectory", "save_trajectory"),
     "._free_system": ("FreeBodySystem", "compile_free_system"),
-    "._impact_sweep": ("ImpactSweep", "impact_sweep"),
+    "._impact_sweep": ("ImpactSweep", "impact_sweep", "OUTCOMES"),
     "._input_switch": ("Switch",),
     "._input_table": ("InputTable",),
     "._simulate": ("METHODS", "EventSpec", "default_tolerance", "initial_state", "simulate"),
-    "._sensitivity": ("Sensitivities",),
+    "._sensitivity": ("Sensitivities", "Column", "SensitivitySystem", "inverse_dynamics", "sensitivity_system"),
     "._stickslip": ("simulate_stick_slip",),
     "._system": ("CompiledSystem", "compile_system"),
     "._phases": ("check_trajectory_along", "reaction_history_along"),
     "._reaction_columns": ("reaction_columns_along",),
     "._top_check": ("SimulationCheck", "simulation_check"),
     "._trajectory": ("Event", "Trajectory"),
+    "._batch": ("STATUS",),
+    "._cfunction": ("c_function",),
+    "._compile": ("load_verified",),
+    "._forward": ("forward_jacobian",),
 }
 __getattr__, __dir__ = lazy_names(__name__, _WHERE)
 
@@ -73,6 +77,17 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from ._top_check import simulation_check as simulation_check
     from ._trajectory import Event as Event
     from ._trajectory import Trajectory as Trajectory
+    from ._batch import STATUS as STATUS
+    from ._cfunction import c_function as c_function
+    from ._compile import load_verified as load_verified
+    from ._contact import contact_model as contact_model
+    from ._ensemble import connect_scheduler as connect_scheduler
+    from ._forward import forward_jacobian as forward_jacobian
+    from ._impact_sweep import OUTCOMES as OUTCOMES
+    from ._sensitivity import Column as Column
+    from ._sensitivity import SensitivitySystem as SensitivitySystem
+    from ._sensitivity import inverse_dynamics as inverse_dynamics
+    from ._sensitivity import sensitivity_system as sensitivity_system
 
 __all__ = [
     "METHODS",
@@ -108,4 +123,15 @@ __all__ = [
     "simulate_contact",
     "simulate_stick_slip",
     "simulation_check",
+    "STATUS",
+    "c_function",
+    "load_verified",
+    "contact_model",
+    "connect_scheduler",
+    "forward_jacobian",
+    "OUTCOMES",
+    "Column",
+    "SensitivitySystem",
+    "inverse_dynamics",
+    "sensitivity_system",
 ]

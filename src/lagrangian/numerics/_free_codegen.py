@@ -21,7 +21,7 @@ from importlib import resources
 
 import symengine as se
 
-from ..dynamics._floating import FloatingForm
+from ..dynamics import FloatingForm
 from ..errors import DerivationError
 from ._codegen import _coefficients, _Hoist
 from ._cprint import c_sequence

@@ -12,4 +12,11 @@ from ._scene import Scene as Scene
 from ._view import View as View
 from ._view import view as view
 
-__all__ = ["Motion", "Scene", "View", "build_scene", "view"]
+# Shared with plotting and the report: the scene drawn by matplotlib, as a wireframe, as a still image.
+from ._matplotlib import Renderer as Renderer
+from ._still import still_png as still_png
+from ._wireframe import Wireframe as Wireframe
+from ._wireframe import wireframe as wireframe
+
+__all__ = ["Motion", "Scene", "View", "build_scene", "view",
+           "Renderer", "Wireframe", "wireframe", "still_png"]

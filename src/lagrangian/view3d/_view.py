@@ -161,6 +161,6 @@ def view(motion: Any, model: Any = None, *, ghosts: Sequence[Trajectory] = (), b
 
 
 def _title(model: Model, lang: str) -> str:
-    from ..model._texts import in_language
+    from ..model import in_language
 
     return in_language(model.title, lang) or model.name
