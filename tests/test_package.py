@@ -26,30 +26,6 @@ def test_no_evaluation_of_text_in_the_package():
             assert forbidden not in code.replace("_sympy_()", ""), f"{forbidden} in {path}"
 
 
-def test_module_level_imports_flow_one_way():
-    # model -> kinematics -> dynamics -> analysis -> numerics -> output/plotting/optimal -> cli: a stage's
-    # modules never import a later stage at module level (not even for annotations, under TYPE_CHECKING).
-    import ast
-
-    order = {"model": 0, "kinematics": 1, "dynamics": 2, "analysis": 3, "numerics": 4, "output": 5,
-             "plotting": 5, "optimal": 5, "cli": 6}
-    for path in (ROOT / "src" / "lagrangian").rglob("*.py"):
-        parts = path.relative_to(ROOT / "src" / "lagrangian").parts
-        if len(parts) < 2 or parts[0] not in order:
-            continue
-        tree = ast.parse(path.read_text(encoding="utf-8"))
-        nodes = list(tree.body) + [n for top in tree.body if isinstance(top, ast.If) for n in top.body]
-        for node in nodes:
-            if isinstance(node, ast.ImportFrom) and node.level >= 1:
-                # Resolved from the module's package, at any depth (output/report/steps/x.py: ``....dynamics``).
-                package = parts[:-1]
-                base = package[:len(package) - (node.level - 1)]
-                top = node.module.split(".")[:1] if node.module else [a.name for a in node.names]
-                for target in [base[0]] if base else top:
-                    if target in order:
-                        assert order[target] <= order[parts[0]], f"{path} imports {target} (a later stage)"
-
-
 def test_every_relative_import_names_a_module_that_exists():
     # Also the imports inside functions, which run only on some paths (a report with a given
     # constraint): after modules move (output/report/), a stale `..model` would fail only there.

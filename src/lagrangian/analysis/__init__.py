@@ -11,7 +11,8 @@ from .._lazy import lazy_names
 # module of this stage does not load the others (nor SymPy, SciPy and what they import).
 _WHERE = {
     "._bifurcation": ("BifurcationDiagram", "Branch", "bifurcation"),
-    "._effective_potential": ("AnalysisError", "CyclicReduction", "StructureError", "reduce_cyclic"),
+    "..errors": ("AnalysisError",),  # defined with the package's other errors; kept here, where it was
+    "._effective_potential": ("CyclicReduction", "StructureError", "reduce_cyclic"),
     "._energy_balance": ("EnergyBalance", "PowerTerm", "energy_balance"),
     "._equilibria": ("Equilibria", "Equilibrium", "EquilibriumError", "EquilibriumSearch", "SearchRegion", "equilibria"),
     "._feedback": ("ControlError", "Feedback"),
@@ -34,7 +35,7 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from ._bifurcation import BifurcationDiagram as BifurcationDiagram
     from ._bifurcation import Branch as Branch
     from ._bifurcation import bifurcation as bifurcation
-    from ._effective_potential import AnalysisError as AnalysisError
+    from ..errors import AnalysisError as AnalysisError
     from ._effective_potential import CyclicReduction as CyclicReduction
     from ._effective_potential import StructureError as StructureError
     from ._effective_potential import reduce_cyclic as reduce_cyclic

@@ -1,1 +1,1 @@
-"""Stage 6 — the command line (`lagrangian derive ...`)."""
+"""Stage 8 — the command line (`lagrangian derive ...`)."""

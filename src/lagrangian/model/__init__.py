@@ -1,4 +1,8 @@
-"""Stage 1 — the model: a frozen, checked description of the system (no derivation here)."""
+"""Stage 1 — the model: a frozen, checked description of the system (no derivation here).
+
+`lagrangian.model.vectors` is the package's vector toolkit (`Vector`, and the 3-component algebra
+that kinematics and the recursive dynamics share).
+"""
 
 from ._expr import FUNCTIONS as FUNCTIONS
 from ._expr import ExpressionError as ExpressionError

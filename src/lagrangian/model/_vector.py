@@ -4,5 +4,6 @@ Kept only while modules being moved elsewhere still import it (the import contra
 ``PENDING`` list, tests/test_import_contract.py); remove it with the last of them.
 """
 
-from .vectors import AXES as AXES
-from .vectors import as_expr as as_expr
+from .vectors import AXES, as_expr
+
+__all__ = ["AXES", "as_expr"]

@@ -1,4 +1,4 @@
-"""Stage 5 — output: the derivation in the course's notation, as text, LaTeX and JSON."""
+"""Stage 7 — output: the derivation in the course's notation, as text, LaTeX and JSON."""
 
 from ._course import CourseForm as CourseForm
 from ._course import course_form as course_form

@@ -1,4 +1,4 @@
-"""Stage 6 — plots of a simulated motion, with matplotlib (the optional extra ``lagrangian[plot]``).
+"""Stage 7 — plots of a simulated motion, with matplotlib (the optional extra ``lagrangian[plot]``).
 
 ``save_plots(trajectory, eom, directory)`` writes every figure that applies:
 

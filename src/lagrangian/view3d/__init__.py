@@ -1,9 +1,10 @@
-"""Stage 6 — the 3-D view: a model at rest or in motion, in one offline HTML page (three.js inline).
+"""Stage 7 — the 3-D view: a model at rest or in motion, in one offline HTML page (three.js inline).
 
 ``view(traj, eom)`` (or ``view(model)`` at rest) returns a `View`: ``html()``, ``save(path)``,
 ``png()``, and it displays itself in Jupyter.  Its `Scene` — carriers and their poses, parts,
 tracks, links, triads, arcs, arrows — is the one description that the page and the matplotlib
-animation (`lagrangian.plotting.animate`) both draw.  See ``docs/view.md``.
+animation (`lagrangian.plotting.animate`) both draw; `lagrangian.view3d.html` writes the page (or a
+fragment of it, for the report).  See ``docs/view.md``.
 """
 
 from ._build import Motion as Motion
@@ -18,5 +19,14 @@ from ._still import still_png as still_png
 from ._wireframe import Wireframe as Wireframe
 from ._wireframe import wireframe as wireframe
 
-__all__ = ["Motion", "Scene", "View", "build_scene", "view",
-           "Renderer", "Wireframe", "wireframe", "still_png"]
+__all__ = [
+           "Motion",
+           "Renderer",
+           "Scene",
+           "View",
+           "Wireframe",
+           "build_scene",
+           "still_png",
+           "view",
+           "wireframe",
+]

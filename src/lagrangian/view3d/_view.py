@@ -37,7 +37,7 @@ class View:
 
     def html(self) -> str:
         """One self-contained HTML page: three.js, the viewer and the scene inline; it requests nothing."""
-        from ._html import page
+        from .html import page
 
         return page(self.scene)
 
