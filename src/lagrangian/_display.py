@@ -21,9 +21,14 @@ __all__ = ["render"]
 def render(value: object, form: str) -> str:
     """``value`` drawn for Jupyter as ``form`` (``"latex"``, ``"markdown"`` or ``"html"``) by the output stage.
 
+    A subclass is drawn as its nearest base in the table (an `OptimalTrajectory` as a `Trajectory`).
     Raises `KeyError` for a type or form that output does not draw (a programming error: each
     display method names a form that `RENDERERS` has for its type).
     """
     from .output._display import RENDERERS  # up the stages, on first display (module docstring)
 
-    return RENDERERS[type(value), form](value)
+    for cls in type(value).__mro__:
+        renderer = RENDERERS.get((cls, form))
+        if renderer is not None:
+            return renderer(value)
+    raise KeyError((type(value).__name__, form))
