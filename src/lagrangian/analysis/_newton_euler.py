@@ -58,7 +58,7 @@ from ..model import (ORIGIN, Body, CoulombFriction, Damper, Dissipation, General
 from ..model import Assumptions
 from ..model.vectors import sum_of
 
-__all__ = ["EffortsOnElement", "ElementTheorems", "CoordinateCheck", "Verification", "verify"]
+__all__ = ["EffortsOnElement", "ElementTheorems", "CoordinateCheck", "Verification", "given_efforts", "verify"]
 
 _ZERO = se.Integer(0)
 #: Relative size (to the terms of a sum) above which a double-precision value is surely not

@@ -46,6 +46,7 @@ from ..model import GALILEAN_FRAME, Constraint, Vector
 from ..model.vectors import sum_of
 
 __all__ = [
+    "FORMULA_MAX_SIZE",
     "MULTIPLIER_PREFIX",
     "ConstraintInfo",
     "ConstraintReaction",

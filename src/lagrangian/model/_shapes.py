@@ -48,6 +48,7 @@ __all__ = [
     "build_shapes",
     "declare_shapes_from_toml",
     "parse_color",
+    "rotation_to",
 ]
 
 #: The keys each kind takes, beside the common ones (`_COMMON`).

@@ -29,7 +29,7 @@ _WHERE = {
     "._input_switch": ("Switch",),
     "._input_table": ("InputTable",),
     "._simulate": ("METHODS", "EventSpec", "default_tolerance", "initial_state", "simulate"),
-    "._sensitivity": ("Sensitivities", "Column", "SensitivitySystem", "inverse_dynamics", "sensitivity_system"),
+    "._sensitivity": ("Sensitivities", "SensitivityColumn", "SensitivitySystem", "inverse_dynamics", "sensitivity_system"),
     "._stickslip": ("simulate_stick_slip",),
     "._system": ("CompiledSystem", "compile_system"),
     "._phases": ("check_trajectory_along", "reaction_history_along"),
@@ -84,7 +84,7 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from ._ensemble import connect_scheduler as connect_scheduler
     from ._forward import forward_jacobian as forward_jacobian
     from ._impact_sweep import OUTCOMES as OUTCOMES
-    from ._sensitivity import Column as Column
+    from ._sensitivity import SensitivityColumn as SensitivityColumn
     from ._sensitivity import SensitivitySystem as SensitivitySystem
     from ._sensitivity import inverse_dynamics as inverse_dynamics
     from ._sensitivity import sensitivity_system as sensitivity_system
@@ -94,7 +94,6 @@ __all__ = [
     "OUTCOMES",
     "STABILIZATIONS",
     "STATUS",
-    "Column",
     "CompiledSystem",
     "ContactEvent",
     "Event",
@@ -104,6 +103,7 @@ __all__ = [
     "ImpactSweep",
     "InputTable",
     "Sensitivities",
+    "SensitivityColumn",
     "SensitivitySystem",
     "SimulationCheck",
     "Switch",
