@@ -109,7 +109,7 @@ def event_cost(repeat: int, drag: float) -> None:
     if drag:  # quadratic air drag: each flight takes many steps, not the two of a parabola
         import symengine as se
 
-        from lagrangian.model._vector import Vector
+        from lagrangian.model import Vector
         from lagrangian.model.spec import PointForce
 
         zd = se.Symbol("z_dot")

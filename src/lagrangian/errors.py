@@ -9,19 +9,20 @@ print ``FILE:LINE: error: ...`` followed by a ``tip:`` line.
 from __future__ import annotations
 
 __all__ = [
+    "AnalysisError",
+    "DerivationError",
+    "EnsembleInterrupted",
+    "ExportError",
+    "IdentificationError",
+    "Interrupted",
+    "KinematicsError",
     "LagrangianError",
     "ModelError",
-    "KinematicsError",
-    "DerivationError",
-    "SimulationError",
-    "ProblemError",
     "OptimizationError",
-    "Interrupted",
-    "EnsembleInterrupted",
     "OutputError",
-    "ExportError",
+    "ProblemError",
+    "SimulationError",
     "VerificationError",
-    "IdentificationError",
 ]
 
 
@@ -88,6 +89,14 @@ class KinematicsError(LagrangianError):
 
 class DerivationError(LagrangianError):
     """The equations of motion cannot be formed (e.g. a singular mass matrix)."""
+
+
+class AnalysisError(LagrangianError):
+    """A motion cannot be analysed: a missing value, an unbounded or singular motion.
+
+    The analysis stage's errors derive from it (`lagrangian.analysis`: `LinearizationError`,
+    `EquilibriumError`, `ControlError`, `StructureError`, ...).
+    """
 
 
 class SimulationError(LagrangianError):

@@ -19,7 +19,8 @@ import pytest
 from scipy import integrate
 
 import lagrangian
-from lagrangian.analysis._effective_potential import AnalysisError, StructureError
+from lagrangian.analysis import StructureError
+from lagrangian.errors import AnalysisError
 from lagrangian.analysis._top import analyse_top
 from lagrangian.errors import LagrangianError
 from lagrangian.numerics import EventSpec, simulate
@@ -311,3 +312,13 @@ def test_a_nutation_angle_undefined_at_the_poles_is_not_the_tops_form(tmp_path):
     result = analyse_top(lagrangian.derive(lagrangian.load_model(path)))
     assert result.top is None and result.sleeping == ()
     assert any("not exactly those of a symmetric top" in note for note in result.notes)
+
+
+def test_analysis_errors_belong_to_the_package_hierarchy() -> None:
+    # AnalysisError is defined with the other errors, and still reached from the analysis stage's face.
+    from lagrangian import analysis
+    from lagrangian.errors import LagrangianError
+
+    assert analysis.AnalysisError is AnalysisError and issubclass(AnalysisError, LagrangianError)
+    for name in ("LinearizationError", "EquilibriumError", "ControlError", "StructureError"):
+        assert issubclass(getattr(analysis, name), AnalysisError), name

@@ -9,7 +9,7 @@ from lagrangian.analysis import first_integrals
 from lagrangian.cli.main import main
 from lagrangian.model.zoo import serial_arm
 from lagrangian.output import course_form, render_text
-from lagrangian.output._intermediates import listed
+from lagrangian.output import needed_intermediates
 from lagrangian.output._text import supplement
 
 
@@ -34,7 +34,7 @@ def test_intermediates_listing_defines_every_name_before_use(capsys):
     head, where = out.split("\nwhere\n")
     rec = lagrangian.derive(serial_arm(5)).recursive
     defined = re.findall(r"^  (w\d+) = (.*)$", where, flags=re.M)
-    assert len(defined) == len(listed(rec)) and f"{len(defined)} named intermediates" in head
+    assert len(defined) == len(needed_intermediates(rec)) and f"{len(defined)} named intermediates" in head
     seen: set[str] = set()
     for name, formula in defined:
         assert set(re.findall(r"\bw\d+\b", formula)) <= seen, name

@@ -51,6 +51,20 @@ def test_trajectory_summary_table() -> None:
     assert r"\theta: & 0.5 \to" in latex and r"H: & \text{relative drift}" in latex
 
 
+def test_a_subclass_is_displayed_as_its_base() -> None:
+    import dataclasses
+
+    from lagrangian.numerics import Trajectory
+
+    @dataclasses.dataclass(frozen=True)
+    class Replayed(Trajectory):  # as `OptimalTrajectory` is
+        note: str = ""
+
+    tr = lagrangian.simulate(lagrangian.derive(lagrangian.lagrange_top()), 0.2)
+    replayed = Replayed(**{f.name: getattr(tr, f.name) for f in dataclasses.fields(Trajectory)})
+    assert replayed._repr_html_() == tr._repr_html_() and replayed._repr_latex_() == tr._repr_latex_()
+
+
 def test_linear_model_writes_A_out() -> None:
     eom = eom_of("inverted_pendulum_cart.toml")
     lm = lagrangian.linearize(eom)

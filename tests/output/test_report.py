@@ -259,7 +259,7 @@ def test_a_40_link_chain_is_quick_and_summarized():
     html, tex, md = r.html(), r.latex(), r.markdown()
     elapsed = time.perf_counter() - start
     assert elapsed < CHAIN_SECONDS
-    from lagrangian.view3d._html import library
+    from lagrangian.view3d.html import library
 
     # The 3-D figure's viewer (three.js, 0.75 MB) comes once, whatever the model; the rest stays under 4 MB.
     assert len(html) - len(library()) < 4_000_000 and "<details>" in html and "<details>" in md

@@ -13,7 +13,7 @@ import pytest
 import lagrangian
 from lagrangian.model.zoo import serial_arm
 from lagrangian.view3d import Motion, View, build_scene, view
-from lagrangian.view3d._html import THREE_VERSION, library, scene_json
+from lagrangian.view3d.html import THREE_VERSION, library, scene_json
 
 
 def test_the_library_is_one_classic_script_with_three_js_inside(tmp_path):

@@ -11,20 +11,23 @@ from .._lazy import lazy_names
 # module of this stage does not load the others (nor SymPy, SciPy and what they import).
 _WHERE = {
     "._bifurcation": ("BifurcationDiagram", "Branch", "bifurcation"),
-    "._effective_potential": ("AnalysisError", "CyclicReduction", "StructureError", "reduce_cyclic"),
+    "..errors": ("AnalysisError",),  # defined with the package's other errors; kept here, where it was
+    "._effective_potential": ("CyclicReduction", "StructureError", "reduce_cyclic"),
     "._energy_balance": ("EnergyBalance", "PowerTerm", "energy_balance"),
     "._equilibria": ("Equilibria", "Equilibrium", "EquilibriumError", "EquilibriumSearch", "SearchRegion", "equilibria"),
     "._feedback": ("ControlError", "Feedback"),
     "._integrals": ("FirstIntegral", "first_integrals"),
-    "._newton_euler": ("CoordinateCheck", "ElementTheorems", "Verification", "verify"),
+    "._newton_euler": ("CoordinateCheck", "ElementTheorems", "Verification", "verify", "given_efforts"),
     "._reactions": ("Reaction", "ReactionHistory", "TrajectoryResiduals", "check_trajectory", "reaction_history",
         "reactions"),
-    "._linear_model": ("LinearizationError", "LinearModel", "SecondOrderForm"),
+    "._linear_model": ("LinearizationError", "LinearModel", "SecondOrderForm", "to_numpy"),
     "._linearize": ("linearize", "holding_inputs"),
     "._lqr": ("lqr",),
     "._modes": ("Mode", "Modes", "Stability", "StabilityChange", "Sweep", "modes", "stability", "sweep"),
     "._steady": ("RouthReduction", "SteadyMotion", "routh_reduction", "steady_motions"),
     "._top": ("TopAnalysis", "analyse_top"),
+    "._tree_integrals": ("tree_integrals",),
+    "._closed_small_motions": ("closed_point", "pulsations_squared"),
 }
 __getattr__, __dir__ = lazy_names(__name__, _WHERE)
 
@@ -32,7 +35,7 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from ._bifurcation import BifurcationDiagram as BifurcationDiagram
     from ._bifurcation import Branch as Branch
     from ._bifurcation import bifurcation as bifurcation
-    from ._effective_potential import AnalysisError as AnalysisError
+    from ..errors import AnalysisError as AnalysisError
     from ._effective_potential import CyclicReduction as CyclicReduction
     from ._effective_potential import StructureError as StructureError
     from ._effective_potential import reduce_cyclic as reduce_cyclic
@@ -79,6 +82,11 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from ._steady import steady_motions as steady_motions
     from ._top import TopAnalysis as TopAnalysis
     from ._top import analyse_top as analyse_top
+    from ._linear_model import to_numpy as to_numpy
+    from ._newton_euler import given_efforts as given_efforts
+    from ._tree_integrals import tree_integrals as tree_integrals
+    from ._closed_small_motions import closed_point as closed_point
+    from ._closed_small_motions import pulsations_squared as pulsations_squared
 
 __all__ = [
     "AnalysisError",
@@ -131,4 +139,9 @@ __all__ = [
     "steady_motions",
     "sweep",
     "verify",
+    "to_numpy",
+    "given_efforts",
+    "tree_integrals",
+    "closed_point",
+    "pulsations_squared",
 ]

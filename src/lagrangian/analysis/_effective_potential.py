@@ -33,7 +33,7 @@ from symengine.lib.symengine_wrapper import sympy2symengine
 
 from .._identity import are_zero
 from ..dynamics import EquationsOfMotion
-from ..errors import LagrangianError
+from ..errors import AnalysisError
 from ..model.spec import GALILEAN_FRAME
 from ._integrals import first_integrals
 
@@ -41,7 +41,6 @@ if TYPE_CHECKING:
     import sympy
 
 __all__ = [
-    "AnalysisError",
     "Curve",
     "CyclicReduction",
     "EffectivePotential",
@@ -52,10 +51,6 @@ __all__ = [
     "turning_points",
     "well_integrals",
 ]
-
-
-class AnalysisError(LagrangianError):
-    """A motion cannot be analysed: a missing value, an unbounded or singular motion."""
 
 
 class StructureError(AnalysisError):

@@ -36,7 +36,7 @@ import symengine as se
 
 from .._identity import are_zero
 from ..dynamics import EquationsOfMotion
-from ..model._vector import is_structural_zero, sum_of
+from ..model.vectors import is_structural_zero, sum_of
 
 __all__ = ["PowerTerm", "EnergyBalance", "energy_balance"]
 

@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from ._effective_potential import AnalysisError
+from ..errors import AnalysisError
 
 __all__ = ["FEEDBACK_SCHEMA", "FEEDBACK_VERSION", "ControlError", "Feedback"]
 

@@ -38,9 +38,10 @@ from dataclasses import dataclass
 import symengine as se
 
 from .._identity import are_zero
+from .._display import render
 from ..dynamics import EquationsOfMotion
-from ..dynamics._constraints import admissible_integrals
-from ..dynamics._inertial import rotating_frame
+from ..dynamics import admissible_integrals
+from ..dynamics import rotating_frame
 from ._noether import nonholonomic_integrals, symmetry_integrals
 
 __all__ = ["INPUT_REGIMES", "FirstIntegral", "first_integrals", "input_regime", "inputs_off"]
@@ -61,15 +62,11 @@ class FirstIntegral:
 
     def _repr_latex_(self) -> str:
         """``expression = name`` as display math in the course's notation (Jupyter)."""
-        from ..output._display import integral_latex  # output is a later stage: imported on display
-
-        return integral_latex(self)
+        return render(self, "latex")
 
     def _repr_markdown_(self) -> str:
         """The integral, then its kind and why it holds."""
-        from ..output._display import integral_markdown
-
-        return integral_markdown(self)
+        return render(self, "markdown")
 
 
 #: The last derivations' integrals, by identity: `simulate` asks for them on every run, and the

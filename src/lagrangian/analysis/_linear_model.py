@@ -14,7 +14,8 @@ import numpy as np
 import symengine as se
 
 from ..dynamics import EquationsOfMotion
-from ._effective_potential import AnalysisError
+from .._display import render
+from ..errors import AnalysisError
 
 __all__ = ["LinearizationError", "SecondOrderForm", "LinearModel", "to_numpy"]
 
@@ -132,9 +133,7 @@ class LinearModel:
 
     def _repr_latex_(self) -> str:
         """ẋ = A x + B u written out, about the point (Jupyter); large states give the sizes only."""
-        from ..output._display import linear_model_latex  # output is a later stage: imported on display
-
-        return linear_model_latex(self)
+        return render(self, "latex")
 
     def to_scipy(self, **values: float):  # type: ignore[no-untyped-def]
         """``scipy.signal.StateSpace(A, B, I, 0)``: the whole state as output."""
@@ -160,6 +159,8 @@ class LinearModel:
 
 
 def to_numpy(m: se.DenseMatrix, subs: Mapping[se.Basic, float]) -> np.ndarray:
+    """The matrix ``m`` at ``subs`` as a real float array of its shape; `LinearizationError` if an entry is
+    not a number there, or complex."""
     if m.rows == 0 or m.cols == 0:
         return np.zeros((m.rows, m.cols))
     try:

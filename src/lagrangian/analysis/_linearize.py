@@ -43,7 +43,7 @@ import symengine as se
 
 from .._identity import are_zero
 from ..dynamics import EquationsOfMotion
-from ..model._expr import ExpressionError, parse_expression
+from ..model import ExpressionError, parse_expression
 from ._linear_algebra import RANK_RTOL
 from ._linear_algebra import choose as _choose
 from ._linear_algebra import jacobian as _jacobian

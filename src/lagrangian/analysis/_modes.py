@@ -395,7 +395,7 @@ def sweep(lin: LinearModel, name: str, values: Sequence[float], **fixed: float) 
     whose keywords it takes) — and returns an `ImpactSweep`.
     """
     if not isinstance(lin, LinearModel):
-        from ..numerics._impact_sweep import impact_sweep  # late: numerics is a later stage, used on demand
+        from ..numerics import impact_sweep  # up the stages, on demand (an exception of the import contract)
 
         t_end = fixed.pop("t_end", None)
         if t_end is None:

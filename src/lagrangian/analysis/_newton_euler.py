@@ -48,17 +48,17 @@ import symengine as se
 
 from .._identity import are_zero
 from ..dynamics import EquationsOfMotion
-from ..dynamics._constraints import reaction_efforts
-from ..dynamics._energy import rigid_inertia
-from ..dynamics._friction import friction_efforts
-from ..dynamics._inertial import RelativeKinematics, inertial_torsors
+from ..dynamics import reaction_efforts
+from ..dynamics import rigid_inertia
+from ..dynamics import friction_efforts
+from ..dynamics import RelativeKinematics, inertial_torsors
 from ..kinematics import Kinematics
 from ..model import (ORIGIN, Body, CoulombFriction, Damper, Dissipation, GeneralizedForce, Gravity, JointDamper, Particle,
                      PointForce, Potential, Spring, Torque, Vector)
-from ..model._assumptions import Assumptions
-from ..model._vector import sum_of
+from ..model import Assumptions
+from ..model.vectors import sum_of
 
-__all__ = ["EffortsOnElement", "ElementTheorems", "CoordinateCheck", "Verification", "verify"]
+__all__ = ["EffortsOnElement", "ElementTheorems", "CoordinateCheck", "Verification", "given_efforts", "verify"]
 
 _ZERO = se.Integer(0)
 #: Relative size (to the terms of a sum) above which a double-precision value is surely not

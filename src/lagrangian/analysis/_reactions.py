@@ -34,7 +34,7 @@ from ..dynamics import EquationsOfMotion
 from ..errors import ModelError, SimulationError
 from ..kinematics import Kinematics
 from ..model import GALILEAN_FRAME, ORIGIN, Vector
-from ..model._vector import as_expr
+from ..model.vectors import as_expr
 from ._newton_euler import Verification, verify
 
 

@@ -18,9 +18,9 @@ import sympy
 from symengine.lib.symengine_wrapper import sympy2symengine
 
 from ..dynamics import EquationsOfMotion
-from ..dynamics._friction import sliding_direction
+from ..dynamics import sliding_direction
 from ..model import CoulombFriction
-from ._effective_potential import AnalysisError
+from ..errors import AnalysisError
 from ._equilibria_search import angles as _angles
 
 __all__ = ["EquilibriumError", "StaticSystem", "configuration", "lambdify", "to_symengine"]

@@ -37,7 +37,8 @@ from scipy import special
 
 from .._identity import are_zero
 from ..dynamics import EquationsOfMotion
-from ._effective_potential import (AnalysisError, CyclicReduction, Curve, EffectivePotential, SingularPassage,
+from ..errors import AnalysisError
+from ._effective_potential import (CyclicReduction, Curve, EffectivePotential, SingularPassage,
                                    StructureError, reduce_cyclic, tidy, turning_points, well_integrals)
 
 __all__ = ["TopAnalysis", "TopForm", "NutationCubic", "Nutation", "SleepingTop", "SteadyPrecession",

@@ -136,7 +136,7 @@ def _energy_potential(eom: EquationsOfMotion, off: Sequence[str], held: Sequence
     the inputs ``off`` are 0 — or derive from a potential while the inputs ``held`` are constant (−τ q of a
     constant motor torque, `LoadForces.held`, or of a torque whose value is a parameter); None when some
     load works all the same (a joint damper, a torque varying with the state or in time)."""
-    from ..dynamics._forces import generalized_forces
+    from ..dynamics import generalized_forces
     from ..model.spec import JointDamper, Torque
 
     zero = {se.Symbol(u): se.Integer(0) for u in off}

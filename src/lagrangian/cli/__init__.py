@@ -1,1 +1,1 @@
-"""Stage 9 — the command line (`lagrangian derive ...`)."""
+"""Stage 8 — the command line (`lagrangian derive ...`)."""

@@ -18,8 +18,8 @@ from ..analysis import first_integrals
 from ..dynamics import EquationsOfMotion, derive
 from ..errors import DerivationError
 from ..output import course_form, derive_document, render_latex, render_text
-from ..output._intermediates import listed, render_intermediates
-from ..output._text import supplement
+from ..output import needed_intermediates, render_intermediates
+from ..output import supplement
 from ..output.report.size import SizeGate
 from ._settings import SettingError
 from ._source import load_source
@@ -61,7 +61,7 @@ def run(args: argparse.Namespace) -> str:
 def _note(eom: EquationsOfMotion, gate: SizeGate, *, latex: bool = False) -> str:
     """What the summaries stand for, and where the full expressions are."""
     assert eom.recursive is not None
-    count = len(listed(eom.recursive))
+    count = len(needed_intermediates(eom.recursive))
     text = (f"{len(gate.summaries)} long expressions are summarized as ⟨N terms⟩: the expanded entries of a robot in "
             f"relative joint angles grow several-fold per joint. `lagrangian derive --expanded` prints them in full "
             f"(slow), --json holds them all, and `lagrangian derive --intermediates` prints T, U, M and F over the "

@@ -20,7 +20,7 @@ from ..dynamics import derive
 from ..errors import OutputError
 from ..model import CoulombFriction
 from ..output import Notation
-from ..output._course import to_sympy
+from ..output import to_sympy
 from ._arguments.equilibria import SCHEMA
 from ._modes import _check_plot_folder as check_plot_folder
 from ._modes import parse_sweep

@@ -20,7 +20,7 @@ import numpy as np
 
 from .._atomic import write_atomic, write_atomic_with
 from ..errors import OutputError
-from ..numerics._impact_sweep import OUTCOMES, ImpactSweep, impact_sweep
+from ..numerics import OUTCOMES, ImpactSweep, impact_sweep
 from ._settings import SettingError
 
 __all__ = ["SUFFIXES", "run_impact_sweep"]
@@ -59,7 +59,7 @@ def _csv(result: ImpactSweep) -> str:
 
 
 def _plot(result: ImpactSweep, path: str) -> str:
-    from ..plotting._mpl import new_figure
+    from ..plotting import new_figure
 
     (name, values), = result.axes.items()
     fig = new_figure(7.0, 5.0, hspace=0.35)

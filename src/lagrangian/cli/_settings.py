@@ -11,7 +11,7 @@ import math
 from collections.abc import Sequence
 
 from ..errors import LagrangianError
-from ..model._assumptions import SIGN_RELATIONS, sign_problem
+from ..model import SIGN_RELATIONS, sign_problem
 from ..model.spec import Model
 from ._arguments.common import add_set_option, number_argument, plain_number
 

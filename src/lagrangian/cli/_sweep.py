@@ -21,7 +21,7 @@ import numpy as np
 from ..dynamics import derive
 from ..errors import OutputError
 from ..numerics import EventSpec, compile_system, ensemble, flip_events, grid
-from ..numerics._ensemble import connect_scheduler
+from ..numerics import connect_scheduler
 from ._settings import SettingError, parse_settings, plain_number
 from ._source import load_source
 
@@ -97,7 +97,7 @@ def run(args: argparse.Namespace) -> str:
     twice = sorted(set(axes) & (set(parameters) | set(initial)))
     if twice:
         raise SettingError(f"`{twice[0]}` is both swept and set.", fix="give it once")
-    from ..numerics._contact import contact_model
+    from ..numerics import contact_model
 
     if contact_model(model) is not None:  # phases switched by impacts: one motion after the other
         from ._impact_sweep import run_impact_sweep
@@ -112,7 +112,7 @@ def run(args: argparse.Namespace) -> str:
                           "nothing to resume.", fix="add --resume to finish an interrupted sweep in it, or remove it "
                           "/ choose another name" if out.exists() else "run the sweep without --resume first")
     if args.plot:
-        from ..plotting._mpl import require_matplotlib
+        from ..plotting import require_matplotlib
 
         require_matplotlib()
         if not Path(args.plot).parent.resolve().is_dir():
@@ -140,7 +140,7 @@ def _sweep(args, model, axes, parameters, initial, out, client) -> str:
                   dt=args.dt, n_out=args.n_out, events=events, workers=args.workers, scheduler=client,
                   out=out, resume=args.resume, progress=progress, backend=args.backend)
     elapsed = time.perf_counter() - start
-    from ..numerics._batch import STATUS
+    from ..numerics import STATUS
 
     codes, counts = np.unique(ds["status"].values, return_counts=True)
     lines = [f"{model.name}: {g.size} members ({' x '.join(f'{n} {len(v)}' for n, v in axes.items())}), t from "

@@ -19,7 +19,7 @@ from ..dynamics import derive
 from ..errors import ModelError, VerificationError
 from ..model import Torque, Vector
 from ..output import Notation
-from ..output._course import reference_label, to_sympy
+from ..output import reference_label, to_sympy
 from ._settings import SettingError, parse_settings
 from ._source import load_source
 

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import symengine as se
 
-from ..dynamics._floating import FloatingForm
+from ..dynamics import FloatingForm
 from ..errors import DerivationError
 from ._cprint import c_sequence
 from ._rewrite import Hoist

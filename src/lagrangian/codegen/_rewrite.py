@@ -141,7 +141,7 @@ def _shared_bias(eom: EquationsOfMotion) -> tuple[list[tuple[se.Symbol, se.Basic
     Returns the named components (symbol, expression) and F written with them; falls back
     to ``eom.F`` when the equations carry more than that (e.g. terms the loads do not hold).
     """
-    from ..dynamics._inertia import mass_matrix_and_bias
+    from ..dynamics import mass_matrix_and_bias
 
     shared: list[tuple[se.Symbol, se.Basic]] = []
 

@@ -48,8 +48,8 @@ from collections.abc import Sequence
 
 import symengine as se
 
-from ..kinematics._frames import _add3, _cross
-from ..model._vector import sum_of
+from ..model.vectors import add3 as _add3, cross as _cross  # the vector toolkit's 3-component algebra
+from ..model.vectors import sum_of
 
 _ZERO = se.Integer(0)
 _ZERO_TYPE = type(_ZERO)

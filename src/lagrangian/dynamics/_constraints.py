@@ -43,9 +43,10 @@ from .._identity import are_zero, is_zero
 from ..errors import DerivationError, ModelError
 from ..kinematics import Kinematics
 from ..model import GALILEAN_FRAME, Constraint, Vector
-from ..model._vector import sum_of
+from ..model.vectors import sum_of
 
 __all__ = [
+    "FORMULA_MAX_SIZE",
     "MULTIPLIER_PREFIX",
     "ConstraintInfo",
     "ConstraintReaction",

@@ -21,7 +21,7 @@ import symengine as se
 
 from .._identity import are_zero
 from ..errors import ModelError
-from ..model._limits import NotFinite, real_value
+from ..model import NotFinite, real_value
 from ..kinematics import Kinematics
 from ..model import Body, Location
 

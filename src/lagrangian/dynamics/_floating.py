@@ -40,9 +40,8 @@ from dataclasses import dataclass
 import symengine as se
 
 from ..errors import DerivationError
-from ..kinematics._frames import _add3, _cross, _turn
 from ..model import GALILEAN_FRAME, Model, Vector
-from ..model._vector import sum_of
+from ..model.vectors import add3, cross, sum_of, turn
 from ._articulated import _Spatial, articulated_accelerations
 from ._floating_tree import FloatingTree, floating_trees
 from ._recursive import _dot, _matvec, _Names, _scale, _unit
@@ -194,23 +193,23 @@ class _TreeBuilder:
             p = node.parent
             if node.axis is not None:
                 c, s = w(se.cos(node.angle)), w(se.sin(node.angle))
-                self.down[k] = (lambda x, a=node.axis, c=c, s=s: _turn(a, c, -s, x))
-                self.up[k] = (lambda x, a=node.axis, c=c, s=s: _turn(a, c, s, x))
+                self.down[k] = (lambda x, a=node.axis, c=c, s=s: turn(a, c, -s, x))
+                self.up[k] = (lambda x, a=node.axis, c=c, s=s: turn(a, c, s, x))
             down, d = self.down[k], node.offset
             d_rate = _ZERO3
             for j, u in node.offset_rates.items():
-                d_rate = _add3(d_rate, _scale(self.qd[j], u))
-            self.vel[k] = w.vec(down(_add3(_add3(self.vel[p], _cross(self.omega[p], d)), d_rate)))
-            self.pos[k] = w.vec(down(_add3(self.pos[p], d)))
+                d_rate = add3(d_rate, _scale(self.qd[j], u))
+            self.vel[k] = w.vec(down(add3(add3(self.vel[p], cross(self.omega[p], d)), d_rate)))
+            self.pos[k] = w.vec(down(add3(self.pos[p], d)))
             self.grav[k] = [w.vec(down(g)) for g in self.grav[p]]
             if node.axis is None:
                 self.omega[k] = self.omega[p]
             else:
                 spin = _unit(node.axis, sum_of([a * self.qd[j] for j, a in node.rates.items()]))
-                self.omega[k] = w.vec(_add3(down(self.omega[p]), spin))
+                self.omega[k] = w.vec(add3(down(self.omega[p]), spin))
         self.couples: list[Vec] = [_ZERO3] * count
         for k, couple in tree.couples:
-            self.couples[k] = _add3(self.couples[k], self.express(couple, k))
+            self.couples[k] = add3(self.couples[k], self.express(couple, k))
 
     # -- vectors of the model in a node's basis ---------------------------------------------------
     def express(self, vector: Vector, k: int) -> Vec:
@@ -243,7 +242,7 @@ class _TreeBuilder:
                 at = nodes[at].parent
             for i in reversed(chain):
                 comps = self.down[i](comps)
-            total = _add3(total, comps)
+            total = add3(total, comps)
         return total
 
     # -- composite inertias (CRBA) -------------------------------------------------------------------
@@ -275,7 +274,7 @@ class _TreeBuilder:
                 for c in range(3):
                     shift = (2 * dh + m * dd if r == c else _ZERO) - d[r] * h[c] - h[r] * d[c] - m * d[r] * d[c]
                     inertia[p][r][c] = inertia[p][r][c] + J[r][c] + shift
-            first[p] = _add3(first[p], _add3(h, _scale(m, d)))
+            first[p] = add3(first[p], add3(h, _scale(m, d)))
         return mass, first, inertia
 
     # -- the mass matrix ---------------------------------------------------------------------------
@@ -295,8 +294,8 @@ class _TreeBuilder:
         for k in range(len(nodes)):
             for rank, (i, S_w, S_v) in enumerate(occurrences[k]):
                 J = inertia[k]
-                fv = w.vec(_add3(_scale(mass[k], S_v), _cross(S_w, first[k])))
-                nv = w.vec(_add3(tuple(_dot(J[r], S_w) for r in range(3)), _cross(first[k], S_v)))
+                fv = w.vec(add3(_scale(mass[k], S_v), cross(S_w, first[k])))
+                nv = w.vec(add3(tuple(_dot(J[r], S_w) for r in range(3)), cross(first[k], S_v)))
                 a, same = k, True
                 while True:
                     for idx, (j, T_w, T_v) in enumerate(occurrences[a]):
@@ -312,7 +311,7 @@ class _TreeBuilder:
                         break
                     up, d = self.up[a], nodes[a].offset
                     fv = w.vec(up(fv))
-                    nv = w.vec(_add3(up(nv), _cross(d, fv)))
+                    nv = w.vec(add3(up(nv), cross(d, fv)))
                     a, same = nodes[a].parent, False  # type: ignore[assignment]
         return [[sum_of(M[i][j]) for j in range(n)] for i in range(n)]
 
@@ -334,7 +333,7 @@ class _TreeBuilder:
                 T_terms.append(_HALF * _dot(self.omega[k], pw))
             g_total = _ZERO3
             for i in node.gravity:
-                g_total = _add3(g_total, self.grav[k][i])
+                g_total = add3(g_total, self.grav[k][i])
             if node.gravity:
                 U_terms.append(-m * _dot(g_total, self.pos[k]))
             P[k], H[k] = _scale(m, self.vel[k]), pw
@@ -343,11 +342,11 @@ class _TreeBuilder:
                 continue
             p, up, d = nodes[k].parent, self.up[k], nodes[k].offset
             fp = w.vec(up(P[k]))
-            P[p] = _add3(P[p], fp)
-            H[p] = _add3(H[p], _add3(w.vec(up(H[k])), _cross(d, fp)))
+            P[p] = add3(P[p], fp)
+            H[p] = add3(H[p], add3(w.vec(up(H[k])), cross(d, fp)))
         mass, first, _ = composite
         P0, H0 = w.vec(P[0]), w.vec(H[0])
-        sigma = _times(self.R, _add3(H0, _scale(-1 / mass[0], _cross(first[0], P0))))
+        sigma = _times(self.R, add3(H0, _scale(-1 / mass[0], cross(first[0], P0))))
         return sum_of(T_terms), sum_of(U_terms), w.vec(_times(self.R, P0)), w.vec(sigma)
 
 
@@ -445,7 +444,7 @@ def _accelerations(b: _TreeBuilder, composite, pivots: list) -> tuple[Vec, Vec, 
     root: list = []
 
     def floating(inertia: _Spatial, pw: Vec, pv: Vec) -> tuple[Vec, Vec]:
-        bias = [*(_add3(pw, tuple(-c for c in couple0))), *pv]
+        bias = [*(add3(pw, tuple(-c for c in couple0))), *pv]
         root.append(_solve6(w, inertia, bias, base_pivots))
         return root[0]
 

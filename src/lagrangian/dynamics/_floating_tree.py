@@ -22,8 +22,8 @@ import symengine as se
 from ..errors import DerivationError
 from ..kinematics import Kinematics
 from ..model import JointDamper, Model, Torque, Vector
-from ..model._assumptions import Assumptions
-from ..model._free import FreeJoint, free_joints
+from ..model import Assumptions
+from ..model import FreeJoint, free_joints
 from ._forces import LoadForces, generalized_forces
 from ._recursive import TreeStructure, _Node, tree_structure
 

@@ -40,8 +40,8 @@ from symengine.lib.symengine_wrapper import sympy2symengine
 from .._identity import are_zero
 from ..kinematics import Kinematics
 from ..model import Damper, GeneralizedForce, Gravity, Load, PointForce, Potential, Spring, Torque, Vector
-from ..model._assumptions import Assumptions
-from ..model._vector import sum_of
+from ..model import Assumptions
+from ..model.vectors import sum_of
 from ._friction import FRICTION_LOADS, frame_of, friction_q
 
 __all__ = ["LoadForces", "generalized_forces"]

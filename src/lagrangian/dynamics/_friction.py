@@ -39,7 +39,7 @@ from .._identity import are_zero
 from ..errors import ModelError
 from ..kinematics import Kinematics
 from ..model import CoulombFriction, Dissipation, JointDamper, Vector
-from ..model._vector import is_structural_zero
+from ..model.vectors import is_structural_zero
 
 __all__ = ["FRICTION_LOADS", "frame_of", "friction_q", "friction_efforts", "sliding_velocity", "friction_force",
            "dissipation_function", "sliding_direction", "SlidingDirection"]

@@ -21,8 +21,8 @@ from __future__ import annotations
 import symengine as se
 
 from ..kinematics import Kinematics
-from ..model._vector import is_structural_zero as _zero
-from ..model._vector import sum_of
+from ..model.vectors import is_structural_zero as _zero
+from ..model.vectors import sum_of
 from ._energy import RigidInertia
 
 __all__ = ["mass_matrix_and_bias"]

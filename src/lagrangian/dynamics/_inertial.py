@@ -39,8 +39,8 @@ import symengine as se
 from .._identity import are_zero
 from ..kinematics import FrameTree, Kinematics, TimeDerivative, rotation_rate
 from ..model import Model, Point, Vector
-from ..model._vector import is_structural_zero, sum_of
-from ..model._reference import INERTIAL_LOAD_NAMES
+from ..model.vectors import is_structural_zero, sum_of
+from ..model import INERTIAL_LOAD_NAMES
 from ._energy import rigid_inertia
 from ._forces import LoadForces, _derives_from
 

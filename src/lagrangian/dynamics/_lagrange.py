@@ -24,12 +24,13 @@ from typing import NamedTuple
 import symengine as se
 
 from .._identity import are_zero
+from .._display import render
 from ..errors import DerivationError, ModelError
 from ..kinematics import Kinematics
 from ..model import Model
-from ..model._assumptions import Assumptions, SignFact
-from ..model._limits import MAX_OPS_VARIABLE, equations_size, max_ops
-from ..model._vector import sum_of
+from ..model import Assumptions, SignFact
+from ..model import MAX_OPS_VARIABLE, equations_size, max_ops
+from ..model.vectors import sum_of
 from ._constraints import ConstraintReaction, ConstraintRow, complementary_constraints
 from ._energy import KineticEnergyTerm, RigidInertia, kinetic_energy
 from ._forces import LoadForces, generalized_forces
@@ -69,9 +70,7 @@ class LagrangeEquation:
 
     def _repr_latex_(self) -> str:
         """L(q_i) as display math in the course's notation (Jupyter); long sides are summarized."""
-        from ..output._display import equation_latex  # output is a later stage: imported on display
-
-        return equation_latex(self)
+        return render(self, "latex")
 
 
 class CourseForm(NamedTuple):
@@ -271,22 +270,18 @@ class EquationsOfMotion:
         The conversion is structural (no text is parsed, nothing is simplified).  See
         `lagrangian.output.SympyEquations` and docs/interop.md.
         """
-        from ..output._sympy_form import sympy_equations  # output is a later stage: imported on use
+        from ..output import sympy_equations  # up the stages, on use (an exception of the import contract)
 
         return sympy_equations(self, time_functions=time_functions)
 
-    # -- Jupyter (IPython's display protocol; output is a later stage, imported on display) --------
+    # -- Jupyter (IPython's display protocol: drawn by the output stage, `lagrangian._display`) -------
     def _repr_latex_(self) -> str:
         """The n equations L(q_i) (and the complementary rows) as display math, bounded in size."""
-        from ..output._display import equations_latex
-
-        return equations_latex(self)
+        return render(self, "latex")
 
     def _repr_markdown_(self) -> str:
         """The model, its coordinates, then the equations as in `_repr_latex_`."""
-        from ..output._display import equations_markdown
-
-        return equations_markdown(self)
+        return render(self, "markdown")
 
 
 def lagrange_equations(kin: Kinematics, T: se.Basic, U: se.Basic,

@@ -46,9 +46,9 @@ import symengine as se
 
 from ..errors import DerivationError
 from ..kinematics import Kinematics
-from ..kinematics._frames import _add3, _cross, _turn
+from ..model.vectors import add3 as _add3, cross as _cross, turn as _turn  # the vector toolkit's 3-component algebra
 from ..model import GALILEAN_FRAME, Gravity, JointDamper, Torque, Vector
-from ..model._vector import AXES, sum_of
+from ..model.vectors import AXES, sum_of
 from ._articulated import articulated_accelerations
 from ._energy import _transport, rigid_inertia
 from ._forces import LoadForces, _q_of

@@ -1,4 +1,4 @@
-"""Identification: a model's parameters fitted to a measured motion.
+"""Stage 7 — identification: a model's parameters fitted to a measured motion.
 
 ``identify(model, data, ["m", "l"])`` → `Identification` (estimates, standard errors, the
 identifiable combinations, the residuals), by the inverse-dynamics regressor when the equations

@@ -230,9 +230,9 @@ def _values(model: Model, fitted: Sequence[str], meas: Measurements, values: Map
 
 
 def _shoot(eom, meas, fitted, base, guess, bounds, initial, noise, derivatives, shooting) -> Identification:  # type: ignore[no-untyped-def]
-    from ..numerics._sensitivity import sensitivity_system
+    from ..numerics import sensitivity_system
     from ..numerics._simulate import control_block
-    from ..numerics._system import CompiledSystem
+    from ..numerics import CompiledSystem
     from ._shooting import fit_shooting, noise_levels
 
     model = eom.model

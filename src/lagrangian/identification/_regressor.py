@@ -34,9 +34,7 @@ import symengine as se
 
 from ..codegen import c_function
 from ..dynamics import EquationsOfMotion
-from ..numerics._compile import load_verified
-from ..numerics._forward import forward_jacobian
-from ..numerics._sensitivity import inverse_dynamics
+from ..numerics import forward_jacobian, inverse_dynamics, load_verified
 
 __all__ = ["Regressor", "regressor_of"]
 

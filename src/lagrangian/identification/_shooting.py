@@ -29,9 +29,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import IdentificationError, SimulationError
-from ..numerics._sensitivity import Column, SensitivitySystem
+from ..numerics import SensitivityColumn, SensitivitySystem
 from ..numerics._simulate import control_block
-from ..numerics._system import CompiledSystem
+from ..numerics import CompiledSystem
 from ._data import Measurements
 from ._filter import SavitzkyGolay
 from ._result import BaseEstimate, Identification
@@ -115,8 +115,8 @@ class _Problem:
         self.measured = [(self.states.index(name), name) for name in self.states if name in meas.states]
         self.sigma = dict(sigma)
         self.scale = scale  # each state's scale for the continuity defects
-        self.columns = [Column(name, system.parameters.index(name), None) for name in fitted] + \
-                       [Column(f"{s}(t0)", None, k) for k, s in enumerate(self.states)]
+        self.columns = [SensitivityColumn(name, system.parameters.index(name), None) for name in fitted] + \
+                       [SensitivityColumn(f"{s}(t0)", None, k) for k, s in enumerate(self.states)]
         self.tables = input_tables(system, meas)
         self.cache: dict[bytes, tuple[np.ndarray, np.ndarray]] = {}
         self.last_error: SimulationError | None = None

@@ -18,51 +18,13 @@ from __future__ import annotations
 import symengine as se
 
 from ..model import GALILEAN_FRAME, Model, Vector
-from ..model._vector import AXES, is_structural_zero, sum_of
+from ..model.vectors import AXES, Components, add3, cross, is_structural_zero, sum_of, turn, turn_about
 from ._time import TimeDerivative
 
 __all__ = ["FrameTree", "rotation_rate"]
 
-Components = tuple[se.Basic, se.Basic, se.Basic]
-
 _ZERO = se.Integer(0)
 _ZERO_TYPE = type(_ZERO)
-
-
-def _turn(axis: int, c: se.Basic, s: se.Basic, v: Components) -> Components:
-    """Components in the parent of a vector with components ``v`` in the child.
-
-    The child is the parent turned about their common ``axis`` by the angle whose cosine
-    and sine are ``c`` and ``s``; products with a zero component are not formed.
-    """
-    i, j = (axis + 1) % 3, (axis + 2) % 3
-    vi, vj = v[i], v[j]
-    zi, zj = is_structural_zero(vi), is_structural_zero(vj)
-    if zi and zj:
-        return v
-    out = list(v)
-    if zj:
-        out[i], out[j] = c * vi, s * vi
-    elif zi:
-        out[i], out[j] = -s * vj, c * vj
-    else:
-        out[i], out[j] = c * vi - s * vj, s * vi + c * vj
-    return tuple(out)  # type: ignore[return-value]
-
-
-def _turn_about(n: Components, c: se.Basic, s: se.Basic, v: Components) -> Components:
-    """`_turn` about the unit vector ``n`` (the same components in child and parent): Rodrigues' formula.
-
-    R v = c v + s n ∧ v + (1 − c)(n·v) n, the rotation of angle α (cos α = c, sin α = s)
-    about n (e.g. Goldstein, Classical Mechanics, eq. 4.92).
-    """
-    if all(is_structural_zero(x) for x in v):
-        return v
-    n_v = sum_of([a * b for a, b in zip(n, v) if not is_structural_zero(a) and not is_structural_zero(b)])
-    turned = _cross(n, v)
-    along = (1 - c) * n_v
-    return tuple(sum_of([t for t in (c * x, s * w, along * a) if not is_structural_zero(t)])  # type: ignore[return-value]
-                 for x, w, a in zip(v, turned, n))
 
 
 def rotation_rate(rotation, rate: se.Basic) -> Components:  # type: ignore[no-untyped-def]
@@ -133,7 +95,7 @@ class FrameTree:
         if path is None:
             path = self._paths[(src, dst)] = self._path_uncached(src, dst)
         for axis, c, s in path:
-            comps = _turn(axis, c, s, comps) if type(axis) is int else _turn_about(axis, c, s, comps)  # type: ignore[arg-type]
+            comps = turn(axis, c, s, comps) if type(axis) is int else turn_about(axis, c, s, comps)  # type: ignore[arg-type]
         return comps
 
     def express(self, v: Vector, frame: str) -> Components:
@@ -141,7 +103,7 @@ class FrameTree:
         total: Components | None = None
         for src, comps in v:
             conv = self.convert(comps, src, frame)
-            total = conv if total is None else _add3(total, conv)
+            total = conv if total is None else add3(total, conv)
         if total is None:
             return (_ZERO, _ZERO, _ZERO)
         return total
@@ -204,7 +166,7 @@ class FrameTree:
         if u.is_zero() or v.is_zero():
             return Vector.zero()
         frame = frame or self.best_frame(u, v)
-        return Vector({frame: _cross(self.express(u, frame), self.express(v, frame))})
+        return Vector({frame: cross(self.express(u, frame), self.express(v, frame))})
 
     # -- angular velocity ------------------------------------------------------------------
     def omega(self, frame: str) -> Vector:
@@ -238,12 +200,12 @@ class FrameTree:
         d_dt = self.d_dt
         for frame, comps in self.lift(v):
             own = tuple(c if type(c) is _ZERO_TYPE else d_dt(c, accelerations=accelerations) for c in comps)
-            _accumulate(out, frame, _add3(own, _cross(self.omega_in(frame, frame), comps)))  # type: ignore[arg-type]
+            _accumulate(out, frame, add3(own, cross(self.omega_in(frame, frame), comps)))  # type: ignore[arg-type]
         return Vector._trusted(out)
 
 
 def _axis_key(rotation) -> int | Components:  # type: ignore[no-untyped-def]
-    """The axis of a `Rotation` as `_turn` or `_turn_about` takes it: an index, or n's components."""
+    """The axis of a `Rotation` as `turn` or `turn_about` takes it: an index, or n's components."""
     return AXES[rotation.axis] if rotation.elementary else rotation.direction
 
 
@@ -259,33 +221,8 @@ def _accumulate(out: dict[str, Components], frame: str, comps: Components) -> No
     if old is None:
         out[frame] = comps
         return
-    total = _add3(old, comps)
+    total = add3(old, comps)
     if type(total[0]) is _ZERO_TYPE and type(total[1]) is _ZERO_TYPE and type(total[2]) is _ZERO_TYPE:
         del out[frame]
     else:
         out[frame] = total
-
-
-def _add3(a: Components, b: Components) -> Components:
-    """a + b component-wise, adding nothing to a zero (x + 0 is x: the same expressions)."""
-    return tuple(y if type(x) is _ZERO_TYPE else x if type(y) is _ZERO_TYPE else x + y  # type: ignore[return-value]
-                 for x, y in zip(a, b))
-
-
-def _cross(a: Components, b: Components) -> Components:
-    """a ∧ b, forming no product with a zero factor (the same expressions, fewer operations)."""
-    nz_a = [type(x) is not _ZERO_TYPE for x in a]
-    nz_b = [type(x) is not _ZERO_TYPE for x in b]
-    out = []
-    for i, j, k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
-        plus = nz_a[j] and nz_b[k]
-        minus = nz_a[k] and nz_b[j]
-        if plus and minus:
-            out.append(a[j] * b[k] - a[k] * b[j])
-        elif plus:
-            out.append(a[j] * b[k])
-        elif minus:
-            out.append(-(a[k] * b[j]))
-        else:
-            out.append(_ZERO)
-    return tuple(out)  # type: ignore[return-value]

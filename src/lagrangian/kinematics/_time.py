@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import symengine as se
 
-from ..model._vector import sum_of
+from ..model.vectors import sum_of
 
 __all__ = ["TimeDerivative"]
 

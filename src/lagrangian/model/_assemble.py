@@ -27,7 +27,7 @@ from ._controls import build_controls
 from ._operating_point import build_operating_point, check_inputs_used
 from ._reference import check_reference
 from ._shapes import build_shapes
-from ._vector import Vector, as_expr
+from .vectors import Vector, as_expr
 from .spec import (
     GALILEAN_FRAME,
     GENERAL_AXIS,

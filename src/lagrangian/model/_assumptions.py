@@ -37,7 +37,7 @@ from typing import TYPE_CHECKING, Any
 import symengine as se
 
 from ..errors import ModelError
-from ._vector import as_expr
+from .vectors import as_expr
 
 if TYPE_CHECKING:  # pragma: no cover
     import sympy

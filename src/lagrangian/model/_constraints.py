@@ -35,7 +35,7 @@ import symengine as se
 
 from ..errors import ModelError
 from ._unilateral import UNILATERAL_KEYS, unilateral_parts
-from ._vector import Vector
+from .vectors import Vector
 
 if TYPE_CHECKING:  # pragma: no cover
     from .build import ModelBuilder

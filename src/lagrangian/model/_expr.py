@@ -32,7 +32,7 @@ from fractions import Fraction
 import symengine as se
 
 from ._limits import MAX_DEGREE, MAX_LENGTH, MAX_TERMS, Measure, NotFinite, TooLarge, excerpt, real_value
-from ._vector import AXES, Vector
+from .vectors import AXES, Vector
 
 __all__ = ["FUNCTIONS", "ExpressionError", "parse_expression"]
 

@@ -29,7 +29,7 @@ from numbers import Real
 
 import symengine as se
 
-__all__ = ["MAX_LENGTH", "MAX_DEGREE", "MAX_TERMS", "MAX_OPS", "NotFinite", "TooLarge", "real_value", "Measure",
+__all__ = ["MAX_OPS_VARIABLE", "MAX_LENGTH", "MAX_DEGREE", "MAX_TERMS", "MAX_OPS", "NotFinite", "TooLarge", "real_value", "Measure",
            "excerpt", "max_ops", "equations_size"]
 
 #: Longest expression, in characters (the longest in the examples has a few hundred).

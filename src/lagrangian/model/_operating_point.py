@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING, Any
 import symengine as se
 
 from ..errors import ModelError
-from ._vector import Vector
+from .vectors import Vector
 from .spec import Coordinate, Load, Location, Model, Parameter
 
 if TYPE_CHECKING:  # pragma: no cover

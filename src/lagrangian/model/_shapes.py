@@ -32,7 +32,7 @@ import numpy as np
 import symengine as se
 
 from ..errors import ModelError
-from ._vector import Vector
+from .vectors import Vector
 from .spec import GALILEAN_FRAME, SHAPE_KINDS, Body, Frame, Location, Particle, Point, Shape
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -48,6 +48,7 @@ __all__ = [
     "build_shapes",
     "declare_shapes_from_toml",
     "parse_color",
+    "rotation_to",
 ]
 
 #: The keys each kind takes, beside the common ones (`_COMMON`).

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import symengine as se
 
 from ._constraints import Constraint, ReactionSpec
-from ._vector import Vector
+from .vectors import Vector
 
 __all__ = [
     "GALILEAN_FRAME",

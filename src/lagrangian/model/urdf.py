@@ -61,7 +61,7 @@ from ..errors import ModelError
 from ._assemble import RESERVED
 from ._texts import Text
 from ._urdf_read import UrdfJoint, UrdfRobot, read_urdf_file, read_urdf_text
-from ._vector import Vector
+from .vectors import Vector
 from .build import ModelBuilder
 from .spec import GALILEAN_FRAME, ORIGIN, Location, Model
 

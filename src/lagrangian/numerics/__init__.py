@@ -17,25 +17,28 @@ from .._lazy import lazy_names
 # Each name is imported from its module on first use (`lagrangian._lazy`): a command that needs one
 # module of this stage does not load the others (nor SymPy, SciPy and what they import).
 _WHERE = {
-    "._contact": ("simulate_contact",),
+    "._contact": ("simulate_contact", "contact_model"),
     "._contact_switch": ("ContactEvent",),
     "._dae": ("STABILIZATIONS",),
-    "._ensemble": ("ensemble", "flip_events"),
+    "._ensemble": ("ensemble", "flip_events", "connect_scheduler"),
     "._ensemble_store": ("open_ensemble",),
     "._members": ("Grid", "grid"),
     "._files": ("check_output_path", "load_trajectory", "save_trajectory"),
     "._free_system": ("FreeBodySystem", "compile_free_system"),
-    "._impact_sweep": ("ImpactSweep", "impact_sweep"),
+    "._impact_sweep": ("ImpactSweep", "impact_sweep", "OUTCOMES"),
     "._input_switch": ("Switch",),
     "._input_table": ("InputTable",),
     "._simulate": ("METHODS", "EventSpec", "default_tolerance", "initial_state", "simulate"),
-    "._sensitivity": ("Sensitivities",),
+    "._sensitivity": ("Sensitivities", "SensitivityColumn", "SensitivitySystem", "inverse_dynamics", "sensitivity_system"),
     "._stickslip": ("simulate_stick_slip",),
     "._system": ("CompiledSystem", "compile_system"),
     "._phases": ("check_trajectory_along", "reaction_history_along"),
     "._reaction_columns": ("reaction_columns_along",),
     "._top_check": ("SimulationCheck", "simulation_check"),
     "._trajectory": ("Event", "Trajectory"),
+    "._batch": ("STATUS",),
+    "._compile": ("load_verified",),
+    "._forward": ("forward_jacobian",),
 }
 __getattr__, __dir__ = lazy_names(__name__, _WHERE)
 
@@ -73,10 +76,22 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from ._top_check import simulation_check as simulation_check
     from ._trajectory import Event as Event
     from ._trajectory import Trajectory as Trajectory
+    from ._batch import STATUS as STATUS
+    from ._compile import load_verified as load_verified
+    from ._contact import contact_model as contact_model
+    from ._ensemble import connect_scheduler as connect_scheduler
+    from ._forward import forward_jacobian as forward_jacobian
+    from ._impact_sweep import OUTCOMES as OUTCOMES
+    from ._sensitivity import SensitivityColumn as SensitivityColumn
+    from ._sensitivity import SensitivitySystem as SensitivitySystem
+    from ._sensitivity import inverse_dynamics as inverse_dynamics
+    from ._sensitivity import sensitivity_system as sensitivity_system
 
 __all__ = [
     "METHODS",
+    "OUTCOMES",
     "STABILIZATIONS",
+    "STATUS",
     "CompiledSystem",
     "ContactEvent",
     "Event",
@@ -86,6 +101,8 @@ __all__ = [
     "ImpactSweep",
     "InputTable",
     "Sensitivities",
+    "SensitivityColumn",
+    "SensitivitySystem",
     "SimulationCheck",
     "Switch",
     "Trajectory",
@@ -93,17 +110,23 @@ __all__ = [
     "check_trajectory_along",
     "compile_free_system",
     "compile_system",
+    "connect_scheduler",
+    "contact_model",
     "default_tolerance",
     "ensemble",
     "flip_events",
+    "forward_jacobian",
     "grid",
     "impact_sweep",
     "initial_state",
+    "inverse_dynamics",
     "load_trajectory",
+    "load_verified",
     "open_ensemble",
     "reaction_columns_along",
     "reaction_history_along",
     "save_trajectory",
+    "sensitivity_system",
     "simulate",
     "simulate_contact",
     "simulate_stick_slip",

@@ -25,9 +25,9 @@ import numpy as np
 import symengine as se
 
 from ..dynamics import EquationsOfMotion, derive
-from ..dynamics._constraints import SLIDING_SUFFIX
+from ..dynamics import SLIDING_SUFFIX
 from ..errors import ModelError, SimulationError
-from ..model._unilateral import coefficient_values_error
+from ..model import coefficient_values_error
 from ..model.spec import Model
 from ._compile import compiler
 from ._dae import ConstrainedSystem

@@ -19,10 +19,10 @@ from types import SimpleNamespace
 import numpy as np
 import symengine as se
 
-from ..dynamics._floating import FloatingForm, floating_form
+from ..dynamics import FloatingForm, floating_form
 from ..errors import SimulationError
 from ..model import Model
-from ..model._free import inertia_problem
+from ..model import inertia_problem
 from ._compile import compile_library
 from ._euler import (
     SINGULAR,

@@ -39,7 +39,7 @@ import symengine as se
 from ..analysis import Feedback
 from ..dynamics import EquationsOfMotion
 from ..errors import SimulationError
-from ..model._expr import ExpressionError, parse_expression
+from ..model import ExpressionError, parse_expression
 from ._input_callback import Callback, call
 from ._input_switch import Switch
 from ._input_table import InputTable

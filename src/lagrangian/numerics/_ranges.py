@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 import symengine as se
 
-from ..model._assumptions import SignFact, range_text
+from ..model import SignFact, range_text
 from ..model.spec import Model
 from ._trajectory import Trajectory
 

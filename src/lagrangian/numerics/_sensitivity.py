@@ -41,6 +41,7 @@ from ._system import CompiledSystem, _ptr
 
 __all__ = [
     "Sensitivities",
+    "SensitivityColumn",
     "SensitivityRun",
     "SensitivitySystem",
     "column_name",
@@ -77,7 +78,7 @@ class Sensitivities:
 
 
 @dataclass(frozen=True)
-class Column:
+class SensitivityColumn:
     """One sensitivity: its name, and the parameter (index in ``p``) or state entry it is taken to."""
 
     name: str
@@ -90,7 +91,7 @@ def column_name(state: str, name: str) -> str:
     return f"d({state})/d({name})"
 
 
-def parse_sensitivities(eom: EquationsOfMotion, names: Sequence[str]) -> list[Column]:
+def parse_sensitivities(eom: EquationsOfMotion, names: Sequence[str]) -> list[SensitivityColumn]:
     """The sensitivity columns asked for, checked.
 
     Raises
@@ -103,7 +104,7 @@ def parse_sensitivities(eom: EquationsOfMotion, names: Sequence[str]) -> list[Co
     params = [p for p in model.parameters]
     coords = [c.name for c in model.coordinates]
     states = coords + [c + "_dot" for c in coords]
-    out: list[Column] = []
+    out: list[SensitivityColumn] = []
     seen: set[str] = set()
     for name in names:
         if not isinstance(name, str):
@@ -113,7 +114,7 @@ def parse_sensitivities(eom: EquationsOfMotion, names: Sequence[str]) -> list[Co
             raise SimulationError(f"The sensitivity to `{name}` is asked for twice.", fix="give each name once")
         seen.add(name)
         if name.endswith(INITIAL) and name[: -len(INITIAL)] in states:
-            out.append(Column(name, None, states.index(name[: -len(INITIAL)])))
+            out.append(SensitivityColumn(name, None, states.index(name[: -len(INITIAL)])))
             continue
         match = [k for k, p in enumerate(params) if p.name == name]
         if match and params[match[0]].input:
@@ -123,7 +124,7 @@ def parse_sensitivities(eom: EquationsOfMotion, names: Sequence[str]) -> list[Co
                 fix=f"differentiate with respect to the parameters ({_names(params)}); to fit an input, "
                     "declare it as a parameter")
         if match:
-            out.append(Column(name, match[0], None))
+            out.append(SensitivityColumn(name, match[0], None))
             continue
         hint = f" (its initial value is `{name}{INITIAL}`)" if name in states else ""
         raise SimulationError(f"`{name}` is neither a parameter of `{model.name}` nor an initial value{hint}.",
@@ -204,7 +205,7 @@ class SensitivitySystem:
         self._lib.lg_sens_eval_jacobian(len(Y), _ptr(T), _ptr(Y), _ptr(A), _ptr(p), _ptr(out))
         return out
 
-    def run(self, p: np.ndarray, y0: np.ndarray, columns: Sequence[Column], t_out: np.ndarray, t_end: float, *,
+    def run(self, p: np.ndarray, y0: np.ndarray, columns: Sequence[SensitivityColumn], t_out: np.ndarray, t_end: float, *,
             ctl: np.ndarray, in_error_norm: bool = False, inputs: tuple[Sequence[int], np.ndarray, np.ndarray] | None
             = None, watch=None) -> SensitivityRun:
         """Integrate y and the ``columns`` from ``ctl[0]`` to ``t_end``, output at ``t_out``.
@@ -284,7 +285,7 @@ def sensitivity_system(system: CompiledSystem, parameters: Sequence[str]) -> Sen
     return mine[key]
 
 
-def sensitivity_extra(coordinates: Sequence[str], columns: Sequence[Column], S: np.ndarray
+def sensitivity_extra(coordinates: Sequence[str], columns: Sequence[SensitivityColumn], S: np.ndarray
                       ) -> dict[str, np.ndarray]:
     """The trajectory columns ``d(theta)/d(l)``, ``d(theta_dot)/d(l)``... of S (N, ns, 2n)."""
     states = [*coordinates, *(c + "_dot" for c in coordinates)]
@@ -292,7 +293,7 @@ def sensitivity_extra(coordinates: Sequence[str], columns: Sequence[Column], S: 
             for i, state in enumerate(states)}
 
 
-def with_sensitivities(traj, columns: Sequence[Column], S: np.ndarray):  # type: ignore[no-untyped-def]
+def with_sensitivities(traj, columns: Sequence[SensitivityColumn], S: np.ndarray):  # type: ignore[no-untyped-def]
     """``traj`` with the sensitivity columns added (`Trajectory.sensitivity`)."""
     extra = dict(traj.extra)
     extra.update(sensitivity_extra(traj.coordinates, columns, S))

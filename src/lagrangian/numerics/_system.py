@@ -25,8 +25,7 @@ import numpy as np
 import symengine as se
 
 from ..analysis import first_integrals
-from ..analysis._integrals import FirstIntegral
-from ..analysis._tree_integrals import tree_integrals
+from ..analysis import FirstIntegral, tree_integrals
 from ..codegen import GeneratedSource, generate_c, monitor_expressions
 from ..dynamics import EquationsOfMotion
 from ..errors import SimulationError

@@ -28,6 +28,7 @@ from typing import Any
 
 import numpy as np
 
+from .._display import render
 __all__ = ["Trajectory", "Event", "drift_scale", "relative_drift", "conservation"]
 
 
@@ -198,22 +199,16 @@ class Trajectory:
         scale = self.scales[name] if name in self.scales else drift_scale(values)
         return relative_drift(values, scale)
 
-    # -- Jupyter (IPython's display protocol; output is a later stage, imported on display) --------
+    # -- Jupyter (IPython's display protocol: drawn by the output stage, `lagrangian._display`) -------
     def _repr_html_(self) -> str:
         """A short summary table: time span, method, each coordinate's first and last value, drifts."""
-        from ..output._display import trajectory_html
-
-        return trajectory_html(self)
+        return render(self, "html")
 
     def _repr_markdown_(self) -> str:
-        from ..output._display import trajectory_markdown
-
-        return trajectory_markdown(self)
+        return render(self, "markdown")
 
     def _repr_latex_(self) -> str:
-        from ..output._display import trajectory_latex
-
-        return trajectory_latex(self)
+        return render(self, "latex")
 
     def drift_summary(self) -> str:
         """E.g. ``"E relative drift 3.1e-12, K 1.0e-13, H 0"``."""

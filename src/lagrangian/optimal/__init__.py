@@ -1,4 +1,4 @@
-"""Optimal control: the inputs, and the motion they cause, that minimize an objective (direct collocation).
+"""Stage 7 — optimal control: the inputs, and the motion they cause, that minimize an objective (direct collocation).
 
 ``optimize(model, t_end=..., initial=..., final=..., bounds=..., objective=...)`` → `OptimalTrajectory`:
 the dynamics M(q) q̈ − F(q, q̇, u) = 0 enter as implicit rows at every collocation point (no M⁻¹),

@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import ProblemError
-from ..model._toml_guard import check_nesting
+from ..model import check_nesting
 from ._problem import Problem
 
 if sys.version_info >= (3, 11):

@@ -26,7 +26,7 @@ import symengine as se
 
 from ..dynamics import EquationsOfMotion
 from ..errors import ProblemError
-from ..model._expr import ExpressionError, parse_expression
+from ..model import ExpressionError, parse_expression
 
 __all__ = [
     "T_END",

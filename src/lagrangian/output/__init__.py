@@ -1,4 +1,4 @@
-"""Stage 8 — output: the derivation in the course's notation, as text, LaTeX and JSON.
+"""Stage 7 — output: the derivation in the course's notation, as text, LaTeX and JSON.
 
 ``export`` and ``EXPORT_TARGETS`` are the code-generation stage's (`lagrangian.codegen`), re-exported here.
 """
@@ -27,7 +27,16 @@ from ._sympy_form import SympyEquations as SympyEquations
 from ._sympy_form import sympy_equations as sympy_equations
 from ._text import render_text as render_text
 
+# Shared with the command line: the course's forms, the intermediates, what derive prints besides.
+from ._course import reference_label as reference_label
+from ._course import to_sympy as to_sympy
+from ._intermediates import needed_intermediates as needed_intermediates
+from ._intermediates import render_intermediates as render_intermediates
+from ._text import Supplement as Supplement
+from ._text import supplement as supplement
+
 __all__ = ["CourseForm", "course_form", "EXPORT_TARGETS", "export", "SCHEMA_ID", "SCHEMA_VERSION", "derive_document", "render_latex",
            "LINEARIZE_SCHEMA_ID", "linearize_document",
            "Notation", "render_text", "Report", "ReportFigure", "report", "FORMATS", "format_for",
-           "SympyEquations", "sympy_equations"]
+           "SympyEquations", "sympy_equations",
+           "reference_label", "to_sympy", "needed_intermediates", "render_intermediates", "Supplement", "supplement"]

@@ -12,7 +12,7 @@ from typing import Any
 import sympy
 
 from ..dynamics import EquationsOfMotion, multiplier_formulas
-from ..dynamics._constraints import describe_constraints
+from ..dynamics import describe_constraints
 from ..model import Vector
 from ._course import to_sympy
 

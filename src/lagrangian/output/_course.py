@@ -23,7 +23,7 @@ from ..dynamics import EquationsOfMotion
 from ..model import GALILEAN_FRAME, ORIGIN, Vector
 
 __all__ = ["CourseForm", "FrameStep", "VectorRow", "EquationRow", "LoadRow", "IntegralRow", "course_form",
-           "reference_label"]
+           "reference_label", "to_sympy"]
 
 
 #: Largest expression (SymPy operation count) for which an expanded, trigonometrically

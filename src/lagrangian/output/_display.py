@@ -1,8 +1,9 @@
 r"""Jupyter display of the engine's values: rendered math in the course's notation, always bounded.
 
 `EquationsOfMotion`, `LagrangeEquation`, `FirstIntegral`, `LinearModel` and `Trajectory`
-call these from their ``_repr_latex_`` / ``_repr_markdown_`` / ``_repr_html_`` (IPython's
-display protocol; the import happens on first display).  Equations are printed as
+display themselves through ``_repr_latex_`` / ``_repr_markdown_`` / ``_repr_html_`` (IPython's
+display protocol), which call `lagrangian._display.render`: it looks the renderer up in
+`RENDERERS`, this module imported on first display.  Equations are printed as
 ``lagrangian derive --latex`` prints them (`Notation`: θ̈ is \ddot{\theta}, ψ̇² sinθ cosθ),
 e.g. the top's
 
@@ -16,16 +17,30 @@ sum is cut into lines of `LINE_WIDTH`; an equation keeps at most `FOLD_LINES` li
 from __future__ import annotations
 
 import html
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from typing import Any
 
 import numpy as np
 
+from ..analysis import FirstIntegral, LinearModel
+from ..dynamics import EquationsOfMotion, LagrangeEquation
+from ..numerics import Trajectory
 from ._notation import Notation
 from .report.document import Equation
 from .report.size import FOLD_LINES, SizeGate, wrap_latex
 
-__all__ = ["equations_latex", "equations_markdown", "equation_latex", "integral_latex", "integral_markdown",
-           "linear_model_latex", "trajectory_html", "trajectory_markdown", "trajectory_latex"]
+__all__ = [
+    "RENDERERS",
+    "equation_latex",
+    "equations_latex",
+    "equations_markdown",
+    "integral_latex",
+    "integral_markdown",
+    "linear_model_latex",
+    "trajectory_html",
+    "trajectory_latex",
+    "trajectory_markdown",
+]
 
 #: Largest state whose matrices A, B a linear model displays entry by entry.
 MATRIX_MAX = 12
@@ -180,3 +195,17 @@ def _num(x: float) -> str:
         mantissa, exp = text.split("e")
         return rf"{mantissa} \times 10^{{{int(exp)}}}"
     return text if np.isfinite(x) else r"\text{" + text + "}"
+
+
+#: The renderer of each value type and IPython form, for `lagrangian._display.render`.
+RENDERERS: dict[tuple[type, str], Callable[[Any], str]] = {
+    (EquationsOfMotion, "latex"): equations_latex,
+    (EquationsOfMotion, "markdown"): equations_markdown,
+    (LagrangeEquation, "latex"): equation_latex,
+    (FirstIntegral, "latex"): integral_latex,
+    (FirstIntegral, "markdown"): integral_markdown,
+    (LinearModel, "latex"): linear_model_latex,
+    (Trajectory, "html"): trajectory_html,
+    (Trajectory, "markdown"): trajectory_markdown,
+    (Trajectory, "latex"): trajectory_latex,
+}

@@ -14,15 +14,15 @@ from __future__ import annotations
 import symengine as se
 
 from ..dynamics import EquationsOfMotion
-from ..dynamics._recursive import RecursiveForm
-from ..model._vector import as_expr
+from ..dynamics import RecursiveForm
+from ..model.vectors import as_expr
 from ._course import to_sympy
 from ._notation import Notation
 
-__all__ = ["render_intermediates", "listed"]
+__all__ = ["needed_intermediates", "render_intermediates"]
 
 
-def listed(rec: RecursiveForm) -> list[tuple[se.Symbol, se.Basic]]:
+def needed_intermediates(rec: RecursiveForm) -> list[tuple[se.Symbol, se.Basic]]:
     """The intermediates T, U, M and F need, in computing order (the gradient's are left out)."""
     return rec.needed([rec.T, rec.U, *(e for row in rec.M for e in row), *rec.F])
 
@@ -42,7 +42,7 @@ def render_intermediates(eom: EquationsOfMotion) -> str:
         return n.text(to_sympy(as_expr(e).xreplace(names)))
 
     coordinates = [n.symbol(c) for c in eom.coordinates]
-    needed = listed(rec)
+    needed = needed_intermediates(rec)
     lines = [model.name]
     if model.description:
         lines.append(model.description)

@@ -26,7 +26,7 @@ import sympy
 
 from ..analysis import first_integrals
 from ..dynamics import EquationsOfMotion
-from ..dynamics._constraints import multiplier_formulas
+from ..dynamics import multiplier_formulas
 
 __all__ = ["SympyEquations", "sympy_equations"]
 

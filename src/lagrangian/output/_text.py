@@ -18,10 +18,10 @@ import sympy
 from .._big_numbers import has_big_numbers
 from ..analysis import energy_balance
 from ..dynamics import EquationsOfMotion, multiplier_formulas
-from ..dynamics._constraints import FORMULA_MAX_SIZE, describe_constraints
-from ..dynamics._inertial import RelativeKinematics
+from ..dynamics import FORMULA_MAX_SIZE, describe_constraints
+from ..dynamics import RelativeKinematics
 from ..model import Vector
-from ..model._assumptions import SIGN_RELATIONS, range_text
+from ..model import SIGN_RELATIONS, range_text
 from ._course import CourseForm, VectorRow, _vector_row, to_sympy
 from ._display_form import display_form
 from ._notation import Notation

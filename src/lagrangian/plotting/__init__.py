@@ -1,4 +1,4 @@
-"""Stage 8 — plots of a simulated motion, with matplotlib (the optional extra ``lagrangian[plot]``).
+"""Stage 7 — plots of a simulated motion, with matplotlib (the optional extra ``lagrangian[plot]``).
 
 ``save_plots(trajectory, eom, directory)`` writes every figure that applies:
 
@@ -41,7 +41,13 @@ from ._series import plot_phase as plot_phase
 from ._series import plot_time_series as plot_time_series
 from ._series import relative_drift as relative_drift
 
+# Shared with the command line: figures of optimized inputs, matplotlib on demand.
+from ._inputs import save_inputs_figure as save_inputs_figure
+from ._mpl import new_figure as new_figure
+from ._mpl import require_matplotlib as require_matplotlib
+
 __all__ = ["plot_bifurcation", "mode_trajectory", "save_plots", "plot_trajectory", "applicable_kinds", "figure_caption", "KINDS", "animate", "save_figure",
            "plot_time_series", "plot_phase", "plot_drift", "relative_drift", "plot_apex_sphere", "plot_nutation",
            "apex_path", "axis_angles", "turning_angles", "TurningAngles", "plot_reaction", "reactions_along",
-           "MissingPlotDependency", "plot_eigenvalue_sweep", "plot_mode_shapes", "plot_ensemble"]
+           "MissingPlotDependency", "plot_eigenvalue_sweep", "plot_mode_shapes", "plot_ensemble",
+           "save_inputs_figure", "new_figure", "require_matplotlib"]

@@ -20,8 +20,8 @@ from .._atomic import write_atomic_with
 from ..dynamics import EquationsOfMotion
 from ..errors import OutputError
 from ..numerics import Trajectory
-from ..view3d._matplotlib import Renderer
-from ..view3d._wireframe import Wireframe
+from ..view3d import Renderer
+from ..view3d import Wireframe
 from ._geometry import Samples
 
 __all__ = ["animate", "render_frames", "motion_scene", "FORMATS"]
@@ -40,7 +40,7 @@ def motion_scene(trajectory: Trajectory, eom: EquationsOfMotion, times: np.ndarr
     """The outlines of the 3-D view's scene at ``times`` (the state at each by interpolating q between the
     trajectory's samples, then every position from q, so a rod keeps its length)."""
     from ..view3d import Motion, build_scene
-    from ..view3d._wireframe import wireframe
+    from ..view3d import wireframe
 
     samples = Samples.at(trajectory, times)
     values = {p.name: p.value for p in eom.model.parameters if p.value is not None}

@@ -48,7 +48,7 @@ class TurningAngles:
 def _analysed(trajectory: Trajectory, eom: EquationsOfMotion, theta: np.ndarray) -> TurningAngles | None:
     """θ1, θ2 from the top analysis, when it exists and applies, and its θ is this axis's θ."""
     try:
-        from ..analysis._top import analyse_top  # written alongside; absent in older trees
+        from ..analysis import analyse_top  # written alongside; absent in older trees
     except ImportError:
         return None
     matches = [k for k in range(trajectory.q.shape[1])

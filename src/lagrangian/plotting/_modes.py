@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..analysis import LinearModel
-from ..analysis._linear_model import to_numpy as _to_numpy
+from ..analysis import to_numpy as _to_numpy
 from ..errors import OutputError
 from ..numerics import Trajectory
 

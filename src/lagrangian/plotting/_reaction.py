@@ -16,8 +16,8 @@ from typing import Any
 
 import numpy as np
 
-from ..analysis._newton_euler import given_efforts
-from ..analysis._reactions import ReactionHistory
+from ..analysis import given_efforts
+from ..analysis import ReactionHistory
 from ..numerics import reaction_history_along
 from ..dynamics import EquationsOfMotion
 from ..errors import OutputError

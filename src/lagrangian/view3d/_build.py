@@ -317,7 +317,7 @@ def _declared_part(b: _Builder, shape: Shape, carrier: int, origin: Vector, fram
         length = float(np.linalg.norm(axis))
         position = (a + c) / 2
         if length > 0:
-            from ..model._shapes import rotation_to
+            from ..model import rotation_to
 
             rotation = np.array(rotation_to(axis / length))
     if shape.kind == "sphere":

@@ -239,7 +239,7 @@ def inferred_parts(builder, body: Body, carrier: int, attached: dict[str, np.nda
     """Add the parts of a body the model gives no shape: the solid of its inertia at G, rods from its joint
     point to its other points, its joint.  Returns how far the body reaches from G along the line from its
     joint point (the apex of a top: where its tip is), or None when it has no such line."""
-    from ..model._shapes import rotation_to
+    from ..model import rotation_to
     from ._build import HINGE_RADIUS, JOINT_COLOR, ROD_RADIUS, _quat
     from ._scene import Part
 

@@ -6,7 +6,7 @@ run, position + unit quaternion.  *Parts* are shapes fixed to a carrier (a disk,
 box, a mesh...).  *Tracks* are points followed in R0 (O, A, G, the apex of a top), joined by
 *links* (a particle's rod to its pivot, springs, dampers) and traced; *arrows* are vectors
 along the motion (a velocity, R_O(t), a force); *arcs* mark the course's angles at the initial
-configuration.  The browser's viewer (`lagrangian.view3d._html`) and the matplotlib animation
+configuration.  The browser's viewer (`lagrangian.view3d.html`) and the matplotlib animation
 (`lagrangian.view3d._wireframe`) both draw from it, so they cannot disagree.
 
 `Scene.document` is its JSON form: numbers of poses and tracks as float32 in base64, the

@@ -23,7 +23,7 @@ __all__ = ["still_by_browser", "still_png"]
 
 def still_by_browser(scene: Scene, *, width: int, height: int, time: float | None = None) -> bytes:
     """The page of ``scene`` photographed by headless Chromium at ``time`` (its controls hidden)."""
-    from ._html import page
+    from .html import page
 
     with tempfile.TemporaryDirectory(prefix="lagrangian-still-") as folder:
         path = Path(folder) / "view.html"

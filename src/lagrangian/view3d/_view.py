@@ -37,7 +37,7 @@ class View:
 
     def html(self) -> str:
         """One self-contained HTML page: three.js, the viewer and the scene inline; it requests nothing."""
-        from ._html import page
+        from .html import page
 
         return page(self.scene)
 
@@ -161,6 +161,6 @@ def view(motion: Any, model: Any = None, *, ghosts: Sequence[Trajectory] = (), b
 
 
 def _title(model: Model, lang: str) -> str:
-    from ..model._texts import in_language
+    from ..model import in_language
 
     return in_language(model.title, lang) or model.name

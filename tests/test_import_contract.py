@@ -1,0 +1,354 @@
+"""The import contract: how the package's modules may import one another.
+
+Every import in ``src/lagrangian`` is read — at module level, inside functions, under
+``TYPE_CHECKING`` or ``try``, and ``importlib.import_module("lagrangian...")`` with a literal
+name — and checked against three rules:
+
+1. **Imports flow one way along the stages** (`STAGES`): a module imports its own stage or an
+   earlier one, never a later one, not even lazily inside a function.  Packages that share a stage
+   are independent, except for the edges listed in `PEERS`.  The top-level modules (``errors``,
+   ``_atomic``, ``_lazy``, ...) are stage 0: they import nothing but each other.  The package face
+   ``lagrangian/__init__.py`` is above every stage: nothing inside the package imports it, but for
+   its metadata (``__version__``), which is plain data set by the face, not a stage's API.
+2. **No module imports the face of a package it belongs to** (``from . import X`` inside
+   ``analysis/``, ``from ..output import X`` inside ``output/report/``): the face imports its
+   modules, so the reverse import is a circle package ↔ module.  Importing a sibling *module*
+   (``from . import _sibling``) is an ordinary import and allowed.
+3. **Private is private to its package**: a module or name whose path has a component starting
+   with ``_`` (``model._vector``, ``model.spec._helper``) may be imported only from inside the
+   package that holds it.  Other packages use the package's face (``from ..model import Vector``),
+   and only the names of its ``__all__``, or one of its public modules (``lagrangian.model.spec``,
+   ``lagrangian.model.vectors``).  A private name of a module is private to the module's package,
+   as siblings share helpers; the top-level private modules (``lagrangian._atomic``) are shared by
+   the whole package.
+
+`EXCEPTIONS` lists, with the reason, the few imports that break a rule by design; `PENDING`
+lists those that wait for work in progress on the files concerned, to be removed as it lands.
+Each entry must still match an import: a stale entry fails, so both lists only shrink.
+"""
+
+from __future__ import annotations
+
+import ast
+import functools
+from dataclasses import dataclass
+from pathlib import Path
+
+import pytest
+
+SRC = Path(__file__).resolve().parents[1] / "src"
+PACKAGE = SRC / "lagrangian"
+
+#: The pipeline's stages, in import order: model file → kinematics → Lagrange's equations →
+#: analysis → symbols to code → compiled simulation → what is made of the results → command line.
+STAGES = {
+    "model": 1,
+    "kinematics": 2,
+    "dynamics": 3,
+    "analysis": 4,
+    "codegen": 5,
+    "numerics": 6,
+    "output": 7, "plotting": 7, "view3d": 7, "optimal": 7, "identification": 7,
+    "cli": 8,
+}
+#: The top-level modules (``lagrangian/errors.py``, ``_atomic.py``, ...): the foundation.
+FOUNDATION = 0
+#: ``lagrangian/__init__.py``, which re-exports every stage's public names.
+FACE = 9
+
+#: The imports allowed between packages of one stage (importer, imported); they form no circle.
+PEERS = {
+    ("output", "view3d"),  # the report's 3-D stills and the page of a motion
+    ("plotting", "view3d"),  # `animate` draws the `Scene` that the 3-D page draws
+    ("plotting", "output"),  # figures labelled in the course's notation
+}
+
+#: Imports that break a rule by design: (importing module, imported module or module.name): why.
+EXCEPTIONS: dict[tuple[str, str], str] = {
+    ("lagrangian._display", "lagrangian.output._display.RENDERERS"):
+        "Jupyter asks a value of an early stage (equations, integrals, a linear model, a trajectory) for its "
+        "display, which is drawn in the course's notation, bounded in size, by output. The values' display "
+        "methods call `lagrangian._display.render`, which imports output's table on first display: the one "
+        "upward import for every display, made on use and with no registration at import time.",
+    ("lagrangian.dynamics._lagrange", "lagrangian.output.sympy_equations"):
+        "`EquationsOfMotion.to_sympy()`, the interop users look for on the equations; the conversion also "
+        "gives the first integrals (analysis), so it lives in output and is imported on use.",
+    ("lagrangian.analysis._modes", "lagrangian.numerics.impact_sweep"):
+        "`sweep(model, name, values, t_end=...)` given a model with unilateral contacts maps its impacts "
+        "(one verb for both sweeps, docs/contacts.md); the simulation it needs is numerics', imported on use.",
+}
+
+#: Imports that break a rule in files other work is rewriting; the entry goes when that work lands.
+PENDING: dict[tuple[str, str], str] = {
+    # The one simulate (numerics/_simulate.py, _dae.py, _stickslip.py, _projection.py rewritten; the JAX
+    # ensemble backend moved into numerics and registered there): import the model's and dynamics' names
+    # from their faces (all exported), export what other stages use from the numerics face, and drop the
+    # registration from output's face and the import of output from numerics/_ensemble.py.
+    ("lagrangian.numerics._simulate", "lagrangian.model._assumptions.check_sign"): "use lagrangian.model",
+    ("lagrangian.numerics._simulate", "lagrangian.model._expr.ExpressionError"): "use lagrangian.model",
+    ("lagrangian.numerics._simulate", "lagrangian.model._expr.parse_expression"): "use lagrangian.model",
+    ("lagrangian.numerics._stickslip", "lagrangian.dynamics._constraints.multiplier_formulas"): "use lagrangian.dynamics",
+    ("lagrangian.numerics._stickslip", "lagrangian.dynamics._friction.SlidingDirection"): "use lagrangian.dynamics",
+    ("lagrangian.numerics._stickslip", "lagrangian.dynamics._friction.sliding_direction"): "use lagrangian.dynamics",
+    ("lagrangian.numerics._stickslip", "lagrangian.model._constraints.Constraint"): "use lagrangian.model",
+    ("lagrangian.numerics._stickslip", "lagrangian.model._constraints.ReactionSpec"): "use lagrangian.model",
+    ("lagrangian.identification._identify", "lagrangian.numerics._simulate.control_block"): "numerics face",
+    ("lagrangian.identification._shooting", "lagrangian.numerics._simulate.control_block"): "numerics face",
+    ("lagrangian.optimal._replay", "lagrangian.numerics._dae.ConstrainedSystem"): "numerics face",
+    ("lagrangian.optimal._replay", "lagrangian.numerics._projection.project"): "numerics face",
+    ("lagrangian.output", "lagrangian.numerics._ensemble.register_backend"): "JAX backend registered in numerics",
+    ("lagrangian.numerics._ensemble", "lagrangian.output"): "JAX backend registered in numerics",
+    # The report's subpackage (output/report/, being renamed): import from the stages' faces, where every
+    # name below is exported, and from the public modules lagrangian.model.vectors and
+    # lagrangian.view3d.html; then delete the shims model/_vector.py and view3d/_html.py.
+    ("lagrangian.output.report", "lagrangian.model._texts.in_language"): "use lagrangian.model",
+    ("lagrangian.output.report.build", "lagrangian.model._texts.in_language"): "use lagrangian.model",
+    ("lagrangian.output.report.document", "lagrangian.view3d._still.still_png"): "use lagrangian.view3d",
+    ("lagrangian.output.report.joints", "lagrangian.dynamics._constraints.describe_constraints"): "use lagrangian.dynamics",
+    ("lagrangian.output.report.joints", "lagrangian.model._vector.AXES"): "use lagrangian.model.vectors",
+    ("lagrangian.output.report.render.html", "lagrangian.view3d._html.CSP"): "use lagrangian.view3d.html",
+    ("lagrangian.output.report.render.html", "lagrangian.view3d._html.fragment"): "use lagrangian.view3d.html",
+    ("lagrangian.output.report.render.html", "lagrangian.view3d._html.library"): "use lagrangian.view3d.html",
+    ("lagrangian.output.report.size", "lagrangian.model._vector.as_expr"): "use lagrangian.model.vectors",
+    ("lagrangian.output.report.steps.contact", "lagrangian.analysis._newton_euler.given_efforts"): "use lagrangian.analysis",
+    ("lagrangian.output.report.steps.equations", "lagrangian.analysis._energy_balance.PowerTerm"): "use lagrangian.analysis",
+    ("lagrangian.output.report.steps.equations", "lagrangian.analysis._energy_balance.energy_balance"):
+        "use lagrangian.analysis",
+    ("lagrangian.output.report.steps.equations", "lagrangian.dynamics._constraints.multiplier_formulas"):
+        "use lagrangian.dynamics",
+    ("lagrangian.output.report.steps.forces", "lagrangian.dynamics._inertial.inertial_torsors"): "use lagrangian.dynamics",
+    ("lagrangian.output.report.steps.kinematics", "lagrangian.dynamics._inertial.RelativeKinematics"):
+        "use lagrangian.dynamics",
+    ("lagrangian.output.report.steps.small_motions", "lagrangian.analysis._closed_small_motions.closed_point"):
+        "use lagrangian.analysis",
+    ("lagrangian.output.report.steps.small_motions", "lagrangian.analysis._closed_small_motions.pulsations_squared"):
+        "use lagrangian.analysis",
+    ("lagrangian.output.report.steps.statement", "lagrangian.dynamics._constraints.describe_constraints"):
+        "use lagrangian.dynamics",
+    ("lagrangian.output.report.steps.statement", "lagrangian.model._texts.in_language"): "use lagrangian.model",
+}
+
+
+@dataclass(frozen=True)
+class Import:
+    """One imported module or name: ``module`` is resolved to its absolute dotted name."""
+
+    importer: str  # dotted name of the importing module (a package's face: its package name)
+    path: Path
+    line: int
+    module: str  # lagrangian.model._vector
+    name: str | None  # Vector, or None for ``import module`` and for submodules
+
+    @property
+    def target(self) -> str:
+        return self.module + ("." + self.name if self.name else "")
+
+
+def _module_name(path: Path) -> tuple[str, tuple[str, ...]]:
+    """The dotted name of a file and the package that relative imports start from."""
+    parts = path.relative_to(SRC).with_suffix("").parts
+    if parts[-1] == "__init__":
+        return ".".join(parts[:-1]), parts[:-1]
+    return ".".join(parts), parts[:-1]
+
+
+def _is_module(dotted: str) -> bool:
+    where = SRC.joinpath(*dotted.split("."))
+    return where.with_suffix(".py").is_file() or (where / "__init__.py").is_file()
+
+
+def _is_package(dotted: str) -> bool:
+    return (SRC.joinpath(*dotted.split(".")) / "__init__.py").is_file()
+
+
+@functools.cache
+def all_imports() -> tuple[Import, ...]:
+    """Every import of a `lagrangian` module or name in the package, at any depth of the code."""
+    found = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        importer, package = _module_name(path)
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Import):
+                found += [Import(importer, path, node.lineno, a.name, None) for a in node.names
+                          if a.name.split(".")[0] == "lagrangian"]
+            elif (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)
+                  and node.func.attr == "import_module" and node.args
+                  and isinstance(node.args[0], ast.Constant) and isinstance(node.args[0].value, str)
+                  and node.args[0].value.split(".")[0] == "lagrangian"):
+                # importlib.import_module("lagrangian.output"): an import all the same
+                found.append(Import(importer, path, node.lineno, node.args[0].value, None))
+            elif isinstance(node, ast.ImportFrom):
+                if node.level:
+                    base = package[:len(package) - (node.level - 1)]
+                    assert base, f"{path}:{node.lineno} imports above the package"
+                    module = ".".join(base) + ("." + node.module if node.module else "")
+                else:
+                    module = node.module or ""
+                if module.split(".")[0] != "lagrangian":
+                    continue
+                for alias in node.names:
+                    if alias.name != "*" and _is_module(f"{module}.{alias.name}"):
+                        found.append(Import(importer, path, node.lineno, f"{module}.{alias.name}", None))
+                    else:
+                        found.append(Import(importer, path, node.lineno, module, alias.name))
+    return tuple(found)
+
+
+def stage_of(dotted: str) -> tuple[int, str]:
+    """The stage of a module and the name of its stage package (``""`` for the foundation)."""
+    parts = dotted.split(".")
+    if len(parts) == 1:
+        return FACE, ""
+    if parts[1] in STAGES:
+        return STAGES[parts[1]], parts[1]
+    assert not _is_package(f"lagrangian.{parts[1]}"), f"lagrangian.{parts[1]} has no stage: add it to STAGES"
+    return FOUNDATION, ""
+
+
+def _dunder(name: str) -> bool:
+    return name.startswith("__") and name.endswith("__")
+
+
+def _within(module: str, package: str) -> bool:
+    return module == package or module.startswith(package + ".")
+
+
+@functools.cache
+def _public_names(module: str) -> frozenset[str]:
+    """The ``__all__`` of a module, read from its source (importing every face would take seconds).
+
+    A ``*name`` in the list is another module's ``__all__`` imported as ``name`` (``model``'s
+    ``*_spec_all``, from ``.spec``).
+    """
+    where = SRC.joinpath(*module.split("."))
+    path = where / "__init__.py" if where.is_dir() else where.with_suffix(".py")
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    package = module if path.name == "__init__.py" else module.rsplit(".", 1)[0]
+    sources = {a.asname: f"{package}.{n.module}" for n in tree.body if isinstance(n, ast.ImportFrom) and n.level == 1
+               for a in n.names if a.name == "__all__" and a.asname}
+    names: set[str] = set()
+    for node in tree.body:
+        value = (node.value if isinstance(node, ast.Assign) and any(getattr(t, "id", "") == "__all__" for t in node.targets)
+                 else node.value if isinstance(node, ast.AugAssign) and getattr(node.target, "id", "") == "__all__"
+                 else None)
+        for element in getattr(value, "elts", ()):
+            if isinstance(element, ast.Constant):
+                names.add(element.value)
+            elif isinstance(element, ast.Starred) and isinstance(element.value, ast.Name):
+                names |= _public_names(sources[element.value.id])
+    return frozenset(names)
+
+
+def violations(imp: Import) -> list[str]:
+    """What ``imp`` breaks in the contract, as sentences (none when it keeps to it)."""
+    found = []
+    stage, package = stage_of(imp.importer)
+    face_import = imp.name is not None and _is_package(imp.module)
+    if imp.module == "lagrangian" and imp.name is not None:
+        target_stage, target_package = (FOUNDATION if _dunder(imp.name) else FACE), ""
+    else:
+        target_stage, target_package = stage_of(imp.module)
+    if target_stage > stage:
+        found.append(f"imports {imp.target}, of a later stage ({target_stage} > {stage})")
+    elif (target_stage == stage and package != target_package and stage != FOUNDATION
+          and (package, target_package) not in PEERS):
+        found.append(f"imports {imp.target}: {package} and {target_package} share stage {stage} "
+                     "with no declared edge (PEERS)")
+    if face_import and _within(imp.importer, imp.module) and not _dunder(imp.name or ""):
+        found.append(f"imports {imp.name} from the face of its own package {imp.module}: an import circle")
+    if (face_import and not _within(imp.importer, imp.module) and not _dunder(imp.name or "")
+            and not (imp.name or "").startswith("_") and imp.name not in _public_names(imp.module)):
+        found.append(f"imports {imp.target}, which {imp.module} does not list in its __all__")
+    parts = imp.target.split(".")
+    private = next((k for k, p in enumerate(parts) if p.startswith("_") and not p.startswith("__")), None)
+    if private is not None:
+        scope = ".".join(parts[:private])
+        if not _is_package(scope):  # a private name of a module: private to the module's package
+            scope = scope.rsplit(".", 1)[0]
+        if not _within(imp.importer, scope):
+            found.append(f"imports {imp.target}, private to {scope}")
+    return found
+
+
+@functools.cache
+def _broken() -> dict[tuple[str, str], list[str]]:
+    broken: dict[tuple[str, str], list[str]] = {}
+    for imp in all_imports():
+        for why in violations(imp):
+            broken.setdefault((imp.importer, imp.target), []).append(
+                f"{imp.path.relative_to(SRC)}:{imp.line}: {why}")
+    return broken
+
+
+def test_every_import_names_a_module_that_exists() -> None:
+    # Also the imports inside functions, which run only on some paths (a report with a given
+    # constraint): after modules move, a stale `..model._x` would fail only there.
+    missing = [f"{imp.path.relative_to(SRC)}:{imp.line}: no module {imp.module}" for imp in all_imports()
+               if not _is_module(imp.module)]
+    assert not missing, "\n".join(missing)
+
+
+def test_every_stage_package_is_known() -> None:
+    packages = {p.parent.name for p in PACKAGE.glob("*/__init__.py")}
+    assert packages <= set(STAGES), f"packages without a stage: {sorted(packages - set(STAGES))}"
+
+
+def test_peers_form_no_circle() -> None:
+    assert all(STAGES[a] == STAGES[b] for a, b in PEERS)
+    reach = {a: {b for x, b in PEERS if x == a} for a, _ in PEERS}
+    for _ in PEERS:  # the transitive closure, one step per edge at most
+        reach = {a: bs | {c for b in bs for c in reach.get(b, ())} for a, bs in reach.items()}
+    assert not [a for a, bs in reach.items() if a in bs], reach
+
+
+def test_imports_keep_to_the_contract() -> None:
+    broken = _broken()
+    allowed = EXCEPTIONS.keys() | PENDING.keys()
+    unexpected = [line for key, lines in sorted(broken.items()) if key not in allowed for line in lines]
+    assert not unexpected, f"{len(unexpected)} imports break the contract:\n" + "\n".join(unexpected)
+
+
+@pytest.mark.parametrize("listed", [EXCEPTIONS, PENDING], ids=["exceptions", "pending"])
+def test_listed_imports_still_break_a_rule(listed: dict[tuple[str, str], str]) -> None:
+    # An entry whose import is gone (or now allowed) is removed, so the lists only shrink.
+    stale = sorted(set(listed) - set(_broken()))
+    assert not stale, f"entries that no longer match a forbidden import: {stale}"
+
+
+def test_package_docstrings_number_the_stages_as_the_contract() -> None:
+    for name, stage in STAGES.items():
+        face = PACKAGE / name / "__init__.py"
+        if face.is_file():
+            doc = ast.get_docstring(ast.parse(face.read_text(encoding="utf-8"))) or ""
+            assert doc.startswith(f"Stage {stage} — "), f"{face}: {doc.splitlines()[0] if doc else doc!r}"
+
+
+# -- the checker itself, on hand-written imports -------------------------------------------------
+
+def _imp(importer: str, module: str, name: str | None = None) -> Import:
+    return Import(importer, PACKAGE / "x.py", 1, module, name)
+
+
+def test_the_checker_finds_each_kind_of_break() -> None:
+    assert violations(_imp("lagrangian.dynamics._lagrange", "lagrangian.output._display", "equations_latex"))
+    assert any("stage 7" in v for v in violations(_imp("lagrangian.optimal._solve", "lagrangian.identification")))
+    assert any("circle" in v for v in violations(_imp("lagrangian.analysis._modes", "lagrangian.analysis", "sweep")))
+    assert any("circle" in v for v in violations(_imp("lagrangian.output.report.build", "lagrangian.output",
+                                                      "Notation")))
+    assert any("private to lagrangian.model" in v
+               for v in violations(_imp("lagrangian.dynamics._energy", "lagrangian.model._frames")))
+    assert any("private to lagrangian.model" in v
+               for v in violations(_imp("lagrangian.dynamics._energy", "lagrangian.model.spec", "_check")))
+    assert any("__all__" in v for v in violations(_imp("lagrangian.analysis._modes", "lagrangian.dynamics", "se")))
+    assert any("later stage" in v for v in violations(_imp("lagrangian.errors", "lagrangian.model")))
+    assert any("later stage" in v for v in violations(_imp("lagrangian.cli.main", "lagrangian", "derive")))
+
+
+def test_the_checker_allows_what_the_contract_allows() -> None:
+    assert not violations(_imp("lagrangian.dynamics._energy", "lagrangian.model", "Vector"))
+    assert not violations(_imp("lagrangian.dynamics._energy", "lagrangian.model.spec", "Body"))
+    assert not violations(_imp("lagrangian.model._toml", "lagrangian.model._expr", "_helper"))
+    assert not violations(_imp("lagrangian.analysis._modes", "lagrangian.analysis._linear_model"))  # a sibling
+    assert not violations(_imp("lagrangian.numerics._files", "lagrangian._atomic", "write_atomic"))
+    assert not violations(_imp("lagrangian.plotting._apex", "lagrangian.view3d", "Scene"))
+    assert not violations(_imp("lagrangian.cli.main", "lagrangian", "__version__"))
