@@ -99,7 +99,7 @@ class Equilibrium:
     aliases: tuple[Mapping[str, float], ...] = ()
 
 
-class Equilibria(tuple):  # type: ignore[type-arg]
+class Equilibria(tuple):
     """The equilibria found (a tuple of `Equilibrium`), with ``search``: what was searched (`EquilibriumSearch`)."""
 
     search: EquilibriumSearch
@@ -208,7 +208,7 @@ def _identify(system: StaticSystem, out: list[Equilibrium], numbers: Mapping[se.
         else:
             groups.append([e])
 
-    def key(e: Equilibrium) -> tuple:  # type: ignore[type-arg]
+    def key(e: Equilibrium) -> tuple:
         negative = sum(1 for n, v in e.numeric.items() if n not in angles and v < -1e-12)
         return (negative, not e.closed_form, sum(1 for v in e.numeric.values() if v < -1e-12))
 

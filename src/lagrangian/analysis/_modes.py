@@ -167,7 +167,7 @@ def modes(lin: LinearModel, **values: float) -> Modes:
     return Modes(state, essential, tuple(out), tuple(neutral), pulsations, shapes, zero)
 
 
-def _second_order_numeric(lin: LinearModel, values: dict, essential: Sequence[str]):  # type: ignore[no-untyped-def]
+def _second_order_numeric(lin: LinearModel, values: dict, essential: Sequence[str]):
     """(coordinates, M, D, G, K, N) restricted to the essential coordinates, when the essential
     state is exactly those coordinates and their rates; else None."""
     form = lin.second_order
@@ -182,7 +182,7 @@ def _second_order_numeric(lin: LinearModel, values: dict, essential: Sequence[st
     return (E, *mats)
 
 
-def _conservative(lin: LinearModel, values: dict, lam: np.ndarray):  # type: ignore[no-untyped-def]
+def _conservative(lin: LinearModel, values: dict, lam: np.ndarray):
     """The pulsations ω > 0 with det(K − ω² M) = 0 and their shapes φ, for a conservative linearization
     (D = G = N = 0, K ≥ 0); else (None, None).
 
@@ -344,7 +344,7 @@ class Sweep:
     changes: tuple[StabilityChange, ...]
 
 
-def _compiled(lin: LinearModel, name: str, fixed: dict[str, float]):  # type: ignore[no-untyped-def]
+def _compiled(lin: LinearModel, name: str, fixed: dict[str, float]):
     """A(value) as a compiled function of the swept parameter (one SymEngine Lambdify, CSE)."""
     syms = {str(s): s for s in lin.symbols}
     if name not in syms:
@@ -366,7 +366,7 @@ def _compiled(lin: LinearModel, name: str, fixed: dict[str, float]):  # type: ig
     return lambda x: np.asarray(fn([x]), dtype=float).reshape(n, n)
 
 
-def _bisect(same_as_left, a: float, b: float) -> float:  # type: ignore[no-untyped-def]
+def _bisect(same_as_left, a: float, b: float) -> float:
     """The point between a and b where ``same_as_left`` turns false, to the last representable digit."""
     lo, hi = a, b
     for _ in range(200):
@@ -403,7 +403,7 @@ def sweep(lin: LinearModel, name: str, values: Sequence[float], **fixed: float) 
                                      "unilateral contacts and t_end.",
                                      fix='e.g. sweep(linearize(eom, point, symbolic=("Omega",)), "Omega", values), '
                                          'or sweep("examples/bouncing_ball.toml", "e", values, t_end=10)')
-        return impact_sweep(lin, {name: values}, t_end, **fixed)  # type: ignore[return-value]
+        return impact_sweep(lin, {name: values}, t_end, **fixed)
     values = np.asarray(values, dtype=float)
     if values.ndim != 1 or values.size == 0:
         raise LinearizationError("the sweep has no point.", fix="give a range with at least one value, e.g. v=0:10:0.01")

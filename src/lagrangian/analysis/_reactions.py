@@ -210,7 +210,7 @@ def reactions(source: Verification | EquationsOfMotion, *, display: bool = True)
     return tuple(out)
 
 
-def _need_masses(model, bodies: Sequence[str]) -> None:  # type: ignore[no-untyped-def]
+def _need_masses(model, bodies: Sequence[str]) -> None:
     """A reaction takes Σ m γ(G) and the weights of its group: each body needs its mass.
 
     A body may leave its mass out when its centre is fixed (the Lagrange equations do not

@@ -143,7 +143,7 @@ def _energy_potential(eom: EquationsOfMotion, off: Sequence[str], held: Sequence
     constant = {se.Symbol(u) for u in held}
     inputs = {p.symbol for p in eom.model.parameters if p.input}
 
-    def potential_of(f) -> se.Basic | None:  # type: ignore[no-untyped-def]
+    def potential_of(f) -> se.Basic | None:
         if all(q.xreplace(zero) == 0 for q in f.Q):
             return se.Integer(0)  # it vanishes with the inputs off
         if f.potential is not None:
@@ -175,7 +175,7 @@ def _energy_potential(eom: EquationsOfMotion, off: Sequence[str], held: Sequence
     return se.Add(*extra)
 
 
-def _rigid_motions(eom: EquationsOfMotion, states: Sequence[dict]):  # type: ignore[no-untyped-def]
+def _rigid_motions(eom: EquationsOfMotion, states: Sequence[dict]):
     """(kind, axis, ξ at the states, ξ̇ at the states) of each rigid translation or rotation the coordinates
     can follow, ξ solved numerically from Σ_i ∂V(P)/∂q̇_i ξ_i = e (or e ∧ OP), Σ_i ∂Ω(S)/∂q̇_i ξ_i = 0 (or e)
     (`_noether`), ξ̇ = Σ_j ∂ξ/∂q_j q̇_j by a central difference along q̇."""

@@ -45,7 +45,7 @@ def _with_settings(model: Model, settings: list[str]) -> tuple[Model, dict[str, 
 
 
 
-def _figures(eom, t_end: float, parameters: dict[str, float], initial: dict[str, float],  # type: ignore[no-untyped-def]
+def _figures(eom, t_end: float, parameters: dict[str, float], initial: dict[str, float],
              lang: str) -> tuple[list, object]:
     from ..numerics import simulate
     from ..plotting import applicable_kinds, figure_caption, plot_trajectory

@@ -169,7 +169,7 @@ def run(args: argparse.Namespace) -> str:
     return text.getvalue()
 
 
-def describe_inputs(inputs, model) -> str:  # type: ignore[no-untyped-def]
+def describe_inputs(inputs, model) -> str:
     """``F = 2*sin(3*t), G = feedback`` for the summary: the inputs given, then the model's [controls]."""
     from ..analysis import Feedback
     from ..numerics import Switch

@@ -36,12 +36,12 @@ def _zoo_model(name: str) -> Model:
     if not sized:
         if size:
             raise ModelError(f"`{name}`: `{key}` takes no size.", fix=f"write zoo:{key}")
-        return make()  # type: ignore[call-arg]
+        return make()
     # ASCII digits only: "²".isdigit() is true but int("²") fails; at most 3 digits before int().
     if not (size.isascii() and size.isdigit() and len(size) <= 3) or not 1 <= int(size) <= zoo.MAX_LINKS:
         raise ModelError(f"`{_short(name)}`: `{key}` needs a number of links N from 1 to {zoo.MAX_LINKS}.",
                          fix=f"write e.g. zoo:{key}:3 (digits 0-9, N ≤ {zoo.MAX_LINKS})")
-    return make(int(size))  # type: ignore[call-arg]
+    return make(int(size))
 
 
 def _short(text: str) -> str:

@@ -247,7 +247,7 @@ class _TreeBuilder:
         return total
 
     # -- composite inertias (CRBA) -------------------------------------------------------------------
-    def composite(self):  # type: ignore[no-untyped-def]
+    def composite(self):
         """(mass, first moment about the origin, inertia about the origin) of each node's subtree."""
         w, nodes = self.w, self.tree.nodes
         mass = [nd.mass for nd in nodes]
@@ -313,7 +313,7 @@ class _TreeBuilder:
                     up, d = self.up[a], nodes[a].offset
                     fv = w.vec(up(fv))
                     nv = w.vec(_add3(up(nv), _cross(d, fv)))
-                    a, same = nodes[a].parent, False  # type: ignore[assignment]
+                    a, same = nodes[a].parent, False
         return [[sum_of(M[i][j]) for j in range(n)] for i in range(n)]
 
     # -- monitors ----------------------------------------------------------------------------------

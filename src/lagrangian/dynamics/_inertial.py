@@ -150,7 +150,7 @@ class InertialTorsor:
 def _matvec(pi: tuple[tuple[se.Basic, ...], ...], w: Components) -> Components:
     return tuple(sum_of([pi[k][m] * w[m] for m in range(3)
                          if not is_structural_zero(pi[k][m]) and not is_structural_zero(w[m])])
-                 for k in range(3))  # type: ignore[return-value]
+                 for k in range(3))
 
 
 def _cross(a: Components, b: Components) -> Components:

@@ -180,15 +180,15 @@ def tree_structure(kin: Kinematics) -> TreeStructure | str:
             rates = _affine(kin, piece)
             if rates is None:
                 return f"the position of `{name}` is not affine in the coordinates in frame `{frame}`"
-            nodes[c].offset = tuple(piece)  # type: ignore[assignment]
-            nodes[c].offset_rates = {j: tuple(u) for j, u in rates.items()}  # type: ignore[misc]
+            nodes[c].offset = tuple(piece)
+            nodes[c].offset_rates = {j: tuple(u) for j, u in rates.items()}
             offset_set.add(c)
         own = pieces.get(home, _ZERO3)
         rates = _affine(kin, own)
         if rates is None:
             return f"the position of `{name}` is not affine in the coordinates in frame `{home}`"
-        leaf = _Node(name, index[home], offset=tuple(own), mass=mass, frame=home,  # type: ignore[arg-type]
-                     offset_rates={j: tuple(u) for j, u in rates.items()})  # type: ignore[misc]
+        leaf = _Node(name, index[home], offset=tuple(own), mass=mass, frame=home,
+                     offset_rates={j: tuple(u) for j, u in rates.items()})
         if body is not None:
             _, pi_g = rigid_inertia(kin, body)  # checks the inertia (physical, at a point of the body)
             given = body.inertia
@@ -265,7 +265,7 @@ class _Names:
         return name
 
     def vec(self, v: Sequence[se.Basic]) -> Vec:
-        return tuple(self(c) for c in v)  # type: ignore[return-value]
+        return tuple(self(c) for c in v)
 
 
 def _dot(a: Sequence[se.Basic], b: Sequence[se.Basic]) -> se.Basic:
@@ -273,19 +273,19 @@ def _dot(a: Sequence[se.Basic], b: Sequence[se.Basic]) -> se.Basic:
 
 
 def _scale(k: se.Basic, v: Vec) -> Vec:
-    return tuple(_ZERO if type(c) is _ZERO_TYPE else k * c for c in v)  # type: ignore[return-value]
+    return tuple(_ZERO if type(c) is _ZERO_TYPE else k * c for c in v)
 
 
 def _matvec(pi: tuple[Vec, Vec, Vec] | None, w: Vec) -> Vec:
     if pi is None:
         return _ZERO3
-    return tuple(_dot(row, w) for row in pi)  # type: ignore[return-value]
+    return tuple(_dot(row, w) for row in pi)
 
 
 def _unit(axis: int, k: se.Basic) -> Vec:
     out = [_ZERO, _ZERO, _ZERO]
     out[axis] = k
-    return tuple(out)  # type: ignore[return-value]
+    return tuple(out)
 
 
 @dataclass(frozen=True)
@@ -499,7 +499,7 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
         if node.axis is not None:
             mass[k] = w(mass[k])
             first[k] = w.vec(first[k])
-            inertia[k] = [[w(inertia[k][r][c]) if c >= r else None for c in range(3)] for r in range(3)]  # type: ignore[misc]
+            inertia[k] = [[w(inertia[k][r][c]) if c >= r else None for c in range(3)] for r in range(3)]
             for r in range(3):
                 for c in range(r):
                     inertia[k][r][c] = inertia[k][c][r]
@@ -530,13 +530,13 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
     above = [False] * count  # some strict ancestor of the node moves with a coordinate
     for k in range(1, count):
         p = nodes[k].parent
-        above[k] = above[p] or bool(occurrences[p])  # type: ignore[index]
+        above[k] = above[p] or bool(occurrences[p])
     M: list[list[list[se.Basic]]] = [[[] for _ in range(n)] for _ in range(n)]
     for k in range(1, count):
         for rank, (i, S_w, S_v) in enumerate(occurrences[k]):
             J = inertia[k]
             fv = w.vec(_add3(_scale(mass[k], S_v), _cross(S_w, first[k])))  # I^c S: force and moment
-            nv = w.vec(_add3(tuple(_dot(J[r], S_w) for r in range(3)), _cross(first[k], S_v)))  # type: ignore[arg-type]
+            nv = w.vec(_add3(tuple(_dot(J[r], S_w) for r in range(3)), _cross(first[k], S_v)))
             a, same = k, True
             while a:
                 for idx, (j, T_w, T_v) in enumerate(occurrences[a]):
@@ -553,7 +553,7 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
                 up, d = to_parent[a], nodes[a].offset
                 fv = w.vec(up(fv))
                 nv = w.vec(_add3(up(nv), _cross(d, fv)))
-                a, same = nodes[a].parent, False  # type: ignore[assignment]
+                a, same = nodes[a].parent, False
     M_out = tuple(tuple(sum_of(M[i][j]) for j in range(n)) for i in range(n))
     aba = articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, couples, Q_other,
                                     (mass, first, inertia), kin.q)

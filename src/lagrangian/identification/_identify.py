@@ -146,7 +146,7 @@ def identify(
     return _shoot(eom, meas, fitted, base, guess, bounds, initial, noise, derivatives, shooting)
 
 
-def _equations(source) -> EquationsOfMotion:  # type: ignore[no-untyped-def]
+def _equations(source) -> EquationsOfMotion:
     if isinstance(source, EquationsOfMotion):
         return source
     if isinstance(source, (str, Path)):
@@ -229,7 +229,7 @@ def _values(model: Model, fitted: Sequence[str], meas: Measurements, values: Map
     return out
 
 
-def _shoot(eom, meas, fitted, base, guess, bounds, initial, noise, derivatives, shooting) -> Identification:  # type: ignore[no-untyped-def]
+def _shoot(eom, meas, fitted, base, guess, bounds, initial, noise, derivatives, shooting) -> Identification:
     from ..numerics._sensitivity import sensitivity_system
     from ..numerics._simulate import control_block
     from ..numerics._system import CompiledSystem

@@ -47,7 +47,7 @@ def _turn(axis: int, c: se.Basic, s: se.Basic, v: Components) -> Components:
         out[i], out[j] = -s * vj, c * vj
     else:
         out[i], out[j] = c * vi - s * vj, s * vi + c * vj
-    return tuple(out)  # type: ignore[return-value]
+    return tuple(out)
 
 
 def _turn_about(n: Components, c: se.Basic, s: se.Basic, v: Components) -> Components:
@@ -61,17 +61,17 @@ def _turn_about(n: Components, c: se.Basic, s: se.Basic, v: Components) -> Compo
     n_v = sum_of([a * b for a, b in zip(n, v) if not is_structural_zero(a) and not is_structural_zero(b)])
     turned = _cross(n, v)
     along = (1 - c) * n_v
-    return tuple(sum_of([t for t in (c * x, s * w, along * a) if not is_structural_zero(t)])  # type: ignore[return-value]
+    return tuple(sum_of([t for t in (c * x, s * w, along * a) if not is_structural_zero(t)])
                  for x, w, a in zip(v, turned, n))
 
 
-def rotation_rate(rotation, rate: se.Basic) -> Components:  # type: ignore[no-untyped-def]
+def rotation_rate(rotation, rate: se.Basic) -> Components:
     """Components of α̇ e in the child's basis, e the axis of ``rotation`` (a `Rotation`)."""
     if rotation.elementary:
         comps = [_ZERO, _ZERO, _ZERO]
         comps[AXES[rotation.axis]] = rate
-        return tuple(comps)  # type: ignore[return-value]
-    return tuple(rate * a if not is_structural_zero(a) else _ZERO for a in rotation.direction)  # type: ignore[return-value]
+        return tuple(comps)
+    return tuple(rate * a if not is_structural_zero(a) else _ZERO for a in rotation.direction)
 
 
 class FrameTree:
@@ -238,11 +238,11 @@ class FrameTree:
         d_dt = self.d_dt
         for frame, comps in self.lift(v):
             own = tuple(c if type(c) is _ZERO_TYPE else d_dt(c, accelerations=accelerations) for c in comps)
-            _accumulate(out, frame, _add3(own, _cross(self.omega_in(frame, frame), comps)))  # type: ignore[arg-type]
+            _accumulate(out, frame, _add3(own, _cross(self.omega_in(frame, frame), comps)))
         return Vector._trusted(out)
 
 
-def _axis_key(rotation) -> int | Components:  # type: ignore[no-untyped-def]
+def _axis_key(rotation) -> int | Components:
     """The axis of a `Rotation` as `_turn` or `_turn_about` takes it: an index, or n's components."""
     return AXES[rotation.axis] if rotation.elementary else rotation.direction
 
@@ -268,7 +268,7 @@ def _accumulate(out: dict[str, Components], frame: str, comps: Components) -> No
 
 def _add3(a: Components, b: Components) -> Components:
     """a + b component-wise, adding nothing to a zero (x + 0 is x: the same expressions)."""
-    return tuple(y if type(x) is _ZERO_TYPE else x if type(y) is _ZERO_TYPE else x + y  # type: ignore[return-value]
+    return tuple(y if type(x) is _ZERO_TYPE else x if type(y) is _ZERO_TYPE else x + y
                  for x, y in zip(a, b))
 
 
@@ -288,4 +288,4 @@ def _cross(a: Components, b: Components) -> Components:
             out.append(-(a[k] * b[j]))
         else:
             out.append(_ZERO)
-    return tuple(out)  # type: ignore[return-value]
+    return tuple(out)

@@ -107,7 +107,7 @@ def free_joint(model: Model, body: Body) -> FreeJoint:
     angles, axes = [], ""
     for f in chain:
         rotation = f.rotation
-        name = coordinates.get(rotation.angle) if rotation is not None else None  # type: ignore[union-attr]
+        name = coordinates.get(rotation.angle) if rotation is not None else None
         if rotation is None or not rotation.elementary or name is None:
             what = ("a rotation about a general axis" if rotation is not None and not rotation.elementary else
                     f"the angle `{rotation.angle}`" if rotation is not None else "no rotation")
@@ -176,7 +176,7 @@ def inertia_problem(mass: float, inertia: np.ndarray) -> str | None:
 def _values(model: Model, overrides: Mapping[str, float] | None = None) -> dict[se.Basic, float]:
     values = {p.symbol: p.value for p in model.parameters if p.value is not None}
     values.update({se.Symbol(k): float(v) for k, v in (overrides or {}).items()})
-    return values  # type: ignore[return-value]
+    return values
 
 
 def numeric_inertia(model: Model, body: Body, overrides: Mapping[str, float] | None = None

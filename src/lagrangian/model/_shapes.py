@@ -238,7 +238,7 @@ class _Shape:
             if m.shape != (3, 3) or not np.allclose(m @ m.T, np.eye(3), atol=1e-9) or np.linalg.det(m) < 0:
                 raise self.fail(f"`rotation` of the shape of `{self.raw.name}` is not a rotation matrix", key="rotation",
                                 fix="give three rows of three numbers, an orthogonal matrix of determinant 1")
-            return tuple(tuple(float(x) for x in row) for row in m)  # type: ignore[return-value]
+            return tuple(tuple(float(x) for x in row) for row in m)
         value = self.data.get("axis")
         if value is None:
             return None
@@ -311,7 +311,7 @@ def rotation_to(axis: np.ndarray) -> tuple[tuple[float, float, float], ...]:
     else:
         k = np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]]) / s
         m = np.eye(3) + s * k + (1 - c) * (k @ k)
-    return tuple(tuple(float(x) for x in row) for row in m)  # type: ignore[return-value]
+    return tuple(tuple(float(x) for x in row) for row in m)
 
 
 def resolve_mesh(name: str, where: Location, *, owner: str, key_location: Location | None = None,

@@ -90,7 +90,7 @@ class Vector:
             if len(comps) != 3:
                 raise ValueError("a vector piece has exactly three components")
             if any(type(c) is not _ZERO_TYPE for c in comps):
-                cleaned[frame] = comps  # type: ignore[assignment]
+                cleaned[frame] = comps
         object.__setattr__(self, "_pieces", cleaned)
 
     def __setattr__(self, name: str, value: object) -> None:
@@ -102,7 +102,7 @@ class Vector:
         """The unit vector ``frame.axis`` (axis is ``x``, ``y`` or ``z``)."""
         comps = [_ZERO, _ZERO, _ZERO]
         comps[AXES[axis]] = se.Integer(1)
-        return cls({frame: tuple(comps)})  # type: ignore[arg-type]
+        return cls({frame: tuple(comps)})
 
     @classmethod
     def zero(cls) -> Vector:
@@ -153,7 +153,7 @@ class Vector:
         out = dict(self._pieces)
         for frame, comps in other._pieces.items():
             if frame in out:
-                out[frame] = tuple(a + b for a, b in zip(out[frame], comps))  # type: ignore[assignment]
+                out[frame] = tuple(a + b for a, b in zip(out[frame], comps))
             else:
                 out[frame] = comps
         return Vector._trusted(out)
@@ -171,7 +171,7 @@ class Vector:
             return NotImplemented
         s = as_expr(scalar)
         z = _ZERO_TYPE
-        return Vector._trusted({f: tuple(c if type(c) is z else s * c for c in comps)  # type: ignore[misc]
+        return Vector._trusted({f: tuple(c if type(c) is z else s * c for c in comps)
                                 for f, comps in self._pieces.items()})
 
     __rmul__ = __mul__
@@ -182,11 +182,11 @@ class Vector:
 
     def map(self, fn: Callable[[se.Basic], se.Basic]) -> Vector:
         """Apply ``fn`` to every component, piece by piece."""
-        return Vector({f: tuple(fn(c) for c in comps) for f, comps in self._pieces.items()})  # type: ignore[misc]
+        return Vector({f: tuple(fn(c) for c in comps) for f, comps in self._pieces.items()})
 
     def _map(self, fn: Callable[[se.Basic], se.Basic]) -> Vector:
         # `map` for an ``fn`` known to return SymEngine expressions.
-        return Vector._trusted({f: tuple(fn(c) for c in comps)  # type: ignore[misc]
+        return Vector._trusted({f: tuple(fn(c) for c in comps)
                                 for f, comps in self._pieces.items()})
 
     def diff(self, symbol: se.Symbol) -> Vector:

@@ -677,7 +677,7 @@ class _Translation:
                              rotation=tuple(tuple(float(x) for x in row) for row in r_visual), color=color,
                              opacity=opacity, location=where, **size)
 
-    def mesh_path(self, visual, link: str) -> str | None:  # type: ignore[no-untyped-def]
+    def mesh_path(self, visual, link: str) -> str | None:
         """The mesh file of ``visual``: beside the URDF, absolute (``file://``), or ``package://name/...`` resolved
         in the first folder named ``name`` above the URDF; None, with a note, when it cannot be read."""
         from ._shapes import resolve_mesh

@@ -283,7 +283,7 @@ def generate_c(
     eom: EquationsOfMotion,
     integrals: Sequence = (),
     events: Sequence[tuple[str, se.Basic]] = (),
-    law=None,  # type: ignore[no-untyped-def]
+    law=None,
 ) -> GeneratedSource:
     """Generate the C translation unit of ``eom``.
 

@@ -270,7 +270,7 @@ def _client(scheduler):
     return client, True
 
 
-def _member_inputs(inputs):  # type: ignore[no-untyped-def]
+def _member_inputs(inputs):
     """(the law for the compiled system, the per-member feedbacks or None) of ``ensemble``'s ``inputs``."""
     from ..analysis import Feedback
 

@@ -44,7 +44,7 @@ from ._trajectory import Event, Trajectory, drift_scale, relative_drift
 __all__ = ["free_source", "simulate_free"]
 
 
-def free_source(source) -> Model | FreeBodySystem | None:  # type: ignore[no-untyped-def]
+def free_source(source) -> Model | FreeBodySystem | None:
     """The model (or compiled system) to integrate on quaternions, or None when it has no free body."""
     if isinstance(source, FreeBodySystem):
         return source
@@ -158,7 +158,7 @@ def simulate_free(source, t_end: float, *, t_start: float = 0.0, initial: Mappin
                             f"{reasons.get(code, f'status {code}')}.", fix=fixes.get(code, "check the model and the "
                                                                                                  "initial state"),
                             t=t_fail, state=y.copy())
-    error.trajectory = partial  # type: ignore[attr-defined]
+    error.trajectory = partial
     raise error
 
 

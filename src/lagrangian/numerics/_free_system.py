@@ -320,7 +320,7 @@ class FreeBodySystem:
         return out[0] if single else out
 
 
-def compile_free_system(source, *, events: Sequence[tuple[str, se.Basic]] = ()) -> FreeBodySystem:  # type: ignore[no-untyped-def]
+def compile_free_system(source, *, events: Sequence[tuple[str, se.Basic]] = ()) -> FreeBodySystem:
     """`FreeBodySystem` of a model with free bodies: a path, a `Model` or its `EquationsOfMotion`.
 
     ``simulate`` takes it as a source (and builds one by itself from a model with free bodies).

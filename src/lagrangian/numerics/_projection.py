@@ -32,7 +32,7 @@ CONSISTENCY_TOL = 1e-8
 PROJECTION_ITERATIONS = 8
 
 
-def project_many(system: ConstrainedSystem, t, Y: np.ndarray, p: np.ndarray, tol: float) -> tuple[np.ndarray, bool]:  # type: ignore[no-untyped-def]
+def project_many(system: ConstrainedSystem, t, Y: np.ndarray, p: np.ndarray, tol: float) -> tuple[np.ndarray, bool]:
     """States (N, 2n) moved onto f(q, t) = 0 and A q̇ + b = 0 along the metric of M (module docstring)."""
     n = system.n
     Y = np.array(Y, dtype=float).reshape(-1, 2 * n)
@@ -71,7 +71,7 @@ def project_many(system: ConstrainedSystem, t, Y: np.ndarray, p: np.ndarray, tol
     return Y, changed
 
 
-def _singular(t, Y: np.ndarray, bad: np.ndarray,  # type: ignore[no-untyped-def]
+def _singular(t, Y: np.ndarray, bad: np.ndarray,
               residual: np.ndarray) -> SimulationError:
     """A_h M⁻¹ A_hᵀ (or M) singular on the way: the Newton step is not defined there."""
     k = int(np.flatnonzero(bad)[0])

@@ -46,7 +46,7 @@ class RhsFunction:
 
     jacobian = "analytic"
 
-    def __init__(self, system, parameters: Mapping[str, float] | None = None) -> None:  # type: ignore[no-untyped-def]
+    def __init__(self, system, parameters: Mapping[str, float] | None = None) -> None:
         eom = system.eom
         if eom.constraints:
             raise SimulationError(
@@ -99,7 +99,7 @@ class RhsFunction:
         J[n:, :] = np.linalg.solve(M, rhs.T)
         return J
 
-    def _build(self):  # type: ignore[no-untyped-def]
+    def _build(self):
         eom = self.system.eom
         states = [*eom.q, *eom.qd]
         args = [eom.t, *states, *(se.Symbol(name) for name in self.system.parameters)]

@@ -346,7 +346,7 @@ class CompiledSystem:
         self._t1[0] = t
         return self._lib.lg_eval_rhs(1, _ptr(self._t1), _ptr(y), _ptr(p), _ptr(out))
 
-    def rhs_function(self, parameters: Mapping[str, float] | None = None):  # type: ignore[no-untyped-def]
+    def rhs_function(self, parameters: Mapping[str, float] | None = None):
         """A plain ``f(t, y)`` for `scipy.integrate.solve_ivp`, with the analytic Jacobian ``f.jac(t, y)``.
 
         ``solve_ivp(f, (0, 10), y0, method="Radau", jac=f.jac)``; y = (q, q̇) in `coordinates`

@@ -127,7 +127,7 @@ def _callback(ca: Any, tr: Transcription, stop: _Stop) -> Any:
     """An IPOPT iteration callback that asks the solver to stop once ``stop.hit`` is set."""
     nx, ng = tr.nlp["x"].numel(), tr.nlp["g"].numel()
 
-    class StopOnInterrupt(ca.Callback):  # type: ignore[misc, name-defined]
+    class StopOnInterrupt(ca.Callback):
         def __init__(self) -> None:
             ca.Callback.__init__(self)
             self.construct("stop_on_interrupt", {})

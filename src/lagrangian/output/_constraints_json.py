@@ -28,7 +28,7 @@ def _declared(e: Any) -> str:
     return sympy.sstr(e._sympy_() if hasattr(e, "_sympy_") else sympy.S(e), order="none")
 
 
-def _vector(eom: EquationsOfMotion, v: Vector, frame: str, text=_s) -> list[str]:  # type: ignore[no-untyped-def]
+def _vector(eom: EquationsOfMotion, v: Vector, frame: str, text=_s) -> list[str]:
     return [text(c) for c in eom.kinematics.frames.express(v, frame)]
 
 

@@ -130,7 +130,7 @@ SHORTEN_MAX_OPS = 120
 
 def _shortest(e: object) -> sympy.Basic:
     """`to_sympy`, then cancelled and factored when that is shorter: λ = m (g y − ẋ² − ẏ²)/(2 (x² + y²))."""
-    expr = to_sympy(e)  # type: ignore[arg-type]
+    expr = to_sympy(e)
     if sympy.count_ops(expr) > SHORTEN_MAX_OPS or has_big_numbers(expr):
         return expr
     cancelled = sympy.cancel(expr)
@@ -140,7 +140,7 @@ def _shortest(e: object) -> sympy.Basic:
 
 def _declared(e: object) -> sympy.Basic:
     """The relation as the derivation holds it, without `to_sympy`'s tidying (which would make it 0)."""
-    return e._sympy_() if hasattr(e, "_sympy_") else sympy.S(e)  # type: ignore[union-attr]
+    return e._sympy_() if hasattr(e, "_sympy_") else sympy.S(e)
 
 
 def _constraint_lines(eom: EquationsOfMotion) -> tuple[ConstraintLine, ...]:

@@ -273,7 +273,7 @@ def _centre_labels(model: Model) -> dict[str, str]:
     return {n: f"G_{n}" for n in names}
 
 
-def _anchor(model: Model, body, attached: Mapping[str, Mapping[str, np.ndarray]]) -> str:  # type: ignore[no-untyped-def]
+def _anchor(model: Model, body, attached: Mapping[str, Mapping[str, np.ndarray]]) -> str:
     """The body's joint point: its fixed point, else a point it shares with another body or the ground (O)."""
     if body.fixed_point:
         return body.fixed_point

@@ -320,7 +320,7 @@ def _tilted_axis(b: _Builder, up: np.ndarray) -> np.ndarray | None:
     return None
 
 
-def _reach(part) -> float:  # type: ignore[no-untyped-def]
+def _reach(part) -> float:
     """How far a part reaches from its centre."""
     size = part.size
     if part.mesh is not None:

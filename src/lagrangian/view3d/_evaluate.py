@@ -100,7 +100,7 @@ class Evaluator:
         self._known = set(self.arguments)
         self._tree = None
 
-    def _lambdify(self, exprs: Sequence[se.Basic]):  # type: ignore[no-untyped-def]
+    def _lambdify(self, exprs: Sequence[se.Basic]):
         free = set().union(*(e.free_symbols for e in exprs)) if exprs else set()
         missing = sorted(str(s) for s in free - self._known)
         if missing:

@@ -208,7 +208,7 @@ def joint_axis(model: Model, body: Body, ev: Evaluator, *, ground: bool = False)
     return "hinge", v / np.linalg.norm(v)
 
 
-def body_solid(builder, body: Body, attached: dict[str, np.ndarray], anchor: str) -> Solid | None:  # type: ignore[no-untyped-def]
+def body_solid(builder, body: Body, attached: dict[str, np.ndarray], anchor: str) -> Solid | None:
     """The homogeneous solid of the body's inertia at G (None without values, or for a point mass)."""
     model, ev = builder.model, builder.ev
     state = builder.states[0]
@@ -234,7 +234,7 @@ def _joint_direction(attached: dict[str, np.ndarray], anchor: str, body: Body) -
     return -gp / np.linalg.norm(gp)
 
 
-def inferred_parts(builder, body: Body, carrier: int, attached: dict[str, np.ndarray], anchor: str,  # type: ignore[no-untyped-def]
+def inferred_parts(builder, body: Body, carrier: int, attached: dict[str, np.ndarray], anchor: str,
                    color: str, length: float, solid: Solid | None) -> float | None:
     """Add the parts of a body the model gives no shape: the solid of its inertia at G, rods from its joint
     point to its other points, its joint.  Returns how far the body reaches from G along the line from its

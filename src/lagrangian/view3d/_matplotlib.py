@@ -83,7 +83,7 @@ class Renderer:
             ax.plot(*shape.fixed.T, "k^", ms=7)
         self.moving: list[tuple[Any, Any]] = []  # (artist, function of the frame index -> data)
 
-        def line(data_of, **style):  # type: ignore[no-untyped-def]
+        def line(data_of, **style):
             first = data_of(0)
             artist = ax.plot(*first.T, **style)[0]
             self.moving.append((artist, data_of))

@@ -210,7 +210,7 @@ def _coriolis(c: Context, jacobi: bool) -> list[Block]:
     return [Para(runs)]
 
 
-def left_out_note(c: Context, left: list) -> Runs:  # type: ignore[type-arg]
+def left_out_note(c: Context, left: list) -> Runs:
     """The note on the summaries whose full forms the budget left out, and where to find them."""
     budget = f"{c.book.budget:,}".replace(",", "\u202f" if c.lang == "fr" else ",")  # 300 000: a narrow space
     return c.w("full forms left", budget=budget, k=str(len(left)),
@@ -310,7 +310,7 @@ def _multipliers(c: Context) -> tuple[se.Basic, ...] | None:
     if sum(1 for con in c.model.constraints if con.unilateral) > 1:
         return None  # which contacts are closed changes along the motion: no single formula
     try:
-        return multiplier_formulas(c.eom)  # type: ignore[no-any-return]
+        return multiplier_formulas(c.eom)
     except DerivationError:
         return None
 
@@ -392,7 +392,7 @@ def _simple(c: Context, e: se.Basic, limit: int = SIMPLIFY_MAX_OPS) -> sympy.Bas
     return shown
 
 
-def _tension(c: Context, reaction, formulas: tuple[se.Basic, ...]) -> list[Block]:  # type: ignore[no-untyped-def]
+def _tension(c: Context, reaction, formulas: tuple[se.Basic, ...]) -> list[Block]:
     """A rod's tension N = −R·XP/|XP| when the constraint is |XP|² − L² = 0 and R is along XP (pendulum_tension).
 
     With XP in a vertical plane whose coordinates are two of the q_i, it is also written with the

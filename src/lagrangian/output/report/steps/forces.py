@@ -181,10 +181,10 @@ def _q_list(c: Context, values: list[str], load: str | None = None) -> list[str]
 _RELATION = {"positive": ">", "nonnegative": r"\geq", "negative": "<", "nonpositive": r"\leq"}
 
 
-def _interval(c: Context, bounds: tuple) -> str:  # type: ignore[type-arg]
+def _interval(c: Context, bounds: tuple) -> str:
     """[a, b] in LaTeX (numbers as decimals, as the file wrote them), an open side as ∞; in French [a ; b] with
     decimal commas."""
-    def number(b) -> str:  # type: ignore[no-untyped-def]
+    def number(b) -> str:
         text = f"{float(b):g}"
         return text.replace(".", "{,}") if c.lang == "fr" else text
 

@@ -165,7 +165,7 @@ def _virtual_torsors(c: Context) -> list[Block]:
     return out
 
 
-def comoment_conditions(c: Context, j) -> list[se.Basic] | None:  # type: ignore[no-untyped-def]
+def comoment_conditions(c: Context, j) -> list[se.Basic] | None:
     """The scalars whose vanishing makes the comoment of a perfect principal constraint's action torsor with the
     virtual kinematic torsor zero, as step 3 states it; None for a constraint it does not argue.
 

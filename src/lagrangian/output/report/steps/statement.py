@@ -39,14 +39,14 @@ def _frame_with_axes(c: Context, frame: str, origin: str | None) -> str:
     return f"{c.name(frame)}({c.name(origin)};\\ {axes})" if origin else f"{c.name(frame)}({axes})"
 
 
-def _mass_given(c: Context, name: str, mass) -> str:  # type: ignore[no-untyped-def]
+def _mass_given(c: Context, name: str, mass) -> str:
     """m, or m_S = 8 kg for a number (so that later formulas can write m_S)."""
     if mass.free_symbols:
         return c.tex(mass)
     return f"{c.mass_tex(name)} = {c.quantity(mass, 'kg')}"
 
 
-def _inertia_given(c: Context, body) -> Runs:  # type: ignore[no-untyped-def]
+def _inertia_given(c: Context, body) -> Runs:
     """The inertia of a body as the model gives it: principal moments, or the matrix, at a point in a basis."""
     i = body.inertia
     P = Math(c.point_label(body.name) if i.at == "G" else c.point_label(i.at))
@@ -199,7 +199,7 @@ def system_section(c: Context) -> Section:
         blocks.append(Para(w("inputs")))
         blocks += c.many([Table(header, rows)], len(rows), w.text("inputs").rstrip(" :"))
     loads = [(load, _load_given(c, load)) for load in model.loads]
-    load_items = tuple(w("load item", name=w.load(load.name), what=what) for load, what in loads  # type: ignore[attr-defined]
+    load_items = tuple(w("load item", name=w.load(load.name), what=what) for load, what in loads
                        if what is not None)
     if load_items:
         blocks.append(Para(w("loads given")))
@@ -218,7 +218,7 @@ def _count(c: Context, k: int) -> str:
 
 
 def _length(c: Context, j: Joint) -> str:
-    return c.tex(j.length)  # type: ignore[arg-type]
+    return c.tex(j.length)
 
 
 def _vstar(c: Context, point: str, anchor: str | None) -> str:
