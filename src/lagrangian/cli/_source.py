@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import sys
 import warnings
+from collections.abc import Callable
 
 from ..errors import ModelError
 from ..model import load_model, zoo
@@ -21,7 +22,7 @@ from ._arguments.common import MODEL_HELP
 __all__ = ["MODEL_HELP", "ZOO", "load_source"]
 
 #: The zoo's models that ``zoo:NAME[:N]`` names, and whether they take a size N.
-ZOO = {"lagrange_top": (zoo.lagrange_top, False), "planar_chain": (zoo.planar_chain, True),
+ZOO: dict[str, tuple[Callable[..., Model], bool]] = {"lagrange_top": (zoo.lagrange_top, False), "planar_chain": (zoo.planar_chain, True),
        "spatial_chain": (zoo.spatial_chain, True), "relative_chain": (zoo.relative_chain, True),
        "serial_arm": (zoo.serial_arm, True)}
 

@@ -794,12 +794,14 @@ def describe_constraints(eom) -> tuple[ConstraintInfo, ...]:
             statement, frame = Vector({c.frame: tuple(comps)}), c.frame
         rows = tuple(r for r in eom.constraints if r.constraint == c.name)
         reaction = next((r for r in eom.reactions if r.constraint == c.name), None)
-        kind, integrals = c.kind, ()
+        kind = c.kind
+        integrals: tuple[se.Basic, ...] = ()
         if c.kind == "nonholonomic" and rows:
             found = [integrate_row(kin, r) for r in rows]
             if all(ok for ok, _ in found):
                 kind = "holonomic"
-                integrals = tuple(phi for _, phi in found) if all(phi is not None for _, phi in found) else ()
+                integrals = (tuple(phi for _, phi in found if phi is not None)
+                             if all(phi is not None for _, phi in found) else ())
         out.append(ConstraintInfo(c.name, "principal" if c.principal else "complementary", c.form, kind,
                                   c.description, statement, frame, rows, reaction, integrals))
     return tuple(out)

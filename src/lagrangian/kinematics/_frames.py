@@ -80,10 +80,10 @@ class FrameTree:
     def __init__(self, model: Model, d_dt: TimeDerivative) -> None:
         self.frames = {f.name: f for f in model.frames}
         self.d_dt = d_dt
-        self._depth = {}
+        self._depth: dict[str, int] = {}
         for f in model.frames:  # parents come first
             self._depth[f.name] = 0 if f.parent is None else self._depth[f.parent] + 1
-        self._paths: dict[tuple[str, str], tuple[tuple[int, se.Basic, se.Basic], ...]] = {}
+        self._paths: dict[tuple[str, str], tuple[tuple[int | Components, se.Basic, se.Basic], ...]] = {}
         self._omega: dict[str, Vector] = {}
         self._omega_in: dict[tuple[str, str], Components] = {}
 

@@ -755,9 +755,9 @@ class Assembler:
         for b in model.bodies:
             used |= b.center.free_symbols()
             referenced |= {b.frame, b.inertia.frame, *b.center.pieces}
-        for p in model.particles:
-            used |= p.position.free_symbols()
-            referenced |= set(p.position.pieces)
+        for particle in model.particles:
+            used |= particle.position.free_symbols()
+            referenced |= set(particle.position.pieces)
         for load in model.loads:
             if isinstance(load, Potential):
                 used |= load.energy.free_symbols

@@ -83,7 +83,7 @@ def check_sign(model: Model, values: Mapping[str, float]) -> None:
         Naming the parameter, its declared sign, the value and where the sign is declared.
     """
     for p in model.parameters:
-        if p.name in values:
+        if p.name in values and p.sign is not None:
             problem = sign_problem(p.name, p.sign, float(values[p.name]))
             if problem is not None:
                 where = model.where("parameter", p.name)

@@ -28,7 +28,7 @@ import numpy as np
 import symengine as se
 
 from ..errors import ModelError
-from .spec import GALILEAN_FRAME, Body, Model
+from .spec import GALILEAN_FRAME, Body, Frame, Model
 
 __all__ = ["FreeJoint", "check_free_bodies", "free_joints", "inertia_problem"]
 
@@ -94,7 +94,8 @@ def free_joint(model: Model, body: Body) -> FreeJoint:
     if body.fixed_point is not None:
         raise _fail(model, body, f"body `{body.name}` is declared free and has the fixed point "
                     f"`{body.fixed_point}`: a free body has none", "remove `fixed_point`, or `free`", "fixed_point")
-    chain, frame = [], model.frame(body.frame)
+    chain: list[Frame] = []
+    frame = model.frame(body.frame)
     while frame.parent is not None and len(chain) < 4:
         chain.append(frame)
         frame = model.frame(frame.parent)

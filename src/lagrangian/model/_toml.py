@@ -114,7 +114,7 @@ def _syntax_error(text: str, msg: str, source: str | None) -> ModelError:
         line, column = _left_open(text)
         core += " (at the end of the file)" if column is None else " (still open at the end of the file)"
     source_line = lines[line - 1] if line is not None and 0 < line <= len(lines) else None
-    where = dict(file=source, line=line, column=column, source_line=source_line)
+    where: dict[str, Any] = dict(file=source, line=line, column=column, source_line=source_line)
     # The key (or table) declared on the offending line, and where it was declared before.
     path: tuple[str, ...] = ()
     if line is not None:

@@ -82,6 +82,7 @@ class Vector:
     """
 
     __slots__ = ("_pieces",)
+    _pieces: dict[str, tuple[se.Basic, se.Basic, se.Basic]]
 
     def __init__(self, pieces: Mapping[str, tuple[se.Basic, se.Basic, se.Basic]] | None = None):
         cleaned: dict[str, tuple[se.Basic, se.Basic, se.Basic]] = {}

@@ -53,6 +53,7 @@ import re
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import symengine as se
@@ -585,10 +586,10 @@ class _Translation:
                                  line=carrier.line, symbol=carrier.body,
                                  fix="give the link its <inertial> (mass and inertia), or make free the link that has "
                                      "them (the robot's base)")
-            if not carrier.masses:
+            if not carrier.masses or carrier.body is None:  # masses are gathered on a body's carrier only
                 continue
             mass = sum(m for m, _, _ in carrier.masses)
-            center = sum(m * c for m, c, _ in carrier.masses) / mass
+            center = np.asarray(sum(m * c for m, c, _ in carrier.masses)) / mass
             inertia = np.zeros((3, 3))
             with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused just below
                 for m, c, i_g in carrier.masses:
@@ -621,6 +622,7 @@ class _Translation:
         M and F are those of the file's numbers for the default values.
         """
         body = carrier.body
+        assert body is not None, "bodies() gives the carriers of a body only"
         names = [self.names.take(f"{prefix}_{body}") for prefix in INERTIAL_PARAMETERS]
         if names != [f"{prefix}_{body}" for prefix in INERTIAL_PARAMETERS]:
             raise ModelError(f"the inertial parameters of link `{body}` cannot be named `m_{body}`, ...: a "
@@ -662,11 +664,11 @@ class _Translation:
                 r_visual = _clean(r @ rpy_matrix(visual.rpy), 1.0)
                 center = _clean(p + r @ np.array(visual.xyz), max(1e-3, float(np.max(np.abs(p)))))
                 dims = visual.dimensions
-                size = dict(box={"size": [_number(x) for x in dims]},
-                            cylinder={"radius": _number(dims[0]) if dims else None,
-                                      "length": _number(dims[1]) if len(dims) > 1 else None},
-                            sphere={"radius": _number(dims[0]) if dims else None},
-                            mesh={"mesh": mesh, "scale": list(visual.scale)})[visual.kind]
+                size: dict[str, Any] = dict(box={"size": [_number(x) for x in dims]},
+                                            cylinder={"radius": _number(dims[0]) if dims else None,
+                                                      "length": _number(dims[1]) if len(dims) > 1 else None},
+                                            sphere={"radius": _number(dims[0]) if dims else None},
+                                            mesh={"mesh": mesh, "scale": list(visual.scale)})[visual.kind]
                 color = opacity = None
                 if visual.rgba is not None:
                     color, opacity = list(visual.rgba[:3]), visual.rgba[3]

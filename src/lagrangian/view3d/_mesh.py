@@ -109,8 +109,7 @@ def _stl(data: bytes) -> Mesh:
                 raise _Bad(f"it has {count:,} triangles, more than the {MAX_TRIANGLES:,} the view draws")
             records = np.frombuffer(data, dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")]),
                                     count=count, offset=84)
-            vertices = records["v"].reshape(-1, 3)
-            return _finish(vertices, np.arange(3 * count).reshape(-1, 3))
+            return _finish(records["v"].reshape(-1, 3), np.arange(3 * count).reshape(-1, 3))
     try:
         text = data.decode("ascii")
     except UnicodeDecodeError:
