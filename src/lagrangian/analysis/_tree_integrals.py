@@ -101,9 +101,10 @@ def tree_integrals(eom: EquationsOfMotion, regime: Mapping[str, str] | None = No
             G_on = np.array([_evaluate(eom, rec.dL_dq, s) for s in _states(eom, STATES)]) if off else G
         except (RuntimeError, TypeError, ValueError, ZeroDivisionError):  # a state outside the domain: E only
             G = P = G_on = None
-    usable = G is not None and bool(np.all(np.isfinite(G)) and np.all(np.isfinite(P)) and np.all(np.isfinite(G_on)))
+    usable = (G is not None and P is not None and G_on is not None
+              and bool(np.all(np.isfinite(G)) and np.all(np.isfinite(P)) and np.all(np.isfinite(G_on))))
     out: list[FirstIntegral] = []
-    if usable:
+    if usable and G is not None and P is not None and G_on is not None:
         scale = np.maximum(1.0, np.abs(G).max(axis=1) + np.abs(P).max(axis=1))
         for i, c in enumerate(eom.model.coordinates):
             if np.all(np.abs(G[:, i]) <= ZERO_RTOL * scale):
@@ -112,15 +113,15 @@ def tree_integrals(eom: EquationsOfMotion, regime: Mapping[str, str] | None = No
                 out.append(FirstIntegral(c.momentum or f"p_{c.name}", "momentum", p[i],
                                          f"{c.name} is cyclic: ∂L/∂{c.name} = 0 and Q_{c.name}(nc) = 0"
                                          + ("" if held else suffix), c.name))
-    held = [u for u, what in regime.items() if what == "constant"]
-    extra = se.Integer(0) if rec.conservative else _energy_potential(eom, off, held)
+    constant = [u for u, what in regime.items() if what == "constant"]
+    extra = se.Integer(0) if rec.conservative else _energy_potential(eom, off, constant)
     if extra is not None and kin.t not in (rec.U + extra).free_symbols \
             and not ((rec.T.free_symbols | rec.U.free_symbols | extra.free_symbols) & varying):
         out.append(FirstIntegral("E", "energy", rec.T + rec.U + extra,
                                  "energy integral T + U = cste: a kinematic tree with no time in it, every load "
-                                 "derives from a potential" + ("" if rec.conservative else _energy_note(off, held))))
-    if usable and n <= NOETHER_MAX:
-        out += _symmetries(eom, p, G, P, states, out)  # type: ignore[arg-type]
+                                 "derives from a potential" + ("" if rec.conservative else _energy_note(off, constant))))
+    if usable and n <= NOETHER_MAX and G is not None and P is not None:
+        out += _symmetries(eom, p, G, P, states, out)
     return tuple(out)
 
 
@@ -241,8 +242,8 @@ def _symmetries(eom: EquationsOfMotion, p: Sequence[se.Basic], G: np.ndarray, P:
     model = eom.model
     if model.reference is not None and not model.reference.is_galilean_frame:
         return []
-    axes = next((f.axes for f in model.frames if f.name == GALILEAN_FRAME and getattr(f, "axes", None)), None)
-    axes = tuple(axes) if axes else ("x0", "y0", "z0")
+    named = next((f.axes for f in model.frames if f.name == GALILEAN_FRAME and getattr(f, "axes", None)), None)
+    axes = tuple(named) if named else ("x0", "y0", "z0")
     values = [P[:, list(p).index(fi.expression)] if fi.kind == "momentum" else
               np.array([_evaluate(eom, [fi.expression], s)[0] for s in states]) for fi in found]
     out = []

@@ -47,7 +47,7 @@ import symengine as se
 from ..errors import DerivationError
 from ..kinematics import Kinematics
 from ..kinematics._frames import _add3, _cross, _turn
-from ..model import GALILEAN_FRAME, Gravity, JointDamper, Torque, Vector
+from ..model import GALILEAN_FRAME, Body, Gravity, JointDamper, Torque, Vector
 from ..model._vector import AXES, sum_of
 from ._articulated import articulated_accelerations
 from ._energy import _transport, rigid_inertia
@@ -145,7 +145,8 @@ def tree_structure(kin: Kinematics) -> TreeStructure | str:
             nodes[node.parent].children.append(len(nodes))
         nodes.append(node)
     offset_set: set[int] = set()
-    masses = [(b.name, b.frame, b.mass, b.center, b) for b in model.bodies]
+    masses: list[tuple[str, str | None, se.Basic, Vector, Body | None]] = [
+        (b.name, b.frame, b.mass, b.center, b) for b in model.bodies]
     masses += [(p.name, None, p.mass, p.position, None) for p in model.particles]
     gravity: list[tuple[Gravity, Vec]] = []
     other: list[int] = []
@@ -169,17 +170,17 @@ def tree_structure(kin: Kinematics) -> TreeStructure | str:
         if stray:
             return (f"the position of `{name}` has a part in frame `{stray[0]}`, which is not on the chain of frames "
                     f"from R0 to `{home}`")
-        for frame, child in zip(path, path[1:]):
-            piece = pieces.get(frame, _ZERO3)
+        for above, child in zip(path, path[1:]):
+            piece = pieces.get(above, _ZERO3)
             c = index[child]
             if c in offset_set:
                 if any(se.expand(a - b) != 0 for a, b in zip(piece, nodes[c].offset)):
                     return (f"the points below frame `{child}` do not share one origin for it (`{name}` differs in "
-                            f"frame `{frame}`)")
+                            f"frame `{above}`)")
                 continue
             rates = _affine(kin, piece)
             if rates is None:
-                return f"the position of `{name}` is not affine in the coordinates in frame `{frame}`"
+                return f"the position of `{name}` is not affine in the coordinates in frame `{above}`"
             nodes[c].offset = tuple(piece)
             nodes[c].offset_rates = {j: tuple(u) for j, u in rates.items()}
             offset_set.add(c)
@@ -215,8 +216,8 @@ def tree_structure(kin: Kinematics) -> TreeStructure | str:
                 couples.append((leaf_of.get(load.reaction_on, index.get(load.reaction_on, 0)), -load.torque))
         elif isinstance(load, JointDamper):
             s1, s2 = load.bodies
-            frame = {b.name: b.frame for b in model.bodies}
-            relative = kin.omega(frame.get(s2, s2)) - kin.omega(frame.get(s1, s1))  # Ω(S2/S1)
+            frame_of = {b.name: b.frame for b in model.bodies}
+            relative = kin.omega(frame_of.get(s2, s2)) - kin.omega(frame_of.get(s1, s1))  # Ω(S2/S1)
             couple = relative * (-load.coefficient)
             couples.append((leaf_of.get(s2, index.get(s2, 0)), couple))
             couples.append((leaf_of.get(s1, index.get(s1, 0)), -couple))

@@ -149,7 +149,7 @@ def _constraint_lines(eom: EquationsOfMotion) -> tuple[ConstraintLine, ...]:
     for info in describe_constraints(eom):
         principal = info.role == "principal"
         convert = _declared if principal else to_sympy
-        if isinstance(info.statement, Vector):
+        if isinstance(info.statement, Vector) and info.frame is not None:  # a vector statement has its frame
             comps = eom.kinematics.frames.express(info.statement, info.frame)
             statement = tuple(convert(c) for c in comps)
             axes: tuple[str, ...] | None = eom.kinematics.frames.axes(info.frame)
@@ -371,12 +371,12 @@ def render_text(form: CourseForm, extra: Supplement | None = None) -> str:
             lines.append(f"  V*({point}) = {n.vector(row.terms)}")
     lines.append("")
     lines.append(f"Kinetic energy T(Σ/{ref}):")
-    for row in form.T:
-        lines.append(f"  T({row.name}/{ref}) = {n.text(row.expression)}    [{row.formula}]")
+    for energy in form.T:
+        lines.append(f"  T({energy.name}/{ref}) = {n.text(energy.expression)}    [{energy.formula}]")
     lines.append(f"Potential energy U_P(Σ/{ref}) (+ cste):")
     if form.U:
-        for row in form.U:
-            lines.append(f"  {row.name}: {n.text(row.expression)}")
+        for energy in form.U:
+            lines.append(f"  {energy.name}: {n.text(energy.expression)}")
     else:
         lines.append("  none: no given effort derives from a potential")
     lines.append("")
@@ -421,8 +421,8 @@ def render_text(form: CourseForm, extra: Supplement | None = None) -> str:
         lines += _balance_text(n, extra)
     lines.append("")
     lines.append("Matrix form M(q, t) q̈ = F(q, q̇, t):")
-    for a, row in enumerate(form.M):
-        for b, entry in enumerate(row):
+    for a, m_row in enumerate(form.M):
+        for b, entry in enumerate(m_row):
             if b >= a and entry != 0:
                 lines.append(f"  M[{q[a]},{q[b]}] = {n.text(entry)}")
     for a, f in enumerate(form.F):

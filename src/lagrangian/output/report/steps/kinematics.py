@@ -86,7 +86,8 @@ def _chains(c: Context) -> list[Equation]:
 
 
 def _inertia(c: Context) -> list[Block]:
-    w, out = c.w, []
+    w = c.w
+    out: list[Block] = []
     origins = _origins(c)
     for b in c.model.bodies:
         used = c.eom.inertias[b.name]
@@ -296,7 +297,8 @@ def _comoments(c: Context) -> list[Block]:
 
 
 def step3(c: Context) -> Section:
-    w, blocks = c.w, []
+    w = c.w
+    blocks: list[Block] = []
     chains = _chains(c)
     if chains:
         blocks.append(Para(w("frames")))
