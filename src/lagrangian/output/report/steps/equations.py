@@ -248,8 +248,8 @@ def step7(c: Context) -> Section:
     n = len(c.eom.coordinates)
     rows = c.eom.constraints
     if not rows:
-        blocks = [Para(w("no complementary" if n > 1 else "no complementary one", n=Math(str(n))))]
-        return Section("step7", w.text("step7"), tuple(blocks + contact_blocks(c)))
+        none = [Para(w("no complementary" if n > 1 else "no complementary one", n=Math(str(n))))]
+        return Section("step7", w.text("step7"), tuple(none + contact_blocks(c)))
     lams = Math(", ".join(c.tex(r.multiplier) for r in rows))
     if len(rows) == 1:
         blocks: list[Block] = [Para(w("complementary row", n=Math(str(n)), lams=lams))]
@@ -284,12 +284,12 @@ def step7(c: Context) -> Section:
         where = reaction.point or reaction.body or ""
         R = c.reaction_tex(reaction.constraint)
         body = reaction.body or next((k.body for k in c.model.constraints if k.name == reaction.constraint), None)
-        label, shown = c.constraint_label(reaction.constraint), Math(R) if not reaction.force.is_zero() else ""
+        label, named = c.constraint_label(reaction.constraint), Math(R) if not reaction.force.is_zero() else ""
         if reaction.point is not None and body in c.bodies and body != reaction.point:  # on (S) at I
-            blocks.append(Para(w("reaction of at", R=shown, name=label, S=Math(c.element(body)),
+            blocks.append(Para(w("reaction of at", R=named, name=label, S=Math(c.element(body)),
                                  E=Math(c.point_label(reaction.point)))))
         else:
-            blocks.append(Para(w("reaction of", R=shown, name=label, E=Math(c.point_label(where)))))
+            blocks.append(Para(w("reaction of", R=named, name=label, E=Math(c.point_label(where)))))
         eqs = []
         if not reaction.force.is_zero():
             eqs.append(c.vector_equation(f"{R} = ", c.terms(reaction.force)))
