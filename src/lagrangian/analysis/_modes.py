@@ -404,12 +404,12 @@ def sweep(lin: LinearModel, name: str, values: Sequence[float], **fixed: float) 
                                      fix='e.g. sweep(linearize(eom, point, symbolic=("Omega",)), "Omega", values), '
                                          'or sweep("examples/bouncing_ball.toml", "e", values, t_end=10)')
         return impact_sweep(lin, {name: values}, t_end, **fixed)
-    values = np.asarray(values, dtype=float)
-    if values.ndim != 1 or values.size == 0:
+    grid = np.asarray(values, dtype=float)
+    if grid.ndim != 1 or grid.size == 0:
         raise LinearizationError("the sweep has no point.", fix="give a range with at least one value, e.g. v=0:10:0.01")
     A_of = _compiled(lin, name, fixed)
     rng = np.random.default_rng(7)
-    probe = [A_of(float(x)) for x in rng.uniform(values.min(), values.max() + 1.0, 2)]
+    probe = [A_of(float(x)) for x in rng.uniform(grid.min(), grid.max() + 1.0, 2)]
     keep0, neutral0 = _reduce(np.abs(probe[0]) + np.abs(probe[1]), lin.state, lin)
     zeros = _momenta(lin, keep0, neutral0)
 
@@ -421,7 +421,7 @@ def sweep(lin: LinearModel, name: str, values: Sequence[float], **fixed: float) 
             lam = np.delete(lam, order[:zeros])
         return _sorted(lam)
 
-    eig = np.array([essential(float(x)) for x in values])
+    eig = np.array([essential(float(x)) for x in grid])
 
     def abscissa(x: float) -> float:
         lam = essential(x)
@@ -441,8 +441,8 @@ def sweep(lin: LinearModel, name: str, values: Sequence[float], **fixed: float) 
     sides = np.array([side(a) for a in alpha])
     stable = np.where(sides < 0, 1.0, np.where(sides > 0, 0.0, np.nan))
     changes: list[StabilityChange] = []
-    for k in range(len(values) - 1):
-        a, b = float(values[k]), float(values[k + 1])
+    for k in range(len(grid) - 1):
+        a, b = float(grid[k]), float(grid[k + 1])
         if sides[k] != sides[k + 1]:
             if sides[k] * sides[k + 1] < 0:  # through the axis: Brent on the spectral abscissa
                 x = optimize.brentq(abscissa, a, b, xtol=1e-14, rtol=4 * np.finfo(float).eps, maxiter=200)
@@ -457,4 +457,4 @@ def sweep(lin: LinearModel, name: str, values: Sequence[float], **fixed: float) 
             kind = "eigenvalues become complex" if counts[k + 1] > counts[k] else "eigenvalues become real"
             changes.append(StabilityChange(x, kind, essential(x)))
     changes.sort(key=lambda c: c.value)
-    return Sweep(name, values, eig, stable, tuple(changes))
+    return Sweep(name, grid, eig, stable, tuple(changes))

@@ -46,13 +46,21 @@ class Trajectory(Protocol):
     after it) even for annotations: imports flow one way.
     """
 
-    coordinates: Sequence[str]
-    parameters: Mapping[str, float]
-    t: np.ndarray
-    q: np.ndarray
-    qd: np.ndarray
-    qdd: np.ndarray
-    extra: Mapping[str, np.ndarray]
+    # Read-only members (properties), which a frozen dataclass's fields satisfy.
+    @property
+    def coordinates(self) -> Sequence[str]: ...
+    @property
+    def parameters(self) -> Mapping[str, float]: ...
+    @property
+    def t(self) -> np.ndarray: ...
+    @property
+    def q(self) -> np.ndarray: ...
+    @property
+    def qd(self) -> np.ndarray: ...
+    @property
+    def qdd(self) -> np.ndarray: ...
+    @property
+    def extra(self) -> Mapping[str, np.ndarray]: ...
 
 __all__ = ["Reaction", "reactions", "ReactionHistory", "reaction_history", "TrajectoryResiduals",
            "check_trajectory"]
@@ -386,13 +394,13 @@ def check_trajectory(source: Verification | EquationsOfMotion, trajectory: Traje
     extra = values[:, at:at + n]
     at += n
     m_gamma, force, delta, moment, sigma, omega = (element_vectors[:, :, k, :] for k in range(6))
-    dv, dw = partial[:, :, :, 0, :], partial[:, :, :, 1, :]
-    dyn = np.einsum("nej,neij->ni", m_gamma, dv) + np.einsum("nej,neij->ni", delta, dw)
-    given = np.einsum("nej,neij->ni", force, dv) + np.einsum("nej,neij->ni", moment, dw) + extra
+    d_v, d_w = partial[:, :, :, 0, :], partial[:, :, :, 1, :]
+    dyn = np.einsum("nej,neij->ni", m_gamma, d_v) + np.einsum("nej,neij->ni", delta, d_w)
+    given = np.einsum("nej,neij->ni", force, d_v) + np.einsum("nej,neij->ni", moment, d_w) + extra
     norm = np.linalg.norm
-    scale = (np.einsum("ne,nei->ni", norm(m_gamma, axis=2) + norm(force, axis=2), norm(dv, axis=3))
+    scale = (np.einsum("ne,nei->ni", norm(m_gamma, axis=2) + norm(force, axis=2), norm(d_v, axis=3))
              + np.einsum("ne,nei->ni", norm(delta, axis=2) + norm(moment, axis=2)
-                         + norm(omega, axis=2) * norm(sigma, axis=2), norm(dw, axis=3))
+                         + norm(omega, axis=2) * norm(sigma, axis=2), norm(d_w, axis=3))
              + np.abs(extra))
     projections = np.abs(dyn - given) / np.maximum(scale, np.finfo(float).tiny)
     histories, resultant, moment_res = {}, {}, {}
