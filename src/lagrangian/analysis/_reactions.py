@@ -393,14 +393,14 @@ def check_trajectory(source: Verification | EquationsOfMotion, trajectory: Traje
     at += 6 * E * n
     extra = values[:, at:at + n]
     at += n
-    m_gamma, force, delta, moment, sigma, omega = (element_vectors[:, :, k, :] for k in range(6))
+    m_gamma, force, delta, moment, sigma, spin = (element_vectors[:, :, k, :] for k in range(6))
     d_v, d_w = partial[:, :, :, 0, :], partial[:, :, :, 1, :]
     dyn = np.einsum("nej,neij->ni", m_gamma, d_v) + np.einsum("nej,neij->ni", delta, d_w)
     given = np.einsum("nej,neij->ni", force, d_v) + np.einsum("nej,neij->ni", moment, d_w) + extra
     norm = np.linalg.norm
     scale = (np.einsum("ne,nei->ni", norm(m_gamma, axis=2) + norm(force, axis=2), norm(d_v, axis=3))
              + np.einsum("ne,nei->ni", norm(delta, axis=2) + norm(moment, axis=2)
-                         + norm(omega, axis=2) * norm(sigma, axis=2), norm(d_w, axis=3))
+                         + norm(spin, axis=2) * norm(sigma, axis=2), norm(d_w, axis=3))
              + np.abs(extra))
     projections = np.abs(dyn - given) / np.maximum(scale, np.finfo(float).tiny)
     histories, resultant, moment_res = {}, {}, {}

@@ -191,7 +191,7 @@ class _TreeBuilder:
         for k, node in enumerate(nodes):
             if k == 0:
                 continue
-            p = node.parent
+            p = node.up
             if node.axis is not None:
                 c, s = w(se.cos(node.angle)), w(se.sin(node.angle))
                 self.down[k] = (lambda x, a=node.axis, c=c, s=s: _turn(a, c, -s, x))
@@ -235,12 +235,12 @@ class _TreeBuilder:
                                       fix="write it in R0 or in the body's frame")
             while at != 0:
                 comps = self.up[at](comps)
-                at = nodes[at].parent
+                at = nodes[at].up
             chain = []
             at = k
             while at != 0:
                 chain.append(at)
-                at = nodes[at].parent
+                at = nodes[at].up
             for i in reversed(chain):
                 comps = self.down[i](comps)
             total = _add3(total, comps)
@@ -341,7 +341,7 @@ class _TreeBuilder:
         for k in range(count - 1, 0, -1):
             if all(c == 0 for c in (*P[k], *H[k])):
                 continue
-            p, up, d = nodes[k].parent, self.up[k], nodes[k].offset
+            p, up, d = nodes[k].up, self.up[k], nodes[k].offset
             fp = w.vec(up(P[k]))
             P[p] = _add3(P[p], fp)
             H[p] = _add3(H[p], _add3(w.vec(up(H[k])), _cross(d, fp)))

@@ -85,6 +85,13 @@ class _Node:
     frame: str = GALILEAN_FRAME  # the frame whose basis the node's components are in
     children: list[int] = field(default_factory=list)
 
+    @property
+    def up(self) -> int:
+        """The parent's index, for a node below R0 (node 0, the root, has none)."""
+        if self.parent is None:
+            raise ValueError("R0, the root of the tree, has no parent")
+        return self.parent
+
 
 @dataclass
 class TreeStructure:
@@ -477,7 +484,7 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
             fp = up(f)
             for j, u in node.offset_rates.items():
                 out[j].append(_dot(u, fp))
-            p = node.parent
+            p = node.up
             force[p] = _add3(force[p], fp)
             moment[p] = _add3(moment[p], _add3(up(mo), _cross(node.offset, fp)))
         return out
@@ -513,7 +520,7 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
         J = [up(tuple(rows[c][r] for c in range(3))) for r in range(3)]
         d = node.offset
         dh, dd = _dot(d, h), _dot(d, d)
-        p = node.parent
+        p = node.up
         mass[p] = mass[p] + m
         for r in range(3):
             for c in range(3):
@@ -530,7 +537,7 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
             occurrences[k].append((j, _ZERO3, w.vec(to_child[k](u))))
     above = [False] * count  # some strict ancestor of the node moves with a coordinate
     for k in range(1, count):
-        p = nodes[k].parent
+        p = nodes[k].up
         above[k] = above[p] or bool(occurrences[p])
     M: list[list[list[se.Basic]]] = [[[] for _ in range(n)] for _ in range(n)]
     for k in range(1, count):

@@ -186,18 +186,18 @@ def system_section(c: Context) -> Section:
         blocks += c.many([Items(rows)], len(rows), w.text("points given").rstrip(" :"))
     constants = [p for p in model.parameters if not p.input]
     if constants:
-        rows = tuple(((Math(c.sym(p.name)),), ("" if p.value is None else w.number(p.value),), (_unit(p.unit),),
+        constant_rows = tuple(((Math(c.sym(p.name)),), ("" if p.value is None else w.number(p.value),), (_unit(p.unit),),
                       (in_language(p.description, c.lang) or "",)) for p in constants)
         header = tuple((w.text(k),) for k in ("col symbol", "col value", "col unit", "col description"))
         blocks.append(Para(w("parameters")))
-        blocks += c.many([Table(header, rows)], len(rows), w.text("parameters").rstrip(" :"))
+        blocks += c.many([Table(header, constant_rows)], len(constant_rows), w.text("parameters").rstrip(" :"))
     inputs = [p for p in model.parameters if p.input]
     if inputs:  # a motor's τ(t), a push F(t): given functions of time, not constants
-        rows = tuple(((Math(c.sym(p.name)),), (_unit(p.unit),), (in_language(p.description, c.lang) or "",))
+        input_rows = tuple(((Math(c.sym(p.name)),), (_unit(p.unit),), (in_language(p.description, c.lang) or "",))
                      for p in inputs)
         header = tuple((w.text(k),) for k in ("col symbol", "col unit", "col description"))
         blocks.append(Para(w("inputs")))
-        blocks += c.many([Table(header, rows)], len(rows), w.text("inputs").rstrip(" :"))
+        blocks += c.many([Table(header, input_rows)], len(input_rows), w.text("inputs").rstrip(" :"))
     loads = [(load, _load_given(c, load)) for load in model.loads]
     load_items = tuple(w("load item", name=w.load(load.name), what=what) for load, what in loads
                        if what is not None)
@@ -334,7 +334,7 @@ def _perfect(c: Context, j: Joint) -> list[Block]:
         cond = w.join([Math(rf"{c.axis(a)}\cdot\vec{{V}}^{{*}}({G}) = 0") for a in j.normals])
         rot = Math(rf"\vec{{\Omega}}^{{*}}({c.element(j.element)}/{c.R}) \in \mathrm{{vect}}("
                    + ", ".join(c.axis(a) for a in j.turns) + ")")
-        blocks = [Para(w("perfect body plane", n=n, cond=cond, rot=rot))]
+        blocks: list[Block] = [Para(w("perfect body plane", n=n, cond=cond, rot=rot))]
         rolling = next((con for con in c.model.constraints if con.form == "no_slip" and con.body == j.element), None)
         if rolling is not None:  # the contact's tangential action is the rolling constraint's reaction, not zero
             blocks.append(Para(w("adherence", S=Math(c.element(j.element)), I=Math(c.point_label(rolling.points[0])))))
