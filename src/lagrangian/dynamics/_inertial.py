@@ -99,6 +99,8 @@ class RelativeKinematics(Kinematics):
     γ(O'/R0), all functions of t only.
     """
 
+    frames: RelativeFrameTree
+
     def __init__(self, model: Model) -> None:
         if model.reference is None:
             raise ValueError("RelativeKinematics needs a model with a reference frame")

@@ -22,6 +22,7 @@ from __future__ import annotations
 import re
 import sys
 from collections.abc import Iterator, Mapping
+from os import PathLike
 from pathlib import Path
 from typing import Any
 
@@ -59,7 +60,7 @@ _LOAD_KINDS = {
 }
 
 
-def load_model(path: str | Path) -> Model:
+def load_model(path: str | PathLike[str]) -> Model:
     """Read and check the model file at ``path``: TOML, or a URDF robot when it ends in ``.urdf``.
 
     A ``.urdf`` file is read by `lagrangian.model.urdf.load_urdf` (see ``docs/urdf.md``), so

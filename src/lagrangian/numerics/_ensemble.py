@@ -57,6 +57,7 @@ from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor
 from concurrent.futures import wait as wait_threads
 from dataclasses import replace
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -496,7 +497,8 @@ class _SigintStop:
     so a write is never cut in half."""
 
     def __init__(self, stop: np.ndarray) -> None:
-        self.stop, self.previous, self.hit = stop, None, False
+        self.stop, self.hit = stop, False
+        self.previous: Any = None  # the SIGINT handler replaced, given back on exit
 
     def __enter__(self) -> _SigintStop:
         if threading.current_thread() is threading.main_thread():

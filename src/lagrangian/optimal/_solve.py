@@ -108,7 +108,8 @@ class _Stop:
     """While active (main thread only), Ctrl-C sets ``hit`` instead of raising."""
 
     def __init__(self) -> None:
-        self.hit, self.previous = False, None
+        self.hit = False
+        self.previous: Any = None  # the SIGINT handler replaced, given back on exit
 
     def __enter__(self) -> _Stop:  # noqa: PYI034 (a private context manager, never subclassed)
         if threading.current_thread() is threading.main_thread():
