@@ -314,7 +314,6 @@ def course_form(eom: EquationsOfMotion, integrals: tuple[FirstIntegral, ...], *,
         equations.append(EquationRow(eq.coordinate, convert(eq.dT_dqd), convert(eq.dT_dq), convert(eq.dU_dq),
                                      convert(eq.Q_nc), lhs, convert(eq.rhs), by_coordinate.get(eq.coordinate),
                                      rewritten))
-    equations = tuple(equations)
     integral_rows = []
     for i in integrals:
         expr = convert(i.expression)
@@ -343,7 +342,7 @@ def course_form(eom: EquationsOfMotion, integrals: tuple[FirstIntegral, ...], *,
         loads=loads,
         conservative=eom.conservative,
         L=L,
-        equations=equations,
+        equations=tuple(equations),
         integrals=tuple(integral_rows),
         M=tuple(tuple(convert(x) for x in row) for row in eom.M),
         F=tuple(convert(x) for x in eom.F),
