@@ -78,7 +78,7 @@ def _with_timeout(work):
 def _assumed(eom: EquationsOfMotion, values: Mapping[str, float]) -> dict[sympy.Symbol, sympy.Symbol]:
     """Plain parameter symbols → the same symbols assumed positive where the value is."""
     return {sympy.Symbol(p.name): sympy.Symbol(p.name, positive=True) for p in eom.model.parameters
-            if values.get(p.name, p.value) is not None and values.get(p.name, p.value) > 0}
+            if (value := values.get(p.name, p.value)) is not None and value > 0}
 
 
 def _simplify(e: sympy.Basic, positive: Mapping, back: Mapping) -> sympy.Basic:

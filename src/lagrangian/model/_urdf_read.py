@@ -486,9 +486,9 @@ class _Reader:
                             symbol=joint.child, fix="a URDF is a tree: remove a joint of the cycle")
         unreached = self.unreached(links, roots[0], parent_joint)
         if unreached:
-            joint = parent_joint.get(unreached[0])
-            if joint is not None and self.in_cycle(parent_joint, unreached[0]):
-                raise self.fail(elements[joint.name], self.cycle_message(parent_joint, unreached[0]),
+            looped = parent_joint.get(unreached[0])
+            if looped is not None and self.in_cycle(parent_joint, unreached[0]):
+                raise self.fail(elements[looped.name], self.cycle_message(parent_joint, unreached[0]),
                                 symbol=unreached[0], fix="a URDF is a tree: remove a joint of the cycle")
         if len(roots) > 1:
             raise self.fail(links[roots[1]].line, f"links `{roots[0]}` and `{roots[1]}` are both roots (no "

@@ -653,7 +653,7 @@ class _Translation:
         declared = {carrier.body for carrier in self.carriers if carrier.masses}
         for link in self.robot.links.values():
             carrier, r, p = self.pose[link.name]
-            on = carrier.body if carrier.body in declared else carrier.frame
+            on = carrier.body if carrier.body is not None and carrier.body in declared else carrier.frame
             for visual in link.visuals:
                 where = self.where(visual.line)
                 mesh = None
@@ -664,11 +664,13 @@ class _Translation:
                 r_visual = _clean(r @ rpy_matrix(visual.rpy), 1.0)
                 center = _clean(p + r @ np.array(visual.xyz), max(1e-3, float(np.max(np.abs(p)))))
                 dims = visual.dimensions
-                size: dict[str, Any] = dict(box={"size": [_number(x) for x in dims]},
-                                            cylinder={"radius": _number(dims[0]) if dims else None,
-                                                      "length": _number(dims[1]) if len(dims) > 1 else None},
-                                            sphere={"radius": _number(dims[0]) if dims else None},
-                                            mesh={"mesh": mesh, "scale": list(visual.scale)})[visual.kind]
+                sizes: dict[str, dict[str, Any]] = dict(box={"size": [_number(x) for x in dims]},
+                                                        cylinder={"radius": _number(dims[0]) if dims else None,
+                                                                  "length": _number(dims[1]) if len(dims) > 1
+                                                                  else None},
+                                                        sphere={"radius": _number(dims[0]) if dims else None},
+                                                        mesh={"mesh": mesh, "scale": list(visual.scale)})
+                size = sizes[visual.kind]
                 color = opacity = None
                 if visual.rgba is not None:
                     color, opacity = list(visual.rgba[:3]), visual.rgba[3]

@@ -212,7 +212,7 @@ def ensemble(
                          method, rtol, atol, dt, max_step, max_steps, events, keep == "trajectories", workers,
                          chunk_size, client, out_path, resume, progress, backend, stiffness_check, inputs)
     finally:
-        if own_client:
+        if own_client and client is not None:
             client.close()
 
 

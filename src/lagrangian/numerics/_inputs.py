@@ -155,7 +155,7 @@ class InputLaw:
             return (s.name, s.kind)
 
         fb = self.feedback
-        shape = (fb.states, fb.inputs) if self._feeds_back else ()
+        shape = (fb.states, fb.inputs) if self._feeds_back and fb is not None else ()
         return (tuple(one(s) for s in self.driven), shape, len(self.breakpoints))
 
     # -- the numbers of the law, after the parameters ----------------------------------------------

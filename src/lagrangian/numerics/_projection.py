@@ -127,10 +127,10 @@ def check_initial(system: ConstrainedSystem, t0: float, y0: np.ndarray, p: np.nd
         if np.linalg.matrix_rank(S, tol=1e-9 * scale * scale / max(w[-1], 1e-300)) == len(idx):
             kept.append(k)
             continue
-        names = ", ".join(f"`{system.rows[j]}`" for j in kept)
+        others = ", ".join(f"`{system.rows[j]}`" for j in kept)
         raise SimulationError(
             f"The constraint row `{system.rows[k]}`{_where(eom, system.rows[k])} is redundant at the initial state: "
-            f"its Jacobian row is a combination of those of {names}, so the multipliers are not determined there.",
+            f"its Jacobian row is a combination of those of {others}, so the multipliers are not determined there.",
             fix="start from another state, or remove the repeated constraint (or make it principal)")
     bad_f = [k for k in range(system.m) if system.holonomic[k] and abs(f[k]) > CONSISTENCY_TOL]
     bad_g = [k for k in range(system.m) if abs(g[k]) > CONSISTENCY_TOL]

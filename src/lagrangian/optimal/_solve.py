@@ -187,7 +187,7 @@ def solve_nlp(tr: Transcription, w0: np.ndarray, *, lam_x0: np.ndarray | None = 
         raise OptimizationError(f"CasADi could not build the solver: {exc}") from None
     setup = time.perf_counter() - start
     arguments = {"x0": w0, "lbx": tr.lbx, "ubx": tr.ubx, "lbg": tr.lbg, "ubg": tr.ubg}
-    if warm:
+    if lam_x0 is not None and lam_g0 is not None:  # warm
         arguments.update(lam_x0=lam_x0, lam_g0=lam_g0)
     start = time.perf_counter()
     try:

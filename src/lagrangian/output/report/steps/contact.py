@@ -130,7 +130,7 @@ def contact_blocks(c: Context) -> list[Block]:
         out.append(Display(tuple(Equation((line,)) for line in lines)))
         agrees = are_zero([N - load.normal_force])[0]
         key = "normal agrees" if agrees else "normal differs"
-        out.append(Para(w(key, N=Math(rf"N = {c.tex(load.normal_force)}")), style=None if agrees else "note"))
+        out.append(Para(w(key, N=Math(rf"N = {c.tex(load.normal_force)}")), style="" if agrees else "note"))
         stick = stick_ratio(c, load)
         if stick is None:
             continue

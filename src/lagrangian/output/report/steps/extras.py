@@ -94,8 +94,8 @@ def check_section(c: Context, v: Verification) -> Section:
         if check.agrees and (long_left or long_right):
             # ⟨24 termes⟩ = … ✓ cannot be checked by a reader: say what was compared, member by member.
             G, Q = rf"\Gamma^{{\mathrm{{NE}}}}_{{{q}}}", rf"Q^{{\mathrm{{NE}}}}_{{{q}}}"
-            key = "check summarized" if long_right else "check summarized left"
-            blocks.append(Para(head + (" ",) + w(key, eq=eq, k=str(_terms(check.newton_euler)),
+            summary = "check summarized" if long_right else "check summarized left"
+            blocks.append(Para(head + (" ",) + w(summary, eq=eq, k=str(_terms(check.newton_euler)),
                                                  k2=str(_terms(check.newton_euler_efforts)), G=Math(G), Q=Math(Q))))
             gamma, forces = _identity_line(c, check.coordinate)
             lines = [gamma, forces] if long_right else [gamma]
