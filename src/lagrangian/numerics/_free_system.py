@@ -95,7 +95,7 @@ class FreeBodySystem:
         assert tuple(dims) == (self.nv, len(self.monitors), len(self.events)), "stale compiled library"
         caller = rhs_caller(self._lib.lg_eval_rhs, self.width, len(self.parameters) + self._constants, self._lib)
         if caller is not None:
-            self.rhs_c = caller
+            self.rhs_c = caller  # type: ignore[method-assign]  # the vectorcall wrapper stands in for the method
         self._layout()
         self._unused: frozenset[str] | None = None
         self._t1 = np.zeros(1)

@@ -14,7 +14,7 @@ import symengine as se
 
 from ....model import Gravity, PointForce, Potential, Spring, Vector
 from ..build import Context
-from ..document import Block, Display, Equation, Math, Para, Section
+from ..document import Block, Display, Equation, Math, Para, Run, Runs, Section
 from ..size import visible_width, wrap_many
 
 #: The seed writes Ω(S/R0) = ψ̇ z0 + θ̇ u + φ̇ z = θ̇ u + ψ̇ sinθ w + (φ̇ + ψ̇ cosθ) z on one line; so do we up to this width.
@@ -260,6 +260,7 @@ def _comoments(c: Context) -> list[Block]:
             support = ("(", Math(S1), ")") if j.support is not None else (Math(S1),)
             out += [Para(w(key, S=Math(S), X=Math(X), S1=support)), Display((Equation((eq, why)),))]
         elif j.kind in ("rod", "plane", "line"):
+            along: Run | Runs
             P = c.element(j.element)
             V = rf"\vec{{V}}^{{*}}({P})"
             if j.kind == "rod":
@@ -271,8 +272,8 @@ def _comoments(c: Context) -> list[Block]:
                     why = rf"{because} " + r",\ ".join(rf"{d}\cdot{V} = 0" for d in dirs)
                 key, along = "comoment rod", w.join([Math(d) for d in dirs])
             elif j.kind == "plane":
-                n = c.axis(j.normals[0])
-                why, key, along = rf"{because} {n}\cdot{V} = 0", "comoment plane", Math(n)
+                normal = c.axis(j.normals[0])
+                why, key, along = rf"{because} {normal}\cdot{V} = 0", "comoment plane", Math(normal)
             else:
                 e = c.axis(j.axis)  # type: ignore[arg-type]
                 why, key, along = rf"{because} {V}\wedge{e} = \vec{{0}}", "comoment line", Math(e)
