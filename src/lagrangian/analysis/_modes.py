@@ -380,7 +380,7 @@ def _bisect(same_as_left, a: float, b: float) -> float:
     return 0.5 * (lo + hi)
 
 
-def sweep(lin: LinearModel, name: str, values: Sequence[float], **fixed: float) -> Sweep:
+def sweep(lin: LinearModel, name: str, values: Sequence[float] | np.ndarray, **fixed: float) -> Sweep:
     """The essential eigenvalues against the parameter ``name``, and where stability changes.
 
     The linearization must keep ``name`` symbolic (``linearize(..., symbolic=(name,))``); A is

@@ -98,7 +98,7 @@ def run(args: argparse.Namespace) -> str:
     eom = derive(model)
     from ..analysis import sweep as sweep_of
 
-    if sweep_name is None:
+    if sweep_name is None or values is None:  # no --sweep
         lin = lin_point = linearize_from_args(args, model, eom)
         swept = None
     else:

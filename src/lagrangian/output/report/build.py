@@ -17,7 +17,7 @@ import sympy
 
 from ...analysis import FirstIntegral
 from ...dynamics import EquationsOfMotion
-from ...model import GALILEAN_FRAME, ORIGIN, Vector
+from ...model import GALILEAN_FRAME, ORIGIN, Body, Particle, Vector
 from .._course import CourseForm, _vector_row, course_form
 from .._display_form import display_form
 from .._notation import Notation, _axis_latex, _base_latex, _is_word
@@ -162,7 +162,8 @@ class Context:
     def mass_tex(self, name: str) -> str:
         """A body's or particle's mass in formulas: its symbol (m, m1), or m_S when the model gives a number (a URDF's
         8), so that T reads ½ m_S V² and not ½ 8 V²."""
-        mass = next(e.mass for e in (*self.model.bodies, *self.model.particles) if e.name == name)
+        elements: tuple[Body | Particle, ...] = (*self.model.bodies, *self.model.particles)
+        mass = next(e.mass for e in elements if e.name == name)
         if mass.free_symbols:
             return self.tex(mass)
         return rf"m_{{{tex_name(name)}}}"

@@ -24,7 +24,7 @@ import symengine as se
 import sympy
 
 from ...._identity import are_zero
-from ....model import CoulombFriction
+from ....model import Body, CoulombFriction, Particle
 from ..build import Context
 from ..document import Block, Display, Equation, Math, Para
 
@@ -44,7 +44,8 @@ def _element(c: Context, load: CoulombFriction) -> str | None:
 
 
 def _mass(c: Context, name: str) -> se.Basic:
-    return next(e.mass for e in (*c.model.bodies, *c.model.particles) if e.name == name)
+    elements: tuple[Body | Particle, ...] = (*c.model.bodies, *c.model.particles)
+    return next(e.mass for e in elements if e.name == name)
 
 
 def normal_force(c: Context, load: CoulombFriction) -> tuple[str, se.Basic, se.Basic, se.Basic] | None:
