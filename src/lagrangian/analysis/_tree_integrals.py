@@ -119,7 +119,8 @@ def tree_integrals(eom: EquationsOfMotion, regime: Mapping[str, str] | None = No
             and not ((rec.T.free_symbols | rec.U.free_symbols | extra.free_symbols) & varying):
         out.append(FirstIntegral("E", "energy", rec.T + rec.U + extra,
                                  "energy integral T + U = cste: a kinematic tree with no time in it, every load "
-                                 "derives from a potential" + ("" if rec.conservative else _energy_note(off, constant))))
+                                 "derives from a potential"
+                                 + ("" if rec.conservative else _energy_note(off, constant))))
     if usable and n <= NOETHER_MAX and G is not None and P is not None:
         out += _symmetries(eom, p, G, P, states, out)
     return tuple(out)

@@ -22,9 +22,11 @@ from ._arguments.common import MODEL_HELP
 __all__ = ["MODEL_HELP", "ZOO", "load_source"]
 
 #: The zoo's models that ``zoo:NAME[:N]`` names, and whether they take a size N.
-ZOO: dict[str, tuple[Callable[..., Model], bool]] = {"lagrange_top": (zoo.lagrange_top, False), "planar_chain": (zoo.planar_chain, True),
-       "spatial_chain": (zoo.spatial_chain, True), "relative_chain": (zoo.relative_chain, True),
-       "serial_arm": (zoo.serial_arm, True)}
+ZOO: dict[str, tuple[Callable[..., Model], bool]] = {
+    "lagrange_top": (zoo.lagrange_top, False), "planar_chain": (zoo.planar_chain, True),
+    "spatial_chain": (zoo.spatial_chain, True), "relative_chain": (zoo.relative_chain, True),
+    "serial_arm": (zoo.serial_arm, True)}
+
 
 def _zoo_model(name: str) -> Model:
     """``zoo:planar_chain:40`` → ``lagrangian.model.zoo.planar_chain(40)``."""

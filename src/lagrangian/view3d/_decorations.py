@@ -215,7 +215,8 @@ def arcs(b: _Builder, found: Sequence[Triad], length: float) -> list[Arc]:
         s = np.linspace(0.0, alpha, 25)
         points = centre + rho * (np.cos(s)[:, None] * e_i + np.sin(s)[:, None] * e_j)
         mid = centre + 1.18 * rho * (np.cos(alpha / 2) * e_i + np.sin(alpha / 2) * e_j)
-        out.append(Arc(_angle_label(frame.rotation.angle), points, (float(mid[0]), float(mid[1]), float(mid[2]))))  # type: ignore[union-attr]
+        label = _angle_label(frame.rotation.angle)  # type: ignore[union-attr]
+        out.append(Arc(label, points, (float(mid[0]), float(mid[1]), float(mid[2]))))
     return out
 
 

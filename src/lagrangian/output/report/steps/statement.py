@@ -186,15 +186,15 @@ def system_section(c: Context) -> Section:
         blocks += c.many([Items(rows)], len(rows), w.text("points given").rstrip(" :"))
     constants = [p for p in model.parameters if not p.input]
     if constants:
-        constant_rows = tuple(((Math(c.sym(p.name)),), ("" if p.value is None else w.number(p.value),), (_unit(p.unit),),
-                      (in_language(p.description, c.lang) or "",)) for p in constants)
+        constant_rows = tuple(((Math(c.sym(p.name)),), ("" if p.value is None else w.number(p.value),),
+                               (_unit(p.unit),), (in_language(p.description, c.lang) or "",)) for p in constants)
         header = tuple((w.text(k),) for k in ("col symbol", "col value", "col unit", "col description"))
         blocks.append(Para(w("parameters")))
         blocks += c.many([Table(header, constant_rows)], len(constant_rows), w.text("parameters").rstrip(" :"))
     inputs = [p for p in model.parameters if p.input]
     if inputs:  # a motor's τ(t), a push F(t): given functions of time, not constants
         input_rows = tuple(((Math(c.sym(p.name)),), (_unit(p.unit),), (in_language(p.description, c.lang) or "",))
-                     for p in inputs)
+                           for p in inputs)
         header = tuple((w.text(k),) for k in ("col symbol", "col unit", "col description"))
         blocks.append(Para(w("inputs")))
         blocks += c.many([Table(header, input_rows)], len(input_rows), w.text("inputs").rstrip(" :"))
