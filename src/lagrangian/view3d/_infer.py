@@ -281,7 +281,7 @@ def inferred_parts(builder, body: Body, carrier: int, attached: dict[str, np.nda
                                       _xyz((start + end) / 2),
                                       _quat(np.array(rotation_to(axis / span))), color, 1.0, "points"))
         kind, axis = joint_axis(builder.model, body, builder.ev)
-        if kind == "hinge":
+        if kind == "hinge" and axis is not None:
             builder.parts.append(Part(body.name, carrier, "cylinder",
                                       (HINGE_RADIUS * length, 4 * HINGE_RADIUS * length),
                                       _xyz(start), _quat(np.array(rotation_to(axis))),
