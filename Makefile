@@ -91,7 +91,7 @@ peers: $(VENV)/.installed
 	fi
 
 # mypy on src/ (settings in pyproject.toml), its error count held at or below tools/mypy_baseline.txt.
-types: $(VENV)/.installed   ## type-check the package; fails when the mypy error count rises
+types: | $(VENV)/.installed   ## type-check the package; fails when the mypy error count rises
 	@$(PY) -c "import mypy" 2>/dev/null || $(PY) -m pip install --quiet -e '.[types]'
 	$(PY) tools/type_ratchet.py
 
