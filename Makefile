@@ -4,7 +4,7 @@ PYTHON ?= python3
 VENV ?= .venv
 PY := $(VENV)/bin/python
 
-.PHONY: demo test bench clean browser octave tex peers
+.PHONY: demo test bench clean browser octave tex peers types
 
 $(VENV)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -89,6 +89,11 @@ peers: $(VENV)/.installed
 	    echo "note: opty is not installed (its IPOPT needs root and apt-get);" \
 	         "the comparisons with opty will be skipped"; \
 	fi
+
+# mypy on src/ (settings in pyproject.toml), its error count held at or below tools/mypy_baseline.txt.
+types: | $(VENV)/.installed   ## type-check the package; fails when the mypy error count rises
+	@$(PY) -c "import mypy" 2>/dev/null || $(PY) -m pip install --quiet -e '.[types]'
+	$(PY) tools/type_ratchet.py
 
 bench: $(VENV)/.installed   ## derivation benchmark against SymPy's LagrangesMethod (slow: minutes)
 	$(PY) benchmarks/derive_vs_sympy.py

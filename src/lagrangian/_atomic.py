@@ -24,7 +24,7 @@ def _umask() -> int:
     return mask
 
 
-def write_atomic_with(path: str | Path, writer: Callable[[BinaryIO], None]) -> None:
+def write_atomic_with(path: str | Path, writer: Callable[[BinaryIO], object]) -> None:
     """Call ``writer(handle)`` on a temporary binary file beside ``path``, then move it over ``path``.
 
     Raises `OSError` (and removes the temporary file) when anything fails; ``path`` is

@@ -93,7 +93,7 @@ def are_zero(exprs: Iterable[se.Basic]) -> list[bool]:
 _UNKNOWN = object()
 
 
-def _evaluated(expr: se.Basic, complex_: bool):  # type: ignore[no-untyped-def]
+def _evaluated(expr: se.Basic, complex_: bool):
     """`_magnitude` of ``expr`` in MPFR, or `_UNKNOWN` when SymEngine cannot evaluate it
     (``RuntimeError: Not Implemented`` for ``Derivative(abs(theta), theta)``)."""
     try:

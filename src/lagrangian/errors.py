@@ -145,13 +145,15 @@ class Interrupted(KeyboardInterrupt):
 
     A `KeyboardInterrupt`, so code that stops on Ctrl-C still stops; ``trajectory`` is the
     part computed so far (its ``status`` says it was interrupted), or None when no output
-    time was reached; ``t`` is the time reached.
+    time was reached; ``t`` is the time reached; ``written`` the file the command line saved
+    that part to, or None.
     """
 
     def __init__(self, t: float, trajectory=None) -> None:
         super().__init__(f"interrupted at t = {t:.9g}")
         self.t = t
         self.trajectory = trajectory
+        self.written: str | None = None
 
 
 class EnsembleInterrupted(KeyboardInterrupt):

@@ -128,6 +128,18 @@ def test_zarr_store_streams_and_resume_finishes_pending_members(top, tmp_path):
         ensemble(top, 0.7, initial=g, n_out=11, chunk_size=2, out=store, resume=True)
 
 
+def test_resume_refuses_a_store_whose_run_record_is_not_json_text(top, tmp_path):
+    import zarr
+
+    store = tmp_path / "other.zarr"
+    for record in (None, 7):  # absent, or written by another tool as a number: not the sweep's JSON text
+        group = zarr.open_group(str(store), mode="w")
+        if record is not None:
+            group.attrs["lagrangian_run"] = record
+        with pytest.raises(OutputError, match="is not a store written by"):
+            ensemble(top, 0.5, initial=grid(theta=[0.4, 0.8]), n_out=11, out=store, resume=True)
+
+
 def test_netcdf_round_trip(top, tmp_path):
     path = tmp_path / "sweep.nc"
     ds = ensemble(top, 0.3, initial=grid(phi_dot=[20.0, 40.0, 60.0]), n_out=5, events=["theta_dot"], out=path)

@@ -77,13 +77,13 @@ def bifurcation(eom: EquationsOfMotion, parameter: str, values: Sequence[float],
     if parameter not in names:
         raise EquilibriumError(f"`{parameter}` is not a parameter of the model ({', '.join(names)}).",
                                fix="sweep one of the model's parameters")
-    values = np.asarray(values, dtype=float)
-    if values.ndim != 1 or values.size == 0:
+    grid = np.asarray(values, dtype=float)
+    if grid.ndim != 1 or grid.size == 0:
         raise EquilibriumError("the sweep has no point.", fix="give a range with at least one value, e.g. Omega=0:10:0.1")
     fixed = {p.name: p.value for p in eom.model.parameters if p.value is not None}
     fixed.update(parameters or {})
     fixed.pop(parameter, None)
-    found = [e for e in equilibria(eom, parameters={**fixed, parameter: float(values[0])}, all_branches=True,
+    found = [e for e in equilibria(eom, parameters={**fixed, parameter: float(grid[0])}, all_branches=True,
                                    numeric=False)
              if e.closed_form and not e.free]
     if not found:
@@ -105,12 +105,12 @@ def bifurcation(eom: EquationsOfMotion, parameter: str, values: Sequence[float],
 
     branches = []
     for e in found:
-        rows = [state(e, float(p)) for p in values]
+        rows = [state(e, float(p)) for p in grid]
         q = np.array([r[1] if r[1] is not None else np.full(len(coords), np.nan) for r in rows])
         stable = np.array([r[2] for r in rows])
         changes: list[tuple[float, str]] = []
-        for k in range(len(values) - 1):
-            a, b = float(values[k]), float(values[k + 1])
+        for k in range(len(grid) - 1):
+            a, b = float(grid[k]), float(grid[k + 1])
             if rows[k][0] != rows[k + 1][0]:
                 x = _bisect(lambda p, e=e, was=rows[k][0]: state(e, p)[0] == was, a, b)
                 changes.append((x, "appears" if rows[k + 1][0] else "disappears"))
@@ -120,7 +120,7 @@ def bifurcation(eom: EquationsOfMotion, parameter: str, values: Sequence[float],
                 changes.append((x, "becomes stable" if after == 1 else "becomes unstable" if after == 0
                                 else "becomes marginal"))
         branches.append(Branch(e, q, stable, tuple(changes)))
-    return BifurcationDiagram(parameter, values, tuple(coords), tuple(branches))
+    return BifurcationDiagram(parameter, grid, tuple(coords), tuple(branches))
 
 
 def _same(a: float, b: float) -> bool:

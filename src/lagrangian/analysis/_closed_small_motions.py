@@ -59,7 +59,7 @@ class ClosedPoint:
     N: sympy.Matrix
 
 
-def _with_timeout(work):  # type: ignore[no-untyped-def]
+def _with_timeout(work):
     """``work()`` in a daemon thread, or None after `TIMEOUT` seconds (SymPy cannot be interrupted)."""
     out: list = []
 
@@ -78,7 +78,7 @@ def _with_timeout(work):  # type: ignore[no-untyped-def]
 def _assumed(eom: EquationsOfMotion, values: Mapping[str, float]) -> dict[sympy.Symbol, sympy.Symbol]:
     """Plain parameter symbols → the same symbols assumed positive where the value is."""
     return {sympy.Symbol(p.name): sympy.Symbol(p.name, positive=True) for p in eom.model.parameters
-            if values.get(p.name, p.value) is not None and values.get(p.name, p.value) > 0}
+            if (value := values.get(p.name, p.value)) is not None and value > 0}
 
 
 def _simplify(e: sympy.Basic, positive: Mapping, back: Mapping) -> sympy.Basic:
@@ -106,7 +106,7 @@ def closed_point(eom: EquationsOfMotion, point: Mapping[str, float], values: Map
     return _with_timeout(lambda: _build(eom, match, values))
 
 
-def _build(eom: EquationsOfMotion, match, values: Mapping[str, float]) -> ClosedPoint | None:  # type: ignore[no-untyped-def]
+def _build(eom: EquationsOfMotion, match, values: Mapping[str, float]) -> ClosedPoint | None:
     names = list(eom.coordinates)
     positive = _assumed(eom, values)
     back = {v: k for k, v in positive.items()}
@@ -127,7 +127,7 @@ def _build(eom: EquationsOfMotion, match, values: Mapping[str, float]) -> Closed
             # eliminate one parameter of u, preferably one it is proportional to (g in g/(R Ω²): g = R Ω² cos θ0)
             num, den = sympy.fraction(sympy.together(u))
 
-            def rank(x: sympy.Symbol) -> tuple:  # type: ignore[type-arg]
+            def rank(x: sympy.Symbol) -> tuple:
                 linear = x not in den.free_symbols and sympy.degree(num, x) == 1
                 return (not linear, str(x) not in values, str(x))
 

@@ -99,7 +99,7 @@ class Equilibrium:
     aliases: tuple[Mapping[str, float], ...] = ()
 
 
-class Equilibria(tuple):  # type: ignore[type-arg]
+class Equilibria(tuple):
     """The equilibria found (a tuple of `Equilibrium`), with ``search``: what was searched (`EquilibriumSearch`)."""
 
     search: EquilibriumSearch
@@ -196,7 +196,7 @@ def _identify(system: StaticSystem, out: list[Equilibrium], numbers: Mapping[se.
     except (RuntimeError, TypeError, ValueError, KeyError, AttributeError):  # pragma: no cover - no kinematics
         return out
     names = system.names
-    at = {e_id: np.asarray(place(np.array([e.numeric.get(n, 0.0) for n in names])), dtype=float).ravel()
+    at = {e_id: np.asarray(place(np.array([(e.numeric or {}).get(n, 0.0) for n in names])), dtype=np.float64).ravel()
           for e_id, e in ((id(e), e) for e in points)}
     groups: list[list[Equilibrium]] = []
     for e in points:
@@ -208,14 +208,15 @@ def _identify(system: StaticSystem, out: list[Equilibrium], numbers: Mapping[se.
         else:
             groups.append([e])
 
-    def key(e: Equilibrium) -> tuple:  # type: ignore[type-arg]
-        negative = sum(1 for n, v in e.numeric.items() if n not in angles and v < -1e-12)
-        return (negative, not e.closed_form, sum(1 for v in e.numeric.values() if v < -1e-12))
+    def key(e: Equilibrium) -> tuple:
+        numeric = e.numeric or {}  # the rests grouped have numbers (`points`)
+        negative = sum(1 for n, v in numeric.items() if n not in angles and v < -1e-12)
+        return (negative, not e.closed_form, sum(1 for v in numeric.values() if v < -1e-12))
 
     keep: dict[int, Equilibrium] = {}
     for g in groups:
         best = min(g, key=key)
-        keep[id(best)] = replace(best, aliases=tuple(dict(x.numeric) for x in g if x is not best))
+        keep[id(best)] = replace(best, aliases=tuple(dict(x.numeric or {}) for x in g if x is not best))
     return [keep.get(id(e), e) for e in out if id(e) in keep or e.numeric is None or e.free]
 
 

@@ -121,12 +121,12 @@ class LinearModel:
         A, _ = self.numeric(**values)
         return np.linalg.eigvals(A) if A.size else np.zeros(0, complex)
 
-    def modes(self, **values: float):  # type: ignore[no-untyped-def]
+    def modes(self, **values: float):
         """Natural frequencies, damping ratios and mode shapes (`lagrangian.analysis.Modes`)."""
         from ._modes import modes
         return modes(self, **values)
 
-    def stability(self, **values: float):  # type: ignore[no-untyped-def]
+    def stability(self, **values: float):
         """The stability verdict with its reason (`lagrangian.analysis.Stability`)."""
         from ._modes import stability
         return stability(self, **values)
@@ -135,7 +135,7 @@ class LinearModel:
         """ẋ = A x + B u written out, about the point (Jupyter); large states give the sizes only."""
         return render(self, "latex")
 
-    def to_scipy(self, **values: float):  # type: ignore[no-untyped-def]
+    def to_scipy(self, **values: float):
         """``scipy.signal.StateSpace(A, B, I, 0)``: the whole state as output."""
         from scipy import signal
         A, B = self.numeric(**values)
@@ -143,7 +143,7 @@ class LinearModel:
         B = B if B.shape[1] else np.zeros((n, 1))
         return signal.StateSpace(A, B, np.eye(n), np.zeros((n, B.shape[1])))
 
-    def to_control(self, **values: float):  # type: ignore[no-untyped-def]
+    def to_control(self, **values: float):
         """python-control's ``StateSpace`` (extra ``lagrangian[control]``), states and inputs named."""
         try:
             import control

@@ -167,7 +167,7 @@ def modes(lin: LinearModel, **values: float) -> Modes:
     return Modes(state, essential, tuple(out), tuple(neutral), pulsations, shapes, zero)
 
 
-def _second_order_numeric(lin: LinearModel, values: dict, essential: Sequence[str]):  # type: ignore[no-untyped-def]
+def _second_order_numeric(lin: LinearModel, values: dict, essential: Sequence[str]):
     """(coordinates, M, D, G, K, N) restricted to the essential coordinates, when the essential
     state is exactly those coordinates and their rates; else None."""
     form = lin.second_order
@@ -182,7 +182,7 @@ def _second_order_numeric(lin: LinearModel, values: dict, essential: Sequence[st
     return (E, *mats)
 
 
-def _conservative(lin: LinearModel, values: dict, lam: np.ndarray):  # type: ignore[no-untyped-def]
+def _conservative(lin: LinearModel, values: dict, lam: np.ndarray):
     """The pulsations ω > 0 with det(K − ω² M) = 0 and their shapes φ, for a conservative linearization
     (D = G = N = 0, K ≥ 0); else (None, None).
 
@@ -344,7 +344,7 @@ class Sweep:
     changes: tuple[StabilityChange, ...]
 
 
-def _compiled(lin: LinearModel, name: str, fixed: dict[str, float]):  # type: ignore[no-untyped-def]
+def _compiled(lin: LinearModel, name: str, fixed: dict[str, float]):
     """A(value) as a compiled function of the swept parameter (one SymEngine Lambdify, CSE)."""
     syms = {str(s): s for s in lin.symbols}
     if name not in syms:
@@ -366,7 +366,7 @@ def _compiled(lin: LinearModel, name: str, fixed: dict[str, float]):  # type: ig
     return lambda x: np.asarray(fn([x]), dtype=float).reshape(n, n)
 
 
-def _bisect(same_as_left, a: float, b: float) -> float:  # type: ignore[no-untyped-def]
+def _bisect(same_as_left, a: float, b: float) -> float:
     """The point between a and b where ``same_as_left`` turns false, to the last representable digit."""
     lo, hi = a, b
     for _ in range(200):
@@ -380,7 +380,7 @@ def _bisect(same_as_left, a: float, b: float) -> float:  # type: ignore[no-untyp
     return 0.5 * (lo + hi)
 
 
-def sweep(lin: LinearModel, name: str, values: Sequence[float], **fixed: float) -> Sweep:
+def sweep(lin: LinearModel, name: str, values: Sequence[float] | np.ndarray, **fixed: float) -> Sweep:
     """The essential eigenvalues against the parameter ``name``, and where stability changes.
 
     The linearization must keep ``name`` symbolic (``linearize(..., symbolic=(name,))``); A is
@@ -403,13 +403,13 @@ def sweep(lin: LinearModel, name: str, values: Sequence[float], **fixed: float) 
                                      "unilateral contacts and t_end.",
                                      fix='e.g. sweep(linearize(eom, point, symbolic=("Omega",)), "Omega", values), '
                                          'or sweep("examples/bouncing_ball.toml", "e", values, t_end=10)')
-        return impact_sweep(lin, {name: values}, t_end, **fixed)  # type: ignore[return-value]
-    values = np.asarray(values, dtype=float)
-    if values.ndim != 1 or values.size == 0:
+        return impact_sweep(lin, {name: values}, t_end, **fixed)
+    grid = np.asarray(values, dtype=float)
+    if grid.ndim != 1 or grid.size == 0:
         raise LinearizationError("the sweep has no point.", fix="give a range with at least one value, e.g. v=0:10:0.01")
     A_of = _compiled(lin, name, fixed)
     rng = np.random.default_rng(7)
-    probe = [A_of(float(x)) for x in rng.uniform(values.min(), values.max() + 1.0, 2)]
+    probe = [A_of(float(x)) for x in rng.uniform(grid.min(), grid.max() + 1.0, 2)]
     keep0, neutral0 = _reduce(np.abs(probe[0]) + np.abs(probe[1]), lin.state, lin)
     zeros = _momenta(lin, keep0, neutral0)
 
@@ -421,7 +421,7 @@ def sweep(lin: LinearModel, name: str, values: Sequence[float], **fixed: float) 
             lam = np.delete(lam, order[:zeros])
         return _sorted(lam)
 
-    eig = np.array([essential(float(x)) for x in values])
+    eig = np.array([essential(float(x)) for x in grid])
 
     def abscissa(x: float) -> float:
         lam = essential(x)
@@ -441,8 +441,8 @@ def sweep(lin: LinearModel, name: str, values: Sequence[float], **fixed: float) 
     sides = np.array([side(a) for a in alpha])
     stable = np.where(sides < 0, 1.0, np.where(sides > 0, 0.0, np.nan))
     changes: list[StabilityChange] = []
-    for k in range(len(values) - 1):
-        a, b = float(values[k]), float(values[k + 1])
+    for k in range(len(grid) - 1):
+        a, b = float(grid[k]), float(grid[k + 1])
         if sides[k] != sides[k + 1]:
             if sides[k] * sides[k + 1] < 0:  # through the axis: Brent on the spectral abscissa
                 x = optimize.brentq(abscissa, a, b, xtol=1e-14, rtol=4 * np.finfo(float).eps, maxiter=200)
@@ -457,4 +457,4 @@ def sweep(lin: LinearModel, name: str, values: Sequence[float], **fixed: float) 
             kind = "eigenvalues become complex" if counts[k + 1] > counts[k] else "eigenvalues become real"
             changes.append(StabilityChange(x, kind, essential(x)))
     changes.sort(key=lambda c: c.value)
-    return Sweep(name, values, eig, stable, tuple(changes))
+    return Sweep(name, grid, eig, stable, tuple(changes))

@@ -424,19 +424,19 @@ def given_efforts(eom: EquationsOfMotion) -> tuple[tuple[EffortsOnElement, ...],
             acc._note_power(load.name)
     # Complementary constraints (issue 5): their reactions, linear in the multipliers λ_k, are
     # efforts like the given ones here (the virtual field is not compatible with them).
-    for load, what, value, at, owner in reaction_efforts(eom):
+    for constraint, what, value, at, owner in reaction_efforts(eom):
         if what == "power":
             acc.power = [p + x for p, x in zip(acc.power, value)]  # type: ignore[call-overload]
-            acc._note_power(load)
+            acc._note_power(constraint)
         elif what == "couple":
-            acc.add_couple(load, value, owner)  # type: ignore[arg-type]
+            acc.add_couple(constraint, value, owner)  # type: ignore[arg-type]
         elif owner is None:
-            acc.add_force(load, value, at)  # type: ignore[arg-type]
+            acc.add_force(constraint, value, at)  # type: ignore[arg-type]
         else:  # on the material point of `owner` at the contact `at` (rolling without slipping)
             acc.force[owner] = acc.force[owner] + value  # type: ignore[operator]
             arm = kin.position(at) - kin.position(acc.point[owner])  # type: ignore[arg-type]
             acc.moment[owner] = acc.moment[owner] + kin.frames.cross(arm, value)  # type: ignore[arg-type]
-            acc._note(owner, load)
+            acc._note(owner, constraint)
     # In a non-Galilean frame R: the Coriolis and entrainment torsors at each centre of mass (Remarque 3).
     for torsor in inertial_torsors(kin) if isinstance(kin, RelativeKinematics) else ():
         acc.add_force(torsor.load, torsor.force, torsor.element)

@@ -235,8 +235,8 @@ def symmetry_integrals(eom: EquationsOfMotion, known: Sequence[se.Basic] = ()) -
     if eom.kinematics.n > MAX_COORDINATES or (model.reference is not None and not model.reference.is_galilean_frame):
         return []
     kin = eom.kinematics
-    axes_names = next((f.axes for f in model.frames if f.name == GALILEAN_FRAME and getattr(f, "axes", None)), None)
-    axes_names = tuple(axes_names) if axes_names else ("x0", "y0", "z0")
+    declared = next((f.axes for f in model.frames if f.name == GALILEAN_FRAME and getattr(f, "axes", None)), None)
+    axes_names = tuple(declared) if declared else ("x0", "y0", "z0")
     T, U = eom.T, eom.U
     p = [eq.dT_dqd for eq in eom.equations]
     found = list(known)

@@ -46,13 +46,21 @@ class Trajectory(Protocol):
     after it) even for annotations: imports flow one way.
     """
 
-    coordinates: Sequence[str]
-    parameters: Mapping[str, float]
-    t: np.ndarray
-    q: np.ndarray
-    qd: np.ndarray
-    qdd: np.ndarray
-    extra: Mapping[str, np.ndarray]
+    # Read-only members (properties), which a frozen dataclass's fields satisfy.
+    @property
+    def coordinates(self) -> Sequence[str]: ...
+    @property
+    def parameters(self) -> Mapping[str, float]: ...
+    @property
+    def t(self) -> np.ndarray: ...
+    @property
+    def q(self) -> np.ndarray: ...
+    @property
+    def qd(self) -> np.ndarray: ...
+    @property
+    def qdd(self) -> np.ndarray: ...
+    @property
+    def extra(self) -> Mapping[str, np.ndarray]: ...
 
 __all__ = ["Reaction", "reactions", "ReactionHistory", "reaction_history", "TrajectoryResiduals",
            "check_trajectory"]
@@ -210,7 +218,7 @@ def reactions(source: Verification | EquationsOfMotion, *, display: bool = True)
     return tuple(out)
 
 
-def _need_masses(model, bodies: Sequence[str]) -> None:  # type: ignore[no-untyped-def]
+def _need_masses(model, bodies: Sequence[str]) -> None:
     """A reaction takes Σ m γ(G) and the weights of its group: each body needs its mass.
 
     A body may leave its mass out when its centre is fixed (the Lagrange equations do not
@@ -385,14 +393,14 @@ def check_trajectory(source: Verification | EquationsOfMotion, trajectory: Traje
     at += 6 * E * n
     extra = values[:, at:at + n]
     at += n
-    m_gamma, force, delta, moment, sigma, omega = (element_vectors[:, :, k, :] for k in range(6))
-    dv, dw = partial[:, :, :, 0, :], partial[:, :, :, 1, :]
-    dyn = np.einsum("nej,neij->ni", m_gamma, dv) + np.einsum("nej,neij->ni", delta, dw)
-    given = np.einsum("nej,neij->ni", force, dv) + np.einsum("nej,neij->ni", moment, dw) + extra
+    m_gamma, force, delta, moment, sigma, spin = (element_vectors[:, :, k, :] for k in range(6))
+    d_v, d_w = partial[:, :, :, 0, :], partial[:, :, :, 1, :]
+    dyn = np.einsum("nej,neij->ni", m_gamma, d_v) + np.einsum("nej,neij->ni", delta, d_w)
+    given = np.einsum("nej,neij->ni", force, d_v) + np.einsum("nej,neij->ni", moment, d_w) + extra
     norm = np.linalg.norm
-    scale = (np.einsum("ne,nei->ni", norm(m_gamma, axis=2) + norm(force, axis=2), norm(dv, axis=3))
+    scale = (np.einsum("ne,nei->ni", norm(m_gamma, axis=2) + norm(force, axis=2), norm(d_v, axis=3))
              + np.einsum("ne,nei->ni", norm(delta, axis=2) + norm(moment, axis=2)
-                         + norm(omega, axis=2) * norm(sigma, axis=2), norm(dw, axis=3))
+                         + norm(spin, axis=2) * norm(sigma, axis=2), norm(d_w, axis=3))
              + np.abs(extra))
     projections = np.abs(dyn - given) / np.maximum(scale, np.finfo(float).tiny)
     histories, resultant, moment_res = {}, {}, {}

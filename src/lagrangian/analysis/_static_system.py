@@ -32,7 +32,7 @@ class EquilibriumError(AnalysisError):
 
 
 
-def lambdify(q: list[se.Basic], exprs: list[se.Basic]):  # type: ignore[no-untyped-def]
+def lambdify(q: list[se.Basic], exprs: list[se.Basic]):
     """`symengine.Lambdify` of ``exprs`` in ``q``, also when ``q`` is empty (every coordinate fixed
     or free, e.g. a block held on an incline): SymEngine refuses zero arguments, so a dummy one."""
     if q:
@@ -136,7 +136,7 @@ class StaticSystem:
             everything += [to_symengine(a) for a in r.coefficients] + [to_symengine(r.b)]
         return _angles(everything, self.q, self.names, numbers, self.free)
 
-    def residual_function(self, numbers: Mapping[se.Basic, float]):  # type: ignore[no-untyped-def]
+    def residual_function(self, numbers: Mapping[se.Basic, float]):
         """r(q_active) with λ eliminated: (I − Aᵀ(Aᵀ)⁺) F, then the holonomic and b rows; q_active one point
         (shape (d,)) or a batch of points (shape (N, d), for the search's Levenberg–Marquardt)."""
         q = [s for n, s in zip(self.names, self.q) if n in self.active]
@@ -164,7 +164,7 @@ class StaticSystem:
 
         return r
 
-    def size_function(self, numbers: Mapping[se.Basic, float]):  # type: ignore[no-untyped-def]
+    def size_function(self, numbers: Mapping[se.Basic, float]):
         """s(q_active): per equation of `residual_function`, the sum of the sizes of its terms (F's, then the
         rows'), against which a residual is small."""
         q = [s for n, s in zip(self.names, self.q) if n in self.active]
@@ -212,7 +212,7 @@ def _autonomous(e: se.Basic, t: se.Symbol, where: str, numbers: Mapping[se.Basic
 
 
 
-def configuration(system: StaticSystem, numbers: Mapping[se.Basic, float]):  # type: ignore[no-untyped-def]
+def configuration(system: StaticSystem, numbers: Mapping[se.Basic, float]):
     """q ↦ the positions of every particle and body centre and the axes of every body, in R0's basis."""
     kin = system.eom.kinematics
     model = system.eom.model

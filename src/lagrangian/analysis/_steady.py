@@ -110,7 +110,7 @@ def routh_reduction(eom: EquationsOfMotion) -> RouthReduction:
     B = [eom.T.diff(qd).subs(zero_rates) for qd in kin.qd]
     T0 = eom.T.subs(zero_rates)
 
-    def block(rows, cols):  # type: ignore[no-untyped-def]
+    def block(rows, cols):
         return se.DenseMatrix([[M[i, j] for j in cols] for i in rows])
 
     Mcc, Mcr, Mrr = block(cyc, cyc), block(cyc, rem), block(rem, rem)

@@ -358,7 +358,7 @@ def _sleeping_at(red: CyclicReduction, top: TopForm | None, numbers: dict[se.Bas
     spin = criterion = critical = None
     if top is not None and top.C is not None:
         A, C, mga, _ = top.values
-        spin = numbers[P[red.cyclic.index(red.spin)]] / C  # type: ignore[arg-type]
+        spin = numbers[P[red.cyclic.index(red.spin)]] / C
         rhs = 4 * A * mga * math.cos(theta_s)
         criterion = ((C * spin) ** 2, rhs)  # type: ignore[operator]
         critical = math.sqrt(rhs) / C if rhs > 0 else None  # type: ignore[operator]

@@ -101,9 +101,10 @@ def tree_integrals(eom: EquationsOfMotion, regime: Mapping[str, str] | None = No
             G_on = np.array([_evaluate(eom, rec.dL_dq, s) for s in _states(eom, STATES)]) if off else G
         except (RuntimeError, TypeError, ValueError, ZeroDivisionError):  # a state outside the domain: E only
             G = P = G_on = None
-    usable = G is not None and bool(np.all(np.isfinite(G)) and np.all(np.isfinite(P)) and np.all(np.isfinite(G_on)))
+    usable = (G is not None and P is not None and G_on is not None
+              and bool(np.all(np.isfinite(G)) and np.all(np.isfinite(P)) and np.all(np.isfinite(G_on))))
     out: list[FirstIntegral] = []
-    if usable:
+    if usable and G is not None and P is not None and G_on is not None:
         scale = np.maximum(1.0, np.abs(G).max(axis=1) + np.abs(P).max(axis=1))
         for i, c in enumerate(eom.model.coordinates):
             if np.all(np.abs(G[:, i]) <= ZERO_RTOL * scale):
@@ -112,15 +113,16 @@ def tree_integrals(eom: EquationsOfMotion, regime: Mapping[str, str] | None = No
                 out.append(FirstIntegral(c.momentum or f"p_{c.name}", "momentum", p[i],
                                          f"{c.name} is cyclic: ∂L/∂{c.name} = 0 and Q_{c.name}(nc) = 0"
                                          + ("" if held else suffix), c.name))
-    held = [u for u, what in regime.items() if what == "constant"]
-    extra = se.Integer(0) if rec.conservative else _energy_potential(eom, off, held)
+    constant = [u for u, what in regime.items() if what == "constant"]
+    extra = se.Integer(0) if rec.conservative else _energy_potential(eom, off, constant)
     if extra is not None and kin.t not in (rec.U + extra).free_symbols \
             and not ((rec.T.free_symbols | rec.U.free_symbols | extra.free_symbols) & varying):
         out.append(FirstIntegral("E", "energy", rec.T + rec.U + extra,
                                  "energy integral T + U = cste: a kinematic tree with no time in it, every load "
-                                 "derives from a potential" + ("" if rec.conservative else _energy_note(off, held))))
-    if usable and n <= NOETHER_MAX:
-        out += _symmetries(eom, p, G, P, states, out)  # type: ignore[arg-type]
+                                 "derives from a potential"
+                                 + ("" if rec.conservative else _energy_note(off, constant))))
+    if usable and n <= NOETHER_MAX and G is not None and P is not None:
+        out += _symmetries(eom, p, G, P, states, out)
     return tuple(out)
 
 
@@ -143,7 +145,7 @@ def _energy_potential(eom: EquationsOfMotion, off: Sequence[str], held: Sequence
     constant = {se.Symbol(u) for u in held}
     inputs = {p.symbol for p in eom.model.parameters if p.input}
 
-    def potential_of(f) -> se.Basic | None:  # type: ignore[no-untyped-def]
+    def potential_of(f) -> se.Basic | None:
         if all(q.xreplace(zero) == 0 for q in f.Q):
             return se.Integer(0)  # it vanishes with the inputs off
         if f.potential is not None:
@@ -175,7 +177,7 @@ def _energy_potential(eom: EquationsOfMotion, off: Sequence[str], held: Sequence
     return se.Add(*extra)
 
 
-def _rigid_motions(eom: EquationsOfMotion, states: Sequence[dict]):  # type: ignore[no-untyped-def]
+def _rigid_motions(eom: EquationsOfMotion, states: Sequence[dict]):
     """(kind, axis, ξ at the states, ξ̇ at the states) of each rigid translation or rotation the coordinates
     can follow, ξ solved numerically from Σ_i ∂V(P)/∂q̇_i ξ_i = e (or e ∧ OP), Σ_i ∂Ω(S)/∂q̇_i ξ_i = 0 (or e)
     (`_noether`), ξ̇ = Σ_j ∂ξ/∂q_j q̇_j by a central difference along q̇."""
@@ -241,8 +243,8 @@ def _symmetries(eom: EquationsOfMotion, p: Sequence[se.Basic], G: np.ndarray, P:
     model = eom.model
     if model.reference is not None and not model.reference.is_galilean_frame:
         return []
-    axes = next((f.axes for f in model.frames if f.name == GALILEAN_FRAME and getattr(f, "axes", None)), None)
-    axes = tuple(axes) if axes else ("x0", "y0", "z0")
+    named = next((f.axes for f in model.frames if f.name == GALILEAN_FRAME and getattr(f, "axes", None)), None)
+    axes = tuple(named) if named else ("x0", "y0", "z0")
     values = [P[:, list(p).index(fi.expression)] if fi.kind == "momentum" else
               np.array([_evaluate(eom, [fi.expression], s)[0] for s in states]) for fi in found]
     out = []

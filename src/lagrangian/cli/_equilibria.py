@@ -95,7 +95,7 @@ def run(args: argparse.Namespace) -> str:
     return text
 
 
-def _stability(eom, e: Equilibrium, parameters: dict) -> tuple[bool | None, str, str] | None:  # type: ignore[no-untyped-def]
+def _stability(eom, e: Equilibrium, parameters: dict) -> tuple[bool | None, str, str] | None:
     """(stable, verdict, reason) from the linearization at the equilibrium's numeric value, or None (no
     value).  A family ("r any") is linearized at one of its points, its free coordinates at 0 (a shift along
     it is another rest: a zero column of A); a rest where the linearization cannot be made says why (a
@@ -120,7 +120,7 @@ def _stability(eom, e: Equilibrium, parameters: dict) -> tuple[bool | None, str,
     return st.stable, st.verdict, st.reason
 
 
-def _point(eom, e: Equilibrium, parameters: dict) -> dict[str, float] | None:  # type: ignore[no-untyped-def]
+def _point(eom, e: Equilibrium, parameters: dict) -> dict[str, float] | None:
     """The equilibrium's values as numbers, its free coordinates at 0; None without values."""
     numbers = {se.Symbol(p.name): parameters.get(p.name, p.value) for p in eom.model.parameters
                if parameters.get(p.name, p.value) is not None}
@@ -138,7 +138,7 @@ def _point(eom, e: Equilibrium, parameters: dict) -> dict[str, float] | None:  #
 
 
 def _document(name: str, coordinates: tuple[str, ...], values: dict, found: tuple[Equilibrium, ...],
-              verdicts: list, search) -> dict:  # type: ignore[no-untyped-def]
+              verdicts: list, search) -> dict:
     def bound(x: float) -> float | None:
         return x if math.isfinite(x) else None  # JSON has no infinity: null for an open side
 
@@ -198,7 +198,7 @@ def _text(name: str, coordinates: tuple[str, ...], parameters: list[str], found:
     return "\n".join(lines) + "\n"
 
 
-def _searched(n: Notation, search) -> str:  # type: ignore[no-untyped-def]
+def _searched(n: Notation, search) -> str:
     """What was searched, so that the list is never read as complete when it may not be."""
     how = "closed form (SymPy)" if search.closed_form else "no closed form (SymPy failed)"
     if not search.numeric:
@@ -259,7 +259,7 @@ def _condition(n: Notation, cond: sympy.Basic) -> str:
     return f"{n.text(cond.lhs.xreplace(plain))} {op} {n.text(cond.rhs.xreplace(plain))}"
 
 
-def _sweep(eom, swept, parameters: dict, folder: Path | None, lang: str, as_json: bool) -> str:  # type: ignore[no-untyped-def]
+def _sweep(eom, swept, parameters: dict, folder: Path | None, lang: str, as_json: bool) -> str:
     """The closed-form branches along the parameter: where each appears and changes stability."""
     name, values = swept
     diagram = bifurcation(eom, name, values, parameters=parameters or None)

@@ -39,7 +39,7 @@ def _pairs(items: list[str], option: str) -> dict[str, float]:
     return out
 
 
-def _model(name: str):  # type: ignore[no-untyped-def]
+def _model(name: str):
     """The model, a URDF with its inertial parameters as parameters."""
     if name.lower().endswith(".urdf"):
         from ..model.urdf import UrdfNote, load_urdf

@@ -78,10 +78,10 @@ def parse_inputs(values: Sequence[str], model: Model, *, time_column: str = "t",
             raise SettingError(f"`--switch-at {switch_at}` is not a finite time.", fix="give the time of the switch")
         before = parse_inputs(values, model, time_column=time_column) or {}
         fb = Feedback.load(feedback)
-        out = parse_inputs((), model, feedback=feedback) or {}
+        after = parse_inputs((), model, feedback=feedback) or {}
         for name in fb.inputs:
-            out[name] = Switch(before.pop(name, 0.0), fb, at=switch_at)
-        return {**before, **out}
+            after[name] = Switch(before.pop(name, 0.0), fb, at=switch_at)
+        return {**before, **after}
     declared = list(model.inputs)
     out: dict[str, Any] = {}
     if feedback is not None:

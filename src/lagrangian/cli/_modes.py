@@ -98,7 +98,7 @@ def run(args: argparse.Namespace) -> str:
     eom = derive(model)
     from ..analysis import sweep as sweep_of
 
-    if sweep_name is None:
+    if sweep_name is None or values is None:  # no --sweep
         lin = lin_point = linearize_from_args(args, model, eom)
         swept = None
     else:
@@ -131,7 +131,7 @@ def run(args: argparse.Namespace) -> str:
     return out
 
 
-def _plots(lin, modes, swept, folder: Path, lang: str) -> list[Path]:  # type: ignore[no-untyped-def]
+def _plots(lin, modes, swept, folder: Path, lang: str) -> list[Path]:
     """Draw every figure first, then write them: a failure while drawing leaves the folder as it was."""
     from ..plotting import plot_eigenvalue_sweep, plot_mode_shapes, save_figure
 
@@ -148,7 +148,7 @@ def _plots(lin, modes, swept, folder: Path, lang: str) -> list[Path]:  # type: i
     return [save_figure(fig, folder / name) for name, fig in figures]
 
 
-def _animations(lin, modes, folder: Path, values: dict) -> list[Path]:  # type: ignore[no-untyped-def]
+def _animations(lin, modes, folder: Path, values: dict) -> list[Path]:
     """``mode_K.gif`` for each mode K as the text numbers them (a conjugate pair once)."""
     from ..plotting import animate, mode_trajectory
 

@@ -97,7 +97,8 @@ class _IpoptOutputToStderr:
     """With ``--verbose``, IPOPT prints to the process's standard output: send it to standard error."""
 
     def __init__(self, active: bool) -> None:
-        self.active, self.saved = active, None
+        self.active = active
+        self.saved: int | None = None  # the file descriptor of the real standard output
 
     def __enter__(self) -> None:
         import os

@@ -62,16 +62,17 @@ def parse_point(values: Sequence[str], model: Model) -> dict[str, int | float | 
             raise SettingError(f"`{name}` in `--at {item}`{what} of `{model.name}`.", fix=fix)
         if name in out:
             raise SettingError(f"`--at {name}` is given twice.", fix="give each coordinate once")
+        value: int | float | str
         try:
-            value: int | float | str = plain_number(text)
+            number = plain_number(text)
         except ValueError:
             value = text  # a formula: read by the model grammar in `linearize`
         else:
-            if not math.isfinite(value):
+            if not math.isfinite(number):
                 raise SettingError(f"In `--at {item}`, the value {text} is not finite.",
                                    fix=f"give `{name}` a finite value")
-            if value.is_integer() and abs(value) < 2**53:
-                value = int(value)  # exact: θ = 0 keeps cos θ = 1, not 1.0, in symbolic matrices
+            # exact: θ = 0 keeps cos θ = 1, not 1.0, in symbolic matrices
+            value = int(number) if number.is_integer() and abs(number) < 2**53 else number
         out[name] = value
     return out
 

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+from typing import TYPE_CHECKING
 
 from ..dynamics import derive
 from ..errors import OutputError, SimulationError
@@ -27,6 +28,9 @@ from ._arguments.report import VERIFY_AUTO_MAX
 from ._point import full_point
 from ._settings import SettingError, parse_settings
 from ._source import load_source
+
+if TYPE_CHECKING:
+    from ..numerics import Trajectory
 
 __all__ = ["VERIFY_AUTO_MAX", "run"]
 
@@ -45,8 +49,8 @@ def _with_settings(model: Model, settings: list[str]) -> tuple[Model, dict[str, 
 
 
 
-def _figures(eom, t_end: float, parameters: dict[str, float], initial: dict[str, float],  # type: ignore[no-untyped-def]
-             lang: str) -> tuple[list, object]:
+def _figures(eom, t_end: float, parameters: dict[str, float], initial: dict[str, float],
+             lang: str) -> tuple[list, Trajectory]:
     from ..numerics import simulate
     from ..plotting import applicable_kinds, figure_caption, plot_trajectory
 

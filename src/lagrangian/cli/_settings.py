@@ -76,10 +76,10 @@ def parse_settings(values: Sequence[str] | None, model: Model) -> tuple[dict[str
         if name in params:
             sign = next(p.sign for p in model.parameters if p.name == name)
             problem = sign_problem(name, sign, value)
-            if problem is not None:  # the equations may have been simplified with the sign
+            if problem is not None and sign is not None:  # the equations may have been simplified with the sign
                 raise SettingError(f"In `--set {item}`: {problem}.",
                                    fix=f"give `{name}` a value {SIGN_RELATIONS[sign]}, or change the sign declared "
-                                       "in the model")  # type: ignore[index]
+                                       "in the model")
             parameters[name] = value
         elif name in coords or name in rates:
             initial[name] = value

@@ -142,19 +142,19 @@ def run(args: argparse.Namespace) -> str:
                      + (" ..." if len(traj.events) > 8 else ""))
     if traj.status != "completed":
         lines.append(f"status: {traj.status}")
-    written = []
+    outputs: list[str] = []
     if args.out:
-        written.append(str(save_trajectory(traj, args.out)))
+        outputs.append(str(save_trajectory(traj, args.out)))
     if args.view:
         from ..view3d import view
 
-        written.append(str(view(traj, eom).save(args.view)))
+        outputs.append(str(view(traj, eom).save(args.view)))
     if plots is not None:
         figures = _plots(traj, eom, plots, args.animation)
         lines.append(f"plots: {len(figures)} files in {plots}/")
-        written += [str(p) for p in figures]
-    if written:
-        lines.append("wrote " + ", ".join(written))
+        outputs += [str(p) for p in figures]
+    if outputs:
+        lines.append("wrote " + ", ".join(outputs))
     summary = "\n".join(lines) + "\n"
     if args.out or plots is not None or args.view:
         return summary
@@ -169,7 +169,7 @@ def run(args: argparse.Namespace) -> str:
     return text.getvalue()
 
 
-def describe_inputs(inputs, model) -> str:  # type: ignore[no-untyped-def]
+def describe_inputs(inputs, model) -> str:
     """``F = 2*sin(3*t), G = feedback`` for the summary: the inputs given, then the model's [controls]."""
     from ..analysis import Feedback
     from ..numerics import Switch

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import sys
 import warnings
+from collections.abc import Callable
 
 from ..errors import ModelError
 from ..model import load_model, zoo
@@ -21,9 +22,11 @@ from ._arguments.common import MODEL_HELP
 __all__ = ["MODEL_HELP", "ZOO", "load_source"]
 
 #: The zoo's models that ``zoo:NAME[:N]`` names, and whether they take a size N.
-ZOO = {"lagrange_top": (zoo.lagrange_top, False), "planar_chain": (zoo.planar_chain, True),
-       "spatial_chain": (zoo.spatial_chain, True), "relative_chain": (zoo.relative_chain, True),
-       "serial_arm": (zoo.serial_arm, True)}
+ZOO: dict[str, tuple[Callable[..., Model], bool]] = {
+    "lagrange_top": (zoo.lagrange_top, False), "planar_chain": (zoo.planar_chain, True),
+    "spatial_chain": (zoo.spatial_chain, True), "relative_chain": (zoo.relative_chain, True),
+    "serial_arm": (zoo.serial_arm, True)}
+
 
 def _zoo_model(name: str) -> Model:
     """``zoo:planar_chain:40`` → ``lagrangian.model.zoo.planar_chain(40)``."""
@@ -36,12 +39,12 @@ def _zoo_model(name: str) -> Model:
     if not sized:
         if size:
             raise ModelError(f"`{name}`: `{key}` takes no size.", fix=f"write zoo:{key}")
-        return make()  # type: ignore[call-arg]
+        return make()
     # ASCII digits only: "²".isdigit() is true but int("²") fails; at most 3 digits before int().
     if not (size.isascii() and size.isdigit() and len(size) <= 3) or not 1 <= int(size) <= zoo.MAX_LINKS:
         raise ModelError(f"`{_short(name)}`: `{key}` needs a number of links N from 1 to {zoo.MAX_LINKS}.",
                          fix=f"write e.g. zoo:{key}:3 (digits 0-9, N ≤ {zoo.MAX_LINKS})")
-    return make(int(size))  # type: ignore[call-arg]
+    return make(int(size))
 
 
 def _short(text: str) -> str:

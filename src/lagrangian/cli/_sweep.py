@@ -124,7 +124,7 @@ def run(args: argparse.Namespace) -> str:
     try:
         return _sweep(args, model, axes, parameters, initial, out, client)
     finally:
-        if opened:
+        if opened and client is not None:
             client.close()
 
 

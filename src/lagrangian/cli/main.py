@@ -187,6 +187,7 @@ def _drop_stdout() -> None:
 
 def entrypoint() -> None:
     """Console-script entry point."""
+    code: int | str | None
     try:
         code = main()
     except SystemExit as exc:  # argparse's --help, --version and usage errors
@@ -212,7 +213,7 @@ def entrypoint() -> None:
         run_exit_handlers = getattr(atexit, "_run_exitfuncs", None)
         if run_exit_handlers is not None:
             run_exit_handlers()
-        os._exit(code)
+        os._exit(130)
     raise SystemExit(code)
 
 

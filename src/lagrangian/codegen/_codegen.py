@@ -75,7 +75,7 @@ def generate_c(
     eom: EquationsOfMotion,
     integrals: Sequence = (),
     events: Sequence[tuple[str, se.Basic]] = (),
-    law=None,  # type: ignore[no-untyped-def]
+    law=None,
 ) -> GeneratedSource:
     """Generate the C translation unit of ``eom``.
 
@@ -184,6 +184,7 @@ def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence, events: Seq
     grows about linearly (F) and quadratically (M) with the number of joints.
     """
     rec = eom.recursive
+    assert rec is not None, "generate_c dispatches here for an eom with a recursive form only"
     n = len(eom.q)
     params = tuple(p.name for p in eom.model.parameters)
     for k, (sym, _) in enumerate(rec.intermediates):

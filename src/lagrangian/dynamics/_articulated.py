@@ -139,7 +139,7 @@ class _Spatial:
         for r in range(3):
             for c in range(r):
                 A[r][c], C[r][c] = A[c][r], C[c][r]
-        return _Spatial(A, [[name(x) for x in row] for row in self.B], C)  # type: ignore[arg-type]
+        return _Spatial(A, [[name(x) for x in row] for row in self.B], C)
 
     def to_parent(self, up, d: Vec) -> _Spatial:
         """X_kᵀ I X_k: rotated to the parent's basis, then about the parent's origin (d = O_P O_k).
@@ -367,7 +367,7 @@ def articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, co
     has_dofs_below = [bool(dofs[k]) for k in range(count)]
     for k in range(count - 1, 0, -1):
         if has_dofs_below[k]:
-            has_dofs_below[nodes[k].parent] = True  # type: ignore[index]
+            has_dofs_below[nodes[k].parent] = True
     start = len(w.items)
     qdd: list[se.Basic] = [_ZERO] * n
     for k, node in enumerate(nodes):

@@ -203,7 +203,7 @@ def _raw_rows(kin: Kinematics, c: Constraint, frame: str | None = None) -> list[
     elif c.form == "coincide":
         value = kin.position(c.points[0]) - kin.position(c.points[1])
     else:
-        value = c.expression  # type: ignore[assignment]
+        value = c.expression
     if not isinstance(value, Vector):
         return [(c.name, None, value)]
     frame = frame or c.frame
@@ -267,7 +267,7 @@ def sliding_row(kin: Kinematics, c: Constraint) -> ConstraintRow:
     """The row w = a(q, t)·q̇ + b(q, t) = 0 of a unilateral contact with friction: while closed it sticks, and its
     multiplier is the tangential reaction, bounded by Coulomb's law (`lagrangian.numerics._contact`)."""
     return _row(kin, dataclasses.replace(c, form="nonholonomic", expression=c.slip), c.name + SLIDING_SUFFIX,
-                c.slip)  # type: ignore[arg-type]
+                c.slip)
 
 
 # -- rows chosen by the engine ---------------------------------------------------------------------
@@ -442,7 +442,7 @@ def _solve_reaction(kin: Kinematics, c: Constraint, rows: list[ConstraintRow],
     note = ("solved from R·∂V/∂q̇_i + C·∂Ω/∂q̇_i = Σ_k λ_k A_ki"
             + (f"; {free} component(s) do no virtual work, are not determined by the equations and are set to 0"
                if free else ""))
-    return Vector({frame: tuple(force)}), Vector({frame: tuple(moment)}), note  # type: ignore[arg-type]
+    return Vector({frame: tuple(force)}), Vector({frame: tuple(moment)}), note
 
 
 def _reaction(kin: Kinematics, c: Constraint, rows: list[ConstraintRow], axes: list[int | None],
@@ -465,7 +465,7 @@ def _reaction_of(kin: Kinematics, c: Constraint, rows: list[ConstraintRow], axes
         comps = [_ZERO, _ZERO, _ZERO]
         for row, axis in zip(rows, axes):
             comps[axis] = row.multiplier  # type: ignore[index]
-        force = Vector({frame: tuple(comps)})  # type: ignore[arg-type]
+        force = Vector({frame: tuple(comps)})
         counter = None
         if c.form == "no_slip":
             note = (f"force on `{c.body}` at the contact point `{c.points[0]}`: row k is the virtual power of "
@@ -477,7 +477,7 @@ def _reaction_of(kin: Kinematics, c: Constraint, rows: list[ConstraintRow], axes
             note = (f"force at `{point}`" + (f", and its opposite at `{counter}`" if counter else "")
                     + "; exact where the constraint holds")
         return ConstraintReaction(c.name, point, None, counter, frame, force, Vector.zero(),
-                                  tuple(comps), zero3, generalized, note)  # type: ignore[arg-type]
+                                  tuple(comps), zero3, generalized, note)
     if c.reaction is None:
         return ConstraintReaction(c.name, None, None, None, GALILEAN_FRAME, Vector.zero(), Vector.zero(), zero3,
                                   zero3, generalized, "generalized forces Σ_k λ_k A_ki only (no `reaction` declared)")
@@ -532,7 +532,7 @@ def _check_rank(kin: Kinematics, rows: list[ConstraintRow], constraints: dict[st
 
 
 # -- the entry point -------------------------------------------------------------------------------
-def complementary_constraints(kin: Kinematics, equations: tuple) -> tuple[tuple, tuple[ConstraintRow, ...],  # type: ignore[type-arg]
+def complementary_constraints(kin: Kinematics, equations: tuple) -> tuple[tuple, tuple[ConstraintRow, ...],
                                                                           tuple[ConstraintReaction, ...]]:
     """The rows, the reactions, and ``equations`` with Σ_k λ_k A_ki added to each right-hand side.
 
@@ -579,7 +579,7 @@ def complementary_constraints(kin: Kinematics, equations: tuple) -> tuple[tuple,
 
 
 # -- consequences -------------------------------------------------------------------------------------
-def admissible_integrals(eom, integrals: Sequence) -> tuple:  # type: ignore[no-untyped-def]
+def admissible_integrals(eom, integrals: Sequence) -> tuple:
     """The first integrals that survive the complementary constraints' reactions.
 
     p_i = ∂T/∂q̇_i stays constant only if no reaction works on q_i (A_ki ≡ 0 for every
@@ -610,7 +610,7 @@ def admissible_integrals(eom, integrals: Sequence) -> tuple:  # type: ignore[no-
     return tuple(out)
 
 
-def multiplier_formulas(eom) -> tuple[se.Basic, ...] | None:  # type: ignore[no-untyped-def]
+def multiplier_formulas(eom) -> tuple[se.Basic, ...] | None:
     """λ(q, q̇, t) in closed form, from M q̈ = F + Aᵀλ and A q̈ + c = 0 (None when too large).
 
     λ = (A M⁻¹ Aᵀ)⁻¹ (−c − A M⁻¹ F): solved symbolically only while n + m ≤
@@ -642,7 +642,7 @@ def multiplier_formulas(eom) -> tuple[se.Basic, ...] | None:  # type: ignore[no-
     return tuple(lam[k, 0] for k in range(m))
 
 
-def reaction_efforts(eom) -> list[tuple[str, str, object, str | None, str | None]]:  # type: ignore[no-untyped-def]
+def reaction_efforts(eom) -> list[tuple[str, str, object, str | None, str | None]]:
     """The complementary reactions as efforts on the system, for the Newton–Euler theorems.
 
     Items ``(constraint, what, value, at, owner)``: ``what`` is ``"force"`` (``value`` a
@@ -779,7 +779,7 @@ class ConstraintInfo:
     integrals: tuple[se.Basic, ...] = ()
 
 
-def describe_constraints(eom) -> tuple[ConstraintInfo, ...]:  # type: ignore[no-untyped-def]
+def describe_constraints(eom) -> tuple[ConstraintInfo, ...]:
     """Every declared constraint of ``eom.model``, principal and complementary, as `ConstraintInfo`."""
     kin = eom.kinematics
     out = []
@@ -792,15 +792,17 @@ def describe_constraints(eom) -> tuple[ConstraintInfo, ...]:  # type: ignore[no-
             comps = [_ZERO, _ZERO, _ZERO]
             for _, axis, e in raw:
                 comps[axis] = e  # type: ignore[index]
-            statement, frame = Vector({c.frame: tuple(comps)}), c.frame  # type: ignore[arg-type]
+            statement, frame = Vector({c.frame: tuple(comps)}), c.frame
         rows = tuple(r for r in eom.constraints if r.constraint == c.name)
         reaction = next((r for r in eom.reactions if r.constraint == c.name), None)
-        kind, integrals = c.kind, ()
+        kind = c.kind
+        integrals: tuple[se.Basic, ...] = ()
         if c.kind == "nonholonomic" and rows:
             found = [integrate_row(kin, r) for r in rows]
             if all(ok for ok, _ in found):
                 kind = "holonomic"
-                integrals = tuple(phi for _, phi in found) if all(phi is not None for _, phi in found) else ()
+                integrals = (tuple(phi for _, phi in found if phi is not None)
+                             if all(phi is not None for _, phi in found) else ())
         out.append(ConstraintInfo(c.name, "principal" if c.principal else "complementary", c.form, kind,
                                   c.description, statement, frame, rows, reaction, integrals))
     return tuple(out)

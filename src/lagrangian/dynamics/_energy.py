@@ -62,7 +62,7 @@ def _transport(matrix: Matrix3, mass: se.Basic, d: tuple[se.Basic, ...], sign: i
             shift = (dd if k == m_ else 0) - d[k] * d[m_]
             row.append(matrix[k][m_] + sign * mass * shift)
         out.append(tuple(row))
-    return tuple(out)  # type: ignore[return-value]
+    return tuple(out)
 
 
 def rigid_inertia(kin: Kinematics, body: Body) -> tuple[RigidInertia, Matrix3]:
@@ -115,10 +115,10 @@ def rigid_inertia(kin: Kinematics, body: Body) -> tuple[RigidInertia, Matrix3]:
     return RigidInertia(body.name, fixed, frame, moved), pi_g
 
 
-def _check_invariant(kin: Kinematics, body: Body, loc) -> None:  # type: ignore[no-untyped-def]
+def _check_invariant(kin: Kinematics, body: Body, loc) -> None:
     """Π given in frame F must be the same matrix in the body frame: C Π Cᵀ = Π."""
     frame = body.inertia.frame
-    cols = [kin.frames.convert(tuple(se.Integer(int(i == k)) for i in range(3)), body.frame, frame)  # type: ignore[arg-type]
+    cols = [kin.frames.convert(tuple(se.Integer(int(i == k)) for i in range(3)), body.frame, frame)
             for k in range(3)]
     pi = body.inertia.matrix
     # Π' = Cᵀ Π C with C the matrix whose columns are the body axes in F.
@@ -135,7 +135,7 @@ def _check_invariant(kin: Kinematics, body: Body, loc) -> None:  # type: ignore[
             file=loc.file, line=loc.line)
 
 
-def _check_physical(kin: Kinematics, body: Body, pi_g: Matrix3, loc) -> None:  # type: ignore[no-untyped-def]
+def _check_physical(kin: Kinematics, body: Body, pi_g: Matrix3, loc) -> None:
     """Principal moments at G must be ≥ 0 and obey the triangle inequality I1 ≤ I2 + I3."""
     used = set().union(*(e.free_symbols for row in pi_g for e in row))
     # Only the parameters the entries hold: `subs` converts its whole map on every call.

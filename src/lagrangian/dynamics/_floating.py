@@ -190,7 +190,7 @@ class _TreeBuilder:
         for k, node in enumerate(nodes):
             if k == 0:
                 continue
-            p = node.parent
+            p = node.up
             if node.axis is not None:
                 c, s = w(se.cos(node.angle)), w(se.sin(node.angle))
                 self.down[k] = (lambda x, a=node.axis, c=c, s=s: turn(a, c, -s, x))
@@ -234,19 +234,19 @@ class _TreeBuilder:
                                       fix="write it in R0 or in the body's frame")
             while at != 0:
                 comps = self.up[at](comps)
-                at = nodes[at].parent
+                at = nodes[at].up
             chain = []
             at = k
             while at != 0:
                 chain.append(at)
-                at = nodes[at].parent
+                at = nodes[at].up
             for i in reversed(chain):
                 comps = self.down[i](comps)
             total = add3(total, comps)
         return total
 
     # -- composite inertias (CRBA) -------------------------------------------------------------------
-    def composite(self):  # type: ignore[no-untyped-def]
+    def composite(self):
         """(mass, first moment about the origin, inertia about the origin) of each node's subtree."""
         w, nodes = self.w, self.tree.nodes
         mass = [nd.mass for nd in nodes]
@@ -340,7 +340,7 @@ class _TreeBuilder:
         for k in range(count - 1, 0, -1):
             if all(c == 0 for c in (*P[k], *H[k])):
                 continue
-            p, up, d = nodes[k].parent, self.up[k], nodes[k].offset
+            p, up, d = nodes[k].up, self.up[k], nodes[k].offset
             fp = w.vec(up(P[k]))
             P[p] = add3(P[p], fp)
             H[p] = add3(H[p], add3(w.vec(up(H[k])), cross(d, fp)))

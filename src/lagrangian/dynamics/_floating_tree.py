@@ -165,22 +165,22 @@ def floating_trees(model: Model) -> tuple[Kinematics, tuple[FloatingTree, ...], 
                             "give each free body's parts coordinates of their own")
             owner[j] = t
     # The couples (torques, joint dampers) on the nodes of each tree; R0 (node 0) takes its reactions.
-    for node, couple in tree.couples:
-        if node == 0:
+    for at, couple in tree.couples:
+        if at == 0:
             continue
-        if node not in node_home:
-            raise _fail(model, f"a couple acts on `{tree.nodes[node].name}`, which is not carried by a free body",
+        if at not in node_home:
+            raise _fail(model, f"a couple acts on `{tree.nodes[at].name}`, which is not carried by a free body",
                         "apply it to a free body or a part below one")
-        t, k = node_home[node]
+        t, k = node_home[at]
         out[t].couples.append((k, couple))
     for load in model.loads:  # an effort with a side off the tree changes its angular momentum
         sides = ((load.on, load.reaction_on) if isinstance(load, Torque) else
                  load.bodies if isinstance(load, JointDamper) else ())
         trees = [node_home.get(index.get(s, 0) if s is not None else 0, (None,))[0] for s in sides]
         if trees and (None in trees or len(set(trees)) > 1):
-            for t in trees:
-                if t is not None:
-                    out[t].internal = False
+            for side_tree in trees:
+                if side_tree is not None:
+                    out[side_tree].internal = False
     for load, _ in tree.gravity:  # a field on some of a tree's masses only has a moment about its centre of mass
         if load.on:
             for ft in out:
@@ -192,13 +192,13 @@ def floating_trees(model: Model) -> tuple[Kinematics, tuple[FloatingTree, ...], 
     free_symbols = {kin.q[position[c]] for c in free_coordinates} | {kin.qd[position[c]] for c in free_coordinates}
     for ft in out:
         ft.tau = [_ZERO] * len(ft.joints)
-    for load in other:
-        for i, Q in enumerate(load.Q):
+    for forces in other:
+        for i, Q in enumerate(forces.Q):
             if Q == 0:
                 continue
             name = model.coordinates[i].name
             if name in free_coordinates or Q.free_symbols & free_symbols:
-                raise _fail(model, f"load `{load.name}` acts on a free body as a generalized force on `{name}` "
+                raise _fail(model, f"load `{forces.name}` acts on a free body as a generalized force on `{name}` "
                                    f"(Q = {Q}): the quaternion route takes uniform gravity, couples, and efforts "
                                    "between the parts of a tree (joint torques, dampers)",
                             "write it as a couple (`torque = ...`), or remove `free = true` to integrate the model "
@@ -207,7 +207,7 @@ def floating_trees(model: Model) -> tuple[Kinematics, tuple[FloatingTree, ...], 
                 raise _fail(model, f"coordinate `{name}` drives nothing", "remove it")
             ft = out[owner[i]]
             ft.tau[ft.joints.index(i)] += Q
-        if load.potential is not None and load.potential.free_symbols & free_symbols:
-            raise _fail(model, f"the potential of load `{load.name}` depends on a free body's coordinates",
+        if forces.potential is not None and forces.potential.free_symbols & free_symbols:
+            raise _fail(model, f"the potential of load `{forces.name}` depends on a free body's coordinates",
                         "remove `free = true` to integrate the model in its coordinates")
     return kin, tuple(out), tree, other

@@ -152,14 +152,13 @@ def _q_of(kin: Kinematics, load: Load) -> tuple[tuple[se.Basic, ...], se.Basic |
         if not any(qd in U.free_symbols for qd in kin.qd):
             return tuple(-U.diff(q) for q in kin.q), U, "Q_i = −∂U/∂q_i"
         # d/dt(∂U/∂q̇_i) with ∂U/∂q̇_i = a_i(q, t): Σ_j ∂a_i/∂q_j q̇_j + ∂a_i/∂t (no q̈: U is affine in q̇)
-        a = [U.diff(qd) for qd in kin.qd]
+        rates_part = [U.diff(qd) for qd in kin.qd]
         Q = tuple(se.Add(*[ai.diff(q) * qd for q, qd in zip(kin.q, kin.qd)], ai.diff(kin.t)) - U.diff(q)
-                  for ai, q in zip(a, kin.q))
+                  for ai, q in zip(rates_part, kin.q))
         return Q, None, "Q_i = d/dt(∂U/∂q̇_i) − ∂U/∂q_i (a generalized potential, depending on the rates)"
     if isinstance(load, GeneralizedForce):
         comps = dict(load.components)
-        names = [c.name for c in kin.model.coordinates]
-        return tuple(comps.get(name, zero) for name in names), None, "given generalized force"
+        return tuple(comps.get(c.name, zero) for c in kin.model.coordinates), None, "given generalized force"
     if isinstance(load, FRICTION_LOADS):  # dissipation, joint damper, Coulomb friction (`_friction`)
         return friction_q(kin, load)
     raise TypeError(f"unknown load type {type(load).__name__}")  # pragma: no cover

@@ -57,7 +57,7 @@ def mass_matrix_and_bias(
     gamma0 : n-tuple.
     """
     n = kin.n
-    M = [[[] for _ in range(n)] for _ in range(n)]  # lists of terms, summed once at the end
+    M: list[list[list[se.Basic]]] = [[[] for _ in range(n)] for _ in range(n)]  # lists of terms, summed once at the end
     g0: list[list[se.Basic]] = [[] for _ in range(n)]
 
     def translational(point: str, mass: se.Basic) -> None:

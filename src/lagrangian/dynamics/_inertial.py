@@ -99,6 +99,8 @@ class RelativeKinematics(Kinematics):
     γ(O'/R0), all functions of t only.
     """
 
+    frames: RelativeFrameTree
+
     def __init__(self, model: Model) -> None:
         if model.reference is None:
             raise ValueError("RelativeKinematics needs a model with a reference frame")
@@ -150,7 +152,7 @@ class InertialTorsor:
 def _matvec(pi: tuple[tuple[se.Basic, ...], ...], w: Components) -> Components:
     return tuple(sum_of([pi[k][m] * w[m] for m in range(3)
                          if not is_structural_zero(pi[k][m]) and not is_structural_zero(w[m])])
-                 for k in range(3))  # type: ignore[return-value]
+                 for k in range(3))
 
 
 def _cross(a: Components, b: Components) -> Components:

@@ -95,13 +95,13 @@ class _FromCourse:
     def __set_name__(self, owner: type, name: str) -> None:
         self.name, self.slot = name, "_" + name
 
-    def __get__(self, obj, objtype=None):  # type: ignore[no-untyped-def]
+    def __get__(self, obj, objtype=None):
         if obj is None:
             return None
         value = obj.__dict__.get(self.slot)
         return getattr(obj._course, self.name) if value is None else value
 
-    def __set__(self, obj, value) -> None:  # type: ignore[no-untyped-def]
+    def __set__(self, obj, value) -> None:
         obj.__dict__[self.slot] = value
 
 
@@ -162,7 +162,7 @@ class EquationsOfMotion:
         if self.__dict__.get("_M") is not None:
             self._check(self.M, self.F, self.equations)
 
-    def _check(self, M, F, equations) -> None:  # type: ignore[no-untyped-def]
+    def _check(self, M, F, equations) -> None:
         n = len(self.model.coordinates)
         if len(M) != n or any(len(row) != n for row in M) or len(F) != n:
             raise DerivationError(f"M must be {n}×{n} and F of length {n}, one per coordinate")
@@ -261,7 +261,7 @@ class EquationsOfMotion:
                 return eq
         raise KeyError(coordinate)
 
-    def to_sympy(self, *, time_functions: bool = False):  # type: ignore[no-untyped-def]
+    def to_sympy(self, *, time_functions: bool = False):
         """M, F, the equations L(q_i), T, U, L, the first integrals and λ's formulas as SymPy objects.
 
         Symbols are named as in the model (``theta``, ``theta_dot``, ``theta_ddot``, the

@@ -47,7 +47,7 @@ import symengine as se
 from ..errors import DerivationError
 from ..kinematics import Kinematics
 from ..model.vectors import add3 as _add3, cross as _cross, turn as _turn  # the vector toolkit's 3-component algebra
-from ..model import GALILEAN_FRAME, Gravity, JointDamper, Torque, Vector
+from ..model import GALILEAN_FRAME, Body, Gravity, JointDamper, Torque, Vector
 from ..model.vectors import AXES, sum_of
 from ._articulated import articulated_accelerations
 from ._energy import _transport, rigid_inertia
@@ -84,6 +84,13 @@ class _Node:
     gravity: tuple[int, ...] = ()  # the gravity loads acting on this body or particle
     frame: str = GALILEAN_FRAME  # the frame whose basis the node's components are in
     children: list[int] = field(default_factory=list)
+
+    @property
+    def up(self) -> int:
+        """The parent's index, for a node below R0 (node 0, the root, has none)."""
+        if self.parent is None:
+            raise ValueError("R0, the root of the tree, has no parent")
+        return self.parent
 
 
 @dataclass
@@ -145,7 +152,8 @@ def tree_structure(kin: Kinematics) -> TreeStructure | str:
             nodes[node.parent].children.append(len(nodes))
         nodes.append(node)
     offset_set: set[int] = set()
-    masses = [(b.name, b.frame, b.mass, b.center, b) for b in model.bodies]
+    masses: list[tuple[str, str | None, se.Basic, Vector, Body | None]] = [
+        (b.name, b.frame, b.mass, b.center, b) for b in model.bodies]
     masses += [(p.name, None, p.mass, p.position, None) for p in model.particles]
     gravity: list[tuple[Gravity, Vec]] = []
     other: list[int] = []
@@ -169,26 +177,26 @@ def tree_structure(kin: Kinematics) -> TreeStructure | str:
         if stray:
             return (f"the position of `{name}` has a part in frame `{stray[0]}`, which is not on the chain of frames "
                     f"from R0 to `{home}`")
-        for frame, child in zip(path, path[1:]):
-            piece = pieces.get(frame, _ZERO3)
+        for above, child in zip(path, path[1:]):
+            piece = pieces.get(above, _ZERO3)
             c = index[child]
             if c in offset_set:
                 if any(se.expand(a - b) != 0 for a, b in zip(piece, nodes[c].offset)):
                     return (f"the points below frame `{child}` do not share one origin for it (`{name}` differs in "
-                            f"frame `{frame}`)")
+                            f"frame `{above}`)")
                 continue
             rates = _affine(kin, piece)
             if rates is None:
-                return f"the position of `{name}` is not affine in the coordinates in frame `{frame}`"
-            nodes[c].offset = tuple(piece)  # type: ignore[assignment]
-            nodes[c].offset_rates = {j: tuple(u) for j, u in rates.items()}  # type: ignore[misc]
+                return f"the position of `{name}` is not affine in the coordinates in frame `{above}`"
+            nodes[c].offset = tuple(piece)
+            nodes[c].offset_rates = {j: tuple(u) for j, u in rates.items()}
             offset_set.add(c)
         own = pieces.get(home, _ZERO3)
         rates = _affine(kin, own)
         if rates is None:
             return f"the position of `{name}` is not affine in the coordinates in frame `{home}`"
-        leaf = _Node(name, index[home], offset=tuple(own), mass=mass, frame=home,  # type: ignore[arg-type]
-                     offset_rates={j: tuple(u) for j, u in rates.items()})  # type: ignore[misc]
+        leaf = _Node(name, index[home], offset=tuple(own), mass=mass, frame=home,
+                     offset_rates={j: tuple(u) for j, u in rates.items()})
         if body is not None:
             _, pi_g = rigid_inertia(kin, body)  # checks the inertia (physical, at a point of the body)
             given = body.inertia
@@ -215,8 +223,8 @@ def tree_structure(kin: Kinematics) -> TreeStructure | str:
                 couples.append((leaf_of.get(load.reaction_on, index.get(load.reaction_on, 0)), -load.torque))
         elif isinstance(load, JointDamper):
             s1, s2 = load.bodies
-            frame = {b.name: b.frame for b in model.bodies}
-            relative = kin.omega(frame.get(s2, s2)) - kin.omega(frame.get(s1, s1))  # Ω(S2/S1)
+            frame_of = {b.name: b.frame for b in model.bodies}
+            relative = kin.omega(frame_of.get(s2, s2)) - kin.omega(frame_of.get(s1, s1))  # Ω(S2/S1)
             couple = relative * (-load.coefficient)
             couples.append((leaf_of.get(s2, index.get(s2, 0)), couple))
             couples.append((leaf_of.get(s1, index.get(s1, 0)), -couple))
@@ -265,7 +273,7 @@ class _Names:
         return name
 
     def vec(self, v: Sequence[se.Basic]) -> Vec:
-        return tuple(self(c) for c in v)  # type: ignore[return-value]
+        return tuple(self(c) for c in v)
 
 
 def _dot(a: Sequence[se.Basic], b: Sequence[se.Basic]) -> se.Basic:
@@ -273,19 +281,19 @@ def _dot(a: Sequence[se.Basic], b: Sequence[se.Basic]) -> se.Basic:
 
 
 def _scale(k: se.Basic, v: Vec) -> Vec:
-    return tuple(_ZERO if type(c) is _ZERO_TYPE else k * c for c in v)  # type: ignore[return-value]
+    return tuple(_ZERO if type(c) is _ZERO_TYPE else k * c for c in v)
 
 
 def _matvec(pi: tuple[Vec, Vec, Vec] | None, w: Vec) -> Vec:
     if pi is None:
         return _ZERO3
-    return tuple(_dot(row, w) for row in pi)  # type: ignore[return-value]
+    return tuple(_dot(row, w) for row in pi)
 
 
 def _unit(axis: int, k: se.Basic) -> Vec:
     out = [_ZERO, _ZERO, _ZERO]
     out[axis] = k
-    return tuple(out)  # type: ignore[return-value]
+    return tuple(out)
 
 
 @dataclass(frozen=True)
@@ -476,7 +484,7 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
             fp = up(f)
             for j, u in node.offset_rates.items():
                 out[j].append(_dot(u, fp))
-            p = node.parent
+            p = node.up
             force[p] = _add3(force[p], fp)
             moment[p] = _add3(moment[p], _add3(up(mo), _cross(node.offset, fp)))
         return out
@@ -499,7 +507,7 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
         if node.axis is not None:
             mass[k] = w(mass[k])
             first[k] = w.vec(first[k])
-            inertia[k] = [[w(inertia[k][r][c]) if c >= r else None for c in range(3)] for r in range(3)]  # type: ignore[misc]
+            inertia[k] = [[w(inertia[k][r][c]) if c >= r else None for c in range(3)] for r in range(3)]
             for r in range(3):
                 for c in range(r):
                     inertia[k][r][c] = inertia[k][c][r]
@@ -512,7 +520,7 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
         J = [up(tuple(rows[c][r] for c in range(3))) for r in range(3)]
         d = node.offset
         dh, dd = _dot(d, h), _dot(d, d)
-        p = node.parent
+        p = node.up
         mass[p] = mass[p] + m
         for r in range(3):
             for c in range(3):
@@ -529,14 +537,14 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
             occurrences[k].append((j, _ZERO3, w.vec(to_child[k](u))))
     above = [False] * count  # some strict ancestor of the node moves with a coordinate
     for k in range(1, count):
-        p = nodes[k].parent
-        above[k] = above[p] or bool(occurrences[p])  # type: ignore[index]
+        p = nodes[k].up
+        above[k] = above[p] or bool(occurrences[p])
     M: list[list[list[se.Basic]]] = [[[] for _ in range(n)] for _ in range(n)]
     for k in range(1, count):
         for rank, (i, S_w, S_v) in enumerate(occurrences[k]):
             J = inertia[k]
             fv = w.vec(_add3(_scale(mass[k], S_v), _cross(S_w, first[k])))  # I^c S: force and moment
-            nv = w.vec(_add3(tuple(_dot(J[r], S_w) for r in range(3)), _cross(first[k], S_v)))  # type: ignore[arg-type]
+            nv = w.vec(_add3(tuple(_dot(J[r], S_w) for r in range(3)), _cross(first[k], S_v)))
             a, same = k, True
             while a:
                 for idx, (j, T_w, T_v) in enumerate(occurrences[a]):
@@ -553,7 +561,7 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
                 up, d = to_parent[a], nodes[a].offset
                 fv = w.vec(up(fv))
                 nv = w.vec(_add3(up(nv), _cross(d, fv)))
-                a, same = nodes[a].parent, False  # type: ignore[assignment]
+                a, same = nodes[a].parent, False
     M_out = tuple(tuple(sum_of(M[i][j]) for j in range(n)) for i in range(n))
     aba = articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, couples, Q_other,
                                     (mass, first, inertia), kin.q)

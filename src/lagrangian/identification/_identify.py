@@ -146,7 +146,7 @@ def identify(
     return _shoot(eom, meas, fitted, base, guess, bounds, initial, noise, derivatives, shooting)
 
 
-def _equations(source) -> EquationsOfMotion:  # type: ignore[no-untyped-def]
+def _equations(source) -> EquationsOfMotion:
     if isinstance(source, EquationsOfMotion):
         return source
     if isinstance(source, (str, Path)):

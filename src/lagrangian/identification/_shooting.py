@@ -250,7 +250,7 @@ def fit_shooting(system: CompiledSystem, sens: SensitivitySystem, meas: Measurem
     return _result(system, problem, sol, r, J, total)
 
 
-def _result(system: CompiledSystem, problem: _Problem, sol, r: np.ndarray, J: np.ndarray,  # type: ignore[no-untyped-def]
+def _result(system: CompiledSystem, problem: _Problem, sol, r: np.ndarray, J: np.ndarray,
             evaluations: int) -> Identification:
     meas, P, N = problem.meas, problem.P, len(problem.meas.t)
     k = len(problem.measured)

@@ -32,8 +32,8 @@ def rotation_rate(rotation, rate: se.Basic) -> Components:  # type: ignore[no-un
     if rotation.elementary:
         comps = [_ZERO, _ZERO, _ZERO]
         comps[AXES[rotation.axis]] = rate
-        return tuple(comps)  # type: ignore[return-value]
-    return tuple(rate * a if not is_structural_zero(a) else _ZERO for a in rotation.direction)  # type: ignore[return-value]
+        return tuple(comps)
+    return tuple(rate * a if not is_structural_zero(a) else _ZERO for a in rotation.direction)
 
 
 class FrameTree:
@@ -42,10 +42,10 @@ class FrameTree:
     def __init__(self, model: Model, d_dt: TimeDerivative) -> None:
         self.frames = {f.name: f for f in model.frames}
         self.d_dt = d_dt
-        self._depth = {}
+        self._depth: dict[str, int] = {}
         for f in model.frames:  # parents come first
             self._depth[f.name] = 0 if f.parent is None else self._depth[f.parent] + 1
-        self._paths: dict[tuple[str, str], tuple[tuple[int, se.Basic, se.Basic], ...]] = {}
+        self._paths: dict[tuple[str, str], tuple[tuple[int | Components, se.Basic, se.Basic], ...]] = {}
         self._omega: dict[str, Vector] = {}
         self._omega_in: dict[tuple[str, str], Components] = {}
 

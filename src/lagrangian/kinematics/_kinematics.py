@@ -95,7 +95,7 @@ class Kinematics:
                     if i is not None:
                         pieces[i].setdefault(frame, [_ZERO, _ZERO, _ZERO])[axis] = c.diff(s)
         # Pieces keep v's frame order: `setdefault` meets the frames in that order.
-        return tuple(Vector._trusted({f: tuple(c) for f, c in p.items()}) for p in pieces)  # type: ignore[misc]
+        return tuple(Vector._trusted({f: tuple(c) for f, c in p.items()}) for p in pieces)
 
     def virtual_velocity(self, point: str) -> Vector:
         """V*(P) = Σ_i ∂OP/∂q_i q_i*, with the virtual rates written ``<q>_star``."""

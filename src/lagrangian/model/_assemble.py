@@ -323,7 +323,7 @@ class Assembler:
         if root is not None:
             self.check_axes(root)
         r0_axes = tuple(root.data["axes"]) if root is not None and root.data["axes"] else default_axes("R0")
-        ordered: list[Frame] = [Frame(GALILEAN_FRAME, None, None, r0_axes)]  # type: ignore[arg-type]
+        ordered: list[Frame] = [Frame(GALILEAN_FRAME, None, None, r0_axes)]
         done = {GALILEAN_FRAME}
         state: dict[str, str] = {}
 
@@ -371,10 +371,10 @@ class Assembler:
         if rot is None:
             steps: list[tuple[Any, str]] = [(0, "z")]  # a frame fixed to its parent
         elif _is_single_rotation(rot):
-            steps = [tuple(rot)]  # type: ignore[list-item]
+            steps = [tuple(rot)]
         elif (isinstance(rot, Sequence) and not isinstance(rot, str) and len(rot) > 0
               and all(_is_single_rotation(s) for s in rot)):
-            steps = [tuple(s) for s in rot]  # type: ignore[misc]
+            steps = [tuple(s) for s in rot]
         else:
             raise self.error(raw, f"rotation of frame `{raw.name}` must be [angle, axis] or a list of such pairs, "
                              f"not `{rot}`", symbol=raw.name, key="rotation",
@@ -392,7 +392,7 @@ class Assembler:
             last = k == len(steps) - 1
             name = raw.name if last else f"_{raw.name}_{k + 1}"
             frame_axes = tuple(axes) if (last and axes) else default_axes(name)
-            frames.append(Frame(name, parent, rotation, frame_axes))  # type: ignore[arg-type]
+            frames.append(Frame(name, parent, rotation, frame_axes))
             parent = name
         return frames
 
@@ -446,7 +446,7 @@ class Assembler:
             raise self.error(raw, f"the rotation axis of frame `{raw.name}` is the zero vector"
                              + (f" (with {given})" if given else ""), symbol=raw.name, key="rotation", fix=fix)
         norm = se.sqrt(norm2)
-        return Rotation(angle, GENERAL_AXIS, tuple(c / norm for c in comps), normalized=True)  # type: ignore[arg-type]
+        return Rotation(angle, GENERAL_AXIS, tuple(c / norm for c in comps), normalized=True)
 
     def points(self) -> list[Point]:
         raws = {r.name: r for r in self.of("point")}
@@ -525,7 +525,7 @@ class Assembler:
         """
         fix = f'give it its mass, e.g. mass = "M" under [bodies.{raw.name}]'
 
-        def moving(symbols: set) -> list[str]:  # type: ignore[type-arg]
+        def moving(symbols: set) -> list[str]:
             return sorted(str(x) for x in symbols if x not in self.constants)
 
         why = moving(center.free_symbols())
@@ -641,7 +641,7 @@ class Assembler:
                                    f"is `{matrix[i][j]}` but ({j + 1},{i + 1}) is `{matrix[j][i]}`", symbol=raw.name,
                                    fix="an inertia matrix is symmetric; correct one of the two entries")
         at_name = "G" if at == raw.name else at
-        return Inertia(at_name, frame, matrix)  # type: ignore[arg-type]
+        return Inertia(at_name, frame, matrix)
 
     def particles(self, points: list[Point]) -> tuple[Particle, ...]:
         out = []
@@ -755,9 +755,9 @@ class Assembler:
         for b in model.bodies:
             used |= b.center.free_symbols()
             referenced |= {b.frame, b.inertia.frame, *b.center.pieces}
-        for p in model.particles:
-            used |= p.position.free_symbols()
-            referenced |= set(p.position.pieces)
+        for particle in model.particles:
+            used |= particle.position.free_symbols()
+            referenced |= set(particle.position.pieces)
         for load in model.loads:
             if isinstance(load, Potential):
                 used |= load.energy.free_symbols

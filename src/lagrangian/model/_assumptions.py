@@ -83,13 +83,13 @@ def check_sign(model: Model, values: Mapping[str, float]) -> None:
         Naming the parameter, its declared sign, the value and where the sign is declared.
     """
     for p in model.parameters:
-        if p.name in values:
+        if p.name in values and p.sign is not None:
             problem = sign_problem(p.name, p.sign, float(values[p.name]))
             if problem is not None:
                 where = model.where("parameter", p.name)
                 raise ModelError(problem, symbol=p.name, file=where.file, line=where.line,
                                  fix=f"give `{p.name}` a value {SIGN_RELATIONS[p.sign]}, or change its declared sign "
-                                     "(the equations were simplified with it)")  # type: ignore[index]
+                                     "(the equations were simplified with it)")
 
 
 def read_sign(asm: Assembler, raw: Raw, value: float | None) -> str | None:
@@ -289,7 +289,7 @@ class Assumptions:
         su = self._to_sympy(u)
         if sympy.count_ops(su) > MAX_OPS:
             return None
-        declared = ", ".join(f"{s} {SIGN_RELATIONS[self.signs[s]]}"  # type: ignore[index]
+        declared = ", ".join(f"{s} {SIGN_RELATIONS[self.signs[s]]}"
                              for s in sorted(symbols & set(self.signs), key=str))
         if su.is_nonnegative:
             return 1, True, declared or "always"
@@ -298,7 +298,7 @@ class Assumptions:
         ranged = sorted(symbols & set(self.ranges), key=str)
         if not ranged or any(s not in self.ranges for s in symbols & self.coordinates):
             return None  # a coordinate with no declared range can take any value
-        ranges = ", ".join(f"{s} ∈ {range_text(self.ranges[s])}" for s in ranged)  # type: ignore[arg-type]
+        ranges = ", ".join(f"{s} ∈ {range_text(self.ranges[s])}" for s in ranged)
         bounds = self._linear_bounds(su, ranged)
         if bounds is not None:
             low, high = bounds
@@ -339,7 +339,7 @@ class Assumptions:
             c = sympy.diff(su, x)
             if c.free_symbols & coordinates:
                 return None
-            lower, upper = (None if b is None else self._to_sympy(b) for b in self.ranges[s])  # type: ignore[union-attr]
+            lower, upper = (None if b is None else self._to_sympy(b) for b in self.ranges[s])
             if c.is_zero:
                 continue
             if c.is_positive:
@@ -358,7 +358,7 @@ class Assumptions:
 
         bounds = {}
         for s in ranged:
-            lower, upper = self.ranges[s]  # type: ignore[misc]
+            lower, upper = self.ranges[s]
             if lower is None or upper is None:
                 return None
             lo, hi = self._to_sympy(lower).xreplace(values), self._to_sympy(upper).xreplace(values)

@@ -199,8 +199,9 @@ class _Checker:
                             fix='write it in quotes, e.g. description = "the rod keeps its length"')
         frame = self.frame(raw, d["frame"])
         value = d["value"]
-        expression, points, body = None, (), None
-        contact: tuple = (None, None, None)
+        expression, body = None, None
+        points: tuple[str, ...] = ()
+        contact: Sequence[Any] = (None, None, None)
         if form == "unilateral":
             expression, *contact = unilateral_parts(self, raw, d)
         elif form == "holonomic":

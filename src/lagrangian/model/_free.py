@@ -28,7 +28,7 @@ import numpy as np
 import symengine as se
 
 from ..errors import ModelError
-from .spec import GALILEAN_FRAME, Body, Model
+from .spec import GALILEAN_FRAME, Body, Frame, Model
 
 __all__ = ["FreeJoint", "check_free_bodies", "free_joints", "inertia_problem"]
 
@@ -94,7 +94,8 @@ def free_joint(model: Model, body: Body) -> FreeJoint:
     if body.fixed_point is not None:
         raise _fail(model, body, f"body `{body.name}` is declared free and has the fixed point "
                     f"`{body.fixed_point}`: a free body has none", "remove `fixed_point`, or `free`", "fixed_point")
-    chain, frame = [], model.frame(body.frame)
+    chain: list[Frame] = []
+    frame = model.frame(body.frame)
     while frame.parent is not None and len(chain) < 4:
         chain.append(frame)
         frame = model.frame(frame.parent)
@@ -107,7 +108,7 @@ def free_joint(model: Model, body: Body) -> FreeJoint:
     angles, axes = [], ""
     for f in chain:
         rotation = f.rotation
-        name = coordinates.get(rotation.angle) if rotation is not None else None  # type: ignore[union-attr]
+        name = coordinates.get(rotation.angle) if rotation is not None else None
         if rotation is None or not rotation.elementary or name is None:
             what = ("a rotation about a general axis" if rotation is not None and not rotation.elementary else
                     f"the angle `{rotation.angle}`" if rotation is not None else "no rotation")
@@ -176,7 +177,7 @@ def inertia_problem(mass: float, inertia: np.ndarray) -> str | None:
 def _values(model: Model, overrides: Mapping[str, float] | None = None) -> dict[se.Basic, float]:
     values = {p.symbol: p.value for p in model.parameters if p.value is not None}
     values.update({se.Symbol(k): float(v) for k, v in (overrides or {}).items()})
-    return values  # type: ignore[return-value]
+    return values
 
 
 def numeric_inertia(model: Model, body: Body, overrides: Mapping[str, float] | None = None

@@ -95,14 +95,14 @@ def real_value(value: object) -> float:
     if value.has(se.zoo) or value.has(se.nan) or value.has(se.oo):
         raise NotFinite("infinite or undefined")
     try:
-        number = complex(value.n(53, real=False))
+        z = complex(value.n(53, real=False))
     except (RuntimeError, ValueError, TypeError, OverflowError) as exc:
         raise NotFinite(f"not computable as a number ({exc})") from None
-    if not (math.isfinite(number.real) and math.isfinite(number.imag)):
+    if not (math.isfinite(z.real) and math.isfinite(z.imag)):
         raise NotFinite("infinite, or too large for a double (at most about 1.8e308)")
-    if abs(number.imag) > _IMAG_TOL * max(1.0, abs(number.real)):
-        raise NotFinite(f"not a real number (it is {number.real:.6g}{number.imag:+.6g}i)")
-    return number.real
+    if abs(z.imag) > _IMAG_TOL * max(1.0, abs(z.real)):
+        raise NotFinite(f"not a real number (it is {z.real:.6g}{z.imag:+.6g}i)")
+    return z.real
 
 
 def max_ops() -> int:

@@ -92,13 +92,13 @@ def check_reference(frame: Any, origin: Any, location: Location, *, frames: Sequ
         raise fail(f"the origin `{origin}` of the reference frame `{frame}` is not a declared point", "origin",
                    str(origin), "declare it under [points] with a position that depends on t only, or use O")
     position = points[origin].position
-    moving = _moving(position.free_symbols(), coordinates)
+    mover = _moving(position.free_symbols(), coordinates)
     for piece in position.frames:
-        found = turning(piece) if moving is None else None
-        moving = found[0] if found is not None else moving
-    if moving is not None:
-        raise fail(f"the origin `{origin}` of the reference frame `{frame}` moves with coordinate `{moving}`: "
-                   "the motion of O' relative to R0 must be prescribed, a function of t only", "origin", moving,
+        found = turning(piece) if mover is None else None
+        mover = found[0] if found is not None else mover
+    if mover is not None:
+        raise fail(f"the origin `{origin}` of the reference frame `{frame}` moves with coordinate `{mover}`: "
+                   "the motion of O' relative to R0 must be prescribed, a function of t only", "origin", mover,
                    "choose an origin whose position OO' depends on t and the parameters only")
     for name in INERTIAL_LOAD_NAMES:
         if name in loads:

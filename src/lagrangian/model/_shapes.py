@@ -239,16 +239,16 @@ class _Shape:
             if m.shape != (3, 3) or not np.allclose(m @ m.T, np.eye(3), atol=1e-9) or np.linalg.det(m) < 0:
                 raise self.fail(f"`rotation` of the shape of `{self.raw.name}` is not a rotation matrix", key="rotation",
                                 fix="give three rows of three numbers, an orthogonal matrix of determinant 1")
-            return tuple(tuple(float(x) for x in row) for row in m)  # type: ignore[return-value]
+            return tuple((float(row[0]), float(row[1]), float(row[2])) for row in m)
         value = self.data.get("axis")
         if value is None:
             return None
         if isinstance(value, str):
-            m = re.fullmatch(r"\s*([+-]?)\s*([xyz])\s*", value)
-            if not m:
+            named = re.fullmatch(r"\s*([+-]?)\s*([xyz])\s*", value)
+            if not named:
                 raise self.fail(f"`axis` `{value[:40]}` of the shape of `{self.raw.name}` is not an axis",
                                 key="axis", fix='write "x", "y", "z" (or "-x"...), or three numbers [ax, ay, az]')
-            direction = np.eye(3)["xyz".index(m.group(2))] * (-1.0 if m.group(1) == "-" else 1.0)
+            direction = np.eye(3)["xyz".index(named.group(2))] * (-1.0 if named.group(1) == "-" else 1.0)
         else:
             ok = (isinstance(value, Sequence) and len(value) == 3
                   and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value))
@@ -312,7 +312,7 @@ def rotation_to(axis: np.ndarray) -> tuple[tuple[float, float, float], ...]:
     else:
         k = np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]]) / s
         m = np.eye(3) + s * k + (1 - c) * (k @ k)
-    return tuple(tuple(float(x) for x in row) for row in m)  # type: ignore[return-value]
+    return tuple((float(row[0]), float(row[1]), float(row[2])) for row in m)
 
 
 def resolve_mesh(name: str, where: Location, *, owner: str, key_location: Location | None = None,

@@ -22,6 +22,7 @@ from __future__ import annotations
 import re
 import sys
 from collections.abc import Iterator, Mapping
+from os import PathLike
 from pathlib import Path
 from typing import Any
 
@@ -59,7 +60,7 @@ _LOAD_KINDS = {
 }
 
 
-def load_model(path: str | Path) -> Model:
+def load_model(path: str | PathLike[str]) -> Model:
     """Read and check the model file at ``path``: TOML, or a URDF robot when it ends in ``.urdf``.
 
     A ``.urdf`` file is read by `lagrangian.model.urdf.load_urdf` (see ``docs/urdf.md``), so
@@ -114,7 +115,7 @@ def _syntax_error(text: str, msg: str, source: str | None) -> ModelError:
         line, column = _left_open(text)
         core += " (at the end of the file)" if column is None else " (still open at the end of the file)"
     source_line = lines[line - 1] if line is not None and 0 < line <= len(lines) else None
-    where = dict(file=source, line=line, column=column, source_line=source_line)
+    where: dict[str, Any] = dict(file=source, line=line, column=column, source_line=source_line)
     # The key (or table) declared on the offending line, and where it was declared before.
     path: tuple[str, ...] = ()
     if line is not None:

@@ -23,6 +23,7 @@ import math
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import overload
 
 import numpy as np
 
@@ -262,6 +263,12 @@ class _Reader:
                             fix=f'e.g. {key}="{" ".join(["0"] * count)}"')
         return tuple(out)
 
+    @overload
+    def number(self, element: _Element | None, key: str, owner: str, default: float) -> float: ...
+
+    @overload
+    def number(self, element: _Element | None, key: str, owner: str, default: None) -> float | None: ...
+
     def number(self, element: _Element | None, key: str, owner: str, default: float | None) -> float | None:
         if element is None or key not in element.attrib:
             return default
@@ -376,7 +383,7 @@ class _Reader:
                             symbol=name, fix="no mass distribution has such moments; check ixx, iyy and izz")
 
     # -- joints ------------------------------------------------------------------------------
-    def joint(self, element: _Element) -> UrdfJoint | None:
+    def joint(self, element: _Element) -> UrdfJoint:
         name = self.name(element, "joint")
         owner = f"joint `{name}`"
         kind = element.attrib.get("type")
@@ -411,15 +418,15 @@ class _Reader:
                 raise self.fail(mimic_el, f"the <mimic> of {owner} names no joint", symbol=name,
                                 fix='name the joint it follows: <mimic joint="..." multiplier="1" offset="0"/>')
             mimic = UrdfMimic(mimic_el.attrib["joint"], self.number(mimic_el, "multiplier", owner, 1.0),
-                              self.number(mimic_el, "offset", owner, 0.0), mimic_el.line)  # type: ignore[arg-type]
+                              self.number(mimic_el, "offset", owner, 0.0), mimic_el.line)
         dynamics = element.find("dynamics")
-        damping = self.number(dynamics, "damping", owner, 0.0) or 0.0
-        friction = self.number(dynamics, "friction", owner, 0.0) or 0.0
-        if damping < 0:
+        damping = self.number(dynamics, "damping", owner, 0.0)
+        friction = self.number(dynamics, "friction", owner, 0.0)
+        if dynamics is not None and damping < 0:  # without <dynamics>, both are 0
             raise self.fail(dynamics, f"the damping of {owner} is {damping:g}: a damper dissipates, its "
                             "coefficient is not negative", symbol=name,
                             fix="give a damping ≥ 0 (N·m·s/rad or N·s/m)")
-        if friction:
+        if dynamics is not None and friction:
             self.note(dynamics, f"the dry friction {friction:g} of {owner} is left out (only the viscous damping "
                       "is modelled)")
         return UrdfJoint(name, kind, ends["parent"], ends["child"], xyz, rpy, axis,  # type: ignore[arg-type]
@@ -443,9 +450,9 @@ class _Reader:
                 links[link.name] = link
             elif element.tag == "joint":
                 joint = self.joint(element)
-                self.unique(element, joint.name, joints, "joint")  # type: ignore[union-attr]
-                joints[joint.name] = joint  # type: ignore[union-attr]
-                elements[joint.name] = element  # type: ignore[union-attr]
+                self.unique(element, joint.name, joints, "joint")
+                joints[joint.name] = joint
+                elements[joint.name] = element
             elif element.tag != "material":  # transmission, gazebo, ros2_control...: actuators, simulator settings
                 skipped.setdefault(element.tag, []).append(element.line)
         for tag, lines in skipped.items():
@@ -479,9 +486,9 @@ class _Reader:
                             symbol=joint.child, fix="a URDF is a tree: remove a joint of the cycle")
         unreached = self.unreached(links, roots[0], parent_joint)
         if unreached:
-            joint = parent_joint.get(unreached[0])
-            if joint is not None and self.in_cycle(parent_joint, unreached[0]):
-                raise self.fail(elements[joint.name], self.cycle_message(parent_joint, unreached[0]),
+            looped = parent_joint.get(unreached[0])
+            if looped is not None and self.in_cycle(parent_joint, unreached[0]):
+                raise self.fail(elements[looped.name], self.cycle_message(parent_joint, unreached[0]),
                                 symbol=unreached[0], fix="a URDF is a tree: remove a joint of the cycle")
         if len(roots) > 1:
             raise self.fail(links[roots[1]].line, f"links `{roots[0]}` and `{roots[1]}` are both roots (no "

@@ -183,7 +183,7 @@ class Rotation:
         if self.direction is not None:
             return self.direction
         one, zero = se.Integer(1), se.Integer(0)
-        return tuple(one if a == self.axis else zero for a in "xyz")  # type: ignore[return-value]
+        return tuple(one if a == self.axis else zero for a in "xyz")
 
 
 @dataclass(frozen=True, slots=True)
@@ -509,7 +509,7 @@ class Model:
         return self.locations.get((kind, name), Location(self.source, None))
 
 
-def _find(items: tuple, name: str, kind: str):  # type: ignore[no-untyped-def]
+def _find(items: tuple, name: str, kind: str):
     for item in items:
         if item.name == name:
             return item

@@ -53,6 +53,7 @@ import re
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import symengine as se
@@ -585,10 +586,10 @@ class _Translation:
                                  line=carrier.line, symbol=carrier.body,
                                  fix="give the link its <inertial> (mass and inertia), or make free the link that has "
                                      "them (the robot's base)")
-            if not carrier.masses:
+            if not carrier.masses or carrier.body is None:  # masses are gathered on a body's carrier only
                 continue
             mass = sum(m for m, _, _ in carrier.masses)
-            center = sum(m * c for m, c, _ in carrier.masses) / mass
+            center = np.asarray(sum(m * c for m, c, _ in carrier.masses)) / mass
             inertia = np.zeros((3, 3))
             with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused just below
                 for m, c, i_g in carrier.masses:
@@ -621,6 +622,7 @@ class _Translation:
         M and F are those of the file's numbers for the default values.
         """
         body = carrier.body
+        assert body is not None, "bodies() gives the carriers of a body only"
         names = [self.names.take(f"{prefix}_{body}") for prefix in INERTIAL_PARAMETERS]
         if names != [f"{prefix}_{body}" for prefix in INERTIAL_PARAMETERS]:
             raise ModelError(f"the inertial parameters of link `{body}` cannot be named `m_{body}`, ...: a "
@@ -651,7 +653,7 @@ class _Translation:
         declared = {carrier.body for carrier in self.carriers if carrier.masses}
         for link in self.robot.links.values():
             carrier, r, p = self.pose[link.name]
-            on = carrier.body if carrier.body in declared else carrier.frame
+            on = carrier.body if carrier.body is not None and carrier.body in declared else carrier.frame
             for visual in link.visuals:
                 where = self.where(visual.line)
                 mesh = None
@@ -662,11 +664,13 @@ class _Translation:
                 r_visual = _clean(r @ rpy_matrix(visual.rpy), 1.0)
                 center = _clean(p + r @ np.array(visual.xyz), max(1e-3, float(np.max(np.abs(p)))))
                 dims = visual.dimensions
-                size = dict(box={"size": [_number(x) for x in dims]},
-                            cylinder={"radius": _number(dims[0]) if dims else None,
-                                      "length": _number(dims[1]) if len(dims) > 1 else None},
-                            sphere={"radius": _number(dims[0]) if dims else None},
-                            mesh={"mesh": mesh, "scale": list(visual.scale)})[visual.kind]
+                sizes: dict[str, dict[str, Any]] = dict(box={"size": [_number(x) for x in dims]},
+                                                        cylinder={"radius": _number(dims[0]) if dims else None,
+                                                                  "length": _number(dims[1]) if len(dims) > 1
+                                                                  else None},
+                                                        sphere={"radius": _number(dims[0]) if dims else None},
+                                                        mesh={"mesh": mesh, "scale": list(visual.scale)})
+                size = sizes[visual.kind]
                 color = opacity = None
                 if visual.rgba is not None:
                     color, opacity = list(visual.rgba[:3]), visual.rgba[3]
@@ -677,7 +681,7 @@ class _Translation:
                              rotation=tuple(tuple(float(x) for x in row) for row in r_visual), color=color,
                              opacity=opacity, location=where, **size)
 
-    def mesh_path(self, visual, link: str) -> str | None:  # type: ignore[no-untyped-def]
+    def mesh_path(self, visual, link: str) -> str | None:
         """The mesh file of ``visual``: beside the URDF, absolute (``file://``), or ``package://name/...`` resolved
         in the first folder named ``name`` above the URDF; None, with a note, when it cannot be read."""
         from ._shapes import resolve_mesh

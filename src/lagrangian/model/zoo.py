@@ -17,7 +17,7 @@ MAX_LINKS = 100
 
 
 def _read(name: str) -> str:
-    return resources.files("lagrangian.model").joinpath("data", name).read_text(encoding="utf-8")
+    return resources.files("lagrangian.model").joinpath("data").joinpath(name).read_text(encoding="utf-8")
 
 
 #: The seed's heavy symmetric top as a model file (the default of `lagrangian derive`).

@@ -36,6 +36,7 @@ import tempfile
 from collections.abc import Callable, Sequence
 from functools import cache
 from pathlib import Path
+from typing import TypeVar
 
 from ..errors import SimulationError
 
@@ -158,8 +159,11 @@ def compile_library(source: str | Sequence[str], key: str) -> ctypes.CDLL:
     return load_verified(source, key, lambda path: ctypes.CDLL(str(path)))
 
 
-def load_verified(source: str | Sequence[str], key: str, load: Callable[[Path], object], *,
-                  flags: Sequence[str] = (), name: str | None = None) -> object:
+_Loaded = TypeVar("_Loaded")
+
+
+def load_verified(source: str | Sequence[str], key: str, load: Callable[[Path], _Loaded], *,
+                  flags: Sequence[str] = (), name: str | None = None) -> _Loaded:
     """``load(path)`` on the checked build of ``source``; on a load failure, rebuild once and load again.
 
     Raises

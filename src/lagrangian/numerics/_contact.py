@@ -44,7 +44,7 @@ __all__ = ["ContactEvent", "contact_model", "contact_system", "simulate_contact"
 CHATTER_LENGTH, CHATTER_COUNT = 1e-12, 50
 
 
-def contact_model(source) -> Model | None:  # type: ignore[no-untyped-def]
+def contact_model(source) -> Model | None:
     """The `Model` of ``source`` (a path, `Model`, equations or compiled system) when it has unilateral contacts."""
     if isinstance(source, (str, Path)):
         model = load_model(source)
@@ -76,7 +76,7 @@ def contact_system(model: Model, backend: str = "auto") -> ContactSystem:
 
 
 def simulate_contact(
-    source,  # type: ignore[no-untyped-def]
+    source,
     t_end: float,
     *,
     t_start: float = 0.0,
@@ -88,7 +88,7 @@ def simulate_contact(
     dt: float | None = None,
     max_step: float | None = None,
     n_out: int | None = None,
-    t_eval=None,  # type: ignore[no-untyped-def]
+    t_eval=None,
     events: Sequence = (),
     tolerance: float | None = None,
     max_steps: int = 100_000_000,

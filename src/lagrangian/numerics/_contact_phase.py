@@ -210,10 +210,10 @@ def dae_phase(cs: ContactSystem, p: np.ndarray, t0: float, y0: np.ndarray, t_end
             solver.f = fun(t_new, y_new)
         y_end = solver.y.copy()
 
-        def state(s: float, dense=dense, t_new=t_new, y_end=y_end) -> np.ndarray:  # type: ignore[no-untyped-def]
+        def state(s: float, dense=dense, t_new=t_new, y_end=y_end) -> np.ndarray:
             return cs.project_active(s, dense(s), p, core, tol, probe)[0] if s < t_new else y_end.copy()
 
-        def states(ts: np.ndarray, dense=dense, t_new=t_new, y_end=y_end) -> np.ndarray:  # type: ignore[no-untyped-def]
+        def states(ts: np.ndarray, dense=dense, t_new=t_new, y_end=y_end) -> np.ndarray:
             Y = np.array(dense(ts).T, dtype=float).reshape(len(ts), 2 * n)
             Y[ts >= t_new] = y_end
             return cs.project_active(ts, Y, p, core, tol)[0]

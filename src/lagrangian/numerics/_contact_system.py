@@ -73,7 +73,7 @@ class Probe:
             mptr = (self.T.ctypes.data, self.Y.ctypes.data, self.p.ctypes.data, self.mon.ctypes.data)
             self._monitors = lambda: lib.lgd_eval_monitors(2, *mptr)
         else:
-            self._parts = self._monitors = None  # type: ignore[assignment]
+            self._parts = self._monitors = None
         names = list(system.monitors)
         self._energy = [names.index(k) for k in (("T_total", "U_total") if "T_total" in names else ("T", "U"))]
 
@@ -106,7 +106,7 @@ class _Active:
         self.system, self.rows, self.n, self.probe = system, rows, system.n, probe
         self.holonomic = system.holonomic[rows]
 
-    def parts(self, t, y, p):  # type: ignore[no-untyped-def]
+    def parts(self, t, y, p):
         r = self.rows
         if self.probe is not None and np.size(y) == 2 * self.n:
             M, F, A, c, g, f = self.probe.parts(float(np.ravel(t)[0]), np.ravel(y))
@@ -283,7 +283,7 @@ class ContactSystem:
         lam[:, rows] = lam_s
         return out, lam
 
-    def project_active(self, t, y: np.ndarray, p: np.ndarray, rows: np.ndarray, tol: float,  # type: ignore[no-untyped-def]
+    def project_active(self, t, y: np.ndarray, p: np.ndarray, rows: np.ndarray, tol: float,
                        probe: Probe | None = None) -> tuple[np.ndarray, bool]:
         """States moved onto the acting rows (positions onto their gaps, velocities onto ġ = 0; `project_many`):
         one state (2n,) or many (N, 2n), as given."""

@@ -178,14 +178,14 @@ class ConstrainedSystem:
         return out
 
     # -- evaluators ---------------------------------------------------------------------------------
-    def _batch(self, t, y) -> tuple[np.ndarray, np.ndarray, bool]:  # type: ignore[no-untyped-def]
+    def _batch(self, t, y) -> tuple[np.ndarray, np.ndarray, bool]:
         Y = np.ascontiguousarray(y, dtype=float)
         single = Y.ndim == 1
         Y = Y.reshape(-1, 2 * self.n)
         T = np.ascontiguousarray(np.broadcast_to(np.asarray(t, dtype=float), (len(Y),)))
         return T, Y, single
 
-    def parts(self, t, y, p: np.ndarray) -> tuple[np.ndarray, ...]:  # type: ignore[no-untyped-def]
+    def parts(self, t, y, p: np.ndarray) -> tuple[np.ndarray, ...]:
         """(M, F, A, c, g, f) at each state: M q̈ = F + Aᵀλ, A q̈ + c = 0, g = A q̇ + b, f = holonomic residuals."""
         T, Y, single = self._batch(t, y)
         N, n, m = len(Y), self.n, self.m
@@ -204,7 +204,7 @@ class ConstrainedSystem:
         result = (M, F, A, c, g, f)
         return tuple(a[0] for a in result) if single else result
 
-    def rhs(self, t, y, p: np.ndarray, stab: Sequence[float] = (0.0, 0.0)) -> tuple[np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
+    def rhs(self, t, y, p: np.ndarray, stab: Sequence[float] = (0.0, 0.0)) -> tuple[np.ndarray, np.ndarray]:
         """(ẏ, λ) at each state, with Baumgarte rates ``stab`` = (α, β).
 
         Raises
@@ -237,7 +237,7 @@ class ConstrainedSystem:
             dY = np.concatenate([Y[:, self.n:], XF + np.einsum("nik,nk->ni", XA, LAM)], axis=1)
         return (dY[0], LAM[0]) if single else (dY, LAM)
 
-    def monitor_values(self, t, y, p: np.ndarray) -> np.ndarray:  # type: ignore[no-untyped-def]
+    def monitor_values(self, t, y, p: np.ndarray) -> np.ndarray:
         """First integrals, T, U at each state: shape (N, len(monitors))."""
         T, Y, _ = self._batch(t, y)
         k = len(self.monitors)
@@ -248,7 +248,7 @@ class ConstrainedSystem:
         return np.asarray(self._se_mon(np.column_stack([T, Y, np.broadcast_to(p, (len(Y), len(p)))]))
                           ).reshape(len(Y), k)
 
-    def reaction_values(self, t, y, lam, p: np.ndarray) -> np.ndarray:  # type: ignore[no-untyped-def]
+    def reaction_values(self, t, y, lam, p: np.ndarray) -> np.ndarray:
         """Reaction components (`reaction_columns`) at each state and multipliers: shape (N, len(reactions))."""
         T, Y, _ = self._batch(t, y)
         LAM = np.ascontiguousarray(np.asarray(lam, dtype=float).reshape(len(Y), self.m))
@@ -260,7 +260,7 @@ class ConstrainedSystem:
         args = np.column_stack([T, Y, LAM, np.broadcast_to(p, (len(Y), len(p)))])
         return np.asarray(self._se_reac(args)).reshape(len(Y), k)
 
-    def _lambdify(self, monitor_items, reaction_items) -> None:  # type: ignore[no-untyped-def]
+    def _lambdify(self, monitor_items, reaction_items) -> None:
         eom = self.eom
         params = [se.Symbol(name) for name in self.parameters]
         args = [eom.t, *eom.q, *eom.qd, *params]
@@ -270,7 +270,7 @@ class ConstrainedSystem:
         parts += [x for r in rows for x in r.coefficients] + [r.bias for r in rows] + [r.velocity for r in rows]
         parts += [r.expression if r.kind == "holonomic" else se.Integer(0) for r in rows]
 
-        def make(arguments, exprs):  # type: ignore[no-untyped-def]
+        def make(arguments, exprs):
             return se.Lambdify(arguments, list(exprs) or [se.Integer(0)], cse=True)
 
         self._se_parts = make(args, parts)
@@ -279,7 +279,7 @@ class ConstrainedSystem:
 
 
 # -- the run ---------------------------------------------------------------------------------------------
-def constrained_source(source):  # type: ignore[no-untyped-def]
+def constrained_source(source):
     """(source, eom): the equations when ``source`` keeps constraints complementary, else (source, None).
 
     A file path is read once and handed back as its `Model`, so `simulate` does not read it again.
@@ -459,11 +459,11 @@ def simulate_dae(
                 solver.f = fun(t_new, y_new)  # the first stage of the next step (FSAL)
 
         # This step's dense output, end and solver, bound now (the loop moves on to the next ones).
-        def state(t: float, dense=dense, t_new=t_new, solver=solver) -> np.ndarray:  # type: ignore[no-untyped-def]
+        def state(t: float, dense=dense, t_new=t_new, solver=solver) -> np.ndarray:
             y = dense(t) if t < t_new else solver.y.copy()
             return project(system, t, y, p, tol)[0] if projecting else y
 
-        def raw_state(t: float, dense=dense, t_new=t_new, solver=solver) -> np.ndarray:  # type: ignore[no-untyped-def]
+        def raw_state(t: float, dense=dense, t_new=t_new, solver=solver) -> np.ndarray:
             # projected with all the outputs at the end
             return dense(t) if t < t_new else solver.y.copy()
 
@@ -471,7 +471,7 @@ def simulate_dae(
         if event_fn is not None:
             g_new = event_fn(t_new, solver.y)
             for k, spec in enumerate(specs):
-                a, b = g_old[k], g_new[k]  # type: ignore[index]
+                a, b = g_old[k], g_new[k]
                 crossed = (a < 0 <= b and spec.direction >= 0) or (a > 0 >= b and spec.direction <= 0)
                 if not crossed or a == 0:
                     continue
@@ -499,7 +499,7 @@ def simulate_dae(
                        tolerance, status, residual_tolerance=residual_tolerance, applied=applied)
 
 
-def _trajectory(system: ConstrainedSystem, p, t, Y, stab, evs, method, stabilization, steps, nfev,  # type: ignore[no-untyped-def]
+def _trajectory(system: ConstrainedSystem, p, t, Y, stab, evs, method, stabilization, steps, nfev,
                 tolerance, status, *, residual_tolerance: float | None = None,
                 applied: InputsAt | None = None) -> Trajectory:
     """The `Trajectory` of a run; ``tolerance`` for the first integrals, ``residual_tolerance``

@@ -57,6 +57,7 @@ from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor
 from concurrent.futures import wait as wait_threads
 from dataclasses import replace
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -211,7 +212,7 @@ def ensemble(
                          method, rtol, atol, dt, max_step, max_steps, events, keep == "trajectories", workers,
                          chunk_size, client, out_path, resume, progress, backend, stiffness_check, inputs)
     finally:
-        if own_client:
+        if own_client and client is not None:
             client.close()
 
 
@@ -270,7 +271,7 @@ def _client(scheduler):
     return client, True
 
 
-def _member_inputs(inputs):  # type: ignore[no-untyped-def]
+def _member_inputs(inputs):
     """(the law for the compiled system, the per-member feedbacks or None) of ``ensemble``'s ``inputs``."""
     from ..analysis import Feedback
 
@@ -496,7 +497,8 @@ class _SigintStop:
     so a write is never cut in half."""
 
     def __init__(self, stop: np.ndarray) -> None:
-        self.stop, self.previous, self.hit = stop, None, False
+        self.stop, self.hit = stop, False
+        self.previous: Any = None  # the SIGINT handler replaced, given back on exit
 
     def __enter__(self) -> _SigintStop:
         if threading.current_thread() is threading.main_thread():

@@ -26,6 +26,7 @@ import shutil
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -52,7 +53,7 @@ class Layout:
     def variables(self) -> dict[str, tuple[tuple[str, ...], tuple[int, ...], str, object]]:
         """name -> (dims, shape, dtype, fill value)."""
         N, S = self.count, len(self.states)
-        out = {
+        out: dict[str, tuple[tuple[str, ...], tuple[int, ...], str, object]] = {
             "status": (("member",), (N,), "int8", PENDING),
             "t_final": (("member",), (N,), "float64", np.nan),
             "steps": (("member",), (N,), "int64", 0),
@@ -88,7 +89,7 @@ class Layout:
         }
 
     def coords(self) -> dict:
-        coords = {"member": np.arange(self.count), "time": self.t_out,
+        coords: dict[str, Any] = {"member": np.arange(self.count), "time": self.t_out,
                   "state": np.array(self.states, dtype=object)}
         if self.events:
             coords["event"] = np.array(self.events, dtype=object)
@@ -186,7 +187,7 @@ class ZarrSink:
                                   fix="run the sweep without --resume first")
             self.group = zarr.open_group(str(self.path), mode="r+")
             recorded = self.group.attrs.get("lagrangian_run")
-            if recorded is None:
+            if not isinstance(recorded, str):  # absent, or not the JSON text `_create` writes
                 raise OutputError(f"`{path}` is not a store written by `lagrangian sweep`.",
                                   fix="give the store the interrupted sweep wrote")
             if json.loads(recorded) != json.loads(json.dumps(layout.run, sort_keys=True)):
@@ -202,7 +203,7 @@ class ZarrSink:
                                       "another name")
             self._create(chunk)
             self.group = zarr.open_group(str(self.path), mode="r+")
-        self.arrays = {name: self.group[name] for name in layout.variables()}
+        self.arrays: dict[str, Any] = {name: self.group[name] for name in layout.variables()}  # zarr arrays
         self.chunk = int(self.arrays["status"].chunks[0])
 
     def _create(self, chunk: int) -> None:

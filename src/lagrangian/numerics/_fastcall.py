@@ -11,6 +11,7 @@ returns None and the caller keeps ctypes.
 
 from __future__ import annotations
 
+import _ctypes
 import ctypes
 import importlib.util
 import sysconfig
@@ -53,7 +54,7 @@ def _import(path: Path) -> ModuleType:
     return module
 
 
-def rhs_caller(function: ctypes._CFuncPtr, n_state: int, n_params: int, library: object):
+def rhs_caller(function: _ctypes.CFuncPtr, n_state: int, n_params: int, library: object):
     """``caller(t, y, p, out) -> status`` running ``function`` on one state, or None.
 
     ``library`` (the ctypes library ``function`` comes from) is kept alive by the caller,

@@ -44,7 +44,7 @@ from ._trajectory import Event, Trajectory, drift_scale, relative_drift
 __all__ = ["free_source", "simulate_free"]
 
 
-def free_source(source) -> Model | FreeBodySystem | None:  # type: ignore[no-untyped-def]
+def free_source(source) -> Model | FreeBodySystem | None:
     """The model (or compiled system) to integrate on quaternions, or None when it has no free body."""
     if isinstance(source, FreeBodySystem):
         return source
@@ -145,9 +145,7 @@ def simulate_free(source, t_end: float, *, t_start: float = 0.0, initial: Mappin
     partial = (_trajectory(system, p, t_out[:m], Y[:m], evs, method, int(ctl[6]), int(ctl[5]), tolerance,
                            f"stopped at t = {t_fail:.9g} (partial)", float(ctl[12]), start) if m else None)
     if code == 7:
-        error: Exception = Interrupted(t_fail)
-        error.trajectory = partial  # type: ignore[attr-defined]
-        raise error
+        raise Interrupted(t_fail, partial)
     reasons = {1: "the articulated inertia of a free body lost its rank (a mass or moment of inertia too small)",
                2: "the state stopped being finite (overflow, a blow-up)",
                3: "the step size fell below the resolution of t (step size underflow)",
@@ -158,7 +156,7 @@ def simulate_free(source, t_end: float, *, t_start: float = 0.0, initial: Mappin
                             f"{reasons.get(code, f'status {code}')}.", fix=fixes.get(code, "check the model and the "
                                                                                                  "initial state"),
                             t=t_fail, state=y.copy())
-    error.trajectory = partial  # type: ignore[attr-defined]
+    error.trajectory = partial
     raise error
 
 

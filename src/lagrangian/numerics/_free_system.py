@@ -95,7 +95,7 @@ class FreeBodySystem:
         assert tuple(dims) == (self.nv, len(self.monitors), len(self.events)), "stale compiled library"
         caller = rhs_caller(self._lib.lg_eval_rhs, self.width, len(self.parameters) + self._constants, self._lib)
         if caller is not None:
-            self.rhs_c = caller
+            self.rhs_c = caller  # type: ignore[method-assign]  # the vectorcall wrapper stands in for the method
         self._layout()
         self._unused: frozenset[str] | None = None
         self._t1 = np.zeros(1)
@@ -320,7 +320,7 @@ class FreeBodySystem:
         return out[0] if single else out
 
 
-def compile_free_system(source, *, events: Sequence[tuple[str, se.Basic]] = ()) -> FreeBodySystem:  # type: ignore[no-untyped-def]
+def compile_free_system(source, *, events: Sequence[tuple[str, se.Basic]] = ()) -> FreeBodySystem:
     """`FreeBodySystem` of a model with free bodies: a path, a `Model` or its `EquationsOfMotion`.
 
     ``simulate`` takes it as a source (and builds one by itself from a model with free bodies).

@@ -86,7 +86,7 @@ def _outcome(events: Sequence, min_speed: float) -> tuple[int, int, float, float
             float(sum(lost.values())))
 
 
-def impact_sweep(source, axes: Mapping[str, Sequence[float]], t_end: float, *,  # type: ignore[no-untyped-def]
+def impact_sweep(source, axes: Mapping[str, Sequence[float] | np.ndarray], t_end: float, *,
                  parameters: Mapping[str, float] | None = None, initial: Mapping[str, float] | None = None,
                  min_speed: float = 0.0, progress: bool = False, **options: Any) -> ImpactSweep:
     """Simulate the contact model ``source`` at every point of the grid ``axes`` (module docstring).

@@ -125,7 +125,7 @@ def law_code(eom: EquationsOfMotion, law: InputLaw) -> LawCode:
     callables = list(law.callables)
     fb = law.feedback
 
-    def leaf(target: str, key: str, s) -> None:  # type: ignore[no-untyped-def]
+    def leaf(target: str, key: str, s) -> None:
         """The C that writes the source ``s`` (``key`` in the law's leaves) into ``target`` (an expression
         joins the CSE block)."""
         if s.kind == "constant":

@@ -38,12 +38,12 @@ __all__ = [
 ]
 
 
-def _constant_inputs(eom, law: InputLaw, parameters: Mapping[str, float] | None) -> tuple[str, ...]:  # type: ignore[no-untyped-def]
+def _constant_inputs(eom, law: InputLaw, parameters: Mapping[str, float] | None) -> tuple[str, ...]:
     driven = {s.name for s in law.driven}
     return tuple(u for u in eom.model.inputs if u not in driven and (parameters or {}).get(u))
 
 
-def system_for(source, eom, events: Sequence[tuple[str, object]], backend: str, inputs,  # type: ignore[no-untyped-def]
+def system_for(source, eom, events: Sequence[tuple[str, object]], backend: str, inputs,
                parameters: Mapping[str, float] | None) -> CompiledSystem:
     """The compiled system of a run with ``inputs`` (None: the model's ``[controls]``) and ``parameters``."""
     law = source.law if isinstance(source, CompiledSystem) and inputs is None else resolve_inputs(eom, inputs)
@@ -105,7 +105,7 @@ class SegmentedSolution:
 
 
 def solve_in_segments(solve: Callable, t_start: float, t_end: float, t_out: np.ndarray, y0: np.ndarray,
-                      breakpoints: np.ndarray, hint: np.ndarray | None, n_events: int):  # type: ignore[no-untyped-def]
+                      breakpoints: np.ndarray, hint: np.ndarray | None, n_events: int):
     """``solve(a, b, y, t_eval)`` (SciPy's ``solve_ivp`` on [a, b]) from breakpoint to breakpoint.
 
     ``hint`` is the law's hint (a view into p), set to the middle of each interval and back to
@@ -163,7 +163,7 @@ def _refuse_varying(what: str, route: str = "friction") -> None:
     raise SimulationError(f"The input {what} varies, and {path} runs with constant inputs only.", fix=fix)
 
 
-def constant_inputs_only(source, inputs, parameters, route: str = "friction"):  # type: ignore[no-untyped-def]
+def constant_inputs_only(source, inputs, parameters, route: str = "friction"):
     """The parameters of a path that runs constant inputs only (``route``: exact friction's stick/slip
     phases, or free bodies): the inputs' numbers join them; an input that varies (or a ``[controls]``
     law) is refused."""
@@ -181,7 +181,7 @@ class InputsAt:
     """p with the driven inputs written in at (t, y), computed by the law in Python (`InputLaw.evaluator`);
     ``window`` is a time inside the current interval between the tables' breakpoints (None: none)."""
 
-    def __init__(self, law, eom: EquationsOfMotion, parameters: tuple[str, ...], p: np.ndarray) -> None:  # type: ignore[no-untyped-def]
+    def __init__(self, law, eom: EquationsOfMotion, parameters: tuple[str, ...], p: np.ndarray) -> None:
         self.law, self.p = law, p
         self.names = tuple(s.name for s in law.driven)
         self.slots = [parameters.index(u) for u in self.names]
@@ -205,7 +205,7 @@ class InputsAt:
         return out
 
 
-def rowwise(fn, t: np.ndarray, Y: np.ndarray, applied: InputsAt | None):  # type: ignore[no-untyped-def]
+def rowwise(fn, t: np.ndarray, Y: np.ndarray, applied: InputsAt | None):
     """``fn(t, Y, p)`` with each row's own p when inputs vary (one call otherwise)."""
     if applied is None or applied.evaluate is None or not len(t):
         return fn(t, Y, applied.p if applied is not None else None)

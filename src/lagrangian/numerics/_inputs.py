@@ -130,9 +130,9 @@ class InputLaw:
     def __bool__(self) -> bool:
         return bool(self.sources)
 
-    def regime(self, values: Mapping[str, float], inputs: tuple[str, ...]) -> dict[str, str]:
+    def regime(self, values: Mapping[str, float | None], inputs: tuple[str, ...]) -> dict[str, str]:
         """Each declared input's regime for `first_integrals`: driven inputs vary, the others are
-        constant where their value (``values``) is not 0 and off where it is."""
+        constant where their value (``values``) is not 0 and off where it is 0 or not given."""
         driven = {s.name for s in self.driven}
         return {u: "varying" if u in driven else ("constant" if values.get(u) else "off") for u in inputs}
 
@@ -155,7 +155,7 @@ class InputLaw:
             return (s.name, s.kind)
 
         fb = self.feedback
-        shape = (fb.states, fb.inputs) if self._feeds_back else ()
+        shape = (fb.states, fb.inputs) if self._feeds_back and fb is not None else ()
         return (tuple(one(s) for s in self.driven), shape, len(self.breakpoints))
 
     # -- the numbers of the law, after the parameters ----------------------------------------------

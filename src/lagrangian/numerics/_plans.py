@@ -120,14 +120,15 @@ def _plan_of(doc: object, key: str) -> Plan | None:
     if not isinstance(doc, dict) or doc.get("layout") != LAYOUT or doc.get("key") != key:
         return None
     names = [doc.get("integrals"), doc.get("monitors")]
-    counts = [doc.get("constants"), doc.get("units")]
+    constants, units = doc.get("constants"), doc.get("units")
     if not all(isinstance(v, list) and all(isinstance(s, str) for s in v) for v in names):
         return None
-    if not all(type(c) is int and c >= 0 for c in counts) or not isinstance(doc.get("library"), str):
+    if not (type(constants) is int and type(units) is int and constants >= 0 and units >= 0) \
+            or not isinstance(doc.get("library"), str):
         return None
-    if not _HEX.fullmatch(doc["library"]) or counts[1] < 1:
+    if not _HEX.fullmatch(doc["library"]) or units < 1:
         return None
-    return Plan(tuple(names[0]), tuple(names[1]), counts[0], doc["library"], counts[1])  # type: ignore[arg-type]
+    return Plan(tuple(names[0]), tuple(names[1]), constants, doc["library"], units)  # type: ignore[arg-type]
 
 
 def write_plan(key: str, plan: Plan) -> None:

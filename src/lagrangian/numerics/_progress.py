@@ -52,7 +52,7 @@ class Watch:
     def __init__(self, reporter: Reporter | None, ctl: np.ndarray) -> None:
         self.reporter, self.ctl = reporter, ctl
         self.stop = threading.Event()
-        self.thread = None
+        self.thread: threading.Thread | None = None
 
     def __enter__(self) -> Watch:
         if self.reporter is not None:
@@ -61,8 +61,11 @@ class Watch:
         return self
 
     def _poll(self) -> None:
-        while not self.stop.wait(self.reporter.period):
-            self.reporter.update(float(self.ctl[0]))
+        reporter = self.reporter
+        if reporter is None:  # started by __enter__ only with a reporter
+            return
+        while not self.stop.wait(reporter.period):
+            reporter.update(float(self.ctl[0]))
 
     def __exit__(self, *exc) -> None:
         self.stop.set()

@@ -32,7 +32,7 @@ CONSISTENCY_TOL = 1e-8
 PROJECTION_ITERATIONS = 8
 
 
-def project_many(system: ConstrainedSystem, t, Y: np.ndarray, p: np.ndarray, tol: float) -> tuple[np.ndarray, bool]:  # type: ignore[no-untyped-def]
+def project_many(system: ConstrainedSystem, t, Y: np.ndarray, p: np.ndarray, tol: float) -> tuple[np.ndarray, bool]:
     """States (N, 2n) moved onto f(q, t) = 0 and A q̇ + b = 0 along the metric of M (module docstring)."""
     n = system.n
     Y = np.array(Y, dtype=float).reshape(-1, 2 * n)
@@ -71,7 +71,7 @@ def project_many(system: ConstrainedSystem, t, Y: np.ndarray, p: np.ndarray, tol
     return Y, changed
 
 
-def _singular(t, Y: np.ndarray, bad: np.ndarray,  # type: ignore[no-untyped-def]
+def _singular(t, Y: np.ndarray, bad: np.ndarray,
               residual: np.ndarray) -> SimulationError:
     """A_h M⁻¹ A_hᵀ (or M) singular on the way: the Newton step is not defined there."""
     k = int(np.flatnonzero(bad)[0])
@@ -127,10 +127,10 @@ def check_initial(system: ConstrainedSystem, t0: float, y0: np.ndarray, p: np.nd
         if np.linalg.matrix_rank(S, tol=1e-9 * scale * scale / max(w[-1], 1e-300)) == len(idx):
             kept.append(k)
             continue
-        names = ", ".join(f"`{system.rows[j]}`" for j in kept)
+        others = ", ".join(f"`{system.rows[j]}`" for j in kept)
         raise SimulationError(
             f"The constraint row `{system.rows[k]}`{_where(eom, system.rows[k])} is redundant at the initial state: "
-            f"its Jacobian row is a combination of those of {names}, so the multipliers are not determined there.",
+            f"its Jacobian row is a combination of those of {others}, so the multipliers are not determined there.",
             fix="start from another state, or remove the repeated constraint (or make it principal)")
     bad_f = [k for k in range(system.m) if system.holonomic[k] and abs(f[k]) > CONSISTENCY_TOL]
     bad_g = [k for k in range(system.m) if abs(g[k]) > CONSISTENCY_TOL]

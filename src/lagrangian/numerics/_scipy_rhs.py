@@ -22,7 +22,7 @@ with ∂M/∂y_j and ∂F/∂y_j differentiated symbolically by SymEngine and ev
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 
 import numpy as np
 import symengine as se
@@ -46,7 +46,7 @@ class RhsFunction:
 
     jacobian = "analytic"
 
-    def __init__(self, system, parameters: Mapping[str, float] | None = None) -> None:  # type: ignore[no-untyped-def]
+    def __init__(self, system, parameters: Mapping[str, float] | None = None) -> None:
         eom = system.eom
         if eom.constraints:
             raise SimulationError(
@@ -58,7 +58,7 @@ class RhsFunction:
         self.n = system.n
         self.p = system.parameter_vector(parameters)
         self._fast = getattr(system, "_lib", None) is not None
-        self._derivatives = None
+        self._derivatives: Callable[[np.ndarray], np.ndarray] | None = None
 
     def __call__(self, t: float, y: np.ndarray) -> np.ndarray:
         y = np.asarray(y, dtype=float)
@@ -99,7 +99,7 @@ class RhsFunction:
         J[n:, :] = np.linalg.solve(M, rhs.T)
         return J
 
-    def _build(self):  # type: ignore[no-untyped-def]
+    def _build(self):
         eom = self.system.eom
         states = [*eom.q, *eom.qd]
         args = [eom.t, *states, *(se.Symbol(name) for name in self.system.parameters)]

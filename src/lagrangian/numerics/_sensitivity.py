@@ -300,7 +300,7 @@ def with_sensitivities(traj, columns: Sequence[SensitivityColumn], S: np.ndarray
     return dataclasses.replace(traj, extra=extra, sensitivity_names=tuple(c.name for c in columns))
 
 
-def simulate_sensitivities(source, t_end: float, sensitivities: Sensitivities | Sequence[str], *,  # type: ignore[no-untyped-def]
+def simulate_sensitivities(source, t_end: float, sensitivities: Sensitivities | Sequence[str], *,
                            t_start: float, initial, parameters, method: str, rtol: float, atol: float,
                            dt: float | None, max_step: float | None, n_out, t_eval, events, tolerance,
                            max_steps: int, progress, backend: str, stabilization, stiffness_check: bool):
@@ -373,7 +373,7 @@ def simulate_sensitivities(source, t_end: float, sensitivities: Sensitivities | 
                         stiffness_check)
     reporter = make_reporter(progress, float(t_start), float(t_end))
 
-    def watch(call, ctl):  # type: ignore[no-untyped-def]
+    def watch(call, ctl):
         with Watch(reporter, ctl):
             return _interruptible(call, ctl)
 
@@ -383,7 +383,7 @@ def simulate_sensitivities(source, t_end: float, sensitivities: Sensitivities | 
         reporter.finish(float(ctl[0]), code == 0)
     conditioning = float(ctl[12])
 
-    def partial(status: str):  # type: ignore[no-untyped-def]
+    def partial(status: str):
         if not len(run.t):
             return None
         traj = _trajectory(system, p, run.t, run.y, [], method, run.steps, run.rhs_calls, tolerance, status,

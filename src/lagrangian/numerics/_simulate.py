@@ -718,7 +718,7 @@ def _counting_solver(method: str, count: dict, reporter: Reporter | None) -> typ
             super().__init__(*args, **kwargs)
             count["solver"] = self
 
-        def _step_impl(self):  # type: ignore[no-untyped-def]
+        def _step_impl(self):
             success, message = super()._step_impl()
             if success:
                 count["steps"] += 1
@@ -756,7 +756,7 @@ def _run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol, max_ste
     try:
         # A failure is raised as a SimulationError below; NumPy's floating-point warnings on the way add nothing.
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            def solve(a: float, b: float, y: np.ndarray, grid: np.ndarray):  # type: ignore[no-untyped-def]
+            def solve(a: float, b: float, y: np.ndarray, grid: np.ndarray):
                 return solve_ivp(fun, (a, b), y, method=_counting_solver(method, count, reporter),
                                  t_eval=grid, rtol=rtol, atol=atol, max_step=np.inf if max_step is None else max_step,
                                  events=[make_event(k, s) for k, s in enumerate(specs)] or None)

@@ -79,7 +79,7 @@ def exact_contact(model: Model) -> CoulombFriction | None:
     return exact[0] if exact else None
 
 
-def exact_contact_model(source) -> Model | None:  # type: ignore[no-untyped-def]
+def exact_contact_model(source) -> Model | None:
     """The `Model` of ``source`` (a path, `Model`, equations or compiled system) when it has an exact contact."""
     if isinstance(source, (str, Path)):
         model = load_model(source)
@@ -201,7 +201,7 @@ def _system(model: Model, backend: str) -> StickSlipSystem:
 
 
 def simulate_stick_slip(
-    source,  # type: ignore[no-untyped-def]
+    source,
     t_end: float,
     *,
     t_start: float = 0.0,
@@ -213,7 +213,7 @@ def simulate_stick_slip(
     dt: float | None = None,
     max_step: float | None = None,
     n_out: int | None = None,
-    t_eval=None,  # type: ignore[no-untyped-def]
+    t_eval=None,
     events: Sequence = (),
     tolerance: float | None = None,
     max_steps: int = 100_000_000,

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import ctypes
 from collections.abc import Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import symengine as se
@@ -120,7 +121,7 @@ class CompiledSystem:
         self.events = tuple(name for name, _ in self._events)
         self._law_size = 0
         self._generated: GeneratedSource | None = None
-        self._lib = None
+        self._lib: Any = None  # the compiled model's ctypes library: its functions are looked up by name
         if backend == "c":
             self._code = law_code(eom, self.law) if self.law.driven else None
             if self._code is not None:
@@ -176,7 +177,7 @@ class CompiledSystem:
         caller = rhs_caller(library.lg_eval_rhs, 2 * self.n,
                             len(self.parameters) + self._constants + self._law_size, library)
         if caller is not None:
-            self.rhs_c = caller
+            self.rhs_c = caller  # type: ignore[method-assign]  # the vectorcall wrapper stands in for the method
         return True
 
     @property
@@ -345,7 +346,7 @@ class CompiledSystem:
         self._t1[0] = t
         return self._lib.lg_eval_rhs(1, _ptr(self._t1), _ptr(y), _ptr(p), _ptr(out))
 
-    def rhs_function(self, parameters: Mapping[str, float] | None = None):  # type: ignore[no-untyped-def]
+    def rhs_function(self, parameters: Mapping[str, float] | None = None):
         """A plain ``f(t, y)`` for `scipy.integrate.solve_ivp`, with the analytic Jacobian ``f.jac(t, y)``.
 
         ``solve_ivp(f, (0, 10), y0, method="Radau", jac=f.jac)``; y = (q, q̇) in `coordinates`

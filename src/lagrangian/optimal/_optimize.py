@@ -120,7 +120,7 @@ def optimize(source: Any, *, t_end: float | str | None = None, t_start: float | 
     else:
         if t_end is None:
             raise TypeError("optimize needs t_end: a final time, or \"free\"")
-        problem = Problem(model=source, **given)  # type: ignore[arg-type]
+        problem = Problem(model=source, **given)
     start = time.perf_counter()
     eom = _equations(problem.model)
     try:

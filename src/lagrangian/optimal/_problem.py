@@ -152,7 +152,7 @@ class Problem:
     source: str | None = None
 
     def __post_init__(self) -> None:
-        where = {"file": self.source} if self.source else {}
+        where: dict[str, Any] = {"file": self.source} if self.source else {}
         if isinstance(self.model, (str, Path)) and not str(self.model):
             raise ProblemError("The problem names no model.", fix="give the model file", **where)
         if isinstance(self.nodes, bool) or not isinstance(self.nodes, int) or self.nodes < 2:

@@ -108,7 +108,8 @@ class _Stop:
     """While active (main thread only), Ctrl-C sets ``hit`` instead of raising."""
 
     def __init__(self) -> None:
-        self.hit, self.previous = False, None
+        self.hit = False
+        self.previous: Any = None  # the SIGINT handler replaced, given back on exit
 
     def __enter__(self) -> _Stop:  # noqa: PYI034 (a private context manager, never subclassed)
         if threading.current_thread() is threading.main_thread():
@@ -127,7 +128,7 @@ def _callback(ca: Any, tr: Transcription, stop: _Stop) -> Any:
     """An IPOPT iteration callback that asks the solver to stop once ``stop.hit`` is set."""
     nx, ng = tr.nlp["x"].numel(), tr.nlp["g"].numel()
 
-    class StopOnInterrupt(ca.Callback):  # type: ignore[misc, name-defined]
+    class StopOnInterrupt(ca.Callback):
         def __init__(self) -> None:
             ca.Callback.__init__(self)
             self.construct("stop_on_interrupt", {})
@@ -186,7 +187,7 @@ def solve_nlp(tr: Transcription, w0: np.ndarray, *, lam_x0: np.ndarray | None = 
         raise OptimizationError(f"CasADi could not build the solver: {exc}") from None
     setup = time.perf_counter() - start
     arguments = {"x0": w0, "lbx": tr.lbx, "ubx": tr.ubx, "lbg": tr.lbg, "ubg": tr.ubg}
-    if warm:
+    if lam_x0 is not None and lam_g0 is not None:  # warm
         arguments.update(lam_x0=lam_x0, lam_g0=lam_g0)
     start = time.perf_counter()
     try:

@@ -131,8 +131,8 @@ def transcribe(problem: Problem, eom: EquationsOfMotion) -> Transcription:
     t = t0 + ca.DM(tau).T * T  # 1 × P
     h = T / (N - 1)
     q, qd, qdd = Z[layout.slice("q"), :], Z[layout.slice("qd"), :], Z[layout.slice("qdd"), :]
-    blocks = [(functions.dynamics.map(P)(Z, t), 0.0, 0.0),
-              (method.defects(ca, ca.vertcat(q, qd), ca.vertcat(qd, qdd), h), 0.0, 0.0)]
+    blocks: list[tuple[Any, Any, Any]] = [(functions.dynamics.map(P)(Z, t), 0.0, 0.0),
+                                          (method.defects(ca, ca.vertcat(q, qd), ca.vertcat(qd, qdd), h), 0.0, 0.0)]
 
     path = resolve_path(problem.path, layout, values)
     if path:
@@ -153,14 +153,14 @@ def transcribe(problem: Problem, eom: EquationsOfMotion) -> Transcription:
     w = ca.vec(Z)
     if problem.free_time:
         w = ca.vertcat(w, T)
-        low = resolve_bound(problem.bounds.get(T_END, (None, None))[0], layout, values, "the bound of t_end",
-                            MIN_DURATION)
-        high = resolve_bound(problem.bounds.get(T_END, (None, None))[1], layout, values, "the bound of t_end",
-                             math.inf)
-        if low > high:
-            raise ProblemError(f"The bounds of `t_end` are reversed: {low:g} > {high:g}.", symbol=T_END,
+        t_low = resolve_bound(problem.bounds.get(T_END, (None, None))[0], layout, values, "the bound of t_end",
+                              MIN_DURATION)
+        t_high = resolve_bound(problem.bounds.get(T_END, (None, None))[1], layout, values, "the bound of t_end",
+                               math.inf)
+        if t_low > t_high:
+            raise ProblemError(f"The bounds of `t_end` are reversed: {t_low:g} > {t_high:g}.", symbol=T_END,
                                fix="give them as [low, high]")
-        lbx, ubx = np.append(lbx, max(low, MIN_DURATION)), np.append(ubx, high)
+        lbx, ubx = np.append(lbx, max(t_low, MIN_DURATION)), np.append(ubx, t_high)
     elif T_END in problem.bounds:
         raise ProblemError("`t_end` has bounds, but the final time is fixed.", symbol=T_END,
                            fix="write t_end = \"free\" to let the duration be chosen, or drop its bounds")
@@ -177,15 +177,18 @@ def _manifold_at_start(ca: Any, problem: Problem, layout: Layout, functions: Poi
     cannot tell from a contradiction).  Final conditions on every coordinate and rate are refused:
     the motion reaches them only to the scheme's order, so they would over-determine it.
     """
+    manifold = functions.manifold
+    if manifold is None:  # no complementary constraint: nothing to impose
+        return []
     state = layout.names[: 2 * layout.n]
     if all(name in problem.final for name in state):
         raise ProblemError("The final conditions fix every coordinate and rate of a model with complementary "
                            "constraints, which the constraints already tie together.",
                            fix="give the final values of the independent coordinates and rates only")
     if not all(name in problem.initial for name in state):
-        return [(functions.manifold(Z[:, 0], t[0]), 0.0, 0.0)]
+        return [(manifold(Z[:, 0], t[0]), 0.0, 0.0)]
     z0 = np.where(np.isfinite(lbx[: layout.width]), lbx[: layout.width], 0.0)
-    residual = np.asarray(functions.manifold(z0, t0)).ravel()
+    residual = np.asarray(manifold(z0, t0)).ravel()
     scale = max(1.0, float(np.max(np.abs(z0[: 2 * layout.n]))))
     if np.max(np.abs(residual), initial=0.0) > CONSISTENT * scale:
         raise ProblemError("The initial conditions break the complementary constraints (largest residual "

@@ -28,7 +28,7 @@ def _declared(e: Any) -> str:
     return sympy.sstr(e._sympy_() if hasattr(e, "_sympy_") else sympy.S(e), order="none")
 
 
-def _vector(eom: EquationsOfMotion, v: Vector, frame: str, text=_s) -> list[str]:  # type: ignore[no-untyped-def]
+def _vector(eom: EquationsOfMotion, v: Vector, frame: str, text=_s) -> list[str]:
     return [text(c) for c in eom.kinematics.frames.express(v, frame)]
 
 
@@ -43,7 +43,8 @@ def constraints_section(eom: EquationsOfMotion) -> dict[str, Any]:
     items = []
     for info in describe_constraints(eom):
         text = _declared if info.role == "principal" else _s
-        statement = (_vector(eom, info.statement, info.frame, text) if isinstance(info.statement, Vector)
+        statement = (_vector(eom, info.statement, info.frame, text)
+                     if isinstance(info.statement, Vector) and info.frame is not None  # a vector has its frame
                      else text(info.statement))
         rows = [{"name": r.name, "equation": _s(r.expression), "multiplier": r.multiplier.name,
                  "coefficients": {c: _s(a) for c, a in zip(q, r.coefficients)}, "b": _s(r.b),
@@ -57,9 +58,9 @@ def constraints_section(eom: EquationsOfMotion) -> dict[str, Any]:
                 "moment": [_s(c) for c in r.moment_components] if r.body is not None else None,
                 "generalized": {c: _s(g) for c, g in zip(q, r.generalized)}, "note": r.note,
             }
-        item = {"name": info.name, "role": info.role, "form": info.form, "kind": info.kind,
-                "description": info.description, "frame": info.frame, "statement": statement,
-                "rows": rows, "reaction": reaction}
+        item: dict[str, Any] = {"name": info.name, "role": info.role, "form": info.form, "kind": info.kind,
+                                "description": info.description, "frame": info.frame, "statement": statement,
+                                "rows": rows, "reaction": reaction}
         choice = info.reaction.row_choice if info.reaction is not None else None
         if choice is not None:  # rows chosen by the engine (optional key)
             item["row_choice"] = {"declared_frame": choice.declared_frame, "declared_rows": list(choice.declared_rows),
@@ -73,7 +74,7 @@ def constraints_section(eom: EquationsOfMotion) -> dict[str, Any]:
         if info.integrals:  # velocity rows that integrate: φ_k(q, t) = cste (optional key)
             item["integrals"] = [_s(phi) for phi in info.integrals]
         items.append(item)
-    out = {
+    out: dict[str, Any] = {
         "constraints": items,
         "multipliers": [m.name for m in eom.multipliers],
         "multiplier_terms": [_s(eq.multiplier_terms) for eq in eom.equations],

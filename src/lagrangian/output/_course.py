@@ -218,7 +218,7 @@ class CourseForm:
     reference: str = GALILEAN_FRAME
 
 
-def reference_label(model) -> str:  # type: ignore[no-untyped-def]
+def reference_label(model) -> str:
     """The name of the frame the equations of ``model`` are written in: R0, R1, or ``R0(A)`` (origin A ≠ O)."""
     ref = model.reference
     if ref is None or ref.is_galilean_frame:
@@ -240,7 +240,7 @@ def _vector_row(eom: EquationsOfMotion, v: Vector, convert: Converter = to_sympy
     return VectorRow(tuple(terms))
 
 
-def _loaded_points(model) -> list[str]:  # type: ignore[no-untyped-def]
+def _loaded_points(model) -> list[str]:
     """The points where given efforts act, in order of first appearance."""
     from ..model import Damper, Gravity, PointForce, Spring
 
@@ -258,7 +258,7 @@ def _loaded_points(model) -> list[str]:  # type: ignore[no-untyped-def]
     return out
 
 
-def _point_label(model, name: str) -> str:  # type: ignore[no-untyped-def]
+def _point_label(model, name: str) -> str:
     """A body name stands for its centre of mass: G, or G_S when there are several bodies."""
     if name in {b.name for b in model.bodies}:
         return "G" if len(model.bodies) == 1 else f"G_{name}"
@@ -314,7 +314,6 @@ def course_form(eom: EquationsOfMotion, integrals: tuple[FirstIntegral, ...], *,
         equations.append(EquationRow(eq.coordinate, convert(eq.dT_dqd), convert(eq.dT_dq), convert(eq.dU_dq),
                                      convert(eq.Q_nc), lhs, convert(eq.rhs), by_coordinate.get(eq.coordinate),
                                      rewritten))
-    equations = tuple(equations)
     integral_rows = []
     for i in integrals:
         expr = convert(i.expression)
@@ -343,7 +342,7 @@ def course_form(eom: EquationsOfMotion, integrals: tuple[FirstIntegral, ...], *,
         loads=loads,
         conservative=eom.conservative,
         L=L,
-        equations=equations,
+        equations=tuple(equations),
         integrals=tuple(integral_rows),
         M=tuple(tuple(convert(x) for x in row) for row in eom.M),
         F=tuple(convert(x) for x in eom.F),

@@ -67,7 +67,7 @@ def _aligned(rows: Sequence[tuple[str, ...]]) -> str:
     return "$$\n\\begin{aligned}\n" + " \\\\\n".join(lines) + "\n\\end{aligned}\n$$"
 
 
-def _lagrange_rows(n: Notation, gate: SizeGate, equations) -> list[tuple[str, ...]]:  # type: ignore[no-untyped-def]
+def _lagrange_rows(n: Notation, gate: SizeGate, equations) -> list[tuple[str, ...]]:
     rows = []
     for eq in equations:
         head = rf"L({n.symbol(eq.coordinate, latex=True)}):\quad "
@@ -75,11 +75,11 @@ def _lagrange_rows(n: Notation, gate: SizeGate, equations) -> list[tuple[str, ..
     return rows
 
 
-def _notation(eom) -> Notation:  # type: ignore[no-untyped-def]
+def _notation(eom) -> Notation:
     return Notation(eom.coordinates, tuple(p.name for p in eom.model.parameters))
 
 
-def equations_latex(eom) -> str:  # type: ignore[no-untyped-def]
+def equations_latex(eom) -> str:
     """The n Lagrange equations L(q_i) of ``eom`` (and its complementary rows ``f_k = 0``) as display math."""
     n, gate = _notation(eom), _gate()
     rows = _lagrange_rows(n, gate, eom.equations)
@@ -89,7 +89,7 @@ def equations_latex(eom) -> str:  # type: ignore[no-untyped-def]
     return _aligned(rows)
 
 
-def equations_markdown(eom) -> str:  # type: ignore[no-untyped-def]
+def equations_markdown(eom) -> str:
     """A heading line (the model, its coordinates) and the Lagrange equations."""
     n = _notation(eom)
     q = ", ".join(f"${n.symbol(c, latex=True)}$" for c in eom.coordinates)
@@ -99,7 +99,7 @@ def equations_markdown(eom) -> str:  # type: ignore[no-untyped-def]
     return head + "\n\n" + equations_latex(eom)
 
 
-def _alone(exprs, coordinates: Sequence[str] = ()) -> Notation:  # type: ignore[no-untyped-def]
+def _alone(exprs, coordinates: Sequence[str] = ()) -> Notation:
     """The notation of a value printed without its model: coordinates are the names with a rate among
     the symbols, parameters the other symbols (upper case first, then alphabetical)."""
     names = {str(s) for e in exprs for s in e.free_symbols}
@@ -109,33 +109,33 @@ def _alone(exprs, coordinates: Sequence[str] = ()) -> Notation:  # type: ignore[
     return Notation(tuple(coords), tuple(sorted(bare, key=lambda x: (not x[:1].isupper(), x))))
 
 
-def equation_latex(eq) -> str:  # type: ignore[no-untyped-def]
+def equation_latex(eq) -> str:
     """One equation L(q_i): Γ_i = −∂U/∂q_i + Q_i(nc)."""
     return _aligned(_lagrange_rows(_alone((eq.lhs, eq.rhs), (eq.coordinate,)), _gate(), (eq,)))
 
 
-def integral_latex(fi) -> str:  # type: ignore[no-untyped-def]
+def integral_latex(fi) -> str:
     """``expression = name``: the first integral and its constant."""
     n = _alone((fi.expression,), (fi.coordinate,) if fi.coordinate else ())
     name = n.symbol(fi.name, latex=True)
     return _aligned([_bounded(wrap_latex("", n.latex(_gate()(fi.expression)), f" = {name}"))])
 
 
-def integral_markdown(fi) -> str:  # type: ignore[no-untyped-def]
+def integral_markdown(fi) -> str:
     return f"{integral_latex(fi)}\n\n*{html.escape(fi.kind)}: {html.escape(fi.reason)}*"
 
 
-def _matrix(n: Notation, gate: SizeGate, m) -> str:  # type: ignore[no-untyped-def]
+def _matrix(n: Notation, gate: SizeGate, m) -> str:
     if m.rows == 0 or m.cols == 0:
         return r"\begin{bmatrix}\end{bmatrix}"
-    def entry(e) -> str:  # type: ignore[no-untyped-def]
+    def entry(e) -> str:
         return _num(float(e)) if e.is_Number else n.latex(gate(e))
 
     rows = [" & ".join(entry(m[i, j]) for j in range(m.cols)) for i in range(m.rows)]
     return r"\begin{bmatrix}" + r" \\ ".join(rows) + r"\end{bmatrix}"
 
 
-def linear_model_latex(lm) -> str:  # type: ignore[no-untyped-def]
+def linear_model_latex(lm) -> str:
     """ẋ = A x + B u (x the perturbations of the state) with A, B written out (up to `MATRIX_MAX` states)."""
     n, gate = _notation(lm.eom), _gate()
     x = r"\begin{bmatrix}" + r" \\ ".join(n.symbol(s, latex=True) for s in lm.state) + r"\end{bmatrix}"
@@ -151,7 +151,7 @@ def linear_model_latex(lm) -> str:  # type: ignore[no-untyped-def]
     return f"$$\n{body}\n$$\n\n" + (f"about ${about}$" if len(about) < 600 else "")
 
 
-def _trajectory_rows(tr) -> list[tuple[str, str]]:  # type: ignore[no-untyped-def]
+def _trajectory_rows(tr) -> list[tuple[str, str]]:
     rows = [("model", tr.model_name), ("t", f"{tr.t[0]:.6g} → {tr.t[-1]:.6g} ({len(tr.t)} points)"),
             ("method", f"{tr.method}, {tr.steps} steps, {tr.rhs_calls} right-hand sides"), ("status", tr.status)]
     for k, c in enumerate(tr.coordinates[:8]):
@@ -166,19 +166,19 @@ def _trajectory_rows(tr) -> list[tuple[str, str]]:  # type: ignore[no-untyped-de
     return rows
 
 
-def trajectory_html(tr) -> str:  # type: ignore[no-untyped-def]
+def trajectory_html(tr) -> str:
     """A short summary table of a simulated motion."""
     cells = "".join(f"<tr><th style='text-align:left'>{html.escape(k)}</th><td style='text-align:left'>"
                     f"{html.escape(v)}</td></tr>" for k, v in _trajectory_rows(tr))
     return f"<table><caption>Trajectory</caption>{cells}</table>"
 
 
-def trajectory_markdown(tr) -> str:  # type: ignore[no-untyped-def]
+def trajectory_markdown(tr) -> str:
     rows = [f"| {k} | {v.replace('|', '/')} |" for k, v in _trajectory_rows(tr)]
     return "\n".join(["| Trajectory | |", "|---|---|", *rows])
 
 
-def trajectory_latex(tr) -> str:  # type: ignore[no-untyped-def]
+def trajectory_latex(tr) -> str:
     """The summary, with the coordinates in the course's letters (θ: initial → final)."""
     n = Notation(tr.coordinates)
     rows = [rf"t: & {tr.t[0]:.6g} \to {tr.t[-1]:.6g} & \text{{({len(tr.t)} points, {tr.method})}}"]

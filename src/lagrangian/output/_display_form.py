@@ -209,7 +209,8 @@ def _terms_shown(e: sympy.Expr) -> int:
 
 def _constant_part(t: sympy.Expr, parameters: frozenset[str]) -> tuple[sympy.Expr, sympy.Expr]:
     """(numbers and parameters, the rest) of a term: ⅓ m2 l2² θ̇1 → (⅓ m2 l2², θ̇1)."""
-    constant, moving = [], []
+    constant: list[sympy.Expr] = []
+    moving: list[sympy.Expr] = []
     for f in sympy.Mul.make_args(t):
         (constant if f.is_Number or (f.free_symbols and {s.name for s in f.free_symbols} <= parameters)
          else moving).append(f)
@@ -235,7 +236,8 @@ def _gather(total: sympy.Add, parameters: frozenset[str]) -> sympy.Expr:
     """2 C ψ̇ cosθ − 2 A ψ̇ cosθ + C φ̇ → 2 (C − A) ψ̇ cosθ + C φ̇: terms grouped by their part free of parameters."""
     groups: dict[sympy.Expr, list[sympy.Expr]] = {}
     for t in total.args:
-        constant, moving = [], []
+        constant: list[sympy.Expr] = []
+        moving: list[sympy.Expr] = []
         for f in sympy.Mul.make_args(t):
             (constant if f.free_symbols and {s.name for s in f.free_symbols} <= parameters or f.is_Number
              else moving).append(f)

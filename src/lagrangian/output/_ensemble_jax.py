@@ -58,6 +58,8 @@ def _imported(text: str):
         path = Path(folder) / "lagrangian_jax_ensemble.py"
         path.write_text(text, encoding="utf-8")
         spec = importlib.util.spec_from_file_location("_lagrangian_jax_export", path)
+        if spec is None or spec.loader is None:  # pragma: no cover - a .py file always has a loader
+            raise ImportError(f"cannot load `{path}` as a Python module")
         module = importlib.util.module_from_spec(spec)
         spec.loader.exec_module(module)
     return module

@@ -42,7 +42,7 @@ def _frame(name: str) -> str:
     return "R_0" if name == "R0" else _escape(name)
 
 
-def _constraints_latex(n, extra: Supplement) -> list[str]:  # type: ignore[no-untyped-def]
+def _constraints_latex(n, extra: Supplement) -> list[str]:
     out = [r"\subsection*{Constraints (step 1)}", r"\begin{itemize}"]
     declared = as_declared(n)  # the relations as the user wrote them, not rewritten
     for c in extra.constraints:
@@ -58,13 +58,13 @@ def _constraints_latex(n, extra: Supplement) -> list[str]:  # type: ignore[no-un
     return out
 
 
-def _lam(name: str):  # type: ignore[no-untyped-def]
+def _lam(name: str):
     import sympy
 
     return sympy.Symbol(name)
 
 
-def _step7_latex(n, form: CourseForm, extra: Supplement) -> list[str]:  # type: ignore[no-untyped-def]
+def _step7_latex(n, form: CourseForm, extra: Supplement) -> list[str]:
     q = [n.symbol(c, latex=True) for c in form.coordinates]
     out = [r"\subsection*{Complementary equations (step 7), multipliers and reactions}", r"\begin{align*}"]
     rows = [rf"{n.latex(eq)} &= 0 && \text{{{_escape(row)}}}" for c in extra.constraints for row, _, eq in c.rows]
@@ -87,7 +87,7 @@ def _step7_latex(n, form: CourseForm, extra: Supplement) -> list[str]:  # type: 
     return out
 
 
-def _power_label(t) -> str:  # type: ignore[no-untyped-def]
+def _power_label(t) -> str:
     """The label of a term of the balance in LaTeX (no Unicode: ∂U/∂t and λ are written as math)."""
     inner = re.search(r"\((.*)\)$", t.name)
     of = _escape(inner.group(1)) if inner else _escape(t.name)
@@ -98,7 +98,7 @@ def _power_label(t) -> str:  # type: ignore[no-untyped-def]
     return rf"\text{{{_escape(power_label(t))}}}"
 
 
-def _balance_latex(n, extra: Supplement) -> list[str]:  # type: ignore[no-untyped-def]
+def _balance_latex(n, extra: Supplement) -> list[str]:
     assert extra.balance is not None and extra.power is not None
     out = [r"\subsection*{Energy balance}",
            r"No energy integral: with $E = T + U_P$, $\frac{dE}{dt} = P(\text{non-conservative})$, term by term:",

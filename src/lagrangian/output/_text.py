@@ -130,7 +130,7 @@ SHORTEN_MAX_OPS = 120
 
 def _shortest(e: object) -> sympy.Basic:
     """`to_sympy`, then cancelled and factored when that is shorter: λ = m (g y − ẋ² − ẏ²)/(2 (x² + y²))."""
-    expr = to_sympy(e)  # type: ignore[arg-type]
+    expr = to_sympy(e)
     if sympy.count_ops(expr) > SHORTEN_MAX_OPS or has_big_numbers(expr):
         return expr
     cancelled = sympy.cancel(expr)
@@ -140,7 +140,7 @@ def _shortest(e: object) -> sympy.Basic:
 
 def _declared(e: object) -> sympy.Basic:
     """The relation as the derivation holds it, without `to_sympy`'s tidying (which would make it 0)."""
-    return e._sympy_() if hasattr(e, "_sympy_") else sympy.S(e)  # type: ignore[union-attr]
+    return e._sympy_() if hasattr(e, "_sympy_") else sympy.S(e)
 
 
 def _constraint_lines(eom: EquationsOfMotion) -> tuple[ConstraintLine, ...]:
@@ -149,7 +149,7 @@ def _constraint_lines(eom: EquationsOfMotion) -> tuple[ConstraintLine, ...]:
     for info in describe_constraints(eom):
         principal = info.role == "principal"
         convert = _declared if principal else to_sympy
-        if isinstance(info.statement, Vector):
+        if isinstance(info.statement, Vector) and info.frame is not None:  # a vector statement has its frame
             comps = eom.kinematics.frames.express(info.statement, info.frame)
             statement = tuple(convert(c) for c in comps)
             axes: tuple[str, ...] | None = eom.kinematics.frames.axes(info.frame)
@@ -371,12 +371,12 @@ def render_text(form: CourseForm, extra: Supplement | None = None) -> str:
             lines.append(f"  V*({point}) = {n.vector(row.terms)}")
     lines.append("")
     lines.append(f"Kinetic energy T(Σ/{ref}):")
-    for row in form.T:
-        lines.append(f"  T({row.name}/{ref}) = {n.text(row.expression)}    [{row.formula}]")
+    for energy in form.T:
+        lines.append(f"  T({energy.name}/{ref}) = {n.text(energy.expression)}    [{energy.formula}]")
     lines.append(f"Potential energy U_P(Σ/{ref}) (+ cste):")
     if form.U:
-        for row in form.U:
-            lines.append(f"  {row.name}: {n.text(row.expression)}")
+        for energy in form.U:
+            lines.append(f"  {energy.name}: {n.text(energy.expression)}")
     else:
         lines.append("  none: no given effort derives from a potential")
     lines.append("")
@@ -421,8 +421,8 @@ def render_text(form: CourseForm, extra: Supplement | None = None) -> str:
         lines += _balance_text(n, extra)
     lines.append("")
     lines.append("Matrix form M(q, t) q̈ = F(q, q̇, t):")
-    for a, row in enumerate(form.M):
-        for b, entry in enumerate(row):
+    for a, m_row in enumerate(form.M):
+        for b, entry in enumerate(m_row):
             if b >= a and entry != 0:
                 lines.append(f"  M[{q[a]},{q[b]}] = {n.text(entry)}")
     for a, f in enumerate(form.F):

@@ -153,7 +153,8 @@ def _write_mp4(renderer: Renderer, count: int, fps: float, path: Path, dpi: floa
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".mp4", dir=path.parent)
     os.close(fd)
     try:
-        writer = FFMpegWriter(fps=fps)
+        # ffmpeg's -r takes a fractional rate; matplotlib's stub says int
+        writer = FFMpegWriter(fps=fps)  # type: ignore[arg-type]
         with writer.saving(renderer.fig, tmp, dpi):
             for i in range(count):
                 renderer.full(i)

@@ -250,10 +250,12 @@ def build_scene(model: Model, motions: Sequence[Motion], values: Mapping[str, fl
     for motion, poses, points in zip(b.motions, b.poses, b.points):
         offset = (0.0, 0.0, 0.0)
         if motion.beside:
-            offset = tuple(float(x) for x in offset_axis * 2.2 * radius)
+            shift = offset_axis * 2.2 * radius
+            offset = (float(shift[0]), float(shift[1]), float(shift[2]))
         runs.append(Run(motion.label, poses.astype(np.float32), points.astype(np.float32), offset, motion.ghost))
     if any(m.beside for m in b.motions):
-        centre = tuple(float(c + x * 1.1 * radius) for c, x in zip(centre, offset_axis))
+        moved = np.asarray(centre) + offset_axis * 1.1 * radius
+        centre = (float(moved[0]), float(moved[1]), float(moved[2]))
         radius *= 2.2
     axis_names = tuple(model.frame(GALILEAN_FRAME).axes)
     return Scene(title or model.name, b.t.copy(), tuple(b.carriers), tuple(b.parts), tuple(b.tracks), tuple(runs),
@@ -273,7 +275,7 @@ def _centre_labels(model: Model) -> dict[str, str]:
     return {n: f"G_{n}" for n in names}
 
 
-def _anchor(model: Model, body, attached: Mapping[str, Mapping[str, np.ndarray]]) -> str:  # type: ignore[no-untyped-def]
+def _anchor(model: Model, body, attached: Mapping[str, Mapping[str, np.ndarray]]) -> str:
     """The body's joint point: its fixed point, else a point it shares with another body or the ground (O)."""
     if body.fixed_point:
         return body.fixed_point

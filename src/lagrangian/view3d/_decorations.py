@@ -45,7 +45,8 @@ _ARROW_COLORS = {"velocity": "#2ca02c", "reaction": "#d62728", "force": "#ff7f0e
 
 def _random_points(b: _Builder) -> np.ndarray:
     """Every track's position at a few random states: (states, tracks, 3)."""
-    if getattr(b, "_random", None) is None:
+    random = getattr(b, "_random", None)
+    if random is None:
         rng = np.random.default_rng(20261127)
         n = len(b.model.coordinates)
         q0 = b.states[0][0][0] if n else np.zeros(0)
@@ -53,8 +54,8 @@ def _random_points(b: _Builder) -> np.ndarray:
         qd = rng.uniform(-1.0, 1.0, (_STATES, n))
         t = rng.uniform(0.0, 1.0, _STATES)
         vectors = [v if v is not None else model_point(b.model, tr.name) for tr, v in zip(b.tracks, b.track_vectors)]
-        b._random = b.ev.vectors(vectors, t, q, qd)
-    return b._random
+        random = b._random = b.ev.vectors(vectors, t, q, qd)
+    return random
 
 
 def _still(values: np.ndarray, scale: float) -> bool:
@@ -214,7 +215,8 @@ def arcs(b: _Builder, found: Sequence[Triad], length: float) -> list[Arc]:
         s = np.linspace(0.0, alpha, 25)
         points = centre + rho * (np.cos(s)[:, None] * e_i + np.sin(s)[:, None] * e_j)
         mid = centre + 1.18 * rho * (np.cos(alpha / 2) * e_i + np.sin(alpha / 2) * e_j)
-        out.append(Arc(_angle_label(frame.rotation.angle), points, tuple(float(x) for x in mid)))  # type: ignore[union-attr]
+        label = _angle_label(frame.rotation.angle)  # type: ignore[union-attr]
+        out.append(Arc(label, points, (float(mid[0]), float(mid[1]), float(mid[2]))))
     return out
 
 
@@ -320,7 +322,7 @@ def _tilted_axis(b: _Builder, up: np.ndarray) -> np.ndarray | None:
     return None
 
 
-def _reach(part) -> float:  # type: ignore[no-untyped-def]
+def _reach(part) -> float:
     """How far a part reaches from its centre."""
     size = part.size
     if part.mesh is not None:

@@ -13,6 +13,7 @@ matrix products per state rather than expressions that grow with the chain.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import symengine as se
@@ -98,9 +99,9 @@ class Evaluator:
         self.parameters = [p.name for p in model.parameters if p.name in self.values]
         self.arguments = [TIME, *q, *qd, *(se.Symbol(n) for n in self.parameters)]
         self._known = set(self.arguments)
-        self._tree = None
+        self._tree: Any = None  # the FrameTree, made on first use (imported then: the kinematics is heavy)
 
-    def _lambdify(self, exprs: Sequence[se.Basic]):  # type: ignore[no-untyped-def]
+    def _lambdify(self, exprs: Sequence[se.Basic]):
         free = set().union(*(e.free_symbols for e in exprs)) if exprs else set()
         missing = sorted(str(s) for s in free - self._known)
         if missing:

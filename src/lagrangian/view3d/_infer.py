@@ -208,7 +208,12 @@ def joint_axis(model: Model, body: Body, ev: Evaluator, *, ground: bool = False)
     return "hinge", v / np.linalg.norm(v)
 
 
-def body_solid(builder, body: Body, attached: dict[str, np.ndarray], anchor: str) -> Solid | None:  # type: ignore[no-untyped-def]
+def _xyz(v: np.ndarray) -> tuple[float, float, float]:
+    """The three components of ``v`` as floats."""
+    return float(v[0]), float(v[1]), float(v[2])
+
+
+def body_solid(builder, body: Body, attached: dict[str, np.ndarray], anchor: str) -> Solid | None:
     """The homogeneous solid of the body's inertia at G (None without values, or for a point mass)."""
     model, ev = builder.model, builder.ev
     state = builder.states[0]
@@ -234,7 +239,7 @@ def _joint_direction(attached: dict[str, np.ndarray], anchor: str, body: Body) -
     return -gp / np.linalg.norm(gp)
 
 
-def inferred_parts(builder, body: Body, carrier: int, attached: dict[str, np.ndarray], anchor: str,  # type: ignore[no-untyped-def]
+def inferred_parts(builder, body: Body, carrier: int, attached: dict[str, np.ndarray], anchor: str,
                    color: str, length: float, solid: Solid | None) -> float | None:
     """Add the parts of a body the model gives no shape: the solid of its inertia at G, rods from its joint
     point to its other points, its joint.  Returns how far the body reaches from G along the line from its
@@ -269,21 +274,21 @@ def inferred_parts(builder, body: Body, carrier: int, attached: dict[str, np.nda
             if solid is not None and solid.kind == "rod" and _inside_rod(solid, start, end):
                 continue
             axis = end - start
-            size = float(np.linalg.norm(axis))
-            if size <= 1e-12 * length:
+            span = float(np.linalg.norm(axis))
+            if span <= 1e-12 * length:
                 continue
-            builder.parts.append(Part(body.name, carrier, "rod", (ROD_RADIUS * length, size),
-                                      tuple(float(x) for x in (start + end) / 2),
-                                      _quat(np.array(rotation_to(axis / size))), color, 1.0, "points"))
+            builder.parts.append(Part(body.name, carrier, "rod", (ROD_RADIUS * length, span),
+                                      _xyz((start + end) / 2),
+                                      _quat(np.array(rotation_to(axis / span))), color, 1.0, "points"))
         kind, axis = joint_axis(builder.model, body, builder.ev)
-        if kind == "hinge":
+        if kind == "hinge" and axis is not None:
             builder.parts.append(Part(body.name, carrier, "cylinder",
                                       (HINGE_RADIUS * length, 4 * HINGE_RADIUS * length),
-                                      tuple(float(x) for x in start), _quat(np.array(rotation_to(axis))),
+                                      _xyz(start), _quat(np.array(rotation_to(axis))),
                                       JOINT_COLOR, 1.0, "hinge"))
         elif kind == "ball":
             builder.parts.append(Part(body.name, carrier, "sphere", (1.4 * HINGE_RADIUS * length,),
-                                      tuple(float(x) for x in start), (0.0, 0.0, 0.0, 1.0), JOINT_COLOR, 1.0, "ball"))
+                                      _xyz(start), (0.0, 0.0, 0.0, 1.0), JOINT_COLOR, 1.0, "ball"))
     if solid is None and start is None:
         builder.parts.append(Part(body.name, carrier, "sphere", (0.04 * length,), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0),
                                   color, 1.0, "particle"))

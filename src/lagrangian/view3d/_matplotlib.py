@@ -52,7 +52,9 @@ class Renderer:
         self.fig = fig = Figure(figsize=(width or size, size), dpi=dpi)
         self.canvas = FigureCanvasAgg(fig)
         three = shape.dimension == 3
-        self.ax = ax = fig.add_subplot(projection="3d") if three else fig.add_subplot()
+        # Axes3D or plain Axes, as `three` says: the methods used below are those of the one made.
+        ax: Any = fig.add_subplot(projection="3d") if three else fig.add_subplot()
+        self.ax = ax
         lo, hi = shape.bounds()
         centre, half = (lo + hi) / 2, max(float(np.max(hi - lo)) / 2, 1e-9) * 1.12
         if three:
@@ -83,7 +85,7 @@ class Renderer:
             ax.plot(*shape.fixed.T, "k^", ms=7)
         self.moving: list[tuple[Any, Any]] = []  # (artist, function of the frame index -> data)
 
-        def line(data_of, **style):  # type: ignore[no-untyped-def]
+        def line(data_of, **style):
             first = data_of(0)
             artist = ax.plot(*first.T, **style)[0]
             self.moving.append((artist, data_of))

@@ -109,8 +109,7 @@ def _stl(data: bytes) -> Mesh:
                 raise _Bad(f"it has {count:,} triangles, more than the {MAX_TRIANGLES:,} the view draws")
             records = np.frombuffer(data, dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")]),
                                     count=count, offset=84)
-            vertices = records["v"].reshape(-1, 3)
-            return _finish(vertices, np.arange(3 * count).reshape(-1, 3))
+            return _finish(records["v"].reshape(-1, 3), np.arange(3 * count).reshape(-1, 3))
     try:
         text = data.decode("ascii")
     except UnicodeDecodeError:
@@ -184,10 +183,10 @@ def _dae(data: bytes) -> Mesh:
     if root.tag != ns + "COLLADA":
         raise _Bad(f"its root element is <{root.tag.removeprefix(ns)}>, not <COLLADA>")
 
-    def find(node, path: str):  # type: ignore[no-untyped-def]
+    def find(node, path: str):
         return node.find("/".join(ns + p for p in path.split("/")))
 
-    def findall(node, path: str):  # type: ignore[no-untyped-def]
+    def findall(node, path: str):
         return node.findall("/".join(ns + p for p in path.split("/")))
 
     by_id = {e.get("id"): e for e in root.iter() if e.get("id")}
@@ -202,7 +201,7 @@ def _dae(data: bytes) -> Mesh:
     colours = _material_colours(root, by_id, find, findall)
     pieces: list[tuple[np.ndarray, np.ndarray, str | None]] = []
 
-    def add_geometry(geometry, transform: np.ndarray, bindings: dict[str, str]) -> None:  # type: ignore[no-untyped-def]
+    def add_geometry(geometry, transform: np.ndarray, bindings: dict[str, str]) -> None:
         mesh = find(geometry, "mesh")
         if mesh is None:
             return
@@ -213,7 +212,7 @@ def _dae(data: bytes) -> Mesh:
                 colour = colours.get(bindings.get(prim.get("material", ""), prim.get("material", "")))
                 pieces.append((moved, tris, colour))
 
-    def walk(node, transform: np.ndarray, depth: int) -> None:  # type: ignore[no-untyped-def]
+    def walk(node, transform: np.ndarray, depth: int) -> None:
         if depth > 64:
             raise _Bad("the scene's nodes are nested more than 64 deep")
         local = np.eye(4)
@@ -281,7 +280,7 @@ def _dae(data: bytes) -> Mesh:
     return _finish(np.concatenate(vertices), np.concatenate(triangles), tuple(groups))
 
 
-def _xml(data: bytes):  # type: ignore[no-untyped-def]
+def _xml(data: bytes):
     from defusedxml import DefusedXmlException
     from defusedxml.ElementTree import ParseError, fromstring
 
@@ -294,7 +293,7 @@ def _xml(data: bytes):  # type: ignore[no-untyped-def]
         raise _Bad(f"the XML is not well formed ({str(exc).split(':')[0]})", line) from None
 
 
-def _numbers(element, what: str, integer: bool = False) -> np.ndarray:  # type: ignore[no-untyped-def]
+def _numbers(element, what: str, integer: bool = False) -> np.ndarray:
     text = (element.text or "") if element is not None else ""
     try:
         values = np.array(text.split(), dtype=np.int64 if integer else np.float64)
@@ -305,7 +304,7 @@ def _numbers(element, what: str, integer: bool = False) -> np.ndarray:  # type: 
     return values
 
 
-def _primitive(prim, tag: str, mesh, by_id: dict, ns: str) -> tuple[np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
+def _primitive(prim, tag: str, mesh, by_id: dict, ns: str) -> tuple[np.ndarray, np.ndarray]:
     """The positions and triangles (fans of each polygon) of one ``<triangles>``/``<polylist>``/``<polygons>``."""
     inputs = prim.findall(ns + "input")
     stride = 1 + max((int(i.get("offset", "0")) for i in inputs), default=0)
@@ -353,7 +352,7 @@ def _primitive(prim, tag: str, mesh, by_id: dict, ns: str) -> tuple[np.ndarray, 
     return points, (np.concatenate(tris) if tris else np.zeros((0, 3), np.int64))
 
 
-def _material_colours(root, by_id: dict, find, findall) -> dict[str, str]:  # type: ignore[no-untyped-def]
+def _material_colours(root, by_id: dict, find, findall) -> dict[str, str]:
     """material id → ``#rrggbb`` of its effect's diffuse colour, where it has one."""
     out = {}
     for material in findall(root, "library_materials/material"):

@@ -123,6 +123,7 @@ class Report:
         """
         path = Path(path)
         fmt = format or format_for(path)
+        text: str | bytes
         try:
             if fmt in ("tex", "md"):
                 images = pictures(self.document, scenes=fmt == "tex")  # Markdown leaves the 3-D figures out

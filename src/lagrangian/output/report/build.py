@@ -17,7 +17,7 @@ import sympy
 
 from ...analysis import FirstIntegral
 from ...dynamics import EquationsOfMotion
-from ...model import GALILEAN_FRAME, ORIGIN, Vector
+from ...model import GALILEAN_FRAME, ORIGIN, Body, Particle, Vector
 from .._course import CourseForm, _vector_row, course_form
 from .._display_form import display_form
 from .._notation import Notation, _axis_latex, _base_latex, _is_word
@@ -59,7 +59,7 @@ def tex_name(name: str) -> str:
 _SUBSCRIPTS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 
 
-def coordinate_names(model) -> dict[str, tuple[str, str]]:  # type: ignore[no-untyped-def]
+def coordinate_names(model) -> dict[str, tuple[str, str]]:
     """q₁, q₂, … for the coordinates when one of them is a word (a URDF joint, ``shoulder``): a dot over a word
     (``shoulderṫ``) is no notation.  Each decorated form gets its own entry (q̇₁, q̈₁, q₁*), and so does a constant
     named after a coordinate (the actuator ``tau_shoulder`` → τ₂).  Step 2 lists the names beside the q_k."""
@@ -83,7 +83,7 @@ def coordinate_names(model) -> dict[str, tuple[str, str]]:  # type: ignore[no-un
     return out
 
 
-def report_notation(form: CourseForm, model, names: dict[str, tuple[str, str]] | None = None,  # type: ignore[no-untyped-def]
+def report_notation(form: CourseForm, model, names: dict[str, tuple[str, str]] | None = None,
                     lang: str = "en") -> Notation:
     """The report's notation: masses before the other constants (m2 l1 l2, m g a), and forms a teacher would
     write (`display_form`); ``names`` writes some symbols otherwise (the multipliers, `multiplier_names`).
@@ -101,7 +101,7 @@ _SI = {"m", "kg", "s", "rad", "N", "J", "W", "Pa", "kg m^2", "kg*m^2", "kg·m²"
        "N m", "N*m", "N·m", "N/m", "N s/m", "N*s/m", "kg/s", "1", ""}
 
 
-def is_urdf(model) -> bool:  # type: ignore[no-untyped-def]
+def is_urdf(model) -> bool:
     """A robot read from a URDF file: its numbers are the file's decimals, in SI units."""
     return str(model.source or "").lower().endswith(".urdf")
 
@@ -162,7 +162,8 @@ class Context:
     def mass_tex(self, name: str) -> str:
         """A body's or particle's mass in formulas: its symbol (m, m1), or m_S when the model gives a number (a URDF's
         8), so that T reads ½ m_S V² and not ½ 8 V²."""
-        mass = next(e.mass for e in (*self.model.bodies, *self.model.particles) if e.name == name)
+        elements: tuple[Body | Particle, ...] = (*self.model.bodies, *self.model.particles)
+        mass = next(e.mass for e in elements if e.name == name)
         if mass.free_symbols:
             return self.tex(mass)
         return rf"m_{{{tex_name(name)}}}"
@@ -203,7 +204,7 @@ class Context:
         used = self._used_letters()
         return next((x for x in candidates if x not in used), candidates[-1])
 
-    def field_tex(self, load) -> str:  # type: ignore[no-untyped-def]
+    def field_tex(self, load) -> str:
         """The vector of a uniform field: g⃗ when it is ± g along one axis (the weight), else another letter (the
         Foucault pendulum's attraction −g u + Ω² l u⊥ is not the apparent gravity g)."""
         comps = [x for _, cs in self.kin.frames.lift(load.field) for x in cs if x != 0]

@@ -86,10 +86,10 @@ class FullFormBook:
                 latex = self._full(s)
                 if latex is not None:
                     lead = head if s is expr else f"{s.plain_latex} = "
-                    out.append((s.reference, wrap_latex(lead, latex, width=FULL_WIDTH)))  # type: ignore[arg-type]
+                    out.append((s.reference, wrap_latex(lead, latex, width=FULL_WIDTH)))
         return tuple(out)
 
-    def blocks(self, parts: Sequence[tuple[str, sympy.Basic]], label: str, words) -> list[Block]:  # type: ignore[no-untyped-def]
+    def blocks(self, parts: Sequence[tuple[str, sympy.Basic]], label: str, words) -> list[Block]:
         """`forms` as one `FullForms` block labelled after ``label`` (``L(θ1)``), or nothing."""
         forms = self.forms(parts)
         if not forms:

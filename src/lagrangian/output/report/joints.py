@@ -84,7 +84,7 @@ def _free(e: se.Basic) -> set[se.Basic]:
     return set(e.free_symbols)
 
 
-def _constant(kin, exprs: list[se.Basic]) -> list[bool]:  # type: ignore[no-untyped-def]
+def _constant(kin, exprs: list[se.Basic]) -> list[bool]:
     """Which expressions are free of q and t *as functions* (∂/∂q_i ≡ 0 and ∂/∂t ≡ 0)."""
     moving = set(kin.q) | {kin.t}
     out: list[bool | None] = []

@@ -24,7 +24,7 @@ import symengine as se
 import sympy
 
 from ...._identity import are_zero
-from ....model import CoulombFriction
+from ....model import Body, CoulombFriction, Particle
 from ..build import Context
 from ..document import Block, Display, Equation, Math, Para
 
@@ -44,7 +44,8 @@ def _element(c: Context, load: CoulombFriction) -> str | None:
 
 
 def _mass(c: Context, name: str) -> se.Basic:
-    return next(e.mass for e in (*c.model.bodies, *c.model.particles) if e.name == name)
+    elements: tuple[Body | Particle, ...] = (*c.model.bodies, *c.model.particles)
+    return next(e.mass for e in elements if e.name == name)
 
 
 def normal_force(c: Context, load: CoulombFriction) -> tuple[str, se.Basic, se.Basic, se.Basic] | None:
@@ -130,7 +131,7 @@ def contact_blocks(c: Context) -> list[Block]:
         out.append(Display(tuple(Equation((line,)) for line in lines)))
         agrees = are_zero([N - load.normal_force])[0]
         key = "normal agrees" if agrees else "normal differs"
-        out.append(Para(w(key, N=Math(rf"N = {c.tex(load.normal_force)}")), style=None if agrees else "note"))
+        out.append(Para(w(key, N=Math(rf"N = {c.tex(load.normal_force)}")), style="" if agrees else "note"))
         stick = stick_ratio(c, load)
         if stick is None:
             continue

@@ -210,7 +210,7 @@ def _coriolis(c: Context, jacobi: bool) -> list[Block]:
     return [Para(runs)]
 
 
-def left_out_note(c: Context, left: list) -> Runs:  # type: ignore[type-arg]
+def left_out_note(c: Context, left: list) -> Runs:
     """The note on the summaries whose full forms the budget left out, and where to find them."""
     budget = f"{c.book.budget:,}".replace(",", "\u202f" if c.lang == "fr" else ",")  # 300 000: a narrow space
     return c.w("full forms left", budget=budget, k=str(len(left)),
@@ -248,8 +248,8 @@ def step7(c: Context) -> Section:
     n = len(c.eom.coordinates)
     rows = c.eom.constraints
     if not rows:
-        blocks = [Para(w("no complementary" if n > 1 else "no complementary one", n=Math(str(n))))]
-        return Section("step7", w.text("step7"), tuple(blocks + contact_blocks(c)))
+        none = [Para(w("no complementary" if n > 1 else "no complementary one", n=Math(str(n))))]
+        return Section("step7", w.text("step7"), tuple(none + contact_blocks(c)))
     lams = Math(", ".join(c.tex(r.multiplier) for r in rows))
     if len(rows) == 1:
         blocks: list[Block] = [Para(w("complementary row", n=Math(str(n)), lams=lams))]
@@ -284,12 +284,12 @@ def step7(c: Context) -> Section:
         where = reaction.point or reaction.body or ""
         R = c.reaction_tex(reaction.constraint)
         body = reaction.body or next((k.body for k in c.model.constraints if k.name == reaction.constraint), None)
-        label, shown = c.constraint_label(reaction.constraint), Math(R) if not reaction.force.is_zero() else ""
+        label, named = c.constraint_label(reaction.constraint), Math(R) if not reaction.force.is_zero() else ""
         if reaction.point is not None and body in c.bodies and body != reaction.point:  # on (S) at I
-            blocks.append(Para(w("reaction of at", R=shown, name=label, S=Math(c.element(body)),
+            blocks.append(Para(w("reaction of at", R=named, name=label, S=Math(c.element(body)),
                                  E=Math(c.point_label(reaction.point)))))
         else:
-            blocks.append(Para(w("reaction of", R=shown, name=label, E=Math(c.point_label(where)))))
+            blocks.append(Para(w("reaction of", R=named, name=label, E=Math(c.point_label(where)))))
         eqs = []
         if not reaction.force.is_zero():
             eqs.append(c.vector_equation(f"{R} = ", c.terms(reaction.force)))
@@ -310,7 +310,7 @@ def _multipliers(c: Context) -> tuple[se.Basic, ...] | None:
     if sum(1 for con in c.model.constraints if con.unilateral) > 1:
         return None  # which contacts are closed changes along the motion: no single formula
     try:
-        return multiplier_formulas(c.eom)  # type: ignore[no-any-return]
+        return multiplier_formulas(c.eom)
     except DerivationError:
         return None
 
@@ -392,7 +392,7 @@ def _simple(c: Context, e: se.Basic, limit: int = SIMPLIFY_MAX_OPS) -> sympy.Bas
     return shown
 
 
-def _tension(c: Context, reaction, formulas: tuple[se.Basic, ...]) -> list[Block]:  # type: ignore[no-untyped-def]
+def _tension(c: Context, reaction, formulas: tuple[se.Basic, ...]) -> list[Block]:
     """A rod's tension N = −R·XP/|XP| when the constraint is |XP|² − L² = 0 and R is along XP (pendulum_tension).
 
     With XP in a vertical plane whose coordinates are two of the q_i, it is also written with the

@@ -94,8 +94,8 @@ def check_section(c: Context, v: Verification) -> Section:
         if check.agrees and (long_left or long_right):
             # ⟨24 termes⟩ = … ✓ cannot be checked by a reader: say what was compared, member by member.
             G, Q = rf"\Gamma^{{\mathrm{{NE}}}}_{{{q}}}", rf"Q^{{\mathrm{{NE}}}}_{{{q}}}"
-            key = "check summarized" if long_right else "check summarized left"
-            blocks.append(Para(head + (" ",) + w(key, eq=eq, k=str(_terms(check.newton_euler)),
+            summary = "check summarized" if long_right else "check summarized left"
+            blocks.append(Para(head + (" ",) + w(summary, eq=eq, k=str(_terms(check.newton_euler)),
                                                  k2=str(_terms(check.newton_euler_efforts)), G=Math(G), Q=Math(Q))))
             gamma, forces = _identity_line(c, check.coordinate)
             lines = [gamma, forces] if long_right else [gamma]
@@ -126,7 +126,7 @@ def _identity_line(c: Context, q: str) -> tuple[str, str]:
             rf"Q^{{\mathrm{{NE}}}}_{{{qs}}} - \left({forces}\right) = 0\quad\checkmark")
 
 
-def _fixed_axis(c: Context, check, theorems: dict) -> list[Block]:  # type: ignore[no-untyped-def,type-arg]
+def _fixed_axis(c: Context, check, theorems: dict) -> list[Block]:
     """δ_O·z0 = d/dt(σ_O·z0) = d/dt(∂T/∂ψ̇) (= dK/dt): the moment at a fixed point projected on an axis fixed
     in R0 is the derivative of the projected angular momentum, and that is ∂T/∂q̇ — shown only where the
     engine finds σ_O·e − ∂T/∂q̇ identically zero, so that a student recognises L(q) in it."""
@@ -155,7 +155,7 @@ def _fixed_axis(c: Context, check, theorems: dict) -> list[Block]:  # type: igno
             Display((Equation((chain,)), c.equation(f"{sigma} = ", c.ex(projected))))]
 
 
-def _theorem(c: Context, kind: str, point: str | None, names: tuple[str, ...], theorems: dict,  # type: ignore[type-arg]
+def _theorem(c: Context, kind: str, point: str | None, names: tuple[str, ...], theorems: dict,
              liaisons: str, by_power: list[str] | tuple[str, ...] = (), note: bool = True) -> list[Block]:
     """The statement of the resultant or moment theorem for ``names`` (at ``point``), in the frame R; ``by_power``
     names the efforts given by their generalized forces (actuators, dissipation), which enter it too."""
@@ -166,7 +166,7 @@ def _theorem(c: Context, kind: str, point: str | None, names: tuple[str, ...], t
     return out
 
 
-def _theorem_statement(c: Context, kind: str, point: str | None, names: tuple[str, ...], theorems: dict,  # type: ignore[type-arg]
+def _theorem_statement(c: Context, kind: str, point: str | None, names: tuple[str, ...], theorems: dict,
                        liaisons: str, by_power: list[str] | tuple[str, ...]) -> list[Block]:
     w, R = c.w, c.R
     elements = w.join([Math(f"({c.element(e)})" if e in c.bodies else c.element(e)) for e in names])

@@ -74,13 +74,13 @@ def _formula(c: Context, f: LoadForces, load: object) -> tuple[str, str]:
         # R_t, the tangential part of the support's action (T is the kinetic energy), N its normal part (step 7).
         P = c.point_label(load.at)
         power = rf"\vec{{R}}_t\cdot\vec{{V}}^{{*}}({P})"
-        f, N = c.tex(load.coefficient), c.tex(load.normal_force)
+        mu, N = c.tex(load.coefficient), c.tex(load.normal_force)
         # v_s, the sliding velocity: V(P) less the surface's own (a belt's v_b x0)
         surface = "" if load.surface_velocity.is_zero() else f" - {c.vector(load.surface_velocity)}"
         slide = rf",\ \vec{{v}}_s = \vec{{V}}({P}/{R}){surface}"
         if load.exact:
-            return power, rf"\vec{{R}}_t = -{f} N\,\vec{{v}}_s / \|\vec{{v}}_s\|{slide},\ N = {N}"
-        return power, (rf"\vec{{R}}_t = -{f} N\,\vec{{v}}_s / \sqrt{{\|\vec{{v}}_s\|^{{2}} + "
+            return power, rf"\vec{{R}}_t = -{mu} N\,\vec{{v}}_s / \|\vec{{v}}_s\|{slide},\ N = {N}"
+        return power, (rf"\vec{{R}}_t = -{mu} N\,\vec{{v}}_s / \sqrt{{\|\vec{{v}}_s\|^{{2}} + "
                        rf"{c.tex(load.regularization)}^{{2}}}}{slide},\ N = {N}")
     if isinstance(load, GeneralizedForce):
         return r"\sum_{i} Q_i\, q_i^{*}", ""
@@ -181,10 +181,10 @@ def _q_list(c: Context, values: list[str], load: str | None = None) -> list[str]
 _RELATION = {"positive": ">", "nonnegative": r"\geq", "negative": "<", "nonpositive": r"\leq"}
 
 
-def _interval(c: Context, bounds: tuple) -> str:  # type: ignore[type-arg]
+def _interval(c: Context, bounds: tuple) -> str:
     """[a, b] in LaTeX (numbers as decimals, as the file wrote them), an open side as ∞; in French [a ; b] with
     decimal commas."""
-    def number(b) -> str:  # type: ignore[no-untyped-def]
+    def number(b) -> str:
         text = f"{float(b):g}"
         return text.replace(".", "{,}") if c.lang == "fr" else text
 

@@ -14,7 +14,7 @@ import symengine as se
 
 from ....model import Gravity, PointForce, Potential, Spring, Vector
 from ..build import Context
-from ..document import Block, Display, Equation, Math, Para, Section
+from ..document import Block, Display, Equation, Math, Para, Run, Runs, Section
 from ..size import visible_width, wrap_many
 
 #: The seed writes Ω(S/R0) = ψ̇ z0 + θ̇ u + φ̇ z = θ̇ u + ψ̇ sinθ w + (φ̇ + ψ̇ cosθ) z on one line; so do we up to this width.
@@ -86,7 +86,8 @@ def _chains(c: Context) -> list[Equation]:
 
 
 def _inertia(c: Context) -> list[Block]:
-    w, out = c.w, []
+    w = c.w
+    out: list[Block] = []
     origins = _origins(c)
     for b in c.model.bodies:
         used = c.eom.inertias[b.name]
@@ -165,7 +166,7 @@ def _virtual_torsors(c: Context) -> list[Block]:
     return out
 
 
-def comoment_conditions(c: Context, j) -> list[se.Basic] | None:  # type: ignore[no-untyped-def]
+def comoment_conditions(c: Context, j) -> list[se.Basic] | None:
     """The scalars whose vanishing makes the comoment of a perfect principal constraint's action torsor with the
     virtual kinematic torsor zero, as step 3 states it; None for a constraint it does not argue.
 
@@ -259,6 +260,7 @@ def _comoments(c: Context) -> list[Block]:
             support = ("(", Math(S1), ")") if j.support is not None else (Math(S1),)
             out += [Para(w(key, S=Math(S), X=Math(X), S1=support)), Display((Equation((eq, why)),))]
         elif j.kind in ("rod", "plane", "line"):
+            along: Run | Runs
             P = c.element(j.element)
             V = rf"\vec{{V}}^{{*}}({P})"
             if j.kind == "rod":
@@ -270,8 +272,8 @@ def _comoments(c: Context) -> list[Block]:
                     why = rf"{because} " + r",\ ".join(rf"{d}\cdot{V} = 0" for d in dirs)
                 key, along = "comoment rod", w.join([Math(d) for d in dirs])
             elif j.kind == "plane":
-                n = c.axis(j.normals[0])
-                why, key, along = rf"{because} {n}\cdot{V} = 0", "comoment plane", Math(n)
+                normal = c.axis(j.normals[0])
+                why, key, along = rf"{because} {normal}\cdot{V} = 0", "comoment plane", Math(normal)
             else:
                 e = c.axis(j.axis)  # type: ignore[arg-type]
                 why, key, along = rf"{because} {V}\wedge{e} = \vec{{0}}", "comoment line", Math(e)
@@ -296,7 +298,8 @@ def _comoments(c: Context) -> list[Block]:
 
 
 def step3(c: Context) -> Section:
-    w, blocks = c.w, []
+    w = c.w
+    blocks: list[Block] = []
     chains = _chains(c)
     if chains:
         blocks.append(Para(w("frames")))

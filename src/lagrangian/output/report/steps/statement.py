@@ -39,14 +39,14 @@ def _frame_with_axes(c: Context, frame: str, origin: str | None) -> str:
     return f"{c.name(frame)}({c.name(origin)};\\ {axes})" if origin else f"{c.name(frame)}({axes})"
 
 
-def _mass_given(c: Context, name: str, mass) -> str:  # type: ignore[no-untyped-def]
+def _mass_given(c: Context, name: str, mass) -> str:
     """m, or m_S = 8 kg for a number (so that later formulas can write m_S)."""
     if mass.free_symbols:
         return c.tex(mass)
     return f"{c.mass_tex(name)} = {c.quantity(mass, 'kg')}"
 
 
-def _inertia_given(c: Context, body) -> Runs:  # type: ignore[no-untyped-def]
+def _inertia_given(c: Context, body) -> Runs:
     """The inertia of a body as the model gives it: principal moments, or the matrix, at a point in a basis."""
     i = body.inertia
     P = Math(c.point_label(body.name) if i.at == "G" else c.point_label(i.at))
@@ -186,20 +186,20 @@ def system_section(c: Context) -> Section:
         blocks += c.many([Items(rows)], len(rows), w.text("points given").rstrip(" :"))
     constants = [p for p in model.parameters if not p.input]
     if constants:
-        rows = tuple(((Math(c.sym(p.name)),), ("" if p.value is None else w.number(p.value),), (_unit(p.unit),),
-                      (in_language(p.description, c.lang) or "",)) for p in constants)
+        constant_rows = tuple(((Math(c.sym(p.name)),), ("" if p.value is None else w.number(p.value),),
+                               (_unit(p.unit),), (in_language(p.description, c.lang) or "",)) for p in constants)
         header = tuple((w.text(k),) for k in ("col symbol", "col value", "col unit", "col description"))
         blocks.append(Para(w("parameters")))
-        blocks += c.many([Table(header, rows)], len(rows), w.text("parameters").rstrip(" :"))
+        blocks += c.many([Table(header, constant_rows)], len(constant_rows), w.text("parameters").rstrip(" :"))
     inputs = [p for p in model.parameters if p.input]
     if inputs:  # a motor's τ(t), a push F(t): given functions of time, not constants
-        rows = tuple(((Math(c.sym(p.name)),), (_unit(p.unit),), (in_language(p.description, c.lang) or "",))
-                     for p in inputs)
+        input_rows = tuple(((Math(c.sym(p.name)),), (_unit(p.unit),), (in_language(p.description, c.lang) or "",))
+                           for p in inputs)
         header = tuple((w.text(k),) for k in ("col symbol", "col unit", "col description"))
         blocks.append(Para(w("inputs")))
-        blocks += c.many([Table(header, rows)], len(rows), w.text("inputs").rstrip(" :"))
+        blocks += c.many([Table(header, input_rows)], len(input_rows), w.text("inputs").rstrip(" :"))
     loads = [(load, _load_given(c, load)) for load in model.loads]
-    load_items = tuple(w("load item", name=w.load(load.name), what=what) for load, what in loads  # type: ignore[attr-defined]
+    load_items = tuple(w("load item", name=w.load(load.name), what=what) for load, what in loads
                        if what is not None)
     if load_items:
         blocks.append(Para(w("loads given")))
@@ -218,7 +218,7 @@ def _count(c: Context, k: int) -> str:
 
 
 def _length(c: Context, j: Joint) -> str:
-    return c.tex(j.length)  # type: ignore[arg-type]
+    return c.tex(j.length)
 
 
 def _vstar(c: Context, point: str, anchor: str | None) -> str:
@@ -334,7 +334,7 @@ def _perfect(c: Context, j: Joint) -> list[Block]:
         cond = w.join([Math(rf"{c.axis(a)}\cdot\vec{{V}}^{{*}}({G}) = 0") for a in j.normals])
         rot = Math(rf"\vec{{\Omega}}^{{*}}({c.element(j.element)}/{c.R}) \in \mathrm{{vect}}("
                    + ", ".join(c.axis(a) for a in j.turns) + ")")
-        blocks = [Para(w("perfect body plane", n=n, cond=cond, rot=rot))]
+        blocks: list[Block] = [Para(w("perfect body plane", n=n, cond=cond, rot=rot))]
         rolling = next((con for con in c.model.constraints if con.form == "no_slip" and con.body == j.element), None)
         if rolling is not None:  # the contact's tangential action is the rolling constraint's reaction, not zero
             blocks.append(Para(w("adherence", S=Math(c.element(j.element)), I=Math(c.point_label(rolling.points[0])))))
