@@ -12,6 +12,9 @@ from ._json import SCHEMA_ID as SCHEMA_ID
 from ._json import SCHEMA_VERSION as SCHEMA_VERSION
 from ._json import derive_document as derive_document
 from ._latex import render_latex as render_latex
+from ._linear_text import linear_text as linear_text
+from ._linear_text import modes_text as modes_text
+from ._linear_text import sweep_text as sweep_text
 from ._linearize_json import LINEARIZE_SCHEMA_ID as LINEARIZE_SCHEMA_ID
 from ._linearize_json import linearize_document as linearize_document
 from ._notation import Notation as Notation
@@ -25,6 +28,6 @@ from ._sympy_form import sympy_equations as sympy_equations
 from ._text import render_text as render_text
 
 __all__ = ["CourseForm", "course_form", "EXPORT_TARGETS", "export", "SCHEMA_ID", "SCHEMA_VERSION", "derive_document", "render_latex",
-           "LINEARIZE_SCHEMA_ID", "linearize_document",
+           "LINEARIZE_SCHEMA_ID", "linearize_document", "linear_text", "modes_text", "sweep_text",
            "Notation", "render_text", "Report", "ReportFigure", "report", "FORMATS", "format_for",
            "SympyEquations", "sympy_equations"]
