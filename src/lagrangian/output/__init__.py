@@ -26,8 +26,10 @@ from .report import report as report
 from ._sympy_form import SympyEquations as SympyEquations
 from ._sympy_form import sympy_equations as sympy_equations
 from ._text import render_text as render_text
+from ._top_text import simulation_check_text as simulation_check_text
+from ._top_text import top_analysis_text as top_analysis_text
 
 __all__ = ["CourseForm", "course_form", "EXPORT_TARGETS", "export", "SCHEMA_ID", "SCHEMA_VERSION", "derive_document", "render_latex",
            "LINEARIZE_SCHEMA_ID", "linearize_document", "linear_text", "modes_text", "sweep_text",
            "Notation", "render_text", "Report", "ReportFigure", "report", "FORMATS", "format_for",
-           "SympyEquations", "sympy_equations"]
+           "SympyEquations", "sympy_equations", "simulation_check_text", "top_analysis_text"]
