@@ -2,6 +2,7 @@
 
 from ._course import CourseForm as CourseForm
 from ._course import course_form as course_form
+from ._equilibria_text import equilibria_text as equilibria_text
 from ._export import EXPORT_TARGETS as EXPORT_TARGETS
 from ..numerics._ensemble import register_backend as _register_backend
 from ._ensemble_jax import jax_runner as _jax_runner
@@ -29,7 +30,7 @@ from ._text import render_text as render_text
 from ._top_text import simulation_check_text as simulation_check_text
 from ._top_text import top_analysis_text as top_analysis_text
 
-__all__ = ["CourseForm", "course_form", "EXPORT_TARGETS", "export", "SCHEMA_ID", "SCHEMA_VERSION", "derive_document", "render_latex",
+__all__ = ["CourseForm", "course_form", "equilibria_text", "EXPORT_TARGETS", "export", "SCHEMA_ID", "SCHEMA_VERSION", "derive_document", "render_latex",
            "LINEARIZE_SCHEMA_ID", "linearize_document", "linear_text", "modes_text", "sweep_text",
            "Notation", "render_text", "Report", "ReportFigure", "report", "FORMATS", "format_for",
            "SympyEquations", "sympy_equations", "simulation_check_text", "top_analysis_text"]
