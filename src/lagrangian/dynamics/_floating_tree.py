@@ -25,7 +25,7 @@ from ..model import JointDamper, Model, Torque, Vector
 from ..model._assumptions import Assumptions
 from ..model._free import FreeJoint, free_joints
 from ._forces import LoadForces, generalized_forces
-from ._recursive import TreeStructure, _Node, tree_structure
+from ._tree import TreeStructure, _Node, tree_structure
 
 __all__ = ["FloatingTree", "floating_trees"]
 
