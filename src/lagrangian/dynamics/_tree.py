@@ -16,6 +16,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from itertools import pairwise
+from typing import cast
 
 import symengine as se
 
@@ -209,7 +210,7 @@ def _inertia_at_g(kin: Kinematics, body: Body) -> tuple[Vec, Vec, Vec]:
         # the body's components, which are constant (P is a point of the body, checked).
         gp = kin.frames.express(kin.position(given.at) - body.center, body.frame)
         pi_g = _transport(given.matrix, body.mass, gp, -1)
-    return pi_g
+    return cast(tuple[Vec, Vec, Vec], pi_g)  # 3 × 3
 
 
 def _couples(kin: Kinematics, other: Sequence[int], index: Mapping[str, int],

@@ -101,7 +101,7 @@ def _searched(n: Notation, search: EquilibriumSearch) -> str:
     how = "closed form (SymPy)" if search.closed_form else "no closed form (SymPy failed)"
     if not search.numeric:
         why = {"values": "a parameter has no value", "continuum": "the closed form gives a family of rests",
-               "not asked": "not asked"}.get(search.skipped, "not made")
+               "not asked": "not asked"}.get(search.skipped or "", "not made")
         return f"Searched: {how}; no numeric search ({why}).\n"
     if not search.regions:
         return f"Searched: {how}; every coordinate is free, none is left to search numerically.\n"

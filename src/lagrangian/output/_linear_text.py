@@ -152,11 +152,12 @@ def linear_text(lin: LinearModel, stability: Stability | None = None, modes: Mod
                      f"`lagrangian modes ... --sweep {lin.symbols[0]}=a:b:step`).")
         return "\n".join(lines) + "\n"
     neutral = modes is not None and bool(modes.neutral)
-    secular = modes is not None and modes.zero is not None and modes.zero.secular
+    zero = modes.zero if modes is not None else None
+    secular = zero is not None and zero.secular
     lam = np.asarray(stability.eigenvalues)
-    if secular:
+    if secular and zero is not None:
         lines.append("Eigenvalues of A: " + (_eigen_list(lam) + ", and " if lam.size else "")
-                     + f"0, defective (Jordan blocks of sizes {', '.join(map(str, modes.zero.blocks))} once "
+                     + f"0, defective (Jordan blocks of sizes {', '.join(map(str, zero.blocks))} once "
                        "the ignorable coordinates are set aside)")
     else:
         lines.append(("Eigenvalues of A, the neutral ones (0) set aside: " if neutral else "Eigenvalues of A: ")
