@@ -10,13 +10,13 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 import sympy
 
 from ..analysis import first_integrals
 from ._notation import Notation
+from ._text import literal
 
 if TYPE_CHECKING:
     from ..analysis import TopAnalysis
@@ -166,13 +166,8 @@ def _text(n: Notation, expr, red) -> str:  # type: ignore[no-untyped-def]
 def _names_in_greek(n: Notation, coordinates: tuple[str, ...], text: str) -> str:
     for name in coordinates:
         text = re.sub(rf"(?<![A-Za-z0-9_]){re.escape(name)}([12])(?![A-Za-z0-9])", n.symbol(name) + r"\1", text)
-        text = re.sub(rf"(?<![A-Za-z0-9_]){re.escape(name)}(?![A-Za-z0-9])", _literal(n.symbol(name)), text)
+        text = re.sub(rf"(?<![A-Za-z0-9_]){re.escape(name)}(?![A-Za-z0-9])", literal(n.symbol(name)), text)
     return text
-
-
-def _literal(text: str) -> Callable[[re.Match[str]], str]:
-    """A replacement for `re.sub` that is ``text`` as it is (no backslash escapes read in it)."""
-    return lambda _: text
 
 
 def top_analysis_text(an: TopAnalysis, eom: EquationsOfMotion) -> str:
