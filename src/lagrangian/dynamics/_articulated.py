@@ -44,7 +44,8 @@ factorisation reports otherwise, and D_j ≤ 10⁻¹³ M_jj as a singular mass m
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING
 
 import symengine as se
 
@@ -57,6 +58,13 @@ _ONE = se.Integer(1)
 
 Vec = tuple  # three SymEngine expressions
 Mat = list  # three rows of three
+
+if TYPE_CHECKING:
+    from ._recursive import _Names
+    from ._tree import _Node
+
+#: A change of basis between a node and its parent (None for the root).
+Turn = Callable[[Vec], Vec] | None
 
 
 def _zero(x: se.Basic) -> bool:
@@ -282,7 +290,8 @@ Joint = tuple[int, Vec, Vec]
 Step = tuple[int, Vec, Vec, Vec, Vec, se.Basic, se.Basic]
 
 
-def _joints(w, nodes, to_child, n: int) -> tuple[list[list[Joint]], list[int]] | None:  # type: ignore[no-untyped-def]
+def _joints(w: _Names, nodes: Sequence[_Node], to_child: Sequence[Turn], n: int,
+            ) -> tuple[list[list[Joint]], list[int]] | None:
     """Each node's joints, s_j = (a_j e, 0) for a rotation and (0, C ∂d/∂q_j) for a translation, with the
     node each coordinate drives; None when a coordinate drives none or several."""
     count = len(nodes)
@@ -291,8 +300,9 @@ def _joints(w, nodes, to_child, n: int) -> tuple[list[list[Joint]], list[int]] |
     for k, node in enumerate(nodes):
         for j, a in node.rates.items():
             dofs[k].append((j, tuple(a if i == node.axis else _ZERO for i in range(3)), (_ZERO,) * 3))
+        down = to_child[k]
         for j, u in node.offset_rates.items():
-            dofs[k].append((j, (_ZERO,) * 3, w.vec(to_child[k](u)) if to_child[k] is not None else u))
+            dofs[k].append((j, (_ZERO,) * 3, w.vec(down(u)) if down is not None else u))
         for j, _, _ in dofs[k]:
             if owner[j] != -1:
                 return None
@@ -302,7 +312,8 @@ def _joints(w, nodes, to_child, n: int) -> tuple[list[list[Joint]], list[int]] |
     return dofs, owner
 
 
-def _velocity_products(w, nodes, qd, omega, to_child) -> tuple[list[Vec], list[Vec]]:  # type: ignore[no-untyped-def]
+def _velocity_products(w: _Names, nodes: Sequence[_Node], qd: Sequence[se.Basic], omega: Sequence[Vec],
+                       to_child: Sequence[Turn]) -> tuple[list[Vec], list[Vec]]:
     """The velocity-product accelerations c_k = (ω_k ∧ α̇ e,  C (ω_P ∧ (ω_P ∧ d) + 2 ω_P ∧ ḋ))."""
     count = len(nodes)
     c_w: list[Vec] = [(_ZERO,) * 3] * count
@@ -320,11 +331,14 @@ def _velocity_products(w, nodes, qd, omega, to_child) -> tuple[list[Vec], list[V
         for j, u in node.offset_rates.items():
             d_rate = _add3(d_rate, _scale(qd[j], u))
         lin = _add3(_cross(wp, _cross(wp, node.offset)), _scale(se.Integer(2), _cross(wp, d_rate)))
-        c_v[k] = w.vec(to_child[k](lin))
+        down = to_child[k]
+        assert down is not None  # every node but the root has a parent
+        c_v[k] = w.vec(down(lin))
     return c_w, c_v
 
 
-def _rigid_inertias(nodes, omega, grav, couples) -> tuple[list[_Spatial], list[Vec], list[Vec]]:  # type: ignore[no-untyped-def]
+def _rigid_inertias(nodes: Sequence[_Node], omega: Sequence[Vec], grav: Sequence[Sequence[Vec]], couples: Sequence[Vec],
+                    ) -> tuple[list[_Spatial], list[Vec], list[Vec]]:
     """Each body's or particle's spatial inertia at G, I = [[Π_G, 0], [0, m 1]], and its bias force
     p = (ω ∧ Π_G ω − C⃗, −m g) (gravity and couples as external forces); a frame's p = (−C⃗, 0)."""
     count = len(nodes)
@@ -350,7 +364,8 @@ def _rigid_inertias(nodes, omega, grav, couples) -> tuple[list[_Spatial], list[V
     return inertia, bias_w, bias_v
 
 
-def _backward(w, nodes, dofs: list[list[Joint]], c: tuple[list[Vec], list[Vec]], tau, to_parent,  # type: ignore[no-untyped-def]
+def _backward(w: _Names, nodes: Sequence[_Node], dofs: list[list[Joint]], c: tuple[list[Vec], list[Vec]],
+              tau: Sequence[se.Basic], to_parent: Sequence[Turn],
               inertia: list[_Spatial], bias_w: list[Vec], bias_v: list[Vec],
               ) -> tuple[list[list[Step]], dict[int, se.Basic]]:
     """Backward pass, leaves to root: at each node its joints eliminated (`_eliminate`), the last one
@@ -383,6 +398,7 @@ def _backward(w, nodes, dofs: list[list[Joint]], c: tuple[list[Vec], list[Vec]],
         if all(_zero(x) for row in (*I.A, *I.B, *I.C) for x in row) and all(_zero(x) for x in (*pw, *pv)):
             continue
         up, d = to_parent[k], node.offset
+        assert up is not None and p is not None  # every node but the root has a parent
         inertia[p] = inertia[p].add(I.to_parent(up, d))
         fv = up(pv)
         bias_v[p] = _add3(bias_v[p], fv)
@@ -390,7 +406,8 @@ def _backward(w, nodes, dofs: list[list[Joint]], c: tuple[list[Vec], list[Vec]],
     return steps, pivots
 
 
-def _eliminate(w, I: _Spatial, pw: Vec, pv: Vec, j: int, sw: Vec, sv: Vec, tau) -> tuple[_Spatial, Step, se.Basic]:  # type: ignore[no-untyped-def]
+def _eliminate(w: _Names, I: _Spatial, pw: Vec, pv: Vec, j: int, sw: Vec, sv: Vec,
+               tau: Sequence[se.Basic]) -> tuple[_Spatial, Step, se.Basic]:
     """One joint s of articulated inertia I^A and bias p^A eliminated:
 
         U = I^A s,  D = sᵀU,  u = τ_j − sᵀp^A,  I^a = I^A − U Uᵀ/D
@@ -421,8 +438,8 @@ def _eliminate(w, I: _Spatial, pw: Vec, pv: Vec, j: int, sw: Vec, sv: Vec, tau) 
     return _Spatial(A, B, C).named(w), (j, sw, sv, Vw, Vv, u, inv), D
 
 
-def _forward(w, nodes, dofs: list[list[Joint]], steps: list[list[Step]], c: tuple[list[Vec], list[Vec]],  # type: ignore[no-untyped-def]
-             to_child, root: tuple[Vec, Vec], n: int) -> tuple[tuple[se.Basic, ...], int]:
+def _forward(w: _Names, nodes: Sequence[_Node], dofs: list[list[Joint]], steps: list[list[Step]],
+             c: tuple[list[Vec], list[Vec]], to_child: Sequence[Turn], root: tuple[Vec, Vec], n: int) -> tuple[tuple[se.Basic, ...], int]:
     """Forward pass, root (acceleration ``root``) to the leaves, over the nodes with joints below them:
 
         q̈_j = (u − Uᵀ (X_k A_P + c_k))/D,   A_k = X_k A_P + c_k + s q̈_j.
@@ -436,8 +453,9 @@ def _forward(w, nodes, dofs: list[list[Joint]], steps: list[list[Step]], c: tupl
     acc_w[0], acc_v[0] = root
     has_dofs_below = [bool(dofs[k]) for k in range(count)]
     for k in range(count - 1, 0, -1):
-        if has_dofs_below[k]:
-            has_dofs_below[nodes[k].parent] = True
+        parent = nodes[k].parent
+        if has_dofs_below[k] and parent is not None:
+            has_dofs_below[parent] = True
     start = len(w.items)
     qdd: list[se.Basic] = [_ZERO] * n
     for k, node in enumerate(nodes):
@@ -445,6 +463,7 @@ def _forward(w, nodes, dofs: list[list[Joint]], steps: list[list[Step]], c: tupl
             continue
         p = node.parent
         down = to_child[k]
+        assert down is not None
         aw, av = down(acc_w[p]), down(_add3(acc_v[p], _cross(acc_w[p], node.offset)))
         order = list(reversed(steps[k]))  # innermost first
         for idx, (j, sw, sv, Vw, Vv, u, inv) in enumerate(order):
@@ -460,8 +479,8 @@ def _forward(w, nodes, dofs: list[list[Joint]], steps: list[list[Step]], c: tupl
     return tuple(qdd), start
 
 
-def _pivots(w, dofs: list[list[Joint]], owner: list[int], pivots: dict[int, se.Basic], composite,  # type: ignore[no-untyped-def]
-            n: int) -> tuple[tuple[se.Basic, se.Basic], ...]:
+def _pivots(w: _Names, dofs: list[list[Joint]], owner: list[int], pivots: dict[int, se.Basic],
+            composite: tuple[Sequence[se.Basic], Sequence[Vec], Sequence[Sequence[Sequence[se.Basic]]]], n: int) -> tuple[tuple[se.Basic, se.Basic], ...]:
     """(D_j, M_jj) for each coordinate, M_jj = s_jᵀ I^c s_j from the composite inertia of its node."""
     mass, first, inertia_c = composite
     out_pivots = []

@@ -20,11 +20,15 @@ import re
 import struct
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import ModelError
 from ..model import Location
+
+if TYPE_CHECKING:
+    from xml.etree.ElementTree import Element
 
 __all__ = ["MAX_TRIANGLES", "Mesh", "read_mesh"]
 
@@ -199,7 +203,7 @@ class _Collada:
     (`local_transform`), the scene walked node by node (`walk`), each geometry's primitives placed
     (`add_geometry`), and the pieces joined into one mesh (`mesh`)."""
 
-    def __init__(self, root) -> None:  # type: ignore[no-untyped-def]
+    def __init__(self, root: Element) -> None:
         self.root = root
         self.ns = root.tag[:root.tag.index("}") + 1] if root.tag.startswith("{") else ""
         if root.tag != self.ns + "COLLADA":
@@ -216,13 +220,13 @@ class _Collada:
         self.colours = _material_colours(root, self.by_id, self.find, self.findall)
         self.pieces: list[tuple[np.ndarray, np.ndarray, str | None]] = []
 
-    def find(self, node, path: str):  # type: ignore[no-untyped-def]
+    def find(self, node: Element, path: str) -> Element | None:
         return node.find("/".join(self.ns + p for p in path.split("/")))
 
-    def findall(self, node, path: str):  # type: ignore[no-untyped-def]
+    def findall(self, node: Element, path: str) -> list[Element]:
         return node.findall("/".join(self.ns + p for p in path.split("/")))
 
-    def add_geometry(self, geometry, transform: np.ndarray, bindings: dict[str, str]) -> None:  # type: ignore[no-untyped-def]
+    def add_geometry(self, geometry: Element, transform: np.ndarray, bindings: dict[str, str]) -> None:
         """Each triangles, polylist or polygons primitive of the geometry, moved by ``transform``, with the
         colour of the material its symbol is bound to."""
         mesh = self.find(geometry, "mesh")
@@ -235,7 +239,7 @@ class _Collada:
                 colour = self.colours.get(bindings.get(prim.get("material", ""), prim.get("material", "")))
                 self.pieces.append((moved, tris, colour))
 
-    def local_transform(self, node) -> np.ndarray:  # type: ignore[no-untyped-def]
+    def local_transform(self, node: Element) -> np.ndarray:
         """The node's transform: its <matrix>, <translate>, <rotate> (axis, degrees) and <scale> in order."""
         local = np.eye(4)
         for child in node:
@@ -266,7 +270,7 @@ class _Collada:
                 local = local @ np.diag((v + [1, 1, 1])[:3] + [1])
         return local
 
-    def walk(self, node, transform: np.ndarray, depth: int) -> None:  # type: ignore[no-untyped-def]
+    def walk(self, node: Element, transform: np.ndarray, depth: int) -> None:
         """A scene node and its children (instances of geometries and nodes), at most 64 deep."""
         if depth > 64:
             raise _Bad("the scene's nodes are nested more than 64 deep")
