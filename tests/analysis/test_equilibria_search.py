@@ -23,7 +23,7 @@ from more_systems import eom as system_eom
 import lagrangian
 from lagrangian.cli import _equilibria as cli
 from lagrangian.cli.main import main
-from lagrangian.output import Notation
+from lagrangian.output import equilibria_text
 
 RING = """
 [model]
@@ -69,10 +69,8 @@ def test_the_elastic_pendulum_rests_are_found_without_a_range_each_once(elastic)
 
 def test_the_text_and_the_json_say_where_it_searched_and_that_a_rest_may_be_missing(elastic):
     names = ["r", "theta"]
-    n = Notation(names, ["m", "g", "k", "L"])
     verdicts = [None] * len(elastic)
-    out = cli._text("Elastic pendulum", tuple(names), ["m", "g", "k", "L"], elastic, verdicts)
-    out += cli._searched(n, elastic.search)
+    out = equilibria_text(system_eom("elastic"), elastic, verdicts)
     assert "r = 0.3692, θ = π" in out  # the upright rest, compressed spring
     assert "Searched:" in out and "no range declared" in out and "may be missing" in out and "--range r=a:b" in out
     doc = json.loads(json.dumps(cli._document("Elastic pendulum", tuple(names), {}, elastic, verdicts,

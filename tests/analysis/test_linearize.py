@@ -4,6 +4,8 @@ finite differences of the compiled right-hand side."""
 from __future__ import annotations
 
 import math
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -44,6 +46,31 @@ def test_simple_pendulum_bottom_and_top():
     assert up.stability().stable is False
     near = linearize(eom, {"theta": 3.14159})  # the issue's `--at theta=3.14159`: within POINT_RTOL
     assert 0 < near.residual < 1e-5 and near.stability().stable is False
+
+
+_PRINT_WITHOUT_INPUTS = """
+import pickle, sys
+import symengine as se
+import lagrangian
+eom = lagrangian.derive(lagrangian.load_model(sys.argv[1]))
+lin = lagrangian.linearize(eom, {"theta": 0})
+assert lin.inputs == () and lin.B.shape == (2, 0) and lin.second_order.B.shape == (1, 0)
+assert str(lin.B) == repr(lin.B) == "[]\\n[]\\n", repr(str(lin.B))
+assert ", B=[]\\n[]\\n, " in repr(lin) and "B=[]\\n)" in repr(lin.second_order)
+assert str(lin) == repr(lin)
+copy = pickle.loads(pickle.dumps(lin.B))
+assert copy.shape == (2, 0) and copy == se.zeros(2, 0) and str(copy) == str(lin.B)
+assert (lin.B.T * lin.A).shape == (0, 2)
+print("printed")
+"""
+
+
+def test_model_without_inputs_prints_its_empty_input_matrix():
+    """B is n × 0 without inputs; SymEngine's printer crashes (segmentation fault) on such a matrix,
+    so the check runs in a child process, where a crash is a failed exit code, not a lost test run."""
+    done = subprocess.run([sys.executable, "-c", _PRINT_WITHOUT_INPUTS, str(EXAMPLES_DIR / "simple_pendulum.toml")],
+                          check=False, capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0 and done.stdout.strip() == "printed", (done.returncode, done.stderr[-2000:])
 
 
 def test_double_pendulum_point_masses_symbolic_and_the_two_pulsations():

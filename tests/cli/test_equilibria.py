@@ -87,7 +87,7 @@ def test_each_equilibrium_comes_with_its_stability(capsys):
 def test_numeric_roots_at_simple_multiples_of_pi_are_named_and_minus_zero_is_zero() -> None:
     import math
 
-    from lagrangian.cli._equilibria import _numeric
+    from lagrangian.output._equilibria_text import _numeric
 
     assert _numeric(-0.0) == "0"
     assert _numeric(-math.pi / 2) == "−π/2 = -1.57079632679"

@@ -13,7 +13,8 @@ import pytest
 import symengine as se
 
 import lagrangian
-from lagrangian.dynamics._recursive import AUTO_MIN_DEPTH, tree_structure
+from lagrangian.dynamics._recursive import AUTO_MIN_DEPTH
+from lagrangian.dynamics._tree import tree_structure
 from lagrangian.errors import DerivationError
 from lagrangian.model.build import ModelBuilder
 from lagrangian.model.zoo import ARM_AXES, lagrange_top, planar_chain, relative_chain, serial_arm

@@ -15,7 +15,7 @@ import pytest
 import symengine as se
 
 import lagrangian
-from lagrangian.dynamics._recursive import tree_structure
+from lagrangian.dynamics._tree import tree_structure
 from lagrangian.model.build import ModelBuilder
 from lagrangian.model.urdf import UrdfNote, parse_urdf
 from lagrangian.model.zoo import serial_arm

@@ -8,7 +8,7 @@ left symbolic, and its methods evaluate them (`numeric`), give the modes and the
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 import symengine as se
@@ -17,13 +17,41 @@ from ..dynamics import EquationsOfMotion
 from .._display import render
 from ..errors import AnalysisError
 
-__all__ = ["LinearizationError", "SecondOrderForm", "LinearModel", "to_numpy"]
+__all__ = ["LinearModel", "LinearizationError", "SecondOrderForm", "to_numpy"]
 
 _ZERO = se.Integer(0)
 
 
 def _is_structural_zero(e: se.Basic) -> bool:
     return e == _ZERO
+
+
+class _ColumnlessMatrix(se.MutableDenseMatrix):
+    """An n × 0 SymEngine matrix (B without inputs) that prints.
+
+    SymEngine's C++ printer (``DenseMatrix::__str__``, 0.15) loops ``for j < col_ - 1`` in unsigned
+    arithmetic: with no column ``col_ - 1`` wraps to 2³² − 1 and the loop reads past the entries, a
+    segmentation fault on ``str``/``repr`` of any n × 0 matrix with n > 0.  This one prints one empty
+    row ``[]`` per row, as SymEngine prints ``[a, b]`` per row, and is otherwise SymEngine's matrix.
+    """
+
+    def __str__(self) -> str:
+        return "[]\n" * self.rows
+
+    def __repr__(self) -> str:
+        return self.__str__()
+
+    def __reduce__(self) -> tuple[object, tuple[int, int, list[se.Basic]]]:
+        return _ColumnlessMatrix, (self.rows, 0, [])
+
+
+def _printable(obj: object) -> None:
+    """Make the n × 0 matrices held by the dataclass ``obj`` `_ColumnlessMatrix`, so that printing
+    ``obj`` (its dataclass ``repr``) or the matrix itself does not crash SymEngine."""
+    for f in fields(obj):  # type: ignore[arg-type]
+        m = getattr(obj, f.name)
+        if isinstance(m, se.DenseMatrix) and m.cols == 0 and m.rows > 0 and not isinstance(m, _ColumnlessMatrix):
+            object.__setattr__(obj, f.name, _ColumnlessMatrix(m.rows, 0, []))
 
 
 class LinearizationError(AnalysisError):
@@ -42,6 +70,9 @@ class SecondOrderForm:
     K: se.DenseMatrix
     N: se.DenseMatrix
     B: se.DenseMatrix
+
+    def __post_init__(self) -> None:
+        _printable(self)  # B is n × 0 without inputs
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -87,6 +118,9 @@ class LinearModel:
     residual: float
     multipliers: dict[str, se.Basic] = field(default_factory=dict)
     coordinate_map: se.DenseMatrix | None = None
+
+    def __post_init__(self) -> None:
+        _printable(self)  # B is n × 0 without inputs
 
     @property
     def state(self) -> tuple[str, ...]:

@@ -28,6 +28,11 @@ so the state x = (δq_i, δu) obeys ẋ = A x + B u.  Without complementary cons
 and J = 0: the usual M0 δq̈ + (D + G) δq̇ + (K + N) δq = B u, with D, K the symmetric and G, N
 the skew-symmetric parts of D_f and K_f (damping, gyroscopic, stiffness, circulatory).
 
+`linearize` runs the work as named steps, each a function: `_setting` reads the point and gives the
+parameters their values (steps 1-2), `_dependent_coordinates` (3), `_dependent_speeds` (4), `_rates`
+(5), `_check_steady` (6), `_forces_at` and `_residual` check the point and find λ0 (7); the
+reduction (Jacobians, P, the reduced matrices, A and B) is `_linear_reduction`'s.
+
 References: Meirovitch, *Methods of Analytical Dynamics* (1970), ch. 6; Meijaard et al.,
 Proc. R. Soc. A 463 (2007) 1955–1982, §4 (the bicycle, reduced the same way).
 """
@@ -37,6 +42,7 @@ from __future__ import annotations
 import math
 import random
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 
 import numpy as np
 import symengine as se
@@ -48,11 +54,18 @@ from ._linear_algebra import RANK_RTOL
 from ._linear_algebra import choose as _choose
 from ._linear_algebra import jacobian as _jacobian
 from ._linear_algebra import solve as _solve
-from ._linear_algebra import stack as _stack
 from ._linear_algebra import sub as _sub
 from ._linear_algebra import tidy as _tidy
 from ._linear_model import LinearizationError, LinearModel, SecondOrderForm, _is_structural_zero
 from ._linear_model import to_numpy as _to_numpy
+from ._linear_reduction import coordinate_map as _coordinate_map
+from ._linear_reduction import ignorable as _ignorable
+from ._linear_reduction import jacobians as _jacobians
+from ._linear_reduction import multipliers as _multipliers
+from ._linear_reduction import reduced_matrices as _reduced_matrices
+from ._linear_reduction import second_order as _second_order
+from ._linear_reduction import state_matrices as _state_matrices
+from ._linear_reduction import velocity_maps as _velocity_maps
 
 __all__ = ["POINT_RTOL", "LinearModel", "LinearizationError", "SecondOrderForm", "holding_inputs", "linearize"]
 
@@ -141,26 +154,105 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
     >>> lagrangian.linearize(eom, {"theta": 0}).second_order.K                          # doctest: +SKIP
     [g*l*m]
     """
-    model = eom.model
-    coords = eom.coordinates
-    n = len(coords)
-    q, qd, t = eom.q, eom.qd, eom.t
-    pnames = {p.name: p for p in model.parameters}
-    declared_inputs = tuple(getattr(model, "inputs", ()) or ())
+    pnames = {p.name: p for p in eom.model.parameters}
+    declared_inputs = tuple(getattr(eom.model, "inputs", ()) or ())
     inputs = tuple(declared_inputs if inputs is None else inputs)
     for name in list(symbolic) + list(inputs) + list(parameters or {}):
         if name not in pnames:
             raise LinearizationError(f"`{name}` is not a parameter of the model ({', '.join(pnames) or 'none'}).",
                                      fix="check its spelling, or declare it under [parameters] or [inputs]")
-
-    # 1. The point: every coordinate a value; rates 0 unless given.
     if at is None:
-        at = dict(getattr(model, "operating_point", ()) or ())
-        if not at:
-            raise LinearizationError("no point was given and the model has no [operating_point].",
-                                     fix="give every coordinate a value, e.g. `at={'theta': 0}` (`--at theta=0`)")
-        independent_speeds = independent_speeds or tuple(getattr(model, "independent_speeds", ()) or ()) or None
-        dependent_coordinates = dependent_coordinates or tuple(getattr(model, "dependent_coordinates", ()) or ()) or None
+        at, independent_speeds, dependent_coordinates = _operating_point(eom, independent_speeds,
+                                                                         dependent_coordinates)
+    s = _setting(eom, at, inputs, parameters, symbolic)
+    A_at, A_num, dep_c = _dependent_coordinates(s, dependent_coordinates)
+    dep_s, choice = _dependent_speeds(s, A_num, dep_c, independent_speeds)
+    ind_s = [i for i in range(s.n) if i not in dep_s]
+    ind_c = [i for i in range(s.n) if i not in dep_c]
+    qd0 = _rates(s, A_at, ind_s, dep_s)
+    point_subs = {**s.at_q, **qd0}
+    _check_steady(s, qd0)
+    F_p, M0, zero_u = _forces_at(s, point_subs)
+    at_all = {**point_subs, **zero_u}
+    Csym, S = _velocity_maps(A_at, ind_s, dep_s, s.n)
+    residual, dF_dq, lam0 = _residual(s, F_p, zero_u, at_all, Csym, A_at, point_subs, ind_c, dep_c, ind_s)
+
+    # The reduction to independent coordinates and speeds (`_linear_reduction`, steps 2 to 6).
+    Kf, Df, Bf, W = _jacobians(eom, F_p, dF_dq, s.u_syms, lam0, s.psubs, at_all)
+    P = _coordinate_map(A_at, s.holo, dep_c, ind_c, s.n)
+    reduced = _reduced_matrices(M0, Kf, Df, Bf, W, Csym, S, P, ind_c)
+    A, B = _state_matrices(reduced, len(s.u_syms))
+    ignorable = _ignorable(_to_numpy(A, s.generic), len(ind_c), [s.coords[i] for i in ind_c])
+    second, why = _second_order(s.coords, ind_c, ind_s, reduced, ignorable)
+    return _linear_model(s, A, B, P, second, why, ignorable, residual, lam0, qd0, zero_u, ind_c, dep_c, ind_s, dep_s,
+                         choice)
+
+
+@dataclass(frozen=True, slots=True)
+class _Setting:
+    """The equations and the point, the parameters given their values: what every step reads.
+
+    ``q0``, ``given_rates`` (coordinate index → q̇0) and ``given_inputs`` (name → u0) are the point
+    as given, in the parameters left symbolic; ``psubs`` maps the other parameters to their values;
+    ``everything`` lists the entries of M, F and the constraint rows (to find what appears in the
+    equations); ``generic`` gives the symbols left numbers, to choose columns by rank; ``at_q``
+    is ``psubs`` and ``q0`` together.
+    """
+
+    eom: EquationsOfMotion
+    inputs: tuple[str, ...]
+    values: dict[str, float]
+    keep: set[str]
+    psubs: dict[se.Basic, se.Basic]
+    u_syms: list[se.Symbol]
+    everything: list[se.Basic]
+    q0: dict[se.Basic, se.Basic]
+    given_rates: dict[int, se.Basic]
+    given_inputs: dict[str, se.Basic]
+    sym_left: list[se.Basic]
+    generic: dict[se.Basic, float]
+    at_q: dict[se.Basic, se.Basic]
+
+    @property
+    def coords(self) -> tuple[str, ...]:
+        return self.eom.coordinates
+
+    @property
+    def n(self) -> int:
+        return len(self.eom.coordinates)
+
+    @property
+    def rate_names(self) -> list[str]:
+        return [c + "_dot" for c in self.eom.coordinates]
+
+    @property
+    def holo(self) -> list[int]:
+        """The holonomic rows among the complementary constraints."""
+        return [k for k, r in enumerate(self.eom.constraints) if r.kind == "holonomic"]
+
+
+def _operating_point(eom: EquationsOfMotion, independent_speeds: Sequence[str] | None,
+                     dependent_coordinates: Sequence[str] | None,
+                     ) -> tuple[dict[str, object], Sequence[str] | None, Sequence[str] | None]:
+    """The model's ``[operating_point]`` and its choice of independent speeds and dependent coordinates."""
+    model = eom.model
+    at = dict(getattr(model, "operating_point", ()) or ())
+    if not at:
+        raise LinearizationError("no point was given and the model has no [operating_point].",
+                                 fix="give every coordinate a value, e.g. `at={'theta': 0}` (`--at theta=0`)")
+    independent_speeds = independent_speeds or tuple(getattr(model, "independent_speeds", ()) or ()) or None
+    dependent_coordinates = dependent_coordinates or tuple(getattr(model, "dependent_coordinates", ()) or ()) or None
+    return at, independent_speeds, dependent_coordinates
+
+
+def _setting(eom: EquationsOfMotion, at: Mapping[str, object], inputs: tuple[str, ...],
+             parameters: Mapping[str, float] | None, symbolic: Sequence[str]) -> _Setting:
+    """Steps 1 and 2: the point read (every coordinate a value, rates 0 unless given, inputs u0
+    0 unless given), the parameters given their values except those kept symbolic and the inputs;
+    the equations checked free of t and using every input."""
+    coords, q, t = eom.coordinates, eom.q, eom.t
+    n = len(coords)
+    pnames = {p.name: p for p in eom.model.parameters}
     names = {p: se.Symbol(p) for p in pnames}
     rate_names = [c + "_dot" for c in coords]
     for key in at:
@@ -179,18 +271,15 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
     given_rates = {i: _value(rate_names[i], at[rate_names[i]], names) for i in range(n) if rate_names[i] in at}
     given_inputs = {k: _value(k, at[k], names) for k in inputs if k in at}  # u0
 
-    # 2. Parameter values: the model's, overridden; inputs are 0 at the point.
+    # Parameter values: the model's, overridden; inputs are 0 at the point.
     values: dict[str, float] = {k: p.value for k, p in pnames.items() if p.value is not None}
     values.update({k: float(v) for k, v in (parameters or {}).items()})
     keep = set(symbolic) | set(inputs)
     psubs = {names[k]: _number(v) for k, v in values.items() if k not in keep}
     u_syms = [names[k] for k in inputs]
 
-    rows = eom.constraints
-    holo = [k for k, r in enumerate(rows) if r.kind == "holonomic"]
-    m, h = len(rows), len(holo)
     everything = [e for row in eom.M for e in row] + list(eom.F)
-    for r in rows:
+    for r in eom.constraints:
         everything += list(r.coefficients) + [r.b]
     # Checked once the parameters have their values: F0 cos(ω t) with F0 = 0 leaves no t.
     if any(t in e.subs(psubs).free_symbols for e in everything if t in e.free_symbols):
@@ -212,10 +301,20 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
         leftover |= v.free_symbols
     sym_left = sorted({s for e in everything for s in e.free_symbols if str(s) in pnames and s not in psubs} | leftover,
                       key=str)
-    generic = _generic(sym_left, {})
-    at_q = {**psubs, **q0}
+    return _Setting(eom=eom, inputs=inputs, values=values, keep=keep, psubs=psubs, u_syms=u_syms,
+                    everything=everything, q0=q0, given_rates=given_rates, given_inputs=given_inputs,
+                    sym_left=sym_left, generic=_generic(sym_left, {}), at_q={**psubs, **q0})
 
-    # 3. Holonomic rows: f(q0) = 0, dependent coordinates by rank.
+
+def _dependent_coordinates(s: _Setting, dependent_coordinates: Sequence[str] | None,
+                           ) -> tuple[se.DenseMatrix, np.ndarray, list[int]]:
+    """Step 3: the holonomic rows f(q0) = 0 checked, and the dependent coordinates q_d whose block
+    Φ_d = ∂f/∂q_d is regular at the point (given, else chosen by rank, moving coordinates last).
+
+    Returns A0 (the constraint rows' coefficients at the point), its numbers, and q_d's indices.
+    """
+    coords, n, rows, holo, generic, at_q = s.coords, s.n, s.eom.constraints, s.holo, s.generic, s.at_q
+    m, h = len(rows), len(holo)
     for k in holo:
         res = complex(rows[k].expression.subs(at_q).subs(generic))
         if abs(res) > POINT_RTOL * max(1.0, _scale_of(rows[k].expression, at_q, generic)):
@@ -224,9 +323,7 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
                                      fix="give the dependent coordinates values that satisfy the constraint")
     A_at = se.DenseMatrix([[e.subs(at_q) for e in r.coefficients] for r in rows]) if m else se.zeros(0, n)
     A_num = _to_numpy(A_at, generic) if m else np.zeros((0, n))
-    given_nonzero = {i for i, v in given_rates.items() if not _is_structural_zero(v)}
-    appears = {s for e in everything for s in e.free_symbols}
-    ignorable_like = [i for i in range(n) if q[i] not in appears]
+    given_nonzero = {i for i, v in s.given_rates.items() if not _is_structural_zero(v)}
     if dependent_coordinates:
         dep_c = [coords.index(c) if c in coords else _bad_name(c, "coordinate") for c in dependent_coordinates]
     else:
@@ -236,10 +333,19 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
         raise LinearizationError("the holonomic constraints' Jacobian is singular at the point for the dependent "
                                  f"coordinates {', '.join(coords[i] for i in dep_c) or '(none)'}.",
                                  fix="choose other dependent coordinates, or a regular point")
-    # 4. Velocity rows: dependent speeds (those of the dependent coordinates first).
+    return A_at, A_num, dep_c
+
+
+def _dependent_speeds(s: _Setting, A_num: np.ndarray, dep_c: list[int],
+                      independent_speeds: Sequence[str] | None) -> tuple[list[int], str]:
+    """Step 4: the dependent speeds q̇_d whose block A_d of the velocity rows A q̇ + b = 0 is regular
+    at the point: the complement of the independent speeds given, else chosen by rank, preferring
+    the rates of dependent coordinates, of coordinates absent from the equations, of rates not
+    given.  Returns their indices and a sentence saying how they were chosen."""
+    n, m, rate_names = s.n, len(s.eom.constraints), s.rate_names
     if independent_speeds:
         names_ind = list(independent_speeds)
-        bad = [s for s in names_ind if s not in rate_names]
+        bad = [r for r in names_ind if r not in rate_names]
         if bad:
             _bad_name(bad[0], "rate (`<coordinate>_dot`)")
         dep_s = [i for i in range(n) if rate_names[i] not in names_ind]
@@ -247,23 +353,27 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
             raise LinearizationError(f"with {', '.join(names_ind)} independent, the {m} constraint rows do not fix "
                                      "the other speeds at the point.",
                                      fix=f"name {n - m} independent speeds whose complement is fixed by the rows")
-        choice = "independent speeds given by the user: " + ", ".join(names_ind)
-    else:
-        rest = [i for i in range(n) if i not in dep_c]
-        free_first = sorted((i for i in rest if i not in given_rates), key=lambda i: (i not in ignorable_like, i))
-        order = dep_c + free_first + [i for i in rest if i in given_rates]
-        dep_s = _choose(A_num, m, order)
-        if len(dep_s) != m:  # pragma: no cover - the rows are independent at a generic state (derive checks)
-            raise LinearizationError("the constraint rows are dependent at the point.", fix="choose another point")
-        choice = ("dependent speeds chosen by rank at the point, preferring the rates of dependent coordinates, "
-                  "of coordinates absent from the equations and of rates not given")
-    ind_s = [i for i in range(n) if i not in dep_s]
-    ind_c = [i for i in range(n) if i not in dep_c]
+        return dep_s, "independent speeds given by the user: " + ", ".join(names_ind)
+    appears = {x for e in s.everything for x in e.free_symbols}
+    ignorable_like = [i for i in range(n) if s.eom.q[i] not in appears]
+    rest = [i for i in range(n) if i not in dep_c]
+    free_first = sorted((i for i in rest if i not in s.given_rates), key=lambda i: (i not in ignorable_like, i))
+    order = dep_c + free_first + [i for i in rest if i in s.given_rates]
+    dep_s = _choose(A_num, m, order)
+    if len(dep_s) != m:  # pragma: no cover - the rows are independent at a generic state (derive checks)
+        raise LinearizationError("the constraint rows are dependent at the point.", fix="choose another point")
+    return dep_s, ("dependent speeds chosen by rank at the point, preferring the rates of dependent coordinates, "
+                   "of coordinates absent from the equations and of rates not given")
 
-    # 5. Rates at the point: the independent ones given (or 0), the dependent ones solved.
-    qd0: dict[se.Basic, se.Basic] = {qd[i]: _snap(given_rates.get(i, _ZERO)) for i in ind_s}
+
+def _rates(s: _Setting, A_at: se.DenseMatrix, ind_s: list[int], dep_s: list[int]) -> dict[se.Basic, se.Basic]:
+    """Step 5: the rates at the point, q̇0: the independent ones given (or 0), the dependent ones
+    solved from the velocity rows, q̇0_d = −A_d⁻¹ (A_i q̇0_i + b); a dependent rate given must agree."""
+    qd, rows, generic, rate_names = s.eom.qd, s.eom.constraints, s.generic, s.rate_names
+    m = len(rows)
+    qd0: dict[se.Basic, se.Basic] = {qd[i]: _snap(s.given_rates.get(i, _ZERO)) for i in ind_s}
     if m:
-        b_at = se.DenseMatrix([[r.b.subs(at_q)] for r in rows])
+        b_at = se.DenseMatrix([[r.b.subs(s.at_q)] for r in rows])
         Ai = _sub(A_at, list(range(m)), ind_s) if ind_s else se.zeros(m, 0)
         Ad = _sub(A_at, list(range(m)), dep_s)
         ui0 = se.DenseMatrix([[qd0[qd[i]]] for i in ind_s]) if ind_s else se.zeros(0, 1)
@@ -271,17 +381,22 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
         ud0 = _solve(Ad, rhs)
         for k, i in enumerate(dep_s):
             solved = se.expand(ud0[k, 0])
-            if i in given_rates:
-                diff = complex(se.expand(given_rates[i] - solved).subs(generic))
+            if i in s.given_rates:
+                diff = complex(se.expand(s.given_rates[i] - solved).subs(generic))
                 if abs(diff) > POINT_RTOL * max(1.0, abs(complex(solved.subs(generic)))):
                     raise LinearizationError(f"the rate `{rate_names[i]}` given at the point contradicts the constraints "
                                              f"(they fix it at {float(complex(solved.subs(generic)).real):.6g}).",
                                              fix=f"leave `{rate_names[i]}` out: it is solved from the constraints")
             qd0[qd[i]] = _snap(solved)
-    point_subs = {**at_q, **qd0}
+    return qd0
 
-    # 6. Steady: a moving coordinate must be absent from the equations.
-    moving = [i for i in range(n) if not _is_structural_zero(qd0[qd[i]]) and q[i] in appears]
+
+def _check_steady(s: _Setting, qd0: Mapping[se.Basic, se.Basic]) -> None:
+    """Step 6: a steady motion moves only coordinates absent from the equations (q̇0_j ≠ 0 ⇒
+    ∂M/∂q_j = ∂F/∂q_j = 0): else the point moves and there is nothing fixed to linearize about."""
+    q, qd, coords, rate_names, everything = s.eom.q, s.eom.qd, s.coords, s.rate_names, s.everything
+    appears = {x for e in everything for x in e.free_symbols}
+    moving = [i for i in range(s.n) if not _is_structural_zero(qd0[qd[i]]) and q[i] in appears]
     held = {i for i in moving  # present in the expressions, but only through identities (sin² + cos²)
             if not all(are_zero([e.diff(q[i]) for e in everything if q[i] in e.free_symbols]))}
     for i in moving:
@@ -291,116 +406,75 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
                                      "linearize about.",
                                      fix=f"set `{rate_names[i]}=0`, or move only coordinates absent from the equations")
 
-    # 7. The pieces at the point.
-    F_p = [f.subs(psubs) for f in eom.F]
-    M0 = se.DenseMatrix([[e.subs(psubs).subs(point_subs) for e in row] for row in eom.M])
-    F0 = se.DenseMatrix([[f.subs(point_subs)] for f in F_p])
-    zero_u = {u: given_inputs.get(str(u), _ZERO) for u in u_syms}  # u0, 0 unless given
-    F0 = F0.subs(zero_u) if u_syms else F0
-    Mn = _to_numpy(M0, generic)
+
+def _forces_at(s: _Setting, point_subs: Mapping[se.Basic, se.Basic],
+               ) -> tuple[list[se.Basic], se.DenseMatrix, dict[se.Basic, se.Basic]]:
+    """Step 7: F with the parameters' values, M0 = M(q0) checked finite and regular, and the
+    inputs' values u0 (0 unless given)."""
+    F_p = [f.subs(s.psubs) for f in s.eom.F]
+    M0 = se.DenseMatrix([[e.subs(s.psubs).subs(point_subs) for e in row] for row in s.eom.M])
+    zero_u = {u: s.given_inputs.get(str(u), _ZERO) for u in s.u_syms}  # u0, 0 unless given
+    Mn = _to_numpy(M0, s.generic)
     if not np.all(np.isfinite(Mn)):
         raise LinearizationError("the mass matrix M is not finite at the point (a number of the model overflows, or an "
                                  "entry is undefined there).",
                                  fix="check the masses and inertias (e.g. a denormal 5e-324 mass) and the point")
-    if np.linalg.matrix_rank(Mn, tol=RANK_RTOL * max(1.0, np.abs(Mn).max(initial=0.0))) < n:
+    if np.linalg.matrix_rank(Mn, tol=RANK_RTOL * max(1.0, np.abs(Mn).max(initial=0.0))) < s.n:
         raise LinearizationError("the mass matrix M is singular at the point (the coordinates are singular there, "
                                  "e.g. Euler angles at θ = 0).",
                                  fix="linearize about another point, or describe the system with regular coordinates")
-    # C = ∂q̇/∂u and S = the map of the dependent rows, numerically to check the point.
-    Csym, S = _velocity_maps(A_at, ind_s, dep_s, n)
-    at_all = {**point_subs, **zero_u}
+    return F_p, M0, zero_u
+
+
+def _residual(s: _Setting, F_p: list[se.Basic], zero_u: Mapping[se.Basic, se.Basic],
+              at_all: Mapping[se.Basic, se.Basic], Csym: se.DenseMatrix, A_at: se.DenseMatrix,
+              point_subs: Mapping[se.Basic, se.Basic], ind_c: list[int], dep_c: list[int], ind_s: list[int],
+              ) -> tuple[float, se.DenseMatrix, se.DenseMatrix]:
+    """Step 7 continued: the point is steady when the force along the admissible velocities vanishes,
+    Cᵀ F0 = 0 (relative to the forces' scale, within `POINT_RTOL`); then λ0 solves F0 + A0ᵀ λ0 = 0.
+
+    Returns the relative residual, ∂F/∂q at the point (reused by the Jacobians) and λ0.
+    """
+    F0 = se.DenseMatrix([[f.subs(point_subs)] for f in F_p])
+    F0 = F0.subs(zero_u) if s.u_syms else F0
+    generic = s.generic
     res_sym = Csym.T * F0
-    dF_dq = _jacobian(F_p, list(q), at_all)
+    dF_dq = _jacobian(F_p, list(s.eom.q), at_all)
     scale = max(max((_scale_of(f, at_all, generic) for f in F_p), default=0.0),
                 float(np.abs(_to_numpy(dF_dq, generic)).max(initial=0.0))) or 1.0
     residual = float(np.abs(_to_numpy(res_sym, generic)).max(initial=0.0)) / scale if res_sym.rows else 0.0
     if residual > POINT_RTOL:
         raise LinearizationError(
             f"the point is not an equilibrium or a steady motion: the residual force is "
-            f"{_format_residual(res_sym, generic, ind_s, rate_names)} ({residual:.2g} of the forces' scale)."
-            + _nearest(eom, at_q, point_subs, generic, ind_c, dep_c, psubs),
+            f"{_format_residual(res_sym, generic, ind_s, s.rate_names)} ({residual:.2g} of the forces' scale)."
+            + _nearest(s.eom, s.at_q, point_subs, generic, ind_c, dep_c, s.psubs),
             fix="linearize about an equilibrium (lagrangian equilibria MODEL) or a steady motion"
-                + (", or hold the point with the inputs' values (--hold; `holding_inputs`)" if u_syms else ""))
-    lam0 = _multipliers(A_at, F0) if m else se.zeros(0, 1)
+                + (", or hold the point with the inputs' values (--hold; `holding_inputs`)" if s.u_syms else ""))
+    lam0 = _multipliers(A_at, F0) if s.eom.constraints else se.zeros(0, 1)
+    return residual, dF_dq, lam0
 
-    # 8. Jacobians.
-    qs, qds = list(q), list(qd)
-    Kf = -dF_dq
-    if m:
-        lamA = [se.Add(*[lam0[k, 0] * rows[k].coefficients[i].subs(psubs) for k in range(m)]) for i in range(n)]
-        Kf = Kf - _jacobian(lamA, qs, at_all)
-        vel = [se.Add(*[r.coefficients[i] * qd[i] for i in range(n)], r.b).subs(psubs) for r in rows]
-        W = _jacobian(vel, qs, {**at_all})
-    Df = -_jacobian(F_p, qds, at_all)
-    Bf = _jacobian(F_p, u_syms, at_all) if u_syms else se.zeros(n, 0)
-    # P: δq = P δq_i.
-    if h:
-        Phi = _sub(A_at, holo, list(range(n)))
-        Phi_d = _sub(Phi, list(range(h)), dep_c)
-        Phi_i = _sub(Phi, list(range(h)), ind_c)
-        dq_d = -_solve(Phi_d, Phi_i)
-        P = _stack(n, ind_c, se.eye(len(ind_c)), dep_c, dq_d)
-    else:
-        P = se.eye(n)
-    J = S * W if m else se.zeros(n, n)
-    MJD = M0 * J + Df
-    Mr = Csym.T * M0 * Csym
-    Cr = Csym.T * MJD * Csym
-    Kr = Csym.T * (Kf + MJD * J) * P
-    Br = Csym.T * Bf
-    kin_c = (_sub(Csym, ind_c, list(range(Csym.cols))), _sub(J * P, ind_c, list(range(P.cols))))
-    ni, nu = len(ind_c), len(ind_s)
-    Minv_C = _solve(Mr, Cr)
-    Minv_K = _solve(Mr, Kr)
-    Minv_B = _solve(Mr, Br) if Br.cols else se.zeros(nu, 0)
-    A = se.zeros(ni + nu, ni + nu)
-    for r in range(ni):
-        for c in range(ni):
-            A[r, c] = kin_c[1][r, c]
-        for c in range(nu):
-            A[r, ni + c] = kin_c[0][r, c]
-    for r in range(nu):
-        for c in range(ni):
-            A[ni + r, c] = -Minv_K[r, c]
-        for c in range(nu):
-            A[ni + r, ni + c] = -Minv_C[r, c]
-    B = se.zeros(ni + nu, len(u_syms))
-    for r in range(nu):
-        for c in range(len(u_syms)):
-            B[ni + r, c] = Minv_B[r, c]
-    A, B = _tidy(A), _tidy(B)
-    An = _to_numpy(A, generic)
-    ignorable = _ignorable(An, ni, [coords[i] for i in ind_c])
-    second, why = _second_order(coords, ind_c, ind_s, Mr, Cr, Kr, Br, kin_c, ignorable, generic)
-    point = {c: se.expand(q0[q[i]]) for i, c in enumerate(coords)}
-    point.update({rate_names[i]: qd0[qd[i]] for i in range(n)})
-    point.update({str(u): zero_u[u] for u in u_syms if str(u) in given_inputs})
+
+def _linear_model(s: _Setting, A: se.DenseMatrix, B: se.DenseMatrix, P: se.DenseMatrix,
+                  second: SecondOrderForm | None, why: str, ignorable: tuple[str, ...], residual: float,
+                  lam0: se.DenseMatrix, qd0: Mapping[se.Basic, se.Basic], zero_u: Mapping[se.Basic, se.Basic],
+                  ind_c: list[int], dep_c: list[int], ind_s: list[int], dep_s: list[int], choice: str) -> LinearModel:
+    """The result: the point with every rate (dependent ones solved) and the inputs given, the
+    names of the state, and the symbols left in A and B."""
+    coords, rate_names, q, qd, rows = s.coords, s.rate_names, s.eom.q, s.eom.qd, s.eom.constraints
+    m = len(rows)
+    point = {c: se.expand(s.q0[q[i]]) for i, c in enumerate(coords)}
+    point.update({rate_names[i]: qd0[qd[i]] for i in range(s.n)})
+    point.update({str(u): zero_u[u] for u in s.u_syms if str(u) in s.given_inputs})
     return LinearModel(
-        eom=eom, point=point, coordinates=tuple(coords[i] for i in ind_c), speeds=tuple(rate_names[i] for i in ind_s),
+        eom=s.eom, point=point, coordinates=tuple(coords[i] for i in ind_c), speeds=tuple(rate_names[i] for i in ind_s),
         dependent_coordinates=tuple(coords[i] for i in dep_c), dependent_speeds=tuple(rate_names[i] for i in dep_s),
         choice=choice if m else "no complementary constraint: every coordinate and rate is independent",
-        inputs=tuple(inputs), A=A, B=B,
-        symbols=tuple(s for s in sym_left if str(s) not in inputs and (any(s in e.free_symbols for e in A)
-                                                                        or any(s in e.free_symbols for e in B))),
-        values={k: v for k, v in values.items() if k not in keep}, second_order=second, second_order_reason=why,
+        inputs=tuple(s.inputs), A=A, B=B,
+        symbols=tuple(x for x in s.sym_left if str(x) not in s.inputs and (any(x in e.free_symbols for e in A)
+                                                                          or any(x in e.free_symbols for e in B))),
+        values={k: v for k, v in s.values.items() if k not in s.keep}, second_order=second, second_order_reason=why,
         ignorable=ignorable, residual=residual,
         multipliers={rows[k].multiplier.name: lam0[k, 0] for k in range(m)}, coordinate_map=_tidy(P))
-
-
-def _ignorable(An: np.ndarray, ni: int, names: Sequence[str]) -> tuple[str, ...]:
-    """Coordinates nothing depends on, found repeatedly: the bicycle's y first (δẏ = v δψ is its
-    only use of ψ), then its heading ψ."""
-    keep = list(range(An.shape[0]))
-    out: list[int] = []
-    changed = True
-    while changed:
-        changed = False
-        for c in range(ni):
-            if c in keep and not np.any(An[np.ix_(keep, [c])]):
-                keep.remove(c)
-                out.append(c)
-                changed = True
-    return tuple(names[c] for c in sorted(out))
 
 
 def _snap(e: se.Basic) -> se.Basic:
@@ -413,24 +487,6 @@ def _snap(e: se.Basic) -> se.Basic:
 def _bad_name(name: str, kind: str) -> int:
     raise LinearizationError(f"`{name}` is not a {kind} of the model.", fix="check its spelling")
 
-
-def _velocity_maps(A_at: se.DenseMatrix, ind_s: list[int], dep_s: list[int], n: int) -> tuple[se.DenseMatrix, se.DenseMatrix]:
-    """C = ∂q̇/∂u (n × p) and S (n × m): δq̇_d = −A_d⁻¹ (A_i δu + W δq) placed in the dependent rows."""
-    m = A_at.rows
-    if not m:
-        return se.eye(n), se.zeros(n, 0)
-    Ad = _sub(A_at, list(range(m)), dep_s)
-    Ai = _sub(A_at, list(range(m)), ind_s) if ind_s else se.zeros(m, 0)
-    Ad_inv = _solve(Ad, se.eye(m))
-    C = _stack(n, ind_s, se.eye(len(ind_s)), dep_s, -(Ad_inv * Ai)) if ind_s else se.zeros(n, 0)
-    S = _stack(n, ind_s, se.zeros(len(ind_s), m), dep_s, -Ad_inv)
-    return C, S
-
-
-def _multipliers(A_at: se.DenseMatrix, F0: se.DenseMatrix) -> se.DenseMatrix:
-    """λ0 with F0 + A0ᵀ λ0 = 0 (least squares; exact at a steady point)."""
-    AAT = A_at * A_at.T
-    return _solve(AAT, -(A_at * F0))
 
 
 def _scale_of(expr: se.Basic, subs: Mapping, generic: Mapping) -> float:
@@ -467,50 +523,6 @@ def _nearest(eom: EquationsOfMotion, at_q: Mapping, point_subs: Mapping, generic
     if not sol.success:
         return ""
     return " The nearest equilibrium found: " + ", ".join(f"{s} = {v:.10g}" for s, v in zip(q, sol.x)) + "."
-
-
-def _rounding_to_zero(skew: se.DenseMatrix, whole: se.DenseMatrix) -> se.DenseMatrix:
-    """The skew part of a numeric matrix (a point held by computed torques) with its rounding dropped:
-    entries below 1e-12 of the matrix's largest are 0, so that a symmetric K does not show N ≈ 1e−16."""
-    entries = [whole[i, j] for i in range(whole.rows) for j in range(whole.cols)]
-    if any(e.free_symbols for e in entries) or any(skew[i, j].free_symbols for i in range(skew.rows)
-                                                   for j in range(skew.cols)):
-        return skew
-    try:
-        scale = max((abs(float(e)) for e in entries), default=0.0)
-    except (TypeError, RuntimeError):  # complex or not a number: left as it is
-        return skew
-    return skew.applyfunc(lambda e: se.Integer(0) if abs(float(e)) <= 1e-12 * scale else e)
-
-
-def _second_order(coords: Sequence[str], ind_c: Sequence[int], ind_s: Sequence[int], Mr: se.DenseMatrix,
-                  Cr: se.DenseMatrix, Kr: se.DenseMatrix, Br: se.DenseMatrix, kin_c, ignorable: Sequence[str],
-                  generic: Mapping) -> tuple[SecondOrderForm | None, str]:
-    """M δq̈ + (D + G) δq̇ + (K + N) δq = B u on the coordinates whose rates are the independent speeds.
-
-    It exists when every other independent coordinate is ignorable (a zero column of A): then
-    δq̇_c = δu_c for the coordinates kept and the reduced equations are second order in them.
-    """
-    speeds_coord = list(ind_s)  # the coordinate index of each independent speed
-    kept = [i for i in speeds_coord if i in ind_c]
-    if len(kept) != len(speeds_coord):
-        return None, ("an independent speed is the rate of a dependent coordinate: the reduced equations are "
-                      "first order only")
-    others = [c for c in ind_c if c not in speeds_coord]
-    if any(coords[c] not in ignorable for c in others):
-        return None, ("an independent coordinate whose rate is not an independent speed acts on the motion: "
-                      "the reduced equations are first order only (see A)")
-    cols = [list(ind_c).index(i) for i in kept]
-    K_full = _sub(Kr, list(range(Kr.rows)), cols)
-    Msym = Mr
-    Dsym = (Cr + Cr.T) / 2
-    Gskew = (Cr - Cr.T) / 2
-    Ksym = (K_full + K_full.T) / 2
-    Nskew = (K_full - K_full.T) / 2
-    Gskew, Nskew = _rounding_to_zero(Gskew, Cr), _rounding_to_zero(Nskew, K_full)
-    form = SecondOrderForm(tuple(coords[i] for i in kept), _tidy(Msym), _tidy(Dsym), _tidy(Gskew), _tidy(Ksym),
-                           _tidy(Nskew), _tidy(Br))
-    return form, ""
 
 
 def holding_inputs(eom: EquationsOfMotion, at: Mapping[str, object], *,

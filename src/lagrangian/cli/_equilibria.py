@@ -13,13 +13,12 @@ import math
 from pathlib import Path
 
 import symengine as se
-import sympy
 
 from ..analysis import Equilibrium, LinearizationError, bifurcation, equilibria, linearize
 from ..dynamics import derive
 from ..errors import OutputError
 from ..model import CoulombFriction
-from ..output import Notation
+from ..output import Notation, equilibria_text
 from ..output import to_sympy
 from ._arguments.equilibria import SCHEMA
 from ._modes import _check_plot_folder as check_plot_folder
@@ -28,10 +27,6 @@ from ._settings import SettingError, parse_settings, plain_number
 from ._source import load_source
 
 __all__ = ["SCHEMA", "parse_ranges", "run"]
-
-_RELATIONS = {sympy.StrictGreaterThan: ">", sympy.GreaterThan: "≥", sympy.StrictLessThan: "<",
-              sympy.LessThan: "≤", sympy.Equality: "=", sympy.Unequality: "≠"}
-
 
 def parse_ranges(values: list[str], coordinates: tuple[str, ...]) -> dict[str, tuple[float, float]]:
     """``["x=-1:1"]`` → ``{"x": (-1.0, 1.0)}``, refusing unknown names and bad numbers."""
@@ -81,18 +76,12 @@ def run(args: argparse.Namespace) -> str:
     if args.json:
         return json.dumps(_document(model.name, eom.coordinates, values, found, verdicts, found.search),
                           indent=2) + "\n"
-    text = _text(model.name, eom.coordinates, [p.name for p in model.parameters], found, verdicts)
-    text += "\n" + _searched(Notation(list(eom.coordinates), [p.name for p in model.parameters]), found.search)
+    absent = []
     if not found:
         # Say why: a closed-form branch may exist at other values (R Ω² > g, |tan α| ≤ f_s).
         absent = [e for e in equilibria(eom, parameters=parameters or None, ranges=ranges, all_branches=True)
                   if e.exists is False and e.condition is not None]
-        n = Notation(list(eom.coordinates), [p.name for p in model.parameters])
-        for e in absent:
-            where = ", ".join(f"{n.symbol(q)} any" if q in e.free else f"{n.symbol(q)} = {n.text(to_sympy(e.values[q]))}"
-                              for q in eom.coordinates)
-            text += f"  ({where} would be one if {_condition(n, e.condition)}, which does not hold at these values)\n"
-    return text
+    return equilibria_text(eom, found, verdicts, absent=absent)
 
 
 def _stability(eom, e: Equilibrium, parameters: dict) -> tuple[bool | None, str, str] | None:
@@ -163,103 +152,7 @@ def _document(name: str, coordinates: tuple[str, ...], values: dict, found: tupl
     }
 
 
-def _text(name: str, coordinates: tuple[str, ...], parameters: list[str], found: tuple[Equilibrium, ...],
-          verdicts: list) -> str:
-    n = Notation(list(coordinates), parameters)
-    lines = [f"Equilibria of {name} (q̇ = 0, q̈ = 0: F(q, 0) + Aᵀλ = 0)", ""]
-    if not found:
-        lines.append("  none found in the ranges searched")
-    for k, (e, stab) in enumerate(zip(found, verdicts), start=1):
-        parts = []
-        for q in coordinates:
-            v = e.values[q]
-            if q in e.free:
-                parts.append(f"{n.symbol(q)} any")
-                continue
-            shown = _numeric(v) if isinstance(v, float) else n.text(to_sympy(v))
-            x = None if e.numeric is None else e.numeric.get(q)
-            if x is not None and not isinstance(v, float) and shown != f"{x:.12g}":
-                shown += f" = {x:.12g}"
-            parts.append(f"{n.symbol(q)} = {shown}")
-        how = "closed form" if e.closed_form else "numeric"
-        tail = f"  ({how}" + ("" if e.residual is None else f"; residual {e.residual:.1e}") + ")"
-        if e.family:
-            tail += (f"; one point of a {e.family}-parameter family of rests through it: the static equations' "
-                     "Jacobian is singular there")
-        lines.append(f"  {k}. " + ", ".join(parts) + tail)
-        for alias in e.aliases:
-            same = ", ".join(f"{n.symbol(q)} = {_numeric(alias[q])}" for q in coordinates if q in alias)
-            lines.append(f"     also {same}: the same configuration (every body in the same place)")
-        if e.condition is not None:
-            verdict = {True: "holds here", False: "does not hold here", None: "undecided without values"}[e.exists]
-            lines.append(f"     exists if {_condition(n, e.condition)} ({verdict})")
-        if stab is not None:
-            lines.append(f"     {stab[1]}: {stab[2]}")
-    return "\n".join(lines) + "\n"
-
-
-def _searched(n: Notation, search) -> str:
-    """What was searched, so that the list is never read as complete when it may not be."""
-    how = "closed form (SymPy)" if search.closed_form else "no closed form (SymPy failed)"
-    if not search.numeric:
-        why = {"values": "a parameter has no value", "continuum": "the closed form gives a family of rests",
-               "not asked": "not asked"}.get(search.skipped, "not made")
-        return f"Searched: {how}; no numeric search ({why}).\n"
-    if not search.regions:
-        return f"Searched: {how}; every coordinate is free, none is left to search numerically.\n"
-    where = []
-    for r in search.regions:
-        a, b = r.bounds
-        q = n.symbol(r.coordinate)
-        if r.kind == "angle":
-            where.append(f"{q} over (−π, π]")
-        elif r.kind == "scales":
-            where.append(f"{q} from 0 and ±10⁻³ … ±10³ and the parameters' values (no range declared)")
-        else:
-            given = "given" if r.kind == "range" else "declared"
-            span = f"[{_bound(a)}, {_bound(b)}]"
-            where.append(f"{q} over the {given} range {span}" + ("" if all(map(math.isfinite, r.bounds)) else
-                                                              ", from starting points over every scale"))
-    text = f"Searched: {how}, then numerically from {search.starts} starting points: " + "; ".join(where) + "."
-    if search.unbounded:
-        names = ", ".join(n.symbol(q) for q in search.unbounded)
-        first = search.unbounded[0]
-        text += (f" A rest beyond the starting points' reach may be missing ({names} without a bound: "
-                 f"--range {first}=a:b searches an interval).")
-    else:
-        text += " A numeric search can miss a rest between its starting points."
-    return text + "\n"
-
-
-def _bound(x: float) -> str:
-    return "−∞" if x == -math.inf else "+∞" if x == math.inf else f"{x:.6g}".replace("-", "−")
-
-
-def _numeric(x: float) -> str:
-    """A numeric root: −0 as 0, and a root at k π/d (d ≤ 12) to 1e-12 named so (−π/2 = −1.57079632679)."""
-    x += 0.0  # −0.0 → 0.0
-    if abs(x) < 1e-15:  # a numeric root at 0, to rounding
-        return "0"
-    value = f"{x:.12g}"
-    ratio = sympy.nsimplify(x / math.pi, rational=True, tolerance=1e-12) if x else sympy.Integer(0)
-    if x and isinstance(ratio, sympy.Rational) and 0 < ratio.q <= 12 and abs(float(ratio) * math.pi - x) <= 1e-12:
-        num, den = abs(ratio.p), ratio.q
-        text = ("−" if ratio < 0 else "") + ("" if num == 1 else str(num)) + "π" + ("" if den == 1 else f"/{den}")
-        return f"{text} = {value}"
-    return value
-
-
-def _condition(n: Notation, cond: sympy.Basic) -> str:
-    if isinstance(cond, sympy.And):
-        return " and ".join(_condition(n, c) for c in cond.args)
-    op = _RELATIONS.get(type(cond))
-    if op is None:
-        return sympy.sstr(cond)
-    plain = {s: sympy.Symbol(s.name) for s in cond.free_symbols}
-    return f"{n.text(cond.lhs.xreplace(plain))} {op} {n.text(cond.rhs.xreplace(plain))}"
-
-
-def _sweep(eom, swept, parameters: dict, folder: Path | None, lang: str, as_json: bool) -> str:
+def _sweep(eom, swept, parameters: dict, folder: Path | None, lang: str, as_json: bool) -> str:  # type: ignore[no-untyped-def]
     """The closed-form branches along the parameter: where each appears and changes stability."""
     name, values = swept
     diagram = bifurcation(eom, name, values, parameters=parameters or None)

@@ -13,8 +13,7 @@ import json
 
 from .. import __version__
 from ..dynamics import derive
-from ..output import linearize_document
-from ._linear_text import render_linearization
+from ..output import linear_text, linearize_document
 from ._point import linearize_from_args
 from ._source import load_source
 
@@ -31,4 +30,4 @@ def run(args: argparse.Namespace) -> str:
         doc = linearize_document(lin, source=model.source, package_version=__version__, stability=stability,
                                  modes=modes)
         return json.dumps(doc, indent=2, ensure_ascii=False) + "\n"
-    return render_linearization(lin, stability, modes)
+    return linear_text(lin, stability, modes)

@@ -20,9 +20,8 @@ from .. import __version__
 from ..dynamics import derive
 from ..errors import OutputError
 from ..model.spec import Model
-from ..output import linearize_document
+from ..output import linearize_document, modes_text, sweep_text
 from ._arguments.modes import ANIMATIONS_MAX
-from ._linear_text import render_modes, render_sweep
 from ._point import linearize_from_args
 from ._settings import SettingError, plain_number
 from ._source import load_source
@@ -112,12 +111,12 @@ def run(args: argparse.Namespace) -> str:
         stability, modes = lin_point.stability(), lin_point.modes()
     else:
         stability, modes = lin.stability(**{sweep_name: at_value}), lin.modes(**{sweep_name: at_value})
-    text = render_modes(lin, stability, modes)
+    text = modes_text(lin, stability, modes)
     if swept is not None:
         if lin.symbols:
             text = text.replace("\nStability:", f"\n(modes at {sweep_name} = {at_value:g})\nStability:", 1)
         unit = next((p.unit or "" for p in model.parameters if p.name == sweep_name), "")
-        text += render_sweep(lin, swept, unit)
+        text += sweep_text(lin, swept, unit)
     written = _plots(lin, modes, swept, folder, args.lang) if folder is not None else []
     if args.animate:
         at = {sweep_name: at_value} if lin.symbols else {}

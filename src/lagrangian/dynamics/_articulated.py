@@ -44,7 +44,8 @@ factorisation reports otherwise, and D_j ≤ 10⁻¹³ M_jj as a singular mass m
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING
 
 import symengine as se
 
@@ -57,6 +58,13 @@ _ONE = se.Integer(1)
 
 Vec = tuple  # three SymEngine expressions
 Mat = list  # three rows of three
+
+if TYPE_CHECKING:
+    from ._recursive import _Names
+    from ._tree import _Node
+
+#: A change of basis between a node and its parent (None for the root).
+Turn = Callable[[Vec], Vec] | None
 
 
 def _zero(x: se.Basic) -> bool:
@@ -251,28 +259,63 @@ def articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, co
 
     It applies when every coordinate drives exactly one node (a joint of its own); a coordinate
     shared by several nodes (absolute angles, coupled joints) leaves M q̈ = F to the solver.
+    The steps, in the order their intermediates are named: `_joints` (each coordinate's motion
+    s_j), `_velocity_products` (c_k), `_rigid_inertias` and `_backward` (I^A, p^A, D_j, u_j),
+    `_forward` (A_k and q̈), `_pivots` (D_j against M_jj).
     """
     shared = _shared_slides(nodes, q, omega, grav, to_child, to_parent, couples, composite) if q else None
     if shared is None and q:
         return None
     if shared is not None:
         nodes, omega, grav, to_child, to_parent, couples, composite = shared
-    count, n = len(nodes), len(qd)
-    dofs: list[list[tuple[int, Vec, Vec]]] = [[] for _ in range(count)]
+    n = len(qd)
+    joints = _joints(w, nodes, to_child, n)
+    if joints is None:
+        return None
+    dofs, owner = joints
+    c_w, c_v = _velocity_products(w, nodes, qd, omega, to_child)
+    inertia, bias_w, bias_v = _rigid_inertias(nodes, omega, grav, couples)
+    steps, pivots = _backward(w, nodes, dofs, (c_w, c_v), tau, to_parent, inertia, bias_w, bias_v)
+    if floating is not None:
+        root = floating(inertia[0], bias_w[0], bias_v[0])
+    else:
+        root = ((_ZERO,) * 3, (_ZERO,) * 3)
+    qdd, start = _forward(w, nodes, dofs, steps, (c_w, c_v), to_child, root, n)
+    return qdd, _pivots(w, dofs, owner, pivots, composite, n), start
+
+
+#: Each coordinate's motion on its node: (j, s_ω, s_v), in the node's basis.
+Joint = tuple[int, Vec, Vec]
+#: One elimination of the backward pass: (j, s_ω, s_v, U_ω/D, U_v/D, u, 1/D).
+Step = tuple[int, Vec, Vec, Vec, Vec, se.Basic, se.Basic]
+
+
+def _joints(w: _Names, nodes: Sequence[_Node], to_child: Sequence[Turn], n: int,
+            ) -> tuple[list[list[Joint]], list[int]] | None:
+    """Each node's joints, s_j = (a_j e, 0) for a rotation and (0, C ∂d/∂q_j) for a translation, with the
+    node each coordinate drives; None when a coordinate drives none or several."""
+    count = len(nodes)
+    dofs: list[list[Joint]] = [[] for _ in range(count)]
     owner = [-1] * n
     for k, node in enumerate(nodes):
         for j, a in node.rates.items():
             dofs[k].append((j, tuple(a if i == node.axis else _ZERO for i in range(3)), (_ZERO,) * 3))
+        down = to_child[k]
         for j, u in node.offset_rates.items():
-            dofs[k].append((j, (_ZERO,) * 3, w.vec(to_child[k](u)) if to_child[k] is not None else u))
+            dofs[k].append((j, (_ZERO,) * 3, w.vec(down(u)) if down is not None else u))
         for j, _, _ in dofs[k]:
             if owner[j] != -1:
                 return None
             owner[j] = k
     if -1 in owner:
         return None
+    return dofs, owner
 
-    # -- velocity-product accelerations c_k -------------------------------------------------------------
+
+def _velocity_products(w: _Names, nodes: Sequence[_Node], qd: Sequence[se.Basic], omega: Sequence[Vec],
+                       to_child: Sequence[Turn]) -> tuple[list[Vec], list[Vec]]:
+    """The velocity-product accelerations c_k = (ω_k ∧ α̇ e,  C (ω_P ∧ (ω_P ∧ d) + 2 ω_P ∧ ḋ))."""
+    count = len(nodes)
     c_w: list[Vec] = [(_ZERO,) * 3] * count
     c_v: list[Vec] = [(_ZERO,) * 3] * count
     for k, node in enumerate(nodes):
@@ -288,8 +331,17 @@ def articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, co
         for j, u in node.offset_rates.items():
             d_rate = _add3(d_rate, _scale(qd[j], u))
         lin = _add3(_cross(wp, _cross(wp, node.offset)), _scale(se.Integer(2), _cross(wp, d_rate)))
-        c_v[k] = w.vec(to_child[k](lin))
-    # -- backward: articulated inertias and bias forces -------------------------------------------------
+        down = to_child[k]
+        assert down is not None  # every node but the root has a parent
+        c_v[k] = w.vec(down(lin))
+    return c_w, c_v
+
+
+def _rigid_inertias(nodes: Sequence[_Node], omega: Sequence[Vec], grav: Sequence[Sequence[Vec]], couples: Sequence[Vec],
+                    ) -> tuple[list[_Spatial], list[Vec], list[Vec]]:
+    """Each body's or particle's spatial inertia at G, I = [[Π_G, 0], [0, m 1]], and its bias force
+    p = (ω ∧ Π_G ω − C⃗, −m g) (gravity and couples as external forces); a frame's p = (−C⃗, 0)."""
+    count = len(nodes)
     inertia = [_Spatial.zero() for _ in range(count)]
     bias_w: list[Vec] = [(_ZERO,) * 3] * count
     bias_v: list[Vec] = [(_ZERO,) * 3] * count
@@ -309,9 +361,20 @@ def articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, co
                 g_total = _add3(g_total, grav[k][i])
             bias_v[k] = _scale(-m, g_total)
         bias_w[k] = nw
-    steps: list[list[tuple[int, Vec, Vec, Vec, Vec, se.Basic, se.Basic]]] = [[] for _ in range(count)]
+    return inertia, bias_w, bias_v
+
+
+def _backward(w: _Names, nodes: Sequence[_Node], dofs: list[list[Joint]], c: tuple[list[Vec], list[Vec]],
+              tau: Sequence[se.Basic], to_parent: Sequence[Turn],
+              inertia: list[_Spatial], bias_w: list[Vec], bias_v: list[Vec],
+              ) -> tuple[list[list[Step]], dict[int, se.Basic]]:
+    """Backward pass, leaves to root: at each node its joints eliminated (`_eliminate`), the last one
+    first, then I^A_P += X_kᵀ I^a X_k and p^A_P += X_kᵀ p^a, in place in ``inertia``, ``bias_w``,
+    ``bias_v``.  Returns each node's eliminations and each coordinate's pivot D_j."""
+    c_w, c_v = c
+    steps: list[list[Step]] = [[] for _ in range(len(nodes))]
     pivots: dict[int, se.Basic] = {}
-    for k in range(count - 1, 0, -1):
+    for k in range(len(nodes) - 1, 0, -1):
         node = nodes[k]
         I = inertia[k]
         pw, pv = bias_w[k], bias_v[k]
@@ -320,32 +383,13 @@ def articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, co
             pw, pv = w.vec(pw), w.vec(pv)
         cw, cv = c_w[k], c_v[k]
         for rank, (j, sw, sv) in enumerate(reversed(dofs[k])):  # the last joint is the outermost
-            Uw, Uv = I.times(sw, sv)
-            Uw, Uv = w.vec(Uw), w.vec(Uv)
-            D = w(_dot(sw, Uw) + _dot(sv, Uv))
-            inv = w(_ONE / D)
-            u = w(tau[j] - _dot(sw, pw) - _dot(sv, pv))
-            Vw, Vv = w.vec(_scale(inv, Uw)), w.vec(_scale(inv, Uv))  # U/D
-            U, V = (*Uw, *Uv), (*Vw, *Vv)
-            blocks = [[[U[3 * b + r] * V[3 * e + c] for c in range(3)] for r in range(3)] for b, e in ((0, 0), (0, 1), (1, 1))]
-            A = [[I.A[r][c] - blocks[0][r][c] for c in range(3)] for r in range(3)]
-            B = [[I.B[r][c] - blocks[1][r][c] for c in range(3)] for r in range(3)]
-            C = [[I.C[r][c] - blocks[2][r][c] for c in range(3)] for r in range(3)]
-            s6 = (*sw, *sv)
-            along = [i for i in range(6) if not _zero(s6[i])]
-            if len(along) == 1:  # I^a s = 0: along a constant axis, that row and column of I^a vanish exactly
-                i = along[0]
-                for r in range(3):
-                    if i < 3:
-                        A[i][r] = A[r][i] = B[i][r] = _ZERO
-                    else:
-                        C[i - 3][r] = C[r][i - 3] = B[r][i - 3] = _ZERO
-            I = _Spatial(A, B, C).named(w)
-            steps[k].append((j, sw, sv, Vw, Vv, u, inv))
+            I, step, D = _eliminate(w, I, pw, pv, j, sw, sv, tau)
+            steps[k].append(step)
             pivots[j] = D
             if rank == 0 and any(not _zero(x) for x in (*cw, *cv)):
                 gw, gv = I.times(cw, cv)
                 pw, pv = _add3(pw, gw), _add3(pv, gv)
+            u, Vw, Vv = step[5], step[3], step[4]
             pw, pv = w.vec(_add3(pw, _scale(u, Vw))), w.vec(_add3(pv, _scale(u, Vv)))
         if not dofs[k] and any(not _zero(x) for x in (*cw, *cv)):
             gw, gv = I.times(cw, cv)
@@ -354,20 +398,64 @@ def articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, co
         if all(_zero(x) for row in (*I.A, *I.B, *I.C) for x in row) and all(_zero(x) for x in (*pw, *pv)):
             continue
         up, d = to_parent[k], node.offset
+        assert up is not None and p is not None  # every node but the root has a parent
         inertia[p] = inertia[p].add(I.to_parent(up, d))
         fv = up(pv)
         bias_v[p] = _add3(bias_v[p], fv)
         bias_w[p] = _add3(bias_w[p], _add3(up(pw), _cross(d, fv)))
+    return steps, pivots
 
-    # -- forward: accelerations and q̈ -------------------------------------------------------------------
+
+def _eliminate(w: _Names, I: _Spatial, pw: Vec, pv: Vec, j: int, sw: Vec, sv: Vec,
+               tau: Sequence[se.Basic]) -> tuple[_Spatial, Step, se.Basic]:
+    """One joint s of articulated inertia I^A and bias p^A eliminated:
+
+        U = I^A s,  D = sᵀU,  u = τ_j − sᵀp^A,  I^a = I^A − U Uᵀ/D
+
+    (the rows and columns of I^a along a constant axis exactly 0).  Returns I^a named, the step
+    (j, s, U/D, u, 1/D) and D; p^a = p^A + I^a c + U u/D is the caller's.
+    """
+    Uw, Uv = I.times(sw, sv)
+    Uw, Uv = w.vec(Uw), w.vec(Uv)
+    D = w(_dot(sw, Uw) + _dot(sv, Uv))
+    inv = w(_ONE / D)
+    u = w(tau[j] - _dot(sw, pw) - _dot(sv, pv))
+    Vw, Vv = w.vec(_scale(inv, Uw)), w.vec(_scale(inv, Uv))  # U/D
+    U, V = (*Uw, *Uv), (*Vw, *Vv)
+    blocks = [[[U[3 * b + r] * V[3 * e + c] for c in range(3)] for r in range(3)] for b, e in ((0, 0), (0, 1), (1, 1))]
+    A = [[I.A[r][c] - blocks[0][r][c] for c in range(3)] for r in range(3)]
+    B = [[I.B[r][c] - blocks[1][r][c] for c in range(3)] for r in range(3)]
+    C = [[I.C[r][c] - blocks[2][r][c] for c in range(3)] for r in range(3)]
+    s6 = (*sw, *sv)
+    along = [i for i in range(6) if not _zero(s6[i])]
+    if len(along) == 1:  # I^a s = 0: along a constant axis, that row and column of I^a vanish exactly
+        i = along[0]
+        for r in range(3):
+            if i < 3:
+                A[i][r] = A[r][i] = B[i][r] = _ZERO
+            else:
+                C[i - 3][r] = C[r][i - 3] = B[r][i - 3] = _ZERO
+    return _Spatial(A, B, C).named(w), (j, sw, sv, Vw, Vv, u, inv), D
+
+
+def _forward(w: _Names, nodes: Sequence[_Node], dofs: list[list[Joint]], steps: list[list[Step]],
+             c: tuple[list[Vec], list[Vec]], to_child: Sequence[Turn], root: tuple[Vec, Vec], n: int) -> tuple[tuple[se.Basic, ...], int]:
+    """Forward pass, root (acceleration ``root``) to the leaves, over the nodes with joints below them:
+
+        q̈_j = (u − Uᵀ (X_k A_P + c_k))/D,   A_k = X_k A_P + c_k + s q̈_j.
+
+    Returns q̈ and the position in the intermediates where the pass starts.
+    """
+    c_w, c_v = c
+    count = len(nodes)
     acc_w: list[Vec] = [(_ZERO,) * 3] * count
     acc_v: list[Vec] = [(_ZERO,) * 3] * count
-    if floating is not None:
-        acc_w[0], acc_v[0] = floating(inertia[0], bias_w[0], bias_v[0])
+    acc_w[0], acc_v[0] = root
     has_dofs_below = [bool(dofs[k]) for k in range(count)]
     for k in range(count - 1, 0, -1):
-        if has_dofs_below[k]:
-            has_dofs_below[nodes[k].parent] = True
+        parent = nodes[k].parent
+        if has_dofs_below[k] and parent is not None:
+            has_dofs_below[parent] = True
     start = len(w.items)
     qdd: list[se.Basic] = [_ZERO] * n
     for k, node in enumerate(nodes):
@@ -375,6 +463,7 @@ def articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, co
             continue
         p = node.parent
         down = to_child[k]
+        assert down is not None
         aw, av = down(acc_w[p]), down(_add3(acc_v[p], _cross(acc_w[p], node.offset)))
         order = list(reversed(steps[k]))  # innermost first
         for idx, (j, sw, sv, Vw, Vv, u, inv) in enumerate(order):
@@ -387,8 +476,12 @@ def articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, co
             aw, av = _add3(aw, c_w[k]), _add3(av, c_v[k])
         if node.children:
             acc_w[k], acc_v[k] = w.vec(aw), w.vec(av)
+    return tuple(qdd), start
 
-    # -- pivots: D_j against M_jj = s_jᵀ I^c s_j -----------------------------------------------------------
+
+def _pivots(w: _Names, dofs: list[list[Joint]], owner: list[int], pivots: dict[int, se.Basic],
+            composite: tuple[Sequence[se.Basic], Sequence[Vec], Sequence[Sequence[Sequence[se.Basic]]]], n: int) -> tuple[tuple[se.Basic, se.Basic], ...]:
+    """(D_j, M_jj) for each coordinate, M_jj = s_jᵀ I^c s_j from the composite inertia of its node."""
     mass, first, inertia_c = composite
     out_pivots = []
     for j in range(n):
@@ -397,4 +490,4 @@ def articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, co
         fv = _add3(_scale(mass[k], sv), _cross(sw, first[k]))
         nv = _add3(tuple(_dot(inertia_c[k][r], sw) for r in range(3)), _cross(first[k], sv))
         out_pivots.append((pivots[j], w(_dot(sw, nv) + _dot(sv, fv))))
-    return tuple(qdd), tuple(out_pivots), start
+    return tuple(out_pivots)

@@ -25,7 +25,7 @@ from ..model import JointDamper, Model, Torque, Vector
 from ..model import Assumptions
 from ..model import FreeJoint, free_joints
 from ._forces import LoadForces, generalized_forces
-from ._recursive import TreeStructure, _Node, tree_structure
+from ._tree import TreeStructure, _Node, tree_structure
 
 __all__ = ["FloatingTree", "floating_trees"]
 

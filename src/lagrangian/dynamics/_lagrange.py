@@ -36,7 +36,8 @@ from ._energy import KineticEnergyTerm, RigidInertia, kinetic_energy
 from ._forces import LoadForces, generalized_forces
 from ._inertia import mass_matrix_and_bias
 from ._inertial import inertial_forces, reference_kinematics
-from ._recursive import AUTO_MIN_DEPTH, RecursiveForm, recursive_form, require_tree, tree_structure
+from ._recursive import AUTO_MIN_DEPTH, RecursiveForm, recursive_form
+from ._tree import require_tree, tree_structure
 
 __all__ = ["FORMULATIONS", "EquationsOfMotion", "LagrangeEquation", "derive"]
 

@@ -10,8 +10,8 @@ into its successors.  The generated code then grows about linearly with the numb
 joints for F and quadratically for M, where the expanded entries of M and F of a chain
 in relative angles grow several-fold per link.
 
-The tree (`tree_structure`): each frame F comes from its parent P by the rotation of
-angle α = Σ_j a_j q_j + b about an axis e shared by P and F, and its origin O_F is
+The tree (`tree_structure`, in `_tree`): each frame F comes from its parent P by the rotation
+of angle α = Σ_j a_j q_j + b about an axis e shared by P and F, and its origin O_F is
 O_P + d_F, where d_F (components in P, affine in q) is what every point below F has
 in P.  Each body or particle is a leaf node below its frame at its own offset c.
 Writing x_F for components in F's basis:
@@ -39,23 +39,20 @@ T and the Q_i as always (`_lagrange`), and the tests check the two against each 
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from dataclasses import dataclass, field
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 
 import symengine as se
 
-from ..errors import DerivationError
 from ..kinematics import Kinematics
 from ..model.vectors import add3 as _add3, cross as _cross, turn as _turn  # the vector toolkit's 3-component algebra
-from ..model import GALILEAN_FRAME, Body, Gravity, JointDamper, Torque, Vector
-from ..model.vectors import AXES, sum_of
+from ..model.vectors import sum_of
 from ._articulated import articulated_accelerations
-from ._energy import _transport, rigid_inertia
-from ._forces import LoadForces, _q_of
+from ._forces import LoadForces
+from ._tree import TreeStructure, Vec, _Node
 
-__all__ = ["RecursiveForm", "TreeStructure", "tree_structure", "recursive_form", "AUTO_MIN_DEPTH"]
+__all__ = ["AUTO_MIN_DEPTH", "RecursiveForm", "recursive_form"]
 
-Vec = tuple[se.Basic, se.Basic, se.Basic]
 _ZERO = se.Integer(0)
 _ZERO_TYPE = type(_ZERO)
 _ZERO3: Vec = (_ZERO, _ZERO, _ZERO)
@@ -65,195 +62,6 @@ _HALF = se.Rational(1, 2)
 #: moving rotations in series (below it the expanded entries stay short, and the course
 #: derivation keeps the exact form the tests and reports of small systems are written for).
 AUTO_MIN_DEPTH = 4
-
-
-# -- the tree ------------------------------------------------------------------------------------
-@dataclass
-class _Node:
-    """A frame (rotation from its parent) or a body/particle (a leaf, no rotation)."""
-
-    name: str
-    parent: int | None
-    axis: int | None = None  # index of the rotation axis, None for a leaf or R0
-    angle: se.Basic = _ZERO
-    rates: dict[int, se.Basic] = field(default_factory=dict)  # j -> a_j = ∂α/∂q_j
-    offset: Vec = _ZERO3  # d, in the parent's basis
-    offset_rates: dict[int, Vec] = field(default_factory=dict)  # j -> ∂d/∂q_j
-    mass: se.Basic = _ZERO
-    inertia: tuple[Vec, Vec, Vec] | None = None  # Π_G in the node's basis (bodies)
-    gravity: tuple[int, ...] = ()  # the gravity loads acting on this body or particle
-    frame: str = GALILEAN_FRAME  # the frame whose basis the node's components are in
-    children: list[int] = field(default_factory=list)
-
-    @property
-    def up(self) -> int:
-        """The parent's index, for a node below R0 (node 0, the root, has none)."""
-        if self.parent is None:
-            raise ValueError("R0, the root of the tree, has no parent")
-        return self.parent
-
-
-@dataclass
-class TreeStructure:
-    """The nodes of a kinematic tree, parents first; ``depth`` = most moving rotations in series."""
-
-    nodes: list[_Node]
-    depth: int
-    gravity: tuple[tuple[Gravity, Vec], ...]  # each gravity load with its field in R0
-    other_loads: tuple[int, ...]  # indices in model.loads of the loads not handled by the recursion
-    couples: tuple[tuple[int, Vector], ...] = ()  # (node, couple C⃗ on it) of the torques and joint dampers
-
-
-def _affine(kin: Kinematics, comps: Sequence[se.Basic]) -> dict[int, list[se.Basic]] | None:
-    """{j: ∂comps/∂q_j} when every component is affine in q with constant coefficients, else None."""
-    moving = set(kin.qd) | set(kin.qdd) | {kin.t}
-    qset = set(kin.q)
-    out: dict[int, list[se.Basic]] = {}
-    for axis, c in enumerate(comps):
-        free = c.free_symbols
-        if free & moving:
-            return None
-        for j, q in enumerate(kin.q):
-            if q in free:
-                u = c.diff(q)
-                if u.free_symbols & (qset | moving):
-                    return None
-                out.setdefault(j, [_ZERO, _ZERO, _ZERO])[axis] = u
-    return out
-
-
-def tree_structure(kin: Kinematics) -> TreeStructure | str:
-    """The kinematic tree of ``kin.model``, or the reason why the model is not one."""
-    model = kin.model
-    if model.constraints:
-        return "it has complementary constraints"
-    if model.reference is not None and not model.reference.is_galilean_frame:
-        return "its equations are written in a moving reference frame"
-    index: dict[str, int] = {}
-    nodes: list[_Node] = []
-    depth: dict[str, int] = {}
-    for frame in model.frames:
-        node = _Node(frame.name, None if frame.parent is None else index[frame.parent], frame=frame.name)
-        moving = 0
-        if frame.rotation is not None:
-            if not frame.rotation.elementary:  # the recursion's rotations are about x, y or z of the parent
-                return f"frame `{frame.name}` turns about an axis other than its parent's x, y or z"
-            node.axis = AXES[frame.rotation.axis]
-            node.angle = frame.rotation.angle
-            rates = _affine(kin, (frame.rotation.angle,))
-            if rates is None:
-                return (f"the rotation angle `{frame.rotation.angle}` of frame `{frame.name}` is not of the form "
-                        "Σ a_j q_j + b with constant a_j, b")
-            node.rates = {j: u[0] for j, u in rates.items()}
-            moving = 1 if node.rates else 0
-        depth[frame.name] = moving + (0 if frame.parent is None else depth[frame.parent])
-        index[frame.name] = len(nodes)
-        if node.parent is not None:
-            nodes[node.parent].children.append(len(nodes))
-        nodes.append(node)
-    offset_set: set[int] = set()
-    masses: list[tuple[str, str | None, se.Basic, Vector, Body | None]] = [
-        (b.name, b.frame, b.mass, b.center, b) for b in model.bodies]
-    masses += [(p.name, None, p.mass, p.position, None) for p in model.particles]
-    gravity: list[tuple[Gravity, Vec]] = []
-    other: list[int] = []
-    for k, load in enumerate(model.loads):
-        if isinstance(load, Gravity):
-            g = kin.frames.express(load.field, GALILEAN_FRAME)
-            if all(not (c.free_symbols & (set(kin.q) | set(kin.qd) | {kin.t})) for c in g):
-                gravity.append((load, g))
-                continue
-        other.append(k)
-    leaf_of: dict[str, int] = {}
-    for name, home, mass, position, body in masses:
-        pieces = dict(position.pieces)
-        if home is None:  # a particle: the deepest frame its position uses
-            home = max(pieces, key=lambda f: model_depth(kin, f), default=GALILEAN_FRAME)
-        path = [home]
-        while nodes[index[path[-1]]].parent is not None:
-            path.append(nodes[nodes[index[path[-1]]].parent].name)  # type: ignore[index]
-        path.reverse()
-        stray = [f for f in pieces if f not in path]
-        if stray:
-            return (f"the position of `{name}` has a part in frame `{stray[0]}`, which is not on the chain of frames "
-                    f"from R0 to `{home}`")
-        for above, child in zip(path, path[1:]):
-            piece = pieces.get(above, _ZERO3)
-            c = index[child]
-            if c in offset_set:
-                if any(se.expand(a - b) != 0 for a, b in zip(piece, nodes[c].offset)):
-                    return (f"the points below frame `{child}` do not share one origin for it (`{name}` differs in "
-                            f"frame `{above}`)")
-                continue
-            rates = _affine(kin, piece)
-            if rates is None:
-                return f"the position of `{name}` is not affine in the coordinates in frame `{above}`"
-            nodes[c].offset = tuple(piece)
-            nodes[c].offset_rates = {j: tuple(u) for j, u in rates.items()}
-            offset_set.add(c)
-        own = pieces.get(home, _ZERO3)
-        rates = _affine(kin, own)
-        if rates is None:
-            return f"the position of `{name}` is not affine in the coordinates in frame `{home}`"
-        leaf = _Node(name, index[home], offset=tuple(own), mass=mass, frame=home,
-                     offset_rates={j: tuple(u) for j, u in rates.items()})
-        if body is not None:
-            _, pi_g = rigid_inertia(kin, body)  # checks the inertia (physical, at a point of the body)
-            given = body.inertia
-            if given.frame != body.frame and given.at != "G":
-                # Given in a frame where it reads as in the body's (checked): moved to G with GP in
-                # the body's components, which are constant (P is a point of the body, checked).
-                gp = kin.frames.express(kin.position(given.at) - body.center, body.frame)
-                pi_g = _transport(given.matrix, body.mass, gp, -1)
-            leaf.inertia = pi_g  # Π_G in the body's basis
-        leaf.gravity = tuple(k for k, (load, _) in enumerate(gravity) if not load.on or name in load.on)
-        nodes[index[home]].children.append(len(nodes))
-        leaf_of[name] = len(nodes)
-        nodes.append(leaf)
-    # Couples act on a body (its leaf) or a frame (its node): −C⃗ enters that node's Euler equation.
-    couples: list[tuple[int, Vector]] = []
-    kept: list[int] = []
-    for k in other:
-        load = model.loads[k]
-        if isinstance(load, Torque) and _constant_q(kin, load):
-            kept.append(k)  # a motor's τ about its joint axis: Q_j = τ (potential −τ q_j if τ is no input: `_constant_q`)
-        elif isinstance(load, Torque):
-            couples.append((leaf_of.get(load.on, index.get(load.on, 0)), load.torque))
-            if load.reaction_on is not None:
-                couples.append((leaf_of.get(load.reaction_on, index.get(load.reaction_on, 0)), -load.torque))
-        elif isinstance(load, JointDamper):
-            s1, s2 = load.bodies
-            frame_of = {b.name: b.frame for b in model.bodies}
-            relative = kin.omega(frame_of.get(s2, s2)) - kin.omega(frame_of.get(s1, s1))  # Ω(S2/S1)
-            couple = relative * (-load.coefficient)
-            couples.append((leaf_of.get(s2, index.get(s2, 0)), couple))
-            couples.append((leaf_of.get(s1, index.get(s1, 0)), -couple))
-        else:
-            kept.append(k)
-    return TreeStructure(nodes, max(depth.values(), default=0), tuple(gravity), tuple(kept), tuple(couples))
-
-
-def _constant_q(kin: Kinematics, load: Torque) -> bool:
-    """The torque's Q_j = C⃗·∂Ω(S/S')/∂q̇_j (course, virtual power) hold no q, q̇ nor t.
-
-    That is a motor's constant τ about the axis of the joint between the two bodies it acts on:
-    Q_j = τ a_j, whose potential is −τ α when τ is a constant of the model.  Such a torque is kept
-    among the loads with their Q_i (a constant each) and potential, as the course's derivation has it,
-    so that U holds −τ·q and T + U is the energy integral of a robot driven by constant torques, in
-    both forms (by d/dt (T + U_gravity) = Σ τ_j q̇_j); a τ declared as an input u(t) is kept the same
-    way, without a potential (`generalized_forces`).  Any other torque is a couple in the recursion.
-    """
-    Q, _, _ = _q_of(kin, load)
-    moving = set(kin.q) | set(kin.qd) | {kin.t}
-    return not any(x.free_symbols & moving for x in Q)
-
-
-def model_depth(kin: Kinematics, frame: str) -> int:
-    """Number of frames between R0 and ``frame``."""
-    d, f = 0, kin.model.frame(frame)
-    while f.parent is not None:
-        d, f = d + 1, kin.model.frame(f.parent)
-    return d
 
 
 # -- the intermediates ---------------------------------------------------------------------------------
@@ -402,11 +210,60 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
     """Build `RecursiveForm` of ``kin.model`` on its ``tree`` (`tree_structure`).
 
     ``other`` are the `LoadForces` of ``tree.other_loads`` (`generalized_forces`): their Q_i
-    are added to F as they are.
+    are added to F as they are.  The steps, in the order their intermediates are named:
+    `_forward` (velocities and accelerations), `_newton_euler` (each body's f, n, T, U),
+    `_forces` (the backward pass: F), `_composite_inertias` and `_mass_matrix` (M),
+    `articulated_accelerations` (q̈), `_gradient` (∂(T − U)/∂q).
     """
     nodes = tree.nodes
-    n = kin.n
     w = _Names()
+    motion = _forward(w, kin, tree)
+    force, moment, T_terms, U_terms = _newton_euler(w, nodes, motion)
+    F, Q_other, Q_couples, couples = _forces(w, kin, tree, motion, force, moment, other)
+    composite = _composite_inertias(w, nodes, motion.to_parent)
+    M_out = _mass_matrix(w, nodes, kin.n, motion, composite)
+    aba = articulated_accelerations(w, nodes, kin.qd, motion.omega, motion.grav, motion.to_child, motion.to_parent,
+                                    couples, Q_other, composite, kin.q)
+    qdd, pivots, forward = aba if aba is not None else (None, (), 0)
+
+    T = sum_of(T_terms)
+    U_gravity = sum_of(U_terms)
+    dL = _gradient(w, T - U_gravity, kin.q)
+    dL_dq = tuple(a + q + c for a, q, c in zip(dL, Q_other, Q_couples))
+    U_other = [f.potential for f in other if f.potential is not None]
+    conservative = all(f.potential is not None for f in other) and not tree.couples
+    return RecursiveForm(tuple(w.items), M_out, F, T, U_gravity + sum_of(U_other), dL_dq, conservative, other,
+                         qdd, pivots, forward)
+
+
+#: A change of basis between a node and its parent, applied to a vector's components.
+Turn = Callable[[Vec], Vec]
+
+
+@dataclass(frozen=True)
+class _Motion:
+    """The forward pass, one entry per node in its own basis: ω, ω̇⁰ (free of q̈), the velocity ``vel``
+    and acceleration ``acc`` (free of q̈) of its origin, its position ``pos`` = OO_N, the gravity
+    fields ``grav``; ``to_child[k]`` turns the parent's components into node k's, ``to_parent[k]``
+    back (None for R0)."""
+
+    omega: list[Vec]
+    alpha: list[Vec]
+    vel: list[Vec]
+    acc: list[Vec]
+    pos: list[Vec]
+    grav: list[list[Vec]]
+    to_child: list[Turn | None]
+    to_parent: list[Turn | None]
+
+
+def _forward(w: _Names, kin: Kinematics, tree: TreeStructure) -> _Motion:
+    """Forward pass, R0 to the leaves, with α̇ = Σ a_j q̇_j and C the change of basis parent → node:
+
+        ω_F = C ω_P + α̇ e,                ω̇⁰_F = C ω̇⁰_P + ω_F ∧ α̇ e,
+        v_F = C (v_P + ω_P ∧ d + ḋ),      a⁰_F = C (a⁰_P + ω̇⁰_P ∧ d + ω_P ∧ (ω_P ∧ d) + 2 ω_P ∧ ḋ).
+    """
+    nodes = tree.nodes
     count = len(nodes)
     omega: list[Vec] = [_ZERO3] * count
     alpha: list[Vec] = [_ZERO3] * count  # ω̇⁰
@@ -414,8 +271,8 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
     acc: list[Vec] = [_ZERO3] * count  # its acceleration, part free of q̈
     pos: list[Vec] = [_ZERO3] * count  # its position OO_N
     grav: list[list[Vec]] = [[g for _, g in tree.gravity]] + [[] for _ in range(count - 1)]
-    to_child: list = [None] * count  # components in the parent → in the node
-    to_parent: list = [None] * count
+    to_child: list[Turn | None] = [None] * count  # components in the parent → in the node
+    to_parent: list[Turn | None] = [None] * count
     qd = kin.qd
     for k, node in enumerate(nodes):
         if node.parent is None:
@@ -444,8 +301,18 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
             spin = _unit(node.axis, sum_of([a * qd[j] for j, a in node.rates.items()]))
             omega[k] = w.vec(_add3(down(wp), spin))
             alpha[k] = w.vec(_add3(down(ap), _cross(omega[k], spin)))
+    return _Motion(omega, alpha, vel, acc, pos, grav, to_child, to_parent)
 
-    # -- bodies: Newton–Euler, T and U -----------------------------------------------------------
+
+def _newton_euler(w: _Names, nodes: Sequence[_Node], motion: _Motion,
+                  ) -> tuple[list[Vec], list[Vec], list[se.Basic], list[se.Basic]]:
+    """At each body or particle, with g its gravity field: f = m (a⁰_G − g), n = Π_G ω̇⁰ + ω ∧ Π_G ω
+    (Newton, Euler), and its terms of T = ½ m v_G² + ½ ω·Π_G ω and U = −m g·OG.
+
+    Returns (f, n) per node (zero on frames) and the lists of T's and U's terms.
+    """
+    count = len(nodes)
+    omega, alpha, vel, acc, pos, grav = motion.omega, motion.alpha, motion.vel, motion.acc, motion.pos, motion.grav
     force: list[Vec] = [_ZERO3] * count
     moment: list[Vec] = [_ZERO3] * count
     T_terms: list[se.Basic] = []
@@ -465,39 +332,71 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
             T_terms.append(_HALF * _dot(omega[k], pw))
         if node.gravity:
             U_terms.append(-m * _dot(g_total, pos[k]))
+    return force, moment, T_terms, U_terms
 
-    # -- backward: forces of each subtree, moments about each node's origin; Γ⁰ ----------------------
-    def backward(force: list[Vec], moment: list[Vec]) -> list[list[se.Basic]]:
-        """Σ over the places q_j moves a node of S_j · (f, n) of the node's subtree, for each j."""
-        out: list[list[se.Basic]] = [[] for _ in range(n)]
-        force, moment = list(force), list(moment)
-        for k in range(count - 1, 0, -1):
-            node = nodes[k]
-            f, mo = force[k], moment[k]
-            if node.axis is not None:
-                f, mo = w.vec(f), w.vec(mo)  # a frame's sums, named once
-            if all(type(c) is _ZERO_TYPE for c in (*f, *mo)):
-                continue
-            for j, a in node.rates.items():
-                out[j].append(a * mo[node.axis])  # type: ignore[index]
-            up = to_parent[k]
-            fp = up(f)
-            for j, u in node.offset_rates.items():
-                out[j].append(_dot(u, fp))
-            p = node.up
-            force[p] = _add3(force[p], fp)
-            moment[p] = _add3(moment[p], _add3(up(mo), _cross(node.offset, fp)))
-        return out
 
+def _backward(w: _Names, nodes: Sequence[_Node], to_parent: Sequence[Turn | None], n: int, force: list[Vec],
+              moment: list[Vec]) -> list[list[se.Basic]]:
+    """Backward pass, the leaves to R0, moments about each origin: f_P += Cᵀ f_F, n_P += Cᵀ n_F + d ∧ Cᵀ f_F;
+    returns, for each j, the terms of Σ over the places q_j moves a node of S_j · (f, n) of its subtree,
+    S_j = (a_j e, 0) for a rotation and (0, ∂d/∂q_j) for a translation."""
+    out: list[list[se.Basic]] = [[] for _ in range(n)]
+    force, moment = list(force), list(moment)
+    for k in range(len(nodes) - 1, 0, -1):
+        node = nodes[k]
+        f, mo = force[k], moment[k]
+        if node.axis is not None:
+            f, mo = w.vec(f), w.vec(mo)  # a frame's sums, named once
+        if all(type(c) is _ZERO_TYPE for c in (*f, *mo)):
+            continue
+        for j, a in node.rates.items():
+            out[j].append(a * mo[node.axis])  # type: ignore[index]
+        up = to_parent[k]
+        assert up is not None  # every node but R0 has a parent
+        fp = up(f)
+        for j, u in node.offset_rates.items():
+            out[j].append(_dot(u, fp))
+        p = node.parent
+        assert p is not None
+        force[p] = _add3(force[p], fp)
+        moment[p] = _add3(moment[p], _add3(up(mo), _cross(node.offset, fp)))
+    return out
+
+
+def _forces(w: _Names, kin: Kinematics, tree: TreeStructure, motion: _Motion, force: list[Vec], moment: list[Vec],
+            other: tuple[LoadForces, ...]) -> tuple[tuple[se.Basic, ...], list[se.Basic], list[se.Basic], list[Vec]]:
+    """F = Q(other loads) − Γ⁰ with Γ⁰_j − Q_j(gravity, couples) the backward pass of the bodies' (f, n − C⃗):
+    the virtual power of the inertial, gravity and couple forces in the virtual motion q_j* (seed, section I).
+
+    Returns F, the other loads' Q, the couples' Q (their own backward pass: Q_j = C⃗ · ∂Ω/∂q̇_j) and
+    the couple on each node in its basis.
+    """
+    nodes, n = tree.nodes, kin.n
+    count = len(nodes)
     couples = [_ZERO3] * count
     for k, couple in tree.couples:  # the torques and joint dampers: Q_j = C⃗ · ∂Ω/∂q̇_j
         couples[k] = _add3(couples[k], kin.frames.express(couple, nodes[k].frame))
-    gamma0 = backward(force, [_add3(mo, _scale(se.Integer(-1), c)) for mo, c in zip(moment, couples)])
-    Q_couples = [sum_of(q) for q in backward([_ZERO3] * count, couples)] if tree.couples else [_ZERO] * n
+    gamma0 = _backward(w, nodes, motion.to_parent, n, force,
+                       [_add3(mo, _scale(se.Integer(-1), c)) for mo, c in zip(moment, couples)])
+    Q_couples = ([sum_of(q) for q in _backward(w, nodes, motion.to_parent, n, [_ZERO3] * count, couples)]
+                 if tree.couples else [_ZERO] * n)
     Q_other = [sum_of([load.Q[i] for load in other]) for i in range(n)]
     F = tuple(q - sum_of(g) if g else q for q, g in zip(Q_other, gamma0))
+    return F, Q_other, Q_couples, couples
 
-    # -- M: composite-rigid-body algorithm -----------------------------------------------------------
+
+#: The composite inertia of each node's subtree about its origin, in its basis: masses m, first
+#: moments h = m·(centre of mass − origin), inertia matrices J_O.
+Composite = tuple[list[se.Basic], list[Vec], list[list[list[se.Basic]]]]
+
+
+def _composite_inertias(w: _Names, nodes: Sequence[_Node], to_parent: Sequence[Turn | None]) -> Composite:
+    """The composite-rigid-body algorithm's inertias: each subtree's (m, h, J_O) carried to its parent, the
+    leaves first: rotated (J → C J Cᵀ), then moved by d with the first moment (Huygens),
+
+        m_P += m,   h_P += h + m d,   J_P += J + 2 (d·h) I − d hᵀ − h dᵀ + m (|d|² I − d dᵀ).
+    """
+    count = len(nodes)
     mass: list[se.Basic] = [nd.mass for nd in nodes]
     first: list[Vec] = [_ZERO3] * count  # h = m·(centre of mass − origin)
     inertia: list[list[list[se.Basic]]] = [[[nd.inertia[r][c] if nd.inertia is not None else _ZERO
@@ -515,26 +414,37 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
         if type(m) is _ZERO_TYPE and all(type(x) is _ZERO_TYPE for row in inertia[k] for x in row):
             continue
         up = to_parent[k]
+        assert up is not None  # every node but R0 has a parent
         h = up(first[k])
-        rows = [up(tuple(inertia[k][r])) for r in range(3)]  # (R J)ᵀ's columns are R J's rows rotated
-        J = [up(tuple(rows[c][r] for c in range(3))) for r in range(3)]
+        rows = [up(tuple(inertia[k][r])) for r in range(3)]  # type: ignore[arg-type]  # (R J)ᵀ's columns are R J's rows rotated
+        J = [up(tuple(rows[c][r] for c in range(3))) for r in range(3)]  # type: ignore[arg-type]
         d = node.offset
         dh, dd = _dot(d, h), _dot(d, d)
-        p = node.up
+        p = node.parent
+        assert p is not None
         mass[p] = mass[p] + m
         for r in range(3):
             for c in range(3):
                 shift = (2 * dh + m * dd if r == c else _ZERO) - d[r] * h[c] - h[r] * d[c] - m * d[r] * d[c]
                 inertia[p][r][c] = inertia[p][r][c] + J[r][c] + shift
         first[p] = _add3(first[p], _add3(h, _scale(m, d)))
+    return mass, first, inertia
 
+
+def _mass_matrix(w: _Names, nodes: Sequence[_Node], n: int, motion: _Motion,
+                 composite: Composite) -> tuple[tuple[se.Basic, ...], ...]:
+    """M_ij = S_i · X (I^c S_j) along the path between the two nodes where q̇_i and q̇_j move them: the
+    composite inertia I^c of the later node applied to its motion S_j = (ω, v of the origin), the force
+    and moment carried up the tree (f → C f, n → C n + d ∧ C f) and projected on each S_i met."""
+    mass, first, inertia = composite
+    count = len(nodes)
     # Where each q̇_j moves a node: spatial motions S = (ω, v of the origin) in the node's basis.
     occurrences: list[list[tuple[int, Vec, Vec]]] = [[] for _ in range(count)]
     for k, node in enumerate(nodes):
         for j, a in node.rates.items():
             occurrences[k].append((j, _unit(node.axis, a), _ZERO3))  # type: ignore[arg-type]
         for j, u in node.offset_rates.items():
-            occurrences[k].append((j, _ZERO3, w.vec(to_child[k](u))))
+            occurrences[k].append((j, _ZERO3, w.vec(motion.to_child[k](u))))  # type: ignore[misc]
     above = [False] * count  # some strict ancestor of the node moves with a coordinate
     for k in range(1, count):
         p = nodes[k].up
@@ -558,30 +468,8 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
                         M[j][i].append(value)
                 if not above[a]:
                     break
-                up, d = to_parent[a], nodes[a].offset
-                fv = w.vec(up(fv))
-                nv = w.vec(_add3(up(nv), _cross(d, fv)))
-                a, same = nodes[a].parent, False
-    M_out = tuple(tuple(sum_of(M[i][j]) for j in range(n)) for i in range(n))
-    aba = articulated_accelerations(w, nodes, qd, omega, grav, to_child, to_parent, couples, Q_other,
-                                    (mass, first, inertia), kin.q)
-    qdd, pivots, forward = aba if aba is not None else (None, (), 0)
-
-    T = sum_of(T_terms)
-    U_gravity = sum_of(U_terms)
-    dL = _gradient(w, T - U_gravity, kin.q)
-    dL_dq = tuple(a + q + c for a, q, c in zip(dL, Q_other, Q_couples))
-    U_other = [f.potential for f in other if f.potential is not None]
-    conservative = all(f.potential is not None for f in other) and not tree.couples
-    return RecursiveForm(tuple(w.items), M_out, F, T, U_gravity + sum_of(U_other), dL_dq, conservative, other,
-                         qdd, pivots, forward)
-
-
-def require_tree(kin: Kinematics) -> TreeStructure:
-    """`tree_structure`, or a `DerivationError` saying why the recursive formulation does not apply."""
-    tree = tree_structure(kin)
-    if isinstance(tree, str):
-        raise DerivationError(f"the recursive formulation needs a kinematic tree of rotations and translations, and "
-                              f"model `{kin.model.name}` is not one: {tree}",
-                              fix="use formulation='lagrange' (the course's derivation), or 'auto'")
-    return tree
+                up, d = motion.to_parent[a], nodes[a].offset
+                fv = w.vec(up(fv))  # type: ignore[misc]
+                nv = w.vec(_add3(up(nv), _cross(d, fv)))  # type: ignore[misc]
+                a, same = nodes[a].parent, False  # type: ignore[assignment]
+    return tuple(tuple(sum_of(M[i][j]) for j in range(n)) for i in range(n))

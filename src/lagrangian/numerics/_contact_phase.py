@@ -22,6 +22,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -147,49 +148,25 @@ def dae_phase(cs: ContactSystem, p: np.ndarray, t0: float, y0: np.ndarray, t_end
     ``eps`` is the per-contact tolerance ε_k of the reactions (lift-off, slip).  A state at rest in
     equilibrium — q̇ = 0 and q̈ = 0 (below 10 atol and 1e-9 ``rest_scale``) of an autonomous model without
     user events — stays there: the phase ends at t_end without stepping (a ball come to rest).
+
+    Each step: DOP853's step, the state projected on the active rows (`_Phase.project`), the event
+    functions watched at its end and their crossings located (`_Phase.crossings`), the dense output
+    filled up to the first terminal one, which ends the phase (`_Phase.end`).
     """
     from scipy.integrate import DOP853
-    from scipy.optimize import brentq
 
-    probe = probe or Probe(cs.full, p)
-    rows = cs.active_rows(closed)
-    core = cs.core(probe.parts(t0, y0)[2], rows)  # independent rows: a block flat on the ground has one too many
-    tol = max(1e-3 * opts.atol, 1e-15)
-    n, m = cs.n, len(cs.contacts)
-    calls = [0]
-
-    def fun(t: float, y: np.ndarray) -> np.ndarray:
-        calls[0] += 1
-        try:
-            return cs.solve(*probe.parts(t, y)[:4], y, rows, core)[0]
-        except SimulationError as exc:
-            raise SimulationError(f"At t = {t:.9g}: {exc.message}", fix=exc.fix, t=t, state=y.copy()) from None
-
-    if cs.autonomous and not opts.user and rest_scale > 0 and np.max(np.abs(y0[n:])) <= 10 * opts.atol \
-            and np.max(np.abs(fun(t0, y0)[n:])) <= 1e-9 * rest_scale:
+    ph = _Phase(cs, p, t0, y0, closed, mu, eps, opts, user_values, probe)
+    n = cs.n
+    if ph.at_rest(t0, y0, rest_scale):
         y_rest = np.array(y0, dtype=float)
         y_rest[n:] = 0.0
         out.fill(t_end, lambda ts: np.broadcast_to(y_rest, (len(ts), 2 * n)), phase)
-        return PhaseEnd(float(t_end), y_rest, "end", rhs_calls=calls[0])
-
-    sticking = [k for k in np.flatnonzero(closed) if cs.tangent[k] >= 0]
-
-    def watch(t: float, y: np.ndarray) -> np.ndarray:
-        """Every event function at one state: gaps of the open contacts, reactions of the closed ones, slips, user."""
-        M, F, A, c, _, f = probe.parts(t, y)
-        gaps = f[cs.normal].copy()
-        _, lam = cs.solve(M, F, A, c, y, rows, core)
-        values = np.where(closed, lam[cs.normal] + eps, gaps)
-        slips = [mu[k] * lam[cs.normal[k]] - abs(lam[cs.tangent[k]]) + eps[k] for k in sticking]
-        extra = user_values(t, y) if user_values is not None else np.zeros(0)
-        return np.concatenate([values, slips, extra])
-
-    directions = [-1] * (m + len(sticking)) + [e.direction for e in opts.user]
-    solver = DOP853(fun, t0, np.array(y0, dtype=float), t_end, rtol=opts.rtol, atol=opts.atol,
+        return PhaseEnd(float(t_end), y_rest, "end", rhs_calls=ph.calls)
+    solver = DOP853(ph.fun, t0, np.array(y0, dtype=float), t_end, rtol=opts.rtol, atol=opts.atol,
                     max_step=np.inf if opts.max_step is None else opts.max_step,
                     first_step=min(first_step, t_end - t0) if first_step > 0 else None)
     out.fill(t0, lambda ts: np.broadcast_to(y0, (len(ts), 2 * n)), phase)
-    g_old = watch(t0, y0)
+    g_old = ph.watch(t0, y0)
     steps = 0
     users: list[tuple[str, float, np.ndarray]] = []
     while solver.status == "running":
@@ -203,50 +180,127 @@ def dae_phase(cs: ContactSystem, p: np.ndarray, t0: float, y0: np.ndarray, t_end
             raise SimulationError(f"The maximum number of steps ({opts.max_steps}) was reached at t = {solver.t:.9g}.",
                                   fix="raise max_steps, or shorten the time span", t=solver.t, state=solver.y.copy())
         t_old, t_new = solver.t_old, solver.t
+        state, states, y_end = ph.project(solver)
+        g_new = ph.watch(t_new, y_end)
+        found = ph.crossings(g_old, g_new, t_old, t_new, state)
+        stop = ph.first_terminal(found)
+        t_stop = t_new if stop is None else stop[0]
+        users += ph.user_events(found, t_stop, state)
+        out.fill(t_stop, states, phase)
+        g_old = g_new
+        if stop is not None:
+            return ph.end(stop, state, users, steps, solver.h_abs)
+    return PhaseEnd(float(solver.t), solver.y.copy(), "end", -1, users, steps, ph.calls, solver.h_abs)
+
+
+class _Phase:
+    """The pieces of one phase with closed contacts: the right-hand side with the active rows (`fun`), the
+    event functions (`watch`: gaps of the open contacts, normal reactions of the closed ones, the slip
+    margins μ λ_n − |λ_t| of the sticking ones, the user's), their crossings in a step, and the end."""
+
+    def __init__(self, cs: ContactSystem, p: np.ndarray, t0: float, y0: np.ndarray, closed: np.ndarray,
+                 mu: np.ndarray, eps: np.ndarray, opts: Options,
+                 user_values: Callable[[float, np.ndarray], np.ndarray] | None, probe: Probe | None) -> None:
+        self.cs, self.p, self.closed, self.mu, self.eps, self.opts = cs, p, closed, mu, eps, opts
+        self.user_values = user_values
+        self.probe = probe or Probe(cs.full, p)
+        self.rows = cs.active_rows(closed)
+        self.core = cs.core(self.probe.parts(t0, y0)[2], self.rows)  # independent rows: a block flat on the ground has one too many
+        self.tol = max(1e-3 * opts.atol, 1e-15)
+        self.m = len(cs.contacts)
+        self.calls = 0
+        self.sticking = [k for k in np.flatnonzero(closed) if cs.tangent[k] >= 0]
+        self.directions = [-1] * (self.m + len(self.sticking)) + [e.direction for e in opts.user]
+
+    def fun(self, t: float, y: np.ndarray) -> np.ndarray:
+        """ẏ with the active rows' multipliers (M q̈ = F + Aᵀ λ, A q̈ = c)."""
+        self.calls += 1
+        try:
+            return self.cs.solve(*self.probe.parts(t, y)[:4], y, self.rows, self.core)[0]
+        except SimulationError as exc:
+            raise SimulationError(f"At t = {t:.9g}: {exc.message}", fix=exc.fix, t=t, state=y.copy()) from None
+
+    def at_rest(self, t0: float, y0: np.ndarray, rest_scale: float) -> bool:
+        """q̇ = 0 and q̈ = 0 (below 10 atol and 1e-9 ``rest_scale``) of an autonomous model without user events."""
+        n = self.cs.n
+        return bool(self.cs.autonomous and not self.opts.user and rest_scale > 0
+                    and np.max(np.abs(y0[n:])) <= 10 * self.opts.atol
+                    and np.max(np.abs(self.fun(t0, y0)[n:])) <= 1e-9 * rest_scale)
+
+    def watch(self, t: float, y: np.ndarray) -> np.ndarray:
+        """Every event function at one state: gaps of the open contacts, reactions of the closed ones, slips, user."""
+        cs, closed = self.cs, self.closed
+        M, F, A, c, _, f = self.probe.parts(t, y)
+        gaps = f[cs.normal].copy()
+        _, lam = cs.solve(M, F, A, c, y, self.rows, self.core)
+        values = np.where(closed, lam[cs.normal] + self.eps, gaps)
+        slips = [self.mu[k] * lam[cs.normal[k]] - abs(lam[cs.tangent[k]]) + self.eps[k] for k in self.sticking]
+        extra = self.user_values(t, y) if self.user_values is not None else np.zeros(0)
+        return np.concatenate([values, slips, extra])
+
+    def project(self, solver: Any) -> tuple[Callable[[float], np.ndarray], Callable[[np.ndarray], np.ndarray],
+                                            np.ndarray]:
+        """The step's end projected on the active rows (the solver continues from it), and the step's dense
+        output projected: one state, many states (for the outputs), and the state at its end."""
+        cs, p, core, tol, probe, n = self.cs, self.p, self.core, self.tol, self.probe, self.cs.n
+        t_new = solver.t
         dense = solver.dense_output()
         y_new, changed = cs.project_active(t_new, solver.y, p, core, tol, probe)
         if changed:
             solver.y = y_new
-            solver.f = fun(t_new, y_new)
+            solver.f = self.fun(t_new, y_new)
         y_end = solver.y.copy()
 
-        def state(s: float, dense=dense, t_new=t_new, y_end=y_end) -> np.ndarray:
+        def state(s: float) -> np.ndarray:
             return cs.project_active(s, dense(s), p, core, tol, probe)[0] if s < t_new else y_end.copy()
 
-        def states(ts: np.ndarray, dense=dense, t_new=t_new, y_end=y_end) -> np.ndarray:
+        def states(ts: np.ndarray) -> np.ndarray:
             Y = np.array(dense(ts).T, dtype=float).reshape(len(ts), 2 * n)
             Y[ts >= t_new] = y_end
             return cs.project_active(ts, Y, p, core, tol)[0]
 
-        g_new = watch(t_new, y_end)
+        return state, states, y_end
+
+    def crossings(self, g_old: np.ndarray, g_new: np.ndarray, t_old: float, t_new: float,
+                  state: Callable[[float], np.ndarray]) -> list[tuple[float, int]]:
+        """Each event function that crosses zero in its direction during the step, located by Brent's method
+        on the projected dense output: (t, index), in time order."""
+        from scipy.optimize import brentq
+
         found = []
-        for k, d in enumerate(directions):
+        for k, d in enumerate(self.directions):
             a, b = g_old[k], g_new[k]
             crossed = (a < 0 <= b and d >= 0) or (a > 0 >= b and d <= 0)
             if not crossed or a == 0:
                 continue
-            te = brentq(lambda s, k=k: watch(s, state(s))[k], t_old, t_new, xtol=4e-16 * max(1.0, abs(t_new)),
+            te = brentq(lambda s, k=k: self.watch(s, state(s))[k], t_old, t_new, xtol=4e-16 * max(1.0, abs(t_new)),
                         rtol=4 * np.finfo(float).eps)
             found.append((te, k))
         found.sort()
-        stop = None
+        return found
+
+    def first_terminal(self, found: list[tuple[float, int]]) -> tuple[float, int] | None:
+        """The first crossing that ends the phase: a contact's, or a terminal user event."""
         for te, k in found:
-            if k < m + len(sticking) or opts.user[k - m - len(sticking)].terminal:
-                stop = (te, k)
-                break
-        t_stop = t_new if stop is None else stop[0]
-        for te, k in found:
-            if k >= m + len(sticking) and te <= t_stop:
-                users.append((opts.user[k - m - len(sticking)].name, te, state(te)))
-        out.fill(t_stop, states, phase)
-        g_old = g_new
-        if stop is not None:
-            te, k = stop
-            y_stop = state(te)
-            if k < m:
-                return PhaseEnd(te, y_stop, "liftoff" if closed[k] else "touchdown", k, users, steps, calls[0],
-                                solver.h_abs)
-            if k < m + len(sticking):
-                return PhaseEnd(te, y_stop, "slip", int(sticking[k - m]), users, steps, calls[0], solver.h_abs)
-            return PhaseEnd(te, y_stop, "event", -1, users, steps, calls[0], solver.h_abs)
-    return PhaseEnd(float(solver.t), solver.y.copy(), "end", -1, users, steps, calls[0], solver.h_abs)
+            if k < self.m + len(self.sticking) or self.opts.user[k - self.m - len(self.sticking)].terminal:
+                return te, k
+        return None
+
+    def user_events(self, found: list[tuple[float, int]], t_stop: float,
+                    state: Callable[[float], np.ndarray]) -> list[tuple[str, float, np.ndarray]]:
+        """The user events crossed up to ``t_stop``: (name, t, state)."""
+        first = self.m + len(self.sticking)
+        return [(self.opts.user[k - first].name, te, state(te)) for te, k in found if k >= first and te <= t_stop]
+
+    def end(self, stop: tuple[float, int], state: Callable[[float], np.ndarray],
+            users: list[tuple[str, float, np.ndarray]], steps: int, h_abs: float) -> PhaseEnd:
+        """The phase's end at the first terminal crossing: a lift-off or touchdown, a slip, or a user event."""
+        te, k = stop
+        y_stop = state(te)
+        m = self.m
+        if k < m:
+            return PhaseEnd(te, y_stop, "liftoff" if self.closed[k] else "touchdown", k, users, steps, self.calls,
+                            h_abs)
+        if k < m + len(self.sticking):
+            return PhaseEnd(te, y_stop, "slip", int(self.sticking[k - m]), users, steps, self.calls, h_abs)
+        return PhaseEnd(te, y_stop, "event", -1, users, steps, self.calls, h_abs)

@@ -5,6 +5,7 @@
 
 from ._course import CourseForm as CourseForm
 from ._course import course_form as course_form
+from ._equilibria_text import equilibria_text as equilibria_text
 from ..codegen import EXPORT_TARGETS as EXPORT_TARGETS
 from ..numerics._ensemble import register_backend as _register_backend
 from ._ensemble_jax import jax_runner as _jax_runner
@@ -15,6 +16,9 @@ from ._json import SCHEMA_ID as SCHEMA_ID
 from ._json import SCHEMA_VERSION as SCHEMA_VERSION
 from ._json import derive_document as derive_document
 from ._latex import render_latex as render_latex
+from ._linear_text import linear_text as linear_text
+from ._linear_text import modes_text as modes_text
+from ._linear_text import sweep_text as sweep_text
 from ._linearize_json import LINEARIZE_SCHEMA_ID as LINEARIZE_SCHEMA_ID
 from ._linearize_json import linearize_document as linearize_document
 from ._notation import Notation as Notation
@@ -26,6 +30,8 @@ from .report import report as report
 from ._sympy_form import SympyEquations as SympyEquations
 from ._sympy_form import sympy_equations as sympy_equations
 from ._text import render_text as render_text
+from ._top_text import simulation_check_text as simulation_check_text
+from ._top_text import top_analysis_text as top_analysis_text
 
 # Shared with the command line: the course's forms, the intermediates, what derive prints besides.
 from ._course import reference_label as reference_label
@@ -38,5 +44,6 @@ from ._text import supplement as supplement
 __all__ = ["CourseForm", "course_form", "EXPORT_TARGETS", "export", "SCHEMA_ID", "SCHEMA_VERSION", "derive_document", "render_latex",
            "LINEARIZE_SCHEMA_ID", "linearize_document",
            "Notation", "render_text", "Report", "ReportFigure", "report", "FORMATS", "format_for",
-           "SympyEquations", "sympy_equations",
+           "SympyEquations", "sympy_equations", "equilibria_text", "linear_text", "modes_text", "sweep_text",
+           "simulation_check_text", "top_analysis_text",
            "reference_label", "to_sympy", "needed_intermediates", "render_intermediates", "Supplement", "supplement"]

@@ -9,7 +9,7 @@ from __future__ import annotations
 import re
 
 from ._course import CourseForm
-from ._notation import _axis_latex
+from ._notation import Notation, _axis_latex
 from ._text import Supplement, as_declared, kind_words, notation, power_label
 
 __all__ = ["render_latex"]
@@ -111,54 +111,94 @@ def _balance_latex(n, extra: Supplement) -> list[str]:
 
 
 def render_latex(form: CourseForm, extra: Supplement | None = None) -> str:
-    """A standalone LaTeX document of the derivation; ``extra`` adds steps 1 and 7 and the energy balance."""
+    """A standalone LaTeX document of the derivation; ``extra`` adds steps 1 and 7 and the energy balance.
+
+    The sections, in the course's order, as in `render_text`: the statement (`_statement_latex`), the frames
+    and their angular velocities (`_frames_latex`), the virtual velocities, T and U (`_energies_latex`), the
+    generalized forces by virtual power (`_forces_latex`), the Lagrange equations (`_equations_latex`), the
+    first integrals (`_integrals_latex`) and the matrix form M q̈ = F (`_matrix_latex`).
+    """
     n = notation(form)
+    out = _statement_latex(n, form, extra)
+    if form.frames:
+        out += _frames_latex(n, form, extra)
+    if form.virtual_velocities:
+        out.append(r"\subsection*{Virtual velocity field}")
+        out.append(r"\begin{align*}")
+        out.append(r" \\".join(rf"\vec{{V}}^*({p}) &= {n.vector(row.terms, latex=True)}" for p, row in form.virtual_velocities))
+        out.append(r"\end{align*}")
+    out += _energies_latex(n, form)
+    out += _forces_latex(n, form)
+    out += _equations_latex(n, form, extra)
+    out += _integrals_latex(n, form)
+    if extra is not None and extra.balance is not None:
+        out += _balance_latex(n, extra)
+    out += _matrix_latex(n, form)
+    out.append(r"\end{document}")
+    return "\n".join(out) + "\n"
+
+
+def _coordinates_latex(n: Notation, form: CourseForm) -> list[str]:
+    return [n.symbol(c, latex=True) for c in form.coordinates]
+
+
+def _statement_latex(n: Notation, form: CourseForm, extra: Supplement | None) -> list[str]:
+    """The preamble, the title, the principal parameters, a non-Galilean reference and the constraints (step 1)."""
     ref = _frame(form.reference)
-    sym = lambda name: n.symbol(name, latex=True)  # noqa: E731
     out = [r"\documentclass[a4paper]{article}", r"\usepackage[utf8]{inputenc}", r"\usepackage{amsmath,amssymb}",
            r"\usepackage[margin=2cm]{geometry}", r"\allowdisplaybreaks", r"\begin{document}",
            rf"\section*{{{_escape(form.title)}}}"]
     if form.description:
         out.append(_escape(form.description) + r"\par")
-    q = [sym(c) for c in form.coordinates]
+    q = _coordinates_latex(n, form)
     out.append(rf"Principal parameters ($n = {len(q)}$, hence ${len(q)}$ Lagrange equations): $" + ", ".join(q) + "$.")
     if form.reference != "R0":
         out.append(rf"The equations are written relative to ${ref}$, which is not Galilean (Remarque 3): "
                    rf"$T(\Sigma/{ref})$, and the Coriolis and entrainment inertial forces among the loads.")
     if extra is not None and extra.constraints:
         out += _constraints_latex(n, extra)
-    if form.frames:
-        out.append(r"\subsection*{Frames and angular velocities}")
-        out.append(r"\begin{align*}")
-        rows = []
-        for f in form.frames:
-            axis = _axis_latex(f.axis) if f.axis_vector is None else n.vector(f.axis_vector.terms, latex=True)
-            note = r"\quad\text{(the axis given, divided by its norm)}" if f.normalized else ""
-            rows.append(rf"&{f.parent} \xrightarrow{{{n.latex(f.angle)},\ {axis}}} {f.name}"
-                        rf"({', '.join(_axis_latex(a) for a in f.axes)}){note}")
-        for f in form.frames:
-            if f.name == form.reference and extra is not None and extra.reference_omega is not None:
-                rows.append(rf"\vec{{\Omega}}({f.name}/R_0) &= {n.vector(extra.reference_omega.terms, latex=True)}"
-                            r" \quad\text{(prescribed)}")
-                continue
-            text = rf"\vec{{\Omega}}({f.name}/{ref}) &= {n.vector(f.omega_chain.terms, latex=True)}"
-            if f.omega_components is not None and n.vector(f.omega_components.terms, latex=True) != n.vector(f.omega_chain.terms, latex=True):
-                text += rf" \\ &= {n.vector(f.omega_components.terms, latex=True)}"
-            rows.append(text)
-        out.append(r" \\".join(rows))
-        out.append(r"\end{align*}")
-    if form.virtual_velocities:
-        out.append(r"\subsection*{Virtual velocity field}")
-        out.append(r"\begin{align*}")
-        out.append(r" \\".join(rf"\vec{{V}}^*({p}) &= {n.vector(row.terms, latex=True)}" for p, row in form.virtual_velocities))
-        out.append(r"\end{align*}")
-    out.append(r"\subsection*{Kinetic and potential energies}")
-    out.append(r"\begin{align*}")
+    return out
+
+
+def _frames_latex(n: Notation, form: CourseForm, extra: Supplement | None) -> list[str]:
+    """Each frame from its parent (angle, axis) and its angular velocity Ω(R_i/ref)."""
+    ref = _frame(form.reference)
+    out = [r"\subsection*{Frames and angular velocities}", r"\begin{align*}"]
+    rows = []
+    for f in form.frames:
+        axis = _axis_latex(f.axis) if f.axis_vector is None else n.vector(f.axis_vector.terms, latex=True)
+        note = r"\quad\text{(the axis given, divided by its norm)}" if f.normalized else ""
+        rows.append(rf"&{f.parent} \xrightarrow{{{n.latex(f.angle)},\ {axis}}} {f.name}"
+                    rf"({', '.join(_axis_latex(a) for a in f.axes)}){note}")
+    for f in form.frames:
+        if f.name == form.reference and extra is not None and extra.reference_omega is not None:
+            rows.append(rf"\vec{{\Omega}}({f.name}/R_0) &= {n.vector(extra.reference_omega.terms, latex=True)}"
+                        r" \quad\text{(prescribed)}")
+            continue
+        text = rf"\vec{{\Omega}}({f.name}/{ref}) &= {n.vector(f.omega_chain.terms, latex=True)}"
+        if f.omega_components is not None and n.vector(f.omega_components.terms, latex=True) != n.vector(f.omega_chain.terms, latex=True):
+            text += rf" \\ &= {n.vector(f.omega_components.terms, latex=True)}"
+        rows.append(text)
+    out.append(r" \\".join(rows))
+    out.append(r"\end{align*}")
+    return out
+
+
+def _energies_latex(n: Notation, form: CourseForm) -> list[str]:
+    """T(Σ/ref) body by body with the formula used (König, fixed point, particle), and U_P (+ cste)."""
+    ref = _frame(form.reference)
+    out = [r"\subsection*{Kinetic and potential energies}", r"\begin{align*}"]
     rows = [rf"T({row.name}/{ref}) &= {_FORMULA.get(row.formula, '')} = {n.latex(row.expression)}" for row in form.T]
     rows += [rf"U_P(\text{{{_escape(row.name)}}}) &= {n.latex(row.expression)} + \text{{cste}}" for row in form.U]
     out.append(r" \\".join(rows))
     out.append(r"\end{align*}")
-    out.append(r"\subsection*{Generalized forces (virtual power)}")
+    return out
+
+
+def _forces_latex(n: Notation, form: CourseForm) -> list[str]:
+    """Each load's Q_i by virtual power, conservative or not."""
+    q = _coordinates_latex(n, form)
+    out = [r"\subsection*{Generalized forces (virtual power)}"]
     if form.loads:
         out.append(r"\begin{align*}")
         rows = []
@@ -168,11 +208,16 @@ def render_latex(form: CourseForm, extra: Supplement | None = None) -> str:
             rows.append(rf"&\text{{{_escape(load.name)} ({_escape(kind_words(load.kind))}, {tag})}}: & {comps}")
         out.append(r" \\".join(rows))
         out.append(r"\end{align*}")
-    out.append(r"\subsection*{Lagrange equations}")
-    out.append(r"\begin{align*}")
+    return out
+
+
+def _equations_latex(n: Notation, form: CourseForm, extra: Supplement | None) -> list[str]:
+    """L(q_i) with its pieces ∂T/∂q̇_i, ∂T/∂q_i, ∂U_P/∂q_i, Q_i, a cyclic coordinate's first integral,
+    L = T − U_P when conservative, and the multipliers (step 7)."""
+    out = [r"\subsection*{Lagrange equations}", r"\begin{align*}"]
     rows = []
     for eq in form.equations:
-        qn, qd = sym(eq.coordinate), sym(eq.coordinate + "_dot")
+        qn, qd = n.symbol(eq.coordinate, latex=True), n.symbol(eq.coordinate + "_dot", latex=True)
         rows.append(rf"L({qn}):\quad & \frac{{\partial T}}{{\partial {qd}}} = {n.latex(eq.dT_dqd)};\quad "
                     rf"\frac{{\partial T}}{{\partial {qn}}} = {n.latex(eq.dT_dq)};\quad "
                     rf"\frac{{\partial U_P}}{{\partial {qn}}} = {n.latex(eq.dU_dq)};\quad Q_{{{qn}}} = {n.latex(eq.Q_nc)}")
@@ -193,17 +238,24 @@ def render_latex(form: CourseForm, extra: Supplement | None = None) -> str:
                    r"\frac{\partial L}{\partial q_i} = " + (r"\sum_k \lambda_k a_{k,i}" if constrained else "0") + "$.")
     if extra is not None and extra.multipliers:
         out += _step7_latex(n, form, extra)
-    out.append(r"\subsection*{First integrals}")
+    return out
+
+
+def _integrals_latex(n: Notation, form: CourseForm) -> list[str]:
+    out = [r"\subsection*{First integrals}"]
     if form.integrals:
         out.append(r"\begin{align*}")
         out.append(r" \\".join(rf"{n.sum(i.parts, latex=True)} &= {n.symbol(i.name, latex=True)}" for i in form.integrals))
         out.append(r"\end{align*}")
     else:
         out.append("None found.")
-    if extra is not None and extra.balance is not None:
-        out += _balance_latex(n, extra)
-    out.append(r"\subsection*{Matrix form $M(q,t)\,\ddot q = F(q,\dot q,t)$}")
-    out.append(r"\begin{align*}")
+    return out
+
+
+def _matrix_latex(n: Notation, form: CourseForm) -> list[str]:
+    """M's nonzero entries on and above the diagonal (M is symmetric), then F."""
+    q = _coordinates_latex(n, form)
+    out = [r"\subsection*{Matrix form $M(q,t)\,\ddot q = F(q,\dot q,t)$}", r"\begin{align*}"]
     rows = []
     for a, row in enumerate(form.M):
         for b, entry in enumerate(row):
@@ -212,5 +264,4 @@ def render_latex(form: CourseForm, extra: Supplement | None = None) -> str:
     rows += [rf"F_{{{q[a]}}} &= {n.latex(f)}" for a, f in enumerate(form.F)]
     out.append(r" \\".join(rows))
     out.append(r"\end{align*}")
-    out.append(r"\end{document}")
-    return "\n".join(out) + "\n"
+    return out

@@ -11,6 +11,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 import re
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import sympy
@@ -26,7 +27,7 @@ from ._course import CourseForm, VectorRow, _vector_row, to_sympy
 from ._display_form import display_form
 from ._notation import Notation
 
-__all__ = ["render_text", "Supplement", "supplement", "kind_words", "power_label", "notation", "greek"]
+__all__ = ["Supplement", "greek", "kind_words", "literal", "notation", "power_label", "render_text", "supplement"]
 
 _FORMULA = {
     "fixed point": "½ Ω·Π_{P}·Ω",
@@ -220,8 +221,14 @@ def as_declared(n: Notation) -> Notation:
 def greek(n: Notation, form: CourseForm, sentence: str) -> str:
     """Write the coordinate names of a sentence in the course's letters (psi → ψ)."""
     for name in form.coordinates:
-        sentence = re.sub(rf"(?<![A-Za-z0-9]){re.escape(name)}(?![A-Za-z0-9])", lambda _: n.symbol(name), sentence)
+        sentence = re.sub(rf"(?<![A-Za-z0-9]){re.escape(name)}(?![A-Za-z0-9])", literal(n.symbol(name)), sentence)
     return sentence
+
+
+def literal(text: str) -> Callable[[re.Match[str]], str]:
+    """A replacement for `re.sub` that is ``text`` as it is: a model's names may hold a backslash, which a
+    template would read as an escape."""
+    return lambda _: text
 
 
 def _statement(n: Notation, line: ConstraintLine) -> str:
@@ -248,8 +255,8 @@ def _kind(n: Notation, line: ConstraintLine) -> str:
 
 
 def _constraints_text(n: Notation, extra: Supplement) -> list[str]:
-    lines = ["", "Constraints (step 1: principal ones are satisfied by the choice of the q_i; complementary ones "
-             "keep a multiplier λ_k):"]
+    lines = ["", ("Constraints (step 1: principal ones are satisfied by the choice of the q_i; complementary ones "
+                  "keep a multiplier λ_k):")]
     for c in extra.constraints:
         head = f"  {c.name} ({c.role}, {c.form.replace('_', ' ')}{_kind(n, c)}): {_statement(n, c)}"
         if c.role == "complementary":
@@ -260,8 +267,8 @@ def _constraints_text(n: Notation, extra: Supplement) -> list[str]:
 
 def _step7_text(n: Notation, form: CourseForm, extra: Supplement) -> list[str]:
     q = [n.symbol(c) for c in form.coordinates]
-    lines = ["", "Complementary equations (step 7), multipliers and reactions (λ_k multiplies +A_ki; a reaction "
-             "is what the constraint exerts on the body):"]
+    lines = ["", ("Complementary equations (step 7), multipliers and reactions (λ_k multiplies +A_ki; a reaction "
+                  "is what the constraint exerts on the body):")]
     for c in extra.constraints:
         for row, _, equation in c.rows:
             when = "" if not c.contact else (", while the contact is closed" if row == c.name
@@ -321,13 +328,45 @@ def _multipliers_readable(text: str, extra: Supplement | None) -> str:
     for name, _ in extra.multipliers:
         readable = "λ_" + name.removeprefix("lambda_")
         # A function, not a template: the name is the model's text, and `\y` in it is not an escape.
-        text = re.sub(rf"(?<![A-Za-z0-9_]){re.escape(name)}(?![A-Za-z0-9_])", lambda _: readable, text)
+        text = re.sub(rf"(?<![A-Za-z0-9_]){re.escape(name)}(?![A-Za-z0-9_])", literal(readable), text)
     return text
 
 
 def render_text(form: CourseForm, extra: Supplement | None = None) -> str:
-    """The derivation as plain Unicode text (ψ̇, θ̈, sin²θ...); ``extra`` adds steps 1 and 7 and the energy balance."""
+    """The derivation as plain Unicode text (ψ̇, θ̈, sin²θ...); ``extra`` adds steps 1 and 7 and the energy balance.
+
+    The sections, in the course's order: the statement (`_statement_text`), the frames and their angular
+    velocities (`_frames_text`), the virtual velocities, T and U (`_energies_text`), the generalized forces
+    by virtual power (`_forces_text`), the Lagrange equations (`_equations_text`), the first integrals and
+    the matrix form M q̈ = F (`_matrix_text`).
+    """
     n = notation(form)
+    lines = _statement_text(n, form, extra)
+    if form.frames:
+        lines += _frames_text(n, form, extra)
+    if form.virtual_velocities:
+        lines.append("")
+        lines.append("Virtual velocity field compatible with the principal constraints, V*(P) = Σ ∂OP/∂q_i q_i*:")
+        for point, row in form.virtual_velocities:
+            lines.append(f"  V*({point}) = {n.vector(row.terms)}")
+    lines += _energies_text(n, form)
+    lines += _forces_text(n, form, extra)
+    lines += _equations_text(n, form, extra)
+    lines.append("")
+    lines.append("First integrals:")
+    if not form.integrals:
+        lines.append("  none found")
+    for i in form.integrals:
+        lines.append(f"  {n.sum(i.parts)} = {i.name}    ({greek(n, form, i.reason)})")
+    if extra is not None and extra.balance is not None:
+        lines += _balance_text(n, extra)
+    lines += _matrix_text(n, form)
+    return _multipliers_readable("\n".join(lines) + "\n", extra)
+
+
+def _statement_text(n: Notation, form: CourseForm, extra: Supplement | None) -> list[str]:
+    """The title, the principal parameters (n coordinates, n Lagrange equations), a non-Galilean reference,
+    the complementary constraints and the assumptions declared (step 1)."""
     q = [n.symbol(c) for c in form.coordinates]
     ref = form.reference
     lines = [form.title]
@@ -346,30 +385,36 @@ def render_text(form: CourseForm, extra: Supplement | None = None) -> str:
         lines.append("Declared assumptions: " + ", ".join(extra.declared))
         for expr, relation, reason in extra.used:
             lines.append(f"  used to simplify: {n.text(expr)} {relation} 0    ({reason})")
-    if form.frames:
-        lines.append("")
-        relative = f" relative to {ref}:" if ref != "R0" else ":"
-        lines.append("Frames (R0 is Galilean) and angular velocities" + relative)
-        for f in form.frames:
-            axis = f.axis if f.axis_vector is None else n.vector(f.axis_vector.terms)
-            note = "    (the axis given, divided by its norm)" if f.normalized else ""
-            lines.append(f"  {f.parent} --({n.text(f.angle)}, {axis})--> {f.name}({', '.join(f.axes)}){note}")
-        for f in form.frames:
-            if f.name == ref and extra is not None and extra.reference_omega is not None:
-                lines.append(f"  Ω({f.name}/R0) = {n.vector(extra.reference_omega.terms)}    (prescribed)")
-                continue
-            text = f"  Ω({f.name}/{ref}) = {n.vector(f.omega_chain.terms)}"
-            if f.omega_components is not None:
-                alt = n.vector(f.omega_components.terms)
-                if alt != n.vector(f.omega_chain.terms):
-                    text += f" = {alt}"
-            lines.append(text)
-    if form.virtual_velocities:
-        lines.append("")
-        lines.append("Virtual velocity field compatible with the principal constraints, V*(P) = Σ ∂OP/∂q_i q_i*:")
-        for point, row in form.virtual_velocities:
-            lines.append(f"  V*({point}) = {n.vector(row.terms)}")
-    lines.append("")
+    return lines
+
+
+def _frames_text(n: Notation, form: CourseForm, extra: Supplement | None) -> list[str]:
+    """Each frame from its parent (angle, axis) and its angular velocity Ω(R_i/ref) = Ω(R_i/R_p) + Ω(R_p/ref)."""
+    ref = form.reference
+    lines = [""]
+    relative = f" relative to {ref}:" if ref != "R0" else ":"
+    lines.append("Frames (R0 is Galilean) and angular velocities" + relative)
+    for f in form.frames:
+        axis = f.axis if f.axis_vector is None else n.vector(f.axis_vector.terms)
+        note = "    (the axis given, divided by its norm)" if f.normalized else ""
+        lines.append(f"  {f.parent} --({n.text(f.angle)}, {axis})--> {f.name}({', '.join(f.axes)}){note}")
+    for f in form.frames:
+        if f.name == ref and extra is not None and extra.reference_omega is not None:
+            lines.append(f"  Ω({f.name}/R0) = {n.vector(extra.reference_omega.terms)}    (prescribed)")
+            continue
+        text = f"  Ω({f.name}/{ref}) = {n.vector(f.omega_chain.terms)}"
+        if f.omega_components is not None:
+            alt = n.vector(f.omega_components.terms)
+            if alt != n.vector(f.omega_chain.terms):
+                text += f" = {alt}"
+        lines.append(text)
+    return lines
+
+
+def _energies_text(n: Notation, form: CourseForm) -> list[str]:
+    """T(Σ/ref) body by body with the formula used, and U_P (+ cste) load by load."""
+    ref = form.reference
+    lines = [""]
     lines.append(f"Kinetic energy T(Σ/{ref}):")
     for energy in form.T:
         lines.append(f"  T({energy.name}/{ref}) = {n.text(energy.expression)}    [{energy.formula}]")
@@ -379,7 +424,13 @@ def render_text(form: CourseForm, extra: Supplement | None = None) -> str:
             lines.append(f"  {energy.name}: {n.text(energy.expression)}")
     else:
         lines.append("  none: no given effort derives from a potential")
-    lines.append("")
+    return lines
+
+
+def _forces_text(n: Notation, form: CourseForm, extra: Supplement | None) -> list[str]:
+    """Each load's Q_i by virtual power, conservative (Q_i = −∂U/∂q_i) or not."""
+    q = [n.symbol(c) for c in form.coordinates]
+    lines = [""]
     lines.append("Generalized forces, by virtual power:")
     for load in form.loads:
         tag = "conservative, Q_i = −∂U/∂q_i" if load.conservative else "non-conservative"
@@ -389,7 +440,13 @@ def render_text(form: CourseForm, extra: Supplement | None = None) -> str:
             lines.append(f"      {greek(n, form, load.note)}")
     if not form.loads:
         lines.append("  none")
-    lines.append("")
+    return lines
+
+
+def _equations_text(n: Notation, form: CourseForm, extra: Supplement | None) -> list[str]:
+    """L(q_i): d/dt(∂T/∂q̇_i) − ∂T/∂q_i = −∂U/∂q_i + Q_i(nc) (+ Σ_k λ_k A_ki) with its pieces, a cyclic
+    coordinate's first integral, L = T − U_P when conservative, and the multipliers (step 7)."""
+    lines = [""]
     lines.append("Lagrange equations  d/dt(∂T/∂q̇_i) − ∂T/∂q_i = −∂U/∂q_i + Q_i(nc)"
                  + (" + Σ_k λ_k A_ki:" if extra is not None and extra.multipliers else ":"))
     for eq in form.equations:
@@ -411,20 +468,17 @@ def render_text(form: CourseForm, extra: Supplement | None = None) -> str:
                          "d/dt(∂L/∂q̇_i) − ∂L/∂q_i = Σ_k λ_k a_k,i")
     if extra is not None and extra.multipliers:
         lines += _step7_text(n, form, extra)
-    lines.append("")
-    lines.append("First integrals:")
-    if not form.integrals:
-        lines.append("  none found")
-    for i in form.integrals:
-        lines.append(f"  {n.sum(i.parts)} = {i.name}    ({greek(n, form, i.reason)})")
-    if extra is not None and extra.balance is not None:
-        lines += _balance_text(n, extra)
-    lines.append("")
-    lines.append("Matrix form M(q, t) q̈ = F(q, q̇, t):")
-    for a, m_row in enumerate(form.M):
-        for b, entry in enumerate(m_row):
+    return lines
+
+
+def _matrix_text(n: Notation, form: CourseForm) -> list[str]:
+    """M(q, t) q̈ = F(q, q̇, t): M's nonzero entries on and above the diagonal (M is symmetric), then F."""
+    q = [n.symbol(c) for c in form.coordinates]
+    lines = ["", "Matrix form M(q, t) q̈ = F(q, q̇, t):"]
+    for a, row in enumerate(form.M):
+        for b, entry in enumerate(row):
             if b >= a and entry != 0:
                 lines.append(f"  M[{q[a]},{q[b]}] = {n.text(entry)}")
     for a, f in enumerate(form.F):
         lines.append(f"  F[{q[a]}] = {n.text(f)}")
-    return _multipliers_readable("\n".join(lines) + "\n", extra)
+    return lines

@@ -24,7 +24,7 @@ from ._decorations import arcs, arrows, fixed_tracks, framing, links, triads, up
 from ._evaluate import Evaluator, quaternions
 from ._infer import PALETTE, attached_points, body_solid, inferred_parts, model_point
 from ._mesh import Mesh, read_mesh
-from ._scene import Carrier, Part, Run, Scene, Track
+from ._scene import Carrier, Link, Part, Run, Scene, Track
 
 __all__ = ["MAX_FRAMES", "Motion", "build_scene"]
 
@@ -164,10 +164,36 @@ def build_scene(model: Model, motions: Sequence[Motion], values: Mapping[str, fl
     (default: the particles and the tips of the bodies that turn about a point); ``vectors`` names the
     arrows shown at first (``"V(P)"`` a velocity, ``"R_O"`` a reaction column of the run, a force's load
     name); every one available can be switched on in the viewer.
+
+    The steps: the tracked points (`_add_tracks`), the parts drawn on each carrier (`_add_parts`), the
+    links, triads and arcs between them, the points traced (`_traced`), the arrows, the framing, and the
+    runs placed (`_runs`).
     """
     b = _Builder(model, values, motions, max_frames)
-    ev = b.ev
-    # Tracks: every declared point, each body's G, each particle.
+    _add_tracks(b, model)
+    attached_to = attached_points(model, b.ev)
+    anchors = {body.name: _anchor(model, body, attached_to) for body in model.bodies}
+    length = _add_parts(b, model, attached_to, anchors)
+    found_links = links(b, length)
+    found_triads = triads(b, anchors, attached_to, length)
+    b.evaluate()
+    fixed = fixed_tracks(b, found_links, anchors)
+    b.tracks = [Track(tr.name, tr.label, tr.kind, k in fixed) for k, tr in enumerate(b.tracks)]
+    up = up_direction(b)
+    found_arcs = arcs(b, found_triads, length)
+    traced = _traced(b, model, traces, found_links, anchors, attached_to)
+    found_arrows = arrows(b, vectors, length, traced)
+    centre, radius, direction = framing(b, up, length)
+    runs, centre, radius = _runs(b, up, direction, centre, radius)
+    axis_names = tuple(model.frame(GALILEAN_FRAME).axes)
+    return Scene(title or model.name, b.t.copy(), tuple(b.carriers), tuple(b.parts), tuple(b.tracks), tuple(runs),
+                 tuple(found_links), tuple(found_triads), tuple(found_arcs), tuple(found_arrows), tuple(traced), up,
+                 axis_names,  # type: ignore[arg-type]
+                 length, centre, radius, tuple(float(x) for x in direction), lang, tuple(b.notes))  # type: ignore[arg-type]
+
+
+def _add_tracks(b: _Builder, model: Model) -> None:
+    """Tracks: every declared point, each body's G, each particle."""
     for p in model.points:
         b.track(p.name, p.name, "point", p.position)
     centre_labels = _centre_labels(model)
@@ -175,14 +201,17 @@ def build_scene(model: Model, motions: Sequence[Motion], values: Mapping[str, fl
         b.track(body.name, centre_labels[body.name], "centre", body.center)
     for particle in model.particles:
         b.track(particle.name, particle.name, "particle", particle.position)
+
+
+def _add_parts(b: _Builder, model: Model, attached_to: dict[str, dict[str, np.ndarray]],
+               anchors: Mapping[str, str]) -> float:
+    """The parts drawn: each body a carrier at G turning with its frame, with its declared shapes or
+    the solid inferred from its points (and the track of its tip); each particle a sphere or its
+    shapes; the shapes declared on frames.  Returns the scene's length scale."""
     declared: dict[str, list[Shape]] = {}
     for shape in model.shapes:
         declared.setdefault(shape.on, []).append(shape)
-    # Bodies: a carrier at G turning with the body's frame; their shapes; their tips.
-    anchors: dict[str, str] = {}
     meshes: dict[str, Mesh] = {}
-    attached_to = attached_points(model, ev)
-    anchors = {body.name: _anchor(model, body, attached_to) for body in model.bodies}
     solids = {body.name: body_solid(b, body, attached_to[body.name], anchors[body.name]) for body in model.bodies
               if body.name not in declared}
     length = b.L = max([b.length()] + [max(s.size) for s in solids.values() if s is not None])
@@ -216,16 +245,15 @@ def build_scene(model: Model, motions: Sequence[Motion], values: Mapping[str, fl
         for shape in shapes:
             k = b.carrier(owner, owner, "ground" if owner == GALILEAN_FRAME else "frame", owner, shape.center)
             b.parts.append(_declared_part(b, shape, k, shape.center, owner, "#9a9a9a", meshes))
-    found_links = links(b, length)
-    found_triads = triads(b, anchors, attached_to, length)
-    b.evaluate()
-    fixed = fixed_tracks(b, found_links, anchors)
-    b.tracks = [Track(tr.name, tr.label, tr.kind, k in fixed) for k, tr in enumerate(b.tracks)]
-    up = up_direction(b)
-    found_arcs = arcs(b, found_triads, length)
+    return length
+
+
+def _traced(b: _Builder, model: Model, traces: Sequence[str] | None, found_links: Sequence[Link],
+            anchors: Mapping[str, str], attached_to: dict[str, dict[str, np.ndarray]]) -> list[int]:
+    """The tracks whose paths are drawn: those named, else the free ends (the particles no rod hangs from
+    and the bodies nothing hangs from: the second rod of a double pendulum, the top, a chain's last
+    link: their tip, else their G), at most `DEFAULT_TRACES`."""
     if traces is None:
-        # The free ends: the particles no rod hangs from and the bodies nothing hangs from (the second rod
-        # of a double pendulum, the top, a chain's last link: their tip, else their G), at most DEFAULT_TRACES.
         pivots = {link.a for link in found_links if link.kind == "rod"}
         index = {tr.name: k for k, tr in enumerate(b.tracks)}
         traced = [index[p.name] for p in model.particles if index[p.name] not in pivots]
@@ -233,35 +261,34 @@ def build_scene(model: Model, motions: Sequence[Motion], values: Mapping[str, fl
             others = {anchors[o.name] for o in model.bodies if o.name != body.name}
             if not set(attached_to[body.name]) & others:
                 traced.append(index.get(f"tip:{body.name}", index[body.name]))
-        traced = traced[-DEFAULT_TRACES:]
-    else:
-        names = {tr.name: k for k, tr in enumerate(b.tracks)}
-        unknown = [n for n in traces if n not in names]
-        if unknown:
-            raise OutputError(f"There is no point `{unknown[0]}` to trace.",
-                              fix="trace a declared point, a body (its centre G), a particle or tip:BODY; points: "
-                                  + ", ".join(sorted(names)))
-        traced = [names[n] for n in traces]
-    found_arrows = arrows(b, vectors, length, traced)
-    centre, radius, direction = framing(b, up, length)
+        return traced[-DEFAULT_TRACES:]
+    names = {tr.name: k for k, tr in enumerate(b.tracks)}
+    unknown = [n for n in traces if n not in names]
+    if unknown:
+        raise OutputError(f"There is no point `{unknown[0]}` to trace.",
+                          fix="trace a declared point, a body (its centre G), a particle or tip:BODY; points: "
+                              + ", ".join(sorted(names)))
+    return [names[n] for n in traces]
+
+
+def _runs(b: _Builder, up: tuple[float, float, float], direction: np.ndarray, centre: tuple[float, float, float],
+          radius: float) -> tuple[list[Run], tuple[float, float, float], float]:
+    """Each motion as a run of poses and points; a run drawn ``beside`` the main one is offset across the
+    view by 2.2 radii, and the framing (centre, radius) widened to hold both."""
     runs = []
     offset_axis = np.cross(up, direction)
     offset_axis /= max(np.linalg.norm(offset_axis), 1e-12)
     for motion, poses, points in zip(b.motions, b.poses, b.points):
         offset = (0.0, 0.0, 0.0)
         if motion.beside:
-            shift = offset_axis * 2.2 * radius
-            offset = (float(shift[0]), float(shift[1]), float(shift[2]))
+            x, y, z = offset_axis * 2.2 * radius
+            offset = (float(x), float(y), float(z))
         runs.append(Run(motion.label, poses.astype(np.float32), points.astype(np.float32), offset, motion.ghost))
     if any(m.beside for m in b.motions):
-        moved = np.asarray(centre) + offset_axis * 1.1 * radius
-        centre = (float(moved[0]), float(moved[1]), float(moved[2]))
+        cx, cy, cz = (float(c + x * 1.1 * radius) for c, x in zip(centre, offset_axis))
+        centre = (cx, cy, cz)
         radius *= 2.2
-    axis_names = tuple(model.frame(GALILEAN_FRAME).axes)
-    return Scene(title or model.name, b.t.copy(), tuple(b.carriers), tuple(b.parts), tuple(b.tracks), tuple(runs),
-                 tuple(found_links), tuple(found_triads), tuple(found_arcs), tuple(found_arrows), tuple(traced), up,
-                 axis_names,  # type: ignore[arg-type]
-                 length, centre, radius, tuple(float(x) for x in direction), lang, tuple(b.notes))  # type: ignore[arg-type]
+    return runs, centre, radius
 
 
 def _centre_labels(model: Model) -> dict[str, str]:

@@ -20,11 +20,15 @@ import re
 import struct
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import ModelError
 from ..model import Location
+
+if TYPE_CHECKING:
+    from xml.etree.ElementTree import Element
 
 __all__ = ["MAX_TRIANGLES", "Mesh", "read_mesh"]
 
@@ -178,46 +182,67 @@ def _obj(data: bytes) -> Mesh:
 
 # -- COLLADA -----------------------------------------------------------------------------------------------------
 def _dae(data: bytes) -> Mesh:
-    root = _xml(data)
-    ns = root.tag[:root.tag.index("}") + 1] if root.tag.startswith("{") else ""
-    if root.tag != ns + "COLLADA":
-        raise _Bad(f"its root element is <{root.tag.removeprefix(ns)}>, not <COLLADA>")
+    """A COLLADA file's triangles, as its visual scene places them (else every geometry as it is), in metres
+    with z up, coloured by their materials (`_Collada`)."""
+    reader = _Collada(_xml(data))
+    scale = np.diag([reader.meters, reader.meters, reader.meters, 1.0])
+    scenes = reader.findall(reader.root, "library_visual_scenes/visual_scene")
+    if scenes:
+        for node in scenes[0]:
+            if node.tag == reader.ns + "node":
+                reader.walk(node, reader.upright @ scale, 0)
+    else:  # no scene: every geometry as it is
+        for geometry in reader.findall(reader.root, "library_geometries/geometry"):
+            reader.add_geometry(geometry, reader.upright @ scale, {})
+    return reader.mesh()
 
-    def find(node, path: str):
-        return node.find("/".join(ns + p for p in path.split("/")))
 
-    def findall(node, path: str):
-        return node.findall("/".join(ns + p for p in path.split("/")))
+class _Collada:
+    """The steps of reading a COLLADA document: its units and up axis (`__init__`), each node's transform
+    (`local_transform`), the scene walked node by node (`walk`), each geometry's primitives placed
+    (`add_geometry`), and the pieces joined into one mesh (`mesh`)."""
 
-    by_id = {e.get("id"): e for e in root.iter() if e.get("id")}
-    unit = find(root, "asset/unit")
-    meters = _float(unit.get("meter", "1"), None) if unit is not None else 1.0
-    up = find(root, "asset/up_axis")
-    upright = np.eye(4)
-    if up is not None and (up.text or "").strip() == "Y_UP":  # y up → z up: (x, y, z) ↦ (x, −z, y)
-        upright[:3, :3] = [[1, 0, 0], [0, 0, -1], [0, 1, 0]]
-    elif up is not None and (up.text or "").strip() == "X_UP":
-        upright[:3, :3] = [[0, -1, 0], [1, 0, 0], [0, 0, 1]]
-    colours = _material_colours(root, by_id, find, findall)
-    pieces: list[tuple[np.ndarray, np.ndarray, str | None]] = []
+    def __init__(self, root: Element) -> None:
+        self.root = root
+        self.ns = root.tag[:root.tag.index("}") + 1] if root.tag.startswith("{") else ""
+        if root.tag != self.ns + "COLLADA":
+            raise _Bad(f"its root element is <{root.tag.removeprefix(self.ns)}>, not <COLLADA>")
+        self.by_id = {e.get("id"): e for e in root.iter() if e.get("id")}
+        unit = self.find(root, "asset/unit")
+        self.meters = _float(unit.get("meter", "1"), None) if unit is not None else 1.0
+        up = self.find(root, "asset/up_axis")
+        self.upright = np.eye(4)
+        if up is not None and (up.text or "").strip() == "Y_UP":  # y up → z up: (x, y, z) ↦ (x, −z, y)
+            self.upright[:3, :3] = [[1, 0, 0], [0, 0, -1], [0, 1, 0]]
+        elif up is not None and (up.text or "").strip() == "X_UP":
+            self.upright[:3, :3] = [[0, -1, 0], [1, 0, 0], [0, 0, 1]]
+        self.colours = _material_colours(root, self.by_id, self.find, self.findall)
+        self.pieces: list[tuple[np.ndarray, np.ndarray, str | None]] = []
 
-    def add_geometry(geometry, transform: np.ndarray, bindings: dict[str, str]) -> None:
-        mesh = find(geometry, "mesh")
+    def find(self, node: Element, path: str) -> Element | None:
+        return node.find("/".join(self.ns + p for p in path.split("/")))
+
+    def findall(self, node: Element, path: str) -> list[Element]:
+        return node.findall("/".join(self.ns + p for p in path.split("/")))
+
+    def add_geometry(self, geometry: Element, transform: np.ndarray, bindings: dict[str, str]) -> None:
+        """Each triangles, polylist or polygons primitive of the geometry, moved by ``transform``, with the
+        colour of the material its symbol is bound to."""
+        mesh = self.find(geometry, "mesh")
         if mesh is None:
             return
         for tag in ("triangles", "polylist", "polygons"):
-            for prim in findall(mesh, tag):
-                points, tris = _primitive(prim, tag, mesh, by_id, ns)
+            for prim in self.findall(mesh, tag):
+                points, tris = _primitive(prim, tag, mesh, self.by_id, self.ns)
                 moved = points @ transform[:3, :3].T + transform[:3, 3]
-                colour = colours.get(bindings.get(prim.get("material", ""), prim.get("material", "")))
-                pieces.append((moved, tris, colour))
+                colour = self.colours.get(bindings.get(prim.get("material", ""), prim.get("material", "")))
+                self.pieces.append((moved, tris, colour))
 
-    def walk(node, transform: np.ndarray, depth: int) -> None:
-        if depth > 64:
-            raise _Bad("the scene's nodes are nested more than 64 deep")
+    def local_transform(self, node: Element) -> np.ndarray:
+        """The node's transform: its <matrix>, <translate>, <rotate> (axis, degrees) and <scale> in order."""
         local = np.eye(4)
         for child in node:
-            tag = child.tag.removeprefix(ns)
+            tag = child.tag.removeprefix(self.ns)
             if tag == "matrix":
                 m = np.array([_float(w, None) for w in (child.text or "").split()])
                 if m.size != 16:
@@ -242,42 +267,42 @@ def _dae(data: bytes) -> Mesh:
             elif tag == "scale":
                 v = [_float(w, None) for w in (child.text or "").split()]
                 local = local @ np.diag((v + [1, 1, 1])[:3] + [1])
-        here = transform @ local
+        return local
+
+    def walk(self, node: Element, transform: np.ndarray, depth: int) -> None:
+        """A scene node and its children (instances of geometries and nodes), at most 64 deep."""
+        if depth > 64:
+            raise _Bad("the scene's nodes are nested more than 64 deep")
+        here = transform @ self.local_transform(node)
+        ns = self.ns
         for child in node:
             tag = child.tag.removeprefix(ns)
             if tag == "instance_geometry":
-                geometry = by_id.get((child.get("url") or "").lstrip("#"))
+                geometry = self.by_id.get((child.get("url") or "").lstrip("#"))
                 if geometry is None:
                     raise _Bad(f"<instance_geometry> refers to `{child.get('url')}`, which the file does not have")
                 bindings = {m.get("symbol", ""): (m.get("target") or "").lstrip("#")
                             for m in child.iter(ns + "instance_material")}
-                add_geometry(geometry, here, bindings)
+                self.add_geometry(geometry, here, bindings)
             elif tag == "node":
-                walk(child, here, depth + 1)
+                self.walk(child, here, depth + 1)
             elif tag == "instance_node":
-                target = by_id.get((child.get("url") or "").lstrip("#"))
+                target = self.by_id.get((child.get("url") or "").lstrip("#"))
                 if target is not None and depth < 64:
-                    walk(target, here, depth + 1)
+                    self.walk(target, here, depth + 1)
 
-    scale = np.diag([meters, meters, meters, 1.0])
-    scenes = findall(root, "library_visual_scenes/visual_scene")
-    if scenes:
-        for node in scenes[0]:
-            if node.tag == ns + "node":
-                walk(node, upright @ scale, 0)
-    else:  # no scene: every geometry as it is
-        for geometry in findall(root, "library_geometries/geometry"):
-            add_geometry(geometry, upright @ scale, {})
-    if not pieces:
-        raise _Bad("it has no triangles, polylist or polygons in a geometry")
-    vertices, triangles, groups, offset, first = [], [], [], 0, 0
-    for points, tris, colour in pieces:
-        vertices.append(points)
-        triangles.append(tris + offset)
-        groups.append((first, len(tris), colour))
-        offset += len(points)
-        first += len(tris)
-    return _finish(np.concatenate(vertices), np.concatenate(triangles), tuple(groups))
+    def mesh(self) -> Mesh:
+        """The pieces as one mesh, a group (first triangle, count, colour) per piece."""
+        if not self.pieces:
+            raise _Bad("it has no triangles, polylist or polygons in a geometry")
+        vertices, triangles, groups, offset, first = [], [], [], 0, 0
+        for points, tris, colour in self.pieces:
+            vertices.append(points)
+            triangles.append(tris + offset)
+            groups.append((first, len(tris), colour))
+            offset += len(points)
+            first += len(tris)
+        return _finish(np.concatenate(vertices), np.concatenate(triangles), tuple(groups))
 
 
 def _xml(data: bytes):

@@ -1,22 +1,25 @@
 """Small motions as terminal text, in the course's notation: M, D, G, K, N, A, B, eigenvalues, ω, T, ζ, verdict.
 
-What ``lagrangian linearize`` and ``lagrangian modes`` print.  The numbers come from the
-linearization (`lagrangian.analysis.linearize`), its modes and its stability; this module
-only writes them.
+What ``lagrangian linearize`` and ``lagrangian modes`` print, for library users too: `linear_text`,
+`modes_text` and `sweep_text`.  The numbers come from the linearization
+(`lagrangian.analysis.linearize`), its modes and its stability; this module only writes them.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 import symengine as se
 
-from ..output import Notation
+from ._notation import Notation
 
-__all__ = ["eigenvalue", "number", "render_linearization", "render_modes", "render_sweep"]
+if TYPE_CHECKING:
+    from ..analysis import LinearModel, Modes, Stability, Sweep
+
+__all__ = ["eigenvalue", "linear_text", "modes_text", "number", "sweep_text"]
 
 #: Entries of a printed matrix wider than this are listed one per line instead.
 CELL_MAX = 40
@@ -42,7 +45,7 @@ def eigenvalue(z: complex, *, pair: bool = False) -> str:
     return f"{number(re_)} {sign} {number(abs(im))} i"
 
 
-def _notation(lin: Any) -> Notation:
+def _notation(lin: LinearModel) -> Notation:
     model = lin.eom.model
     return Notation([c.name for c in model.coordinates], [p.name for p in model.parameters])
 
@@ -78,7 +81,7 @@ def _matrix(n: Notation, name: str, m: se.DenseMatrix, indent: str = "  ") -> li
     return out
 
 
-def _point_text(n: Notation, lin: Any) -> str:
+def _point_text(n: Notation, lin: LinearModel) -> str:
     parts = []
     for name, value in lin.point.items():
         v = number(float(complex(value).real)) if value.is_Number else n.text(value._sympy_())  # π stays π
@@ -90,8 +93,25 @@ def _vector(n: Notation, names: Sequence[str], prefix: str = "δ") -> str:
     return "(" + ", ".join(prefix + n.symbol(x) for x in names) + ")"
 
 
-def render_linearization(lin: Any, stability: Any, modes: Any) -> str:
-    """The linearized equations about the point, and (numeric) the eigenvalues and the verdict."""
+def linear_text(lin: LinearModel, stability: Stability | None = None, modes: Modes | None = None) -> str:
+    """What ``lagrangian linearize`` prints: the linearized equations about the point, and the eigenvalues and
+    the verdict when no parameter is left symbolic.
+
+    Parameters
+    ----------
+    lin : from `lagrangian.linearize`.
+    stability, modes : ``lin.stability()`` and ``lin.modes()``, computed here when not given and ``lin``
+        has no symbol left (with symbols left, the text says which values to give).
+
+    Examples
+    --------
+    >>> import lagrangian
+    >>> eom = lagrangian.derive(lagrangian.load_model("examples/simple_pendulum.toml"))  # doctest: +SKIP
+    >>> print(lagrangian.output.linear_text(lagrangian.linearize(eom, {"theta": 0})))  # doctest: +SKIP
+    """
+    if not lin.symbols:
+        stability = lin.stability() if stability is None else stability
+        modes = lin.modes() if modes is None else modes
     n = _notation(lin)
     model = lin.eom.model
     kind = "a steady motion" if lin.steady else "an equilibrium"
@@ -132,11 +152,12 @@ def render_linearization(lin: Any, stability: Any, modes: Any) -> str:
                      f"`lagrangian modes ... --sweep {lin.symbols[0]}=a:b:step`).")
         return "\n".join(lines) + "\n"
     neutral = modes is not None and bool(modes.neutral)
-    secular = modes is not None and modes.zero is not None and modes.zero.secular
+    zero = modes.zero if modes is not None else None
+    secular = zero is not None and zero.secular
     lam = np.asarray(stability.eigenvalues)
-    if secular:
+    if secular and zero is not None:
         lines.append("Eigenvalues of A: " + (_eigen_list(lam) + ", and " if lam.size else "")
-                     + f"0, defective (Jordan blocks of sizes {', '.join(map(str, modes.zero.blocks))} once "
+                     + f"0, defective (Jordan blocks of sizes {', '.join(map(str, zero.blocks))} once "
                        "the ignorable coordinates are set aside)")
     else:
         lines.append(("Eigenvalues of A, the neutral ones (0) set aside: " if neutral else "Eigenvalues of A: ")
@@ -186,8 +207,19 @@ def _eigen_list(lam: np.ndarray) -> str:
     return ", ".join(eigenvalue(z, pair=p) for z, p in _pairs(lam))
 
 
-def render_modes(lin: Any, stability: Any, modes: Any) -> str:
-    """The essential eigenvalues with ω, T, ζ and mode shapes; the conservative pulsations; the verdict."""
+def modes_text(lin: LinearModel, stability: Stability | None = None, modes: Modes | None = None,
+               **values: float) -> str:
+    """What ``lagrangian modes`` prints: the essential eigenvalues with ω, T, ζ and mode shapes; the
+    conservative pulsations; the verdict.
+
+    Parameters
+    ----------
+    lin : from `lagrangian.linearize`.
+    stability, modes : ``lin.stability(**values)`` and ``lin.modes(**values)``, computed here when not given.
+    values : the parameters ``lin`` keeps symbolic, when ``stability`` or ``modes`` is computed here.
+    """
+    stability = lin.stability(**values) if stability is None else stability
+    modes = lin.modes(**values) if modes is None else modes
     n = _notation(lin)
     model = lin.eom.model
     lines = [f"{model.name} — modes about {'a steady motion' if lin.steady else 'an equilibrium'}",
@@ -248,8 +280,9 @@ _CHANGES = {"stability lost": "stability lost (an eigenvalue crosses into Re λ 
             "asymptotic stability lost": "asymptotic stability lost (an eigenvalue reaches the imaginary axis)"}
 
 
-def render_sweep(lin: Any, sweep: Any, unit: str = "") -> str:
-    """Where stability changes along the sweep, and the ranges of each verdict."""
+def sweep_text(lin: LinearModel, sweep: Sweep, unit: str = "") -> str:
+    """What ``lagrangian modes --sweep`` adds: where stability changes along the sweep
+    (`lagrangian.analysis.sweep`), and the ranges of each verdict; ``unit`` is the parameter's."""
     n = _notation(lin)
     p = n.symbol(sweep.parameter)
     values = np.asarray(sweep.values, dtype=float)
