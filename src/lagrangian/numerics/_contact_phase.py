@@ -27,7 +27,7 @@ import numpy as np
 
 from ..errors import SimulationError
 from ._contact_system import ContactSystem, Probe
-from ._simulate import control_block
+from ._control import control_block
 from ._system import CompiledSystem
 
 __all__ = ["FastPhases", "Options", "Outputs", "PhaseEnd", "dae_phase"]

@@ -31,12 +31,12 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SimulationError
-from ._export import exported_symbols
-from ._export_jax import jax_module
+from ..output._export import exported_symbols  # the JAX export target: this backend runs what `export` writes
+from ..output._export_jax import jax_module
 
 __all__ = ["jax_runner"]
 
-# member status (`numerics._batch.STATUS`): ok, blow-up, step-limit
+# member status (`_batch.STATUS`): ok, blow-up, step-limit
 _OK, _BLOW_UP, _STEP_LIMIT = 0, 2, 3
 
 
