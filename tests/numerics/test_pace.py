@@ -95,11 +95,11 @@ def test_the_control_block_has_the_size_the_c_side_copies() -> None:
     # lg_batch copies C_SIZE doubles from the block control_block makes: a shorter one would be read past its end.
     import re
 
-    from lagrangian.numerics import _simulate
+    from lagrangian.numerics import _control
 
     source = (ROOT / "src" / "lagrangian" / "numerics" / "_integrators.c").read_text(encoding="utf-8")
     names = re.search(r"enum \{ (C_T,[^}]*)\}", source).group(1)
     entries = [name.strip() for name in names.split(",")]
-    assert entries.index("C_SIZE") == _simulate.CONTROL_SIZE
-    ctl = _simulate.control_block("dop853", 0.0, 1.0, [0.0, 1.0], 1e-9, 1e-9, None, None, 10)
-    assert ctl.shape == (_simulate.CONTROL_SIZE,)
+    assert entries.index("C_SIZE") == _control.CONTROL_SIZE
+    ctl = _control.control_block("dop853", 0.0, 1.0, [0.0, 1.0], 1e-9, 1e-9, None, None, 10)
+    assert ctl.shape == (_control.CONTROL_SIZE,)
