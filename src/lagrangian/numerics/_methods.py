@@ -24,7 +24,8 @@ from dataclasses import dataclass
 
 from ..errors import SimulationError
 from ._contact import contact_model, run_contact
-from ._dae import ConstrainedSystem, constrained_source, run_dae
+from ._dae import ConstrainedSystem, constrained_source
+from ._dae_run import run_dae
 from ._free_simulate import free_source, run_free
 from ._ode import run_ode
 from ._options import BUILTIN, METHODS, SCIPY, SimulationOptions

@@ -33,7 +33,7 @@ BUILTIN = ("dop853", "gauss-legendre")
 #: SciPy's ``solve_ivp`` methods, driven by the compiled right-hand side.
 SCIPY = ("RK45", "RK23", "DOP853", "Radau", "BDF", "LSODA")
 METHODS = BUILTIN + SCIPY
-#: How the drift from complementary constraints is controlled (`_dae`).
+#: How the drift from complementary constraints is controlled (`_dae_run`).
 STABILIZATIONS = ("projection", "baumgarte", "both", "none")
 #: Default Baumgarte rates (α, β), in 1/time.
 BAUMGARTE = (5.0, 5.0)

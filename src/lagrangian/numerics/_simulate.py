@@ -7,7 +7,7 @@ the route the model needs and runs it, then checks the motion against the declar
 named, and the keywords that only that route honours.
 
 The routes are: the compiled ODE (`_ode`: DOP853 and Gauss–Legendre in C, SciPy's methods),
-the constrained DAE with projection (`_dae`), exact Coulomb friction by stick/slip phases
+the constrained DAE with projection (`_dae_run`), exact Coulomb friction by stick/slip phases
 (`_stickslip`), unilateral contacts by phases between impacts (`_contact`), free bodies on
 unit quaternions (`_free_simulate`), and the sensitivities ∂y/∂x (`_sensitivity`).
 """
@@ -91,7 +91,7 @@ def simulate(
         once at the end. The result does not depend on it.
     stabilization, baumgarte : for models with complementary constraints only, how the
         drift from the constraints is controlled (``"projection"``, ``"baumgarte"``,
-        ``"both"``, ``"none"``) and Baumgarte's rates (α, β); see `numerics._dae`.
+        ``"both"``, ``"none"``) and Baumgarte's rates (α, β); see `numerics._dae_run`.
     rest, max_phases : models with unilateral contacts only (`simulate_contact`).
     max_switches : models with an exact Coulomb contact only (`simulate_stick_slip`).
     stiffness_check : ``"dop853"`` only: Hairer's stiffness test (as in dop853.f), which stops

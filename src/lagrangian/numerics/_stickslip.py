@@ -13,7 +13,7 @@ e is an axis of one of the model's frames along which the sliding velocity alway
 (`lagrangian.dynamics._friction.sliding_direction`); a contact without one is refused.  Each
 mode is a model of its own — `dataclasses.replace` of the frozen `Model`, the friction load
 replaced by the force −s f N e at the contact point or by the constraint — derived and
-compiled once, then integrated by `simulate` (slip) or the DAE route `_dae.run_dae` (stick) up to a
+compiled once, then integrated by `simulate` (slip) or the DAE route `_dae_run.run_dae` (stick) up to a
 terminal event:
 
 * in slip, s w falling through 0: the contact stops sliding.  The stuck model's λ at that
@@ -48,7 +48,8 @@ from ..errors import ModelError, SimulationError
 from ..model import CoulombFriction, load_model
 from ..model._constraints import Constraint, ReactionSpec
 from ..model.spec import Model, PointForce
-from ._dae import ConstrainedSystem, run_dae
+from ._dae import ConstrainedSystem
+from ._dae_run import run_dae
 from ._input_run import constant_inputs_only
 from ._options import SimulationOptions
 from ._progress import progress_bar
@@ -224,7 +225,7 @@ def run_stick_slip(source, options: SimulationOptions, simulate: PhaseRunner) ->
     ----------
     source : a model file, a `Model`, or its equations, whose contact has ``regularization = 0``.
     options : `simulate`'s options (``dt`` and ``gauss-legendre`` are refused: the phases end at events);
-        ``stabilization``, ``baumgarte`` control the drift of the stuck phases (`_dae`);
+        ``stabilization``, ``baumgarte`` control the drift of the stuck phases (`_dae_run`);
         ``max_switches`` is the most phases a run may have (default 100 000).  Constant inputs only.
     simulate : runs a sliding phase (`simulate`'s pipeline on the sliding model's equations).
 
