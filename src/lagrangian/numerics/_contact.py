@@ -2,8 +2,9 @@
 
 A contact (``unilateral = "g"`` in ``[constraints]``, `lagrangian.model._unilateral`) is open
 (g > 0, no force) or closed (g = 0, a complementary constraint whose multiplier is the normal
-reaction λ ≥ 0).  `simulate_contact` integrates phase after phase (`_contact_phase`), each with
-a fixed set of closed contacts, and switches at the events that end them (`_contact_switch`):
+reaction λ ≥ 0).  `run_contact` (the contacts' route of `simulate`) integrates phase after phase
+(`_contact_phase`), each with a fixed set of closed contacts, and switches at the events that end
+them (`_contact_switch`):
 
 * touch-down (g of an open contact falls to 0): an impact — percussions from Lagrange's
   equations in impulsive form with Newton's coefficient e and, with friction, Coulomb's bound

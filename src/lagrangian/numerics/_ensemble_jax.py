@@ -31,8 +31,6 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SimulationError
-from ..output._export import exported_symbols  # the JAX export target: this backend runs what `export` writes
-from ..output._export_jax import jax_module
 
 __all__ = ["jax_runner"]
 
@@ -71,6 +69,10 @@ def jax_runner(eom, *, t_start: float, t_end: float, t_out: np.ndarray, rtol: fl
     """
     jax, diffrax = _modules()
     jax.config.update("jax_enable_x64", True)  # see the module docstring
+    # The JAX export target: this backend runs the code `export --target jax` writes.
+    from ..output._export import exported_symbols
+    from ..output._export_jax import jax_module
+
     text = jax_module(exported_symbols(eom, "jax"))
     rhs = _imported(text).rhs
     n2 = 2 * len(eom.q)
