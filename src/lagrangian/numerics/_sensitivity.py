@@ -392,7 +392,7 @@ def run_sensitivities(source, options: SimulationOptions):  # type: ignore[no-un
 
 
 def _failure(system: CompiledSystem, p: np.ndarray, run: SensitivityRun, ctl: np.ndarray,  # type: ignore[no-untyped-def]
-             partial) -> Exception:
+             partial) -> BaseException:
     """The error of a run that did not complete, with the part computed so far where there is one."""
     code, n = run.code, system.n
     t_fail = float(ctl[0])
