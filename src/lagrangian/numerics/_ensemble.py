@@ -75,7 +75,9 @@ from ._system import CompiledSystem
 
 __all__ = ["EnsembleInterrupted", "connect_scheduler", "ensemble", "flip_events", "register_backend"]
 
+
 def _jax_runner(eom, **options):  # type: ignore[no-untyped-def]
+    """The ``"jax"`` backend (`_ensemble_jax.jax_runner`), imported when a run asks for it."""
     from ._ensemble_jax import jax_runner  # late: JAX and diffrax are optional, and slow to import
 
     return jax_runner(eom, **options)
