@@ -28,7 +28,7 @@ from ._dae import ConstrainedSystem, constrained_source
 from ._dae_run import run_dae
 from ._free_simulate import free_source, run_free
 from ._ode import run_ode
-from ._options import BUILTIN, METHODS, SCIPY, SimulationOptions
+from ._options import METHODS, SCIPY, SimulationOptions
 from ._sensitivity import run_sensitivities
 from ._stickslip import exact_contact_model, run_stick_slip
 from ._trajectory import Trajectory
@@ -131,15 +131,18 @@ def check_route_options(route: Route, options: SimulationOptions) -> None:
             f"takes the `{route.name}` route ({route.models}).", fix=f"leave `{option}` out")
 
 
+def _methods_text(methods: tuple[str, ...]) -> str:
+    if methods == METHODS:
+        return "`dop853`, `gauss-legendre`, SciPy's"
+    if methods == ("dop853", *SCIPY):
+        return "`dop853`, SciPy's"
+    return ", ".join(f"`{m}`" for m in methods)
+
+
 def method_table() -> str:
     """The registry as a Markdown table (route → models → methods → options), as docs/simulation.md shows it."""
     lines = ["| route | models | methods | options beyond the common ones | inputs |",
              "|---|---|---|---|---|"]
-    for route in ROUTES:
-        methods = ", ".join(f"`{m}`" for m in route.methods) if route.methods != METHODS else \
-            "all: " + ", ".join(f"`{m}`" for m in BUILTIN) + ", SciPy's"
-        if route.methods == ("dop853", *SCIPY):
-            methods = "`dop853`, SciPy's"
-        options = ", ".join(f"`{o}`" for o in route.options)
-        lines.append(f"| `{route.name}` | {route.models} | {methods} | {options} | {route.inputs} |")
+    lines += [f"| `{route.name}` | {route.models} | {_methods_text(route.methods)} | "
+              f"{', '.join(f'`{o}`' for o in route.options)} | {route.inputs} |" for route in ROUTES]
     return "\n".join(lines)
