@@ -29,7 +29,6 @@ from ._dae_run import run_dae
 from ._free_simulate import free_source, run_free
 from ._ode import run_ode
 from ._options import METHODS, SCIPY, SimulationOptions
-from ._sensitivity import run_sensitivities
 from ._stickslip import exact_contact_model, run_stick_slip
 from ._trajectory import Trajectory
 
@@ -70,6 +69,12 @@ class Route:
     run: Callable[[object, SimulationOptions, Runner], Trajectory]
 
 
+def _sensitivities(source: object, options: SimulationOptions, simulate: Runner) -> Trajectory:
+    from ._sensitivity import run_sensitivities  # late: only a run that asks for sensitivities needs it
+
+    return run_sensitivities(source, options)
+
+
 def _constrained(source: object, options: SimulationOptions) -> object | None:
     source, eom = constrained_source(source)
     if eom is None:
@@ -80,8 +85,7 @@ def _constrained(source: object, options: SimulationOptions) -> object | None:
 ROUTES: tuple[Route, ...] = (
     Route("sensitivities", "M q̈ = F, asked for ∂y/∂x (`sensitivities=`)", ("dop853",),
           ("dt", "stiffness_check", "sensitivities"), "none (give constant ones as parameters)",
-          lambda source, options: source if options.sensitivities is not None else None,
-          lambda source, options, simulate: run_sensitivities(source, options)),
+          lambda source, options: source if options.sensitivities is not None else None, _sensitivities),
     Route("free", "free bodies (integrated on unit quaternions)", ("dop853", *SCIPY),
           ("events", "dt", "stiffness_check"), "constant",
           lambda source, options: free_source(source),
