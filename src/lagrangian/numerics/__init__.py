@@ -56,11 +56,11 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from ._input_table import InputTable as InputTable
     from ._members import Grid as Grid
     from ._members import grid as grid
+    from ._options import STABILIZATIONS as STABILIZATIONS
+    from ._options import SimulationOptions as SimulationOptions
     from ._phases import check_trajectory_along as check_trajectory_along
     from ._phases import reaction_history_along as reaction_history_along
     from ._reaction_columns import reaction_columns_along as reaction_columns_along
-    from ._options import STABILIZATIONS as STABILIZATIONS
-    from ._options import SimulationOptions as SimulationOptions
     from ._sensitivity import Sensitivities as Sensitivities
     from ._simulate import METHODS as METHODS
     from ._simulate import EventSpec as EventSpec
