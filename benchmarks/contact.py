@@ -28,8 +28,9 @@ from pathlib import Path
 import numpy as np
 
 import lagrangian
-from lagrangian.numerics._contact import contact_system, simulate_contact
-from lagrangian.numerics._simulate import control_block
+from lagrangian.numerics import simulate_contact
+from lagrangian.numerics._contact import contact_system
+from lagrangian.numerics._control import control_block
 
 ROOT = Path(__file__).resolve().parents[1]
 G, H0, E, M = 9.81, 1.0, 0.8, 0.1

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import lagrangian
 from lagrangian import SimulationError
-from lagrangian.numerics import _simulate
+from lagrangian.numerics import _control
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -35,7 +35,7 @@ def _timed(fn, clock=time.perf_counter) -> tuple[float, object]:
 def overhead(t_end: float, repeat: int) -> None:
     eom = lagrangian.derive(lagrangian.load_model(ROOT / "examples" / "lagrange_top.toml"))
     system = lagrangian.compile_system(eom)
-    period = _simulate.STIFFNESS_TEST_PERIOD
+    period = _control.STIFFNESS_TEST_PERIOD
     variants = {"off": (False, period), "on (every 1000 steps)": (True, period), "on (every step)": (True, 1)}
     best = dict.fromkeys(variants, float("inf"))
     steps = {}
@@ -43,14 +43,14 @@ def overhead(t_end: float, repeat: int) -> None:
     for r in range(repeat):
         for name in names[r % 3:] + names[:r % 3]:  # the order rotated: no variant always runs first
             check, every = variants[name]
-            _simulate.STIFFNESS_TEST_PERIOD = every
+            _control.STIFFNESS_TEST_PERIOD = every
             try:
                 # CPU time of the process (the run is in a worker thread): less sensitive than the wall
                 # clock to other jobs on a shared machine
                 seconds, traj = _timed(lambda: lagrangian.simulate(system, t_end, stiffness_check=check, n_out=101),
                                        time.process_time)
             finally:
-                _simulate.STIFFNESS_TEST_PERIOD = period
+                _control.STIFFNESS_TEST_PERIOD = period
             best[name] = min(best[name], seconds)
             steps[name] = traj.steps
     print(f"Lagrange top, {t_end:g} s, rtol = atol = 1e-10, {steps['off']} steps (best of {repeat}):")

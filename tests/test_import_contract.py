@@ -80,24 +80,6 @@ EXCEPTIONS: dict[tuple[str, str], str] = {
 
 #: Imports that break a rule in files other work is rewriting; the entry goes when that work lands.
 PENDING: dict[tuple[str, str], str] = {
-    # The one simulate (numerics/_simulate.py, _dae.py, _stickslip.py, _projection.py rewritten; the JAX
-    # ensemble backend moved into numerics and registered there): import the model's and dynamics' names
-    # from their faces (all exported), export what other stages use from the numerics face, and drop the
-    # registration from output's face and the import of output from numerics/_ensemble.py.
-    ("lagrangian.numerics._simulate", "lagrangian.model._assumptions.check_sign"): "use lagrangian.model",
-    ("lagrangian.numerics._simulate", "lagrangian.model._expr.ExpressionError"): "use lagrangian.model",
-    ("lagrangian.numerics._simulate", "lagrangian.model._expr.parse_expression"): "use lagrangian.model",
-    ("lagrangian.numerics._stickslip", "lagrangian.dynamics._constraints.multiplier_formulas"): "use lagrangian.dynamics",
-    ("lagrangian.numerics._stickslip", "lagrangian.dynamics._friction.SlidingDirection"): "use lagrangian.dynamics",
-    ("lagrangian.numerics._stickslip", "lagrangian.dynamics._friction.sliding_direction"): "use lagrangian.dynamics",
-    ("lagrangian.numerics._stickslip", "lagrangian.model._constraints.Constraint"): "use lagrangian.model",
-    ("lagrangian.numerics._stickslip", "lagrangian.model._constraints.ReactionSpec"): "use lagrangian.model",
-    ("lagrangian.identification._identify", "lagrangian.numerics._simulate.control_block"): "numerics face",
-    ("lagrangian.identification._shooting", "lagrangian.numerics._simulate.control_block"): "numerics face",
-    ("lagrangian.optimal._replay", "lagrangian.numerics._dae.ConstrainedSystem"): "numerics face",
-    ("lagrangian.optimal._replay", "lagrangian.numerics._projection.project"): "numerics face",
-    ("lagrangian.output", "lagrangian.numerics._ensemble.register_backend"): "JAX backend registered in numerics",
-    ("lagrangian.numerics._ensemble", "lagrangian.output"): "JAX backend registered in numerics",
     # The report's subpackage (output/report/, being renamed): import from the stages' faces, where every
     # name below is exported, and from the public modules lagrangian.model.vectors and
     # lagrangian.view3d.html; then delete the shims model/_vector.py and view3d/_html.py.

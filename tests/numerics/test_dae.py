@@ -1,4 +1,4 @@
-"""Simulation with complementary constraints (`lagrangian.numerics._dae`): drift control and
+"""Simulation with complementary constraints (`lagrangian.numerics._dae_run`): drift control and
 reporting, the multipliers along a motion, the two backends, bad initial states, events."""
 
 from __future__ import annotations
@@ -12,7 +12,8 @@ from lagrangian_test_support import EXAMPLES_DIR, mutated_example
 import lagrangian
 from lagrangian.errors import SimulationError
 from lagrangian.numerics import save_trajectory, simulate
-from lagrangian.numerics._dae import ConstrainedSystem, simulate_dae
+from lagrangian.numerics._dae import ConstrainedSystem
+from lagrangian.numerics._dae_run import simulate_dae
 
 PENDULUM = EXAMPLES_DIR / "pendulum_tension.toml"
 #: The projection restores the constraints to 1e-3 atol (1e-13 at the default atol = 1e-10).

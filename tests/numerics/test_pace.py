@@ -96,11 +96,11 @@ def test_the_control_block_has_the_size_the_c_side_copies() -> None:
     import re
 
     from lagrangian.codegen import runtime_source
-    from lagrangian.numerics import _simulate
+    from lagrangian.numerics import _control
 
     source = runtime_source("integrators.c")
     names = re.search(r"enum \{ (C_T,[^}]*)\}", source).group(1)
     entries = [name.strip() for name in names.split(",")]
-    assert entries.index("C_SIZE") == _simulate.CONTROL_SIZE
-    ctl = _simulate.control_block("dop853", 0.0, 1.0, [0.0, 1.0], 1e-9, 1e-9, None, None, 10)
-    assert ctl.shape == (_simulate.CONTROL_SIZE,)
+    assert entries.index("C_SIZE") == _control.CONTROL_SIZE
+    ctl = _control.control_block("dop853", 0.0, 1.0, [0.0, 1.0], 1e-9, 1e-9, None, None, 10)
+    assert ctl.shape == (_control.CONTROL_SIZE,)

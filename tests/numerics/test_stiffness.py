@@ -20,7 +20,7 @@ from scipy.integrate import solve_ivp
 import lagrangian
 from lagrangian import SimulationError
 from lagrangian.cli.main import main
-from lagrangian.numerics import _simulate
+from lagrangian.numerics import _control
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -106,7 +106,7 @@ def test_the_command_line_keeps_the_part_computed(tmp_path: Path, capsys) -> Non
                                             ("foucault_pendulum.toml", 300.0)])
 def test_non_stiff_models_never_trigger_it(example: str, t_end: float, monkeypatch) -> None:
     # Tested at every step (not every 1000th) over long runs at the default tolerances.
-    monkeypatch.setattr(_simulate, "STIFFNESS_TEST_PERIOD", 1)
+    monkeypatch.setattr(_control, "STIFFNESS_TEST_PERIOD", 1)
     eom = lagrangian.derive(lagrangian.load_model(ROOT / "examples" / example))
     traj = lagrangian.simulate(eom, t_end, n_out=11)
     assert traj.status == "completed" and traj.steps > 2000

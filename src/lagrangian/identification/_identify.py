@@ -231,7 +231,7 @@ def _values(model: Model, fitted: Sequence[str], meas: Measurements, values: Map
 
 def _shoot(eom, meas, fitted, base, guess, bounds, initial, noise, derivatives, shooting) -> Identification:  # type: ignore[no-untyped-def]
     from ..numerics import sensitivity_system
-    from ..numerics._simulate import control_block
+    from ..numerics import control_block
     from ..numerics import CompiledSystem
     from ._shooting import fit_shooting, noise_levels
 

@@ -30,7 +30,7 @@ import numpy as np
 
 from ..errors import IdentificationError, SimulationError
 from ..numerics import SensitivityColumn, SensitivitySystem
-from ..numerics._simulate import control_block
+from ..numerics import control_block
 from ..numerics import CompiledSystem
 from ._data import Measurements
 from ._filter import SavitzkyGolay

@@ -4,8 +4,10 @@
 ``compile_free_system(model)`` → `FreeBodySystem`: a model with free bodies on unit quaternions (C);
 ``simulate(model_or_eom, t_end, ...)`` → `Trajectory`;
 ``ensemble(model_or_eom, t_end, initial=grid(...), ...)`` → many motions as an ``xarray.Dataset``;
-a model with unilateral contacts is simulated by phases between impacts (`simulate_contact`, called by
-``simulate``), and ``impact_sweep`` maps what its contacts do against a parameter.
+``simulate`` picks the route a model needs from one registry (`_methods.ROUTES`): free bodies, unilateral
+contacts (phases between impacts; `simulate_contact` names that route), exact Coulomb friction
+(`simulate_stick_slip`), complementary constraints, plain M q̈ = F; ``impact_sweep`` maps what a model's
+contacts do against a parameter.
 """
 
 from __future__ import annotations
@@ -17,9 +19,12 @@ from .._lazy import lazy_names
 # Each name is imported from its module on first use (`lagrangian._lazy`): a command that needs one
 # module of this stage does not load the others (nor SymPy, SciPy and what they import).
 _WHERE = {
-    "._contact": ("simulate_contact", "contact_model"),
+    "._contact": ("contact_model",),
     "._contact_switch": ("ContactEvent",),
-    "._dae": ("STABILIZATIONS",),
+    "._control": ("control_block",),
+    "._dae": ("ConstrainedSystem",),
+    "._projection": ("project",),
+    "._options": ("STABILIZATIONS", "SimulationOptions"),
     "._ensemble": ("ensemble", "flip_events", "connect_scheduler"),
     "._ensemble_store": ("open_ensemble",),
     "._members": ("Grid", "grid"),
@@ -28,9 +33,9 @@ _WHERE = {
     "._impact_sweep": ("ImpactSweep", "impact_sweep", "OUTCOMES"),
     "._input_switch": ("Switch",),
     "._input_table": ("InputTable",),
-    "._simulate": ("METHODS", "EventSpec", "default_tolerance", "initial_state", "simulate"),
+    "._simulate": ("METHODS", "EventSpec", "default_tolerance", "initial_state", "simulate", "simulate_contact",
+                   "simulate_stick_slip"),
     "._sensitivity": ("Sensitivities", "SensitivityColumn", "SensitivitySystem", "inverse_dynamics", "sensitivity_system"),
-    "._stickslip": ("simulate_stick_slip",),
     "._system": ("CompiledSystem", "compile_system"),
     "._phases": ("check_trajectory_along", "reaction_history_along"),
     "._reaction_columns": ("reaction_columns_along",),
@@ -43,9 +48,10 @@ _WHERE = {
 __getattr__, __dir__ = lazy_names(__name__, _WHERE)
 
 if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
-    from ._contact import simulate_contact as simulate_contact
     from ._contact_switch import ContactEvent as ContactEvent
-    from ._dae import STABILIZATIONS as STABILIZATIONS
+    from ._control import control_block as control_block
+    from ._dae import ConstrainedSystem as ConstrainedSystem
+    from ._projection import project as project
     from ._ensemble import ensemble as ensemble
     from ._ensemble import flip_events as flip_events
     from ._ensemble_store import open_ensemble as open_ensemble
@@ -60,6 +66,8 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from ._input_table import InputTable as InputTable
     from ._members import Grid as Grid
     from ._members import grid as grid
+    from ._options import STABILIZATIONS as STABILIZATIONS
+    from ._options import SimulationOptions as SimulationOptions
     from ._phases import check_trajectory_along as check_trajectory_along
     from ._phases import reaction_history_along as reaction_history_along
     from ._reaction_columns import reaction_columns_along as reaction_columns_along
@@ -69,7 +77,8 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from ._simulate import default_tolerance as default_tolerance
     from ._simulate import initial_state as initial_state
     from ._simulate import simulate as simulate
-    from ._stickslip import simulate_stick_slip as simulate_stick_slip
+    from ._simulate import simulate_contact as simulate_contact
+    from ._simulate import simulate_stick_slip as simulate_stick_slip
     from ._system import CompiledSystem as CompiledSystem
     from ._system import compile_system as compile_system
     from ._top_check import SimulationCheck as SimulationCheck
@@ -94,6 +103,7 @@ __all__ = [
     "STATUS",
     "CompiledSystem",
     "ContactEvent",
+    "ConstrainedSystem",
     "Event",
     "EventSpec",
     "FreeBodySystem",
@@ -104,9 +114,12 @@ __all__ = [
     "SensitivityColumn",
     "SensitivitySystem",
     "SimulationCheck",
+    "SimulationOptions",
     "Switch",
     "Trajectory",
     "check_output_path",
+    "control_block",
+    "project",
     "check_trajectory_along",
     "compile_free_system",
     "compile_system",

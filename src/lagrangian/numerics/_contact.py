@@ -2,8 +2,9 @@
 
 A contact (``unilateral = "g"`` in ``[constraints]``, `lagrangian.model._unilateral`) is open
 (g > 0, no force) or closed (g = 0, a complementary constraint whose multiplier is the normal
-reaction λ ≥ 0).  `simulate_contact` integrates phase after phase (`_contact_phase`), each with
-a fixed set of closed contacts, and switches at the events that end them (`_contact_switch`):
+reaction λ ≥ 0).  `run_contact` (the contacts' route of `simulate`) integrates phase after phase
+(`_contact_phase`), each with a fixed set of closed contacts, and switches at the events that end
+them (`_contact_switch`):
 
 * touch-down (g of an open contact falls to 0): an impact — percussions from Lagrange's
   equations in impulsive form with Newton's coefficient e and, with friction, Coulomb's bound
@@ -21,7 +22,7 @@ each smooth piece (between impacts, where it must hold); what an impact takes is
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 import numpy as np
@@ -34,11 +35,16 @@ from ..model.spec import Model
 from ._contact_phase import FastPhases, Options, Outputs, PhaseEnd, dae_phase
 from ._contact_switch import REST, ContactEvent, ContactLaws, accumulation
 from ._contact_system import ContactSystem, contacts_of, solve_small
+from ._input_run import constant_inputs_only
+from ._options import SimulationOptions, default_tolerance
 from ._progress import make_reporter
 from ._projection import check_initial
+from ._setup import event_expressions, initial_state, momenta, output_times
+from ._stickslip import exact_contact
+from ._system import known_values
 from ._trajectory import Event, Trajectory, conservation
 
-__all__ = ["ContactEvent", "contact_model", "contact_system", "simulate_contact"]
+__all__ = ["ContactEvent", "check_contact_options", "contact_model", "contact_system", "run_contact"]
 
 #: Consecutive phases shorter than this (relative to max(1, |t|)) before the run is refused as chattering.
 CHATTER_LENGTH, CHATTER_COUNT = 1e-12, 50
@@ -75,94 +81,77 @@ def contact_system(model: Model, backend: str = "auto") -> ContactSystem:
     return system
 
 
-def simulate_contact(
-    source,
-    t_end: float,
-    *,
-    t_start: float = 0.0,
-    initial: Mapping[str, float] | None = None,
-    parameters: Mapping[str, float] | None = None,
-    method: str = "dop853",
-    rtol: float = 1e-10,
-    atol: float = 1e-10,
-    dt: float | None = None,
-    max_step: float | None = None,
-    n_out: int | None = None,
-    t_eval=None,
-    events: Sequence = (),
-    tolerance: float | None = None,
-    max_steps: int = 100_000_000,
-    progress: bool | Callable[[float, float], None] = False,
-    backend: str = "auto",
-    stabilization: str | None = None,
-    stiffness_check: bool = True,
-    rest: float = REST,
-    max_phases: int = 1_000_000,
-) -> Trajectory:
-    """Integrate a model with unilateral contacts (module docstring).
+def check_contact_options(options: SimulationOptions) -> None:
+    """Refuse what the contacts' route cannot do: a method other than dop853, fixed steps, a stabilization
+    other than the projection, ``rest`` outside (0, 1)."""
+    if options.dt is not None or options.method != "dop853":
+        raise SimulationError("A model with unilateral contacts runs with method='dop853' only, adaptive: its phases "
+                              "end at events, not on a fixed grid.", fix="leave method and dt out")
+    if options.stabilization not in (None, "projection"):
+        raise SimulationError(f"stabilization={options.stabilization!r}: the closed contacts are kept by projection.",
+                              fix="leave stabilization out")
+    rest = REST if options.rest is None else options.rest
+    if not 0 < rest < 1:
+        raise SimulationError(f"rest = {rest:g} must lie in (0, 1).", fix="e.g. rest=1e-6")
 
-    Parameters
-    ----------
-    source : a model file, a `Model`, or its equations, with at least one ``unilateral`` constraint.
-    t_end, t_start, initial, parameters, rtol, atol, max_step, n_out, t_eval, events, tolerance,
-    max_steps, progress, backend, stiffness_check : as for `simulate`.  ``method`` must be
-        ``"dop853"`` and ``dt`` None (phases end at events), ``stabilization`` None or
-        ``"projection"`` (the closed contacts are kept by projection).
-    rest : the last approach speed, relative to the first of a geometric series of impacts, at
-        which the accumulation is summed and the contacts closed (or sooner, once the bounces are
-        lower than the gap tolerance; `_contact_switch`).
-    max_phases : the most smooth phases a run may have.
 
-    Returns
-    -------
-    Trajectory
-        On the requested grid, with the contact columns and `ContactEvent` events (module docstring).
+def run_contact(source, options: SimulationOptions) -> Trajectory:  # type: ignore[no-untyped-def]
+    """Integrate a model with unilateral contacts (module docstring), by phases between impacts.
+
+    ``options.rest``: the last approach speed, relative to the first of a geometric series of
+    impacts, at which the accumulation is summed and the contacts closed (default `REST`;
+    `_contact_switch`); ``options.max_phases``: the most smooth phases a run may have (default
+    1 000 000).  Constant inputs only: their numbers join the parameters.
 
     Raises
     ------
+    ModelError
+        No unilateral contact, or an exact Coulomb load beside the contacts.
     SimulationError
         A contact violated at the initial state (g < 0), e outside [0, 1] or μ < 0, simultaneous
         impacts with no solution, a contact that must stay closed while sliding with friction,
         endless chattering; otherwise as `simulate`.
     """
-    from ._simulate import _event_expressions, _output_times, check_options, default_tolerance, initial_state
-
     model = contact_model(source)
     if model is None:
         raise ModelError("The model has no unilateral contact.", fix="use lagrangian.simulate")
-    from ._stickslip import exact_contact
-
+    options = options.but(parameters=constant_inputs_only(model, options.inputs, options.parameters,
+                                                          route="contact"), inputs=None)
     if exact_contact(model) is not None:
         raise ModelError("Exact Coulomb friction (regularization = 0) and unilateral contacts are not simulated "
                          "together.", symbol=exact_contact(model).name,  # type: ignore[union-attr]
                          fix="give the Coulomb load a positive regularization, or put the friction on the contact "
                              "(friction = \"mu\", slip = \"...\")")
-    if dt is not None or method != "dop853":
-        raise SimulationError("A model with unilateral contacts runs with method='dop853' only, adaptive: its phases "
-                              "end at events, not on a fixed grid.", fix="leave method and dt out")
-    if stabilization not in (None, "projection"):
-        raise SimulationError(f"stabilization={stabilization!r}: the closed contacts are kept by projection.",
-                              fix="leave stabilization out")
-    check_options(rtol, atol, tolerance)
-    if not 0 < rest < 1:
-        raise SimulationError(f"rest = {rest:g} must lie in (0, 1).", fix="e.g. rest=1e-6")
-    cs = contact_system(model, backend)
-    specs = _event_expressions(cs.eom, events) if events else []
+    check_contact_options(options)
+    cs = contact_system(model, options.backend)
+    specs = event_expressions(cs.eom, options.events) if options.events else []
     fast = cs.fast_system([(s.name, s.expression) for s in specs])
-    p, p_fast = cs.parameter_values(parameters)
+    p, p_fast = cs.parameter_values(options.parameters)
     e, mu = cs.coefficients(p)
-    y = initial_state(cs.eom, initial)
-    t = float(t_start)
-    grid = _output_times(t, float(t_end), n_out, t_eval, 4 * cs.n + 4 * len(cs.full.rows) + len(cs.full.monitors))
+    y = initial_state(cs.eom, options.initial)
+    t = float(options.t_start)
+    grid = output_times(t, float(options.t_end), options.n_out, options.t_eval,
+                        4 * cs.n + 4 * len(cs.full.rows) + len(cs.full.monitors))
     out = Outputs(grid, np.full((len(grid), 2 * cs.n), np.nan), np.full(len(grid), -1, dtype=int))
-    opts = Options(rtol, atol, max_step, max_steps, stiffness_check, specs)
-    laws = ContactLaws(cs, p, e, mu, atol)
-    flights = None if fast is None else FastPhases(fast, len(cs.contacts), p_fast, float(t_end), out, opts)  # type: ignore[arg-type]
-    user_values = _user_functions(cs, specs, p)
-    run = _Run(cs, laws, rest)
+    opts = Options(options.rtol, options.atol, options.max_step, options.max_steps, options.stiffness_check, specs)
+    laws = ContactLaws(cs, p, e, mu, options.atol)
+    flights = None if fast is None else FastPhases(fast, len(cs.contacts), p_fast, float(options.t_end), out, opts)  # type: ignore[arg-type]
+    run = _Run(cs, laws, REST if options.rest is None else options.rest)
+    phases, status, t = _phases(run, flights, p, t, y, out, opts, _user_functions(cs, specs, p), options)
+    tolerance = options.tolerance
+    return _join(cs, p, out, phases, run.events, status, run,
+                 tolerance if tolerance is not None else default_tolerance(options.method, options.rtol))
+
+
+def _phases(run: _Run, flights: FastPhases | None, p: np.ndarray, t: float, y: np.ndarray,
+            out: Outputs, opts: Options, user_values: Callable | None,
+            options: SimulationOptions) -> tuple[list[np.ndarray], str, float]:
+    """The smooth phases one after the other, switching the contacts between them (the run's loop)."""
+    cs, laws, t_end = run.cs, run.laws, float(options.t_end)
+    max_phases = 1_000_000 if options.max_phases is None else options.max_phases
     phases: list[np.ndarray] = []
     status = "completed"
-    reporter = make_reporter(progress, float(t_start), float(t_end))
+    reporter = make_reporter(options.progress, float(options.t_start), t_end)
     try:
         y, closed = run.start(t, y)
         short = 0
@@ -173,7 +162,7 @@ def simulate_contact(
             if not closed.any() and flights is not None:
                 end = flights.run(t, y, index, h)
             else:
-                end = dae_phase(cs, p, t, y, float(t_end), closed, mu, laws.eps, out, index, opts, user_values, h,
+                end = dae_phase(cs, p, t, y, t_end, closed, laws.mu, laws.eps, out, index, opts, user_values, h,
                                 laws.probe, laws.acc_scale)
             run.account(end)
             if reporter:
@@ -194,12 +183,12 @@ def simulate_contact(
     except KeyboardInterrupt:
         if reporter:
             reporter.finish(t, False)
-        partial = _join(cs, p, out, phases, run.events, f"interrupted at t = {t:.9g} (partial)", run, tolerance)
+        partial = _join(cs, p, out, phases, run.events, f"interrupted at t = {t:.9g} (partial)", run,
+                        options.tolerance)
         raise Interrupted(t, partial) from None
     if reporter:
-        reporter.finish(float(t_end) if status == "completed" else t, True)
-    return _join(cs, p, out, phases, run.events, status, run,
-                 tolerance if tolerance is not None else default_tolerance(method, rtol))
+        reporter.finish(t_end if status == "completed" else t, True)
+    return phases, status, t
 
 
 def _user_functions(cs: ContactSystem, specs: Sequence, p: np.ndarray) -> Callable | None:
@@ -328,7 +317,6 @@ class _Run:
 def _join(cs: ContactSystem, p: np.ndarray, out: Outputs, phases: list[np.ndarray], events: list[Event], status: str,
           run: _Run, tolerance: float | None) -> Trajectory:
     """One `Trajectory` on the grid from the phases (module docstring)."""
-    from ._simulate import momenta
 
     N, n = out.i, cs.n
     t, Y, which = out.t[:N], np.ascontiguousarray(out.Y[:N]), out.phase[:N]
@@ -376,7 +364,6 @@ def _join(cs: ContactSystem, p: np.ndarray, out: Outputs, phases: list[np.ndarra
         extra[f"closed_{name}"] = closed[:, i].astype(float)
     extra.update({f"lambda_{row}": lam[:, k].copy() for k, row in enumerate(rows_all)})
     extra.update({name: reactions[:, k].copy() for k, name in enumerate(cs.full.reactions)})
-    from ._system import known_values
 
     return Trajectory(
         model_name=cs.model.name, coordinates=tuple(cs.full.coordinates), parameters=known_values(cs.full.parameters, p),

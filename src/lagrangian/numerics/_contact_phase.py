@@ -15,7 +15,7 @@ DOP853 with the gaps as terminal event functions (`FastPhases`), each event loca
 output to a few ulp (`codegen/runtime/integrators.c`).  Any other phase steps SciPy's DOP853 on q̈ solved with the
 acting rows (`ContactSystem.solve`), projects every step onto them (positions onto the
 closed gaps, velocities onto ġ = 0 and w = 0), and locates its events by Brent's method on the
-projected dense output (`dae_phase`), as `_dae.simulate_dae` does.
+projected dense output (`dae_phase`), as the DAE route (`_dae_run.run_dae`) does.
 """
 
 from __future__ import annotations
@@ -28,7 +28,7 @@ import numpy as np
 
 from ..errors import SimulationError
 from ._contact_system import ContactSystem, Probe
-from ._simulate import control_block
+from ._control import control_block
 from ._system import CompiledSystem
 
 __all__ = ["FastPhases", "Options", "Outputs", "PhaseEnd", "dae_phase"]

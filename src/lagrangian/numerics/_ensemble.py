@@ -45,7 +45,6 @@ finished members and raises `EnsembleInterrupted`.
 from __future__ import annotations
 
 import hashlib
-import importlib
 import math
 import os
 import signal
@@ -63,25 +62,36 @@ import numpy as np
 
 from ..errors import EnsembleInterrupted, OutputError, SimulationError
 from ._batch import PENDING, Kernel, run_chunk
+from ._control import control_block
 from ._dae import constrained_source
 from ._ensemble_store import Layout, MemorySink, ZarrSink
+from ._free_simulate import free_source
 from ._members import Grid, members
+from ._ode import resolve
+from ._options import BUILTIN, check_options
 from ._progress import Reporter
-from ._simulate import BUILTIN, EventSpec, _memory_limit, _output_times, _resolve, check_options, control_block, momenta
+from ._setup import EventSpec, memory_limit, momenta, output_times
 from ._stickslip import exact_contact_model
 from ._system import CompiledSystem
 
 __all__ = ["EnsembleInterrupted", "connect_scheduler", "ensemble", "flip_events", "register_backend"]
 
+
+def _jax_runner(eom, **options):  # type: ignore[no-untyped-def]
+    """The ``"jax"`` backend (`_ensemble_jax.jax_runner`), imported when a run asks for it."""
+    from ._ensemble_jax import jax_runner  # late: JAX and diffrax are optional, and slow to import
+
+    return jax_runner(eom, **options)
+
+
 #: Ensemble backends besides the compiled C one, by name: a function(eom, *, t_start, t_end,
 #: t_out, rtol, atol, max_step, max_steps, keep) -> (key, run) with run(Y0, P, size) -> rows.
-#: A later stage registers them (`lagrangian.output` registers ``"jax"``), so that this stage
-#: never imports what is built above it.
-BACKENDS: dict = {}
+#: Listed here, explicitly: importing a module registers nothing (`register_backend` adds one).
+BACKENDS: dict = {"jax": _jax_runner}
 
 
-def register_backend(name: str, prepare) -> None:
-    """Make ``backend=name`` available to `ensemble` (see `BACKENDS`)."""
+def register_backend(name: str, prepare) -> None:  # type: ignore[no-untyped-def]
+    """Make ``backend=name`` available to `ensemble` (see `BACKENDS`): ``prepare`` as the ``"jax"`` one."""
     BACKENDS[name] = prepare
 
 #: How long to try reaching a Dask scheduler before saying it cannot be reached.
@@ -167,7 +177,7 @@ def ensemble(
     progress : True for a bar on standard error, or a callable(fraction, members done).
     backend : ``"c"`` (default: the compiled batch integrator) or ``"jax"`` (the JAX export's
         rhs vmapped over a chunk and integrated by diffrax's Dopri8: the GPU route, see
-        `lagrangian.output._ensemble_jax`; no events or drift, no ``scheduler``, equal to the
+        `numerics._ensemble_jax`; no events or drift, no ``scheduler``, equal to the
         C path to the tolerance).
     inputs : as in `simulate` (numbers, expressions, tables, a `Feedback`; not Python functions),
         the same for every member; or a sequence of `Feedback` values of one shape, one per member
@@ -217,10 +227,6 @@ def ensemble(
 
 
 def _check_backend(backend: str, method: str, events, scheduler) -> None:
-    if backend not in BACKENDS:
-        # The backends built on later stages register themselves when those load (`lagrangian.output`
-        # registers "jax"); `import lagrangian` no longer loads them eagerly, so load them by name here.
-        importlib.import_module("lagrangian.output")
     if backend not in BACKENDS:
         raise SimulationError(f"backend={backend!r}: the ensemble backends are "
                               f"{', '.join(repr(b) for b in ('c', *BACKENDS))}.", fix="e.g. backend='c'")
@@ -312,7 +318,6 @@ def _ensemble(source, t_end, t_start, initial, parameters, initial_names, parame
     if constrained is not None or exact_contact_model(source) is not None:
         raise SimulationError("Ensembles run models without complementary constraints or exact (ε = 0) "
                               "friction; this one has them.", fix="use `simulate` for each motion of this model")
-    from ._free_simulate import free_source  # late: it imports `_simulate`, as this module does
 
     if free_source(source) is not None:  # its Euler angles would meet their singularity, unsaid
         raise SimulationError("Ensembles integrate a model in its own coordinates, and this one has a free body, "
@@ -320,12 +325,12 @@ def _ensemble(source, t_end, t_start, initial, parameters, initial_names, parame
                               "quaternion instead.", fix="use `simulate` for each motion of this model")
     specs = [EventSpec(e, e) if isinstance(e, str) else e for e in events]
     if backend != "c":
-        system = _resolve(source, [], "symengine")  # for its names only: no C compiler needed
+        system = resolve(source, [], "symengine")  # for its names only: no C compiler needed
         return _ensemble_backend(system, backend, t_end, t_start, initial, parameters, initial_names,
                                  parameter_names, n_out, t_eval, method, rtol, atol, max_step, max_steps, keep,
                                  chunk_size, out_path, resume, progress)
     law_inputs, feedbacks = _member_inputs(inputs)
-    system = _resolve(source, specs, "c", law_inputs)
+    system = resolve(source, specs, "c", law_inputs)
     if not specs:
         specs = [EventSpec(name, name) for name in system.events]
     if system.backend != "c":
@@ -349,7 +354,7 @@ def _ensemble(source, t_end, t_start, initial, parameters, initial_names, parame
                                   fix="give one feedback per member, or one for all")
         group = replace(group, L=np.stack([system.law.data(f) for f in feedbacks]))
     n2 = 2 * system.n
-    t_out = _output_times(float(t_start), float(t_end), n_out, t_eval, 2 * n2 + len(system.monitors))
+    t_out = output_times(float(t_start), float(t_end), n_out, t_eval, 2 * n2 + len(system.monitors))
     ctl = control_block(method, float(t_start), float(t_end), t_out, rtol, atol, dt, max_step, max_steps,
                         stiffness_check=stiffness_check)
     kernel = _kernel(system, specs, method, ctl, t_out, t_start, t_end)
@@ -394,7 +399,7 @@ def _ensemble_backend(system, backend, t_end, t_start, initial, parameters, init
     (the backend parallelises a chunk itself: vmap on a GPU); Ctrl-C between two chunks."""
     group = members(system, initial, parameters, initial_names=initial_names, parameter_names=parameter_names)
     n2 = 2 * system.n
-    t_out = _output_times(float(t_start), float(t_end), n_out, t_eval, 2 * n2)
+    t_out = output_times(float(t_start), float(t_end), n_out, t_eval, 2 * n2)
     key, run_members = BACKENDS[backend](system.eom, t_start=float(t_start), t_end=float(t_end), t_out=t_out,
                                          rtol=rtol, atol=atol, max_step=max_step, max_steps=int(max_steps), keep=keep)
     count = group.count
@@ -428,7 +433,7 @@ def _open_sink(layout: Layout, out_path: Path | None, chunk_size: int, resume: b
     count, n2 = layout.count, len(layout.states)
     if layout.keep and (out_path is None or out_path.suffix != ".zarr"):
         need = 8.0 * count * len(layout.t_out) * n2
-        if need > _memory_limit():
+        if need > memory_limit():
             raise SimulationError(f"Keeping {count} trajectories of {len(layout.t_out)} times would take about "
                                   f"{need / 2**30:.1f} GiB of memory.",
                                   fix="stream them to a Zarr store (out='....zarr'), use fewer output times, or "

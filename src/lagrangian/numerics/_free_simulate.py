@@ -28,7 +28,6 @@ the ensembles do not take free bodies.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -37,11 +36,16 @@ import symengine as se
 
 from ..errors import Interrupted, SimulationError
 from ..model import TIME, Model, load_model
+from ._control import control_block, interruptible
 from ._free_system import FreeBodySystem, has_free_body
+from ._input_run import constant_inputs_only
+from ._options import SCIPY, SimulationOptions, default_tolerance
 from ._progress import Watch, make_reporter
+from ._scipy_run import run_scipy
+from ._setup import EventSpec, event_expressions, initial_state, output_times
 from ._trajectory import Event, Trajectory, drift_scale, relative_drift
 
-__all__ = ["free_source", "simulate_free"]
+__all__ = ["check_free_options", "free_source", "run_free"]
 
 
 def free_source(source) -> Model | FreeBodySystem | None:
@@ -59,63 +63,64 @@ def _state_text(system: FreeBodySystem, y: np.ndarray) -> str:
     return ", ".join(f"{name} = {v:.6g}" for name, v in zip(system.coordinates, q[0]))
 
 
-def simulate_free(source, t_end: float, *, t_start: float = 0.0, initial: Mapping[str, float] | None = None,
-                  parameters: Mapping[str, float] | None = None, method: str = "dop853", rtol: float = 1e-10,
-                  atol: float = 1e-10, dt: float | None = None, max_step: float | None = None,
-                  n_out: int | None = None, t_eval=None, events: Sequence = (), tolerance: float | None = None,
-                  max_steps: int = 100_000_000, progress=False, backend: str = "auto",
-                  stabilization: str | None = None, stiffness_check: bool = True, **_: object) -> Trajectory:
-    """`simulate` of a model with free bodies (module docstring); the arguments are `simulate`'s."""
-    from ._simulate import (
-        METHODS,
-        SCIPY,
-        EventSpec,
-        _event_expressions,
-        _interruptible,
-        _output_times,
-        _run_scipy,
-        control_block,
-        default_tolerance,
-        initial_state,
-    )
-
-    if method not in METHODS:
-        raise SimulationError(f"Unknown method `{method}`.", fix="use one of " + ", ".join(METHODS))
-    if method == "gauss-legendre":
+def check_free_options(options: SimulationOptions) -> None:
+    """Refuse what the quaternion route cannot do: Gauss–Legendre, a stabilization, no compiler."""
+    if options.method == "gauss-legendre":
         raise SimulationError("The method `gauss-legendre` integrates Hamilton's equations in the model's "
                               "coordinates, whose Euler angles are singular somewhere; a free body is integrated on "
                               "a unit quaternion instead.", fix="use dop853 (the default) or a SciPy method")
-    if stabilization is not None:
-        raise SimulationError(f"stabilization={stabilization!r} applies to models with complementary constraints, "
-                              "and this one keeps none complementary.", fix="leave the stabilization out")
-    if backend == "symengine":
+    if options.stabilization is not None:
+        raise SimulationError(f"stabilization={options.stabilization!r} applies to models with complementary "
+                              "constraints, and this one keeps none complementary.", fix="leave the stabilization out")
+    if options.backend == "symengine":
         raise SimulationError("A model with free bodies is integrated in compiled C only.",
                               fix="install a C compiler (e.g. gcc), or use backend='auto'")
+
+
+def run_free(source, options: SimulationOptions) -> Trajectory:  # type: ignore[no-untyped-def]
+    """`simulate` of a model with free bodies (module docstring): ``source`` is what `free_source` gives.
+
+    Constant inputs only: their numbers join the parameters (`_input_run.constant_inputs_only`).
+    """
+    parameters = constant_inputs_only(source, options.inputs, options.parameters, route="free")
+    check_free_options(options)
+    method, rtol, atol = options.method, options.rtol, options.atol
+    t_start, t_end, tolerance = options.t_start, options.t_end, options.tolerance
     system = source if isinstance(source, FreeBodySystem) else None
     model = system.model if system is not None else source
-    specs = list(events)
+    specs = list(options.events)
     if specs or system is None:  # the events read with the model's names, then in the state's symbols
         names = SimpleNamespace(model=model, t=TIME, q=_symbols(model, ""), qd=_symbols(model, "_dot"))
-        specs = _event_expressions(names, specs) if specs else []
+        specs = event_expressions(names, specs) if specs else []
         system = FreeBodySystem(model, events=[(e.name, e.expression) for e in specs])
     else:
         specs = [EventSpec(name, name) for name in system.events]
     if tolerance is None:
         tolerance = default_tolerance(method, rtol)
     p = system.parameter_vector(parameters)
-    start = initial_state(SimpleNamespace(model=model), initial)
+    start = initial_state(SimpleNamespace(model=model), options.initial)
     y0 = system.state_of(start[None, :])[0]
-    t_out = _output_times(float(t_start), float(t_end), n_out, t_eval, 3 * system.width + len(system.monitors))
+    t_out = output_times(float(t_start), float(t_end), options.n_out, options.t_eval,
+                         3 * system.width + len(system.monitors))
     try:
         system.rhs(t_start, y0, p)
     except SimulationError as exc:
         raise SimulationError(f"{exc.message} (at the initial state: {_state_text(system, y0)})", fix=exc.fix) from None
     if method in SCIPY:
-        t, Y, evs, nfev, steps, code = _run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol,
-                                                  max_step, specs, progress)
+        t, Y, evs, nfev, steps, code = run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol,
+                                                 options.max_step, specs, options.progress)
         status, conditioning = ("completed" if code == 0 else "stopped by a terminal event"), 1.0
         return _trajectory(system, p, t, Y, evs, method, steps, nfev, tolerance, status, conditioning, start)
-    ctl = control_block(method, t_start, t_end, t_out, rtol, atol, dt, max_step, max_steps, None, stiffness_check)
+    return _run_compiled(system, p, y0, t_out, specs, options, tolerance, start)
+
+
+def _run_compiled(system: FreeBodySystem, p: np.ndarray, y0: np.ndarray, t_out: np.ndarray,
+                  specs: list[EventSpec], options: SimulationOptions, tolerance: float,
+                  start: np.ndarray) -> Trajectory:
+    """DOP853 in C with the quaternions projected after each step; failures as `SimulationError`."""
+    method, t_start, t_end = options.method, options.t_start, options.t_end
+    ctl = control_block(method, t_start, t_end, t_out, options.rtol, options.atol, options.dt, options.max_step,
+                        options.max_steps, None, options.stiffness_check)
     y = y0.copy()
     Y = np.full((len(t_out), system.width), np.nan)
     i_out = np.zeros(1, dtype=np.intc)
@@ -124,7 +129,7 @@ def simulate_free(source, t_end: float, *, t_start: float = 0.0, initial: Mappin
     capacity = 100_000 if specs else 1
     ctl[11] = capacity
     ev_out = np.zeros((capacity, 2 + system.width))
-    reporter = make_reporter(progress, t_start, t_end)
+    reporter = make_reporter(options.progress, t_start, t_end)
     lib = system._lib
 
     def call() -> int:
@@ -132,7 +137,7 @@ def simulate_free(source, t_end: float, *, t_start: float = 0.0, initial: Mappin
                              float(t_end), _ptr(ev_dir), _ptr(ev_term), _ptr(ev_out))
 
     with Watch(reporter, ctl):
-        code = _interruptible(call, ctl)
+        code = interruptible(call, ctl)
     if reporter:
         reporter.finish(float(ctl[0]), code in (0, 4))
     m = int(i_out[0])

@@ -202,7 +202,7 @@ class FreeBodySystem:
     # -- states ---------------------------------------------------------------------------------------
     def initial_state(self, initial: Mapping[str, float] | None = None) -> np.ndarray:
         """The state from the model's initial values and rates (and ``initial``'s overrides)."""
-        from ._simulate import initial_state
+        from ._setup import initial_state  # late: only `state_of` of a model's initial values needs it
 
         y = initial_state(SimpleNamespace(model=self.model), initial)  # (q, q̇) in the model's coordinates
         return self.state_of(y[None, :])[0]

@@ -1,6 +1,6 @@
 """Impact outcomes against a parameter or an initial value: one simulated motion per grid point.
 
-For a model with unilateral contacts, `impact_sweep` runs `simulate_contact` at every point of a
+For a model with unilateral contacts, `impact_sweep` runs the contacts' route (`run_contact`) at every point of a
 grid (parameters, coordinates, rates: the names of `lagrangian sweep`'s ``--grid``) and keeps what
 the contacts did: the impacts, the bounces (impacts faster than ``min_speed``), the time of the
 first impact, the accumulation time t_∞ where the impacts came to rest, the lift-offs, and the
@@ -22,8 +22,9 @@ from typing import Any
 import numpy as np
 
 from ..errors import SimulationError
-from ._contact import contact_model, contact_system, simulate_contact
+from ._contact import contact_model, contact_system, run_contact
 from ._contact_switch import ContactEvent
+from ._options import SimulationOptions
 
 __all__ = ["OUTCOMES", "ImpactSweep", "impact_sweep"]
 
@@ -98,7 +99,7 @@ def impact_sweep(source, axes: Mapping[str, Sequence[float] | np.ndarray], t_end
     t_end : the end of each run.
     parameters, initial : values for every member (not swept).
     min_speed : the approach speed from which an impact counts as a bounce.
-    options : passed to `simulate_contact` (``rtol``, ``atol``, ``rest``...).
+    options : `simulate`'s options for the contacts' route (``rtol``, ``atol``, ``rest``...).
 
     Raises
     ------
@@ -137,7 +138,7 @@ def impact_sweep(source, axes: Mapping[str, Sequence[float] | np.ndarray], t_end
         p = dict(parameters or {}) | {k: v for k, v in point.items() if k in names}
         y0 = dict(initial or {}) | {k: v for k, v in point.items() if k not in names}
         try:
-            traj = simulate_contact(model, t_end, parameters=p, initial=y0, n_out=2, **options)
+            traj = run_contact(model, SimulationOptions(t_end, parameters=p, initial=y0, n_out=2, **options))
         except SimulationError as exc:
             status[index] = exc.message
             continue

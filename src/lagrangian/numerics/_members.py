@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import SimulationError
-from ._simulate import initial_state
+from ._setup import initial_state
 
 __all__ = ["Grid", "grid", "Members", "members"]
 

@@ -36,7 +36,14 @@ from ..dynamics import EquationsOfMotion, derive
 from ..errors import Interrupted, SimulationError
 from ..model.spec import Model
 from ._compile import compile_library
+from ._control import INTERRUPTED, STATUS, STIFF, control_block, interruptible
+from ._dae import constrained_source
 from ._forward import forward_jacobian
+from ._ode import early_stop, resolve, singularity, state_text, trajectory
+from ._options import BUILTIN, SimulationOptions, default_tolerance
+from ._progress import Watch, make_reporter
+from ._setup import initial_state, output_times
+from ._stickslip import exact_contact_model
 from ._system import CompiledSystem, _ptr
 
 __all__ = [
@@ -44,9 +51,11 @@ __all__ = [
     "SensitivityColumn",
     "SensitivityRun",
     "SensitivitySystem",
+    "check_sensitivity_options",
     "column_name",
     "inverse_dynamics",
     "parse_sensitivities",
+    "run_sensitivities",
     "sensitivity_system",
 ]
 
@@ -211,12 +220,10 @@ class SensitivitySystem:
         """Integrate y and the ``columns`` from ``ctl[0]`` to ``t_end``, output at ``t_out``.
 
         ``p`` is the extended parameter vector (`CompiledSystem.parameter_vector`); ``ctl`` the
-        control block (`_simulate.control_block`); ``inputs`` = (parameter indices, times (m,),
+        control block (`_control.control_block`); ``inputs`` = (parameter indices, times (m,),
         values (m, k)) of inputs set by linear interpolation at every evaluation.  ``watch`` wraps
         the call (progress, Ctrl-C): a function taking the call and ``ctl``.
         """
-        from ._simulate import _interruptible
-
         n2 = 2 * self.n
         ns = len(columns)
         nz = n2 * (1 + ns)
@@ -247,7 +254,7 @@ class SensitivitySystem:
                                             _ptr(i_out), _ptr(Z), float(t_end), n_in, _ptr(index), rows,
                                             _ptr(times), _ptr(values), _ptr(work))
 
-        code = watch(call, ctl) if watch is not None else _interruptible(call, ctl)
+        code = watch(call, ctl) if watch is not None else interruptible(call, ctl)
         m = int(i_out[0])
         Z = Z[:m]
         return SensitivityRun(t_out[:m], Z[:, :n2].copy(), Z[:, n2:].reshape(m, ns, n2).copy(), int(code), ctl, z)
@@ -300,11 +307,31 @@ def with_sensitivities(traj, columns: Sequence[SensitivityColumn], S: np.ndarray
     return dataclasses.replace(traj, extra=extra, sensitivity_names=tuple(c.name for c in columns))
 
 
-def simulate_sensitivities(source, t_end: float, sensitivities: Sensitivities | Sequence[str], *,
-                           t_start: float, initial, parameters, method: str, rtol: float, atol: float,
-                           dt: float | None, max_step: float | None, n_out, t_eval, events, tolerance,
-                           max_steps: int, progress, backend: str, stabilization, stiffness_check: bool):
-    """`simulate` with ``sensitivities``: the motion and ∂y/∂x for each x asked for (module docstring).
+def check_sensitivity_options(source, options: SimulationOptions) -> None:  # type: ignore[no-untyped-def]
+    """Refuse what the sensitivities cannot be integrated with: inputs, a method other than dop853, events,
+    complementary constraints or exact dry friction."""
+    if options.inputs is not None:
+        raise SimulationError("Sensitivities are integrated with the inputs at their values: `inputs=` cannot "
+                              "be given with `sensitivities=`.",
+                              fix="give constant inputs as parameters (parameters={'F': 1.0}), or run the "
+                                  "sensitivities without the inputs")
+    method = options.method
+    if method != "dop853":
+        raise SimulationError(f"Sensitivities are integrated by the compiled `dop853`, not `{method}`.",
+                              fix="use method='dop853' (the default)" + (
+                                  "; its fixed-step mode is dt=..." if method in BUILTIN else ""))
+    if options.events:
+        raise SimulationError("Sensitivities and events cannot be combined: an event time moves with the "
+                              "parameters, and the sensitivities would jump there.",
+                              fix="run the events and the sensitivities separately")
+    if options.stabilization is not None or exact_contact_model(source) is not None:
+        raise SimulationError("Sensitivities are computed for ordinary differential equations M q'' = F only, "
+                              "not for complementary constraints or exact dry friction.",
+                              fix="leave out the sensitivities, or regularize the contact")
+
+
+def run_sensitivities(source, options: SimulationOptions):  # type: ignore[no-untyped-def]
+    """`simulate` with ``options.sensitivities``: the motion and ∂y/∂x for each x asked for (module docstring).
 
     Raises
     ------
@@ -312,37 +339,9 @@ def simulate_sensitivities(source, t_end: float, sensitivities: Sensitivities | 
         Besides `simulate`'s: a method other than ``dop853``, events, a model with complementary
         constraints or exact dry friction, an input or an unknown name among the sensitivities.
     """
-    from ._dae import constrained_source
-    from ._progress import Watch, make_reporter
-    from ._simulate import (
-        _STATUS,
-        BUILTIN,
-        _early_stop,
-        _interruptible,
-        _output_times,
-        _resolve,
-        _singularity,
-        _state_text,
-        _trajectory,
-        control_block,
-        default_tolerance,
-        initial_state,
-    )
-    from ._stickslip import exact_contact_model
-
-    options = sensitivities if isinstance(sensitivities, Sensitivities) else Sensitivities(tuple(sensitivities))
-    if method != "dop853":
-        raise SimulationError(f"Sensitivities are integrated by the compiled `dop853`, not `{method}`.",
-                              fix="use method='dop853' (the default)" + (
-                                  "; its fixed-step mode is dt=..." if method in BUILTIN else ""))
-    if events:
-        raise SimulationError("Sensitivities and events cannot be combined: an event time moves with the "
-                              "parameters, and the sensitivities would jump there.",
-                              fix="run the events and the sensitivities separately")
-    if stabilization is not None or exact_contact_model(source) is not None:
-        raise SimulationError("Sensitivities are computed for ordinary differential equations M q'' = F only, "
-                              "not for complementary constraints or exact dry friction.",
-                              fix="leave out the sensitivities, or regularize the contact")
+    check_sensitivity_options(source, options)
+    sensitivities = options.sensitivities
+    opts = sensitivities if isinstance(sensitivities, Sensitivities) else Sensitivities(tuple(sensitivities))
     source, constrained = constrained_source(source)
     if constrained is not None:
         raise SimulationError("Sensitivities are computed for ordinary differential equations M q'' = F only, "
@@ -352,57 +351,62 @@ def simulate_sensitivities(source, t_end: float, sensitivities: Sensitivities | 
     if isinstance(source, Model):
         source = derive(source)
     # the names are checked before anything is compiled
-    columns = parse_sensitivities(source.eom if isinstance(source, CompiledSystem) else source, options.names)
-    system = _resolve(source, [], backend)
+    columns = parse_sensitivities(source.eom if isinstance(source, CompiledSystem) else source, opts.names)
+    system = resolve(source, [], options.backend)
     if system.backend != "c":
         raise SimulationError("Sensitivities are integrated in compiled C, and no C compiler was found.",
                               fix="install a C compiler (e.g. gcc)")
-    if tolerance is None:
-        tolerance = default_tolerance(method, rtol)
-    p = system.parameter_vector(parameters)
-    y0 = initial_state(system.eom, initial)
+    tolerance = default_tolerance(options.method, options.rtol) if options.tolerance is None else options.tolerance
+    p = system.parameter_vector(options.parameters)
+    y0 = initial_state(system.eom, options.initial)
     n = system.n
+    t_start, t_end = float(options.t_start), float(options.t_end)
     width = 4 * n + len(system.monitors) + 1 + 2 * n * len(columns)
-    t_out = _output_times(float(t_start), float(t_end), n_out, t_eval, width)
-    M, F0 = system.mass_forces(t_start, y0, p)
+    t_out = output_times(t_start, t_end, options.n_out, options.t_eval, width)
+    M, F0 = system.mass_forces(options.t_start, y0, p)
     if not (np.isfinite(M).all() and np.isfinite(F0).all()) or \
             not np.linalg.eigvalsh(M)[0] > 1e-12 * max(abs(np.linalg.eigvalsh(M)[-1]), 1e-300):
-        raise _singularity(system, t_start, y0, p, "at the initial state")
+        raise singularity(system, options.t_start, y0, p, "at the initial state")
     sens = sensitivity_system(system, [system.parameters[c.parameter] for c in columns if c.parameter is not None])
-    ctl = control_block("dop853", float(t_start), float(t_end), t_out, rtol, atol, dt, max_step, max_steps, None,
-                        stiffness_check)
-    reporter = make_reporter(progress, float(t_start), float(t_end))
+    ctl = control_block("dop853", t_start, t_end, t_out, options.rtol, options.atol, options.dt, options.max_step,
+                        options.max_steps, None, options.stiffness_check)
+    reporter = make_reporter(options.progress, t_start, t_end)
 
     def watch(call, ctl):
         with Watch(reporter, ctl):
-            return _interruptible(call, ctl)
+            return interruptible(call, ctl)
 
-    run = sens.run(p, y0, columns, t_out, float(t_end), ctl=ctl, in_error_norm=options.in_error_norm, watch=watch)
-    code = run.code
+    run = sens.run(p, y0, columns, t_out, t_end, ctl=ctl, in_error_norm=opts.in_error_norm, watch=watch)
     if reporter:
-        reporter.finish(float(ctl[0]), code == 0)
-    conditioning = float(ctl[12])
+        reporter.finish(float(ctl[0]), run.code == 0)
 
     def partial(status: str):
         if not len(run.t):
             return None
-        traj = _trajectory(system, p, run.t, run.y, [], method, run.steps, run.rhs_calls, tolerance, status,
-                           conditioning)
+        traj = trajectory(system, p, run.t, run.y, [], options.method, run.steps, run.rhs_calls, tolerance, status,
+                          float(ctl[12]))
         return with_sensitivities(traj, columns, run.S)
 
-    if code == 0:
+    if run.code == 0:
         return partial("completed")
+    raise _failure(system, p, run, ctl, partial)
+
+
+def _failure(system: CompiledSystem, p: np.ndarray, run: SensitivityRun, ctl: np.ndarray,  # type: ignore[no-untyped-def]
+             partial) -> BaseException:
+    """The error of a run that did not complete, with the part computed so far where there is one."""
+    code, n = run.code, system.n
     t_fail = float(ctl[0])
     y_fail = run.z[: 2 * n]
-    if code == 7:
-        raise Interrupted(t_fail, partial(f"interrupted at t = {t_fail:.9g} (partial)"))
-    if code in (5, 8):
-        err = _early_stop(system, code, ctl, y_fail)
+    if code == INTERRUPTED:
+        return Interrupted(t_fail, partial(f"interrupted at t = {t_fail:.9g} (partial)"))
+    if code in (5, STIFF):
+        err = early_stop(system, code, ctl, y_fail)
         err.trajectory = partial(f"stopped at t = {t_fail:.9g} (partial): {err.reason}")  # type: ignore[attr-defined]
-        raise err
+        return err
     if code == 1:
-        raise _singularity(system, t_fail, y_fail, p, "during the integration")
-    raise SimulationError(f"The integration stopped at t = {t_fail:.9g} ({_state_text(system, y_fail)}): "
-                          f"{_STATUS.get(code, 'the integration failed')}.",
-                          fix="the equations may be stiff or singular there: check the model, or loosen the "
-                              "tolerances", t=t_fail, state=y_fail.copy())
+        return singularity(system, t_fail, y_fail, p, "during the integration")
+    return SimulationError(f"The integration stopped at t = {t_fail:.9g} ({state_text(system, y_fail)}): "
+                           f"{STATUS.get(code, 'the integration failed')}.",
+                           fix="the equations may be stiff or singular there: check the model, or loosen the "
+                               "tolerances", t=t_fail, state=y_fail.copy())

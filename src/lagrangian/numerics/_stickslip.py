@@ -13,7 +13,7 @@ e is an axis of one of the model's frames along which the sliding velocity alway
 (`lagrangian.dynamics._friction.sliding_direction`); a contact without one is refused.  Each
 mode is a model of its own — `dataclasses.replace` of the frozen `Model`, the friction load
 replaced by the force −s f N e at the contact point or by the constraint — derived and
-compiled once, then integrated by `simulate` (slip) or `simulate_dae` (stick) up to a
+compiled once, then integrated by `simulate` (slip) or the DAE route `_dae_run.run_dae` (stick) up to a
 terminal event:
 
 * in slip, s w falling through 0: the contact stops sliding.  The stuck model's λ at that
@@ -33,7 +33,7 @@ no work on a coordinate with A_i ≡ 0).  N stays a given expression.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
 
@@ -41,18 +41,21 @@ import numpy as np
 import symengine as se
 
 from ..analysis import first_integrals
-from ..dynamics import EquationsOfMotion, derive
-from ..dynamics._constraints import multiplier_formulas
-from ..dynamics._friction import SlidingDirection, sliding_direction
+from ..dynamics import EquationsOfMotion, SlidingDirection, derive, multiplier_formulas, sliding_direction
 from ..errors import ModelError, SimulationError
 from ..model import CoulombFriction, load_model
-from ..model._constraints import Constraint, ReactionSpec
-from ..model.spec import Model, PointForce
-from ._dae import BAUMGARTE, ConstrainedSystem, simulate_dae
+from ..model.spec import Constraint, Model, PointForce, ReactionSpec
+from ._dae import ConstrainedSystem
+from ._dae_run import run_dae
+from ._input_run import constant_inputs_only
+from ._options import SimulationOptions
 from ._progress import progress_bar
+from ._setup import EventSpec, initial_state, output_times
+from ._setup import momenta as momentum_index
 from ._trajectory import Event, Trajectory, conservation
 
-__all__ = ["exact_contact", "exact_contact_model", "simulate_stick_slip", "StickSlipSystem"]
+__all__ = ["PhaseRunner", "StickSlipSystem", "check_stick_slip_options", "exact_contact", "exact_contact_model",
+           "run_stick_slip"]
 
 #: The name of the terminal event that ends a phase (never a user's: not an identifier).
 SWITCH = "~switch"
@@ -200,40 +203,28 @@ def _system(model: Model, backend: str) -> StickSlipSystem:
     return system
 
 
-def simulate_stick_slip(
-    source,
-    t_end: float,
-    *,
-    t_start: float = 0.0,
-    initial: Mapping[str, float] | None = None,
-    parameters: Mapping[str, float] | None = None,
-    method: str = "dop853",
-    rtol: float = 1e-10,
-    atol: float = 1e-10,
-    dt: float | None = None,
-    max_step: float | None = None,
-    n_out: int | None = None,
-    t_eval=None,
-    events: Sequence = (),
-    tolerance: float | None = None,
-    max_steps: int = 100_000_000,
-    progress: bool | Callable[[float, float], None] = False,
-    backend: str = "auto",
-    stabilization: str | None = None,
-    baumgarte: tuple[float, float] = BAUMGARTE,
-    max_switches: int = 100_000,
-    stiffness_check: bool = True,
-) -> Trajectory:
+def check_stick_slip_options(options: SimulationOptions) -> None:
+    """Refuse fixed steps: the phases end at events, not on a grid."""
+    if options.dt is not None or options.method == "gauss-legendre":
+        raise SimulationError("Stick/slip phases end at events, so fixed steps (dt, gauss-legendre) are not available.",
+                              fix="use an adaptive method such as method='dop853', bounded with max_step if needed")
+
+
+#: How one smooth phase of a sliding mode is run: `simulate`'s whole pipeline, handed in by it
+#: (`_methods`), so that this module never imports the dispatcher that imports it.
+PhaseRunner = Callable[[object, SimulationOptions], Trajectory]
+
+
+def run_stick_slip(source, options: SimulationOptions, simulate: PhaseRunner) -> Trajectory:  # type: ignore[no-untyped-def]
     """Integrate a model with one exact Coulomb contact, switching between slip and stick (module docstring).
 
     Parameters
     ----------
     source : a model file, a `Model`, or its equations, whose contact has ``regularization = 0``.
-    t_end, t_start, initial, parameters, method, rtol, atol, max_step, n_out, t_eval, events,
-    tolerance, max_steps, progress, backend, stiffness_check : as for `simulate` (``dt`` and ``gauss-legendre``
-        are refused: the phases end at events, not on a fixed grid).
-    stabilization, baumgarte : the drift control of the stuck phases (`simulate_dae`).
-    max_switches : the most phases a run may have.
+    options : `simulate`'s options (``dt`` and ``gauss-legendre`` are refused: the phases end at events);
+        ``stabilization``, ``baumgarte`` control the drift of the stuck phases (`_dae_run`);
+        ``max_switches`` is the most phases a run may have (default 100 000).  Constant inputs only.
+    simulate : runs a sliding phase (`simulate`'s pipeline on the sliding model's equations).
 
     Returns
     -------
@@ -248,82 +239,100 @@ def simulate_stick_slip(
     SimulationError
         As `simulate`; also a negative N, f > f_s, an endless chattering of short phases.
     """
-    from ._simulate import EventSpec, _output_times, initial_state, simulate
-
+    options = options.but(parameters=constant_inputs_only(source, options.inputs, options.parameters), inputs=None)
     model = exact_contact_model(source) if not isinstance(source, Model) else source
     if model is None or exact_contact(model) is None:
         raise ModelError("The model has no exact Coulomb contact (regularization = 0).", fix="use lagrangian.simulate")
-    if dt is not None or method == "gauss-legendre":
-        raise SimulationError("Stick/slip phases end at events, so fixed steps (dt, gauss-legendre) are not available.",
-                              fix="use an adaptive method such as method='dop853', bounded with max_step if needed")
-    system = _system(model, backend)
-    name = system.load.name
-    grid = _output_times(float(t_start), float(t_end), n_out, t_eval)
-    p = system.stuck.parameter_vector(parameters)
-    coords = system.stuck.coordinates
-    n = len(coords)
-    y = initial_state(system.stuck_eom, initial)
-    t = float(t_start)
-    mode = system.decide(t, y, p)
-    user = [EventSpec(e, e) if isinstance(e, str) else e for e in events]
-    lam, f_s, N = system.symbols["lam"], system.symbols["f_s"], system.symbols["N"]
-    w = system.direction.speed
-    common = dict(parameters=parameters, method=method, rtol=rtol, atol=atol, max_step=max_step,
-                  tolerance=tolerance, max_steps=max_steps, backend=backend)
-    pieces: list[tuple[int, Trajectory]] = []
-    switches: list[Event] = []
-    user_events: list[Event] = []
-    status, short = "completed", 0
-    while True:
-        if mode == 0:
-            y = system.onto_stick(t, y, p)
-        later = grid[grid > t]
-        t_seg = np.concatenate([[t], later])
+    check_stick_slip_options(options)
+    system = _system(model, options.backend)
+    grid = output_times(float(options.t_start), float(options.t_end), options.n_out, options.t_eval)
+    p = system.stuck.parameter_vector(options.parameters)
+    y = initial_state(system.stuck_eom, options.initial)
+    phases = _Phases(system, options, simulate, p, grid)
+    pieces, switches, user_events, status = phases.run(float(options.t_start), y)
+    return _join(system, p, grid, pieces, switches, user_events, status, options.method, options.tolerance)
+
+
+class _Phases:
+    """The phases of one run: each from a switch to the next terminal event (module docstring)."""
+
+    def __init__(self, system: StickSlipSystem, options: SimulationOptions, simulate: PhaseRunner,
+                 p: np.ndarray, grid: np.ndarray) -> None:
+        self.system, self.options, self.simulate, self.p, self.grid = system, options, simulate, p, grid
+        self.user = [EventSpec(e, e) if isinstance(e, str) else e for e in options.events]
+        # What every phase shares with the run: the rest (the start, the grid, the events) is the phase's.
+        self.common = SimulationOptions(options.t_end, parameters=options.parameters, method=options.method,
+                                        rtol=options.rtol, atol=options.atol, max_step=options.max_step,
+                                        tolerance=options.tolerance, max_steps=options.max_steps,
+                                        backend=options.backend)
+
+    def piece(self, mode: int, t: float, y: np.ndarray) -> Trajectory:
+        """One phase in ``mode`` (0 stuck, ±1 sliding) from (t, y) to its terminal event or t_end."""
+        system, options = self.system, self.options
+        coords = system.stuck.coordinates
+        n = len(coords)
         start = {c: float(v) for c, v in zip(coords, y[:n])} | {c + "_dot": float(v) for c, v in zip(coords, y[n:])}
+        t_seg = np.concatenate([[t], self.grid[self.grid > t]])
         if mode == 0:
+            lam, f_s, N = system.symbols["lam"], system.symbols["f_s"], system.symbols["N"]
             ends = [EventSpec(SWITCH + "-", lam - f_s * N, 1, True), EventSpec(SWITCH + "+", lam + f_s * N, -1, True)]
-            piece = simulate_dae(system.stuck, float(t_end), t_start=t, initial=start, t_eval=t_seg,
-                                 events=ends + user, stabilization=stabilization, baumgarte=baumgarte,
-                                 progress=False, **common)  # type: ignore[arg-type]
-        else:
-            ends = [EventSpec(SWITCH, mode * w, -1, True)]
-            piece = simulate(system.slip_eom(mode), float(t_end), t_start=t, initial=start, t_eval=t_seg,
-                             events=ends + user, progress=False, stiffness_check=stiffness_check,
-                             **common)  # type: ignore[arg-type]
-        pieces.append((mode, piece))
-        if progress:
-            (_bar if progress is True else progress)(min(1.0, (piece.t[-1] - t_start) / (t_end - t_start)),
-                                                     float(piece.t[-1]))
-        user_events += [e for e in piece.events if not e.name.startswith(SWITCH)]
-        stop = [e for e in piece.events if e.name.startswith(SWITCH)]
-        if piece.status == "completed" or not stop:
-            status = piece.status
-            break
-        event = stop[-1]
-        t_new, y = float(event.t), np.concatenate([event.q, event.qd])
-        if mode == 0:  # the reaction needed left [−f_s N, f_s N]: it slides against it
-            mode = 1 if event.name.endswith("+") else -1
-        else:  # w = 0 (to a few ulp): the stuck model's reaction decides
-            y = system.onto_stick(t_new, y, p)
-            mode = system.decide(t_new, y, p)
-        short = short + 1 if t_new - t <= ZENO_LENGTH * max(1.0, abs(t)) else 0
-        if short >= ZENO_COUNT or len(pieces) >= max_switches:
-            raise SimulationError(f"The contact `{name}` switched between sticking and sliding {len(pieces)} times, "
-                                  f"the last {short} within {ZENO_LENGTH:g} s of each other, by t = {t_new:.9g}.",
-                                  fix="check the friction coefficients and N, or raise max_switches",
-                                  t=t_new, state=y.copy())
-        switches.append(Event(("stick_" if mode == 0 else "slip_") + name, t_new, y[:n].copy(), y[n:].copy()))
-        t = t_new
-        if t >= t_end:
-            break
-    return _join(system, p, grid, pieces, switches, user_events, status, method, tolerance)
+            return run_dae(system.stuck, self.common.but(t_start=t, initial=start, t_eval=t_seg, events=ends + self.user,
+                                                         stabilization=options.stabilization,
+                                                         baumgarte=options.baumgarte))
+        ends = [EventSpec(SWITCH, mode * system.direction.speed, -1, True)]
+        return self.simulate(system.slip_eom(mode), self.common.but(t_start=t, initial=start, t_eval=t_seg,
+                                                                     events=ends + self.user,
+                                                                     stiffness_check=options.stiffness_check))
+
+    def run(self, t: float, y: np.ndarray) -> tuple[list[tuple[int, Trajectory]], list[Event], list[Event], str]:
+        """(phases, switches, the user's events, status) from (t, y) to the end."""
+        system, options, p = self.system, self.options, self.p
+        t_start, t_end, progress = float(options.t_start), float(options.t_end), options.progress
+        max_switches = 100_000 if options.max_switches is None else options.max_switches
+        n, name = len(system.stuck.coordinates), system.load.name
+        mode = system.decide(t, y, p)
+        pieces: list[tuple[int, Trajectory]] = []
+        switches: list[Event] = []
+        user_events: list[Event] = []
+        status, short = "completed", 0
+        while True:
+            if mode == 0:
+                y = system.onto_stick(t, y, p)
+            piece = self.piece(mode, t, y)
+            pieces.append((mode, piece))
+            if progress:
+                (_bar if progress is True else progress)(min(1.0, (piece.t[-1] - t_start) / (t_end - t_start)),
+                                                         float(piece.t[-1]))
+            user_events += [e for e in piece.events if not e.name.startswith(SWITCH)]
+            stop = [e for e in piece.events if e.name.startswith(SWITCH)]
+            if piece.status == "completed" or not stop:
+                status = piece.status
+                break
+            event = stop[-1]
+            t_new, y = float(event.t), np.concatenate([event.q, event.qd])
+            if mode == 0:  # the reaction needed left [−f_s N, f_s N]: it slides against it
+                mode = 1 if event.name.endswith("+") else -1
+            else:  # w = 0 (to a few ulp): the stuck model's reaction decides
+                y = system.onto_stick(t_new, y, p)
+                mode = system.decide(t_new, y, p)
+            short = short + 1 if t_new - t <= ZENO_LENGTH * max(1.0, abs(t)) else 0
+            if short >= ZENO_COUNT or len(pieces) >= max_switches:
+                raise SimulationError(f"The contact `{name}` switched between sticking and sliding {len(pieces)} "
+                                      f"times, the last {short} within {ZENO_LENGTH:g} s of each other, by "
+                                      f"t = {t_new:.9g}.", fix="check the friction coefficients and N, or raise "
+                                                               "max_switches", t=t_new, state=y.copy())
+            switches.append(Event(("stick_" if mode == 0 else "slip_") + name, t_new, y[:n].copy(), y[n:].copy()))
+            t = t_new
+            if t >= t_end:
+                break
+        return pieces, switches, user_events, status
 
 
 def _bar(fraction: float, t: float) -> None:
     progress_bar(fraction, t)
 
 
-def _join(system: StickSlipSystem, p: np.ndarray, grid: np.ndarray, pieces: list[tuple[int, Trajectory]],  # noqa: PLR0913
+def _join(system: StickSlipSystem, p: np.ndarray, grid: np.ndarray, pieces: list[tuple[int, Trajectory]],
           switches: list[Event], user_events: list[Event], status: str, method: str,
           tolerance: float | None) -> Trajectory:
     """One trajectory on ``grid`` from the phases (module docstring)."""
@@ -351,8 +360,6 @@ def _join(system: StickSlipSystem, p: np.ndarray, grid: np.ndarray, pieces: list
     q, qd, qdd = np.concatenate(Q), np.concatenate(QD), np.concatenate(QDD)
     Y = np.column_stack([q, qd])
     stuck = system.stuck
-    from ._simulate import momenta as momentum_index  # late: `_simulate` imports this module
-
     values = stuck.monitor_values(t, Y, p) if len(t) else np.zeros((0, len(stuck.monitors)))
     n = len(stuck.coordinates)
     M, g = stuck.parts(t, Y, p)[0::4] if len(t) else (None, np.zeros((0, stuck.m)))

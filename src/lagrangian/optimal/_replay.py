@@ -27,8 +27,8 @@ import numpy as np
 from ..dynamics import EquationsOfMotion
 from ..errors import SimulationError
 from ..numerics import CompiledSystem, InputTable, simulate
-from ..numerics._dae import ConstrainedSystem
-from ..numerics._projection import project
+from ..numerics import ConstrainedSystem
+from ..numerics import project
 from ._result import REPLAY_TOLERANCE, Replay
 
 __all__ = ["RTOL", "replay_check", "replay_inputs"]

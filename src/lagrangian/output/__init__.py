@@ -7,10 +7,6 @@ from ._course import CourseForm as CourseForm
 from ._course import course_form as course_form
 from ._equilibria_text import equilibria_text as equilibria_text
 from ..codegen import EXPORT_TARGETS as EXPORT_TARGETS
-from ..numerics._ensemble import register_backend as _register_backend
-from ._ensemble_jax import jax_runner as _jax_runner
-
-_register_backend("jax", _jax_runner)  # `ensemble(..., backend="jax")`: built on the JAX export, so registered here
 from ..codegen import export as export
 from ._json import SCHEMA_ID as SCHEMA_ID
 from ._json import SCHEMA_VERSION as SCHEMA_VERSION

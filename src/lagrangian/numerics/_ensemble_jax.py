@@ -36,7 +36,7 @@ from ..errors import SimulationError
 
 __all__ = ["jax_runner"]
 
-# member status (`numerics._batch.STATUS`): ok, blow-up, step-limit
+# member status (`_batch.STATUS`): ok, blow-up, step-limit
 _OK, _BLOW_UP, _STEP_LIMIT = 0, 2, 3
 
 
@@ -73,6 +73,10 @@ def jax_runner(eom, *, t_start: float, t_end: float, t_out: np.ndarray, rtol: fl
     """
     jax, diffrax = _modules()
     jax.config.update("jax_enable_x64", True)  # see the module docstring
+    # The JAX export target: this backend runs the code `export --target jax` writes.
+    from ..codegen import exported_symbols
+    from ..codegen.targets.jax import jax_module
+
     text = jax_module(exported_symbols(eom, "jax"))
     rhs = _imported(text).rhs
     n2 = 2 * len(eom.q)
