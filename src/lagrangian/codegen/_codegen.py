@@ -184,7 +184,8 @@ def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence, events: Seq
     grows about linearly (F) and quadratically (M) with the number of joints.
     """
     rec = eom.recursive
-    assert rec is not None, "generate_c dispatches here for an eom with a recursive form only"
+    if rec is None:
+        raise ValueError("generate_c dispatches here for an eom with a recursive form only")
     n = len(eom.q)
     params = tuple(p.name for p in eom.model.parameters)
     for k, (sym, _) in enumerate(rec.intermediates):
