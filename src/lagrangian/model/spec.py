@@ -375,6 +375,8 @@ class CoulombFriction:
         return bool(self.regularization == 0)
 
 
+#: Any of the loads a model declares: each is applied by virtual power (Q_i = Σ F·∂V/∂q̇_i), or
+#: through a potential U or a dissipation function.
 Load = (Gravity | PointForce | Torque | Spring | Damper | Potential | GeneralizedForce | Dissipation | JointDamper
         | CoulombFriction)
 

@@ -56,6 +56,8 @@ from ._trajectory import Event, Trajectory, conservation
 
 __all__ = ["STABILIZATIONS", "ConstrainedSystem", "constrained_source", "reaction_columns", "simulate_dae"]
 
+#: How a constrained motion is held on its constraints (`simulate`'s ``stabilization``): projection
+#: onto them after each step, Baumgarte's stabilization of the constraint rows, both, or none.
 STABILIZATIONS = ("projection", "baumgarte", "both", "none")
 #: Methods whose state may be replaced between steps (the projection needs it).
 EXPLICIT = {"dop853": "DOP853", "DOP853": "DOP853", "RK45": "RK45", "RK23": "RK23"}

@@ -58,6 +58,7 @@ __all__ = ["METHODS", "EventSpec", "control_block", "default_tolerance", "initia
 
 BUILTIN = ("dop853", "gauss-legendre")
 SCIPY = ("RK45", "RK23", "DOP853", "Radau", "BDF", "LSODA")
+#: The integration methods of `simulate`: the compiled ones (C), then SciPy's `solve_ivp` methods.
 METHODS = BUILTIN + SCIPY
 
 #: Smallest rtol, about 50 machine epsilons: a tighter local tolerance than this cannot be met by
