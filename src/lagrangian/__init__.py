@@ -54,7 +54,7 @@ _WHERE = {
 }
 __getattr__ = lazy_names(__name__, _WHERE)[0]  # `__dir__` below: the public names only
 
-__all__ = ["__version__", *(name for names in _WHERE.values() for name in names)]
+__all__ = ["__version__"] + [name for names in _WHERE.values() for name in names]
 
 if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly (tests/test_public_api.py checks)
     from .analysis import ControlError as ControlError
