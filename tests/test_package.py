@@ -41,7 +41,7 @@ def test_module_level_imports_flow_one_way():
         nodes = list(tree.body) + [n for top in tree.body if isinstance(top, ast.If) for n in top.body]
         for node in nodes:
             if isinstance(node, ast.ImportFrom) and node.level >= 1:
-                # Resolved from the module's package, at any depth (output/report/steps/x.py: ``....dynamics``).
+                # Resolved from the module's package, at any depth (output/_report/steps/x.py: ``....dynamics``).
                 package = parts[:-1]
                 base = package[:len(package) - (node.level - 1)]
                 top = node.module.split(".")[:1] if node.module else [a.name for a in node.names]
@@ -52,7 +52,7 @@ def test_module_level_imports_flow_one_way():
 
 def test_every_relative_import_names_a_module_that_exists():
     # Also the imports inside functions, which run only on some paths (a report with a given
-    # constraint): after modules move (output/report/), a stale `..model` would fail only there.
+    # constraint): after modules move (output/_report/), a stale `..model` would fail only there.
     import ast
     import importlib.util
 

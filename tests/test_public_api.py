@@ -137,3 +137,14 @@ def test_one_version_string():
     assert version("lagrangian") == __version__  # pyproject's version is read from _version.py
     pyproject = (SRC.parents[1] / "pyproject.toml").read_text(encoding="utf-8")
     assert "dynamic = [\"version\"]" in pyproject
+
+
+@pytest.mark.parametrize("module_name", public_modules())
+def test_no_public_name_is_also_a_submodule(module_name):
+    # `lagrangian.output.report` the function once hid `lagrangian.output.report` the package: an attribute
+    # and a submodule of one name make `import package.name.module` and `package.name` disagree.
+    module = importlib.import_module(module_name)
+    if not hasattr(module, "__path__"):
+        return
+    submodules = {info.name for info in pkgutil.iter_modules(module.__path__)}
+    assert not submodules & set(module.__all__), sorted(submodules & set(module.__all__))

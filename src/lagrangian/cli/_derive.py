@@ -20,7 +20,7 @@ from ..errors import DerivationError
 from ..output import course_form, derive_document, render_latex, render_text
 from ..output._intermediates import listed, render_intermediates
 from ..output._text import supplement
-from ..output.report.size import SizeGate
+from ..output._report.size import SizeGate
 from ._settings import SettingError
 from ._source import load_source
 

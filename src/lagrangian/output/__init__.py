@@ -15,11 +15,11 @@ from ._latex import render_latex as render_latex
 from ._linearize_json import LINEARIZE_SCHEMA_ID as LINEARIZE_SCHEMA_ID
 from ._linearize_json import linearize_document as linearize_document
 from ._notation import Notation as Notation
-from .report import FORMATS as FORMATS
-from .report import Report as Report
-from .report import ReportFigure as ReportFigure
-from .report import format_for as format_for
-from .report import report as report
+from ._report import FORMATS as FORMATS
+from ._report import Report as Report
+from ._report import ReportFigure as ReportFigure
+from ._report import format_for as format_for
+from ._report import report as report
 from ._sympy_form import SympyEquations as SympyEquations
 from ._sympy_form import sympy_equations as sympy_equations
 from ._text import render_text as render_text

@@ -271,7 +271,7 @@ def course_form(eom: EquationsOfMotion, integrals: tuple[FirstIntegral, ...], *,
 
     ``convert`` turns each engine expression into the SymPy expression that is printed
     (`to_sympy` by default).  The report passes one that stands a summary in for an
-    expression too long to print (`lagrangian.output.report.size`), so that a 40-link
+    expression too long to print (`lagrangian.output._report.size`), so that a 40-link
     chain is collected in a fraction of a second rather than converted in full.
     """
     model = eom.model

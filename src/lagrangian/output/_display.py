@@ -8,7 +8,7 @@ e.g. the top's
 
     L(θ):  A θ̈ − A ψ̇² sinθ cosθ + C ψ̇ sinθ (φ̇ + ψ̇ cosθ) = m g a sinθ     [Seed, section II].
 
-Long expressions stay bounded by the report's rules (`report.size`): an expression past
+Long expressions stay bounded by the report's rules (`_report.size`): an expression past
 `MAX_OPS` operations, or met once `BUDGET` have been printed, shows as ⟨812 terms⟩; a wide
 sum is cut into lines of `LINE_WIDTH`; an equation keeps at most `FOLD_LINES` lines.
 """
@@ -21,8 +21,8 @@ from collections.abc import Sequence
 import numpy as np
 
 from ._notation import Notation
-from .report.document import Equation
-from .report.size import FOLD_LINES, SizeGate, wrap_latex
+from ._report.document import Equation
+from ._report.size import FOLD_LINES, SizeGate, wrap_latex
 
 __all__ = ["equations_latex", "equations_markdown", "equation_latex", "integral_latex", "integral_markdown",
            "linear_model_latex", "trajectory_html", "trajectory_markdown", "trajectory_latex"]
