@@ -1,0 +1,168 @@
+"""Sphinx configuration of the API reference, built from the docstrings (``make docs``).
+
+The pages are written here, before Sphinx reads its sources, from the package's own lists: one page
+for the package (`lagrangian.__all__`, its table `lagrangian._WHERE`) and one per stage module with
+its ``__all__`` (each object documented once, where its stage exports it).  A name added to an
+``__all__`` is in the reference at the next build; nothing here lists names by hand.
+"""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+import pkgutil
+import re
+import sys
+import warnings
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+if (HERE.parents[1] / "src" / "lagrangian").is_dir():  # the checkout's package, installed or not
+    sys.path.insert(0, str(HERE.parents[1] / "src"))
+
+import lagrangian  # noqa: E402
+from sphinx.util import logging  # noqa: E402
+
+project = "lagrangian"
+author = "the lagrangian authors"
+copyright = "the lagrangian authors"
+release = version = lagrangian.__version__
+
+extensions = ["sphinx.ext.autodoc", "sphinx.ext.autosummary", "numpydoc"]
+root_doc = "index"
+exclude_patterns = ["_build"]
+html_theme = "alabaster"
+html_static_path: list[str] = []
+
+# Every cross-reference must resolve (sphinx-build -n): references into the package are checked;
+# those to other libraries' types (NumPy, SymPy, SymEngine, the standard library) would need their
+# inventories from the network, which a build here does not reach, so they are left as text.
+nitpicky = True
+nitpick_ignore_regex = [(r"py:.*", r"(?!lagrangian\b).*")]
+
+autodoc_default_options = {"member-order": "bysource"}
+autodoc_typehints = "signature"
+autodoc_preserve_defaults = True
+autosummary_generate = False  # the pages are written below, one per stage, not one per object
+numpydoc_show_class_members = False  # members are documented by autodoc's :members:, on the same page
+numpydoc_class_members_toctree = False
+numpydoc_xref_param_type = False
+numpydoc_validation_checks: set[str] = set()
+
+
+def stage_modules() -> list[str]:
+    """The modules whose ``__all__`` is public API: each stage's face, and the modules the package's table names."""
+    stages = [f"lagrangian.{info.name}" for info in pkgutil.iter_modules(lagrangian.__path__)
+              if not info.name.startswith("_") and info.name != "cli"]  # the command line is no library API
+    named = [importlib.import_module(where, "lagrangian").__name__ for where in lagrangian._WHERE]
+    return sorted(set(stages) | set(named))
+
+
+def _directive(module: str, name: str) -> str:
+    value = getattr(importlib.import_module(module), name)
+    if inspect.isclass(value) and issubclass(value, BaseException):
+        return f".. autoexception:: {name}\n   :members:\n"
+    if inspect.isclass(value):
+        return f".. autoclass:: {name}\n   :members:\n"
+    if inspect.isroutine(value):
+        return f".. autofunction:: {name}\n"
+    return f".. autodata:: {name}\n   :no-value:\n"
+
+
+def _title(text: str) -> str:
+    return f"{text}\n{'=' * len(text)}\n"
+
+
+def stage_page(module: str) -> str:
+    names = importlib.import_module(module).__all__
+    parts = [_title(f"``{module}``"), f".. automodule:: {module}\n   :no-members:\n",
+             f".. currentmodule:: {module}\n", ".. autosummary::\n", *(f"   {name}" for name in names), ""]
+    parts += [_directive(module, name) for name in names]
+    return "\n".join(parts)
+
+
+def package_page() -> str:
+    parts = [_title("``lagrangian``"), ".. automodule:: lagrangian\n   :no-members:\n",
+             "The names of the package, each documented with its stage:\n"]
+    for where, names in lagrangian._WHERE.items():
+        module = importlib.import_module(where, "lagrangian").__name__
+        parts.append(f"* :doc:`{module}`: " + ", ".join(
+            f":py:obj:`~lagrangian.{name} <{module}.{name}>`" for name in names))
+    parts.append(f"\n``__version__``: the package's version (``{lagrangian.__version__}``).\n")
+    return "\n".join(parts)
+
+
+def write_pages(directory: Path) -> list[str]:
+    """Write the package's page and the stages' pages into ``directory``; their names, in the toctree's order."""
+    directory.mkdir(exist_ok=True)
+    pages = {"lagrangian": package_page()} | {module: stage_page(module) for module in stage_modules()}
+    for old in directory.glob("*.rst"):
+        if old.stem not in pages:
+            old.unlink()
+    for name, text in pages.items():
+        path = directory / f"{name}.rst"
+        if not path.exists() or path.read_text(encoding="utf-8") != text:  # unchanged pages stay unread
+            path.write_text(text, encoding="utf-8")
+    return list(pages)
+
+
+PAGES = write_pages(HERE / "generated")
+
+#: Every documented object, by its documented name (``lagrangian.numerics.Trajectory``).
+DOCUMENTED = {f"{module}.{name}": getattr(importlib.import_module(module), name)
+              for module in stage_modules() for name in importlib.import_module(module).__all__}
+
+
+def _public_name(target: str) -> str | None:
+    """The documented name of what ``target`` names through a private path, or None.
+
+    An annotation names a type where it is defined or imported: ``lagrangian.analysis._reactions.Trajectory``
+    (imported there for type checking only) is documented as ``lagrangian.numerics.Trajectory``.  The type is
+    the object at ``target`` when that imports, else the one documented object of the same last name.
+    """
+    module, _, name = target.rpartition(".")
+    try:
+        found = getattr(importlib.import_module(module), name)
+    except (ImportError, AttributeError, ValueError):
+        found = None
+    same = [full for full, value in DOCUMENTED.items() if full.rpartition(".")[2] == name
+            and (found is None or value is found)]
+    return same[0] if len(same) == 1 else None
+
+
+def _resolve_private(app, env, node, contnode):
+    """Sphinx's ``missing-reference``: a reference to a public object through a private module path."""
+    target = node.get("reftarget", "")
+    if node.get("refdomain") != "py" or not target.startswith("lagrangian."):
+        return None
+    public = _public_name(target)
+    if public is None or public == target:
+        return None
+    return env.domains["py"].resolve_xref(env, node["refdoc"], app.builder, node["reftype"], public, node, contnode)
+
+
+# What is left unresolved under the package is a type no stage exports (a private module's value type,
+# such as ``lagrangian.analysis._top.Nutation``): shown as text, like other libraries' types.  A
+# reference to a public name that does not exist (``lagrangian.numerics.Trajectry``) still fails.
+nitpick_ignore_regex.append((r"py:.*", r"lagrangian(\.\w+)*\._\w+(\.\w+)*"))
+
+
+# numpydoc reports a docstring it cannot read (an unknown section, a bad "See Also" entry) with Python's
+# `warnings`, which ``sphinx-build -W`` does not see: they are passed on as Sphinx warnings, each time.
+_LOG = logging.getLogger("numpydoc")
+_show_warning = warnings.showwarning
+warnings.filterwarnings("always", category=UserWarning)
+
+
+def _numpydoc_warning(message, category, filename, lineno, file=None, line=None):
+    if "numpydoc" in Path(filename).parts or "docscrape" in filename:
+        _LOG.warning("numpydoc: %s", message)
+    else:
+        _show_warning(message, category, filename, lineno, file, line)
+
+
+warnings.showwarning = _numpydoc_warning
+
+
+def setup(app):
+    app.connect("missing-reference", _resolve_private)
