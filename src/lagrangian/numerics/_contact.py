@@ -104,8 +104,8 @@ def simulate_contact(
     Parameters
     ----------
     source : a model file, a `Model`, or its equations, with at least one ``unilateral`` constraint.
-    t_end, t_start, initial, parameters, rtol, atol, max_step, n_out, t_eval, events, tolerance,
-    max_steps, progress, backend, stiffness_check : as for `simulate`.  ``method`` must be
+    t_end, t_start, initial, parameters, rtol, atol, max_step, n_out, t_eval, events : as for `simulate`.
+    tolerance, max_steps, progress, backend, stiffness_check : as for `simulate`.  ``method`` must be
         ``"dop853"`` and ``dt`` None (phases end at events), ``stabilization`` None or
         ``"projection"`` (the closed contacts are kept by projection).
     rest : the last approach speed, relative to the first of a geometric series of impacts, at

@@ -98,7 +98,7 @@ def impact_sweep(source, axes: Mapping[str, Sequence[float]], t_end: float, *,  
     t_end : the end of each run.
     parameters, initial : values for every member (not swept).
     min_speed : the approach speed from which an impact counts as a bounce.
-    options : passed to `simulate_contact` (``rtol``, ``atol``, ``rest``...).
+    **options : passed to `simulate_contact` (``rtol``, ``atol``, ``rest``...).
 
     Raises
     ------

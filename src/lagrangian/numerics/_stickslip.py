@@ -229,9 +229,9 @@ def simulate_stick_slip(
     Parameters
     ----------
     source : a model file, a `Model`, or its equations, whose contact has ``regularization = 0``.
-    t_end, t_start, initial, parameters, method, rtol, atol, max_step, n_out, t_eval, events,
-    tolerance, max_steps, progress, backend, stiffness_check : as for `simulate` (``dt`` and ``gauss-legendre``
-        are refused: the phases end at events, not on a fixed grid).
+    t_end, t_start, initial, parameters, method, rtol, atol, max_step, n_out, t_eval : as for `simulate`.
+    events, tolerance, max_steps, progress, backend, stiffness_check : as for `simulate` (``dt`` and
+        ``gauss-legendre`` are refused: the phases end at events, not on a fixed grid).
     stabilization, baumgarte : the drift control of the stuck phases (`simulate_dae`).
     max_switches : the most phases a run may have.
 
