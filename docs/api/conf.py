@@ -11,17 +11,21 @@ from __future__ import annotations
 import importlib
 import inspect
 import pkgutil
-import re
 import sys
 import warnings
 from pathlib import Path
+
+from docutils import nodes
+from sphinx.addnodes import pending_xref
+from sphinx.application import Sphinx
+from sphinx.environment import BuildEnvironment
+from sphinx.util import logging
 
 HERE = Path(__file__).resolve().parent
 if (HERE.parents[1] / "src" / "lagrangian").is_dir():  # the checkout's package, installed or not
     sys.path.insert(0, str(HERE.parents[1] / "src"))
 
-import lagrangian  # noqa: E402
-from sphinx.util import logging  # noqa: E402
+lagrangian = importlib.import_module("lagrangian")  # after the path is set: the checkout's own
 
 project = "lagrangian"
 author = "the lagrangian authors"
@@ -51,8 +55,9 @@ numpydoc_xref_param_type = False
 # GL07), the parameters it documents those of the signature, in order (PR02, PR03), "name : type" with its
 # spaces (PR10), Returns, Yields and See Also well formed (RT02, YD01, SA02-SA04), no stray blank lines or
 # tabs (GL03, GL05), deprecations and directives well placed (GL09, GL10).  GL08 (no docstring) is left to
-# tests/test_public_api.py: here it would fault an attribute documented by a ``#:`` comment.  The checks of style and completeness (a summary of one line, every parameter with a type and a
-# sentence, an example in each) are left out: the docstrings write "name : what it is" on one line.
+# tests/test_public_api.py: here it would fault an attribute documented by a ``#:`` comment.  The checks
+# of style and completeness (a summary of one line, every parameter with a type and a sentence, an example
+# in each) are left out: the docstrings write "name : what it is" on one line.
 numpydoc_validation_checks = {"GL03", "GL05", "GL06", "GL07", "GL09", "GL10", "PR02", "PR03", "PR10",
                               "RT02", "YD01", "SA02", "SA03", "SA04"}
 
@@ -137,7 +142,8 @@ def _public_name(target: str) -> str | None:
     return same[0] if len(same) == 1 else None
 
 
-def _resolve_private(app, env, node, contnode):
+def _resolve_private(app: Sphinx, env: BuildEnvironment, node: pending_xref,
+                     contnode: nodes.TextElement) -> nodes.reference | None:
     """Sphinx's ``missing-reference``: a reference to a public object through a private module path."""
     target = node.get("reftarget", "")
     if node.get("refdomain") != "py" or not target.startswith("lagrangian."):
@@ -158,18 +164,19 @@ nitpick_ignore_regex.append((r"py:.*", r"lagrangian(\.\w+)*\._\w+(\.\w+)*"))
 # `warnings`, which ``sphinx-build -W`` does not see: they are passed on as Sphinx warnings, each time.
 _LOG = logging.getLogger("numpydoc")
 _show_warning = warnings.showwarning
-warnings.filterwarnings("always", category=UserWarning)
+warnings.filterwarnings("always", category=UserWarning, module=r"numpydoc\b")
 
 
-def _numpydoc_warning(message, category, filename, lineno, file=None, line=None):
+def _numpydoc_warning(message: Warning | str, category: type[Warning], filename: str, lineno: int,
+                      file: object = None, line: str | None = None) -> None:
     if "numpydoc" in Path(filename).parts or "docscrape" in filename:
         _LOG.warning("numpydoc: %s", message)
     else:
-        _show_warning(message, category, filename, lineno, file, line)
+        _show_warning(message, category, filename, lineno, file, line)  # type: ignore[arg-type]
 
 
 warnings.showwarning = _numpydoc_warning
 
 
-def setup(app):
+def setup(app: Sphinx) -> None:
     app.connect("missing-reference", _resolve_private)
