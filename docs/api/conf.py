@@ -99,7 +99,7 @@ def package_page() -> str:
     for where, names in lagrangian._WHERE.items():
         module = importlib.import_module(where, "lagrangian").__name__
         parts.append(f"* :doc:`{module}`: " + ", ".join(
-            f":py:obj:`~lagrangian.{name} <{module}.{name}>`" for name in names))
+            f":py:obj:`lagrangian.{name} <{module}.{name}>`" for name in names))
     parts.append(f"\n``__version__``: the package's version (``{lagrangian.__version__}``).\n")
     return "\n".join(parts)
 
