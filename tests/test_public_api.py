@@ -148,3 +148,23 @@ def test_no_public_name_is_also_a_submodule(module_name):
         return
     submodules = {info.name for info in pkgutil.iter_modules(module.__path__)}
     assert not submodules & set(module.__all__), sorted(submodules & set(module.__all__))
+
+
+@pytest.mark.parametrize("module_name", [name for name in public_modules()
+                                         if hasattr(importlib.import_module(name), "__path__")])
+def test_a_stage_face_re_exports_exactly_its_all(module_name):
+    # A face's names are its `X as X` imports (eager, or under TYPE_CHECKING beside a lazy table) and what
+    # it star-imports from a module's __all__: the same names as its __all__, neither list ahead.
+    module = importlib.import_module(module_name)
+    tree = ast.parse(Path(module.__file__).read_text(encoding="utf-8"))
+    statements = list(tree.body) + [node for top in tree.body if isinstance(top, ast.If) for node in top.body]
+    exported: set[str] = set()
+    for node in statements:
+        if isinstance(node, ast.ImportFrom):
+            source = importlib.util.resolve_name("." * node.level + (node.module or ""), module_name)
+            for alias in node.names:
+                if alias.name == "*":
+                    exported |= set(importlib.import_module(source).__all__)
+                elif alias.asname == alias.name:
+                    exported.add(alias.name)
+    assert exported == set(module.__all__), sorted(exported ^ set(module.__all__))
