@@ -125,6 +125,15 @@ DOCUMENTED = {f"{module}.{name}": getattr(importlib.import_module(module), name)
               for module in stage_modules() for name in importlib.import_module(module).__all__}
 
 
+def _lookup(target: str) -> object | None:
+    """The object that the dotted name ``target`` names, or None when it names nothing."""
+    module, _, name = target.rpartition(".")
+    try:
+        return getattr(importlib.import_module(module), name, None)
+    except (ImportError, ValueError):
+        return None if "." not in module else getattr(_lookup(module), name, None)
+
+
 def _public_name(target: str) -> str | None:
     """The documented name of what ``target`` names through a private path, or None.
 
@@ -132,11 +141,8 @@ def _public_name(target: str) -> str | None:
     (imported there for type checking only) is documented as ``lagrangian.numerics.Trajectory``.  The type is
     the object at ``target`` when that imports, else the one documented object of the same last name.
     """
-    module, _, name = target.rpartition(".")
-    try:
-        found = getattr(importlib.import_module(module), name)
-    except (ImportError, AttributeError, ValueError):
-        found = None
+    name = target.rpartition(".")[2]
+    found = _lookup(target)
     same = [full for full, value in DOCUMENTED.items() if full.rpartition(".")[2] == name
             and (found is None or value is found)]
     return same[0] if len(same) == 1 else None
@@ -144,19 +150,25 @@ def _public_name(target: str) -> str | None:
 
 def _resolve_private(app: Sphinx, env: BuildEnvironment, node: pending_xref,
                      contnode: nodes.TextElement) -> nodes.reference | None:
-    """Sphinx's ``missing-reference``: a reference to a public object through a private module path."""
+    """Sphinx's ``missing-reference``: a reference into the package that names no entry of the reference.
+
+    A public object named through its module's path (``lagrangian.analysis._reactions.Trajectory``) links
+    to its entry; a type that exists but that no stage exports (``lagrangian.analysis._top.Nutation``,
+    ``lagrangian.codegen.targets.base.ExportedRow``) is shown as text; a name that names nothing
+    (``lagrangian.numerics.Trajectry``) is left to Sphinx, which warns: an error in ``make docs``.
+    """
     target = node.get("reftarget", "")
     if node.get("refdomain") != "py" or not target.startswith("lagrangian."):
         return None
     public = _public_name(target)
-    if public is None or public == target:
-        return None
-    return env.domains["py"].resolve_xref(env, node["refdoc"], app.builder, node["reftype"], public, node, contnode)
+    if public is not None and public != target:
+        return env.domains["py"].resolve_xref(env, node["refdoc"], app.builder, node["reftype"], public, node,
+                                              contnode)
+    return contnode if _lookup(target) is not None else None
 
 
-# What is left unresolved under the package is a type no stage exports (a private module's value type,
-# such as ``lagrangian.analysis._top.Nutation``): shown as text, like other libraries' types.  A
-# reference to a public name that does not exist (``lagrangian.numerics.Trajectry``) still fails.
+# A private module's name that does not import at run time (imported there for type checking only) and
+# names no documented object: shown as text too.
 nitpick_ignore_regex.append((r"py:.*", r"lagrangian(\.\w+)*\._\w+(\.\w+)*"))
 
 

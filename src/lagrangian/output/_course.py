@@ -47,8 +47,8 @@ def to_sympy(e: se.Basic) -> sympy.Basic:
     A longer expression (up to `EXPAND_MAX_OPS`) is expanded by SymEngine first, kept when
     shorter, and then tidied as a small one: Kapitza's L(θ), 56 operations as derived, is
     m l² θ̈ − m l a ν² cos(ν t) sinθ.  Only small expressions get SymPy's expansion
-    (`TIDY_MAX_OPS`): simplification only where it pays.  √(a²) is written |a|, and a/|a|
-    sgn(a): exact Coulomb friction's −f N ẋ/√(ẋ²) prints as −f N sgn(ẋ) (`_signs`).
+    (`TIDY_MAX_OPS`): simplification only where it pays.  ``√(a²)`` is written ``|a|``, and ``a/|a|``
+    ``sgn(a)``: exact Coulomb friction's −f N ẋ/√(ẋ²) prints as −f N sgn(ẋ) (`_signs`).
     """
     expr = _from_engine(e)
     ops = sympy.count_ops(expr)
