@@ -4,7 +4,7 @@ PYTHON ?= python3
 VENV ?= .venv
 PY := $(VENV)/bin/python
 
-.PHONY: demo test bench clean browser octave tex peers types
+.PHONY: demo test docs bench clean browser octave tex peers types
 
 $(VENV)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -17,6 +17,11 @@ demo: $(VENV)/.installed   ## derive the seed's Lagrange top
 
 test: $(VENV)/.installed browser octave tex peers   ## run the test suite
 	$(PY) -m pytest src tests
+
+# The API reference from the docstrings (Sphinx with numpydoc, docs/api/): nitpicky (-n: every reference into
+# the package resolves), warnings are errors (-W, all of them reported: --keep-going). Open docs/api/_build/index.html.
+docs: $(VENV)/.installed   ## build the API reference
+	$(PY) -m sphinx -b html -n -W --keep-going -q docs/api docs/api/_build
 
 # The HTML report's tests open the page in a headless browser (Debian's chromium). Install it when it
 # is missing and we are root with apt-get; otherwise say so: those tests are then skipped, the build goes on.
@@ -99,4 +104,4 @@ bench: $(VENV)/.installed   ## derivation benchmark against SymPy's LagrangesMet
 	$(PY) benchmarks/derive_vs_sympy.py
 
 clean:
-	rm -rf $(VENV) build *.egg-info src/*.egg-info
+	rm -rf $(VENV) build *.egg-info src/*.egg-info docs/api/_build docs/api/generated

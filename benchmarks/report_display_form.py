@@ -11,7 +11,7 @@ from __future__ import annotations
 import time
 
 import lagrangian
-from lagrangian.output.report import build
+from lagrangian.output._report import build
 from lagrangian.model.zoo import planar_chain
 from lagrangian.output import report
 from lagrangian.output._display_form import _display_form

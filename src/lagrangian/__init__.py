@@ -24,146 +24,121 @@ Typical use::
 
 from __future__ import annotations
 
-import importlib
 from typing import TYPE_CHECKING
 
+from ._lazy import lazy_names
+from ._version import __version__
+
+# The one list of the package's public names: {module: names}, in the pipeline's order.  Each name is
+# one of its stage's public names (the stage's ``__all__``); `__all__` and the lazy loading below are
+# made from this table, and a test checks that the TYPE_CHECKING imports say the same.
+#
 # The names are imported on first use (PEP 562), not here: `import lagrangian` and the command
 # line's first lines then cost milliseconds, not the 3 s of SymPy, SciPy and the whole pipeline,
 # so that Ctrl-C while those load reaches the command line's handler (one line, exit 130), not a
 # traceback from the middle of an import.
 _WHERE = {
-    **dict.fromkeys(("ControlError", "EnergyBalance", "Equilibrium", "Feedback", "FirstIntegral", "LinearizationError",
-                     "LinearModel", "Modes", "Stability", "Sweep", "TopAnalysis", "Verification", "analyse_top",
-                     "energy_balance", "equilibria", "first_integrals", "holding_inputs", "linearize", "lqr", "modes",
-                     "routh_reduction", "stability", "steady_motions", "sweep", "verify"), ".analysis"),
-    **dict.fromkeys(("EquationsOfMotion", "LagrangeEquation", "derive"), ".dynamics"),
-    **dict.fromkeys(("DerivationError", "ExportError", "IdentificationError", "KinematicsError", "LagrangianError",
-                     "ModelError", "OptimizationError", "OutputError", "ProblemError", "SimulationError",
-                     "VerificationError"), ".errors"),
-    **dict.fromkeys(("Identification", "identify"), ".identification"),
-    "Kinematics": ".kinematics",
-    **dict.fromkeys(("ModelBuilder", "load_model", "load_urdf", "parse_model"), ".model"),
-    "Model": ".model.spec",
-    "lagrange_top": ".model.zoo",
-    "export": ".codegen",
-    **dict.fromkeys(("Report", "report"), ".output"),
-    **dict.fromkeys(("optimize", "load_problem", "OptimalTrajectory", "Objective", "Problem"), ".optimal"),
-    **dict.fromkeys(("CompiledSystem", "ContactEvent", "EventSpec", "FreeBodySystem", "ImpactSweep", "InputTable", "Sensitivities", "Switch", "Trajectory",
-                     "compile_free_system", "compile_system", "ensemble", "grid", "impact_sweep", "load_trajectory", "open_ensemble", "save_trajectory", "simulate"), ".numerics"),
-    **dict.fromkeys(("View", "view"), ".view3d"),
+    ".model": ("load_model", "parse_model", "load_urdf", "ModelBuilder", "Model"),
+    ".model.zoo": ("lagrange_top",),
+    ".kinematics": ("Kinematics",),
+    ".dynamics": ("derive", "EquationsOfMotion", "LagrangeEquation"),
+    ".analysis": ("first_integrals", "FirstIntegral", "energy_balance", "EnergyBalance", "verify", "Verification",
+                  "analyse_top", "TopAnalysis", "linearize", "holding_inputs", "LinearModel", "LinearizationError",
+                  "modes", "Modes", "stability", "Stability", "sweep", "Sweep", "Equilibrium", "routh_reduction",
+                  "steady_motions", "equilibria", "lqr", "Feedback", "ControlError"),
+    ".numerics": ("compile_system", "CompiledSystem", "compile_free_system", "FreeBodySystem", "simulate",
+                  "Sensitivities", "ensemble", "grid", "open_ensemble", "EventSpec", "InputTable", "Switch",
+                  "ContactEvent", "impact_sweep", "ImpactSweep", "Trajectory", "save_trajectory", "load_trajectory"),
+    ".identification": ("identify", "Identification"),
+    ".optimal": ("optimize", "load_problem", "Problem", "Objective", "OptimalTrajectory"),
+    ".codegen": ("export",),
+    ".output": ("report", "Report"),
+    ".view3d": ("view", "View"),
+    ".errors": ("LagrangianError", "ModelError", "KinematicsError", "DerivationError", "SimulationError",
+                "OutputError", "ExportError", "VerificationError", "IdentificationError", "ProblemError",
+                "OptimizationError"),
 }
+__getattr__ = lazy_names(__name__, _WHERE)[0]  # `__dir__` below: the public names only
 
-if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
-    from .analysis import (ControlError, EnergyBalance, Equilibrium, Feedback, FirstIntegral, LinearizationError,
-                           LinearModel, Modes, Stability, Sweep, TopAnalysis, Verification, analyse_top,
-                           energy_balance, equilibria, first_integrals, holding_inputs, linearize, lqr, modes,
-                           routh_reduction, stability, steady_motions, sweep, verify)
-    from .dynamics import EquationsOfMotion, LagrangeEquation, derive
-    from .errors import (DerivationError, ExportError, IdentificationError, KinematicsError, LagrangianError,
-                         ModelError, OptimizationError, OutputError, ProblemError, SimulationError, VerificationError)
-    from .identification import Identification, identify
-    from .kinematics import Kinematics
-    from .model import ModelBuilder, load_model, load_urdf, parse_model
-    from .model.spec import Model
-    from .model.zoo import lagrange_top
-    from .numerics import (CompiledSystem, ContactEvent, EventSpec, FreeBodySystem, ImpactSweep, InputTable, Sensitivities, Switch, Trajectory, compile_free_system,
-                           compile_system, ensemble, grid, impact_sweep, load_trajectory, open_ensemble, save_trajectory, simulate)
-    from .optimal import Objective, OptimalTrajectory, Problem, load_problem, optimize
-    from .codegen import export
-    from .output import Report, report
-    from .view3d import View, view
+__all__ = ["__version__"] + [name for names in _WHERE.values() for name in names]
 
-__version__ = "0.1.0"
-
-__all__ = [
-    "__version__",
-    "load_model",
-    "parse_model",
-    "load_urdf",
-    "ModelBuilder",
-    "Model",
-    "lagrange_top",
-    "Kinematics",
-    "derive",
-    "EquationsOfMotion",
-    "LagrangeEquation",
-    "first_integrals",
-    "FirstIntegral",
-    "energy_balance",
-    "EnergyBalance",
-    "verify",
-    "Verification",
-    "analyse_top",
-    "TopAnalysis",
-    "linearize",
-    "holding_inputs",
-    "LinearModel",
-    "LinearizationError",
-    "modes",
-    "Modes",
-    "stability",
-    "Stability",
-    "sweep",
-    "Sweep",
-    "Equilibrium",
-    "routh_reduction",
-    "steady_motions",
-    "equilibria",
-    "lqr",
-    "Feedback",
-    "ControlError",
-    "compile_system",
-    "CompiledSystem",
-    "compile_free_system",
-    "FreeBodySystem",
-    "simulate",
-    "Sensitivities",
-    "identify",
-    "Identification",
-    "ensemble",
-    "grid",
-    "open_ensemble",
-    "EventSpec",
-    "InputTable",
-    "Switch",
-    "ContactEvent",
-    "impact_sweep",
-    "ImpactSweep",
-    "Trajectory",
-    "save_trajectory",
-    "load_trajectory",
-    "optimize",
-    "load_problem",
-    "Problem",
-    "Objective",
-    "OptimalTrajectory",
-    "report",
-    "Report",
-    "export",
-    "view",
-    "View",
-    "LagrangianError",
-    "ModelError",
-    "KinematicsError",
-    "DerivationError",
-    "SimulationError",
-    "OutputError",
-    "ExportError",
-    "VerificationError",
-    "IdentificationError",
-    "ProblemError",
-    "OptimizationError",
-]
-
-
-def __getattr__(name: str):
-    """A public name, imported from its subpackage on first use (and kept)."""
-    where = _WHERE.get(name)
-    if where is None:
-        raise AttributeError(f"module 'lagrangian' has no attribute {name!r}")
-    value = getattr(importlib.import_module(where, __name__), name)
-    globals()[name] = value
-    return value
+if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly (tests/test_public_api.py checks)
+    from .analysis import ControlError as ControlError
+    from .analysis import EnergyBalance as EnergyBalance
+    from .analysis import Equilibrium as Equilibrium
+    from .analysis import Feedback as Feedback
+    from .analysis import FirstIntegral as FirstIntegral
+    from .analysis import LinearizationError as LinearizationError
+    from .analysis import LinearModel as LinearModel
+    from .analysis import Modes as Modes
+    from .analysis import Stability as Stability
+    from .analysis import Sweep as Sweep
+    from .analysis import TopAnalysis as TopAnalysis
+    from .analysis import Verification as Verification
+    from .analysis import analyse_top as analyse_top
+    from .analysis import energy_balance as energy_balance
+    from .analysis import equilibria as equilibria
+    from .analysis import first_integrals as first_integrals
+    from .analysis import holding_inputs as holding_inputs
+    from .analysis import linearize as linearize
+    from .analysis import lqr as lqr
+    from .analysis import modes as modes
+    from .analysis import routh_reduction as routh_reduction
+    from .analysis import stability as stability
+    from .analysis import steady_motions as steady_motions
+    from .analysis import sweep as sweep
+    from .analysis import verify as verify
+    from .dynamics import EquationsOfMotion as EquationsOfMotion
+    from .dynamics import LagrangeEquation as LagrangeEquation
+    from .dynamics import derive as derive
+    from .errors import DerivationError as DerivationError
+    from .errors import ExportError as ExportError
+    from .errors import IdentificationError as IdentificationError
+    from .errors import KinematicsError as KinematicsError
+    from .errors import LagrangianError as LagrangianError
+    from .errors import ModelError as ModelError
+    from .errors import OptimizationError as OptimizationError
+    from .errors import OutputError as OutputError
+    from .errors import ProblemError as ProblemError
+    from .errors import SimulationError as SimulationError
+    from .errors import VerificationError as VerificationError
+    from .identification import Identification as Identification
+    from .identification import identify as identify
+    from .kinematics import Kinematics as Kinematics
+    from .model import Model as Model
+    from .model import ModelBuilder as ModelBuilder
+    from .model import load_model as load_model
+    from .model import load_urdf as load_urdf
+    from .model import parse_model as parse_model
+    from .model.zoo import lagrange_top as lagrange_top
+    from .numerics import CompiledSystem as CompiledSystem
+    from .numerics import ContactEvent as ContactEvent
+    from .numerics import EventSpec as EventSpec
+    from .numerics import FreeBodySystem as FreeBodySystem
+    from .numerics import ImpactSweep as ImpactSweep
+    from .numerics import InputTable as InputTable
+    from .numerics import Sensitivities as Sensitivities
+    from .numerics import Switch as Switch
+    from .numerics import Trajectory as Trajectory
+    from .numerics import compile_free_system as compile_free_system
+    from .numerics import compile_system as compile_system
+    from .numerics import ensemble as ensemble
+    from .numerics import grid as grid
+    from .numerics import impact_sweep as impact_sweep
+    from .numerics import load_trajectory as load_trajectory
+    from .numerics import open_ensemble as open_ensemble
+    from .numerics import save_trajectory as save_trajectory
+    from .numerics import simulate as simulate
+    from .codegen import export as export
+    from .optimal import Objective as Objective
+    from .optimal import OptimalTrajectory as OptimalTrajectory
+    from .optimal import Problem as Problem
+    from .optimal import load_problem as load_problem
+    from .optimal import optimize as optimize
+    from .output import Report as Report
+    from .output import report as report
+    from .view3d import View as View
+    from .view3d import view as view
 
 
 def __dir__() -> list[str]:

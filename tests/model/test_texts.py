@@ -64,7 +64,7 @@ def _words(text: str, words: set[str]) -> set[str]:
 def test_the_examples_texts_are_in_the_reports_language():
     """The title, subtitle and the tables of constants and coordinates of every example: French words only in
     the French report, English only in the English one (word lists)."""
-    from lagrangian.output.report.document import Table, walk
+    from lagrangian.output._report.document import Table, walk
 
     for path in sorted(EXAMPLES_DIR.glob("*.toml")):
         model = lagrangian.load_model(path)

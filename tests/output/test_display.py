@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 import lagrangian
-from lagrangian.output.report.size import FOLD_LINES
+from lagrangian.output._report.size import FOLD_LINES
 from lagrangian_test_support import eom_of
 
 
@@ -91,7 +91,7 @@ def test_large_models_stay_bounded() -> None:
 
 def test_an_equation_past_FOLD_LINES_lines_is_cut() -> None:
     from lagrangian.output._display import _bounded
-    from lagrangian.output.report.document import Equation
+    from lagrangian.output._report.document import Equation
 
     lines = _bounded(Equation(tuple(f"+ x_{k}" for k in range(20))))
     assert len(lines) == FOLD_LINES and lines[-1].startswith(r"\ldots")

@@ -13,7 +13,7 @@ from sympy import cos, sin, symbols
 
 from lagrangian.output import course_form
 from lagrangian.output._display_form import display_form
-from lagrangian.output.report.build import report_notation
+from lagrangian.output._report.build import report_notation
 from lagrangian_test_support import eom_of, example_names, integrals_of
 
 A, C, m, g, a, m1, m2, l1, l2 = symbols("A C m g a m1 m2 l1 l2")

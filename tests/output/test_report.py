@@ -18,10 +18,10 @@ import pytest
 import lagrangian
 from lagrangian.model.zoo import planar_chain
 from lagrangian.output import Report, ReportFigure, course_form, report
-from lagrangian.output.report.build import multiplier_names, report_notation
-from lagrangian.output.report.document import Display, Fold, Items, Para, math_of, walk
-from lagrangian.output.report.render.markdown import render_markdown
-from lagrangian.output.report.size import SMALL_OPS, Summary
+from lagrangian.output._report.build import multiplier_names, report_notation
+from lagrangian.output._report.document import Display, Fold, Items, Para, math_of, walk
+from lagrangian.output._report.render.markdown import render_markdown
+from lagrangian.output._report.size import SMALL_OPS, Summary
 from lagrangian_test_support import EXAMPLES_DIR, eom_of, example_names, integrals_of, mutated_example, plain
 
 GOLDEN = Path(__file__).parent / "golden" / "lagrange_top.fr.md"
@@ -145,7 +145,7 @@ def test_cyclic_equations_first_then_the_rest_with_the_integrals(top):
 
 
 # -- every equation is the engine's ------------------------------------------------------------------
-#: Examples whose equations exceed the report's print budget (`report.size.BUDGET`): their long
+#: Examples whose equations exceed the report's print budget (`_report.size.BUDGET`): their long
 #: expressions are summarized ⟨N terms⟩, as the report says.
 OVER_BUDGET = {"whipple_bicycle.toml"}
 
@@ -470,7 +470,7 @@ def test_deeply_nested_functions_are_printed_as_derived(tmp_path, monkeypatch):
     # deeper than SIMPLIFY_MAX_NESTING (the course's expressions nest one or two deep).
     import sympy
 
-    from lagrangian.output.report.steps import equations
+    from lagrangian.output._report.steps import equations
 
     assert equations._nesting(sympy.sympify("x*sin(sin(y))**2 + cos(x)")) == 2
     assert equations._nesting(sympy.sympify("x**2 + y")) == 0

@@ -9,7 +9,7 @@ import re
 from functools import lru_cache
 
 from lagrangian.output import report
-from lagrangian.output.report.document import math_of
+from lagrangian.output._report.document import math_of
 from lagrangian_test_support import EXAMPLES_DIR, plain
 
 
@@ -126,7 +126,7 @@ def test_the_count_of_principal_parameters_is_said_once():
 def test_english_wording():
     en = _md("simple_pendulum", "en")
     assert "Galilean (inertial) frame" in en
-    from lagrangian.output.report.words import Words
+    from lagrangian.output._report.words import Words
 
     w = Words("en")
     assert w.text("check") == "Newton–Euler cross-check (Remark 4 of the course)"
@@ -134,7 +134,7 @@ def test_english_wording():
 
 
 def test_units_print_with_superscripts_and_a_centred_dot():
-    from lagrangian.output.report.steps.statement import _unit
+    from lagrangian.output._report.steps.statement import _unit
 
     assert [_unit(u) for u in ("m/s^2", "kg m^2", "kg*m^2", "m s^-1", "N/m", None)] == \
         ["m/s²", "kg·m²", "kg·m²", "m·s⁻¹", "N/m", ""]

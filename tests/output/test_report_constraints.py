@@ -12,7 +12,7 @@ import symengine as se
 
 import lagrangian
 from lagrangian.model.zoo import planar_chain
-from lagrangian.output.report.joints import degrees_of_freedom, joints
+from lagrangian.output._report.joints import degrees_of_freedom, joints
 from lagrangian_test_support import eom_of, plain
 
 
@@ -82,9 +82,9 @@ def test_every_constraint_is_holonomic_principal_and_perfect(name):
 
 # -- audit fixes: each test fails on the report as it was before them -------------------------------
 from lagrangian.output import report as _report  # noqa: E402
-from lagrangian.output.report.document import Display as _Display, Items as _Items, Para as _Para  # noqa: E402
-from lagrangian.output.report.document import Table as _Table  # noqa: E402
-from lagrangian.output.report.document import math_of as _math_of, walk as _walk  # noqa: E402
+from lagrangian.output._report.document import Display as _Display, Items as _Items, Para as _Para  # noqa: E402
+from lagrangian.output._report.document import Table as _Table  # noqa: E402
+from lagrangian.output._report.document import math_of as _math_of, walk as _walk  # noqa: E402
 from lagrangian_test_support import eom_of as _eom_of, example_names as _example_names  # noqa: E402
 
 
@@ -196,7 +196,7 @@ def _constraints_named_in_the_reports_language(eom, texts):  # type: ignore[no-u
     Its multiplier is λ when it is the only one, else λ_1 … λ_k with a table that says which constraint
     each one belongs to; another letter when the model already writes one of its symbols λ (the bicycle)."""
     from lagrangian.model._texts import in_language
-    from lagrangian.output.report.build import tex_text
+    from lagrangian.output._report.build import tex_text
 
     rows = eom.constraints
     own = {p.name for p in eom.model.parameters} | set(eom.coordinates)
@@ -369,8 +369,8 @@ def test_the_pendulums_multiplier_is_written_on_the_constraint():
     # form of the simple pendulum (R = 2λ OP, N = −R·OP/l).
     import sympy
 
-    from lagrangian.output.report.build import Context
-    from lagrangian.output.report.steps.equations import _multipliers, _on_the_constraints, _simple
+    from lagrangian.output._report.build import Context
+    from lagrangian.output._report.steps.equations import _multipliers, _on_the_constraints, _simple
 
     eom = eom_of("pendulum_tension.toml")
     c = Context(eom, (), "en")

@@ -10,8 +10,8 @@ from lagrangian_test_support import EXAMPLES_DIR, plain
 
 import lagrangian
 from lagrangian.cli.main import main
-from lagrangian.output.report.document import Table, walk
-from lagrangian.output.report.render.markdown import render_markdown
+from lagrangian.output._report.document import Table, walk
+from lagrangian.output._report.render.markdown import render_markdown
 
 SCHEMA = json.loads((EXAMPLES_DIR.parent / "src" / "lagrangian" / "output" / "derive.schema.json").read_text())
 

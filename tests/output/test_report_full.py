@@ -11,9 +11,9 @@ import lagrangian
 from lagrangian.model.zoo import planar_chain
 from lagrangian.output import report
 from lagrangian.output._course import to_sympy
-from lagrangian.output.report.document import Display, FullForms, math_of, walk
-from lagrangian.output.report.full_forms import FULL_BUDGET, FULL_WIDTH
-from lagrangian.output.report.size import Summary, visible_width
+from lagrangian.output._report.document import Display, FullForms, math_of, walk
+from lagrangian.output._report.full_forms import FULL_BUDGET, FULL_WIDTH
+from lagrangian.output._report.size import Summary, visible_width
 
 #: A 40-link report, built and written in all three formats, takes about 5 s on one core.
 CHAIN_SECONDS = 15
@@ -65,7 +65,7 @@ def test_full_forms_are_the_notations_latex_of_the_engines_expressions(chain6):
     from lagrangian.output._text import notation
     from lagrangian.output._course import course_form
 
-    from lagrangian.output.report.build import report_notation
+    from lagrangian.output._report.build import report_notation
 
     n = report_notation(course_form(eom, ()), eom.model)
     engine = {}
@@ -124,7 +124,7 @@ def test_a_40_link_chain_stays_within_the_budget_and_quick():
 
 
 def test_a_model_file_is_named_in_the_note():
-    from lagrangian.output.report.build import Context
+    from lagrangian.output._report.build import Context
 
     eom = lagrangian.derive(lagrangian.load_model("examples/double_pendulum.toml"))
     c = Context(eom, (), "en")
@@ -133,7 +133,7 @@ def test_a_model_file_is_named_in_the_note():
 
 def test_the_budget_leaves_summaries_as_they_are():
     eom = lagrangian.derive(planar_chain(6))
-    from lagrangian.output.report.build import Context
+    from lagrangian.output._report.build import Context
 
     c = Context(eom, (), "fr")
     c.book.budget = 0

@@ -21,7 +21,7 @@ import pytest
 import lagrangian
 from lagrangian.model.zoo import planar_chain
 from lagrangian.output import ReportFigure, report
-from lagrangian.output.report.document import math_of
+from lagrangian.output._report.document import math_of
 from lagrangian_test_support import EXAMPLES_DIR
 
 CHROMIUM = next((p for p in map(shutil.which, ("chromium", "chromium-browser", "google-chrome", "chrome")) if p), None)
@@ -263,8 +263,8 @@ def test_two_letter_vectors_carry_an_arrow_with_its_head(tmp_path):
     """OG is drawn as a vector, not as OG with a bar (a mesure algébrique in French notation): on a
     screenshot, the mark above the letters spans both of them and ends in a head at the right, several
     times as tall as the line; and no CSS transform is used to widen a glyph."""
-    from lagrangian.output.report.document import Display, Document, Equation, Section
-    from lagrangian.output.report.render.html import render_html
+    from lagrangian.output._report.document import Display, Document, Equation, Section
+    from lagrangian.output._report.render.html import render_html
 
     doc = Document("fr", "Vecteurs", "", (Section("v", "Vecteurs", (Display(tuple(Equation((v,)) for v in _VECTORS)),)),))
     big = "<style>.lagrangian-report .display math { font-size: 72px; }</style></head>"

@@ -17,7 +17,7 @@ import pytest
 from lagrangian.cli.main import main
 from lagrangian.errors import OutputError
 from lagrangian.output import report
-from lagrangian.output.report.render import pdf as _report_pdf
+from lagrangian.output._report.render import pdf as _report_pdf
 from lagrangian_test_support import EXAMPLES_DIR
 
 needs_tex = pytest.mark.skipif(_report_pdf.tex_engine() is None or shutil.which("pdftotext") is None

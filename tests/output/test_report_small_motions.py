@@ -18,8 +18,8 @@ import lagrangian
 from lagrangian.cli.main import main
 from lagrangian.output import course_form, report
 from lagrangian.output._text import notation
-from lagrangian.output.report.document import Display, Para, math_of, walk
-from lagrangian.output.report.words import Words
+from lagrangian.output._report.document import Display, Para, math_of, walk
+from lagrangian.output._report.words import Words
 
 TITLES = {"fr": "Petits mouvements au voisinage d\u2019une position d\u2019équilibre",
           "en": "Small motions about an equilibrium"}

@@ -15,10 +15,10 @@ import pytest
 from lagrangian.model import Gravity
 from lagrangian.model._texts import in_language
 from lagrangian.output import report
-from lagrangian.output.report.build import report_notation, tex_name
+from lagrangian.output._report.build import report_notation, tex_name
 from lagrangian.output._course import course_form
-from lagrangian.output.report.document import Items, Math, Para, Table, math_of, walk
-from lagrangian.output.report.words import _PHRASES, Words
+from lagrangian.output._report.document import Items, Math, Para, Table, math_of, walk
+from lagrangian.output._report.words import _PHRASES, Words
 from lagrangian_test_support import eom_of, plain
 
 EXAMPLES = ["lagrange_top.toml", "pendulum_tension.toml"]

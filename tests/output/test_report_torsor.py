@@ -14,9 +14,9 @@ import symengine as se
 
 from lagrangian.model import Vector
 from lagrangian.output import report
-from lagrangian.output.report.build import Context
-from lagrangian.output.report.document import math_of
-from lagrangian.output.report.steps.kinematics import torsor_point, virtual_torsor
+from lagrangian.output._report.build import Context
+from lagrangian.output._report.document import math_of
+from lagrangian.output._report.steps.kinematics import torsor_point, virtual_torsor
 from lagrangian_test_support import eom_of
 
 EXAMPLES = ["lagrange_top.toml", "double_pendulum.toml", "rolling_coin.toml"]

@@ -21,7 +21,7 @@ from lagrangian_test_support import EXAMPLES_DIR, mutated_example, plain
 
 import lagrangian
 from lagrangian.output import report
-from lagrangian.output.report.document import Math, Para, walk
+from lagrangian.output._report.document import Math, Para, walk
 
 URDF = EXAMPLES_DIR / "rrr_arm.urdf"
 
@@ -254,7 +254,7 @@ def test_foucault_statement_names_what_it_uses_and_its_small_motions_precess_at_
     small = _words(r, "small motions")
     assert r"\omega_p = \frac{G_{12}}{2\, M_{11}} = -\Omega \sin\lambda" in small
     assert "−0,1414" in small and r"s = \pm" in small  # s for the eigenvalues: λ is the latitude
-    from lagrangian.output.report.steps.precession import precession_rate
+    from lagrangian.output._report.steps.precession import precession_rate
 
     so = lagrangian.linearize(_eom("foucault_pendulum.toml"), {"alpha": 0, "beta": 0}, symbolic=("m", "l", "g",
                                                                                                "Omega", "lam"))
@@ -267,7 +267,7 @@ def test_larmor_precession_rate_is_what_the_linear_motion_does():
     """μ q̈ + G q̇ + κ q = 0 integrated by SciPy: the major axis of the oscillation turns at G₁₂/(2μ)."""
     from scipy.integrate import solve_ivp
 
-    from lagrangian.output.report.steps.precession import precession_rate
+    from lagrangian.output._report.steps.precession import precession_rate
 
     mu, gamma, kappa = 2.0, -0.3, 50.0
 
@@ -322,7 +322,7 @@ def test_the_statement_says_whether_z0_points_up_or_down(name, down):
 def test_summarized_checks_say_what_was_compared(monkeypatch):
     from functools import partial
 
-    from lagrangian.output.report import build, size
+    from lagrangian.output._report import build, size
 
     monkeypatch.setattr(size, "SMALL_OPS", 4)
     monkeypatch.setattr(build, "SizeGate", partial(size.SizeGate, max_ops=12))

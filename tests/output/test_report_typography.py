@@ -12,8 +12,8 @@ from lagrangian_test_support import EXAMPLES_DIR
 
 from lagrangian.output import report
 from lagrangian.output._notation import Notation
-from lagrangian.output.report.document import Math, Para, french_typography, walk
-from lagrangian.output.report.render.tex import escape
+from lagrangian.output._report.document import Math, Para, french_typography, walk
+from lagrangian.output._report.render.tex import escape
 
 
 @cache

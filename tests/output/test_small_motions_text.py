@@ -12,8 +12,8 @@ from lagrangian_test_support import EXAMPLES_DIR
 
 import lagrangian
 from lagrangian.output import report
-from lagrangian.output.report.document import Para, math_of
-from lagrangian.output.report.steps import small_motions
+from lagrangian.output._report.document import Para, math_of
+from lagrangian.output._report.steps import small_motions
 
 
 def _cart() -> lagrangian.EquationsOfMotion:

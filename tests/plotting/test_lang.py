@@ -70,8 +70,8 @@ def test_french_figures_write_decimal_commas(run):
 
 def test_report_captions_set_their_symbols_as_math():
     """q_i(t), q̇_i(t), U_P, R_O(t) of the plotting captions are mathematics in the report, not raw underscores."""
-    from lagrangian.output.report.document import Math
-    from lagrangian.output.report.steps.extras import caption_runs
+    from lagrangian.output._report.document import Math
+    from lagrangian.output._report.steps.extras import caption_runs
 
     assert caption_runs("Paramètres q_i(t) et vitesses q̇_i(t)") == (
         "Paramètres ", Math("q_{i}(t)"), " et vitesses ", Math(r"\dot{q}_{i}(t)"))

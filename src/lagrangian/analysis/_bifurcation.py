@@ -42,6 +42,13 @@ class Branch:
 
 @dataclass(frozen=True, slots=True)
 class BifurcationDiagram:
+    """The equilibria of a model against one parameter: what `bifurcation` returns.
+
+    ``values`` (shape (m,)) is the grid of the parameter named ``parameter``; each `Branch` in
+    ``branches`` gives, over that grid, the coordinates ``coordinates`` of one closed-form family
+    of equilibria q*(p) and its stability there.
+    """
+
     parameter: str
     values: np.ndarray
     coordinates: tuple[str, ...]

@@ -77,7 +77,7 @@ class Equilibrium:
         in the parameters) and its text, or None when the equilibrium always exists.
     exists : the condition at the parameter values (None when some value is missing).
     numeric : q* at the parameter values (angles in (−π, π]), or None without all values.
-    residual : max |F(q*, 0) + Aᵀλ|, |f(q*)| at ``numeric`` (None without values).
+    residual : ``max |F(q*, 0) + Aᵀλ|, |f(q*)|`` at ``numeric`` (None without values).
     free : coordinates along which every value is an equilibrium: absent from the static equations, left
         free by SymPy, or found so by the numeric search (the bead on a turning parabola at Ω² = 2 g a:
         "r any").

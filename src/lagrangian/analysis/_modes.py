@@ -47,8 +47,8 @@ AXIS_RTOL = 1e-9
 class Mode:
     """One eigenvalue λ of A with its eigenvector.
 
-    ``frequency`` ω_n = |λ| (rad/s), ``damped_frequency`` |Im λ|, ``period`` 2π/|Im λ| (None
-    for a real λ), ``damping_ratio`` ζ = −Re λ/|λ|, ``shape`` the eigenvector over the state,
+    ``frequency`` ``ω_n = |λ|`` (rad/s), ``damped_frequency`` ``|Im λ|``, ``period`` ``2π/|Im λ|`` (None
+    for a real λ), ``damping_ratio`` ``ζ = −Re λ/|λ|``, ``shape`` the eigenvector over the state,
     normalised so that its largest coordinate component is 1.
     """
 

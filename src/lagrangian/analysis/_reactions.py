@@ -313,7 +313,7 @@ class TrajectoryResiduals:
     ----------
     t : (N,) times.
     coordinates : names of q_i.
-    projections : (N, n) |Σ m γ·∂V/∂q̇_i + δ·∂Ω/∂q̇_i − (efforts)| over Σ of the terms' sizes.
+    projections : (N, n) ``|Σ m γ·∂V/∂q̇_i + δ·∂Ω/∂q̇_i − (efforts)|`` over Σ of the terms' sizes.
     reactions : name → `ReactionHistory` (R and M in R0 components).
     resultant : name → (N,) relative residual of Σ m γ(G) = Σ F_given + R, with R from its formula.
     moment : name → (N,) relative residual of the moment theorem at the pin with R, along the axes
@@ -358,10 +358,10 @@ def _norms(a: np.ndarray) -> np.ndarray:
 def check_trajectory(source: Verification | EquationsOfMotion, trajectory: Trajectory) -> TrajectoryResiduals:
     """The Newton–Euler theorems evaluated along ``trajectory`` (residuals ≈ rounding, ≤ 1e-9 relative).
 
-    Each residual is divided by the sum of the sizes of the terms it balances (|m γ||∂V| +
-    (|δ| + |Ω||σ|)|∂Ω| + |F||∂V| + |M||∂Ω| for a projection), so it measures the cancellation, not
-    the motion's scale: |Ω||σ| bounds the gyroscopic part Ω ∧ σ of δ = dσ/dt, whose two parts
-    cancel for a body turning freely (δ = 0 = M), where |δ| alone would measure rounding by
+    Each residual is divided by the sum of the sizes of the terms it balances (``|m γ||∂V| +
+    (|δ| + |Ω||σ|)|∂Ω| + |F||∂V| + |M||∂Ω|`` for a projection), so it measures the cancellation, not
+    the motion's scale: ``|Ω||σ|`` bounds the gyroscopic part Ω ∧ σ of δ = dσ/dt, whose two parts
+    cancel for a body turning freely (δ = 0 = M), where ``|δ|`` alone would measure rounding by
     rounding.  Vectors are evaluated in R0 components from one compiled function.
     """
     v = source if isinstance(source, Verification) else verify(source)

@@ -20,7 +20,7 @@ from ..errors import DerivationError
 from ..output import course_form, derive_document, render_latex, render_text
 from ..output import needed_intermediates, render_intermediates
 from ..output import supplement
-from ..output.report.size import SizeGate
+from ..output import SizeGate
 from ._settings import SettingError
 from ._source import load_source
 

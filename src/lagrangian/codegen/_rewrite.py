@@ -171,7 +171,9 @@ def _shared_bias(eom: EquationsOfMotion) -> tuple[list[tuple[se.Symbol, se.Basic
 class MassForcesForm:
     """M and F as the C code evaluates them: exact rewritings that make them cheaper.
 
-    Attributes (expressions over the model's own symbols, plus the names below)
+    The attributes are expressions over the model's own symbols, plus the names below.
+
+    Attributes
     ----------
     shared : (symbol, expression) of each body's γ⁰(G) and dσ⁰/dt components (`_shared_bias`),
         to be computed first; M and F refer to the symbols.

@@ -209,7 +209,7 @@ def generalized_forces(kin: Kinematics, assumptions: Assumptions | None = None, 
 
     With ``assumptions`` (the model's declared signs and ranges), Q_i and the candidate
     potential are simplified where a sign is proved: a spring from a wall at x = −L with
-    x ≥ −L gives −k x, not −k sgn(x + L)(|x + L| − L) (`lagrangian.model._assumptions`).
+    x ≥ −L gives −k x, not ``−k sgn(x + L)(|x + L| − L)`` (`lagrangian.model._assumptions`).
     """
     out = []
     inputs = {p.symbol for p in kin.model.parameters if p.input}

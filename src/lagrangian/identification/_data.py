@@ -74,7 +74,7 @@ def read_measurements(data, model: Model, *, columns: Sequence[str] | None = Non
     model : the model whose coordinates and inputs the columns name.
     columns : the columns to use (``t`` is always used); default all of them, except, in a file that
         `lagrangian simulate` wrote, the columns it computes besides the states (T, U, first
-        integrals such as E or p_x, reactions R_..., multipliers lambda_...).  A Trajectory gives its
+        integrals such as E or p_x, reactions ``R_...``, multipliers ``lambda_...``).  A Trajectory gives its
         q, q̇ (and its input columns when it has any) unless ``columns`` says otherwise.
 
     Raises

@@ -174,7 +174,7 @@ def range_text(bounds: tuple[se.Basic | None, se.Basic | None]) -> str:
 class SignFact:
     """A sign the derivation proved and used: u = ``expression`` ≥ 0 (``sign`` +1) or u ≤ 0 (−1).
 
-    That is what |u| = ±u and √(u²) = ±u need; sgn(u) = ±1 holds where u ≠ 0, and is taken
+    That is what ``|u| = ±u`` and ``√(u²) = ±u`` need; sgn(u) = ±1 holds where u ≠ 0, and is taken
     by continuity from inside where u = 0 on the edge of a range (a spring of zero length).
 
     ``general`` is True when it holds for every value allowed by the declared signs and ranges,
@@ -230,7 +230,7 @@ class Assumptions:
 
     # -- simplification --------------------------------------------------------------------------
     def refine(self, e: se.Basic) -> se.Basic:
-        """``e`` with √(u²)^p, |u| and sgn(u) resolved wherever the sign of u is proved (module docstring)."""
+        """``e`` with ``√(u²)^p``, ``|u|`` and ``sgn(u)`` resolved wherever the sign of u is proved (module docstring)."""
         if not self.active or not isinstance(e, se.Basic) or not e.free_symbols:
             return e
         return self._walk(e)

@@ -177,7 +177,7 @@ class ModelBuilder:
     def coulomb_friction(self, name: str, at: str, *, coefficient: Any, normal_force: Any, surface_velocity: Any = 0,
                          normal: Any = None, regularization: Any = DEFAULT_REGULARIZATION,
                          static_coefficient: Any = None, location: Location | None = None) -> None:
-        """Dry friction at the sliding contact point ``at``: T = −f N v_s/√(|v_s|² + ε²), N given.
+        """Dry friction at the sliding contact point ``at``: ``T = −f N v_s/√(|v_s|² + ε²)``, N given.
 
         ``regularization=0`` asks for the exact law with stick/slip by events in simulation,
         ``static_coefficient`` f_s ≥ f bounding the reaction while stuck (default f).

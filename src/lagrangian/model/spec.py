@@ -126,7 +126,7 @@ class Coordinate:
     unit: str | None = None
     description: str | None = None
     #: The declared range [lower, upper] of q_i (constant expressions in the parameters; None for
-    #: an open side), or None: the derivation may simplify with it (|x + L| = x + L when
+    #: an open side), or None: the derivation may simplify with it (``|x + L| = x + L`` when
     #: x ≥ −L), and `simulate` warns when a motion leaves it (`lagrangian.model._assumptions`).
     range: tuple[se.Basic | None, se.Basic | None] | None = None
 
@@ -338,7 +338,7 @@ class Dissipation:
 class JointDamper:
     """Viscous friction at the joint between ``bodies`` (S1, S2): the couple −c Ω(S2/S1) on S2, +c Ω(S2/S1) on S1.
 
-    Each of S1, S2 is a body or a frame; D = ½ c |Ω(S2/S1)|² is its dissipation function.
+    Each of S1, S2 is a body or a frame; ``D = ½ c |Ω(S2/S1)|²`` is its dissipation function.
     """
 
     name: str
@@ -348,12 +348,12 @@ class JointDamper:
 
 @dataclass(frozen=True, slots=True)
 class CoulombFriction:
-    """Dry (Coulomb) friction at a sliding contact point ``at``: |T| ≤ f N, T opposite to the sliding velocity.
+    """Dry (Coulomb) friction at a sliding contact point ``at``: ``|T| ≤ f N``, T opposite to the sliding velocity.
 
     The sliding velocity is v_s = V(at) − ``surface_velocity`` (projected on the tangent
     plane when the surface's unit ``normal`` is given); the friction force is the
-    regularised T = −f N v_s / √(|v_s|² + ε²), ε = ``regularization`` (a velocity).  With
-    ε = 0 (a literal zero) it is the exact law T = −f N v_s/|v_s|, and `simulate` switches
+    regularised ``T = −f N v_s / √(|v_s|² + ε²)``, ε = ``regularization`` (a velocity).  With
+    ε = 0 (a literal zero) it is the exact law ``T = −f N v_s/|v_s|``, and `simulate` switches
     between sliding and sticking by events (`lagrangian.numerics._stickslip`); the contact
     then sticks while the tangential reaction it needs stays within f_s N,
     f_s = ``static_coefficient`` (≥ f; None: f_s = f).
@@ -375,6 +375,8 @@ class CoulombFriction:
         return bool(self.regularization == 0)
 
 
+#: Any of the loads a model declares: each is applied by virtual power (Q_i = Σ F·∂V/∂q̇_i), or
+#: through a potential U or a dissipation function.
 Load = (Gravity | PointForce | Torque | Spring | Damper | Potential | GeneralizedForce | Dissipation | JointDamper
         | CoulombFriction)
 

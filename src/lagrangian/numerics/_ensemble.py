@@ -103,7 +103,7 @@ CHUNK_MEMORY = 64 * 2**20
 def flip_events(source) -> list[EventSpec]:
     """The "flip" events of a model: each angle coordinate q (the angle of a frame rotation) passing ±π.
 
-    g = |q| − π, rising: the first time the arm goes over the top (the double pendulum's
+    ``g = |q| − π``, rising: the first time the arm goes over the top (the double pendulum's
     flip-time map is the first of these times).
     """
     eom = getattr(source, "eom", source)

@@ -230,7 +230,7 @@ class FreeBodySystem:
         ``start`` (2n,) gives the branch and turn of the angles at the first row.  Each
         body's angles come from its quaternion, on that branch, each turn followed from row to
         row (`_euler.euler_from_matrix`); their rates and accelerations are NaN where
-        |det J| < `SINGULAR` (within about 1e-9 rad of their singularity).
+        ``|det J|`` < `SINGULAR` (within about 1e-9 rad of their singularity).
         """
         n, N = len(self.coordinates), len(Y)
         q, qd, qdd = (np.empty((N, n)) for _ in range(3))
@@ -254,11 +254,11 @@ class FreeBodySystem:
         return q, qd, qdd
 
     def quaternion_norms(self, Y: np.ndarray) -> dict[str, np.ndarray]:
-        """|e| of each free body's quaternion along states Y."""
+        """The norm ``|e|`` of each free body's quaternion along states Y."""
         return {fj.body: np.linalg.norm(Y[:, oq + 3:oq + 7], axis=1) for fj, oq, *_ in self.blocks}
 
     def drift_records(self, Y: np.ndarray) -> dict[str, float]:
-        """The largest |1 − |e|| before a projection, per free body, recorded in the state up to Y's last row."""
+        """The largest ``|1 − |e||`` before a projection, per free body, recorded in the state up to Y's last row."""
         return {fj.body: float(Y[-1, self.nq + self.nv + t]) if len(Y) else 0.0
                 for t, (fj, *_) in enumerate(self.blocks)}
 

@@ -40,7 +40,7 @@ class ImpactSweep:
     ----------
     axes : name → values of each grid axis, in order; every outcome has the shape of the grid.
     impacts : impacts resolved before t_end (simultaneous ones count once), up to the accumulation.
-    bounces : those whose approach speed |ġ⁻| was at least ``min_speed``.
+    bounces : those whose approach speed ``|ġ⁻|`` was at least ``min_speed``.
     first_impact : time of the first impact (NaN: none).
     rest_time : t_∞, where an accumulation of impacts came to rest (NaN: none before t_end).
     liftoffs : lift-offs of closed contacts.
@@ -99,7 +99,7 @@ def impact_sweep(source, axes: Mapping[str, Sequence[float] | np.ndarray], t_end
     t_end : the end of each run.
     parameters, initial : values for every member (not swept).
     min_speed : the approach speed from which an impact counts as a bounce.
-    options : `simulate`'s options for the contacts' route (``rtol``, ``atol``, ``rest``...).
+    **options : `simulate`'s options for the contacts' route (``rtol``, ``atol``, ``rest``...).
 
     Raises
     ------

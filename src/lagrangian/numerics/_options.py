@@ -32,6 +32,7 @@ __all__ = [
 BUILTIN = ("dop853", "gauss-legendre")
 #: SciPy's ``solve_ivp`` methods, driven by the compiled right-hand side.
 SCIPY = ("RK45", "RK23", "DOP853", "Radau", "BDF", "LSODA")
+#: The integration methods of `simulate`: the compiled ones (C), then SciPy's `solve_ivp` methods.
 METHODS = BUILTIN + SCIPY
 #: How the drift from complementary constraints is controlled (`_dae_run`).
 STABILIZATIONS = ("projection", "baumgarte", "both", "none")

@@ -68,6 +68,11 @@ def simulate(
 ) -> Trajectory:
     """Integrate the equations of motion from t_start to t_end.
 
+    The options are checked once (`SimulationOptions`); the model picks its route from the
+    registry (`_methods.ROUTES`: free bodies, unilateral contacts, exact Coulomb friction,
+    complementary constraints, plain M q̈ = F), and an option its route cannot honour is
+    refused with a `SimulationError` that names it.
+
     Parameters
     ----------
     source : a model file path, a `Model`, an `EquationsOfMotion` or a `CompiledSystem`.
@@ -108,11 +113,6 @@ def simulate(
         (``dop853`` only; `numerics._sensitivity`), as the columns ``d(theta)/d(l)``...;
         ``trajectory.sensitivity("l")`` has shape (N, 2n).
 
-    The options are checked once (`SimulationOptions`); the model picks its route from the
-    registry (`_methods.ROUTES`: free bodies, unilateral contacts, exact Coulomb friction,
-    complementary constraints, plain M q̈ = F), and an option its route cannot honour is
-    refused with a `SimulationError` that names it.
-
     Returns
     -------
     Trajectory
@@ -143,7 +143,7 @@ def simulate_contact(source, t_end: float, **options: Any) -> Trajectory:  # typ
     Parameters
     ----------
     source : a model file, a `Model`, or its equations, with at least one ``unilateral`` constraint.
-    t_end, options : as for `simulate`.  ``method`` must be ``"dop853"`` and ``dt`` None (phases
+    t_end, **options : as for `simulate`.  ``method`` must be ``"dop853"`` and ``dt`` None (phases
         end at events), ``stabilization`` None or ``"projection"`` (the closed contacts are kept
         by projection); and, for this route only: ``rest``, the last approach speed, relative to
         the first of a geometric series of impacts, at which the accumulation is summed and the
@@ -171,7 +171,7 @@ def simulate_stick_slip(source, t_end: float, **options: Any) -> Trajectory:  # 
     Parameters
     ----------
     source : a model file, a `Model`, or its equations, whose contact has ``regularization = 0``.
-    t_end, options : as for `simulate` (``dt`` and ``gauss-legendre`` are refused: the phases end
+    t_end, **options : as for `simulate` (``dt`` and ``gauss-legendre`` are refused: the phases end
         at events, not on a fixed grid); ``stabilization``, ``baumgarte``: the drift control of
         the stuck phases; for this route only, ``max_switches``: the most phases a run may have
         (default 100 000).

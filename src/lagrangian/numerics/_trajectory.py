@@ -143,7 +143,7 @@ class Trajectory:
     #: (``simulate(..., sensitivities=...)``), in the order asked.
     sensitivity_names: tuple[str, ...] = ()
     #: For a model with free bodies (integrated on unit quaternions, `numerics._free_simulate`): body →
-    #: the largest |1 − |e|| of its quaternion e met along the run, before each projection back on |e| = 1.
+    #: the largest ``|1 − |e||`` of its quaternion e met along the run, before each projection back on ``|e| = 1``.
     quaternion_drift: Mapping[str, float] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
@@ -194,7 +194,7 @@ class Trajectory:
         return np.column_stack([self.column(name) for name in self.columns()]) + 0.0  # no "-0" in files
 
     def relative_drift(self, name: str) -> np.ndarray:
-        """|I(t) − I(t0)| / S of the first integral ``name`` (module docstring); its maximum is ``drift[name]``."""
+        """``|I(t) − I(t0)| / S`` of the first integral ``name`` (module docstring); its maximum is ``drift[name]``."""
         values = self.monitors[name]
         scale = self.scales[name] if name in self.scales else drift_scale(values)
         return relative_drift(values, scale)

@@ -35,9 +35,9 @@ class Replay:
     Attributes
     ----------
     t : the mesh nodes' times; ``y`` the replayed state (q, q̇) there, shape (N, 2n).
-    max_error : max over the nodes of |y_replayed − y_collocated|∞ / max(1, |y_collocated|∞), the whole
+    max_error : max over the nodes of ``|y_replayed − y_collocated|∞ / max(1, |y_collocated|∞)``, the whole
         span replayed from the initial state (open loop: an unstable motion amplifies any error).
-    final_error : |y_replayed(t_f) − y_collocated(t_f)|∞ (state units): where the inputs really lead.
+    final_error : ``|y_replayed(t_f) − y_collocated(t_f)|∞`` (state units): where the inputs really lead.
     local_error : the same measure with each interval replayed from the optimum's state at its first
         node: the scheme's own error, not amplified by an instability.
     tolerance : `REPLAY_TOLERANCE` or the one asked for; ``within`` says whether local_error ≤ tolerance.

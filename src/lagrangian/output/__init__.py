@@ -18,11 +18,11 @@ from ._linear_text import sweep_text as sweep_text
 from ._linearize_json import LINEARIZE_SCHEMA_ID as LINEARIZE_SCHEMA_ID
 from ._linearize_json import linearize_document as linearize_document
 from ._notation import Notation as Notation
-from .report import FORMATS as FORMATS
-from .report import Report as Report
-from .report import ReportFigure as ReportFigure
-from .report import format_for as format_for
-from .report import report as report
+from ._report import FORMATS as FORMATS
+from ._report import Report as Report
+from ._report import ReportFigure as ReportFigure
+from ._report import format_for as format_for
+from ._report import report as report
 from ._sympy_form import SympyEquations as SympyEquations
 from ._sympy_form import sympy_equations as sympy_equations
 from ._text import render_text as render_text
@@ -36,10 +36,11 @@ from ._intermediates import needed_intermediates as needed_intermediates
 from ._intermediates import render_intermediates as render_intermediates
 from ._text import Supplement as Supplement
 from ._text import supplement as supplement
+from ._report.size import SizeGate as SizeGate
 
 __all__ = ["CourseForm", "course_form", "EXPORT_TARGETS", "export", "SCHEMA_ID", "SCHEMA_VERSION", "derive_document", "render_latex",
            "LINEARIZE_SCHEMA_ID", "linearize_document",
            "Notation", "render_text", "Report", "ReportFigure", "report", "FORMATS", "format_for",
            "SympyEquations", "sympy_equations", "equilibria_text", "linear_text", "modes_text", "sweep_text",
            "simulation_check_text", "top_analysis_text",
-           "reference_label", "to_sympy", "needed_intermediates", "render_intermediates", "Supplement", "supplement"]
+           "reference_label", "to_sympy", "needed_intermediates", "render_intermediates", "Supplement", "supplement", "SizeGate"]

@@ -47,8 +47,8 @@ def to_sympy(e: se.Basic) -> sympy.Basic:
     A longer expression (up to `EXPAND_MAX_OPS`) is expanded by SymEngine first, kept when
     shorter, and then tidied as a small one: Kapitza's L(θ), 56 operations as derived, is
     m l² θ̈ − m l a ν² cos(ν t) sinθ.  Only small expressions get SymPy's expansion
-    (`TIDY_MAX_OPS`): simplification only where it pays.  √(a²) is written |a|, and a/|a|
-    sgn(a): exact Coulomb friction's −f N ẋ/√(ẋ²) prints as −f N sgn(ẋ) (`_signs`).
+    (`TIDY_MAX_OPS`): simplification only where it pays.  ``√(a²)`` is written ``|a|``, and ``a/|a|``
+    ``sgn(a)``: exact Coulomb friction's −f N ẋ/√(ẋ²) prints as −f N sgn(ẋ) (`_signs`).
     """
     expr = _from_engine(e)
     ops = sympy.count_ops(expr)
@@ -271,7 +271,7 @@ def course_form(eom: EquationsOfMotion, integrals: tuple[FirstIntegral, ...], *,
 
     ``convert`` turns each engine expression into the SymPy expression that is printed
     (`to_sympy` by default).  The report passes one that stands a summary in for an
-    expression too long to print (`lagrangian.output.report.size`), so that a 40-link
+    expression too long to print (`lagrangian.output._report.size`), so that a 40-link
     chain is collected in a fraction of a second rather than converted in full.
     """
     model = eom.model

@@ -23,7 +23,9 @@ from ._course import CourseForm, to_sympy
 
 __all__ = ["SCHEMA_ID", "SCHEMA_VERSION", "derive_document"]
 
+#: The ``schema`` key of a ``lagrangian derive --json`` document (``derive.schema.json``).
 SCHEMA_ID = "lagrangian.derive"
+#: The ``version`` key of that document: the version of its layout.
 SCHEMA_VERSION = 1
 
 

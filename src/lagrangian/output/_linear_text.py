@@ -216,7 +216,7 @@ def modes_text(lin: LinearModel, stability: Stability | None = None, modes: Mode
     ----------
     lin : from `lagrangian.linearize`.
     stability, modes : ``lin.stability(**values)`` and ``lin.modes(**values)``, computed here when not given.
-    values : the parameters ``lin`` keeps symbolic, when ``stability`` or ``modes`` is computed here.
+    **values : the parameters ``lin`` keeps symbolic, when ``stability`` or ``modes`` is computed here.
     """
     stability = lin.stability(**values) if stability is None else stability
     modes = lin.modes(**values) if modes is None else modes

@@ -33,6 +33,7 @@ __all__ = [
     "sweep_section",
 ]
 
+#: The ``schema`` key of a ``lagrangian linearize --json`` document (``linearize.schema.json``).
 LINEARIZE_SCHEMA_ID = "lagrangian.linearize"
 LINEARIZE_SCHEMA_VERSION = 1
 

@@ -185,7 +185,7 @@ def apex_path(trajectory: Trajectory, eom: EquationsOfMotion, body: str | None =
 def axis_angles(tip: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(ψ, θ) of unit vectors tip = (sinθ sinψ, −sinθ cosψ, cosθ), ψ unwrapped; each (N,).
 
-    θ ∈ [0, π] is the angle from z0; ψ is the angle of the line of nodes u = z0 ∧ tip / |…|
+    θ ∈ [0, π] is the angle from z0; ψ is the angle of the line of nodes ``u = z0 ∧ tip / |z0 ∧ tip|``
     from x0, the precession angle of the axis.
     """
     theta = np.arccos(np.clip(tip[:, 2], -1.0, 1.0))

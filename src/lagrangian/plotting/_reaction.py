@@ -86,12 +86,12 @@ def _axis_tex(name: str) -> str:
 
 
 def plot_reaction(trajectory: Trajectory, eom: EquationsOfMotion, *, ax: Any = None, lang: str = "en") -> Any:
-    """R(t) on (x0, y0, z0) and |R| for each reaction, with the weight's magnitude |P| for scale.
+    """R(t) on (x0, y0, z0) and ``|R|`` for each reaction, with the weight's magnitude ``|P|`` for scale.
 
     Returns
     -------
     matplotlib.figure.Figure
-        Its axes hold, for each reaction in turn, R·x0, R·y0, R·z0 and |R| as lines.
+        Its axes hold, for each reaction in turn, R·x0, R·y0, R·z0 and ``|R|`` as lines.
     """
     w = words(lang)
     history = reactions_along(trajectory, eom)

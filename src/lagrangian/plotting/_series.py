@@ -80,7 +80,7 @@ def plot_phase(trajectory: Trajectory, eom: EquationsOfMotion, *, fig: Any = Non
 
 
 def relative_drift(trajectory: Trajectory, name: str) -> np.ndarray:
-    """|I(t) − I(t0)| / S, shape (N,), S the physical scale of the integral (`Trajectory.scales`).
+    """The relative drift ``|I(t) − I(t0)| / S``, shape (N,), S the physical scale of the integral (`Trajectory.scales`).
 
     Its maximum is ``trajectory.drift[name]``, the conservation monitor of the run.
     """
