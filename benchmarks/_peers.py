@@ -16,7 +16,6 @@ Every peer is checked against our q̈ before it is timed (`check`).  The optiona
 from __future__ import annotations
 
 import importlib
-import os
 import tempfile
 from collections.abc import Callable
 from dataclasses import dataclass, field

@@ -206,7 +206,7 @@ def run_system(name: str, args, rng: np.random.Generator, peers: dict[str, objec
                 else:
                     continue
             t_build = time.perf_counter() - t0
-            diff = check(label, lambda k: fn(Qo[k], Uo[k]))
+            diff = check(label, lambda k, fn=fn: fn(Qo[k], Uo[k]))
             us = per_call(fn, [(Qo[k], Uo[k]) for k in range(len(Qo))]) * 1e6
             result.single.append(Row(label, us, diff, f"code generation + build {_fmt_s(t_build)}"))
         if n > args.lu_max_coords:

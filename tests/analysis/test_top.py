@@ -204,7 +204,7 @@ def test_a_sleeping_start_has_no_nutation(top):
     assert an.nutation is None and "sleeping position" in an.notes[0]
     assert an.sleeping[0].stable is True
     with pytest.raises(AnalysisError, match="no nutation"):
-        an.period
+        _ = an.period
 
 
 def test_a_top_swinging_through_the_vertical_has_no_nutation(top):

@@ -115,7 +115,7 @@ def test_simulate_checks_the_analysis_against_the_motion(capsys):
     assert "Check against a simulation" in out
     rows = re.findall(r"^  (.+?): analysis (\S+) \S+; simulation (.+?)  \(largest difference (\S+)\)$", out, re.M)
     assert [r[0] for r in rows] == ["θ1", "θ2", "nutation period", "mean ⟨ψ̇⟩"]
-    for name, value, sims, diff in rows:
+    for name, _, sims, diff in rows:
         sims = [float(x) for x in sims.split(", ")]
         assert len(sims) >= 2, name
         assert float(diff) < 1e-8, (name, diff)

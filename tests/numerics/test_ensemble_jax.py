@@ -12,7 +12,7 @@ pytest.importorskip("diffrax")
 import lagrangian  # noqa: E402
 from lagrangian.cli.main import main  # noqa: E402
 from lagrangian.errors import SimulationError  # noqa: E402
-from lagrangian.numerics import ensemble, grid, open_ensemble  # noqa: E402
+from lagrangian.numerics import ensemble, open_ensemble  # noqa: E402
 
 
 def test_jax_backend_agrees_with_the_c_path(tmp_path):

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import os
 import re
-import time
 from pathlib import Path
 
 import numpy as np
@@ -25,8 +24,6 @@ from lagrangian.output.report.size import SMALL_OPS, Summary
 from lagrangian_test_support import EXAMPLES_DIR, eom_of, example_names, integrals_of, mutated_example, plain
 
 GOLDEN = Path(__file__).parent / "golden" / "lagrange_top.fr.md"
-#: Seconds a 40-link chain's report may take on a slow shared machine (about 5 s measured).
-CHAIN_SECONDS = 30
 
 
 def _norm(latex: str) -> str:
@@ -252,13 +249,12 @@ def test_a_function_by_cases_is_printed():
 
 
 # -- long expressions --------------------------------------------------------------------------------
-def test_a_40_link_chain_is_quick_and_summarized():
+def test_a_40_link_chain_is_summarized():
+    # Its time is measured in benchmarks/report_display_form.py, not here.
     eom = lagrangian.derive(planar_chain(40))
-    start = time.perf_counter()
     r = report(eom, lang="fr")
     html, tex, md = r.html(), r.latex(), r.markdown()
-    elapsed = time.perf_counter() - start
-    assert elapsed < CHAIN_SECONDS
+    assert r"\end{document}" in tex
     from lagrangian.view3d._html import library
 
     # The 3-D figure's viewer (three.js, 0.75 MB) comes once, whatever the model; the rest stays under 4 MB.

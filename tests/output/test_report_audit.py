@@ -6,14 +6,13 @@ Each test names the model of ``examples/`` it reads and the sentence or formula 
 from __future__ import annotations
 
 import re
-from functools import lru_cache
+from functools import cache
 
 from lagrangian.output import report
-from lagrangian.output.report.document import math_of
 from lagrangian_test_support import EXAMPLES_DIR, plain
 
 
-@lru_cache(maxsize=None)
+@cache
 def _md(name: str, lang: str = "fr") -> str:
     return plain(report(EXAMPLES_DIR / f"{name}.toml", lang=lang).markdown())
 

@@ -84,7 +84,7 @@ def test_every_constraint_is_holonomic_principal_and_perfect(name):
 from lagrangian.output import report as _report  # noqa: E402
 from lagrangian.output.report.document import Display as _Display, Items as _Items, Para as _Para  # noqa: E402
 from lagrangian.output.report.document import Table as _Table  # noqa: E402
-from lagrangian.output.report.document import math_of as _math_of, walk as _walk  # noqa: E402
+from lagrangian.output.report.document import walk as _walk  # noqa: E402
 from lagrangian_test_support import eom_of as _eom_of, example_names as _example_names  # noqa: E402
 
 
@@ -203,7 +203,7 @@ def _constraints_named_in_the_reports_language(eom, texts):  # type: ignore[no-u
     letter = r"\mu" if own & {"lam", "lambda"} else r"\lambda"
     for lang, text in texts.items():
         other = "en" if lang == "fr" else "fr"
-        for k, con in enumerate(eom.model.constraints, 1):
+        for con in eom.model.constraints:
             for quoted in (f"« {con.name} »", f"“{con.name}”", tex_text(con.name), rf"\mathrm{{{con.name.split('_')[0]}}}"):
                 assert quoted not in text, (lang, quoted)
             if "_" in con.name:

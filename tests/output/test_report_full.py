@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import re
-import time
 
 import pytest
 
@@ -14,9 +13,6 @@ from lagrangian.output._course import to_sympy
 from lagrangian.output.report.document import Display, FullForms, math_of, walk
 from lagrangian.output.report.full_forms import FULL_BUDGET, FULL_WIDTH
 from lagrangian.output.report.size import Summary, visible_width
-
-#: A 40-link report, built and written in all three formats, takes about 5 s on one core.
-CHAIN_SECONDS = 15
 
 
 def _undo(lines: tuple[str, ...]) -> str:
@@ -62,7 +58,6 @@ def test_every_summarized_lagrange_equation_of_a_6_link_chain_has_its_full_form(
 
 def test_full_forms_are_the_notations_latex_of_the_engines_expressions(chain6):
     eom, r = chain6
-    from lagrangian.output._text import notation
     from lagrangian.output._course import course_form
 
     from lagrangian.output.report.build import report_notation
@@ -107,12 +102,11 @@ def test_latex_gathers_the_full_forms_in_an_appendix(chain6):
     assert r"\section*{Appendix: full forms}" in english and "(see A.2)" in english
 
 
-def test_a_40_link_chain_stays_within_the_budget_and_quick():
+def test_a_40_link_chain_stays_within_the_budget():
+    # Its time is measured in benchmarks/report_display_form.py, not here.
     eom = lagrangian.derive(planar_chain(40))
-    start = time.perf_counter()
     r = report(eom, lang="fr")
-    r.html(), r.latex(), r.markdown()
-    assert time.perf_counter() - start < CHAIN_SECONDS
+    assert r.html() and r.latex() and r.markdown()
     forms = _book(r)
     assert forms and sum(len(line) for _, lines in forms for line in lines) <= 1.2 * FULL_BUDGET
     # The rest stays summarized, and the report says where the complete equations are.

@@ -287,7 +287,7 @@ def test_two_letter_vectors_carry_an_arrow_with_its_head(tmp_path):
 
     pixels = matplotlib.image.imread(shot)
     dark = pixels[..., :3].mean(axis=2) < 0.5
-    for (ml, mt, mr, mb), (bl, bt, br, bb), *transforms in vectors:
+    for (ml, mt, mr, mb), (bl, bt, br, _), *transforms in vectors:
         assert transforms == ["none", "none"]
         width = br - bl
         # The band above the letters, within the arrow's box: where the arrow is drawn.

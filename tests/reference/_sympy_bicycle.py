@@ -82,7 +82,7 @@ from __future__ import annotations
 
 import functools
 import math
-from typing import Iterable
+from collections.abc import Iterable
 
 import numpy as np
 import sympy as sp

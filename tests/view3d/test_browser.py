@@ -136,7 +136,8 @@ HOSTILE = '</script><script>window.__owned = 1</script><img src=x onerror="windo
 def test_hostile_names_reach_the_page_as_text(browser, tmp_path):
     from lagrangian_test_support import example_text
 
-    source = re.sub(r'(?m)^name = .*$', lambda _: f"name = {_toml(HOSTILE)}", example_text("simple_pendulum.toml"), 1)
+    source = re.sub(r'(?m)^name = .*$', lambda _: f"name = {_toml(HOSTILE)}", example_text("simple_pendulum.toml"),
+                    count=1)
     source = re.sub(r'(?m)^title = .*$', "", source)
     model = lagrangian.parse_model(source)
     eom, traj = motion("simple_pendulum.toml", 1.0, 51)

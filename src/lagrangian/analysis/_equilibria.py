@@ -344,7 +344,7 @@ def _within_friction_cone(system: StaticSystem, eq: Equilibrium, branch: Mapping
         sols = []
     conds: list[sympy.Basic] = []
     k0 = len(system.lam) - len(system.sticking)
-    for (_, T, fs, N), sym in zip(system.sticking, lam[k0:]):
+    for (_, _, fs, N), sym in zip(system.sticking, lam[k0:]):
         value = sols[0].get(sym) if len(sols) == 1 else None
         if value is None or any(s in lam for s in value.free_symbols):
             conds = []

@@ -170,8 +170,9 @@ def _text(n: Notation, expr, red) -> str:  # type: ignore[no-untyped-def]
 
 def _names_in_greek(n: Notation, coordinates: tuple[str, ...], text: str) -> str:
     for name in coordinates:
-        text = re.sub(rf"(?<![A-Za-z0-9_]){re.escape(name)}([12])(?![A-Za-z0-9])", n.symbol(name) + r"\1", text)
-        text = re.sub(rf"(?<![A-Za-z0-9_]){re.escape(name)}(?![A-Za-z0-9])", lambda _: n.symbol(name), text)
+        symbol = n.symbol(name)
+        text = re.sub(rf"(?<![A-Za-z0-9_]){re.escape(name)}([12])(?![A-Za-z0-9])", symbol + r"\1", text)
+        text = re.sub(rf"(?<![A-Za-z0-9_]){re.escape(name)}(?![A-Za-z0-9])", lambda _, s=symbol: s, text)
     return text
 
 

@@ -398,7 +398,7 @@ def floating_form(model: Model) -> FloatingForm:
         if tree.internal:
             integrals += names
             momentum.append(names)
-            for a, g, p_a in zip(axes, _field(gravity), P):
+            for a, g in zip(axes, _field(gravity)):
                 if g:
                     continue
                 integrals.append(f"P{tag}_{a}")

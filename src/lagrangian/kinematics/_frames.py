@@ -277,7 +277,7 @@ def _cross(a: Components, b: Components) -> Components:
     nz_a = [type(x) is not _ZERO_TYPE for x in a]
     nz_b = [type(x) is not _ZERO_TYPE for x in b]
     out = []
-    for i, j, k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
+    for _i, j, k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):  # component i of a ∧ b
         plus = nz_a[j] and nz_b[k]
         minus = nz_a[k] and nz_b[j]
         if plus and minus:

@@ -5,8 +5,6 @@ from ._course import course_form as course_form
 from ._export import EXPORT_TARGETS as EXPORT_TARGETS
 from ..numerics._ensemble import register_backend as _register_backend
 from ._ensemble_jax import jax_runner as _jax_runner
-
-_register_backend("jax", _jax_runner)  # `ensemble(..., backend="jax")`: built on the JAX export, so registered here
 from ._export import export as export
 from ._json import SCHEMA_ID as SCHEMA_ID
 from ._json import SCHEMA_VERSION as SCHEMA_VERSION
@@ -23,6 +21,8 @@ from .report import report as report
 from ._sympy_form import SympyEquations as SympyEquations
 from ._sympy_form import sympy_equations as sympy_equations
 from ._text import render_text as render_text
+
+_register_backend("jax", _jax_runner)  # `ensemble(..., backend="jax")`: built on the JAX export, so registered here
 
 __all__ = ["CourseForm", "course_form", "EXPORT_TARGETS", "export", "SCHEMA_ID", "SCHEMA_VERSION", "derive_document", "render_latex",
            "LINEARIZE_SCHEMA_ID", "linearize_document",

@@ -220,7 +220,8 @@ def as_declared(n: Notation) -> Notation:
 def greek(n: Notation, form: CourseForm, sentence: str) -> str:
     """Write the coordinate names of a sentence in the course's letters (psi → ψ)."""
     for name in form.coordinates:
-        sentence = re.sub(rf"(?<![A-Za-z0-9]){re.escape(name)}(?![A-Za-z0-9])", lambda _: n.symbol(name), sentence)
+        symbol = n.symbol(name)
+        sentence = re.sub(rf"(?<![A-Za-z0-9]){re.escape(name)}(?![A-Za-z0-9])", lambda _, s=symbol: s, sentence)
     return sentence
 
 
@@ -321,7 +322,7 @@ def _multipliers_readable(text: str, extra: Supplement | None) -> str:
     for name, _ in extra.multipliers:
         readable = "λ_" + name.removeprefix("lambda_")
         # A function, not a template: the name is the model's text, and `\y` in it is not an escape.
-        text = re.sub(rf"(?<![A-Za-z0-9_]){re.escape(name)}(?![A-Za-z0-9_])", lambda _: readable, text)
+        text = re.sub(rf"(?<![A-Za-z0-9_]){re.escape(name)}(?![A-Za-z0-9_])", lambda _, s=readable: s, text)
     return text
 
 

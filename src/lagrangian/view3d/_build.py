@@ -101,7 +101,7 @@ class _Builder:
 
     # -- carriers and tracks ------------------------------------------------------------------------
     def carrier(self, name: str, label: str, kind: str, frame: str, origin: Vector) -> int:
-        for k, (c, o) in enumerate(zip(self.carriers, self.origins)):
+        for k, c in enumerate(self.carriers):
             if c.frame == frame and c.name == name:
                 return k
         self.carriers.append(Carrier(name, label, kind, frame))

@@ -38,7 +38,7 @@ from ...errors import OutputError
 from ...model import Model, load_model
 from ...model._texts import in_language
 from .build import Context
-from .document import Document, Image, Scene3D, Section, french_typography, map_math, map_text, pictures, walk
+from .document import Document, Scene3D, Section, french_typography, map_math, map_text, pictures
 from .steps.equations import integrals_section, pin_reaction, step6, step7
 from .steps.extras import ReportFigure, check_section, matrix_section, notes_section, simulation_section
 from .steps.forces import step5

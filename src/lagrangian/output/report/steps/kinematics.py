@@ -16,10 +16,10 @@ from ....model import Gravity, PointForce, Potential, Spring, Vector
 from ..build import Context
 from ..document import Block, Display, Equation, Math, Para, Section
 from ..size import visible_width, wrap_many
+from .statement import _frame_with_axes
 
 #: The seed writes Ω(S/R0) = ψ̇ z0 + θ̇ u + φ̇ z = θ̇ u + ψ̇ sinθ w + (φ̇ + ψ̇ cosθ) z on one line; so do we up to this width.
 LINE_WIDTH_OMEGA = 80
-from .statement import _frame_with_axes
 
 __all__ = ["step3", "step4"]
 
