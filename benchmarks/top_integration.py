@@ -81,12 +81,12 @@ def main(argv: list[str] | None = None) -> int:
     y0 = initial_state(eom)
     t_eval = np.linspace(0.0, T_END, 1001)
     names = [*eom.coordinates, *(c + "_dot" for c in eom.coordinates)]
-    print(f"Lagrange top, y0: {', '.join(f'{k} = {v:g}' for k, v in zip(names, y0))}, "
+    print(f"Lagrange top, y0: {', '.join(f'{k} = {v:g}' for k, v in zip(names, y0, strict=True))}, "
           f"t in [0, {T_END:g}] s, rtol = atol = {TOL:g}, {len(t_eval)} output times")
 
     # -- SymPy's equations, lambdified, for SciPy
     sym = _peers.sympy_system("top")
-    params = dict(zip(system.parameters, p))
+    params = dict(zip(system.parameters, p, strict=True))
     single, _ = _peers.lambdify_peer(sym, np.array([params[str(c)] for c in sym.constants]))
     n = system.n
 

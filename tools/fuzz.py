@@ -168,7 +168,7 @@ def _mutate_token(rng: random.Random, text: str, canary: str) -> str:
 
 def _tables(lines: list[str]) -> list[tuple[int, int]]:
     heads = [k for k, line in enumerate(lines) if _HEADER.match(line)]
-    return [(a, b) for a, b in zip(heads, heads[1:] + [len(lines)])]
+    return [(a, b) for a, b in zip(heads, heads[1:] + [len(lines)], strict=True)]
 
 
 def _mutate_structure(rng: random.Random, text: str, canary: str) -> str:

@@ -48,8 +48,8 @@ def eom_of(name: str) -> lagrangian.EquationsOfMotion:
 def rate_along_motion(eom: lagrangian.EquationsOfMotion, E: se.Basic) -> se.Basic:
     """dE/dt = Σ ∂E/∂q_i q̇_i + ∂E/∂q̇_i q̈_i + ∂E/∂t with q̈ = M⁻¹(F + Aᵀλ)."""
     qdd = accelerations(eom)
-    terms = [E.diff(q) * qd for q, qd in zip(eom.q, eom.qd)]
-    terms += [E.diff(qd) * a for qd, a in zip(eom.qd, qdd)]
+    terms = [E.diff(q) * qd for q, qd in zip(eom.q, eom.qd, strict=True)]
+    terms += [E.diff(qd) * a for qd, a in zip(eom.qd, qdd, strict=True)]
     return se.Add(*terms, E.diff(eom.t))
 
 

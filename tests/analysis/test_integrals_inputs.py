@@ -68,7 +68,7 @@ def test_the_simulation_monitors_what_holds_and_warns_of_nothing_an_input_causes
     assert driven.integrals == () and not driven.warnings
     # the motor does change p_phi: by ∫ τ dt, written out
     p = [_p_phi_by_hand(furuta.model.parameter_values, a, pd, ad)
-         for a, pd, ad in zip(driven.q[:, 1], driven.qd[:, 0], driven.qd[:, 1])]
+         for a, pd, ad in zip(driven.q[:, 1], driven.qd[:, 0], driven.qd[:, 1], strict=True)]
     work = 0.02 * (1 - np.cos(5 * driven.t)) / 5
     assert np.allclose(np.array(p) - p[0], work, atol=1e-10)
 

@@ -32,7 +32,7 @@ s, c = sp.sin(theta), sp.cos(theta)
 
 
 def d_dt(f: sp.Expr) -> sp.Expr:
-    return sum((f.diff(q) * qd + f.diff(qd) * qdd for q, qd, qdd in zip(Q, QD, QDD)), sp.Integer(0))
+    return sum((f.diff(q) * qd + f.diff(qd) * qdd for q, qd, qdd in zip(Q, QD, QDD, strict=True)), sp.Integer(0))
 
 
 def cross(u: sp.Matrix, v: sp.Matrix) -> sp.Matrix:

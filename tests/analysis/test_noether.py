@@ -89,7 +89,7 @@ def test_free_rigid_body_keeps_all_three_components_of_its_angular_momentum():
     psi_momentum = next(fi for fi in integrals.values() if fi.coordinate == "psi")
     rng = np.random.default_rng(4)
     for _ in range(5):
-        state = dict(zip(["psi", "theta", "phi", "psi_dot", "theta_dot", "phi_dot"], rng.uniform(0.2, 1.4, 6)))
+        state = dict(zip(["psi", "theta", "phi", "psi_dot", "theta_dot", "phi_dot"], rng.uniform(0.2, 1.4, 6), strict=True))
         subs = {se.Symbol(k): v for k, v in state.items()} | {se.Symbol(k): v for k, v in
                                                                  dict(A=0.02, B=0.03, C=0.05, m=1.0).items()}
         sigma = _euler_sigma(state, 0.02, 0.03, 0.05)

@@ -116,11 +116,11 @@ def test_compiled_articulated_rhs_is_pinocchios_aba(text: str) -> None:
     n = len(eom.q)
     rng = np.random.default_rng(5)
     tau = rng.uniform(-1, 1, n)
-    p = system.parameter_vector({name: float(x) for name, x in zip(eom.model.inputs, tau)})
+    p = system.parameter_vector({name: float(x) for name, x in zip(eom.model.inputs, tau, strict=True)})
     Y = np.hstack([rng.uniform(-1.2, 1.2, (6, n)), rng.uniform(-2, 2, (6, n))])
     ours = system.rhs(0.0, Y, p)[:, n:]  # batched
     M, F = system.mass_forces(np.zeros(len(Y)), Y, p)
-    for y, a, m, f in zip(Y, ours, np.reshape(M, (-1, n, n)), np.reshape(F, (-1, n))):
+    for y, a, m, f in zip(Y, ours, np.reshape(M, (-1, n, n)), np.reshape(F, (-1, n)), strict=True):
         theirs = peer.acceleration(y[:n], y[n:], tau)
         np.testing.assert_allclose(a, theirs, rtol=RTOL, atol=RTOL)
         np.testing.assert_allclose(a, np.linalg.solve(m, f), rtol=RTOL, atol=RTOL)

@@ -188,7 +188,7 @@ def _coin_kane() -> tuple[list, sp.Matrix, dict]:
     I = G.locatenew("I", -r * N.z)
     I.v2pt_theory(G, N, R2)
     coin = me.RigidBody("S", G, R2, m, (me.inertia(R2, m * r**2 / 4, m * r**2 / 2, m * r**2 / 4), G))
-    kde = [qi.diff() - ui for qi, ui in zip(q, u)]
+    kde = [qi.diff() - ui for qi, ui in zip(q, u, strict=True)]
     nonholonomic = [I.vel(N).dot(R1.x), I.vel(N).dot(R1.y)]
     km = me.KanesMethod(N, q_ind=q, u_ind=[u[2], u[3]], u_dependent=[u[0], u[1]], kd_eqs=kde,
                         velocity_constraints=nonholonomic)
@@ -220,7 +220,7 @@ def test_coin_accelerations_match_sympy_kanes_method() -> None:
         ours = np.array([float(qdd[i, 0].subs(values)) for i in range(4)])
         kane = {sp.Symbol("m"): 0.01, sp.Symbol("r"): 0.1}
         kane.update({qi: state[str(qi.func)] for qi in q})
-        kane.update({ui: state[str(qi.func) + "_dot"] for qi, ui in zip(q, u)})
+        kane.update({ui: state[str(qi.func) + "_dot"] for qi, ui in zip(q, u, strict=True)})
         theirs = np.array([float(e) for e in rhs.subs(kane)])
         assert np.allclose(ours, theirs, rtol=RTOL, atol=1e-12), (ours, theirs)
 
@@ -334,7 +334,7 @@ def test_axes_keep_the_rows_that_a_holonomic_contact_leaves() -> None:
     assert [r.name for r in kept.constraints] == ["contact", "rolling_x1"]
     row, ref = kept.constraints[1], pfaff.constraints[1]
     assert row.kind == "nonholonomic"
-    assert all(is_zero(a - b) for a, b in zip(row.coefficients, ref.coefficients))
+    assert all(is_zero(a - b) for a, b in zip(row.coefficients, ref.coefficients, strict=True))
     # The same axis named as x (the letter) or as the frame's axis name.
     letter = derive_text(INCLINE_NORMAL + 'rolling = { no_slip = "I", on = "S", frame = "R1", axes = ["x"] }\n')
     assert [r.name for r in letter.constraints] == ["contact", "rolling_x1"]

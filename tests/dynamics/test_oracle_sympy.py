@@ -552,7 +552,7 @@ def _dalembert_qdd(name: str) -> Callable[[dict[str, float]], np.ndarray]:
     qd = [qi.diff(t) for qi in q]
     names = [str(qi.func) for qi in q]
     qs, qds = sp.symbols(names), sp.symbols([n + "_dot" for n in names])
-    to_symbols = {**dict(zip(qd, qds)), **dict(zip(q, qs))}
+    to_symbols = {**dict(zip(qd, qds, strict=True)), **dict(zip(q, qs, strict=True))}
     no_qdd = {qi.diff(t, 2): 0 for qi in q}
     values = _parameter_values(name)
     force_on = {point.name: force for point, force in forces}
@@ -597,8 +597,8 @@ def oracle_qdd(name: str) -> Callable[[dict[str, float]], np.ndarray]:
     names = [str(qi.func) for qi in q]
     qs = sp.symbols(names)
     qds = sp.symbols([n + "_dot" for n in names])
-    to_symbols = {qi.diff(t): s for qi, s in zip(q, qds)}
-    to_symbols_q = {qi: s for qi, s in zip(q, qs)}
+    to_symbols = {qi.diff(t): s for qi, s in zip(q, qds, strict=True)}
+    to_symbols_q = {qi: s for qi, s in zip(q, qs, strict=True)}
     ts = sp.Symbol("t")  # prescribed motions depend on the time
     values = _parameter_values(name)
 
@@ -624,7 +624,7 @@ def test_accelerations_match_sympy_mechanics(name: str) -> None:
     assert list(eom.coordinates) == [str(qi.func) for qi in ORACLES[name]()[0]], "coordinate order differs"
     oracle = oracle_qdd(name)
     times = np.random.default_rng(20240602).uniform(0.0, 10.0, STATES)
-    for state, t in zip(random_states(name, eom.coordinates, STATES, seed=20240601), times):
+    for state, t in zip(random_states(name, eom.coordinates, STATES, seed=20240601), times, strict=True):
         state["t"] = float(t)  # examples with prescribed motions depend on t
         ours = engine_qdd(name, state)
         theirs = oracle(state)

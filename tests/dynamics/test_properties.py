@@ -120,11 +120,11 @@ def _independent_potential(eom: lagrangian.EquationsOfMotion, load) -> se.Basic 
         U = se.Integer(0)
         for name in names:
             position = r0(kin.position(name))
-            U -= masses[name] * se.Add(*(f * x for f, x in zip(field, position)))
+            U -= masses[name] * se.Add(*(f * x for f, x in zip(field, position, strict=True)))
         return U
     if isinstance(load, Spring):
         a, b = load.ends
-        d = [xb - xa for xa, xb in zip(r0(kin.position(a)), r0(kin.position(b)))]
+        d = [xb - xa for xa, xb in zip(r0(kin.position(a)), r0(kin.position(b)), strict=True)]
         length = se.sqrt(se.Add(*(c**2 for c in d)))
         return se.Rational(1, 2) * load.stiffness * (length - load.rest_length) ** 2
     return None
@@ -135,14 +135,14 @@ def _load_checks(name: str) -> list[tuple[str, Numeric]]:
     """Per gravity/spring load: numeric (Q_i + ∂U/∂q_i, Q_i + ∂U_engine/∂q_i, Q_i) for every i."""
     eom = eom_of(name)
     out = []
-    for spec, forces in zip(eom.model.loads, eom.loads):
+    for spec, forces in zip(eom.model.loads, eom.loads, strict=True):
         assert spec.name == forces.name
         U = _independent_potential(eom, spec)
         if U is None:
             continue
         assert forces.potential is not None, f"{name}: load {forces.name} should be detected conservative"
-        exprs = [Q + U.diff(q) for Q, q in zip(forces.Q, eom.q)]
-        exprs += [Q + forces.potential.diff(q) for Q, q in zip(forces.Q, eom.q)]
+        exprs = [Q + U.diff(q) for Q, q in zip(forces.Q, eom.q, strict=True)]
+        exprs += [Q + forces.potential.diff(q) for Q, q in zip(forces.Q, eom.q, strict=True)]
         exprs += list(forces.Q)
         out.append((forces.name, Numeric(eom, exprs)))
     return out
@@ -333,8 +333,8 @@ def _integral_rates(name: str) -> tuple[list[str], Numeric]:
     names, exprs = [], []
     for fi in integrals_of(name):
         names.append(fi.name)
-        terms = [fi.expression.diff(q) * qd for q, qd in zip(eom.q, eom.qd)]
-        terms += [fi.expression.diff(qd) * qdd for qd, qdd in zip(eom.qd, eom.qdd)]
+        terms = [fi.expression.diff(q) * qd for q, qd in zip(eom.q, eom.qd, strict=True)]
+        terms += [fi.expression.diff(qd) * qdd for qd, qdd in zip(eom.qd, eom.qdd, strict=True)]
         terms.append(fi.expression.diff(eom.t))
         exprs += terms
     return names, Numeric(eom, exprs)
@@ -349,7 +349,7 @@ def test_first_integrals_are_constant_along_the_motion(name: str, data: st.DataO
     assert names
     full = with_accelerations(eom, state, engine_qdd(name, state))
     terms = numeric(full).reshape(len(names), -1)
-    for integral, row in zip(names, terms):
+    for integral, row in zip(names, terms, strict=True):
         rate = float(np.sum(row))
         assert abs(rate) <= RTOL * _scale(row), f"d{integral}/dt = {rate} (terms {row})"
 
@@ -366,5 +366,5 @@ def test_first_integrals_are_not_trivially_constant(name: str) -> None:
             state[s] = float(rng.uniform(*domain(name, s)))
     wrong = with_accelerations(eom, state, engine_qdd(name, state) + 1.0)
     terms = numeric(wrong).reshape(len(names), -1)
-    for integral, row in zip(names, terms):
+    for integral, row in zip(names, terms, strict=True):
         assert abs(float(np.sum(row))) > 1e-6 * _scale(row), integral

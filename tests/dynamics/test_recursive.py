@@ -173,7 +173,7 @@ def test_compiled_recursive_code_agrees_and_simulates() -> None:
     Y = rng.uniform(-2, 2, (6, 8))
     values = {f"tau{k}": float(rng.uniform(-1, 1)) for k in range(1, 5)}
     p, q = fast.parameter_vector(values), slow.parameter_vector(values)
-    for a, b in zip(fast.mass_forces(0.0, Y, p), slow.mass_forces(0.0, Y, q)):
+    for a, b in zip(fast.mass_forces(0.0, Y, p), slow.mass_forces(0.0, Y, q), strict=True):
         _close(a, b)
     _close(fast.rhs(0.0, Y, p), slow.rhs(0.0, Y, q))
     assert fast.monitors[-2:] == ("T", "U")
@@ -212,7 +212,7 @@ def test_energy_is_monitored_and_kept() -> None:
     energy = next(fi for fi in lagrangian.first_integrals(course) if fi.name == "E")
     values = {se.Symbol(p.name): p.value for p in course.model.parameters}
     for k in (0, 10, 20):
-        values.update({s: x for s, x in zip(course.q, run.q[k])} | {s: x for s, x in zip(course.qd, run.qd[k])})
+        values.update({s: x for s, x in zip(course.q, run.q[k], strict=True)} | {s: x for s, x in zip(course.qd, run.qd[k], strict=True)})
         values[course.t] = run.t[k]
         _close([run.monitors["E"][k]], _course([energy.expression], values))
 

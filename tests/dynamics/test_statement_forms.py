@@ -40,14 +40,14 @@ def assert_same_equations(a: lagrangian.EquationsOfMotion, b: lagrangian.Equatio
     assert a.coordinates == b.coordinates
     Ma, Fa = mass_and_forces(a)
     Mb, Fb = mass_and_forces(b, subs_b)
-    for x, y in zip(list(Ma) + list(Fa), list(Mb) + list(Fb)):
+    for x, y in zip(list(Ma) + list(Fa), list(Mb) + list(Fb), strict=True):
         d = sp.expand(x - y)
         assert d == 0 or sp.simplify(sp.trigsimp(d)) == 0, (x, y)
     symbols = sorted((Ma.free_symbols | Fa.free_symbols | Mb.free_symbols | Fb.free_symbols), key=str)
     rng = random.Random(16)
     for _ in range(states):
         point = {s: rng.uniform(0.3, 1.7) for s in symbols}
-        for x, y in zip(list(Ma) + list(Fa), list(Mb) + list(Fb)):
+        for x, y in zip(list(Ma) + list(Fa), list(Mb) + list(Fb), strict=True):
             assert abs(complex(x.subs(point)) - complex(y.subs(point))) < 1e-9 * (1 + abs(complex(x.subs(point))))
 
 
@@ -222,7 +222,7 @@ def test_gravity_and_a_scleronomic_multiplier_is_conservative_with_its_lagrangia
     lam = dynamicsymbols("lambda_length")
     ours = [eq.lhs - eq.rhs for eq in s.equations]
     assert len(lm.lam_vec) == 1
-    matches = [all(sp.simplify(a - b.subs(lm.lam_vec[0], sign * lam)) == 0 for a, b in zip(ours, theirs))
+    matches = [all(sp.simplify(a - b.subs(lm.lam_vec[0], sign * lam)) == 0 for a, b in zip(ours, theirs, strict=True))
                for sign in (1, -1)]
     assert any(matches)  # the same equations, up to the sign convention of λ
 

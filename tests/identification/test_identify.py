@@ -158,7 +158,7 @@ def test_every_form_of_the_data_gives_the_same_fit(swing, tmp_path):
     xr = pytest.importorskip("xarray")
     eom, t, theta = swing
     csv = tmp_path / "swing.csv"
-    csv.write_text("# a measured swing\nt,theta\n" + "".join(f"{float(a)!r},{float(b)!r}\n" for a, b in zip(t, theta)))
+    csv.write_text("# a measured swing\nt,theta\n" + "".join(f"{float(a)!r},{float(b)!r}\n" for a, b in zip(t, theta, strict=True)))
     traj = lagrangian.simulate(eom, 3.0, t_eval=t)
     sources = [{"t": t, "theta": theta}, csv, xr.Dataset({"theta": ("t", theta)}, coords={"t": t})]
     fits = [identify(eom, s, ["l"], guess={"l": 0.4}, shooting=Shooting(segments=1)) for s in sources]

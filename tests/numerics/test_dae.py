@@ -92,9 +92,9 @@ def test_symengine_backend_agrees_with_c(pendulum) -> None:
     rng = np.random.default_rng(5)
     Y = rng.uniform(-1, 1, (7, 4))
     p = pendulum.parameter_vector()
-    for a, b in zip(pendulum.rhs(0.3, Y, p, (2.0, 3.0)), other.rhs(0.3, Y, p, (2.0, 3.0))):
+    for a, b in zip(pendulum.rhs(0.3, Y, p, (2.0, 3.0)), other.rhs(0.3, Y, p, (2.0, 3.0)), strict=True):
         assert np.allclose(a, b, rtol=1e-12, atol=1e-12)
-    for a, b in zip(pendulum.parts(0.3, Y, p), other.parts(0.3, Y, p)):
+    for a, b in zip(pendulum.parts(0.3, Y, p), other.parts(0.3, Y, p), strict=True):
         assert np.allclose(a, b, rtol=1e-12, atol=1e-12)
     lam = rng.uniform(-1, 1, (7, 1))
     assert np.allclose(pendulum.reaction_values(0.3, Y, lam, p), other.reaction_values(0.3, Y, lam, p))

@@ -31,7 +31,7 @@ def test_one_state_equals_the_batch_and_the_ctypes_path(make):
     Y = rng.uniform(0.3, 1.2, size=(16, 2 * system.n))
     batch = system.rhs(0.4, Y, p)
     by_ctypes = type(system).rhs_c.__get__(system)
-    for y, expected in zip(Y, batch):
+    for y, expected in zip(Y, batch, strict=True):
         out, out_ctypes = np.empty_like(y), np.empty_like(y)
         assert system.rhs_c(0.4, y, p, out) == 0
         assert by_ctypes(0.4, y, p, out_ctypes) == 0

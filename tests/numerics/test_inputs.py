@@ -198,7 +198,7 @@ def test_a_table_drives_the_oscillator_as_the_hand_written_equations_piece_by_pi
 
 def test_a_table_from_a_csv_file(tmp_path, oscillator):
     path = tmp_path / "push.csv"
-    path.write_text("t,force\n" + "".join(f"{a},{b}\n" for a, b in zip(SAMPLES_T, SAMPLES_V)))
+    path.write_text("t,force\n" + "".join(f"{a},{b}\n" for a, b in zip(SAMPLES_T, SAMPLES_V, strict=True)))
     table = InputTable.from_csv(path, "force", interpolation="linear")
     assert np.array_equal(table.t, SAMPLES_T) and np.array_equal(table.values, SAMPLES_V)
     with pytest.raises(SimulationError, match="no column `push`.*its columns: t, force"):

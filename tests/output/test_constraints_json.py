@@ -55,7 +55,7 @@ def test_vector_constraints_list_their_components_in_their_frame(capsys, name: s
     assert isinstance(c["statement"], list) and len(c["statement"]) == 3 and c["frame"]
     assert [r["name"] for r in c["rows"]] == [r.name for r in eom.constraints]
     assert doc["multipliers"] == [m.name for m in eom.multipliers]
-    for r, ours in zip(c["rows"], eom.constraints):
+    for r, ours in zip(c["rows"], eom.constraints, strict=True):
         assert sympy.simplify(sympy.sympify(r["equation"]) - ours.expression._sympy_()) == 0
 
 

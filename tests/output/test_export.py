@@ -55,7 +55,7 @@ def _states(case: str, count: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
 
 def _reference(case: str, t: np.ndarray, y: np.ndarray) -> np.ndarray:
     system = _system(case)
-    return np.array([system.rhs(ti, yi, system.parameter_vector()) for ti, yi in zip(t, y)])
+    return np.array([system.rhs(ti, yi, system.parameter_vector()) for ti, yi in zip(t, y, strict=True)])
 
 
 def _assert_close(actual: np.ndarray, expected: np.ndarray) -> None:
@@ -79,7 +79,7 @@ def test_numpy_export_reproduces_the_package(case, tmp_path):
     assert list(module.PARAMETERS) == [p.name for p in eom.model.parameters]
     t, y = _states(case, 12, seed=3)
     expected = _reference(case, t, y)
-    for ti, yi, ei in zip(t, y, expected):  # one state at a time
+    for ti, yi, ei in zip(t, y, expected, strict=True):  # one state at a time
         _assert_close(module.rhs(ti, yi), ei)
     _assert_close(module.rhs(t, y), expected)  # batched: (N, 2n), t of shape (N,)
     n = len(eom.q)
@@ -144,7 +144,7 @@ def test_c_export_reproduces_the_package(case, tmp_path):
     t, y = _states(case, 12, seed=5)
     expected = _reference(case, t, y)
     out = np.empty(y.shape[1])
-    for ti, yi, ei in zip(t, y, expected):
+    for ti, yi, ei in zip(t, y, expected, strict=True):
         yi = np.ascontiguousarray(yi)
         fn(ti, yi.ctypes.data_as(double_p), p.ctypes.data_as(double_p), out.ctypes.data_as(double_p))
         _assert_close(out, ei)
@@ -227,7 +227,7 @@ def test_c_export_driver_integrals_and_constraint_rows(case, tmp_path):
     def line(values) -> str:
         return " ".join(repr(float(v)) for v in values)
 
-    text = line([*p, *stab]) + "\n" + "\n".join(line([ti, *yi]) for ti, yi in zip(t, y))
+    text = line([*p, *stab]) + "\n" + "\n".join(line([ti, *yi]) for ti, yi in zip(t, y, strict=True))
     run = subprocess.run([str(exe)], input=text, capture_output=True, text=True, timeout=60)
     assert run.returncode == 0, run.stderr
     got = np.array([[float(v) for v in line.split()] for line in run.stdout.strip().splitlines()])
@@ -244,9 +244,9 @@ def test_c_export_driver_integrals_and_constraint_rows(case, tmp_path):
     else:
         exact = _reference(case, t, y)
     m, ni = len(rows), len(integrals)
-    for k, (ti, yi) in enumerate(zip(t, y)):
-        state = {**{c: v for c, v in zip(eom.coordinates, yi[:n])},
-                 **{c + "_dot": v for c, v in zip(eom.coordinates, yi[n:])}, str(eom.t): ti}
+    for k, (ti, yi) in enumerate(zip(t, y, strict=True)):
+        state = {**{c: v for c, v in zip(eom.coordinates, yi[:n], strict=True)},
+                 **{c + "_dot": v for c, v in zip(eom.coordinates, yi[n:], strict=True)}, str(eom.t): ti}
         parts = np.split(got[k], np.cumsum([2 * n, ni, m * n, 3 * m, 2 * n]))
         assert len(got[k]) == 2 * n + ni + (m * n + 3 * m + 2 * n + m if m else 0)
         _assert_close(parts[0], exact[k])
@@ -352,8 +352,8 @@ def test_numpy_export_of_a_constrained_model_solves_for_the_multipliers(case, tm
     assert A.shape == (len(y), m, n) and b.shape == c.shape == f.shape == (len(y), m)
     rows_at = Numeric(eom, [a for r in rows for a in r.coefficients] + [r.b for r in rows] + [r.bias for r in rows]
                       + [r.expression if r.kind == "holonomic" else 0 for r in rows])
-    for k, (ti, yi) in enumerate(zip(t, y)):
-        state = {**dict(zip(eom.coordinates, yi[:n])), **{c_ + "_dot": v for c_, v in zip(eom.coordinates, yi[n:])},
+    for k, (ti, yi) in enumerate(zip(t, y, strict=True)):
+        state = {**dict(zip(eom.coordinates, yi[:n], strict=True)), **{c_ + "_dot": v for c_, v in zip(eom.coordinates, yi[n:], strict=True)},
                  str(eom.t): ti}
         _assert_close(np.concatenate([A[k].ravel(), b[k], c[k], f[k]]), rows_at(state))
 
@@ -396,7 +396,7 @@ def test_octave_export_of_a_constrained_model_runs(case, tmp_path):
 
     calls = "".join(f"[yd, lam] = {ident}_rhs_multipliers({float(ti)!r}, {column(yi)}, d, 2, 3); "
                     f"disp(num2str([yd; lam]', 17)); disp(num2str({ident}_rhs({float(ti)!r}, {column(yi)}, d)', 17));"
-                    for ti, yi in zip(t, y))
+                    for ti, yi in zip(t, y, strict=True))
     script = f"addpath('{tmp_path / 'out'}'); [n, d] = {ident}_parameters(); {calls}"
     run = subprocess.run(["octave", "--no-gui", "--quiet", "--no-window-system", "--eval", script],
                          capture_output=True, text=True, timeout=120)
@@ -518,7 +518,7 @@ def test_octave_export_runs(case, tmp_path):
     t, y = _states(case, 4, seed=11)
     expected = _reference(case, t, y)
     calls = "".join(f"disp(num2str({ident}_rhs({float(ti)!r}, [{'; '.join(repr(float(v)) for v in yi)}], d)', 17));"
-                    for ti, yi in zip(t, y))
+                    for ti, yi in zip(t, y, strict=True))
     script = f"addpath('{tmp_path / 'out'}'); [n, d] = {ident}_parameters(); {calls}"
     run = subprocess.run(["octave", "--no-gui", "--quiet", "--no-window-system", "--eval", script],
                          capture_output=True, text=True, timeout=120)

@@ -454,7 +454,7 @@ def test_step7_gives_the_reaction_of_the_fixed_point():
                      for line in m.split(" \\\\\n"))
     n = report_notation(course_form(eom, ()), eom.model)
     assert r"\vec{R}_{O} = m\,\vec{\gamma}(G/R_{0}) - \vec{F}(\text{poids}) = " in shown
-    for x, axis in zip(r.force_components, (r"\vec{u}", r"\vec{w}", r"\vec{z}")):
+    for x, axis in zip(r.force_components, (r"\vec{u}", r"\vec{w}", r"\vec{z}"), strict=True):
         assert n.latex(x._sympy_()) in shown and axis in shown
     tension = report(eom_of("pendulum_tension.toml"), lang="fr", verification=True).document
     assert not any(r"\vec{\gamma}(" in m for m in math_of(tension.section("step7").blocks))

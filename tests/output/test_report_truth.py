@@ -62,7 +62,7 @@ def test_damped_urdf_joints_are_not_called_perfect_and_their_damping_is_in_q_nc(
     damping = {j.get("name"): float(j.find("dynamics").get("damping"))
                for j in ET.parse(URDF).getroot().iter("joint") if j.find("dynamics") is not None}
     assert damping == {"waist": 0.5, "shoulder": 0.5, "elbow": 0.2}
-    for q, eq in zip(eom.q, eom.equations):  # the file's damping is −c q̇ in Q_nc of that joint's equation
+    for q, eq in zip(eom.q, eom.equations, strict=True):  # the file's damping is −c q̇ in Q_nc of that joint's equation
         rate = se.Symbol(f"{q}_dot")
         assert float(eq.Q_nc.diff(rate)) == pytest.approx(-damping[str(q)])
     step1 = _words(_report("rrr_arm.urdf"), "step1")
@@ -71,7 +71,7 @@ def test_damped_urdf_joints_are_not_called_perfect_and_their_damping_is_in_q_nc(
     # Without damping, the same pivots are perfect: their Q_nc holds the motors' τ only (no rate).
     undamped = lagrangian.derive(lagrangian.load_urdf(URDF, damping=False))
     assert all(not eq.Q_nc.diff(se.Symbol(f"{q}_dot")).free_symbols and eq.Q_nc.diff(se.Symbol(f"{q}_dot")) == 0
-               for q, eq in zip(undamped.q, undamped.equations))
+               for q, eq in zip(undamped.q, undamped.equations, strict=True))
     step1 = plain(" ".join(x for b in walk(report(undamped, lang="fr").document.section("step1").blocks)
                            if isinstance(b, Para) for x in b.runs if isinstance(x, str)))
     assert step1.count("Elle est parfaite (sans frottement") == 3 and "n'est pas parfaite" not in step1
@@ -211,7 +211,7 @@ def test_input_torques_are_not_folded_into_the_potential_and_the_energy_is_the_m
     taus = [p.symbol for p in eom.model.parameters if p.input]
     assert taus and not (set(balance.E.free_symbols) & set(taus))  # E = T + U_gravity: mechanical energy
     power = next(t.power for t in balance.terms if t.name == "actuators")
-    assert se.expand(power - sum(t * qd for t, qd in zip(taus, eom.qd))) == 0  # dE/dt holds Σ τ_j q̇_j
+    assert se.expand(power - sum(t * qd for t, qd in zip(taus, eom.qd, strict=True))) == 0  # dE/dt holds Σ τ_j q̇_j
 
 
 def test_a_constant_couple_is_said_constant_and_derives_from_minus_c_theta(tmp_path):

@@ -65,7 +65,7 @@ def test_symbols_are_named_as_in_the_model() -> None:
 def _numeric(expr: sympy.Basic, s, rng: np.random.Generator) -> float:  # type: ignore[no-untyped-def]
     """Value of a time-function expression at a random (q, q̇, q̈, t), derivatives replaced first."""
     subs = {}
-    for q, qd, qdd in zip(s.q, s.qd, s.qdd):
+    for q, qd, qdd in zip(s.q, s.qd, s.qdd, strict=True):
         subs[qdd], subs[qd], subs[q] = rng.uniform(-1, 1, 3)
     out = expr.subs({k: subs[k] for k in s.qdd}).subs({k: subs[k] for k in s.qd}).subs(
         {k: subs[k] for k in s.q})
@@ -78,13 +78,13 @@ def test_time_function_form_differentiates_correctly(name: str) -> None:
     eom = eom_of(name)
     s = eom.to_sympy(time_functions=True)
     assert s.time_functions and s.t == dynamicsymbols._t
-    assert all(q == dynamicsymbols(c) for q, c in zip(s.q, s.coordinates))
-    assert all(qd == q.diff(s.t) and qdd == q.diff(s.t, 2) for q, qd, qdd in zip(s.q, s.qd, s.qdd))
+    assert all(q == dynamicsymbols(c) for q, c in zip(s.q, s.coordinates, strict=True))
+    assert all(qd == q.diff(s.t) and qdd == q.diff(s.t, 2) for q, qd, qdd in zip(s.q, s.qd, s.qdd, strict=True))
     from lagrangian.output._sympy_form import _convert  # the same structural conversion, of the engine's d/dt(T)
 
     dT_engine = _convert(eom.kinematics.d_dt(eom.T)).xreplace(
-        {sympy.Symbol(f"{c}_{k}"): v for c, qd, qdd in zip(s.coordinates, s.qd, s.qdd)
-         for k, v in (("dot", qd), ("ddot", qdd))} | {sympy.Symbol(c): q for c, q in zip(s.coordinates, s.q)})
+        {sympy.Symbol(f"{c}_{k}"): v for c, qd, qdd in zip(s.coordinates, s.qd, s.qdd, strict=True)
+         for k, v in (("dot", qd), ("ddot", qdd))} | {sympy.Symbol(c): q for c, q in zip(s.coordinates, s.q, strict=True)})
     dT_sympy = sympy.diff(s.T, s.t)
     for seed in range(5):
         a, b = (_numeric(e, s, np.random.default_rng(seed)) for e in (dT_sympy, dT_engine))

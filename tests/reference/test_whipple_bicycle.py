@@ -105,7 +105,7 @@ def test_cli_json_reproduces_the_papers_A(capsys):
 
 def test_sympy_kanes_method_gives_the_same_A():
     # The same bicycle built with SymPy's KanesMethod and linearized by SymPy (nothing of lagrangian).
-    for v, theirs in zip(range(11), _sympy_bicycle.linearized_A(range(11))):
+    for v, theirs in zip(range(11), _sympy_bicycle.linearized_A(range(11)), strict=True):
         assert _close(_lean_steer(_symbolic_in_v(), v=float(v)), theirs)
 
 

@@ -142,7 +142,7 @@ def _build(eom: EquationsOfMotion, match, values: Mapping[str, float]) -> Closed
         return None
     q = [sympy.Symbol(c) for c in names]
     qd = [sympy.Symbol(c + "_dot") for c in names]
-    at = {**{s: qvals[c] for s, c in zip(q, names)}, **{s: 0 for s in qd}}
+    at = {**{s: qvals[c] for s, c in zip(q, names, strict=True)}, **{s: 0 for s in qd}}
     F = sympy.Matrix([f._sympy_() for f in eom.F])
     M = sympy.Matrix([[e._sympy_() for e in row] for row in eom.M])
 

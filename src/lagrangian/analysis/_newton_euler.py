@@ -355,7 +355,7 @@ class _Efforts:
         elif not kin.is_fixed(at):
             # A force at a moving point that no body carries: its virtual power F·V*(A).
             partials = kin.partial_velocities(at)
-            self.power = [p + kin.frames.dot(force, v) for p, v in zip(self.power, partials)]
+            self.power = [p + kin.frames.dot(force, v) for p, v in zip(self.power, partials, strict=True)]
             self._note_power(load)
         # else: applied at a fixed point of the ground, it does no virtual work on (Σ).
 
@@ -367,7 +367,7 @@ class _Efforts:
         frame = on if on not in {b.name for b in self.kin.model.bodies} else self.kin.model.body(on).frame
         partials = self.kin.partial_omegas(frame)
         if any(not w.is_zero() for w in partials):  # a couple on a moving frame that is no body
-            self.power = [p + self.kin.frames.dot(couple, w) for p, w in zip(self.power, partials)]
+            self.power = [p + self.kin.frames.dot(couple, w) for p, w in zip(self.power, partials, strict=True)]
             self._note_power(load)
 
     def _note(self, owner: str, load: str) -> None:
@@ -420,13 +420,13 @@ def given_efforts(eom: EquationsOfMotion) -> tuple[tuple[EffortsOnElement, ...],
                 (acc.add_force if what == "force" else acc.add_couple)(load.name, vector, where)
         elif isinstance(load, (Potential, GeneralizedForce, Dissipation)):
             q = next(f.Q for f in eom.loads if f.name == load.name)
-            acc.power = [p + x for p, x in zip(acc.power, q)]
+            acc.power = [p + x for p, x in zip(acc.power, q, strict=True)]
             acc._note_power(load.name)
     # Complementary constraints (issue 5): their reactions, linear in the multipliers λ_k, are
     # efforts like the given ones here (the virtual field is not compatible with them).
     for load, what, value, at, owner in reaction_efforts(eom):
         if what == "power":
-            acc.power = [p + x for p, x in zip(acc.power, value)]  # type: ignore[call-overload]
+            acc.power = [p + x for p, x in zip(acc.power, value, strict=True)]  # type: ignore[call-overload]
             acc._note_power(load)
         elif what == "couple":
             acc.add_couple(load, value, owner)  # type: ignore[arg-type]

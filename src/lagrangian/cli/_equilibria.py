@@ -159,7 +159,7 @@ def _document(name: str, coordinates: tuple[str, ...], values: dict, found: tupl
             "aliases": [{n: a[n] for n in coordinates if n in a} for a in e.aliases],
             "stable": None if v is None else v[0], "stability_verdict": None if v is None else v[1],
             "stability_reason": None if v is None else v[2],
-        } for e, v in zip(found, verdicts)],
+        } for e, v in zip(found, verdicts, strict=True)],
     }
 
 
@@ -169,7 +169,7 @@ def _text(name: str, coordinates: tuple[str, ...], parameters: list[str], found:
     lines = [f"Equilibria of {name} (q̇ = 0, q̈ = 0: F(q, 0) + Aᵀλ = 0)", ""]
     if not found:
         lines.append("  none found in the ranges searched")
-    for k, (e, stab) in enumerate(zip(found, verdicts), start=1):
+    for k, (e, stab) in enumerate(zip(found, verdicts, strict=True), start=1):
         parts = []
         for q in coordinates:
             v = e.values[q]

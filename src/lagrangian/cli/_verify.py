@@ -56,7 +56,7 @@ class _Printer:
         pieces = [(frame, self.kin.frames.express(v, frame))] if frame else list(self.kin.frames.lift(v))
         terms = []
         for f, comps in pieces:
-            for c, axis in zip(comps, self.kin.frames.axes(f)):
+            for c, axis in zip(comps, self.kin.frames.axes(f), strict=True):
                 c = to_sympy(c)
                 if c != 0:
                     terms.append((c, axis))

@@ -39,6 +39,7 @@ T and the Q_i as always (`_lagrange`), and the tests check the two against each 
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
@@ -169,11 +170,11 @@ def tree_structure(kin: Kinematics) -> TreeStructure | str:
         if stray:
             return (f"the position of `{name}` has a part in frame `{stray[0]}`, which is not on the chain of frames "
                     f"from R0 to `{home}`")
-        for frame, child in zip(path, path[1:]):
+        for frame, child in itertools.pairwise(path):
             piece = pieces.get(frame, _ZERO3)
             c = index[child]
             if c in offset_set:
-                if any(se.expand(a - b) != 0 for a, b in zip(piece, nodes[c].offset)):
+                if any(se.expand(a - b) != 0 for a, b in zip(piece, nodes[c].offset, strict=True)):
                     return (f"the points below frame `{child}` do not share one origin for it (`{name}` differs in "
                             f"frame `{frame}`)")
                 continue
@@ -269,7 +270,7 @@ class _Names:
 
 
 def _dot(a: Sequence[se.Basic], b: Sequence[se.Basic]) -> se.Basic:
-    return sum_of([x * y for x, y in zip(a, b) if type(x) is not _ZERO_TYPE and type(y) is not _ZERO_TYPE])
+    return sum_of([x * y for x, y in zip(a, b, strict=True) if type(x) is not _ZERO_TYPE and type(y) is not _ZERO_TYPE])
 
 
 def _scale(k: se.Basic, v: Vec) -> Vec:
@@ -484,10 +485,10 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
     couples = [_ZERO3] * count
     for k, couple in tree.couples:  # the torques and joint dampers: Q_j = C⃗ · ∂Ω/∂q̇_j
         couples[k] = _add3(couples[k], kin.frames.express(couple, nodes[k].frame))
-    gamma0 = backward(force, [_add3(mo, _scale(se.Integer(-1), c)) for mo, c in zip(moment, couples)])
+    gamma0 = backward(force, [_add3(mo, _scale(se.Integer(-1), c)) for mo, c in zip(moment, couples, strict=True)])
     Q_couples = [sum_of(q) for q in backward([_ZERO3] * count, couples)] if tree.couples else [_ZERO] * n
     Q_other = [sum_of([load.Q[i] for load in other]) for i in range(n)]
-    F = tuple(q - sum_of(g) if g else q for q, g in zip(Q_other, gamma0))
+    F = tuple(q - sum_of(g) if g else q for q, g in zip(Q_other, gamma0, strict=True))
 
     # -- M: composite-rigid-body algorithm -----------------------------------------------------------
     mass: list[se.Basic] = [nd.mass for nd in nodes]
@@ -562,7 +563,7 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
     T = sum_of(T_terms)
     U_gravity = sum_of(U_terms)
     dL = _gradient(w, T - U_gravity, kin.q)
-    dL_dq = tuple(a + q + c for a, q, c in zip(dL, Q_other, Q_couples))
+    dL_dq = tuple(a + q + c for a, q, c in zip(dL, Q_other, Q_couples, strict=True))
     U_other = [f.potential for f in other if f.potential is not None]
     conservative = all(f.potential is not None for f in other) and not tree.couples
     return RecursiveForm(tuple(w.items), M_out, F, T, U_gravity + sum_of(U_other), dL_dq, conservative, other,

@@ -58,11 +58,11 @@ def _turn_about(n: Components, c: se.Basic, s: se.Basic, v: Components) -> Compo
     """
     if all(is_structural_zero(x) for x in v):
         return v
-    n_v = sum_of([a * b for a, b in zip(n, v) if not is_structural_zero(a) and not is_structural_zero(b)])
+    n_v = sum_of([a * b for a, b in zip(n, v, strict=True) if not is_structural_zero(a) and not is_structural_zero(b)])
     turned = _cross(n, v)
     along = (1 - c) * n_v
     return tuple(sum_of([t for t in (c * x, s * w, along * a) if not is_structural_zero(t)])  # type: ignore[return-value]
-                 for x, w, a in zip(v, turned, n))
+                 for x, w, a in zip(v, turned, n, strict=True))
 
 
 def rotation_rate(rotation, rate: se.Basic) -> Components:  # type: ignore[no-untyped-def]
@@ -198,7 +198,7 @@ class FrameTree:
         frame = frame or self.best_frame(u, v)
         a = self.express(u, frame)
         b = a if v is u else self.express(v, frame)
-        return sum_of([x * y for x, y in zip(a, b) if type(x) is not _ZERO_TYPE and type(y) is not _ZERO_TYPE])
+        return sum_of([x * y for x, y in zip(a, b, strict=True) if type(x) is not _ZERO_TYPE and type(y) is not _ZERO_TYPE])
 
     def cross(self, u: Vector, v: Vector, frame: str | None = None) -> Vector:
         if u.is_zero() or v.is_zero():
@@ -269,7 +269,7 @@ def _accumulate(out: dict[str, Components], frame: str, comps: Components) -> No
 def _add3(a: Components, b: Components) -> Components:
     """a + b component-wise, adding nothing to a zero (x + 0 is x: the same expressions)."""
     return tuple(y if type(x) is _ZERO_TYPE else x if type(y) is _ZERO_TYPE else x + y  # type: ignore[return-value]
-                 for x, y in zip(a, b))
+                 for x, y in zip(a, b, strict=True))
 
 
 def _cross(a: Components, b: Components) -> Components:

@@ -243,7 +243,7 @@ class Assumptions:
         out = e
         if args:
             new = [self._walk(a) for a in args]
-            if any(a != b for a, b in zip(new, args)):
+            if any(a != b for a, b in zip(new, args, strict=True)):
                 out = e.func(*new)
             out = self._resolve(out)
         self._refined[e] = out

@@ -153,7 +153,7 @@ class Vector:
         out = dict(self._pieces)
         for frame, comps in other._pieces.items():
             if frame in out:
-                out[frame] = tuple(a + b for a, b in zip(out[frame], comps))  # type: ignore[assignment]
+                out[frame] = tuple(a + b for a, b in zip(out[frame], comps, strict=True))  # type: ignore[assignment]
             else:
                 out[frame] = comps
         return Vector._trusted(out)
@@ -210,7 +210,7 @@ class Vector:
             return "0"
         terms = []
         for frame, comps in self._pieces.items():
-            for axis, c in zip("xyz", comps):
+            for axis, c in zip("xyz", comps, strict=True):
                 if c != 0:
                     terms.append(f"({c})*{frame}.{axis}")
         return " + ".join(terms)

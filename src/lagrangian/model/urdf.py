@@ -631,7 +631,7 @@ class _Translation:
         values = [mass, *first, at_origin[0, 0], at_origin[0, 1], at_origin[0, 2], at_origin[1, 1],
                   at_origin[1, 2], at_origin[2, 2]]
         units = ["kg", *["kg*m"] * 3, *["kg*m^2"] * 6]
-        for name, value, unit, prefix in zip(names, values, units, INERTIAL_PARAMETERS):
+        for name, value, unit, prefix in zip(names, values, units, INERTIAL_PARAMETERS, strict=True):
             what = {"m": ("masse", "mass"), "mx": ("moment statique m c_x", "first moment m c_x"),
                     "my": ("moment statique m c_y", "first moment m c_y"),
                     "mz": ("moment statique m c_z", "first moment m c_z")}.get(

@@ -65,7 +65,7 @@ def monitor_expressions(eom: EquationsOfMotion, integrals: Sequence, *,
     out = [(fi.name, fi.expression) for fi in integrals]
     taken = {name for name, _ in out}
     energies = (eom.recursive.T, eom.recursive.U) if recursive and eom.recursive is not None else (eom.T, eom.U)
-    for name, expr in zip(("T", "U"), energies):
+    for name, expr in zip(("T", "U"), energies, strict=True):
         out.append((name if name not in taken else f"{name}_total", expr))
     return out
 
@@ -211,7 +211,7 @@ def _shared_bias(eom: EquationsOfMotion) -> tuple[list[tuple[se.Symbol, se.Basic
     n = len(eom.q)
     _, gamma0 = mass_matrix_and_bias(eom.kinematics, eom.inertias, share=share)
     Q = [se.Add(*(load.Q[i] for load in eom.loads)) for i in range(n)]
-    F = [q - g for q, g in zip(Q, gamma0)]
+    F = [q - g for q, g in zip(Q, gamma0, strict=True)]
     return shared, F
 
 
@@ -251,7 +251,7 @@ def mass_forces_form(eom: EquationsOfMotion) -> MassForcesForm:
     hoist = _Hoist([se.Symbol(p.name) for p in eom.model.parameters if not p.input])
     flat = [hoist(e) for e in flat]
     return MassForcesForm(
-        shared=tuple((sym, e) for (sym, _), e in zip(shared, flat[n * n + n:])),
+        shared=tuple((sym, e) for (sym, _), e in zip(shared, flat[n * n + n:], strict=True)),
         M=tuple(flat[: n * n]), F=tuple(flat[n * n: n * n + n]),
         constants=tuple((sym, expr) for expr, sym in hoist.constants.items()))
 
@@ -443,7 +443,7 @@ def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence, events: Seq
                                           + [(f"piv[{2 * i + k}]", pair[k]) for i, pair in enumerate(rec.pivots)
                                              for k in range(2)]), "q''"))
         staged.append((f"LG_NOINLINE static void lg_aba_forward({arguments}, const double *carry, double *qdd)",
-                       (list(zip(carried, slots)) + [(sym, lifted(e)) for sym, e in forward],
+                       (list(zip(carried, slots, strict=True)) + [(sym, lifted(e)) for sym, e in forward],
                         [(f"qdd[{i}]", lifted(e)) for i, e in enumerate(rec.qdd)]), "q''"))
         aba = [("static void lg_aba(double t, const double *y, const double *p, double *qdd, double *piv) {\n"
                 f"    double carry[{max(len(carried), 1)}];\n"

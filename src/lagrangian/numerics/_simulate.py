@@ -104,7 +104,7 @@ class EventSpec:
 
 def _names(eom: EquationsOfMotion) -> dict[str, se.Basic]:
     names: dict[str, se.Basic] = {"t": eom.t}
-    for c, q, qd in zip(eom.model.coordinates, eom.q, eom.qd):
+    for c, q, qd in zip(eom.model.coordinates, eom.q, eom.qd, strict=True):
         names[c.name] = q
         names[c.name + "_dot"] = qd
     for p in eom.model.parameters:
@@ -171,7 +171,7 @@ def initial_state(eom: EquationsOfMotion, initial: Mapping[str, float] | None = 
 
 
 def _state_text(system: CompiledSystem, y: np.ndarray) -> str:
-    return ", ".join(f"{name} = {v:.6g}" for name, v in zip(system.coordinates, y[: system.n]))
+    return ", ".join(f"{name} = {v:.6g}" for name, v in zip(system.coordinates, y[: system.n], strict=True))
 
 
 def _singularity(system: CompiledSystem, t: float, y: np.ndarray, p: np.ndarray, where: str) -> SimulationError:
@@ -182,7 +182,7 @@ def _singularity(system: CompiledSystem, t: float, y: np.ndarray, p: np.ndarray,
     """
     M, F = system.mass_forces(t, y, p)
     names = system.coordinates
-    bad = ([f"M[{names[i]},{names[j]}]" for i, j in zip(*np.nonzero(~np.isfinite(M)))]
+    bad = ([f"M[{names[i]},{names[j]}]" for i, j in zip(*np.nonzero(~np.isfinite(M)), strict=True)]
            + [f"F[{names[i]}]" for i in np.flatnonzero(~np.isfinite(F))])
     if bad:
         shown = ", ".join(bad[:4]) + (f" and {len(bad) - 4} more" if len(bad) > 4 else "")
@@ -194,8 +194,8 @@ def _singularity(system: CompiledSystem, t: float, y: np.ndarray, p: np.ndarray,
             t=t, state=y.copy())
     w, v = mass_eigh(M)
     null = v[:, 0]
-    parts = [f"{c:+.2f} {name}_dot" for c, name in zip(null, system.coordinates) if abs(c) > 0.1]
-    involved = [name for c, name in zip(null, system.coordinates) if abs(c) > 0.1]
+    parts = [f"{c:+.2f} {name}_dot" for c, name in zip(null, system.coordinates, strict=True) if abs(c) > 0.1]
+    involved = [name for c, name in zip(null, system.coordinates, strict=True) if abs(c) > 0.1]
     if len(involved) == 1:
         why = f"M has (almost) no inertia along {involved[0]}, so {involved[0]}_ddot is not defined there."
     else:
@@ -793,7 +793,7 @@ def _run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol, max_ste
                               f"{sol.message}", fix="loosen the tolerances or try another method")
     evs = []
     for k, spec in enumerate(specs):
-        for te, ye in zip(sol.t_events[k], sol.y_events[k]):
+        for te, ye in zip(sol.t_events[k], sol.y_events[k], strict=True):
             evs.append((spec.name, float(te), ye))
     evs.sort(key=lambda e: e[1])
     return sol.t, np.ascontiguousarray(sol.y.T), evs, int(sol.nfev), int(count["steps"]), sol.status

@@ -279,7 +279,7 @@ def simulate_stick_slip(
             y = system.onto_stick(t, y, p)
         later = grid[grid > t]
         t_seg = np.concatenate([[t], later])
-        start = {c: float(v) for c, v in zip(coords, y[:n])} | {c + "_dot": float(v) for c, v in zip(coords, y[n:])}
+        start = {c: float(v) for c, v in zip(coords, y[:n], strict=True)} | {c + "_dot": float(v) for c, v in zip(coords, y[n:], strict=True)}
         if mode == 0:
             ends = [EventSpec(SWITCH + "-", lam - f_s * N, 1, True), EventSpec(SWITCH + "+", lam + f_s * N, -1, True)]
             piece = simulate_dae(system.stuck, float(t_end), t_start=t, initial=start, t_eval=t_seg,
@@ -344,7 +344,7 @@ def _join(system: StickSlipSystem, p: np.ndarray, grid: np.ndarray, pieces: list
             FRIC.append(piece.extra[f"lambda_{system.row}"][keep])
         else:
             Y = np.column_stack([piece.q[keep], piece.qd[keep]])
-            values = [system.coefficients(t, yy, p) for t, yy in zip(piece.t[keep], Y)]
+            values = [system.coefficients(t, yy, p) for t, yy in zip(piece.t[keep], Y, strict=True)]
             FRIC.append(np.array([-mode * f * N for f, _, N in values]))
         warnings += [w for w in piece.warnings if " drifted by " not in w and w not in warnings]
     t = np.concatenate(T)

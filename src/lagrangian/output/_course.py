@@ -234,7 +234,7 @@ def _vector_row(eom: EquationsOfMotion, v: Vector, convert: Converter = to_sympy
     terms = []
     for frame, comps in v:
         axes = eom.kinematics.frames.axes(frame)
-        for c, name in zip(comps, axes):
+        for c, name in zip(comps, axes, strict=True):
             if c != 0:
                 terms.append((convert(c), name))
     return VectorRow(tuple(terms))

@@ -119,7 +119,7 @@ def cse_lines(targets: Sequence[str], exprs: Sequence[se.Basic], printer: Any, l
         name = se.Symbol(f"{local}{k + first}")
         lines.append(f"{indent}{name} = {printer.doprint(value.xreplace(mapping)._sympy_())}{end}")
         mapping[sym] = name
-    for target, value in zip(targets, reduced):
+    for target, value in zip(targets, reduced, strict=True):
         lines.append(f"{indent}{target} = {printer.doprint(value.xreplace(mapping)._sympy_())}{end}")
     return lines
 
@@ -156,8 +156,8 @@ def exported_symbols(eom: EquationsOfMotion, target: str = "numpy") -> ExportedS
     y = tuple(se.Symbol(f"_y{i}") for i in range(2 * n))
     p = tuple(se.Symbol(f"_p{k}") for k in range(len(params)))
     t = se.Symbol("_t")
-    private: dict[se.Basic, se.Basic] = dict(zip((*eom.q, *eom.qd), y))
-    private.update({se.Symbol(name): sym for name, sym in zip(params, p)})
+    private: dict[se.Basic, se.Basic] = dict(zip((*eom.q, *eom.qd), y, strict=True))
+    private.update({se.Symbol(name): sym for name, sym in zip(params, p, strict=True)})
     private[eom.t] = t
 
     def rename(expr: se.Basic, what: str) -> se.Basic:

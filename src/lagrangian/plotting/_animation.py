@@ -136,7 +136,7 @@ def _write_gif(renderer: Renderer, count: int, fps: float, path: Path) -> None:
     colours += [0, 0, 0] * (255 - len(colours) // 3) + [255, 255, 255]
     palette.putpalette(colours)
     images = []
-    for frame, a in zip(frames, rgba):
+    for frame, a in zip(frames, rgba, strict=True):
         index = np.array(frame.quantize(palette=palette, dither=Image.Dither.NONE))
         index[a.view(np.uint32)[..., 0] == 0xFFFFFFFF] = 255
         image = Image.fromarray(index)  # mode L; putpalette makes it P

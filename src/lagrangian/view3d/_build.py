@@ -247,13 +247,13 @@ def build_scene(model: Model, motions: Sequence[Motion], values: Mapping[str, fl
     runs = []
     offset_axis = np.cross(up, direction)
     offset_axis /= max(np.linalg.norm(offset_axis), 1e-12)
-    for motion, poses, points in zip(b.motions, b.poses, b.points):
+    for motion, poses, points in zip(b.motions, b.poses, b.points, strict=True):
         offset = (0.0, 0.0, 0.0)
         if motion.beside:
             offset = tuple(float(x) for x in offset_axis * 2.2 * radius)
         runs.append(Run(motion.label, poses.astype(np.float32), points.astype(np.float32), offset, motion.ghost))
     if any(m.beside for m in b.motions):
-        centre = tuple(float(c + x * 1.1 * radius) for c, x in zip(centre, offset_axis))
+        centre = tuple(float(c + x * 1.1 * radius) for c, x in zip(centre, offset_axis, strict=True))
         radius *= 2.2
     axis_names = tuple(model.frame(GALILEAN_FRAME).axes)
     return Scene(title or model.name, b.t.copy(), tuple(b.carriers), tuple(b.parts), tuple(b.tracks), tuple(runs),

@@ -99,7 +99,7 @@ class Report:
         """The PDF of the LaTeX report, compiled by pdflatex (or lualatex) installed on this machine."""
         images = pictures(self.document)
         names = [f"report-figure-{k}.png" for k in range(1, len(images) + 1)]
-        return compile_pdf(self.latex(names), {name: image.png for name, image in zip(names, images)})
+        return compile_pdf(self.latex(names), {name: image.png for name, image in zip(names, images, strict=True)})
 
     def render(self, format: str) -> str:
         """The report in ``format``: ``"html"``, ``"tex"`` or ``"md"`` (a PDF is bytes: `pdf` or `save`)."""
@@ -127,7 +127,7 @@ class Report:
             if fmt in ("tex", "md"):
                 images = pictures(self.document, scenes=fmt == "tex")  # Markdown leaves the 3-D figures out
                 names = [f"{path.stem}-figure-{k}.png" for k in range(1, len(images) + 1)]
-                for name, image in zip(names, images):
+                for name, image in zip(names, images, strict=True):
                     _atomic.write_atomic(path.with_name(name), image.png)
                 text = self.latex(names) if fmt == "tex" else self.markdown(names)
             elif fmt == "pdf":

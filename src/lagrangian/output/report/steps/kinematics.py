@@ -143,7 +143,7 @@ def virtual_torsor(c: Context, name: str) -> tuple[Vector, Vector]:
     """
     body = c.model.body(name)
     omega = Vector.zero()
-    for part, star in zip(c.kin.partial_omegas(body.frame), c.kin.q_star):
+    for part, star in zip(c.kin.partial_omegas(body.frame), c.kin.q_star, strict=True):
         omega = omega + part * star
     return omega, c.kin.virtual_velocity(torsor_point(c, name))
 
@@ -335,7 +335,7 @@ def _kinetic(c: Context) -> list[Block]:
     # One element: its T is T(Σ/R), whose full form (when summarized) goes under it; numbered before it is written.
     single = c.full([(rf"T(\Sigma/{c.R}) = ", c.form.T[0].expression)], f"T(Σ/{c.ref})") if len(c.form.T) == 1 else []
     rows = []
-    for term, shown in zip(c.eom.T_terms, c.form.T):
+    for term, shown in zip(c.eom.T_terms, c.form.T, strict=True):
         S = c.element(term.name)
         mass = next((b.mass for b in c.model.bodies if b.name == term.name),
                     next((p.mass for p in c.model.particles if p.name == term.name), None))
@@ -471,7 +471,7 @@ def _entrainment_terms(c: Context) -> list[Block]:
 def _potential(c: Context) -> list[Block]:
     w = c.w
     cste = rf" + \text{{{w.text('cste')}}}"
-    loads = [(f, row) for f, row in zip((f for f in c.eom.loads if f.potential is not None), c.form.U)]
+    loads = [(f, row) for f, row in zip((f for f in c.eom.loads if f.potential is not None), c.form.U, strict=True)]
     if not loads:
         return [Para(w("no potential", U=Math(rf"U_P(\Sigma/{c.R}) = 0")))]
     head = rf"U_P(\Sigma/{c.R}) = "

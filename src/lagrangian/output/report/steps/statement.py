@@ -263,7 +263,7 @@ def _joint_name(c: Context, j: Joint) -> Runs:
 def _offsets(c: Context, j: Joint) -> Runs:
     """``OG·z0 = r`` (and ``OG·y0 = 0``): the constant components of a "body plane"."""
     OG = rf"\overrightarrow{{{c.name(c.origin)}{c.point_label(j.element)}}}"
-    return c.w.join([Math(rf"{OG}\cdot{c.axis(a)} = {c.tex(v)}") for a, v in zip(j.normals, j.offsets)])
+    return c.w.join([Math(rf"{OG}\cdot{c.axis(a)} = {c.tex(v)}") for a, v in zip(j.normals, j.offsets, strict=True)])
 
 
 def _turns(c: Context, j: Joint) -> Runs:
@@ -499,7 +499,7 @@ def _freedom(c: Context) -> list[Block]:
 # -- step 2 ---------------------------------------------------------------------------------------
 def _euler_body(c: Context) -> str | None:
     """The body whose three rotations from R0 are the Euler angles (z, x, z) of the three coordinates."""
-    q = {s: name for s, name in zip(c.eom.q, c.eom.coordinates)}
+    q = {s: name for s, name in zip(c.eom.q, c.eom.coordinates, strict=True)}
     if len(q) != 3:
         return None
     frames = {f.name: f for f in c.model.frames}
