@@ -59,6 +59,14 @@ def test_kept_trajectories_equal_simulate_and_gauss_legendre_too(top):
             np.testing.assert_array_equal(ds.time.values, tr.t)
 
 
+def test_kept_trajectories_too_big_for_memory_are_refused_before_the_run(top):
+    # 2000 members × 10⁵ times × 6 states × 8 bytes = 9.6 GB: over the cap of 8 GiB (or a quarter of the memory).
+    spins = np.linspace(10.0, 50.0, 2000)
+    with pytest.raises(SimulationError, match=r"Keeping 2000 trajectories of 100000 times would take about") as err:
+        ensemble(top, 1.0, initial={"phi_dot": spins, "theta": 0.7}, n_out=100_000, keep="trajectories", workers=1)
+    assert ".zarr" in err.value.fix
+
+
 def test_a_failing_member_is_flagged_and_the_others_go_on(top):
     # theta = 0: the Euler angles are singular (M loses rank); a fast spin needs more steps than allowed.
     ds = ensemble(top, 1.0, initial={"theta": [0.0, 0.5, 0.5], "phi_dot": [50.0, 20.0, 400.0]}, max_steps=200,
