@@ -46,7 +46,7 @@ import lagrangian  # noqa: E402
 from lagrangian.model.zoo import lagrange_top, planar_chain, spatial_chain  # noqa: E402
 from lagrangian.numerics import compile_system  # noqa: E402
 
-#: Targets (issue 3): faster than every peer per single state; M and F batched at n = 5 (the
+#: Targets: faster than every peer per single state; M and F batched at n = 5 (the
 #: issue's 0.3 µs is its figure for SymEngine's LLVM M and F on 10^4 states).
 TARGET_BATCH_US = 0.3
 #: Timing: a block of calls lasts about this long; each peer gets about this budget.

@@ -1,4 +1,4 @@
-"""Robot-sized systems (issue 13): derive + compile time and memory, and q̈ per state against Pinocchio.
+"""Robot-sized systems: derive + compile time and memory, and q̈ per state against Pinocchio.
 
 Two systems, each in relative joint coordinates as a robot is written:
 
@@ -13,7 +13,7 @@ The script
 1. times `lagrangian.derive` + `compile_system` of the 20-link chain and the 10-joint arm in a
    fresh process with an empty compile cache (wall and CPU time of the process and of the C
    compiler), and the peak memory (resident set of Python and of the compiler) at n = 30;
-   targets (issue 13): under 3 s each, under 500 MB;
+   targets: under 3 s each, under 500 MB;
 2. for each n checks that our q̈ equals ``pin.aba``'s at random states, random joint torques
    (relative difference ≤ ``--rtol``, else it stops: a benchmark of different physics is
    worthless), then times one state per call (ours: ``CompiledSystem.rhs_c``; Pinocchio:

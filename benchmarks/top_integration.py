@@ -18,7 +18,7 @@ all three), and the largest difference between the trajectories.  Then the long-
 behaviour: the energy drift of DOP853 and of the symplectic Gauss–Legendre method over
 100 s and 1000 s (a symplectic method's energy error stays bounded; DOP853's grows).
 
-Targets (issue 3): ours ≥ 10× faster than SciPy + lambdify, energy drift ≤ 1e-11.
+Targets: ours ≥ 10× faster than SciPy + lambdify, energy drift ≤ 1e-11.
 
 Run:  .venv/bin/python benchmarks/top_integration.py [--repeat 5] [--long 100 1000]
 """

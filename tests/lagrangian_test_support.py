@@ -234,7 +234,7 @@ class Interrupted:
 def interrupt_when_started(command: Sequence[str], env: dict[str, str], ready: bytes, *, delay: float = 1.0,
                            said: bytes = b"interrupted") -> Interrupted:
     """Run ``command``, send SIGINT ``delay`` s after ``ready`` first shows on its standard error
-    (a progress bar: the compiled loop is running), and wait for it to exit (Ctrl-C tests, issue 15)."""
+    (a progress bar: the compiled loop is running), and wait for it to exit (Ctrl-C tests)."""
     proc = subprocess.Popen(list(command), stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
     chunks: list[bytes] = []
     started = threading.Event()

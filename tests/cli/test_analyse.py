@@ -101,7 +101,7 @@ def test_parse_settings_splits_parameters_and_initial_values():
         parse_settings(["g=1", "g=2"], model)
     with pytest.raises(SettingError, match="not a number"):
         parse_settings(["g=2*pi"], model)  # no expression evaluation
-    # What Python's float also reads is not a plain decimal number (issue 15, item 7).
+    # What Python's float also reads is not a plain decimal number.
     for text in ("1_0", "\u0663", "infinity", "nan", "0x10", "1e", "--1"):
         with pytest.raises(SettingError, match="not a number"):
             parse_settings([f"theta={text}"], model)

@@ -1,4 +1,4 @@
-"""The command line under hostile conditions (issue 15, items 3 and 7).
+"""The command line under hostile conditions.
 
 A full device on standard output, Ctrl-C while the package is still importing, an output
 folder that cannot be written, an event written as a vector: each ends in one line and a

@@ -1,4 +1,4 @@
-"""Ctrl-C stops a long compiled run within a second (issue 15, item 4).
+"""Ctrl-C stops a long compiled run within a second.
 
 Each run is a real process sent SIGINT once its progress bar shows the C loop running:
 it must exit 130 with one line and no traceback, and with ``-o`` keep the part computed

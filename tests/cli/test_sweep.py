@@ -1,4 +1,4 @@
-"""``lagrangian sweep`` (issue 14, items 3 and 6): grids, maps, Ctrl-C and --resume."""
+"""``lagrangian sweep``: grids, maps, Ctrl-C and --resume."""
 
 import os
 import subprocess

@@ -1,4 +1,4 @@
-"""Rows chosen by the engine (issue 16, item 5): a vector constraint written in any frame.
+"""Rows chosen by the engine: a vector constraint written in any frame.
 
 `no_slip` written in the disk's own frame (or the lean frame) gives three rows of rank two;
 the engine keeps an independent set by itself and says which.  Truth: the formulation

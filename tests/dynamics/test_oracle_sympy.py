@@ -117,7 +117,7 @@ def lagrange_top() -> Oracle:
     return [psi, theta, phi], S.kinetic_energy(N), [(G, -m * g * N.z)], N
 
 
-# -- issue 5: the same motions described in R0, with the prescribed motions written out -----------
+# -- the same motions described in R0, with the prescribed motions written out -----------
 def bead_rotating_hoop() -> Oracle:
     # The engine writes it in the hoop's frame R1 (inertial forces); the oracle in R0, where R1
     # is a frame turned by the prescribed angle Omega t.
@@ -181,7 +181,7 @@ def block_on_belt() -> Oracle:
     return [x], me.Particle("block", B, m).kinetic_energy(N), [(B, -m * g * N.z - k * x * N.x + friction)], N
 
 
-# -- examples with complementary constraints (issue 5): the oracle is the unconstrained system
+# -- examples with complementary constraints: the oracle is the unconstrained system
 # (M q̈ = F without the multiplier terms); tests/dynamics/test_constraints.py checks the
 # constrained accelerations and the multipliers against LagrangesMethod/KanesMethod with the
 # same constraints.

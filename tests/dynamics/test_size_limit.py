@@ -1,4 +1,4 @@
-"""The size limit on the derived equations of motion M q̈ = F (issue 15, item 1).
+"""The size limit on the derived equations of motion M q̈ = F.
 
 Equations past `MAX_OPS` operations are refused by `derive` with a `ModelError` that names
 the size, the limit, the largest entry and the fix, before code generation, compilation or

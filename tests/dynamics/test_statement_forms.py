@@ -1,4 +1,4 @@
-"""A model written as its statement says gives the equations of the longer formulation (issue 16).
+"""A model written as its statement says gives the equations of the longer formulation.
 
 Each short form is compared with the formulation that worked before it: the same M and F
 (simplified difference zero, and the same numbers at random states).
@@ -51,7 +51,7 @@ def assert_same_equations(a: lagrangian.EquationsOfMotion, b: lagrangian.Equatio
             assert abs(complex(x.subs(point)) - complex(y.subs(point))) < 1e-9 * (1 + abs(complex(x.subs(point))))
 
 
-# -- item 2: a couple on a massless link --------------------------------------------------------
+# -- a couple on a massless link --------------------------------------------------------
 DOUBLE_PENDULUM = """
     [parameters]
     m1 = 1.0
@@ -118,7 +118,7 @@ def test_couple_on_an_unknown_name_names_bodies_and_frames() -> None:
         parse(DOUBLE_PENDULUM.format(extra_parameters="", bodies="", link1="R9", link2="R2"))
 
 
-# -- item 1: a rotation about a constant axis of the parent ------------------------------------
+# -- a rotation about a constant axis of the parent ------------------------------------
 FOUCAULT_AXIS = """
     # The Foucault pendulum as its statement says: the Earth E turns at Omega about its polar
     # axis, cos(lam) north + sin(lam) up in the local frame R0 (x east, y north, z up); the attraction
@@ -201,7 +201,7 @@ def test_bad_axes_are_refused_clearly(axis: str, message: str) -> None:
         parse(FOUCAULT_AXIS.replace("cos(lam)*R0.y + sin(lam)*R0.z", axis))
 
 
-# -- item 6: conservative with multipliers -----------------------------------------------------
+# -- conservative with multipliers -----------------------------------------------------
 def test_gravity_and_a_scleronomic_multiplier_is_conservative_with_its_lagrangian() -> None:
     """The pendulum of examples/pendulum_tension.toml (x, y, the rod kept as x² + y² − l² = 0 with
     λ): gravity only and a perfect time-independent constraint, so L = T − U_P, and SymPy's
@@ -237,7 +237,7 @@ def test_a_rheonomic_multiplier_is_not_conservative() -> None:
     assert eom.constraints and not eom.scleronomic and not eom.conservative and eom.L is None
 
 
-# -- item 3: masses only where they matter -----------------------------------------------------
+# -- masses only where they matter -----------------------------------------------------
 ATWOOD = """
     # Atwood's machine: A (m1) and B (m2) hang from a rope over a pulley of inertia J turning
     # about its fixed axle O; the rope does not slip (pulley angle -x/r) and x is A's descent.

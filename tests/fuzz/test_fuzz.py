@@ -1,4 +1,4 @@
-"""The fuzz campaign of issue 15, short: mutated example models through every stage and the CLI.
+"""The fuzz campaign, short: mutated example models through every stage and the CLI.
 
 ``tools/fuzz.py`` mutates the example files, runs each case in a forked process under a
 memory cap (4 GiB) and a time cap, and classifies what happened; the long run is in
@@ -22,7 +22,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 TOOL = ROOT / "tools" / "fuzz.py"
-#: The short run's size (issue 15: "a few hundred cases, under 2 minutes"); seed 1 (the long runs use others).
+#: The short run's size (a few hundred cases, under 2 minutes); seed 1 (the long runs use others).
 CASES = 300
 
 

@@ -1,4 +1,4 @@
-"""Declaring sign assumptions and coordinate ranges (issue 16, item 4): reading and errors."""
+"""Declaring sign assumptions and coordinate ranges: reading and errors."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The compile cache loads only what it built itself (issue 15, item 5).
+"""The compile cache loads only what it built itself.
 
 Loading a shared library runs its code, and a truncated one can crash the process
 (SIGBUS), so each reproducer runs in a subprocess over a copy of one primed cache: the

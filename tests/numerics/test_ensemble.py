@@ -1,4 +1,4 @@
-"""`lagrangian.ensemble` (issue 14, items 1, 2, 6): many members in batched compiled calls.
+"""`lagrangian.ensemble`: many members in batched compiled calls.
 
 The reference for every member is `simulate` on that member alone: the batch runs the same
 integrator from the same control block, so states and event times must agree to the last

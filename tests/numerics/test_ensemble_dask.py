@@ -1,4 +1,4 @@
-"""`ensemble` on a Dask cluster (issue 14, item 4): a real LocalCluster with two worker processes.
+"""`ensemble` on a Dask cluster: a real LocalCluster with two worker processes.
 
 The workers receive the generated C source, compile it once each (their own compile
 cache), and must return exactly what the local threads compute.
@@ -49,7 +49,7 @@ def test_unreachable_scheduler_is_a_clear_error_before_any_work(monkeypatch, tmp
 
 
 def test_a_worker_killed_during_its_chunk_has_the_chunk_run_again_and_counted_once(tmp_path):
-    """Issue 14, item 6: a worker process dies (os._exit) while it integrates a chunk.
+    """A worker process dies (os._exit) while it integrates a chunk.
 
     Dask's scheduler gives the lost task to another worker (its nanny also starts a new
     process); the sweep must end with every member done exactly once and equal to the local

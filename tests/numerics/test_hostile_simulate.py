@@ -1,4 +1,4 @@
-"""Models whose equations are not defined at the initial state (issue 15; found by tools/fuzz.py).
+"""Models whose equations are not defined at the initial state (found by tools/fuzz.py).
 
 ``rotation = ["phi^phi", "z"]`` with phi = 0 puts log(0) in M: the eigenvalue check of the
 initial state met a matrix of nan and raised NumPy's `LinAlgError`.  Now a `SimulationError`
@@ -36,7 +36,7 @@ def test_the_command_line_says_it_in_one_message(tmp_path: Path, capsys) -> None
     assert "not finite" in err and "Traceback" not in err
 
 
-# -- gauss-legendre's step (issue 15, item 7) -------------------------------------------------------
+# -- gauss-legendre's step -------------------------------------------------------
 STIFF = """\
 [model]
 name = "Stiff spring"

@@ -3,7 +3,7 @@ is stopped as soon as that is plain, with the same error ``max_steps`` would giv
 
 An undamped spring of 1e16 N/m on 1 kg (ω = 1e8 rad/s) is not stiff in Hairer's sense: the step
 is held by accuracy, about 19 steps a period at the default tolerances.  Over 1 s that is some
-3e8 steps, more than the default 1e8; the run used to crawl for minutes (a fuzz case, issue 15,
+3e8 steps, more than the default 1e8; the run used to crawl for minutes (a fuzz case
 took 100 s with ``stiffness = "exp(k)"``) and is now stopped after two windows of 2^20 steps.
 The projection is checked against the steps the same oscillator takes over 1000 periods.
 """

@@ -1,4 +1,4 @@
-"""Declared ranges and the signs the derivation used, checked along a motion (issue 16, item 4).
+"""Declared ranges and the signs the derivation used, checked along a motion.
 
 Truth: the closed form of the harmonic oscillator, x(t) = x0 cos ωt + (v0/ω) sin ωt with
 ω = √(k/m), for the mass on a spring fixed to a wall at x = −L.

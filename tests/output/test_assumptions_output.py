@@ -1,4 +1,4 @@
-"""Declared signs and ranges, and the signs the derivation used, in `derive` and its JSON (issue 16, item 4)."""
+"""Declared signs and ranges, and the signs the derivation used, in `derive` and its JSON."""
 
 from __future__ import annotations
 

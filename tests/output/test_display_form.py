@@ -1,7 +1,7 @@
 """The report's display simplifier: the forms a teacher would write, never another value.
 
-The forms are checked against the trigonometric identities written out by hand (issue 11,
-item 8); the values against the engine's expressions of every example, at random states.
+The forms are checked against the trigonometric identities written out by hand;
+the values against the engine's expressions of every example, at random states.
 """
 
 from __future__ import annotations

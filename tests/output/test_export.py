@@ -1,6 +1,6 @@
 """Code export (`lagrangian.export`, ``lagrangian export``): the written NumPy module and C library
 reproduce the in-package q̈ = M⁻¹F (`CompiledSystem.rhs`) at random states, and bad input
-writes nothing (issue 12, items 3 and 6)."""
+writes nothing."""
 
 from __future__ import annotations
 

@@ -73,8 +73,8 @@ def test_golden_french_report_of_the_top(top):
     assert text == GOLDEN.read_text(encoding="utf-8")
 
 
-#: Golden reports of other examples, French and English, reviewed line by line for the statements issue 11
-#: corrected: the degrees of freedom (n − h − k, planar by construction), the moment theorem at a moving point
+#: Golden reports of other examples, French and English, reviewed line by line for the statements
+#: they hold: the degrees of freedom (n − h − k, planar by construction), the moment theorem at a moving point
 #: (δ_A = d/dt σ_A + m V(A) ∧ V(G)), the multiplier from the constraint differentiated twice, the Jacobi integral
 #: h = T(Σ/R1) + U_P(Σ/R1) of the hoop, the multipliers λ / λ_1 … λ_k and the constraints by their description,
 #: the comoments of step 3 and Π at step 4.  Regenerate with LAGRANGIAN_UPDATE_GOLDEN=1 and review the diff.

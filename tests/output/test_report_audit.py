@@ -72,7 +72,7 @@ def test_coriolis_forces_do_no_power_and_leave_the_jacobi_integral():
     for text in (bead, foucault):
         step6 = _section(text, "6.")
         assert "Le système n'est pas conservatif" not in step6
-        # One definition of h (issue 11, item 4): T(Σ/R) = T_2 there, U_P(Σ/R) holds the entrainment potential.
+        # One definition of h: T(Σ/R) = T_2 there, U_P(Σ/R) holds the entrainment potential.
         assert "aucune puissance réelle" in step6 and re.search(r"h = T\(\\Sigma/([^)]+)\) \+ U_P\(\\Sigma/\1\)", step6)
         # h is written as the integrals section defines it: with T_2 − T_0 only where T(Σ/R) has a T_0 part.
         assert ("T_0" in step6) == ("T_2 - T_0" in _section(text, "Intégrales premières"))

@@ -224,7 +224,7 @@ def _constraints_named_in_the_reports_language(eom, texts):  # type: ignore[no-u
             assert rf"{letter}_{{{len(rows) + 1}}}" not in text
 
 
-# -- degrees of freedom, planar motion, the multiplier's derivation (issue 11, items 1 and 3) ---------------------
+# -- degrees of freedom, planar motion, the multiplier's derivation ---------------------
 #: Degrees of freedom counted by hand from each statement (independent velocities): the rod of
 #: `pendulum_tension` leaves one of x, y; the coin's two rolling rows leave ψ̇ and φ̇; the disk rolls
 #: (x = r φ); the top's pivot (3 rows) leaves ψ, θ, φ; the bicycle's five rows leave lean, steer and
@@ -297,7 +297,7 @@ def test_the_moment_theorem_at_a_moving_point_keeps_its_extra_term():
 
 
 def test_values_of_the_integrals_carry_their_units_and_minus_signs():
-    # Issue 11, item 9.  The simple pendulum at rest at θ0: E = −m g l cos θ0 (J, negative: a minus sign,
+    # The simple pendulum at rest at θ0: E = −m g l cos θ0 (J, negative: a minus sign,
     # U+2212, not a hyphen); the top's K and H are angular momenta (J·s), its E an energy (J); the coin's
     # φ̇ is a speed (rad/s).  The values are recomputed here from the model files' numbers.
     import math

@@ -112,7 +112,7 @@ def test_constrained_model_has_its_multipliers_and_formulas() -> None:
     assert s.A.shape == (1, len(s.q))
     assert set(s.multiplier_formulas) == {"lambda_length"}
     assert any(eq.rhs.has(s.multipliers[0]) for eq in s.equations)
-    assert s.L == s.T - s.U  # gravity and a perfect time-independent constraint: conservative (issue 16)
+    assert s.L == s.T - s.U  # gravity and a perfect time-independent constraint: conservative
     tf = eom.to_sympy(time_functions=True)
     assert tf.multipliers == (dynamicsymbols("lambda_length"),)
     assert not any(eq.has(sympy.Symbol("lambda_length")) for eq in tf.equations)

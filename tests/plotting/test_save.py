@@ -25,7 +25,7 @@ EXPECTED = {
     "simple_pendulum.toml": ["time_series", "phase", "drift", "reaction"],
     "spherical_pendulum.toml": ["time_series", "phase", "drift", "reaction"],
     "cart_pendulum.toml": ["time_series", "phase", "drift", "reaction"],
-    # Complementary constraints (issue 5): the reaction plot shows the multipliers' reactions.
+    # Complementary constraints: the reaction plot shows the multipliers' reactions.
     "pendulum_tension.toml": ["time_series", "phase", "drift", "reaction"],
     "rolling_disk_incline.toml": ["time_series", "phase", "drift", "reaction"],
     # The coin's axis of symmetry is its axle, which stays horizontal (a great circle): no apex figures.

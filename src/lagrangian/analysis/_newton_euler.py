@@ -415,14 +415,14 @@ def given_efforts(eom: EquationsOfMotion) -> tuple[tuple[EffortsOnElement, ...],
                 factor = -load.coefficient * kin.frames.dot(ab, kin.velocity(b) - kin.velocity(a)) / ab2
             acc.add_force(load.name, ab * factor, b)
             acc.add_force(load.name, ab * (-factor), a)
-        elif isinstance(load, (JointDamper, CoulombFriction)):  # couples of a joint, a friction force (issue 5)
+        elif isinstance(load, (JointDamper, CoulombFriction)):  # couples of a joint, a friction force
             for what, vector, where in friction_efforts(kin, load) or ():
                 (acc.add_force if what == "force" else acc.add_couple)(load.name, vector, where)
         elif isinstance(load, (Potential, GeneralizedForce, Dissipation)):
             q = next(f.Q for f in eom.loads if f.name == load.name)
             acc.power = [p + x for p, x in zip(acc.power, q, strict=True)]
             acc._note_power(load.name)
-    # Complementary constraints (issue 5): their reactions, linear in the multipliers λ_k, are
+    # Complementary constraints: their reactions, linear in the multipliers λ_k, are
     # efforts like the given ones here (the virtual field is not compatible with them).
     for load, what, value, at, owner in reaction_efforts(eom):
         if what == "power":

@@ -1,4 +1,4 @@
-"""Declared inputs u and the default operating point of linearization (issue 10).
+"""Declared inputs u and the default operating point of linearization.
 
 Two tables of a model file serve small motions::
 

@@ -1,4 +1,4 @@
-"""Issue 5, part 2 and 4: the examples with complementary constraints, simulated, against
+"""The examples with complementary constraints, simulated, against
 independent truths.
 
 * Pendulum with the rod's tension (examples/pendulum_tension.toml): the motion is the
