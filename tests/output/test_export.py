@@ -381,6 +381,7 @@ def test_jax_export_of_a_constrained_model(case, tmp_path):
     _assert_close(np.asarray(jax.jit(module.rhs)(t, y)), reference.rhs(t, y))
 
 
+@pytest.mark.octave
 @pytest.mark.skipif(shutil.which("octave") is None, reason="needs GNU Octave (make test installs it)")
 @pytest.mark.parametrize("case", ["pendulum_tension.toml", "rolling_coin.toml"])
 def test_octave_export_of_a_constrained_model_runs(case, tmp_path):
@@ -509,6 +510,7 @@ def test_octave_export_structure(case, tmp_path):
     assert f"names = {{{', '.join(repr(p.name) for p in eom.model.parameters)}}};" in paths[0].read_text()
 
 
+@pytest.mark.octave
 @pytest.mark.skipif(shutil.which("octave") is None, reason="GNU Octave is not installed")
 @pytest.mark.parametrize("case", ["lagrange_top.toml", "zoo:planar_chain:5"])
 def test_octave_export_runs(case, tmp_path):

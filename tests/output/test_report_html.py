@@ -25,8 +25,8 @@ from lagrangian.output.report.document import math_of
 from lagrangian_test_support import EXAMPLES_DIR
 
 CHROMIUM = next((p for p in map(shutil.which, ("chromium", "chromium-browser", "google-chrome", "chrome")) if p), None)
-pytestmark = pytest.mark.skipif(
-    CHROMIUM is None, reason="no headless Chromium on this machine (`make test` installs Debian's chromium as root)")
+pytestmark = [pytest.mark.browser, pytest.mark.skipif(
+    CHROMIUM is None, reason="no headless Chromium on this machine (`make test` installs Debian's chromium as root)")]
 
 #: Seconds Chromium may take to load and lay out a page (a cold start on a busy machine).
 BROWSER_SECONDS = 120

@@ -25,6 +25,7 @@ needs_tex = pytest.mark.skipif(_report_pdf.tex_engine() is None or shutil.which(
                                reason="no pdflatex/lualatex or poppler-utils here (`make test` installs them as root)")
 
 
+@pytest.mark.tex
 @needs_tex
 def test_pdf_of_the_double_pendulum_in_french(tmp_path):
     out = tmp_path / "pendule.pdf"
@@ -43,6 +44,7 @@ def test_pdf_of_the_double_pendulum_in_french(tmp_path):
     assert "mass of rod" not in text
 
 
+@pytest.mark.tex
 @needs_tex
 def test_a_failed_pdf_leaves_the_old_file(tmp_path, monkeypatch):
     """An engine that fails: an OutputError with the engine's first error, and the old PDF unchanged."""
@@ -82,6 +84,7 @@ needs_fonts = pytest.mark.skipif(_report_pdf.tex_engine() is None or shutil.whic
                                  reason="no TeX engine, pdffonts or the lmodern package here (`make test` installs them)")
 
 
+@pytest.mark.tex
 @needs_fonts
 def test_pdf_text_is_in_vector_fonts_and_the_tables_have_settled(tmp_path):
     """Every font of the PDF is Type 1 (Latin Modern), none a bitmap Type 3; the engine ran until longtable's

@@ -20,6 +20,8 @@ from view_test_support import has_colour, motion, open_view, page_messages, pixe
 import lagrangian
 from lagrangian.view3d import view
 
+pytestmark = pytest.mark.browser
+
 BLUE, RED, GREEN = "#1f77b4", "#d62728", "#2ca02c"
 
 
