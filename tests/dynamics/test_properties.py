@@ -21,8 +21,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 from lagrangian_test_support import (
     EXAMPLES_DIR,
-    coordinate_entry_lines,
     Numeric,
+    coordinate_entry_lines,
     domain,
     engine_qdd,
     eom_of,

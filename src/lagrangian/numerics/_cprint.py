@@ -145,7 +145,7 @@ def c_sequence(definitions: Sequence[tuple[se.Symbol, se.Basic]], outputs: Seque
     for k, (sym, expr) in enumerate(replacements):
         local[sym] = f"{prefix}{k}"
         value[sym] = expr
-    for (sym, _), expr in zip(definitions, reduced, strict=True):
+    for (sym, _), expr in zip(definitions, reduced[:len(definitions)], strict=True):  # then the outputs
         value[sym] = expr
     done: set[se.Basic] = set()
     lines: list[str] = []
