@@ -290,7 +290,7 @@ def _result(system: CompiledSystem, problem: _Problem, sol, r: np.ndarray, J: np
         model_name=system.eom.model.name, route="shooting", parameters=tuple(fitted),
         estimates={name: float(v) for name, v in zip(fitted, theta, strict=True)},
         std={name: float(s) for name, s in zip(fitted, std[:P], strict=True)},
-        base=tuple(BaseEstimate(name, {name: 1.0}, float(v), float(s)) for name, v, s in zip(fitted, theta, std, strict=True)),
+        base=tuple(BaseEstimate(name, {name: 1.0}, float(v), float(s)) for name, v, s in zip(fitted, theta, std[:P], strict=True)),
         covariance=cov, covariance_names=names_cov, t=meas.t, residuals=residuals,
         residual_names=tuple(name for _, name in problem.measured),
         sigma={name: float(np.sqrt(np.mean(residuals[:, c] ** 2))) for c, (_, name) in enumerate(problem.measured)},
