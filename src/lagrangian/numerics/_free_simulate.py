@@ -226,7 +226,7 @@ def _trajectory(system: FreeBodySystem, p, t, Y, evs, method, steps, nfev, toler
         events.append(Event(name, float(te), eq[0], eqd[0]))
     return Trajectory(
         model_name=system.model.name, coordinates=system.coordinates,
-        parameters={k: float(v) for k, v in zip(system.parameters, p, strict=True) if not np.isnan(v)},
+        parameters={k: float(v) for k, v in zip(system.parameters, p[:len(system.parameters)], strict=True) if not np.isnan(v)},
         t=np.asarray(t, dtype=float), q=q, qd=qd, qdd=qdd, monitors=monitors, integrals=integrals,
         drift=drift, method=method, steps=steps, rhs_calls=nfev, tolerance=tolerance, warnings=warnings,
         events=tuple(events), status=status, conditioning=conditioning, extra=system.extra_columns(Y),

@@ -143,7 +143,7 @@ class FreeBodySystem:
     def integrals_for(self, p: np.ndarray) -> tuple[str, ...]:
         """The first integrals of a run with parameter values ``p``: without E when an input whose load
         is not conservative has a value other than 0 (`FloatingForm.energy_inputs`)."""
-        values = dict(zip(self.parameters, p, strict=True))
+        values = dict(zip(self.parameters, p[:len(self.parameters)], strict=True))
         if any(values.get(u, 0.0) != 0.0 for u in self.form.energy_inputs):
             return tuple(name for name in self.integrals if name != "E")
         return tuple(self.integrals)
@@ -184,7 +184,7 @@ class FreeBodySystem:
         return extended
 
     def _check_inertias(self, p: np.ndarray) -> None:
-        known = {se.Symbol(name): se.RealDouble(float(v)) for name, v in zip(self.parameters, p, strict=True) if not np.isnan(v)}
+        known = {se.Symbol(name): se.RealDouble(float(v)) for name, v in zip(self.parameters, p[:len(self.parameters)], strict=True) if not np.isnan(v)}
         for tree in self.form.trees:
             leaf = next(node for node in tree.nodes if node.name == tree.joint.body)
             try:
