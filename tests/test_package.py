@@ -2,6 +2,8 @@
 
 from pathlib import Path
 
+import pytest
+
 import lagrangian
 from lagrangian.model.zoo import LAGRANGE_TOP_TOML
 
@@ -26,6 +28,7 @@ def test_no_evaluation_of_text_in_the_package():
             assert forbidden not in code.replace("_sympy_()", ""), f"{forbidden} in {path}"
 
 
+@pytest.mark.slow
 def test_module_level_imports_flow_one_way():
     # model -> kinematics -> dynamics -> analysis -> numerics -> output/plotting/optimal -> cli: a stage's
     # modules never import a later stage at module level (not even for annotations, under TYPE_CHECKING).
@@ -50,6 +53,7 @@ def test_module_level_imports_flow_one_way():
                         assert order[target] <= order[parts[0]], f"{path} imports {target} (a later stage)"
 
 
+@pytest.mark.slow
 def test_every_relative_import_names_a_module_that_exists():
     # Also the imports inside functions, which run only on some paths (a report with a given
     # constraint): after modules move (output/report/), a stale `..model` would fail only there.

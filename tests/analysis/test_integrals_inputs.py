@@ -50,6 +50,7 @@ def test_with_the_motor_off_the_momentum_about_its_axis_and_the_energy_hold(furu
                                                                             rel=1e-12)
 
 
+@pytest.mark.slow
 def test_a_constant_torque_keeps_the_energy_with_its_work_and_a_varying_one_keeps_nothing(furuta):
     constant = first_integrals(furuta, inputs={"tau": "constant"})
     assert [fi.name for fi in constant] == ["E"]

@@ -123,6 +123,7 @@ def _sympy_double_pendulum():
     return lm, (q1, q2), (m1, m2, l1, l2, g)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("point", [(0.0, 0.0), (math.pi, 0.0), (0.0, math.pi), (math.pi, math.pi)])
 def test_double_pendulum_against_sympy_linearizer(point):
     lm, (q1, q2), (m1, m2, l1, l2, g) = _sympy_double_pendulum()

@@ -249,6 +249,7 @@ def model_of(name: str) -> lagrangian.Model:
 ALL_MODELS = [*example_names(), "planar_chain_1", "planar_chain_4", *EXTRA]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ALL_MODELS)
 def test_every_model_verifies(name: str) -> None:
     v = verify(lagrangian.derive(model_of(name)))

@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 import symengine as se
 from lagrangian_test_support import EXAMPLES_DIR
 
@@ -80,6 +81,7 @@ def _euler_sigma(state: dict[str, float], A: float, B: float, C: float) -> np.nd
     return rz(psi) @ rx(theta) @ rz(phi) @ (np.diag([A, B, C]) @ w)
 
 
+@pytest.mark.slow
 def test_free_rigid_body_keeps_all_three_components_of_its_angular_momentum():
     eom = lagrangian.derive(parse_model(FREE_BODY))
     integrals = {fi.name: fi for fi in lagrangian.first_integrals(eom)}
@@ -98,6 +100,7 @@ def test_free_rigid_body_keeps_all_three_components_of_its_angular_momentum():
         np.testing.assert_allclose(got, sigma, rtol=1e-12)
 
 
+@pytest.mark.slow
 def test_free_rigid_body_integrals_along_a_simulation():
     eom = lagrangian.derive(parse_model(FREE_BODY))
     traj = lagrangian.simulate(eom, 2.0, initial={"psi": 0.1, "theta": 0.8, "phi": 0.3, "psi_dot": 1.0,

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import re
 
+import pytest
+
 import lagrangian
 from lagrangian.analysis import first_integrals
 from lagrangian.cli.main import main
@@ -13,6 +15,7 @@ from lagrangian.output._intermediates import listed
 from lagrangian.output._text import supplement
 
 
+@pytest.mark.slow
 def test_a_robots_course_view_is_summarized_and_expanded_on_request(capsys):
     assert main(["derive", "zoo:serial_arm:4"]) == 0
     short = capsys.readouterr().out
@@ -28,6 +31,7 @@ def test_a_robots_course_view_is_summarized_and_expanded_on_request(capsys):
     assert "⟨" not in full and len(full) > 3 * len(short)
 
 
+@pytest.mark.slow
 def test_intermediates_listing_defines_every_name_before_use(capsys):
     assert main(["derive", "zoo:serial_arm:5", "--intermediates"]) == 0
     out = capsys.readouterr().out

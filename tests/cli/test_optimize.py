@@ -78,6 +78,7 @@ def test_no_optimum_exits_4_and_keeps_the_last_iterate(capsys, tmp_path):
         assert json.loads(str(data["metadata"]))["status"] == "infeasible"
 
 
+@pytest.mark.slow
 def test_ctrl_c_writes_the_solvers_last_iterate_and_exits_130(tmp_path):
     import os
     import subprocess

@@ -113,6 +113,7 @@ def test_a_robots_reactions_are_asked_for_not_computed_by_default(tmp_path, caps
 PENDULUM_FILE = str(EXAMPLES_DIR / "simple_pendulum.toml")
 
 
+@pytest.mark.slow
 def test_bare_plot_writes_into_the_model_stem_folder(tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
     assert main(["simulate", PENDULUM_FILE, "--t-end", "0.2", "--n-out", "11", "--animation", "none",

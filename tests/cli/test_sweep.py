@@ -35,6 +35,7 @@ def test_bad_grid_axes_are_refused(item, message):
         parse_grid([item], lagrange_top())
 
 
+@pytest.mark.slow
 def test_two_axes_draw_the_flip_map_and_the_store_reads_back(tmp_path, capsys):
     out, image = tmp_path / "flip.zarr", tmp_path / "flip.png"
     code = main(["sweep", str(EXAMPLES / "double_pendulum.toml"), "--grid", "theta1=-3:3:6", "--grid",
@@ -62,6 +63,7 @@ def test_an_existing_store_is_not_overwritten(tmp_path, capsys):
     assert "already exists" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_ctrl_c_keeps_finished_members_and_resume_finishes(tmp_path):
     env = {**os.environ, "PYTHONPATH": SRC, "LAGRANGIAN_CACHE": str(tmp_path / "cache")}
     out = tmp_path / "tops.zarr"

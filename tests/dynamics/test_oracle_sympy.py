@@ -617,6 +617,7 @@ def oracle_qdd(name: str) -> Callable[[dict[str, float]], np.ndarray]:
     return qdd
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", example_names())
 def test_accelerations_match_sympy_mechanics(name: str) -> None:
     assert name in ORACLES, f"example {name} has no SymPy oracle in {__file__}"

@@ -72,6 +72,7 @@ def _energy_and_quadratic_form(name: str) -> Numeric:
     return Numeric(eom, [eom.T, quadratic, rest])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", EXAMPLES)
 @given(data=st.data())
 def test_kinetic_energy_is_half_qdot_M_qdot(name: str, data: st.DataObject) -> None:
@@ -161,6 +162,7 @@ def test_some_example_has_a_spring_and_all_have_gravity() -> None:
     assert any(Spring in k for k in kinds.values())
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", [name for name in EXAMPLES if name not in WEIGHTLESS])
 @given(data=st.data())
 def test_conservative_loads_Q_is_minus_gradient_of_U(name: str, data: st.DataObject) -> None:
@@ -188,6 +190,7 @@ def _gamma_forms(name: str) -> Numeric:
     return Numeric(eom, [*from_T, *from_definition, *residual])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", EXAMPLES)
 @given(data=st.data())
 def test_gamma_from_T_equals_gamma_from_definition(name: str, data: st.DataObject) -> None:
@@ -199,6 +202,7 @@ def test_gamma_from_T_equals_gamma_from_definition(name: str, data: st.DataObjec
         from_T, from_definition)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", EXAMPLES)
 @given(data=st.data())
 def test_lagrange_equations_hold_at_qdd_from_M_and_F(name: str, data: st.DataObject) -> None:
@@ -253,6 +257,7 @@ def _order_comparison(name: str, order: tuple[int, ...]) -> Numeric:
     return Numeric(eom, exprs)  # same symbol names in both derivations
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("name", "order"), PERMUTATIONS)
 @given(data=st.data())
 def test_equations_do_not_depend_on_coordinate_order(name: str, order: tuple[int, ...], data: st.DataObject) -> None:
@@ -269,6 +274,7 @@ INTEGRAL_ORDERS = [(name, order) for name, order in PERMUTATIONS
                    if name not in _LONG or order in (other_orders(len(order))[0], other_orders(len(order))[-1])]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("name", "order"), INTEGRAL_ORDERS)
 def test_first_integrals_do_not_depend_on_coordinate_order(name: str, order: tuple[int, ...]) -> None:
     ours = {(fi.name, fi.kind, fi.coordinate): fi.expression for fi in integrals_of(name)}

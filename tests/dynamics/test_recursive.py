@@ -60,6 +60,7 @@ def test_planar_chain_in_relative_angles(n: int) -> None:
     _check_against_course(relative_chain(n))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("n", [4, 7])
 def test_spatial_arm_full_inertia_torques_and_dampers(n: int) -> None:
     # Joints about z, y, y, x, y, x, z; centres off every axis, products of inertia, motor
@@ -143,6 +144,7 @@ def test_auto_choice_and_refusals() -> None:
         lagrangian.derive(b.build(), formulation="recursive")
 
 
+@pytest.mark.slow
 def test_course_form_stays_available() -> None:
     eom = lagrangian.derive(serial_arm(5))
     assert eom.formulation == "recursive"
@@ -164,6 +166,7 @@ def test_intermediates_grow_linearly_for_F_and_quadratically_for_M() -> None:
     assert m20 / m10 < 4.4  # quadratic: 4
 
 
+@pytest.mark.slow
 def test_compiled_recursive_code_agrees_and_simulates() -> None:
     model = serial_arm(4, damping=True)
     fast = compile_system(lagrangian.derive(model, formulation="recursive"))
@@ -188,6 +191,7 @@ def test_compiled_recursive_code_agrees_and_simulates() -> None:
         assert np.max(np.abs(a.q - b.q)) < 1e-8 and np.max(np.abs(a.qd - b.qd)) < 1e-8
 
 
+@pytest.mark.slow
 def test_expanded_form_and_the_symengine_backend() -> None:
     eom = lagrangian.derive(relative_chain(4))
     rec = eom.recursive
@@ -202,6 +206,7 @@ def test_expanded_form_and_the_symengine_backend() -> None:
     _close(c.rhs(0.0, Y, c.parameter_vector()), s.rhs(0.0, Y, s.parameter_vector()))
 
 
+@pytest.mark.slow
 def test_energy_is_monitored_and_kept() -> None:
     system = compile_system(lagrangian.derive(relative_chain(6)))
     assert system.integrals == ("E",)

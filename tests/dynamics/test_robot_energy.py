@@ -68,6 +68,7 @@ def test_a_motor_torque_is_a_load_with_a_potential_and_a_couple_fixed_in_r0_stay
         np.testing.assert_allclose(got, want, rtol=1e-10, atol=1e-10)
 
 
+@pytest.mark.slow
 def test_zoo_arm_motors_are_inputs_so_no_potential_and_an_energy_integral_only_with_them_off():
     eom = lagrangian.derive(serial_arm(5), formulation="recursive")
     assert not eom.recursive.conservative and not tree_structure(eom.kinematics).couples
@@ -100,6 +101,7 @@ def _chain_with_constant_motors(inputs: bool) -> lagrangian.Model:
     return b.build()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("formulation", ["recursive", "lagrange"])
 def test_constant_motor_torques_derive_from_minus_tau_q_and_the_energy_is_monitored(formulation):
     eom = lagrangian.derive(_chain_with_constant_motors(inputs=False), formulation=formulation)

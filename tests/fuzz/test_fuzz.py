@@ -33,6 +33,7 @@ def _tool():
     return module
 
 
+@pytest.mark.slow
 def test_short_campaign_finds_no_defect(tmp_path: Path) -> None:
     env = dict(os.environ, PYTHONPATH=str(ROOT / "src"), OPENBLAS_NUM_THREADS="1",
                LAGRANGIAN_CACHE=str(tmp_path / "cache"))
@@ -53,6 +54,7 @@ def test_short_campaign_finds_no_defect(tmp_path: Path) -> None:
     assert stages.get("cli:ok", 0) == CASES
 
 
+@pytest.mark.slow
 def test_short_urdf_campaign_finds_no_defect(tmp_path: Path) -> None:
     # URDF files from strangers (examples/*.urdf mutated: values, joint types, entities, cycles, cuts).
     env = dict(os.environ, PYTHONPATH=str(ROOT / "src"), OPENBLAS_NUM_THREADS="1",
@@ -110,6 +112,7 @@ def _traceback(path, out, command, result_file):
                                    "outcome": "traceback"})
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not hasattr(os, "fork"), reason="the harness forks")
 @pytest.mark.parametrize("case, outcome", [(_hang, "hang"), (_memory, "memory"), (_crash, "signal"),
                                            (_code, "code"), (_traceback, "traceback")])

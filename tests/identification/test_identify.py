@@ -100,6 +100,7 @@ def _within(fit, names, k=3.0):
         assert abs(error) < k, f"{name} = {fit[name]:.8g} ± {fit.std[name]:.2g}, true {TRUE[name]} ({error:+.1f} σ)"
 
 
+@pytest.mark.slow
 def test_regressor_recovers_masses_and_friction_within_three_standard_errors(cart_pole):
     # Linear in (mc, m, c) with l known.  The accelerations come from the noisy positions (a 31-sample
     # window at 200 Hz): their noise biases least squares (errors in variables) by about 1 σ here.
@@ -111,6 +112,7 @@ def test_regressor_recovers_masses_and_friction_within_three_standard_errors(car
     assert fit.covariance.shape == (3, 3)
 
 
+@pytest.mark.slow
 def test_shooting_recovers_a_length_within_three_standard_errors(cart_pole):
     # l enters M and F nonlinearly (m l², m g l): the regressor does not apply, shooting does.
     data = cart_pole_record(4.0, 100.0, 1e-4, seed=4)
@@ -122,6 +124,7 @@ def test_shooting_recovers_a_length_within_three_standard_errors(cart_pole):
     assert fit.initial["theta"] == pytest.approx(2.5, abs=5e-4)
 
 
+@pytest.mark.slow
 def test_single_and_multiple_shooting_find_the_same_optimum(cart_pole):
     data = cart_pole_record(4.0, 100.0, 1e-4, seed=5, span=2.0)
     fits = [identify(cart_pole, data, ["l", "c"], values={"mc": TRUE["mc"], "m": TRUE["m"]},
@@ -131,6 +134,7 @@ def test_single_and_multiple_shooting_find_the_same_optimum(cart_pole):
         assert fits[0].std[name] == pytest.approx(fits[1].std[name], rel=1e-3)
 
 
+@pytest.mark.slow
 def test_shooting_fits_from_some_coordinates_only(cart_pole):
     # only the pendulum's angle measured (the cart unobserved): its motion still shows l and c; the cart's
     # position does not act on anything measured (x is cyclic), and is said to be undetermined
@@ -154,6 +158,7 @@ def swing():
     return lagrangian.derive(lagrangian.load_model(EXAMPLES_DIR / "simple_pendulum.toml")), t, theta
 
 
+@pytest.mark.slow
 def test_every_form_of_the_data_gives_the_same_fit(swing, tmp_path):
     xr = pytest.importorskip("xarray")
     eom, t, theta = swing
@@ -215,6 +220,7 @@ def test_bad_requests_are_refused_clearly(swing, cart_pole):
         identify(EXAMPLES_DIR / "pendulum_tension.toml", {"t": t, "x": theta, "y": theta}, ["l"])
 
 
+@pytest.mark.slow
 def test_an_arms_unidentifiable_parameters_are_refused_or_fitted_as_combinations():
     # The RRR arm's 30 inertial parameters have 15 identifiable combinations (tests/identification/
     # test_regressor.py checks them against Pinocchio's regressor): refused by default, naming them;

@@ -245,6 +245,7 @@ def test_an_inertia_that_overflows_with_the_parameters_values_is_refused() -> No
     assert text.splitlines()[info.value.line - 1].startswith("inertia =")
 
 
+@pytest.mark.slow
 def test_a_state_outside_the_domain_of_log_is_named_not_called_singular() -> None:
     import lagrangian
 

@@ -4,10 +4,12 @@ from __future__ import annotations
 
 import pickle
 
+import pytest
+from lagrangian_test_support import EXAMPLES_DIR
+
 import lagrangian
 from lagrangian.model._texts import Text, in_language
 from lagrangian.output import report
-from lagrangian_test_support import EXAMPLES_DIR
 
 PENDULUM = """\
 [model]
@@ -81,6 +83,7 @@ def test_the_examples_texts_are_in_the_reports_language():
                 assert not _words(" ".join([doc.title, doc.subtitle, cells]), foreign), (lang, doc.title)
 
 
+@pytest.mark.slow
 def test_a_urdf_robots_texts_are_in_the_reports_language():
     # A URDF has no French: the loader writes the robot's, the joints' and the inputs' texts in both
     # languages (liaison pivot, glissière, encastrement; couple de l'actionneur), the loads are named.

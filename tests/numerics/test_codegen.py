@@ -23,6 +23,7 @@ def _model(name):
     return planar_chain(7) if name == "planar_chain_7" else lagrangian.load_model(MODELS[name])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", [*MODELS, "planar_chain_7"])
 def test_compiled_c_equals_the_derived_expressions(name):
     model = _model(name)

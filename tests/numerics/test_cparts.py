@@ -49,6 +49,7 @@ def private_cache(tmp_path, monkeypatch):
     return tmp_path / "cache"
 
 
+@pytest.mark.slow
 def test_a_function_in_parts_gives_the_numbers_of_the_whole_function(private_cache):
     whole, none = _library(10_000, "walk-whole")
     cut, count = _library(9, "walk-parts")
@@ -81,6 +82,7 @@ def test_a_unit_the_compiler_rejects_is_an_error_naming_it(private_cache):
         _compile.compile_library(["int lg_ok(void) { return 0; }\n", "this is not C\n"], "rejected")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("joints, limit, cut_functions", [
     (3, 25, ("lg_mass_forces", "lg_hamilton_force")),  # the course's form: M and F by Cholesky
     (4, 80, ("lg_mass_forces", "lg_aba_backward", "lg_monitors")),  # recursive, q'' by the articulated body

@@ -24,6 +24,7 @@ def top():
     return compile_system(lagrangian.derive(lagrangian.lagrange_top()))
 
 
+@pytest.mark.slow
 def test_each_member_equals_simulate_on_that_member(top):
     g = grid(theta=[0.3, 0.9], phi_dot=[30.0, 80.0], g=[9.81, 1.62])
     ds = ensemble(top, 1.5, initial=g, n_out=31, events=["theta_dot"], workers=2, chunk_size=3)
@@ -78,6 +79,7 @@ def test_a_failing_member_is_flagged_and_the_others_go_on(top):
     assert "pending ok stopped blow-up step-limit singular" in ds.status.attrs["flag_meanings"]
 
 
+@pytest.mark.slow
 def test_blow_up_is_flagged():
     # x'' = x^3 is solved by x = sqrt(2)/(c - t): from x = 2, x' = 2 sqrt(2) it reaches infinity at
     # t = c = sqrt(2)/2, a blow-up, while the member from x = 0.1 (x' = 0.1^2/sqrt(2)) stays small over 1 s.
@@ -112,6 +114,7 @@ def test_terminal_event_stops_the_member(top):
     np.testing.assert_array_equal(ds.state_final.values[1, :3], tr.events[0].q)
 
 
+@pytest.mark.slow
 def test_zarr_store_streams_and_resume_finishes_pending_members(top, tmp_path):
     import zarr
 
@@ -136,6 +139,7 @@ def test_zarr_store_streams_and_resume_finishes_pending_members(top, tmp_path):
         ensemble(top, 0.7, initial=g, n_out=11, chunk_size=2, out=store, resume=True)
 
 
+@pytest.mark.slow
 def test_netcdf_round_trip(top, tmp_path):
     path = tmp_path / "sweep.nc"
     ds = ensemble(top, 0.3, initial=grid(phi_dot=[20.0, 40.0, 60.0]), n_out=5, events=["theta_dot"], out=path)

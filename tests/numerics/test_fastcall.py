@@ -23,6 +23,7 @@ def test_the_wrapper_is_used_where_it_builds(top):
     assert type(top.rhs_c).__name__ == "RhsCaller"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("make", [lagrange_top, lambda: planar_chain(4)], ids=["top", "chain4"])
 def test_one_state_equals_the_batch_and_the_ctypes_path(make):
     system = compile_system(lagrangian.derive(make()))

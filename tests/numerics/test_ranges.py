@@ -24,6 +24,7 @@ def eom() -> lagrangian.EquationsOfMotion:
     return lagrangian.derive(lagrangian.parse_model(SPRING, source="spring.toml"))
 
 
+@pytest.mark.slow
 def test_a_motion_within_its_range_says_nothing(eom) -> None:
     traj = lagrangian.simulate(eom, 5.0, n_out=201)
     assert traj.range_exits == () and not any("range" in w for w in traj.warnings)

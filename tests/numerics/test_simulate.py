@@ -24,6 +24,7 @@ def pendulum():
     return compile_system(eom, events=[("theta_dot", eom.qd[0])])
 
 
+@pytest.mark.slow
 def test_small_angle_pendulum_period_is_two_pi_sqrt_l_over_g(pendulum):
     l, g, theta0 = 0.5, 9.81, 1e-3
     tr = simulate(pendulum, 7.5, initial={"theta": theta0, "theta_dot": 0.0}, rtol=1e-12, atol=1e-14)
@@ -84,6 +85,7 @@ def test_builtin_dop853_takes_the_same_steps_as_scipys(top):
     np.testing.assert_allclose(ours.q[-1], scipy.q[-1], rtol=1e-12)
 
 
+@pytest.mark.slow
 def test_symengine_backend_agrees_with_c(top):
     fallback = compile_system(top.eom, backend="symengine")
     p = top.parameter_vector()
@@ -174,6 +176,7 @@ def test_events_locate_the_turning_angles(top):
     np.testing.assert_allclose(lows, 0.5, atol=1e-9)   # θ1 = θ(0) when started with θ̇ = 0 and ψ̇ = 0
 
 
+@pytest.mark.slow
 def test_terminal_event_stops_the_run(top):
     tr = simulate(top, 5.0, events=[EventSpec("deep", "theta - 0.55", direction=1, terminal=True)], n_out=501)
     assert tr.status == "stopped by a terminal event"
@@ -216,6 +219,7 @@ def test_near_singular_passage_is_flagged(top):
     assert calm.conditioning > 1e-3 and not calm.warnings
 
 
+@pytest.mark.slow
 def test_no_silent_nan_when_m_becomes_singular():
     # A bead whose inertia vanishes at x = 0 (M = m x²), reached at t = 1/2.
     model = lagrangian.parse_model("""
@@ -268,6 +272,7 @@ def test_unknown_names_and_missing_initial_values(top):
         simulate(top, 1.0, events=["theta_dott"])
 
 
+@pytest.mark.slow
 def test_step_size_underflow_is_reported_with_the_time():
     # ẍ = 2x³ blows up in finite time (x = 1/(1 − t) from x(0) = 1, ẋ(0) = 1).
     model = lagrangian.parse_model("""

@@ -139,6 +139,7 @@ def test_gauss_legendre_honours_a_dt_larger_than_the_output_spacing(pendulum):
 
 # -- files ----------------------------------------------------------------------------------------------
 
+@pytest.mark.slow
 def test_npz_holds_every_column_of_the_csv(tmp_path):
     traj = simulate(EXAMPLES / "pendulum_tension.toml", 0.5, n_out=11)
     assert traj.extra  # multipliers and reactions
@@ -155,6 +156,7 @@ def test_npz_holds_every_column_of_the_csv(tmp_path):
 
 # -- constrained models: stabilization through the public simulate ---------------------------------
 
+@pytest.mark.slow
 def test_stabilization_and_baumgarte_reach_the_dae_through_simulate(pendulum):
     traj = simulate(EXAMPLES / "pendulum_tension.toml", 0.5, n_out=11, stabilization="baumgarte",
                     baumgarte=(10.0, 10.0))
@@ -164,6 +166,7 @@ def test_stabilization_and_baumgarte_reach_the_dae_through_simulate(pendulum):
         simulate(pendulum.eom, 0.5, stabilization="baumgarte")
 
 
+@pytest.mark.slow
 def test_two_terminal_events_in_one_step_keep_only_the_first():
     """A crossing after the first terminal event of a step never happened: it is not recorded."""
     from lagrangian.numerics import EventSpec
@@ -176,6 +179,7 @@ def test_two_terminal_events_in_one_step_keep_only_the_first():
     assert run.t[-1] <= run.events[0].t < run.t[-1] + 0.01 and run.status != "completed"
 
 
+@pytest.mark.slow
 def test_a_terminal_event_stops_a_stick_slip_run():
     from lagrangian.numerics import EventSpec
 

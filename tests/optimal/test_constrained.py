@@ -68,6 +68,7 @@ def constrained_optimum(cartesian):
                     guess={"y": -L})
 
 
+@pytest.mark.slow
 def test_the_constrained_optimum_is_the_angle_models(constrained_optimum):
     angle = optimize(lagrangian.derive(parse_model(ANGLE)), t_end=2.0, initial={"theta": 0, "theta_dot": 0},
                      final={"theta": 1.0, "theta_dot": 0}, nodes=N)

@@ -27,6 +27,7 @@ def slew():
     return optimize(load_problem(EXAMPLES_DIR / "optimal" / "satellite_slew.toml"))
 
 
+@pytest.mark.slow
 def test_the_least_time_is_the_bang_bang_closed_form(slew):
     assert slew.status == "optimal" and slew.free_time
     assert slew.t_end == pytest.approx(2 * math.sqrt(THETA * IB / TAU_MAX), rel=1e-6)

@@ -70,6 +70,7 @@ def _import(path: Path):
     return module
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", CASES)
 def test_numpy_export_reproduces_the_package(case, tmp_path):
     eom = _eom(case)
@@ -125,6 +126,7 @@ def _c_library(directory: Path, ident: str) -> ctypes.CDLL:
     return ctypes.CDLL(str(lib))
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
 @pytest.mark.parametrize("case", CASES)
 def test_c_export_reproduces_the_package(case, tmp_path):
@@ -202,6 +204,7 @@ int main(void) {
 C_DRIVER_CASES = ["lagrange_top.toml", "pendulum_tension.toml", "rolling_coin.toml", "zoo:planar_chain:5"]
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
 @pytest.mark.parametrize("case", C_DRIVER_CASES)
 def test_c_export_driver_integrals_and_constraint_rows(case, tmp_path):
@@ -328,6 +331,7 @@ def test_stick_slip_models_are_refused(tmp_path):
 CONSTRAINED_CASES = ["pendulum_tension.toml", "rolling_coin.toml", "rolling_disk_incline.toml"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", CONSTRAINED_CASES)
 def test_numpy_export_of_a_constrained_model_solves_for_the_multipliers(case, tmp_path):
     """The NumPy module's rhs and rhs_multipliers (augmented solve, numpy.linalg) against the package's
@@ -368,6 +372,7 @@ def _jax_and_numpy(case: str, tmp_path: Path):  # type: ignore[no-untyped-def]
     return jax, eom, _import(path), _import(np_path)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", ["pendulum_tension.toml", "rolling_coin.toml"])
 def test_jax_export_of_a_constrained_model(case, tmp_path):
     jax, _, module, reference = _jax_and_numpy(case, tmp_path)
@@ -418,12 +423,14 @@ def test_cli_export(tmp_path, capsys):
     assert _import(path).PARAMETERS["g"] == 1.5
 
 
+@pytest.mark.slow
 def test_cli_exports_a_constrained_model_to_c(tmp_path, capsys):
     assert main(["export", str(EXAMPLES_DIR / "rolling_coin.toml"), "--to", "c", "-o", str(tmp_path / "coin")]) == 0
     header = (tmp_path / "coin" / "rolling_upright_coin.h").read_text()
     assert "#define ROLLING_UPRIGHT_COIN_NC 2" in header and "rolling_upright_coin_rhs_multipliers(" in header
 
 
+@pytest.mark.slow
 def test_cli_default_directory(tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
     assert main(["export", str(EXAMPLES_DIR / "double_pendulum.toml"), "--to", "c"]) == 0
@@ -463,6 +470,7 @@ def test_jax_export_logic_on_numpy(case, tmp_path, monkeypatch):
     _assert_close(module.rhs(t[0], y[0]), expected[0])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", ["lagrange_top.toml", "kapitza_pendulum.toml"])
 def test_jax_export(case, tmp_path):
     """JAX itself (the `jax` extra, in `test`): rhs, mass_matrix and forcing jitted and vmapped in

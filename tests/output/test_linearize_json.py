@@ -30,6 +30,7 @@ POINTS = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(POINTS))
 def test_document_is_valid_and_its_strings_mean_its_numbers(name):
     model = lagrangian.load_model(EXAMPLES_DIR / name)

@@ -59,6 +59,7 @@ def top() -> Report:
 
 
 # -- the seed's top ------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_golden_french_report_of_the_top(top):
     """Reviewed by hand against the seed's worked example (SMP5, ch. IV, « Mouvement de Lagrange »).
 
@@ -82,6 +83,7 @@ GOLDEN_EXAMPLES = ["pendulum_tension", "double_pendulum", "rolling_coin", "bead_
                    "foucault_pendulum"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("lang", ["fr", "en"])
 @pytest.mark.parametrize("name", GOLDEN_EXAMPLES)
 def test_golden_reports_of_the_examples(name, lang):
@@ -147,6 +149,7 @@ def test_cyclic_equations_first_then_the_rest_with_the_integrals(top):
 OVER_BUDGET = {"whipple_bicycle.toml"}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", example_names())
 @pytest.mark.parametrize("lang", ["fr", "en"])
 def test_report_equations_are_the_engines(name, lang):
@@ -186,6 +189,7 @@ def test_report_equations_are_the_engines(name, lang):
     assert f"{len(eom.coordinates)}" in " ".join(math_of(r.document.section("step2").blocks))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", example_names())
 def test_every_example_in_every_format_and_language(name):
     eom = eom_of(name)
@@ -249,6 +253,7 @@ def test_a_function_by_cases_is_printed():
 
 
 # -- long expressions --------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_a_40_link_chain_is_summarized():
     # Its time is measured in benchmarks/report_display_form.py, not here.
     eom = lagrangian.derive(planar_chain(40))
@@ -322,6 +327,7 @@ def test_bad_figures_are_refused():
 
 
 # -- writing -------------------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_save_picks_the_format_from_the_suffix(tmp_path, top):
     for suffix, start in ((".html", "<!DOCTYPE html>"), (".tex", r"\documentclass"), (".md", "# ")):
         path = top.save(tmp_path / f"top{suffix}")
@@ -342,6 +348,7 @@ def test_a_failed_save_leaves_the_old_file(tmp_path, monkeypatch, top):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["top.html"]  # no temporary file left
 
 
+@pytest.mark.slow
 def test_latex_figures_are_written_beside_the_tex_file(tmp_path):
     png, _ = _png()
     r = report(lagrangian.lagrange_top(), figures=[ReportFigure(png, "θ(t)")])
@@ -385,6 +392,7 @@ def test_unknown_language_and_format_are_refused(top):
         top.render("pdf")  # bytes: Report.pdf() or save("x.pdf")
 
 
+@pytest.mark.slow
 def test_every_fold_has_content(top):
     r = report(lagrangian.derive(planar_chain(14)))
     folds = [b for s in r.document.sections for b in walk(s.blocks) if isinstance(b, Fold)]
@@ -441,6 +449,7 @@ def test_english_words_and_cross_product():
     assert r"\overrightarrow{OG}\wedge\vec{P}" in fr_text and "parfaite" in fr_text
 
 
+@pytest.mark.slow
 def test_step7_gives_the_reaction_of_the_fixed_point():
     """After step 7: R_O = m γ(G/R0) − P, the engine's reaction (checked against the closed form in
     tests/analysis/test_reactions.py), in the course's basis (u, w, z); not where a multiplier gives it."""
@@ -460,6 +469,7 @@ def test_step7_gives_the_reaction_of_the_fixed_point():
     assert not any(r"\vec{\gamma}(" in m for m in math_of(tension.section("step7").blocks))
 
 
+@pytest.mark.slow
 def test_deeply_nested_functions_are_printed_as_derived(tmp_path, monkeypatch):
     # tools/fuzz.py seed 105, case 6148: Kapitza's pendulum turned by sin∘…∘sin θ (eight deep); SymPy's
     # simplify spent 25 s on each term of its power balance.  The report simplifies nothing nested

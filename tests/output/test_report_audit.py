@@ -8,8 +8,10 @@ from __future__ import annotations
 import re
 from functools import cache
 
-from lagrangian.output import report
+import pytest
 from lagrangian_test_support import EXAMPLES_DIR, plain
+
+from lagrangian.output import report
 
 
 @cache
@@ -24,6 +26,7 @@ def _section(text: str, title: str) -> str:
     return text[start:end if end >= 0 else len(text)]
 
 
+@pytest.mark.slow
 def test_the_matrix_form_keeps_the_multipliers():
     """pendulum_tension: step 6 has m ẍ = 2xλ, so the appendix cannot say M q̈ = F with F_x = 0 alone."""
     for name in ("pendulum_tension", "rolling_coin"):
@@ -50,6 +53,7 @@ def test_the_total_potential_is_named_u_p_of_the_system():
     assert r"U_P(\Sigma" not in step4
 
 
+@pytest.mark.slow
 def test_a_prescribed_motion_keeps_remark_2_and_names_each_power_by_its_value():
     """Kapitza: L = T − U_P still holds (Remarque 2), but ∂L/∂t ≠ 0, so the energy is no integral; the balance
     is −∂L/∂t + d/dt(T₁ + 2T₀), not a ∂U_P/∂t plus a 'prescribed motion' power that was neither."""
@@ -150,6 +154,7 @@ def test_a_velocity_row_that_integrates_is_called_holonomic_with_its_integral():
     assert "non holonome" not in step1
 
 
+@pytest.mark.slow
 def test_the_multiplier_terms_are_defined_once_and_symbols_are_math():
     import lagrangian
     from lagrangian.output import report

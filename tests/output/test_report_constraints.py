@@ -136,6 +136,7 @@ def test_coriolis_on_the_hoop_is_orthogonal_and_q_notation_is_per_load():
     assert r"Q_{\psi,\,\mathrm{nc}} = Q_{\theta,\,\mathrm{nc}} = Q_{\varphi,\,\mathrm{nc}} = 0" in top5
 
 
+@pytest.mark.slow
 def test_multiplier_coefficients_are_defined_and_do_not_clash_with_inertia():
     r = _report(_eom_of("top_reaction.toml"))
     text = _all(r)
@@ -143,6 +144,7 @@ def test_multiplier_coefficients_are_defined_and_do_not_clash_with_inertia():
     assert r"a_{k,i}" in _section(r, "step6") and "multiplicateur de la liaison complémentaire k" in text
 
 
+@pytest.mark.slow
 def test_step_7_gives_the_multiplier_and_the_rods_tension():
     step7 = _section(_report(_eom_of("pendulum_tension.toml")), "step7")
     assert "\n\\lambda = \\frac{" in step7  # one multiplier: λ, not the engine's lambda_length
@@ -157,6 +159,7 @@ def test_jacobi_integral_is_stated_right_and_the_energy_balance_when_none():
     assert r"\frac{dE}{dt} = P(\text{frottement})" in belt
 
 
+@pytest.mark.slow
 def test_newton_euler_states_the_theorems_it_projects():
     top = _report(lagrangian.lagrange_top(), verification=True)
     check = _section(top, "check")
@@ -177,6 +180,7 @@ ENGLISH = ("weight", "entrainment", "given effort", "constraint “", " the ", "
 FRENCH = ("Remarque", "poids", "liaison", "équation", "effort", "entraînement", "théorème", " et ")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", _example_names())
 def test_no_english_in_french_and_no_french_in_english(name):
     eom = _eom_of(name)
@@ -238,6 +242,7 @@ PLANE = {"pendulum_tension.toml": r"(O;\,\vec{x}_{0},\,\vec{y}_{0})", "double_pe
          "rolling_coin.toml": None, "top_reaction.toml": None, "whipple_bicycle.toml": None}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(DOF))
 def test_step1_counts_the_degrees_of_freedom_and_says_when_the_motion_is_planar(name):
     n, h, k, dof = DOF[name]

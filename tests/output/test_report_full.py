@@ -35,6 +35,7 @@ def _summaries(latex: str) -> list[str]:
     return re.findall(r"\\langle [^⟩]*?\\rangle", latex)
 
 
+@pytest.mark.slow
 def test_every_summarized_lagrange_equation_of_a_6_link_chain_has_its_full_form(chain6):
     eom, r = chain6
     step6 = r.document.section("step6")
@@ -56,6 +57,7 @@ def test_every_summarized_lagrange_equation_of_a_6_link_chain_has_its_full_form(
             previous = k + 1
 
 
+@pytest.mark.slow
 def test_full_forms_are_the_notations_latex_of_the_engines_expressions(chain6):
     eom, r = chain6
     from lagrangian.output._course import course_form
@@ -92,6 +94,7 @@ def test_html_folds_the_full_forms_and_markdown_too(chain6):
     assert "**A.2**" in md
 
 
+@pytest.mark.slow
 def test_latex_gathers_the_full_forms_in_an_appendix(chain6):
     eom, r = chain6
     tex = r.latex()
@@ -102,6 +105,7 @@ def test_latex_gathers_the_full_forms_in_an_appendix(chain6):
     assert r"\section*{Appendix: full forms}" in english and "(see A.2)" in english
 
 
+@pytest.mark.slow
 def test_a_40_link_chain_stays_within_the_budget():
     # Its time is measured in benchmarks/report_display_form.py, not here.
     eom = lagrangian.derive(planar_chain(40))

@@ -64,6 +64,7 @@ def test_a_failed_pdf_leaves_the_old_file(tmp_path, monkeypatch):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["bin", "old.pdf"]
 
 
+@pytest.mark.slow
 def test_no_engine_says_how_to_install_one(tmp_path, monkeypatch):
     monkeypatch.setattr(_report_pdf, "ENGINES", ("no-such-tex-engine",))
     with pytest.raises(OutputError) as info:

@@ -166,6 +166,7 @@ def test_step3_argues_each_perfect_constraint_by_a_zero_comoment(name):
 
 
 # -- step 4: Π_P(S), the inertia operator, introduced where T first uses it ------------------------------------
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["lagrange_top.toml", "double_pendulum.toml", "rolling_coin.toml"])
 def test_step4_introduces_the_inertia_operator_that_T_uses(name):
     """T(S/R0) = ½ Ω·[Π_P(S)·Ω] (+ ½ m V²(G) by König): with the matrix step 3 prints and Ω's components in its

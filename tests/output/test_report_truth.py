@@ -92,6 +92,7 @@ def test_the_stated_theorems_list_the_actuators_and_damping_their_projections_us
 
 
 # -- rolling without slipping: perfect, and adherent -------------------------------------------------------------
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["rolling_coin.toml", "whipple_bicycle.toml"])
 def test_a_rolling_contact_is_perfect_without_being_frictionless(name):
     """The contact's principal constraint (the coin kept upright on the plane, the bicycle's placement) is perfect
@@ -142,6 +143,7 @@ def test_the_blocks_normal_force_is_derived_and_agrees_with_the_models():
     assert sympy.simplify(declared._sympy_() - by_hand) == 0
 
 
+@pytest.mark.slow
 def test_the_blocks_stick_condition_is_tan_alpha_below_fs_and_the_simulation_agrees(tmp_path):
     data = tomllib.loads((EXAMPLES_DIR / "block_on_incline.toml").read_text(encoding="utf-8"))
     alpha, fs = data["parameters"]["alpha"]["value"], data["parameters"]["f_s"]["value"]
@@ -263,6 +265,7 @@ def test_foucault_statement_names_what_it_uses_and_its_small_motions_precess_at_
     assert sympy.simplify(rate._sympy_() + sympy.Symbol("Omega") * sympy.sin(sympy.Symbol("lam"))) == 0
 
 
+@pytest.mark.slow
 def test_larmor_precession_rate_is_what_the_linear_motion_does():
     """μ q̈ + G q̇ + κ q = 0 integrated by SciPy: the major axis of the oscillation turns at G₁₂/(2μ)."""
     from scipy.integrate import solve_ivp

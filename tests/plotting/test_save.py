@@ -38,6 +38,7 @@ def test_expected_examples_exist(examples):
     assert set(EXPECTED) <= set(examples)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", example_names())
 def test_every_example_writes_its_plots(run, name, tmp_path):
     eom, traj = run(name)

@@ -103,6 +103,7 @@ def test_cli_json_reproduces_the_papers_A(capsys):
         assert _close(A, _whipple.state_matrix(v))
 
 
+@pytest.mark.slow
 def test_sympy_kanes_method_gives_the_same_A():
     # The same bicycle built with SymPy's KanesMethod and linearized by SymPy (nothing of lagrangian).
     for v, theirs in zip(range(11), _sympy_bicycle.linearized_A(range(11)), strict=True):
@@ -127,6 +128,7 @@ def test_sweep_finds_the_speeds_of_table_2():
     assert np.all(s.stable[inside] == 1.0) and np.all(s.stable[~inside] == 0.0)
 
 
+@pytest.mark.slow
 def test_cli_modes_sweep_draws_the_figure_and_reports_the_speeds(tmp_path, capsys):
     assert main(["modes", str(MODEL), "--sweep", "v=0:10:0.01", "--plot", str(tmp_path)]) == 0
     out = capsys.readouterr().out
