@@ -68,6 +68,7 @@ def test_the_elastic_pendulum_rests_are_found_without_a_range_each_once(elastic)
     assert {r.coordinate: r.kind for r in search.regions} == {"r": "scales", "theta": "angle"}
 
 
+@pytest.mark.slow
 def test_the_text_and_the_json_say_where_it_searched_and_that_a_rest_may_be_missing(elastic):
     names = ["r", "theta"]
     n = Notation(names, ["m", "g", "k", "L"])

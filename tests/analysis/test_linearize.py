@@ -261,6 +261,7 @@ def test_top_steady_precession_pulsation_matches_closed_form():
     assert lin.stability().stable is True
 
 
+@pytest.mark.slow
 def test_mode_drawn_as_a_motion_solves_the_linearized_equations(tmp_path):
     """The mode's motion satisfies M δq̈ + K δq = 0 (double pendulum), and the animation draws it."""
     from lagrangian.plotting import animate, mode_trajectory

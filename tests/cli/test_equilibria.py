@@ -15,6 +15,7 @@ HOOP = str(ROOT / "examples" / "bead_rotating_hoop.toml")
 CART = str(ROOT / "examples" / "cart_pendulum.toml")
 
 
+@pytest.mark.slow
 def test_text_gives_each_equilibrium_and_the_condition(capsys):
     assert main(["equilibria", HOOP]) == 0
     out = capsys.readouterr().out
@@ -31,6 +32,7 @@ def test_set_below_the_critical_rate(capsys):
     assert "arccos" not in out and "2. θ = π" in out and "\n  3. " not in out
 
 
+@pytest.mark.slow
 def test_json_document(capsys):
     assert main(["equilibria", CART, "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)

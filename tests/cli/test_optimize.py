@@ -48,6 +48,7 @@ def test_options_override_the_file(capsys):
     assert doc["t_end"] == pytest.approx(2 * np.sqrt(1.0 * 20 / 0.5), rel=5e-3)
 
 
+@pytest.mark.slow
 def test_plots_include_the_inputs(capsys, tmp_path):
     pytest.importorskip("matplotlib")
     folder = tmp_path / "figs"

@@ -125,6 +125,7 @@ def test_set_changes_the_values_shown_without_simulate(capsys):
     assert "0,5" in out
 
 
+@pytest.mark.slow
 def test_zoo_models_by_name(capsys):
     assert main(["report", "zoo:planar_chain:3", "--lang", "en", "--no-verify"]) == 0
     out = capsys.readouterr().out

@@ -55,6 +55,7 @@ def test_two_axes_draw_the_flip_map_and_the_store_reads_back(tmp_path, capsys):
     assert "wrote" in capsys.readouterr().out
 
 
+@pytest.mark.slow
 def test_an_existing_store_is_not_overwritten(tmp_path, capsys):
     out = tmp_path / "s.zarr"
     args = ["sweep", "zoo:lagrange_top", "--grid", "phi_dot=20:40:3", "--t-end", "0.2", "--out", str(out)]

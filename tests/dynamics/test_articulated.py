@@ -77,6 +77,7 @@ def _check_against_course(model, states: int = 2, seed: int = 3) -> None:
         assert np.all(pivots[:, 0] > 0) and np.all(pivots[:, 0] <= pivots[:, 1] * (1 + 1e-12))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("model", [relative_chain(5), serial_arm(5, damping=True), _branched_tree()],
                          ids=["chain", "arm_with_torques_and_dampers", "branched_tree"])
 def test_articulated_accelerations_solve_the_course_equations(model) -> None:

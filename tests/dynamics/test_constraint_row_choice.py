@@ -188,6 +188,7 @@ def test_explicit_axes_are_kept_as_given() -> None:
     assert "leave `axes` out" in exc.value.fix
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("lang", "words"), [
     ("en", "Written in R2, the constraint “rolling without slipping at I” gives 3 rows of rank 2 only; the same "
            "vector is written along the axes of R1"),

@@ -94,6 +94,7 @@ def test_pendulum_tension_closed_form_and_sign() -> None:
     assert float(R[1].subs(bottom)) == pytest.approx(9.81) and float(lam_on.subs(bottom)) < 0
 
 
+@pytest.mark.slow
 def test_pendulum_multipliers_match_sympy_lagranges_method() -> None:
     m, g, l = sp.symbols("m g l")
     x, y = me.dynamicsymbols("x y")
@@ -199,6 +200,7 @@ def _coin_kane() -> tuple[list, sp.Matrix, dict]:
     return q, sp.Matrix([rhs[4 + k] for k in order]), {"u": u}
 
 
+@pytest.mark.slow
 def test_coin_accelerations_match_sympy_kanes_method() -> None:
     eom = eom_of("rolling_coin.toml")
     assert [r.name for r in eom.constraints] == ["rolling_x1", "rolling_y1"]
@@ -226,6 +228,7 @@ def test_coin_accelerations_match_sympy_kanes_method() -> None:
 
 
 # -- the top ---------------------------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_top_pivot_rows_and_reaction_at_O() -> None:
     eom = eom_of("top_reaction.toml")
     assert [r.name for r in eom.constraints] == ["pivot_x0", "pivot_y0", "pivot_z0"]

@@ -95,6 +95,7 @@ def test_mass_matrix_is_symbolically_symmetric(name: str) -> None:
             assert not entry.free_symbols & (set(eom.qd) | set(eom.qdd))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", EXAMPLES)
 @given(data=st.data())
 def test_mass_matrix_is_symmetric_positive_definite(name: str, data: st.DataObject) -> None:
@@ -329,6 +330,7 @@ EXPECTED_INTEGRALS = {
 WITH_INTEGRALS = [name for name in EXAMPLES if EXPECTED_INTEGRALS.get(name, True)]
 
 
+@pytest.mark.slow
 def test_expected_first_integrals_of_each_example() -> None:
     assert set(EXPECTED_INTEGRALS) == set(EXAMPLES)
     for name in EXAMPLES:

@@ -55,6 +55,7 @@ def _check_against_course(model, states: int = 3, seed: int = 1) -> None:
                _course([eq.dT_dq - eq.dU_dq + eq.Q_nc for eq in course.equations], values))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("n", [3, 4, 5, 6])
 def test_planar_chain_in_relative_angles(n: int) -> None:
     _check_against_course(relative_chain(n))

@@ -98,6 +98,7 @@ INVENTED_BODIES = """
 """
 
 
+@pytest.mark.slow
 def test_couple_on_massless_links_is_that_on_invented_zero_mass_bodies() -> None:
     """Motors at the shoulder and the elbow of a double pendulum of massless rods: a couple on a
     frame (virtual power C·Ω*(frame)) gives the equations of the old form, where the rods had to
@@ -146,6 +147,7 @@ FOUCAULT_AXIS = """
 """
 
 
+@pytest.mark.slow
 def test_foucault_about_the_polar_axis_is_the_chained_formulation() -> None:
     """One rotation about cos(λ) y + sin(λ) z gives the equations of examples/foucault_pendulum.toml
     (rotation about z0, then the tilt π/2 − λ of the local frame): the bob is at the same place
@@ -175,6 +177,7 @@ def test_builder_takes_the_axis_too() -> None:
                           states=1)
 
 
+@pytest.mark.slow
 def test_axis_not_unit_is_normalized_and_basis_vector_is_elementary() -> None:
     tilted = parse(FOUCAULT_AXIS.replace("cos(lam)*R0.y + sin(lam)*R0.z", "3*R0.y + 4*R0.z")).frame("E").rotation
     assert tilted.normalized and [sp.nsimplify(sym(c)) for c in tilted.direction] == [0, sp.Rational(3, 5),

@@ -36,6 +36,7 @@ weight = { gravity = "-g*R0.z" }
 """
 
 
+@pytest.mark.slow
 def test_texts_in_both_languages_and_a_plain_one():
     model = lagrangian.parse_model(PENDULUM)
     m, l = model.parameters[0].description, model.parameters[1].description
@@ -63,6 +64,7 @@ def _words(text: str, words: set[str]) -> set[str]:
     return {w for w in words if re.search(rf"(?<![\w']){re.escape(w)}(?![\w'])", text)}
 
 
+@pytest.mark.slow
 def test_the_examples_texts_are_in_the_reports_language():
     """The title, subtitle and the tables of constants and coordinates of every example: French words only in
     the French report, English only in the English one (word lists)."""

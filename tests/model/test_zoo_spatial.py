@@ -88,6 +88,7 @@ def _sympy_kane(n: int):
     return fn
 
 
+@pytest.mark.slow
 def test_two_rods_agree_with_sympy_kane() -> None:
     n = 2
     eom = lagrangian.derive(spatial_chain(n))

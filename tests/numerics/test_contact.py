@@ -155,6 +155,7 @@ def test_the_rocking_block_keeps_housners_ratio_at_every_impact(block: lagrangia
         assert np.all(np.abs(tr.column(f"lambda_{side}_t")[closed]) <= tr.column(f"lambda_{side}")[closed])
 
 
+@pytest.mark.slow
 def test_the_rocking_block_settles_flat_on_both_corners(block: lagrangian.Model) -> None:
     m, b, h, th = 2.0, 0.3, 0.5, 0.1  # a stouter block (r = 0.60): fewer impacts before it settles
     start = {"x": b * np.cos(th) - h * np.sin(th), "y": b * np.sin(th) + h * np.cos(th)}  # resting on L

@@ -47,6 +47,7 @@ def test_projection_keeps_the_constraints_to_round_off(pendulum) -> None:
         traj.drift["drift_length"], rel=1e-6, abs=1e-15)
 
 
+@pytest.mark.slow
 def test_without_stabilization_the_drift_grows_and_is_reported(pendulum) -> None:
     free = simulate_dae(pendulum, 3.0, rtol=1e-6, atol=1e-6, n_out=301, stabilization="none")
     projected = simulate_dae(pendulum, 3.0, rtol=1e-6, atol=1e-6, n_out=301)

@@ -67,6 +67,7 @@ def test_bad_arrays_are_refused_before_the_c_runs(top, args, error, words):
     np.testing.assert_array_equal(np.isnan(out), np.isnan(frozen))
 
 
+@pytest.mark.slow
 def test_the_wrapper_keeps_its_library_alive():
     """Holding rhs_c alone (the CompiledSystem gone) keeps the code it calls loaded."""
     import gc

@@ -209,6 +209,7 @@ def test_every_example_in_every_format_and_language(name):
 
 
 # -- complementary constraints, a non-Galilean frame, friction ---------------------------------------
+@pytest.mark.slow
 def test_complementary_constraint_is_kept_for_step_7():
     r = report(eom_of("pendulum_tension.toml"), lang="fr")
     text = _text(r)
@@ -309,6 +310,7 @@ def _png() -> bytes:
     return buffer.getvalue(), fig
 
 
+@pytest.mark.slow
 def test_figures_are_embedded():
     png, fig = _png()
     r = report(lagrangian.lagrange_top(), figures=[ReportFigure(png, "θ(t)"), ("phase", fig), png, fig])
@@ -419,6 +421,7 @@ def test_the_check_recognises_L_psi_as_dK_dt(top):
     assert sum(r"\right] = \frac{d}{dt}\left[\frac{\partial T" in m for m in shown) == 1
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["lagrange_top.toml", "double_pendulum.toml"])
 def test_step6_states_the_principle_of_virtual_power(name):
     """Step 6 opens with P*_acc = Σ Γ_i q_i* = Σ Q_i q_i* ⇒ Γ_i = Q_i, Γ_i = d/dt[∂T/∂q̇_i] − ∂T/∂q_i [Seed, I–II].

@@ -70,6 +70,7 @@ def test_a_prescribed_motion_keeps_remark_2_and_names_each_power_by_its_value():
     assert "dépend explicitement de $`t`$" not in _md("simple_pendulum")
 
 
+@pytest.mark.slow
 def test_coriolis_forces_do_no_power_and_leave_the_jacobi_integral():
     """bead_rotating_hoop / foucault_pendulum: not 'the system is not conservative' then a Jacobi integral."""
     bead, foucault = _md("bead_rotating_hoop"), _md("foucault_pendulum")
@@ -93,6 +94,7 @@ def test_coriolis_forces_do_no_power_and_leave_the_jacobi_integral():
     assert "O'" not in step4 and "l'opérateur d'inertie de (Σ) en $`O`$" in step4
 
 
+@pytest.mark.slow
 def test_an_energy_integral_may_replace_one_equation_or_another():
     assert "l'une des équations $`L(x)`$ ou $`L(y)`$" in _md("pendulum_tension")
 
@@ -111,6 +113,7 @@ def test_a_conservative_load_derives_from_its_u_p():
     assert r"Q_i(\text{poids}) = -\frac{\partial U_P(\text{poids})}{\partial q_i}" in _md("simple_pendulum")
 
 
+@pytest.mark.slow
 def test_one_equation_is_singular_and_reactions_name_their_body():
     assert "l'équation de Lagrange détermine le mouvement" in _section(_md("simple_pendulum"), "7.")
     assert "les $`1`$ équations" not in _md("simple_pendulum")

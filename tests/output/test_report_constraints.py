@@ -270,6 +270,7 @@ def test_step1_counts_the_degrees_of_freedom_and_says_when_the_motion_is_planar(
             assert plane in step1
 
 
+@pytest.mark.slow
 def test_a_holonomic_multiplier_comes_from_the_constraint_differentiated_twice():
     eom = _eom_of("pendulum_tension.toml")
     assert "dérivée deux fois par rapport au temps" in _section(_report(eom, lang="fr"), "step7")
@@ -286,6 +287,7 @@ def test_the_jacobi_integral_of_the_hoop_has_one_definition():
         assert text.count(r"h = T(\Sigma/R_{1}) + U_P(\Sigma/R_{1})") >= 2
 
 
+@pytest.mark.slow
 def test_the_moment_theorem_at_a_moving_point_keeps_its_extra_term():
     # δ_A = d/dt[σ_A] + m V(A) ∧ V(G) at a moving point A.  The double pendulum's joint A: by hand, with
     # V(A) = l1 θ̇1 t1 and V(G2) = V(A) + ½ l2 (θ̇1 + θ̇2) t2 (t_k ⟂ rod k, θ2 relative), V(A) ∧ V(G2) has the
@@ -327,6 +329,7 @@ def test_values_of_the_integrals_carry_their_units_and_minus_signs():
     assert "≈ 10 rad/s" in coin
 
 
+@pytest.mark.slow
 def test_a_constant_speed_and_a_symmetry_integral_are_not_called_jacobi_integrals():
     """The coin's φ̇ = cste (its reduced equations) and a top's σ_O·z0 were printed as « h = T + U_P = φ̇ »,
     the Painlevé–Jacobi integral of a moving frame.  φ̇ = cste is checked here on the textbook coin: T =
@@ -351,6 +354,7 @@ def test_a_constant_speed_and_a_symmetry_integral_are_not_called_jacobi_integral
             assert r"= \sigma_{O,z_{0}}" in top and "h = " not in top and "Noether" in top
 
 
+@pytest.mark.slow
 def test_a_constraint_without_description_is_named_by_its_rank_not_its_identifier():
     """A model file may give no description: the prose then says « la liaison 1 » / "constraint 1", never the
     identifier (here `rod_len`, which stays in the JSON)."""

@@ -81,6 +81,7 @@ def test_full_forms_are_the_notations_latex_of_the_engines_expressions(chain6):
     assert all(visible_width(line) <= FULL_WIDTH + 30 for _, lines in _book(r) for line in lines)
 
 
+@pytest.mark.slow
 def test_html_folds_the_full_forms_and_markdown_too(chain6):
     eom, r = chain6
     html, md = r.html(), r.markdown()

@@ -63,6 +63,7 @@ def _statement(document):
     return document.sections[0]
 
 
+@pytest.mark.slow
 def test_the_statement_opens_the_report(case):
     _, lang, document = case
     s = _statement(document)

@@ -114,6 +114,7 @@ def _omega_star(c: Context, body: str | None):  # type: ignore[no-untyped-def]
     return [sum(x.diff(_sym(qd)) * _sym(s) for qd, s in zip(c.kin.qd, c.kin.q_star, strict=True)) for x in omega]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(COMOMENTS))
 def test_step3_argues_each_perfect_constraint_by_a_zero_comoment(name):
     """For each principal constraint step 3 argues, a generic action torsor {R ; M_X}_X with the stated

@@ -57,6 +57,7 @@ def _paras(r, key: str) -> list[tuple[str, list[str]]]:  # type: ignore[no-untyp
 
 
 # -- a damped joint is not perfect; the theorems list every effort their checks use -------------------------------
+@pytest.mark.slow
 def test_damped_urdf_joints_are_not_called_perfect_and_their_damping_is_in_q_nc():
     eom = _eom("rrr_arm.urdf")
     damping = {j.get("name"): float(j.find("dynamics").get("damping"))
@@ -77,6 +78,7 @@ def test_damped_urdf_joints_are_not_called_perfect_and_their_damping_is_in_q_nc(
     assert step1.count("Elle est parfaite (sans frottement") == 3 and "n'est pas parfaite" not in step1
 
 
+@pytest.mark.slow
 def test_the_stated_theorems_list_the_actuators_and_damping_their_projections_use():
     eom = _eom("rrr_arm.urdf")
     v = lagrangian.verify(eom)
@@ -216,6 +218,7 @@ def test_input_torques_are_not_folded_into_the_potential_and_the_energy_is_the_m
     assert se.expand(power - sum(t * qd for t, qd in zip(taus, eom.qd, strict=True))) == 0  # dE/dt holds Σ τ_j q̇_j
 
 
+@pytest.mark.slow
 def test_a_constant_couple_is_said_constant_and_derives_from_minus_c_theta(tmp_path):
     path = mutated_example(tmp_path, "double_pendulum.toml", "[loads]",
                            "[loads]\nmotor = { torque = \"C*R0.x\", on = \"S1\" }\n")
@@ -312,6 +315,7 @@ def test_the_entrainment_potential_is_said_to_exist_because_omega_is_constant_an
 
 
 # -- the statement says which way z0 points ------------------------------------------------------------------------
+@pytest.mark.slow
 @pytest.mark.parametrize(("name", "down"), [("whipple_bicycle.toml", True), ("lagrange_top.toml", False)])
 def test_the_statement_says_whether_z0_points_up_or_down(name, down):
     data = tomllib.loads((EXAMPLES_DIR / name).read_text(encoding="utf-8"))

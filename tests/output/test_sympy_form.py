@@ -72,6 +72,7 @@ def _numeric(expr: sympy.Basic, s, rng: np.random.Generator) -> float:  # type: 
     return float(out.subs(s.values).subs(s.t, rng.uniform(0, 2)))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["lagrange_top.toml", "double_pendulum.toml", "kapitza_pendulum.toml"])
 def test_time_function_form_differentiates_correctly(name: str) -> None:
     """d/dt of T's dynamicsymbols form (SymPy's diff) equals the engine's total derivative d/dt(T)."""
@@ -91,6 +92,7 @@ def test_time_function_form_differentiates_correctly(name: str) -> None:
         assert a == pytest.approx(b, rel=1e-12, abs=1e-12)
 
 
+@pytest.mark.slow
 def test_time_function_form_drops_into_sympy_mechanics() -> None:
     """SymPy's LagrangesMethod on our L(t) finds our mass matrix and forcing (the double pendulum)."""
     eom = eom_of("double_pendulum.toml")

@@ -24,6 +24,7 @@ def _titles(fig) -> str:
     return "\n".join(parts)
 
 
+@pytest.mark.slow
 def test_french_titles(run):
     eom, traj = run("lagrange_top.toml")
     kinds = applicable_kinds(traj, eom)

@@ -61,6 +61,7 @@ def test_every_example_writes_its_plots(run, name, tmp_path):
         assert MIN_SIDE <= min(im.size)
 
 
+@pytest.mark.slow
 def test_formats_and_kinds(run, tmp_path):
     eom, traj = run("simple_pendulum.toml")
     written = save_plots(traj, eom, tmp_path, animation=False, formats=("svg", "pdf"), kinds=("phase",))

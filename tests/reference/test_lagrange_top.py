@@ -176,6 +176,7 @@ def test_first_integrals_are_K_H_and_E(eom: lagrangian.EquationsOfMotion) -> Non
     assert is_zero(sym(integrals["E"].expression) - E_SEED)
 
 
+@pytest.mark.slow
 def test_seed_integrals_are_constant_along_the_seed_equations() -> None:
     """Sanity of the reference itself: dK/dt, dH/dt, dE/dt vanish once q̈ solves the seed's equations."""
     solution = sp.solve([lhs - rhs for lhs, rhs in SEED_EQUATIONS.values()], QDD, dict=True)[0]

@@ -58,6 +58,7 @@ def test_the_reference_closed_forms_give_the_published_matrices():
         np.testing.assert_allclose(m[key], published, rtol=0, atol=1e-13 * np.abs(published).max())
 
 
+@pytest.mark.slow
 def test_the_model_describes_the_benchmark():
     eom = _eom()
     assert eom.coordinates == ("x", "y", "psi", "phi", "thetaB", "delta", "thetaR", "thetaF")
@@ -79,6 +80,7 @@ def test_the_model_describes_the_benchmark():
     assert point["thetaB_dot"] == pytest.approx(0.0, abs=1e-14)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("v", SPEEDS)
 def test_lean_and_steer_rows_of_A_are_the_papers(v):
     # A for (φ, δ, φ̇, δ̇) = [[0, I], [−M⁻¹(g K0 + v² K2), −M⁻¹ v C1]] (eq. (A 1)), at this speed and from A(v).
@@ -93,6 +95,7 @@ def test_lean_and_steer_rows_of_A_are_the_papers(v):
     assert np.max(np.abs(A[np.ix_(rows, others)])) <= 1e-12 * np.max(np.abs(A))
 
 
+@pytest.mark.slow
 def test_cli_json_reproduces_the_papers_A(capsys):
     for v in (0.0, 4.0, 10.0):
         assert main(["linearize", str(MODEL), "--set", f"v={v}", "--json"]) == 0
