@@ -1,26 +1,48 @@
 # Two set-up commands (see README.md): `make demo` and `make test`.
-# Both create the virtual environment .venv on first use and install the package into it.
+# Both create the virtual environment .venv on first use and install the package into it: `make demo` the
+# core alone (what `lagrangian derive` needs), `make test` the `test` extra too. `make check` is the quick loop.
 PYTHON ?= python3
 VENV ?= .venv
 PY := $(VENV)/bin/python
 
-.PHONY: demo test docs bench clean browser octave tex peers types
+.PHONY: demo test check lint types docs bench clean browser octave tex peers
 
-$(VENV)/.installed: pyproject.toml
-	$(PYTHON) -m venv $(VENV)
+# Two stamps, so that neither install is redone while pyproject.toml is unchanged: .core for the demo,
+# .test for the tests (installing the test extra installs the core too, so it stamps both).
+$(VENV)/.core: pyproject.toml
+	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e '.[test]'
+	$(PY) -m pip install --quiet -e .
 	touch $@
 
-demo: $(VENV)/.installed   ## derive the seed's Lagrange top
+$(VENV)/.test: pyproject.toml
+	test -x $(PY) || $(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e '.[test]'
+	touch $(VENV)/.core $@
+
+demo: $(VENV)/.core   ## derive the seed's Lagrange top
 	$(VENV)/bin/lagrangian derive
 
-test: $(VENV)/.installed browser octave tex peers   ## run the test suite
+# What `make check` leaves out: the slow tests and those needing a browser, TeX, Octave or the robot referees.
+QUICK := not slow and not browser and not tex and not octave and not robots and not docs
+
+lint: $(VENV)/.test   ## ruff on the package, the tests, the benchmarks and the tools (rules in pyproject.toml)
+	$(PY) -m ruff check src tests benchmarks tools
+
+check: lint types   ## the quick loop: lint, types and the fast tests (under 90 s on 2 cores)
+	$(PY) -m pytest src tests -m "$(QUICK)" -p no:cacheprovider
+
+test: lint types $(VENV)/.test browser octave tex peers   ## lint, types and the whole test suite (CI runs this)
 	$(PY) -m pytest src tests
+
+# mypy on src/ (settings in pyproject.toml), its error count held at or below tools/mypy_baseline.txt.
+types: $(VENV)/.test   ## type-check the package; fails when the mypy error count rises
+	$(PY) tools/type_ratchet.py
 
 # The API reference from the docstrings (Sphinx with numpydoc, docs/api/): nitpicky (-n: every reference into
 # the package resolves), warnings are errors (-W, all of them reported: --keep-going). Open docs/api/_build/index.html.
-docs: $(VENV)/.installed   ## build the API reference
+docs: $(VENV)/.test   ## build the API reference
 	$(PY) -m sphinx -b html -n -W --keep-going -q docs/api docs/api/_build
 
 # The HTML report's tests open the page in a headless browser (Debian's chromium). Install it when it
@@ -80,7 +102,7 @@ tex:
 # cyipopt, built against the system's IPOPT. Install them when missing and we are root with apt-get, unless
 # SKIP_PEERS=1; otherwise the comparison tests are skipped (the others run: CasADi ships its own IPOPT).
 PEER_PACKAGES := coinor-libipopt-dev libmumps-seq-dev liblapack-dev libblas-dev gfortran pkg-config
-peers: $(VENV)/.installed
+peers: $(VENV)/.test
 	@if $(PY) -c "import cyipopt, opty" >/dev/null 2>&1 || [ -n "$(SKIP_PEERS)" ]; then :; \
 	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
 	    echo "installing IPOPT, cyipopt and opty (the optimal-control peers; SKIP_PEERS=1 to skip)..."; \
@@ -95,12 +117,7 @@ peers: $(VENV)/.installed
 	         "the comparisons with opty will be skipped"; \
 	fi
 
-# mypy on src/ (settings in pyproject.toml), its error count held at or below tools/mypy_baseline.txt.
-types: | $(VENV)/.installed   ## type-check the package; fails when the mypy error count rises
-	@$(PY) -c "import mypy" 2>/dev/null || $(PY) -m pip install --quiet -e '.[types]'
-	$(PY) tools/type_ratchet.py
-
-bench: $(VENV)/.installed   ## derivation benchmark against SymPy's LagrangesMethod (slow: minutes)
+bench: $(VENV)/.test   ## derivation benchmark against SymPy's LagrangesMethod (slow: minutes)
 	$(PY) benchmarks/derive_vs_sympy.py
 
 clean:

@@ -16,7 +16,6 @@ Every peer is checked against our q̈ before it is timed (`check`).  The optiona
 from __future__ import annotations
 
 import importlib
-import os
 import tempfile
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -52,7 +51,7 @@ class SympySystem:
 
 
 def _kane(N, q, u, bodies, loads) -> tuple[sp.Matrix, sp.Matrix]:
-    kd = [qi.diff(me.dynamicsymbols._t) - ui for qi, ui in zip(q, u)]
+    kd = [qi.diff(me.dynamicsymbols._t) - ui for qi, ui in zip(q, u, strict=True)]
     kane = me.KanesMethod(N, q_ind=q, u_ind=u, kd_eqs=kd)
     kane.kanes_equations(bodies, loads)
     return kane.mass_matrix, kane.forcing
@@ -95,7 +94,7 @@ def _planar(n: int):
 def _spatial(n: int):
     a = list(me.dynamicsymbols(f"alpha1:{n + 1}"))
     b = list(me.dynamicsymbols(f"beta1:{n + 1}"))
-    q = [x for pair in zip(a, b) for x in pair]
+    q = [x for pair in zip(a, b, strict=True) for x in pair]
     u = list(me.dynamicsymbols(f"u1:{2 * n + 1}"))
     m = sp.symbols(f"m1:{n + 1}")
     lengths = sp.symbols(f"l1:{n + 1}")
@@ -138,8 +137,8 @@ def lambdify_peer(system: SympySystem, p: np.ndarray):
     n = len(system.q)
     qs, us = sp.symbols(f"q0:{n}"), sp.symbols(f"u0:{n}")
     t = me.dynamicsymbols._t
-    rep_d = {qi.diff(t): ui for qi, ui in zip(system.q, us)}
-    rep = {**dict(zip(system.q, qs)), **dict(zip(system.u, us))}
+    rep_d = {qi.diff(t): ui for qi, ui in zip(system.q, us, strict=True)}
+    rep = {**dict(zip(system.q, qs, strict=True)), **dict(zip(system.u, us, strict=True))}
     exprs = [e.xreplace(rep_d).xreplace(rep) for e in (system.M, system.F)]
     fn = sp.lambdify([qs, us, system.constants], exprs, modules="numpy", cse=True)
     # For a batch: the entries as a flat list (a Matrix of arrays and scalars cannot be built).

@@ -128,7 +128,7 @@ def event_cost(repeat: int, drag: float) -> None:
 
     def run(flight) -> float:  # type: ignore[no-untyped-def]
         last = 0.0
-        for (t, y), t_end, h in zip(starts, ends, h0):
+        for (t, y), t_end, h in zip(starts, ends, h0, strict=True):
             last = flight(t, y, 100.0 if flight is with_gap else t_end, h)
         return last
 

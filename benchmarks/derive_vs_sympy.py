@@ -126,8 +126,8 @@ def _sympy_qdd(system: SympySystem,
     qs = sp.symbols(f"q0:{n}")
     us = sp.symbols(f"u0:{n}")
     # Replace q̇ first, then q, so that Derivative(q(t), t) is not touched by the second step.
-    rep_d = {qi.diff(t): ui for qi, ui in zip(system.q, us)}
-    rep_q = dict(zip(system.q, qs))
+    rep_d = {qi.diff(t): ui for qi, ui in zip(system.q, us, strict=True)}
+    rep_q = dict(zip(system.q, qs, strict=True))
     exprs = [e.xreplace(rep_d).xreplace(rep_q) for e in [*system.M, *system.F]]
     names = sorted(params)
     fn = sp.lambdify([*qs, *us, *(sp.Symbol(p) for p in names)], exprs, modules="numpy")
@@ -154,7 +154,7 @@ def same_accelerations(eom, system: SympySystem, *, states: int, rtol: float, se
     params = {p.name: float(rng.uniform(0.5, 1.5)) for p in eom.model.parameters}
     ours, theirs = _ours_qdd(eom, params), _sympy_qdd(system, params)
     n = len(eom.q)
-    low, high = zip(*(Q_RANGES.get(name, (-np.pi, np.pi)) for name in eom.coordinates))
+    low, high = zip(*(Q_RANGES.get(name, (-np.pi, np.pi)) for name in eom.coordinates), strict=True)
     worst = 0.0
     for _ in range(states):
         q = rng.uniform(low, high)
@@ -226,7 +226,7 @@ def main(argv: list[str] | None = None) -> int:
     widths = (16, 13, 13, 21, 9, 15)
 
     def emit(row: tuple[str, ...]) -> None:
-        print("  ".join(c.rjust(w) if i else c.ljust(w) for i, (c, w) in enumerate(zip(row, widths))), flush=True)
+        print("  ".join(c.rjust(w) if i else c.ljust(w) for i, (c, w) in enumerate(zip(row, widths, strict=True))), flush=True)
 
     print(f"lagrangian {lagrangian.__version__}, symengine {se.__version__}, sympy {sp.__version__}, "
           f"Python {sys.version.split()[0]}")

@@ -1,4 +1,4 @@
-"""Ensembles (issue 14, item 5): batched compiled members on every core, against a Python loop over `simulate`.
+"""Ensembles: batched compiled members on every core, against a Python loop over `simulate`.
 
 All figures come from one run on the same machine:
 
@@ -12,7 +12,7 @@ All figures come from one run on the same machine:
    [−3, 3]) for 10 s, each member stopped at its first flip; extrapolated to 10^6.
 4. **Dask**: throughput of a `distributed.LocalCluster` with 1 and with 2 worker processes.
 
-Target (issue 14): 10^5 tops in under 60 s on the 2-core machine.
+Target: 10^5 tops in under 60 s on the 2-core machine.
 
 Run:  .venv/bin/python benchmarks/ensemble.py [--tops 100000] [--loop 1000] [--flip 10000] [--cluster 4000]
 """
@@ -24,7 +24,6 @@ import json
 import os
 import subprocess
 import sys
-import tempfile
 import time
 from pathlib import Path
 

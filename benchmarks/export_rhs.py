@@ -1,4 +1,4 @@
-"""The exported code against the package and against SymPy's ``lambdify``, same run (issue 12, item 5).
+"""The exported code against the package and against SymPy's ``lambdify``, same run.
 
 For the top and the planar chains (n = 5, 10):
 

@@ -95,7 +95,7 @@ def pinocchio_state(pin, model, y: np.ndarray, joints: list[str]):  # type: igno
     q, v = pin.neutral(model), np.zeros(model.nv)
     q[:3], q[3:7] = y[:3], [y[4], y[5], y[6], y[3]]
     v[:3], v[3:6] = R.T @ y[7 + n:10 + n], y[10 + n:13 + n]
-    for name, qj, vj in zip(joints, y[7:7 + n], y[13 + n:13 + 2 * n]):
+    for name, qj, vj in zip(joints, y[7:7 + n], y[13 + n:13 + 2 * n], strict=True):
         j = model.joints[model.getJointId(name)]
         q[j.idx_q:j.idx_q + j.nq] = (np.cos(qj), np.sin(qj)) if j.nq == 2 else qj
         v[j.idx_v] = vj
@@ -126,7 +126,7 @@ def run(name: str) -> None:
         y = np.concatenate([rng.normal(size=3), e / np.linalg.norm(e), rng.uniform(-1, 1, n), rng.normal(size=6),
                             rng.uniform(-1, 1, n), [0.0]])
         tau = rng.uniform(-1, 1, n)
-        p = system.parameter_vector({f"tau_{j}": t for j, t in zip(joints, tau)} if system.model.inputs else None)
+        p = system.parameter_vector({f"tau_{j}": t for j, t in zip(joints, tau, strict=True)} if system.model.inputs else None)
         ours = system.rhs(0.0, y, p)[nq:nq + 6 + n]
         q, v, R = pinocchio_state(pin, peer, y, joints)
         t = np.zeros(peer.nv)

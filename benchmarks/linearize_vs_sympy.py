@@ -1,6 +1,6 @@
 """Small motions: derive + linearize against SymPy's KanesMethod + linearize, same bicycle, same run.
 
-Three questions of issue 10, each answered with a peer timed in the same run:
+Three questions, each answered with a peer timed in the same run:
 
 1. **The Whipple bicycle** (Meijaard et al. 2007): ours is ``load_model`` + ``derive`` +
    ``linearize(symbolic=("v",))``, which gives A(v) for every speed at once; the peer builds the same

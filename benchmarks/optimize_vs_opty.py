@@ -108,14 +108,14 @@ def opty_equations(name: str):
     particles = [me.Particle("Pc", cart, mc)]
     loads = [(cart, F * N_frame.x)]
     previous = cart
-    for k, (m, l) in enumerate(zip(masses, lengths), start=1):
+    for k, (m, l) in enumerate(zip(masses, lengths, strict=True), start=1):
         # θ from the ascending vertical N.z, turning about N.y: the rod's direction is sin θ x + cos θ z
         bob = previous.locatenew(f"P{k}", l * (sm.sin(q[k]) * N_frame.x + sm.cos(q[k]) * N_frame.z))
-        bob.set_vel(N_frame, bob.pos_from(O).dt(N_frame).subs({qi.diff(t): ui for qi, ui in zip(q, u)}))
+        bob.set_vel(N_frame, bob.pos_from(O).dt(N_frame).subs({qi.diff(t): ui for qi, ui in zip(q, u, strict=True)}))
         particles.append(me.Particle(f"B{k}", bob, m))
         loads.append((bob, -m * g * N_frame.z))
         previous = bob
-    kane = me.KanesMethod(N_frame, q_ind=q, u_ind=u, kd_eqs=[qi.diff(t) - ui for qi, ui in zip(q, u)])
+    kane = me.KanesMethod(N_frame, q_ind=q, u_ind=u, kd_eqs=[qi.diff(t) - ui for qi, ui in zip(q, u, strict=True)])
     kane.kanes_equations(particles, loads)
     states = sm.Matrix([*q, *u])
     eom = kane.mass_matrix_full * states.diff(t) - kane.forcing_full

@@ -11,10 +11,10 @@ from __future__ import annotations
 import time
 
 import lagrangian
-from lagrangian.output._report import build
 from lagrangian.model.zoo import planar_chain
 from lagrangian.output import report
 from lagrangian.output._display_form import _display_form
+from lagrangian.output._report import build
 
 
 def main(repeats: int = 3) -> None:

@@ -46,7 +46,7 @@ import lagrangian  # noqa: E402
 from lagrangian.model.zoo import lagrange_top, planar_chain, spatial_chain  # noqa: E402
 from lagrangian.numerics import compile_system  # noqa: E402
 
-#: Targets (issue 3): faster than every peer per single state; M and F batched at n = 5 (the
+#: Targets: faster than every peer per single state; M and F batched at n = 5 (the
 #: issue's 0.3 µs is its figure for SymEngine's LLVM M and F on 10^4 states).
 TARGET_BATCH_US = 0.3
 #: Timing: a block of calls lasts about this long; each peer gets about this budget.
@@ -206,7 +206,7 @@ def run_system(name: str, args, rng: np.random.Generator, peers: dict[str, objec
                 else:
                     continue
             t_build = time.perf_counter() - t0
-            diff = check(label, lambda k: fn(Qo[k], Uo[k]))
+            diff = check(label, lambda k, fn=fn: fn(Qo[k], Uo[k]))
             us = per_call(fn, [(Qo[k], Uo[k]) for k in range(len(Qo))]) * 1e6
             result.single.append(Row(label, us, diff, f"code generation + build {_fmt_s(t_build)}"))
         if n > args.lu_max_coords:
@@ -253,7 +253,7 @@ def run_system(name: str, args, rng: np.random.Generator, peers: dict[str, objec
     result.batch.append(Row("ours: rhs on (N, 2n)", per_batch(system.rhs, 0.0, Yb, p) / count * 1e6, 0.0))
     result.batch.append(Row("ours: mass_forces (M, F only)", per_batch(system.mass_forces, 0.0, Yb, p) / count * 1e6))
     m_check = min(count, 200)
-    diff = max(_rel(a, b) for a, b in zip(lam_batch(Qb[:m_check], Ub[:m_check]), qdd_b[:m_check]))
+    diff = max(_rel(a, b) for a, b in zip(lam_batch(Qb[:m_check], Ub[:m_check]), qdd_b[:m_check], strict=True))
     if not diff <= args.rtol:
         raise AssertionError(f"{result.title}: SymPy lambdify (batch) disagrees with ours ({diff:.3g})")
     result.batch.append(Row("SymPy lambdify broadcast + batched numpy solve",
@@ -270,7 +270,7 @@ def run_system(name: str, args, rng: np.random.Generator, peers: dict[str, objec
             out = llvm(X)
             return np.linalg.solve(out[:, : n * n].reshape(-1, n, n), out[:, n * n:, None])[..., 0]
 
-        diff = max(_rel(a, b) for a, b in zip(llvm_solve(X[:m_check]), qdd_b[:m_check]))
+        diff = max(_rel(a, b) for a, b in zip(llvm_solve(X[:m_check]), qdd_b[:m_check], strict=True))
         result.batch.append(Row("SymEngine Lambdify (LLVM) of our M, F", per_batch(llvm, X) / count * 1e6,
                                 None, f"LLVM compile {_fmt_s(t_llvm)}"))
         result.batch.append(Row("SymEngine Lambdify (LLVM) + batched numpy solve",

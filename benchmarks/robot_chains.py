@@ -1,4 +1,4 @@
-"""Robot-sized systems (issue 13): derive + compile time and memory, and q̈ per state against Pinocchio.
+"""Robot-sized systems: derive + compile time and memory, and q̈ per state against Pinocchio.
 
 Two systems, each in relative joint coordinates as a robot is written:
 
@@ -13,7 +13,7 @@ The script
 1. times `lagrangian.derive` + `compile_system` of the 20-link chain and the 10-joint arm in a
    fresh process with an empty compile cache (wall and CPU time of the process and of the C
    compiler), and the peak memory (resident set of Python and of the compiler) at n = 30;
-   targets (issue 13): under 3 s each, under 500 MB;
+   targets: under 3 s each, under 500 MB;
 2. for each n checks that our q̈ equals ``pin.aba``'s at random states, random joint torques
    (relative difference ≤ ``--rtol``, else it stops: a benchmark of different physics is
    worthless), then times one state per call (ours: ``CompiledSystem.rhs_c``; Pinocchio:
@@ -160,7 +160,7 @@ def compare(kind: str, n: int, rng: np.random.Generator, rtol: float, quick: boo
     V = rng.uniform(-1.5, 1.5, (states, n))
     Y = np.hstack([Q, V])
     ours = system.rhs(0.0, Y, p)[:, n:]
-    theirs = np.array([pin.aba(pm, data, q, v, tau) for q, v in zip(Q, V)])
+    theirs = np.array([pin.aba(pm, data, q, v, tau) for q, v in zip(Q, V, strict=True)])
     diff = float(np.max(np.abs(ours - theirs)) / max(1.0, float(np.max(np.abs(theirs)))))
     if not diff <= rtol:
         raise SystemExit(f"{kind}{n}: our q'' and pin.aba's differ by {diff:.2e} (> {rtol:g}); not timing")
@@ -168,7 +168,7 @@ def compare(kind: str, n: int, rng: np.random.Generator, rtol: float, quick: boo
     out = np.empty(2 * n)
     rows = [(0.0, np.ascontiguousarray(y), p, out) for y in Y]
     ours_single = per_call(system.rhs_c, rows, budget)
-    aba_rows = [(pm, data, np.ascontiguousarray(q), np.ascontiguousarray(v), tau) for q, v in zip(Q, V)]
+    aba_rows = [(pm, data, np.ascontiguousarray(q), np.ascontiguousarray(v), tau) for q, v in zip(Q, V, strict=True)]
     aba_single = per_call(pin.aba, aba_rows, budget)
 
     def rnea_crba(q, v):
@@ -177,10 +177,10 @@ def compare(kind: str, n: int, rng: np.random.Generator, rtol: float, quick: boo
         M = np.triu(M) + np.triu(M, 1).T  # crba fills the upper triangle
         return np.linalg.solve(M, tau - b)
 
-    check = np.array([rnea_crba(q, v) for q, v in zip(Q[:5], V[:5])])
+    check = np.array([rnea_crba(q, v) for q, v in zip(Q[:5], V[:5], strict=True)])
     if not np.allclose(check, theirs[:5], rtol=1e-8, atol=1e-8):
         raise SystemExit(f"{kind}{n}: pin.rnea + pin.crba disagree with pin.aba")
-    rnea_single = per_call(rnea_crba, [(np.ascontiguousarray(q), np.ascontiguousarray(v)) for q, v in zip(Q, V)],
+    rnea_single = per_call(rnea_crba, [(np.ascontiguousarray(q), np.ascontiguousarray(v)) for q, v in zip(Q, V, strict=True)],
                            budget)
     # Batches of CHUNK states, timed like single calls (the minimum over short blocks): a 10⁴-state
     # call lasts long enough on a shared machine to be cut by other processes' time slices.
@@ -189,7 +189,7 @@ def compare(kind: str, n: int, rng: np.random.Generator, rtol: float, quick: boo
     ours_batch = per_call(system.rhs, [(0.0, c, p) for c in chunks], budget) / CHUNK
 
     def aba_loop(Qc, Vc):
-        for q, v in zip(Qc, Vc):
+        for q, v in zip(Qc, Vc, strict=True):
             pin.aba(pm, data, q, v, tau)
 
     aba_loop_batch = per_call(aba_loop, [(np.ascontiguousarray(c[:, :n]), np.ascontiguousarray(c[:, n:]))

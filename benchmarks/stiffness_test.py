@@ -47,8 +47,9 @@ def overhead(t_end: float, repeat: int) -> None:
             try:
                 # CPU time of the process (the run is in a worker thread): less sensitive than the wall
                 # clock to other jobs on a shared machine
-                seconds, traj = _timed(lambda: lagrangian.simulate(system, t_end, stiffness_check=check, n_out=101),
-                                       time.process_time)
+                seconds, traj = _timed(
+                    lambda check=check: lagrangian.simulate(system, t_end, stiffness_check=check, n_out=101),
+                    time.process_time)
             finally:
                 _control.STIFFNESS_TEST_PERIOD = period
             best[name] = min(best[name], seconds)

@@ -18,7 +18,7 @@ all three), and the largest difference between the trajectories.  Then the long-
 behaviour: the energy drift of DOP853 and of the symplectic Gauss–Legendre method over
 100 s and 1000 s (a symplectic method's energy error stays bounded; DOP853's grows).
 
-Targets (issue 3): ours ≥ 10× faster than SciPy + lambdify, energy drift ≤ 1e-11.
+Targets: ours ≥ 10× faster than SciPy + lambdify, energy drift ≤ 1e-11.
 
 Run:  .venv/bin/python benchmarks/top_integration.py [--repeat 5] [--long 100 1000]
 """
@@ -81,12 +81,12 @@ def main(argv: list[str] | None = None) -> int:
     y0 = initial_state(eom)
     t_eval = np.linspace(0.0, T_END, 1001)
     names = [*eom.coordinates, *(c + "_dot" for c in eom.coordinates)]
-    print(f"Lagrange top, y0: {', '.join(f'{k} = {v:g}' for k, v in zip(names, y0))}, "
+    print(f"Lagrange top, y0: {', '.join(f'{k} = {v:g}' for k, v in zip(names, y0, strict=True))}, "
           f"t in [0, {T_END:g}] s, rtol = atol = {TOL:g}, {len(t_eval)} output times")
 
     # -- SymPy's equations, lambdified, for SciPy
     sym = _peers.sympy_system("top")
-    params = dict(zip(system.parameters, p))
+    params = dict(zip(system.parameters, p, strict=True))
     single, _ = _peers.lambdify_peer(sym, np.array([params[str(c)] for c in sym.constants]))
     n = system.n
 

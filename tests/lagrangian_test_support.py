@@ -152,7 +152,7 @@ def engine_qdd(name: str, state: dict[str, float]) -> np.ndarray:
 def with_accelerations(eom: lagrangian.EquationsOfMotion, state: dict[str, float],
                        qdd: Sequence[float]) -> dict[str, float]:
     out = dict(state)
-    out.update({str(s): float(v) for s, v in zip(eom.qdd, qdd)})
+    out.update({str(s): float(v) for s, v in zip(eom.qdd, qdd, strict=True)})
     return out
 
 
@@ -178,7 +178,7 @@ def permuted_coordinates(text: str, order: Sequence[int]) -> str:
     slots = coordinate_entry_lines(text)
     assert sorted(order) == list(range(len(slots)))
     entries = [lines[k] for k in slots]
-    for slot, k in zip(slots, order):
+    for slot, k in zip(slots, order, strict=True):
         lines[slot] = entries[k]
     return "\n".join(lines) + "\n"
 
@@ -234,7 +234,7 @@ class Interrupted:
 def interrupt_when_started(command: Sequence[str], env: dict[str, str], ready: bytes, *, delay: float = 1.0,
                            said: bytes = b"interrupted") -> Interrupted:
     """Run ``command``, send SIGINT ``delay`` s after ``ready`` first shows on its standard error
-    (a progress bar: the compiled loop is running), and wait for it to exit (Ctrl-C tests, issue 15)."""
+    (a progress bar: the compiled loop is running), and wait for it to exit (Ctrl-C tests)."""
     proc = subprocess.Popen(list(command), stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
     chunks: list[bytes] = []
     started = threading.Event()

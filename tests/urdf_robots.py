@@ -126,7 +126,7 @@ class Ours:
         self._all = se.Lambdify(args, [*(e for row in eom.M for e in row), *eom.F, eom.T, eom.U], cse=True)
 
     def _args(self, q, v, values) -> np.ndarray:
-        p = [values.get(name, parameter.value) for name, parameter in zip(self.names, self.model.parameters)]
+        p = [values.get(name, parameter.value) for name, parameter in zip(self.names, self.model.parameters, strict=True)]
         return np.concatenate([q, v, np.array(p, dtype=float)])
 
     def _eval(self, q, v, values) -> tuple[np.ndarray, np.ndarray, float, float]:
@@ -158,7 +158,7 @@ class Peer:
 
     def state(self, q, v) -> tuple[np.ndarray, np.ndarray]:
         qp, vp = self.pin.neutral(self.model), np.zeros(self.model.nv)
-        for j, qi, vi in zip(self.joints, q, v):
+        for j, qi, vi in zip(self.joints, q, v, strict=True):
             if j.nq == 2:  # a continuous joint: (cos q, sin q)
                 qp[j.idx_q:j.idx_q + 2] = np.cos(qi), np.sin(qi)
             else:

@@ -88,6 +88,7 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly (te
     from .analysis import steady_motions as steady_motions
     from .analysis import sweep as sweep
     from .analysis import verify as verify
+    from .codegen import export as export
     from .dynamics import EquationsOfMotion as EquationsOfMotion
     from .dynamics import LagrangeEquation as LagrangeEquation
     from .dynamics import derive as derive
@@ -129,7 +130,6 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly (te
     from .numerics import open_ensemble as open_ensemble
     from .numerics import save_trajectory as save_trajectory
     from .numerics import simulate as simulate
-    from .codegen import export as export
     from .optimal import Objective as Objective
     from .optimal import OptimalTrajectory as OptimalTrajectory
     from .optimal import Problem as Problem

@@ -17,6 +17,7 @@ def _hoop():
     return lagrangian.derive(lagrangian.load_model(EXAMPLES_DIR / "bead_rotating_hoop.toml"))
 
 
+@pytest.mark.slow
 def test_pitchfork_of_the_bead_on_the_rotating_hoop():
     g, R = 9.81, 0.5
     critical = math.sqrt(g / R)
@@ -44,6 +45,7 @@ def test_bifurcation_errors():
         bifurcation(_hoop(), "Omega", [])
 
 
+@pytest.mark.slow
 def test_cli_equilibria_sweep_draws_the_pitchfork(tmp_path, capsys):
     out = tmp_path / "figs"
     assert main(["equilibria", str(EXAMPLES_DIR / "bead_rotating_hoop.toml"), "--sweep", "Omega=1:8:0.5",

@@ -48,8 +48,8 @@ def eom_of(name: str) -> lagrangian.EquationsOfMotion:
 def rate_along_motion(eom: lagrangian.EquationsOfMotion, E: se.Basic) -> se.Basic:
     """dE/dt = Σ ∂E/∂q_i q̇_i + ∂E/∂q̇_i q̈_i + ∂E/∂t with q̈ = M⁻¹(F + Aᵀλ)."""
     qdd = accelerations(eom)
-    terms = [E.diff(q) * qd for q, qd in zip(eom.q, eom.qd)]
-    terms += [E.diff(qd) * a for qd, a in zip(eom.qd, qdd)]
+    terms = [E.diff(q) * qd for q, qd in zip(eom.q, eom.qd, strict=True)]
+    terms += [E.diff(qd) * a for qd, a in zip(eom.qd, qdd, strict=True)]
     return se.Add(*terms, E.diff(eom.t))
 
 
@@ -83,6 +83,7 @@ def _admissible(eom: lagrangian.EquationsOfMotion, values: dict, point: list[flo
     return point[:n] + list(qd) + point[2 * n:]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", example_names())
 def test_balance_holds_at_random_states_of_every_example(name: str) -> None:
     eom = eom_of(name)
@@ -112,6 +113,7 @@ def test_balance_holds_at_random_states_of_every_example(name: str) -> None:
 
 
 # -- 3. along simulated motions -------------------------------------------------------------------
+@pytest.mark.slow
 @pytest.mark.parametrize(("name", "t_end", "n_out"), [
     ("block_on_belt.toml", 3.0, 60001),  # stick and slip: friction switches within ε m/(f N) = 0.3 ms
     ("kapitza_pendulum.toml", 0.3, 12001),  # the pivot works: 19 fast periods, 630 points each
@@ -188,6 +190,7 @@ def test_no_energy_integral_where_the_balance_is_not_zero(name: str) -> None:
 
 
 # -- complementary constraints: their reactions' real power is −Σ λ_k b_k ---------------------------
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["pendulum_tension.toml", "rolling_disk_incline.toml", "top_reaction.toml"])
 def test_scleronomic_reactions_do_no_work_and_E_is_conserved(name: str) -> None:
     """The balance agrees with `first_integrals`: b_k ≡ 0, so the reaction's power is 0 and E is offered."""

@@ -38,6 +38,7 @@ def points(found, *names):  # type: ignore[no-untyped-def]
 
 
 # -- bead on the rotating hoop ---------------------------------------------------------------------
+@pytest.mark.slow
 def test_bead_above_the_critical_rate_has_four_equilibria() -> None:
     eom = derive("bead_rotating_hoop")  # R = 0.5, g = 9.81, Omega = 6: R Ω² = 18 > g
     found = lagrangian.equilibria(eom)
@@ -53,6 +54,7 @@ def test_bead_above_the_critical_rate_has_four_equilibria() -> None:
     assert sorted(str(e.values["theta"]) for e in upright) == ["0", "pi"]
 
 
+@pytest.mark.slow
 def test_bead_below_the_critical_rate_has_two() -> None:
     eom = derive("bead_rotating_hoop")
     found = lagrangian.equilibria(eom, parameters={"Omega": 2.0})  # R Ω² = 2 < g
@@ -61,6 +63,7 @@ def test_bead_below_the_critical_rate_has_two() -> None:
     assert [e.exists for e in every].count(False) == 2
 
 
+@pytest.mark.slow
 def test_bead_at_the_critical_rate_the_double_root_is_theta_zero() -> None:
     # R Ω² = g: cosθ = 1 is θ = 0, already listed; the tilted branch needs R Ω² > g strictly.
     eom = derive("bead_rotating_hoop")
@@ -79,6 +82,7 @@ def test_simple_pendulum_sin_theta_zero() -> None:
     assert all(e.closed_form and e.condition is None for e in found)
 
 
+@pytest.mark.slow
 def test_double_pendulum_four_equilibria() -> None:
     found = lagrangian.equilibria(derive("double_pendulum"))
     pi = round(math.pi, 9)
@@ -87,6 +91,7 @@ def test_double_pendulum_four_equilibria() -> None:
     assert all(e.residual < 1e-12 for e in found)
 
 
+@pytest.mark.slow
 def test_cart_pendulum_with_a_spring() -> None:
     eom = derive("cart_pendulum")  # l0 = 0.5
     found = lagrangian.equilibria(eom)
@@ -97,6 +102,7 @@ def test_cart_pendulum_with_a_spring() -> None:
     assert points(near, "x", "theta") == [(0.0, 0.0), (0.0, pi)]
 
 
+@pytest.mark.slow
 def test_constrained_pendulum_uses_the_multiplier() -> None:
     # x² + y² = l² kept complementary: F + λ ∇f = 0 gives x = 0, y = ±l.
     found = lagrangian.equilibria(derive("pendulum_tension"))
@@ -127,6 +133,7 @@ torsion = { potential = "1/2*k*(theta - alpha)^2" }
 """
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("given", [True, False])
 def test_torsion_pendulum_numeric_roots_match_a_sign_change_scan(given: bool) -> None:
     # θ is not an angle here (θ − α is not 2π-periodic): without a range it is searched from starting points
@@ -241,6 +248,7 @@ def test_block_on_incline_without_enough_friction_has_no_rest(capsys: pytest.Cap
     assert "none found" in out and "would be one if |tanα| ≤ f_s, which does not hold" in out
 
 
+@pytest.mark.slow
 def test_a_closed_form_with_no_value_at_the_parameters_is_skipped(tmp_path):
     # tools/fuzz.py seed 108, case 12483: inverted_pendulum_cart with its particles' names swapped (the force
     # F then acts on the bob).  One closed-form branch, 2 arctan((m g − √(m² g² + F²))/F), is 0/0 at F = 0;

@@ -54,6 +54,7 @@ def elastic() -> lagrangian.analysis.Equilibria:
     return lagrangian.equilibria(system_eom("elastic"))
 
 
+@pytest.mark.slow
 def test_the_elastic_pendulum_rests_are_found_without_a_range_each_once(elastic):
     m, g, k, L = 1.0, 9.81, 75.0, 0.5
     rests = sorted((round(e.numeric["r"], 9), round(e.numeric["theta"], 9)) for e in elastic)
@@ -67,6 +68,7 @@ def test_the_elastic_pendulum_rests_are_found_without_a_range_each_once(elastic)
     assert {r.coordinate: r.kind for r in search.regions} == {"r": "scales", "theta": "angle"}
 
 
+@pytest.mark.slow
 def test_the_text_and_the_json_say_where_it_searched_and_that_a_rest_may_be_missing(elastic):
     names = ["r", "theta"]
     verdicts = [None] * len(elastic)
@@ -78,6 +80,7 @@ def test_the_text_and_the_json_say_where_it_searched_and_that_a_rest_may_be_miss
     assert doc["search"]["unbounded"] == ["r"] and doc["search"]["regions"][0]["bounds"] == [None, None]
 
 
+@pytest.mark.slow
 def test_a_declared_range_is_where_the_search_looks():
     text = TEXTS["elastic"].replace('r = { initial = 0.6, rate = 0.0 }', 'r = { initial = 0.6, rate = 0.0, range = [0, "inf"] }')
     assert text != TEXTS["elastic"]
@@ -103,6 +106,7 @@ def test_the_family_of_rests_at_the_critical_rate_is_printed_once_with_its_verdi
     assert "marginal" in out  # a shift along the family is another rest: the linearization does not decide
 
 
+@pytest.mark.slow
 def test_a_circle_of_rests_is_one_family_with_its_centre_apart():
     a = 1.5
     found = lagrangian.equilibria(lagrangian.derive(lagrangian.parse_model(RING)))
@@ -114,6 +118,7 @@ def test_a_circle_of_rests_is_one_family_with_its_centre_apart():
     assert math.hypot(x, y) == pytest.approx(a, rel=1e-9)
 
 
+@pytest.mark.slow
 def test_a_rest_where_the_mass_matrix_is_singular_says_so(tmp_path, capsys):
     M, m = 1.0, 2.0
     assert main(["equilibria", _write(tmp_path, "atwood"), "--json"]) == 0

@@ -50,6 +50,7 @@ def test_with_the_motor_off_the_momentum_about_its_axis_and_the_energy_hold(furu
                                                                             rel=1e-12)
 
 
+@pytest.mark.slow
 def test_a_constant_torque_keeps_the_energy_with_its_work_and_a_varying_one_keeps_nothing(furuta):
     constant = first_integrals(furuta, inputs={"tau": "constant"})
     assert [fi.name for fi in constant] == ["E"]
@@ -68,7 +69,7 @@ def test_the_simulation_monitors_what_holds_and_warns_of_nothing_an_input_causes
     assert driven.integrals == () and not driven.warnings
     # the motor does change p_phi: by ∫ τ dt, written out
     p = [_p_phi_by_hand(furuta.model.parameter_values, a, pd, ad)
-         for a, pd, ad in zip(driven.q[:, 1], driven.qd[:, 0], driven.qd[:, 1])]
+         for a, pd, ad in zip(driven.q[:, 1], driven.qd[:, 0], driven.qd[:, 1], strict=True)]
     work = 0.02 * (1 - np.cos(5 * driven.t)) / 5
     assert np.allclose(np.array(p) - p[0], work, atol=1e-10)
 

@@ -150,6 +150,7 @@ def _sympy_double_pendulum():
     return lm, (q1, q2), (m1, m2, l1, l2, g)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("point", [(0.0, 0.0), (math.pi, 0.0), (0.0, math.pi), (math.pi, math.pi)])
 def test_double_pendulum_against_sympy_linearizer(point):
     lm, (q1, q2), (m1, m2, l1, l2, g) = _sympy_double_pendulum()
@@ -287,6 +288,7 @@ def test_top_steady_precession_pulsation_matches_closed_form():
     assert lin.stability().stable is True
 
 
+@pytest.mark.slow
 def test_mode_drawn_as_a_motion_solves_the_linearized_equations(tmp_path):
     """The mode's motion satisfies M δq̈ + K δq = 0 (double pendulum), and the animation draws it."""
     from lagrangian.plotting import animate, mode_trajectory

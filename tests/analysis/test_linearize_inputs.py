@@ -11,6 +11,7 @@ import warnings
 
 import numpy as np
 import pytest
+from urdf_robots import DOUBLE_PENDULUM, SPATIAL_ARM, Peer
 
 import lagrangian
 from lagrangian.analysis import LinearizationError, holding_inputs
@@ -18,7 +19,6 @@ from lagrangian.cli.main import main
 from lagrangian.model.urdf import UrdfNote, parse_urdf
 from lagrangian.model.zoo import serial_arm
 from lagrangian.numerics import compile_system
-from urdf_robots import DOUBLE_PENDULUM, SPATIAL_ARM, Peer
 
 
 def _urdf(text: str) -> lagrangian.Model:
@@ -33,7 +33,7 @@ def _finite_differences(eom, q0, u0: dict, h: float = 1e-6) -> tuple[np.ndarray,
     inputs = list(eom.model.inputs)
 
     def f(x, u):
-        return system.rhs(0.0, x, system.parameter_vector(dict(zip(inputs, u))))
+        return system.rhs(0.0, x, system.parameter_vector(dict(zip(inputs, u, strict=True))))
 
     x0, uu = np.concatenate([q0, np.zeros(n)]), np.array([u0[k] for k in inputs])
     A = np.column_stack([(f(x0 + h * e, uu) - f(x0 - h * e, uu)) / (2 * h) for e in np.eye(2 * n)])
@@ -63,7 +63,7 @@ def test_held_urdf_arm_is_pinocchios_aba_derivatives_and_gravity():
     model = _urdf(SPATIAL_ARM)
     eom = lagrangian.derive(model)
     q0 = np.array([0.4, -0.6, 0.9, 0.05])
-    at = dict(zip(eom.coordinates, map(float, q0)))
+    at = dict(zip(eom.coordinates, map(float, q0), strict=True))
     tau = holding_inputs(eom, at)
     peer = Peer(pin, SPATIAL_ARM, list(eom.coordinates))
     qp, vp = peer.state(q0, np.zeros(len(q0)))

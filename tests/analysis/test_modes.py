@@ -58,6 +58,7 @@ def test_the_furuta_pendulum_hanging_has_the_pulsation_of_the_reduced_system():
     assert w[0] == pytest.approx(float(np.abs(lin.eigenvalues().imag).max()), rel=1e-10)
 
 
+@pytest.mark.slow
 def test_the_pulsations_agree_with_the_eigenvalues_in_the_text_the_json_and_the_report(capsys):
     path = str(EXAMPLES_DIR / "inverted_pendulum_cart.toml")
     good, wrong = "4.42944692", "4.04351332"  # √((mc + m) g/(mc l)) and √(g/l), the cart held

@@ -32,7 +32,7 @@ s, c = sp.sin(theta), sp.cos(theta)
 
 
 def d_dt(f: sp.Expr) -> sp.Expr:
-    return sum((f.diff(q) * qd + f.diff(qd) * qdd for q, qd, qdd in zip(Q, QD, QDD)), sp.Integer(0))
+    return sum((f.diff(q) * qd + f.diff(qd) * qdd for q, qd, qdd in zip(Q, QD, QDD, strict=True)), sp.Integer(0))
 
 
 def cross(u: sp.Matrix, v: sp.Matrix) -> sp.Matrix:
@@ -249,6 +249,7 @@ def model_of(name: str) -> lagrangian.Model:
 ALL_MODELS = [*example_names(), "planar_chain_1", "planar_chain_4", *EXTRA]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ALL_MODELS)
 def test_every_model_verifies(name: str) -> None:
     v = verify(lagrangian.derive(model_of(name)))

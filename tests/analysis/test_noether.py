@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 import symengine as se
 from lagrangian_test_support import EXAMPLES_DIR
 
@@ -80,6 +81,7 @@ def _euler_sigma(state: dict[str, float], A: float, B: float, C: float) -> np.nd
     return rz(psi) @ rx(theta) @ rz(phi) @ (np.diag([A, B, C]) @ w)
 
 
+@pytest.mark.slow
 def test_free_rigid_body_keeps_all_three_components_of_its_angular_momentum():
     eom = lagrangian.derive(parse_model(FREE_BODY))
     integrals = {fi.name: fi for fi in lagrangian.first_integrals(eom)}
@@ -89,7 +91,7 @@ def test_free_rigid_body_keeps_all_three_components_of_its_angular_momentum():
     psi_momentum = next(fi for fi in integrals.values() if fi.coordinate == "psi")
     rng = np.random.default_rng(4)
     for _ in range(5):
-        state = dict(zip(["psi", "theta", "phi", "psi_dot", "theta_dot", "phi_dot"], rng.uniform(0.2, 1.4, 6)))
+        state = dict(zip(["psi", "theta", "phi", "psi_dot", "theta_dot", "phi_dot"], rng.uniform(0.2, 1.4, 6), strict=True))
         subs = {se.Symbol(k): v for k, v in state.items()} | {se.Symbol(k): v for k, v in
                                                                  dict(A=0.02, B=0.03, C=0.05, m=1.0).items()}
         sigma = _euler_sigma(state, 0.02, 0.03, 0.05)
@@ -98,6 +100,7 @@ def test_free_rigid_body_keeps_all_three_components_of_its_angular_momentum():
         np.testing.assert_allclose(got, sigma, rtol=1e-12)
 
 
+@pytest.mark.slow
 def test_free_rigid_body_integrals_along_a_simulation():
     eom = lagrangian.derive(parse_model(FREE_BODY))
     traj = lagrangian.simulate(eom, 2.0, initial={"psi": 0.1, "theta": 0.8, "phi": 0.3, "psi_dot": 1.0,

@@ -106,6 +106,7 @@ def test_the_tops_residuals_are_rounding(top) -> None:
 SPANS = {"block_on_incline.toml": 0.2}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", example_names())
 def test_every_example_checks_along_its_motion(name: str) -> None:
     eom = load(name)

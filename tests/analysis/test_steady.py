@@ -20,6 +20,7 @@ def _eom(name: str) -> lagrangian.EquationsOfMotion:
 TOP = dict(m=1.0, g=9.81, a=0.1, A=0.02, C=0.01)
 
 
+@pytest.mark.slow
 def test_top_routhian_and_the_steady_precession_relation():
     """Goldstein §5.7: steady precession at θ0 iff m g a = ψ̇ (C ω3 − A ψ̇ cos θ0), ω3 = φ̇ + ψ̇ cos θ0;
     U_eff = (K − H cos θ)²/(2 A sin²θ) + H²/(2 C) + m g a cos θ."""
@@ -42,6 +43,7 @@ def test_top_routhian_and_the_steady_precession_relation():
     assert float(red.inertia[0, 0].subs({se.Symbol("A"): A})) == A
 
 
+@pytest.mark.slow
 def test_top_steady_precession_rates_slow_and_fast():
     """Given θ0 and φ̇: (A − C) cos θ0 ψ̇² − C φ̇ ψ̇ + m g a = 0, two real roots (slow, fast precession)."""
     m, g, a, A, C = (TOP[k] for k in ("m", "g", "a", "A", "C"))
@@ -52,6 +54,7 @@ def test_top_steady_precession_rates_slow_and_fast():
     assert all(s.stable is True and "Routh" in s.reason for s in found)
 
 
+@pytest.mark.slow
 def test_routh_stiffness_agrees_with_the_linearization():
     """Two formulations: U_eff''(θ0)/a (Routh, fixed K and H) and the nutation eigenvalue of the full
     linearization about the same steady precession."""
@@ -63,6 +66,7 @@ def test_routh_stiffness_agrees_with_the_linearization():
     assert nutation**2 == pytest.approx(slow.stiffness[0, 0] / TOP["A"], rel=1e-9)
 
 
+@pytest.mark.slow
 def test_spherical_pendulum_conical_motion():
     """Conical pendulum: ψ̇² = g/(l cos θ0) (θ from the descending vertical); none above the pivot."""
     eom = _eom("spherical_pendulum")

@@ -16,16 +16,14 @@ import math
 
 import numpy as np
 import pytest
+from lagrangian_test_support import EXAMPLES_DIR, mutated_example
 from scipy import integrate
 
 import lagrangian
 from lagrangian.analysis import StructureError
-from lagrangian.errors import AnalysisError
 from lagrangian.analysis._top import analyse_top
-from lagrangian.errors import LagrangianError
+from lagrangian.errors import AnalysisError, LagrangianError
 from lagrangian.numerics import EventSpec, simulate
-
-from lagrangian_test_support import EXAMPLES_DIR, mutated_example
 
 # The seed's top with the example's values.
 A, C, M, G, LEN = 0.02, 0.01, 1.0, 9.81, 0.1
@@ -205,7 +203,7 @@ def test_a_sleeping_start_has_no_nutation(top):
     assert an.nutation is None and "sleeping position" in an.notes[0]
     assert an.sleeping[0].stable is True
     with pytest.raises(AnalysisError, match="no nutation"):
-        an.period
+        _ = an.period
 
 
 def test_a_top_swinging_through_the_vertical_has_no_nutation(top):

@@ -72,6 +72,6 @@ def test_simulate_monitors_the_momenta_and_the_angular_momentum_of_the_satellite
     at = {se.Symbol(n): se.RealDouble(v) for n, v in values.items()}
     for name in ("p_psi", "sigma_O_x0"):
         for i in k:
-            state = {**at, **{s: se.RealDouble(x) for s, x in zip(eom.q, run.q[i])},
-                     **{s: se.RealDouble(x) for s, x in zip(eom.qd, run.qd[i])}}
+            state = {**at, **{s: se.RealDouble(x) for s, x in zip(eom.q, run.q[i], strict=True)},
+                     **{s: se.RealDouble(x) for s, x in zip(eom.qd, run.qd[i], strict=True)}}
             assert float(course[name].xreplace(state)) == pytest.approx(run.monitors[name][i], rel=1e-9, abs=1e-9)

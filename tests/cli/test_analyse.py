@@ -101,7 +101,7 @@ def test_parse_settings_splits_parameters_and_initial_values():
         parse_settings(["g=1", "g=2"], model)
     with pytest.raises(SettingError, match="not a number"):
         parse_settings(["g=2*pi"], model)  # no expression evaluation
-    # What Python's float also reads is not a plain decimal number (issue 15, item 7).
+    # What Python's float also reads is not a plain decimal number.
     for text in ("1_0", "\u0663", "infinity", "nan", "0x10", "1e", "--1"):
         with pytest.raises(SettingError, match="not a number"):
             parse_settings([f"theta={text}"], model)
@@ -115,7 +115,7 @@ def test_simulate_checks_the_analysis_against_the_motion(capsys):
     assert "Check against a simulation" in out
     rows = re.findall(r"^  (.+?): analysis (\S+) \S+; simulation (.+?)  \(largest difference (\S+)\)$", out, re.M)
     assert [r[0] for r in rows] == ["θ1", "θ2", "nutation period", "mean ⟨ψ̇⟩"]
-    for name, value, sims, diff in rows:
+    for name, _, sims, diff in rows:
         sims = [float(x) for x in sims.split(", ")]
         assert len(sims) >= 2, name
         assert float(diff) < 1e-8, (name, diff)

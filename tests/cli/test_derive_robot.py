@@ -4,15 +4,17 @@ from __future__ import annotations
 
 import re
 
+import pytest
+
 import lagrangian
 from lagrangian.analysis import first_integrals
 from lagrangian.cli.main import main
 from lagrangian.model.zoo import serial_arm
-from lagrangian.output import course_form, render_text
-from lagrangian.output import needed_intermediates
+from lagrangian.output import course_form, needed_intermediates, render_text
 from lagrangian.output._text import supplement
 
 
+@pytest.mark.slow
 def test_a_robots_course_view_is_summarized_and_expanded_on_request(capsys):
     assert main(["derive", "zoo:serial_arm:4"]) == 0
     short = capsys.readouterr().out
@@ -28,6 +30,7 @@ def test_a_robots_course_view_is_summarized_and_expanded_on_request(capsys):
     assert "⟨" not in full and len(full) > 3 * len(short)
 
 
+@pytest.mark.slow
 def test_intermediates_listing_defines_every_name_before_use(capsys):
     assert main(["derive", "zoo:serial_arm:5", "--intermediates"]) == 0
     out = capsys.readouterr().out

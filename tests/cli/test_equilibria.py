@@ -15,6 +15,7 @@ HOOP = str(ROOT / "examples" / "bead_rotating_hoop.toml")
 CART = str(ROOT / "examples" / "cart_pendulum.toml")
 
 
+@pytest.mark.slow
 def test_text_gives_each_equilibrium_and_the_condition(capsys):
     assert main(["equilibria", HOOP]) == 0
     out = capsys.readouterr().out
@@ -31,6 +32,7 @@ def test_set_below_the_critical_rate(capsys):
     assert "arccos" not in out and "2. θ = π" in out and "\n  3. " not in out
 
 
+@pytest.mark.slow
 def test_json_document(capsys):
     assert main(["equilibria", CART, "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)
@@ -75,8 +77,10 @@ def test_time_dependent_model_is_refused(capsys, tmp_path):
 def test_each_equilibrium_comes_with_its_stability(capsys):
     """The bead: θ = 0 stable iff Ω² < g/R (here Ω = 3 < 4.43), θ = π always unstable."""
     import json
-    from lagrangian.cli.main import main as cli
+
     from lagrangian_test_support import EXAMPLES_DIR
+
+    from lagrangian.cli.main import main as cli
     assert cli(["equilibria", str(EXAMPLES_DIR / "bead_rotating_hoop.toml"), "--set", "Omega=3", "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)
     verdicts = {e["values"]["theta"]: (e["stable"], e["stability_reason"]) for e in doc["equilibria"]}

@@ -1,4 +1,4 @@
-"""The command line under hostile conditions (issue 15, items 3 and 7).
+"""The command line under hostile conditions.
 
 A full device on standard output, Ctrl-C while the package is still importing, an output
 folder that cannot be written, an event written as a vector: each ends in one line and a
@@ -27,6 +27,7 @@ def _cli(*argv: str, stdout=subprocess.PIPE, env: dict | None = None) -> subproc
                           stdout=stdout, stderr=subprocess.PIPE, text=True, env=environment, timeout=120)
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not Path("/dev/full").exists(), reason="needs /dev/full")
 @pytest.mark.parametrize("argv", [["derive", PENDULUM], ["derive", "--json", PENDULUM]])
 def test_a_full_device_on_standard_output_is_one_line(argv: list[str]) -> None:
@@ -37,6 +38,7 @@ def test_a_full_device_on_standard_output_is_one_line(argv: list[str]) -> None:
     assert "standard output" in run.stderr and "No space left" in run.stderr
 
 
+@pytest.mark.slow
 def test_ctrl_c_while_importing_exits_130_without_a_traceback(tmp_path: Path) -> None:
     # A stand-in for SymPy that receives SIGINT while it loads: the real one takes seconds to import.
     fake = tmp_path / "sympy"

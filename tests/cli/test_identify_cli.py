@@ -20,7 +20,7 @@ def swing(tmp_path_factory):
                     atol=1e-12)
     theta = sol.y[0] + np.random.default_rng(7).normal(scale=1e-3, size=len(t))
     path = tmp_path_factory.mktemp("swing") / "swing.csv"
-    path.write_text("# theta measured\nt,theta\n" + "".join(f"{float(a)!r},{float(b)!r}\n" for a, b in zip(t, theta)))
+    path.write_text("# theta measured\nt,theta\n" + "".join(f"{float(a)!r},{float(b)!r}\n" for a, b in zip(t, theta, strict=True)))
     return path
 
 

@@ -1,4 +1,4 @@
-"""Ctrl-C stops a long compiled run within a second (issue 15, item 4).
+"""Ctrl-C stops a long compiled run within a second.
 
 Each run is a real process sent SIGINT once its progress bar shows the C loop running:
 it must exit 130 with one line and no traceback, and with ``-o`` keep the part computed
@@ -13,9 +13,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from lagrangian_test_support import interrupt_when_started
 
 from lagrangian.numerics import _compile
-from lagrangian_test_support import interrupt_when_started
 
 SRC = str(Path(_compile.__file__).resolve().parents[2])
 
@@ -33,6 +33,7 @@ def last_line(stderr: str) -> str:
     return stderr.replace("\r", "\n").strip().splitlines()[-1]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("method", [["--method", "dop853"], ["--method", "gauss-legendre", "--dt", "0.01"]],
                          ids=["dop853", "gauss-legendre"])
 def test_ctrl_c_keeps_the_part_computed_so_far(tmp_path, method):
@@ -49,6 +50,7 @@ def test_ctrl_c_keeps_the_part_computed_so_far(tmp_path, method):
     assert 0 < data["t"][-1] < 1e6 and np.all(np.isfinite(data["q"]))
 
 
+@pytest.mark.slow
 def test_ctrl_c_without_output_file_prints_one_line(tmp_path):
     result, stopped = interrupt(tmp_path)
     assert result.returncode == 130, result.stderr
@@ -58,6 +60,7 @@ def test_ctrl_c_without_output_file_prints_one_line(tmp_path):
     assert result.stdout == ""
 
 
+@pytest.mark.slow
 def test_ctrl_c_in_a_scipy_method_prints_one_line_and_leaves_the_old_file(tmp_path):
     out = tmp_path / "traj.csv"
     out.write_text("previous\n")

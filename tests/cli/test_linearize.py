@@ -15,11 +15,11 @@ from pathlib import Path
 import jsonschema
 import numpy as np
 import pytest
+from lagrangian_test_support import EXAMPLES_DIR
 from scipy import linalg
 
 import lagrangian
 from lagrangian.cli.main import main
-from lagrangian_test_support import EXAMPLES_DIR
 
 ROOT = Path(__file__).resolve().parents[2]
 SCHEMA = json.loads((ROOT / "src/lagrangian/output/linearize.schema.json").read_text())
@@ -113,6 +113,7 @@ def test_double_pendulum_equal_rods_with_set(capsys):
     np.testing.assert_allclose(np.square(doc["modes"]["pulsations"]), np.array(roots) * g / l, rtol=1e-12)
 
 
+@pytest.mark.slow
 def test_bead_on_hoop_bottom_unstable_side_stable_and_sweep(capsys, tmp_path):
     v = _values("bead_rotating_hoop.toml")
     g, R, W = v["g"], v["R"], v["Omega"]
@@ -280,6 +281,7 @@ def test_steady_precession_of_the_top_nutation_frequency_from_routh(capsys):
     assert np.sum(np.abs(_eig(doc)) < 1e-9) == 4
 
 
+@pytest.mark.slow
 def test_animate_writes_one_gif_per_mode_into_the_plot_folder(tmp_path, capsys):
     args = ["modes", str(EXAMPLES_DIR / "double_pendulum.toml"), "--at", "theta1=0", "--at", "theta2=0"]
     assert main([*args, "--animate"]) == 2
@@ -294,9 +296,9 @@ def test_animate_writes_one_gif_per_mode_into_the_plot_folder(tmp_path, capsys):
 
 def test_the_models_operating_point_fills_in_and_at_overrides_it(monkeypatch, capsys):
     # Until the model format has an [operating_point] table, a model carrying the attribute stands in for one.
-    from lagrangian.cli import _linearize
-
     import dataclasses
+
+    from lagrangian.cli import _linearize
 
     base = lagrangian.load_model(EXAMPLES_DIR / "cart_pendulum.toml")
 

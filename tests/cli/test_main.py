@@ -31,6 +31,7 @@ def test_default_model_is_the_seed_top(capsys):
     assert "Lagrange top" in out and "= K" in out and "= H" in out
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("example", sorted((ROOT / "examples").glob("*.toml")), ids=lambda p: p.stem)
 def test_json_is_valid_and_reads_back_into_sympy(example, capsys):
     assert main(["derive", str(example), "--json"]) == 0

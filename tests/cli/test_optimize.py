@@ -48,6 +48,7 @@ def test_options_override_the_file(capsys):
     assert doc["t_end"] == pytest.approx(2 * np.sqrt(1.0 * 20 / 0.5), rel=5e-3)
 
 
+@pytest.mark.slow
 def test_plots_include_the_inputs(capsys, tmp_path):
     pytest.importorskip("matplotlib")
     folder = tmp_path / "figs"
@@ -78,6 +79,7 @@ def test_no_optimum_exits_4_and_keeps_the_last_iterate(capsys, tmp_path):
         assert json.loads(str(data["metadata"]))["status"] == "infeasible"
 
 
+@pytest.mark.slow
 def test_ctrl_c_writes_the_solvers_last_iterate_and_exits_130(tmp_path):
     import os
     import subprocess

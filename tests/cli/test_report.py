@@ -6,9 +6,9 @@ import os
 from pathlib import Path
 
 import pytest
+from lagrangian_test_support import EXAMPLES_DIR
 
 from lagrangian.cli.main import main
-from lagrangian_test_support import EXAMPLES_DIR
 
 
 def test_help_lists_report(capsys):
@@ -27,6 +27,7 @@ def test_default_is_the_top_in_french_markdown(capsys):
     assert "angles d’Euler" in out and r"\checkmark" in out  # the Newton–Euler check runs for 3 coordinates
 
 
+@pytest.mark.slow
 def test_format_from_the_suffix_and_language(tmp_path, capsys):
     for suffix, start in ((".html", "<!DOCTYPE html>"), (".tex", r"\documentclass"), (".md", "# Simple pendulum\n")):
         out = tmp_path / f"pendulum{suffix}"
@@ -42,6 +43,7 @@ def test_no_verify_leaves_the_check_out(capsys):
     assert r"\checkmark" not in capsys.readouterr().out
 
 
+@pytest.mark.slow
 def test_simulate_adds_the_figures(tmp_path):
     out = tmp_path / "pendulum.html"
     assert main(["report", str(EXAMPLES_DIR / "simple_pendulum.toml"), "--simulate", "2", "-o", str(out)]) == 0
@@ -73,6 +75,7 @@ def test_a_failed_write_leaves_the_old_report(tmp_path, monkeypatch, capsys):
     assert [p.name for p in Path(tmp_path).iterdir()] == ["report.md"]
 
 
+@pytest.mark.slow
 def test_simulate_to_tex_writes_the_figures_beside_it_with_french_captions(tmp_path):
     """-o top.tex goes through Report.save: PNG files beside it, \\includegraphics, captions in French."""
     out = tmp_path / "top.tex"
@@ -87,6 +90,7 @@ def test_simulate_to_tex_writes_the_figures_beside_it_with_french_captions(tmp_p
     assert "Figure 3 : }" not in tex and "Figure 6 : }" not in tex
 
 
+@pytest.mark.slow
 def test_markdown_output_refers_to_figure_files(tmp_path):
     out = tmp_path / "top.md"
     assert main(["report", "--no-verify", "--simulate", "0.5", "-o", str(out)]) == 0
@@ -96,6 +100,7 @@ def test_markdown_output_refers_to_figure_files(tmp_path):
     assert pngs and all(f"]({name})" in md for name in pngs)
 
 
+@pytest.mark.slow
 def test_markdown_of_a_model_file_with_figures_writes_png_files(tmp_path):
     """``lagrangian report examples/lagrange_top.toml --simulate 2 -o top.md``: top.md, PNG files, no data: URI."""
     out = tmp_path / "top.md"
@@ -107,6 +112,7 @@ def test_markdown_of_a_model_file_with_figures_writes_png_files(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted(pngs + ["top.md"])
 
 
+@pytest.mark.slow
 def test_the_notes_name_the_derive_command_for_the_model(capsys):
     assert main(["report", "zoo:planar_chain:14", "--no-verify", "--format", "html"]) == 0
     assert "lagrangian derive zoo:planar_chain:14 --json" in capsys.readouterr().out
@@ -119,6 +125,7 @@ def test_set_changes_the_values_shown_without_simulate(capsys):
     assert "0,5" in out
 
 
+@pytest.mark.slow
 def test_zoo_models_by_name(capsys):
     assert main(["report", "zoo:planar_chain:3", "--lang", "en", "--no-verify"]) == 0
     out = capsys.readouterr().out

@@ -2,9 +2,9 @@
 
 import numpy as np
 import pytest
+from lagrangian_test_support import EXAMPLES_DIR
 
 from lagrangian.cli.main import main
-from lagrangian_test_support import EXAMPLES_DIR
 
 
 def test_top_to_csv_reports_conservation_and_applies_settings(tmp_path, capsys):
@@ -113,6 +113,7 @@ def test_a_robots_reactions_are_asked_for_not_computed_by_default(tmp_path, caps
 PENDULUM_FILE = str(EXAMPLES_DIR / "simple_pendulum.toml")
 
 
+@pytest.mark.slow
 def test_bare_plot_writes_into_the_model_stem_folder(tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
     assert main(["simulate", PENDULUM_FILE, "--t-end", "0.2", "--n-out", "11", "--animation", "none",

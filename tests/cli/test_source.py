@@ -44,7 +44,7 @@ def test_a_bad_zoo_name_exits_with_the_model_error_code(capsys):
                                   "zoo:spatial_chain:1000", "zoo:planar_chain:" + "9" * 5000,
                                   "zoo:planar_chain:+3", "zoo:planar_chain: 3"])
 def test_zoo_sizes_are_plain_digits_up_to_the_limit(name, capsys):
-    # issue 15: `²` gave a ValueError traceback and N had no upper bound
+    # `²` once gave a ValueError traceback and N had no upper bound
     with pytest.raises(lagrangian.ModelError, match=f"from 1 to {zoo.MAX_LINKS}") as info:
         load_source(name)
     assert len(str(info.value)) < 300

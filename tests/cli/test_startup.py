@@ -6,6 +6,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 from lagrangian.cli._arguments import export, simulate
 from lagrangian.numerics import METHODS, STABILIZATIONS
 from lagrangian.output import EXPORT_TARGETS
@@ -44,6 +46,7 @@ def test_help_and_parsing_every_command_import_nothing_of_the_pipeline():
     assert out.split() == []
 
 
+@pytest.mark.slow
 def test_a_cached_simulation_loads_neither_sympy_nor_scipy(tmp_path):
     env = {**os.environ, "LAGRANGIAN_CACHE": str(tmp_path / "cache")}
     runs = []

@@ -1,4 +1,4 @@
-"""``lagrangian sweep`` (issue 14, items 3 and 6): grids, maps, Ctrl-C and --resume."""
+"""``lagrangian sweep``: grids, maps, Ctrl-C and --resume."""
 
 import os
 import subprocess
@@ -11,12 +11,13 @@ import pytest
 xr = pytest.importorskip("xarray")
 pytest.importorskip("zarr")
 
+from lagrangian_test_support import interrupt_when_started  # noqa: E402
+
 from lagrangian import EventSpec, lagrange_top, load_model  # noqa: E402
 from lagrangian.cli._settings import SettingError  # noqa: E402
 from lagrangian.cli._sweep import parse_grid  # noqa: E402
 from lagrangian.cli.main import main  # noqa: E402
 from lagrangian.numerics import _compile, flip_events, open_ensemble, simulate  # noqa: E402
-from lagrangian_test_support import interrupt_when_started  # noqa: E402
 
 SRC = str(Path(_compile.__file__).resolve().parents[2])
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
@@ -35,6 +36,7 @@ def test_bad_grid_axes_are_refused(item, message):
         parse_grid([item], lagrange_top())
 
 
+@pytest.mark.slow
 def test_two_axes_draw_the_flip_map_and_the_store_reads_back(tmp_path, capsys):
     out, image = tmp_path / "flip.zarr", tmp_path / "flip.png"
     code = main(["sweep", str(EXAMPLES / "double_pendulum.toml"), "--grid", "theta1=-3:3:6", "--grid",
@@ -54,6 +56,7 @@ def test_two_axes_draw_the_flip_map_and_the_store_reads_back(tmp_path, capsys):
     assert "wrote" in capsys.readouterr().out
 
 
+@pytest.mark.slow
 def test_an_existing_store_is_not_overwritten(tmp_path, capsys):
     out = tmp_path / "s.zarr"
     args = ["sweep", "zoo:lagrange_top", "--grid", "phi_dot=20:40:3", "--t-end", "0.2", "--out", str(out)]
@@ -62,6 +65,7 @@ def test_an_existing_store_is_not_overwritten(tmp_path, capsys):
     assert "already exists" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_ctrl_c_keeps_finished_members_and_resume_finishes(tmp_path):
     env = {**os.environ, "PYTHONPATH": SRC, "LAGRANGIAN_CACHE": str(tmp_path / "cache")}
     out = tmp_path / "tops.zarr"

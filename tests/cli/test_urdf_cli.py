@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 import pytest
+from urdf_robots import DOUBLE_PENDULUM
 
 from lagrangian.cli.main import main
-from urdf_robots import DOUBLE_PENDULUM
 
 
 @pytest.fixture
@@ -17,6 +17,7 @@ def urdf(tmp_path):
     return path
 
 
+@pytest.mark.slow
 def test_derive_prints_the_course_view_of_a_urdf_and_notes_what_it_skipped(urdf, capsys):
     assert main(["derive", str(urdf)]) == 0
     captured = capsys.readouterr()

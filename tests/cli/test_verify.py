@@ -33,6 +33,7 @@ def test_default_model_is_the_top(capsys) -> None:
     assert "Lagrange top" in capsys.readouterr().out
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("example", EXAMPLES, ids=lambda p: p.stem)
 def test_every_example_verifies(example: Path, capsys) -> None:
     assert main(["verify", str(example)]) == 0

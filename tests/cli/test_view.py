@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import re
 
+import pytest
 from lagrangian_test_support import EXAMPLES_DIR
 
 from lagrangian.cli.main import main
@@ -31,6 +32,7 @@ def test_a_model_at_rest_and_a_saved_trajectory(tmp_path, capsys):
     assert [a["name"] for a in again["arrows"] if a["shown"]] == ["V(S2)"]
 
 
+@pytest.mark.slow
 def test_a_still_picture(tmp_path):
     assert main(["view", "--set", "theta=0.7", "-o", str(tmp_path / "top.png")]) == 0
     assert (tmp_path / "top.png").read_bytes().startswith(b"\x89PNG\r\n\x1a\n")

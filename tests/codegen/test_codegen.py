@@ -23,6 +23,7 @@ def _model(name):
     return planar_chain(7) if name == "planar_chain_7" else lagrangian.load_model(MODELS[name])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", [*MODELS, "planar_chain_7"])
 def test_compiled_c_equals_the_derived_expressions(name):
     model = _model(name)
@@ -117,6 +118,6 @@ def test_c_printer_writes_the_functions_symengine_makes_by_itself(tmp_path):
     (tmp_path / "f.c").write_text("\n".join(lines))
     subprocess.run(["gcc", "-O0", "-o", str(tmp_path / "f"), str(tmp_path / "f.c"), "-lm"], check=True)
     out = subprocess.run([str(tmp_path / "f")], capture_output=True, text=True, check=True).stdout.split()
-    for f, text in zip(functions, out):
+    for f, text in zip(functions, out, strict=True):
         expected = float(f(se.RealDouble(points[f.__name__])))
         assert float(text) == pytest.approx(expected, rel=1e-14), f.__name__

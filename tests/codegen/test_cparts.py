@@ -50,6 +50,7 @@ def private_cache(tmp_path, monkeypatch):
     return tmp_path / "cache"
 
 
+@pytest.mark.slow
 def test_a_function_in_parts_gives_the_numbers_of_the_whole_function(private_cache):
     whole, none = _library(10_000, "walk-whole")
     cut, count = _library(9, "walk-parts")
@@ -59,7 +60,7 @@ def test_a_function_in_parts_gives_the_numbers_of_the_whole_function(private_cac
         t = float(rng.uniform(-1, 1))
         y, p = rng.uniform(-1, 1, 2), rng.uniform(-0.9, 0.9, 3)
         out = [np.zeros(STEPS // 7 + 1) for _ in range(2)]
-        for lib, o in zip((whole, cut), out):
+        for lib, o in zip((whole, cut), out, strict=True):
             lib.walk(ctypes.c_double(t), y.ctypes.data_as(ctypes.c_void_p), p.ctypes.data_as(ctypes.c_void_p),
                      o.ctypes.data_as(ctypes.c_void_p))
         assert np.array_equal(out[0], out[1])  # the same statements in the same order: the same doubles
@@ -82,6 +83,7 @@ def test_a_unit_the_compiler_rejects_is_an_error_naming_it(private_cache):
         _compile.compile_library(["int lg_ok(void) { return 0; }\n", "this is not C\n"], "rejected")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("joints, limit, cut_functions", [
     (3, 25, ("lg_mass_forces", "lg_hamilton_force")),  # the course's form: M and F by Cholesky
     (4, 80, ("lg_mass_forces", "lg_aba_backward", "lg_monitors")),  # recursive, q'' by the articulated body
@@ -107,7 +109,7 @@ def test_a_robot_compiled_in_parts_moves_as_compiled_in_one_piece(private_cache,
     assert np.array_equal(p, cut.parameter_vector(), equal_nan=True)  # lg_constants, in parts too (NaN: the law's hint)
     # The same statements in the same order: the same doubles, to the last bit.
     assert np.array_equal(whole.rhs(T, Y, p), cut.rhs(T, Y, p))
-    for a, b in zip(whole.mass_forces(T, Y, p), cut.mass_forces(T, Y, p)):
+    for a, b in zip(whole.mass_forces(T, Y, p), cut.mass_forces(T, Y, p), strict=True):
         assert np.array_equal(a, b)
     assert np.array_equal(whole.monitor_values(T, Y, p), cut.monitor_values(T, Y, p))
     assert np.array_equal(whole.input_values(T, Y, p), cut.input_values(T, Y, p))

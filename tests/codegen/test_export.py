@@ -1,6 +1,6 @@
 """Code export (`lagrangian.export`, ``lagrangian export``): the written NumPy module and C library
 reproduce the in-package q̈ = M⁻¹F (`CompiledSystem.rhs`) at random states, and bad input
-writes nothing (issue 12, items 3 and 6)."""
+writes nothing."""
 
 from __future__ import annotations
 
@@ -55,7 +55,7 @@ def _states(case: str, count: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
 
 def _reference(case: str, t: np.ndarray, y: np.ndarray) -> np.ndarray:
     system = _system(case)
-    return np.array([system.rhs(ti, yi, system.parameter_vector()) for ti, yi in zip(t, y)])
+    return np.array([system.rhs(ti, yi, system.parameter_vector()) for ti, yi in zip(t, y, strict=True)])
 
 
 def _assert_close(actual: np.ndarray, expected: np.ndarray) -> None:
@@ -70,6 +70,7 @@ def _import(path: Path):
     return module
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", CASES)
 def test_numpy_export_reproduces_the_package(case, tmp_path):
     eom = _eom(case)
@@ -79,7 +80,7 @@ def test_numpy_export_reproduces_the_package(case, tmp_path):
     assert list(module.PARAMETERS) == [p.name for p in eom.model.parameters]
     t, y = _states(case, 12, seed=3)
     expected = _reference(case, t, y)
-    for ti, yi, ei in zip(t, y, expected):  # one state at a time
+    for ti, yi, ei in zip(t, y, expected, strict=True):  # one state at a time
         _assert_close(module.rhs(ti, yi), ei)
     _assert_close(module.rhs(t, y), expected)  # batched: (N, 2n), t of shape (N,)
     n = len(eom.q)
@@ -125,6 +126,7 @@ def _c_library(directory: Path, ident: str) -> ctypes.CDLL:
     return ctypes.CDLL(str(lib))
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
 @pytest.mark.parametrize("case", CASES)
 def test_c_export_reproduces_the_package(case, tmp_path):
@@ -144,7 +146,7 @@ def test_c_export_reproduces_the_package(case, tmp_path):
     t, y = _states(case, 12, seed=5)
     expected = _reference(case, t, y)
     out = np.empty(y.shape[1])
-    for ti, yi, ei in zip(t, y, expected):
+    for ti, yi, ei in zip(t, y, expected, strict=True):
         yi = np.ascontiguousarray(yi)
         fn(ti, yi.ctypes.data_as(double_p), p.ctypes.data_as(double_p), out.ctypes.data_as(double_p))
         _assert_close(out, ei)
@@ -202,6 +204,7 @@ int main(void) {
 C_DRIVER_CASES = ["lagrange_top.toml", "pendulum_tension.toml", "rolling_coin.toml", "zoo:planar_chain:5"]
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(shutil.which("gcc") is None, reason="needs gcc")
 @pytest.mark.parametrize("case", C_DRIVER_CASES)
 def test_c_export_driver_integrals_and_constraint_rows(case, tmp_path):
@@ -227,7 +230,7 @@ def test_c_export_driver_integrals_and_constraint_rows(case, tmp_path):
     def line(values) -> str:
         return " ".join(repr(float(v)) for v in values)
 
-    text = line([*p, *stab]) + "\n" + "\n".join(line([ti, *yi]) for ti, yi in zip(t, y))
+    text = line([*p, *stab]) + "\n" + "\n".join(line([ti, *yi]) for ti, yi in zip(t, y, strict=True))
     run = subprocess.run([str(exe)], input=text, capture_output=True, text=True, timeout=60)
     assert run.returncode == 0, run.stderr
     got = np.array([[float(v) for v in line.split()] for line in run.stdout.strip().splitlines()])
@@ -244,9 +247,9 @@ def test_c_export_driver_integrals_and_constraint_rows(case, tmp_path):
     else:
         exact = _reference(case, t, y)
     m, ni = len(rows), len(integrals)
-    for k, (ti, yi) in enumerate(zip(t, y)):
-        state = {**{c: v for c, v in zip(eom.coordinates, yi[:n])},
-                 **{c + "_dot": v for c, v in zip(eom.coordinates, yi[n:])}, str(eom.t): ti}
+    for k, (ti, yi) in enumerate(zip(t, y, strict=True)):
+        state = {**{c: v for c, v in zip(eom.coordinates, yi[:n], strict=True)},
+                 **{c + "_dot": v for c, v in zip(eom.coordinates, yi[n:], strict=True)}, str(eom.t): ti}
         parts = np.split(got[k], np.cumsum([2 * n, ni, m * n, 3 * m, 2 * n]))
         assert len(got[k]) == 2 * n + ni + (m * n + 3 * m + 2 * n + m if m else 0)
         _assert_close(parts[0], exact[k])
@@ -328,6 +331,7 @@ def test_stick_slip_models_are_refused(tmp_path):
 CONSTRAINED_CASES = ["pendulum_tension.toml", "rolling_coin.toml", "rolling_disk_incline.toml"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", CONSTRAINED_CASES)
 def test_numpy_export_of_a_constrained_model_solves_for_the_multipliers(case, tmp_path):
     """The NumPy module's rhs and rhs_multipliers (augmented solve, numpy.linalg) against the package's
@@ -352,8 +356,8 @@ def test_numpy_export_of_a_constrained_model_solves_for_the_multipliers(case, tm
     assert A.shape == (len(y), m, n) and b.shape == c.shape == f.shape == (len(y), m)
     rows_at = Numeric(eom, [a for r in rows for a in r.coefficients] + [r.b for r in rows] + [r.bias for r in rows]
                       + [r.expression if r.kind == "holonomic" else 0 for r in rows])
-    for k, (ti, yi) in enumerate(zip(t, y)):
-        state = {**dict(zip(eom.coordinates, yi[:n])), **{c_ + "_dot": v for c_, v in zip(eom.coordinates, yi[n:])},
+    for k, (ti, yi) in enumerate(zip(t, y, strict=True)):
+        state = {**dict(zip(eom.coordinates, yi[:n], strict=True)), **{c_ + "_dot": v for c_, v in zip(eom.coordinates, yi[n:], strict=True)},
                  str(eom.t): ti}
         _assert_close(np.concatenate([A[k].ravel(), b[k], c[k], f[k]]), rows_at(state))
 
@@ -368,6 +372,7 @@ def _jax_and_numpy(case: str, tmp_path: Path):  # type: ignore[no-untyped-def]
     return jax, eom, _import(path), _import(np_path)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", ["pendulum_tension.toml", "rolling_coin.toml"])
 def test_jax_export_of_a_constrained_model(case, tmp_path):
     jax, _, module, reference = _jax_and_numpy(case, tmp_path)
@@ -381,6 +386,7 @@ def test_jax_export_of_a_constrained_model(case, tmp_path):
     _assert_close(np.asarray(jax.jit(module.rhs)(t, y)), reference.rhs(t, y))
 
 
+@pytest.mark.octave
 @pytest.mark.skipif(shutil.which("octave") is None, reason="needs GNU Octave (make test installs it)")
 @pytest.mark.parametrize("case", ["pendulum_tension.toml", "rolling_coin.toml"])
 def test_octave_export_of_a_constrained_model_runs(case, tmp_path):
@@ -396,7 +402,7 @@ def test_octave_export_of_a_constrained_model_runs(case, tmp_path):
 
     calls = "".join(f"[yd, lam] = {ident}_rhs_multipliers({float(ti)!r}, {column(yi)}, d, 2, 3); "
                     f"disp(num2str([yd; lam]', 17)); disp(num2str({ident}_rhs({float(ti)!r}, {column(yi)}, d)', 17));"
-                    for ti, yi in zip(t, y))
+                    for ti, yi in zip(t, y, strict=True))
     script = f"addpath('{tmp_path / 'out'}'); [n, d] = {ident}_parameters(); {calls}"
     run = subprocess.run(["octave", "--no-gui", "--quiet", "--no-window-system", "--eval", script],
                          capture_output=True, text=True, timeout=120)
@@ -417,12 +423,14 @@ def test_cli_export(tmp_path, capsys):
     assert _import(path).PARAMETERS["g"] == 1.5
 
 
+@pytest.mark.slow
 def test_cli_exports_a_constrained_model_to_c(tmp_path, capsys):
     assert main(["export", str(EXAMPLES_DIR / "rolling_coin.toml"), "--to", "c", "-o", str(tmp_path / "coin")]) == 0
     header = (tmp_path / "coin" / "rolling_upright_coin.h").read_text()
     assert "#define ROLLING_UPRIGHT_COIN_NC 2" in header and "rolling_upright_coin_rhs_multipliers(" in header
 
 
+@pytest.mark.slow
 def test_cli_default_directory(tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
     assert main(["export", str(EXAMPLES_DIR / "double_pendulum.toml"), "--to", "c"]) == 0
@@ -462,6 +470,7 @@ def test_jax_export_logic_on_numpy(case, tmp_path, monkeypatch):
     _assert_close(module.rhs(t[0], y[0]), expected[0])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", ["lagrange_top.toml", "kapitza_pendulum.toml"])
 def test_jax_export(case, tmp_path):
     """JAX itself (the `jax` extra, in `test`): rhs, mass_matrix and forcing jitted and vmapped in
@@ -509,6 +518,7 @@ def test_octave_export_structure(case, tmp_path):
     assert f"names = {{{', '.join(repr(p.name) for p in eom.model.parameters)}}};" in paths[0].read_text()
 
 
+@pytest.mark.octave
 @pytest.mark.skipif(shutil.which("octave") is None, reason="GNU Octave is not installed")
 @pytest.mark.parametrize("case", ["lagrange_top.toml", "zoo:planar_chain:5"])
 def test_octave_export_runs(case, tmp_path):
@@ -518,7 +528,7 @@ def test_octave_export_runs(case, tmp_path):
     t, y = _states(case, 4, seed=11)
     expected = _reference(case, t, y)
     calls = "".join(f"disp(num2str({ident}_rhs({float(ti)!r}, [{'; '.join(repr(float(v)) for v in yi)}], d)', 17));"
-                    for ti, yi in zip(t, y))
+                    for ti, yi in zip(t, y, strict=True))
     script = f"addpath('{tmp_path / 'out'}'); [n, d] = {ident}_parameters(); {calls}"
     run = subprocess.run(["octave", "--no-gui", "--quiet", "--no-window-system", "--eval", script],
                          capture_output=True, text=True, timeout=120)

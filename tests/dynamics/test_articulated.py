@@ -15,6 +15,8 @@ import warnings
 import numpy as np
 import pytest
 import symengine as se
+from lagrangian_test_support import random_point
+from urdf_robots import SPATIAL_ARM, TREE, Peer
 
 import lagrangian
 from lagrangian.errors import SimulationError
@@ -22,8 +24,6 @@ from lagrangian.model.build import ModelBuilder
 from lagrangian.model.urdf import UrdfNote, parse_urdf
 from lagrangian.model.zoo import lagrange_top, relative_chain, serial_arm
 from lagrangian.numerics import compile_system
-from lagrangian_test_support import random_point
-from urdf_robots import SPATIAL_ARM, TREE, Peer
 
 RTOL = 1e-10
 
@@ -77,6 +77,7 @@ def _check_against_course(model, states: int = 2, seed: int = 3) -> None:
         assert np.all(pivots[:, 0] > 0) and np.all(pivots[:, 0] <= pivots[:, 1] * (1 + 1e-12))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("model", [relative_chain(5), serial_arm(5, damping=True), _branched_tree()],
                          ids=["chain", "arm_with_torques_and_dampers", "branched_tree"])
 def test_articulated_accelerations_solve_the_course_equations(model) -> None:
@@ -116,11 +117,11 @@ def test_compiled_articulated_rhs_is_pinocchios_aba(text: str) -> None:
     n = len(eom.q)
     rng = np.random.default_rng(5)
     tau = rng.uniform(-1, 1, n)
-    p = system.parameter_vector({name: float(x) for name, x in zip(eom.model.inputs, tau)})
+    p = system.parameter_vector({name: float(x) for name, x in zip(eom.model.inputs, tau, strict=True)})
     Y = np.hstack([rng.uniform(-1.2, 1.2, (6, n)), rng.uniform(-2, 2, (6, n))])
     ours = system.rhs(0.0, Y, p)[:, n:]  # batched
     M, F = system.mass_forces(np.zeros(len(Y)), Y, p)
-    for y, a, m, f in zip(Y, ours, np.reshape(M, (-1, n, n)), np.reshape(F, (-1, n))):
+    for y, a, m, f in zip(Y, ours, np.reshape(M, (-1, n, n)), np.reshape(F, (-1, n)), strict=True):
         theirs = peer.acceleration(y[:n], y[n:], tau)
         np.testing.assert_allclose(a, theirs, rtol=RTOL, atol=RTOL)
         np.testing.assert_allclose(a, np.linalg.solve(m, f), rtol=RTOL, atol=RTOL)

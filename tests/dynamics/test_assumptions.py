@@ -1,4 +1,4 @@
-"""Sign assumptions and coordinate ranges in the derivation (issue 16, item 4).
+"""Sign assumptions and coordinate ranges in the derivation.
 
 Truth: the closed form of each system (a spring of natural length L fixed to a wall at
 x = −L pulls the mass back with −k x; a weight on a taut string of length ℓ over a step...),

@@ -1,4 +1,4 @@
-"""Rows chosen by the engine (issue 16, item 5): a vector constraint written in any frame.
+"""Rows chosen by the engine: a vector constraint written in any frame.
 
 `no_slip` written in the disk's own frame (or the lean frame) gives three rows of rank two;
 the engine keeps an independent set by itself and says which.  Truth: the formulation
@@ -65,7 +65,7 @@ def _numeric(e: se.Basic, values: dict[se.Basic, float]) -> float:
 def accelerations(eom: lagrangian.EquationsOfMotion, q: np.ndarray, qd: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """q̈ and Aᵀλ from [M −Aᵀ; A 0][q̈; λ] = [F; −c] at the state (q, q̇), parameters at their values."""
     values = {p.symbol: p.value for p in eom.model.parameters}
-    values |= dict(zip(eom.q, q)) | dict(zip(eom.qd, qd)) | {eom.t: 0.0}
+    values |= dict(zip(eom.q, q, strict=True)) | dict(zip(eom.qd, qd, strict=True)) | {eom.t: 0.0}
     n, m = len(eom.q), len(eom.constraints)
     M = np.array([[_numeric(e, values) for e in row] for row in eom.M])
     F = np.array([_numeric(e, values) for e in eom.F])
@@ -85,7 +85,7 @@ def same_motion(reference: lagrangian.EquationsOfMotion, other: lagrangian.Equat
         q = rng.uniform(-1.5, 1.5, n)
         qd = rng.uniform(-2.0, 2.0, n)
         # Velocities that satisfy the reference's rows: q̇ projected on the null space of A (b = 0 here).
-        point = values | dict(zip(reference.q, q)) | {reference.t: 0.0}
+        point = values | dict(zip(reference.q, q, strict=True)) | {reference.t: 0.0}
         A = np.array([[_numeric(e, point) for e in r.coefficients] for r in reference.constraints])
         qd = qd - np.linalg.pinv(A) @ (A @ qd)
         qdd_ref, reaction_ref = accelerations(reference, q, qd)
@@ -188,6 +188,7 @@ def test_explicit_axes_are_kept_as_given() -> None:
     assert "leave `axes` out" in exc.value.fix
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("lang", "words"), [
     ("en", "Written in R2, the constraint “rolling without slipping at I” gives 3 rows of rank 2 only; the same "
            "vector is written along the axes of R1"),

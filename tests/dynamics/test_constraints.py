@@ -94,6 +94,7 @@ def test_pendulum_tension_closed_form_and_sign() -> None:
     assert float(R[1].subs(bottom)) == pytest.approx(9.81) and float(lam_on.subs(bottom)) < 0
 
 
+@pytest.mark.slow
 def test_pendulum_multipliers_match_sympy_lagranges_method() -> None:
     m, g, l = sp.symbols("m g l")
     x, y = me.dynamicsymbols("x y")
@@ -188,7 +189,7 @@ def _coin_kane() -> tuple[list, sp.Matrix, dict]:
     I = G.locatenew("I", -r * N.z)
     I.v2pt_theory(G, N, R2)
     coin = me.RigidBody("S", G, R2, m, (me.inertia(R2, m * r**2 / 4, m * r**2 / 2, m * r**2 / 4), G))
-    kde = [qi.diff() - ui for qi, ui in zip(q, u)]
+    kde = [qi.diff() - ui for qi, ui in zip(q, u, strict=True)]
     nonholonomic = [I.vel(N).dot(R1.x), I.vel(N).dot(R1.y)]
     km = me.KanesMethod(N, q_ind=q, u_ind=[u[2], u[3]], u_dependent=[u[0], u[1]], kd_eqs=kde,
                         velocity_constraints=nonholonomic)
@@ -199,6 +200,7 @@ def _coin_kane() -> tuple[list, sp.Matrix, dict]:
     return q, sp.Matrix([rhs[4 + k] for k in order]), {"u": u}
 
 
+@pytest.mark.slow
 def test_coin_accelerations_match_sympy_kanes_method() -> None:
     eom = eom_of("rolling_coin.toml")
     assert [r.name for r in eom.constraints] == ["rolling_x1", "rolling_y1"]
@@ -220,12 +222,13 @@ def test_coin_accelerations_match_sympy_kanes_method() -> None:
         ours = np.array([float(qdd[i, 0].subs(values)) for i in range(4)])
         kane = {sp.Symbol("m"): 0.01, sp.Symbol("r"): 0.1}
         kane.update({qi: state[str(qi.func)] for qi in q})
-        kane.update({ui: state[str(qi.func) + "_dot"] for qi, ui in zip(q, u)})
+        kane.update({ui: state[str(qi.func) + "_dot"] for qi, ui in zip(q, u, strict=True)})
         theirs = np.array([float(e) for e in rhs.subs(kane)])
         assert np.allclose(ours, theirs, rtol=RTOL, atol=1e-12), (ours, theirs)
 
 
 # -- the top ---------------------------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_top_pivot_rows_and_reaction_at_O() -> None:
     eom = eom_of("top_reaction.toml")
     assert [r.name for r in eom.constraints] == ["pivot_x0", "pivot_y0", "pivot_z0"]
@@ -334,7 +337,7 @@ def test_axes_keep_the_rows_that_a_holonomic_contact_leaves() -> None:
     assert [r.name for r in kept.constraints] == ["contact", "rolling_x1"]
     row, ref = kept.constraints[1], pfaff.constraints[1]
     assert row.kind == "nonholonomic"
-    assert all(is_zero(a - b) for a, b in zip(row.coefficients, ref.coefficients))
+    assert all(is_zero(a - b) for a, b in zip(row.coefficients, ref.coefficients, strict=True))
     # The same axis named as x (the letter) or as the frame's axis name.
     letter = derive_text(INCLINE_NORMAL + 'rolling = { no_slip = "I", on = "S", frame = "R1", axes = ["x"] }\n')
     assert [r.name for r in letter.constraints] == ["contact", "rolling_x1"]

@@ -66,7 +66,7 @@ def test_joint_damper_opposes_the_relative_rotation(bodies: str, expected) -> No
     hinge = next(f for f in eom.loads if f.name == "hinge")
     td1, td2 = eom.qd
     assert hinge.kind == "jointdamper" and hinge.potential is None
-    assert are_zero([q - e for q, e in zip(hinge.Q, expected(S("c"), td1, td2))]) == [True, True]
+    assert are_zero([q - e for q, e in zip(hinge.Q, expected(S("c"), td1, td2), strict=True)]) == [True, True]
     assert verify(eom).agrees  # taken as two couples by the Newton–Euler check
 
 
@@ -74,7 +74,7 @@ def test_joint_damper_is_its_rayleigh_function() -> None:
     base = example("double_pendulum.toml").replace("[parameters]", "[parameters]\nc = 0.05")
     damper = derive(base + '\n[loads.hinge]\njoint_damper = ["S1", "S2"]\ncoefficient = "c"\n')
     rayleigh = derive(base + '\n[loads.hinge]\ndissipation = "1/2*c*theta2_dot^2"\n')
-    assert all(are_zero([a - b for a, b in zip(damper.loads[-1].Q, rayleigh.loads[-1].Q)]))
+    assert all(are_zero([a - b for a, b in zip(damper.loads[-1].Q, rayleigh.loads[-1].Q, strict=True)]))
 
 
 @pytest.mark.parametrize(("value", "words"), [

@@ -108,7 +108,7 @@ def test_the_coriolis_and_entrainment_forces_are_a_generalized_potential():
     # In R1 turning at Ω: L = ½ m |v_r + Ω ∧ r|² − U, so U_inertial = −m Ω·(r ∧ v_r) − ½ m |Ω ∧ r|².
     course = _eom(ROTATING)  # the engine's Coriolis and entrainment loads (seed, Remarque 3)
     written = _eom(INERTIAL_AS_POTENTIAL)
-    for a, b in zip(course.F, written.F):
+    for a, b in zip(course.F, written.F, strict=True):
         assert _same(a, b)
     Om = se.Symbol("Omega")
     assert _same(written.F[0], -se.Symbol("k") * x + 2 * m * Om * yd + m * Om**2 * x)

@@ -104,14 +104,14 @@ def test_a_body_and_a_particle_in_a_tumbling_accelerated_frame_agree_with_R0() -
     assert np.allclose(ours, theirs, rtol=1e-10, atol=1e-10 * np.max(np.abs(theirs))), (ours, theirs)
     # T(Σ/R) is not T(Σ/R0), but the q̈ coefficients (M) are the same: V*(P) does not depend on the frame.
     assert not is_zero(relative.T - galilean.T)
-    assert all(are_zero([a - b for ra, rb in zip(relative.M, galilean.M) for a, b in zip(ra, rb)]))
+    assert all(are_zero([a - b for ra, rb in zip(relative.M, galilean.M, strict=True) for a, b in zip(ra, rb, strict=True)]))
 
 
 def test_rigid_body_coriolis_torsor_has_zero_real_power_but_works_virtually() -> None:
     eom = derive(CARRIED + IN_E)
     coriolis = next(f for f in eom.loads if f.name == "Coriolis")
     # The constraints do not move in E, so Σ Q_i q̇_i is the real power: zero.
-    assert is_zero(sum((q * qd for q, qd in zip(coriolis.Q, eom.qd)), se.Integer(0)))
+    assert is_zero(sum((q * qd for q, qd in zip(coriolis.Q, eom.qd, strict=True)), se.Integer(0)))
     assert not all(are_zero(coriolis.Q))
     assert "real power Σ F·V(P/R) ≡ 0" in coriolis.note and "virtual power Σ Q_i q_i* not zero" in coriolis.note
     # Each torsor alone: F·V(G/R) + M_G·Ω(S/R) ≡ 0 for the body.
@@ -204,7 +204,7 @@ def test_foucault_coriolis_works_virtually_and_not_really() -> None:
     eom = lagrangian.derive(lagrangian.load_model(EXAMPLES_DIR / "foucault_pendulum.toml"))
     coriolis = next(f for f in eom.loads if f.kind == "inertial: Coriolis")
     assert coriolis.potential is None
-    assert is_zero(sum((q * qd for q, qd in zip(coriolis.Q, eom.qd)), se.Integer(0)))
+    assert is_zero(sum((q * qd for q, qd in zip(coriolis.Q, eom.qd, strict=True)), se.Integer(0)))
     assert not any(are_zero(coriolis.Q))
     assert not is_zero(coriolis.virtual_power)
 

@@ -117,7 +117,7 @@ def lagrange_top() -> Oracle:
     return [psi, theta, phi], S.kinetic_energy(N), [(G, -m * g * N.z)], N
 
 
-# -- issue 5: the same motions described in R0, with the prescribed motions written out -----------
+# -- the same motions described in R0, with the prescribed motions written out -----------
 def bead_rotating_hoop() -> Oracle:
     # The engine writes it in the hoop's frame R1 (inertial forces); the oracle in R0, where R1
     # is a frame turned by the prescribed angle Omega t.
@@ -181,7 +181,7 @@ def block_on_belt() -> Oracle:
     return [x], me.Particle("block", B, m).kinetic_energy(N), [(B, -m * g * N.z - k * x * N.x + friction)], N
 
 
-# -- examples with complementary constraints (issue 5): the oracle is the unconstrained system
+# -- examples with complementary constraints: the oracle is the unconstrained system
 # (M q̈ = F without the multiplier terms); tests/dynamics/test_constraints.py checks the
 # constrained accelerations and the multipliers against LagrangesMethod/KanesMethod with the
 # same constraints.
@@ -552,7 +552,7 @@ def _dalembert_qdd(name: str) -> Callable[[dict[str, float]], np.ndarray]:
     qd = [qi.diff(t) for qi in q]
     names = [str(qi.func) for qi in q]
     qs, qds = sp.symbols(names), sp.symbols([n + "_dot" for n in names])
-    to_symbols = {**dict(zip(qd, qds)), **dict(zip(q, qs))}
+    to_symbols = {**dict(zip(qd, qds, strict=True)), **dict(zip(q, qs, strict=True))}
     no_qdd = {qi.diff(t, 2): 0 for qi in q}
     values = _parameter_values(name)
     force_on = {point.name: force for point, force in forces}
@@ -597,8 +597,8 @@ def oracle_qdd(name: str) -> Callable[[dict[str, float]], np.ndarray]:
     names = [str(qi.func) for qi in q]
     qs = sp.symbols(names)
     qds = sp.symbols([n + "_dot" for n in names])
-    to_symbols = {qi.diff(t): s for qi, s in zip(q, qds)}
-    to_symbols_q = {qi: s for qi, s in zip(q, qs)}
+    to_symbols = {qi.diff(t): s for qi, s in zip(q, qds, strict=True)}
+    to_symbols_q = {qi: s for qi, s in zip(q, qs, strict=True)}
     ts = sp.Symbol("t")  # prescribed motions depend on the time
     values = _parameter_values(name)
 
@@ -617,6 +617,7 @@ def oracle_qdd(name: str) -> Callable[[dict[str, float]], np.ndarray]:
     return qdd
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", example_names())
 def test_accelerations_match_sympy_mechanics(name: str) -> None:
     assert name in ORACLES, f"example {name} has no SymPy oracle in {__file__}"
@@ -624,7 +625,7 @@ def test_accelerations_match_sympy_mechanics(name: str) -> None:
     assert list(eom.coordinates) == [str(qi.func) for qi in ORACLES[name]()[0]], "coordinate order differs"
     oracle = oracle_qdd(name)
     times = np.random.default_rng(20240602).uniform(0.0, 10.0, STATES)
-    for state, t in zip(random_states(name, eom.coordinates, STATES, seed=20240601), times):
+    for state, t in zip(random_states(name, eom.coordinates, STATES, seed=20240601), times, strict=True):
         state["t"] = float(t)  # examples with prescribed motions depend on t
         ours = engine_qdd(name, state)
         theirs = oracle(state)

@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import symengine as se
+from lagrangian_test_support import EXAMPLES_DIR, random_point
 
 import lagrangian
 from lagrangian.dynamics._recursive import AUTO_MIN_DEPTH
@@ -19,7 +20,6 @@ from lagrangian.errors import DerivationError
 from lagrangian.model.build import ModelBuilder
 from lagrangian.model.zoo import ARM_AXES, lagrange_top, planar_chain, relative_chain, serial_arm
 from lagrangian.numerics import compile_system, simulate
-from lagrangian_test_support import EXAMPLES_DIR, random_point
 
 RTOL = 1e-10
 
@@ -56,11 +56,13 @@ def _check_against_course(model, states: int = 3, seed: int = 1) -> None:
                _course([eq.dT_dq - eq.dU_dq + eq.Q_nc for eq in course.equations], values))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("n", [3, 4, 5, 6])
 def test_planar_chain_in_relative_angles(n: int) -> None:
     _check_against_course(relative_chain(n))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("n", [4, 7])
 def test_spatial_arm_full_inertia_torques_and_dampers(n: int) -> None:
     # Joints about z, y, y, x, y, x, z; centres off every axis, products of inertia, motor
@@ -144,6 +146,7 @@ def test_auto_choice_and_refusals() -> None:
         lagrangian.derive(b.build(), formulation="recursive")
 
 
+@pytest.mark.slow
 def test_course_form_stays_available() -> None:
     eom = lagrangian.derive(serial_arm(5))
     assert eom.formulation == "recursive"
@@ -165,6 +168,7 @@ def test_intermediates_grow_linearly_for_F_and_quadratically_for_M() -> None:
     assert m20 / m10 < 4.4  # quadratic: 4
 
 
+@pytest.mark.slow
 def test_compiled_recursive_code_agrees_and_simulates() -> None:
     model = serial_arm(4, damping=True)
     fast = compile_system(lagrangian.derive(model, formulation="recursive"))
@@ -174,7 +178,7 @@ def test_compiled_recursive_code_agrees_and_simulates() -> None:
     Y = rng.uniform(-2, 2, (6, 8))
     values = {f"tau{k}": float(rng.uniform(-1, 1)) for k in range(1, 5)}
     p, q = fast.parameter_vector(values), slow.parameter_vector(values)
-    for a, b in zip(fast.mass_forces(0.0, Y, p), slow.mass_forces(0.0, Y, q)):
+    for a, b in zip(fast.mass_forces(0.0, Y, p), slow.mass_forces(0.0, Y, q), strict=True):
         _close(a, b)
     _close(fast.rhs(0.0, Y, p), slow.rhs(0.0, Y, q))
     assert fast.monitors[-2:] == ("T", "U")
@@ -189,6 +193,7 @@ def test_compiled_recursive_code_agrees_and_simulates() -> None:
         assert np.max(np.abs(a.q - b.q)) < 1e-8 and np.max(np.abs(a.qd - b.qd)) < 1e-8
 
 
+@pytest.mark.slow
 def test_expanded_form_and_the_symengine_backend() -> None:
     eom = lagrangian.derive(relative_chain(4))
     rec = eom.recursive
@@ -203,6 +208,7 @@ def test_expanded_form_and_the_symengine_backend() -> None:
     _close(c.rhs(0.0, Y, c.parameter_vector()), s.rhs(0.0, Y, s.parameter_vector()))
 
 
+@pytest.mark.slow
 def test_energy_is_monitored_and_kept() -> None:
     system = compile_system(lagrangian.derive(relative_chain(6)))
     assert system.integrals == ("E",)
@@ -213,7 +219,7 @@ def test_energy_is_monitored_and_kept() -> None:
     energy = next(fi for fi in lagrangian.first_integrals(course) if fi.name == "E")
     values = {se.Symbol(p.name): p.value for p in course.model.parameters}
     for k in (0, 10, 20):
-        values.update({s: x for s, x in zip(course.q, run.q[k])} | {s: x for s, x in zip(course.qd, run.qd[k])})
+        values.update({s: x for s, x in zip(course.q, run.q[k], strict=True)} | {s: x for s, x in zip(course.qd, run.qd[k], strict=True)})
         values[course.t] = run.t[k]
         _close([run.monitors["E"][k]], _course([energy.expression], values))
 

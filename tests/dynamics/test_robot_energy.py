@@ -13,13 +13,13 @@ import warnings
 import numpy as np
 import pytest
 import symengine as se
+from urdf_robots import DOUBLE_PENDULUM, Peer
 
 import lagrangian
 from lagrangian.dynamics._tree import tree_structure
 from lagrangian.model.build import ModelBuilder
 from lagrangian.model.urdf import UrdfNote, parse_urdf
 from lagrangian.model.zoo import serial_arm
-from urdf_robots import DOUBLE_PENDULUM, Peer
 
 TAU = {"tau_shoulder": 1.3, "tau_elbow": -0.6}
 
@@ -60,7 +60,7 @@ def test_a_motor_torque_is_a_load_with_a_potential_and_a_couple_fixed_in_r0_stay
     course = lagrangian.derive(model, formulation="lagrange")
     rng = np.random.default_rng(5)
     for _ in range(3):
-        values = {s: float(x) for s, x in zip([*eom.q, *eom.qd], rng.uniform(-2, 2, 2 * len(eom.q)))}
+        values = {s: float(x) for s, x in zip([*eom.q, *eom.qd], rng.uniform(-2, 2, 2 * len(eom.q)), strict=True)}
         values |= {p.symbol: float(p.value) if not p.input else 0.8 for p in model.parameters}
         values[eom.t] = 0.0
         got = eom.recursive.evaluate(eom.recursive.F, values)
@@ -68,6 +68,7 @@ def test_a_motor_torque_is_a_load_with_a_potential_and_a_couple_fixed_in_r0_stay
         np.testing.assert_allclose(got, want, rtol=1e-10, atol=1e-10)
 
 
+@pytest.mark.slow
 def test_zoo_arm_motors_are_inputs_so_no_potential_and_an_energy_integral_only_with_them_off():
     eom = lagrangian.derive(serial_arm(5), formulation="recursive")
     assert not eom.recursive.conservative and not tree_structure(eom.kinematics).couples
@@ -100,11 +101,12 @@ def _chain_with_constant_motors(inputs: bool) -> lagrangian.Model:
     return b.build()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("formulation", ["recursive", "lagrange"])
 def test_constant_motor_torques_derive_from_minus_tau_q_and_the_energy_is_monitored(formulation):
     eom = lagrangian.derive(_chain_with_constant_motors(inputs=False), formulation=formulation)
     motors = [f for f in eom.loads if f.name.startswith("motor")]
-    for f, (k, q) in zip(motors, ((2, eom.q[1]), (3, eom.q[2]))):
+    for f, (k, q) in zip(motors, ((2, eom.q[1]), (3, eom.q[2])), strict=True):
         assert se.expand(f.potential + se.Symbol(f"tau{k}") * q) == 0  # U = −τ q, the course's potential
     run = lagrangian.simulate(eom, 1.0, n_out=5)
     assert "E" in run.integrals and run.drift["E"] < 1e-8
@@ -134,7 +136,7 @@ def test_mechanical_energy_of_a_urdf_robot_changes_by_the_actuators_work(formula
     # The actuators' power: T + U_gravity changes by the work Σ τ_j Δq_j.
     work = (run.q - run.q[0]) @ tau
     assert np.abs(work).max() > 0.1  # the torques do work: T + U_gravity alone is not constant
-    physical = np.array([sum(peer.energies(q, v)) for q, v in zip(run.q, run.qd)])
+    physical = np.array([sum(peer.energies(q, v)) for q, v in zip(run.q, run.qd, strict=True)])
     np.testing.assert_allclose(physical - physical[0], work, atol=1e-8 * np.abs(physical).max())
     np.testing.assert_allclose(run.monitors["E"] - run.monitors["E"][0], physical - physical[0] - work,
                                atol=1e-8 * np.abs(physical).max())
@@ -150,7 +152,7 @@ def test_energy_balance_of_a_damped_urdf_robot_is_the_actuators_and_dampers_powe
     assert not balance.conserved
     working = {t.name: t.power for t in balance.terms if t.power != 0}
     assert sorted(working) == ["actuators", "joint_damping"]
-    rates = {s: float(x) for s, x in zip(eom.qd, (0.7, -1.3))}
+    rates = {s: float(x) for s, x in zip(eom.qd, (0.7, -1.3), strict=True)}
     assert float(working["joint_damping"].subs(rates)) == pytest.approx(-0.2 * 1.3**2, rel=1e-12)
     taus = {se.Symbol(name): value for name, value in TAU.items()}
     assert float(working["actuators"].subs(rates | taus)) == pytest.approx(1.3 * 0.7 + 0.6 * 1.3, rel=1e-12)

@@ -1,4 +1,4 @@
-"""The size limit on the derived equations of motion M q̈ = F (issue 15, item 1).
+"""The size limit on the derived equations of motion M q̈ = F.
 
 Equations past `MAX_OPS` operations are refused by `derive` with a `ModelError` that names
 the size, the limit, the largest entry and the fix, before code generation, compilation or
@@ -26,6 +26,7 @@ def _ops(eom) -> int:
     return se.count_ops(*[e for row in eom.M for e in row], *eom.F)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("make", [lambda: lagrangian.load_model(ROOT / "examples" / "whipple_bicycle.toml"),
                                   lambda: planar_chain(20), lambda: spatial_chain(10)],
                          ids=["whipple", "planar-20", "spatial-10"])

@@ -1,4 +1,4 @@
-"""A model written as its statement says gives the equations of the longer formulation (issue 16).
+"""A model written as its statement says gives the equations of the longer formulation.
 
 Each short form is compared with the formulation that worked before it: the same M and F
 (simplified difference zero, and the same numbers at random states).
@@ -40,18 +40,18 @@ def assert_same_equations(a: lagrangian.EquationsOfMotion, b: lagrangian.Equatio
     assert a.coordinates == b.coordinates
     Ma, Fa = mass_and_forces(a)
     Mb, Fb = mass_and_forces(b, subs_b)
-    for x, y in zip(list(Ma) + list(Fa), list(Mb) + list(Fb)):
+    for x, y in zip(list(Ma) + list(Fa), list(Mb) + list(Fb), strict=True):
         d = sp.expand(x - y)
         assert d == 0 or sp.simplify(sp.trigsimp(d)) == 0, (x, y)
     symbols = sorted((Ma.free_symbols | Fa.free_symbols | Mb.free_symbols | Fb.free_symbols), key=str)
     rng = random.Random(16)
     for _ in range(states):
         point = {s: rng.uniform(0.3, 1.7) for s in symbols}
-        for x, y in zip(list(Ma) + list(Fa), list(Mb) + list(Fb)):
+        for x, y in zip(list(Ma) + list(Fa), list(Mb) + list(Fb), strict=True):
             assert abs(complex(x.subs(point)) - complex(y.subs(point))) < 1e-9 * (1 + abs(complex(x.subs(point))))
 
 
-# -- item 2: a couple on a massless link --------------------------------------------------------
+# -- a couple on a massless link --------------------------------------------------------
 DOUBLE_PENDULUM = """
     [parameters]
     m1 = 1.0
@@ -98,6 +98,7 @@ INVENTED_BODIES = """
 """
 
 
+@pytest.mark.slow
 def test_couple_on_massless_links_is_that_on_invented_zero_mass_bodies() -> None:
     """Motors at the shoulder and the elbow of a double pendulum of massless rods: a couple on a
     frame (virtual power C·Ω*(frame)) gives the equations of the old form, where the rods had to
@@ -118,7 +119,7 @@ def test_couple_on_an_unknown_name_names_bodies_and_frames() -> None:
         parse(DOUBLE_PENDULUM.format(extra_parameters="", bodies="", link1="R9", link2="R2"))
 
 
-# -- item 1: a rotation about a constant axis of the parent ------------------------------------
+# -- a rotation about a constant axis of the parent ------------------------------------
 FOUCAULT_AXIS = """
     # The Foucault pendulum as its statement says: the Earth E turns at Omega about its polar
     # axis, cos(lam) north + sin(lam) up in the local frame R0 (x east, y north, z up); the attraction
@@ -146,6 +147,7 @@ FOUCAULT_AXIS = """
 """
 
 
+@pytest.mark.slow
 def test_foucault_about_the_polar_axis_is_the_chained_formulation() -> None:
     """One rotation about cos(λ) y + sin(λ) z gives the equations of examples/foucault_pendulum.toml
     (rotation about z0, then the tilt π/2 − λ of the local frame): the bob is at the same place
@@ -175,6 +177,7 @@ def test_builder_takes_the_axis_too() -> None:
                           states=1)
 
 
+@pytest.mark.slow
 def test_axis_not_unit_is_normalized_and_basis_vector_is_elementary() -> None:
     tilted = parse(FOUCAULT_AXIS.replace("cos(lam)*R0.y + sin(lam)*R0.z", "3*R0.y + 4*R0.z")).frame("E").rotation
     assert tilted.normalized and [sp.nsimplify(sym(c)) for c in tilted.direction] == [0, sp.Rational(3, 5),
@@ -201,7 +204,7 @@ def test_bad_axes_are_refused_clearly(axis: str, message: str) -> None:
         parse(FOUCAULT_AXIS.replace("cos(lam)*R0.y + sin(lam)*R0.z", axis))
 
 
-# -- item 6: conservative with multipliers -----------------------------------------------------
+# -- conservative with multipliers -----------------------------------------------------
 def test_gravity_and_a_scleronomic_multiplier_is_conservative_with_its_lagrangian() -> None:
     """The pendulum of examples/pendulum_tension.toml (x, y, the rod kept as x² + y² − l² = 0 with
     λ): gravity only and a perfect time-independent constraint, so L = T − U_P, and SymPy's
@@ -222,7 +225,7 @@ def test_gravity_and_a_scleronomic_multiplier_is_conservative_with_its_lagrangia
     lam = dynamicsymbols("lambda_length")
     ours = [eq.lhs - eq.rhs for eq in s.equations]
     assert len(lm.lam_vec) == 1
-    matches = [all(sp.simplify(a - b.subs(lm.lam_vec[0], sign * lam)) == 0 for a, b in zip(ours, theirs))
+    matches = [all(sp.simplify(a - b.subs(lm.lam_vec[0], sign * lam)) == 0 for a, b in zip(ours, theirs, strict=True))
                for sign in (1, -1)]
     assert any(matches)  # the same equations, up to the sign convention of λ
 
@@ -237,7 +240,7 @@ def test_a_rheonomic_multiplier_is_not_conservative() -> None:
     assert eom.constraints and not eom.scleronomic and not eom.conservative and eom.L is None
 
 
-# -- item 3: masses only where they matter -----------------------------------------------------
+# -- masses only where they matter -----------------------------------------------------
 ATWOOD = """
     # Atwood's machine: A (m1) and B (m2) hang from a rope over a pulley of inertia J turning
     # about its fixed axle O; the rope does not slip (pulley angle -x/r) and x is A's descent.

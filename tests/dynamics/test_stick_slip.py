@@ -135,6 +135,7 @@ def test_belt_sticks_until_k_x_reaches_f_m_g_then_slips_on_the_limit_cycle() -> 
     assert np.max(np.abs(tr.column("friction_friction")[stuck])) <= F * M * G * (1 + 1e-12)
 
 
+@pytest.mark.slow
 def test_belt_with_static_friction_above_kinetic_sticks_from_2x_star_minus_xs_to_xs() -> None:
     f_s = 0.4
     x_s = f_s * M * G / K
@@ -194,6 +195,7 @@ def test_bad_options_are_refused(options: dict, words: str) -> None:
         simulate_stick_slip(incline(0.2), 1.0, **options)
 
 
+@pytest.mark.slow
 def test_newton_euler_and_reactions_hold_through_the_stuck_phase():
     """Along a motion that slides then sticks, each phase is checked with its own equations:
     no NaN from the exact law's v_s/|v_s| at rest, the normal reaction N·n throughout."""

@@ -1,4 +1,4 @@
-"""The fuzz campaign of issue 15, short: mutated example models through every stage and the CLI.
+"""The fuzz campaign, short: mutated example models through every stage and the CLI.
 
 ``tools/fuzz.py`` mutates the example files, runs each case in a forked process under a
 memory cap (4 GiB) and a time cap, and classifies what happened; the long run is in
@@ -22,7 +22,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 TOOL = ROOT / "tools" / "fuzz.py"
-#: The short run's size (issue 15: "a few hundred cases, under 2 minutes"); seed 1 (the long runs use others).
+#: The short run's size (a few hundred cases, under 2 minutes); seed 1 (the long runs use others).
 CASES = 300
 
 
@@ -33,6 +33,7 @@ def _tool():
     return module
 
 
+@pytest.mark.slow
 def test_short_campaign_finds_no_defect(tmp_path: Path) -> None:
     env = dict(os.environ, PYTHONPATH=str(ROOT / "src"), OPENBLAS_NUM_THREADS="1",
                LAGRANGIAN_CACHE=str(tmp_path / "cache"))
@@ -53,6 +54,7 @@ def test_short_campaign_finds_no_defect(tmp_path: Path) -> None:
     assert stages.get("cli:ok", 0) == CASES
 
 
+@pytest.mark.slow
 def test_short_urdf_campaign_finds_no_defect(tmp_path: Path) -> None:
     # URDF files from strangers (examples/*.urdf mutated: values, joint types, entities, cycles, cuts).
     env = dict(os.environ, PYTHONPATH=str(ROOT / "src"), OPENBLAS_NUM_THREADS="1",
@@ -110,6 +112,7 @@ def _traceback(path, out, command, result_file):
                                    "outcome": "traceback"})
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not hasattr(os, "fork"), reason="the harness forks")
 @pytest.mark.parametrize("case, outcome", [(_hang, "hang"), (_memory, "memory"), (_crash, "signal"),
                                            (_code, "code"), (_traceback, "traceback")])

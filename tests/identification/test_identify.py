@@ -112,6 +112,7 @@ def _within(fit, names, k=3.0):
         assert abs(error) < k, f"{name} = {fit[name]:.8g} ± {fit.std[name]:.2g}, true {TRUE[name]} ({error:+.1f} σ)"
 
 
+@pytest.mark.slow
 def test_regressor_recovers_masses_and_friction_within_three_standard_errors(cart_pole):
     # Linear in (mc, m, c) with l known.  The accelerations come from the noisy positions (a 31-sample
     # window at 200 Hz): their noise biases least squares (errors in variables) by about 1 σ here.
@@ -128,6 +129,7 @@ def test_regressor_recovers_masses_and_friction_within_three_standard_errors(car
     assert [measured[k] for k in ("mc", "m", "c")] == pytest.approx([TRUE[k] for k in ("mc", "m", "c")], rel=1e-6)
 
 
+@pytest.mark.slow
 def test_shooting_recovers_a_length_within_three_standard_errors(cart_pole):
     # l enters M and F nonlinearly (m l², m g l): the regressor does not apply, shooting does.
     data = cart_pole_record(4.0, 100.0, 1e-4, seed=4)
@@ -139,6 +141,7 @@ def test_shooting_recovers_a_length_within_three_standard_errors(cart_pole):
     assert fit.initial["theta"] == pytest.approx(2.5, abs=5e-4)
 
 
+@pytest.mark.slow
 def test_single_and_multiple_shooting_find_the_same_optimum(cart_pole):
     data = cart_pole_record(4.0, 100.0, 1e-4, seed=5, span=2.0)
     fits = [identify(cart_pole, data, ["l", "c"], values={"mc": TRUE["mc"], "m": TRUE["m"]},
@@ -148,6 +151,7 @@ def test_single_and_multiple_shooting_find_the_same_optimum(cart_pole):
         assert fits[0].std[name] == pytest.approx(fits[1].std[name], rel=1e-3)
 
 
+@pytest.mark.slow
 def test_shooting_fits_from_some_coordinates_only(cart_pole):
     # only the pendulum's angle measured (the cart unobserved): its motion still shows l and c; the cart's
     # position does not act on anything measured (x is cyclic), and is said to be undetermined
@@ -171,11 +175,12 @@ def swing():
     return lagrangian.derive(lagrangian.load_model(EXAMPLES_DIR / "simple_pendulum.toml")), t, theta
 
 
+@pytest.mark.slow
 def test_every_form_of_the_data_gives_the_same_fit(swing, tmp_path):
     xr = pytest.importorskip("xarray")
     eom, t, theta = swing
     csv = tmp_path / "swing.csv"
-    csv.write_text("# a measured swing\nt,theta\n" + "".join(f"{float(a)!r},{float(b)!r}\n" for a, b in zip(t, theta)))
+    csv.write_text("# a measured swing\nt,theta\n" + "".join(f"{float(a)!r},{float(b)!r}\n" for a, b in zip(t, theta, strict=True)))
     traj = lagrangian.simulate(eom, 3.0, t_eval=t)
     sources = [{"t": t, "theta": theta}, csv, xr.Dataset({"theta": ("t", theta)}, coords={"t": t})]
     fits = [identify(eom, s, ["l"], guess={"l": 0.4}, shooting=Shooting(segments=1)) for s in sources]
@@ -232,6 +237,7 @@ def test_bad_requests_are_refused_clearly(swing, cart_pole):
         identify(EXAMPLES_DIR / "pendulum_tension.toml", {"t": t, "x": theta, "y": theta}, ["l"])
 
 
+@pytest.mark.slow
 def test_an_arms_unidentifiable_parameters_are_refused_or_fitted_as_combinations():
     # The RRR arm's 30 inertial parameters have 15 identifiable combinations (tests/identification/
     # test_regressor.py checks them against Pinocchio's regressor): refused by default, naming them;

@@ -67,7 +67,7 @@ class Arm:
 
     def pinocchio(self, q, v, a):
         rows = []
-        for qi, vi, ai in zip(q, v, a):
+        for qi, vi, ai in zip(q, v, a, strict=True):
             qp, vp = self.peer.state(qi, vi)
             ap = np.zeros(self.peer.model.nv)
             ap[self.peer.v_index] = ai
@@ -111,7 +111,7 @@ def test_regressor_times_the_files_parameters_is_pinocchios_inverse_dynamics(arm
     r, Y = arm.ours(q, v, a)
     theta = np.array([arm.model.parameter_values[name] for name in arm.fitted])
     tau = []
-    for qi, vi, ai in zip(q, v, a):
+    for qi, vi, ai in zip(q, v, a, strict=True):
         qp, vp = arm.peer.state(qi, vi)
         ap = np.zeros(arm.peer.model.nv)
         ap[arm.peer.v_index] = ai

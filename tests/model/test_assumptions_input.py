@@ -1,13 +1,13 @@
-"""Declaring sign assumptions and coordinate ranges (issue 16, item 4): reading and errors."""
+"""Declaring sign assumptions and coordinate ranges: reading and errors."""
 
 from __future__ import annotations
 
 import pytest
 import symengine as se
+from lagrangian_test_support import wall_spring
 
 import lagrangian
 from lagrangian import ModelBuilder, ModelError
-from lagrangian_test_support import wall_spring
 
 
 def parse(L: str = 'L = { value = 1.0, positive = true }', x: str = 'x = { initial = 0.1, range = [-0.5, 0.5] }'):

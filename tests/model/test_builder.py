@@ -55,7 +55,7 @@ def assert_same_dynamics(e1: lagrangian.EquationsOfMotion, e2: lagrangian.Equati
         assert se.expand(e1.F[i] - e2.F[i]) == 0
         for j in range(n):
             assert se.expand(e1.M[i][j] - e2.M[i][j]) == 0
-    for q1, q2 in zip(e1.equations, e2.equations):
+    for q1, q2 in zip(e1.equations, e2.equations, strict=True):
         assert se.expand(q1.lhs - q2.lhs) == 0 and se.expand(q1.rhs - q2.rhs) == 0
 
 

@@ -321,6 +321,7 @@ def test_deeply_nested_parentheses() -> None:
     assert "nested too deeply" in err.message
 
 
+@pytest.mark.slow
 def test_long_chains_of_signs() -> None:
     same("-" * 40 + "x", x)
     assert "nested too deeply" in _quick("-" * 19_000 + "x", seconds=10).message

@@ -81,6 +81,7 @@ def test_a_free_body_that_is_not_one_is_refused_with_its_line(old: str, new: str
     assert error.fix
 
 
+@pytest.mark.slow
 def test_a_free_body_without_its_inertia_values_is_checked_when_simulated() -> None:
     model = lagrangian.parse_model(FREE.replace("C = 3.0", "C = {}"))  # no value: nothing to check yet
     with pytest.raises(lagrangian.SimulationError, match="principal moment") as info:

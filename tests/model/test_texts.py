@@ -4,10 +4,12 @@ from __future__ import annotations
 
 import pickle
 
+import pytest
+from lagrangian_test_support import EXAMPLES_DIR
+
 import lagrangian
 from lagrangian.model._texts import Text, in_language
 from lagrangian.output import report
-from lagrangian_test_support import EXAMPLES_DIR
 
 PENDULUM = """\
 [model]
@@ -34,6 +36,7 @@ weight = { gravity = "-g*R0.z" }
 """
 
 
+@pytest.mark.slow
 def test_texts_in_both_languages_and_a_plain_one():
     model = lagrangian.parse_model(PENDULUM)
     m, l = model.parameters[0].description, model.parameters[1].description
@@ -61,6 +64,7 @@ def _words(text: str, words: set[str]) -> set[str]:
     return {w for w in words if re.search(rf"(?<![\w']){re.escape(w)}(?![\w'])", text)}
 
 
+@pytest.mark.slow
 def test_the_examples_texts_are_in_the_reports_language():
     """The title, subtitle and the tables of constants and coordinates of every example: French words only in
     the French report, English only in the English one (word lists)."""
@@ -81,6 +85,7 @@ def test_the_examples_texts_are_in_the_reports_language():
                 assert not _words(" ".join([doc.title, doc.subtitle, cells]), foreign), (lang, doc.title)
 
 
+@pytest.mark.slow
 def test_a_urdf_robots_texts_are_in_the_reports_language():
     # A URDF has no French: the loader writes the robot's, the joints' and the inputs' texts in both
     # languages (liaison pivot, glissière, encastrement; couple de l'actionneur), the loads are named.

@@ -12,10 +12,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from urdf_robots import DOUBLE_PENDULUM, SPATIAL_ARM, TREE, Ours, Peer, robot_data_file
 
 import lagrangian
 from lagrangian.model.urdf import UrdfNote, parse_urdf, read_urdf, rotation_steps, rpy_matrix
-from urdf_robots import DOUBLE_PENDULUM, SPATIAL_ARM, TREE, Ours, Peer, robot_data_file
 
 pin = pytest.importorskip("pinocchio", reason="Pinocchio (`pip install pin`) is the referee of these tests")
 

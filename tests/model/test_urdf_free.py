@@ -105,7 +105,7 @@ class FreeFlyer:
         q[:7] = pin.SE3ToXYZQUAT(local)
         R = pose.rotation
         v[:3], v[3:6] = R.T @ y[7 + n:10 + n], y[10 + n:13 + n]
-        for name, qj, vj in zip(joints, y[7:7 + n], y[13 + n:13 + 2 * n]):
+        for name, qj, vj in zip(joints, y[7:7 + n], y[13 + n:13 + 2 * n], strict=True):
             j = self.model.joints[self.model.getJointId(name)]
             q[j.idx_q:j.idx_q + j.nq] = (np.cos(qj), np.sin(qj)) if j.nq == 2 else qj
             v[j.idx_v] = vj
@@ -144,7 +144,7 @@ def test_accelerations_mass_matrix_and_bias_agree_with_mujoco_and_pinocchio(walk
     n, nq = len(JOINTS), 7 + len(JOINTS)
     for _ in range(4):
         y, tau = _random_state(rng, n), rng.uniform(-2, 2, n)
-        p = walker.parameter_vector({f"tau_{j}": t for j, t in zip(JOINTS, tau)})
+        p = walker.parameter_vector({f"tau_{j}": t for j, t in zip(JOINTS, tau, strict=True)})
         ours = walker.rhs(0.0, y, p)[nq:nq + 6 + n]
         M, F = walker.mass_forces(0.0, y, p)
         order = mj.set(y, JOINTS, tau)

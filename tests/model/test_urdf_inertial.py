@@ -39,8 +39,8 @@ def test_inertial_parameters_are_pinocchios_dynamic_parameters(text, bodies):
     peer = pin.buildModelFromXML(text)
     for body in bodies:
         joint = next(j for j in range(1, peer.njoints) if peer.frames[peer.getFrameId(body)].parentJoint == j)
-        expected = dict(zip(PIN_ORDER, peer.inertias[joint].toDynamicParameters()))
-        values = {prefix: model.parameter_values[name] for prefix, name in zip(INERTIAL_PARAMETERS, names[body])}
+        expected = dict(zip(PIN_ORDER, peer.inertias[joint].toDynamicParameters(), strict=True))
+        values = {prefix: model.parameter_values[name] for prefix, name in zip(INERTIAL_PARAMETERS, names[body], strict=True)}
         for prefix in INERTIAL_PARAMETERS:
             assert values[prefix] == pytest.approx(expected[prefix], abs=1e-12), (body, prefix)
 

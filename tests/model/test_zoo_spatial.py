@@ -62,7 +62,7 @@ def _sympy_kane(n: int):
     """The same chain written independently with sympy.physics.mechanics, in Kane's form."""
     a = me.dynamicsymbols(f"a1:{n + 1}")
     b = me.dynamicsymbols(f"b1:{n + 1}")
-    q = [x for pair in zip(a, b) for x in pair]
+    q = [x for pair in zip(a, b, strict=True) for x in pair]
     u = me.dynamicsymbols(f"u1:{2 * n + 1}")
     m, lengths, g = sp.symbols(f"m1:{n + 1}"), sp.symbols(f"l1:{n + 1}"), sp.Symbol("g")
     N = me.ReferenceFrame("N")
@@ -80,14 +80,15 @@ def _sympy_kane(n: int):
         bodies.append(me.RigidBody(f"rod{k}", G, R, m[k], (me.inertia(R, I, I, 0), G)))
         loads.append((G, -m[k] * g * N.z))
         prev = P
-    kane = me.KanesMethod(N, q_ind=q, u_ind=u, kd_eqs=[qi.diff(me.dynamicsymbols._t) - ui for qi, ui in zip(q, u)])
+    kane = me.KanesMethod(N, q_ind=q, u_ind=u, kd_eqs=[qi.diff(me.dynamicsymbols._t) - ui for qi, ui in zip(q, u, strict=True)])
     kane.kanes_equations(bodies, loads)
     qs, us = sp.symbols(f"q0:{2 * n}"), sp.symbols(f"w0:{2 * n}")
-    rep = {**dict(zip(q, qs)), **dict(zip(u, us))}
+    rep = {**dict(zip(q, qs, strict=True)), **dict(zip(u, us, strict=True))}
     fn = sp.lambdify([qs, us, [g, *m, *lengths]], [kane.mass_matrix.xreplace(rep), kane.forcing.xreplace(rep)])
     return fn
 
 
+@pytest.mark.slow
 def test_two_rods_agree_with_sympy_kane() -> None:
     n = 2
     eom = lagrangian.derive(spatial_chain(n))

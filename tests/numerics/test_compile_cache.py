@@ -1,4 +1,4 @@
-"""The compile cache loads only what it built itself (issue 15, item 5).
+"""The compile cache loads only what it built itself.
 
 Loading a shared library runs its code, and a truncated one can crash the process
 (SIGBUS), so each reproducer runs in a subprocess over a copy of one primed cache: the
@@ -77,12 +77,14 @@ def assert_rebuilt(cache: Path, library: Path, result: subprocess.CompletedProce
     assert (library.parent / (library.name + ".sha256")).read_text().strip() == sha256(library)
 
 
+@pytest.mark.slow
 def test_the_cache_folder_is_private_and_every_library_has_its_checksum(primed):
     assert primed.stat().st_mode & 0o777 == 0o700
     for library in (model_library(primed), fastcall_module(primed)):
         assert (library.parent / (library.name + ".sha256")).read_text().strip() == sha256(library)
 
 
+@pytest.mark.slow
 def test_a_warm_cache_is_used_silently(cache):
     before = model_library(cache).stat().st_mtime_ns
     result = run(cache)
@@ -90,6 +92,7 @@ def test_a_warm_cache_is_used_silently(cache):
     assert model_library(cache).stat().st_mtime_ns == before
 
 
+@pytest.mark.slow
 def test_a_group_writable_umask_does_not_make_every_run_rebuild(tmp_path):
     # With umask 002 (usual where each user has their own group) the compiler's output is
     # group-writable: the cache must store it private, or every later run would refuse it.
@@ -101,18 +104,21 @@ def test_a_group_writable_umask_does_not_make_every_run_rebuild(tmp_path):
     assert model_library(cache).stat().st_mode & 0o077 == 0
 
 
+@pytest.mark.slow
 def test_a_zero_byte_library_is_rebuilt(cache):
     library = model_library(cache)
     library.write_bytes(b"")
     assert_rebuilt(cache, library, run(cache), "does not match its checksum")
 
 
+@pytest.mark.slow
 def test_a_truncated_library_is_rebuilt_not_loaded(cache):
     library = model_library(cache)
     library.write_bytes(library.read_bytes()[:5000])
     assert_rebuilt(cache, library, run(cache), "does not match its checksum")
 
 
+@pytest.mark.slow
 def test_the_checksum_rejects_a_truncated_library_before_anything_loads_it(cache, monkeypatch):
     # In-process: `build_shared` only checks and builds, it never loads, so the truncated
     # file cannot reach dlopen here; the path it returns is a fresh, matching build.
@@ -124,8 +130,8 @@ def test_the_checksum_rejects_a_truncated_library_before_anything_loads_it(cache
     loaded = []
     monkeypatch.setattr(_compile.ctypes, "CDLL", lambda path: loaded.append(Path(path).read_bytes()) or path)
     import lagrangian
-    from lagrangian.model.zoo import planar_chain
     from lagrangian.codegen import generate_c
+    from lagrangian.model.zoo import planar_chain
 
     generated = generate_c(lagrangian.derive(planar_chain(1)), (), ())
     _compile.compile_library(generated.source, generated.key)
@@ -133,12 +139,14 @@ def test_the_checksum_rejects_a_truncated_library_before_anything_loads_it(cache
     assert len(loaded) == 1 and len(loaded[0]) > 5000
 
 
+@pytest.mark.slow
 def test_a_library_without_checksum_is_rebuilt(cache):
     library = model_library(cache)
     (library.parent / (library.name + ".sha256")).unlink()
     assert_rebuilt(cache, library, run(cache), "has no checksum")
 
 
+@pytest.mark.slow
 def test_a_library_that_passes_its_checksum_but_does_not_load_is_rebuilt(cache):
     library = model_library(cache)
     library.write_bytes(b"not an ELF file")
@@ -146,6 +154,7 @@ def test_a_library_that_passes_its_checksum_but_does_not_load_is_rebuilt(cache):
     assert_rebuilt(cache, library, run(cache), "did not load")
 
 
+@pytest.mark.slow
 def test_a_truncated_fastcall_module_is_rebuilt(cache):
     module = fastcall_module(cache)
     module.write_bytes(module.read_bytes()[: module.stat().st_size // 2])
@@ -169,6 +178,7 @@ def plant(library: Path, marker: Path, tmp_path: Path) -> None:
     (library.parent / (library.name + ".sha256")).write_text(sha256(library))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("which", [model_library, fastcall_module], ids=["model", "fastcall"])
 def test_a_library_planted_in_a_group_writable_cache_is_never_loaded(cache, tmp_path, which):
     marker = tmp_path / "constructor-ran"
@@ -181,6 +191,7 @@ def test_a_library_planted_in_a_group_writable_cache_is_never_loaded(cache, tmp_
     assert "Traceback" not in result.stderr and result.stderr.count("\n") == 1
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(os.getuid() != 0, reason="giving a file to another user needs root")
 def test_a_library_owned_by_another_user_is_never_loaded(cache, tmp_path):
     marker = tmp_path / "constructor-ran"
@@ -193,6 +204,7 @@ def test_a_library_owned_by_another_user_is_never_loaded(cache, tmp_path):
     assert "belongs to another user" in result.stderr
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("where", ["under-a-file", "read-only", "home-under-a-file"])
 def test_an_unwritable_cache_falls_back_to_a_private_temporary_one(tmp_path, where):
     env = {}

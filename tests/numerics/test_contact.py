@@ -40,6 +40,7 @@ def _events(tr: lagrangian.Trajectory, name: str) -> list:
 
 
 # -- the bouncing ball -------------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_the_bouncing_ball_bounces_at_the_closed_form_times_and_heights(ball: lagrangian.Model) -> None:
     h0, e, m = 1.0, 0.8, 0.1
     tr = lagrangian.simulate(ball, 6.0, n_out=601, events=[EventSpec("apex", "z_dot", -1)])
@@ -95,6 +96,7 @@ def ladder() -> lagrangian.Trajectory:
     return lagrangian.simulate(EXAMPLES_DIR / "sliding_ladder.toml", 1.5, n_out=1501)
 
 
+@pytest.mark.slow
 def test_the_ladder_leaves_the_wall_at_two_thirds_of_its_height(ladder: lagrangian.Trajectory) -> None:
     a, th0 = 1.5, np.radians(70.0)
     [lift] = _events(ladder, "liftoff_wall")
@@ -136,6 +138,7 @@ def block() -> lagrangian.Model:
     return lagrangian.load_model(EXAMPLES_DIR / "rocking_block.toml")
 
 
+@pytest.mark.slow
 def test_the_rocking_block_keeps_housners_ratio_at_every_impact(block: lagrangian.Model) -> None:
     b, h, m = 0.1, 0.5, 2.0
     r = 1 - 1.5 * np.sin(np.arctan(b / h)) ** 2
@@ -152,6 +155,7 @@ def test_the_rocking_block_keeps_housners_ratio_at_every_impact(block: lagrangia
         assert np.all(np.abs(tr.column(f"lambda_{side}_t")[closed]) <= tr.column(f"lambda_{side}")[closed])
 
 
+@pytest.mark.slow
 def test_the_rocking_block_settles_flat_on_both_corners(block: lagrangian.Model) -> None:
     m, b, h, th = 2.0, 0.3, 0.5, 0.1  # a stouter block (r = 0.60): fewer impacts before it settles
     start = {"x": b * np.cos(th) - h * np.sin(th), "y": b * np.sin(th) + h * np.cos(th)}  # resting on L
@@ -181,6 +185,7 @@ def _cradle(balls: int) -> lagrangian.Model:
     return lagrangian.parse_model(head + "\n".join(parts) + "\n", source=f"cradle{balls}.toml")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("balls", [3, 5])
 @pytest.mark.parametrize("e", [1.0, 0.6])
 def test_newtons_cradle_impact_is_the_complementarity_problems(balls: int, e: float) -> None:
@@ -205,6 +210,7 @@ def test_newtons_cradle_impact_is_the_complementarity_problems(balls: int, e: fl
 
 
 # -- the slack rope ---------------------------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_the_rope_goes_slack_the_bob_flies_on_a_parabola_and_the_rope_jerks_taut() -> None:
     m, l, v0 = 0.5, 1.0, 5.859607495387383
     tr = lagrangian.simulate(EXAMPLES_DIR / "slack_rope_pendulum.toml", 2.0, n_out=2001)
@@ -259,6 +265,7 @@ floor = { unilateral = "z", restitution = "e", friction = "mu", slip = "x_dot" }
 """
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("vx", "stick"), [(0.5, True), (3.0, False)])
 def test_a_ball_hitting_a_rough_floor_sticks_or_slides_at_the_impact(vx: float, stick: bool) -> None:
     # Coulomb at the impact: P_n = m (1 + e) v, |P_t| ≤ μ P_n; v = √(2 g h) = 3.13 m/s, μ (1 + e) v = 1.41 m/s.

@@ -43,6 +43,7 @@ def test_a_restitution_outside_zero_one_is_refused(e: float) -> None:
         lagrangian.simulate(BALL, 1.0, parameters={"e": e})
 
 
+@pytest.mark.slow
 def test_simultaneous_impacts_with_no_solution_are_refused(tmp_path) -> None:
     path = tmp_path / "wedge.toml"
     path.write_text(WEDGE.format(e=0.5))
@@ -57,6 +58,7 @@ def test_simultaneous_impacts_with_no_solution_are_refused(tmp_path) -> None:
     assert np.all(tr.column("x") == 0) and np.all(tr.column("x_dot") == 0)
 
 
+@pytest.mark.slow
 def test_a_persistent_contact_that_would_slide_with_friction_is_refused() -> None:
     # A block on a 30° incline, μ = 0.2 < tan 30°: it cannot stay stuck, and sliding friction is not simulated.
     text = """

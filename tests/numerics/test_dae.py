@@ -29,6 +29,7 @@ def pendulum() -> ConstrainedSystem:
     return ConstrainedSystem(eom_of("pendulum_tension.toml"))
 
 
+@pytest.mark.slow
 def test_simulate_dispatches_models_with_complementary_constraints() -> None:
     traj = simulate(PENDULUM, 0.5, n_out=51)
     assert traj.method == "dop853 + projection"
@@ -39,6 +40,7 @@ def test_simulate_dispatches_models_with_complementary_constraints() -> None:
     assert "lambda_length" in traj.columns() and len(traj.column("lambda_length")) == 51
 
 
+@pytest.mark.slow
 def test_projection_keeps_the_constraints_to_round_off(pendulum) -> None:
     traj = simulate_dae(pendulum, 3.0, rtol=1e-6, atol=1e-6, n_out=301)
     assert traj.drift["drift_length"] <= 1e-3 * 1e-6 and traj.drift["drift_length_dot"] <= 1e-3 * 1e-6
@@ -46,6 +48,7 @@ def test_projection_keeps_the_constraints_to_round_off(pendulum) -> None:
         traj.drift["drift_length"], rel=1e-6, abs=1e-15)
 
 
+@pytest.mark.slow
 def test_without_stabilization_the_drift_grows_and_is_reported(pendulum) -> None:
     free = simulate_dae(pendulum, 3.0, rtol=1e-6, atol=1e-6, n_out=301, stabilization="none")
     projected = simulate_dae(pendulum, 3.0, rtol=1e-6, atol=1e-6, n_out=301)
@@ -93,9 +96,9 @@ def test_symengine_backend_agrees_with_c(pendulum) -> None:
     rng = np.random.default_rng(5)
     Y = rng.uniform(-1, 1, (7, 4))
     p = pendulum.parameter_vector()
-    for a, b in zip(pendulum.rhs(0.3, Y, p, (2.0, 3.0)), other.rhs(0.3, Y, p, (2.0, 3.0))):
+    for a, b in zip(pendulum.rhs(0.3, Y, p, (2.0, 3.0)), other.rhs(0.3, Y, p, (2.0, 3.0)), strict=True):
         assert np.allclose(a, b, rtol=1e-12, atol=1e-12)
-    for a, b in zip(pendulum.parts(0.3, Y, p), other.parts(0.3, Y, p)):
+    for a, b in zip(pendulum.parts(0.3, Y, p), other.parts(0.3, Y, p), strict=True):
         assert np.allclose(a, b, rtol=1e-12, atol=1e-12)
     lam = rng.uniform(-1, 1, (7, 1))
     assert np.allclose(pendulum.reaction_values(0.3, Y, lam, p), other.reaction_values(0.3, Y, lam, p))
@@ -104,6 +107,7 @@ def test_symengine_backend_agrees_with_c(pendulum) -> None:
     assert np.allclose(t1.q, t2.q, rtol=0, atol=1e-12) and other.backend == "symengine"
 
 
+@pytest.mark.slow
 def test_initial_state_off_the_constraint_is_refused_with_the_residual_and_a_fix() -> None:
     with pytest.raises(SimulationError) as exc:
         simulate(PENDULUM, 1.0, initial={"x": 0.3})
@@ -118,6 +122,7 @@ def test_initial_state_off_the_constraint_is_refused_with_the_residual_and_a_fix
     assert x**2 + y**2 == pytest.approx(0.25, abs=1e-12)
 
 
+@pytest.mark.slow
 def test_a_constraint_with_no_real_solution_is_refused_without_a_suggestion(tmp_path) -> None:
     # tools/fuzz.py seed 103, case 4496: x² + y² + l² = 0 (a "--" for "-"); the search for the nearest
     # consistent state met a singular Jacobian at x = y = 0 and escaped as numpy's LinAlgError.
@@ -129,6 +134,7 @@ def test_a_constraint_with_no_real_solution_is_refused_without_a_suggestion(tmp_
     assert "none was found near these" in exc.value.fix and "real solution" in exc.value.fix
 
 
+@pytest.mark.slow
 def test_initial_rates_off_a_nonholonomic_constraint_are_refused() -> None:
     with pytest.raises(SimulationError) as exc:
         simulate(EXAMPLES_DIR / "rolling_coin.toml", 1.0, initial={"y_dot": 0.5})
@@ -151,6 +157,7 @@ b = { nonholonomic = "x*x_dot + y*y_dot" }
 """
 
 
+@pytest.mark.slow
 def test_constraints_redundant_at_the_initial_state_are_named() -> None:
     eom = lagrangian.derive(lagrangian.parse_model(REDUNDANT_HERE, source="redundant.toml"))
     with pytest.raises(SimulationError, match=r"row `b` \(declared at redundant.toml:\d+\) is redundant at the "
@@ -199,6 +206,7 @@ def test_parameters_and_initial_overrides(pendulum) -> None:
     assert R == pytest.approx(1.62 * np.cos(0.5), rel=1e-9)
 
 
+@pytest.mark.slow
 @settings(max_examples=10)
 @given(theta0=st.floats(-2.5, 2.5), rate=st.floats(-4.0, 4.0))
 def test_property_drift_stays_bounded_and_tension_holds(pendulum, theta0: float, rate: float) -> None:
@@ -215,6 +223,7 @@ def test_property_drift_stays_bounded_and_tension_holds(pendulum, theta0: float,
                        rtol=1e-8, atol=1e-8)
 
 
+@pytest.mark.slow
 def test_a_mass_of_1e308_is_a_singular_mass_matrix_not_a_lapack_failure(tmp_path) -> None:
     # tools/fuzz.py seed 104, case 2448: top_reaction with mass = "(m)*1e308": LAPACK's eigenvalue
     # iteration did not converge on M (numpy's LinAlgError); scaled first, M is found singular in double

@@ -1,4 +1,4 @@
-"""`lagrangian.ensemble` (issue 14, items 1, 2, 6): many members in batched compiled calls.
+"""`lagrangian.ensemble`: many members in batched compiled calls.
 
 The reference for every member is `simulate` on that member alone: the batch runs the same
 integrator from the same control block, so states and event times must agree to the last
@@ -24,6 +24,7 @@ def top():
     return compile_system(lagrangian.derive(lagrangian.lagrange_top()))
 
 
+@pytest.mark.slow
 def test_each_member_equals_simulate_on_that_member(top):
     g = grid(theta=[0.3, 0.9], phi_dot=[30.0, 80.0], g=[9.81, 1.62])
     ds = ensemble(top, 1.5, initial=g, n_out=31, events=["theta_dot"], workers=2, chunk_size=3)
@@ -59,6 +60,14 @@ def test_kept_trajectories_equal_simulate_and_gauss_legendre_too(top):
             np.testing.assert_array_equal(ds.time.values, tr.t)
 
 
+def test_kept_trajectories_too_big_for_memory_are_refused_before_the_run(top):
+    # 2000 members × 10⁵ times × 6 states × 8 bytes = 9.6 GB: over the cap of 8 GiB (or a quarter of the memory).
+    spins = np.linspace(10.0, 50.0, 2000)
+    with pytest.raises(SimulationError, match=r"Keeping 2000 trajectories of 100000 times would take about") as err:
+        ensemble(top, 1.0, initial={"phi_dot": spins, "theta": 0.7}, n_out=100_000, keep="trajectories", workers=1)
+    assert ".zarr" in err.value.fix
+
+
 def test_a_failing_member_is_flagged_and_the_others_go_on(top):
     # theta = 0: the Euler angles are singular (M loses rank); a fast spin needs more steps than allowed.
     ds = ensemble(top, 1.0, initial={"theta": [0.0, 0.5, 0.5], "phi_dot": [50.0, 20.0, 400.0]}, max_steps=200,
@@ -70,6 +79,7 @@ def test_a_failing_member_is_flagged_and_the_others_go_on(top):
     assert "pending ok stopped blow-up step-limit singular" in ds.status.attrs["flag_meanings"]
 
 
+@pytest.mark.slow
 def test_blow_up_is_flagged():
     # x'' = x^3 is solved by x = sqrt(2)/(c - t): from x = 2, x' = 2 sqrt(2) it reaches infinity at
     # t = c = sqrt(2)/2, a blow-up, while the member from x = 0.1 (x' = 0.1^2/sqrt(2)) stays small over 1 s.
@@ -104,6 +114,7 @@ def test_terminal_event_stops_the_member(top):
     np.testing.assert_array_equal(ds.state_final.values[1, :3], tr.events[0].q)
 
 
+@pytest.mark.slow
 def test_zarr_store_streams_and_resume_finishes_pending_members(top, tmp_path):
     import zarr
 
@@ -140,6 +151,7 @@ def test_resume_refuses_a_store_whose_run_record_is_not_json_text(top, tmp_path)
             ensemble(top, 0.5, initial=grid(theta=[0.4, 0.8]), n_out=11, out=store, resume=True)
 
 
+@pytest.mark.slow
 def test_netcdf_round_trip(top, tmp_path):
     path = tmp_path / "sweep.nc"
     ds = ensemble(top, 0.3, initial=grid(phi_dot=[20.0, 40.0, 60.0]), n_out=5, events=["theta_dot"], out=path)

@@ -1,4 +1,4 @@
-"""`ensemble` on a Dask cluster (issue 14, item 4): a real LocalCluster with two worker processes.
+"""`ensemble` on a Dask cluster: a real LocalCluster with two worker processes.
 
 The workers receive the generated C source, compile it once each (their own compile
 cache), and must return exactly what the local threads compute.
@@ -11,11 +11,12 @@ xr = pytest.importorskip("xarray")
 distributed = pytest.importorskip("distributed")
 
 import lagrangian  # noqa: E402
-from lagrangian.errors import SimulationError  # noqa: E402
 from lagrangian.cli.main import main  # noqa: E402
+from lagrangian.errors import SimulationError  # noqa: E402
 from lagrangian.numerics import _ensemble, compile_system, ensemble, grid, open_ensemble  # noqa: E402
 
 
+@pytest.mark.slow
 def test_local_cluster_gives_the_local_results(tmp_path):
     top = compile_system(lagrangian.derive(lagrangian.lagrange_top()))
     g = grid(theta=[0.4, 0.8, 1.2], phi_dot=[20.0, 40.0, 60.0, 80.0])
@@ -37,6 +38,7 @@ def test_local_cluster_gives_the_local_results(tmp_path):
     assert np.all(local.status.values == 0)
 
 
+@pytest.mark.slow
 def test_unreachable_scheduler_is_a_clear_error_before_any_work(monkeypatch, tmp_path, capsys):
     monkeypatch.setattr(_ensemble, "CONNECT_TIMEOUT", "1s")
     with pytest.raises(SimulationError, match="cannot be reached") as info:
@@ -48,8 +50,9 @@ def test_unreachable_scheduler_is_a_clear_error_before_any_work(monkeypatch, tmp
     assert "cannot be reached" in capsys.readouterr().err and not out.exists()
 
 
+@pytest.mark.slow
 def test_a_worker_killed_during_its_chunk_has_the_chunk_run_again_and_counted_once(tmp_path):
-    """Issue 14, item 6: a worker process dies (os._exit) while it integrates a chunk.
+    """A worker process dies (os._exit) while it integrates a chunk.
 
     Dask's scheduler gives the lost task to another worker (its nanny also starts a new
     process); the sweep must end with every member done exactly once and equal to the local

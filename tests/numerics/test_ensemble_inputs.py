@@ -25,6 +25,7 @@ def cart_pole() -> lagrangian.EquationsOfMotion:
     return lagrangian.derive(lagrangian.load_model(CART_POLE))
 
 
+@pytest.mark.slow
 def test_a_basin_map_of_the_closed_loop_equals_simulate_member_by_member(cart_pole):
     fb = lqr(cart_pole, {"x": 0, "theta": 0}, Q={"theta": 10})
     thetas = np.array([0.2, 0.6, 1.0, 1.4])
@@ -40,6 +41,7 @@ def test_a_basin_map_of_the_closed_loop_equals_simulate_member_by_member(cart_po
     assert np.abs(ds.state_final.values[0, 1]) < 1e-2
 
 
+@pytest.mark.slow
 def test_each_member_may_run_its_own_gains(cart_pole):
     gains = [lqr(cart_pole, {"x": 0, "theta": 0}, Q={"theta": q}) for q in (1.0, 10.0, 100.0)]
     ds = ensemble(cart_pole, 3.0, inputs=gains, initial={"theta": [0.3, 0.3, 0.3]}, n_out=31, keep="trajectories")
@@ -50,6 +52,7 @@ def test_each_member_may_run_its_own_gains(cart_pole):
         ensemble(cart_pole, 1.0, inputs=gains, initial={"theta": [0.1, 0.2]})
 
 
+@pytest.mark.slow
 def test_an_expression_input_is_the_same_for_every_member(cart_pole):
     ds = ensemble(cart_pole, 1.0, inputs={"F": "0.5*sin(2*t)"}, initial={"theta": [0.0, 0.1]}, n_out=11,
                   keep="trajectories")
@@ -57,6 +60,7 @@ def test_an_expression_input_is_the_same_for_every_member(cart_pole):
     assert np.array_equal(ds.trajectory.values[1, :, :2], one.q)
 
 
+@pytest.mark.slow
 def test_python_functions_are_refused_in_ensembles(cart_pole):
     with pytest.raises(SimulationError, match="Python function; ensembles run compiled laws only"):
         ensemble(cart_pole, 1.0, inputs={"F": lambda t, y: 0.0}, initial={"theta": [0.1, 0.2]})

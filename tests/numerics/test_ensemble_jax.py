@@ -12,9 +12,10 @@ pytest.importorskip("diffrax")
 import lagrangian  # noqa: E402
 from lagrangian.cli.main import main  # noqa: E402
 from lagrangian.errors import SimulationError  # noqa: E402
-from lagrangian.numerics import ensemble, grid, open_ensemble  # noqa: E402
+from lagrangian.numerics import ensemble, open_ensemble  # noqa: E402
 
 
+@pytest.mark.slow
 def test_jax_backend_agrees_with_the_c_path(tmp_path):
     """Tops of several angles, spins and g: the final states, the extremes and the kept trajectories
     agree with the C batch integrator to 1e-8 of each member's state size at rtol = atol = 1e-10."""
@@ -37,6 +38,7 @@ def test_jax_backend_agrees_with_the_c_path(tmp_path):
     xr.testing.assert_identical(open_ensemble(store), j.load())
 
 
+@pytest.mark.slow
 def test_sweep_on_the_jax_backend(tmp_path):
     """`lagrangian sweep --backend jax` writes the same members as the C sweep, to the tolerance."""
     runs = {}

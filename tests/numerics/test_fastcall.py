@@ -23,6 +23,7 @@ def test_the_wrapper_is_used_where_it_builds(top):
     assert type(top.rhs_c).__name__ == "RhsCaller"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("make", [lagrange_top, lambda: planar_chain(4)], ids=["top", "chain4"])
 def test_one_state_equals_the_batch_and_the_ctypes_path(make):
     system = compile_system(lagrangian.derive(make()))
@@ -31,7 +32,7 @@ def test_one_state_equals_the_batch_and_the_ctypes_path(make):
     Y = rng.uniform(0.3, 1.2, size=(16, 2 * system.n))
     batch = system.rhs(0.4, Y, p)
     by_ctypes = type(system).rhs_c.__get__(system)
-    for y, expected in zip(Y, batch):
+    for y, expected in zip(Y, batch, strict=True):
         out, out_ctypes = np.empty_like(y), np.empty_like(y)
         assert system.rhs_c(0.4, y, p, out) == 0
         assert by_ctypes(0.4, y, p, out_ctypes) == 0
@@ -66,6 +67,7 @@ def test_bad_arrays_are_refused_before_the_c_runs(top, args, error, words):
     np.testing.assert_array_equal(np.isnan(out), np.isnan(frozen))
 
 
+@pytest.mark.slow
 def test_the_wrapper_keeps_its_library_alive():
     """Holding rhs_c alone (the CompiledSystem gone) keeps the code it calls loaded."""
     import gc

@@ -65,6 +65,7 @@ def test_the_handle_flips_through_the_euler_singularities_with_sigma_and_energy_
     assert handle.drift["E"] < 1e-9 and all(handle.drift[f"sigma_G_{a}"] < 1e-9 for a in ("x0", "y0", "z0"))
 
 
+@pytest.mark.slow
 def test_the_motion_is_that_of_eulers_equations_integrated_by_scipy(handle) -> None:
     moments = np.array([handle.parameters[k] for k in "ABC"])
     start = np.concatenate([[handle.extra[k][0] for k in OMEGA], [handle.extra[k][0] for k in QUATERNION]])

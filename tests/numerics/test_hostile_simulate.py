@@ -1,4 +1,4 @@
-"""Models whose equations are not defined at the initial state (issue 15; found by tools/fuzz.py).
+"""Models whose equations are not defined at the initial state (found by tools/fuzz.py).
 
 ``rotation = ["phi^phi", "z"]`` with phi = 0 puts log(0) in M: the eigenvalue check of the
 initial state met a matrix of nan and raised NumPy's `LinAlgError`.  Now a `SimulationError`
@@ -10,15 +10,16 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from lagrangian_test_support import mutated_example
 
 import lagrangian
 from lagrangian import SimulationError
 from lagrangian.cli.main import main
-from lagrangian_test_support import mutated_example
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("example", ["lagrange_top.toml", "top_reaction.toml"])
 def test_m_not_finite_at_the_start_is_a_simulation_error(tmp_path: Path, example: str) -> None:
     path = mutated_example(tmp_path, example, 'rotation = ["phi", "z"]', 'rotation = ["phi^phi", "z"]')
@@ -36,7 +37,7 @@ def test_the_command_line_says_it_in_one_message(tmp_path: Path, capsys) -> None
     assert "not finite" in err and "Traceback" not in err
 
 
-# -- gauss-legendre's step (issue 15, item 7) -------------------------------------------------------
+# -- gauss-legendre's step -------------------------------------------------------
 STIFF = """\
 [model]
 name = "Stiff spring"
@@ -67,6 +68,7 @@ def test_gauss_legendre_default_step_runs_the_top_for_1000_s() -> None:
     assert max(abs(d) for d in traj.drift.values()) < 1e-5
 
 
+@pytest.mark.slow
 def test_a_stiff_spring_says_reduce_dt_and_the_default_step_adapts(tmp_path: Path, capsys) -> None:
     path = tmp_path / "stiff.toml"
     path.write_text(STIFF, encoding="utf-8")
@@ -109,6 +111,7 @@ def test_a_noether_candidate_that_overflows_is_not_taken_as_independent() -> Non
     assert _independent(eom, [], candidate) is False
 
 
+@pytest.mark.slow
 def test_nonholonomic_integrals_of_a_rotation_through_asin(tmp_path: Path) -> None:
     # Found by tools/fuzz.py (campaign seed 101, case 1578): asin(phi) in the disk's rotation is not
     # real at the random sample point of the rolling constraint's rows (phi > 1); SymEngine's
@@ -120,6 +123,7 @@ def test_nonholonomic_integrals_of_a_rotation_through_asin(tmp_path: Path) -> No
     assert main(["derive", str(path)]) == 0
 
 
+@pytest.mark.slow
 def test_a_rotation_through_abs_compiles_with_the_sign_of_its_angle(tmp_path: Path) -> None:
     # Found by tools/fuzz.py (seed 101, case 7230): SymEngine leaves d|psi|/dpsi unevaluated and the C
     # printer raised a bare ValueError in `compile`. d|u|/du is sign(u), its higher derivatives 0.
@@ -147,6 +151,7 @@ def test_a_backslash_in_an_axis_name_is_refused_at_load(tmp_path: Path) -> None:
     assert main(["derive", str(path)]) == 2
 
 
+@pytest.mark.slow
 def test_linearize_with_a_denormal_mass_is_a_clean_error(tmp_path: Path) -> None:
     # Found by tools/fuzz.py (seed 101, case 5296): mass = "5e-324" made NumPy's SVD fail inside
     # the rank test of M; `equilibria` printed a traceback. Now a LinearizationError, and the

@@ -61,6 +61,7 @@ def _by_hand(phases, edges, t_eval) -> np.ndarray:
     return np.concatenate(xs)
 
 
+@pytest.mark.slow
 def test_an_expression_then_a_table_then_a_number_drive_the_hand_written_equation(oscillator):
     F = Switch("2*sin(3*t)", TABLE, -0.5, at=(0.8, 1.9))
     t = np.linspace(0, 3, 31)
@@ -74,6 +75,7 @@ def test_an_expression_then_a_table_then_a_number_drive_the_hand_written_equatio
     assert traj.integrals == ()  # the force varies: no energy to monitor
 
 
+@pytest.mark.slow
 def test_a_table_then_a_feedback_is_the_swing_up_then_the_catch(oscillator):
     fb = lqr(oscillator, {"x": 0.0}, Q={"x": 10.0})
     (k_x, k_v), = fb.K
@@ -86,6 +88,7 @@ def test_a_table_then_a_feedback_is_the_swing_up_then_the_catch(oscillator):
     assert np.allclose(traj.column("F")[late], -(k_x * traj.q[late, 0] + k_v * traj.qd[late, 0]), atol=1e-12)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("how", ["RK45", "symengine", "constrained"])
 def test_the_law_in_python_switches_where_the_compiled_one_does(oscillator, how):
     F = Switch("2*sin(3*t)", TABLE, at=0.8)
@@ -106,6 +109,7 @@ def test_the_law_in_python_switches_where_the_compiled_one_does(oscillator, how)
     assert np.allclose(other.column("F"), compiled.column("F"), atol=1e-7)
 
 
+@pytest.mark.slow
 def test_a_switch_time_is_a_breakpoint_and_changing_it_recompiles_nothing(oscillator):
     system = compile_system(oscillator, inputs={"F": Switch(0.0, 1.0, at=0.5)})
     assert np.array_equal(system.law.breakpoints, [0.5])
@@ -116,6 +120,7 @@ def test_a_switch_time_is_a_breakpoint_and_changing_it_recompiles_nothing(oscill
     assert twin._lib is system._lib
 
 
+@pytest.mark.slow
 def test_an_ensemble_runs_the_switch_as_simulate_does(oscillator):
     pytest.importorskip("xarray")
     F = Switch(TABLE, "-3*x - x_dot", at=1.2)

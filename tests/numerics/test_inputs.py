@@ -65,6 +65,7 @@ def oscillator() -> lagrangian.EquationsOfMotion:
     return lagrangian.derive(lagrangian.parse_model(OSCILLATOR, source="oscillator.toml"))
 
 
+@pytest.mark.slow
 def test_an_expression_of_t_drives_the_oscillator_as_the_hand_written_equations(oscillator):
     t = np.linspace(0, 6, 61)
     traj = simulate(oscillator, 6.0, t_eval=t, inputs={"F": "2*sin(3*t)"}, rtol=RTOL, atol=RTOL)
@@ -74,6 +75,7 @@ def test_an_expression_of_t_drives_the_oscillator_as_the_hand_written_equations(
     assert "F" not in traj.parameters  # it varied: a column, not a parameter value
 
 
+@pytest.mark.slow
 def test_an_expression_of_the_state_is_a_feedback_law_compiled_in(oscillator):
     t = np.linspace(0, 5, 51)
     traj = simulate(oscillator, 5.0, t_eval=t, inputs={"F": "-k1*x - k2*x_dot + 0.5*cos(t)"}, rtol=RTOL, atol=RTOL)
@@ -82,6 +84,7 @@ def test_an_expression_of_the_state_is_a_feedback_law_compiled_in(oscillator):
     assert np.allclose(traj.column("F"), -3.0 * traj.q[:, 0] - 1.5 * traj.qd[:, 0] + 0.5 * np.cos(t), atol=1e-13)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("method", ["RK45", "Radau", "gauss-legendre"])
 def test_every_method_takes_the_inputs(oscillator, method):
     t = np.linspace(0, 3, 31)
@@ -91,6 +94,7 @@ def test_every_method_takes_the_inputs(oscillator, method):
     assert np.abs(traj.q[:, 0] - ref.y[0]).max() < 1e-7
 
 
+@pytest.mark.slow
 def test_a_number_holds_the_input_and_keeps_the_integrals_of_a_constant_force():
     # Without the damper the energy T + U − F x of a constant force is a first integral.
     text = OSCILLATOR.replace('damper = { dissipation = "1/2*c*x_dot^2" }\n', "")
@@ -136,6 +140,7 @@ def _definition(kind: str, t: np.ndarray) -> np.ndarray:
             + vb * (s - a) * (s - c) / ((b - a) * (b - c)))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind", KINDS)
 def test_each_interpolation_matches_its_definition_at_and_between_samples(oscillator, kind):
     ts, vs = _samples(kind)
@@ -174,6 +179,7 @@ def test_a_hold_reads_the_interval_it_is_in_up_to_its_right_end(oscillator):
     assert system.input_values([1.0], np.zeros((1, 2)), p)[0, 0] == SAMPLES_V[2]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind", KINDS)
 @pytest.mark.parametrize("method", ["dop853", "RK45"])
 def test_a_table_drives_the_oscillator_as_the_hand_written_equations_piece_by_piece(oscillator, kind, method):
@@ -198,7 +204,7 @@ def test_a_table_drives_the_oscillator_as_the_hand_written_equations_piece_by_pi
 
 def test_a_table_from_a_csv_file(tmp_path, oscillator):
     path = tmp_path / "push.csv"
-    path.write_text("t,force\n" + "".join(f"{a},{b}\n" for a, b in zip(SAMPLES_T, SAMPLES_V)))
+    path.write_text("t,force\n" + "".join(f"{a},{b}\n" for a, b in zip(SAMPLES_T, SAMPLES_V, strict=True)))
     table = InputTable.from_csv(path, "force", interpolation="linear")
     assert np.array_equal(table.t, SAMPLES_T) and np.array_equal(table.values, SAMPLES_V)
     with pytest.raises(SimulationError, match="no column `push`.*its columns: t, force"):
@@ -235,6 +241,7 @@ def test_an_unknown_interpolation_is_refused():
 
 
 # -- the slow path -------------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_a_python_function_gives_the_motion_of_the_compiled_expression(oscillator):
     t = np.linspace(0, 4, 41)
     slow = simulate(oscillator, 4.0, t_eval=t, inputs={"F": lambda t, y: 2 * math.sin(3 * t) - 0.5 * y[1]})
@@ -273,12 +280,14 @@ def test_bad_inputs_are_refused_clearly(oscillator, inputs, message):
         simulate(oscillator, 1.0, inputs=inputs)
 
 
+@pytest.mark.slow
 def test_an_input_given_twice_is_refused(oscillator):
     with pytest.raises(SimulationError, match="given both as a parameter value and by the inputs' law"):
         simulate(oscillator, 1.0, inputs={"F": "sin(t)"}, parameters={"F": 1.0})
 
 
 # -- [controls], constrained models, no C compiler ---------------------------------------------------------------------
+@pytest.mark.slow
 def test_the_models_controls_run_unless_inputs_override_them():
     text = OSCILLATOR + '\n[controls]\nF = "-k1*x - k2*x_dot"\n'
     eom = lagrangian.derive(lagrangian.parse_model(text))
@@ -291,6 +300,7 @@ def test_the_models_controls_run_unless_inputs_override_them():
     assert np.abs(off.q[:, 0] - free.y[0]).max() < 1e-8
 
 
+@pytest.mark.slow
 def test_a_model_with_complementary_constraints_takes_the_inputs():
     # The pendulum in Cartesian coordinates (the rod a complementary constraint) pushed horizontally by
     # F(t) against the same pendulum written by hand in its angle: m l² θ̈ = −m g l sin θ + F l cos θ.
@@ -317,6 +327,7 @@ def test_a_model_with_complementary_constraints_takes_the_inputs():
         assert traj.integrals == ()  # the push works: no energy to monitor
 
 
+@pytest.mark.slow
 def test_the_symengine_fallback_applies_the_same_law(oscillator):
     law = {"F": "2*sin(3*t) - k2*x_dot"}
     c = compile_system(oscillator, inputs=law)
@@ -336,6 +347,7 @@ def test_without_a_compiler_a_hold_reads_the_interval_the_integrator_is_in(oscil
     assert np.abs(python.q - compiled.q).max() < 1e-8
 
 
+@pytest.mark.slow
 def test_the_analytic_jacobian_refuses_a_law_it_cannot_see(oscillator):
     f = compile_system(oscillator, inputs={"F": "-k1*x"}).rhs_function()
     assert np.allclose(f(0.0, np.array([0.1, 0.0])), [0.0, (-K * 0.1 - 3.0 * 0.1) / M])

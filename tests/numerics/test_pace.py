@@ -3,7 +3,7 @@ is stopped as soon as that is plain, with the same error ``max_steps`` would giv
 
 An undamped spring of 1e16 N/m on 1 kg (ω = 1e8 rad/s) is not stiff in Hairer's sense: the step
 is held by accuracy, about 19 steps a period at the default tolerances.  Over 1 s that is some
-3e8 steps, more than the default 1e8; the run used to crawl for minutes (a fuzz case, issue 15,
+3e8 steps, more than the default 1e8; the run used to crawl for minutes (a fuzz case
 took 100 s with ``stiffness = "exp(k)"``) and is now stopped after two windows of 2^20 steps.
 The projection is checked against the steps the same oscillator takes over 1000 periods.
 """
@@ -14,10 +14,10 @@ import math
 from pathlib import Path
 
 import pytest
+from lagrangian_test_support import mutated_example
 
 import lagrangian
 from lagrangian import SimulationError
-from lagrangian_test_support import mutated_example
 
 ROOT = Path(__file__).resolve().parents[2]
 WINDOW = 2**20
@@ -51,6 +51,7 @@ def steps_per_period(oscillator) -> float:
     return traj.steps / 1000
 
 
+@pytest.mark.slow
 def test_a_run_max_steps_cannot_finish_stops_after_two_windows(oscillator, steps_per_period) -> None:
     with pytest.raises(SimulationError) as info:
         lagrangian.simulate(oscillator, 1.0, n_out=3)
@@ -66,6 +67,7 @@ def test_a_run_max_steps_cannot_finish_stops_after_two_windows(oscillator, steps
     assert 0 < err.t < 0.01
 
 
+@pytest.mark.slow
 def test_a_run_that_fits_in_max_steps_is_not_stopped(oscillator, steps_per_period) -> None:
     # About 2.6 windows of steps, with max_steps a little above: every projection is below it.
     periods = round(2.6 * WINDOW / steps_per_period)
@@ -82,6 +84,7 @@ def test_a_fixed_step_knows_its_count_at_once(oscillator) -> None:
     assert info.value.trajectory.steps == 0 and "would need about 1e+09 steps" in info.value.message
 
 
+@pytest.mark.slow
 def test_the_fuzz_case_of_an_undamped_spring_of_exp_40(tmp_path: Path) -> None:
     # tools/fuzz.py seed 102, case 20375: examples/cart_pendulum.toml with stiffness = "exp(k)",
     # k = 40 (2.4e17 N/m): 100 s to reach max_steps; now the error after 2^21 steps.

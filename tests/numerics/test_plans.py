@@ -31,6 +31,7 @@ def _plan_file(cache):
     return path
 
 
+@pytest.mark.slow
 def test_a_system_made_again_comes_from_its_plan_and_computes_the_same(cache, monkeypatch):
     first = compile_system(lagrangian.derive(lagrange_top()))
     plan = json.loads(_plan_file(cache).read_text())
@@ -71,6 +72,7 @@ def test_the_key_names_the_model_the_formulation_and_the_options():
     assert len(keys) == 6 and plan_key(top, {}, None, ()) == plan_key(lagrangian.derive(lagrange_top()), {}, None, ())
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("spoil", ["truncated", "no checksum", "group-writable", "other content", "no library"])
 def test_a_plan_that_cannot_be_trusted_or_used_is_made_again(cache, monkeypatch, spoil):
     model = planar_chain(2)

@@ -1,4 +1,4 @@
-"""Declared ranges and the signs the derivation used, checked along a motion (issue 16, item 4).
+"""Declared ranges and the signs the derivation used, checked along a motion.
 
 Truth: the closed form of the harmonic oscillator, x(t) = x0 cos ωt + (v0/ω) sin ωt with
 ω = √(k/m), for the mass on a spring fixed to a wall at x = −L.
@@ -10,11 +10,11 @@ import json
 
 import numpy as np
 import pytest
+from lagrangian_test_support import wall_spring
 
 import lagrangian
 from lagrangian import ModelError
 from lagrangian.numerics._files import save_trajectory
-from lagrangian_test_support import wall_spring
 
 SPRING = wall_spring(0.4)
 
@@ -24,6 +24,7 @@ def eom() -> lagrangian.EquationsOfMotion:
     return lagrangian.derive(lagrangian.parse_model(SPRING, source="spring.toml"))
 
 
+@pytest.mark.slow
 def test_a_motion_within_its_range_says_nothing(eom) -> None:
     traj = lagrangian.simulate(eom, 5.0, n_out=201)
     assert traj.range_exits == () and not any("range" in w for w in traj.warnings)

@@ -8,6 +8,7 @@ import warnings
 import numpy as np
 import pytest
 import symengine as se
+from urdf_robots import SPATIAL_ARM, Peer
 
 import lagrangian
 from lagrangian.analysis import reactions
@@ -15,7 +16,6 @@ from lagrangian.model import Vector
 from lagrangian.model.urdf import UrdfNote, parse_urdf
 from lagrangian.model.zoo import serial_arm
 from lagrangian.numerics import reaction_columns_along
-from urdf_robots import SPATIAL_ARM, Peer
 
 
 def _arm() -> lagrangian.Model:
@@ -31,12 +31,12 @@ def test_r0_components_are_the_shortest_frames_components_turned_to_r0():
     assert [r.name for r in fast] == [r.name for r in shown] and fast
     rng = np.random.default_rng(3)
     values = {s: se.RealDouble(float(x)) for s, x in zip([*eom.q, *eom.qd, *eom.qdd],
-                                                        rng.uniform(-1, 1, 3 * len(eom.q)))}
+                                                        rng.uniform(-1, 1, 3 * len(eom.q)), strict=True)}
     values |= {p.symbol: se.RealDouble(1.0 + k / 7) for k, p in enumerate(eom.model.parameters)}
-    for a, b in zip(fast, shown):
+    for a, b in zip(fast, shown, strict=True):
         assert a.frame == "R0"
         turned = kin.frames.express(Vector({b.frame: b.force_components}), "R0")
-        for x, y in zip(a.force_components, turned):
+        for x, y in zip(a.force_components, turned, strict=True):
             assert abs(float(x.subs(values)) - float(y.subs(values))) < 1e-12 * (1 + abs(float(y.subs(values))))
 
 

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from lagrangian_test_support import eom_of, random_states
 from scipy.integrate import solve_ivp
 
 import lagrangian
-from lagrangian_test_support import eom_of, random_states
 
 
 @pytest.fixture(scope="module")
@@ -67,6 +67,7 @@ def test_jacobian_is_analytic_and_matches_finite_differences(name: str) -> None:
         np.testing.assert_allclose(J, fd, rtol=1e-6, atol=1e-6 * max(1.0, np.abs(fd).max()))
 
 
+@pytest.mark.slow
 def test_radau_with_the_jacobian(top) -> None:  # type: ignore[no-untyped-def]
     eom, system = top
     traj = lagrangian.simulate(system, 1.0, rtol=1e-12, atol=1e-12, n_out=11)
@@ -87,6 +88,7 @@ def test_vectorized_calls(top) -> None:  # type: ignore[no-untyped-def]
         np.testing.assert_array_equal(out[:, k], f(0.0, Y[:, k]))
 
 
+@pytest.mark.slow
 def test_a_constrained_model_is_refused_with_the_fix() -> None:
     system = lagrangian.compile_system(eom_of("pendulum_tension.toml"))
     with pytest.raises(lagrangian.SimulationError, match="differential-algebraic") as info:

@@ -6,27 +6,25 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from lagrangian_test_support import EXAMPLES_DIR as EXAMPLES
 
 import lagrangian
 from lagrangian.errors import ModelError, SimulationError
 from lagrangian.numerics import EventSpec, compile_system, simulate
-from lagrangian_test_support import EXAMPLES_DIR as EXAMPLES
-
-TOP = lagrangian.derive(lagrangian.lagrange_top())
-PENDULUM = lagrangian.derive(lagrangian.load_model(EXAMPLES / "simple_pendulum.toml"))
-DOUBLE = lagrangian.derive(lagrangian.load_model(EXAMPLES / "double_pendulum.toml"))
 
 
 @pytest.fixture(scope="module")
 def top():
-    return compile_system(TOP)
+    return compile_system(lagrangian.derive(lagrangian.lagrange_top()))
 
 
 @pytest.fixture(scope="module")
 def pendulum():
-    return compile_system(PENDULUM, events=[("theta_dot", PENDULUM.qd[0])])
+    eom = lagrangian.derive(lagrangian.load_model(EXAMPLES / "simple_pendulum.toml"))
+    return compile_system(eom, events=[("theta_dot", eom.qd[0])])
 
 
+@pytest.mark.slow
 def test_small_angle_pendulum_period_is_two_pi_sqrt_l_over_g(pendulum):
     l, g, theta0 = 0.5, 9.81, 1e-3
     tr = simulate(pendulum, 7.5, initial={"theta": theta0, "theta_dot": 0.0}, rtol=1e-12, atol=1e-14)
@@ -87,8 +85,9 @@ def test_builtin_dop853_takes_the_same_steps_as_scipys(top):
     np.testing.assert_allclose(ours.q[-1], scipy.q[-1], rtol=1e-12)
 
 
+@pytest.mark.slow
 def test_symengine_backend_agrees_with_c(top):
-    fallback = compile_system(TOP, backend="symengine")
+    fallback = compile_system(top.eom, backend="symengine")
     p = top.parameter_vector()
     rng = np.random.default_rng(1)
     Y = rng.uniform(0.2, 1.2, size=(20, 6))
@@ -141,7 +140,7 @@ def test_energy_and_momenta_are_conserved_from_random_states(top, theta, psid, t
 @given(th1=st.floats(-2.5, 2.5), th2=st.floats(-2.5, 2.5), w1=st.floats(-4, 4), w2=st.floats(-4, 4))
 def test_double_pendulum_energy_is_conserved_and_symplectic_method_does_not_drift(th1, th2, w1, w2):
     system = _double()
-    names = DOUBLE.coordinates
+    names = system.eom.coordinates
     init = {names[0]: th1, names[1]: th2, f"{names[0]}_dot": w1, f"{names[1]}_dot": w2}
     tr = simulate(system, 2.0, initial=init, n_out=41)
     assert tr.drift["E"] <= 1e-8
@@ -155,7 +154,7 @@ _DOUBLE = []
 
 def _double():
     if not _DOUBLE:
-        _DOUBLE.append(compile_system(DOUBLE))
+        _DOUBLE.append(compile_system(lagrangian.derive(lagrangian.load_model(EXAMPLES / "double_pendulum.toml"))))
     return _DOUBLE[0]
 
 
@@ -177,6 +176,7 @@ def test_events_locate_the_turning_angles(top):
     np.testing.assert_allclose(lows, 0.5, atol=1e-9)   # θ1 = θ(0) when started with θ̇ = 0 and ψ̇ = 0
 
 
+@pytest.mark.slow
 def test_terminal_event_stops_the_run(top):
     tr = simulate(top, 5.0, events=[EventSpec("deep", "theta - 0.55", direction=1, terminal=True)], n_out=501)
     assert tr.status == "stopped by a terminal event"
@@ -219,6 +219,7 @@ def test_near_singular_passage_is_flagged(top):
     assert calm.conditioning > 1e-3 and not calm.warnings
 
 
+@pytest.mark.slow
 def test_no_silent_nan_when_m_becomes_singular():
     # A bead whose inertia vanishes at x = 0 (M = m x²), reached at t = 1/2.
     model = lagrangian.parse_model("""
@@ -271,6 +272,7 @@ def test_unknown_names_and_missing_initial_values(top):
         simulate(top, 1.0, events=["theta_dott"])
 
 
+@pytest.mark.slow
 def test_step_size_underflow_is_reported_with_the_time():
     # ẍ = 2x³ blows up in finite time (x = 1/(1 − t) from x(0) = 1, ẋ(0) = 1).
     model = lagrangian.parse_model("""

@@ -6,25 +6,22 @@ import math
 import numpy as np
 import pytest
 import scipy.integrate
+from lagrangian_test_support import EXAMPLES_DIR as EXAMPLES
 
 import lagrangian
 from lagrangian.errors import SimulationError
 from lagrangian.numerics import compile_system, default_tolerance, save_trajectory, simulate
 from lagrangian.numerics._trajectory import conservation, drift_scale
-from lagrangian_test_support import EXAMPLES_DIR as EXAMPLES
-
-TOP = lagrangian.derive(lagrangian.lagrange_top())
-PENDULUM = lagrangian.derive(lagrangian.load_model(EXAMPLES / "simple_pendulum.toml"))
 
 
 @pytest.fixture(scope="module")
 def top():
-    return compile_system(TOP)
+    return compile_system(lagrangian.derive(lagrangian.lagrange_top()))
 
 
 @pytest.fixture(scope="module")
 def pendulum():
-    return compile_system(PENDULUM)
+    return compile_system(lagrangian.derive(lagrangian.load_model(EXAMPLES / "simple_pendulum.toml")))
 
 
 # -- the drift of an integral that starts near 0 ------------------------------------------------------
@@ -82,7 +79,7 @@ def test_scipy_methods_have_a_progress_report(top):
 def test_scipy_runs_report_the_integrators_accepted_steps(top):
     traj = simulate(top, 2.0, method="RK45", rtol=1e-8, atol=1e-8, n_out=11)
     p = top.parameter_vector()
-    y0 = lagrangian.numerics.initial_state(TOP)
+    y0 = lagrangian.numerics.initial_state(top.eom)
     solver = scipy.integrate.RK45(lambda t, y: top.rhs(t, y, p), 0.0, y0, 2.0, rtol=1e-8, atol=1e-8)
     steps = 0
     while solver.status == "running":
@@ -142,6 +139,7 @@ def test_gauss_legendre_honours_a_dt_larger_than_the_output_spacing(pendulum):
 
 # -- files ----------------------------------------------------------------------------------------------
 
+@pytest.mark.slow
 def test_npz_holds_every_column_of_the_csv(tmp_path):
     traj = simulate(EXAMPLES / "pendulum_tension.toml", 0.5, n_out=11)
     assert traj.extra  # multipliers and reactions
@@ -158,15 +156,17 @@ def test_npz_holds_every_column_of_the_csv(tmp_path):
 
 # -- constrained models: stabilization through the public simulate ---------------------------------
 
-def test_stabilization_and_baumgarte_reach_the_dae_through_simulate():
+@pytest.mark.slow
+def test_stabilization_and_baumgarte_reach_the_dae_through_simulate(pendulum):
     traj = simulate(EXAMPLES / "pendulum_tension.toml", 0.5, n_out=11, stabilization="baumgarte",
                     baumgarte=(10.0, 10.0))
     assert traj.method == "dop853 + baumgarte"
     assert simulate(EXAMPLES / "pendulum_tension.toml", 0.5, n_out=11).method == "dop853 + projection"
     with pytest.raises(SimulationError, match="complementary"):
-        simulate(PENDULUM, 0.5, stabilization="baumgarte")
+        simulate(pendulum.eom, 0.5, stabilization="baumgarte")
 
 
+@pytest.mark.slow
 def test_two_terminal_events_in_one_step_keep_only_the_first():
     """A crossing after the first terminal event of a step never happened: it is not recorded."""
     from lagrangian.numerics import EventSpec
@@ -179,6 +179,7 @@ def test_two_terminal_events_in_one_step_keep_only_the_first():
     assert run.t[-1] <= run.events[0].t < run.t[-1] + 0.01 and run.status != "completed"
 
 
+@pytest.mark.slow
 def test_a_terminal_event_stops_a_stick_slip_run():
     from lagrangian.numerics import EventSpec
 

@@ -43,6 +43,7 @@ def stiff_eom(tmp_path_factory):
     return lagrangian.derive(lagrangian.load_model(_stiff_cart(tmp_path_factory.mktemp("stiff"))))
 
 
+@pytest.mark.slow
 def test_the_stiff_spring_stops_at_once_with_the_fix(stiff_eom) -> None:
     with pytest.raises(SimulationError) as info:
         lagrangian.simulate(stiff_eom, 10.0)
@@ -63,6 +64,7 @@ def test_without_the_test_dop853_goes_on(stiff_eom) -> None:
     assert info.value.trajectory is not None and "(partial)" in info.value.trajectory.status
 
 
+@pytest.mark.slow
 def test_radau_runs_it_to_the_end_as_a_pendulum_on_a_fixed_point(stiff_eom) -> None:
     traj = lagrangian.simulate(stiff_eom, 2.0, method="Radau", n_out=21)
     assert traj.status == "completed" and traj.t[-1] == 2.0
@@ -139,6 +141,7 @@ def test_a_first_step_that_overflows_is_rejected_not_fatal(tmp_path: Path) -> No
     assert "maximum number of steps" in info.value.message and info.value.t > 0
 
 
+@pytest.mark.slow
 def test_steps_below_1e_14_of_the_span_are_an_underflow_not_a_crawl(tmp_path) -> None:
     # Found by `tools/fuzz.py --format urdf` (seed 203, case 1329): a joint damping of 1e308 needs
     # steps of 1e-309 s; near t = 0 the resolution of t is a denormal, so dop853 crawled until

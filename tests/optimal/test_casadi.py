@@ -28,7 +28,7 @@ def test_every_function_of_the_model_grammar_evaluates_as_symengine_does():
     rng = np.random.default_rng(3)
     for _ in range(5):
         a, b = rng.uniform(0.2, 0.9, 2)
-        for expr, sx in zip(exprs, converted):
+        for expr, sx in zip(exprs, converted, strict=True):
             expected = float(expr.xreplace({x: a, y: b, m: 2.5}).n())
             assert math.isclose(_value(sx, X, [a, b]), expected, rel_tol=1e-13, abs_tol=1e-14), expr
 

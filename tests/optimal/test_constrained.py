@@ -68,6 +68,7 @@ def constrained_optimum(cartesian):
                     guess={"y": -L})
 
 
+@pytest.mark.slow
 def test_the_constrained_optimum_is_the_angle_models(constrained_optimum):
     angle = optimize(lagrangian.derive(parse_model(ANGLE)), t_end=2.0, initial={"theta": 0, "theta_dot": 0},
                      final={"theta": 1.0, "theta_dot": 0}, nodes=N)
@@ -78,6 +79,7 @@ def test_the_constrained_optimum_is_the_angle_models(constrained_optimum):
     assert best.q[0] == pytest.approx([0.0, -L]) and best.q[-1][1] == pytest.approx(-L * np.cos(1.0), abs=1e-4)
 
 
+@pytest.mark.slow
 def test_the_multiplier_is_the_rods_tension(constrained_optimum):
     best = constrained_optimum
     x, y = best.q.T

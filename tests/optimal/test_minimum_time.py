@@ -27,12 +27,14 @@ def slew():
     return optimize(load_problem(EXAMPLES_DIR / "optimal" / "satellite_slew.toml"))
 
 
+@pytest.mark.slow
 def test_the_least_time_is_the_bang_bang_closed_form(slew):
     assert slew.status == "optimal" and slew.free_time
     assert slew.t_end == pytest.approx(2 * math.sqrt(THETA * IB / TAU_MAX), rel=1e-6)
     assert slew.objective == pytest.approx(slew.t_end, rel=1e-12)
 
 
+@pytest.mark.slow
 def test_the_torque_is_full_one_way_then_the_other(slew):
     tau, t = slew.column("tau"), slew.t
     first, second = t < 0.45 * slew.t_end, t > 0.55 * slew.t_end

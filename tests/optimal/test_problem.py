@@ -131,6 +131,7 @@ def test_objective_terms_weigh_what_they_say(pendulum):
     assert slow.objective > base.objective
 
 
+@pytest.mark.slow
 def test_an_input_inside_a_parameter_only_subexpression_is_replayed_right():
     # The C code computes parameter-only subexpressions once per parameter set (2 F l here): the replay
     # must remake them as the input changes, or it would integrate F = 0.

@@ -63,6 +63,7 @@ def _by_hand(force, a: float, b: float, y: np.ndarray) -> np.ndarray:
     return sol.y[:, -1]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("method", ["hermite-simpson", "trapezoidal", "backward-euler"])
 def test_the_replay_is_the_hand_written_equation_under_the_schemes_input(spring, method):
     best = optimize(spring, t_end=T, initial={"x": 1.0, "x_dot": 0.5}, final={"x": -0.3, "x_dot": 0.0}, nodes=9,

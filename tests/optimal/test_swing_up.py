@@ -44,6 +44,7 @@ def swing_up(cart_pole):
     return optimize(cart_pole, nodes=30, **SWING_UP)
 
 
+@pytest.mark.slow
 def test_the_optimum_obeys_the_hand_derived_equations_at_every_collocation_point(swing_up):
     best = swing_up
     assert best.status == "optimal" and best.violation < 1e-8
@@ -71,6 +72,7 @@ def test_the_optimum_replays_through_the_integrator(swing_up):
     assert replay.local_error < 1e-3
 
 
+@pytest.mark.slow
 def test_opty_finds_the_same_objective_with_backward_euler(cart_pole):
     # opty (Moore & van den Bogert, JOSS 2018) transcribes x' = f with backward Euler: (x_i − x_{i−1})/h =
     # f(x_i, u_i), i = 1..N−1, the scheme `backward-euler` writes; the objective h Σ_{i≥1} F_i² is its
@@ -111,6 +113,7 @@ def test_opty_finds_the_same_objective_with_backward_euler(cart_pole):
     assert ours.objective == pytest.approx(info["obj_val"], rel=1e-8)
 
 
+@pytest.mark.slow
 def test_the_plan_then_the_lqr_holds_the_rod_up_as_the_hand_written_equations_do(cart_pole, swing_up):
     # The plan's force (Lagrange's parabola through each interval's u_k, u_c, u_k+1), then the LQR's
     # F = −K x from T on, on the cart-pole's equations by hand, integrated by SciPy phase by phase.

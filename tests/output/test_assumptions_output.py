@@ -1,4 +1,4 @@
-"""Declared signs and ranges, and the signs the derivation used, in `derive` and its JSON (issue 16, item 4)."""
+"""Declared signs and ranges, and the signs the derivation used, in `derive` and its JSON."""
 
 from __future__ import annotations
 
@@ -6,9 +6,10 @@ import json
 from pathlib import Path
 
 import jsonschema
+import pytest
+from lagrangian_test_support import wall_spring
 
 from lagrangian.cli.main import main
-from lagrangian_test_support import wall_spring
 
 ROOT = Path(__file__).resolve().parents[2]
 SCHEMA = json.loads((ROOT / "src/lagrangian/output/derive.schema.json").read_text())
@@ -16,6 +17,7 @@ SCHEMA = json.loads((ROOT / "src/lagrangian/output/derive.schema.json").read_tex
 SPRING = wall_spring(0.1)
 
 
+@pytest.mark.slow
 def test_json_and_text_say_what_was_assumed_and_used(capsys, tmp_path) -> None:
     path = tmp_path / "spring.toml"
     path.write_text(SPRING)

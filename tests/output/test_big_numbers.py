@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
 import symengine as se
 import sympy
 
@@ -23,6 +24,7 @@ def test_big_numbers_are_told_from_ordinary_ones() -> None:
     assert not has_big_numbers(3.5)
 
 
+@pytest.mark.slow
 def test_a_report_with_a_mass_of_1e308_never_factors_its_big_numbers(tmp_path: Path, monkeypatch) -> None:
     # Checked by what is called, not by a clock: SymPy's factor must not meet a 300-digit coefficient.
     factor = sympy.factor

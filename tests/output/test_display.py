@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
+from lagrangian_test_support import eom_of
 
 import lagrangian
 from lagrangian.output._report.size import FOLD_LINES
-from lagrangian_test_support import eom_of
 
 
 def test_equations_of_motion_display_the_seeds_equations() -> None:
@@ -75,6 +76,7 @@ def test_linear_model_writes_A_out() -> None:
     assert r"about $x = 0, \theta = 0" in latex
 
 
+@pytest.mark.slow
 def test_large_models_stay_bounded() -> None:
     """The Whipple bicycle: long sides summarized as ⟨n terms⟩, no equation past FOLD_LINES lines."""
     eom = eom_of("whipple_bicycle.toml")

@@ -1,20 +1,21 @@
 """The report's display simplifier: the forms a teacher would write, never another value.
 
-The forms are checked against the trigonometric identities written out by hand (issue 11,
-item 8); the values against the engine's expressions of every example, at random states.
+The forms are checked against the trigonometric identities written out by hand;
+the values against the engine's expressions of every example, at random states.
 """
 
 from __future__ import annotations
 
 import random
 
+import pytest
 import sympy
+from lagrangian_test_support import eom_of, example_names, integrals_of
 from sympy import cos, sin, symbols
 
 from lagrangian.output import course_form
 from lagrangian.output._display_form import display_form
 from lagrangian.output._report.build import report_notation
-from lagrangian_test_support import eom_of, example_names, integrals_of
 
 A, C, m, g, a, m1, m2, l1, l2 = symbols("A C m g a m1 m2 l1 l2")
 th, thd, psd, phd, t1, t2, t1dd = symbols("theta theta_dot psi_dot phi_dot theta1 theta2 theta1_ddot")
@@ -73,6 +74,7 @@ def _random_values(e: sympy.Basic, rng: random.Random) -> dict:
     return {s: sympy.Float(rng.uniform(0.3, 1.7)) for s in e.free_symbols}
 
 
+@pytest.mark.slow
 def test_every_example_keeps_its_values_at_random_states():
     """Every expression the report prints of every example (T, U, each equation's parts, M, F) has, once
     rewritten, the engine's value at three random states and parameter values."""

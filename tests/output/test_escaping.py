@@ -1,4 +1,4 @@
-"""Text from a model file reaches LaTeX and Markdown escaped once, and as text (issue 15, item 7)."""
+"""Text from a model file reaches LaTeX and Markdown escaped once, and as text."""
 
 from __future__ import annotations
 

@@ -8,6 +8,7 @@ import json
 from pathlib import Path
 
 import jsonschema
+import pytest
 import sympy
 
 from lagrangian.cli.main import main
@@ -24,6 +25,7 @@ def document(capsys, path: Path) -> dict:
     return doc
 
 
+@pytest.mark.slow
 def test_energy_balance_where_no_energy_integral_holds(capsys) -> None:
     doc = document(capsys, EXAMPLES / "kapitza_pendulum.toml")
     balance = doc["energy_balance"]
@@ -34,6 +36,7 @@ def test_energy_balance_where_no_energy_integral_holds(capsys) -> None:
     assert "energy_balance" not in document(capsys, EXAMPLES / "lagrange_top.toml")
 
 
+@pytest.mark.slow
 def test_multiplier_formulas_give_the_tension(capsys) -> None:
     doc = document(capsys, EXAMPLES / "pendulum_tension.toml")
     lam = sympy.sympify(doc["multiplier_formulas"]["lambda_length"])
@@ -43,6 +46,7 @@ def test_multiplier_formulas_give_the_tension(capsys) -> None:
     assert sympy.simplify(-2 * l * lam.subs(on_circle) - m * (g * sympy.cos(th) + l * thd**2)) == 0
 
 
+@pytest.mark.slow
 def test_reference_frame_and_load_notes(capsys) -> None:
     doc = document(capsys, EXAMPLES / "foucault_pendulum.toml")
     assert doc["reference"] == {"frame": "R_T", "origin": "O"}
@@ -51,6 +55,7 @@ def test_reference_frame_and_load_notes(capsys) -> None:
     assert "reference" not in document(capsys, EXAMPLES / "simple_pendulum.toml")
 
 
+@pytest.mark.slow
 def test_a_principal_constraint_statement_is_the_declared_relation(capsys, tmp_path) -> None:
     text = (EXAMPLES / "simple_pendulum.toml").read_text()
     text += '\n[constraints]\nrod = { holonomic = "(l*sin(theta))^2 + (l*cos(theta))^2 - l^2", principal = true }\n'
@@ -61,6 +66,7 @@ def test_a_principal_constraint_statement_is_the_declared_relation(capsys, tmp_p
     assert statement != 0 and sympy.simplify(statement) == 0
 
 
+@pytest.mark.slow
 def test_an_integrable_velocity_row_has_its_integral_in_the_json(capsys) -> None:
     """The rolling disk's ẋ − r φ̇ = 0 is holonomic (x − r φ = cste); the coin's rows are not."""
     [disk] = document(capsys, EXAMPLES / "rolling_disk_incline.toml")["constraints"]

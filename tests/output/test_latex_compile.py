@@ -17,6 +17,7 @@ EXAMPLES = [pytest.param(p, marks=pytest.mark.skip(reason="one 800,000-character
             if p.stem in TOO_WIDE else p for p in sorted((ROOT / "examples").glob("*.toml"))]
 
 
+@pytest.mark.tex
 @pytest.mark.skipif(shutil.which("pdflatex") is None, reason="pdflatex is not installed on this machine")
 @pytest.mark.parametrize("example", EXAMPLES, ids=lambda p: getattr(p, "stem", None))
 def test_latex_compiles(example, tmp_path):

@@ -15,10 +15,10 @@ import jsonschema
 import numpy as np
 import pytest
 import sympy
+from lagrangian_test_support import EXAMPLES_DIR
 
 import lagrangian
 from lagrangian.output import LINEARIZE_SCHEMA_ID, linearize_document
-from lagrangian_test_support import EXAMPLES_DIR
 
 SCHEMA = json.loads((Path(lagrangian.output.__file__).parent / "linearize.schema.json").read_text())
 
@@ -30,6 +30,7 @@ POINTS = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(POINTS))
 def test_document_is_valid_and_its_strings_mean_its_numbers(name):
     model = lagrangian.load_model(EXAMPLES_DIR / name)

@@ -18,6 +18,7 @@ NOTEBOOKS = Path(__file__).resolve().parents[2] / "docs" / "notebooks"
 NOTEBOOK = NOTEBOOKS / "lagrange_top.ipynb"
 
 
+@pytest.mark.slow
 def test_lagrange_top_notebook_runs(tmp_path):
     nbformat = pytest.importorskip("nbformat")
     nbclient = pytest.importorskip("nbclient")
@@ -43,6 +44,7 @@ def test_lagrange_top_notebook_runs(tmp_path):
     assert data[8][-1]["text/html"].startswith("<iframe srcdoc=")  # the 3-D view, a page in an iframe
 
 
+@pytest.mark.slow
 def test_control_notebook_runs():
     nbformat = pytest.importorskip("nbformat")
     nbclient = pytest.importorskip("nbclient")

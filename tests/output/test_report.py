@@ -9,11 +9,11 @@ from __future__ import annotations
 
 import os
 import re
-import time
 from pathlib import Path
 
 import numpy as np
 import pytest
+from lagrangian_test_support import EXAMPLES_DIR, eom_of, example_names, integrals_of, mutated_example, plain
 
 import lagrangian
 from lagrangian.model.zoo import planar_chain
@@ -22,11 +22,8 @@ from lagrangian.output._report.build import multiplier_names, report_notation
 from lagrangian.output._report.document import Display, Fold, Items, Para, math_of, walk
 from lagrangian.output._report.render.markdown import render_markdown
 from lagrangian.output._report.size import SMALL_OPS, Summary
-from lagrangian_test_support import EXAMPLES_DIR, eom_of, example_names, integrals_of, mutated_example, plain
 
 GOLDEN = Path(__file__).parent / "golden" / "lagrange_top.fr.md"
-#: Seconds a 40-link chain's report may take on a slow shared machine (about 5 s measured).
-CHAIN_SECONDS = 30
 
 
 def _norm(latex: str) -> str:
@@ -62,6 +59,7 @@ def top() -> Report:
 
 
 # -- the seed's top ------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_golden_french_report_of_the_top(top):
     """Reviewed by hand against the seed's worked example (SMP5, ch. IV, « Mouvement de Lagrange »).
 
@@ -76,8 +74,8 @@ def test_golden_french_report_of_the_top(top):
     assert text == GOLDEN.read_text(encoding="utf-8")
 
 
-#: Golden reports of other examples, French and English, reviewed line by line for the statements issue 11
-#: corrected: the degrees of freedom (n − h − k, planar by construction), the moment theorem at a moving point
+#: Golden reports of other examples, French and English, reviewed line by line for the statements
+#: they hold: the degrees of freedom (n − h − k, planar by construction), the moment theorem at a moving point
 #: (δ_A = d/dt σ_A + m V(A) ∧ V(G)), the multiplier from the constraint differentiated twice, the Jacobi integral
 #: h = T(Σ/R1) + U_P(Σ/R1) of the hoop, the multipliers λ / λ_1 … λ_k and the constraints by their description,
 #: the comoments of step 3 and Π at step 4.  Regenerate with LAGRANGIAN_UPDATE_GOLDEN=1 and review the diff.
@@ -85,6 +83,7 @@ GOLDEN_EXAMPLES = ["pendulum_tension", "double_pendulum", "rolling_coin", "bead_
                    "foucault_pendulum"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("lang", ["fr", "en"])
 @pytest.mark.parametrize("name", GOLDEN_EXAMPLES)
 def test_golden_reports_of_the_examples(name, lang):
@@ -150,6 +149,7 @@ def test_cyclic_equations_first_then_the_rest_with_the_integrals(top):
 OVER_BUDGET = {"whipple_bicycle.toml"}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", example_names())
 @pytest.mark.parametrize("lang", ["fr", "en"])
 def test_report_equations_are_the_engines(name, lang):
@@ -189,6 +189,7 @@ def test_report_equations_are_the_engines(name, lang):
     assert f"{len(eom.coordinates)}" in " ".join(math_of(r.document.section("step2").blocks))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", example_names())
 def test_every_example_in_every_format_and_language(name):
     eom = eom_of(name)
@@ -208,6 +209,7 @@ def test_every_example_in_every_format_and_language(name):
 
 
 # -- complementary constraints, a non-Galilean frame, friction ---------------------------------------
+@pytest.mark.slow
 def test_complementary_constraint_is_kept_for_step_7():
     r = report(eom_of("pendulum_tension.toml"), lang="fr")
     text = _text(r)
@@ -252,13 +254,13 @@ def test_a_function_by_cases_is_printed():
 
 
 # -- long expressions --------------------------------------------------------------------------------
-def test_a_40_link_chain_is_quick_and_summarized():
+@pytest.mark.slow
+def test_a_40_link_chain_is_summarized():
+    # Its time is measured in benchmarks/report_display_form.py, not here.
     eom = lagrangian.derive(planar_chain(40))
-    start = time.perf_counter()
     r = report(eom, lang="fr")
     html, tex, md = r.html(), r.latex(), r.markdown()
-    elapsed = time.perf_counter() - start
-    assert elapsed < CHAIN_SECONDS
+    assert r"\end{document}" in tex
     from lagrangian.view3d.html import library
 
     # The 3-D figure's viewer (three.js, 0.75 MB) comes once, whatever the model; the rest stays under 4 MB.
@@ -308,6 +310,7 @@ def _png() -> bytes:
     return buffer.getvalue(), fig
 
 
+@pytest.mark.slow
 def test_figures_are_embedded():
     png, fig = _png()
     r = report(lagrangian.lagrange_top(), figures=[ReportFigure(png, "θ(t)"), ("phase", fig), png, fig])
@@ -326,6 +329,7 @@ def test_bad_figures_are_refused():
 
 
 # -- writing -------------------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_save_picks_the_format_from_the_suffix(tmp_path, top):
     for suffix, start in ((".html", "<!DOCTYPE html>"), (".tex", r"\documentclass"), (".md", "# ")):
         path = top.save(tmp_path / f"top{suffix}")
@@ -346,6 +350,7 @@ def test_a_failed_save_leaves_the_old_file(tmp_path, monkeypatch, top):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["top.html"]  # no temporary file left
 
 
+@pytest.mark.slow
 def test_latex_figures_are_written_beside_the_tex_file(tmp_path):
     png, _ = _png()
     r = report(lagrangian.lagrange_top(), figures=[ReportFigure(png, "θ(t)")])
@@ -389,6 +394,7 @@ def test_unknown_language_and_format_are_refused(top):
         top.render("pdf")  # bytes: Report.pdf() or save("x.pdf")
 
 
+@pytest.mark.slow
 def test_every_fold_has_content(top):
     r = report(lagrangian.derive(planar_chain(14)))
     folds = [b for s in r.document.sections for b in walk(s.blocks) if isinstance(b, Fold)]
@@ -415,6 +421,7 @@ def test_the_check_recognises_L_psi_as_dK_dt(top):
     assert sum(r"\right] = \frac{d}{dt}\left[\frac{\partial T" in m for m in shown) == 1
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["lagrange_top.toml", "double_pendulum.toml"])
 def test_step6_states_the_principle_of_virtual_power(name):
     """Step 6 opens with P*_acc = Σ Γ_i q_i* = Σ Q_i q_i* ⇒ Γ_i = Q_i, Γ_i = d/dt[∂T/∂q̇_i] − ∂T/∂q_i [Seed, I–II].
@@ -445,6 +452,7 @@ def test_english_words_and_cross_product():
     assert r"\overrightarrow{OG}\wedge\vec{P}" in fr_text and "parfaite" in fr_text
 
 
+@pytest.mark.slow
 def test_step7_gives_the_reaction_of_the_fixed_point():
     """After step 7: R_O = m γ(G/R0) − P, the engine's reaction (checked against the closed form in
     tests/analysis/test_reactions.py), in the course's basis (u, w, z); not where a multiplier gives it."""
@@ -458,12 +466,13 @@ def test_step7_gives_the_reaction_of_the_fixed_point():
                      for line in m.split(" \\\\\n"))
     n = report_notation(course_form(eom, ()), eom.model)
     assert r"\vec{R}_{O} = m\,\vec{\gamma}(G/R_{0}) - \vec{F}(\text{poids}) = " in shown
-    for x, axis in zip(r.force_components, (r"\vec{u}", r"\vec{w}", r"\vec{z}")):
+    for x, axis in zip(r.force_components, (r"\vec{u}", r"\vec{w}", r"\vec{z}"), strict=True):
         assert n.latex(x._sympy_()) in shown and axis in shown
     tension = report(eom_of("pendulum_tension.toml"), lang="fr", verification=True).document
     assert not any(r"\vec{\gamma}(" in m for m in math_of(tension.section("step7").blocks))
 
 
+@pytest.mark.slow
 def test_deeply_nested_functions_are_printed_as_derived(tmp_path, monkeypatch):
     # tools/fuzz.py seed 105, case 6148: Kapitza's pendulum turned by sin∘…∘sin θ (eight deep); SymPy's
     # simplify spent 25 s on each term of its power balance.  The report simplifies nothing nested

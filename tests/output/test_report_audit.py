@@ -6,14 +6,15 @@ Each test names the model of ``examples/`` it reads and the sentence or formula 
 from __future__ import annotations
 
 import re
-from functools import lru_cache
+from functools import cache
 
-from lagrangian.output import report
-from lagrangian.output._report.document import math_of
+import pytest
 from lagrangian_test_support import EXAMPLES_DIR, plain
 
+from lagrangian.output import report
 
-@lru_cache(maxsize=None)
+
+@cache
 def _md(name: str, lang: str = "fr") -> str:
     return plain(report(EXAMPLES_DIR / f"{name}.toml", lang=lang).markdown())
 
@@ -25,6 +26,7 @@ def _section(text: str, title: str) -> str:
     return text[start:end if end >= 0 else len(text)]
 
 
+@pytest.mark.slow
 def test_the_matrix_form_keeps_the_multipliers():
     """pendulum_tension: step 6 has m ẍ = 2xλ, so the appendix cannot say M q̈ = F with F_x = 0 alone."""
     for name in ("pendulum_tension", "rolling_coin"):
@@ -51,6 +53,7 @@ def test_the_total_potential_is_named_u_p_of_the_system():
     assert r"U_P(\Sigma" not in step4
 
 
+@pytest.mark.slow
 def test_a_prescribed_motion_keeps_remark_2_and_names_each_power_by_its_value():
     """Kapitza: L = T − U_P still holds (Remarque 2), but ∂L/∂t ≠ 0, so the energy is no integral; the balance
     is −∂L/∂t + d/dt(T₁ + 2T₀), not a ∂U_P/∂t plus a 'prescribed motion' power that was neither."""
@@ -67,13 +70,14 @@ def test_a_prescribed_motion_keeps_remark_2_and_names_each_power_by_its_value():
     assert "dépend explicitement de $`t`$" not in _md("simple_pendulum")
 
 
+@pytest.mark.slow
 def test_coriolis_forces_do_no_power_and_leave_the_jacobi_integral():
     """bead_rotating_hoop / foucault_pendulum: not 'the system is not conservative' then a Jacobi integral."""
     bead, foucault = _md("bead_rotating_hoop"), _md("foucault_pendulum")
     for text in (bead, foucault):
         step6 = _section(text, "6.")
         assert "Le système n'est pas conservatif" not in step6
-        # One definition of h (issue 11, item 4): T(Σ/R) = T_2 there, U_P(Σ/R) holds the entrainment potential.
+        # One definition of h: T(Σ/R) = T_2 there, U_P(Σ/R) holds the entrainment potential.
         assert "aucune puissance réelle" in step6 and re.search(r"h = T\(\\Sigma/([^)]+)\) \+ U_P\(\\Sigma/\1\)", step6)
         # h is written as the integrals section defines it: with T_2 − T_0 only where T(Σ/R) has a T_0 part.
         assert ("T_0" in step6) == ("T_2 - T_0" in _section(text, "Intégrales premières"))
@@ -90,6 +94,7 @@ def test_coriolis_forces_do_no_power_and_leave_the_jacobi_integral():
     assert "O'" not in step4 and "l'opérateur d'inertie de (Σ) en $`O`$" in step4
 
 
+@pytest.mark.slow
 def test_an_energy_integral_may_replace_one_equation_or_another():
     assert "l'une des équations $`L(x)`$ ou $`L(y)`$" in _md("pendulum_tension")
 
@@ -108,6 +113,7 @@ def test_a_conservative_load_derives_from_its_u_p():
     assert r"Q_i(\text{poids}) = -\frac{\partial U_P(\text{poids})}{\partial q_i}" in _md("simple_pendulum")
 
 
+@pytest.mark.slow
 def test_one_equation_is_singular_and_reactions_name_their_body():
     assert "l'équation de Lagrange détermine le mouvement" in _section(_md("simple_pendulum"), "7.")
     assert "les $`1`$ équations" not in _md("simple_pendulum")
@@ -151,6 +157,7 @@ def test_a_velocity_row_that_integrates_is_called_holonomic_with_its_integral():
     assert "non holonome" not in step1
 
 
+@pytest.mark.slow
 def test_the_multiplier_terms_are_defined_once_and_symbols_are_math():
     import lagrangian
     from lagrangian.output import report

@@ -9,11 +9,11 @@ from __future__ import annotations
 
 import pytest
 import symengine as se
+from lagrangian_test_support import eom_of, plain
 
 import lagrangian
 from lagrangian.model.zoo import planar_chain
 from lagrangian.output._report.joints import degrees_of_freedom, joints
-from lagrangian_test_support import eom_of, plain
 
 
 def _summary(name: str) -> list[tuple]:
@@ -81,11 +81,15 @@ def test_every_constraint_is_holonomic_principal_and_perfect(name):
 
 
 # -- audit fixes: each test fails on the report as it was before them -------------------------------
+from lagrangian_test_support import eom_of as _eom_of  # noqa: E402
+from lagrangian_test_support import example_names as _example_names
+
 from lagrangian.output import report as _report  # noqa: E402
-from lagrangian.output._report.document import Display as _Display, Items as _Items, Para as _Para  # noqa: E402
+from lagrangian.output._report.document import Display as _Display  # noqa: E402
+from lagrangian.output._report.document import Items as _Items
+from lagrangian.output._report.document import Para as _Para
 from lagrangian.output._report.document import Table as _Table  # noqa: E402
-from lagrangian.output._report.document import math_of as _math_of, walk as _walk  # noqa: E402
-from lagrangian_test_support import eom_of as _eom_of, example_names as _example_names  # noqa: E402
+from lagrangian.output._report.document import walk as _walk  # noqa: E402
 
 
 def _section(r, key: str) -> str:  # type: ignore[no-untyped-def]
@@ -136,6 +140,7 @@ def test_coriolis_on_the_hoop_is_orthogonal_and_q_notation_is_per_load():
     assert r"Q_{\psi,\,\mathrm{nc}} = Q_{\theta,\,\mathrm{nc}} = Q_{\varphi,\,\mathrm{nc}} = 0" in top5
 
 
+@pytest.mark.slow
 def test_multiplier_coefficients_are_defined_and_do_not_clash_with_inertia():
     r = _report(_eom_of("top_reaction.toml"))
     text = _all(r)
@@ -143,6 +148,7 @@ def test_multiplier_coefficients_are_defined_and_do_not_clash_with_inertia():
     assert r"a_{k,i}" in _section(r, "step6") and "multiplicateur de la liaison complémentaire k" in text
 
 
+@pytest.mark.slow
 def test_step_7_gives_the_multiplier_and_the_rods_tension():
     step7 = _section(_report(_eom_of("pendulum_tension.toml")), "step7")
     assert "\n\\lambda = \\frac{" in step7  # one multiplier: λ, not the engine's lambda_length
@@ -157,6 +163,7 @@ def test_jacobi_integral_is_stated_right_and_the_energy_balance_when_none():
     assert r"\frac{dE}{dt} = P(\text{frottement})" in belt
 
 
+@pytest.mark.slow
 def test_newton_euler_states_the_theorems_it_projects():
     top = _report(lagrangian.lagrange_top(), verification=True)
     check = _section(top, "check")
@@ -177,6 +184,7 @@ ENGLISH = ("weight", "entrainment", "given effort", "constraint “", " the ", "
 FRENCH = ("Remarque", "poids", "liaison", "équation", "effort", "entraînement", "théorème", " et ")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", _example_names())
 def test_no_english_in_french_and_no_french_in_english(name):
     eom = _eom_of(name)
@@ -203,7 +211,7 @@ def _constraints_named_in_the_reports_language(eom, texts):  # type: ignore[no-u
     letter = r"\mu" if own & {"lam", "lambda"} else r"\lambda"
     for lang, text in texts.items():
         other = "en" if lang == "fr" else "fr"
-        for k, con in enumerate(eom.model.constraints, 1):
+        for con in eom.model.constraints:
             for quoted in (f"« {con.name} »", f"“{con.name}”", tex_text(con.name), rf"\mathrm{{{con.name.split('_')[0]}}}"):
                 assert quoted not in text, (lang, quoted)
             if "_" in con.name:
@@ -224,7 +232,7 @@ def _constraints_named_in_the_reports_language(eom, texts):  # type: ignore[no-u
             assert rf"{letter}_{{{len(rows) + 1}}}" not in text
 
 
-# -- degrees of freedom, planar motion, the multiplier's derivation (issue 11, items 1 and 3) ---------------------
+# -- degrees of freedom, planar motion, the multiplier's derivation ---------------------
 #: Degrees of freedom counted by hand from each statement (independent velocities): the rod of
 #: `pendulum_tension` leaves one of x, y; the coin's two rolling rows leave ψ̇ and φ̇; the disk rolls
 #: (x = r φ); the top's pivot (3 rows) leaves ψ, θ, φ; the bicycle's five rows leave lean, steer and
@@ -238,6 +246,7 @@ PLANE = {"pendulum_tension.toml": r"(O;\,\vec{x}_{0},\,\vec{y}_{0})", "double_pe
          "rolling_coin.toml": None, "top_reaction.toml": None, "whipple_bicycle.toml": None}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(DOF))
 def test_step1_counts_the_degrees_of_freedom_and_says_when_the_motion_is_planar(name):
     n, h, k, dof = DOF[name]
@@ -265,6 +274,7 @@ def test_step1_counts_the_degrees_of_freedom_and_says_when_the_motion_is_planar(
             assert plane in step1
 
 
+@pytest.mark.slow
 def test_a_holonomic_multiplier_comes_from_the_constraint_differentiated_twice():
     eom = _eom_of("pendulum_tension.toml")
     assert "dérivée deux fois par rapport au temps" in _section(_report(eom, lang="fr"), "step7")
@@ -281,6 +291,7 @@ def test_the_jacobi_integral_of_the_hoop_has_one_definition():
         assert text.count(r"h = T(\Sigma/R_{1}) + U_P(\Sigma/R_{1})") >= 2
 
 
+@pytest.mark.slow
 def test_the_moment_theorem_at_a_moving_point_keeps_its_extra_term():
     # δ_A = d/dt[σ_A] + m V(A) ∧ V(G) at a moving point A.  The double pendulum's joint A: by hand, with
     # V(A) = l1 θ̇1 t1 and V(G2) = V(A) + ½ l2 (θ̇1 + θ̇2) t2 (t_k ⟂ rod k, θ2 relative), V(A) ∧ V(G2) has the
@@ -297,10 +308,11 @@ def test_the_moment_theorem_at_a_moving_point_keeps_its_extra_term():
 
 
 def test_values_of_the_integrals_carry_their_units_and_minus_signs():
-    # Issue 11, item 9.  The simple pendulum at rest at θ0: E = −m g l cos θ0 (J, negative: a minus sign,
+    # The simple pendulum at rest at θ0: E = −m g l cos θ0 (J, negative: a minus sign,
     # U+2212, not a hyphen); the top's K and H are angular momenta (J·s), its E an energy (J); the coin's
     # φ̇ is a speed (rad/s).  The values are recomputed here from the model files' numbers.
     import math
+
     import tomllib
     from lagrangian_test_support import EXAMPLES_DIR
 
@@ -322,6 +334,7 @@ def test_values_of_the_integrals_carry_their_units_and_minus_signs():
     assert "≈ 10 rad/s" in coin
 
 
+@pytest.mark.slow
 def test_a_constant_speed_and_a_symmetry_integral_are_not_called_jacobi_integrals():
     """The coin's φ̇ = cste (its reduced equations) and a top's σ_O·z0 were printed as « h = T + U_P = φ̇ »,
     the Painlevé–Jacobi integral of a moving frame.  φ̇ = cste is checked here on the textbook coin: T =
@@ -346,12 +359,14 @@ def test_a_constant_speed_and_a_symmetry_integral_are_not_called_jacobi_integral
             assert r"= \sigma_{O,z_{0}}" in top and "h = " not in top and "Noether" in top
 
 
+@pytest.mark.slow
 def test_a_constraint_without_description_is_named_by_its_rank_not_its_identifier():
     """A model file may give no description: the prose then says « la liaison 1 » / "constraint 1", never the
     identifier (here `rod_len`, which stays in the JSON)."""
+    from lagrangian_test_support import EXAMPLES_DIR
+
     import lagrangian
     from lagrangian.model._toml import parse_model
-    from lagrangian_test_support import EXAMPLES_DIR
 
     text = (EXAMPLES_DIR / "pendulum_tension.toml").read_text(encoding="utf-8")
     head, _, _ = text.partition("[constraints]")

@@ -52,6 +52,7 @@ def test_the_report_of_a_model_with_contacts_has_no_event_table_without_a_simula
     assert "impacts" not in [s.key for s in lagrangian.report(EXAMPLES_DIR / "simple_pendulum.toml").document.sections]
 
 
+@pytest.mark.slow
 def test_the_report_command_lists_the_events_of_its_simulation(tmp_path, monkeypatch) -> None:
     pytest.importorskip("matplotlib")
     import lagrangian.plotting
@@ -73,6 +74,7 @@ def test_derive_writes_the_complementarity_of_each_contact(capsys) -> None:
     assert "depend on which contacts are closed" in text  # no single formula for λ with two contacts
 
 
+@pytest.mark.slow
 def test_the_json_gives_each_contacts_law(capsys) -> None:
     assert main(["derive", str(EXAMPLES_DIR / "rocking_block.toml"), "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)

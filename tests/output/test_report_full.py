@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import re
-import time
 
 import pytest
 
@@ -14,9 +13,6 @@ from lagrangian.output._course import to_sympy
 from lagrangian.output._report.document import Display, FullForms, math_of, walk
 from lagrangian.output._report.full_forms import FULL_BUDGET, FULL_WIDTH
 from lagrangian.output._report.size import Summary, visible_width
-
-#: A 40-link report, built and written in all three formats, takes about 5 s on one core.
-CHAIN_SECONDS = 15
 
 
 def _undo(lines: tuple[str, ...]) -> str:
@@ -39,6 +35,7 @@ def _summaries(latex: str) -> list[str]:
     return re.findall(r"\\langle [^⟩]*?\\rangle", latex)
 
 
+@pytest.mark.slow
 def test_every_summarized_lagrange_equation_of_a_6_link_chain_has_its_full_form(chain6):
     eom, r = chain6
     step6 = r.document.section("step6")
@@ -60,11 +57,10 @@ def test_every_summarized_lagrange_equation_of_a_6_link_chain_has_its_full_form(
             previous = k + 1
 
 
+@pytest.mark.slow
 def test_full_forms_are_the_notations_latex_of_the_engines_expressions(chain6):
     eom, r = chain6
-    from lagrangian.output._text import notation
     from lagrangian.output._course import course_form
-
     from lagrangian.output._report.build import report_notation
 
     n = report_notation(course_form(eom, ()), eom.model)
@@ -84,6 +80,7 @@ def test_full_forms_are_the_notations_latex_of_the_engines_expressions(chain6):
     assert all(visible_width(line) <= FULL_WIDTH + 30 for _, lines in _book(r) for line in lines)
 
 
+@pytest.mark.slow
 def test_html_folds_the_full_forms_and_markdown_too(chain6):
     eom, r = chain6
     html, md = r.html(), r.markdown()
@@ -97,6 +94,7 @@ def test_html_folds_the_full_forms_and_markdown_too(chain6):
     assert "**A.2**" in md
 
 
+@pytest.mark.slow
 def test_latex_gathers_the_full_forms_in_an_appendix(chain6):
     eom, r = chain6
     tex = r.latex()
@@ -107,12 +105,12 @@ def test_latex_gathers_the_full_forms_in_an_appendix(chain6):
     assert r"\section*{Appendix: full forms}" in english and "(see A.2)" in english
 
 
-def test_a_40_link_chain_stays_within_the_budget_and_quick():
+@pytest.mark.slow
+def test_a_40_link_chain_stays_within_the_budget():
+    # Its time is measured in benchmarks/report_display_form.py, not here.
     eom = lagrangian.derive(planar_chain(40))
-    start = time.perf_counter()
     r = report(eom, lang="fr")
-    r.html(), r.latex(), r.markdown()
-    assert time.perf_counter() - start < CHAIN_SECONDS
+    assert r.html() and r.latex() and r.markdown()
     forms = _book(r)
     assert forms and sum(len(line) for _, lines in forms for line in lines) <= 1.2 * FULL_BUDGET
     # The rest stays summarized, and the report says where the complete equations are.

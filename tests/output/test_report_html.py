@@ -17,16 +17,16 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from lagrangian_test_support import EXAMPLES_DIR
 
 import lagrangian
 from lagrangian.model.zoo import planar_chain
 from lagrangian.output import ReportFigure, report
 from lagrangian.output._report.document import math_of
-from lagrangian_test_support import EXAMPLES_DIR
 
 CHROMIUM = next((p for p in map(shutil.which, ("chromium", "chromium-browser", "google-chrome", "chrome")) if p), None)
-pytestmark = pytest.mark.skipif(
-    CHROMIUM is None, reason="no headless Chromium on this machine (`make test` installs Debian's chromium as root)")
+pytestmark = [pytest.mark.browser, pytest.mark.skipif(
+    CHROMIUM is None, reason="no headless Chromium on this machine (`make test` installs Debian's chromium as root)")]
 
 #: Seconds Chromium may take to load and lay out a page (a cold start on a busy machine).
 BROWSER_SECONDS = 120
@@ -188,8 +188,9 @@ def _math_count(r) -> int:
 
 
 def test_top_in_french_renders_in_a_browser(tmp_path):
-    import matplotlib.figure
     from io import BytesIO
+
+    import matplotlib.figure
 
     fig = matplotlib.figure.Figure(figsize=(3, 2))
     fig.add_subplot().plot(np.sin(np.linspace(0, 6, 50)))
@@ -287,7 +288,7 @@ def test_two_letter_vectors_carry_an_arrow_with_its_head(tmp_path):
 
     pixels = matplotlib.image.imread(shot)
     dark = pixels[..., :3].mean(axis=2) < 0.5
-    for (ml, mt, mr, mb), (bl, bt, br, bb), *transforms in vectors:
+    for (ml, mt, mr, mb), (bl, bt, br, _), *transforms in vectors:
         assert transforms == ["none", "none"]
         width = br - bl
         # The band above the letters, within the arrow's box: where the arrow is drawn.

@@ -8,10 +8,10 @@ import subprocess
 from io import BytesIO
 
 import pytest
+from lagrangian_test_support import EXAMPLES_DIR
 
 import lagrangian
 from lagrangian.output import ReportFigure, report
-from lagrangian_test_support import EXAMPLES_DIR
 
 needs_pdflatex = pytest.mark.skipif(shutil.which("pdflatex") is None, reason="pdflatex is not installed on this machine")
 
@@ -27,6 +27,7 @@ def _compile(tmp_path, name: str) -> str:
     return run.stdout
 
 
+@pytest.mark.tex
 @needs_pdflatex
 def test_top_report_compiles_with_its_figure_and_fits_the_page(tmp_path):
     import matplotlib.figure
@@ -43,6 +44,7 @@ def test_top_report_compiles_with_its_figure_and_fits_the_page(tmp_path):
     assert all(w < OVERFULL_PT for w in widths), widths
 
 
+@pytest.mark.tex
 @needs_pdflatex
 @pytest.mark.parametrize("name, lang", [("double_pendulum.toml", "en"), ("pendulum_tension.toml", "fr"),
                                         ("bead_rotating_hoop.toml", "fr")])
@@ -62,6 +64,7 @@ def test_french_uses_babel_where_installed_and_wide_tables_wrap():
         assert not shares or abs(sum(shares) - 1) < 0.01
 
 
+@pytest.mark.tex
 @needs_pdflatex
 def test_foucault_in_french_fits_the_page(tmp_path):
     """The audit's overfull box: the constants' table of Foucault (38 pt too wide with llll)."""

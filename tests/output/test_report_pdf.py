@@ -13,18 +13,19 @@ import stat
 import subprocess
 
 import pytest
+from lagrangian_test_support import EXAMPLES_DIR
 
 from lagrangian.cli.main import main
 from lagrangian.errors import OutputError
 from lagrangian.output import report
 from lagrangian.output._report.render import pdf as _report_pdf
-from lagrangian_test_support import EXAMPLES_DIR
 
 needs_tex = pytest.mark.skipif(_report_pdf.tex_engine() is None or shutil.which("pdftotext") is None
                                or shutil.which("pdfinfo") is None,
                                reason="no pdflatex/lualatex or poppler-utils here (`make test` installs them as root)")
 
 
+@pytest.mark.tex
 @needs_tex
 def test_pdf_of_the_double_pendulum_in_french(tmp_path):
     out = tmp_path / "pendule.pdf"
@@ -43,6 +44,7 @@ def test_pdf_of_the_double_pendulum_in_french(tmp_path):
     assert "mass of rod" not in text
 
 
+@pytest.mark.tex
 @needs_tex
 def test_a_failed_pdf_leaves_the_old_file(tmp_path, monkeypatch):
     """An engine that fails: an OutputError with the engine's first error, and the old PDF unchanged."""
@@ -62,6 +64,7 @@ def test_a_failed_pdf_leaves_the_old_file(tmp_path, monkeypatch):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["bin", "old.pdf"]
 
 
+@pytest.mark.slow
 def test_no_engine_says_how_to_install_one(tmp_path, monkeypatch):
     monkeypatch.setattr(_report_pdf, "ENGINES", ("no-such-tex-engine",))
     with pytest.raises(OutputError) as info:
@@ -82,6 +85,7 @@ needs_fonts = pytest.mark.skipif(_report_pdf.tex_engine() is None or shutil.whic
                                  reason="no TeX engine, pdffonts or the lmodern package here (`make test` installs them)")
 
 
+@pytest.mark.tex
 @needs_fonts
 def test_pdf_text_is_in_vector_fonts_and_the_tables_have_settled(tmp_path):
     """Every font of the PDF is Type 1 (Latin Modern), none a bitmap Type 3; the engine ran until longtable's

@@ -12,8 +12,18 @@ import lagrangian
 from lagrangian.model.zoo import planar_chain
 from lagrangian.output import Notation
 from lagrangian.output._course import to_sympy
-from lagrangian.output._report.size import (LINE_WIDTH, MAX_OPS, SMALL_OPS, SizeGate, Summary, split_top,
-                                            visible_width, wrap, wrap_latex, wrap_many)
+from lagrangian.output._report.size import (
+    LINE_WIDTH,
+    MAX_OPS,
+    SMALL_OPS,
+    SizeGate,
+    Summary,
+    split_top,
+    visible_width,
+    wrap,
+    wrap_latex,
+    wrap_many,
+)
 
 
 def _undo(lines: tuple[str, ...]) -> str:

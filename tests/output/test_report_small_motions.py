@@ -17,9 +17,9 @@ from lagrangian_test_support import EXAMPLES_DIR
 import lagrangian
 from lagrangian.cli.main import main
 from lagrangian.output import course_form, report
-from lagrangian.output._text import notation
 from lagrangian.output._report.document import Display, Para, math_of, walk
 from lagrangian.output._report.words import Words
+from lagrangian.output._text import notation
 
 TITLES = {"fr": "Petits mouvements au voisinage d\u2019une position d\u2019équilibre",
           "en": "Small motions about an equilibrium"}
@@ -69,6 +69,7 @@ def test_the_bead_at_the_bottom_of_a_fast_hoop_is_unstable():
     assert w.number(math.sqrt(6.0**2 - 9.81 / 0.5)) in maths
 
 
+@pytest.mark.slow
 def test_a_point_that_holds_for_the_given_values_only_is_written_in_closed_form():
     # cos θ0 = g/(R Ω²) is an equilibrium for the model's numbers, not for every g, R, Ω; it exists iff R Ω² > g.
     # By hand: m R² δθ̈ = (m R² Ω² cos 2θ0 − m g R cos θ0) δθ, and with g = R Ω² cos θ0 the stiffness is

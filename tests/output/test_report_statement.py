@@ -11,15 +11,15 @@ from __future__ import annotations
 import re
 
 import pytest
+from lagrangian_test_support import eom_of, plain
 
 from lagrangian.model import Gravity
 from lagrangian.model._texts import in_language
 from lagrangian.output import report
-from lagrangian.output._report.build import report_notation, tex_name
 from lagrangian.output._course import course_form
+from lagrangian.output._report.build import report_notation, tex_name
 from lagrangian.output._report.document import Items, Math, Para, Table, math_of, walk
 from lagrangian.output._report.words import _PHRASES, Words
-from lagrangian_test_support import eom_of, plain
 
 EXAMPLES = ["lagrange_top.toml", "pendulum_tension.toml"]
 
@@ -63,6 +63,7 @@ def _statement(document):
     return document.sections[0]
 
 
+@pytest.mark.slow
 def test_the_statement_opens_the_report(case):
     _, lang, document = case
     s = _statement(document)

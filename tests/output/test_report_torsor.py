@@ -11,13 +11,13 @@ import random
 
 import pytest
 import symengine as se
+from lagrangian_test_support import eom_of
 
 from lagrangian.model import Vector
 from lagrangian.output import report
 from lagrangian.output._report.build import Context
 from lagrangian.output._report.document import math_of
 from lagrangian.output._report.steps.kinematics import torsor_point, virtual_torsor
-from lagrangian_test_support import eom_of
 
 EXAMPLES = ["lagrange_top.toml", "double_pendulum.toml", "rolling_coin.toml"]
 #: Points fixed in each body, by their components in the body's frame (from A).
@@ -31,12 +31,12 @@ def _r0(c: Context, v: Vector) -> tuple[se.Basic, ...]:
 def _direct(c: Context, OP: Vector) -> tuple[se.Basic, ...]:
     """Σ_i ∂OP/∂q_i q_i*, OP in R0's components, differentiated here."""
     comps = _r0(c, OP)
-    return tuple(sum((se.diff(x, q) * s for q, s in zip(c.kin.q, c.kin.q_star)), se.Integer(0)) for x in comps)
+    return tuple(sum((se.diff(x, q) * s for q, s in zip(c.kin.q, c.kin.q_star, strict=True)), se.Integer(0)) for x in comps)
 
 
 def _equal_at_random(a: tuple[se.Basic, ...], b: tuple[se.Basic, ...], seed: int) -> bool:
     rng = random.Random(seed)
-    exprs = [x - y for x, y in zip(a, b)]
+    exprs = [x - y for x, y in zip(a, b, strict=True)]
     symbols = set().union(*(e.free_symbols for e in exprs))
     for _ in range(3):
         values = {s: se.Float(rng.uniform(-2, 2)) for s in symbols}
@@ -111,9 +111,10 @@ def _omega_star(c: Context, body: str | None):  # type: ignore[no-untyped-def]
     if body is None:
         return [0, 0, 0]
     omega = [_sym(x) for x in _r0(c, c.kin.omega(c.model.body(body).frame))]
-    return [sum(x.diff(_sym(qd)) * _sym(s) for qd, s in zip(c.kin.qd, c.kin.q_star)) for x in omega]
+    return [sum(x.diff(_sym(qd)) * _sym(s) for qd, s in zip(c.kin.qd, c.kin.q_star, strict=True)) for x in omega]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(COMOMENTS))
 def test_step3_argues_each_perfect_constraint_by_a_zero_comoment(name):
     """For each principal constraint step 3 argues, a generic action torsor {R ; M_X}_X with the stated
@@ -128,37 +129,37 @@ def test_step3_argues_each_perfect_constraint_by_a_zero_comoment(name):
     assert step3.count(r"P^{*} = \vec{R}") == len(COMOMENTS[name]) + 1  # and the general comoment before them
     assert [j.kind for j in c.joints if j.perfect] == COMOMENTS[name]
     Rg, Mg = sympy.symbols("R1:4"), sympy.symbols("M1:4")
-    dot = lambda a, b: sum(x * y for x, y in zip(a, b))  # noqa: E731
+    dot = lambda a, b: sum(x * y for x, y in zip(a, b, strict=True))  # noqa: E731
     cross = lambda a, b: [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]  # noqa: E731
     for j in c.joints:
         if j.kind in ("fixed point", "pivot", "ball joint"):
             # Relative virtual torsor of S to its support, at X (a point of both): Ω*(S) − Ω*(S1), V*(X) − V*(X).
-            omega = [a - b for a, b in zip(_omega_star(c, j.element), _omega_star(c, j.support))]
+            omega = [a - b for a, b in zip(_omega_star(c, j.element), _omega_star(c, j.support), strict=True)]
             V = [0, 0, 0]
             R = list(Rg)
             if j.kind == "pivot":
                 e = _unit(c, j.axis)
-                M = [m - dot(Mg, e) * x for m, x in zip(Mg, e)]  # the part of a generic moment orthogonal to e
+                M = [m - dot(Mg, e) * x for m, x in zip(Mg, e, strict=True)]  # the part of a generic moment orthogonal to e
             else:
                 M = [0, 0, 0]
         else:
             omega, M = _omega_star(c, j.element if j.is_body else None), [0, 0, 0]
             V = [_sym(x) for x in _direct(c, c.kin.position(j.element))]
             if j.kind == "rod":  # relative to the rod's anchor X
-                V = [a - _sym(b) for a, b in zip(V, _direct(c, c.kin.position(j.point)))]
+                V = [a - _sym(b) for a, b in zip(V, _direct(c, c.kin.position(j.point)), strict=True)]
             if j.kind == "rod":
                 XP = [_sym(x) for x in _r0(c, c.kin.position(j.element) - c.kin.position(j.point))]
                 R = [Rg[0] * a + sum(Rg[k + 1] * n for k, n in enumerate(col)) for a, *col in
-                     zip(XP, *[_unit(c, a) for a in j.normals])]
+                     zip(XP, *[_unit(c, a) for a in j.normals], strict=True)]
             elif j.kind == "plane":
                 R = [Rg[0] * x for x in _unit(c, j.normals[0])]
             elif j.kind == "line":
                 e = _unit(c, j.axis)
-                R = [r - dot(Rg, e) * x for r, x in zip(Rg, e)]
+                R = [r - dot(Rg, e) * x for r, x in zip(Rg, e, strict=True)]
             else:  # body plane: a force along the normal, a moment orthogonal to the allowed rotations
                 R = [Rg[0] * x for x in _unit(c, j.normals[0])]
                 t = [_unit(c, a) for a in j.turns]
-                M = [Mg[0] * x for x in cross(t[0], t[1])] if len(t) == 2 else [m - dot(Mg, t[0]) * x for m, x in zip(Mg, t[0])]
+                M = [Mg[0] * x for x in cross(t[0], t[1])] if len(t) == 2 else [m - dot(Mg, t[0]) * x for m, x in zip(Mg, t[0], strict=True)]
         comoment = dot(R, V) + dot(M, omega)
         assert sympy.simplify(sympy.expand_trig(comoment)) == 0, (name, j.kind, comoment)
         # and the argument is not empty: the virtual field does move (else the check proves nothing).
@@ -166,6 +167,7 @@ def test_step3_argues_each_perfect_constraint_by_a_zero_comoment(name):
 
 
 # -- step 4: Π_P(S), the inertia operator, introduced where T first uses it ------------------------------------
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["lagrange_top.toml", "double_pendulum.toml", "rolling_coin.toml"])
 def test_step4_introduces_the_inertia_operator_that_T_uses(name):
     """T(S/R0) = ½ Ω·[Π_P(S)·Ω] (+ ½ m V²(G) by König): with the matrix step 3 prints and Ω's components in its
@@ -189,7 +191,7 @@ def test_step4_introduces_the_inertia_operator_that_T_uses(name):
             q = [_sym(x) for x in c.kin.q]
             funcs = {x: sympy.Function(str(x))(t) for x in q}
             OG = [_sym(x).subs(funcs) for x in _r0(c, c.kin.position(term.name))]
-            rates = {sympy.Derivative(funcs[x], t): _sym(qd) for x, qd in zip(q, c.kin.qd)}
+            rates = {sympy.Derivative(funcs[x], t): _sym(qd) for x, qd in zip(q, c.kin.qd, strict=True)}
             V = [sympy.diff(x, t).subs(rates).subs({v: k for k, v in funcs.items()}) for x in OG]
             T += _sym(c.model.body(term.name).mass) * sum(x**2 for x in V) / 2
         else:

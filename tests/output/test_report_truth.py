@@ -57,12 +57,13 @@ def _paras(r, key: str) -> list[tuple[str, list[str]]]:  # type: ignore[no-untyp
 
 
 # -- a damped joint is not perfect; the theorems list every effort their checks use -------------------------------
+@pytest.mark.slow
 def test_damped_urdf_joints_are_not_called_perfect_and_their_damping_is_in_q_nc():
     eom = _eom("rrr_arm.urdf")
     damping = {j.get("name"): float(j.find("dynamics").get("damping"))
                for j in ET.parse(URDF).getroot().iter("joint") if j.find("dynamics") is not None}
     assert damping == {"waist": 0.5, "shoulder": 0.5, "elbow": 0.2}
-    for q, eq in zip(eom.q, eom.equations):  # the file's damping is −c q̇ in Q_nc of that joint's equation
+    for q, eq in zip(eom.q, eom.equations, strict=True):  # the file's damping is −c q̇ in Q_nc of that joint's equation
         rate = se.Symbol(f"{q}_dot")
         assert float(eq.Q_nc.diff(rate)) == pytest.approx(-damping[str(q)])
     step1 = _words(_report("rrr_arm.urdf"), "step1")
@@ -71,12 +72,13 @@ def test_damped_urdf_joints_are_not_called_perfect_and_their_damping_is_in_q_nc(
     # Without damping, the same pivots are perfect: their Q_nc holds the motors' τ only (no rate).
     undamped = lagrangian.derive(lagrangian.load_urdf(URDF, damping=False))
     assert all(not eq.Q_nc.diff(se.Symbol(f"{q}_dot")).free_symbols and eq.Q_nc.diff(se.Symbol(f"{q}_dot")) == 0
-               for q, eq in zip(undamped.q, undamped.equations))
+               for q, eq in zip(undamped.q, undamped.equations, strict=True))
     step1 = plain(" ".join(x for b in walk(report(undamped, lang="fr").document.section("step1").blocks)
                            if isinstance(b, Para) for x in b.runs if isinstance(x, str)))
     assert step1.count("Elle est parfaite (sans frottement") == 3 and "n'est pas parfaite" not in step1
 
 
+@pytest.mark.slow
 def test_the_stated_theorems_list_the_actuators_and_damping_their_projections_use():
     eom = _eom("rrr_arm.urdf")
     v = lagrangian.verify(eom)
@@ -92,6 +94,7 @@ def test_the_stated_theorems_list_the_actuators_and_damping_their_projections_us
 
 
 # -- rolling without slipping: perfect, and adherent -------------------------------------------------------------
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["rolling_coin.toml", "whipple_bicycle.toml"])
 def test_a_rolling_contact_is_perfect_without_being_frictionless(name):
     """The contact's principal constraint (the coin kept upright on the plane, the bicycle's placement) is perfect
@@ -142,6 +145,7 @@ def test_the_blocks_normal_force_is_derived_and_agrees_with_the_models():
     assert sympy.simplify(declared._sympy_() - by_hand) == 0
 
 
+@pytest.mark.slow
 def test_the_blocks_stick_condition_is_tan_alpha_below_fs_and_the_simulation_agrees(tmp_path):
     data = tomllib.loads((EXAMPLES_DIR / "block_on_incline.toml").read_text(encoding="utf-8"))
     alpha, fs = data["parameters"]["alpha"]["value"], data["parameters"]["f_s"]["value"]
@@ -211,9 +215,10 @@ def test_input_torques_are_not_folded_into_the_potential_and_the_energy_is_the_m
     taus = [p.symbol for p in eom.model.parameters if p.input]
     assert taus and not (set(balance.E.free_symbols) & set(taus))  # E = T + U_gravity: mechanical energy
     power = next(t.power for t in balance.terms if t.name == "actuators")
-    assert se.expand(power - sum(t * qd for t, qd in zip(taus, eom.qd))) == 0  # dE/dt holds Σ τ_j q̇_j
+    assert se.expand(power - sum(t * qd for t, qd in zip(taus, eom.qd, strict=True))) == 0  # dE/dt holds Σ τ_j q̇_j
 
 
+@pytest.mark.slow
 def test_a_constant_couple_is_said_constant_and_derives_from_minus_c_theta(tmp_path):
     path = mutated_example(tmp_path, "double_pendulum.toml", "[loads]",
                            "[loads]\nmotor = { torque = \"C*R0.x\", on = \"S1\" }\n")
@@ -263,6 +268,7 @@ def test_foucault_statement_names_what_it_uses_and_its_small_motions_precess_at_
     assert sympy.simplify(rate._sympy_() + sympy.Symbol("Omega") * sympy.sin(sympy.Symbol("lam"))) == 0
 
 
+@pytest.mark.slow
 def test_larmor_precession_rate_is_what_the_linear_motion_does():
     """μ q̈ + G q̇ + κ q = 0 integrated by SciPy: the major axis of the oscillation turns at G₁₂/(2μ)."""
     from scipy.integrate import solve_ivp
@@ -309,6 +315,7 @@ def test_the_entrainment_potential_is_said_to_exist_because_omega_is_constant_an
 
 
 # -- the statement says which way z0 points ------------------------------------------------------------------------
+@pytest.mark.slow
 @pytest.mark.parametrize(("name", "down"), [("whipple_bicycle.toml", True), ("lagrange_top.toml", False)])
 def test_the_statement_says_whether_z0_points_up_or_down(name, down):
     data = tomllib.loads((EXAMPLES_DIR / name).read_text(encoding="utf-8"))

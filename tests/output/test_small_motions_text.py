@@ -7,6 +7,7 @@ K = diag(0, m g l), so det(K − ω² M) = 0 gives ω² = 0 (the cart's drift) a
 
 from __future__ import annotations
 
+import pytest
 import sympy
 from lagrangian_test_support import EXAMPLES_DIR
 
@@ -24,6 +25,7 @@ def _text(section) -> str:  # type: ignore[no-untyped-def]
     return " ".join(x for b in section.blocks if isinstance(b, Para) for x in b.runs if isinstance(x, str))
 
 
+@pytest.mark.slow
 def test_the_pulsation_of_the_hanging_cart_pendulum_is_given_in_letters():
     section = report(_cart(), lang="en", small_motions={"x": 0, "theta": "pi"}).document.section("small motions")
     maths = " ".join(math_of(section.blocks))
@@ -46,6 +48,7 @@ def test_the_section_says_what_d_g_k_n_are_and_where_lagrange_dirichlet_applies(
     assert "restricted to the coordinates" in text and "may drift" in text
 
 
+@pytest.mark.slow
 def test_coefficients_too_long_in_letters_are_written_with_numbers(monkeypatch):
     # The path the bicycle takes (its reduced K runs to 10⁴ characters an entry), on the double pendulum.
     monkeypatch.setattr(small_motions, "LETTERS_MAX_CHARS", 10)

@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import sympy
+from lagrangian_test_support import eom_of, random_states
 from sympy.physics.mechanics import LagrangesMethod, dynamicsymbols
 
 import lagrangian
-from lagrangian_test_support import eom_of, random_states
 
 ROUND_TRIP = ["simple_pendulum.toml", "double_pendulum.toml", "cart_pendulum.toml", "lagrange_top.toml",
               "spherical_pendulum.toml", "kapitza_pendulum.toml", "foucault_pendulum.toml",
@@ -65,32 +65,34 @@ def test_symbols_are_named_as_in_the_model() -> None:
 def _numeric(expr: sympy.Basic, s, rng: np.random.Generator) -> float:  # type: ignore[no-untyped-def]
     """Value of a time-function expression at a random (q, q̇, q̈, t), derivatives replaced first."""
     subs = {}
-    for q, qd, qdd in zip(s.q, s.qd, s.qdd):
+    for q, qd, qdd in zip(s.q, s.qd, s.qdd, strict=True):
         subs[qdd], subs[qd], subs[q] = rng.uniform(-1, 1, 3)
     out = expr.subs({k: subs[k] for k in s.qdd}).subs({k: subs[k] for k in s.qd}).subs(
         {k: subs[k] for k in s.q})
     return float(out.subs(s.values).subs(s.t, rng.uniform(0, 2)))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["lagrange_top.toml", "double_pendulum.toml", "kapitza_pendulum.toml"])
 def test_time_function_form_differentiates_correctly(name: str) -> None:
     """d/dt of T's dynamicsymbols form (SymPy's diff) equals the engine's total derivative d/dt(T)."""
     eom = eom_of(name)
     s = eom.to_sympy(time_functions=True)
     assert s.time_functions and s.t == dynamicsymbols._t
-    assert all(q == dynamicsymbols(c) for q, c in zip(s.q, s.coordinates))
-    assert all(qd == q.diff(s.t) and qdd == q.diff(s.t, 2) for q, qd, qdd in zip(s.q, s.qd, s.qdd))
+    assert all(q == dynamicsymbols(c) for q, c in zip(s.q, s.coordinates, strict=True))
+    assert all(qd == q.diff(s.t) and qdd == q.diff(s.t, 2) for q, qd, qdd in zip(s.q, s.qd, s.qdd, strict=True))
     from lagrangian.output._sympy_form import _convert  # the same structural conversion, of the engine's d/dt(T)
 
     dT_engine = _convert(eom.kinematics.d_dt(eom.T)).xreplace(
-        {sympy.Symbol(f"{c}_{k}"): v for c, qd, qdd in zip(s.coordinates, s.qd, s.qdd)
-         for k, v in (("dot", qd), ("ddot", qdd))} | {sympy.Symbol(c): q for c, q in zip(s.coordinates, s.q)})
+        {sympy.Symbol(f"{c}_{k}"): v for c, qd, qdd in zip(s.coordinates, s.qd, s.qdd, strict=True)
+         for k, v in (("dot", qd), ("ddot", qdd))} | {sympy.Symbol(c): q for c, q in zip(s.coordinates, s.q, strict=True)})
     dT_sympy = sympy.diff(s.T, s.t)
     for seed in range(5):
         a, b = (_numeric(e, s, np.random.default_rng(seed)) for e in (dT_sympy, dT_engine))
         assert a == pytest.approx(b, rel=1e-12, abs=1e-12)
 
 
+@pytest.mark.slow
 def test_time_function_form_drops_into_sympy_mechanics() -> None:
     """SymPy's LagrangesMethod on our L(t) finds our mass matrix and forcing (the double pendulum)."""
     eom = eom_of("double_pendulum.toml")
@@ -112,7 +114,7 @@ def test_constrained_model_has_its_multipliers_and_formulas() -> None:
     assert s.A.shape == (1, len(s.q))
     assert set(s.multiplier_formulas) == {"lambda_length"}
     assert any(eq.rhs.has(s.multipliers[0]) for eq in s.equations)
-    assert s.L == s.T - s.U  # gravity and a perfect time-independent constraint: conservative (issue 16)
+    assert s.L == s.T - s.U  # gravity and a perfect time-independent constraint: conservative
     tf = eom.to_sympy(time_functions=True)
     assert tf.multipliers == (dynamicsymbols("lambda_length"),)
     assert not any(eq.has(sympy.Symbol("lambda_length")) for eq in tf.equations)

@@ -65,6 +65,7 @@ def test_the_coriolis_note_is_printed(capsys) -> None:
     assert "Ω(R_T/R0) = Ω z0    (prescribed)" in out and "T(P/R_T)" in out
 
 
+@pytest.mark.slow
 def test_energy_balance_kinds_and_notes_of_a_damped_driven_pendulum(capsys, tmp_path) -> None:
     out = derive(capsys, written(tmp_path, DAMPED))
     assert "hinge (joint damper, non-conservative)" in out and "push (point force, non-conservative)" in out

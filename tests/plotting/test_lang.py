@@ -24,6 +24,7 @@ def _titles(fig) -> str:
     return "\n".join(parts)
 
 
+@pytest.mark.slow
 def test_french_titles(run):
     eom, traj = run("lagrange_top.toml")
     kinds = applicable_kinds(traj, eom)
@@ -51,6 +52,7 @@ def _texts(fig) -> list[str]:
     return [t for t in texts if t]
 
 
+@pytest.mark.slow
 def test_french_figures_write_decimal_commas(run):
     """28,65° and 0,5 in a French figure (ticks, legends, titles), 28.65° and 0.5 in an English one."""
     import re

@@ -10,10 +10,10 @@ import math
 
 import numpy as np
 import pytest
+from lagrangian_test_support import EXAMPLES_DIR
 
 import lagrangian
 from lagrangian.plotting import plot_eigenvalue_sweep, plot_mode_shapes
-from lagrangian_test_support import EXAMPLES_DIR
 
 pytest.importorskip("matplotlib")
 

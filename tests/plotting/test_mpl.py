@@ -12,6 +12,7 @@ from lagrangian.plotting import MissingPlotDependency
 from lagrangian.plotting._mpl import require_matplotlib
 
 
+@pytest.mark.slow
 def test_importing_the_package_does_not_import_matplotlib():
     code = ("import sys, lagrangian, lagrangian.numerics, lagrangian.plotting; "
             "print('matplotlib' in sys.modules)")

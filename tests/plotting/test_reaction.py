@@ -9,7 +9,7 @@ from lagrangian import parse_model
 from lagrangian.dynamics import derive
 from lagrangian.errors import OutputError
 from lagrangian.numerics import simulate
-from lagrangian.plotting import applicable_kinds, apex_path, plot_reaction, reactions_along
+from lagrangian.plotting import apex_path, applicable_kinds, plot_reaction, reactions_along
 
 
 def _components(fig):

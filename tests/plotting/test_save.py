@@ -25,7 +25,7 @@ EXPECTED = {
     "simple_pendulum.toml": ["time_series", "phase", "drift", "reaction"],
     "spherical_pendulum.toml": ["time_series", "phase", "drift", "reaction"],
     "cart_pendulum.toml": ["time_series", "phase", "drift", "reaction"],
-    # Complementary constraints (issue 5): the reaction plot shows the multipliers' reactions.
+    # Complementary constraints: the reaction plot shows the multipliers' reactions.
     "pendulum_tension.toml": ["time_series", "phase", "drift", "reaction"],
     "rolling_disk_incline.toml": ["time_series", "phase", "drift", "reaction"],
     # The coin's axis of symmetry is its axle, which stays horizontal (a great circle): no apex figures.
@@ -38,6 +38,7 @@ def test_expected_examples_exist(examples):
     assert set(EXPECTED) <= set(examples)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", example_names())
 def test_every_example_writes_its_plots(run, name, tmp_path):
     eom, traj = run(name)
@@ -60,6 +61,7 @@ def test_every_example_writes_its_plots(run, name, tmp_path):
         assert MIN_SIDE <= min(im.size)
 
 
+@pytest.mark.slow
 def test_formats_and_kinds(run, tmp_path):
     eom, traj = run("simple_pendulum.toml")
     written = save_plots(traj, eom, tmp_path, animation=False, formats=("svg", "pdf"), kinds=("phase",))

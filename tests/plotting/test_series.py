@@ -61,7 +61,7 @@ def test_drift_figure_data_are_the_monitors(run):
     # The dashed line is the drift tolerance (the run's default one here).
     lines = [line for line in drift.get_lines() if len(line.get_xdata()) and line.get_linestyle() != "--"]
     assert len(lines) == len(traj.integrals)
-    for line, name in zip(lines, traj.integrals):
+    for line, name in zip(lines, traj.integrals, strict=True):
         series = traj.monitors[name]
         # Independent of relative_drift: the definition, written out (S >= |I(t0)|, docs/simulation.md).
         assert traj.scales[name] >= abs(series[0])

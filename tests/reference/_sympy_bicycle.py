@@ -82,7 +82,7 @@ from __future__ import annotations
 
 import functools
 import math
-from typing import Iterable
+from collections.abc import Iterable
 
 import numpy as np
 import sympy as sp
@@ -279,8 +279,8 @@ def _first_order(exprs: sp.Matrix, x: list, x0: list) -> sp.Matrix:
     rebuilt a few times.
     """
     dummies = [sp.Dummy(f"x{i}") for i in range(len(x))]
-    at_op = dict(zip(dummies, x0))
-    back = {d: xi - xi0 for d, xi, xi0 in zip(dummies, x, x0)}
+    at_op = dict(zip(dummies, x0, strict=True))
+    back = {d: xi - xi0 for d, xi, xi0 in zip(dummies, x, x0, strict=True)}
 
     def gradient(expr: sp.Expr, idx: list[int]) -> list[sp.Expr]:
         if len(idx) == 1:
@@ -294,11 +294,11 @@ def _first_order(exprs: sp.Matrix, x: list, x0: list) -> sp.Matrix:
 
     out = []
     for expr in exprs:
-        e = expr.xreplace(dict(zip(x, dummies)))
+        e = expr.xreplace(dict(zip(x, dummies, strict=True)))
         present = [i for i, d in enumerate(dummies) if e.has(d)]
         poly = e.xreplace(at_op)
         if present:
-            poly += sum(g * back[dummies[i]] for i, g in zip(present, gradient(e, present)))
+            poly += sum(g * back[dummies[i]] for i, g in zip(present, gradient(e, present), strict=True))
         out.append(sp.expand(poly))
     return sp.Matrix(exprs.rows, exprs.cols, out)
 

@@ -25,7 +25,7 @@ Q, QD, QDD = (psi, theta, phi), (psi_d, theta_d, phi_d), (psi_dd, theta_dd, phi_
 
 def d_dt(f: sp.Expr) -> sp.Expr:
     """Total time derivative along q(t): Σ ∂f/∂q q̇ + ∂f/∂q̇ q̈ (the seed's d/dt[...])."""
-    return sum((f.diff(q) * qd + f.diff(qd) * qdd for q, qd, qdd in zip(Q, QD, QDD)), sp.Integer(0))
+    return sum((f.diff(q) * qd + f.diff(qd) * qdd for q, qd, qdd in zip(Q, QD, QDD, strict=True)), sp.Integer(0))
 
 
 # T(S/R0) = ½ A [θ̇² + ψ̇² sin²θ] + ½ C (φ̇ + ψ̇ cos θ)²
@@ -86,7 +86,7 @@ def eom(request: pytest.FixtureRequest) -> lagrangian.EquationsOfMotion:
 
 def test_seed_formulas_are_self_consistent() -> None:
     """Guard for the typing above: the seed's partial derivatives are those of its T and U."""
-    for q, qd, name in zip(Q, QD, ("psi", "theta", "phi")):
+    for q, qd, name in zip(Q, QD, ("psi", "theta", "phi"), strict=True):
         terms = SEED_TERMS[name]
         assert is_zero(T_SEED.diff(qd) - terms["dT_dqd"])
         assert is_zero(T_SEED.diff(q) - terms["dT_dq"])
@@ -176,6 +176,7 @@ def test_first_integrals_are_K_H_and_E(eom: lagrangian.EquationsOfMotion) -> Non
     assert is_zero(sym(integrals["E"].expression) - E_SEED)
 
 
+@pytest.mark.slow
 def test_seed_integrals_are_constant_along_the_seed_equations() -> None:
     """Sanity of the reference itself: dK/dt, dH/dt, dE/dt vanish once q̈ solves the seed's equations."""
     solution = sp.solve([lhs - rhs for lhs, rhs in SEED_EQUATIONS.values()], QDD, dict=True)[0]

@@ -58,6 +58,7 @@ def test_the_reference_closed_forms_give_the_published_matrices():
         np.testing.assert_allclose(m[key], published, rtol=0, atol=1e-13 * np.abs(published).max())
 
 
+@pytest.mark.slow
 def test_the_model_describes_the_benchmark():
     eom = _eom()
     assert eom.coordinates == ("x", "y", "psi", "phi", "thetaB", "delta", "thetaR", "thetaF")
@@ -79,6 +80,7 @@ def test_the_model_describes_the_benchmark():
     assert point["thetaB_dot"] == pytest.approx(0.0, abs=1e-14)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("v", SPEEDS)
 def test_lean_and_steer_rows_of_A_are_the_papers(v):
     # A for (φ, δ, φ̇, δ̇) = [[0, I], [−M⁻¹(g K0 + v² K2), −M⁻¹ v C1]] (eq. (A 1)), at this speed and from A(v).
@@ -93,6 +95,7 @@ def test_lean_and_steer_rows_of_A_are_the_papers(v):
     assert np.max(np.abs(A[np.ix_(rows, others)])) <= 1e-12 * np.max(np.abs(A))
 
 
+@pytest.mark.slow
 def test_cli_json_reproduces_the_papers_A(capsys):
     for v in (0.0, 4.0, 10.0):
         assert main(["linearize", str(MODEL), "--set", f"v={v}", "--json"]) == 0
@@ -103,9 +106,10 @@ def test_cli_json_reproduces_the_papers_A(capsys):
         assert _close(A, _whipple.state_matrix(v))
 
 
+@pytest.mark.slow
 def test_sympy_kanes_method_gives_the_same_A():
     # The same bicycle built with SymPy's KanesMethod and linearized by SymPy (nothing of lagrangian).
-    for v, theirs in zip(range(11), _sympy_bicycle.linearized_A(range(11))):
+    for v, theirs in zip(range(11), _sympy_bicycle.linearized_A(range(11)), strict=True):
         assert _close(_lean_steer(_symbolic_in_v(), v=float(v)), theirs)
 
 
@@ -127,6 +131,7 @@ def test_sweep_finds_the_speeds_of_table_2():
     assert np.all(s.stable[inside] == 1.0) and np.all(s.stable[~inside] == 0.0)
 
 
+@pytest.mark.slow
 def test_cli_modes_sweep_draws_the_figure_and_reports_the_speeds(tmp_path, capsys):
     assert main(["modes", str(MODEL), "--sweep", "v=0:10:0.01", "--plot", str(tmp_path)]) == 0
     out = capsys.readouterr().out

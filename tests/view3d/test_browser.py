@@ -20,6 +20,8 @@ from view_test_support import has_colour, motion, open_view, page_messages, pixe
 import lagrangian
 from lagrangian.view3d import view
 
+pytestmark = pytest.mark.browser
+
 BLUE, RED, GREEN = "#1f77b4", "#d62728", "#2ca02c"
 
 
@@ -136,7 +138,8 @@ HOSTILE = '</script><script>window.__owned = 1</script><img src=x onerror="windo
 def test_hostile_names_reach_the_page_as_text(browser, tmp_path):
     from lagrangian_test_support import example_text
 
-    source = re.sub(r'(?m)^name = .*$', lambda _: f"name = {_toml(HOSTILE)}", example_text("simple_pendulum.toml"), 1)
+    source = re.sub(r'(?m)^name = .*$', lambda _: f"name = {_toml(HOSTILE)}", example_text("simple_pendulum.toml"),
+                    count=1)
     source = re.sub(r'(?m)^title = .*$', "", source)
     model = lagrangian.parse_model(source)
     eom, traj = motion("simple_pendulum.toml", 1.0, 51)

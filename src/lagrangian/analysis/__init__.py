@@ -32,10 +32,12 @@ _WHERE = {
 __getattr__, __dir__ = lazy_names(__name__, _WHERE)
 
 if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
+    from ..errors import AnalysisError as AnalysisError
     from ._bifurcation import BifurcationDiagram as BifurcationDiagram
     from ._bifurcation import Branch as Branch
     from ._bifurcation import bifurcation as bifurcation
-    from ..errors import AnalysisError as AnalysisError
+    from ._closed_small_motions import closed_point as closed_point
+    from ._closed_small_motions import pulsations_squared as pulsations_squared
     from ._effective_potential import CyclicReduction as CyclicReduction
     from ._effective_potential import StructureError as StructureError
     from ._effective_potential import reduce_cyclic as reduce_cyclic
@@ -44,9 +46,9 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from ._energy_balance import energy_balance as energy_balance
     from ._equilibria import Equilibria as Equilibria
     from ._equilibria import Equilibrium as Equilibrium
+    from ._equilibria import EquilibriumError as EquilibriumError
     from ._equilibria import EquilibriumSearch as EquilibriumSearch
     from ._equilibria import SearchRegion as SearchRegion
-    from ._equilibria import EquilibriumError as EquilibriumError
     from ._equilibria import equilibria as equilibria
     from ._feedback import ControlError as ControlError
     from ._feedback import Feedback as Feedback
@@ -55,6 +57,7 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from ._linear_model import LinearizationError as LinearizationError
     from ._linear_model import LinearModel as LinearModel
     from ._linear_model import SecondOrderForm as SecondOrderForm
+    from ._linear_model import to_numpy as to_numpy
     from ._linearize import holding_inputs as holding_inputs
     from ._linearize import linearize as linearize
     from ._lqr import lqr as lqr
@@ -69,6 +72,7 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from ._newton_euler import CoordinateCheck as CoordinateCheck
     from ._newton_euler import ElementTheorems as ElementTheorems
     from ._newton_euler import Verification as Verification
+    from ._newton_euler import given_efforts as given_efforts
     from ._newton_euler import verify as verify
     from ._reactions import Reaction as Reaction
     from ._reactions import ReactionHistory as ReactionHistory
@@ -82,11 +86,7 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from ._steady import steady_motions as steady_motions
     from ._top import TopAnalysis as TopAnalysis
     from ._top import analyse_top as analyse_top
-    from ._linear_model import to_numpy as to_numpy
-    from ._newton_euler import given_efforts as given_efforts
     from ._tree_integrals import tree_integrals as tree_integrals
-    from ._closed_small_motions import closed_point as closed_point
-    from ._closed_small_motions import pulsations_squared as pulsations_squared
 
 __all__ = [
     "AnalysisError",

@@ -105,7 +105,7 @@ def bifurcation(eom: EquationsOfMotion, parameter: str, values: Sequence[float],
             return False, None, np.nan
         q = _point(e, coords, numbers)
         try:
-            st = linearize(eom, dict(zip(coords, q)), parameters={**fixed, parameter: p}).stability()
+            st = linearize(eom, dict(zip(coords, q, strict=True)), parameters={**fixed, parameter: p}).stability()
         except LinearizationError:
             return True, q, np.nan
         return True, q, np.nan if st.stable is None else float(st.stable)

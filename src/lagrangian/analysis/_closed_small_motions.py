@@ -127,7 +127,7 @@ def _build(eom: EquationsOfMotion, match, values: Mapping[str, float]) -> Closed
             # eliminate one parameter of u, preferably one it is proportional to (g in g/(R Ω²): g = R Ω² cos θ0)
             num, den = sympy.fraction(sympy.together(u))
 
-            def rank(x: sympy.Symbol) -> tuple:
+            def rank(x: sympy.Symbol, num: sympy.Expr = num, den: sympy.Expr = den) -> tuple:  # type: ignore[type-arg]
                 linear = x not in den.free_symbols and sympy.degree(num, x) == 1
                 return (not linear, str(x) not in values, str(x))
 
@@ -142,7 +142,7 @@ def _build(eom: EquationsOfMotion, match, values: Mapping[str, float]) -> Closed
         return None
     q = [sympy.Symbol(c) for c in names]
     qd = [sympy.Symbol(c + "_dot") for c in names]
-    at = {**{s: qvals[c] for s, c in zip(q, names)}, **{s: 0 for s in qd}}
+    at = {**{s: qvals[c] for s, c in zip(q, names, strict=True)}, **{s: 0 for s in qd}}
     F = sympy.Matrix([f._sympy_() for f in eom.F])
     M = sympy.Matrix([[e._sympy_() for e in row] for row in eom.M])
 

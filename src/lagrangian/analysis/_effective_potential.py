@@ -149,7 +149,7 @@ def _quadratic_form(vector: list[se.Basic], matrix: list[list[se.Basic]], other:
 
 def _precession(eom: EquationsOfMotion, cyclic: list[str]) -> str:
     """The cyclic coordinate whose rotation turns a frame about an axis fixed in R0 (ψ for the top)."""
-    symbols = dict(zip(eom.coordinates, eom.q))
+    symbols = dict(zip(eom.coordinates, eom.q, strict=True))
     for frame in eom.model.frames:
         if frame.parent == GALILEAN_FRAME and frame.rotation is not None:
             for name in cyclic:
@@ -225,8 +225,8 @@ def reduce_cyclic(eom: EquationsOfMotion) -> CyclicReduction:
     else:
         a = (M[r][r] * det - _quadratic_form(coupling, adj, coupling)) / det
     # The derivation, checked: the momenta give back P, and E(ċ(θ, θ̇)) = ½ a θ̇² + U_eff.
-    back = dict(zip(rates, solved))
-    checks = [p.subs(back) - Pi for p, Pi in zip(p_expr, P)]
+    back = dict(zip(rates, solved, strict=True))
+    checks = [p.subs(back) - Pi for p, Pi in zip(p_expr, P, strict=True)]
     checks.append(energy.expression.subs(back) - (a * theta_dot**2 / 2 + U_eff))
     allowed = {theta, *P} | {se.Symbol(p.name) for p in eom.model.parameters}
     if not all(are_zero(checks)) or not (U_eff.free_symbols | a.free_symbols) <= allowed:

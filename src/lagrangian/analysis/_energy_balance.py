@@ -86,7 +86,7 @@ def accelerations(eom: EquationsOfMotion) -> tuple[se.Basic, ...]:
     n = len(eom.q)
     rhs = list(eom.F)
     for row in eom.constraints:
-        rhs = [r + row.multiplier * a for r, a in zip(rhs, row.coefficients)]
+        rhs = [r + row.multiplier * a for r, a in zip(rhs, row.coefficients, strict=True)]
     if n == 1:
         return (rhs[0] / eom.M[0][0],)
     solution = se.DenseMatrix(eom.M).LUsolve(se.DenseMatrix(n, 1, rhs))
@@ -108,10 +108,10 @@ def _prescribed_motion_power(eom: EquationsOfMotion) -> se.Basic | None:
     if t1_zero and t0_zero and explicit_zero:
         return None
     K = sum_of(([] if t1_zero else [T1]) + ([] if t0_zero else [2 * T0]))
-    rate = sum_of([K.diff(q) * qd for q, qd in zip(kin.q, kin.qd)] + [K.diff(kin.t)])
+    rate = sum_of([K.diff(q) * qd for q, qd in zip(kin.q, kin.qd, strict=True)] + [K.diff(kin.t)])
     by_acceleration = [K.diff(qd) for qd in kin.qd]
     if not all(are_zero(by_acceleration)):
-        rate = rate + sum_of([c * a for c, a in zip(by_acceleration, accelerations(eom))])
+        rate = rate + sum_of([c * a for c, a in zip(by_acceleration, accelerations(eom), strict=True)])
     return rate - dT_dt
 
 
@@ -139,7 +139,7 @@ def energy_balance(eom: EquationsOfMotion) -> EnergyBalance:
     terms: list[PowerTerm] = []
     for f in eom.loads:
         if f.potential is None:
-            power = sum_of([Q * qd for Q, qd in zip(f.Q, kin.qd) if not is_structural_zero(Q)])
+            power = sum_of([Q * qd for Q, qd in zip(f.Q, kin.qd, strict=True) if not is_structural_zero(Q)])
             works = not are_zero([power])[0]
             terms.append(PowerTerm(f.name, "load", power if works else se.Integer(0),
                                    f"real power Σ Q_i q̇_i of `{f.name}`"
@@ -154,7 +154,7 @@ def energy_balance(eom: EquationsOfMotion) -> EnergyBalance:
         terms.append(PowerTerm("prescribed motion", "prescribed motion", prescribed,
                                "d/dt(T1 + 2 T0) − ∂T/∂t: real power of the constraint efforts that impose a "
                                "motion depending on t (rheonomic constraints)"))
-    for row, b_zero in zip(eom.constraints, are_zero([row.b for row in eom.constraints])):
+    for row, b_zero in zip(eom.constraints, are_zero([row.b for row in eom.constraints]), strict=True):
         # λ_k A_k·q̇ = −λ_k b_k on the motions that satisfy the row (A_k q̇ + b_k = 0).
         power = se.Integer(0) if b_zero else -row.multiplier * row.b
         terms.append(PowerTerm(f"λ ({row.name})", "constraint", power,

@@ -172,7 +172,7 @@ def equilibria(eom: EquationsOfMotion, parameters: Mapping[str, float] | None = 
         regions = [region_of(n, n in angles, ranges.get(n), declared.get(n), numbers) for n in system.active]
         roots, starts = _search(system.active, system.residual_function(numbers), system.size_function(numbers),
                                 regions, angles, numbers)
-        where = tuple(SearchRegion(n, kind, bounds, starts) for n, (kind, bounds) in zip(system.active, regions))
+        where = tuple(SearchRegion(n, kind, bounds, starts) for n, (kind, bounds) in zip(system.active, regions, strict=True))
         report = EquilibriumSearch(branches is not None, True, where, starts)
         out = _identify(system, _merge(system, out, roots, numbers, angles), numbers, angles)
     elif not known and branches is None:
@@ -336,7 +336,7 @@ def _within_friction_cone(system: StaticSystem, eq: Equilibrium, branch: Mapping
     """
     lam = [sympy.Symbol(str(s), real=True) for s in system.lam]
     positive = {sympy.Symbol(str(k)): sympy.Symbol(str(k), positive=True) for k, v in numbers.items() if v > 0}
-    plain = {sympy.Symbol(str(s)): s2 for s, s2 in zip(system.lam, lam)}
+    plain = {sympy.Symbol(str(s)): s2 for s, s2 in zip(system.lam, lam, strict=True)}
     at = {sympy.Symbol(n): v for n, v in branch.items()}
     eqs = [e._sympy_().xreplace(plain).xreplace(at).xreplace(positive) for e in system.equations]
     try:
@@ -345,7 +345,7 @@ def _within_friction_cone(system: StaticSystem, eq: Equilibrium, branch: Mapping
         sols = []
     conds: list[sympy.Basic] = []
     k0 = len(system.lam) - len(system.sticking)
-    for (_, T, fs, N), sym in zip(system.sticking, lam[k0:]):
+    for (_, _, fs, N), sym in zip(system.sticking, lam[k0:], strict=True):
         value = sols[0].get(sym) if len(sols) == 1 else None
         if value is None or any(s in lam for s in value.free_symbols):
             conds = []

@@ -107,7 +107,7 @@ def angles(expressions: Sequence[se.Basic], q: Sequence[se.Symbol], names: Seque
     rng = np.random.default_rng(1)
     symbols = set().union(*(e.free_symbols for e in expressions)) if expressions else set()
     out = set()
-    for name, s in zip(names, q):
+    for name, s in zip(names, q, strict=True):
         if name in skip or not any(s in e.free_symbols for e in expressions):
             continue
         if not all(_only_in_trig(e, s) for e in expressions if s in e.free_symbols):
@@ -139,7 +139,7 @@ def region_of(name: str, angle: bool, given: tuple[float, float] | None,
         return "angle", (-math.pi, math.pi)
     if declared is not None:
         bounds = []
-        for side, default in zip(declared, (-math.inf, math.inf)):
+        for side, default in zip(declared, (-math.inf, math.inf), strict=True):
             try:
                 bounds.append(default if side is None else float(side.subs(dict(numbers))))
             except (RuntimeError, TypeError, ValueError):
@@ -228,9 +228,9 @@ def search(names: Sequence[str], residual: Callable[[np.ndarray], np.ndarray],
     curves: list[np.ndarray] = []
     X = levenberg_marquardt(residual, np.array(starts))
     for x in X[accepted(X)]:
-        point = {n: (wrap(v) if n in angles else float(v)) for n, v in zip(names, x)}
+        point = {n: (wrap(v) if n in angles else float(v)) for n, v in zip(names, x, strict=True)}
         point = {n: 0.0 if abs(v) < 1e-15 else v for n, v in point.items()}  # −0 and 1e-22 are 0
-        if not all(_inside(point[n], b) for n, (_, b) in zip(names, regions) if n not in angles):
+        if not all(_inside(point[n], b) for n, (_, b) in zip(names, regions, strict=True) if n not in angles):
             continue
         if any(_on(root, point, angles) for root in found) or any(near_curve(c, x) for c in curves):
             continue
@@ -392,7 +392,7 @@ def _trace(residual: Callable[[np.ndarray], np.ndarray], x: np.ndarray,
 
 
 def _wrapped(d: np.ndarray, names: Sequence[str], angles: set[str]) -> np.ndarray:
-    return np.array([math.remainder(v, 2 * math.pi) if n in angles else v for n, v in zip(names, d)])
+    return np.array([math.remainder(v, 2 * math.pi) if n in angles else v for n, v in zip(names, d, strict=True)])
 
 
 def near_curve(curve: np.ndarray, x: np.ndarray) -> bool:

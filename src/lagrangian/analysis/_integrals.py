@@ -37,11 +37,9 @@ from dataclasses import dataclass
 
 import symengine as se
 
-from .._identity import are_zero
 from .._display import render
-from ..dynamics import EquationsOfMotion
-from ..dynamics import admissible_integrals
-from ..dynamics import rotating_frame
+from .._identity import are_zero
+from ..dynamics import EquationsOfMotion, admissible_integrals, rotating_frame
 from ._noether import nonholonomic_integrals, symmetry_integrals
 
 __all__ = ["INPUT_REGIMES", "FirstIntegral", "first_integrals", "input_regime", "inputs_off"]
@@ -189,7 +187,7 @@ def inputs_held(eom: EquationsOfMotion, held: list[str] | tuple[str, ...]) -> Eq
     equations = tuple(dataclasses.replace(
         eq, dU_dq=eq.dU_dq + se.Add(*(eom.loads[k].held.diff(q) for k in moved)),
         Q_nc=eq.Q_nc - se.Add(*(eom.loads[k].Q[i] for k in moved)))
-        for i, (eq, q) in enumerate(zip(eom.equations, kin.q)))
+        for i, (eq, q) in enumerate(zip(eom.equations, kin.q, strict=True)))
     return dataclasses.replace(eom, loads=tuple(loads), equations=equations, recursive=None)
 
 
@@ -200,7 +198,7 @@ def _first_integrals(eom: EquationsOfMotion) -> tuple[FirstIntegral, ...]:
     cyclic_tests = [eq.dT_dq - eq.dU_dq for eq in eom.equations]
     zero = are_zero(residues + cyclic_tests)
     n = len(residues)
-    for k, (coordinate, eq) in enumerate(zip(eom.model.coordinates, eom.equations)):
+    for k, (coordinate, eq) in enumerate(zip(eom.model.coordinates, eom.equations, strict=True)):
         if not zero[k]:
             continue
         if zero[n + k]:
@@ -215,8 +213,8 @@ def _first_integrals(eom: EquationsOfMotion) -> tuple[FirstIntegral, ...]:
     Q_other = [se.Add(q, *(-f.Q[i] for f in generalized)) for i, q in enumerate(eom.Q_nc)]
     if generalized:  # canonical momenta: ∂(T − U − U_g)/∂q_i + Q_i(other) ≡ 0
         taken = {fi.coordinate for fi in out}
-        tests = [eq.dT_dq - eq.dU_dq - Ug.diff(q) + Qo for eq, q, Qo in zip(eom.equations, kin.q, Q_other)]
-        for coordinate, eq, qd, ok in zip(eom.model.coordinates, eom.equations, kin.qd, are_zero(tests)):
+        tests = [eq.dT_dq - eq.dU_dq - Ug.diff(q) + Qo for eq, q, Qo in zip(eom.equations, kin.q, Q_other, strict=True)]
+        for coordinate, eq, qd, ok in zip(eom.model.coordinates, eom.equations, kin.qd, are_zero(tests), strict=True):
             if ok and coordinate.name not in taken:
                 c = coordinate.name
                 out.append(FirstIntegral(coordinate.momentum or f"p_{c}", "momentum", eq.dT_dqd - Ug.diff(qd),
@@ -225,7 +223,7 @@ def _first_integrals(eom: EquationsOfMotion) -> tuple[FirstIntegral, ...]:
                                          f"∂T/∂{c}_dot − ∂U_g/∂{c}_dot is constant", c))
 
     L = eom.T - eom.U - Ug
-    power_nc = se.Add(*(q * qd for q, qd in zip(Q_other, kin.qd)))
+    power_nc = se.Add(*(q * qd for q, qd in zip(Q_other, kin.qd, strict=True)))
     T2 = se.Rational(1, 2) * se.Add(*(eom.M[i][j] * kin.qd[i] * kin.qd[j]
                                        for i in range(n) for j in range(n) if eom.M[i][j] != 0))
     explicit_t, no_work, homogeneous = are_zero([L.diff(kin.t), power_nc, eom.T - T2])

@@ -13,8 +13,8 @@ from dataclasses import dataclass, field, fields
 import numpy as np
 import symengine as se
 
-from ..dynamics import EquationsOfMotion
 from .._display import render
+from ..dynamics import EquationsOfMotion
 from ..errors import AnalysisError
 
 __all__ = ["LinearModel", "LinearizationError", "SecondOrderForm", "to_numpy"]

@@ -502,7 +502,7 @@ def _scale_of(expr: se.Basic, subs: Mapping, generic: Mapping) -> float:
 
 def _format_residual(res: se.DenseMatrix, generic: Mapping, ind_s: Sequence[int], rate_names: Sequence[str]) -> str:
     vals = _to_numpy(res, generic)[:, 0]
-    return ", ".join(f"{rate_names[i][:-4]}: {v:.6g}" for i, v in zip(ind_s, vals))
+    return ", ".join(f"{rate_names[i][:-4]}: {v:.6g}" for i, v in zip(ind_s, vals, strict=True))
 
 
 def _nearest(eom: EquationsOfMotion, at_q: Mapping, point_subs: Mapping, generic: Mapping, ind_c: Sequence[int],
@@ -522,7 +522,7 @@ def _nearest(eom: EquationsOfMotion, at_q: Mapping, point_subs: Mapping, generic
         return ""
     if not sol.success:
         return ""
-    return " The nearest equilibrium found: " + ", ".join(f"{s} = {v:.10g}" for s, v in zip(q, sol.x)) + "."
+    return " The nearest equilibrium found: " + ", ".join(f"{s} = {v:.10g}" for s, v in zip(q, sol.x, strict=True)) + "."
 
 
 def holding_inputs(eom: EquationsOfMotion, at: Mapping[str, object], *,
@@ -577,4 +577,4 @@ def holding_inputs(eom: EquationsOfMotion, at: Mapping[str, object], *,
                                  f"along `{coords[worst]}` stays {residual[worst]:.6g}.",
                                  fix="choose an equilibrium of the coordinates the inputs do not drive "
                                      "(lagrangian equilibria MODEL), or more inputs")
-    return {k: float(v) for k, v in zip(free, u0)}
+    return {k: float(v) for k, v in zip(free, u0, strict=True)}

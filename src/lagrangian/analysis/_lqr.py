@@ -133,7 +133,7 @@ def _describe(A: np.ndarray, lam: complex, w: np.ndarray, states: Sequence[str])
     its right eigenvector (the motion itself; for a double λ = 0, a coordinate and its rate)."""
     v = np.linalg.svd(A - lam * np.eye(len(A)))[2][-1].conj()
     weight = np.maximum(np.abs(w) / np.abs(w).max(), np.abs(v) / np.abs(v).max())
-    return ", ".join(s for s, a in zip(states, weight) if a > 0.1)
+    return ", ".join(s for s, a in zip(states, weight, strict=True) if a > 0.1)
 
 
 def lqr(source: Any, at: Mapping[str, Any] | None = None, *, Q: Any = None, R: Any = None,

@@ -47,15 +47,32 @@ from dataclasses import dataclass
 import symengine as se
 
 from .._identity import are_zero
-from ..dynamics import EquationsOfMotion
-from ..dynamics import reaction_efforts
-from ..dynamics import rigid_inertia
-from ..dynamics import friction_efforts
-from ..dynamics import RelativeKinematics, inertial_torsors
+from ..dynamics import (
+    EquationsOfMotion,
+    RelativeKinematics,
+    friction_efforts,
+    inertial_torsors,
+    reaction_efforts,
+    rigid_inertia,
+)
 from ..kinematics import Kinematics
-from ..model import (ORIGIN, Body, CoulombFriction, Damper, Dissipation, GeneralizedForce, Gravity, JointDamper, Particle,
-                     PointForce, Potential, Spring, Torque, Vector)
-from ..model import Assumptions
+from ..model import (
+    ORIGIN,
+    Assumptions,
+    Body,
+    CoulombFriction,
+    Damper,
+    Dissipation,
+    GeneralizedForce,
+    Gravity,
+    JointDamper,
+    Particle,
+    PointForce,
+    Potential,
+    Spring,
+    Torque,
+    Vector,
+)
 from ..model.vectors import sum_of
 
 __all__ = ["EffortsOnElement", "ElementTheorems", "CoordinateCheck", "Verification", "given_efforts", "verify"]
@@ -355,7 +372,7 @@ class _Efforts:
         elif not kin.is_fixed(at):
             # A force at a moving point that no body carries: its virtual power F·V*(A).
             partials = kin.partial_velocities(at)
-            self.power = [p + kin.frames.dot(force, v) for p, v in zip(self.power, partials)]
+            self.power = [p + kin.frames.dot(force, v) for p, v in zip(self.power, partials, strict=True)]
             self._note_power(load)
         # else: applied at a fixed point of the ground, it does no virtual work on (Σ).
 
@@ -367,7 +384,7 @@ class _Efforts:
         frame = on if on not in {b.name for b in self.kin.model.bodies} else self.kin.model.body(on).frame
         partials = self.kin.partial_omegas(frame)
         if any(not w.is_zero() for w in partials):  # a couple on a moving frame that is no body
-            self.power = [p + self.kin.frames.dot(couple, w) for p, w in zip(self.power, partials)]
+            self.power = [p + self.kin.frames.dot(couple, w) for p, w in zip(self.power, partials, strict=True)]
             self._note_power(load)
 
     def _note(self, owner: str, load: str) -> None:
@@ -415,18 +432,18 @@ def given_efforts(eom: EquationsOfMotion) -> tuple[tuple[EffortsOnElement, ...],
                 factor = -load.coefficient * kin.frames.dot(ab, kin.velocity(b) - kin.velocity(a)) / ab2
             acc.add_force(load.name, ab * factor, b)
             acc.add_force(load.name, ab * (-factor), a)
-        elif isinstance(load, (JointDamper, CoulombFriction)):  # couples of a joint, a friction force (issue 5)
+        elif isinstance(load, (JointDamper, CoulombFriction)):  # couples of a joint, a friction force
             for what, vector, where in friction_efforts(kin, load) or ():
                 (acc.add_force if what == "force" else acc.add_couple)(load.name, vector, where)
         elif isinstance(load, (Potential, GeneralizedForce, Dissipation)):
             q = next(f.Q for f in eom.loads if f.name == load.name)
-            acc.power = [p + x for p, x in zip(acc.power, q)]
+            acc.power = [p + x for p, x in zip(acc.power, q, strict=True)]
             acc._note_power(load.name)
-    # Complementary constraints (issue 5): their reactions, linear in the multipliers λ_k, are
+    # Complementary constraints: their reactions, linear in the multipliers λ_k, are
     # efforts like the given ones here (the virtual field is not compatible with them).
     for constraint, what, value, at, owner in reaction_efforts(eom):
         if what == "power":
-            acc.power = [p + x for p, x in zip(acc.power, value)]  # type: ignore[call-overload]
+            acc.power = [p + x for p, x in zip(acc.power, value, strict=True)]  # type: ignore[call-overload]
             acc._note_power(constraint)
         elif what == "couple":
             acc.add_couple(constraint, value, owner)  # type: ignore[arg-type]

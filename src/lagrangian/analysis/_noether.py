@@ -168,7 +168,7 @@ def _generator(eom: EquationsOfMotion, kind: str, axis: int) -> tuple[list[se.Ba
     except (RuntimeError, ValueError, ZeroDivisionError):  # pragma: no cover - a singular symbolic pivot
         return None
     xi_list = [xi[i, 0] for i in range(n)]
-    residuals = [se.Add(*[r[i] * xi_list[i] for i in range(n)]) - t for r, t in zip(rows, rhs)]
+    residuals = [se.Add(*[r[i] * xi_list[i] for i in range(n)]) - t for r, t in zip(rows, rhs, strict=True)]
     return (xi_list, numeric) if all(are_zero(residuals)) else None
 
 
@@ -247,16 +247,16 @@ def symmetry_integrals(eom: EquationsOfMotion, known: Sequence[se.Basic] = ()) -
             if found_xi is None or all(are_zero(found_xi[0])):
                 continue
             xi = found_xi[0]
-            xi_dot = [se.Add(*[x.diff(q) * qd for q, qd in zip(kin.q, kin.qd)]) for x in xi]
-            dT = se.Add(*[T.diff(q) * x for q, x in zip(kin.q, xi)], *[T.diff(qd) * x for qd, x in zip(kin.qd, xi_dot)])
-            dU = se.Add(*[U.diff(q) * x for q, x in zip(kin.q, xi)])
-            work = se.Add(*[Q * x for Q, x in zip(eom.Q_nc, xi)])
+            xi_dot = [se.Add(*[x.diff(q) * qd for q, qd in zip(kin.q, kin.qd, strict=True)]) for x in xi]
+            dT = se.Add(*[T.diff(q) * x for q, x in zip(kin.q, xi, strict=True)], *[T.diff(qd) * x for qd, x in zip(kin.qd, xi_dot, strict=True)])
+            dU = se.Add(*[U.diff(q) * x for q, x in zip(kin.q, xi, strict=True)])
+            work = se.Add(*[Q * x for Q, x in zip(eom.Q_nc, xi, strict=True)])
             if not all(are_zero([dT, dU, work])):
                 continue
             # The LU leaves removable singularities (sin β/sin β in Cardan angles): simplified once the
             # symmetry holds (SymPy's cancel is slow; most candidates fail the tests above).
             xi = [_tidy(x) for x in xi]
-            J = se.Add(*[pi * x for pi, x in zip(p, xi)])
+            J = se.Add(*[pi * x for pi, x in zip(p, xi, strict=True)])
             if are_zero([J])[0] or not _independent(eom, found, J):
                 continue
             found.append(J)
@@ -309,8 +309,8 @@ def nonholonomic_integrals(eom: EquationsOfMotion, known: Sequence[se.Basic] = (
             C[i, c] = solved[r, c]
     u = [kin.qd[i] for i in ind]
     qd_of_u = [se.Add(*[C[i, c] * u[c] for c in range(len(ind))]) for i in range(n)]
-    on_manifold = dict(zip(kin.qd, qd_of_u))
-    Cu_dot = [se.Add(*[x.diff(q) * v for q, v in zip(kin.q, qd_of_u)]) for x in qd_of_u]
+    on_manifold = dict(zip(kin.qd, qd_of_u, strict=True))
+    Cu_dot = [se.Add(*[x.diff(q) * v for q, v in zip(kin.q, qd_of_u, strict=True)]) for x in qd_of_u]
     # u̇ = M_r⁻¹ Cᵀ(F − M Ċ u) is evaluated numerically at random states (the randomized identity test
     # of `_identity`, without forming M_r⁻¹ symbolically: that swelled to seconds on the stuck block).
     flat = [e for r in eom.M for e in r] + [f.subs(on_manifold) for f in eom.F] + list(C) + Cu_dot
@@ -335,7 +335,7 @@ def nonholonomic_integrals(eom: EquationsOfMotion, known: Sequence[se.Basic] = (
         except np.linalg.LinAlgError:  # pragma: no cover - a singular reduced mass matrix
             return []
         scale = max(1.0, float(np.abs(Fn).max(initial=0.0)), float(np.abs(Mn @ Cun).max(initial=0.0)))
-        zero = [z and abs(x) <= 1e-9 * scale for z, x in zip(zero, u_dot)]
+        zero = [z and abs(x) <= 1e-9 * scale for z, x in zip(zero, u_dot, strict=True)]
     out = []
     found = list(known)
     for j, i in enumerate(ind):

@@ -38,7 +38,6 @@ from ..model.vectors import as_expr
 from ._newton_euler import Verification, verify
 
 
-
 class Trajectory(Protocol):
     """What the checks along a motion read of it: a `lagrangian.numerics.Trajectory` is one.
 
@@ -376,7 +375,7 @@ def check_trajectory(source: Verification | EquationsOfMotion, trajectory: Traje
             exprs += _r0(kin, vec)
     for th in v.theorems:  # per element and coordinate: ∂V(P)/∂q̇_i, ∂Ω/∂q̇_i
         dw = kin.partial_omegas(model.body(th.name).frame) if th.kind == "body" else (Vector.zero(),) * n
-        for dv, w in zip(kin.partial_velocities(th.point), dw):
+        for dv, w in zip(kin.partial_velocities(th.point), dw, strict=True):
             exprs += _r0(kin, dv) + _r0(kin, w)
     exprs += list(v.virtual_power)
     all_reactions = reactions(v)

@@ -17,10 +17,9 @@ import symengine as se
 import sympy
 from symengine.lib.symengine_wrapper import sympy2symengine
 
-from ..dynamics import EquationsOfMotion
-from ..dynamics import sliding_direction
-from ..model import CoulombFriction
+from ..dynamics import EquationsOfMotion, sliding_direction
 from ..errors import AnalysisError
+from ..model import CoulombFriction
 from ._equilibria_search import angles as _angles
 
 __all__ = ["EquilibriumError", "StaticSystem", "configuration", "lambdify", "to_symengine"]
@@ -55,9 +54,9 @@ class StaticSystem:
         sticking = self._sticking_contacts(eom)
         for load in eom.loads:
             if load.name in sticking:  # its sliding law is undefined at rest: replaced by T (below)
-                F = [se.expand(f - q) for f, q in zip(F, load.Q)]
+                F = [se.expand(f - q) for f, q in zip(F, load.Q, strict=True)]
         F = [_autonomous(f.subs(rest), t, f"the generalized force on `{name}` at rest", numbers)
-             for name, f in zip(self.names, F)]
+             for name, f in zip(self.names, F, strict=True)]
         for row in eom.M:
             for m in row:
                 _autonomous(to_symengine(m), t, "the mass matrix M", numbers)
@@ -83,12 +82,12 @@ class StaticSystem:
         self.F = F
         self.extra = extra
         #: F + Aᵀλ per coordinate, then the holonomic rows and the rate-free parts b.
-        self.equations = [f + sum((lam * row[i] for lam, row in zip(self.lam, self.A)), se.Integer(0))
+        self.equations = [f + sum((lam * row[i] for lam, row in zip(self.lam, self.A, strict=True)), se.Integer(0))
                           for i, f in enumerate(F)] + extra
         used: set[se.Basic] = set()
         for e in self.equations:
             used |= e.free_symbols
-        self.free = tuple(n for n, s in zip(self.names, self.q) if s not in used)
+        self.free = tuple(n for n, s in zip(self.names, self.q, strict=True) if s not in used)
         self.active = [n for n in self.names if n not in self.free]
 
     @staticmethod
@@ -110,7 +109,7 @@ class StaticSystem:
 
     def multipliers_at(self, point: Mapping[str, float], numbers: Mapping[se.Basic, float]) -> np.ndarray:
         """λ (then the friction forces T) at a rest point, by least squares on F + Aᵀλ = 0."""
-        at = {**numbers, **{s: point.get(n, 0.0) for n, s in zip(self.names, self.q)}}
+        at = {**numbers, **{s: point.get(n, 0.0) for n, s in zip(self.names, self.q, strict=True)}}
         f = np.array([float(e.subs(at)) for e in self.F])
         At = np.array([[float(a.subs(at)) for a in row] for row in self.A]).T
         lam, *_ = np.linalg.lstsq(At, -f, rcond=None)
@@ -119,9 +118,9 @@ class StaticSystem:
     def holds_by_friction(self, point: Mapping[str, float], numbers: Mapping[se.Basic, float]) -> bool:
         """|T| ≤ f_s N at every sticking contact (with a relative margin for rounding)."""
         lam = self.multipliers_at(point, numbers)
-        at = {**numbers, **{s: point.get(n, 0.0) for n, s in zip(self.names, self.q)}}
+        at = {**numbers, **{s: point.get(n, 0.0) for n, s in zip(self.names, self.q, strict=True)}}
         k0 = len(self.lam) - len(self.sticking)
-        for (_, _, fs, N), T in zip(self.sticking, lam[k0:]):
+        for (_, _, fs, N), T in zip(self.sticking, lam[k0:], strict=True):
             b = abs(float((fs * N).subs(at)))
             if abs(T) > b * (1 + 1e-12) + 1e-300:
                 return False
@@ -139,7 +138,7 @@ class StaticSystem:
     def residual_function(self, numbers: Mapping[se.Basic, float]):
         """r(q_active) with λ eliminated: (I − Aᵀ(Aᵀ)⁺) F, then the holonomic and b rows; q_active one point
         (shape (d,)) or a batch of points (shape (N, d), for the search's Levenberg–Marquardt)."""
-        q = [s for n, s in zip(self.names, self.q) if n in self.active]
+        q = [s for n, s in zip(self.names, self.q, strict=True) if n in self.active]
         zero = {se.Symbol(n): 0.0 for n in self.free}
         F = lambdify(q, [f.subs(numbers).subs(zero) for f in self.F])
         A = lambdify(q, [a.subs(numbers).subs(zero) for row in self.A for a in row]) if self.A else None
@@ -167,7 +166,7 @@ class StaticSystem:
     def size_function(self, numbers: Mapping[se.Basic, float]):
         """s(q_active): per equation of `residual_function`, the sum of the sizes of its terms (F's, then the
         rows'), against which a residual is small."""
-        q = [s for n, s in zip(self.names, self.q) if n in self.active]
+        q = [s for n, s in zip(self.names, self.q, strict=True) if n in self.active]
         zero = {se.Symbol(n): 0.0 for n in self.free}
         terms = [se.Add(*[abs(x) for x in se.Add.make_args(se.expand(e.subs(numbers).subs(zero)))])
                  for e in self.F + self.extra]

@@ -184,7 +184,7 @@ def _verdict(eom: EquationsOfMotion, red: RouthReduction, coords: dict[str, floa
     point.update({kin.qd[names.index(c)]: rates[c + "_dot"] for c in red.cyclic})
     point.update({kin.qd[names.index(r)]: 0.0 for r in red.remaining})
     momenta = {}
-    for c, P in zip(red.cyclic, red.momenta):
+    for c, P in zip(red.cyclic, red.momenta, strict=True):
         p = eom.equations[names.index(c)].dT_dqd
         momenta[str(P)] = float(p.subs(numbers).subs(point))
     P_subs = {se.Symbol(k): v for k, v in momenta.items()}

@@ -38,8 +38,17 @@ from scipy import special
 from .._identity import are_zero
 from ..dynamics import EquationsOfMotion
 from ..errors import AnalysisError
-from ._effective_potential import (CyclicReduction, Curve, EffectivePotential, SingularPassage,
-                                   StructureError, reduce_cyclic, tidy, turning_points, well_integrals)
+from ._effective_potential import (
+    Curve,
+    CyclicReduction,
+    EffectivePotential,
+    SingularPassage,
+    StructureError,
+    reduce_cyclic,
+    tidy,
+    turning_points,
+    well_integrals,
+)
 
 __all__ = ["TopAnalysis", "TopForm", "NutationCubic", "Nutation", "SleepingTop", "SteadyPrecession",
            "analyse_top", "AnalysisError", "StructureError"]
@@ -482,10 +491,10 @@ def analyse_top(eom: EquationsOfMotion, *, parameters: Mapping[str, float] | Non
     red = reduce_cyclic(eom)
     params, state = _values(eom, parameters, initial)
     numbers: dict[se.Basic, float] = {se.Symbol(k): v for k, v in params.items()}
-    at_start = {**numbers, **{q: state[c] for c, q in zip(eom.coordinates, eom.q)},
-                **{qd: state[c + "_dot"] for c, qd in zip(eom.coordinates, eom.qd)}}
+    at_start = {**numbers, **{q: state[c] for c, q in zip(eom.coordinates, eom.q, strict=True)},
+                **{qd: state[c + "_dot"] for c, qd in zip(eom.coordinates, eom.qd, strict=True)}}
     constants = {}
-    for name, symbol, expr in zip(red.momenta, red.momentum_symbols, red.momentum_expressions):
+    for name, symbol, expr in zip(red.momenta, red.momentum_symbols, red.momentum_expressions, strict=True):
         constants[name] = numbers[symbol] = float(expr.subs(at_start))
     constants[red.energy_name] = float(red.energy_expression.subs(at_start))
     th, theta0, rate0 = red.symbol, state[red.coordinate], state[red.coordinate + "_dot"]
@@ -525,6 +534,6 @@ def analyse_top(eom: EquationsOfMotion, *, parameters: Mapping[str, float] | Non
                      "results do.")
     return TopAnalysis(
         reduction=red, parameters=params, initial=state, constants=constants,
-        rates={c: tidy(r, order) for c, r in zip(red.cyclic, red.rates)}, inertia=red.inertia,
+        rates={c: tidy(r, order) for c, r in zip(red.cyclic, red.rates, strict=True)}, inertia=red.inertia,
         effective_potential=U_sym, U_eff=U_num, nutation=nutation, top=top, cubic=cubic,
         sleeping=_sleeping(red, top, numbers), steady=_steady(red, numbers, theta0), notes=tuple(notes))

@@ -273,5 +273,5 @@ def _symmetries(eom: EquationsOfMotion, p: Sequence[se.Basic], G: np.ndarray, P:
             name, why = f"sigma_O_{a}", (f"Noether: L is invariant under a rotation about O{a} and no other "
                                          f"effort works on it, so the angular momentum σ_O(Σ/R0)·{a} = Σ p_i ξ_i "
                                          "is constant")
-        out.append(FirstIntegral(name, "symmetry", se.Add(*[pi * x for pi, x in zip(p, xi) if x != 0]), why))
+        out.append(FirstIntegral(name, "symmetry", se.Add(*[pi * x for pi, x in zip(p, xi, strict=True) if x != 0]), why))
     return out

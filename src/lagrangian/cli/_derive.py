@@ -17,10 +17,16 @@ from .. import __version__
 from ..analysis import first_integrals
 from ..dynamics import EquationsOfMotion, derive
 from ..errors import DerivationError
-from ..output import course_form, derive_document, render_latex, render_text
-from ..output import needed_intermediates, render_intermediates
-from ..output import supplement
-from ..output import SizeGate
+from ..output import (
+    SizeGate,
+    course_form,
+    derive_document,
+    needed_intermediates,
+    render_intermediates,
+    render_latex,
+    render_text,
+    supplement,
+)
 from ._settings import SettingError
 from ._source import load_source
 

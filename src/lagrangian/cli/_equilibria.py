@@ -18,8 +18,7 @@ from ..analysis import Equilibrium, LinearizationError, bifurcation, equilibria,
 from ..dynamics import derive
 from ..errors import OutputError
 from ..model import CoulombFriction
-from ..output import Notation, equilibria_text
-from ..output import to_sympy
+from ..output import Notation, equilibria_text, to_sympy
 from ._arguments.equilibria import SCHEMA
 from ._modes import _check_plot_folder as check_plot_folder
 from ._modes import parse_sweep
@@ -148,7 +147,7 @@ def _document(name: str, coordinates: tuple[str, ...], values: dict, found: tupl
             "aliases": [{n: a[n] for n in coordinates if n in a} for a in e.aliases],
             "stable": None if v is None else v[0], "stability_verdict": None if v is None else v[1],
             "stability_reason": None if v is None else v[2],
-        } for e, v in zip(found, verdicts)],
+        } for e, v in zip(found, verdicts, strict=True)],
     }
 
 

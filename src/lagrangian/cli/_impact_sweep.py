@@ -51,7 +51,7 @@ def _csv(result: ImpactSweep) -> str:
     buffer.write(f"# lagrangian impact sweep, min_speed = {result.min_speed:.17g}\n")
     buffer.write(",".join(names + list(OUTCOMES) + ["status"]) + "\n")
     for index in itertools.product(*(range(len(v)) for v in result.axes.values())):
-        row = [f"{result.axes[n][i]:.17g}" for n, i in zip(names, index)]
+        row = [f"{result.axes[n][i]:.17g}" for n, i in zip(names, index, strict=True)]
         row += [f"{getattr(result, k)[index]:.17g}" for k in OUTCOMES]
         row.append('"' + str(result.status[index]).replace('"', "'") + '"')
         buffer.write(",".join(row) + "\n")

@@ -85,16 +85,16 @@ def _complex(z: complex) -> str:
 def render(fb: Any) -> str:
     """The feedback as text: the point, the law, K by row, the weights, the eigenvalues."""
     lines = [f"{fb.model}: LQR state feedback u = u* - K (x - x*)",
-             "point x*: " + ", ".join(f"{s} = {_number(v)}" for s, v in zip(fb.states, fb.x_star)),
-             "inputs u*: " + ", ".join(f"{u} = {_number(v)}" for u, v in zip(fb.inputs, fb.u_star)), "gain K:"]
+             "point x*: " + ", ".join(f"{s} = {_number(v)}" for s, v in zip(fb.states, fb.x_star, strict=True)),
+             "inputs u*: " + ", ".join(f"{u} = {_number(v)}" for u, v in zip(fb.inputs, fb.u_star, strict=True)), "gain K:"]
     width = max(len(s) for s in fb.states)
     for i, u in enumerate(fb.inputs):
         lines.append(f"  row of {u}:")
-        lines += [f"    {s:<{width}}  {_number(k)}" for k, s in zip(fb.K[i], fb.states)]
+        lines += [f"    {s:<{width}}  {_number(k)}" for k, s in zip(fb.K[i], fb.states, strict=True)]
     diag = np.allclose(fb.Q, np.diag(np.diag(fb.Q))) and np.allclose(fb.R, np.diag(np.diag(fb.R)))
     if diag:
-        lines.append("weights: Q = diag(" + ", ".join(f"{s}: {_number(v)}" for s, v in zip(fb.states, np.diag(fb.Q)))
-                     + "), R = diag(" + ", ".join(f"{u}: {_number(v)}" for u, v in zip(fb.inputs, np.diag(fb.R)))
+        lines.append("weights: Q = diag(" + ", ".join(f"{s}: {_number(v)}" for s, v in zip(fb.states, np.diag(fb.Q), strict=True))
+                     + "), R = diag(" + ", ".join(f"{u}: {_number(v)}" for u, v in zip(fb.inputs, np.diag(fb.R), strict=True))
                      + ")")
     else:
         lines.append(f"weights: Q = {np.array2string(fb.Q, precision=6)}, R = {np.array2string(fb.R, precision=6)}")

@@ -123,8 +123,7 @@ def _plots(result: Any, problem: Any, directory: Path, animation: str) -> list[P
     from ..model import load_model
 
     try:
-        from ..plotting import save_plots
-        from ..plotting import save_inputs_figure
+        from ..plotting import save_inputs_figure, save_plots
     except ImportError as exc:
         raise SimulationError(f"Plots need matplotlib ({exc}).", fix="pip install 'lagrangian[plot]'") from None
     eom = derive(load_model(problem.model)) if isinstance(problem.model, (str, Path)) else problem.model

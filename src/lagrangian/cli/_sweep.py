@@ -20,8 +20,7 @@ import numpy as np
 
 from ..dynamics import derive
 from ..errors import OutputError
-from ..numerics import EventSpec, compile_system, ensemble, flip_events, grid
-from ..numerics import connect_scheduler
+from ..numerics import EventSpec, compile_system, connect_scheduler, ensemble, flip_events, grid
 from ._settings import SettingError, parse_settings, plain_number
 from ._source import load_source
 
@@ -145,7 +144,7 @@ def _sweep(args, model, axes, parameters, initial, out, client) -> str:
     codes, counts = np.unique(ds["status"].values, return_counts=True)
     lines = [f"{model.name}: {g.size} members ({' x '.join(f'{n} {len(v)}' for n, v in axes.items())}), t from "
              f"{args.t_start:g} to {args.t_end:g}, {elapsed:.2f} s",
-             "status: " + ", ".join(f"{STATUS[int(c)]} {n}" for c, n in zip(codes, counts))]
+             "status: " + ", ".join(f"{STATUS[int(c)]} {n}" for c, n in zip(codes, counts, strict=True))]
     if "event_time" in ds:
         for name in ds["event"].values:
             times = ds["event_time"].sel(event=name).values

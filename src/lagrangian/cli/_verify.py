@@ -18,8 +18,7 @@ from ..analysis import Reaction, Verification, check_trajectory, reactions, veri
 from ..dynamics import derive
 from ..errors import ModelError, VerificationError
 from ..model import Torque, Vector
-from ..output import Notation
-from ..output import reference_label, to_sympy
+from ..output import Notation, reference_label, to_sympy
 from ._settings import SettingError, parse_settings
 from ._source import load_source
 
@@ -56,7 +55,7 @@ class _Printer:
         pieces = [(frame, self.kin.frames.express(v, frame))] if frame else list(self.kin.frames.lift(v))
         terms = []
         for f, comps in pieces:
-            for c, axis in zip(comps, self.kin.frames.axes(f)):
+            for c, axis in zip(comps, self.kin.frames.axes(f), strict=True):
                 c = to_sympy(c)
                 if c != 0:
                     terms.append((c, axis))

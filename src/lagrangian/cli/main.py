@@ -48,7 +48,7 @@ def _parser(only: str | None = None) -> argparse.ArgumentParser:
     """
     modules = _commands()
     listing = "\n".join(
-        f"  {name:<10} " + module.SUMMARY.replace("\n", "\n" + " " * 13) for name, module in zip(COMMANDS, modules)
+        f"  {name:<10} " + module.SUMMARY.replace("\n", "\n" + " " * 13) for name, module in zip(COMMANDS, modules, strict=True)
     )
     description = (
         "Lagrange's equations of a mechanical system, derived the way the course does it:\n"
@@ -61,7 +61,7 @@ def _parser(only: str | None = None) -> argparse.ArgumentParser:
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--version", action="version", version=f"lagrangian {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
-    for name, module in zip(COMMANDS, modules):
+    for name, module in zip(COMMANDS, modules, strict=True):
         if only is None or name == only:
             module.register(sub)
     return parser

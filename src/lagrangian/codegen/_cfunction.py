@@ -38,7 +38,7 @@ def c_function(signature: str, definitions: Sequence[tuple[se.Symbol, se.Basic]]
     """
     private: dict[se.Basic, se.Symbol] = {}
     header: list[str] = []
-    for k, (sym, text) in enumerate(reads.items()):
+    for k, sym in enumerate(reads):
         private[sym] = se.Symbol(f"_v{k}")
     defined = {sym for sym, _ in definitions}
     used: set[se.Basic] = set()

@@ -66,7 +66,7 @@ def monitor_expressions(eom: EquationsOfMotion, integrals: Sequence, *,
     out = [(fi.name, fi.expression) for fi in integrals]
     taken = {name for name, _ in out}
     energies = (eom.recursive.T, eom.recursive.U) if recursive and eom.recursive is not None else (eom.T, eom.U)
-    for name, expr in zip(("T", "U"), energies):
+    for name, expr in zip(("T", "U"), energies, strict=True):
         out.append((name if name not in taken else f"{name}_total", expr))
     return out
 
@@ -238,7 +238,7 @@ def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence, events: Seq
                                           + [(f"piv[{2 * i + k}]", pair[k]) for i, pair in enumerate(rec.pivots)
                                              for k in range(2)]), "q''"))
         staged.append((f"LG_NOINLINE static void lg_aba_forward({arguments}, const double *carry, double *qdd)",
-                       (list(zip(carried, slots)) + [(sym, lifted(e)) for sym, e in forward],
+                       (list(zip(carried, slots, strict=True)) + [(sym, lifted(e)) for sym, e in forward],
                         [(f"qdd[{i}]", lifted(e)) for i, e in enumerate(rec.qdd)]), "q''"))
         aba = [("static void lg_aba(double t, const double *y, const double *p, double *qdd, double *piv) {\n"
                 f"    double carry[{max(len(carried), 1)}];\n"

@@ -123,7 +123,7 @@ def c_block(outputs: Sequence[tuple[str, se.Basic]], names: Mapping[se.Basic, st
     for k, (sym, value) in enumerate(replacements):
         lines.append(f"    const double {prefix}{k} = {c_expression(value, local)};")
         local[sym] = f"{prefix}{k}"
-    for (target, _), value in zip(outputs, reduced):
+    for (target, _), value in zip(outputs, reduced, strict=True):
         lines.append(f"    {target} = {c_expression(value, local)};")
     return lines
 
@@ -145,7 +145,7 @@ def c_sequence(definitions: Sequence[tuple[se.Symbol, se.Basic]], outputs: Seque
     for k, (sym, expr) in enumerate(replacements):
         local[sym] = f"{prefix}{k}"
         value[sym] = expr
-    for (sym, _), expr in zip(definitions, reduced):
+    for (sym, _), expr in zip(definitions, reduced[:len(definitions)], strict=True):  # then the outputs
         value[sym] = expr
     done: set[se.Basic] = set()
     lines: list[str] = []
@@ -165,7 +165,7 @@ def c_sequence(definitions: Sequence[tuple[se.Symbol, se.Basic]], outputs: Seque
 
     for sym, _ in definitions:
         emit(sym)
-    for (target, _), expr in zip(outputs, reduced[len(definitions):]):
+    for (target, _), expr in zip(outputs, reduced[len(definitions):], strict=True):
         for s in expr.free_symbols:
             if s in value:
                 emit(s)

@@ -99,8 +99,8 @@ def exported_symbols(eom: EquationsOfMotion, target: str = "numpy") -> ExportedS
     y = tuple(se.Symbol(f"_y{i}") for i in range(2 * n))
     p = tuple(se.Symbol(f"_p{k}") for k in range(len(params)))
     t = se.Symbol("_t")
-    private: dict[se.Basic, se.Basic] = dict(zip((*eom.q, *eom.qd), y))
-    private.update({se.Symbol(name): sym for name, sym in zip(params, p)})
+    private: dict[se.Basic, se.Basic] = dict(zip((*eom.q, *eom.qd), y, strict=True))
+    private.update({se.Symbol(name): sym for name, sym in zip(params, p, strict=True)})
     private[eom.t] = t
 
     def rename(expr: se.Basic, what: str) -> se.Basic:

@@ -163,7 +163,7 @@ def _shared_bias(eom: EquationsOfMotion) -> tuple[list[tuple[se.Symbol, se.Basic
     n = len(eom.q)
     _, gamma0 = mass_matrix_and_bias(eom.kinematics, eom.inertias, share=share)
     Q = [se.Add(*(load.Q[i] for load in eom.loads)) for i in range(n)]
-    F = [q - g for q, g in zip(Q, gamma0)]
+    F = [q - g for q, g in zip(Q, gamma0, strict=True)]
     return shared, F
 
 
@@ -205,6 +205,6 @@ def mass_forces_form(eom: EquationsOfMotion) -> MassForcesForm:
     hoist = Hoist([se.Symbol(p.name) for p in eom.model.parameters if not p.input])
     flat = [hoist(e) for e in flat]
     return MassForcesForm(
-        shared=tuple((sym, e) for (sym, _), e in zip(shared, flat[n * n + n:])),
+        shared=tuple((sym, e) for (sym, _), e in zip(shared, flat[n * n + n:], strict=True)),
         M=tuple(flat[: n * n]), F=tuple(flat[n * n: n * n + n]),
         constants=tuple((sym, expr) for expr, sym in hoist.constants.items()))

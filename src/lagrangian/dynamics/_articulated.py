@@ -49,7 +49,8 @@ from typing import TYPE_CHECKING
 
 import symengine as se
 
-from ..model.vectors import add3 as _add3, cross as _cross  # the vector toolkit's 3-component algebra
+from ..model.vectors import add3 as _add3  # the vector toolkit's 3-component algebra
+from ..model.vectors import cross as _cross
 from ..model.vectors import sum_of
 
 _ZERO = se.Integer(0)
@@ -72,7 +73,7 @@ def _zero(x: se.Basic) -> bool:
 
 
 def _dot(a: Sequence[se.Basic], b: Sequence[se.Basic]) -> se.Basic:
-    return sum_of([x if y == 1 else y if x == 1 else x * y for x, y in zip(a, b) if not _zero(x) and not _zero(y)])
+    return sum_of([x if y == 1 else y if x == 1 else x * y for x, y in zip(a, b, strict=True) if not _zero(x) and not _zero(y)])
 
 
 def _scale(k: se.Basic, v: Vec) -> Vec:
@@ -88,7 +89,7 @@ def _col(X: Mat, c: int) -> Vec:
 
 
 def _madd(X: Mat, Y: Mat) -> Mat:
-    return [list(_add3(tuple(x), tuple(y))) for x, y in zip(X, Y)]
+    return [list(_add3(tuple(x), tuple(y))) for x, y in zip(X, Y, strict=True)]
 
 
 def _mv(X: Mat, v: Vec) -> Vec:
@@ -192,7 +193,7 @@ def _shared_slides(nodes, q, omega, grav, to_child, to_parent, couples, composit
     for j, ks in groups.items():
         u = nodes[ks[0]].offset_rates.get(j)
         if (len({nodes[k].parent for k in ks}) != 1 or any(j in nodes[k].rates for k in ks) or u is None
-                or any(any(se.expand(a - b) != 0 for a, b in zip(nodes[k].offset_rates.get(j, u), u)) for k in ks)):
+                or any(any(se.expand(a - b) != 0 for a, b in zip(nodes[k].offset_rates.get(j, u), u, strict=True)) for k in ks)):
             return None
         first_child[ks[0]] = j
     mass, first, inertia = composite
@@ -223,14 +224,14 @@ def _shared_slides(nodes, q, omega, grav, to_child, to_parent, couples, composit
             if shared:
                 (j2,) = shared
                 parent = virtual[j2]
-                offset = tuple(c - a * q[j2] for c, a in zip(node.offset, node.offset_rates[j2]))
+                offset = tuple(c - a * q[j2] for c, a in zip(node.offset, node.offset_rates[j2], strict=True))
             node = dataclasses.replace(node, parent=parent, offset=offset,
                                        offset_rates={i: u for i, u in node.offset_rates.items() if i not in groups})
             values = (omega[k], grav[k], to_child[k], to_parent[k], couples[k], (mass[k], first[k], inertia[k]))
         out[0].append(node)
-        for lst, value in zip(out[1:6], values[:5]):
+        for lst, value in zip(out[1:6], values[:5], strict=True):
             lst.append(value)
-        for lst, value in zip(out[6], values[5]):
+        for lst, value in zip(out[6], values[5], strict=True):
             lst.append(value)
     return out
 

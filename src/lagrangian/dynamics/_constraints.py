@@ -233,15 +233,15 @@ def _rows_of(kin: Kinematics, c: Constraint) -> tuple[list[ConstraintRow], list[
     raw = _raw_rows(kin, c)
     zero = are_zero([e for _, _, e in raw])
     if c.principal:
-        left = [name for (name, _, e), z in zip(raw, zero) if not z]
+        left = [name for (name, _, e), z in zip(raw, zero, strict=True) if not z]
         if left:
-            expr = next(e for (name, _, e), z in zip(raw, zero) if not z)
+            expr = next(e for (name, _, e), z in zip(raw, zero, strict=True) if not z)
             raise _error(kin, c, f"constraint `{c.name}` is declared principal, but the coordinates do not satisfy it: "
                          f"`{left[0]}` = `{expr}` is not identically zero",
                          fix="make it complementary (remove `principal = true`): it then gets a multiplier; or "
                              "choose coordinates that satisfy it", key="principal")
         return [], [], c.frame, None
-    kept = [(name, axis, e) for (name, axis, e), z in zip(raw, zero) if not z]
+    kept = [(name, axis, e) for (name, axis, e), z in zip(raw, zero, strict=True) if not z]
     if not kept:
         raise _error(kin, c, f"complementary constraint `{c.name}` is identically satisfied by the coordinates, so "
                      "it has no multiplier and no reaction to find",
@@ -344,7 +344,7 @@ def _independent_rows(kin: Kinematics, c: Constraint, rows: list[ConstraintRow],
     declared = f"written in {c.frame}, its {len(rows)} rows {names} have rank {rank} at generic states"
     for frame in _candidate_frames(kin, c.frame):
         raw = _raw_rows(kin, c, frame)
-        nonzero = [(name, axis, e) for (name, axis, e), z in zip(raw, are_zero([e for _, _, e in raw])) if not z]
+        nonzero = [(name, axis, e) for (name, axis, e), z in zip(raw, are_zero([e for _, _, e in raw]), strict=True) if not z]
         if len(nonzero) != rank:
             continue
         chosen = [_row(kin, c, name, e) for name, _, e in nonzero]
@@ -436,7 +436,7 @@ def _solve_reaction(kin: Kinematics, c: Constraint, rows: list[ConstraintRow],
                          "or leave `reaction` out to get the generalized forces only", key="reaction")
     force = [_ZERO, _ZERO, _ZERO]
     moment = [_ZERO, _ZERO, _ZERO]
-    for (what, k, _), value in zip(columns, solution):
+    for (what, k, _), value in zip(columns, solution, strict=True):
         (force if what == "force" else moment)[k] = value
     free = len(columns) - r
     note = ("solved from R·∂V/∂q̇_i + C·∂Ω/∂q̇_i = Σ_k λ_k A_ki"
@@ -463,7 +463,7 @@ def _reaction_of(kin: Kinematics, c: Constraint, rows: list[ConstraintRow], axes
     zero3 = (_ZERO, _ZERO, _ZERO)
     if c.form in ("no_slip", "coincide"):
         comps = [_ZERO, _ZERO, _ZERO]
-        for row, axis in zip(rows, axes):
+        for row, axis in zip(rows, axes, strict=True):
             comps[axis] = row.multiplier  # type: ignore[index]
         force = Vector({frame: tuple(comps)})
         counter = None
@@ -509,7 +509,7 @@ def _check_rank(kin: Kinematics, rows: list[ConstraintRow], constraints: dict[st
         # The block has rank len(kept): its left null space is one direction, U's last column.
         U, _, _ = np.linalg.svd(An[kept + [k]])
         c = U[:, -1]
-        involved = [j for j, cj in zip(kept, c[:-1]) if abs(cj) > DEPENDENCE_RTOL * abs(c).max()]
+        involved = [j for j, cj in zip(kept, c[:-1], strict=True) if abs(cj) > DEPENDENCE_RTOL * abs(c).max()]
         others = ", ".join(f"`{rows[j].name}`" for j in involved)
         what = f"is a combination of {others} only" if involved else "vanishes"
         names = [f"`{row.constraint}`"] + list(dict.fromkeys(f"`{rows[j].constraint}`" for j in involved))
@@ -685,7 +685,7 @@ def _potential(coefficients: Sequence[se.Basic], variables: Sequence[se.Basic]) 
     import sympy  # late: the only use here, and SymPy takes most of a second to load
 
     phi = sympy.Integer(0)
-    for c, v in zip(coefficients, variables):
+    for c, v in zip(coefficients, variables, strict=True):
         rest = sympy.expand(c._sympy_() - sympy.diff(phi, v._sympy_()))
         if rest == 0:
             continue
@@ -694,7 +694,7 @@ def _potential(coefficients: Sequence[se.Basic], variables: Sequence[se.Basic]) 
             return None
         phi += term
     out = sympy2symengine(phi)  # SymPy → SymEngine by structure, no text
-    if not all(is_zero(out.diff(v) - c) for c, v in zip(coefficients, variables)):
+    if not all(is_zero(out.diff(v) - c) for c, v in zip(coefficients, variables, strict=True)):
         return None
     return out
 

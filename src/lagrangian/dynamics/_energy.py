@@ -21,9 +21,8 @@ import symengine as se
 
 from .._identity import are_zero
 from ..errors import ModelError
-from ..model import NotFinite, real_value
 from ..kinematics import Kinematics
-from ..model import Body, Location
+from ..model import Body, Location, NotFinite, real_value
 
 __all__ = ["KineticEnergyTerm", "RigidInertia", "rigid_inertia", "kinetic_energy"]
 

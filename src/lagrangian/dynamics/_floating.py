@@ -397,11 +397,11 @@ def floating_form(model: Model) -> FloatingForm:
         if tree.internal:
             integrals += names
             momentum.append(names)
-            for a, g, p_a in zip(axes, _field(gravity), P):
+            for a, g in zip(axes, _field(gravity), strict=True):
                 if g:
                     continue
                 integrals.append(f"P{tag}_{a}")
-        monitors += list(zip(names, sigma)) + [(f"P{tag}_{a}", p_a) for a, p_a in zip(axes, P)]
+        monitors += list(zip(names, sigma, strict=True)) + [(f"P{tag}_{a}", p_a) for a, p_a in zip(axes, P, strict=True)]
     U_other = sum_of([f.potential for f in other if f.potential is not None])
     T, U = sum_of(T_all), sum_of(U_all) + U_other
     # An actuator's load is a given non-conservative effort (`_forces`), which does no work while its

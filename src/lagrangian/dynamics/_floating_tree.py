@@ -21,9 +21,7 @@ import symengine as se
 
 from ..errors import DerivationError
 from ..kinematics import Kinematics
-from ..model import JointDamper, Model, Torque, Vector
-from ..model import Assumptions
-from ..model import FreeJoint, free_joints
+from ..model import Assumptions, FreeJoint, JointDamper, Model, Torque, Vector, free_joints
 from ._forces import LoadForces, generalized_forces
 from ._tree import TreeStructure, _Node, tree_structure
 
@@ -76,7 +74,7 @@ def _check_chain(model: Model, kin: Kinematics, tree: TreeStructure, joint: Free
     chain = [index[f] for f in joint.frames]
     position = {c.name: k for k, c in enumerate(model.coordinates)}
     fix = "keep the free body's six coordinates for its own frame and centre (see `lagrangian.model._free`)"
-    for k, (node, angle) in enumerate(zip((tree.nodes[i] for i in chain), joint.angles)):
+    for k, (node, angle) in enumerate(zip((tree.nodes[i] for i in chain), joint.angles, strict=True)):
         j = position[angle]
         if node.rates != {j: 1} or se.expand(node.angle - kin.q[j]) != 0:
             raise _fail(model, f"the rotation of frame `{node.name}` of free body `{joint.body}` is not its angle "
@@ -92,9 +90,9 @@ def _check_chain(model: Model, kin: Kinematics, tree: TreeStructure, joint: Free
     first = tree.nodes[chain[0]]
     expected = {position[x]: tuple(se.Integer(int(a == b)) for b in range(3)) for a, x in enumerate(joint.translation)}
     if first.parent != 0 or first.offset_rates != expected or any(
-            se.expand(c - kin.q[position[x]]) != 0 for c, x in zip(first.offset, joint.translation)):
+            se.expand(c - kin.q[position[x]]) != 0 for c, x in zip(first.offset, joint.translation, strict=True)):
         raise _fail(model, f"the origin of the frame of free body `{joint.body}` is not at "
-                           f"{' + '.join(f'{x} R0.{a}' for x, a in zip(joint.translation, 'xyz'))}", fix)
+                           f"{' + '.join(f'{x} R0.{a}' for x, a in zip(joint.translation, 'xyz', strict=True))}", fix)
     return chain
 
 

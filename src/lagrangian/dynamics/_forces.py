@@ -39,8 +39,7 @@ from symengine.lib.symengine_wrapper import sympy2symengine
 
 from .._identity import are_zero
 from ..kinematics import Kinematics
-from ..model import Damper, GeneralizedForce, Gravity, Load, PointForce, Potential, Spring, Torque, Vector
-from ..model import Assumptions
+from ..model import Assumptions, Damper, GeneralizedForce, Gravity, Load, PointForce, Potential, Spring, Torque, Vector
 from ..model.vectors import sum_of
 from ._friction import FRICTION_LOADS, frame_of, friction_q
 
@@ -110,7 +109,7 @@ def _q_of(kin: Kinematics, load: Load) -> tuple[tuple[se.Basic, ...], se.Basic |
         moving = set(kin.q) | {kin.t}
         for name in names:
             weight = load.field * masses[name]
-            for terms, x in zip(Q_terms, _dot_partials(kin, weight, name)):
+            for terms, x in zip(Q_terms, _dot_partials(kin, weight, name), strict=True):
                 terms.append(x)
             u = -kin.frames.dot(weight, kin.position(name))
             if u.free_symbols & moving:  # a constant (G fixed: a pulley's axle) is left to the "+ cste"
@@ -127,12 +126,12 @@ def _q_of(kin: Kinematics, load: Load) -> tuple[tuple[se.Basic, ...], se.Basic |
         on = kin.partial_omegas(frame_of(kin, load.on))
         other = ((Vector.zero(),) * n if load.reaction_on is None
                  else kin.partial_omegas(frame_of(kin, load.reaction_on)))
-        Q = tuple(kin.frames.dot(load.torque, a - b) for a, b in zip(on, other))
+        Q = tuple(kin.frames.dot(load.torque, a - b) for a, b in zip(on, other, strict=True))
         return Q, None, "P* = C·Ω*"
     if isinstance(load, (Spring, Damper)):
         a, b = load.ends
         d = kin.position(b) - kin.position(a)
-        rel = tuple(vb - va for va, vb in zip(kin.partial_velocities(a), kin.partial_velocities(b)))
+        rel = tuple(vb - va for va, vb in zip(kin.partial_velocities(a), kin.partial_velocities(b), strict=True))
         d_rel = tuple(kin.frames.dot(d, r) for r in rel)  # d · ∂AB/∂q_i
         dd = kin.frames.dot(d, d)
         if isinstance(load, Spring):
@@ -153,8 +152,8 @@ def _q_of(kin: Kinematics, load: Load) -> tuple[tuple[se.Basic, ...], se.Basic |
             return tuple(-U.diff(q) for q in kin.q), U, "Q_i = −∂U/∂q_i"
         # d/dt(∂U/∂q̇_i) with ∂U/∂q̇_i = a_i(q, t): Σ_j ∂a_i/∂q_j q̇_j + ∂a_i/∂t (no q̈: U is affine in q̇)
         rates_part = [U.diff(qd) for qd in kin.qd]
-        Q = tuple(se.Add(*[ai.diff(q) * qd for q, qd in zip(kin.q, kin.qd)], ai.diff(kin.t)) - U.diff(q)
-                  for ai, q in zip(rates_part, kin.q))
+        Q = tuple(se.Add(*[ai.diff(q) * qd for q, qd in zip(kin.q, kin.qd, strict=True)], ai.diff(kin.t)) - U.diff(q)
+                  for ai, q in zip(rates_part, kin.q, strict=True))
         return Q, None, "Q_i = d/dt(∂U/∂q̇_i) − ∂U/∂q_i (a generalized potential, depending on the rates)"
     if isinstance(load, GeneralizedForce):
         comps = dict(load.components)
@@ -172,7 +171,7 @@ def _find_potential(kin: Kinematics, Q: tuple[se.Basic, ...]) -> se.Basic | None
     if all(x == 0 for x in Q):
         return se.Integer(0)
     if not free & set(kin.q):  # constant Q_i (a robot's joint torques): U = −Σ Q_i q_i, without SymPy's integrator
-        return sum_of([-x * q for x, q in zip(Q, kin.q) if x != 0])
+        return sum_of([-x * q for x, q in zip(Q, kin.q, strict=True) if x != 0])
     n = kin.n
     curl = [Q[i].diff(kin.q[j]) - Q[j].diff(kin.q[i]) for i in range(n) for j in range(i + 1, n)]
     if not all(are_zero(curl)):
@@ -183,7 +182,7 @@ def _find_potential(kin: Kinematics, Q: tuple[se.Basic, ...]) -> se.Basic | None
 
     # U = −∫ Q_1 dq_1, then add whatever each later Q_i still needs (classic potential search).
     U = sympy.Integer(0)
-    for qi, Qi in zip(kin.q, Q):
+    for qi, Qi in zip(kin.q, Q, strict=True):
         residue = sympy.expand(-Qi._sympy_() - sympy.diff(U, qi._sympy_()))
         if residue == 0:
             continue
@@ -196,7 +195,7 @@ def _find_potential(kin: Kinematics, Q: tuple[se.Basic, ...]) -> se.Basic | None
 
 def _derives_from(kin: Kinematics, Q: tuple[se.Basic, ...], potential: se.Basic) -> bool:
     """Q_i + ∂U/∂q_i ≡ 0 for every i (a structural zero needs no identity test)."""
-    residues = [q + potential.diff(s) for q, s in zip(Q, kin.q)]
+    residues = [q + potential.diff(s) for q, s in zip(Q, kin.q, strict=True)]
     if all(type(r) is _ZERO_TYPE for r in residues):
         return True
     return all(are_zero(residues))
@@ -231,7 +230,7 @@ def generalized_forces(kin: Kinematics, assumptions: Assumptions | None = None, 
         held = None
         if potential is not None and any(set(x.free_symbols) & inputs for x in Q):
             held, potential = potential, None  # driven by an input u(t): a given non-conservative effort
-        power = sum_of([q * s for q, s in zip(Q, kin.q_star) if type(q) is not _ZERO_TYPE])
+        power = sum_of([q * s for q, s in zip(Q, kin.q_star, strict=True) if type(q) is not _ZERO_TYPE])
         generalized = load.energy if isinstance(load, Potential) and load.energy.free_symbols & set(kin.qd) else None
         kind = "generalized potential" if generalized is not None else type(load).__name__.lower()
         out.append(LoadForces(load.name, kind, Q, power, potential, note, generalized, held))

@@ -58,7 +58,7 @@ def _relative_rotation(kin: Kinematics, load: JointDamper) -> tuple[Vector, tupl
     """Ω(S2/S1) and its partial rates ∂Ω(S2/S1)/∂q̇_i."""
     a, b = (frame_of(kin, n) for n in load.bodies)
     omega = kin.omega(b) - kin.omega(a)
-    partials = tuple(wb - wa for wa, wb in zip(kin.partial_omegas(a), kin.partial_omegas(b)))
+    partials = tuple(wb - wa for wa, wb in zip(kin.partial_omegas(a), kin.partial_omegas(b), strict=True))
     return omega, partials
 
 

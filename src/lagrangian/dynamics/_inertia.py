@@ -34,7 +34,7 @@ def _matvec(pi: tuple[tuple[se.Basic, ...], ...], w: tuple[se.Basic, ...]) -> tu
 
 
 def _dot(a: tuple[se.Basic, ...], b: tuple[se.Basic, ...]) -> se.Basic:
-    return sum_of([x * y for x, y in zip(a, b) if not _zero(x) and not _zero(y)])
+    return sum_of([x * y for x, y in zip(a, b, strict=True) if not _zero(x) and not _zero(y)])
 
 
 def _cross(a: tuple[se.Basic, ...], b: tuple[se.Basic, ...]) -> tuple[se.Basic, ...]:
@@ -86,7 +86,7 @@ def mass_matrix_and_bias(
         wF = kin.frames.omega_in(F, F)  # Ω(F/R0): transport of Π's basis
         partial = [kin.frames.express(p, F) for p in kin.partial_omegas(body.frame)]
         wdot0 = tuple(kin.d_dt(c, accelerations=False) for c in w)
-        dsigma0 = tuple(a + b for a, b in zip(_matvec(pi, wdot0), _cross(wF, _matvec(pi, w))))
+        dsigma0 = tuple(a + b for a, b in zip(_matvec(pi, wdot0), _cross(wF, _matvec(pi, w)), strict=True))
         if share is not None:
             dsigma0 = share(dsigma0)
         pi_partial = [_matvec(pi, p) for p in partial]

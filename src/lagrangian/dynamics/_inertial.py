@@ -38,9 +38,8 @@ import symengine as se
 
 from .._identity import are_zero
 from ..kinematics import FrameTree, Kinematics, TimeDerivative, rotation_rate
-from ..model import Model, Point, Vector
+from ..model import INERTIAL_LOAD_NAMES, Model, Point, Vector
 from ..model.vectors import is_structural_zero, sum_of
-from ..model import INERTIAL_LOAD_NAMES
 from ._energy import rigid_inertia
 from ._forces import LoadForces, _derives_from
 
@@ -160,7 +159,7 @@ def _cross(a: Components, b: Components) -> Components:
 
 
 def _dot(a: Components, b: Components) -> se.Basic:
-    return sum_of([x * y for x, y in zip(a, b) if not is_structural_zero(x) and not is_structural_zero(y)])
+    return sum_of([x * y for x, y in zip(a, b, strict=True) if not is_structural_zero(x) and not is_structural_zero(y)])
 
 
 def _point_forces(kin: RelativeKinematics, point: str, mass: se.Basic) -> tuple[Vector, Vector]:
@@ -184,8 +183,8 @@ def inertial_torsors(kin: RelativeKinematics) -> tuple[InertialTorsor, ...]:
         omega = kin.frames.omega_in(body.frame, F)  # Ω(S/R)
         trace = pi[0][0] + pi[1][1] + pi[2][2]
         pi_w = _matvec(pi, w)
-        m_cor = tuple(2 * x - trace * y for x, y in zip(_cross(pi_w, omega), _cross(w, omega)))
-        m_ent = tuple(-x - y for x, y in zip(_matvec(pi, w_rate), _cross(w, pi_w)))
+        m_cor = tuple(2 * x - trace * y for x, y in zip(_cross(pi_w, omega), _cross(w, omega), strict=True))
+        m_ent = tuple(-x - y for x, y in zip(_matvec(pi, w_rate), _cross(w, pi_w), strict=True))
         coriolis, entrainment = _point_forces(kin, body.name, body.mass)
         out.append(InertialTorsor(CORIOLIS, body.name, coriolis, Vector({F: m_cor})))
         out.append(InertialTorsor(ENTRAINMENT, body.name, entrainment, Vector({F: m_ent})))
@@ -257,9 +256,9 @@ def inertial_forces(kin: Kinematics) -> tuple[LoadForces, ...]:
     for name in present:
         mine = [t for t in torsors if t.load == name]
         Q = _generalized(kin, mine)
-        power = sum_of([q * s for q, s in zip(Q, star) if not is_structural_zero(q)])
+        power = sum_of([q * s for q, s in zip(Q, star, strict=True) if not is_structural_zero(q)])
         if name == CORIOLIS:
-            real, generalized = are_zero([_real_power(kin, mine), sum_of([q * qd for q, qd in zip(Q, kin.qd)])])
+            real, generalized = are_zero([_real_power(kin, mine), sum_of([q * qd for q, qd in zip(Q, kin.qd, strict=True)])])
             virtual = ("zero here (every Q_i ≡ 0)" if all(are_zero(Q))
                        else "not zero (V*(P) is not collinear with V(P/R))")
             note = ("−2 Ω(R/R0) ∧ V(P/R) dm; real power Σ F·V(P/R) " + ("≡ 0" if real else "≢ 0 (unexpected)")

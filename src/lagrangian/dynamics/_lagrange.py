@@ -23,13 +23,11 @@ from typing import NamedTuple
 
 import symengine as se
 
-from .._identity import are_zero
 from .._display import render
+from .._identity import are_zero
 from ..errors import DerivationError, ModelError
 from ..kinematics import Kinematics
-from ..model import Model
-from ..model import Assumptions, SignFact
-from ..model import MAX_OPS_VARIABLE, equations_size, max_ops
+from ..model import MAX_OPS_VARIABLE, Assumptions, Model, SignFact, equations_size, max_ops
 from ..model.vectors import sum_of
 from ._constraints import ConstraintReaction, ConstraintRow, complementary_constraints
 from ._energy import KineticEnergyTerm, RigidInertia, kinetic_energy
@@ -301,7 +299,7 @@ def lagrange_equations(kin: Kinematics, T: se.Basic, U: se.Basic,
     else:
         rates = list(kin.d_dt.many(dT_dqd))
     out = []
-    for c, q, p, rate, q_nc in zip(kin.model.coordinates, kin.q, dT_dqd, rates, Q_nc):
+    for c, q, p, rate, q_nc in zip(kin.model.coordinates, kin.q, dT_dqd, rates, Q_nc, strict=True):
         dT_dq = T.diff(q)
         dU_dq = U.diff(q)
         lhs = rate if type(dT_dq) is _ZERO_TYPE else rate - dT_dq
@@ -375,7 +373,7 @@ def derive(model: Model, *, formulation: str = "auto") -> EquationsOfMotion:
         equations = lagrange_equations(kin, T, U, Q_nc)
         M, gamma0 = mass_matrix_and_bias(kin, inertias)
         Q_total = tuple(sum_of([f.Q[i] for f in loads]) for i in range(n))
-        F = tuple(Q if type(g) is _ZERO_TYPE else Q - g for Q, g in zip(Q_total, gamma0))
+        F = tuple(Q if type(g) is _ZERO_TYPE else Q - g for Q, g in zip(Q_total, gamma0, strict=True))
         _check_size(model, kin, M, F)
         return CourseForm(T_terms, inertias, loads, equations, M, F)
 

@@ -45,8 +45,10 @@ from dataclasses import dataclass
 import symengine as se
 
 from ..kinematics import Kinematics
-from ..model.vectors import add3 as _add3, cross as _cross, turn as _turn  # the vector toolkit's 3-component algebra
+from ..model.vectors import add3 as _add3  # the vector toolkit's 3-component algebra
+from ..model.vectors import cross as _cross
 from ..model.vectors import sum_of
+from ..model.vectors import turn as _turn
 from ._articulated import articulated_accelerations
 from ._forces import LoadForces
 from ._tree import TreeStructure, Vec, _Node
@@ -85,7 +87,7 @@ class _Names:
 
 
 def _dot(a: Sequence[se.Basic], b: Sequence[se.Basic]) -> se.Basic:
-    return sum_of([x * y for x, y in zip(a, b) if type(x) is not _ZERO_TYPE and type(y) is not _ZERO_TYPE])
+    return sum_of([x * y for x, y in zip(a, b, strict=True) if type(x) is not _ZERO_TYPE and type(y) is not _ZERO_TYPE])
 
 
 def _scale(k: se.Basic, v: Vec) -> Vec:
@@ -229,7 +231,7 @@ def recursive_form(kin: Kinematics, tree: TreeStructure, other: tuple[LoadForces
     T = sum_of(T_terms)
     U_gravity = sum_of(U_terms)
     dL = _gradient(w, T - U_gravity, kin.q)
-    dL_dq = tuple(a + q + c for a, q, c in zip(dL, Q_other, Q_couples))
+    dL_dq = tuple(a + q + c for a, q, c in zip(dL, Q_other, Q_couples, strict=True))
     U_other = [f.potential for f in other if f.potential is not None]
     conservative = all(f.potential is not None for f in other) and not tree.couples
     return RecursiveForm(tuple(w.items), M_out, F, T, U_gravity + sum_of(U_other), dL_dq, conservative, other,
@@ -377,11 +379,11 @@ def _forces(w: _Names, kin: Kinematics, tree: TreeStructure, motion: _Motion, fo
     for k, couple in tree.couples:  # the torques and joint dampers: Q_j = C⃗ · ∂Ω/∂q̇_j
         couples[k] = _add3(couples[k], kin.frames.express(couple, nodes[k].frame))
     gamma0 = _backward(w, nodes, motion.to_parent, n, force,
-                       [_add3(mo, _scale(se.Integer(-1), c)) for mo, c in zip(moment, couples)])
+                       [_add3(mo, _scale(se.Integer(-1), c)) for mo, c in zip(moment, couples, strict=True)])
     Q_couples = ([sum_of(q) for q in _backward(w, nodes, motion.to_parent, n, [_ZERO3] * count, couples)]
                  if tree.couples else [_ZERO] * n)
     Q_other = [sum_of([load.Q[i] for load in other]) for i in range(n)]
-    F = tuple(q - sum_of(g) if g else q for q, g in zip(Q_other, gamma0))
+    F = tuple(q - sum_of(g) if g else q for q, g in zip(Q_other, gamma0, strict=True))
     return F, Q_other, Q_couples, couples
 
 

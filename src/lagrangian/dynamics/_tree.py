@@ -183,7 +183,7 @@ def _add_leaves(kin: Kinematics, nodes: list[_Node], index: dict[str, int],
             piece = pieces.get(frame, _ZERO3)
             c = index[child]
             if c in offset_set:
-                if any(se.expand(a - b) != 0 for a, b in zip(piece, nodes[c].offset)):
+                if any(se.expand(a - b) != 0 for a, b in zip(piece, nodes[c].offset, strict=True)):
                     return (f"the points below frame `{child}` do not share one origin for it (`{name}` differs in "
                             f"frame `{frame}`)")
                 continue

@@ -87,7 +87,7 @@ class BaseParameters:
 def format_combination(names: Sequence[str], row: np.ndarray, digits: int = 6) -> str:
     """Σ row_j names_j as text, unit coefficients unwritten."""
     parts = []
-    for name, c in zip(names, row):
+    for name, c in zip(names, row, strict=True):
         if c == 0:
             continue
         sign = "-" if c < 0 else "+"

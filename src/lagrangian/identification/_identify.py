@@ -230,9 +230,7 @@ def _values(model: Model, fitted: Sequence[str], meas: Measurements, values: Map
 
 
 def _shoot(eom, meas, fitted, base, guess, bounds, initial, noise, derivatives, shooting) -> Identification:  # type: ignore[no-untyped-def]
-    from ..numerics import sensitivity_system
-    from ..numerics import control_block
-    from ..numerics import CompiledSystem
+    from ..numerics import CompiledSystem, control_block, sensitivity_system
     from ._shooting import fit_shooting, noise_levels
 
     model = eom.model
@@ -256,7 +254,7 @@ def _shoot(eom, meas, fitted, base, guess, bounds, initial, noise, derivatives, 
         system = built["system"] = CompiledSystem(eom)
     sens = sensitivity_system(system, fitted)
     numbers = {name: (v if v is not None else theta0[fitted.index(name)]) for name, v in base.items()}
-    numbers.update({name: v for name, v in zip(fitted, theta0)})
+    numbers.update({name: v for name, v in zip(fitted, theta0, strict=True)})
     p = system.parameter_vector({k: v for k, v in numbers.items() if k in system.parameters})
     segments = shooting.count(len(meas.t))
     from ._shooting import segment_bounds

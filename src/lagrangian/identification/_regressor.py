@@ -134,7 +134,7 @@ class Regressor:
         top = float(np.abs(Y1).max(initial=0.0))
         scale = np.maximum(np.abs(Y1).max(axis=(0, 1)), max(1e-6 * top, 1e-300))
         moved = np.abs(Y2 - Y1).max(axis=(0, 1)) / scale
-        return [name for name, d in zip(self.fitted, moved) if not d <= LINEARITY_TOLERANCE]
+        return [name for name, d in zip(self.fitted, moved, strict=True) if not d <= LINEARITY_TOLERANCE]
 
 
 #: id(equations) → (a weak reference to them, what was built for them).  Keyed by identity, not by

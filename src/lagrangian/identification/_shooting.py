@@ -29,9 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import IdentificationError, SimulationError
-from ..numerics import SensitivityColumn, SensitivitySystem
-from ..numerics import control_block
-from ..numerics import CompiledSystem
+from ..numerics import CompiledSystem, SensitivityColumn, SensitivitySystem, control_block
 from ._data import Measurements
 from ._filter import SavitzkyGolay
 from ._result import BaseEstimate, Identification
@@ -129,7 +127,7 @@ class _Problem:
         return x[: self.P], x[self.P:].reshape(self.segments, self.n2)
 
     def parameter_vector(self, theta: np.ndarray) -> np.ndarray:
-        values = {name: float(v) for name, v in zip(self.fitted, theta)}
+        values = {name: float(v) for name, v in zip(self.fitted, theta, strict=True)}
         p = self.p_base.copy()
         for name, v in values.items():
             p[self.system.parameters.index(name)] = v
@@ -288,14 +286,14 @@ def _result(system: CompiledSystem, problem: _Problem, sol, r: np.ndarray, J: np
     status = "converged" if sol.status > 0 else f"not converged after {evaluations} evaluations ({sol.message})"
     return Identification(
         model_name=system.eom.model.name, route="shooting", parameters=tuple(fitted),
-        estimates={name: float(v) for name, v in zip(fitted, theta)},
-        std={name: float(s) for name, s in zip(fitted, std[:P])},
-        base=tuple(BaseEstimate(name, {name: 1.0}, float(v), float(s)) for name, v, s in zip(fitted, theta, std)),
+        estimates={name: float(v) for name, v in zip(fitted, theta, strict=True)},
+        std={name: float(s) for name, s in zip(fitted, std[:P], strict=True)},
+        base=tuple(BaseEstimate(name, {name: 1.0}, float(v), float(s)) for name, v, s in zip(fitted, theta, std[:P], strict=True)),
         covariance=cov, covariance_names=names_cov, t=meas.t, residuals=residuals,
         residual_names=tuple(name for _, name in problem.measured),
         sigma={name: float(np.sqrt(np.mean(residuals[:, c] ** 2))) for c, (_, name) in enumerate(problem.measured)},
         status=status, iterations=evaluations, condition=condition,
-        initial={s: float(v) for s, v in zip(problem.states, starts[0])}, notes=tuple(notes))
+        initial={s: float(v) for s, v in zip(problem.states, starts[0], strict=True)}, notes=tuple(notes))
 
 
 #: Singular values of the column-scaled Jacobian below this fraction of the largest are its null space.

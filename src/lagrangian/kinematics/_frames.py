@@ -160,7 +160,7 @@ class FrameTree:
         frame = frame or self.best_frame(u, v)
         a = self.express(u, frame)
         b = a if v is u else self.express(v, frame)
-        return sum_of([x * y for x, y in zip(a, b) if type(x) is not _ZERO_TYPE and type(y) is not _ZERO_TYPE])
+        return sum_of([x * y for x, y in zip(a, b, strict=True) if type(x) is not _ZERO_TYPE and type(y) is not _ZERO_TYPE])
 
     def cross(self, u: Vector, v: Vector, frame: str | None = None) -> Vector:
         if u.is_zero() or v.is_zero():

@@ -100,7 +100,7 @@ class Kinematics:
     def virtual_velocity(self, point: str) -> Vector:
         """V*(P) = Σ_i ∂OP/∂q_i q_i*, with the virtual rates written ``<q>_star``."""
         out = Vector.zero()
-        for partial, star in zip(self.partial_velocities(point), self.q_star):
+        for partial, star in zip(self.partial_velocities(point), self.q_star, strict=True):
             out = out + partial * star
         return out
 

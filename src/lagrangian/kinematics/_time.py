@@ -16,8 +16,7 @@ Two ways to compute it, the same function each time:
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
 import symengine as se
@@ -48,7 +47,7 @@ class TimeDerivative:
         if not free:
             return _ZERO
         terms = []
-        for q, qd, qdd in zip(self.q, self.qd, self.qdd):
+        for q, qd, qdd in zip(self.q, self.qd, self.qdd, strict=True):
             if q in free:
                 terms.append(f.diff(q) * qd)
             if accelerations and qd in free:
@@ -67,7 +66,7 @@ class TimeDerivative:
         """
         zero, one = _ZERO, se.Integer(1)
         rate: dict[se.Basic, se.Basic] = {self.t: one}
-        for q, qd, qdd in zip(self.q, self.qd, self.qdd):
+        for q, qd, qdd in zip(self.q, self.qd, self.qdd, strict=True):
             rate[q] = qd
             rate[qd] = qdd if accelerations else zero
         moving = set(rate)

@@ -17,17 +17,16 @@ import symengine as se
 
 from .._identity import are_zero
 from ..errors import ModelError
-from ._expr import CONSTANTS, FUNCTIONS, ExpressionError, parse_expression
-from ._limits import NotFinite, excerpt, real_value
 from ._assumptions import read_range, read_sign
 from ._constraints import build_constraints
+from ._controls import build_controls
+from ._expr import CONSTANTS, FUNCTIONS, ExpressionError, parse_expression
 from ._free import check_free_bodies
 from ._friction import FRICTION_KINDS, build_friction_load
-from ._controls import build_controls
+from ._limits import NotFinite, excerpt, real_value
 from ._operating_point import build_operating_point, check_inputs_used
 from ._reference import check_reference
 from ._shapes import build_shapes
-from .vectors import Vector, as_expr
 from .spec import (
     GALILEAN_FRAME,
     GENERAL_AXIS,
@@ -53,6 +52,7 @@ from .spec import (
     Spring,
     Torque,
 )
+from .vectors import Vector, as_expr
 
 __all__ = ["Assembler", "Raw", "RESERVED", "default_axes", "location_keys"]
 
@@ -310,7 +310,7 @@ class Assembler:
                              fix="declare the principal parameters q_i under [coordinates]")
         # Ranges once every coordinate is known, so that a bound naming one is refused as such.
         return tuple(dataclasses.replace(c, range=read_range(self, raw, c.initial))
-                     if raw.data.get("range") is not None else c for c, raw in zip(out, self.of("coordinate")))
+                     if raw.data.get("range") is not None else c for c, raw in zip(out, self.of("coordinate"), strict=True))
 
     def frames(self) -> tuple[Frame, ...]:
         raws = {r.name: r for r in self.of("frame")}
@@ -430,8 +430,8 @@ class Assembler:
             raise self.error(raw, f"the rotation axis of frame `{raw.name}` is the zero vector", symbol=raw.name,
                              key="rotation", fix=fix)
         zero = se.Integer(0)
-        for letter, unit in zip("xyz", ((1, 0, 0), (0, 1, 0), (0, 0, 1))):
-            if all(c == u for c, u in zip(comps, unit)):
+        for letter, unit in zip("xyz", ((1, 0, 0), (0, 1, 0), (0, 0, 1)), strict=True):
+            if all(c == u for c, u in zip(comps, unit, strict=True)):
                 return Rotation(angle, letter)  # a basis vector: the elementary rotation
         norm2 = se.expand(sum((c * c for c in comps), zero))
         if are_zero([norm2 - 1])[0]:
@@ -710,7 +710,7 @@ class Assembler:
                 rates = [c.rate_symbol for c in coordinates if c.rate_symbol in energy.free_symbols]
                 pairs = [(a, b) for k, a in enumerate(rates) for b in rates[k:]]
                 zero = are_zero([energy.diff(a).diff(b) for a, b in pairs]) if pairs else []
-                bad = [pair for pair, ok in zip(pairs, zero) if not ok]
+                bad = [pair for pair, ok in zip(pairs, zero, strict=True) if not ok]
                 if bad:
                     a, b = bad[0]
                     raise self.error(raw, f"the potential `{raw.name}` is not affine in the rates (∂²U/∂{a}∂{b} ≠ 0): "

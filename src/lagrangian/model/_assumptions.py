@@ -1,4 +1,4 @@
-"""Sign assumptions on parameters and ranges of coordinates (issue 16, item 4).
+"""Sign assumptions on parameters and ranges of coordinates.
 
 A statement says "a spring of natural length L, fixed to a wall at x = −L": the distance
 from the wall is then x + L > 0, and its force is −k x.  Nothing in the expressions says so:
@@ -243,7 +243,7 @@ class Assumptions:
         out = e
         if args:
             new = [self._walk(a) for a in args]
-            if any(a != b for a, b in zip(new, args)):
+            if any(a != b for a, b in zip(new, args, strict=True)):
                 out = e.func(*new)
             out = self._resolve(out)
         self._refined[e] = out

@@ -177,7 +177,7 @@ class _Checker:
                             fix=f'write the name of {what} in quotes')
         if value not in kinds:
             raise self.fail(raw, f"constraint `{raw.name}` refers to unknown {what} `{value}`", key=key,
-                            symbol=value, fix=f"declare it first, or correct the name")
+                            symbol=value, fix="declare it first, or correct the name")
         return value
 
     def frame(self, raw: Any, value: Any, key: str = "frame") -> str:

@@ -129,7 +129,7 @@ def free_joint(model: Model, body: Body) -> FreeJoint:
                     f"in frame `{stray[0]}`: the origin of a free body's frame moves along R0's axes, and G sits "
                     "at a constant place in the body's frame", _FIX_CENTER, "center")
     translation = []
-    for axis, component in zip("xyz", pieces.get(GALILEAN_FRAME, (se.Integer(0),) * 3)):
+    for axis, component in zip("xyz", pieces.get(GALILEAN_FRAME, (se.Integer(0),) * 3), strict=True):
         name = coordinates.get(component)
         if name is None:
             raise _fail(model, body, f"body `{body.name}` is declared free, but the {axis} component of its position "

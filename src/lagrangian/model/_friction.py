@@ -29,8 +29,8 @@ import symengine as se
 from .spec import CoulombFriction, Dissipation, JointDamper, Load, Location, Point
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ._toml import _Reader
     from ._assemble import Assembler, Raw
+    from ._toml import _Reader
     from .build import ModelBuilder
 
 __all__ = ["FRICTION_KINDS", "TOML_KEYS", "DEFAULT_REGULARIZATION", "build_friction_load", "declare_from_toml"]

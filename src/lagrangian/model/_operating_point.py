@@ -1,4 +1,4 @@
-"""Declared inputs u and the default operating point of linearization (issue 10).
+"""Declared inputs u and the default operating point of linearization.
 
 Two tables of a model file serve small motions::
 
@@ -27,8 +27,8 @@ from typing import TYPE_CHECKING, Any
 import symengine as se
 
 from ..errors import ModelError
-from .vectors import Vector
 from .spec import Coordinate, Load, Location, Model, Parameter
+from .vectors import Vector
 
 if TYPE_CHECKING:  # pragma: no cover
     from ._assemble import Assembler, Raw

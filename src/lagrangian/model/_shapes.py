@@ -32,8 +32,8 @@ import numpy as np
 import symengine as se
 
 from ..errors import ModelError
-from .vectors import Vector
 from .spec import GALILEAN_FRAME, SHAPE_KINDS, Body, Frame, Location, Particle, Point, Shape
+from .vectors import Vector
 
 if TYPE_CHECKING:  # pragma: no cover
     from ._assemble import Assembler, Raw

@@ -47,11 +47,11 @@ Algorithms* (2008), §2.12.
 
 from __future__ import annotations
 
-from fractions import Fraction
 import math
 import re
 import warnings
 from dataclasses import dataclass, field
+from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
@@ -62,9 +62,9 @@ from ..errors import ModelError
 from ._assemble import RESERVED
 from ._texts import Text
 from ._urdf_read import UrdfJoint, UrdfRobot, read_urdf_file, read_urdf_text
-from .vectors import Vector
 from .build import ModelBuilder
 from .spec import GALILEAN_FRAME, ORIGIN, Location, Model
+from .vectors import Vector
 
 __all__ = ["load_urdf", "parse_urdf", "read_urdf", "UrdfRobot", "UrdfNote", "GRAVITY", "INERTIAL_PARAMETERS",
            "inertial_parameter_names"]
@@ -633,7 +633,7 @@ class _Translation:
         values = [mass, *first, at_origin[0, 0], at_origin[0, 1], at_origin[0, 2], at_origin[1, 1],
                   at_origin[1, 2], at_origin[2, 2]]
         units = ["kg", *["kg*m"] * 3, *["kg*m^2"] * 6]
-        for name, value, unit, prefix in zip(names, values, units, INERTIAL_PARAMETERS):
+        for name, value, unit, prefix in zip(names, values, units, INERTIAL_PARAMETERS, strict=True):
             what = {"m": ("masse", "mass"), "mx": ("moment statique m c_x", "first moment m c_x"),
                     "my": ("moment statique m c_y", "first moment m c_y"),
                     "mz": ("moment statique m c_z", "first moment m c_z")}.get(

@@ -82,7 +82,7 @@ def as_expr(value: object) -> se.Basic:
 def add3(a: Components, b: Components) -> Components:
     """a + b component-wise, adding nothing to a zero (x + 0 is x: the same expressions)."""
     return tuple(y if type(x) is _ZERO_TYPE else x if type(y) is _ZERO_TYPE else x + y  # type: ignore[return-value]
-                 for x, y in zip(a, b))
+                 for x, y in zip(a, b, strict=True))
 
 
 def cross(a: Components, b: Components) -> Components:
@@ -90,7 +90,7 @@ def cross(a: Components, b: Components) -> Components:
     nz_a = [type(x) is not _ZERO_TYPE for x in a]
     nz_b = [type(x) is not _ZERO_TYPE for x in b]
     out = []
-    for i, j, k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
+    for _i, j, k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):  # component i of a ∧ b
         plus = nz_a[j] and nz_b[k]
         minus = nz_a[k] and nz_b[j]
         if plus and minus:
@@ -133,11 +133,11 @@ def turn_about(n: Components, c: se.Basic, s: se.Basic, v: Components) -> Compon
     """
     if all(is_structural_zero(x) for x in v):
         return v
-    n_v = sum_of([a * b for a, b in zip(n, v) if not is_structural_zero(a) and not is_structural_zero(b)])
+    n_v = sum_of([a * b for a, b in zip(n, v, strict=True) if not is_structural_zero(a) and not is_structural_zero(b)])
     turned = cross(n, v)
     along = (1 - c) * n_v
     return tuple(sum_of([t for t in (c * x, s * w, along * a) if not is_structural_zero(t)])  # type: ignore[return-value]
-                 for x, w, a in zip(v, turned, n))
+                 for x, w, a in zip(v, turned, n, strict=True))
 
 class Vector:
     """An immutable sum of pieces ``{frame name: (c_x, c_y, c_z)}``.
@@ -223,7 +223,7 @@ class Vector:
         out = dict(self._pieces)
         for frame, comps in other._pieces.items():
             if frame in out:
-                out[frame] = tuple(a + b for a, b in zip(out[frame], comps))  # type: ignore[assignment]
+                out[frame] = tuple(a + b for a, b in zip(out[frame], comps, strict=True))  # type: ignore[assignment]
             else:
                 out[frame] = comps
         return Vector._trusted(out)
@@ -280,7 +280,7 @@ class Vector:
             return "0"
         terms = []
         for frame, comps in self._pieces.items():
-            for axis, c in zip("xyz", comps):
+            for axis, c in zip("xyz", comps, strict=True):
                 if c != 0:
                     terms.append(f"({c})*{frame}.{axis}")
         return " + ".join(terms)

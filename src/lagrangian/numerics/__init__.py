@@ -48,18 +48,23 @@ _WHERE = {
 __getattr__, __dir__ = lazy_names(__name__, _WHERE)
 
 if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
+    from ._batch import STATUS as STATUS
+    from ._compile import load_verified as load_verified
+    from ._contact import contact_model as contact_model
     from ._contact_switch import ContactEvent as ContactEvent
     from ._control import control_block as control_block
     from ._dae import ConstrainedSystem as ConstrainedSystem
-    from ._projection import project as project
+    from ._ensemble import connect_scheduler as connect_scheduler
     from ._ensemble import ensemble as ensemble
     from ._ensemble import flip_events as flip_events
     from ._ensemble_store import open_ensemble as open_ensemble
     from ._files import check_output_path as check_output_path
     from ._files import load_trajectory as load_trajectory
     from ._files import save_trajectory as save_trajectory
+    from ._forward import forward_jacobian as forward_jacobian
     from ._free_system import FreeBodySystem as FreeBodySystem
     from ._free_system import compile_free_system as compile_free_system
+    from ._impact_sweep import OUTCOMES as OUTCOMES
     from ._impact_sweep import ImpactSweep as ImpactSweep
     from ._impact_sweep import impact_sweep as impact_sweep
     from ._input_switch import Switch as Switch
@@ -70,8 +75,13 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from ._options import SimulationOptions as SimulationOptions
     from ._phases import check_trajectory_along as check_trajectory_along
     from ._phases import reaction_history_along as reaction_history_along
+    from ._projection import project as project
     from ._reaction_columns import reaction_columns_along as reaction_columns_along
     from ._sensitivity import Sensitivities as Sensitivities
+    from ._sensitivity import SensitivityColumn as SensitivityColumn
+    from ._sensitivity import SensitivitySystem as SensitivitySystem
+    from ._sensitivity import inverse_dynamics as inverse_dynamics
+    from ._sensitivity import sensitivity_system as sensitivity_system
     from ._simulate import METHODS as METHODS
     from ._simulate import EventSpec as EventSpec
     from ._simulate import default_tolerance as default_tolerance
@@ -85,16 +95,6 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from ._top_check import simulation_check as simulation_check
     from ._trajectory import Event as Event
     from ._trajectory import Trajectory as Trajectory
-    from ._batch import STATUS as STATUS
-    from ._compile import load_verified as load_verified
-    from ._contact import contact_model as contact_model
-    from ._ensemble import connect_scheduler as connect_scheduler
-    from ._forward import forward_jacobian as forward_jacobian
-    from ._impact_sweep import OUTCOMES as OUTCOMES
-    from ._sensitivity import SensitivityColumn as SensitivityColumn
-    from ._sensitivity import SensitivitySystem as SensitivitySystem
-    from ._sensitivity import inverse_dynamics as inverse_dynamics
-    from ._sensitivity import sensitivity_system as sensitivity_system
 
 __all__ = [
     "METHODS",

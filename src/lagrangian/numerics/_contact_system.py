@@ -24,8 +24,7 @@ from dataclasses import replace
 import numpy as np
 import symengine as se
 
-from ..dynamics import EquationsOfMotion, derive
-from ..dynamics import SLIDING_SUFFIX
+from ..dynamics import SLIDING_SUFFIX, EquationsOfMotion, derive
 from ..errors import ModelError, SimulationError
 from ..model import coefficient_values_error
 from ..model.spec import Model

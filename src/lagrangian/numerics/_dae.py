@@ -54,11 +54,11 @@ def reaction_columns(eom: EquationsOfMotion) -> list[tuple[str, se.Basic]]:
         if r.physical:
             axes = frames.axes(r.frame)
             if r.point is not None:
-                out += [(f"R_{r.constraint}_{a}", c) for a, c in zip(axes, r.force_components)]
+                out += [(f"R_{r.constraint}_{a}", c) for a, c in zip(axes, r.force_components, strict=True)]
             if r.body is not None:
-                out += [(f"M_{r.constraint}_{a}", c) for a, c in zip(axes, r.moment_components)]
+                out += [(f"M_{r.constraint}_{a}", c) for a, c in zip(axes, r.moment_components, strict=True)]
         else:
-            out += [(f"Q_{r.constraint}_{name}", g) for name, g in zip(eom.coordinates, r.generalized)]
+            out += [(f"Q_{r.constraint}_{name}", g) for name, g in zip(eom.coordinates, r.generalized, strict=True)]
     return out
 
 

@@ -30,8 +30,6 @@ from pathlib import Path
 
 import numpy as np
 
-from ..codegen import exported_symbols
-from ..codegen.targets.jax import jax_module
 from ..errors import SimulationError
 
 __all__ = ["jax_runner"]

@@ -159,7 +159,7 @@ def unflatten(ds):
         else:
             out[name] = var.variable
     coords = {name: ds[name].values for name in ds.coords if "member" not in ds[name].dims}
-    for axis, (name, size) in enumerate(axes):
+    for axis, (name, _size) in enumerate(axes):
         flat = np.asarray(ds[name].values).reshape(shape)
         coords[name] = flat[(0,) * axis + (slice(None),) + (0,) * (len(shape) - axis - 1)]
     for name in ds.coords:  # swept names that are not grid axes: along the grid

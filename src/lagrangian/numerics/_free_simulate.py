@@ -60,7 +60,7 @@ def free_source(source) -> Model | FreeBodySystem | None:
 
 def _state_text(system: FreeBodySystem, y: np.ndarray) -> str:
     q, _, _ = system.coordinates_of(y[None, :], np.zeros((1, system.width)), np.zeros(2 * len(system.coordinates)))
-    return ", ".join(f"{name} = {v:.6g}" for name, v in zip(system.coordinates, q[0]))
+    return ", ".join(f"{name} = {v:.6g}" for name, v in zip(system.coordinates, q[0], strict=True))
 
 
 def check_free_options(options: SimulationOptions) -> None:
@@ -229,7 +229,7 @@ def _trajectory(system: FreeBodySystem, p, t, Y, evs, method, steps, nfev, toler
         events.append(Event(name, float(te), eq[0], eqd[0]))
     return Trajectory(
         model_name=system.model.name, coordinates=system.coordinates,
-        parameters={k: float(v) for k, v in zip(system.parameters, p) if not np.isnan(v)},
+        parameters={k: float(v) for k, v in zip(system.parameters, p[:len(system.parameters)], strict=True) if not np.isnan(v)},
         t=np.asarray(t, dtype=float), q=q, qd=qd, qdd=qdd, monitors=monitors, integrals=integrals,
         drift=drift, method=method, steps=steps, rhs_calls=nfev, tolerance=tolerance, warnings=warnings,
         events=tuple(events), status=status, conditioning=conditioning, extra=system.extra_columns(Y),

@@ -21,8 +21,7 @@ import symengine as se
 
 from ..dynamics import FloatingForm, floating_form
 from ..errors import SimulationError
-from ..model import Model
-from ..model import inertia_problem
+from ..model import Model, inertia_problem
 from ._compile import compile_library
 from ._euler import (
     SINGULAR,
@@ -79,7 +78,7 @@ class FreeBodySystem:
         self.parameters = tuple(p.name for p in model.parameters)
         self.events = tuple(name for name, _ in events)
         self._event_expressions = tuple(self._state_expression(name, e) for name, e in events)
-        generated = generate_free_c(self.form, list(zip(self.events, self._event_expressions)))
+        generated = generate_free_c(self.form, list(zip(self.events, self._event_expressions, strict=True)))
         self.source = generated.source
         self.nq, self.nv = generated.nq, generated.nv
         self.width = self.nq + self.nv + len(self.form.trees)
@@ -119,8 +118,8 @@ class FreeBodySystem:
         """An event's g(t, q, q̇) in the state's symbols: translations and joints only, not the angles."""
         mapping: dict[se.Basic, se.Basic] = {}
         angles = set()
-        for tree, base in zip(self.form.trees, self.form.bases):
-            for c, r, v in zip(tree.joint.translation, base.r, base.v):
+        for tree, base in zip(self.form.trees, self.form.bases, strict=True):
+            for c, r, v in zip(tree.joint.translation, base.r, base.v, strict=True):
                 mapping[se.Symbol(c)], mapping[se.Symbol(c + "_dot")] = r, v
             angles |= {se.Symbol(a) for a in tree.joint.angles} | {se.Symbol(a + "_dot") for a in tree.joint.angles}
         used = sorted(str(s) for s in expr.free_symbols & angles)
@@ -143,7 +142,7 @@ class FreeBodySystem:
     def integrals_for(self, p: np.ndarray) -> tuple[str, ...]:
         """The first integrals of a run with parameter values ``p``: without E when an input whose load
         is not conservative has a value other than 0 (`FloatingForm.energy_inputs`)."""
-        values = dict(zip(self.parameters, p))
+        values = dict(zip(self.parameters, p[:len(self.parameters)], strict=True))
         if any(values.get(u, 0.0) != 0.0 for u in self.form.energy_inputs):
             return tuple(name for name in self.integrals if name != "E")
         return tuple(self.integrals)
@@ -184,7 +183,7 @@ class FreeBodySystem:
         return extended
 
     def _check_inertias(self, p: np.ndarray) -> None:
-        known = {se.Symbol(name): se.RealDouble(float(v)) for name, v in zip(self.parameters, p) if not np.isnan(v)}
+        known = {se.Symbol(name): se.RealDouble(float(v)) for name, v in zip(self.parameters, p[:len(self.parameters)], strict=True) if not np.isnan(v)}
         for tree in self.form.trees:
             leaf = next(node for node in tree.nodes if node.name == tree.joint.body)
             try:

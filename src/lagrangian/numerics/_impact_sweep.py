@@ -134,7 +134,7 @@ def impact_sweep(source, axes: Mapping[str, Sequence[float] | np.ndarray], t_end
     status = np.full(shape, "ok", dtype=object)
     members = list(itertools.product(*(range(n) for n in shape)))
     for done, index in enumerate(members):
-        point = {name: float(grid[name][i]) for name, i in zip(grid, index)}
+        point = {name: float(grid[name][i]) for name, i in zip(grid, index, strict=True)}
         p = dict(parameters or {}) | {k: v for k, v in point.items() if k in names}
         y0 = dict(initial or {}) | {k: v for k, v in point.items() if k not in names}
         try:
@@ -142,7 +142,7 @@ def impact_sweep(source, axes: Mapping[str, Sequence[float] | np.ndarray], t_end
         except SimulationError as exc:
             status[index] = exc.message
             continue
-        for name, value in zip(OUTCOMES, _outcome(traj.events, min_speed)):
+        for name, value in zip(OUTCOMES, _outcome(traj.events, min_speed), strict=True):
             out[name][index] = value
         if progress:
             from ._progress import progress_bar

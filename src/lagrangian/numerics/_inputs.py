@@ -66,7 +66,7 @@ def law_names(eom: EquationsOfMotion) -> dict[str, se.Basic]:
     """The names an input's expression may use: t, the coordinates, their rates, the parameters
     that are not inputs (an input in terms of another would hide a loop)."""
     names: dict[str, se.Basic] = {"t": eom.t}
-    for c, q, qd in zip(eom.model.coordinates, eom.q, eom.qd):
+    for c, q, qd in zip(eom.model.coordinates, eom.q, eom.qd, strict=True):
         names[c.name] = q
         names[c.name + "_dot"] = qd
     for p in eom.model.parameters:
@@ -357,7 +357,7 @@ def _source(name: str, value: Any, names: Mapping[str, se.Basic], model: str) ->
     if isinstance(value, Switch):  # each source resolved as the input's own (none is a Switch: `Switch` says so)
         pieces = tuple(_source(name, piece, names, model) for piece in value.sources)
         text = " then ".join(f"{piece.text} from t = {a:g}" if k else piece.text
-                             for k, (piece, a) in enumerate(zip(pieces, (0.0, *value.at))))
+                             for k, (piece, a) in enumerate(zip(pieces, (0.0, *value.at), strict=True)))
         return InputSource(name, "switch", Switch(*pieces, at=value.at), text)
     if callable(value):
         return InputSource(name, "callable", value, getattr(value, "__name__", "a function"))

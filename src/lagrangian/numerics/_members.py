@@ -48,7 +48,7 @@ class Grid:
     def columns(self) -> dict[str, np.ndarray]:
         """Each axis's value for every member, flattened in C order (the last axis fastest)."""
         mesh = np.meshgrid(*(values for _, values in self.axes), indexing="ij")
-        return {name: m.ravel() for (name, _), m in zip(self.axes, mesh)}
+        return {name: m.ravel() for (name, _), m in zip(self.axes, mesh, strict=True)}
 
 
 def grid(**axes) -> Grid:

@@ -50,7 +50,7 @@ __all__ = ["check_ode_options", "early_stop", "resolve", "run_ode", "singularity
 
 
 def state_text(system: CompiledSystem, y: np.ndarray) -> str:
-    return ", ".join(f"{name} = {v:.6g}" for name, v in zip(system.coordinates, y[: system.n]))
+    return ", ".join(f"{name} = {v:.6g}" for name, v in zip(system.coordinates, y[: system.n], strict=True))
 
 
 def singularity(system: CompiledSystem, t: float, y: np.ndarray, p: np.ndarray, where: str) -> SimulationError:
@@ -61,7 +61,7 @@ def singularity(system: CompiledSystem, t: float, y: np.ndarray, p: np.ndarray, 
     """
     M, F = system.mass_forces(t, y, p)
     names = system.coordinates
-    bad = ([f"M[{names[i]},{names[j]}]" for i, j in zip(*np.nonzero(~np.isfinite(M)))]
+    bad = ([f"M[{names[i]},{names[j]}]" for i, j in zip(*np.nonzero(~np.isfinite(M)), strict=True)]
            + [f"F[{names[i]}]" for i in np.flatnonzero(~np.isfinite(F))])
     if bad:
         shown = ", ".join(bad[:4]) + (f" and {len(bad) - 4} more" if len(bad) > 4 else "")
@@ -73,8 +73,8 @@ def singularity(system: CompiledSystem, t: float, y: np.ndarray, p: np.ndarray, 
             t=t, state=y.copy())
     w, v = mass_eigh(M)
     null = v[:, 0]
-    parts = [f"{c:+.2f} {name}_dot" for c, name in zip(null, system.coordinates) if abs(c) > 0.1]
-    involved = [name for c, name in zip(null, system.coordinates) if abs(c) > 0.1]
+    parts = [f"{c:+.2f} {name}_dot" for c, name in zip(null, system.coordinates, strict=True) if abs(c) > 0.1]
+    involved = [name for c, name in zip(null, system.coordinates, strict=True) if abs(c) > 0.1]
     if len(involved) == 1:
         why = f"M has (almost) no inertia along {involved[0]}, so {involved[0]}_ddot is not defined there."
     else:

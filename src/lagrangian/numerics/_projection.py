@@ -103,8 +103,8 @@ def check_initial(system: ConstrainedSystem, t0: float, y0: np.ndarray, p: np.nd
     M, _, A, _, g, f = system.parts(t0, y0, p)
     if not (np.isfinite(M).all() and np.isfinite(A).all()):  # nan: no eigenvalue (LinAlgError), say why
         names = system.coordinates
-        bad = ([f"M[{names[i]},{names[j]}]" for i, j in zip(*np.nonzero(~np.isfinite(M)))]
-               + [f"A[{k},{names[j]}]" for k, j in zip(*np.nonzero(~np.isfinite(A)))])
+        bad = ([f"M[{names[i]},{names[j]}]" for i, j in zip(*np.nonzero(~np.isfinite(M)), strict=True)]
+               + [f"A[{k},{names[j]}]" for k, j in zip(*np.nonzero(~np.isfinite(A)), strict=True)])
         raise SimulationError(
             f"M(q, t) q'' = F + Aᵀλ is not defined at the initial state (t = {t0:.9g}): {', '.join(bad[:4])}"
             f"{f' and {len(bad) - 4} more' if len(bad) > 4 else ''} not finite; the state is outside the domain of "

@@ -1,4 +1,4 @@
-"""Declared ranges and sign assumptions, checked along a simulated motion (issue 16, item 4).
+"""Declared ranges and sign assumptions, checked along a simulated motion.
 
 A coordinate declared with ``range = [lower, upper]`` is expected to stay there, and the
 equations may have been simplified with it (|x + L| = x + L where x ≥ −L,

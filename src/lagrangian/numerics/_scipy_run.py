@@ -105,7 +105,7 @@ def run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol, max_step
                               f"{sol.message}", fix="loosen the tolerances or try another method")
     evs = []
     for k, spec in enumerate(specs):
-        for te, ye in zip(sol.t_events[k], sol.y_events[k]):
+        for te, ye in zip(sol.t_events[k], sol.y_events[k], strict=True):
             evs.append((spec.name, float(te), ye))
     evs.sort(key=lambda e: e[1])
     return sol.t, np.ascontiguousarray(sol.y.T), evs, int(sol.nfev), int(count["steps"]), sol.status

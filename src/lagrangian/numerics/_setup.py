@@ -44,7 +44,7 @@ class EventSpec:
 
 def _names(eom: EquationsOfMotion) -> dict[str, se.Basic]:
     names: dict[str, se.Basic] = {"t": eom.t}
-    for c, q, qd in zip(eom.model.coordinates, eom.q, eom.qd):
+    for c, q, qd in zip(eom.model.coordinates, eom.q, eom.qd, strict=True):
         names[c.name] = q
         names[c.name + "_dot"] = qd
     for p in eom.model.parameters:

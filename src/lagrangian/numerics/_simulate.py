@@ -19,8 +19,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..dynamics import EquationsOfMotion, derive
-from ..model import load_model
-from ..model import check_sign
+from ..model import check_sign, load_model
 from ..model.spec import Model
 from ._control import CONTROL_SIZE, STIFFNESS_TEST_PERIOD, control_block
 from ._methods import check_route_options, route_for

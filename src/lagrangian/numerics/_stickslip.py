@@ -271,7 +271,7 @@ class _Phases:
         system, options = self.system, self.options
         coords = system.stuck.coordinates
         n = len(coords)
-        start = {c: float(v) for c, v in zip(coords, y[:n])} | {c + "_dot": float(v) for c, v in zip(coords, y[n:])}
+        start = {c: float(v) for c, v in zip(coords, y[:n], strict=True)} | {c + "_dot": float(v) for c, v in zip(coords, y[n:], strict=True)}
         t_seg = np.concatenate([[t], self.grid[self.grid > t]])
         if mode == 0:
             lam, f_s, N = system.symbols["lam"], system.symbols["f_s"], system.symbols["N"]
@@ -353,7 +353,7 @@ def _join(system: StickSlipSystem, p: np.ndarray, grid: np.ndarray, pieces: list
             FRIC.append(piece.extra[f"lambda_{system.row}"][keep])
         else:
             Y = np.column_stack([piece.q[keep], piece.qd[keep]])
-            values = [system.coefficients(t, yy, p) for t, yy in zip(piece.t[keep], Y)]
+            values = [system.coefficients(t, yy, p) for t, yy in zip(piece.t[keep], Y, strict=True)]
             FRIC.append(np.array([-mode * f * N for f, _, N in values]))
         warnings += [w for w in piece.warnings if " drifted by " not in w and w not in warnings]
     t = np.concatenate(T)

@@ -25,8 +25,7 @@ from typing import Any
 import numpy as np
 import symengine as se
 
-from ..analysis import first_integrals
-from ..analysis import FirstIntegral, tree_integrals
+from ..analysis import FirstIntegral, first_integrals, tree_integrals
 from ..codegen import GeneratedSource, generate_c, monitor_expressions
 from ..dynamics import EquationsOfMotion
 from ..errors import SimulationError
@@ -54,7 +53,8 @@ def unused_parameters(parameters: Sequence[str], expressions: Sequence[se.Basic]
 
 def known_values(parameters: Sequence[str], p: np.ndarray) -> dict[str, float]:
     """The values of ``p`` by name, leaving out the NaN of unused parameters without a value."""
-    return {name: float(v) for name, v in zip(parameters, p) if not np.isnan(v)}
+    # p may go on with constants precomputed by the C backend: only its first len(parameters) are values
+    return {name: float(v) for name, v in zip(parameters, p[:len(parameters)], strict=True) if not np.isnan(v)}
 
 _P = ctypes.c_void_p
 _SIGNATURES = {

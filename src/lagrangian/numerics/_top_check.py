@@ -8,6 +8,7 @@ initial state, so agreement checks both.
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass
 
@@ -53,9 +54,9 @@ def simulation_check(eom: EquationsOfMotion, an: TopAnalysis, *, periods: float 
     highs = [e.q[i] for e in run.events if e.name == "high"]
     th = [(f"{red.coordinate}1", nut.theta1, tuple(q for _, q, _ in lows), "rad"),
           (f"{red.coordinate}2", nut.theta2, tuple(highs), "rad")]
-    periods_sim = tuple(b[0] - a[0] for a, b in zip(lows, lows[1:]))
+    periods_sim = tuple(b[0] - a[0] for a, b in itertools.pairwise(lows))
     th.append(("nutation period", nut.period, periods_sim, "s"))
-    mean = tuple((b[2] - a[2]) / (b[0] - a[0]) for a, b in zip(lows, lows[1:]))
+    mean = tuple((b[2] - a[2]) / (b[0] - a[0]) for a, b in itertools.pairwise(lows))
     th.append((f"mean ⟨{red.precession}_dot⟩", nut.mean_rates[red.precession], mean, "rad/s"))
     rows = tuple((name, value, sims, max((abs(x - value) for x in sims), default=math.nan), unit)
                  for name, value, sims, unit in th)

@@ -29,6 +29,7 @@ from typing import Any
 import numpy as np
 
 from .._display import render
+
 __all__ = ["Trajectory", "Event", "drift_scale", "relative_drift", "conservation"]
 
 

@@ -208,6 +208,6 @@ def casadi_expressions(outputs: Sequence[se.Basic], symbols: Mapping[se.Basic, A
     defined = [e for _, e in definitions]
     replacements, reduced = se.cse([*defined, *exprs]) if exprs or defined else ([], [])
     named: dict[se.Basic, se.Basic] = dict(replacements)
-    named.update((sym, value) for (sym, _), value in zip(definitions, reduced))
+    named.update((sym, value) for (sym, _), value in zip(definitions, reduced[:len(definitions)], strict=True))
     convert = _Converter(symbols, named)
     return [convert(e) for e in reduced[len(defined):]]

@@ -95,7 +95,7 @@ class Layout:
 
     def scope(self) -> dict[str, se.Basic]:
         """Every name an expression of the problem may use: the columns, the parameters and t."""
-        names: dict[str, se.Basic] = dict(zip(self.names, self.symbols))
+        names: dict[str, se.Basic] = dict(zip(self.names, self.symbols, strict=True))
         names.update(self.parameters)
         names["t"] = self.t
         return names

@@ -156,7 +156,7 @@ def _result(tr: Transcription, run: SolverRun, transcribed: float, verify: bool,
         rows = tr.eom.constraints
         names = [f"drift_{r.name}" for r in rows if r.kind == "holonomic"] + [f"drift_{r.name}_dot" for r in rows]
         residuals = np.asarray(tr.functions.manifold.map(tr.P)(Z, t.reshape(1, -1)))
-        for name, values in zip(names, residuals):
+        for name, values in zip(names, residuals, strict=True):
             monitors[name] = values
             drift[name] = float(np.max(np.abs(values)))
     nodes = tr.scheme.nodes(tr.N)

@@ -26,9 +26,7 @@ import numpy as np
 
 from ..dynamics import EquationsOfMotion
 from ..errors import SimulationError
-from ..numerics import CompiledSystem, InputTable, simulate
-from ..numerics import ConstrainedSystem
-from ..numerics import project
+from ..numerics import CompiledSystem, ConstrainedSystem, InputTable, project, simulate
 from ._result import REPLAY_TOLERANCE, Replay
 
 __all__ = ["RTOL", "replay_check", "replay_inputs"]
@@ -62,8 +60,8 @@ class _Runner:
         if isinstance(self.system, ConstrainedSystem):
             p = self.system.parameter_vector(self.parameters)
             y0 = project(self.system, float(t[0]), np.asarray(y0, dtype=float), p, tol=1e-14)[0]
-        initial = {name: float(v) for name, v in zip(self.eom.coordinates, y0[:n])}
-        initial.update({name + "_dot": float(v) for name, v in zip(self.eom.coordinates, y0[n:])})
+        initial = {name: float(v) for name, v in zip(self.eom.coordinates, y0[:n], strict=True)}
+        initial.update({name + "_dot": float(v) for name, v in zip(self.eom.coordinates, y0[n:], strict=True)})
         # the compiled DOP853, or SciPy's where no C compiler was found (the same method)
         method = "dop853" if getattr(self.system, "backend", "c") == "c" or self.inputs is not None else "DOP853"
         try:

@@ -3,11 +3,17 @@
 ``export`` and ``EXPORT_TARGETS`` are the code-generation stage's (`lagrangian.codegen`), re-exported here.
 """
 
-from ._course import CourseForm as CourseForm
-from ._course import course_form as course_form
-from ._equilibria_text import equilibria_text as equilibria_text
 from ..codegen import EXPORT_TARGETS as EXPORT_TARGETS
 from ..codegen import export as export
+from ._course import CourseForm as CourseForm
+from ._course import course_form as course_form
+
+# Shared with the command line: the course's forms, the intermediates, what derive prints besides.
+from ._course import reference_label as reference_label
+from ._course import to_sympy as to_sympy
+from ._equilibria_text import equilibria_text as equilibria_text
+from ._intermediates import needed_intermediates as needed_intermediates
+from ._intermediates import render_intermediates as render_intermediates
 from ._json import SCHEMA_ID as SCHEMA_ID
 from ._json import SCHEMA_VERSION as SCHEMA_VERSION
 from ._json import derive_document as derive_document
@@ -23,20 +29,14 @@ from ._report import Report as Report
 from ._report import ReportFigure as ReportFigure
 from ._report import format_for as format_for
 from ._report import report as report
+from ._report.size import SizeGate as SizeGate
 from ._sympy_form import SympyEquations as SympyEquations
 from ._sympy_form import sympy_equations as sympy_equations
+from ._text import Supplement as Supplement
 from ._text import render_text as render_text
+from ._text import supplement as supplement
 from ._top_text import simulation_check_text as simulation_check_text
 from ._top_text import top_analysis_text as top_analysis_text
-
-# Shared with the command line: the course's forms, the intermediates, what derive prints besides.
-from ._course import reference_label as reference_label
-from ._course import to_sympy as to_sympy
-from ._intermediates import needed_intermediates as needed_intermediates
-from ._intermediates import render_intermediates as render_intermediates
-from ._text import Supplement as Supplement
-from ._text import supplement as supplement
-from ._report.size import SizeGate as SizeGate
 
 __all__ = ["CourseForm", "course_form", "EXPORT_TARGETS", "export", "SCHEMA_ID", "SCHEMA_VERSION", "derive_document", "render_latex",
            "LINEARIZE_SCHEMA_ID", "linearize_document",

@@ -11,8 +11,7 @@ from typing import Any
 
 import sympy
 
-from ..dynamics import EquationsOfMotion, multiplier_formulas
-from ..dynamics import describe_constraints
+from ..dynamics import EquationsOfMotion, describe_constraints, multiplier_formulas
 from ..model import Vector
 from ._course import to_sympy
 
@@ -47,7 +46,7 @@ def constraints_section(eom: EquationsOfMotion) -> dict[str, Any]:
                      if isinstance(info.statement, Vector) and info.frame is not None  # a vector has its frame
                      else text(info.statement))
         rows = [{"name": r.name, "equation": _s(r.expression), "multiplier": r.multiplier.name,
-                 "coefficients": {c: _s(a) for c, a in zip(q, r.coefficients)}, "b": _s(r.b),
+                 "coefficients": {c: _s(a) for c, a in zip(q, r.coefficients, strict=True)}, "b": _s(r.b),
                  "velocity": _s(r.velocity), "acceleration_bias": _s(r.bias)} for r in info.rows]
         reaction = None
         if info.reaction is not None:
@@ -56,7 +55,7 @@ def constraints_section(eom: EquationsOfMotion) -> dict[str, Any]:
                 "point": r.point, "body": r.body, "counter_point": r.counter_point, "frame": r.frame,
                 "force": [_s(c) for c in r.force_components] if r.point is not None else None,
                 "moment": [_s(c) for c in r.moment_components] if r.body is not None else None,
-                "generalized": {c: _s(g) for c, g in zip(q, r.generalized)}, "note": r.note,
+                "generalized": {c: _s(g) for c, g in zip(q, r.generalized, strict=True)}, "note": r.note,
             }
         item: dict[str, Any] = {"name": info.name, "role": info.role, "form": info.form, "kind": info.kind,
                                 "description": info.description, "frame": info.frame, "statement": statement,
@@ -82,5 +81,5 @@ def constraints_section(eom: EquationsOfMotion) -> dict[str, Any]:
     contacts = sum(1 for c in eom.model.constraints if c.unilateral)  # several: λ depends on which are closed
     formulas = multiplier_formulas(eom) if eom.constraints and contacts < 2 else None
     if formulas is not None:
-        out["multiplier_formulas"] = {m.name: _s(f) for m, f in zip(eom.multipliers, formulas)}
+        out["multiplier_formulas"] = {m.name: _s(f) for m, f in zip(eom.multipliers, formulas, strict=True)}
     return out

@@ -14,8 +14,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import symengine as se
-from symengine.lib.symengine_wrapper import sympy2symengine
 import sympy
+from symengine.lib.symengine_wrapper import sympy2symengine
 
 from .._identity import are_zero
 from ..analysis import FirstIntegral
@@ -234,7 +234,7 @@ def _vector_row(eom: EquationsOfMotion, v: Vector, convert: Converter = to_sympy
     terms = []
     for frame, comps in v:
         axes = eom.kinematics.frames.axes(frame)
-        for c, name in zip(comps, axes):
+        for c, name in zip(comps, axes, strict=True):
             if c != 0:
                 terms.append((convert(c), name))
     return VectorRow(tuple(terms))

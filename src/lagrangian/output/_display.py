@@ -142,7 +142,7 @@ def linear_model_latex(lm) -> str:
     u = r"\begin{bmatrix}" + r" \\ ".join(n.symbol(s, latex=True) for s in lm.inputs) + r"\end{bmatrix}"
     about = ", ".join(f"{n.symbol(k, latex=True)} = {n.latex(gate(v))}" for k, v in lm.point.items())
     if len(lm.state) > MATRIX_MAX:
-        body = (rf"\dot x = A\,x" + (r" + B\,u" if lm.inputs else "")
+        body = (r"\dot x = A\,x" + (r" + B\,u" if lm.inputs else "")
                 + rf", \quad A \in \mathbb{{R}}^{{{lm.A.rows}\times{lm.A.cols}}}\ \text{{(see .numeric())}}")
     else:
         body = rf"\frac{{d}}{{dt}}{x} = {_matrix(n, gate, lm.A)}\,{x}"

@@ -167,8 +167,8 @@ def _one_rewrite(table: dict[sympy.Expr, sympy.Expr]) -> tuple[tuple[sympy.Expr,
                 partner = m / f**2 * sympy.cos(f.args[0])**2
                 if table.get(partner) == c:
                     return (m, partner), (c, m / f**2)
-        for i, (f, p) in enumerate(trig):
-            for g, q in trig[i + 1:]:
+        for i, (f, _) in enumerate(trig):
+            for g, _ in trig[i + 1:]:
                 u, v = f.args[0], g.args[0]
                 rest = m / (f * g)
                 if isinstance(f, sympy.cos) and isinstance(g, sympy.cos):

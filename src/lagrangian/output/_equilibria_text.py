@@ -67,7 +67,7 @@ def _rests(name: str, coordinates: tuple[str, ...], parameters: list[str], found
     lines = [f"Equilibria of {name} (q̇ = 0, q̈ = 0: F(q, 0) + Aᵀλ = 0)", ""]
     if not found:
         lines.append("  none found in the ranges searched")
-    for k, (e, stab) in enumerate(zip(found, verdicts), start=1):
+    for k, (e, stab) in enumerate(zip(found, verdicts, strict=True), start=1):
         parts = []
         for q in coordinates:
             v = e.values[q]

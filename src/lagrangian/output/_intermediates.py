@@ -13,8 +13,7 @@ from __future__ import annotations
 
 import symengine as se
 
-from ..dynamics import EquationsOfMotion
-from ..dynamics import RecursiveForm
+from ..dynamics import EquationsOfMotion, RecursiveForm
 from ..model.vectors import as_expr
 from ._course import to_sympy
 from ._notation import Notation

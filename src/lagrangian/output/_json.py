@@ -61,7 +61,7 @@ def derive_document(form: CourseForm, *, parameters: dict[str, float | None],
         "generalized_forces": [
             {"load": f.name, "kind": f.kind, "conservative": f.conservative,
              "potential": None if f.potential is None else _s(f.potential),
-             "Q": {c: _s(x) for c, x in zip(q, f.Q)}, "note": f.note}
+             "Q": {c: _s(x) for c, x in zip(q, f.Q, strict=True)}, "note": f.note}
             for f in form.loads
         ],
         "equations": [

@@ -49,7 +49,7 @@ def _constraints_latex(n, extra: Supplement) -> list[str]:
         if c.axes is None:
             statement = f"${declared.latex(c.statement[0])} = 0$"
         else:
-            statement = ", ".join(f"${declared.latex(x)} = 0$ (${_axis_latex(a)}$)" for x, a in zip(c.statement, c.axes)
+            statement = ", ".join(f"${declared.latex(x)} = 0$ (${_axis_latex(a)}$)" for x, a in zip(c.statement, c.axes, strict=True)
                                   if x != 0) or "$0 = 0$"
         mult = (": multipliers $" + ", ".join(n.latex(_lam(row[1])) for row in c.rows) + "$") if c.rows else ""
         out.append(rf"\item \texttt{{{_escape(c.name)}}} ({c.role}, {_escape(c.form.replace('_', ' '))}): "
@@ -80,7 +80,7 @@ def _step7_latex(n, form: CourseForm, extra: Supplement) -> list[str]:
             rows.append(rf"\vec{{C}}({_escape(r.body or '')}) &= "
                         rf"{n.vector(r.moment.terms, latex=True) if r.moment.terms else '0'} {label}")
         if r.force is None and r.moment is None:
-            rows.append("& " + r",\quad ".join(rf"Q_{{{qn}}} = {n.latex(g)}" for qn, g in zip(q, r.generalized))
+            rows.append("& " + r",\quad ".join(rf"Q_{{{qn}}} = {n.latex(g)}" for qn, g in zip(q, r.generalized, strict=True))
                         + label)
     out.append(r" \\".join(rows))
     out.append(r"\end{align*}")
@@ -203,7 +203,7 @@ def _forces_latex(n: Notation, form: CourseForm) -> list[str]:
         out.append(r"\begin{align*}")
         rows = []
         for load in form.loads:
-            comps = r",\quad ".join(rf"Q_{{{qn}}} = {n.latex(Q)}" for qn, Q in zip(q, load.Q))
+            comps = r",\quad ".join(rf"Q_{{{qn}}} = {n.latex(Q)}" for qn, Q in zip(q, load.Q, strict=True))
             tag = "conservative" if load.conservative else "non-conservative"
             rows.append(rf"&\text{{{_escape(load.name)} ({_escape(kind_words(load.kind))}, {tag})}}: & {comps}")
         out.append(r" \\".join(rows))

@@ -254,7 +254,7 @@ def modes_text(lin: LinearModel, stability: Stability | None = None, modes: Mode
         lines.append(f"      shape: {shape}")
     if modes.pulsations:
         lines += ["", "Pulsations of the conservative system (det(K − ω² M) = 0):"]
-        for k, (w, phi) in enumerate(zip(modes.pulsations, modes.shapes or ()), 1):
+        for k, (w, phi) in enumerate(zip(modes.pulsations, modes.shapes or (), strict=True), 1):
             big = max(phi.values(), key=abs, default=1.0) or 1.0  # the largest component becomes +1
             shape = ", ".join(f"{n.symbol(x)}: {number(v / big)}" for x, v in phi.items())
             period = f", T = {number(2 * math.pi / w)} s" if w > 0 else ""
@@ -303,7 +303,7 @@ def sweep_text(lin: LinearModel, sweep: Sweep, unit: str = "") -> str:
 def _ranges(values: np.ndarray, stable: np.ndarray) -> list[tuple[str, float, float]]:
     names = {1.0: "every Re λ < 0 (asymptotically stable)", 0.0: "some Re λ > 0 (unstable)"}
     out: list[tuple[str, float, float]] = []
-    for x, s in zip(values, stable):
+    for x, s in zip(values, stable, strict=True):
         what = "largest Re λ = 0" if math.isnan(s) else names[float(s)]
         if out and out[-1][0] == what:
             out[-1] = (what, out[-1][1], float(x))

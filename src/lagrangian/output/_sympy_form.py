@@ -25,8 +25,7 @@ import symengine as se
 import sympy
 
 from ..analysis import first_integrals
-from ..dynamics import EquationsOfMotion
-from ..dynamics import multiplier_formulas
+from ..dynamics import EquationsOfMotion, multiplier_formulas
 
 __all__ = ["SympyEquations", "sympy_equations"]
 
@@ -111,10 +110,10 @@ def sympy_equations(eom: EquationsOfMotion, *, time_functions: bool = False) -> 
         funcs = tuple(dynamicsymbols(str(s)) for s in eom.q)
         lam_new = tuple(dynamicsymbols(str(s)) for s in eom.multipliers)
         replace = {t: t_new}
-        replace.update(zip(qdd, (sympy.Derivative(f, (t_new, 2)) for f in funcs)))
-        replace.update(zip(qd, (sympy.Derivative(f, t_new) for f in funcs)))
-        replace.update(zip(q, funcs))
-        replace.update(zip(lam, lam_new))
+        replace.update(zip(qdd, (sympy.Derivative(f, (t_new, 2)) for f in funcs), strict=True))
+        replace.update(zip(qd, (sympy.Derivative(f, t_new) for f in funcs), strict=True))
+        replace.update(zip(q, funcs, strict=True))
+        replace.update(zip(lam, lam_new, strict=True))
         t, lam = t_new, lam_new
         q, qd, qdd = funcs, tuple(replace[s] for s in qd), tuple(replace[s] for s in qdd)
 
@@ -135,6 +134,6 @@ def sympy_equations(eom: EquationsOfMotion, *, time_functions: bool = False) -> 
         first_integrals={fi.name: conv(fi.expression) for fi in first_integrals(eom)},
         multipliers=lam,
         A=sympy.Matrix(len(eom.constraints), len(q), [conv(x) for row in eom.A for x in row]),
-        multiplier_formulas={str(row.multiplier): conv(f) for row, f in zip(eom.constraints, formulas or ())},
+        multiplier_formulas={str(row.multiplier): conv(f) for row, f in zip(eom.constraints, formulas or (), strict=True)},
         time_functions=time_functions,
     )

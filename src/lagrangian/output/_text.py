@@ -18,11 +18,14 @@ import sympy
 
 from .._big_numbers import has_big_numbers
 from ..analysis import energy_balance
-from ..dynamics import EquationsOfMotion, multiplier_formulas
-from ..dynamics import FORMULA_MAX_SIZE, describe_constraints
-from ..dynamics import RelativeKinematics
-from ..model import Vector
-from ..model import SIGN_RELATIONS, range_text
+from ..dynamics import (
+    FORMULA_MAX_SIZE,
+    EquationsOfMotion,
+    RelativeKinematics,
+    describe_constraints,
+    multiplier_formulas,
+)
+from ..model import SIGN_RELATIONS, Vector, range_text
 from ._course import CourseForm, VectorRow, _vector_row, to_sympy
 from ._display_form import display_form
 from ._notation import Notation
@@ -185,7 +188,7 @@ def supplement(eom: EquationsOfMotion, form: CourseForm) -> Supplement:
     contacts = sum(1 for c in eom.model.constraints if c.unilateral)
     formulas = multiplier_formulas(eom) if eom.constraints and contacts < 2 else None
     multipliers = tuple((m.name, None if formulas is None else _shortest(f))
-                        for m, f in zip(eom.multipliers, formulas or (None,) * len(eom.multipliers)))
+                        for m, f in zip(eom.multipliers, formulas or (None,) * len(eom.multipliers), strict=True))
     balance: tuple[PowerRow, ...] | None = None
     power = None
     if not any(i.kind in ("energy", "jacobi") for i in form.integrals):
@@ -241,7 +244,7 @@ def _statement(n: Notation, line: ConstraintLine) -> str:
                 f"impacts: {law}")
     if line.axes is None:
         return f"{n.text(line.statement[0])} = 0"
-    return "; ".join(f"{n.text(c)} = 0 ({axis})" for c, axis in zip(line.statement, line.axes) if c != 0) or "0 = 0"
+    return "; ".join(f"{n.text(c)} = 0 ({axis})" for c, axis in zip(line.statement, line.axes, strict=True) if c != 0) or "0 = 0"
 
 
 def _kind(n: Notation, line: ConstraintLine) -> str:
@@ -293,7 +296,7 @@ def _step7_text(n: Notation, form: CourseForm, extra: Supplement) -> list[str]:
         if r.moment is not None:
             parts.append(f"moment on {r.body}: C = {n.vector(r.moment.terms) if r.moment.terms else '0'}")
         if not parts:
-            parts.append(";  ".join(f"Q_{qn} = {n.text(g)}" for qn, g in zip(q, r.generalized)))
+            parts.append(";  ".join(f"Q_{qn} = {n.text(g)}" for qn, g in zip(q, r.generalized, strict=True)))
         lines.append(f"  reaction of {r.constraint}: " + ";  ".join(parts))
     return lines
 
@@ -434,7 +437,7 @@ def _forces_text(n: Notation, form: CourseForm, extra: Supplement | None) -> lis
     lines.append("Generalized forces, by virtual power:")
     for load in form.loads:
         tag = "conservative, Q_i = −∂U/∂q_i" if load.conservative else "non-conservative"
-        comps = ";  ".join(f"Q_{qn} = {n.text(Q)}" for qn, Q in zip(q, load.Q))
+        comps = ";  ".join(f"Q_{qn} = {n.text(Q)}" for qn, Q in zip(q, load.Q, strict=True))
         lines.append(f"  {load.name} ({kind_words(load.kind)}, {tag}): {comps}")
         if extra is not None and load.note:
             lines.append(f"      {greek(n, form, load.note)}")

@@ -17,17 +17,22 @@ matplotlib is imported only when a figure is made; without it a `MissingPlotDepe
 
 from ._animation import animate as animate
 from ._apex import TurningAngles as TurningAngles
-from ._ensemble import plot_ensemble as plot_ensemble
 from ._apex import plot_apex_sphere as plot_apex_sphere
 from ._apex import plot_nutation as plot_nutation
 from ._apex import turning_angles as turning_angles
+from ._ensemble import plot_ensemble as plot_ensemble
 from ._geometry import apex_path as apex_path
 from ._geometry import axis_angles as axis_angles
-from ._modes import mode_trajectory as mode_trajectory
-from ._mpl import MissingPlotDependency as MissingPlotDependency
+
+# Shared with the command line: figures of optimized inputs, matplotlib on demand.
+from ._inputs import save_inputs_figure as save_inputs_figure
 from ._mode_figures import plot_bifurcation as plot_bifurcation
 from ._mode_figures import plot_eigenvalue_sweep as plot_eigenvalue_sweep
 from ._mode_figures import plot_mode_shapes as plot_mode_shapes
+from ._modes import mode_trajectory as mode_trajectory
+from ._mpl import MissingPlotDependency as MissingPlotDependency
+from ._mpl import new_figure as new_figure
+from ._mpl import require_matplotlib as require_matplotlib
 from ._reaction import plot_reaction as plot_reaction
 from ._reaction import reactions_along as reactions_along
 from ._save import KINDS as KINDS
@@ -40,11 +45,6 @@ from ._series import plot_drift as plot_drift
 from ._series import plot_phase as plot_phase
 from ._series import plot_time_series as plot_time_series
 from ._series import relative_drift as relative_drift
-
-# Shared with the command line: figures of optimized inputs, matplotlib on demand.
-from ._inputs import save_inputs_figure as save_inputs_figure
-from ._mpl import new_figure as new_figure
-from ._mpl import require_matplotlib as require_matplotlib
 
 __all__ = ["plot_bifurcation", "mode_trajectory", "save_plots", "plot_trajectory", "applicable_kinds", "figure_caption", "KINDS", "animate", "save_figure",
            "plot_time_series", "plot_phase", "plot_drift", "relative_drift", "plot_apex_sphere", "plot_nutation",

@@ -20,8 +20,7 @@ from .._atomic import write_atomic_with
 from ..dynamics import EquationsOfMotion
 from ..errors import OutputError
 from ..numerics import Trajectory
-from ..view3d import Renderer
-from ..view3d import Wireframe
+from ..view3d import Renderer, Wireframe
 from ._geometry import Samples
 
 __all__ = ["animate", "render_frames", "motion_scene", "FORMATS"]
@@ -39,8 +38,7 @@ def _validate(frames: int, fps: float) -> None:
 def motion_scene(trajectory: Trajectory, eom: EquationsOfMotion, times: np.ndarray, *, view: str = "auto") -> Wireframe:
     """The outlines of the 3-D view's scene at ``times`` (the state at each by interpolating q between the
     trajectory's samples, then every position from q, so a rod keeps its length)."""
-    from ..view3d import Motion, build_scene
-    from ..view3d import wireframe
+    from ..view3d import Motion, build_scene, wireframe
 
     samples = Samples.at(trajectory, times)
     values = {p.name: p.value for p in eom.model.parameters if p.value is not None}
@@ -136,7 +134,7 @@ def _write_gif(renderer: Renderer, count: int, fps: float, path: Path) -> None:
     colours += [0, 0, 0] * (255 - len(colours) // 3) + [255, 255, 255]
     palette.putpalette(colours)
     images = []
-    for frame, a in zip(frames, rgba):
+    for frame, a in zip(frames, rgba, strict=True):
         index = np.array(frame.quantize(palette=palette, dither=Image.Dither.NONE))
         index[a.view(np.uint32)[..., 0] == 0xFFFFFFFF] = 255
         image = Image.fromarray(index)  # mode L; putpalette makes it P

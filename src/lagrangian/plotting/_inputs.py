@@ -18,7 +18,7 @@ def plot_inputs(trajectory: Trajectory, inputs: Sequence[str], *, fig: Any = Non
     """u_j(t) for each name of ``inputs`` (columns of ``trajectory``), one row each; returns the Figure."""
     fig = fig or new_figure(7.0, 1.0 + 1.7 * max(len(inputs), 1), margins=(0.85, 0.15, 0.5, 0.55), hspace=0.15)
     axes = fig.subplots(max(len(inputs), 1), 1, sharex=True, squeeze=False)[:, 0]
-    for k, (ax, name) in enumerate(zip(axes, inputs)):
+    for k, (ax, name) in enumerate(zip(axes, inputs, strict=True)):
         ax.plot(trajectory.t, trajectory.column(name), lw=1.2, color=f"C{k}")
         ax.set_ylabel(name)
         ax.grid(alpha=0.3)

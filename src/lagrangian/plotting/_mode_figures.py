@@ -78,7 +78,7 @@ def _shapes(modes: Any) -> list[tuple[str, dict[str, float]]]:
     eigenvalue with Im λ ≥ 0 (a conjugate pair drawn once)."""
     if modes.pulsations and modes.shapes:
         out = []
-        for k, (om, phi) in enumerate(zip(modes.pulsations, modes.shapes), 1):
+        for k, (om, phi) in enumerate(zip(modes.pulsations, modes.shapes, strict=True), 1):
             big = max(phi.values(), key=abs, default=1.0) or 1.0  # the largest component becomes +1
             out.append((f"{k}: ω = {om:.4g} rad/s", {c: v / big for c, v in phi.items()}))
         return out
@@ -108,7 +108,7 @@ def plot_mode_shapes(modes: Any, eom: EquationsOfMotion, *, fig: Any = None, lan
     axes = fig.subplots(rows, cols, squeeze=False)
     for ax in axes.ravel()[len(shapes):]:
         ax.set_visible(False)
-    for ax, (legend, shape) in zip(axes.ravel(), shapes):
+    for ax, (legend, shape) in zip(axes.ravel(), shapes, strict=True):
         names = list(shape)
         ax.bar(range(len(names)), [shape[c] for c in names], color=[f"C{i}" for i in range(len(names))])
         ax.set_xticks(range(len(names)))

@@ -16,13 +16,11 @@ from typing import Any
 
 import numpy as np
 
-from ..analysis import given_efforts
-from ..analysis import ReactionHistory
-from ..numerics import reaction_history_along
+from ..analysis import ReactionHistory, given_efforts
 from ..dynamics import EquationsOfMotion
 from ..errors import OutputError
 from ..model import GALILEAN_FRAME, Gravity, Vector
-from ..numerics import Trajectory
+from ..numerics import Trajectory, reaction_history_along
 from ._geometry import Samples, evaluate, in_R0
 from ._labels import words
 from ._mpl import new_figure

@@ -7,7 +7,6 @@ failure leaves any older file of that name as it was.
 from __future__ import annotations
 
 import re
-
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any

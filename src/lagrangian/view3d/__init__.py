@@ -9,13 +9,13 @@ fragment of it, for the report).  See ``docs/view.md``.
 
 from ._build import Motion as Motion
 from ._build import build_scene as build_scene
-from ._scene import Scene as Scene
-from ._view import View as View
-from ._view import view as view
 
 # Shared with plotting and the report: the scene drawn by matplotlib, as a wireframe, as a still image.
 from ._matplotlib import Renderer as Renderer
+from ._scene import Scene as Scene
 from ._still import still_png as still_png
+from ._view import View as View
+from ._view import view as view
 from ._wireframe import Wireframe as Wireframe
 from ._wireframe import wireframe as wireframe
 

@@ -101,7 +101,7 @@ class _Builder:
 
     # -- carriers and tracks ------------------------------------------------------------------------
     def carrier(self, name: str, label: str, kind: str, frame: str, origin: Vector) -> int:
-        for k, (c, o) in enumerate(zip(self.carriers, self.origins)):
+        for k, c in enumerate(self.carriers):
             if c.frame == frame and c.name == name:
                 return k
         self.carriers.append(Carrier(name, label, kind, frame))
@@ -278,14 +278,14 @@ def _runs(b: _Builder, up: tuple[float, float, float], direction: np.ndarray, ce
     runs = []
     offset_axis = np.cross(up, direction)
     offset_axis /= max(np.linalg.norm(offset_axis), 1e-12)
-    for motion, poses, points in zip(b.motions, b.poses, b.points):
+    for motion, poses, points in zip(b.motions, b.poses, b.points, strict=True):
         offset = (0.0, 0.0, 0.0)
         if motion.beside:
             x, y, z = offset_axis * 2.2 * radius
             offset = (float(x), float(y), float(z))
         runs.append(Run(motion.label, poses.astype(np.float32), points.astype(np.float32), offset, motion.ghost))
     if any(m.beside for m in b.motions):
-        cx, cy, cz = (float(c + x * 1.1 * radius) for c, x in zip(centre, offset_axis))
+        cx, cy, cz = (float(c + x * 1.1 * radius) for c, x in zip(centre, offset_axis, strict=True))
         centre = (cx, cy, cz)
         radius *= 2.2
     return runs, centre, radius

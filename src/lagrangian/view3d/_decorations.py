@@ -53,7 +53,7 @@ def _random_points(b: _Builder) -> np.ndarray:
         q = q0 + rng.uniform(-1.0, 1.0, (_STATES, n))
         qd = rng.uniform(-1.0, 1.0, (_STATES, n))
         t = rng.uniform(0.0, 1.0, _STATES)
-        vectors = [v if v is not None else model_point(b.model, tr.name) for tr, v in zip(b.tracks, b.track_vectors)]
+        vectors = [v if v is not None else model_point(b.model, tr.name) for tr, v in zip(b.tracks, b.track_vectors, strict=True)]
         random = b._random = b.ev.vectors(vectors, t, q, qd)
     return random
 
@@ -201,7 +201,7 @@ def arcs(b: _Builder, found: Sequence[Triad], length: float) -> list[Arc]:
     angles = b.ev.columns(b.t[:1], q0, qd0, [f.rotation.angle for f in frames])[0]  # type: ignore[union-attr]
     out: list[Arc] = []
     rings: dict[int, int] = {}
-    for frame, alpha in zip(frames, angles):
+    for frame, alpha in zip(frames, angles, strict=True):
         k = carrier_of(frame.name)
         if k is None or abs(alpha) < 1e-3:
             continue
@@ -274,8 +274,8 @@ def framing(b: _Builder, up: tuple[float, float, float], length: float) -> tuple
     """The centre and radius of what is drawn (main run and ghosts), and the direction the camera looks from."""
     from ._scene import _matrices
 
-    clouds = [points.reshape(-1, 3) for m, points in zip(b.motions, b.points) if not m.beside]
-    for m, poses in zip(b.motions, b.poses):  # each part's centre, widened by its reach
+    clouds = [points.reshape(-1, 3) for m, points in zip(b.motions, b.points, strict=True) if not m.beside]
+    for m, poses in zip(b.motions, b.poses, strict=True):  # each part's centre, widened by its reach
         if m.beside:
             continue
         for part in b.parts:

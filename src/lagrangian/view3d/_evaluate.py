@@ -172,8 +172,7 @@ class Evaluator:
         so cos² + sin² forms count as constant), e.g. GA for the hinge A of a rod, in the rod's frame.
         """
         from .._identity import are_zero
-        from ..kinematics import FrameTree
-        from ..kinematics import TimeDerivative
+        from ..kinematics import FrameTree, TimeDerivative
 
         if self._tree is None:
             self._tree = FrameTree(self.model, TimeDerivative.of((), (), (), TIME))

@@ -81,7 +81,7 @@ def cse_lines(targets: Sequence[str], exprs: Sequence[se.Basic], printer: Any, l
         name = se.Symbol(f"{local}{k + first}")
         lines.append(f"{indent}{name} = {printer.doprint(value.xreplace(mapping)._sympy_())}{end}")
         mapping[sym] = name
-    for target, value in zip(targets, reduced):
+    for target, value in zip(targets, reduced, strict=True):
         lines.append(f"{indent}{target} = {printer.doprint(value.xreplace(mapping)._sympy_())}{end}")
     return lines
 

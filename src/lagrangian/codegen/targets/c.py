@@ -97,7 +97,7 @@ def _header(symbols: ExportedSymbols, banner: str) -> str:
     row_kinds = ", ".join(_string(r.kind) for r in symbols.rows) or "0"
     multipliers = ", ".join(_string(r.multiplier) for r in symbols.rows) or "0"
     one_by_one = "".join(f"double {fn}(double t, const double *y, const double *p);  /* {_comment(name)} */\n"
-                         for fn, (name, _) in zip(integral_functions(symbols), symbols.integrals))
+                         for fn, (name, _) in zip(integral_functions(symbols), symbols.integrals, strict=True))
     constrained = "" if not m else f"""
 /* With the {m} complementary constraint row(s): M q'' = F + A^T lam and A q'' + c = -2 alpha g - beta^2 f
    (g = A q' + b, the velocity residual; f, the position residual of holonomic rows): alpha = beta = 0 is
@@ -301,7 +301,7 @@ void {ident}_rhs_k(double t, const double *y, const double *p, const double *k, 
         "\n" + _function(f"double {fn}(double t, const double *y, const double *p)",
                          f"the first integral {_comment(name)}", [[("const double value", e)]], names,
                          returns="value")
-        for fn, (name, e) in zip(integral_functions(symbols), symbols.integrals))
+        for fn, (name, e) in zip(integral_functions(symbols), symbols.integrals, strict=True))
     rows = [(f"A[{r * n + i}]", a) for r, row in enumerate(symbols.rows) for i, a in enumerate(row.A)]
     rows += [(f"{v}[{r}]", getattr(row, v)) for v in "bcf" for r, row in enumerate(symbols.rows)]
     constraint_rows = _function(

@@ -38,18 +38,18 @@ from ...errors import OutputError
 from ...model import Model, load_model
 from ...model._texts import in_language
 from .build import Context
-from .document import Document, Image, Scene3D, Section, french_typography, map_math, map_text, pictures, walk
+from .document import Document, Scene3D, Section, french_typography, map_math, map_text, pictures
+from .render.html import render_html
+from .render.markdown import display_math, render_markdown
+from .render.pdf import compile_pdf
+from .render.tex import render_tex
 from .steps.equations import integrals_section, pin_reaction, step6, step7
 from .steps.extras import ReportFigure, check_section, matrix_section, notes_section, simulation_section
 from .steps.forces import step5
 from .steps.impacts import has_contacts, impacts_section
-from .render.html import render_html
 from .steps.kinematics import step3, step4
-from .render.markdown import display_math, render_markdown
-from .render.pdf import compile_pdf
-from .steps.statement import step1, step2, system_section
 from .steps.small_motions import as_linear_model, small_motions_section
-from .render.tex import render_tex
+from .steps.statement import step1, step2, system_section
 
 __all__ = ["Report", "ReportFigure", "report", "FORMATS", "format_for"]
 
@@ -99,7 +99,7 @@ class Report:
         """The PDF of the LaTeX report, compiled by pdflatex (or lualatex) installed on this machine."""
         images = pictures(self.document)
         names = [f"report-figure-{k}.png" for k in range(1, len(images) + 1)]
-        return compile_pdf(self.latex(names), {name: image.png for name, image in zip(names, images)})
+        return compile_pdf(self.latex(names), {name: image.png for name, image in zip(names, images, strict=True)})
 
     def render(self, format: str) -> str:
         """The report in ``format``: ``"html"``, ``"tex"`` or ``"md"`` (a PDF is bytes: `pdf` or `save`)."""
@@ -128,7 +128,7 @@ class Report:
             if fmt in ("tex", "md"):
                 images = pictures(self.document, scenes=fmt == "tex")  # Markdown leaves the 3-D figures out
                 names = [f"{path.stem}-figure-{k}.png" for k in range(1, len(images) + 1)]
-                for name, image in zip(names, images):
+                for name, image in zip(names, images, strict=True):
                     _atomic.write_atomic(path.with_name(name), image.png)
                 text = self.latex(names) if fmt == "tex" else self.markdown(names)
             elif fmt == "pdf":

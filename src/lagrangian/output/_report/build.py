@@ -21,13 +21,13 @@ from ...model import GALILEAN_FRAME, ORIGIN, Body, Particle, Vector
 from .._course import CourseForm, _vector_row, course_form
 from .._display_form import display_form
 from .._notation import Notation, _axis_latex, _base_latex, _is_word
-from .joints import Joint, joints
-from .document import Block, Display, Equation, Fold, Math
+from .._text import notation
 from . import size as _report_size
+from .document import Block, Display, Equation, Fold, Math
 from .full_forms import FullFormBook
+from .joints import Joint, joints
 from .size import FOLD_LINES, SizeGate, visible_width, wrap, wrap_latex, wrap_many
 from .words import Words
-from .._text import notation
 
 __all__ = ["Context", "tex_name", "tex_text"]
 

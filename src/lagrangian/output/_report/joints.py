@@ -102,7 +102,7 @@ def _constant(kin, exprs: list[se.Basic]) -> list[bool]:
     if tests:
         zero = are_zero(tests)
         bounds = [start for _, start in where] + [len(tests)]
-        for (k, start), stop in zip(where, bounds[1:]):
+        for (k, start), stop in zip(where, bounds[1:], strict=True):
             out[k] = all(zero[start:stop])
     return [bool(x) for x in out]
 
@@ -219,9 +219,9 @@ def _body_joint(r: _Reader, name: str, support: str | None, new: tuple[str, ...]
     if rotations is not None and candidates and len(rotations) == len(new) and rotations and not timed:
         point = candidates[0]
         rel = tuple(a - b for a, b in zip(kin.partial_omegas(body.frame),
-                                         kin.partial_omegas(r.frame_of(support))))
+                                         kin.partial_omegas(r.frame_of(support)), strict=True))
         rotation = Vector.zero()
-        for part, star in zip(rel, kin.q_star):
+        for part, star in zip(rel, kin.q_star, strict=True):
             rotation = rotation + part * star
         if len(rotations) == 1:
             return Joint("pivot", name, True, support, point, rotations[0][1], (), None, 5, new, timed, rotation)

@@ -14,7 +14,21 @@ import re
 from latex2mathml.converter import convert
 
 from ....errors import OutputError
-from ..document import Block, Display, Document, Fold, FullForms, Image, Items, Math, Para, Runs, Scene3D, Section, Table
+from ..document import (
+    Block,
+    Display,
+    Document,
+    Fold,
+    FullForms,
+    Image,
+    Items,
+    Math,
+    Para,
+    Runs,
+    Scene3D,
+    Section,
+    Table,
+)
 
 __all__ = ["render_html"]
 
@@ -63,7 +77,7 @@ _CSS = _CSS.replace("__HEAD__", _ARROW_HEAD)
 def _mathml(latex: str, display: str) -> str:
     try:
         out = convert(_spaced(_arrows(latex)), display=display)
-    except Exception as exc:  # latex2mathml raises assorted errors on input it does not know
+    except Exception as exc:  # noqa: BLE001 - latex2mathml raises assorted errors on input it does not know
         raise OutputError(f"Cannot convert `{latex[:120]}` to MathML: {exc}.",
                           fix="report this model to the lagrangian developers; --format tex or md still works") from None
     return _function_spacing(_stretchy(out.replace(' xmlns="http://www.w3.org/1998/Math/MathML"', "", 1)))

@@ -14,9 +14,22 @@ import re
 from collections.abc import Sequence
 from urllib.parse import quote
 
-from ..document import (Block, Display, Document, Equation, Fold, FullForms, Image, Items, Math, Para, Runs, Scene3D,
-                        Section,
-                          Table)
+from ..document import (
+    Block,
+    Display,
+    Document,
+    Equation,
+    Fold,
+    FullForms,
+    Image,
+    Items,
+    Math,
+    Para,
+    Runs,
+    Scene3D,
+    Section,
+    Table,
+)
 
 __all__ = ["render_markdown", "display_math", "fenced_math", "inline_math"]
 

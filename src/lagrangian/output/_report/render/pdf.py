@@ -67,7 +67,7 @@ def compile_pdf_and_log(latex: str, figures: Mapping[str, bytes] = {}) -> tuple[
         # TEXMFOUTPUT and openout_any: TeX writes only in its folder; HOME there too (font caches).
         env = {**os.environ, "TEXMFOUTPUT": folder, "openout_any": "p", "HOME": folder}
         pdf, log = work / "report.pdf", ""
-        for runs in range(1, MAX_RUNS + 1):
+        for runs in range(1, MAX_RUNS + 1):  # noqa: B007 (the number of runs is returned after the loop)
             try:
                 run = subprocess.run(command, cwd=work, capture_output=True, timeout=TIME_LIMIT, env=env,
                                      stdin=subprocess.DEVNULL, check=False)

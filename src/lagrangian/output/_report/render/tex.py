@@ -11,9 +11,23 @@ from __future__ import annotations
 import re
 from collections.abc import Sequence
 
-from ..document import (Block, Display, Document, Equation, Fold, FullForms, Image, Items, Math, Para, Runs, Scene3D,
-                        Section,
-                          Table, walk)
+from ..document import (
+    Block,
+    Display,
+    Document,
+    Equation,
+    Fold,
+    FullForms,
+    Image,
+    Items,
+    Math,
+    Para,
+    Runs,
+    Scene3D,
+    Section,
+    Table,
+    walk,
+)
 
 __all__ = ["render_tex"]
 
@@ -47,7 +61,7 @@ _UNICODE = {"Σ": r"\ensuremath{\Sigma}", "Ω": r"\ensuremath{\Omega}", "Π": r"
             "½": r"\ensuremath{\tfrac{1}{2}}", "×": r"\ensuremath{\times}", "∂": r"\ensuremath{\partial}",
             "⟨": r"\ensuremath{\langle}", "⟩": r"\ensuremath{\rangle}", "—": "---", "–": "--", "…": r"\dots{}",
             "✓": r"\ensuremath{\checkmark}", "\u0307": "", "\u0308": "",
-            **{s: rf"\textsuperscript{{{d}}}" for s, d in zip("⁰¹⁴⁵⁶⁷⁸⁹⁻", "01456789-")}}
+            **{s: rf"\textsuperscript{{{d}}}" for s, d in zip("⁰¹⁴⁵⁶⁷⁸⁹⁻", "01456789-", strict=True)}}
 _GREEK = {"α": "alpha", "β": "beta", "γ": "gamma", "δ": "delta", "ε": "varepsilon", "ζ": "zeta", "η": "eta",
           "θ": "theta", "ι": "iota", "κ": "kappa", "λ": "lambda", "μ": "mu", "ν": "nu", "ξ": "xi", "π": "pi",
           "ρ": "rho", "σ": "sigma", "τ": "tau", "φ": "varphi", "χ": "chi", "ψ": "psi", "ω": "omega",

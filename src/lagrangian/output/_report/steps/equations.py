@@ -22,15 +22,15 @@ import sympy
 from ...._big_numbers import has_big_numbers
 from ...._identity import are_zero
 from ....analysis import Verification
+from ....model import ORIGIN
 from ..._course import EquationRow, IntegralRow
 from ..._notation import Opaque
 from ..build import _SI, Context
-from .impacts import closed_note, has_contacts, integrals_note
 from ..document import Block, Display, Equation, Math, Para, Runs, Section
-from ....model import ORIGIN
 from ..joints import _root
 from ..size import visible_width, wrap_many
 from .contact import contact_blocks
+from .impacts import closed_note, has_contacts, integrals_note
 
 __all__ = ["step6", "step7", "integrals_section", "ordered_equations", "left_out_note"]
 
@@ -196,7 +196,7 @@ def _coriolis(c: Context, jacobi: bool) -> list[Block]:
     if all(are_zero(list(force.Q))):
         runs = w("coriolis zero", Q=Math(rf"Q_i({c.load_tex(force.name)}) = 0"), R=Math(c.R))
     else:
-        power = se.Add(*(x * qd for x, qd in zip(force.Q, c.kin.qd)))
+        power = se.Add(*(x * qd for x, qd in zip(force.Q, c.kin.qd, strict=True)))
         if not are_zero([power])[0]:  # pragma: no cover - Coriolis forces never work
             return []
         runs = w("coriolis gyroscopic", Q=Q, R=Math(c.R), nc=Math(r"Q_{i,\,\mathrm{nc}}"),
@@ -237,7 +237,7 @@ def pin_reaction(c: Context, v: Verification) -> list[Block]:
         given = " - ".join(rf"\vec{{F}}({c.load_tex(e)})" for e in th.efforts)
         head = rf"{RO} = {c.mass_tex(body)}\,\vec{{\gamma}}({G}/{R})" + (f" - {given}" if given else "") + " = "
         axes = c.kin.frames.axes(r.frame)
-        terms = tuple((c.ex(x), a) for x, a in zip(r.force_components, axes) if not c.is_zero(x))
+        terms = tuple((c.ex(x), a) for x, a in zip(r.force_components, axes, strict=True) if not c.is_zero(x))
         out.append(Para(c.w("pin reaction", R=Math(RO), O=Math(P), S=Math(f"({S})"))))
         out.append(Display((c.vector_equation(head, terms),)))
     return out
@@ -277,7 +277,7 @@ def step7(c: Context) -> Section:
             times = {"fr": ("deux fois", "une fois"), "en": ("twice", "once")}[c.lang][0 if twice else 1]
             blocks.append(Para(w("multiplier is", times=times)))
         shown = _on_the_constraints(c, [_simple(c, f) for f in formulas])
-        blocks += c.show([c.equation(f"{c.tex(r.multiplier)} = ", e) for r, e in zip(rows, shown)], "λ")
+        blocks += c.show([c.equation(f"{c.tex(r.multiplier)} = ", e) for r, e in zip(rows, shown, strict=True)], "λ")
     for reaction in c.eom.reactions:
         if not reaction.physical:
             continue
@@ -413,7 +413,7 @@ def _tension(c: Context, reaction, formulas: tuple[se.Basic, ...]) -> list[Block
     parallel = kin.frames.cross(reaction.force, d)
     if not all(are_zero(list(kin.frames.express(parallel, c.ref)))):
         return []
-    values = {r.multiplier: f for r, f in zip(c.eom.constraints, formulas)}
+    values = {r.multiplier: f for r, f in zip(c.eom.constraints, formulas, strict=True)}
     L = _root(L2)
     N = (-kin.frames.dot(reaction.force, d) / L).xreplace(values)
     X, P = c.name(c.origin), c.point_label(reaction.point)
@@ -583,14 +583,14 @@ def _cyclic_but_driven(c: Context) -> tuple[list[str], list[Runs]]:
     # Cyclic: ∂L/∂q ≡ 0, tested where q is in T or U only when ∂L/∂q is short (this sentence only adds to the
     # integrals found; an identity test on each of a 40-link chain's long ∂L/∂q would cost a second).
     in_L = set(c.eom.T.free_symbols) | set(c.eom.U.free_symbols)
-    candidates = [(q, eq) for q, s, eq in zip(c.eom.coordinates, c.kin.q, c.eom.equations)
+    candidates = [(q, eq) for q, s, eq in zip(c.eom.coordinates, c.kin.q, c.eom.equations, strict=True)
                   if q not in integrating and (s not in in_L or se.count_ops(eq.dT_dq - eq.dU_dq) <= CYCLIC_MAX_OPS)]
     if not candidates:
         return [], []
     cyclic = are_zero([eq.dT_dq - eq.dU_dq for _, eq in candidates])
     names: list[str] = []
     reasons: list[Runs] = []
-    for (q, eq), flat in zip(candidates, cyclic):
+    for (q, eq), flat in zip(candidates, cyclic, strict=True):
         if not flat:
             continue
         why: list[Runs] = []
@@ -620,7 +620,7 @@ def integrals_section(c: Context) -> Section:
     if not found:
         kin = c.kin
         L = c.eom.T - c.eom.U
-        power = se.Add(*(q * qd for q, qd in zip(c.eom.Q_nc, kin.qd)))
+        power = se.Add(*(q * qd for q, qd in zip(c.eom.Q_nc, kin.qd, strict=True)))
         timed, no_work = are_zero([L.diff(kin.t), power])
         why = [w.text("why time")] if not timed else []
         if not no_work:
@@ -681,6 +681,6 @@ def _balance(c: Context) -> list[Block]:
                                     r"-\frac{\partial L}{\partial t}"),
                              L=Math(rf"L = T(\Sigma/{c.R}) - U_P(\Sigma/{c.R})"))))
     eqs = [Equation((r"\frac{dE}{dt} = " + " + ".join(labels),))]
-    eqs += [c.equation(f"{label} = ", _simple(c, t.power, 3 * SIMPLIFY_MAX_OPS)) for label, t in zip(labels, terms)]
+    eqs += [c.equation(f"{label} = ", _simple(c, t.power, 3 * SIMPLIFY_MAX_OPS)) for label, t in zip(labels, terms, strict=True)]
     blocks += c.show(eqs, "dE/dt")
     return blocks

@@ -16,9 +16,9 @@ import symengine as se
 import sympy
 
 from ...._identity import are_zero
-from ..._notation import Opaque
 from ....analysis import Verification
 from ....model import Vector
+from ..._notation import Opaque
 from ..build import Context
 from ..document import Block, Display, Equation, Image, Math, Para, Runs, Section
 

@@ -11,8 +11,18 @@ from __future__ import annotations
 
 from ...._identity import are_zero
 from ....dynamics import LoadForces
-from ....model import (CoulombFriction, Damper, Dissipation, GeneralizedForce, Gravity, JointDamper, PointForce, Potential,
-                     Spring, Torque)
+from ....model import (
+    CoulombFriction,
+    Damper,
+    Dissipation,
+    GeneralizedForce,
+    Gravity,
+    JointDamper,
+    PointForce,
+    Potential,
+    Spring,
+    Torque,
+)
 from ..build import Context
 from ..document import Block, Display, Equation, Items, Math, Para, Runs, Section
 from ..size import wrap_many
@@ -175,7 +185,7 @@ def _why_inertial(c: Context, f: LoadForces, i: int) -> Runs:
 def _q_list(c: Context, values: list[str], load: str | None = None) -> list[str]:
     """``Q_q(load) = …`` for one load, ``Q_{q, nc} = …`` for the non-conservative total."""
     return [(c.Q_of(q, load) if load is not None else c.Q_nc(q)) + f" = {v}"
-            for q, v in zip(c.eom.coordinates, values)]
+            for q, v in zip(c.eom.coordinates, values, strict=True)]
 
 
 _RELATION = {"positive": ">", "nonnegative": r"\geq", "negative": "<", "nonpositive": r"\leq"}
@@ -255,7 +265,7 @@ def step5(c: Context) -> Section:
                   " (", w.text("sign general" if f.general else "sign at values"), ")") for f in c.eom.assumptions]
         blocks.append(Para(w("signs used", declared=w.join(declared), facts=w.join(facts))))
     spec = {x.name: x for x in c.model.loads}
-    for f, row in zip(c.eom.loads, c.form.loads):
+    for f, row in zip(c.eom.loads, c.form.loads, strict=True):
         load = spec.get(f.name)
         formula, extra = _formula(c, f, load)
         kind = w.text(f"kind {f.kind}") if w.has(f"kind {f.kind}") else f.kind

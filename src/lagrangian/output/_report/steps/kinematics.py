@@ -16,10 +16,10 @@ from ....model import Gravity, PointForce, Potential, Spring, Vector
 from ..build import Context
 from ..document import Block, Display, Equation, Math, Para, Run, Runs, Section
 from ..size import visible_width, wrap_many
+from .statement import _frame_with_axes
 
 #: The seed writes Ω(S/R0) = ψ̇ z0 + θ̇ u + φ̇ z = θ̇ u + ψ̇ sinθ w + (φ̇ + ψ̇ cosθ) z on one line; so do we up to this width.
 LINE_WIDTH_OMEGA = 80
-from .statement import _frame_with_axes
 
 __all__ = ["step3", "step4"]
 
@@ -144,7 +144,7 @@ def virtual_torsor(c: Context, name: str) -> tuple[Vector, Vector]:
     """
     body = c.model.body(name)
     omega = Vector.zero()
-    for part, star in zip(c.kin.partial_omegas(body.frame), c.kin.q_star):
+    for part, star in zip(c.kin.partial_omegas(body.frame), c.kin.q_star, strict=True):
         omega = omega + part * star
     return omega, c.kin.virtual_velocity(torsor_point(c, name))
 
@@ -338,7 +338,7 @@ def _kinetic(c: Context) -> list[Block]:
     # One element: its T is T(Σ/R), whose full form (when summarized) goes under it; numbered before it is written.
     single = c.full([(rf"T(\Sigma/{c.R}) = ", c.form.T[0].expression)], f"T(Σ/{c.ref})") if len(c.form.T) == 1 else []
     rows = []
-    for term, shown in zip(c.eom.T_terms, c.form.T):
+    for term, shown in zip(c.eom.T_terms, c.form.T, strict=True):
         S = c.element(term.name)
         mass = next((b.mass for b in c.model.bodies if b.name == term.name),
                     next((p.mass for p in c.model.particles if p.name == term.name), None))
@@ -474,7 +474,7 @@ def _entrainment_terms(c: Context) -> list[Block]:
 def _potential(c: Context) -> list[Block]:
     w = c.w
     cste = rf" + \text{{{w.text('cste')}}}"
-    loads = [(f, row) for f, row in zip((f for f in c.eom.loads if f.potential is not None), c.form.U)]
+    loads = [(f, row) for f, row in zip((f for f in c.eom.loads if f.potential is not None), c.form.U, strict=True)]
     if not loads:
         return [Para(w("no potential", U=Math(rf"U_P(\Sigma/{c.R}) = 0")))]
     head = rf"U_P(\Sigma/{c.R}) = "

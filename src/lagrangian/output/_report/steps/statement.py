@@ -14,8 +14,8 @@ from ....dynamics._constraints import describe_constraints
 from ....model import Constraint, Vector
 from ....model._texts import in_language
 from ..build import Context
-from ..joints import Joint, constraint_counts, degrees_of_freedom, planar_normal
 from ..document import Block, Display, Equation, Fold, Items, Math, Para, Runs, Section, Table
+from ..joints import Joint, constraint_counts, degrees_of_freedom, planar_normal
 
 __all__ = ["system_section", "step1", "step2"]
 
@@ -64,8 +64,18 @@ def _inertia_given(c: Context, body) -> Runs:
 
 def _load_given(c: Context, load: object) -> Runs | None:  # noqa: PLR0911 - one phrase per kind of load
     """A load as the model declares it, in words and formulas (``pesanteur g = −g z0``)."""
-    from ....model import (CoulombFriction, Damper, Dissipation, GeneralizedForce, Gravity, JointDamper, PointForce,
-                         Potential, Spring, Torque)
+    from ....model import (
+        CoulombFriction,
+        Damper,
+        Dissipation,
+        GeneralizedForce,
+        Gravity,
+        JointDamper,
+        PointForce,
+        Potential,
+        Spring,
+        Torque,
+    )
 
     w = c.w
     if isinstance(load, Gravity):
@@ -263,7 +273,7 @@ def _joint_name(c: Context, j: Joint) -> Runs:
 def _offsets(c: Context, j: Joint) -> Runs:
     """``OG·z0 = r`` (and ``OG·y0 = 0``): the constant components of a "body plane"."""
     OG = rf"\overrightarrow{{{c.name(c.origin)}{c.point_label(j.element)}}}"
-    return c.w.join([Math(rf"{OG}\cdot{c.axis(a)} = {c.tex(v)}") for a, v in zip(j.normals, j.offsets)])
+    return c.w.join([Math(rf"{OG}\cdot{c.axis(a)} = {c.tex(v)}") for a, v in zip(j.normals, j.offsets, strict=True)])
 
 
 def _turns(c: Context, j: Joint) -> Runs:
@@ -499,7 +509,7 @@ def _freedom(c: Context) -> list[Block]:
 # -- step 2 ---------------------------------------------------------------------------------------
 def _euler_body(c: Context) -> str | None:
     """The body whose three rotations from R0 are the Euler angles (z, x, z) of the three coordinates."""
-    q = {s: name for s, name in zip(c.eom.q, c.eom.coordinates)}
+    q = {s: name for s, name in zip(c.eom.q, c.eom.coordinates, strict=True)}
     if len(q) != 3:
         return None
     frames = {f.name: f for f in c.model.frames}

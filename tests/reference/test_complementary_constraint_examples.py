@@ -1,4 +1,4 @@
-"""Issue 5, part 2 and 4: the examples with complementary constraints, simulated, against
+"""The examples with complementary constraints, simulated, against
 independent truths.
 
 * Pendulum with the rod's tension (examples/pendulum_tension.toml): the motion is the
@@ -103,6 +103,7 @@ def test_rolling_coin_runs_on_its_circle() -> None:
     assert traj.drift["E"] < 1e-9
 
 
+@pytest.mark.slow
 def test_top_with_the_pivot_complementary_moves_as_the_seed_top_and_gives_R_O() -> None:
     _, traj = run("top_reaction.toml", 1.0, 201)
     principal, angles = run("lagrange_top.toml", 1.0, 201)

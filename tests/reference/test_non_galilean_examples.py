@@ -1,4 +1,4 @@
-"""The issue-5 examples against their textbook results.
+"""The examples in moving frames and on moving supports against their textbook results.
 
 * Bead on a hoop turning at Ω, written in the hoop's frame: the relative equilibria
   cos θ = g/(R Ω²) exist beyond the critical rate Ω² = g/R, where the bottom loses its
