@@ -127,7 +127,7 @@ def _build(eom: EquationsOfMotion, match, values: Mapping[str, float]) -> Closed
             # eliminate one parameter of u, preferably one it is proportional to (g in g/(R Ω²): g = R Ω² cos θ0)
             num, den = sympy.fraction(sympy.together(u))
 
-            def rank(x: sympy.Symbol, num: sympy.Expr = num, den: sympy.Expr = den) -> tuple:  # type: ignore[type-arg]
+            def rank(x: sympy.Symbol, num: sympy.Expr = num, den: sympy.Expr = den) -> tuple:
                 linear = x not in den.free_symbols and sympy.degree(num, x) == 1
                 return (not linear, str(x) not in values, str(x))
 

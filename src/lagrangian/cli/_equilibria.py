@@ -151,7 +151,7 @@ def _document(name: str, coordinates: tuple[str, ...], values: dict, found: tupl
     }
 
 
-def _sweep(eom, swept, parameters: dict, folder: Path | None, lang: str, as_json: bool) -> str:  # type: ignore[no-untyped-def]
+def _sweep(eom, swept, parameters: dict, folder: Path | None, lang: str, as_json: bool) -> str:
     """The closed-form branches along the parameter: where each appears and changes stability."""
     name, values = swept
     diagram = bifurcation(eom, name, values, parameters=parameters or None)

@@ -35,7 +35,7 @@ def runtime_source(name: str) -> str:
     """The text of the runtime file ``name`` (one of `RUNTIME_FILES`), whole."""
     if name not in RUNTIME_FILES:
         raise ValueError(f"`{name}` is not a runtime file; they are {', '.join(RUNTIME_FILES)}")
-    return resources.files(__package__).joinpath("runtime", name).read_text(encoding="utf-8")
+    return resources.files(__package__).joinpath("runtime").joinpath(name).read_text(encoding="utf-8")
 
 
 def dop853_defines() -> dict[str, str]:

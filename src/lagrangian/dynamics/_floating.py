@@ -312,7 +312,7 @@ class _TreeBuilder:
                     up, d = self.up[a], nodes[a].offset
                     fv = w.vec(up(fv))
                     nv = w.vec(add3(up(nv), cross(d, fv)))
-                    a, same = nodes[a].parent, False  # type: ignore[assignment]
+                    a, same = nodes[a].parent, False
         return [[sum_of(M[i][j]) for j in range(n)] for i in range(n)]
 
     # -- monitors ----------------------------------------------------------------------------------

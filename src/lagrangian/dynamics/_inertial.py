@@ -80,6 +80,8 @@ class RelativeFrameTree(FrameTree):
                 value = Vector.zero()
             elif frame in self._below:
                 rot = f.rotation
+                if rot is None:  # a frame below R turns relative to its parent
+                    raise ValueError(f"frame `{frame}` has no rotation")
                 own = Vector._trusted({frame: rotation_rate(rot, self.d_dt(rot.angle, accelerations=False))})
                 parent = self.omega(f.parent)  # type: ignore[arg-type]
                 value = own if parent.is_zero() else parent + own

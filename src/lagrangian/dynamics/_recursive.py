@@ -418,8 +418,8 @@ def _composite_inertias(w: _Names, nodes: Sequence[_Node], to_parent: Sequence[T
         up = to_parent[k]
         assert up is not None  # every node but R0 has a parent
         h = up(first[k])
-        rows = [up(tuple(inertia[k][r])) for r in range(3)]  # type: ignore[arg-type]  # (R J)ᵀ's columns are R J's rows rotated
-        J = [up(tuple(rows[c][r] for c in range(3))) for r in range(3)]  # type: ignore[arg-type]
+        rows = [up(tuple(inertia[k][r])) for r in range(3)]  # (R J)ᵀ's columns are R J's rows rotated
+        J = [up(tuple(rows[c][r] for c in range(3))) for r in range(3)]
         d = node.offset
         dh, dd = _dot(d, h), _dot(d, d)
         p = node.parent
@@ -473,5 +473,5 @@ def _mass_matrix(w: _Names, nodes: Sequence[_Node], n: int, motion: _Motion,
                 up, d = motion.to_parent[a], nodes[a].offset
                 fv = w.vec(up(fv))  # type: ignore[misc]
                 nv = w.vec(_add3(up(nv), _cross(d, fv)))  # type: ignore[misc]
-                a, same = nodes[a].parent, False  # type: ignore[assignment]
+                a, same = nodes[a].parent, False
     return tuple(tuple(sum_of(M[i][j]) for j in range(n)) for i in range(n))

@@ -190,15 +190,15 @@ def _add_leaves(kin: Kinematics, nodes: list[_Node], index: dict[str, int],
             rates = _affine(kin, piece)
             if rates is None:
                 return f"the position of `{name}` is not affine in the coordinates in frame `{frame}`"
-            nodes[c].offset = tuple(piece)  # type: ignore[assignment]
-            nodes[c].offset_rates = {j: tuple(u) for j, u in rates.items()}  # type: ignore[misc]
+            nodes[c].offset = tuple(piece)
+            nodes[c].offset_rates = {j: tuple(u) for j, u in rates.items()}
             offset_set.add(c)
         own = pieces.get(home, _ZERO3)
         rates = _affine(kin, own)
         if rates is None:
             return f"the position of `{name}` is not affine in the coordinates in frame `{home}`"
-        leaf = _Node(name, index[home], offset=tuple(own), mass=mass, frame=home,  # type: ignore[arg-type]
-                     offset_rates={j: tuple(u) for j, u in rates.items()})  # type: ignore[misc]
+        leaf = _Node(name, index[home], offset=tuple(own), mass=mass, frame=home,
+                     offset_rates={j: tuple(u) for j, u in rates.items()})
         if body is not None:
             leaf.inertia = _inertia_at_g(kin, body)
         leaf.gravity = tuple(k for k, (load, _) in enumerate(gravity) if not load.on or name in load.on)

@@ -175,11 +175,11 @@ def _table(data, columns: Sequence[str] | None, inputs: Sequence[str]) -> tuple[
             raise IdentificationError("The xarray Dataset has no coordinate `t` (or `time`) of sample times.",
                                       fix="name the time coordinate `t`")
         table = {"t": data[time].values}
-        for name, var in data.data_vars.items():
+        for key, var in data.data_vars.items():
             if var.dims != (time,):
-                raise IdentificationError(f"The variable `{name}` of the Dataset has dimensions {var.dims}, not "
+                raise IdentificationError(f"The variable `{key}` of the Dataset has dimensions {var.dims}, not "
                                           f"({time},).", fix="select one record (e.g. ds.sel(member=0))")
-            table[str(name)] = var.values
+            table[str(key)] = var.values
         return table, "the xarray Dataset"
     if isinstance(data, Mapping):  # after xarray's Dataset, which is a Mapping of its variables
         return {str(k): v for k, v in data.items()}, "the arrays given"

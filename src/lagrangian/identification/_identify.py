@@ -229,7 +229,7 @@ def _values(model: Model, fitted: Sequence[str], meas: Measurements, values: Map
     return out
 
 
-def _shoot(eom, meas, fitted, base, guess, bounds, initial, noise, derivatives, shooting) -> Identification:  # type: ignore[no-untyped-def]
+def _shoot(eom, meas, fitted, base, guess, bounds, initial, noise, derivatives, shooting) -> Identification:
     from ..numerics import CompiledSystem, control_block, sensitivity_system
     from ._shooting import fit_shooting, noise_levels
 

@@ -27,7 +27,7 @@ _ZERO = se.Integer(0)
 _ZERO_TYPE = type(_ZERO)
 
 
-def rotation_rate(rotation, rate: se.Basic) -> Components:  # type: ignore[no-untyped-def]
+def rotation_rate(rotation, rate: se.Basic) -> Components:
     """Components of α̇ e in the child's basis, e the axis of ``rotation`` (a `Rotation`)."""
     if rotation.elementary:
         comps = [_ZERO, _ZERO, _ZERO]
@@ -200,11 +200,11 @@ class FrameTree:
         d_dt = self.d_dt
         for frame, comps in self.lift(v):
             own = tuple(c if type(c) is _ZERO_TYPE else d_dt(c, accelerations=accelerations) for c in comps)
-            _accumulate(out, frame, add3(own, cross(self.omega_in(frame, frame), comps)))  # type: ignore[arg-type]
+            _accumulate(out, frame, add3(own, cross(self.omega_in(frame, frame), comps)))
         return Vector._trusted(out)
 
 
-def _axis_key(rotation) -> int | Components:  # type: ignore[no-untyped-def]
+def _axis_key(rotation) -> int | Components:
     """The axis of a `Rotation` as `turn` or `turn_about` takes it: an index, or n's components."""
     return AXES[rotation.axis] if rotation.elementary else rotation.direction
 

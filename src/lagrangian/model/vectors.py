@@ -81,7 +81,7 @@ def as_expr(value: object) -> se.Basic:
 
 def add3(a: Components, b: Components) -> Components:
     """a + b component-wise, adding nothing to a zero (x + 0 is x: the same expressions)."""
-    return tuple(y if type(x) is _ZERO_TYPE else x if type(y) is _ZERO_TYPE else x + y  # type: ignore[return-value]
+    return tuple(y if type(x) is _ZERO_TYPE else x if type(y) is _ZERO_TYPE else x + y
                  for x, y in zip(a, b, strict=True))
 
 
@@ -101,7 +101,7 @@ def cross(a: Components, b: Components) -> Components:
             out.append(-(a[k] * b[j]))
         else:
             out.append(_ZERO)
-    return tuple(out)  # type: ignore[return-value]
+    return tuple(out)
 
 
 def turn(axis: int, c: se.Basic, s: se.Basic, v: Components) -> Components:
@@ -122,7 +122,7 @@ def turn(axis: int, c: se.Basic, s: se.Basic, v: Components) -> Components:
         out[i], out[j] = -s * vj, c * vj
     else:
         out[i], out[j] = c * vi - s * vj, s * vi + c * vj
-    return tuple(out)  # type: ignore[return-value]
+    return tuple(out)
 
 
 def turn_about(n: Components, c: se.Basic, s: se.Basic, v: Components) -> Components:
@@ -136,7 +136,7 @@ def turn_about(n: Components, c: se.Basic, s: se.Basic, v: Components) -> Compon
     n_v = sum_of([a * b for a, b in zip(n, v, strict=True) if not is_structural_zero(a) and not is_structural_zero(b)])
     turned = cross(n, v)
     along = (1 - c) * n_v
-    return tuple(sum_of([t for t in (c * x, s * w, along * a) if not is_structural_zero(t)])  # type: ignore[return-value]
+    return tuple(sum_of([t for t in (c * x, s * w, along * a) if not is_structural_zero(t)])
                  for x, w, a in zip(v, turned, n, strict=True))
 
 class Vector:
@@ -152,6 +152,7 @@ class Vector:
     """
 
     __slots__ = ("_pieces",)
+    _pieces: dict[str, tuple[se.Basic, se.Basic, se.Basic]]
 
     def __init__(self, pieces: Mapping[str, tuple[se.Basic, se.Basic, se.Basic]] | None = None):
         cleaned: dict[str, tuple[se.Basic, se.Basic, se.Basic]] = {}
@@ -160,7 +161,7 @@ class Vector:
             if len(comps) != 3:
                 raise ValueError("a vector piece has exactly three components")
             if any(type(c) is not _ZERO_TYPE for c in comps):
-                cleaned[frame] = comps  # type: ignore[assignment]
+                cleaned[frame] = comps
         object.__setattr__(self, "_pieces", cleaned)
 
     def __setattr__(self, name: str, value: object) -> None:
@@ -172,7 +173,7 @@ class Vector:
         """The unit vector ``frame.axis`` (axis is ``x``, ``y`` or ``z``)."""
         comps = [_ZERO, _ZERO, _ZERO]
         comps[AXES[axis]] = se.Integer(1)
-        return cls({frame: tuple(comps)})  # type: ignore[arg-type]
+        return cls({frame: tuple(comps)})
 
     @classmethod
     def zero(cls) -> Vector:
@@ -223,7 +224,7 @@ class Vector:
         out = dict(self._pieces)
         for frame, comps in other._pieces.items():
             if frame in out:
-                out[frame] = tuple(a + b for a, b in zip(out[frame], comps, strict=True))  # type: ignore[assignment]
+                out[frame] = tuple(a + b for a, b in zip(out[frame], comps, strict=True))
             else:
                 out[frame] = comps
         return Vector._trusted(out)
@@ -241,7 +242,7 @@ class Vector:
             return NotImplemented
         s = as_expr(scalar)
         z = _ZERO_TYPE
-        return Vector._trusted({f: tuple(c if type(c) is z else s * c for c in comps)  # type: ignore[misc]
+        return Vector._trusted({f: tuple(c if type(c) is z else s * c for c in comps)
                                 for f, comps in self._pieces.items()})
 
     __rmul__ = __mul__
@@ -252,11 +253,11 @@ class Vector:
 
     def map(self, fn: Callable[[se.Basic], se.Basic]) -> Vector:
         """Apply ``fn`` to every component, piece by piece."""
-        return Vector({f: tuple(fn(c) for c in comps) for f, comps in self._pieces.items()})  # type: ignore[misc]
+        return Vector({f: tuple(fn(c) for c in comps) for f, comps in self._pieces.items()})
 
     def _map(self, fn: Callable[[se.Basic], se.Basic]) -> Vector:
         # `map` for an ``fn`` known to return SymEngine expressions.
-        return Vector._trusted({f: tuple(fn(c) for c in comps)  # type: ignore[misc]
+        return Vector._trusted({f: tuple(fn(c) for c in comps)
                                 for f, comps in self._pieces.items()})
 
     def diff(self, symbol: se.Symbol) -> Vector:
@@ -270,7 +271,7 @@ class Vector:
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, Vector):
             return NotImplemented
-        return self._pieces == other._pieces
+        return bool(self._pieces == other._pieces)
 
     def __hash__(self) -> int:
         return hash(tuple(sorted((f, c) for f, c in self._pieces.items())))

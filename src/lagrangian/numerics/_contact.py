@@ -95,7 +95,7 @@ def check_contact_options(options: SimulationOptions) -> None:
         raise SimulationError(f"rest = {rest:g} must lie in (0, 1).", fix="e.g. rest=1e-6")
 
 
-def run_contact(source, options: SimulationOptions) -> Trajectory:  # type: ignore[no-untyped-def]
+def run_contact(source, options: SimulationOptions) -> Trajectory:
     """Integrate a model with unilateral contacts (module docstring), by phases between impacts.
 
     ``options.rest``: the last approach speed, relative to the first of a geometric series of

@@ -246,7 +246,7 @@ class ConstrainedSystem:
 
 
 # -- which sources keep constraints complementary ----------------------------------------------------------
-def constrained_source(source):  # type: ignore[no-untyped-def]
+def constrained_source(source):
     """(source, eom): the equations when ``source`` keeps constraints complementary, else (source, None).
 
     A file path is read once and handed back as its `Model`, so `simulate` does not read it again.

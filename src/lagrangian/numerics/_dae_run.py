@@ -57,7 +57,7 @@ EXPLICIT = {"dop853": "DOP853", "DOP853": "DOP853", "RK45": "RK45", "RK23": "RK2
 IMPLICIT = ("Radau", "BDF", "LSODA")
 
 
-def simulate_dae(source, t_end: float, **options: Any) -> Trajectory:  # type: ignore[no-untyped-def]
+def simulate_dae(source, t_end: float, **options: Any) -> Trajectory:
     """`run_dae` with `simulate`'s keywords: ``simulate_dae(model, 3.0, method="Radau")``."""
     return run_dae(source, SimulationOptions(t_end, **options))
 
@@ -89,7 +89,7 @@ def check_dae_options(options: SimulationOptions) -> str:
     return stabilization
 
 
-def run_dae(source, options: SimulationOptions) -> Trajectory:  # type: ignore[no-untyped-def]
+def run_dae(source, options: SimulationOptions) -> Trajectory:
     """Integrate a model with complementary constraints (module docstring) with `simulate`'s options.
 
     ``options.stabilization``: ``"projection"`` (default with explicit methods), ``"baumgarte"``
@@ -129,7 +129,7 @@ def run_dae(source, options: SimulationOptions) -> Trajectory:  # type: ignore[n
                        tolerance, status, residual_tolerance=options.tolerance, applied=applied)
 
 
-def _system_and_inputs(source, eom: EquationsOfMotion, options: SimulationOptions):  # type: ignore[no-untyped-def]
+def _system_and_inputs(source, eom: EquationsOfMotion, options: SimulationOptions):
     """(system, the inputs' law, p, the inputs applied at (t, y)) of a constrained run."""
     law = resolve_inputs(eom, options.inputs)
     given = {**(options.parameters or {})}
@@ -187,7 +187,7 @@ class _Stepper:
         except SimulationError as exc:
             raise SimulationError(f"At t = {t:.9g}: {exc.message}", fix=exc.fix, t=t, state=y.copy()) from None
 
-    def solver(self, a: float, y: np.ndarray, b: float):  # type: ignore[no-untyped-def]
+    def solver(self, a: float, y: np.ndarray, b: float):
         """A new SciPy solver from (a, y) towards b (at the start, and at each breakpoint of the inputs)."""
         max_step = self.options.max_step
         return self.solver_class(self.fun, a, y, b, rtol=self.options.rtol, atol=self.options.atol,
@@ -196,7 +196,7 @@ class _Stepper:
     def project(self, t: float, y: np.ndarray) -> np.ndarray:
         return project(self.system, t, y, self.p, self.tol)[0] if self.projecting else y
 
-    def step(self, solver) -> tuple[float, float, Callable, Callable]:  # type: ignore[no-untyped-def]
+    def step(self, solver) -> tuple[float, float, Callable, Callable]:
         """One accepted step, projected: (t_old, t_new, projected state(t), raw state(t)) on it."""
         message = solver.step()
         if solver.status == "failed":
@@ -224,7 +224,7 @@ class _Stepper:
 
         return t_old, t_new, state, raw_state
 
-    def run(self, y0: np.ndarray, t_out: np.ndarray, events: tuple[list[EventSpec], Callable | None],  # type: ignore[no-untyped-def]
+    def run(self, y0: np.ndarray, t_out: np.ndarray, events: tuple[list[EventSpec], Callable | None],
             breakpoints) -> tuple[np.ndarray, np.ndarray, list, str]:
         """(t, Y, events, status) on the output grid ``t_out`` from y0 at t_start."""
         specs, event_fn = events
@@ -272,7 +272,7 @@ class _Stepper:
         return t_out[:i_out], Y[:i_out], evs, status
 
 
-def _crossings(specs: list[EventSpec], event_fn: Callable, g_old, g_new, t_old: float, t_new: float,  # type: ignore[no-untyped-def]
+def _crossings(specs: list[EventSpec], event_fn: Callable, g_old, g_new, t_old: float, t_new: float,
                state: Callable, evs: list) -> float | None:
     """The events crossed in one step, located by Brent's method on the projected dense output and
     added to ``evs``; the earliest terminal one's time (None: none)."""
@@ -291,7 +291,7 @@ def _crossings(specs: list[EventSpec], event_fn: Callable, g_old, g_new, t_old: 
     return t_stop
 
 
-def _trajectory(system: ConstrainedSystem, p, t, Y, stab, evs, method, stabilization, steps, nfev,  # type: ignore[no-untyped-def]
+def _trajectory(system: ConstrainedSystem, p, t, Y, stab, evs, method, stabilization, steps, nfev,
                 tolerance, status, *, residual_tolerance: float | None = None,
                 applied: InputsAt | None = None) -> Trajectory:
     """The `Trajectory` of a run; ``tolerance`` for the first integrals, ``residual_tolerance``

@@ -77,7 +77,7 @@ from ._system import CompiledSystem
 __all__ = ["EnsembleInterrupted", "connect_scheduler", "ensemble", "flip_events", "register_backend"]
 
 
-def _jax_runner(eom, **options):  # type: ignore[no-untyped-def]
+def _jax_runner(eom, **options):
     """The ``"jax"`` backend (`_ensemble_jax.jax_runner`), imported when a run asks for it."""
     from ._ensemble_jax import jax_runner  # late: JAX and diffrax are optional, and slow to import
 
@@ -90,7 +90,7 @@ def _jax_runner(eom, **options):  # type: ignore[no-untyped-def]
 BACKENDS: dict = {"jax": _jax_runner}
 
 
-def register_backend(name: str, prepare) -> None:  # type: ignore[no-untyped-def]
+def register_backend(name: str, prepare) -> None:
     """Make ``backend=name`` available to `ensemble` (see `BACKENDS`): ``prepare`` as the ``"jax"`` one."""
     BACKENDS[name] = prepare
 

@@ -77,7 +77,7 @@ def check_free_options(options: SimulationOptions) -> None:
                               fix="install a C compiler (e.g. gcc), or use backend='auto'")
 
 
-def run_free(source, options: SimulationOptions) -> Trajectory:  # type: ignore[no-untyped-def]
+def run_free(source, options: SimulationOptions) -> Trajectory:
     """`simulate` of a model with free bodies (module docstring): ``source`` is what `free_source` gives.
 
     Constant inputs only: their numbers join the parameters (`_input_run.constant_inputs_only`).

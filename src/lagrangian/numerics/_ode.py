@@ -113,7 +113,7 @@ def check_ode_options(options: SimulationOptions) -> None:
                               fix="leave the stabilization out (its coordinates are all principal)")
 
 
-def run_ode(source, options: SimulationOptions) -> Trajectory:  # type: ignore[no-untyped-def]
+def run_ode(source, options: SimulationOptions) -> Trajectory:
     """Integrate M q̈ = F of ``source`` (no complementary constraint) with ``options.method``.
 
     Raises

@@ -29,7 +29,7 @@ def _counting_solver(method: str, count: dict, reporter: Reporter | None) -> typ
             super().__init__(*args, **kwargs)
             count["solver"] = self
 
-        def _step_impl(self):  # type: ignore[no-untyped-def]
+        def _step_impl(self):
             success, message = super()._step_impl()
             if success:
                 count["steps"] += 1
@@ -41,7 +41,7 @@ def _counting_solver(method: str, count: dict, reporter: Reporter | None) -> typ
     return Counted
 
 
-def run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol, max_step, specs, progress=False):  # type: ignore[no-untyped-def]
+def run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol, max_step, specs, progress=False):
     """(t, Y, events, rhs calls, accepted steps, solve_ivp's status) of SciPy's ``method`` on ``system``."""
     from scipy.integrate import solve_ivp
 
@@ -68,7 +68,7 @@ def run_scipy(system, p, y0, t_start, t_end, t_out, method, rtol, atol, max_step
     try:
         # A failure is raised as a SimulationError below; NumPy's floating-point warnings on the way add nothing.
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            def solve(a: float, b: float, y: np.ndarray, grid: np.ndarray):  # type: ignore[no-untyped-def]
+            def solve(a: float, b: float, y: np.ndarray, grid: np.ndarray):
                 return solve_ivp(fun, (a, b), y, method=_counting_solver(method, count, reporter),
                                  t_eval=grid, rtol=rtol, atol=atol, max_step=np.inf if max_step is None else max_step,
                                  events=[make_event(k, s) for k, s in enumerate(specs)] or None)

@@ -300,14 +300,14 @@ def sensitivity_extra(coordinates: Sequence[str], columns: Sequence[SensitivityC
             for i, state in enumerate(states)}
 
 
-def with_sensitivities(traj, columns: Sequence[SensitivityColumn], S: np.ndarray):  # type: ignore[no-untyped-def]
+def with_sensitivities(traj, columns: Sequence[SensitivityColumn], S: np.ndarray):
     """``traj`` with the sensitivity columns added (`Trajectory.sensitivity`)."""
     extra = dict(traj.extra)
     extra.update(sensitivity_extra(traj.coordinates, columns, S))
     return dataclasses.replace(traj, extra=extra, sensitivity_names=tuple(c.name for c in columns))
 
 
-def check_sensitivity_options(source, options: SimulationOptions) -> None:  # type: ignore[no-untyped-def]
+def check_sensitivity_options(source, options: SimulationOptions) -> None:
     """Refuse what the sensitivities cannot be integrated with: inputs, a method other than dop853, events,
     complementary constraints or exact dry friction."""
     if options.inputs is not None:
@@ -330,7 +330,7 @@ def check_sensitivity_options(source, options: SimulationOptions) -> None:  # ty
                               fix="leave out the sensitivities, or regularize the contact")
 
 
-def run_sensitivities(source, options: SimulationOptions):  # type: ignore[no-untyped-def]
+def run_sensitivities(source, options: SimulationOptions):
     """`simulate` with ``options.sensitivities``: the motion and ∂y/∂x for each x asked for (module docstring).
 
     Raises
@@ -392,7 +392,7 @@ def run_sensitivities(source, options: SimulationOptions):  # type: ignore[no-un
     raise _failure(system, p, run, ctl, partial)
 
 
-def _failure(system: CompiledSystem, p: np.ndarray, run: SensitivityRun, ctl: np.ndarray,  # type: ignore[no-untyped-def]
+def _failure(system: CompiledSystem, p: np.ndarray, run: SensitivityRun, ctl: np.ndarray,
              partial) -> BaseException:
     """The error of a run that did not complete, with the part computed so far where there is one."""
     code, n = run.code, system.n

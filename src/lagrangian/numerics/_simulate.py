@@ -38,7 +38,7 @@ __all__ = ["BUILTIN", "CONTROL_SIZE", "METHODS", "SCIPY", "STIFFNESS_TEST_PERIOD
 
 
 def simulate(
-    source,  # type: ignore[no-untyped-def]
+    source,
     t_end: float,
     *,
     t_start: float = 0.0,
@@ -50,7 +50,7 @@ def simulate(
     dt: float | None = None,
     max_step: float | None = None,
     n_out: int | None = None,
-    t_eval=None,  # type: ignore[no-untyped-def]
+    t_eval=None,
     events: Sequence[EventSpec | str] = (),
     tolerance: float | None = None,
     max_steps: int = 100_000_000,
@@ -60,7 +60,7 @@ def simulate(
     baumgarte: tuple[float, float] = BAUMGARTE,
     stiffness_check: bool = True,
     sensitivities: Sequence[str] | Sensitivities | None = None,
-    inputs=None,  # type: ignore[no-untyped-def]
+    inputs=None,
     rest: float | None = None,
     max_phases: int | None = None,
     max_switches: int | None = None,
@@ -136,7 +136,7 @@ def simulate(
     return run(source, options)
 
 
-def simulate_contact(source, t_end: float, **options: Any) -> Trajectory:  # type: ignore[no-untyped-def]
+def simulate_contact(source, t_end: float, **options: Any) -> Trajectory:
     """`simulate` of a model with unilateral contacts, by smooth phases between impacts (`_contact`).
 
     Parameters
@@ -164,7 +164,7 @@ def simulate_contact(source, t_end: float, **options: Any) -> Trajectory:  # typ
     return run(source, SimulationOptions(t_end, **options), route="contact")
 
 
-def simulate_stick_slip(source, t_end: float, **options: Any) -> Trajectory:  # type: ignore[no-untyped-def]
+def simulate_stick_slip(source, t_end: float, **options: Any) -> Trajectory:
     """`simulate` of a model with one exact Coulomb contact, by stick and slip phases (`_stickslip`).
 
     Parameters
@@ -191,7 +191,7 @@ def simulate_stick_slip(source, t_end: float, **options: Any) -> Trajectory:  # 
     return run(source, SimulationOptions(t_end, **options), route="stick-slip")
 
 
-def run(source, options: SimulationOptions, route: str | None = None) -> Trajectory:  # type: ignore[no-untyped-def]
+def run(source, options: SimulationOptions, route: str | None = None) -> Trajectory:
     """`simulate` with its options made: the model read once, its route picked (or the one named) and run.
 
     Declared signs and ranges (`model._assumptions`): values that break a sign are refused, and the

@@ -215,7 +215,7 @@ def check_stick_slip_options(options: SimulationOptions) -> None:
 PhaseRunner = Callable[[object, SimulationOptions], Trajectory]
 
 
-def run_stick_slip(source, options: SimulationOptions, simulate: PhaseRunner) -> Trajectory:  # type: ignore[no-untyped-def]
+def run_stick_slip(source, options: SimulationOptions, simulate: PhaseRunner) -> Trajectory:
     """Integrate a model with one exact Coulomb contact, switching between slip and stick (module docstring).
 
     Parameters

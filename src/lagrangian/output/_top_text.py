@@ -149,12 +149,12 @@ def _sleeping_block(n: Notation, an: TopAnalysis) -> list[str]:
     return lines
 
 
-def _text(n: Notation, expr, red) -> str:  # type: ignore[no-untyped-def]
+def _text(n: Notation, expr, red) -> str:
     """A sum written θ-free momentum terms first (H²/(2C)), then the other momentum terms, then the rest."""
     momenta = set(red.momentum_symbols)
     parts = list(expr.args) if expr.is_Add else [expr]
 
-    def rank(term) -> int:  # type: ignore[no-untyped-def]
+    def rank(term) -> int:
         symbols = term.free_symbols
         if symbols & momenta:
             return 0 if red.symbol not in symbols else 1

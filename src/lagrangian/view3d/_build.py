@@ -325,7 +325,7 @@ def _declared_part(b: _Builder, shape: Shape, carrier: int, origin: Vector, fram
         if any(c is None for c in comps):
             raise OutputError(f"The shape of `{shape.on}` ({where}) is fixed in `{shape.frame}`, which turns relative "
                               f"to `{frame}`.", fix="give the shape in the body's frame")
-        turn = np.column_stack(comps)
+        turn = np.column_stack([c for c in comps if c is not None])
     rotation = turn @ rotation
     offset = ev.constant_in(shape.center - origin, frame)
     if offset is None:
