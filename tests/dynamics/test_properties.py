@@ -138,7 +138,8 @@ def _load_checks(name: str) -> list[tuple[str, Numeric]]:
     """Per gravity/spring load: numeric (Q_i + ∂U/∂q_i, Q_i + ∂U_engine/∂q_i, Q_i) for every i."""
     eom = eom_of(name)
     out = []
-    for spec, forces in zip(eom.model.loads, eom.loads, strict=True):
+    # The model's loads come first; a non-Galilean model's inertial forces follow them in eom.loads.
+    for spec, forces in zip(eom.model.loads, eom.loads[:len(eom.model.loads)], strict=True):
         assert spec.name == forces.name
         U = _independent_potential(eom, spec)
         if U is None:
