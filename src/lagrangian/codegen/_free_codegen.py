@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import hashlib
 import re
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import symengine as se
@@ -51,16 +51,12 @@ class FreeSource:
     constants: int
 
 
-def generate_free_c(form: FloatingForm, events: Sequence[tuple[str, se.Basic]] = ()) -> FreeSource:
-    """Generate the C translation unit of ``form`` (events: (name, g) in the state's symbols).
+#: What `_printer` gives: body(outputs, what, hot) -> the C lines that compute the outputs.
+_Body = Callable[..., list[str]]
 
-    Raises
-    ------
-    DerivationError
-        When an expression holds a symbol that is not a state variable, a parameter or t.
-    """
-    params = tuple(p.name for p in form.model.parameters)
-    nq, nv = len(form.positions), len(form.velocities)
+
+def _private_names(form: FloatingForm, params: tuple[str, ...]) -> tuple[dict[se.Basic, str], dict[str, str]]:
+    """(the C name of each symbol: ``_y<i>``, ``_p<k>``, ``_t``, ``_w<k>``; {name: the array entry it reads})."""
     names: dict[se.Basic, str] = {}
     header: dict[str, str] = {}
     for i, s in enumerate((*form.positions, *form.velocities)):
@@ -73,7 +69,12 @@ def generate_free_c(form: FloatingForm, events: Sequence[tuple[str, se.Basic]] =
     header["_t"] = "t"
     for k, (sym, _) in enumerate(form.intermediates):
         names[sym] = f"_w{k}"
-    hoist = Hoist([se.Symbol(name) for name in params])
+    return names, header
+
+
+def _printer(form: FloatingForm, names: dict[se.Basic, str], hoist: Hoist) -> _Body:
+    """The printer of a function's body: its outputs with the intermediates they need, the parameter-only
+    coefficients hoisted into ``hoist`` in the integrator's functions (``hot``)."""
     lifted: dict[se.Basic, se.Basic] = {}
 
     def lift(expr: se.Basic) -> se.Basic:
@@ -95,12 +96,18 @@ def generate_free_c(form: FloatingForm, events: Sequence[tuple[str, se.Basic]] =
                                       "parameter nor t.", fix="declare it as a parameter of the model")
         return c_sequence(defs, outs, names | {s: str(s) for s in hoist.constants.values()})
 
+    return body
+
+
+def _function_specs(form: FloatingForm, events: Sequence[tuple[str, se.Basic]],
+                    body: _Body) -> list[tuple[str, list[str], list[str]]]:
+    """(signature, body lines, closing lines) of q'' (`lg_free_rhs`), M and F, the monitors and the events."""
+    nq, nv = len(form.positions), len(form.velocities)
     npiv, nt = len(form.pivots), len(form.trees)
     rhs_out = [(f"dy[{i}]", e) for i, e in enumerate(form.derivative)]
     rhs_out += [(f"piv[{2 * i + k}]", pair[k]) for i, pair in enumerate(form.pivots) for k in range(2)]
     mass_out = [(f"M[{i * nv + j}]", form.M[i][j]) for i in range(nv) for j in range(nv)]
-    # (signature, body lines, closing lines); the bodies first, so that every constant is hoisted
-    specs = [
+    return [
         ("static int lg_free_rhs(double t, const double *y, const double *p, double *dy, double *worst)",
          [f"    double piv[{max(2 * npiv, 1)}];", *body(rhs_out, "q''")],
          [f"    for (int j = 0; j < {npiv}; ++j) {{",
@@ -125,16 +132,19 @@ def generate_free_c(form: FloatingForm, events: Sequence[tuple[str, se.Basic]] =
         ("static void lg_events(double t, const double *y, const double *p, double *g)",
          body([(f"g[{k}]", e) for k, (_, e) in enumerate(events)], "an event function"), []),
     ]
-    constant_lines = c_sequence([], [(f"k[{j}]", expr) for j, expr in enumerate(hoist.constants)], names)
-    for k, sym in enumerate(hoist.constants.values()):
-        header[str(sym)] = f"p[{len(params) + k}]"
 
-    def function(signature: str, lines: list[str], extra: Sequence[str] = ()) -> str:
-        used = set(re.findall(r"\b_[ypkt]\w*", "\n".join(lines)))
-        decls = [f"    const double {c} = {v};" for c, v in header.items() if c in used]
-        decls.append("    (void)t; (void)y; (void)p;")
-        return signature + " {\n" + "\n".join([*decls, *lines, *extra]) + "\n}\n"
 
+def _c_function(header: dict[str, str], signature: str, lines: list[str], extra: Sequence[str] = ()) -> str:
+    """A C function: ``signature``, the entries of y, p and t its lines read (``header``), then its lines."""
+    used = set(re.findall(r"\b_[ypkt]\w*", "\n".join(lines)))
+    decls = [f"    const double {c} = {v};" for c, v in header.items() if c in used]
+    decls.append("    (void)t; (void)y; (void)p;")
+    return signature + " {\n" + "\n".join([*decls, *lines, *extra]) + "\n}\n"
+
+
+def _projection(form: FloatingForm) -> str:
+    """`lg_free_project`: each quaternion made unit, the largest |1 − |e|| met kept in its drift record."""
+    nq, nv = len(form.positions), len(form.velocities)
     project = ["static void lg_free_project(double *y) {"]
     offset = 0
     for t, tree in enumerate(form.trees):
@@ -145,10 +155,14 @@ def generate_free_c(form: FloatingForm, events: Sequence[tuple[str, se.Basic]] =
                     f"      if (n > 0.0) for (int i = {e}; i < {e + 4}; ++i) y[i] /= n; }}"]
         offset += 7 + len(tree.joints)
     project.append("}")
-    constants = function("void lg_constants(const double *p, double *k)", constant_lines).replace(
-        " {\n", " {\n    const double t = 0.0; const double *y = 0;\n", 1)  # neither is read
-    functions = [function(*spec) for spec in specs]
-    parts = [
+    return "\n".join(project) + "\n"
+
+
+def _defines(form: FloatingForm, events: Sequence[tuple[str, se.Basic]], params: tuple[str, ...],
+             constants: int) -> list[str]:
+    """The opening comment and the ``#define`` lines the runtime reads (sizes, ``LG_FREE``, ``LG_PROJECT``)."""
+    nq, nv, nt = len(form.positions), len(form.velocities), len(form.trees)
+    return [
         f"/* Generated by lagrangian from the free-body equations of `{form.model.name}`. Do not edit. */",
         "#define LG_FREE 1",
         f"#define LG_N {nv}",
@@ -156,7 +170,7 @@ def generate_free_c(form: FloatingForm, events: Sequence[tuple[str, se.Basic]] =
         f"#define LG_NM {len(form.monitors)}",
         f"#define LG_NE {len(events)}",
         f"#define LG_NP {len(params)}",
-        f"#define LG_NK {len(hoist.constants)}",
+        f"#define LG_NK {constants}",
         "#define LG_PROJECT(y) lg_free_project(y)",
         # M and the monitors are evaluated at the output times only, never in the integrator's loop: compiled
         # without optimisation, the unit of a 12-joint quadruped takes 2.2 s of GCC's CPU instead of 3.3 s, and
@@ -167,10 +181,35 @@ def generate_free_c(form: FloatingForm, events: Sequence[tuple[str, se.Basic]] =
         "#define LG_COLD",
         "#endif",
         *(f"#define {k} {v}" for k, v in dop853_defines().items()),
+    ]
+
+
+def generate_free_c(form: FloatingForm, events: Sequence[tuple[str, se.Basic]] = ()) -> FreeSource:
+    """Generate the C translation unit of ``form`` (events: (name, g) in the state's symbols).
+
+    Raises
+    ------
+    DerivationError
+        When an expression holds a symbol that is not a state variable, a parameter or t.
+    """
+    params = tuple(p.name for p in form.model.parameters)
+    nq, nv = len(form.positions), len(form.velocities)
+    names, header = _private_names(form, params)
+    hoist = Hoist([se.Symbol(name) for name in params])
+    # the bodies first, so that every constant is hoisted
+    specs = _function_specs(form, events, _printer(form, names, hoist))
+    constant_lines = c_sequence([], [(f"k[{j}]", expr) for j, expr in enumerate(hoist.constants)], names)
+    for k, sym in enumerate(hoist.constants.values()):
+        header[str(sym)] = f"p[{len(params) + k}]"
+    constants = _c_function(header, "void lg_constants(const double *p, double *k)", constant_lines).replace(
+        " {\n", " {\n    const double t = 0.0; const double *y = 0;\n", 1)  # neither is read
+    functions = [_c_function(header, *spec) for spec in specs]
+    parts = [
+        *_defines(form, events, params, len(hoist.constants)),
         "#include <math.h>",
         constants,
         *functions,
-        "\n".join(project) + "\n",
+        _projection(form),
         runtime_source("integrators.c"),
     ]
     source = "\n".join(parts)

@@ -193,6 +193,21 @@ def ensemble(
     EnsembleInterrupted
         Ctrl-C: the finished members are kept (in ``out``, and in ``.dataset``).
     """
+    out_path = _validate_options(keep, method, rtol, atol, backend, events, scheduler, inputs, out, resume)
+    # An unreachable scheduler is reported before anything is compiled or run.
+    client, own_client = _client(scheduler) if scheduler is not None else (None, False)
+    try:
+        return _ensemble(source, t_end, t_start, initial, parameters, initial_names, parameter_names, n_out, t_eval,
+                         method, rtol, atol, dt, max_step, max_steps, events, keep == "trajectories", workers,
+                         chunk_size, client, out_path, resume, progress, backend, stiffness_check, inputs)
+    finally:
+        if own_client and client is not None:
+            client.close()
+
+
+def _validate_options(keep: str, method: str, rtol: float, atol: float, backend: str, events: Sequence[EventSpec | str],
+                   scheduler: Any, inputs: Any, out: str | Path | None, resume: bool) -> Path | None:
+    """Refuse bad options of `ensemble` before anything is compiled; the output's path (or None)."""
     if keep not in ("summary", "trajectories"):
         raise SimulationError(f"keep={keep!r}: use 'summary' or 'trajectories'.", fix="e.g. keep='summary'")
     if method not in BUILTIN:
@@ -215,15 +230,7 @@ def ensemble(
     if out_path is not None:
         for module in ("zarr",) if out_path.suffix == ".zarr" else ("h5netcdf", "h5py"):
             _require(module, "xarray, zarr, h5netcdf and h5py")
-    # An unreachable scheduler is reported before anything is compiled or run.
-    client, own_client = _client(scheduler) if scheduler is not None else (None, False)
-    try:
-        return _ensemble(source, t_end, t_start, initial, parameters, initial_names, parameter_names, n_out, t_eval,
-                         method, rtol, atol, dt, max_step, max_steps, events, keep == "trajectories", workers,
-                         chunk_size, client, out_path, resume, progress, backend, stiffness_check, inputs)
-    finally:
-        if own_client and client is not None:
-            client.close()
+    return out_path
 
 
 def _check_backend(backend: str, method: str, events, scheduler) -> None:

@@ -37,7 +37,7 @@ import symengine as se
 from ..codegen import c_block
 from ..dynamics import EquationsOfMotion
 from ..errors import SimulationError
-from ._inputs import InputLaw
+from ._inputs import InputLaw, InputSource
 
 __all__ = ["WRAPPED", "LawCode", "law_code"]
 
@@ -101,15 +101,9 @@ def _check(eom: EquationsOfMotion, law: InputLaw) -> None:
                                       fix="use the input in a load, or give it a constant value")
 
 
-def law_code(eom: EquationsOfMotion, law: InputLaw) -> LawCode:
-    """The C of ``law`` for the model of ``eom`` (module docstring)."""
-    _check(eom, law)
-    model = eom.model
-    params = [p.name for p in model.parameters]
-    n = len(eom.q)
-    lay = law.layout()
-    driven = law.driven
-    # The expressions, renamed to private symbols and printed with shared subexpressions.
+def _private_symbols(eom: EquationsOfMotion,
+                     params: list[str]) -> tuple[dict[se.Basic, se.Basic], dict[se.Basic, str]]:
+    """(each symbol of t, the state and the parameters → its private symbol, private symbol → the C it reads)."""
     private: dict[se.Basic, se.Basic] = {eom.t: se.Symbol("_t")}
     names: dict[se.Basic, str] = {se.Symbol("_t"): "t"}
     for i, s in enumerate((*eom.q, *eom.qd)):
@@ -118,60 +112,111 @@ def law_code(eom: EquationsOfMotion, law: InputLaw) -> LawCode:
     for k, name in enumerate(params):
         private[se.Symbol(name)] = se.Symbol(f"_p{k}")
         names[private[se.Symbol(name)]] = f"p[{k}]"
-    outputs: list[tuple[str, se.Basic]] = []
-    lines: list[str] = []
-    index = {c: i for i, c in enumerate(eom.coordinates)}
-    index.update({c + "_dot": n + i for i, c in enumerate(eom.coordinates)})
-    callables = list(law.callables)
-    fb = law.feedback
+    return private, names
 
-    def leaf(target: str, key: str, s) -> None:
+
+class _Leaves:
+    """The C of the law's leaves, gathered in order: expressions for the CSE block (``outputs``), the
+    other sources as statements (``lines``)."""
+
+    def __init__(self, eom: EquationsOfMotion, law: InputLaw, private: dict[se.Basic, se.Basic]) -> None:
+        n = len(eom.q)
+        self.coordinates = eom.coordinates
+        self.private = private
+        self.lay = law.layout()
+        self.index = {c: i for i, c in enumerate(eom.coordinates)}
+        self.index.update({c + "_dot": n + i for i, c in enumerate(eom.coordinates)})
+        self.callables = list(law.callables)
+        self.fb = law.feedback
+        self.outputs: list[tuple[str, se.Basic]] = []
+        self.lines: list[str] = []
+
+    def leaf(self, target: str, key: str, s: InputSource) -> None:
         """The C that writes the source ``s`` (``key`` in the law's leaves) into ``target`` (an expression
         joins the CSE block)."""
+        lay, fb, index, private = self.lay, self.fb, self.index, self.private
         if s.kind == "constant":
-            lines.append(f"    {target} = {float(s.value)!r};")
+            self.lines.append(f"    {target} = {float(s.value)!r};")
         elif s.kind == "expression":
-            outputs.append((target, s.value.xreplace({k: v for k, v in private.items() if k in s.value.free_symbols})))
+            self.outputs.append((target, s.value.xreplace({k: v for k, v in private.items()
+                                                           if k in s.value.free_symbols})))
         elif s.kind == "table":
             table = s.value
-            lines.append(f"    {target} = lg_table(law + {lay['table:' + key]}, {len(table.t)}, "
-                         f"{_KIND[table.interpolation]}, t, law[0]);  /* {s.name}: {table.interpolation} table */")
+            self.lines.append(f"    {target} = lg_table(law + {lay['table:' + key]}, {len(table.t)}, "
+                              f"{_KIND[table.interpolation]}, t, law[0]);  /* {s.name}: {table.interpolation} table */")
         elif s.kind == "feedback":
             assert fb is not None
             i = fb.inputs.index(s.name)
             nx = len(fb.states)
             terms = " + ".join(f"law[{lay['K'] + i * nx + k}] * (y[{index[x]}] - law[{lay['x_star'] + k}]"
-                               + (f" - law[{lay['x_rate'] + k}] * t)" if x in eom.coordinates else ")")
+                               + (f" - law[{lay['x_rate'] + k}] * t)" if x in self.coordinates else ")")
                                for k, x in enumerate(fb.states))
-            lines.append(f"    {target} = law[{lay['u_star'] + i}] - ({terms});  /* {s.name} = u* - K (x - x*(t)) */")
+            self.lines.append(f"    {target} = law[{lay['u_star'] + i}] - ({terms});  "
+                              f"/* {s.name} = u* - K (x - x*(t)) */")
         else:
-            lines.append(f"    {target} = uc[{callables.index(s)}];  /* {s.name}: a Python function */")
+            self.lines.append(f"    {target} = uc[{self.callables.index(s)}];  /* {s.name}: a Python function */")
 
+
+def _switch(leaves: _Leaves, j: int, s: InputSource, locals_: list[str]) -> str:
+    """The C of the switch ``s`` driving u[j]: each source into a local ``v<j>_<k>`` (named in ``locals_``),
+    then the selection of the phase's one."""
+    sources = s.value.sources
+    for k, piece in enumerate(sources):
+        locals_.append(f"v{j}_{k}")
+        leaves.leaf(f"v{j}_{k}", f"{s.name}#{k}", piece)
+    at = leaves.lay["switch:" + s.name]
+    chosen = f"v{j}_{len(sources) - 1}"
+    for k in reversed(range(len(sources) - 1)):
+        chosen = f"(s < law[{at + k}] ? v{j}_{k} : {chosen})"
+    return (f"    {{  /* {s.name}: a switch, the source of the phase the hint (else t) is in */\n"
+            f"        const double s = isnan(law[0]) ? t : law[0];\n"
+            f"        u[{j}] = {chosen};\n    }}")
+
+
+def _inputs_body(eom: EquationsOfMotion, law: InputLaw, params: list[str]) -> list[str]:
+    """The statements of ``lg_inputs``: locals, the Python callback's call, the CSE block, the other leaves,
+    the switches' selections."""
+    private, names = _private_symbols(eom, params)
+    leaves = _Leaves(eom, law, private)
     locals_: list[str] = []
     selections: list[str] = []
-    for j, s in enumerate(driven):
+    for j, s in enumerate(law.driven):
         if s.kind != "switch":
-            leaf(f"u[{j}]", s.name, s)
+            leaves.leaf(f"u[{j}]", s.name, s)
             continue
-        sources = s.value.sources
-        for k, piece in enumerate(sources):
-            locals_.append(f"v{j}_{k}")
-            leaf(f"v{j}_{k}", f"{s.name}#{k}", piece)
-        at = lay["switch:" + s.name]
-        chosen = f"v{j}_{len(sources) - 1}"
-        for k in reversed(range(len(sources) - 1)):
-            chosen = f"(s < law[{at + k}] ? v{j}_{k} : {chosen})"
-        selections.append(f"    {{  /* {s.name}: a switch, the source of the phase the hint (else t) is in */\n"
-                          f"        const double s = isnan(law[0]) ? t : law[0];\n"
-                          f"        u[{j}] = {chosen};\n    }}")
-    body = c_block(outputs, names, prefix="w") if outputs else []
+        selections.append(_switch(leaves, j, s, locals_))
+    body = c_block(leaves.outputs, names, prefix="w") if leaves.outputs else []
     declared = [f"    double {', '.join(locals_)};"] if locals_ else []
     call = []
-    if callables:
-        call = [f"    double uc[{len(callables)}];",
+    if leaves.callables:
+        call = [f"    double uc[{len(leaves.callables)}];",
                 "    lg_user_fn fn;",
                 "    memcpy(&fn, law + 1, sizeof fn);",
                 "    fn(t, y, uc);"]
+    return [*declared, *call, *body, *leaves.lines, *selections]
+
+
+def _wrappers() -> list[str]:
+    """The functions the integrators call (`WRAPPED`): the model's own, called with u written into p."""
+    wrappers = []
+    for name, extra, args in WRAPPED:
+        text = (f"static void {name}(double t, const double *y, const double *p, {extra})\n{{\n"
+                "    double pu[LG_NP + LG_NK > 0 ? LG_NP + LG_NK : 1];\n"
+                "    lg_apply_inputs(t, y, p, pu);\n"
+                f"    lg_model_{name[3:]}(t, y, pu, {args});\n}}\n")
+        wrappers.append(f"#ifdef LG_ABA\n{text}#endif\n" if name == "lg_aba" else text)
+    return wrappers
+
+
+def law_code(eom: EquationsOfMotion, law: InputLaw) -> LawCode:
+    """The C of ``law`` for the model of ``eom`` (module docstring)."""
+    _check(eom, law)
+    params = [p.name for p in eom.model.parameters]
+    n = len(eom.q)
+    lay = law.layout()
+    driven = law.driven
+    # The expressions, renamed to private symbols and printed with shared subexpressions.
+    inputs_body = _inputs_body(eom, law, params)
     slots = tuple(params.index(s.name) for s in driven)
     nu = max(len(driven), 1)
     prelude = "\n".join([
@@ -181,13 +226,6 @@ def law_code(eom: EquationsOfMotion, law: InputLaw) -> LawCode:
         "",
     ])
     apply = "\n".join(f"    pu[{k}] = u[{j}];" for j, k in enumerate(slots))
-    wrappers = []
-    for name, extra, args in WRAPPED:
-        text = (f"static void {name}(double t, const double *y, const double *p, {extra})\n{{\n"
-                "    double pu[LG_NP + LG_NK > 0 ? LG_NP + LG_NK : 1];\n"
-                "    lg_apply_inputs(t, y, p, pu);\n"
-                f"    lg_model_{name[3:]}(t, y, pu, {args});\n}}\n")
-        wrappers.append(f"#ifdef LG_ABA\n{text}#endif\n" if name == "lg_aba" else text)
     epilogue = "\n".join([
         *(f"#undef {name}" for name, _, _ in WRAPPED),
         f"#define LG_NU {len(driven)}",
@@ -200,11 +238,7 @@ def law_code(eom: EquationsOfMotion, law: InputLaw) -> LawCode:
         "static void lg_inputs(double t, const double *y, const double *p, double *u)\n{",
         "    const double *law = p + LG_NP + LG_NK;",
         "    (void)t; (void)y; (void)law;",
-        *declared,
-        *call,
-        *body,
-        *lines,
-        *selections,
+        *inputs_body,
         "}\n",
         "static void lg_apply_inputs(double t, const double *y, const double *p, double *pu)\n{",
         f"    double u[{nu}];",
@@ -212,7 +246,7 @@ def law_code(eom: EquationsOfMotion, law: InputLaw) -> LawCode:
         "    lg_inputs(t, y, p, u);",
         apply,
         "}\n",
-        *wrappers,
+        *_wrappers(),
         "int lg_eval_inputs(int count, const double *t, const double *Y, const double *p, double *U)\n{",
         "    for (int k = 0; k < count; ++k)",
         f"        lg_inputs(t[k], Y + (long)k * {2 * n}, p, U + (long)k * {nu});",
