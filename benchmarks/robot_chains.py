@@ -82,7 +82,7 @@ me, cc = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.R
 # build runs as many at once as there are cores: its peak is at most that many times this one).
 import subprocess, tempfile
 from lagrangian.codegen import generate_c
-from lagrangian.numerics._compile import FLAGS, PART_FLAGS, compiler
+from lagrangian.numerics._compile import FLAGS, compiler, unit_flags
 units = generate_c(eom, system.first_integrals, ()).units
 cc_rss = 0
 with tempfile.TemporaryDirectory() as tmp:
@@ -92,7 +92,7 @@ with tempfile.TemporaryDirectory() as tmp:
             f.write(unit)
         small = ("import resource, subprocess, sys; subprocess.run(sys.argv[1:], check=True); "
                  "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)")
-        flags = [w for w in FLAGS if w != "-shared"] + (list(PART_FLAGS) if k else [])
+        flags = [w for w in FLAGS if w != "-shared"] + list(unit_flags(unit, part=k > 0))
         cc_rss = max(cc_rss, int(subprocess.run([sys.executable, "-S", "-c", small, *compiler(), *flags, "-c", "-o",
                                                  os.path.join(tmp, f"unit{k}.o"), c_file], capture_output=True,
                                                 text=True, check=True).stdout.split()[-1]))

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import lagrangian
-from lagrangian.codegen import _cparts
+from lagrangian.codegen import COLD_UNIT, _cparts
 from lagrangian.codegen._cparts import PART_MACROS, function_text, units_of
 from lagrangian.errors import SimulationError
 from lagrangian.model.zoo import serial_arm
@@ -100,6 +100,10 @@ def test_a_robot_compiled_in_parts_moves_as_compiled_in_one_piece(private_cache,
     monkeypatch.setattr(_cparts, "MAX_STATEMENTS", limit)
     cut = compile_system(eom, inputs=inputs)
     assert all(f"{name}_part1(" in cut.source for name in cut_functions)
+    # The monitors' and constants' parts are cold (-Og), and give the same doubles all the same (below).
+    cold = sum(unit.startswith(COLD_UNIT) for unit in cut.generated.units)
+    assert cold == cut.source.count("LG_PART void lg_monitors_part") + cut.source.count("LG_PART void lg_constants_part")
+    assert cold > 0
     assert "_part0(" not in whole.source
     n = joints
     rng = np.random.default_rng(3)

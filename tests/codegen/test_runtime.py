@@ -48,3 +48,22 @@ def test_the_c_export_copies_the_same_solve(top):
     (source,) = [text for name, text in export_files(constrained, "c").items() if name.endswith(".c")]
     assert runtime_source("cholesky.c") in source
     assert runtime_source("solve_mass.c") not in source
+
+
+def test_dop853s_tableau_is_scipys_and_is_read_without_importing_scipy_integrate():
+    import subprocess
+    import sys
+
+    from scipy.integrate._ivp import dop853_coefficients as scipy_tableau
+
+    from lagrangian.codegen._runtime import _scipy_dop853_coefficients
+
+    alone = _scipy_dop853_coefficients()
+    assert alone is not scipy_tableau and alone.N_STAGES == scipy_tableau.N_STAGES
+    for name in ("A", "B", "C", "E3", "E5", "D"):
+        assert (getattr(alone, name) == getattr(scipy_tableau, name)).all(), name
+    # A model compiled for the first time does not wait for SciPy's integrators to import (0.4 s).
+    probe = ("import sys; from lagrangian.codegen._runtime import dop853_defines; d = dop853_defines(); "
+             "print('scipy.integrate' in sys.modules, d['LG_DOP_STAGES'])")
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True, timeout=120)
+    assert out.stdout.split() == ["False", str(scipy_tableau.N_STAGES)]

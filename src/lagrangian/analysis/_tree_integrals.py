@@ -63,14 +63,20 @@ def _states(eom: EquationsOfMotion, count: int, off: Sequence[str] = ()) -> list
     return out
 
 
-def _evaluate(eom: EquationsOfMotion, exprs: Sequence[se.Basic], state: dict[se.Basic, float]) -> list[float]:
-    """``exprs`` (over the recursive form's intermediates) at ``state``: each intermediate in turn, each
-    substitution given only the symbols it holds (a map of thousands per call would cost quadratically)."""
+def _evaluate(eom: EquationsOfMotion, exprs: Sequence[se.Basic], states: Sequence[dict[se.Basic, float]]
+              ) -> np.ndarray:
+    """``exprs`` (over the recursive form's intermediates) at each of ``states``, one row per state: each
+    intermediate in turn, each substitution given only the symbols it holds (a map of thousands per call
+    would cost quadratically).  The intermediates needed are found once for all the states."""
     rec = eom.recursive
-    known = {s: se.RealDouble(float(v)) for s, v in state.items()}
-    for s, e in rec.needed(exprs):  # type: ignore[union-attr]
-        known[s] = se.RealDouble(float(e.xreplace({x: known[x] for x in e.free_symbols})))
-    return [float(e.xreplace({x: known[x] for x in e.free_symbols})) for e in exprs]
+    needed = rec.needed(exprs)  # type: ignore[union-attr]
+    rows = []
+    for state in states:
+        known = {s: se.RealDouble(float(v)) for s, v in state.items()}
+        for s, e in needed:
+            known[s] = se.RealDouble(float(e.xreplace({x: known[x] for x in e.free_symbols})))
+        rows.append([float(e.xreplace({x: known[x] for x in e.free_symbols})) for e in exprs])
+    return np.array(rows)
 
 
 def tree_integrals(eom: EquationsOfMotion, regime: Mapping[str, str] | None = None) -> tuple[FirstIntegral, ...]:
@@ -95,10 +101,10 @@ def tree_integrals(eom: EquationsOfMotion, regime: Mapping[str, str] | None = No
     G = P = G_on = None
     if len(rec.intermediates) <= MAX_INTERMEDIATES:
         try:
-            G = np.array([_evaluate(eom, rec.dL_dq, s) for s in states])
-            P = np.array([_evaluate(eom, p, s) for s in states])
+            G = _evaluate(eom, rec.dL_dq, states)
+            P = _evaluate(eom, p, states)
             # The same with the inputs at values: which momenta hold only because the inputs are off.
-            G_on = np.array([_evaluate(eom, rec.dL_dq, s) for s in _states(eom, STATES)]) if off else G
+            G_on = _evaluate(eom, rec.dL_dq, _states(eom, STATES)) if off else G
         except (RuntimeError, TypeError, ValueError, ZeroDivisionError):  # a state outside the domain: E only
             G = P = G_on = None
     usable = (G is not None and P is not None and G_on is not None
@@ -246,7 +252,7 @@ def _symmetries(eom: EquationsOfMotion, p: Sequence[se.Basic], G: np.ndarray, P:
     named = next((f.axes for f in model.frames if f.name == GALILEAN_FRAME and getattr(f, "axes", None)), None)
     axes = tuple(named) if named else ("x0", "y0", "z0")
     values = [P[:, list(p).index(fi.expression)] if fi.kind == "momentum" else
-              np.array([_evaluate(eom, [fi.expression], s)[0] for s in states]) for fi in found]
+              _evaluate(eom, [fi.expression], states)[:, 0] for fi in found]
     out = []
     for kind, axis, X, Xd in _rigid_motions(eom, states):
         if not np.any(np.abs(X) > 1e-12):

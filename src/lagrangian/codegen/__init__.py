@@ -10,7 +10,7 @@ Between `analysis` and `numerics`: symbols in, source text out, nothing compiled
   cheaper (`_rewrite`);
 - ``c_block``, ``c_sequence``, ``c_expression``, ``c_function``: the C printer, common
   subexpressions shared (`_cprint`, `_cfunction`); long functions are cut into parts compiled in
-  parallel (`_cparts`);
+  parallel (`_cparts`), the units of cold parts marked by ``COLD_UNIT``;
 - ``runtime_source(name)``: the C runtime, plain files in ``runtime/`` copied whole (`_runtime`);
 - ``export(eom, target, directory)``: standalone code in C, NumPy, JAX or Octave (`_export`, one
   module per target in `targets`).
@@ -29,6 +29,7 @@ from .._lazy import lazy_names
 # does not load the export targets, nor SymPy's printers that they use.
 _WHERE = {
     "._cfunction": ("c_function",),
+    "._cparts": ("COLD_UNIT",),
     "._codegen": ("GeneratedSource", "generate_c", "monitor_expressions"),
     "._codegen_dae": ("GeneratedDAE", "generate_dae_c"),
     "._cprint": ("c_block", "c_expression", "c_sequence"),
@@ -48,6 +49,7 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from ._codegen import monitor_expressions as monitor_expressions
     from ._codegen_dae import GeneratedDAE as GeneratedDAE
     from ._codegen_dae import generate_dae_c as generate_dae_c
+    from ._cparts import COLD_UNIT as COLD_UNIT
     from ._cprint import c_block as c_block
     from ._cprint import c_expression as c_expression
     from ._cprint import c_sequence as c_sequence
@@ -67,6 +69,7 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from .targets.base import ExportedSymbols as ExportedSymbols
 
 __all__ = [
+    "COLD_UNIT",
     "EXPORT_TARGETS",
     "RUNTIME_FILES",
     "AbstractTarget",

@@ -14,19 +14,23 @@ Parameter values are an input array, not constants folded into the code: changin
 from __future__ import annotations
 
 import hashlib
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import symengine as se
 
 from ..dynamics import EquationsOfMotion
 from ..errors import DerivationError
-from ._cparts import PART_MACROS, Part, function_text, units_of
+from ._cparts import PART_MACROS, Part, function_text, part_unit, units_of
 from ._cprint import c_block, c_sequence
 from ._rewrite import Hoist, mass_forces_form
 from ._runtime import dop853_defines, runtime_source
 
 __all__ = ["GeneratedSource", "generate_c", "monitor_expressions"]
+
+#: The functions that run once per output sample (the monitors: first integrals, T, U) or once per
+#: parameter set (the hoisted constants), not at each step: their parts are cold (`_cparts.COLD_UNIT`).
+COLD_FUNCTIONS = ("lg_monitors", "lg_constants")
 
 
 @dataclass(frozen=True)
@@ -76,6 +80,8 @@ def generate_c(
     integrals: Sequence = (),
     events: Sequence[tuple[str, se.Basic]] = (),
     law=None,
+    *,
+    on_unit: Callable[[str], object] | None = None,
 ) -> GeneratedSource:
     """Generate the C translation unit of ``eom``.
 
@@ -85,6 +91,8 @@ def generate_c(
     integrals : the first integrals to monitor (`lagrangian.first_integrals`).
     events : (name, g) pairs; an event occurs where g(t, q, q̇) changes sign.
     law : the inputs' law (`numerics._input_code.LawCode`): its C goes around the model's functions.
+    on_unit : called with each unit of a long function's part (one of ``units[1:]``) as soon as
+        it is written, before the rest is generated: a build can start compiling it meanwhile.
 
     Raises
     ------
@@ -139,7 +147,13 @@ def generate_c(
         else:
             body = [line for k, stage in enumerate(stages)
                     for line in c_block([(tg, rename(e, what)) for tg, e in stage], names, prefix="xyz"[k])]
-        return function_text(signature, header, body, parts, preamble)
+        written = len(parts)
+        text = function_text(signature, header, body, parts, preamble,
+                             cold=any(f" {name}(" in signature for name in COLD_FUNCTIONS))
+        if on_unit is not None:
+            for part in parts[written:]:
+                on_unit(part_unit(part))
+        return text
 
     if eom.recursive is not None:
         return _generate_recursive(eom, integrals, events, named, header, function, law, parts)
@@ -216,7 +230,18 @@ def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence, events: Seq
         ("static void lg_hamilton_force(double t, const double *y, const double *p, double *g)",
          [(f"g[{i}]", e) for i, e in enumerate(rec.dL_dq)], "dT/dq - dU/dq + Q"),
     ]
-    staged = [(signature, with_intermediates(outputs), what) for signature, outputs, what in bodies]
+    def written(signature: str, staged: tuple[list, list], what: str) -> str:
+        # Each function is written as soon as its intermediates are found and lifted, so that the units
+        # of its parts reach a build (`on_unit`) while the next function is being prepared.  The constants
+        # hoisted so far get their names first: p[LG_NP + k], k in the order `hoist` made them.
+        for k, sym in enumerate(hoist.constants.values()):
+            if sym not in named:
+                named[sym] = str(sym)
+                header[str(sym)] = f"p[{len(params) + k}]"
+        defs, outs = staged
+        return function(signature, outs, what, defs)
+
+    functions = [written(signature, with_intermediates(outputs), what) for signature, outputs, what in bodies]
     aba: list[str] = []
     if rec.qdd is not None:
         # The articulated-body algorithm: q'' in O(n), M neither formed nor factorised.  Its backward
@@ -233,19 +258,18 @@ def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence, events: Seq
         for k, slot in enumerate(slots):
             named[slot] = f"carry[{k}]"
         arguments = "double t, const double *y, const double *p"
-        staged.append((f"LG_NOINLINE static void lg_aba_backward({arguments}, double *carry, double *piv)",
-                       with_intermediates([(f"carry[{k}]", sym) for k, sym in enumerate(carried)]
-                                          + [(f"piv[{2 * i + k}]", pair[k]) for i, pair in enumerate(rec.pivots)
-                                             for k in range(2)]), "q''"))
-        staged.append((f"LG_NOINLINE static void lg_aba_forward({arguments}, const double *carry, double *qdd)",
-                       (list(zip(carried, slots, strict=True)) + [(sym, lifted(e)) for sym, e in forward],
-                        [(f"qdd[{i}]", lifted(e)) for i, e in enumerate(rec.qdd)]), "q''"))
+        functions.append(written(f"LG_NOINLINE static void lg_aba_backward({arguments}, double *carry, double *piv)",
+                                 with_intermediates([(f"carry[{k}]", sym) for k, sym in enumerate(carried)]
+                                                    + [(f"piv[{2 * i + k}]", pair[k])
+                                                       for i, pair in enumerate(rec.pivots) for k in range(2)]),
+                                 "q''"))
+        functions.append(written(f"LG_NOINLINE static void lg_aba_forward({arguments}, const double *carry, "
+                                 "double *qdd)",
+                                 (list(zip(carried, slots, strict=True)) + [(sym, lifted(e)) for sym, e in forward],
+                                  [(f"qdd[{i}]", lifted(e)) for i, e in enumerate(rec.qdd)]), "q''"))
         aba = [("static void lg_aba(double t, const double *y, const double *p, double *qdd, double *piv) {\n"
                 f"    double carry[{max(len(carried), 1)}];\n"
                 "    lg_aba_backward(t, y, p, carry, piv);\n    lg_aba_forward(t, y, p, carry, qdd);\n}\n")]
-    for k, sym in enumerate(hoist.constants.values()):
-        named[sym] = str(sym)
-        header[str(sym)] = f"p[{len(params) + k}]"
     constants = [(f"k[{j}]", expr) for j, expr in enumerate(hoist.constants)]
     # M is lg_mass_forces' (F is dropped: the symplectic integrator asks for M alone far less often
     # than compiling a second copy of the composite inertias would cost); T is homogeneous
@@ -255,7 +279,6 @@ def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence, events: Seq
         f"    double F[{n}], yq[{2 * n}];\n"
         f"    for (int i = 0; i < {n}; i++) {{ yq[i] = y[i]; yq[{n} + i] = 0.0; b[i] = 0.0; }}\n"
         "    lg_mass_forces(t, yq, p, M, F);  /* only q is read from y */\n}\n")
-    functions = [function(signature, outs, what, defs) for signature, (defs, outs), what in staged]
     if aba:  # the two halves stay apart (their one caller would inline them)
         aba = ["#define LG_ABA 1", *functions[4:], *aba]
     return _assemble(eom, monitors, events, params, constants, [] if parts is None else parts,

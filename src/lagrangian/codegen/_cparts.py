@@ -16,6 +16,10 @@ register allocator of one long function chose.
 The parts are written twice: in the one translation unit `source` (``static``, not inlined, so
 that a compiler given the whole sees the same functions), and each in a unit of its own for the
 parallel build (`units_of`: external, but hidden from the library's exported symbols).
+
+The parts of a function that runs once per output sample or per parameter set, not at each step
+(the monitors, the hoisted constants), are *cold*: their units open with `COLD_UNIT`, and the
+build compiles them for the compiler's speed rather than the code's (`numerics._compile`).
 """
 
 from __future__ import annotations
@@ -24,10 +28,13 @@ import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
-__all__ = ["MAX_STATEMENTS", "PART_MACROS", "Part", "function_text", "units_of"]
+__all__ = ["COLD_UNIT", "MAX_STATEMENTS", "PART_MACROS", "Part", "function_text", "part_unit", "units_of"]
 
 #: Most statements of one part (and of a function left whole).
 MAX_STATEMENTS = 700
+
+#: The first line of a cold part's unit: code that runs once per output sample or per parameter set.
+COLD_UNIT = "/* lagrangian: cold (runs once per output sample or per parameter set) */\n"
 
 #: What the parts' declarations mean, in the one-unit source and in the units of a parallel build.
 PART_MACROS = {
@@ -45,10 +52,12 @@ _ARGUMENT_NAME = re.compile(r"\b_[ypkt]\w*")
 
 @dataclass(frozen=True)
 class Part:
-    """One part of a long function: its declaration (``LG_PART void name(...)``) and its C text."""
+    """One part of a long function: its declaration (``LG_PART void name(...)``), its C text, and whether
+    it is cold (run once per output sample or per parameter set, not at each step)."""
 
     declaration: str
     text: str
+    cold: bool = False
 
 
 def _declarations(header: Mapping[str, str], lines: Sequence[str]) -> list[str]:
@@ -62,7 +71,7 @@ def _argument_names(arguments: str) -> list[str]:
 
 
 def function_text(signature: str, header: Mapping[str, str], body: Sequence[str], parts: list[Part],
-                  preamble: Sequence[str] = (), *, limit: int | None = None) -> str:
+                  preamble: Sequence[str] = (), *, limit: int | None = None, cold: bool = False) -> str:
     """``signature { declarations; body }``, in parts (appended to ``parts``) when the body is long.
 
     ``header`` maps the names the body may read from the arguments to their C expressions
@@ -71,7 +80,8 @@ def function_text(signature: str, header: Mapping[str, str], body: Sequence[str]
     copy of them is held for the whole part (a part's register allocator would spill most of them
     to its stack: measured on the 30-joint arm, q̈ 7 % faster so than with the copies).
     ``preamble`` lines open the function (``lg_constants`` defines t and y there).  ``limit``:
-    the most statements of a part, default `MAX_STATEMENTS`.
+    the most statements of a part, default `MAX_STATEMENTS`.  ``cold``: the function runs once per
+    output sample or per parameter set (its parts are compiled for speed of compiling).
 
     The outputs (``M[3] = ...``) stay where the generators put them, after the locals: moved up
     between the statements, they are stores that the compiler must assume may change ``y`` and
@@ -109,13 +119,17 @@ def function_text(signature: str, header: Mapping[str, str], body: Sequence[str]
             m = _DEFINITION.match(line)
             if m and m.group(1) in slots:  # a later part reads it: stored once, as soon as it is defined
                 lines.append(f"    lg_w[{slots[m.group(1)]}] = {m.group(1)};")
-        parts.append(Part(declaration, declaration + " {\n" + "\n".join(lines) + "\n}\n"))
+        parts.append(Part(declaration, declaration + " {\n" + "\n".join(lines) + "\n}\n", cold))
         calls.append(f"    {part}({', '.join([*names, 'lg_w'])});")
     # The values carried between parts, on the caller's stack (as the spill slots of one long function were).
     return signature + " {\n" + f"    double lg_w[{max(len(slots), 1)}];\n" + "\n".join(calls) + "\n}\n"
 
 
+def part_unit(part: Part) -> str:
+    """The translation unit of one part in a parallel build: the part alone, with what it needs of C."""
+    return (COLD_UNIT if part.cold else "") + "#include <math.h>\n" + PART_MACROS["unit"] + "\n" + part.text
+
+
 def units_of(parts: Sequence[Part], main: str) -> tuple[str, ...]:
     """The translation units of a parallel build: ``main`` (which declares the parts), then one per part."""
-    head = "#include <math.h>\n" + PART_MACROS["unit"] + "\n"
-    return (main, *(head + part.text for part in parts))
+    return (main, *(part_unit(part) for part in parts))

@@ -19,8 +19,11 @@ the same method, coefficient for coefficient.
 
 from __future__ import annotations
 
+import importlib.util
 from functools import cache
 from importlib import resources
+from pathlib import Path
+from types import ModuleType
 
 import numpy as np
 
@@ -38,9 +41,32 @@ def runtime_source(name: str) -> str:
     return resources.files(__package__).joinpath("runtime").joinpath(name).read_text(encoding="utf-8")
 
 
+def _scipy_dop853_coefficients() -> ModuleType:
+    """SciPy's ``scipy.integrate._ivp.dop853_coefficients``, loaded from its file alone.
+
+    Importing it the usual way imports ``scipy.integrate`` first (0.4 s, most of SciPy's
+    integrators, quadratures and special functions), which a model compiled for the first
+    time would wait for and not use; the module itself needs NumPy only.  Where SciPy's
+    layout is not the one expected, the usual import is used.
+    """
+    spec = importlib.util.find_spec("scipy")  # finds the package, does not import it
+    folders = list(spec.submodule_search_locations or ()) if spec is not None else []
+    for folder in folders:
+        path = Path(folder) / "integrate" / "_ivp" / "dop853_coefficients.py"
+        alone = importlib.util.spec_from_file_location("lagrangian.codegen._scipy_dop853", path)
+        if path.is_file() and alone is not None and alone.loader is not None:
+            module = importlib.util.module_from_spec(alone)
+            alone.loader.exec_module(module)
+            return module
+    from scipy.integrate._ivp import dop853_coefficients
+
+    return dop853_coefficients
+
+
+@cache
 def dop853_defines() -> dict[str, str]:
     """DOP853's tableau as C macros (``LG_DOP_A``: initialisers), from SciPy's own coefficient module."""
-    from scipy.integrate._ivp import dop853_coefficients as c
+    c = _scipy_dop853_coefficients()
 
     def init(a: np.ndarray) -> str:
         if a.ndim == 1:

@@ -29,7 +29,7 @@ from ..analysis import FirstIntegral, first_integrals, tree_integrals
 from ..codegen import GeneratedSource, generate_c, monitor_expressions
 from ..dynamics import EquationsOfMotion
 from ..errors import SimulationError
-from ._compile import cached_library, compile_library, compiler
+from ._compile import Compilers, cached_library, compile_library, compiler
 from ._fastcall import rhs_caller
 from ._input_code import law_code
 from ._inputs import InputLaw, resolve_inputs
@@ -148,12 +148,18 @@ class CompiledSystem:
         self._t1 = np.zeros(1)
 
     def _compile(self, key: str | None) -> None:
-        """Generate the C source, compile (or find) its library and bind it; store the plan under ``key``."""
-        generated = self._generated = generate_c(self.eom, self.first_integrals, self._events, law=self._code)
+        """Generate the C source, compile (or find) its library and bind it; store the plan under ``key``.
+
+        The units of the long functions' parts are compiled as they are generated (`Compilers`).
+        """
+        with Compilers() as compilers:
+            generated = self._generated = generate_c(self.eom, self.first_integrals, self._events, law=self._code,
+                                                     on_unit=compilers.part)
+            library = compile_library(generated.units, generated.key, compilers=compilers)
         integrals = tuple(fi.name for fi in self.first_integrals)
         monitors = tuple(name for name, _ in monitor_expressions(self.eom, self.first_integrals,
                                                                   recursive=self._recursive))
-        if not self._bind(compile_library(generated.units, generated.key), integrals, monitors, generated.constants):
+        if not self._bind(library, integrals, monitors, generated.constants):
             raise SimulationError("The compiled library does not have the dimensions of the model it was made for.",
                                   fix="report this as a bug of lagrangian, with the model file")
         if key is not None:
