@@ -29,6 +29,7 @@ import atexit
 import ctypes
 import hashlib
 import os
+import queue
 import shlex
 import shutil
 import stat
@@ -37,7 +38,8 @@ import sys
 import tempfile
 import threading
 from collections.abc import Callable, Sequence
-from concurrent.futures import Future, ThreadPoolExecutor
+from concurrent.futures import Future
+from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
 from types import TracebackType
@@ -308,11 +310,13 @@ class Compilers:
 
     A long model's parts (`codegen._cparts`) are handed over while the rest of its C is being
     generated (`part`, given to `codegen.generate_c` as ``on_unit``), so that the compilers work
-    while Python writes: for the 30-joint arm, about 2 s of generation beside some 7 s of compiling.
-    Each compiler runs in a thread of a pool, which waits on it without holding the interpreter.
+    while Python writes: for the 30-joint arm, about 2 s of generation beside some 6 s of compiling.
+    Each compiler is run by a worker thread, which waits on it without holding the interpreter.
     `build_shared` then asks for every unit (`object_of`: the one already compiled, or compiled
-    now) and links.  Leaving the ``with`` block stops the compilers still running and removes
-    their files, whether the build was linked, found in the cache, or abandoned on an error.
+    now) and links.  The main unit, the last written and the longest to compile (the integrators,
+    at -O2), goes before the parts still waiting, so that the build does not end on it alone.
+    Leaving the ``with`` block stops the compilers still running and removes their files, whether
+    the build was linked, found in the cache, or abandoned on an error.
 
     Parameters
     ----------
@@ -323,8 +327,10 @@ class Compilers:
         self.flags = tuple(flags)
         self._cc = compiler()
         self._folder: Path | None = None
-        self._pool: ThreadPoolExecutor | None = None
         self._objects: dict[tuple[str, bool], Future[tuple[int, str, Path]]] = {}
+        # (rank, order, job): the main unit (rank 0) before the parts (rank 1), each rank in order.
+        self._waiting: queue.PriorityQueue[tuple[int, int, _Job | None]] = queue.PriorityQueue()
+        self._workers: list[threading.Thread] = []
         self._running: set[subprocess.Popen] = set()
         self._lock = threading.Lock()
         self._closed = False
@@ -349,42 +355,73 @@ class Compilers:
             if self._cc is None or self._closed:
                 raise SimulationError("The compilers of this build are not available (no compiler, or closed).",
                                       fix="report this as a bug of lagrangian, with the model file")
-            if self._pool is None or self._folder is None:
+            if self._folder is None:
                 self._folder = Path(tempfile.mkdtemp(prefix="lagrangian-units-"))
-                self._pool = ThreadPoolExecutor(max_workers=jobs(), thread_name_prefix="lagrangian-cc")
-            folder, k = self._folder, len(self._objects)
-            c_file, o_file = folder / f"unit{k}.c", folder / f"unit{k}.o"
+            k = len(self._objects)
+            c_file, o_file = self._folder / f"unit{k}.c", self._folder / f"unit{k}.o"
             c_file.write_text(unit, encoding="utf-8")
             words = [*self._cc, *(w for w in FLAGS if w != "-shared"), *self.flags, *unit_flags(unit, part=part),
                      "-c", "-o", str(o_file), str(c_file)]
-            self._objects[key] = self._pool.submit(self._compile, words, o_file, f"cc{k}")
+            future: Future[tuple[int, str, Path]] = Future()
+            self._objects[key] = future
+            self._waiting.put((int(part), k, _Job(words, o_file, f"cc{k}", future)))
+            if len(self._workers) < jobs():
+                worker = threading.Thread(target=self._work, name=f"lagrangian-cc{len(self._workers)}", daemon=True)
+                self._workers.append(worker)
+                worker.start()
         return self._objects[key]
 
-    def _compile(self, words: list[str], o_file: Path, name: str) -> tuple[int, str, Path]:
-        log = o_file.parent / f"{name}.log"
+    def _work(self) -> None:
+        """A worker: the waiting jobs, best rank first, until `close` sends it ``None``."""
+        while True:
+            job = self._waiting.get()[2]
+            if job is None:
+                return
+            if job.future.set_running_or_notify_cancel():
+                job.future.set_result(self._compile(job))
+
+    def _compile(self, job: _Job) -> tuple[int, str, Path]:
+        log = job.o_file.parent / f"{job.name}.log"
         with open(log, "w", encoding="utf-8") as handle:  # a file, not a pipe: a full pipe would block it
             with self._lock:
                 if self._closed:
-                    return 1, "the build was stopped", o_file
-                process = subprocess.Popen(words, stdout=handle, stderr=subprocess.STDOUT)
+                    return 1, "the build was stopped", job.o_file
+                try:
+                    process = subprocess.Popen(job.words, stdout=handle, stderr=subprocess.STDOUT)
+                except OSError as exc:  # the compiler cannot be started: the build's error says why
+                    return 127, f"{job.words[0]}: {exc}", job.o_file
                 self._running.add(process)
             try:
                 status = process.wait()
             finally:
                 with self._lock:
                     self._running.discard(process)
-        return status, "" if status == 0 else log.read_text(encoding="utf-8", errors="replace"), o_file
+        return status, "" if status == 0 else log.read_text(encoding="utf-8", errors="replace"), job.o_file
 
     def close(self) -> None:
-        """Stop the compilers still running, wait for their threads, and remove the objects' folder."""
+        """Stop the compilers still running, end the workers, and remove the objects' folder."""
         with self._lock:
             self._closed = True
             for process in self._running:
                 process.kill()
-        if self._pool is not None:
-            self._pool.shutdown(wait=True, cancel_futures=True)
+        for _ in self._workers:
+            self._waiting.put((-1, 0, None))  # before any job still waiting
+        for worker in self._workers:
+            worker.join()
+        for future in self._objects.values():
+            future.cancel()  # those never started
         if self._folder is not None:
             shutil.rmtree(self._folder, ignore_errors=True)
+
+
+@dataclass(frozen=True)
+class _Job:
+    """One unit to compile: the command, the object file it writes, its log's name, and its future."""
+
+    words: list[str]
+    o_file: Path
+    name: str
+    future: Future[tuple[int, str, Path]]
 
 
 def _link(command: Sequence[str], compilers: Compilers, units: Sequence[str], built: Path) -> None:
