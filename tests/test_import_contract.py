@@ -22,9 +22,8 @@ name — and checked against three rules:
    as siblings share helpers; the top-level private modules (``lagrangian._atomic``) are shared by
    the whole package.
 
-`EXCEPTIONS` lists, with the reason, the few imports that break a rule by design; `PENDING`
-lists those that wait for work in progress on the files concerned, to be removed as it lands.
-Each entry must still match an import: a stale entry fails, so both lists only shrink.
+`EXCEPTIONS` lists, with the reason, the imports that break a rule by design.  Each entry must
+still match an import: a stale entry fails, so the list only shrinks.
 """
 
 from __future__ import annotations
@@ -33,8 +32,6 @@ import ast
 import functools
 from dataclasses import dataclass
 from pathlib import Path
-
-import pytest
 
 SRC = Path(__file__).resolve().parents[1] / "src"
 PACKAGE = SRC / "lagrangian"
@@ -77,39 +74,6 @@ EXCEPTIONS: dict[tuple[str, str], str] = {
         "`sweep(model, name, values, t_end=...)` given a model with unilateral contacts maps its impacts "
         "(one verb for both sweeps, docs/contacts.md); the simulation it needs is numerics', imported on use.",
 }
-
-#: Imports that break a rule in files other work is rewriting; the entry goes when that work lands.
-PENDING: dict[tuple[str, str], str] = {
-    # The report's subpackage (output/_report/, being renamed): import from the stages' faces, where every
-    # name below is exported, and from the public modules lagrangian.model.vectors and
-    # lagrangian.view3d.html; then delete the shims model/_vector.py and view3d/_html.py.
-    ("lagrangian.output._report", "lagrangian.model._texts.in_language"): "use lagrangian.model",
-    ("lagrangian.output._report.build", "lagrangian.model._texts.in_language"): "use lagrangian.model",
-    ("lagrangian.output._report.document", "lagrangian.view3d._still.still_png"): "use lagrangian.view3d",
-    ("lagrangian.output._report.joints", "lagrangian.dynamics._constraints.describe_constraints"): "use lagrangian.dynamics",
-    ("lagrangian.output._report.joints", "lagrangian.model._vector.AXES"): "use lagrangian.model.vectors",
-    ("lagrangian.output._report.render.html", "lagrangian.view3d._html.CSP"): "use lagrangian.view3d.html",
-    ("lagrangian.output._report.render.html", "lagrangian.view3d._html.fragment"): "use lagrangian.view3d.html",
-    ("lagrangian.output._report.render.html", "lagrangian.view3d._html.library"): "use lagrangian.view3d.html",
-    ("lagrangian.output._report.size", "lagrangian.model._vector.as_expr"): "use lagrangian.model.vectors",
-    ("lagrangian.output._report.steps.contact", "lagrangian.analysis._newton_euler.given_efforts"): "use lagrangian.analysis",
-    ("lagrangian.output._report.steps.equations", "lagrangian.analysis._energy_balance.PowerTerm"): "use lagrangian.analysis",
-    ("lagrangian.output._report.steps.equations", "lagrangian.analysis._energy_balance.energy_balance"):
-        "use lagrangian.analysis",
-    ("lagrangian.output._report.steps.equations", "lagrangian.dynamics._constraints.multiplier_formulas"):
-        "use lagrangian.dynamics",
-    ("lagrangian.output._report.steps.forces", "lagrangian.dynamics._inertial.inertial_torsors"): "use lagrangian.dynamics",
-    ("lagrangian.output._report.steps.kinematics", "lagrangian.dynamics._inertial.RelativeKinematics"):
-        "use lagrangian.dynamics",
-    ("lagrangian.output._report.steps.small_motions", "lagrangian.analysis._closed_small_motions.closed_point"):
-        "use lagrangian.analysis",
-    ("lagrangian.output._report.steps.small_motions", "lagrangian.analysis._closed_small_motions.pulsations_squared"):
-        "use lagrangian.analysis",
-    ("lagrangian.output._report.steps.statement", "lagrangian.dynamics._constraints.describe_constraints"):
-        "use lagrangian.dynamics",
-    ("lagrangian.output._report.steps.statement", "lagrangian.model._texts.in_language"): "use lagrangian.model",
-}
-
 
 @dataclass(frozen=True)
 class Import:
@@ -285,15 +249,13 @@ def test_peers_form_no_circle() -> None:
 
 def test_imports_keep_to_the_contract() -> None:
     broken = _broken()
-    allowed = EXCEPTIONS.keys() | PENDING.keys()
-    unexpected = [line for key, lines in sorted(broken.items()) if key not in allowed for line in lines]
+    unexpected = [line for key, lines in sorted(broken.items()) if key not in EXCEPTIONS for line in lines]
     assert not unexpected, f"{len(unexpected)} imports break the contract:\n" + "\n".join(unexpected)
 
 
-@pytest.mark.parametrize("listed", [EXCEPTIONS, PENDING], ids=["exceptions", "pending"])
-def test_listed_imports_still_break_a_rule(listed: dict[tuple[str, str], str]) -> None:
-    # An entry whose import is gone (or now allowed) is removed, so the lists only shrink.
-    stale = sorted(set(listed) - set(_broken()))
+def test_exceptions_still_break_a_rule() -> None:
+    # An entry whose import is gone (or now allowed) is removed, so the list only shrinks.
+    stale = sorted(set(EXCEPTIONS) - set(_broken()))
     assert not stale, f"entries that no longer match a forbidden import: {stale}"
 
 
