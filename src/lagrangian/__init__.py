@@ -44,11 +44,11 @@ _WHERE = {
     ".dynamics": ("derive", "EquationsOfMotion", "LagrangeEquation"),
     ".analysis": ("first_integrals", "FirstIntegral", "energy_balance", "EnergyBalance", "verify", "Verification",
                   "analyse_top", "TopAnalysis", "linearize", "holding_inputs", "LinearModel", "LinearizationError",
-                  "modes", "Modes", "stability", "Stability", "sweep", "Sweep", "Equilibrium", "routh_reduction",
+                  "modes", "Modes", "stability", "Stability", "Sweep", "Equilibrium", "routh_reduction",
                   "steady_motions", "equilibria", "lqr", "Feedback", "ControlError"),
     ".numerics": ("compile_system", "CompiledSystem", "compile_free_system", "FreeBodySystem", "simulate",
                   "Sensitivities", "ensemble", "grid", "open_ensemble", "EventSpec", "InputTable", "Switch",
-                  "ContactEvent", "impact_sweep", "ImpactSweep", "Trajectory", "save_trajectory", "load_trajectory"),
+                  "ContactEvent", "sweep", "impact_sweep", "ImpactSweep", "Trajectory", "save_trajectory", "load_trajectory"),
     ".identification": ("identify", "Identification"),
     ".optimal": ("optimize", "load_problem", "Problem", "Objective", "OptimalTrajectory"),
     ".codegen": ("export",),
@@ -86,7 +86,6 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly (te
     from .analysis import routh_reduction as routh_reduction
     from .analysis import stability as stability
     from .analysis import steady_motions as steady_motions
-    from .analysis import sweep as sweep
     from .analysis import verify as verify
     from .codegen import export as export
     from .dynamics import EquationsOfMotion as EquationsOfMotion
@@ -130,6 +129,7 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly (te
     from .numerics import open_ensemble as open_ensemble
     from .numerics import save_trajectory as save_trajectory
     from .numerics import simulate as simulate
+    from .numerics import sweep as sweep
     from .optimal import Objective as Objective
     from .optimal import OptimalTrajectory as OptimalTrajectory
     from .optimal import Problem as Problem
