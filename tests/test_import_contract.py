@@ -67,9 +67,6 @@ EXCEPTIONS: dict[tuple[str, str], str] = {
         "display, which is drawn in the course's notation, bounded in size, by output. The values' display "
         "methods call `lagrangian._display.render`, which imports output's table on first display: the one "
         "upward import for every display, made on use and with no registration at import time.",
-    ("lagrangian.dynamics._lagrange", "lagrangian.output.sympy_equations"):
-        "`EquationsOfMotion.to_sympy()`, the interop users look for on the equations; the conversion also "
-        "gives the first integrals (analysis), so it lives in output and is imported on use.",
 }
 
 

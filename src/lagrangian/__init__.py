@@ -52,7 +52,7 @@ _WHERE = {
     ".identification": ("identify", "Identification"),
     ".optimal": ("optimize", "load_problem", "Problem", "Objective", "OptimalTrajectory"),
     ".codegen": ("export",),
-    ".output": ("report", "Report"),
+    ".output": ("report", "Report", "sympy_equations"),
     ".view3d": ("view", "View"),
     ".errors": ("LagrangianError", "ModelError", "KinematicsError", "DerivationError", "SimulationError",
                 "OutputError", "ExportError", "VerificationError", "IdentificationError", "ProblemError",
@@ -137,6 +137,7 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly (te
     from .optimal import optimize as optimize
     from .output import Report as Report
     from .output import report as report
+    from .output import sympy_equations as sympy_equations
     from .view3d import View as View
     from .view3d import view as view
 

@@ -1,10 +1,12 @@
 """Stage 7 — output: the derivation in the course's notation, as text, LaTeX and JSON.
 
-``export`` and ``EXPORT_TARGETS`` are the code-generation stage's (`lagrangian.codegen`), re-exported here.
+``export`` and ``EXPORT_TARGETS`` are the code-generation stage's (`lagrangian.codegen`), re-exported here;
+``SympyEquations``, what ``sympy_equations`` and ``eom.to_sympy()`` return, is the dynamics stage's.
 """
 
 from ..codegen import EXPORT_TARGETS as EXPORT_TARGETS
 from ..codegen import export as export
+from ..dynamics import SympyEquations as SympyEquations
 from ._course import CourseForm as CourseForm
 from ._course import course_form as course_form
 
@@ -30,8 +32,7 @@ from ._report import ReportFigure as ReportFigure
 from ._report import format_for as format_for
 from ._report import report as report
 from ._report.size import SizeGate as SizeGate
-from ._sympy_form import SympyEquations as SympyEquations
-from ._sympy_form import sympy_equations as sympy_equations
+from ._sympy_equations import sympy_equations as sympy_equations
 from ._text import Supplement as Supplement
 from ._text import render_text as render_text
 from ._text import supplement as supplement
