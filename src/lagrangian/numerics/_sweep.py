@@ -54,7 +54,6 @@ def sweep(source: Any, name: str, values: Sequence[float] | np.ndarray, **keywor
         A source that is not a linearization, given without ``t_end``; and `eigenvalue_sweep`'s errors.
     SimulationError
         `impact_sweep`'s errors: a model without contacts, an unknown name, no value.
-
     """
     if isinstance(source, LinearModel):
         return eigenvalue_sweep(source, name, values, **keywords)
