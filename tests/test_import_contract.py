@@ -60,14 +60,10 @@ PEERS = {
     ("plotting", "output"),  # figures labelled in the course's notation
 }
 
-#: Imports that break a rule by design: (importing module, imported module or module.name): why.
-EXCEPTIONS: dict[tuple[str, str], str] = {
-    ("lagrangian._display", "lagrangian.output._display.RENDERERS"):
-        "Jupyter asks a value of an early stage (equations, integrals, a linear model, a trajectory) for its "
-        "display, which is drawn in the course's notation, bounded in size, by output. The values' display "
-        "methods call `lagrangian._display.render`, which imports output's table on first display: the one "
-        "upward import for every display, made on use and with no registration at import time.",
-}
+#: Imports that break a rule by design: (importing module, imported module or module.name): why.  None at
+#: present: a value of an early stage that needs a later one's work gets it through the package's face,
+#: which stands above every stage (the Jupyter display, `lagrangian._display`), or the work moves down.
+EXCEPTIONS: dict[tuple[str, str], str] = {}
 
 
 @dataclass(frozen=True)

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from . import _display
 from ._lazy import lazy_names
 from ._version import __version__
 
@@ -144,3 +145,17 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly (te
 
 def __dir__() -> list[str]:
     return list(__all__)
+
+
+def _draw(value: object, form: str) -> str:
+    """Jupyter's display of a value of an early stage: output's `jupyter_repr`, loaded on the first display.
+
+    The values' display methods (dynamics, analysis, numerics) may not import output, a later stage;
+    the face, above every stage, lends them this drawer (`lagrangian._display`).
+    """
+    from .output import jupyter_repr
+
+    return jupyter_repr(value, form)
+
+
+_display.install(_draw)

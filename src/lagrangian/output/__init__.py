@@ -1,18 +1,17 @@
 """Stage 7 — output: the derivation in the course's notation, as text, LaTeX and JSON.
 
-``export`` and ``EXPORT_TARGETS`` are the code-generation stage's (`lagrangian.codegen`), re-exported here;
-``SympyEquations``, what ``sympy_equations`` and ``eom.to_sympy()`` return, is the dynamics stage's.
+``export`` and ``EXPORT_TARGETS`` are the code-generation stage's (`lagrangian.codegen`), re-exported here.
 """
 
 from ..codegen import EXPORT_TARGETS as EXPORT_TARGETS
 from ..codegen import export as export
-from ..dynamics import SympyEquations as SympyEquations
 from ._course import CourseForm as CourseForm
 from ._course import course_form as course_form
 
 # Shared with the command line: the course's forms, the intermediates, what derive prints besides.
 from ._course import reference_label as reference_label
 from ._course import to_sympy as to_sympy
+from ._display import jupyter_repr as jupyter_repr
 from ._equilibria_text import equilibria_text as equilibria_text
 from ._intermediates import needed_intermediates as needed_intermediates
 from ._intermediates import render_intermediates as render_intermediates
@@ -42,6 +41,7 @@ from ._top_text import top_analysis_text as top_analysis_text
 __all__ = ["CourseForm", "course_form", "EXPORT_TARGETS", "export", "SCHEMA_ID", "SCHEMA_VERSION", "derive_document", "render_latex",
            "LINEARIZE_SCHEMA_ID", "linearize_document",
            "Notation", "render_text", "Report", "ReportFigure", "report", "FORMATS", "format_for",
-           "SympyEquations", "sympy_equations", "equilibria_text", "linear_text", "modes_text", "sweep_text",
+           "sympy_equations", "equilibria_text", "linear_text", "modes_text", "sweep_text",
            "simulation_check_text", "top_analysis_text",
-           "reference_label", "to_sympy", "needed_intermediates", "render_intermediates", "Supplement", "supplement", "SizeGate"]
+           "reference_label", "to_sympy", "needed_intermediates", "render_intermediates", "Supplement", "supplement", "SizeGate",
+           "jupyter_repr"]
