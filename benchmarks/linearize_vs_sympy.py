@@ -12,7 +12,7 @@ Three questions, each answered with a peer timed in the same run:
    ``linearize``); the peer is SymPy's LagrangesMethod + linearize on the 5-link chain (the 20-link
    one takes SymPy far too long), and our time for the same 5-link chain.
 3. **A 1000-point eigenvalue sweep** of the bicycle (target: under 1 s): ours is
-   ``analysis.sweep`` (A(v) compiled once, eigenvalues, the stability changes found by root
+   ``analysis.eigenvalue_sweep`` (A(v) compiled once, eigenvalues, the stability changes found by root
    finding); the peer is ``sympy.lambdify`` of SymPy's A(v) and ``numpy.linalg.eigvals`` on the
    same grid (no root finding).
 
@@ -32,7 +32,7 @@ import sympy as sp
 from sympy.physics import mechanics as me
 
 import lagrangian
-from lagrangian.analysis import sweep
+from lagrangian.analysis import eigenvalue_sweep
 from lagrangian.model.zoo import planar_chain
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -144,10 +144,10 @@ def sweep_bicycle(peer_A) -> None:
     lin, _, _ = _ours_bicycle()
     grid = np.arange(0.0, 10.0 + 1e-9, 0.01)
     t0 = time.perf_counter()
-    s = sweep(lin, "v", grid)
+    s = eigenvalue_sweep(lin, "v", grid)
     ours_s = time.perf_counter() - t0
     found = ", ".join(f"{c.kind} at {c.value:.9f}" for c in s.changes)
-    print(f"  ours: analysis.sweep {ours_s * 1e3:.0f} ms (compile once, eigenvalues, root finding): {found}"
+    print(f"  ours: analysis.eigenvalue_sweep {ours_s * 1e3:.0f} ms (compile once, eigenvalues, root finding): {found}"
           f" (target < {TARGET_SWEEP_S:.0f} s: {'met' if ours_s < TARGET_SWEEP_S else 'MISSED'})")
     if peer_A is not None:
         t0 = time.perf_counter()

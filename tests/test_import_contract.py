@@ -1,8 +1,9 @@
 """The import contract: how the package's modules may import one another.
 
 Every import in ``src/lagrangian`` is read — at module level, inside functions, under
-``TYPE_CHECKING`` or ``try``, and ``importlib.import_module("lagrangian...")`` with a literal
-name — and checked against three rules:
+``TYPE_CHECKING`` or ``try``, and ``importlib.import_module("lagrangian...")`` or ``__import__`` with a
+literal name or an f-string (``f"lagrangian.cli._{name}"`` imports from ``lagrangian.cli``), and the
+tables of the lazy faces (``_WHERE``, `lagrangian._lazy`) — and checked against three rules:
 
 1. **Imports flow one way along the stages** (`STAGES`): a module imports its own stage or an
    earlier one, never a later one, not even lazily inside a function.  Packages that share a stage
@@ -22,9 +23,8 @@ name — and checked against three rules:
    as siblings share helpers; the top-level private modules (``lagrangian._atomic``) are shared by
    the whole package.
 
-`EXCEPTIONS` lists, with the reason, the few imports that break a rule by design; `PENDING`
-lists those that wait for work in progress on the files concerned, to be removed as it lands.
-Each entry must still match an import: a stale entry fails, so both lists only shrink.
+`EXCEPTIONS` lists, with the reason, the imports that break a rule by design.  Each entry must
+still match an import: a stale entry fails, so the list only shrinks.
 """
 
 from __future__ import annotations
@@ -33,8 +33,6 @@ import ast
 import functools
 from dataclasses import dataclass
 from pathlib import Path
-
-import pytest
 
 SRC = Path(__file__).resolve().parents[1] / "src"
 PACKAGE = SRC / "lagrangian"
@@ -63,52 +61,10 @@ PEERS = {
     ("plotting", "output"),  # figures labelled in the course's notation
 }
 
-#: Imports that break a rule by design: (importing module, imported module or module.name): why.
-EXCEPTIONS: dict[tuple[str, str], str] = {
-    ("lagrangian._display", "lagrangian.output._display.RENDERERS"):
-        "Jupyter asks a value of an early stage (equations, integrals, a linear model, a trajectory) for its "
-        "display, which is drawn in the course's notation, bounded in size, by output. The values' display "
-        "methods call `lagrangian._display.render`, which imports output's table on first display: the one "
-        "upward import for every display, made on use and with no registration at import time.",
-    ("lagrangian.dynamics._lagrange", "lagrangian.output.sympy_equations"):
-        "`EquationsOfMotion.to_sympy()`, the interop users look for on the equations; the conversion also "
-        "gives the first integrals (analysis), so it lives in output and is imported on use.",
-    ("lagrangian.analysis._modes", "lagrangian.numerics.impact_sweep"):
-        "`sweep(model, name, values, t_end=...)` given a model with unilateral contacts maps its impacts "
-        "(one verb for both sweeps, docs/contacts.md); the simulation it needs is numerics', imported on use.",
-}
-
-#: Imports that break a rule in files other work is rewriting; the entry goes when that work lands.
-PENDING: dict[tuple[str, str], str] = {
-    # The report's subpackage (output/_report/, being renamed): import from the stages' faces, where every
-    # name below is exported, and from the public modules lagrangian.model.vectors and
-    # lagrangian.view3d.html; then delete the shims model/_vector.py and view3d/_html.py.
-    ("lagrangian.output._report", "lagrangian.model._texts.in_language"): "use lagrangian.model",
-    ("lagrangian.output._report.build", "lagrangian.model._texts.in_language"): "use lagrangian.model",
-    ("lagrangian.output._report.document", "lagrangian.view3d._still.still_png"): "use lagrangian.view3d",
-    ("lagrangian.output._report.joints", "lagrangian.dynamics._constraints.describe_constraints"): "use lagrangian.dynamics",
-    ("lagrangian.output._report.joints", "lagrangian.model._vector.AXES"): "use lagrangian.model.vectors",
-    ("lagrangian.output._report.render.html", "lagrangian.view3d._html.CSP"): "use lagrangian.view3d.html",
-    ("lagrangian.output._report.render.html", "lagrangian.view3d._html.fragment"): "use lagrangian.view3d.html",
-    ("lagrangian.output._report.render.html", "lagrangian.view3d._html.library"): "use lagrangian.view3d.html",
-    ("lagrangian.output._report.size", "lagrangian.model._vector.as_expr"): "use lagrangian.model.vectors",
-    ("lagrangian.output._report.steps.contact", "lagrangian.analysis._newton_euler.given_efforts"): "use lagrangian.analysis",
-    ("lagrangian.output._report.steps.equations", "lagrangian.analysis._energy_balance.PowerTerm"): "use lagrangian.analysis",
-    ("lagrangian.output._report.steps.equations", "lagrangian.analysis._energy_balance.energy_balance"):
-        "use lagrangian.analysis",
-    ("lagrangian.output._report.steps.equations", "lagrangian.dynamics._constraints.multiplier_formulas"):
-        "use lagrangian.dynamics",
-    ("lagrangian.output._report.steps.forces", "lagrangian.dynamics._inertial.inertial_torsors"): "use lagrangian.dynamics",
-    ("lagrangian.output._report.steps.kinematics", "lagrangian.dynamics._inertial.RelativeKinematics"):
-        "use lagrangian.dynamics",
-    ("lagrangian.output._report.steps.small_motions", "lagrangian.analysis._closed_small_motions.closed_point"):
-        "use lagrangian.analysis",
-    ("lagrangian.output._report.steps.small_motions", "lagrangian.analysis._closed_small_motions.pulsations_squared"):
-        "use lagrangian.analysis",
-    ("lagrangian.output._report.steps.statement", "lagrangian.dynamics._constraints.describe_constraints"):
-        "use lagrangian.dynamics",
-    ("lagrangian.output._report.steps.statement", "lagrangian.model._texts.in_language"): "use lagrangian.model",
-}
+#: Imports that break a rule by design: (importing module, imported module or module.name): why.  None at
+#: present: a value of an early stage that needs a later one's work gets it through the package's face,
+#: which stands above every stage (the Jupyter display, `lagrangian._display`), or the work moves down.
+EXCEPTIONS: dict[tuple[str, str], str] = {}
 
 
 @dataclass(frozen=True)
@@ -143,6 +99,22 @@ def _is_package(dotted: str) -> bool:
     return (SRC.joinpath(*dotted.split(".")) / "__init__.py").is_file()
 
 
+def _called(call: ast.Call) -> str:
+    """The name of the function ``call`` calls: ``import_module`` for ``importlib.import_module(...)``."""
+    return call.func.attr if isinstance(call.func, ast.Attribute) else getattr(call.func, "id", "")
+
+
+def _named_module(arg: ast.expr) -> str | None:
+    """The module a literal name gives (``"lagrangian.output"``), or that the fixed start of an f-string
+    names (``f"lagrangian.cli._{name}"``: ``lagrangian.cli``); None for a name computed otherwise."""
+    if isinstance(arg, ast.Constant) and isinstance(arg.value, str):
+        return arg.value
+    if isinstance(arg, ast.JoinedStr) and arg.values and isinstance(arg.values[0], ast.Constant):
+        start = str(arg.values[0].value)
+        return start.rpartition(".")[0] or None  # what follows the last dot is cut by the formatted part
+    return None
+
+
 @functools.cache
 def all_imports() -> tuple[Import, ...]:
     """Every import of a `lagrangian` module or name in the package, at any depth of the code."""
@@ -153,19 +125,14 @@ def all_imports() -> tuple[Import, ...]:
             if isinstance(node, ast.Import):
                 found += [Import(importer, path, node.lineno, a.name, None) for a in node.names
                           if a.name.split(".")[0] == "lagrangian"]
-            elif (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)
-                  and node.func.attr == "import_module" and node.args
-                  and isinstance(node.args[0], ast.Constant) and isinstance(node.args[0].value, str)
-                  and node.args[0].value.split(".")[0] == "lagrangian"):
-                # importlib.import_module("lagrangian.output"): an import all the same
-                found.append(Import(importer, path, node.lineno, node.args[0].value, None))
+            elif isinstance(node, ast.Call) and _called(node) in ("import_module", "__import__") and node.args:
+                # importlib.import_module("lagrangian.output"), __import__(...), or f"lagrangian.output._{x}"
+                # (an import of what its fixed part names): an import all the same
+                module = _named_module(node.args[0])
+                if module is not None and module.split(".")[0] == "lagrangian":
+                    found.append(Import(importer, path, node.lineno, module, None))
             elif isinstance(node, ast.ImportFrom):
-                if node.level:
-                    base = package[:len(package) - (node.level - 1)]
-                    assert base, f"{path}:{node.lineno} imports above the package"
-                    module = ".".join(base) + ("." + node.module if node.module else "")
-                else:
-                    module = node.module or ""
+                module = _absolute(package, node.level, node.module, path, node.lineno)
                 if module.split(".")[0] != "lagrangian":
                     continue
                 for alias in node.names:
@@ -173,7 +140,25 @@ def all_imports() -> tuple[Import, ...]:
                         found.append(Import(importer, path, node.lineno, f"{module}.{alias.name}", None))
                     else:
                         found.append(Import(importer, path, node.lineno, module, alias.name))
+            elif (isinstance(node, ast.Assign) and any(getattr(t, "id", "") == "_WHERE" for t in node.targets)
+                  and isinstance(node.value, ast.Dict)):
+                # a lazy face's table (`lagrangian._lazy`): {"._modes": ("modes", ...)} imports those names
+                for key, names in zip(node.value.keys, node.value.values, strict=True):
+                    assert isinstance(key, ast.Constant) and isinstance(names, ast.Tuple), f"{path}:{node.lineno}"
+                    relative = key.value.lstrip(".")
+                    module = _absolute(package, len(key.value) - len(relative), relative or None, path, key.lineno)
+                    found += [Import(importer, path, key.lineno, module, n.value) for n in names.elts
+                              if isinstance(n, ast.Constant)]
     return tuple(found)
+
+
+def _absolute(package: tuple[str, ...], level: int, module: str | None, path: Path, line: int) -> str:
+    """The absolute name of ``from <level dots><module> import ...`` written in ``package``."""
+    if not level:
+        return module or ""
+    base = package[:len(package) - (level - 1)]
+    assert base, f"{path}:{line} imports above the package"
+    return ".".join(base) + ("." + module if module else "")
 
 
 def stage_of(dotted: str) -> tuple[int, str]:
@@ -285,15 +270,13 @@ def test_peers_form_no_circle() -> None:
 
 def test_imports_keep_to_the_contract() -> None:
     broken = _broken()
-    allowed = EXCEPTIONS.keys() | PENDING.keys()
-    unexpected = [line for key, lines in sorted(broken.items()) if key not in allowed for line in lines]
+    unexpected = [line for key, lines in sorted(broken.items()) if key not in EXCEPTIONS for line in lines]
     assert not unexpected, f"{len(unexpected)} imports break the contract:\n" + "\n".join(unexpected)
 
 
-@pytest.mark.parametrize("listed", [EXCEPTIONS, PENDING], ids=["exceptions", "pending"])
-def test_listed_imports_still_break_a_rule(listed: dict[tuple[str, str], str]) -> None:
-    # An entry whose import is gone (or now allowed) is removed, so the lists only shrink.
-    stale = sorted(set(listed) - set(_broken()))
+def test_exceptions_still_break_a_rule() -> None:
+    # An entry whose import is gone (or now allowed) is removed, so the list only shrinks.
+    stale = sorted(set(EXCEPTIONS) - set(_broken()))
     assert not stale, f"entries that no longer match a forbidden import: {stale}"
 
 
@@ -314,7 +297,7 @@ def _imp(importer: str, module: str, name: str | None = None) -> Import:
 def test_the_checker_finds_each_kind_of_break() -> None:
     assert violations(_imp("lagrangian.dynamics._lagrange", "lagrangian.output._display", "equations_latex"))
     assert any("stage 7" in v for v in violations(_imp("lagrangian.optimal._solve", "lagrangian.identification")))
-    assert any("circle" in v for v in violations(_imp("lagrangian.analysis._modes", "lagrangian.analysis", "sweep")))
+    assert any("circle" in v for v in violations(_imp("lagrangian.analysis._modes", "lagrangian.analysis", "modes")))
     assert any("circle" in v for v in violations(_imp("lagrangian.output._report.build", "lagrangian.output",
                                                       "Notation")))
     assert any("private to lagrangian.model" in v
@@ -324,6 +307,22 @@ def test_the_checker_finds_each_kind_of_break() -> None:
     assert any("__all__" in v for v in violations(_imp("lagrangian.analysis._modes", "lagrangian.dynamics", "se")))
     assert any("later stage" in v for v in violations(_imp("lagrangian.errors", "lagrangian.model")))
     assert any("later stage" in v for v in violations(_imp("lagrangian.cli.main", "lagrangian", "derive")))
+
+
+def test_the_reader_sees_imports_made_by_name() -> None:
+    tree = ast.parse('import_module("lagrangian.output")\n__import__("lagrangian.numerics")\n'
+                     'importlib.import_module(f"lagrangian.view3d._{name}")\nimport_module(f"{name}.x")\n')
+    calls = [node for node in ast.walk(tree) if isinstance(node, ast.Call)]
+    assert [_named_module(c.args[0]) for c in calls if _called(c) in ("import_module", "__import__")] == [
+        "lagrangian.output", "lagrangian.numerics", "lagrangian.view3d", None]
+    face = PACKAGE / "analysis" / "__init__.py"
+    table = next(node for node in ast.parse(face.read_text(encoding="utf-8")).body
+                 if isinstance(node, ast.Assign) and getattr(node.targets[0], "id", "") == "_WHERE")
+    lazy = {imp.target for imp in all_imports()
+            if imp.importer == "lagrangian.analysis" and table.lineno <= imp.line <= (table.end_lineno or 0)}
+    assert {"lagrangian.analysis._modes.modes", "lagrangian.errors.AnalysisError"} <= lazy  # its `_WHERE` table
+    cli = [imp for imp in all_imports() if imp.importer == "lagrangian.cli._arguments.common"]
+    assert any(imp.module == "lagrangian.cli" for imp in cli)  # importlib.import_module(f"lagrangian.cli._{name}")
 
 
 def test_the_checker_allows_what_the_contract_allows() -> None:

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from . import _display
 from ._lazy import lazy_names
 from ._version import __version__
 
@@ -44,15 +45,15 @@ _WHERE = {
     ".dynamics": ("derive", "EquationsOfMotion", "LagrangeEquation"),
     ".analysis": ("first_integrals", "FirstIntegral", "energy_balance", "EnergyBalance", "verify", "Verification",
                   "analyse_top", "TopAnalysis", "linearize", "holding_inputs", "LinearModel", "LinearizationError",
-                  "modes", "Modes", "stability", "Stability", "sweep", "Sweep", "Equilibrium", "routh_reduction",
+                  "modes", "Modes", "stability", "Stability", "Sweep", "Equilibrium", "routh_reduction",
                   "steady_motions", "equilibria", "lqr", "Feedback", "ControlError"),
     ".numerics": ("compile_system", "CompiledSystem", "compile_free_system", "FreeBodySystem", "simulate",
                   "Sensitivities", "ensemble", "grid", "open_ensemble", "EventSpec", "InputTable", "Switch",
-                  "ContactEvent", "impact_sweep", "ImpactSweep", "Trajectory", "save_trajectory", "load_trajectory"),
+                  "ContactEvent", "sweep", "impact_sweep", "ImpactSweep", "Trajectory", "save_trajectory", "load_trajectory"),
     ".identification": ("identify", "Identification"),
     ".optimal": ("optimize", "load_problem", "Problem", "Objective", "OptimalTrajectory"),
     ".codegen": ("export",),
-    ".output": ("report", "Report"),
+    ".output": ("report", "Report", "sympy_equations"),
     ".view3d": ("view", "View"),
     ".errors": ("LagrangianError", "ModelError", "KinematicsError", "DerivationError", "SimulationError",
                 "OutputError", "ExportError", "VerificationError", "IdentificationError", "ProblemError",
@@ -86,7 +87,6 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly (te
     from .analysis import routh_reduction as routh_reduction
     from .analysis import stability as stability
     from .analysis import steady_motions as steady_motions
-    from .analysis import sweep as sweep
     from .analysis import verify as verify
     from .codegen import export as export
     from .dynamics import EquationsOfMotion as EquationsOfMotion
@@ -130,6 +130,7 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly (te
     from .numerics import open_ensemble as open_ensemble
     from .numerics import save_trajectory as save_trajectory
     from .numerics import simulate as simulate
+    from .numerics import sweep as sweep
     from .optimal import Objective as Objective
     from .optimal import OptimalTrajectory as OptimalTrajectory
     from .optimal import Problem as Problem
@@ -137,9 +138,24 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly (te
     from .optimal import optimize as optimize
     from .output import Report as Report
     from .output import report as report
+    from .output import sympy_equations as sympy_equations
     from .view3d import View as View
     from .view3d import view as view
 
 
 def __dir__() -> list[str]:
     return list(__all__)
+
+
+def _draw(value: object, form: str) -> str:
+    """Jupyter's display of a value of an early stage: output's `jupyter_repr`, loaded on the first display.
+
+    The values' display methods (dynamics, analysis, numerics) may not import output, a later stage;
+    the face, above every stage, lends them this drawer (`lagrangian._display`).
+    """
+    from .output import jupyter_repr
+
+    return jupyter_repr(value, form)
+
+
+_display.install(_draw)

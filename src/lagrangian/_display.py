@@ -3,32 +3,40 @@
 Jupyter asks a value for its display (``_repr_latex_``, ``_repr_markdown_``, ``_repr_html_``).
 The values live in early stages (`EquationsOfMotion` and `LagrangeEquation` in dynamics,
 `FirstIntegral` and `LinearModel` in analysis, `Trajectory` in numerics), but drawing them in the
-course's notation, bounded in size, is the output stage's work (``lagrangian/output/_display.py``,
-whose `RENDERERS` table maps each value type and form to its renderer).
+course's notation, bounded in size, is the output stage's work (`lagrangian.output.jupyter_repr`),
+and an early stage never imports a later one (the import contract, tests/test_import_contract.py).
 
-Each display method is one line, ``return render(self, "latex")``: the early stages import only
-this module, and `render` imports output's table on first display.  That import is the one that
-goes up the stages, in one place, listed with its reason among the import contract's exceptions
-(tests/test_import_contract.py).  Nothing is registered at import time: a display works whichever
-of the package's modules were imported before.
+So the dependency is turned around: each display method is one line, ``return render(self, "latex")``,
+and `render` hands the value to the *drawer* that the package's face installs (`install`).  The face,
+``lagrangian/__init__.py``, stands above every stage and runs before any module of the package: its
+drawer imports output on the first display, not before, so a display works whichever of the package's
+modules were imported, and importing the package loads nothing more.
 """
 
 from __future__ import annotations
 
-__all__ = ["render"]
+from collections.abc import Callable
+
+__all__ = ["install", "render"]
+
+#: Draws a value as a form (``"latex"``, ``"markdown"``, ``"html"``): installed by the package's face.
+Drawer = Callable[[object, str], str]
+
+_drawer: Drawer | None = None
+
+
+def install(drawer: Drawer) -> None:
+    """Make ``drawer`` the one that `render` calls (the package's face does, on import)."""
+    global _drawer
+    _drawer = drawer
 
 
 def render(value: object, form: str) -> str:
-    """``value`` drawn for Jupyter as ``form`` (``"latex"``, ``"markdown"`` or ``"html"``) by the output stage.
+    """``value`` drawn for Jupyter as ``form`` (``"latex"``, ``"markdown"`` or ``"html"``) by the installed drawer.
 
-    A subclass is drawn as its nearest base in the table (an `OptimalTrajectory` as a `Trajectory`).
-    Raises `KeyError` for a type or form that output does not draw (a programming error: each
-    display method names a form that `RENDERERS` has for its type).
+    Raises `KeyError` for a type or form that is not drawn (a programming error: each display
+    method names a form that output draws for its type).
     """
-    from .output._display import RENDERERS  # up the stages, on first display (module docstring)
-
-    for cls in type(value).__mro__:
-        renderer = RENDERERS.get((cls, form))
-        if renderer is not None:
-            return renderer(value)
-    raise KeyError((type(value).__name__, form))
+    if _drawer is None:  # a module of the package loaded without its face: not through `import`
+        raise RuntimeError("no drawer for Jupyter's display: import lagrangian")
+    return _drawer(value, form)

@@ -16,6 +16,7 @@ from lagrangian_test_support import EXAMPLES_DIR
 
 import lagrangian
 from lagrangian import LinearizationError, linearize
+from lagrangian.analysis import eigenvalue_sweep
 from lagrangian.model import parse_model
 from lagrangian.model.zoo import planar_chain
 
@@ -109,6 +110,11 @@ def test_bead_on_rotating_hoop_pitchfork():
     sw = lagrangian.sweep(lin, "Omega", np.linspace(1.0, 8.0, 71))
     lost = [c for c in sw.changes if c.kind == "stability lost"]
     assert len(lost) == 1 and lost[0].value == pytest.approx(crit, rel=1e-10)
+    # `lagrangian.sweep` (numerics) hands a linearization to the analysis' own sweep, which takes nothing else.
+    again = eigenvalue_sweep(lin, "Omega", np.linspace(1.0, 8.0, 71))
+    assert [(c.value, c.kind) for c in again.changes] == [(c.value, c.kind) for c in sw.changes]
+    with pytest.raises(LinearizationError, match="takes a linearization"):
+        eigenvalue_sweep(eom, "Omega", [1.0])  # type: ignore[arg-type]
 
 
 def test_constraint_reduction_cartesian_pendulum():

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 from lagrangian_test_support import eom_of
@@ -22,6 +25,19 @@ def test_equations_of_motion_display_the_seeds_equations() -> None:
     assert latex.count("L(") == 3 and r"L(\varphi)" in latex and r"L(\psi)" in latex
     md = eom._repr_markdown_()
     assert md.startswith("**Lagrange top**: 3 Lagrange equations") and r"\ddot{\theta}" in md
+
+
+def test_a_value_displays_itself_with_only_its_stage_imported() -> None:
+    """Output, a later stage, is loaded by the first display (through the package's face), not before."""
+    code = ("import sys\n"
+            "from lagrangian.dynamics import derive\n"
+            "from lagrangian.model.zoo import lagrange_top\n"
+            "eom = derive(lagrange_top())\n"
+            "before = 'lagrangian.output' in sys.modules\n"
+            "latex = eom._repr_latex_()\n"
+            "print(before, 'lagrangian.output' in sys.modules, latex.startswith('$$'))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["False", "True", "True"], out.stderr
 
 
 def test_one_lagrange_equation_and_first_integrals() -> None:

@@ -16,7 +16,7 @@ import pytest
 from lagrangian_test_support import EXAMPLES_DIR
 
 import lagrangian
-from lagrangian.analysis import sweep
+from lagrangian.analysis import eigenvalue_sweep
 from lagrangian.cli.main import main
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -121,7 +121,7 @@ def test_eigenvalues_at_5_m_per_s_are_the_papers():
 
 
 def test_sweep_finds_the_speeds_of_table_2():
-    s = sweep(_symbolic_in_v(), "v", np.arange(0.0, 10.0 + 1e-9, 0.01))
+    s = eigenvalue_sweep(_symbolic_in_v(), "v", np.arange(0.0, 10.0 + 1e-9, 0.01))
     found = {c.kind: c.value for c in s.changes}
     assert abs(found["eigenvalues become complex"] - _whipple.V_WEAVE_REAL) < 5e-7  # the paper gives 6 digits
     assert abs(found["stability gained"] - _whipple.V_WEAVE) < TOL_SPEED

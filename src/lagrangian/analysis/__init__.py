@@ -23,7 +23,7 @@ _WHERE = {
     "._linear_model": ("LinearizationError", "LinearModel", "SecondOrderForm", "to_numpy"),
     "._linearize": ("linearize", "holding_inputs"),
     "._lqr": ("lqr",),
-    "._modes": ("Mode", "Modes", "Stability", "StabilityChange", "Sweep", "modes", "stability", "sweep"),
+    "._modes": ("Mode", "Modes", "Stability", "StabilityChange", "Sweep", "eigenvalue_sweep", "modes", "stability"),
     "._steady": ("RouthReduction", "SteadyMotion", "routh_reduction", "steady_motions"),
     "._top": ("TopAnalysis", "analyse_top"),
     "._tree_integrals": ("tree_integrals",),
@@ -66,9 +66,9 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from ._modes import Stability as Stability
     from ._modes import StabilityChange as StabilityChange
     from ._modes import Sweep as Sweep
+    from ._modes import eigenvalue_sweep as eigenvalue_sweep
     from ._modes import modes as modes
     from ._modes import stability as stability
-    from ._modes import sweep as sweep
     from ._newton_euler import CoordinateCheck as CoordinateCheck
     from ._newton_euler import ElementTheorems as ElementTheorems
     from ._newton_euler import Verification as Verification
@@ -124,6 +124,7 @@ __all__ = [
     "analyse_top",
     "bifurcation",
     "check_trajectory",
+    "eigenvalue_sweep",
     "energy_balance",
     "equilibria",
     "first_integrals",
@@ -137,7 +138,6 @@ __all__ = [
     "routh_reduction",
     "stability",
     "steady_motions",
-    "sweep",
     "verify",
     "to_numpy",
     "given_efforts",

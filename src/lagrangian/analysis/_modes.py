@@ -37,7 +37,7 @@ from ._linear_model import LinearizationError, LinearModel
 from ._linear_model import to_numpy as _to_numpy
 from ._zero_modes import CLUSTER_RTOL, ZeroStructure, ignorable_columns, split_off, zero_structure
 
-__all__ = ["Mode", "Modes", "Stability", "StabilityChange", "Sweep", "modes", "stability", "sweep"]
+__all__ = ["Mode", "Modes", "Stability", "StabilityChange", "Sweep", "eigenvalue_sweep", "modes", "stability"]
 
 #: Relative size (to the spectral radius) below which a real part counts as zero.
 AXIS_RTOL = 1e-9
@@ -380,30 +380,21 @@ def _bisect(same_as_left, a: float, b: float) -> float:
     return 0.5 * (lo + hi)
 
 
-def sweep(lin: LinearModel, name: str, values: Sequence[float] | np.ndarray, **fixed: float) -> Sweep:
+def eigenvalue_sweep(lin: LinearModel, name: str, values: Sequence[float] | np.ndarray, **fixed: float) -> Sweep:
     """The essential eigenvalues against the parameter ``name``, and where stability changes.
 
     The linearization must keep ``name`` symbolic (``linearize(..., symbolic=(name,))``); A is
     compiled once.  Between grid points where the verdict (spectral abscissa max Re λ) changes
     sign, the crossing is found by Brent's method; where the number of non-real eigenvalues
     changes (a pair merging on the real axis, the bicycle's weave at 0.684 m/s), by bisection
-    to the last representable digit.
-
-    Given a model with unilateral contacts (a file, a `Model` or its equations) instead of a
-    linearization, ``sweep(model, "e", values, t_end=10)`` maps the impact outcomes against
-    ``name`` — impacts, bounces, rest time, energy lost (`lagrangian.numerics.impact_sweep`,
-    whose keywords it takes) — and returns an `ImpactSweep`.
+    to the last representable digit.  ``lagrangian.sweep`` (`lagrangian.numerics.sweep`) calls
+    it for a linearization, and maps a contact model's impacts instead.
     """
     if not isinstance(lin, LinearModel):
-        from ..numerics import impact_sweep  # up the stages, on demand (an exception of the import contract)
-
-        t_end = fixed.pop("t_end", None)
-        if t_end is None:
-            raise LinearizationError("sweep() takes a linearization (lagrangian.linearize), or a model with "
-                                     "unilateral contacts and t_end.",
-                                     fix='e.g. sweep(linearize(eom, point, symbolic=("Omega",)), "Omega", values), '
-                                         'or sweep("examples/bouncing_ball.toml", "e", values, t_end=10)')
-        return impact_sweep(lin, {name: values}, t_end, **fixed)
+        raise LinearizationError(f"eigenvalue_sweep() takes a linearization, not a {type(lin).__name__}.",
+                                 fix='e.g. eigenvalue_sweep(linearize(eom, point, symbolic=("Omega",)), "Omega", '
+                                     'values); for a model with unilateral contacts, lagrangian.sweep(model, "e", '
+                                     'values, t_end=10)')
     grid = np.asarray(values, dtype=float)
     if grid.ndim != 1 or grid.size == 0:
         raise LinearizationError("the sweep has no point.", fix="give a range with at least one value, e.g. v=0:10:0.01")

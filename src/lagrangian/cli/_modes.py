@@ -95,7 +95,7 @@ def run(args: argparse.Namespace) -> str:
     if folder is not None:
         _check_plot_folder(folder)
     eom = derive(model)
-    from ..analysis import sweep as sweep_of
+    from ..analysis import eigenvalue_sweep as sweep_of
 
     if sweep_name is None or values is None:  # no --sweep
         lin = lin_point = linearize_from_args(args, model, eom)

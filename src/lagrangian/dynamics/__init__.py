@@ -25,10 +25,11 @@ from ._lagrange import EquationsOfMotion as EquationsOfMotion
 from ._lagrange import LagrangeEquation as LagrangeEquation
 from ._lagrange import derive as derive
 from ._recursive import RecursiveForm as RecursiveForm
+from ._sympy_form import SympyEquations as SympyEquations
 
 __all__ = ["KineticEnergyTerm", "RigidInertia", "LoadForces", "generalized_forces", "EquationsOfMotion",
            "LagrangeEquation", "derive", "multiplier_formulas",
            "FORMULA_MAX_SIZE", "SLIDING_SUFFIX", "admissible_integrals", "describe_constraints", "reaction_efforts",
            "rigid_inertia", "FloatingForm", "floating_form", "friction_efforts", "sliding_direction",
            "RelativeKinematics", "inertial_torsors", "rotating_frame", "RecursiveForm",
-           "SlidingDirection", "mass_matrix_and_bias"]
+           "SlidingDirection", "mass_matrix_and_bias", "SympyEquations"]

@@ -19,7 +19,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import symengine as se
 
@@ -36,6 +36,9 @@ from ._inertia import mass_matrix_and_bias
 from ._inertial import inertial_forces, reference_kinematics
 from ._recursive import AUTO_MIN_DEPTH, RecursiveForm, recursive_form
 from ._tree import require_tree, tree_structure
+
+if TYPE_CHECKING:
+    from ._sympy_form import SympyEquations
 
 __all__ = ["FORMULATIONS", "EquationsOfMotion", "LagrangeEquation", "derive"]
 
@@ -260,18 +263,19 @@ class EquationsOfMotion:
                 return eq
         raise KeyError(coordinate)
 
-    def to_sympy(self, *, time_functions: bool = False):
-        """M, F, the equations L(q_i), T, U, L, the first integrals and λ's formulas as SymPy objects.
+    def to_sympy(self, *, time_functions: bool = False) -> SympyEquations:
+        """M, F, the equations L(q_i), T, U, L, the multipliers and λ's formulas as SymPy objects.
 
         Symbols are named as in the model (``theta``, ``theta_dot``, ``theta_ddot``, the
         parameters); with ``time_functions=True`` the coordinates are SymPy mechanics'
         ``dynamicsymbols`` θ(t) and the rates Derivative(θ(t), t), Derivative(θ(t), (t, 2)).
-        The conversion is structural (no text is parsed, nothing is simplified).  See
-        `lagrangian.output.SympyEquations` and docs/interop.md.
+        The conversion is structural (no text is parsed, nothing is simplified).  The same form
+        with the first integrals is ``lagrangian.sympy_equations(eom)``.  See `SympyEquations`
+        and docs/interop.md.
         """
-        from ..output import sympy_equations  # up the stages, on use (an exception of the import contract)
+        from ._sympy_form import sympy_form  # SymPy loaded on use, not with the stage
 
-        return sympy_equations(self, time_functions=time_functions)
+        return sympy_form(self, time_functions=time_functions)
 
     # -- Jupyter (IPython's display protocol: drawn by the output stage, `lagrangian._display`) -------
     def _repr_latex_(self) -> str:

@@ -7,7 +7,8 @@
 ``simulate`` picks the route a model needs from one registry (`_methods.ROUTES`): free bodies, unilateral
 contacts (phases between impacts; `simulate_contact` names that route), exact Coulomb friction
 (`simulate_stick_slip`), complementary constraints, plain M q̈ = F; ``impact_sweep`` maps what a model's
-contacts do against a parameter.
+contacts do against a parameter; ``sweep``, the one verb, follows a linearization's eigenvalues or a contact
+model's impacts.
 """
 
 from __future__ import annotations
@@ -36,6 +37,7 @@ _WHERE = {
     "._simulate": ("METHODS", "EventSpec", "default_tolerance", "initial_state", "simulate", "simulate_contact",
                    "simulate_stick_slip"),
     "._sensitivity": ("Sensitivities", "SensitivityColumn", "SensitivitySystem", "inverse_dynamics", "sensitivity_system"),
+    "._sweep": ("sweep",),
     "._system": ("CompiledSystem", "compile_system"),
     "._phases": ("check_trajectory_along", "reaction_history_along"),
     "._reaction_columns": ("reaction_columns_along",),
@@ -89,6 +91,7 @@ if TYPE_CHECKING:  # what static tools see: the same names, imported eagerly
     from ._simulate import simulate as simulate
     from ._simulate import simulate_contact as simulate_contact
     from ._simulate import simulate_stick_slip as simulate_stick_slip
+    from ._sweep import sweep as sweep
     from ._system import CompiledSystem as CompiledSystem
     from ._system import compile_system as compile_system
     from ._top_check import SimulationCheck as SimulationCheck
@@ -144,4 +147,5 @@ __all__ = [
     "simulate_contact",
     "simulate_stick_slip",
     "simulation_check",
+    "sweep",
 ]

@@ -11,6 +11,7 @@ from ._course import course_form as course_form
 # Shared with the command line: the course's forms, the intermediates, what derive prints besides.
 from ._course import reference_label as reference_label
 from ._course import to_sympy as to_sympy
+from ._display import jupyter_repr as jupyter_repr
 from ._equilibria_text import equilibria_text as equilibria_text
 from ._intermediates import needed_intermediates as needed_intermediates
 from ._intermediates import render_intermediates as render_intermediates
@@ -30,8 +31,7 @@ from ._report import ReportFigure as ReportFigure
 from ._report import format_for as format_for
 from ._report import report as report
 from ._report.size import SizeGate as SizeGate
-from ._sympy_form import SympyEquations as SympyEquations
-from ._sympy_form import sympy_equations as sympy_equations
+from ._sympy_equations import sympy_equations as sympy_equations
 from ._text import Supplement as Supplement
 from ._text import render_text as render_text
 from ._text import supplement as supplement
@@ -41,6 +41,7 @@ from ._top_text import top_analysis_text as top_analysis_text
 __all__ = ["CourseForm", "course_form", "EXPORT_TARGETS", "export", "SCHEMA_ID", "SCHEMA_VERSION", "derive_document", "render_latex",
            "LINEARIZE_SCHEMA_ID", "linearize_document",
            "Notation", "render_text", "Report", "ReportFigure", "report", "FORMATS", "format_for",
-           "SympyEquations", "sympy_equations", "equilibria_text", "linear_text", "modes_text", "sweep_text",
+           "sympy_equations", "equilibria_text", "linear_text", "modes_text", "sweep_text",
            "simulation_check_text", "top_analysis_text",
-           "reference_label", "to_sympy", "needed_intermediates", "render_intermediates", "Supplement", "supplement", "SizeGate"]
+           "reference_label", "to_sympy", "needed_intermediates", "render_intermediates", "Supplement", "supplement", "SizeGate",
+           "jupyter_repr"]

@@ -2,8 +2,9 @@ r"""Jupyter display of the engine's values: rendered math in the course's notati
 
 `EquationsOfMotion`, `LagrangeEquation`, `FirstIntegral`, `LinearModel` and `Trajectory`
 display themselves through ``_repr_latex_`` / ``_repr_markdown_`` / ``_repr_html_`` (IPython's
-display protocol), which call `lagrangian._display.render`: it looks the renderer up in
-`RENDERERS`, this module imported on first display.  Equations are printed as
+display protocol), which call `lagrangian._display.render`: it hands the value to `jupyter_repr`
+(installed there by the package's face, this module imported on first display), which looks the
+renderer up in `RENDERERS`.  Equations are printed as
 ``lagrangian derive --latex`` prints them (`Notation`: θ̈ is \ddot{\theta}, ψ̇² sinθ cosθ),
 e.g. the top's
 
@@ -31,6 +32,7 @@ from ._report.size import FOLD_LINES, SizeGate, wrap_latex
 
 __all__ = [
     "RENDERERS",
+    "jupyter_repr",
     "equation_latex",
     "equations_latex",
     "equations_markdown",
@@ -197,7 +199,7 @@ def _num(x: float) -> str:
     return text if np.isfinite(x) else r"\text{" + text + "}"
 
 
-#: The renderer of each value type and IPython form, for `lagrangian._display.render`.
+#: The renderer of each value type and IPython form, for `jupyter_repr`.
 RENDERERS: dict[tuple[type, str], Callable[[Any], str]] = {
     (EquationsOfMotion, "latex"): equations_latex,
     (EquationsOfMotion, "markdown"): equations_markdown,
@@ -209,3 +211,21 @@ RENDERERS: dict[tuple[type, str], Callable[[Any], str]] = {
     (Trajectory, "markdown"): trajectory_markdown,
     (Trajectory, "latex"): trajectory_latex,
 }
+
+
+def jupyter_repr(value: object, form: str) -> str:
+    """``value`` drawn for Jupyter as ``form`` (``"latex"``, ``"markdown"`` or ``"html"``): its ``_repr_*_``.
+
+    A subclass is drawn as its nearest base in `RENDERERS` (an `OptimalTrajectory` as a `Trajectory`).
+
+    Raises
+    ------
+    KeyError
+        A type or form that is not drawn (a programming error: each display method names a form that
+        `RENDERERS` has for its type).
+    """
+    for cls in type(value).__mro__:
+        renderer = RENDERERS.get((cls, form))
+        if renderer is not None:
+            return renderer(value)
+    raise KeyError((type(value).__name__, form))

@@ -282,7 +282,7 @@ _CHANGES = {"stability lost": "stability lost (an eigenvalue crosses into Re λ 
 
 def sweep_text(lin: LinearModel, sweep: Sweep, unit: str = "") -> str:
     """What ``lagrangian modes --sweep`` adds: where stability changes along the sweep
-    (`lagrangian.analysis.sweep`), and the ranges of each verdict; ``unit`` is the parameter's."""
+    (`lagrangian.analysis.eigenvalue_sweep`), and the ranges of each verdict; ``unit`` is the parameter's."""
     n = _notation(lin)
     p = n.symbol(sweep.parameter)
     values = np.asarray(sweep.values, dtype=float)

@@ -35,8 +35,7 @@ from ... import _atomic
 from ...analysis import FirstIntegral, Verification, first_integrals, verify
 from ...dynamics import EquationsOfMotion, derive
 from ...errors import OutputError
-from ...model import Model, load_model
-from ...model._texts import in_language
+from ...model import Model, in_language, load_model
 from .build import Context
 from .document import Document, Scene3D, Section, french_typography, map_math, map_text, pictures
 from .render.html import render_html

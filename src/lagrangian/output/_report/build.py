@@ -229,7 +229,7 @@ class Context:
         """A declared constraint as the prose names it: its description in the report's language (« la tige
         maintient OP = l »), else « la liaison k » by its rank in the model — never its identifier, which is
         the JSON's and the command line's."""
-        from ...model._texts import in_language
+        from ...model import in_language
 
         for k, con in enumerate(self.model.constraints, 1):
             if con.name == name:

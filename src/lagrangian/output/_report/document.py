@@ -117,7 +117,7 @@ class Scene3D:
     @property
     def png(self) -> bytes:
         if "png" not in self._still:
-            from ...view3d._still import still_png
+            from ...view3d import still_png
 
             self._still["png"] = still_png(self.scene, width=900, height=600)
         return self._still["png"]

@@ -35,7 +35,7 @@ import symengine as se
 from ..._identity import are_zero
 from ...dynamics import EquationsOfMotion
 from ...model import GALILEAN_FRAME, ORIGIN, Vector
-from ...model._vector import AXES
+from ...model.vectors import AXES
 
 __all__ = ["Joint", "joints", "degrees_of_freedom", "constraint_counts", "planar_normal"]
 
@@ -370,7 +370,7 @@ def constraint_counts(eom: EquationsOfMotion) -> tuple[int, int, int]:
     n − h independent parameters (a nonholonomic row restricts only the velocities).  A velocity
     row that integrates (the disk on an incline) counts as holonomic here, as in step 7.
     """
-    from ...dynamics._constraints import describe_constraints
+    from ...dynamics import describe_constraints
 
     holonomic_names = {info.name for info in describe_constraints(eom) if info.kind == "holonomic"}
     # A unilateral contact is an inequality g ≥ 0: it removes no parameter (only while closed).

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 import symengine as se
 import sympy
 
-from ...model._vector import as_expr
+from ...model.vectors import as_expr
 from .._course import to_sympy
 from .._notation import Notation, Opaque
 from .document import Equation

@@ -209,7 +209,7 @@ def _scene(b: Scene3D, scenes: list[int] | None) -> str:
     """A 3-D figure: in a page, the viewer's element and data (the library once, at the end of the page); in a
     notebook (``scenes`` None), the view's own page in an iframe, which needs no script of the notebook's."""
     from ....view3d import View
-    from ....view3d._html import fragment
+    from ....view3d.html import fragment
 
     caption = f'<figcaption>{_runs(b.caption)}</figcaption>'
     if scenes is None:
@@ -244,7 +244,7 @@ def render_html(doc: Document, *, footer: str = "", fragment: bool = False) -> s
     body = _body(doc, footer, scenes)
     head, tail = "", ""
     if scenes:
-        from ....view3d._html import CSP, library
+        from ....view3d.html import CSP, library
 
         head = f'<meta http-equiv="Content-Security-Policy" content="{CSP}">'
         tail = f"<script>\n{library()}\n</script>"

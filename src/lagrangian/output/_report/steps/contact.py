@@ -54,7 +54,7 @@ def normal_force(c: Context, load: CoulombFriction) -> tuple[str, se.Basic, se.B
     None when the projection does not isolate N: no unit normal given, the element moves along n, or a
     complementary constraint acts on it (its multiplier would enter the projection too).
     """
-    from ....analysis._newton_euler import given_efforts
+    from ....analysis import given_efforts
 
     if load.normal is None:
         return None
@@ -153,7 +153,7 @@ def contact_blocks(c: Context) -> list[Block]:
 
 def given_names(c: Context, name: str) -> list[str]:
     """The loads acting on element ``name`` as forces (gravity, forces, springs...), in the model's order."""
-    from ....analysis._newton_euler import given_efforts
+    from ....analysis import given_efforts
 
     efforts = {e.element: e for e in given_efforts(c.eom)[0]}
     return list(efforts[name].loads) if name in efforts else []

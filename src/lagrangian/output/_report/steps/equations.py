@@ -304,7 +304,7 @@ def step7(c: Context) -> Section:
 
 def _multipliers(c: Context) -> tuple[se.Basic, ...] | None:
     """λ_k(q, q̇, t) solved from the Lagrange equations and the constraint equations differentiated."""
-    from ....dynamics._constraints import multiplier_formulas
+    from ....dynamics import multiplier_formulas
     from ....errors import DerivationError
 
     if sum(1 for con in c.model.constraints if con.unilateral) > 1:
@@ -637,7 +637,7 @@ def integrals_section(c: Context) -> Section:
 
 def _balance(c: Context) -> list[Block]:
     """dE/dt = P_nc term by term, E = T + U_P, when no energy integral holds (friction, driving, prescribed motion)."""
-    from ....analysis._energy_balance import energy_balance
+    from ....analysis import energy_balance
 
     w = c.w
     try:
@@ -655,7 +655,7 @@ def _balance(c: Context) -> list[Block]:
         timed = [t for t in terms if t.kind in ("explicit time", "prescribed motion")]
         minus_dL = se.Add(*(t.power for t in timed if t.kind == "explicit time")) - dT_dt
         rate = next(t.power for t in timed if t.kind == "prescribed motion") + dT_dt
-        from ....analysis._energy_balance import PowerTerm
+        from ....analysis import PowerTerm
 
         merged = [PowerTerm("-dL/dt", "minus dL/dt", minus_dL, ""), PowerTerm("d(T1+2T0)/dt", "T1 T0", rate, "")]
         terms = [t for t in terms if t not in timed] + [t for t in merged if not are_zero([t.power])[0]]

@@ -158,7 +158,7 @@ def _why_zero(c: Context, f: LoadForces, load: object, i: int) -> Runs:
 
 def _why_inertial(c: Context, f: LoadForces, i: int) -> Runs:
     """Q_i of an inertial load is zero: its force on each element is orthogonal to ∂OP/∂q_i (Coriolis on a hoop)."""
-    from ....dynamics._inertial import inertial_torsors
+    from ....dynamics import inertial_torsors
 
     w, kin = c.w, c.kin
     q = c.sym(c.eom.coordinates[i])

@@ -434,7 +434,7 @@ def entrainment_conditions(c: Context) -> tuple[bool, bool]:
     """(dΩ(R/R0)/dt = 0, γ(O/R0) = 0) for the frame R of the equations: the two terms of the entrainment force that
     decide whether it derives from a potential (Remarque 3)."""
     from ...._identity import are_zero
-    from ....dynamics._inertial import RelativeKinematics
+    from ....dynamics import RelativeKinematics
 
     kin = c.kin
     if not isinstance(kin, RelativeKinematics):

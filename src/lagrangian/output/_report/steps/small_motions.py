@@ -26,7 +26,7 @@ import symengine as se
 import sympy
 from symengine.lib.symengine_wrapper import sympy2symengine
 
-from ....analysis._closed_small_motions import pulsations_squared
+from ....analysis import pulsations_squared
 from ....errors import LagrangianError
 from ..build import Context
 from ..document import Block, Display, Equation, Items, Math, Para, Runs, Section
@@ -314,8 +314,7 @@ def _stability(c: Context, lin: Any, stability: Any, modes: Any) -> list[Block]:
 def _closed(lin: Any, num: Any) -> tuple[Any, Any] | None:
     """(the closed-form point, its second-order form as SymEngine matrices) when the point is a closed-form
     equilibrium that holds for some values only (cos θ0 = g/(R Ω²)), else None."""
-    from ....analysis import SecondOrderForm
-    from ....analysis._closed_small_motions import closed_point
+    from ....analysis import SecondOrderForm, closed_point
 
     if num is None or lin.steady or num.second_order is None:
         return None

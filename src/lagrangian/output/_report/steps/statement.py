@@ -10,9 +10,8 @@ from __future__ import annotations
 
 import re
 
-from ....dynamics._constraints import describe_constraints
-from ....model import Constraint, Vector
-from ....model._texts import in_language
+from ....dynamics import describe_constraints
+from ....model import Constraint, Vector, in_language
 from ..build import Context
 from ..document import Block, Display, Equation, Fold, Items, Math, Para, Runs, Section, Table
 from ..joints import Joint, constraint_counts, degrees_of_freedom, planar_normal

@@ -7,7 +7,9 @@ engine's: M(q, t) q̈ = F(q, q̇, t) [Seed, section II; Goldstein, *Classical Me
 
     d/dt(∂T/∂q̇_i) − ∂T/∂q_i = −∂U/∂q_i + Q_i(nc) (+ Σ_k λ_k A_ki),
 
-T, U, L = T − U, the first integrals and the multipliers' formulas.
+T, U, L = T − U and the multipliers' formulas.  The first integrals are the analysis stage's:
+``lagrangian.sympy_equations(eom)`` (`lagrangian.output.sympy_equations`) gives this form with them,
+each converted by `SympyEquations.convert`.
 
 Symbols are named as in the model: ``theta``, ``theta_dot``, ``theta_ddot``, ``t``, the
 parameters and the multipliers ``lambda_<constraint>``.  With ``time_functions=True`` the
@@ -20,14 +22,25 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import symengine as se
-import sympy
 
-from ..analysis import first_integrals
-from ..dynamics import EquationsOfMotion, multiplier_formulas
+from ._constraints import multiplier_formulas
 
-__all__ = ["SympyEquations", "sympy_equations"]
+if TYPE_CHECKING:
+    import sympy
+
+    from ._lagrange import EquationsOfMotion
+
+# SymPy is imported where a form is made, not with the stage: `import lagrangian.dynamics` stays light.
+__all__ = ["SympyEquations", "sympy_form"]
+
+
+def _no_rows() -> sympy.Matrix:
+    import sympy
+
+    return sympy.zeros(0, 0)
 
 
 @dataclass(frozen=True, eq=False)
@@ -46,11 +59,13 @@ class SympyEquations:
     equations : one ``sympy.Eq`` per coordinate, L(q_i): Γ_i = −∂U/∂q_i + Q_i(nc) (+ Σ_k λ_k A_ki).
     T, U : the kinetic energy T(Σ/R0) and the potential U_P (up to a constant).
     L : T − U when the system is conservative (Remarque 2), else None.
-    first_integrals : name → expression constant along every motion (K, H, E, p_x, ...).
     multipliers : the λ_k of the complementary constraints; ``A`` the m×n matrix of their rows.
     multiplier_formulas : λ_k name → λ_k(q, q̇, t) in closed form (empty when there is none,
         or the system is too large for one: then λ is found along a motion).
     time_functions : whether this is the ``dynamicsymbols`` form.
+    first_integrals : name → expression constant along every motion (K, H, E, p_x, ...), from
+        ``lagrangian.sympy_equations(eom)``; None from ``eom.to_sympy()``, which does not look for them
+        (finding them is the analysis stage's work, `lagrangian.first_integrals`).
     """
 
     coordinates: tuple[str, ...]
@@ -66,11 +81,22 @@ class SympyEquations:
     T: sympy.Basic
     U: sympy.Basic
     L: sympy.Basic | None
-    first_integrals: Mapping[str, sympy.Basic]
     multipliers: tuple[sympy.Basic, ...] = ()
-    A: sympy.Matrix = field(default_factory=lambda: sympy.zeros(0, 0))
+    A: sympy.Matrix = field(default_factory=_no_rows)
     multiplier_formulas: Mapping[str, sympy.Basic] = field(default_factory=dict)
     time_functions: bool = False
+    first_integrals: Mapping[str, sympy.Basic] | None = None
+    # engine symbol → this form's (θ → θ(t), θ_dot → Derivative(θ(t), t), ...): what `convert` applies
+    _replace: Mapping[sympy.Basic, sympy.Basic] = field(default_factory=dict, repr=False, compare=False)
+
+    def convert(self, expr: se.Basic) -> sympy.Basic:
+        """An engine expression of the model (a first integral, a reaction, a body's T) in this form.
+
+        Converted as M, F and the equations are: structurally (no text parsed, nothing simplified),
+        with this form's symbols (θ(t) and its derivatives when ``time_functions``).
+        """
+        out = _convert(expr)
+        return out.xreplace(self._replace) if self._replace else out
 
     def qdd_solved(self) -> sympy.Matrix:
         """q̈ = M⁻¹ F (without complementary constraints), by LU: small systems only (it grows fast)."""
@@ -79,6 +105,8 @@ class SympyEquations:
 
 def _convert(e: se.Basic) -> sympy.Basic:
     """SymEngine → SymPy, structurally (never through text)."""
+    import sympy
+
     if isinstance(e, sympy.Basic):
         return e
     if hasattr(e, "_sympy_"):
@@ -86,8 +114,8 @@ def _convert(e: se.Basic) -> sympy.Basic:
     return sympy.S(e) if isinstance(e, (int, float)) else sympy.Float(float(e))  # a plain number
 
 
-def sympy_equations(eom: EquationsOfMotion, *, time_functions: bool = False) -> SympyEquations:
-    """`SympyEquations` of ``eom``: symbols named as in the model, or SymPy mechanics' ``dynamicsymbols``.
+def sympy_form(eom: EquationsOfMotion, *, time_functions: bool = False) -> SympyEquations:
+    """``eom.to_sympy()``: symbols named as in the model, or SymPy mechanics' ``dynamicsymbols``.
 
     Examples
     --------
@@ -96,6 +124,8 @@ def sympy_equations(eom: EquationsOfMotion, *, time_functions: bool = False) -> 
     >>> s.equations[1].lhs.has(sympy.Symbol("theta_ddot"))
     True
     """
+    import sympy
+
     names = eom.coordinates
     q = tuple(sympy.Symbol(str(s)) for s in eom.q)
     qd = tuple(sympy.Symbol(str(s)) for s in eom.qd)
@@ -131,9 +161,8 @@ def sympy_equations(eom: EquationsOfMotion, *, time_functions: bool = False) -> 
         F=sympy.Matrix([conv(x) for x in eom.F]),
         equations=tuple(sympy.Eq(conv(eq.lhs), conv(eq.rhs), evaluate=False) for eq in eom.equations),
         T=T, U=U, L=T - U if eom.conservative else None,
-        first_integrals={fi.name: conv(fi.expression) for fi in first_integrals(eom)},
         multipliers=lam,
         A=sympy.Matrix(len(eom.constraints), len(q), [conv(x) for row in eom.A for x in row]),
         multiplier_formulas={str(row.multiplier): conv(f) for row, f in zip(eom.constraints, formulas or (), strict=True)},
-        time_functions=time_functions,
+        time_functions=time_functions, _replace=replace,
     )
