@@ -18,7 +18,7 @@ from ..analysis import Equilibrium, LinearizationError, bifurcation, equilibria,
 from ..dynamics import derive
 from ..errors import OutputError
 from ..model import CoulombFriction
-from ..output import Notation, equilibria_text, to_sympy
+from ..output import bifurcation_text, equilibria_text
 from ._arguments.equilibria import SCHEMA
 from ._modes import _check_plot_folder as check_plot_folder
 from ._modes import parse_sweep
@@ -155,7 +155,6 @@ def _sweep(eom, swept, parameters: dict, folder: Path | None, lang: str, as_json
     """The closed-form branches along the parameter: where each appears and changes stability."""
     name, values = swept
     diagram = bifurcation(eom, name, values, parameters=parameters or None)
-    n = Notation(list(eom.coordinates), [p.name for p in eom.model.parameters])
     written = []
     if folder is not None:
         from ..plotting import plot_bifurcation, save_figure
@@ -175,17 +174,4 @@ def _sweep(eom, swept, parameters: dict, folder: Path | None, lang: str, as_json
                              "changes": [{"value": x, "kind": what} for x, what in b.changes]}
                             for b in diagram.branches]}
         return json.dumps(doc, indent=2) + "\n"
-    sym = n.symbol(name)
-    lines = [(f"Equilibria of {eom.model.name} against {sym} from {values[0]:g} to {values[-1]:g} "
-              f"({len(values)} values)"), ""]
-    for k, b in enumerate(diagram.branches, start=1):
-        parts = ", ".join(f"{n.symbol(c)} = {n.text(to_sympy(v))}" for c, v in b.equilibrium.values.items())
-        lines.append(f"  {k}. {parts}")
-        if not b.changes:
-            state = {1.0: "stable", 0.0: "unstable"}
-            kinds = {state.get(float(s), "undecided") for s in b.stable if not math.isnan(s)} or {"absent"}
-            lines.append(f"     {' / '.join(sorted(kinds))} over the whole range")
-        for x, what in b.changes:
-            lines.append(f"     {sym} = {x:.12g}: {what}")
-    lines += [f"wrote {p}" for p in written]
-    return "\n".join(lines) + "\n"
+    return bifurcation_text(eom, diagram) + "".join(f"wrote {p}\n" for p in written)

@@ -15,9 +15,8 @@ import json
 import math
 from typing import Any
 
-import numpy as np
-
 from ..dynamics import derive
+from ..output import feedback_text
 from ._point import parse_names, point_settings
 from ._settings import SettingError, plain_number
 from ._source import load_source
@@ -71,37 +70,4 @@ def run(args: argparse.Namespace) -> str:
              parameters=parameters)
     if args.json or args.output:
         return json.dumps(fb.to_dict(), indent=2) + "\n"
-    return render(fb)
-
-
-def _number(v: float) -> str:
-    return f"{v:.6g}" if v != 0 else "0"
-
-
-def _complex(z: complex) -> str:
-    return _number(z.real) if abs(z.imag) < 1e-12 * max(1.0, abs(z)) else f"{z.real:.6g} {z.imag:+.6g}i"
-
-
-def render(fb: Any) -> str:
-    """The feedback as text: the point, the law, K by row, the weights, the eigenvalues."""
-    lines = [f"{fb.model}: LQR state feedback u = u* - K (x - x*)",
-             "point x*: " + ", ".join(f"{s} = {_number(v)}" for s, v in zip(fb.states, fb.x_star, strict=True)),
-             "inputs u*: " + ", ".join(f"{u} = {_number(v)}" for u, v in zip(fb.inputs, fb.u_star, strict=True)), "gain K:"]
-    width = max(len(s) for s in fb.states)
-    for i, u in enumerate(fb.inputs):
-        lines.append(f"  row of {u}:")
-        lines += [f"    {s:<{width}}  {_number(k)}" for k, s in zip(fb.K[i], fb.states, strict=True)]
-    diag = np.allclose(fb.Q, np.diag(np.diag(fb.Q))) and np.allclose(fb.R, np.diag(np.diag(fb.R)))
-    if diag:
-        lines.append("weights: Q = diag(" + ", ".join(f"{s}: {_number(v)}" for s, v in zip(fb.states, np.diag(fb.Q), strict=True))
-                     + "), R = diag(" + ", ".join(f"{u}: {_number(v)}" for u, v in zip(fb.inputs, np.diag(fb.R), strict=True))
-                     + ")")
-    else:
-        lines.append(f"weights: Q = {np.array2string(fb.Q, precision=6)}, R = {np.array2string(fb.R, precision=6)}")
-    open_loop = np.linalg.eigvals(fb.A)
-    lines.append("open-loop eigenvalues (A): " + ", ".join(_complex(z) for z in sorted(open_loop, key=lambda z: z.real)))
-    lines.append("closed-loop eigenvalues (A - B K): "
-                 + ", ".join(_complex(z) for z in sorted(fb.eigenvalues, key=lambda z: z.real)))
-    lines.append("verdict: " + ("the closed loop is asymptotically stable about the point (linearized)" if fb.stable
-                                else "NOT stable"))
-    return "\n".join(lines) + "\n"
+    return feedback_text(fb)

@@ -5,11 +5,13 @@ calls (never cut apart):
 
 - ``solve_mass.c``: M x = F by Cholesky for the model's n (``LG_N``), the integrators' solve and
   the C export's;
-- ``integrators.c``: DOP853 and the Gauss-Legendre method, events, ensembles (`_codegen`);
+- ``integrators.c``: DOP853 (its step-size control written once, for the sensitivities too) and the
+  Gauss-Legendre method, events, ensembles (`_codegen`);
 - ``cholesky.c``: the Cholesky factorisation and solve for any n, the Schur complement's
-  (`_codegen_dae` and the C export of a model with complementary constraints);
+  (`_codegen_dae` and the C export of a model with complementary constraints) and the sensitivities';
 - ``dae.c``: q̈ and λ of M q̈ = F + Aᵀλ, A q̈ + c = 0 through the Schur complement (`_codegen_dae`);
-- ``sensitivity.c``: DOP853 on the state and its forward sensitivities (`numerics.Sensitivities`).
+- ``sensitivity.c``: DOP853 on the state and its forward sensitivities (`numerics.Sensitivities`),
+  after ``integrators.c`` and ``cholesky.c``.
 
 Each file's opening comment says what it expects the code before it to define.  DOP853's
 tableau is not written in C: `dop853_defines` takes it from SciPy's own coefficient module

@@ -44,7 +44,7 @@ from ..model import GALILEAN_FRAME, Model, Vector
 from ..model.vectors import add3, cross, sum_of, turn
 from ._articulated import _Spatial, articulated_accelerations
 from ._floating_tree import FloatingTree, floating_trees
-from ._recursive import _dot, _matvec, _Names, _scale, _unit
+from ._recursive import _carry_to_parent, _dot, _matvec, _name_subtree, _Names, _scale, _unit
 
 __all__ = ["BaseState", "FloatingForm", "floating_form"]
 
@@ -256,25 +256,10 @@ class _TreeBuilder:
         for k in range(len(nodes) - 1, -1, -1):
             node = nodes[k]
             if node.axis is not None or k == 0:
-                mass[k] = w(mass[k])
-                first[k] = w.vec(first[k])
-                inertia[k] = [[w(inertia[k][r][c]) if c >= r else None for c in range(3)] for r in range(3)]
-                for r in range(3):
-                    for c in range(r):
-                        inertia[k][r][c] = inertia[k][c][r]
+                _name_subtree(w, mass, first, inertia, k)
             if k == 0:
                 break
-            m, up, d, p = mass[k], self.up[k], node.offset, node.parent
-            h = up(first[k])
-            rows = [up(tuple(inertia[k][r])) for r in range(3)]
-            J = [up(tuple(rows[c][r] for c in range(3))) for r in range(3)]
-            dh, dd = _dot(d, h), _dot(d, d)
-            mass[p] = mass[p] + m
-            for r in range(3):
-                for c in range(3):
-                    shift = (2 * dh + m * dd if r == c else _ZERO) - d[r] * h[c] - h[r] * d[c] - m * d[r] * d[c]
-                    inertia[p][r][c] = inertia[p][r][c] + J[r][c] + shift
-            first[p] = add3(first[p], add3(h, _scale(m, d)))
+            _carry_to_parent(mass, first, inertia, k, node.parent, node.offset, self.up[k])
         return mass, first, inertia
 
     # -- the mass matrix ---------------------------------------------------------------------------

@@ -406,31 +406,41 @@ def _composite_inertias(w: _Names, nodes: Sequence[_Node], to_parent: Sequence[T
     for k in range(count - 1, 0, -1):
         node = nodes[k]
         if node.axis is not None:
-            mass[k] = w(mass[k])
-            first[k] = w.vec(first[k])
-            inertia[k] = [[w(inertia[k][r][c]) if c >= r else None for c in range(3)] for r in range(3)]
-            for r in range(3):
-                for c in range(r):
-                    inertia[k][r][c] = inertia[k][c][r]
-        m = mass[k]
-        if type(m) is _ZERO_TYPE and all(type(x) is _ZERO_TYPE for row in inertia[k] for x in row):
+            _name_subtree(w, mass, first, inertia, k)
+        if type(mass[k]) is _ZERO_TYPE and all(type(x) is _ZERO_TYPE for row in inertia[k] for x in row):
             continue
         up = to_parent[k]
-        assert up is not None  # every node but R0 has a parent
-        h = up(first[k])
-        rows = [up(tuple(inertia[k][r])) for r in range(3)]  # (R J)ᵀ's columns are R J's rows rotated
-        J = [up(tuple(rows[c][r] for c in range(3))) for r in range(3)]
-        d = node.offset
-        dh, dd = _dot(d, h), _dot(d, d)
-        p = node.parent
-        assert p is not None
-        mass[p] = mass[p] + m
-        for r in range(3):
-            for c in range(3):
-                shift = (2 * dh + m * dd if r == c else _ZERO) - d[r] * h[c] - h[r] * d[c] - m * d[r] * d[c]
-                inertia[p][r][c] = inertia[p][r][c] + J[r][c] + shift
-        first[p] = _add3(first[p], _add3(h, _scale(m, d)))
+        assert up is not None and node.parent is not None  # every node but R0 has a parent
+        _carry_to_parent(mass, first, inertia, k, node.parent, node.offset, up)
     return mass, first, inertia
+
+
+def _name_subtree(w: _Names, mass: list[se.Basic], first: list[Vec], inertia: list[list[list[se.Basic]]],
+                  k: int) -> None:
+    """Node k's subtree (m, h, J) as named intermediates, J's lower triangle the names of its upper one."""
+    mass[k] = w(mass[k])
+    first[k] = w.vec(first[k])
+    inertia[k] = [[w(inertia[k][r][c]) if c >= r else None for c in range(3)] for r in range(3)]
+    for r in range(3):
+        for c in range(r):
+            inertia[k][r][c] = inertia[k][c][r]
+
+
+def _carry_to_parent(mass: list[se.Basic], first: list[Vec], inertia: list[list[list[se.Basic]]], k: int, p: int,
+                     d: Vec, up: Turn) -> None:
+    """Add node k's subtree (m, h, J_O) to its parent p's (`_composite_inertias`' formula): rotated by ``up``
+    into p's basis, then moved by d, the offset of k's origin from p's, with the first moment (Huygens)."""
+    m = mass[k]
+    h = up(first[k])
+    rows = [up(tuple(inertia[k][r])) for r in range(3)]  # (R J)ᵀ's columns are R J's rows rotated
+    J = [up(tuple(rows[c][r] for c in range(3))) for r in range(3)]
+    dh, dd = _dot(d, h), _dot(d, d)
+    mass[p] = mass[p] + m
+    for r in range(3):
+        for c in range(3):
+            shift = (2 * dh + m * dd if r == c else _ZERO) - d[r] * h[c] - h[r] * d[c] - m * d[r] * d[c]
+            inertia[p][r][c] = inertia[p][r][c] + J[r][c] + shift
+    first[p] = _add3(first[p], _add3(h, _scale(m, d)))
 
 
 def _mass_matrix(w: _Names, nodes: Sequence[_Node], n: int, motion: _Motion,

@@ -11,7 +11,6 @@ accelerations from ω and ω̇ where J is regular, NaN where it is not: `_euler`
 
 from __future__ import annotations
 
-import ctypes
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from types import SimpleNamespace
@@ -34,20 +33,13 @@ from ._euler import (
 )
 from ._fastcall import rhs_caller
 from ._inputs import InputLaw
+from ._system import _SIGNATURES as _SYSTEM_SIGNATURES
 from ._system import unused_parameters
 
 __all__ = ["FreeBodySystem", "compile_free_system", "has_free_body"]
 
-_P = ctypes.c_void_p
-_SIGNATURES = {
-    "lg_eval_rhs": (ctypes.c_int, [ctypes.c_int, _P, _P, _P, _P]),
-    "lg_eval_mass_forces": (None, [ctypes.c_int, _P, _P, _P, _P, _P]),
-    "lg_eval_monitors": (None, [ctypes.c_int, _P, _P, _P, _P]),
-    "lg_eval_events": (None, [ctypes.c_int, _P, _P, _P, _P]),
-    "lg_dimensions": (ctypes.c_int, [_P]),
-    "lg_constants": (None, [_P, _P]),
-    "lg_dop853": (ctypes.c_int, [_P, _P, _P, _P, ctypes.c_int, _P, _P, ctypes.c_double, _P, _P, _P]),
-}
+#: The C functions of `_system`'s compiled runtime but the Gauss-Legendre method (free bodies have no Hamilton form).
+_SIGNATURES = {name: signature for name, signature in _SYSTEM_SIGNATURES.items() if name != "lg_gauss"}
 
 
 def _ptr(a: np.ndarray) -> int:

@@ -192,7 +192,7 @@ class SensitivitySystem:
         # the augmented integrator appended.
         units = system.generated.units
         first = "\n".join([units[0], f"#define LG_NV {width}", function,
-                           runtime_source("sensitivity.c")])
+                           runtime_source("cholesky.c"), runtime_source("sensitivity.c")])
         units = (first, *units[1:])
         key = hashlib.sha256("\n/* ---- unit ---- */\n".join(units).encode("utf-8")).hexdigest()
         self._lib = lib = compile_library(units, key)

@@ -12,7 +12,9 @@ from ._course import course_form as course_form
 from ._course import reference_label as reference_label
 from ._course import to_sympy as to_sympy
 from ._display import jupyter_repr as jupyter_repr
+from ._equilibria_text import bifurcation_text as bifurcation_text
 from ._equilibria_text import equilibria_text as equilibria_text
+from ._feedback_text import feedback_text as feedback_text
 from ._intermediates import needed_intermediates as needed_intermediates
 from ._intermediates import render_intermediates as render_intermediates
 from ._json import SCHEMA_ID as SCHEMA_ID
@@ -37,11 +39,13 @@ from ._text import render_text as render_text
 from ._text import supplement as supplement
 from ._top_text import simulation_check_text as simulation_check_text
 from ._top_text import top_analysis_text as top_analysis_text
+from ._verification_text import verification_failure as verification_failure
+from ._verification_text import verification_text as verification_text
 
 __all__ = ["CourseForm", "course_form", "EXPORT_TARGETS", "export", "SCHEMA_ID", "SCHEMA_VERSION", "derive_document", "render_latex",
            "LINEARIZE_SCHEMA_ID", "linearize_document",
            "Notation", "render_text", "Report", "ReportFigure", "report", "FORMATS", "format_for",
-           "sympy_equations", "equilibria_text", "linear_text", "modes_text", "sweep_text",
-           "simulation_check_text", "top_analysis_text",
+           "sympy_equations", "bifurcation_text", "equilibria_text", "feedback_text", "linear_text", "modes_text",
+           "sweep_text", "simulation_check_text", "top_analysis_text", "verification_text", "verification_failure",
            "reference_label", "to_sympy", "needed_intermediates", "render_intermediates", "Supplement", "supplement", "SizeGate",
            "jupyter_repr"]

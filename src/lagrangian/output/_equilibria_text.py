@@ -1,9 +1,11 @@
-"""Equilibria as terminal text: what ``lagrangian equilibria`` prints, for library users too (`equilibria_text`).
+"""Equilibria as terminal text: what ``lagrangian equilibria`` prints, for library users too (`equilibria_text`,
+`bifurcation_text`).
 
 Each rest with its values (a numeric root at k π/d named so), closed form or numeric, its aliases,
 its condition of existence and its stability verdict, then what was searched, so that the list is
-never read as complete when it may not be.  The rests come from `lagrangian.analysis.equilibria`;
-this module only writes them.
+never read as complete when it may not be; with ``--sweep``, each closed-form branch against the
+parameter and where it appears or changes stability.  The rests come from
+`lagrangian.analysis.equilibria` and `lagrangian.analysis.bifurcation`; this module only writes them.
 """
 
 from __future__ import annotations
@@ -18,10 +20,10 @@ from ._course import to_sympy
 from ._notation import Notation
 
 if TYPE_CHECKING:
-    from ..analysis import Equilibria, Equilibrium, EquilibriumSearch
+    from ..analysis import BifurcationDiagram, Equilibria, Equilibrium, EquilibriumSearch
     from ..dynamics import EquationsOfMotion
 
-__all__ = ["Verdict", "equilibria_text"]
+__all__ = ["Verdict", "bifurcation_text", "equilibria_text"]
 
 #: One rest's stability: (stable or None when undecided, the verdict, its reason); None without a verdict.
 Verdict = tuple[bool | None, str, str] | None
@@ -59,6 +61,40 @@ def equilibria_text(eom: EquationsOfMotion, found: Equilibria, verdicts: Sequenc
                           for q in eom.coordinates)
         text += f"  ({where} would be one if {_condition(n, e.condition)}, which does not hold at these values)\n"
     return text
+
+
+def bifurcation_text(eom: EquationsOfMotion, diagram: BifurcationDiagram) -> str:
+    """What ``lagrangian equilibria --sweep`` prints: each closed-form branch of rests in ``diagram`` (from
+    `lagrangian.analysis.bifurcation`) and the parameter's values where it appears, disappears, gains or
+    loses stability, or its stability over the whole range when nothing changes.
+
+    Parameters
+    ----------
+    eom : the equations the rests are of (their coordinates and parameters name the symbols).
+    diagram : from `lagrangian.analysis.bifurcation`.
+
+    Examples
+    --------
+    >>> import numpy as np, lagrangian
+    >>> from lagrangian.analysis import bifurcation
+    >>> eom = lagrangian.derive(lagrangian.load_model("examples/bead_rotating_hoop.toml"))          # doctest: +SKIP
+    >>> print(lagrangian.output.bifurcation_text(eom, bifurcation(eom, "Omega", np.arange(1, 8.5, 0.5))))  # doctest: +SKIP
+    """
+    n = Notation(list(eom.coordinates), [p.name for p in eom.model.parameters])
+    values = diagram.values
+    sym = n.symbol(diagram.parameter)
+    lines = [(f"Equilibria of {eom.model.name} against {sym} from {values[0]:g} to {values[-1]:g} "
+              f"({len(values)} values)"), ""]
+    for k, b in enumerate(diagram.branches, start=1):
+        parts = ", ".join(f"{n.symbol(c)} = {n.text(to_sympy(v))}" for c, v in b.equilibrium.values.items())
+        lines.append(f"  {k}. {parts}")
+        if not b.changes:
+            state = {1.0: "stable", 0.0: "unstable"}
+            kinds = {state.get(float(s), "undecided") for s in b.stable if not math.isnan(s)} or {"absent"}
+            lines.append(f"     {' / '.join(sorted(kinds))} over the whole range")
+        for x, what in b.changes:
+            lines.append(f"     {sym} = {x:.12g}: {what}")
+    return "\n".join(lines) + "\n"
 
 
 def _rests(name: str, coordinates: tuple[str, ...], parameters: list[str], found: Sequence[Equilibrium],

@@ -319,11 +319,84 @@ static int lg_dop_stiff(double *ctl, double h, const double *f1, const double *f
     return 0;
 }
 
-static double lg_rms(const double *v, const double *scale)
+/* DOP853's step-size control, shared by lg_dop853_run and the sensitivities' lg_sens_dop853
+ * (sensitivity.c), which look at the first m components of their state (m = LG_NY, or the
+ * state with its sensitivities); SciPy's DOP853 and select_initial_step, step for step. */
+
+/* The root mean square of v / scale over m components. */
+static double lg_rms(int m, const double *v, const double *scale)
 {
     double s = 0.0;
-    for (int j = 0; j < LG_NY; ++j) s += (v[j] / scale[j]) * (v[j] / scale[j]);
-    return sqrt(s / LG_NY);
+    for (int j = 0; j < m; ++j) s += (v[j] / scale[j]) * (v[j] / scale[j]);
+    return sqrt(s / m);
+}
+
+/* Hairer's starting step (Solving ODEs I, Sec. II.4), first half: h0 from |y| and |f0| with the
+ * weights scale = atol + |y| rtol, at most span; y1 = y + h0 f0 (all n components) is where the
+ * caller evaluates f1, and *d1 = |f0| goes on to lg_dop_start_step. */
+static double lg_dop_start_trial(int m, int n, const double *y, const double *f0, double rtol, double atol,
+                                 double span, double *scale, double *y1, double *d1)
+{
+    for (int j = 0; j < m; ++j) scale[j] = atol + fabs(y[j]) * rtol;
+    const double d0 = lg_rms(m, y, scale);
+    *d1 = lg_rms(m, f0, scale);
+    double h0 = (d0 < 1e-5 || *d1 < 1e-5) ? 1e-6 : 0.01 * d0 / *d1;
+    h0 = fmin(h0, span);
+    for (int j = 0; j < n; ++j) y1[j] = y[j] + h0 * f0[j];
+    return h0;
+}
+
+/* The second half: the first step from |f1 - f0| / h0, an estimate of |y''|, for an error of
+ * order 8 (the exponent 1/9). */
+static double lg_dop_start_step(int m, double h0, double d1, const double *f0, const double *f1,
+                                const double *scale)
+{
+    double s = 0.0;
+    for (int j = 0; j < m; ++j) {
+        const double d = (f1[j] - f0[j]) / scale[j];
+        s += d * d;
+    }
+    const double d2 = sqrt(s / m) / h0;
+    const double h1 = (fmax(d1, d2) <= 1e-15) ? fmax(1e-6, h0 * 1e-3) : pow(0.01 / fmax(d1, d2), 1.0 / 9.0);
+    return fmin(100 * h0, h1);
+}
+
+/* The error norm of a trial step of size h from y to y_new, over m components: the 5th- and
+ * 3rd-order estimates err5 = E5.K, err3 = E3.K, each over atol + max(|y|, |y_new|) rtol, combined
+ * as |h| |err5|^2 / sqrt((|err5|^2 + 0.01 |err3|^2) m) (Hairer's dop853.f, SciPy's
+ * DOP853._estimate_error_norm).  K[r] is the slope of stage r, K[LG_DOP_STAGES] the one at y_new. */
+static double lg_dop_error_norm(int m, double h, const double *y, const double *y_new, double *const *K,
+                                double rtol, double atol)
+{
+    static const double E3[LG_DOP_STAGES + 1] = LG_DOP_E3;
+    static const double E5[LG_DOP_STAGES + 1] = LG_DOP_E5;
+    double n5 = 0.0, n3 = 0.0;
+    for (int j = 0; j < m; ++j) {
+        const double scale = atol + fmax(fabs(y[j]), fabs(y_new[j])) * rtol;
+        double a5 = 0.0, a3 = 0.0;
+        for (int r = 0; r <= LG_DOP_STAGES; ++r) { a5 += E5[r] * K[r][j]; a3 += E3[r] * K[r][j]; }
+        const double err5 = a5 / scale, err3 = a3 / scale;
+        n5 += err5 * err5;
+        n3 += err3 * err3;
+    }
+    return (n5 == 0.0 && n3 == 0.0) ? 0.0 : fabs(h) * n5 / sqrt((n5 + 0.01 * n3) * m);
+}
+
+/* Accept the trial step (error_norm < 1: 1 returned) or reject it (0), and scale *h_abs for the
+ * next try by 0.9 error_norm^(-1/8), within [0.2, 10], and not up after a rejection of the same
+ * step; a rejection is counted in ctl and remembered in *rejected. */
+static int lg_dop_accept(double error_norm, int *rejected, double *h_abs, double *ctl)
+{
+    if (error_norm < 1.0) {
+        double factor = (error_norm == 0.0) ? 10.0 : fmin(10.0, 0.9 * pow(error_norm, -1.0 / 8.0));
+        if (*rejected) factor = fmin(1.0, factor);
+        *h_abs *= factor;
+        return 1;
+    }
+    *h_abs *= fmax(0.2, 0.9 * pow(error_norm, -1.0 / 8.0));
+    *rejected = 1;
+    ctl[C_REJECTED] += 1;
+    return 0;
 }
 
 /* Integrate from ctl[C_T] to t_stop, writing y at each t_out[*i_out..] <= t_stop into
@@ -336,12 +409,12 @@ static int lg_dop853_run(double *ctl, const volatile double *stop, double *y, co
     static const double A[LG_DOP_STAGES_EXT][LG_DOP_STAGES_EXT] = LG_DOP_A;
     static const double B[LG_DOP_STAGES] = LG_DOP_B;
     static const double C[LG_DOP_STAGES_EXT] = LG_DOP_C;
-    static const double E3[LG_DOP_STAGES + 1] = LG_DOP_E3;
-    static const double E5[LG_DOP_STAGES + 1] = LG_DOP_E5;
     static const double D[LG_DOP_POWER - 3][LG_DOP_STAGES_EXT] = LG_DOP_D;
 
     double K[LG_DOP_STAGES_EXT][LG_NY];
-    double y_new[LG_NY], y_stage[LG_NY], scale[LG_NY], err5[LG_NY], err3[LG_NY];
+    double *Ks[LG_DOP_STAGES + 1];   /* the slopes the error norm reads */
+    for (int s = 0; s <= LG_DOP_STAGES; ++s) Ks[s] = K[s];
+    double y_new[LG_NY], y_stage[LG_NY], scale[LG_NY];
     double g0[LG_NE > 0 ? LG_NE : 1], g1[LG_NE > 0 ? LG_NE : 1];
     lg_dop_dense dense;
     double t = ctl[C_T];
@@ -365,20 +438,12 @@ static int lg_dop853_run(double *ctl, const volatile double *stop, double *y, co
 
     double h_abs = ctl[C_H];
     if (h_abs <= 0.0) {   /* Hairer's starting step, as in SciPy's select_initial_step */
-        double d0, d1, d2, h0, h1;
-        for (int j = 0; j < LG_NY; ++j) scale[j] = atol + fabs(y[j]) * rtol;
-        d0 = lg_rms(y, scale);
-        d1 = lg_rms(K[0], scale);
-        h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
-        h0 = fmin(h0, t_stop - t);
-        for (int j = 0; j < LG_NY; ++j) y_stage[j] = y[j] + h0 * K[0][j];
+        double d1;
+        const double h0 = lg_dop_start_trial(LG_NY, LG_NY, y, K[0], rtol, atol, t_stop - t, scale, y_stage, &d1);
         status = lg_rhs(t + h0, y_stage, p, K[1], &ctl[C_PIVOT]);
         ctl[C_NFEV] += 1;
         if (status) return status;
-        for (int j = 0; j < LG_NY; ++j) err5[j] = K[1][j] - K[0][j];
-        d2 = lg_rms(err5, scale) / h0;
-        h1 = (fmax(d1, d2) <= 1e-15) ? fmax(1e-6, h0 * 1e-3) : pow(0.01 / fmax(d1, d2), 1.0 / 9.0);
-        h_abs = fmin(100 * h0, h1);
+        h_abs = lg_dop_start_step(LG_NY, h0, d1, K[0], K[1], scale);
     }
 
     while (t < t_stop) {
@@ -427,25 +492,7 @@ static int lg_dop853_run(double *ctl, const volatile double *stop, double *y, co
             if (status) { ctl[C_T] = t; ctl[C_H] = h_abs; return status; }
             overflowed = 0;
             if (fixed) break;
-            for (int j = 0; j < LG_NY; ++j) {
-                scale[j] = atol + fmax(fabs(y[j]), fabs(y_new[j])) * rtol;
-                double a5 = 0.0, a3 = 0.0;
-                for (int r = 0; r <= LG_DOP_STAGES; ++r) { a5 += E5[r] * K[r][j]; a3 += E3[r] * K[r][j]; }
-                err5[j] = a5 / scale[j];
-                err3[j] = a3 / scale[j];
-            }
-            double n5 = 0.0, n3 = 0.0, error_norm;
-            for (int j = 0; j < LG_NY; ++j) { n5 += err5[j] * err5[j]; n3 += err3[j] * err3[j]; }
-            error_norm = (n5 == 0.0 && n3 == 0.0) ? 0.0 : fabs(h) * n5 / sqrt((n5 + 0.01 * n3) * LG_NY);
-            if (error_norm < 1.0) {
-                double factor = (error_norm == 0.0) ? 10.0 : fmin(10.0, 0.9 * pow(error_norm, -1.0 / 8.0));
-                if (rejected) factor = fmin(1.0, factor);
-                h_abs *= factor;
-                break;
-            }
-            h_abs *= fmax(0.2, 0.9 * pow(error_norm, -1.0 / 8.0));
-            rejected = 1;
-            ctl[C_REJECTED] += 1;
+            if (lg_dop_accept(lg_dop_error_norm(LG_NY, h, y, y_new, Ks, rtol, atol), &rejected, &h_abs, ctl)) break;
         }
         ctl[C_STEPS] += 1;
 #ifdef LG_PROJECT

@@ -1,8 +1,9 @@
 /* lagrangian runtime: forward sensitivities, integrated with the state by DOP853.
  *
- * Appended, once per model and set of parameters, after the model's generated code and
- * integrators.c (whose lg_rhs, lg_mass_forces, lg_constants, lg_rms, lg_dop_stiff,
- * lg_pace_hopeless and the DOP853 tableau it uses), and after the generated
+ * Appended, once per model and set of parameters, after the model's generated code,
+ * integrators.c (whose lg_rhs, lg_mass_forces, lg_constants, lg_dop_stiff, lg_pace_hopeless,
+ * DOP853's step-size control and tableau it uses), cholesky.c (lg_chol_factor, lg_chol_solve:
+ * M factorised once per evaluation) and the generated
  *   LG_NV                          2n + the number of parameters differentiated
  *   lg_sens_jacobian(t, y, p, a, J) J (n x LG_NV, row-major) = d(F - M a)/d(y, p_sel) at a fixed
  *
@@ -68,41 +69,6 @@ static double lg_sens_break(const lg_sens_table *tab, double t, double t_stop)
     return (i < tab->rows && tab->times[i] < t_stop) ? tab->times[i] : t_stop;
 }
 
-/* Cholesky factor in place (lower triangle), with lg_cholesky_solve's pivot test. */
-static int lg_sens_factor(double *M)
-{
-    const int n = LG_N;
-    for (int j = 0; j < n; ++j) {
-        double d = M[j * n + j];
-        const double diag = fabs(d);
-        for (int k = 0; k < j; ++k) d -= M[j * n + k] * M[j * n + k];
-        if (!(d > 1e-13 * diag) || diag == 0.0) return LG_SINGULAR;
-        d = sqrt(d);
-        M[j * n + j] = d;
-        for (int i = j + 1; i < n; ++i) {
-            double s = M[i * n + j];
-            for (int k = 0; k < j; ++k) s -= M[i * n + k] * M[j * n + k];
-            M[i * n + j] = s / d;
-        }
-    }
-    return LG_DONE;
-}
-
-static void lg_sens_solve(const double *L, double *b)
-{
-    const int n = LG_N;
-    for (int i = 0; i < n; ++i) {
-        double s = b[i];
-        for (int k = 0; k < i; ++k) s -= L[i * n + k] * b[k];
-        b[i] = s / L[i * n + i];
-    }
-    for (int i = n - 1; i >= 0; --i) {
-        double s = b[i];
-        for (int k = i + 1; k < n; ++k) s -= L[k * n + i] * b[k];
-        b[i] = s / L[i * n + i];
-    }
-}
-
 /* z' for z = (y, S_1..S_ns); col[k] is the parameter of column k (its index among the LG_NV - 2n
  * differentiated ones), or -1 for an initial value. */
 static int lg_sens_f(double t, const double *z, double *p, lg_sens_table *tab, int ns, const int *col,
@@ -113,8 +79,8 @@ static int lg_sens_f(double t, const double *z, double *p, lg_sens_table *tab, i
     if (status || ns == 0) return status;
     double M[LG_N * LG_N], F[LG_N], J[LG_N * LG_NV];
     lg_mass_forces(t, z, p, M, F);
-    status = lg_sens_factor(M);
-    if (status) return status;
+    double pivot = 1.0;   /* lg_rhs has reported M's conditioning (or the articulated-body pivots') */
+    if (lg_chol_factor(M, LG_N, &pivot)) return LG_SINGULAR;
     lg_sens_jacobian(t, z, p, dz + LG_N, J);
     for (int k = 0; k < ns; ++k) {
         const double *S = z + (long)LG_NY * (k + 1);
@@ -126,7 +92,7 @@ static int lg_sens_f(double t, const double *z, double *p, lg_sens_table *tab, i
             for (int j = 0; j < LG_NY; ++j) s += row[j] * S[j];
             b[i] = s;
         }
-        lg_sens_solve(M, b);
+        lg_chol_solve(M, LG_N, b);
         for (int i = 0; i < LG_N; ++i) {
             dS[i] = S[LG_N + i];
             dS[LG_N + i] = b[i];
@@ -136,15 +102,8 @@ static int lg_sens_f(double t, const double *z, double *p, lg_sens_table *tab, i
     return LG_DONE;
 }
 
-static double lg_sens_rms(int m, const double *v, const double *scale)
-{
-    double s = 0.0;
-    for (int j = 0; j < m; ++j) s += (v[j] / scale[j]) * (v[j] / scale[j]);
-    return sqrt(s / m);
-}
-
 /* lg_dop853_run on z (no events), its arithmetic on y unchanged.  work: (LG_DOP_STAGES_EXT +
- * LG_DOP_POWER + 6) * nz doubles, p: LG_NP + LG_NK doubles (a working copy: inputs are set in it). */
+ * LG_DOP_POWER + 4) * nz doubles, p: LG_NP + LG_NK doubles (a working copy: inputs are set in it). */
 int lg_sens_dop853(double *ctl, double *z, double *p, int ns, const int *col, const double *t_out, int n_out,
                    int *i_out, double *Z_out, double t_stop, int n_inputs, const int *input_index, int rows,
                    const double *input_times, const double *input_values, double *work)
@@ -152,8 +111,6 @@ int lg_sens_dop853(double *ctl, double *z, double *p, int ns, const int *col, co
     static const double A[LG_DOP_STAGES_EXT][LG_DOP_STAGES_EXT] = LG_DOP_A;
     static const double B[LG_DOP_STAGES] = LG_DOP_B;
     static const double C[LG_DOP_STAGES_EXT] = LG_DOP_C;
-    static const double E3[LG_DOP_STAGES + 1] = LG_DOP_E3;
-    static const double E5[LG_DOP_STAGES + 1] = LG_DOP_E5;
     static const double D[LG_DOP_POWER - 3][LG_DOP_STAGES_EXT] = LG_DOP_D;
     const volatile double *stop = ctl + C_STOP;
     const int nz = LG_NY * (1 + ns);
@@ -163,7 +120,7 @@ int lg_sens_dop853(double *ctl, double *z, double *p, int ns, const int *col, co
     for (int s = 0; s < LG_DOP_STAGES_EXT; ++s) K[s] = work + (long)s * nz;
     for (int i = 0; i < LG_DOP_POWER; ++i) Fd[i] = work + (long)(LG_DOP_STAGES_EXT + i) * nz;
     double *y_new = work + (long)(LG_DOP_STAGES_EXT + LG_DOP_POWER) * nz;
-    double *y_stage = y_new + nz, *scale = y_stage + nz, *err5 = scale + nz, *err3 = err5 + nz, *y_old = err3 + nz;
+    double *y_stage = y_new + nz, *scale = y_stage + nz, *y_old = scale + nz;
     double t = ctl[C_T], t_old = t, h_dense = 0.0;
     const double rtol = ctl[C_RTOL], atol = ctl[C_ATOL], max_step = ctl[C_MAXSTEP];
     const int fixed = ctl[C_FIXED] != 0.0;
@@ -182,20 +139,12 @@ int lg_sens_dop853(double *ctl, double *z, double *p, int ns, const int *col, co
 
     double h_abs = ctl[C_H];
     if (h_abs <= 0.0) {   /* Hairer's starting step, on the components of the error norm */
-        double d0, d1, d2, h0, h1;
-        for (int j = 0; j < ne; ++j) scale[j] = atol + fabs(z[j]) * rtol;
-        d0 = lg_sens_rms(ne, z, scale);
-        d1 = lg_sens_rms(ne, K[0], scale);
-        h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
-        h0 = fmin(h0, t_stop - t);
-        for (int j = 0; j < nz; ++j) y_stage[j] = z[j] + h0 * K[0][j];
+        double d1;
+        const double h0 = lg_dop_start_trial(ne, nz, z, K[0], rtol, atol, t_stop - t, scale, y_stage, &d1);
         status = lg_sens_f(t + h0, y_stage, p, &tab, ns, col, K[1], &ctl[C_PIVOT]);
         ctl[C_NFEV] += 1;
         if (status) return status;
-        for (int j = 0; j < ne; ++j) err5[j] = K[1][j] - K[0][j];
-        d2 = lg_sens_rms(ne, err5, scale) / h0;
-        h1 = (fmax(d1, d2) <= 1e-15) ? fmax(1e-6, h0 * 1e-3) : pow(0.01 / fmax(d1, d2), 1.0 / 9.0);
-        h_abs = fmin(100 * h0, h1);
+        h_abs = lg_dop_start_step(ne, h0, d1, K[0], K[1], scale);
     }
 
     while (t < t_stop) {
@@ -242,25 +191,7 @@ int lg_sens_dop853(double *ctl, double *z, double *p, int ns, const int *col, co
             if (status) { ctl[C_T] = t; ctl[C_H] = h_abs; return status; }
             overflowed = 0;
             if (fixed) break;
-            for (int j = 0; j < ne; ++j) {
-                scale[j] = atol + fmax(fabs(z[j]), fabs(y_new[j])) * rtol;
-                double a5 = 0.0, a3 = 0.0;
-                for (int r = 0; r <= LG_DOP_STAGES; ++r) { a5 += E5[r] * K[r][j]; a3 += E3[r] * K[r][j]; }
-                err5[j] = a5 / scale[j];
-                err3[j] = a3 / scale[j];
-            }
-            double n5 = 0.0, n3 = 0.0, error_norm;
-            for (int j = 0; j < ne; ++j) { n5 += err5[j] * err5[j]; n3 += err3[j] * err3[j]; }
-            error_norm = (n5 == 0.0 && n3 == 0.0) ? 0.0 : fabs(h) * n5 / sqrt((n5 + 0.01 * n3) * ne);
-            if (error_norm < 1.0) {
-                double factor = (error_norm == 0.0) ? 10.0 : fmin(10.0, 0.9 * pow(error_norm, -1.0 / 8.0));
-                if (rejected) factor = fmin(1.0, factor);
-                h_abs *= factor;
-                break;
-            }
-            h_abs *= fmax(0.2, 0.9 * pow(error_norm, -1.0 / 8.0));
-            rejected = 1;
-            ctl[C_REJECTED] += 1;
+            if (lg_dop_accept(lg_dop_error_norm(ne, h, z, y_new, K, rtol, atol), &rejected, &h_abs, ctl)) break;
         }
         ctl[C_STEPS] += 1;
         if (!fixed && lg_dop_stiff(ctl, h, K[LG_DOP_STAGES], K[LG_DOP_STAGES - 1], y_new, y_stage)) {
