@@ -106,7 +106,7 @@ class ElementTheorems:
     angular_momentum : Vector
         The angular momentum σ_P(S/R0) = Π_P·Ω (zero for a particle; relative to R in a frame R).
     dynamic_moment : Vector
-        The dynamic moment δ_P(S/R0) = dσ_P/dt|R0 (|R in a frame R).
+        The dynamic moment ``δ_P(S/R0) = dσ_P/dt|R0`` (``|R`` in a frame R).
     force : Vector
         Σ of the given forces on the element.
     moment : Vector
