@@ -62,7 +62,8 @@ class LoadForces:
     name : str
         The load's name.
     kind : str
-        Its kind (``"gravity"``, ``"spring"``...).
+        Its kind: the load's class in lower case (``"gravity"``, ``"spring"``...), or
+        ``"generalized potential"``.
     Q : tuple of SymEngine expressions
         Its Q_i, one per coordinate.
     virtual_power : SymEngine expression
@@ -70,7 +71,7 @@ class LoadForces:
     potential : SymEngine expression or None
         U with Q_i = −∂U/∂q_i, or None when not conservative.
     note : str
-        How its Q_i were found, for the report.
+        The virtual power its Q_i come from, for the report (``P* = C·Ω*``).
     generalized : SymEngine expression, optional
         A generalized potential U(q, q̇, t), affine in the rates, with Q_i = d/dt(∂U/∂q̇_i) − ∂U/∂q_i
         (then ``potential`` is None: its Q_i are in Q_nc); None for every other load.

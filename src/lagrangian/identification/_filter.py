@@ -52,7 +52,7 @@ class SavitzkyGolay:
         return self.window // 2
 
     def derivatives(self, t: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The fits' values and derivatives (x, ẋ, ẍ) at every sample.
+        """The local fits' values and derivatives (x, ẋ, ẍ) at every sample.
 
         Parameters
         ----------

@@ -167,8 +167,8 @@ class ModelBuilder:
         parent : str, optional
             The frame it turns from (default R0).
         rotation : (expression, str) or sequence of them, optional
-            One rotation ``(angle, axis)`` or several, in order; None: the frame is ``parent`` itself
-            under another name.
+            One rotation ``(angle, axis)`` or several, in order; None: a frame fixed to its parent (no
+            rotation).
         axes : sequence of three str, optional
             Display names of its axes.
         location : Location, optional

@@ -182,7 +182,9 @@ class ConstrainedSystem:
         return T, Y, single
 
     def parts(self, t, y, p: np.ndarray) -> tuple[np.ndarray, ...]:
-        """The parts (M, F, A, c, g, f) at each state: M q̈ = F + Aᵀλ, A q̈ + c = 0, g = A q̇ + b, f holonomic.
+        """The parts (M, F, A, c, g, f) at each state.
+
+        M q̈ = F + Aᵀλ, A q̈ + c = 0, g = A q̇ + b, f = the holonomic residuals.
 
         Parameters
         ----------

@@ -94,7 +94,7 @@ def _vector(n: Notation, names: Sequence[str], prefix: str = "δ") -> str:
 
 
 def linear_text(lin: LinearModel, stability: Stability | None = None, modes: Modes | None = None) -> str:
-    """What ``lagrangian linearize`` prints: the linearized equations, eigenvalues and verdict.
+    """What ``lagrangian linearize`` prints: the linearized equations about the point, eigenvalues, verdict.
 
     The eigenvalues and the verdict are shown when no parameter is left symbolic.
 
@@ -219,7 +219,9 @@ def _eigen_list(lam: np.ndarray) -> str:
 
 def modes_text(lin: LinearModel, stability: Stability | None = None, modes: Modes | None = None,
                **values: float) -> str:
-    """What ``lagrangian modes`` prints: eigenvalues with ω, T, ζ and mode shapes, pulsations, the verdict.
+    """What ``lagrangian modes`` prints: the essential modes, the conservative pulsations, the verdict.
+
+    The essential eigenvalues come with ω, T, ζ and mode shapes.
 
     Parameters
     ----------

@@ -179,7 +179,7 @@ class Scene:
     lang : str
         The language of the labels.
     notes : tuple of str
-        Remarks on what could not be drawn.
+        What the view had to guess or leave out, in words.
     """
 
     title: str
