@@ -7,6 +7,7 @@ of the package and of each stage, must then have its entry in the pages.
 
 from __future__ import annotations
 
+import ast
 import html
 import importlib
 import os
@@ -68,3 +69,12 @@ def test_the_package_page_links_each_name_of_the_package_to_its_entry(built):
         for name in names:
             # a resolved reference is a link to the entry on its stage's page
             assert f'href="{module}.html#{module}.{name}"' in text, name
+
+
+def test_numpydoc_checks_every_docstring_but_for_three_sections():
+    # every parameter typed and described, Returns, a one-line summary...: numpydoc's "all", so that a check
+    # numpydoc adds is on too; only the extended summary, "See Also" and "Examples" are not asked for
+    tree = ast.parse((ROOT / "docs" / "api" / "conf.py").read_text(encoding="utf-8"))
+    assigned = {target.id: node.value for node in tree.body if isinstance(node, ast.Assign)
+                for target in node.targets if isinstance(target, ast.Name)}
+    assert ast.literal_eval(assigned["numpydoc_validation_checks"]) == {"all", "ES01", "SA01", "EX01"}

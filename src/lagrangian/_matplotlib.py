@@ -14,11 +14,25 @@ __all__ = ["MissingPlotDependency", "require_matplotlib"]
 
 
 class MissingPlotDependency(OutputError):
-    """matplotlib (the ``plot`` extra) is not installed."""
+    """The plotting library matplotlib (the ``plot`` extra) is not installed.
+
+    Parameters
+    ----------
+    message : str
+        What was wrong, a full sentence naming the culprit in backticks.
+    fix : str, optional
+        How to fix it, printed after the message.
+    """
 
 
 def require_matplotlib() -> ModuleType:
-    """The ``matplotlib`` module, or a `MissingPlotDependency` that says how to install it."""
+    """The ``matplotlib`` module, or a `MissingPlotDependency` that says how to install it.
+
+    Returns
+    -------
+    module
+        ``matplotlib``.
+    """
     try:
         import matplotlib
         import matplotlib.figure

@@ -32,6 +32,13 @@ class LagrangianError(Exception):
     ``exit_code`` is what the command line returns for it: 2 for a bad model or a
     derivation that cannot be done, 3 for an output that cannot be written, 4 for a
     simulation that cannot go on.
+
+    Parameters
+    ----------
+    message : str
+        What was wrong, a full sentence naming the culprit in backticks.
+    fix : str, optional
+        How to fix it, printed after the message (``Fix: ...``); None when there is nothing to add.
     """
 
     exit_code = 2
@@ -48,10 +55,22 @@ class LagrangianError(Exception):
 class ModelError(LagrangianError):
     """The description of the system is wrong: bad syntax, unknown name, non-physical data.
 
-    Attributes
+    Parameters
     ----------
-    file, line, column : where the problem is, when known (1-based).
-    symbol : the offending name, when there is one.
+    message : str
+        What was wrong, a full sentence naming the culprit in backticks.
+    fix : str, optional
+        How to fix it, printed after the message.
+    file : str, optional
+        The file where the problem is, when known.
+    line : int, optional
+        Its 1-based line in ``file``, when known.
+    column : int, optional
+        Its 1-based column in that line, when known.
+    symbol : str, optional
+        The offending name, when there is one.
+    source_line : str, optional
+        The text of that line, for the command line to print under the message.
     """
 
     def __init__(
@@ -84,11 +103,27 @@ class ModelError(LagrangianError):
 
 
 class KinematicsError(LagrangianError):
-    """The kinematics cannot be computed (e.g. a declared fixed point moves)."""
+    """The kinematics cannot be computed (e.g. a declared fixed point moves).
+
+    Parameters
+    ----------
+    message : str
+        What was wrong, a full sentence naming the culprit in backticks.
+    fix : str, optional
+        How to fix it, printed after the message.
+    """
 
 
 class DerivationError(LagrangianError):
-    """The equations of motion cannot be formed (e.g. a singular mass matrix)."""
+    """The equations of motion cannot be formed (e.g. a singular mass matrix).
+
+    Parameters
+    ----------
+    message : str
+        What was wrong, a full sentence naming the culprit in backticks.
+    fix : str, optional
+        How to fix it, printed after the message.
+    """
 
 
 class AnalysisError(LagrangianError):
@@ -96,18 +131,32 @@ class AnalysisError(LagrangianError):
 
     The analysis stage's errors derive from it (`lagrangian.analysis`: `LinearizationError`,
     `EquilibriumError`, `ControlError`, `StructureError`, ...).
+
+    Parameters
+    ----------
+    message : str
+        What was wrong, a full sentence naming the culprit in backticks.
+    fix : str, optional
+        How to fix it, printed after the message.
     """
 
 
 class SimulationError(LagrangianError):
     """A simulation cannot start or go on: missing value, bad initial state, singular M, step underflow.
 
-    Attributes
+    Parameters
     ----------
-    t : the time reached when it stopped, when it had started.
-    state : the state (q, q̇) at that time, when known.
-    trajectory : the part computed before a run stopped early (stiff equations, ``max_steps``),
-        its status saying so, or None.
+    message : str
+        What was wrong, a full sentence naming the culprit in backticks.
+    fix : str, optional
+        How to fix it, printed after the message.
+    t : float, optional
+        The time reached when it stopped, when it had started.
+    state : ndarray, optional
+        The state (q, q̇) at that time, when known.
+    trajectory : Trajectory, optional
+        The part computed before a run stopped early (stiff equations, ``max_steps``), its status
+        saying so, or None.
     """
 
     exit_code = 4
@@ -121,11 +170,29 @@ class SimulationError(LagrangianError):
 
 
 class ProblemError(ModelError):
-    """An optimal-control problem is ill-stated: an unknown name, reversed bounds, too few nodes, a model
-    without inputs, a value or an expression that cannot be read (`lagrangian.optimize`, a problem file).
+    """An optimal-control problem is ill-stated (`lagrangian.optimize`, a problem file).
 
-    A `ModelError`, so that a problem file's mistake is printed with its file and line; ``table`` is the
-    problem file's table the offending ``symbol`` is a key of (``"final"``, ``"bounds"``...), when known.
+    An unknown name, reversed bounds, too few nodes, a model without inputs, a value or an expression
+    that cannot be read.  A `ModelError`, so that a problem file's mistake is printed with its file and
+    line; ``table`` is the problem file's table the offending ``symbol`` is a key of (``"final"``,
+    ``"bounds"``...), when known.
+
+    Parameters
+    ----------
+    message : str
+        What was wrong, a full sentence naming the culprit in backticks.
+    fix : str, optional
+        How to fix it, printed after the message.
+    file : str, optional
+        The problem file, when known.
+    line : int, optional
+        The 1-based line of the problem in ``file``, when known.
+    column : int, optional
+        Its 1-based column in that line, when known.
+    symbol : str, optional
+        The offending name, when there is one.
+    source_line : str, optional
+        The text of that line, for the command line to print under the message.
     """
 
     table: str | None = None
@@ -135,7 +202,15 @@ class OptimizationError(LagrangianError):
     """An optimization cannot be run: CasADi is missing, or the solver stopped on an error of its own.
 
     A problem that has no solution is not an error: `lagrangian.optimize` returns the solver's last
-    iterate with its status (``infeasible``) for the caller to look at."""
+    iterate with its status (``infeasible``) for the caller to look at.
+
+    Parameters
+    ----------
+    message : str
+        What was wrong, a full sentence naming the culprit in backticks.
+    fix : str, optional
+        How to fix it, printed after the message.
+    """
 
     exit_code = 4
 
@@ -143,10 +218,16 @@ class OptimizationError(LagrangianError):
 class Interrupted(KeyboardInterrupt):
     """Ctrl-C (SIGINT) stopped a compiled run between two steps.
 
-    A `KeyboardInterrupt`, so code that stops on Ctrl-C still stops; ``trajectory`` is the
-    part computed so far (its ``status`` says it was interrupted), or None when no output
-    time was reached; ``t`` is the time reached; ``written`` the file the command line saved
-    that part to, or None.
+    A `KeyboardInterrupt`, so code that stops on Ctrl-C still stops; ``written`` is the file the
+    command line saved the part computed so far to, or None.
+
+    Parameters
+    ----------
+    t : float
+        The time reached.
+    trajectory : Trajectory, optional
+        The part computed so far (its ``status`` says it was interrupted), or None when no output
+        time was reached.
     """
 
     def __init__(self, t: float, trajectory=None) -> None:
@@ -161,6 +242,13 @@ class EnsembleInterrupted(KeyboardInterrupt):
 
     ``written`` is the Zarr store that holds them (finish it with ``resume``), or None;
     ``dataset`` the in-memory results (pending members have status ``pending``), or None.
+
+    Parameters
+    ----------
+    done : int
+        How many members were finished.
+    count : int
+        How many members the ensemble has.
     """
 
     def __init__(self, done: int, count: int) -> None:
@@ -171,25 +259,61 @@ class EnsembleInterrupted(KeyboardInterrupt):
 
 
 class OutputError(LagrangianError):
-    """An output file cannot be written; whatever was there before is left as it was."""
+    """An output file cannot be written; whatever was there before is left as it was.
+
+    Parameters
+    ----------
+    message : str
+        What was wrong, a full sentence naming the culprit in backticks.
+    fix : str, optional
+        How to fix it, printed after the message.
+    """
 
     exit_code = 3
 
 
 class ExportError(LagrangianError):
-    """The equations cannot be exported as asked: an unknown target, or a model the target cannot express
-    (complementary constraints, an exact stick/slip contact); nothing is written."""
+    """The equations cannot be exported as asked; nothing is written.
+
+    The target may be unknown, or the model one the target cannot express (complementary
+    constraints, an exact stick/slip contact).
+
+    Parameters
+    ----------
+    message : str
+        What was wrong, a full sentence naming the culprit in backticks.
+    fix : str, optional
+        How to fix it, printed after the message.
+    """
 
 
 class VerificationError(LagrangianError):
-    """A cross-check failed: the Lagrange equations disagree with the Newton–Euler theorems."""
+    """A cross-check failed: the Lagrange equations disagree with the Newton–Euler theorems.
+
+    Parameters
+    ----------
+    message : str
+        What was wrong, a full sentence naming the culprit in backticks.
+    fix : str, optional
+        How to fix it, printed after the message.
+    """
 
     exit_code = 5
 
 
 class IdentificationError(LagrangianError):
-    """Parameters cannot be identified from the measurements given: unreadable or inconsistent data
-    (a missing value, times that do not increase, an unknown column), an unknown or unidentifiable
-    parameter (the combinations that can be identified are listed), a fit that does not converge."""
+    """Parameters cannot be identified from the measurements given.
+
+    The data may be unreadable or inconsistent (a missing value, times that do not increase, an
+    unknown column), a parameter unknown or unidentifiable (the combinations that can be identified
+    are listed), or the fit may not converge.
+
+    Parameters
+    ----------
+    message : str
+        What was wrong, a full sentence naming the culprit in backticks.
+    fix : str, optional
+        How to fix it, printed after the message.
+    """
 
     exit_code = 2

@@ -29,9 +29,16 @@ __all__ = ["BifurcationDiagram", "Branch", "bifurcation"]
 class Branch:
     """One closed-form branch of equilibria q*(p).
 
-    ``q`` has shape (len(values), n) (NaN where the branch does not exist); ``stable`` is 1
-    (stable), 0 (unstable) or NaN (absent, or marginal); ``changes`` lists (p, what) where the
-    branch appears, disappears, gains or loses stability.
+    Parameters
+    ----------
+    equilibrium : Equilibrium
+        The closed-form family of equilibria the branch follows.
+    q : ndarray of shape (m, n)
+        The equilibria q*(p) over the grid of m values (NaN where the branch does not exist).
+    stable : ndarray of shape (m,)
+        1 (stable), 0 (unstable) or NaN (absent, or marginal) over the grid.
+    changes : tuple of (float, str)
+        (p, what) where the branch appears, disappears, gains or loses stability.
     """
 
     equilibrium: Equilibrium
@@ -44,9 +51,16 @@ class Branch:
 class BifurcationDiagram:
     """The equilibria of a model against one parameter: what `bifurcation` returns.
 
-    ``values`` (shape (m,)) is the grid of the parameter named ``parameter``; each `Branch` in
-    ``branches`` gives, over that grid, the coordinates ``coordinates`` of one closed-form family
-    of equilibria q*(p) and its stability there.
+    Parameters
+    ----------
+    parameter : str
+        The name of the parameter p.
+    values : ndarray of shape (m,)
+        The grid of p.
+    coordinates : tuple of str
+        The coordinates, in the order of the columns of each branch's ``q``.
+    branches : tuple of Branch
+        One closed-form family of equilibria q*(p) each, with its stability over the grid.
     """
 
     parameter: str
@@ -73,6 +87,22 @@ def _point(e: Equilibrium, coords: Sequence[str], numbers: Mapping[se.Basic, flo
 def bifurcation(eom: EquationsOfMotion, parameter: str, values: Sequence[float],
                 parameters: Mapping[str, float] | None = None) -> BifurcationDiagram:
     """The closed-form equilibria of ``eom`` and their stability for ``parameter`` over ``values``.
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations of an autonomous model.
+    parameter : str
+        The parameter p to vary.
+    values : sequence of float
+        The grid of p.
+    parameters : mapping of str to float, optional
+        Values of the other parameters, overriding the model's.
+
+    Returns
+    -------
+    BifurcationDiagram
+        Each closed-form branch over the grid, with where it changes.
 
     Raises
     ------

@@ -88,8 +88,23 @@ def _simplify(e: sympy.Basic, positive: Mapping, back: Mapping) -> sympy.Basic:
 
 
 def closed_point(eom: EquationsOfMotion, point: Mapping[str, float], values: Mapping[str, float]) -> ClosedPoint | None:
-    """The closed-form equilibrium at ``point`` (numbers) and the second-order form there in letters, or None
-    (no closed-form branch there, constraints or inputs, or SymPy fails within `TIMEOUT`)."""
+    """The closed-form equilibrium at ``point`` (numbers) and the second-order form there in letters, or None.
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+    point : mapping of str to float
+        A numeric equilibrium, coordinate name to value.
+    values : mapping of str to float
+        The parameter values.
+
+    Returns
+    -------
+    ClosedPoint or None
+        None when there is no closed-form branch there, the model has constraints or inputs, or
+        SymPy fails within `TIMEOUT`.
+    """
     from ._equilibria import equilibria
 
     if eom.constraints or getattr(eom.model, "inputs", ()):
@@ -163,8 +178,23 @@ def _build(eom: EquationsOfMotion, match, values: Mapping[str, float]) -> Closed
 
 
 def pulsations_squared(M: sympy.Matrix, K: sympy.Matrix, positive: Sequence[str] = ()) -> list[sympy.Basic] | None:
-    """The nonzero roots ω² of det(K − ω² M) = 0 in letters (ascending at the parameters' generic values is not
-    decided: in the order SymPy gives), or None when the form is too large or a root too long."""
+    """The nonzero roots ω² of det(K − ω² M) = 0 in letters, or None when the form is too large or a root too long.
+
+    Parameters
+    ----------
+    M : sympy.Matrix
+        The mass matrix of the small motions.
+    K : sympy.Matrix
+        Their stiffness matrix.
+    positive : sequence of str, optional
+        Names of symbols known to be positive.
+
+    Returns
+    -------
+    list of SymPy expressions or None
+        The roots, in the order SymPy gives (their order at the parameters' generic values is not
+        decided), or None.
+    """
     n = M.shape[0]
     if n == 0 or n > MAX_DEGREE:
         return None

@@ -54,7 +54,15 @@ __all__ = [
 
 
 class StructureError(AnalysisError):
-    """The model lacks the structure an analysis needs (e.g. cyclic coordinates, an energy integral)."""
+    """The model lacks the structure an analysis needs (e.g. cyclic coordinates, an energy integral).
+
+    Parameters
+    ----------
+    message : str
+        What was wrong, a full sentence naming the culprit in backticks.
+    fix : str, optional
+        How to fix it, printed after the message.
+    """
 
 
 class SingularPassage(AnalysisError):
@@ -65,21 +73,52 @@ class SingularPassage(AnalysisError):
 class CyclicReduction:
     """The energy integral reduced to the one non-cyclic coordinate θ: E = ½ a(θ) θ̇² + U_eff(θ).
 
-    Attributes
+    Parameters
     ----------
-    coordinate, symbol, rate : the remaining coordinate θ, its symbol and the symbol of θ̇.
-    cyclic, cyclic_rates : the cyclic coordinates (model order) and their rate symbols ċ.
-    momenta, momentum_symbols, momentum_expressions : K, H, ... (one per cyclic coordinate),
-        the constants' symbols and p_i = ∂T/∂ċ_i.
-    energy_name, energy_expression : ``"E"`` (T + U) or ``"h"`` (T2 − T0 + U).
-    rates : ċ_i(θ, θ̇, K, H) solved from the momenta.
-    inertia : a(θ).  effective_potential : U_eff(θ, K, H).
-    block, determinant, numerator, regular_part : M_cc, det M_cc (expanded),
-        N = (P − B)ᵀ adj(M_cc) (P − B) and W = U − T0, so U_eff = N/(2 det) + W.
-    offset : B = ∂T1/∂ċ at ċ = θ̇ = 0 (zero unless T has terms linear in the rates).
-    angle : θ is a rotation angle of a frame (so θ = 0 or π may be a sleeping position).
-    precession, spin : the cyclic coordinate of the rotation about an axis fixed in R0 (ψ),
-        and, with exactly two cyclic coordinates, the other one (φ); else None.
+    model_name : str
+        The model's name.
+    coordinate : str
+        The remaining coordinate θ.
+    symbol : SymEngine Symbol
+        Its symbol.
+    rate : SymEngine Symbol
+        The symbol of θ̇.
+    cyclic : tuple of str
+        The cyclic coordinates, in model order.
+    cyclic_rates : tuple of SymEngine Symbol
+        Their rate symbols ċ.
+    momenta : tuple of str
+        K, H, ... (one per cyclic coordinate).
+    momentum_symbols : tuple of SymEngine Symbol
+        The constants' symbols.
+    momentum_expressions : tuple of SymEngine expressions
+        The momenta p_i = ∂T/∂ċ_i.
+    energy_name : str
+        ``"E"`` (T + U) or ``"h"`` (T2 − T0 + U).
+    energy_expression : SymEngine expression
+        That integral's expression.
+    rates : tuple of SymEngine expressions
+        The rates ċ_i(θ, θ̇, K, H) solved from the momenta.
+    inertia : SymEngine expression
+        The coefficient a(θ).
+    effective_potential : SymEngine expression
+        U_eff(θ, K, H).
+    block : tuple of tuples of SymEngine expressions
+        M_cc, the block of M of the cyclic rates.
+    determinant : SymEngine expression
+        The determinant det M_cc (expanded).
+    numerator : SymEngine expression
+        N = (P − B)ᵀ adj(M_cc) (P − B), so U_eff = N/(2 det) + W.
+    regular_part : SymEngine expression
+        W = U − T0.
+    offset : tuple of SymEngine expressions
+        B = ∂T1/∂ċ at ċ = θ̇ = 0 (zero unless T has terms linear in the rates).
+    angle : bool
+        True when θ is a rotation angle of a frame (so θ = 0 or π may be a sleeping position).
+    precession : str
+        The cyclic coordinate of the rotation about an axis fixed in R0 (ψ).
+    spin : str or None
+        With exactly two cyclic coordinates, the other one (φ); else None.
     """
 
     model_name: str
@@ -106,7 +145,18 @@ class CyclicReduction:
     spin: str | None
 
     def momentum_of(self, coordinate: str) -> se.Symbol:
-        """The symbol of the constant momentum of cyclic ``coordinate`` (K for ψ)."""
+        """The symbol of the constant momentum of cyclic ``coordinate`` (K for ψ).
+
+        Parameters
+        ----------
+        coordinate : str
+            A cyclic coordinate.
+
+        Returns
+        -------
+        SymEngine Symbol
+            The symbol of its constant momentum.
+        """
         return self.momentum_symbols[self.cyclic.index(coordinate)]
 
 
@@ -163,12 +213,14 @@ def reduce_cyclic(eom: EquationsOfMotion) -> CyclicReduction:
 
     Parameters
     ----------
-    eom : equations of motion with one non-cyclic coordinate, the others cyclic, and an
-        energy (or Painlevé–Jacobi) integral.
+    eom : EquationsOfMotion
+        Equations of motion with one non-cyclic coordinate, the others cyclic, and an energy (or
+        Painlevé–Jacobi) integral.
 
     Returns
     -------
     CyclicReduction
+        The rates solved from the momenta, a(θ) and U_eff(θ).
 
     Raises
     ------

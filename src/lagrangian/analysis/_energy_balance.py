@@ -45,10 +45,19 @@ __all__ = ["PowerTerm", "EnergyBalance", "energy_balance"]
 class PowerTerm:
     """One contribution to dE/dt: ``power`` (a function of q, q̇, t) and where it comes from.
 
-    ``kind`` is ``"load"`` (real power Σ Q_i q̇_i of a non-conservative load, ``name`` being
-    the load), ``"explicit time"`` (∂U/∂t of a conservative load), ``"prescribed motion"``
-    (power of the constraints that impose a motion depending on t) or ``"constraint"``
-    (real power −λ_k b_k = λ_k A_k·q̇ of a complementary constraint's reaction).
+    Parameters
+    ----------
+    name : str
+        The load, for a ``"load"`` term; else a name for the term.
+    kind : str
+        ``"load"`` (real power Σ Q_i q̇_i of a non-conservative load), ``"explicit time"`` (∂U/∂t of
+        a conservative load), ``"prescribed motion"`` (power of the constraints that impose a motion
+        depending on t) or ``"constraint"`` (real power −λ_k b_k = λ_k A_k·q̇ of a complementary
+        constraint's reaction).
+    power : SymEngine expression
+        The power, a function of q, q̇ and t.
+    note : str
+        Where it comes from, in words.
     """
 
     name: str
@@ -59,14 +68,18 @@ class PowerTerm:
 
 @dataclass(frozen=True, slots=True)
 class EnergyBalance:
-    """dE/dt = ``P_nc`` along every motion, with E = T + U.
+    """The balance dE/dt = ``P_nc`` along every motion, with E = T + U.
 
-    Attributes
+    Parameters
     ----------
-    E : T + U, the energy whose rate is balanced.
-    terms : the contributions to its rate, in the order of the loads.
-    P_nc : Σ of the terms' powers.
-    conserved : P_nc ≡ 0 (E is then a first integral).
+    E : SymEngine expression
+        T + U, the energy whose rate is balanced.
+    terms : tuple of PowerTerm
+        The contributions to its rate, in the order of the loads.
+    P_nc : SymEngine expression
+        Σ of the terms' powers.
+    conserved : bool
+        P_nc ≡ 0 (E is then a first integral).
     """
 
     E: se.Basic
@@ -120,8 +133,9 @@ def energy_balance(eom: EquationsOfMotion) -> EnergyBalance:
 
     Parameters
     ----------
-    eom : the derivation (`lagrangian.derive`), in R0 or in a non-Galilean frame R (then T
-        is T(Σ/R) and the inertial loads appear among the terms).
+    eom : EquationsOfMotion
+        The derivation (`lagrangian.derive`), in R0 or in a non-Galilean frame R (then T is T(Σ/R)
+        and the inertial loads appear among the terms).
 
     Returns
     -------

@@ -68,23 +68,34 @@ __all__ = [
 class Equilibrium:
     """One position of equilibrium q*.
 
-    Attributes
+    Parameters
     ----------
-    values : coordinate name → q*_i: a SymEngine expression in the parameters (closed form)
-        or a float (numeric); a coordinate in ``free`` maps to its own symbol (any value).
-    closed_form : whether ``values`` were found by SymPy.
-    condition, condition_text : the condition of existence (a SymPy relational or And of them,
-        in the parameters) and its text, or None when the equilibrium always exists.
-    exists : the condition at the parameter values (None when some value is missing).
-    numeric : q* at the parameter values (angles in (−π, π]), or None without all values.
-    residual : ``max |F(q*, 0) + Aᵀλ|, |f(q*)|`` at ``numeric`` (None without values).
-    free : coordinates along which every value is an equilibrium: absent from the static equations, left
-        free by SymPy, or found so by the numeric search (the bead on a turning parabola at Ω² = 2 g a:
-        "r any").
-    family : the dimension of a curved family of equilibria through ``numeric`` (0: none; the static
+    values : mapping of str to SymEngine expression or float
+        Coordinate name → q*_i: a SymEngine expression in the parameters (closed form) or a float
+        (numeric); a coordinate in ``free`` maps to its own symbol (any value).
+    closed_form : bool
+        Whether ``values`` were found by SymPy.
+    condition : SymPy expression, optional
+        The condition of existence (a SymPy relational or And of them, in the parameters), or None
+        when the equilibrium always exists.
+    condition_text : str, optional
+        Its text.
+    exists : bool or None
+        The condition at the parameter values (None when some value is missing).
+    numeric : mapping of str to float, optional
+        The equilibrium q* at the parameter values (angles in (−π, π]), or None without all values.
+    residual : float, optional
+        ``max |F(q*, 0) + Aᵀλ|, |f(q*)|`` at ``numeric`` (None without values).
+    free : tuple of str
+        Coordinates along which every value is an equilibrium: absent from the static equations,
+        left free by SymPy, or found so by the numeric search (the bead on a turning parabola at
+        Ω² = 2 g a: "r any").
+    family : int
+        The dimension of a curved family of equilibria through ``numeric`` (0: none; the static
         equations' Jacobian is singular there and the rests form a curve, which this one stands for).
-    aliases : other values of the coordinates that put every body and particle in the same place
-        (the elastic pendulum's r = −0.63, θ = π is its r = 0.63, θ = 0): listed here, not as rests.
+    aliases : tuple of mapping of str to float
+        Other values of the coordinates that put every body and particle in the same place (the
+        elastic pendulum's r = −0.63, θ = π is its r = 0.63, θ = 0): listed here, not as rests.
     """
 
     values: Mapping[str, se.Basic | float]
@@ -100,7 +111,15 @@ class Equilibrium:
 
 
 class Equilibria(tuple):
-    """The equilibria found (a tuple of `Equilibrium`), with ``search``: what was searched (`EquilibriumSearch`)."""
+    """The equilibria found (a tuple of `Equilibrium`), with what was searched.
+
+    Parameters
+    ----------
+    items : sequence of Equilibrium
+        The equilibria.
+    search : EquilibriumSearch
+        What was searched.
+    """
 
     search: EquilibriumSearch
 
@@ -117,13 +136,18 @@ def equilibria(eom: EquationsOfMotion, parameters: Mapping[str, float] | None = 
 
     Parameters
     ----------
-    eom : `lagrangian.derive`'s result, for an autonomous model.
-    parameters : values overriding the model's (name → number).
-    ranges : coordinate name → (a, b), where the numeric search looks (and where closed-form
-        roots are kept); angles default to (−π, π], other coordinates to their declared ``range``,
-        else to starting points over every scale (`lagrangian.analysis._equilibria_search`).
-    all_branches : keep closed-form branches whose condition is false at the values.
-    numeric : run the numeric search (when every parameter has a value); False: the closed form only.
+    eom : EquationsOfMotion
+        `lagrangian.derive`'s result, for an autonomous model.
+    parameters : mapping of str to float, optional
+        Values overriding the model's (name → number).
+    ranges : mapping of str to (float, float), optional
+        Coordinate name → (a, b), where the numeric search looks (and where closed-form roots are
+        kept); angles default to (−π, π], other coordinates to their declared ``range``, else to
+        starting points over every scale (`lagrangian.analysis._equilibria_search`).
+    all_branches : bool, optional
+        Keep closed-form branches whose condition is false at the values.
+    numeric : bool, optional
+        Run the numeric search (when every parameter has a value); False: the closed form only.
 
     Returns
     -------

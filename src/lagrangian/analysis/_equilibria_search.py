@@ -51,9 +51,20 @@ _TRIG = (se.sin, se.cos, se.tan)
 
 @dataclass(frozen=True, slots=True)
 class SearchRegion:
-    """Where one coordinate was searched: ``kind`` is "angle" ((−π, π]), "range" (given), "declared"
-    (the model's range) or "scales" (no range: starts over every scale); ``bounds`` the interval
-    searched (±inf for an open side)."""
+    """Where one coordinate was searched for equilibria.
+
+    Parameters
+    ----------
+    coordinate : str
+        The coordinate.
+    kind : str
+        "angle" ((−π, π]), "range" (given), "declared" (the model's range) or "scales" (no range:
+        starts over every scale).
+    bounds : (float, float)
+        The interval searched (±inf for an open side).
+    starts : int
+        The number of starting points along it.
+    """
 
     coordinate: str
     kind: str
@@ -63,15 +74,28 @@ class SearchRegion:
 
 @dataclass(frozen=True, slots=True)
 class EquilibriumSearch:
-    """What `equilibria` did: ``closed_form`` whether SymPy solved the static equations, ``numeric``
-    whether the numeric search ran (every parameter has a value), its ``regions`` and ``starts``."""
+    """What `equilibria` did: the closed form, the numeric search and where it looked.
+
+    Parameters
+    ----------
+    closed_form : bool
+        Whether SymPy solved the static equations.
+    numeric : bool
+        Whether the numeric search ran (every parameter has a value).
+    regions : tuple of SearchRegion
+        Where it looked, per coordinate.
+    starts : int
+        The number of starting points in all.
+    skipped : str, optional
+        Why the numeric search did not run: "values" (a parameter has no value), "continuum" (the
+        closed form gives a family of rests already), "not asked" (``numeric=False``); None when it
+        ran.
+    """
 
     closed_form: bool
     numeric: bool
     regions: tuple[SearchRegion, ...] = ()
     starts: int = 0
-    #: Why the numeric search did not run: "values" (a parameter has no value), "continuum" (the closed
-    #: form gives a family of rests already), "not asked" (``numeric=False``); None when it ran.
     skipped: str | None = None
 
     @property

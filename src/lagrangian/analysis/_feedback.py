@@ -37,8 +37,18 @@ FEEDBACK_VERSION = 1
 
 
 class ControlError(AnalysisError):
-    """A feedback cannot be designed or read: an uncontrollable pair, weights of the wrong shape or
-    sign, a point with symbols left, a feedback file that is not one."""
+    """A feedback cannot be designed or read.
+
+    An uncontrollable pair, weights of the wrong shape or sign, a point with symbols left, a feedback
+    file that is not one.
+
+    Parameters
+    ----------
+    message : str
+        What was wrong, a full sentence naming the culprit in backticks.
+    fix : str, optional
+        How to fix it, printed after the message.
+    """
 
 
 def _matrix(value: Any, shape: tuple[int, ...], what: str) -> np.ndarray:
@@ -59,21 +69,37 @@ def _matrix(value: Any, shape: tuple[int, ...], what: str) -> np.ndarray:
 
 @dataclass(frozen=True, eq=False)
 class Feedback:
-    """u = u* − K (x − x*(t)) about the point x* held by the inputs u* (module docstring).
+    """The state feedback u = u* − K (x − x*(t)) about the point x* held by the inputs u* (module docstring).
 
-    Attributes
+    Parameters
     ----------
-    model : the model's name.
-    states : the names of x (coordinates ``theta`` and rates ``theta_dot``), in the order of K's columns.
-    inputs : the names of u, in the order of K's rows.
-    K : shape (m, nx), the gain.
-    x_star, u_star : shapes (nx,), (m,): the point and the inputs that hold it.
-    A, B : the linearization ẋ = A δx + B δu at the point (`lagrangian.linearize`).
-    Q, R : the weights of the cost ∫ (δxᵀ Q δx + δuᵀ R δu) dt the gain minimizes (LQR).
-    eigenvalues : shape (nx,), complex: those of A − B K (the closed loop, linearized).
-    parameters : the parameter values the linearization used.
-    x_star_rate : shape (nx,): ẋ*, the rate of each coordinate state along the steady motion
-        (0 about an equilibrium; a rate state's entry is always 0): x*(t) = x* + ẋ* t.
+    model : str
+        The model's name.
+    states : tuple of str
+        The names of x (coordinates ``theta`` and rates ``theta_dot``), in the order of K's columns.
+    inputs : tuple of str
+        The names of u, in the order of K's rows.
+    K : ndarray of shape (m, nx)
+        The gain.
+    x_star : ndarray of shape (nx,)
+        The point.
+    u_star : ndarray of shape (m,)
+        The inputs that hold it.
+    A : ndarray of shape (nx, nx)
+        The linearization ẋ = A δx + B δu at the point (`lagrangian.linearize`).
+    B : ndarray of shape (nx, m)
+        Its input matrix.
+    Q : ndarray of shape (nx, nx)
+        The weight of δx in the cost ∫ (δxᵀ Q δx + δuᵀ R δu) dt the gain minimizes (LQR).
+    R : ndarray of shape (m, m)
+        The weight of δu.
+    eigenvalues : ndarray of shape (nx,), complex
+        Those of A − B K (the closed loop, linearized).
+    parameters : mapping of str to float
+        The parameter values the linearization used.
+    x_star_rate : ndarray of shape (nx,), optional
+        The rate ẋ* of each coordinate state along the steady motion (0 about an equilibrium; a
+        rate state's entry is always 0): x*(t) = x* + ẋ* t.
     """
 
     model: str
@@ -124,7 +150,13 @@ class Feedback:
 
     # -- the file form ------------------------------------------------------------------------
     def to_dict(self) -> dict[str, Any]:
-        """The versioned JSON document (module docstring) as plain Python values."""
+        """The versioned JSON document (module docstring) as plain Python values.
+
+        Returns
+        -------
+        dict of str to object
+            The document: lists, numbers and strings.
+        """
         return {
             "schema": FEEDBACK_SCHEMA, "version": FEEDBACK_VERSION, "model": self.model,
             "states": list(self.states), "inputs": list(self.inputs),
@@ -138,6 +170,18 @@ class Feedback:
     @classmethod
     def from_dict(cls, doc: Mapping[str, Any], *, where: str = "the feedback") -> Feedback:
         """The `Feedback` of a document made by `to_dict`.
+
+        Parameters
+        ----------
+        doc : mapping of str to object
+            The document.
+        where : str, optional
+            Names the document in error messages.
+
+        Returns
+        -------
+        Feedback
+            The feedback it holds.
 
         Raises
         ------
@@ -178,7 +222,18 @@ class Feedback:
             raise ControlError(f"In {where}: {exc.message}", fix=exc.fix) from None
 
     def save(self, path: str | Path) -> Path:
-        """Write the JSON document to ``path`` atomically; returns the path."""
+        """Write the JSON document to ``path`` atomically.
+
+        Parameters
+        ----------
+        path : str or Path
+            The file to write.
+
+        Returns
+        -------
+        Path
+            The path written.
+        """
         from .._atomic import write_atomic
 
         path = Path(path)
@@ -188,6 +243,16 @@ class Feedback:
     @classmethod
     def load(cls, path: str | Path) -> Feedback:
         """Read a feedback written by `save` (or ``lagrangian lqr ... -o FILE``).
+
+        Parameters
+        ----------
+        path : str or Path
+            The file to read.
+
+        Returns
+        -------
+        Feedback
+            The feedback it holds.
 
         Raises
         ------

@@ -50,7 +50,22 @@ INPUT_REGIMES = ("off", "constant", "varying")
 
 @dataclass(frozen=True, slots=True)
 class FirstIntegral:
-    """A quantity constant along every motion: ``expression`` = ``name`` (a constant)."""
+    """A quantity constant along every motion: ``expression`` = ``name`` (a constant).
+
+    Parameters
+    ----------
+    name : str
+        The constant's name.
+    kind : str
+        ``"momentum"``, ``"energy"``, ``"jacobi"``, ``"symmetry"`` (Noether) or ``"nonholonomic"``
+        (a constant speed).
+    expression : SymEngine expression
+        The expression that stays equal to it.
+    reason : str
+        Why it is constant, in words.
+    coordinate : str, optional
+        The cyclic coordinate of a momentum integral.
+    """
 
     name: str
     kind: str  # "momentum", "energy", "jacobi", "symmetry" (Noether) or "nonholonomic" (a constant speed)
@@ -80,10 +95,17 @@ def first_integrals(eom: EquationsOfMotion, *,
 
     Parameters
     ----------
-    eom : the equations (`lagrangian.derive`).
-    inputs : what each declared input does (module docstring): ``"off"`` (u = 0; the default
-        for every input not named), ``"constant"`` or ``"varying"``.  The expressions of the
-        integrals have the inputs that are off set to 0.
+    eom : EquationsOfMotion
+        The equations (`lagrangian.derive`).
+    inputs : mapping of str to str, optional
+        What each declared input does (module docstring): ``"off"`` (u = 0; the default for every
+        input not named), ``"constant"`` or ``"varying"``.  The expressions of the integrals have
+        the inputs that are off set to 0.
+
+    Returns
+    -------
+    tuple of FirstIntegral
+        The momenta of the cyclic coordinates, the energy or Jacobi integral, those of symmetries.
 
     Raises
     ------

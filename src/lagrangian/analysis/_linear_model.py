@@ -55,13 +55,41 @@ def _printable(obj: object) -> None:
 
 
 class LinearizationError(AnalysisError):
-    """The linearization cannot be made: an incomplete or unknown point, a point that is not an
-    equilibrium or a steady motion, a singular mass matrix or constraint Jacobian there."""
+    """The linearization cannot be made.
+
+    An incomplete or unknown point, a point that is not an equilibrium or a steady motion, a singular
+    mass matrix or constraint Jacobian there.
+
+    Parameters
+    ----------
+    message : str
+        What was wrong, a full sentence naming the culprit in backticks.
+    fix : str, optional
+        How to fix it, printed after the message.
+    """
 
 
 @dataclass(frozen=True, slots=True)
 class SecondOrderForm:
-    """M δq̈ + (D + G) δq̇ + (K + N) δq = B u on ``coordinates`` (D, K symmetric; G, N skew)."""
+    """The small motions M δq̈ + (D + G) δq̇ + (K + N) δq = B u on ``coordinates`` (D, K symmetric; G, N skew).
+
+    Parameters
+    ----------
+    coordinates : tuple of str
+        The coordinates δq.
+    M : SymEngine DenseMatrix
+        The mass matrix.
+    D : SymEngine DenseMatrix
+        The damping matrix.
+    G : SymEngine DenseMatrix
+        The gyroscopic matrix.
+    K : SymEngine DenseMatrix
+        The stiffness matrix.
+    N : SymEngine DenseMatrix
+        The circulatory matrix.
+    B : SymEngine DenseMatrix
+        The input matrix.
+    """
 
     coordinates: tuple[str, ...]
     M: se.DenseMatrix
@@ -77,27 +105,48 @@ class SecondOrderForm:
 
 @dataclass(frozen=True, slots=True, eq=False)
 class LinearModel:
-    """ẋ = A x + B u about a steady point, and its second-order form when it has one.
+    """The linear system ẋ = A x + B u about a steady point, and its second-order form when it has one.
 
-    Attributes
+    Parameters
     ----------
-    eom : the equations it comes from.
-    point : the point, name → value (every coordinate and every rate, dependent ones solved).
-    coordinates, speeds : the independent coordinates and speeds (``<c>_dot``): the state is
-        ``coordinates + speeds``.
-    dependent_coordinates, dependent_speeds : those eliminated by the constraints, and ``choice``,
-        a sentence saying how they were chosen.
-    inputs : the names of the inputs u (columns of B).
-    A, B : the state matrices; their entries depend only on ``symbols``.
-    symbols : the parameters left symbolic (the others were given their values).
-    values : the parameter values substituted.
-    second_order : `SecondOrderForm`, or None with ``second_order_reason``.
-    ignorable : independent coordinates that do not act on the motion: their columns of A are zero once
-        the other ignorable ones are set aside.
-    residual : the relative residual force at the point (0 for an exact equilibrium).
-    multipliers : λ0 of the complementary constraints at the point.
-    coordinate_map : P, with δq = P δq_i: every coordinate's perturbation from the independent ones
-        (the identity without holonomic complementary constraints).
+    eom : EquationsOfMotion
+        The equations it comes from.
+    point : dict of str to SymEngine expression
+        The point, name → value (every coordinate and every rate, dependent ones solved).
+    coordinates : tuple of str
+        The independent coordinates: the state is ``coordinates + speeds``.
+    speeds : tuple of str
+        The independent speeds (``<c>_dot``).
+    dependent_coordinates : tuple of str
+        The coordinates eliminated by the constraints.
+    dependent_speeds : tuple of str
+        The speeds eliminated by the constraints.
+    choice : str
+        A sentence saying how the dependent ones were chosen.
+    inputs : tuple of str
+        The names of the inputs u (columns of B).
+    A : SymEngine DenseMatrix
+        The state matrix; its entries depend only on ``symbols``.
+    B : SymEngine DenseMatrix
+        The input matrix; its entries depend only on ``symbols``.
+    symbols : tuple of SymEngine Symbol
+        The parameters left symbolic (the others were given their values).
+    values : dict of str to float
+        The parameter values substituted.
+    second_order : SecondOrderForm or None
+        The second-order form, or None with ``second_order_reason``.
+    second_order_reason : str
+        Why there is no second-order form.
+    ignorable : tuple of str
+        Independent coordinates that do not act on the motion: their columns of A are zero once the
+        other ignorable ones are set aside.
+    residual : float
+        The relative residual force at the point (0 for an exact equilibrium).
+    multipliers : dict of str to SymEngine expression
+        The multipliers λ0 of the complementary constraints at the point.
+    coordinate_map : SymEngine DenseMatrix, optional
+        P, with δq = P δq_i: every coordinate's perturbation from the independent ones (the identity
+        without holonomic complementary constraints).
     """
 
     eom: EquationsOfMotion
@@ -146,22 +195,68 @@ class LinearModel:
         return {names[n]: float(v) for n, v in values.items()}
 
     def numeric(self, **values: float) -> tuple[np.ndarray, np.ndarray]:
-        """(A, B) as float arrays, the symbols left symbolic given ``values``."""
+        """The matrices A and B as float arrays.
+
+        Parameters
+        ----------
+        **values : float
+            Values of the symbols left symbolic.
+
+        Returns
+        -------
+        A : ndarray of shape (nx, nx)
+            The state matrix.
+        B : ndarray of shape (nx, m)
+            The input matrix.
+        """
         subs = self._values(values)
         return to_numpy(self.A, subs), to_numpy(self.B, subs)
 
     def eigenvalues(self, **values: float) -> np.ndarray:
-        """The eigenvalues of A (complex), in LAPACK's order."""
+        """The eigenvalues of A (complex), in LAPACK's order.
+
+        Parameters
+        ----------
+        **values : float
+            Values of the symbols left symbolic.
+
+        Returns
+        -------
+        ndarray of shape (nx,), complex
+            The eigenvalues.
+        """
         A, _ = self.numeric(**values)
         return np.linalg.eigvals(A) if A.size else np.zeros(0, complex)
 
     def modes(self, **values: float):
-        """Natural frequencies, damping ratios and mode shapes (`lagrangian.analysis.Modes`)."""
+        """Natural frequencies, damping ratios and mode shapes (`lagrangian.analysis.Modes`).
+
+        Parameters
+        ----------
+        **values : float
+            Values of the symbols left symbolic.
+
+        Returns
+        -------
+        Modes
+            The modes of the linearization.
+        """
         from ._modes import modes
         return modes(self, **values)
 
     def stability(self, **values: float):
-        """The stability verdict with its reason (`lagrangian.analysis.Stability`)."""
+        """The stability verdict with its reason (`lagrangian.analysis.Stability`).
+
+        Parameters
+        ----------
+        **values : float
+            Values of the symbols left symbolic.
+
+        Returns
+        -------
+        Stability
+            The verdict and its reason.
+        """
         from ._modes import stability
         return stability(self, **values)
 
@@ -170,7 +265,18 @@ class LinearModel:
         return render(self, "latex")
 
     def to_scipy(self, **values: float):
-        """``scipy.signal.StateSpace(A, B, I, 0)``: the whole state as output."""
+        """The linearization as ``scipy.signal.StateSpace(A, B, I, 0)``: the whole state as output.
+
+        Parameters
+        ----------
+        **values : float
+            Values of the symbols left symbolic.
+
+        Returns
+        -------
+        scipy.signal.StateSpace
+            The continuous-time system.
+        """
         from scipy import signal
         A, B = self.numeric(**values)
         n = A.shape[0]
@@ -178,7 +284,18 @@ class LinearModel:
         return signal.StateSpace(A, B, np.eye(n), np.zeros((n, B.shape[1])))
 
     def to_control(self, **values: float):
-        """python-control's ``StateSpace`` (extra ``lagrangian[control]``), states and inputs named."""
+        """The linearization as python-control's ``StateSpace`` (``lagrangian[control]``), states and inputs named.
+
+        Parameters
+        ----------
+        **values : float
+            Values of the symbols left symbolic.
+
+        Returns
+        -------
+        control.StateSpace
+            The continuous-time system, the whole state as output.
+        """
         try:
             import control
         except ImportError:  # pragma: no cover - depends on the installation
@@ -193,8 +310,20 @@ class LinearModel:
 
 
 def to_numpy(m: se.DenseMatrix, subs: Mapping[se.Basic, float]) -> np.ndarray:
-    """The matrix ``m`` at ``subs`` as a real float array of its shape; `LinearizationError` if an entry is
-    not a number there, or complex."""
+    """The matrix ``m`` at ``subs`` as a real float array of its shape.
+
+    Parameters
+    ----------
+    m : SymEngine DenseMatrix
+        The matrix.
+    subs : mapping of SymEngine expression to float
+        The values of its symbols.
+
+    Returns
+    -------
+    ndarray
+        Its value; `LinearizationError` if an entry is not a number there, or complex.
+    """
     if m.rows == 0 or m.cols == 0:
         return np.zeros((m.rows, m.cols))
     try:

@@ -121,24 +121,32 @@ def linearize(eom: EquationsOfMotion, at: Mapping[str, object] | None = None, *,
 
     Parameters
     ----------
-    eom : from `lagrangian.derive`.
-    at : the point: every coordinate ``q`` a value, rates ``q_dot`` optional (0 by default;
-        dependent speeds are solved from the constraints), inputs optional (0 by default: a
-        robot held still by its joint torques is ``{"q1": 0.3, "tau_q1": 4.2}``; see
-        `holding_inputs`).  Values are numbers, SymEngine expressions in the parameters, or
-        text in the model grammar (``"pi"``, ``"-v/rR"``).  None: the model's
-        ``[operating_point]`` table.
-    parameters : parameter values overriding the model's.
-    symbolic : parameters kept as symbols although they have a value (A(v) for a sweep).
-    inputs : the inputs u, columns of B: parameters or declared ``[inputs]`` (default: the
-        model's declared inputs).  Their values at the point u0 come from ``at`` (0 when not
-        given), and A, B are the Jacobians at (q0, q̇0, u0).
-    independent_speeds, dependent_coordinates : the choice of the reduction, when the model
-        keeps constraints complementary (default: the model's, else chosen by rank).
+    eom : EquationsOfMotion
+        From `lagrangian.derive`.
+    at : mapping of str to object, optional
+        The point: every coordinate ``q`` a value, rates ``q_dot`` optional (0 by default; dependent
+        speeds are solved from the constraints), inputs optional (0 by default: a robot held still by
+        its joint torques is ``{"q1": 0.3, "tau_q1": 4.2}``; see `holding_inputs`).  Values are
+        numbers, SymEngine expressions in the parameters, or text in the model grammar (``"pi"``,
+        ``"-v/rR"``).  None: the model's ``[operating_point]`` table.
+    parameters : mapping of str to float, optional
+        Parameter values overriding the model's.
+    symbolic : sequence of str, optional
+        Parameters kept as symbols although they have a value (A(v) for a sweep).
+    inputs : sequence of str, optional
+        The inputs u, columns of B: parameters or declared ``[inputs]`` (default: the model's
+        declared inputs).  Their values at the point u0 come from ``at`` (0 when not given), and A, B
+        are the Jacobians at (q0, q̇0, u0).
+    independent_speeds : sequence of str, optional
+        The independent speeds of the reduction, when the model keeps constraints complementary
+        (default: the model's, else chosen by rank).
+    dependent_coordinates : sequence of str, optional
+        The dependent coordinates of the reduction, likewise.
 
     Returns
     -------
     LinearModel
+        A, B, the second-order form and the point.
 
     Raises
     ------
@@ -534,6 +542,22 @@ def holding_inputs(eom: EquationsOfMotion, at: Mapping[str, object], *,
     ``computeGeneralizedGravity``).  F is affine in the inputs of a load's magnitude (Q_j = τ_j),
     so u0 solves F(q0, q̇0, 0) + (∂F/∂u) u0 = 0 by least squares; the inputs given in ``at`` keep
     their values.  Every parameter needs a value.
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+    at : mapping of str to object
+        The point, as for `linearize`.
+    parameters : mapping of str to float, optional
+        Parameter values overriding the model's.
+    inputs : sequence of str, optional
+        The inputs to solve for (default: the model's declared inputs).
+
+    Returns
+    -------
+    dict of str to float
+        The inputs u0, by input name.
 
     Raises
     ------

@@ -142,15 +142,21 @@ def lqr(source: Any, at: Mapping[str, Any] | None = None, *, Q: Any = None, R: A
 
     Parameters
     ----------
-    source : a model file, a `Model` or an `EquationsOfMotion`.
-    at : the point, as for `linearize` (every coordinate; rates 0 unless given; inputs' values
-        u* optional); None: the model's ``[operating_point]``.  Inputs not given take the values
-        that hold the point (`holding_inputs`) when the model keeps no constraint complementary
-        (else 0).
-    Q, R : the weights of δx and δu: a matrix, a diagonal, or a dict by state or input name
-        (the identity elsewhere); default the identity.
-    inputs : the inputs u (default: the model's declared inputs).
-    parameters : parameter values overriding the model's; every parameter needs a value.
+    source : str or Path or Model or EquationsOfMotion
+        A model file, a `Model` or an `EquationsOfMotion`.
+    at : mapping of str to object, optional
+        The point, as for `linearize` (every coordinate; rates 0 unless given; inputs' values u*
+        optional); None: the model's ``[operating_point]``.  Inputs not given take the values that
+        hold the point (`holding_inputs`) when the model keeps no constraint complementary (else 0).
+    Q : array_like or mapping of str to float, optional
+        The weight of δx: a matrix, a diagonal, or a dict by state name (the identity elsewhere);
+        default the identity.
+    R : array_like or mapping of str to float, optional
+        The weight of δu, likewise by input name.
+    inputs : sequence of str, optional
+        The inputs u (default: the model's declared inputs).
+    parameters : mapping of str to float, optional
+        Parameter values overriding the model's; every parameter needs a value.
 
     Returns
     -------

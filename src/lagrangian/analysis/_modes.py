@@ -47,9 +47,20 @@ AXIS_RTOL = 1e-9
 class Mode:
     """One eigenvalue λ of A with its eigenvector.
 
-    ``frequency`` ``ω_n = |λ|`` (rad/s), ``damped_frequency`` ``|Im λ|``, ``period`` ``2π/|Im λ|`` (None
-    for a real λ), ``damping_ratio`` ``ζ = −Re λ/|λ|``, ``shape`` the eigenvector over the state,
-    normalised so that its largest coordinate component is 1.
+    Parameters
+    ----------
+    eigenvalue : complex
+        The eigenvalue λ.
+    frequency : float
+        The natural frequency ``ω_n = |λ|`` (rad/s).
+    damped_frequency : float
+        The damped frequency ``|Im λ|``.
+    period : float or None
+        The period ``2π/|Im λ|`` (None for a real λ).
+    damping_ratio : float
+        The damping ratio ``ζ = −Re λ/|λ|``.
+    shape : dict of str to complex
+        The eigenvector over the state, normalised so that its largest coordinate component is 1.
     """
 
     eigenvalue: complex
@@ -62,7 +73,25 @@ class Mode:
 
 @dataclass(frozen=True, slots=True)
 class Modes:
-    """The essential modes, the neutral directions split off, and the conservative pulsations."""
+    """The essential modes, the neutral directions split off, and the conservative pulsations.
+
+    Parameters
+    ----------
+    state : tuple of str
+        The state's names.
+    essential : tuple of str
+        The state variables of the essential motion.
+    modes : tuple of Mode
+        The essential modes.
+    neutral : tuple of (str, str)
+        The neutral directions split off: (state variable or "momentum", why).
+    pulsations : tuple of float or None
+        The pulsations ω from K φ = ω² M φ (conservative systems), ascending.
+    shapes : tuple of dict of str to float, or None
+        The matching φ, M-normalised.
+    zero : ZeroStructure, optional
+        The eigenvalue 0: its Jordan blocks, and whether it makes the motion grow.
+    """
 
     state: tuple[str, ...]
     essential: tuple[str, ...]
@@ -79,7 +108,19 @@ class Modes:
 
 @dataclass(frozen=True, slots=True)
 class Stability:
-    """``stable``: True, False, or None (marginal: the linearization does not decide)."""
+    """The verdict on a linearized motion, with its reason.
+
+    Parameters
+    ----------
+    stable : bool or None
+        True, False, or None (marginal: the linearization does not decide).
+    verdict : str
+        "asymptotically stable", "stable", "stable to first order", "unstable" or "marginal".
+    reason : str
+        The theorem or the eigenvalue that decides it.
+    eigenvalues : ndarray
+        The eigenvalues of the essential motion.
+    """
 
     stable: bool | None
     verdict: str  # "asymptotically stable", "stable", "stable to first order", "unstable", "marginal"
@@ -144,7 +185,20 @@ def _sorted(lam: np.ndarray) -> np.ndarray:
 
 
 def modes(lin: LinearModel, **values: float) -> Modes:
-    """Eigenvalues, frequencies, damping ratios and mode shapes of the essential motion."""
+    """Eigenvalues, frequencies, damping ratios and mode shapes of the essential motion.
+
+    Parameters
+    ----------
+    lin : LinearModel
+        The linearization.
+    **values : float
+        Values of the symbols it left symbolic.
+
+    Returns
+    -------
+    Modes
+        The modes.
+    """
     A, _ = lin.numeric(**values)
     keep, neutral, lam, zero = _essential(lin, A)
     state = lin.state
@@ -220,7 +274,20 @@ def _conservative(lin: LinearModel, values: dict, lam: np.ndarray):
 
 
 def stability(lin: LinearModel, **values: float) -> Stability:
-    """The verdict on the linearized motion, with the theorem or the eigenvalue that decides it."""
+    """The verdict on the linearized motion, with the theorem or the eigenvalue that decides it.
+
+    Parameters
+    ----------
+    lin : LinearModel
+        The linearization.
+    **values : float
+        Values of the symbols it left symbolic.
+
+    Returns
+    -------
+    Stability
+        The verdict.
+    """
     A, _ = lin.numeric(**values)
     keep, neutral, lam, zero = _essential(lin, A)
     lam = _sorted(lam)
@@ -324,9 +391,19 @@ def _c(z: complex) -> str:
 
 @dataclass(frozen=True, slots=True)
 class StabilityChange:
-    """Where the essential spectrum changes along a sweep: ``kind`` is ``"stability lost"``,
-    ``"stability gained"``, ``"eigenvalues become complex"``, ``"eigenvalues become real"``,
-    ``"becomes asymptotically stable"`` or ``"asymptotic stability lost"``."""
+    """Where the essential spectrum changes along a sweep.
+
+    Parameters
+    ----------
+    value : float
+        The parameter's value there.
+    kind : str
+        ``"stability lost"``, ``"stability gained"``, ``"eigenvalues become complex"``,
+        ``"eigenvalues become real"``, ``"becomes asymptotically stable"`` or ``"asymptotic stability
+        lost"``.
+    eigenvalues : ndarray
+        The essential eigenvalues there.
+    """
 
     value: float
     kind: str
@@ -335,7 +412,21 @@ class StabilityChange:
 
 @dataclass(frozen=True, slots=True)
 class Sweep:
-    """The essential eigenvalues of A against one parameter (rows: ``values``)."""
+    """The essential eigenvalues of A against one parameter (rows: ``values``).
+
+    Parameters
+    ----------
+    parameter : str
+        The parameter's name.
+    values : ndarray of shape (m,)
+        Its grid.
+    eigenvalues : ndarray of shape (m, k), complex
+        Each row sorted by real then imaginary part.
+    stable : ndarray of shape (m,)
+        1 stable, 0 unstable, NaN marginal.
+    changes : tuple of StabilityChange
+        Where the spectrum changes.
+    """
 
     parameter: str
     values: np.ndarray
@@ -389,6 +480,22 @@ def eigenvalue_sweep(lin: LinearModel, name: str, values: Sequence[float] | np.n
     changes (a pair merging on the real axis, the bicycle's weave at 0.684 m/s), by bisection
     to the last representable digit.  ``lagrangian.sweep`` (`lagrangian.numerics.sweep`) calls
     it for a linearization, and maps a contact model's impacts instead.
+
+    Parameters
+    ----------
+    lin : LinearModel
+        A linearization that keeps ``name`` symbolic.
+    name : str
+        The parameter.
+    values : sequence of float or ndarray
+        Its grid.
+    **fixed : float
+        Values of the other symbols left symbolic.
+
+    Returns
+    -------
+    Sweep
+        The eigenvalues over the grid and where stability changes.
     """
     if not isinstance(lin, LinearModel):
         raise LinearizationError(f"eigenvalue_sweep() takes a linearization, not a {type(lin).__name__}.",

@@ -87,10 +87,32 @@ QUICK_REJECT = 1e-8
 class ElementTheorems:
     """The resultant and moment theorems of one body (or particle) in R0, as vectors.
 
-    ``point`` is where the moment theorem is taken: the body's fixed point, or the name of
-    the body/particle itself meaning its centre of mass G.  The constraint actions on the
-    element are what the given efforts leave: ``constraint_force`` = m γ(G) − R_given and
-    ``constraint_moment`` = δ_P − M_P(given).
+    The constraint actions on the element are what the given efforts leave: ``constraint_force`` =
+    m γ(G) − R_given and ``constraint_moment`` = δ_P − M_P(given).
+
+    Parameters
+    ----------
+    name : str
+        The body or particle.
+    kind : str
+        ``"body"`` or ``"particle"``.
+    point : str
+        Where the moment theorem is taken: the body's fixed point, or the name of the body/particle
+        itself meaning its centre of mass G.
+    mass : SymEngine expression
+        Its mass m.
+    mass_acceleration : Vector
+        The mass times the acceleration of G, m γ(G/R0) (γ(G/R) in a reference frame R).
+    angular_momentum : Vector
+        The angular momentum σ_P(S/R0) = Π_P·Ω (zero for a particle; relative to R in a frame R).
+    dynamic_moment : Vector
+        The dynamic moment ``δ_P(S/R0) = dσ_P/dt|R0`` (``|R`` in a frame R).
+    force : Vector
+        Σ of the given forces on the element.
+    moment : Vector
+        Σ M_P of the given efforts on the element.
+    efforts : tuple of str
+        The names of the loads acting on it.
     """
 
     name: str
@@ -119,11 +141,36 @@ class ElementTheorems:
 class CoordinateCheck:
     """L(q_i) against the projection of the Newton–Euler theorems on the directions of q_i.
 
-    ``theorem`` is ``"moment"`` (at ``point``, projected on ``direction``), ``"resultant"``
-    (projected on ``direction``) or ``"virtual power"`` (projected on the partial velocities
-    and angular velocities of q_i, when no single axis or direction describes them).
-    ``axis`` is the display name of ``direction`` when it is a unit basis vector (``"u"``);
-    ``point`` is a point or particle name, or ``G_<body>`` for a body's centre of mass.
+    Parameters
+    ----------
+    coordinate : str
+        The coordinate q_i.
+    theorem : str
+        ``"moment"`` (at ``point``, projected on ``direction``), ``"resultant"`` (projected on
+        ``direction``) or ``"virtual power"`` (projected on the partial velocities and angular
+        velocities of q_i, when no single axis or direction describes them).
+    point : str or None
+        A point or particle name, or ``G_<body>`` for a body's centre of mass.
+    direction : Vector or None
+        The direction projected on.
+    axis : str or None
+        The display name of ``direction`` when it is a unit basis vector (``"u"``).
+    elements : tuple of str
+        The bodies and particles that move with q_i.
+    whole_system : bool
+        ``elements`` is every element of the model.
+    newton_euler : SymEngine expression
+        Σ m γ(G)·∂V(P)/∂q̇_i + δ_P·∂Ω/∂q̇_i.
+    newton_euler_efforts : SymEngine expression
+        The same projection of the given efforts.
+    lagrange : SymEngine expression
+        Γ_i.
+    lagrange_efforts : SymEngine expression
+        −∂U/∂q_i + Q_i(nc).
+    lhs_agrees : bool
+        ``newton_euler`` ≡ ``lagrange``.
+    rhs_agrees : bool
+        ``newton_euler_efforts`` ≡ ``lagrange_efforts``.
     """
 
     coordinate: str
@@ -145,7 +192,18 @@ class CoordinateCheck:
         return self.lhs_agrees and self.rhs_agrees
 
     def describe(self, direction_text: str | None = None) -> str:
-        """E.g. ``"moment theorem at O projected on u"``; ``direction_text`` renders a non-unit direction."""
+        """Say which theorem was projected on what, e.g. ``"moment theorem at O projected on u"``.
+
+        Parameters
+        ----------
+        direction_text : str, optional
+            Renders a non-unit direction.
+
+        Returns
+        -------
+        str
+            The description.
+        """
         where = "" if self.whole_system else " of " + " + ".join(self.elements)
         shown = self.axis or direction_text or (repr(self.direction) if self.direction is not None else "")
         if self.theorem == "moment":
@@ -159,9 +217,19 @@ class CoordinateCheck:
 class Verification:
     """The outcome of `verify`: the vector theorems of every element, and each L(q_i) checked.
 
-    ``virtual_power_loads`` names the loads that entered by their generalized forces
-    (potentials, given Q_i, forces at points carried by no body) rather than as forces, and
-    ``virtual_power`` holds the sum of those Q_i, one per coordinate.
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations checked.
+    theorems : tuple of ElementTheorems
+        The vector theorems of every body and particle.
+    checks : tuple of CoordinateCheck
+        One per coordinate (empty with ``check=False``).
+    virtual_power_loads : tuple of str
+        The loads that entered by their generalized forces (potentials, given Q_i, forces at points
+        carried by no body) rather than as forces.
+    virtual_power : tuple of SymEngine expressions
+        The sum of those Q_i, one per coordinate.
     """
 
     eom: EquationsOfMotion
@@ -403,6 +471,20 @@ def given_efforts(eom: EquationsOfMotion) -> tuple[tuple[EffortsOnElement, ...],
     a spring pulls B towards A with k(ℓ − ℓ0) along AB (and A towards B); a damper pushes
     with c ℓ̇ against the elongation rate.  Potentials and given generalized forces have no
     force form: their Q_i (from ``eom.loads``) are returned per coordinate instead.
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+
+    Returns
+    -------
+    efforts : tuple of EffortsOnElement
+        The forces and couples on each element.
+    virtual_power : tuple of SymEngine expressions
+        The Q_i of the loads with no force form, per coordinate.
+    names : tuple of str
+        Those loads' names.
     """
     kin = eom.kinematics
     model = eom.model
@@ -470,11 +552,13 @@ def verify(eom: EquationsOfMotion, *, check: bool = True) -> Verification:
 
     Parameters
     ----------
-    eom : the derivation to check (`lagrangian.derive`).  Only its model, kinematics,
-        loads (for potentials and given generalized forces) and ``equations`` are read;
-        the Newton–Euler side is computed from the kinematics, not from T.
-    check : False: the vector theorems only, no ``checks`` (what the reactions need; the
-        symbolic comparison with each L(q_i) is most of the cost for a robot).
+    eom : EquationsOfMotion
+        The derivation to check (`lagrangian.derive`).  Only its model, kinematics, loads (for
+        potentials and given generalized forces) and ``equations`` are read; the Newton–Euler side
+        is computed from the kinematics, not from T.
+    check : bool, optional
+        False: the vector theorems only, no ``checks`` (what the reactions need; the symbolic
+        comparison with each L(q_i) is most of the cost for a robot).
 
     Returns
     -------

@@ -74,18 +74,28 @@ RANK_RTOL = 1e-9
 class Reaction:
     """The resultant (and moment) of the ground's constraint actions on a group of elements.
 
-    Attributes
+    Parameters
     ----------
-    name : ``"R_O"`` for the pin at O of a pinned group, else ``"R(→C+P)"``.
-    point : where ``moment`` is taken: the pin, or O.
-    pinned : the pinned body, or None.
-    elements : the bodies and particles of the group.
-    force : R = Σ m γ(G/R0) − Σ F_given, a symbolic vector (q, q̇, q̈, t).
-    moment : M = Σ δ_point − Σ M_point(given).
-    free_axes : directions the pin lets its body turn about (∂Ω/∂q̇_i), in R0 order of q.
-    free_rotations : how many of them are independent (3: a ball joint).
-    frame : the frame in which ``force_components`` are written (the shortest formula).
-    force_components : R in the basis of ``frame``.
+    name : str
+        ``"R_O"`` for the pin at O of a pinned group, else ``"R(→C+P)"``.
+    point : str
+        Where ``moment`` is taken: the pin, or O.
+    pinned : str or None
+        The pinned body, or None.
+    elements : tuple of str
+        The bodies and particles of the group.
+    force : Vector
+        R = Σ m γ(G/R0) − Σ F_given, a symbolic vector (q, q̇, q̈, t).
+    moment : Vector
+        M = Σ δ_point − Σ M_point(given).
+    free_axes : tuple of Vector
+        Directions the pin lets its body turn about (∂Ω/∂q̇_i), in R0 order of q.
+    free_rotations : int
+        How many of them are independent (3: a ball joint).
+    frame : str
+        The frame in which ``force_components`` are written (the shortest formula).
+    force_components : tuple of three SymEngine expressions
+        R in the basis of ``frame``.
     """
 
     name: str
@@ -174,9 +184,19 @@ def _shortest_frame(kin: Kinematics, v: Vector) -> tuple[str, tuple[se.Basic, se
 def reactions(source: Verification | EquationsOfMotion, *, display: bool = True) -> tuple[Reaction, ...]:
     """The reactions of the ground on each group of linked elements (see the module docstring).
 
-    ``display=False`` leaves ``force_components`` in R0's basis instead of the frame where they
-    read shortest: that choice expands R in every frame (seconds for a robot arm), and the
-    numbers along a trajectory (`reaction_history`) do not need it.
+    Parameters
+    ----------
+    source : Verification or EquationsOfMotion
+        The equations, or their verification (`verify`) when already made.
+    display : bool, optional
+        ``display=False`` leaves ``force_components`` in R0's basis instead of the frame where they
+        read shortest: that choice expands R in every frame (seconds for a robot arm), and the
+        numbers along a trajectory (`reaction_history`) do not need it.
+
+    Returns
+    -------
+    tuple of Reaction
+        One per group of linked elements.
 
     Examples
     --------
@@ -279,7 +299,21 @@ def _r0(kin: Kinematics, v: Vector) -> list[se.Basic]:
 
 @dataclass(frozen=True)
 class ReactionHistory:
-    """A reaction along a trajectory: ``force`` and ``moment`` (at ``point``), shape (N, 3), in R0 components."""
+    """A reaction along a trajectory, in R0 components.
+
+    Parameters
+    ----------
+    name : str
+        The reaction's name (`Reaction.name`).
+    point : str
+        Where ``moment`` is taken.
+    t : ndarray of shape (N,)
+        The times.
+    force : ndarray of shape (N, 3)
+        The resultant.
+    moment : ndarray of shape (N, 3)
+        The moment at ``point``.
+    """
 
     name: str
     point: str
@@ -290,7 +324,20 @@ class ReactionHistory:
 
 def reaction_history(source: Verification | EquationsOfMotion,
                      trajectory: Trajectory) -> dict[str, ReactionHistory]:
-    """Every reaction of `reactions` evaluated at the trajectory's states (q̈ from the trajectory)."""
+    """Every reaction of `reactions` evaluated at the trajectory's states (q̈ from the trajectory).
+
+    Parameters
+    ----------
+    source : Verification or EquationsOfMotion
+        The equations, or their verification.
+    trajectory : Trajectory
+        A simulated motion.
+
+    Returns
+    -------
+    dict of str to ReactionHistory
+        By reaction name.
+    """
     # The vector theorems only: the symbolic check of each L(q_i) is not needed for the numbers.
     v = source if isinstance(source, Verification) else verify(source, check=False)
     _check_coordinates(v, trajectory)
@@ -308,15 +355,21 @@ def reaction_history(source: Verification | EquationsOfMotion,
 class TrajectoryResiduals:
     """Newton–Euler residuals at the states of a trajectory, relative to the size of their terms.
 
-    Attributes
+    Parameters
     ----------
-    t : (N,) times.
-    coordinates : names of q_i.
-    projections : (N, n) ``|Σ m γ·∂V/∂q̇_i + δ·∂Ω/∂q̇_i − (efforts)|`` over Σ of the terms' sizes.
-    reactions : name → `ReactionHistory` (R and M in R0 components).
-    resultant : name → (N,) relative residual of Σ m γ(G) = Σ F_given + R, with R from its formula.
-    moment : name → (N,) relative residual of the moment theorem at the pin with R, along the axes
-        the pin leaves free (all three for a ball joint: δ_O = M_O(given), the seed's equation).
+    t : ndarray of shape (N,)
+        The times.
+    coordinates : tuple of str
+        The names of q_i.
+    projections : ndarray of shape (N, n)
+        ``|Σ m γ·∂V/∂q̇_i + δ·∂Ω/∂q̇_i − (efforts)|`` over Σ of the terms' sizes.
+    reactions : mapping of str to ReactionHistory
+        Name → `ReactionHistory` (R and M in R0 components).
+    resultant : mapping of str to ndarray
+        Name → (N,) relative residual of Σ m γ(G) = Σ F_given + R, with R from its formula.
+    moment : mapping of str to ndarray
+        Name → (N,) relative residual of the moment theorem at the pin with R, along the axes the pin
+        leaves free (all three for a ball joint: δ_O = M_O(given), the seed's equation).
     """
 
     t: np.ndarray
@@ -334,7 +387,15 @@ class TrajectoryResiduals:
         return max(values)
 
     def worst(self) -> tuple[str, float]:
-        """The check with the largest relative residual and that residual."""
+        """The check with the largest relative residual and that residual.
+
+        Returns
+        -------
+        name : str
+            The check (``"L(theta)"``, ``"resultant theorem with R_O"``...).
+        residual : float
+            Its largest relative residual.
+        """
         items = [(f"L({c})", float(np.max(self.projections[:, k], initial=0.0)))
                  for k, c in enumerate(self.coordinates)]
         items += [(f"resultant theorem with {k}", float(np.max(a, initial=0.0))) for k, a in self.resultant.items()]
@@ -362,6 +423,18 @@ def check_trajectory(source: Verification | EquationsOfMotion, trajectory: Traje
     the motion's scale: ``|Ω||σ|`` bounds the gyroscopic part Ω ∧ σ of δ = dσ/dt, whose two parts
     cancel for a body turning freely (δ = 0 = M), where ``|δ|`` alone would measure rounding by
     rounding.  Vectors are evaluated in R0 components from one compiled function.
+
+    Parameters
+    ----------
+    source : Verification or EquationsOfMotion
+        The equations, or their verification.
+    trajectory : Trajectory
+        A simulated motion.
+
+    Returns
+    -------
+    TrajectoryResiduals
+        The relative residuals at each state.
     """
     v = source if isinstance(source, Verification) else verify(source)
     _check_coordinates(v, trajectory)

@@ -26,7 +26,15 @@ __all__ = ["EquilibriumError", "StaticSystem", "configuration", "lambdify", "to_
 
 
 class EquilibriumError(AnalysisError):
-    """Equilibria cannot be sought: a model that depends on t, an unknown parameter, a missing range."""
+    """Equilibria cannot be sought: a model that depends on t, an unknown parameter, a missing range.
+
+    Parameters
+    ----------
+    message : str
+        What was wrong, a full sentence naming the culprit in backticks.
+    fix : str, optional
+        How to fix it, printed after the message.
+    """
 
 
 

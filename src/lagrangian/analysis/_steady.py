@@ -38,14 +38,25 @@ __all__ = ["RouthReduction", "SteadyMotion", "routh_reduction", "steady_motions"
 class RouthReduction:
     """The Routhian of the remaining coordinates at fixed cyclic momenta (module docstring).
 
-    Attributes
+    Parameters
     ----------
-    cyclic, remaining : coordinate names.
-    momenta : the symbols of the constants P_c (the model's momentum names: K, H, ...).
-    rates : ċ_c(r, ṙ, P).  inertia : a(r).  effective_potential : U_eff(r; P).
-    routhian : R(r, ṙ; P).
-    conditions : ∂U_eff/∂r_j with P = M_cc ċ + B_c at ṙ = 0: a steady motion makes them all zero
-        (expressions in r and the cyclic rates ċ).
+    cyclic : tuple of str
+        The cyclic coordinates.
+    remaining : tuple of str
+        The remaining coordinates r.
+    momenta : tuple of SymEngine Symbol
+        The symbols of the constants P_c (the model's momentum names: K, H, ...).
+    rates : tuple of SymEngine expressions
+        The cyclic rates ċ_c(r, ṙ, P).
+    inertia : SymEngine DenseMatrix
+        The inertia a(r).
+    effective_potential : SymEngine expression
+        The effective potential U_eff(r; P).
+    routhian : SymEngine expression
+        The Routhian R(r, ṙ; P).
+    conditions : tuple of SymEngine expressions
+        ∂U_eff/∂r_j with P = M_cc ċ + B_c at ṙ = 0: a steady motion makes them all zero (expressions
+        in r and the cyclic rates ċ).
     """
 
     cyclic: tuple[str, ...]
@@ -60,7 +71,23 @@ class RouthReduction:
 
 @dataclass(frozen=True, slots=True)
 class SteadyMotion:
-    """A steady motion: the remaining coordinates' values, the cyclic rates, the momenta, and Routh's verdict."""
+    """A steady motion: the remaining coordinates' values, the cyclic rates, the momenta, and Routh's verdict.
+
+    Parameters
+    ----------
+    coordinates : dict of str to float
+        The remaining coordinates' values.
+    rates : dict of str to float
+        The cyclic rates.
+    momenta : dict of str to float
+        The momenta.
+    stiffness : ndarray
+        ∂²U_eff/∂r² at the point (fixed momenta).
+    stable : bool or None
+        A strict minimum of U_eff: True; a negative eigenvalue: False; else None.
+    reason : str
+        Routh's verdict, in words.
+    """
 
     coordinates: dict[str, float]
     rates: dict[str, float]
@@ -81,7 +108,17 @@ def _simplify(e: se.Basic) -> se.Basic:
 
 
 def routh_reduction(eom: EquationsOfMotion) -> RouthReduction:
-    """Routh's reduction of ``eom`` by its cyclic coordinates.
+    """Reduce ``eom`` by its cyclic coordinates (Routh).
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+
+    Returns
+    -------
+    RouthReduction
+        The Routhian and the conditions of steady motion.
 
     Raises
     ------
@@ -139,11 +176,26 @@ def routh_reduction(eom: EquationsOfMotion) -> RouthReduction:
 
 def steady_motions(eom: EquationsOfMotion, at: Mapping[str, float], parameters: Mapping[str, float] | None = None,
                    ) -> tuple[SteadyMotion, ...]:
-    """The steady motions through ``at``: every remaining coordinate's value and all cyclic rates but
-    as many as there are remaining coordinates (those are solved for; real roots only).
+    """The steady motions through ``at``, each with Routh's verdict.
 
-    The top, ``at={"theta": 0.5, "phi_dot": 80}``: the two steady precession rates ψ̇ (slow, fast).
-    Each comes with Routh's verdict from ∂²U_eff/∂r² at fixed momenta.
+    ``at`` gives every remaining coordinate's value and all cyclic rates but as many as there are
+    remaining coordinates (those are solved for; real roots only).  The top,
+    ``at={"theta": 0.5, "phi_dot": 80}``: the two steady precession rates ψ̇ (slow, fast).  Each comes
+    with Routh's verdict from ∂²U_eff/∂r² at fixed momenta.
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+    at : mapping of str to float
+        The values given.
+    parameters : mapping of str to float, optional
+        Parameter values overriding the model's.
+
+    Returns
+    -------
+    tuple of SteadyMotion
+        One per real root.
     """
     red = routh_reduction(eom)
     kin = eom.kinematics

@@ -126,7 +126,39 @@ class SteadyPrecession:
 
 @dataclass(frozen=True, slots=True)
 class TopAnalysis:
-    """Everything `analyse_top` finds; see the module docstring for the formulas."""
+    """Everything `analyse_top` finds; see the module docstring for the formulas.
+
+    Parameters
+    ----------
+    reduction : CyclicReduction
+        The reduction to θ.
+    parameters : dict of str to float
+        The parameter values used.
+    initial : dict of str to float
+        The initial state.
+    constants : dict of str to float
+        K, H, E at the initial state.
+    rates : dict of str to SymEngine expression
+        The cyclic rates ċ_i(θ, θ̇, K, H), tidied.
+    inertia : SymEngine expression
+        The inertia a(θ).
+    effective_potential : SymEngine expression
+        The effective potential U_eff(θ, K, H), tidied.
+    U_eff : EffectivePotential
+        The same with the numbers in, callable.
+    nutation : Nutation or None
+        The nutation; None when θ0 is a sleeping position (det M_cc = 0).
+    top : TopForm or None
+        The symmetric top's closed forms, when it is one.
+    cubic : NutationCubic or None
+        The cubic in u = cos θ, for a symmetric top.
+    sleeping : tuple of SleepingTop
+        The sleeping positions and their stability.
+    steady : SteadyPrecession or None
+        The steady precession.
+    notes : tuple of str
+        Remarks on the analysis.
+    """
 
     reduction: CyclicReduction
     parameters: dict[str, float]
@@ -464,9 +496,12 @@ def analyse_top(eom: EquationsOfMotion, *, parameters: Mapping[str, float] | Non
 
     Parameters
     ----------
-    eom : the derived equations (``lagrangian.derive(model)``).
-    parameters : parameter values overriding the model's (``{"C": 0.02}``).
-    initial : initial-state overrides, coordinates and rates (``{"theta": 0.3, "phi_dot": 80}``).
+    eom : EquationsOfMotion
+        The derived equations (``lagrangian.derive(model)``).
+    parameters : mapping of str to float, optional
+        Parameter values overriding the model's (``{"C": 0.02}``).
+    initial : mapping of str to float, optional
+        Initial-state overrides, coordinates and rates (``{"theta": 0.3, "phi_dot": 80}``).
 
     Returns
     -------

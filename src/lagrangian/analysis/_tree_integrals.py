@@ -80,12 +80,24 @@ def _evaluate(eom: EquationsOfMotion, exprs: Sequence[se.Basic], states: Sequenc
 
 
 def tree_integrals(eom: EquationsOfMotion, regime: Mapping[str, str] | None = None) -> tuple[FirstIntegral, ...]:
-    """The momenta of the cyclic coordinates, the energy and the Noether integrals of ``eom``'s recursive
-    form, as expressions over its intermediates (for the generated code); () without a recursive form.
+    """The first integrals of ``eom``'s recursive form, over its intermediates (for the generated code).
 
-    ``regime`` says what each input does (`first_integrals`): ``"off"`` (the default) sets it to 0, so a
-    motor that does not push leaves its joint's momentum and the energy integrals; an integral that holds
-    only so says it in its reason, as `first_integrals` does.
+    The momenta of the cyclic coordinates, the energy and the Noether integrals; () without a
+    recursive form.
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+    regime : mapping of str to str, optional
+        What each input does (`first_integrals`): ``"off"`` (the default) sets it to 0, so a motor
+        that does not push leaves its joint's momentum and the energy integrals; an integral that
+        holds only so says it in its reason, as `first_integrals` does.
+
+    Returns
+    -------
+    tuple of FirstIntegral
+        Expressions in the intermediates' names.
     """
     rec = eom.recursive
     if rec is None:

@@ -25,11 +25,21 @@ def c_function(signature: str, definitions: Sequence[tuple[se.Symbol, se.Basic]]
 
     Parameters
     ----------
-    signature : e.g. ``"static void f(double t, const double *y, const double *p, double *out)"``.
-    definitions : named intermediates (symbol, expression), in the order of computation.
-    outputs : (C target such as ``"out[3]"``, expression).
-    reads : each model symbol the expressions may hold → the C expression that reads it (``"y[0]"``).
-    what : what the expressions are, for the error about a symbol that has no value.
+    signature : str
+        The C signature, e.g. ``"static void f(double t, const double *y, const double *p, double *out)"``.
+    definitions : sequence of (SymEngine Symbol, SymEngine expression)
+        Named intermediates (symbol, expression), in the order of computation.
+    outputs : sequence of (str, SymEngine expression)
+        (C target such as ``"out[3]"``, expression).
+    reads : mapping of SymEngine expression to str
+        Each model symbol the expressions may hold → the C expression that reads it (``"y[0]"``).
+    what : str
+        What the expressions are, for the error about a symbol that has no value.
+
+    Returns
+    -------
+    str
+        The function's C text.
 
     Raises
     ------

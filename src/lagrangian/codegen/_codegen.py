@@ -37,18 +37,26 @@ COLD_FUNCTIONS = ("lg_monitors", "lg_constants")
 class GeneratedSource:
     """The C source of a model, and the order of everything it reads and writes.
 
-    Attributes
+    Parameters
     ----------
-    source : the complete translation unit.
-    key : SHA-256 of ``units`` (of ``source`` when it is the only unit: the compile cache's key).
-    n : number of coordinates; the state is y = (q_1..q_n, q̇_1..q̇_n).
-    parameters : parameter names, in the order of the ``p`` array.
-    monitors : monitor names (first integrals, then ``T`` and ``U``).
-    events : event names, in the order of the event functions.
-    constants : how many precomputed constants follow the parameters in ``p``.
-    units : the same code as translation units compiled in parallel and linked (`_cparts`): the
-        first holds all but the parts of the long functions, each other one part; ``(source,)``
-        when no function is long enough to be cut.
+    source : str
+        The complete translation unit.
+    key : str
+        SHA-256 of ``units`` (of ``source`` when it is the only unit: the compile cache's key).
+    n : int
+        The number of coordinates; the state is y = (q_1..q_n, q̇_1..q̇_n).
+    parameters : tuple of str
+        The parameter names, in the order of the ``p`` array.
+    monitors : tuple of str
+        The monitor names (first integrals, then ``T`` and ``U``).
+    events : tuple of str
+        The event names, in the order of the event functions.
+    constants : int
+        How many precomputed constants follow the parameters in ``p``.
+    units : tuple of str
+        The same code as translation units compiled in parallel and linked (`_cparts`): the first
+        holds all but the parts of the long functions, each other one part; ``(source,)`` when no
+        function is long enough to be cut.
     """
 
     source: str
@@ -63,9 +71,21 @@ class GeneratedSource:
 
 def monitor_expressions(eom: EquationsOfMotion, integrals: Sequence, *,
                         recursive: bool = False) -> list[tuple[str, se.Basic]]:
-    """(name, expression) of each first integral, then T and U (under other names if taken).
+    """The monitors' expressions: each first integral, then T and U (under other names if taken).
 
-    With ``recursive``, T and U are those of ``eom.recursive``, over its intermediates.
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+    integrals : sequence of FirstIntegral
+        The first integrals to monitor.
+    recursive : bool, optional
+        With ``recursive``, T and U are those of ``eom.recursive``, over its intermediates.
+
+    Returns
+    -------
+    list of (str, SymEngine expression)
+        (name, expression) of each monitor.
     """
     out = [(fi.name, fi.expression) for fi in integrals]
     taken = {name for name, _ in out}
@@ -87,12 +107,22 @@ def generate_c(
 
     Parameters
     ----------
-    eom : the equations of motion (`lagrangian.derive`).
-    integrals : the first integrals to monitor (`lagrangian.first_integrals`).
-    events : (name, g) pairs; an event occurs where g(t, q, q̇) changes sign.
-    law : the inputs' law (`numerics._input_code.LawCode`): its C goes around the model's functions.
-    on_unit : called with each unit of a long function's part (one of ``units[1:]``) as soon as
-        it is written, before the rest is generated: a build can start compiling it meanwhile.
+    eom : EquationsOfMotion
+        The equations of motion (`lagrangian.derive`).
+    integrals : sequence of FirstIntegral, optional
+        The first integrals to monitor (`lagrangian.first_integrals`).
+    events : sequence of (str, SymEngine expression), optional
+        (name, g) pairs; an event occurs where g(t, q, q̇) changes sign.
+    law : LawCode, optional
+        The inputs' law (`numerics._input_code.LawCode`): its C goes around the model's functions.
+    on_unit : callable, optional
+        Called with each unit of a long function's part (one of ``units[1:]``) as soon as it is
+        written, before the rest is generated: a build can start compiling it meanwhile.
+
+    Returns
+    -------
+    GeneratedSource
+        The translation unit and the order of what it reads and writes.
 
     Raises
     ------

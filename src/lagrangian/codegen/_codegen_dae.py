@@ -41,11 +41,20 @@ __all__ = ["GeneratedDAE", "generate_dae_c"]
 class GeneratedDAE:
     """The C source of a constrained model and the sizes of what it reads and writes.
 
-    Attributes
+    Parameters
     ----------
-    source, key : the translation unit and its SHA-256 (the compile cache's key).
-    n, m : coordinates and complementary rows; y = (q, q̇), λ of length m.
-    monitors : number of monitor expressions; reactions : number of reaction components.
+    source : str
+        The translation unit.
+    key : str
+        Its SHA-256 (the compile cache's key).
+    n : int
+        The number of coordinates; y = (q, q̇).
+    m : int
+        The number of complementary rows; λ has length m.
+    monitors : int
+        The number of monitor expressions.
+    reactions : int
+        The number of reaction components.
     """
 
     source: str
@@ -64,9 +73,17 @@ def generate_dae_c(eom: EquationsOfMotion, monitors: Sequence[se.Basic],
 
     Parameters
     ----------
-    eom : equations of motion with at least one complementary row (``eom.constraints``).
-    monitors : expressions of (q, q̇, t) evaluated by ``lgd_eval_monitors``.
-    reactions : expressions of (q, q̇, λ, t) evaluated by ``lgd_eval_reactions``.
+    eom : EquationsOfMotion
+        Equations of motion with at least one complementary row (``eom.constraints``).
+    monitors : sequence of SymEngine expressions
+        Expressions of (q, q̇, t) evaluated by ``lgd_eval_monitors``.
+    reactions : sequence of SymEngine expressions
+        Expressions of (q, q̇, λ, t) evaluated by ``lgd_eval_reactions``.
+
+    Returns
+    -------
+    GeneratedDAE
+        The translation unit and its sizes.
 
     Raises
     ------

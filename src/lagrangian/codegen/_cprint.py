@@ -45,7 +45,20 @@ def _overflow(text: str) -> ModelError:
 
 
 def c_expression(expr: se.Basic, names: Mapping[se.Basic, str]) -> str:
-    """C text of one expression; ``names`` maps each free symbol to its C name."""
+    """The C text of one expression.
+
+    Parameters
+    ----------
+    expr : SymEngine expression
+        The expression.
+    names : mapping of SymEngine expression to str
+        Each free symbol to its C name.
+
+    Returns
+    -------
+    str
+        A C expression.
+    """
     if expr in names:
         return names[expr]
     if expr.is_Number:
@@ -110,11 +123,26 @@ def c_expression(expr: se.Basic, names: Mapping[se.Basic, str]) -> str:
 
 
 def c_block(outputs: Sequence[tuple[str, se.Basic]], names: Mapping[se.Basic, str], prefix: str = "x") -> list[str]:
-    """Statements assigning each ``(target, expression)``, common subexpressions computed once.
+    """Write statements assigning each ``(target, expression)``, common subexpressions computed once.
 
-    The subexpressions come from SymEngine's ``cse``; they become ``const double`` locals
-    named ``<prefix>0, <prefix>1, ...`` (blocks in one function need distinct prefixes).  The free symbols of the expressions must already be the
-    caller's own, named with a leading underscore, so that the two sets cannot clash.
+    The subexpressions come from SymEngine's ``cse``; they become ``const double`` locals named
+    ``<prefix>0, <prefix>1, ...`` (blocks in one function need distinct prefixes).  The free symbols of
+    the expressions must already be the caller's own, named with a leading underscore, so that the two
+    sets cannot clash.
+
+    Parameters
+    ----------
+    outputs : sequence of (str, SymEngine expression)
+        (C target, expression) pairs.
+    names : mapping of SymEngine expression to str
+        Each free symbol to its C name.
+    prefix : str, optional
+        The prefix of the locals.
+
+    Returns
+    -------
+    list of str
+        The C statements.
     """
     exprs = [e if isinstance(e, se.Basic) else se.RealDouble(float(e)) for _, e in outputs]
     replacements, reduced = se.cse(exprs) if exprs else ([], [])
@@ -130,12 +158,27 @@ def c_block(outputs: Sequence[tuple[str, se.Basic]], names: Mapping[se.Basic, st
 
 def c_sequence(definitions: Sequence[tuple[se.Symbol, se.Basic]], outputs: Sequence[tuple[str, se.Basic]],
                names: Mapping[se.Basic, str], prefix: str = "x") -> list[str]:
-    """Statements defining each named intermediate in turn, then assigning each output, with CSE over all.
+    """Write statements defining each named intermediate in turn, then assigning each output, with CSE over all.
 
-    ``definitions`` are (symbol, expression) with each expression in earlier symbols; the symbols
-    must be in ``names``.  SymEngine's ``cse`` may pull out of a later definition a piece that an
-    earlier one also holds, so the lines are written in dependency order (each local after what it
-    reads), not simply the common subexpressions first as in `c_block`.
+    SymEngine's ``cse`` may pull out of a later definition a piece that an earlier one also holds, so
+    the lines are written in dependency order (each local after what it reads), not simply the common
+    subexpressions first as in `c_block`.
+
+    Parameters
+    ----------
+    definitions : sequence of (SymEngine Symbol, SymEngine expression)
+        (symbol, expression) with each expression in earlier symbols; the symbols must be in ``names``.
+    outputs : sequence of (str, SymEngine expression)
+        (C target, expression) pairs.
+    names : mapping of SymEngine expression to str
+        Each free symbol to its C name.
+    prefix : str, optional
+        The prefix of the locals.
+
+    Returns
+    -------
+    list of str
+        The C statements.
     """
     exprs = [e for _, e in definitions] + [e if isinstance(e, se.Basic) else se.RealDouble(float(e))
                                            for _, e in outputs]

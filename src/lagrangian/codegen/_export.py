@@ -73,7 +73,18 @@ def _comment_safe(text: str) -> str:
 
 
 def model_identifier(name: str) -> str:
-    """``double pendulum`` → ``double_pendulum``: ASCII letters, digits and ``_``, not starting with a digit."""
+    """Make an identifier of a model's name: ``double pendulum`` → ``double_pendulum``.
+
+    Parameters
+    ----------
+    name : str
+        The model's name.
+
+    Returns
+    -------
+    str
+        ASCII letters, digits and ``_``, not starting with a digit.
+    """
     ident = re.sub(r"[^0-9A-Za-z]+", "_", name).strip("_").lower() or "model"
     return ident if not ident[0].isdigit() else "m_" + ident
 
@@ -89,9 +100,23 @@ def validate_exportable(eom: EquationsOfMotion, target: str = "numpy") -> None:
 
 
 def exported_symbols(eom: EquationsOfMotion, target: str = "numpy") -> ExportedSymbols:
-    """M and F over private symbols (`ExportedSymbols`), checked for stray symbols, and the constraint
-    rows; for a ``target`` that prints the in-package form (``"c"``: `AbstractTarget.in_package_form`),
-    also the first integrals and M, F in that form."""
+    """The equations over private symbols (`ExportedSymbols`), checked for stray symbols.
+
+    M and F, and the constraint rows; for a ``target`` that prints the in-package form (``"c"``:
+    `AbstractTarget.in_package_form`), also the first integrals and M, F in that form.
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+    target : str, optional
+        The export target.
+
+    Returns
+    -------
+    ExportedSymbols
+        What the target prints.
+    """
     validate_exportable(eom, target)
     n = len(eom.q)
     params = tuple(p.name for p in eom.model.parameters)
@@ -168,14 +193,33 @@ EXPORT_TARGETS: dict[str, AbstractTarget] = {
 
 
 def check_target(target: str) -> None:
-    """Raise `ExportError` unless ``target`` is one of `EXPORT_TARGETS`."""
+    """Raise `ExportError` unless ``target`` is one of `EXPORT_TARGETS`.
+
+    Parameters
+    ----------
+    target : str
+        The name asked for.
+    """
     if target not in EXPORT_TARGETS:
         raise ExportError(f"`{target}` is not an export target.",
                           fix="use one of " + ", ".join(f"`{k}`" for k in EXPORT_TARGETS))
 
 
 def export_files(eom: EquationsOfMotion, target: str) -> dict[str, str]:
-    """The files of ``target`` as {file name: text}, nothing written (see `export`)."""
+    """The files of ``target`` as {file name: text}, nothing written (see `export`).
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+    target : str
+        The export target.
+
+    Returns
+    -------
+    dict of str to str
+        {file name: text}.
+    """
     check_target(target)
     return EXPORT_TARGETS[target].files(exported_symbols(eom, target))
 
@@ -231,20 +275,25 @@ def export(eom: EquationsOfMotion, target: str, directory: str | os.PathLike[str
 
     Parameters
     ----------
-    eom : the equations of motion (`lagrangian.derive`).
-    target : ``"numpy"`` (one module, NumPy only: ``PARAMETERS``, ``STATE``, ``mass_matrix``,
-        ``forcing``, ``rhs`` batched over leading axes and, with constraints, ``CONSTRAINTS``,
-        ``constraint_rows`` and ``rhs_multipliers``) or ``"c"`` (``<name>.h`` and ``<name>.c``,
-        libm only: ``<name>_rhs``, ``_rhs_k``, ``_constants``, ``_mass_matrix``, ``_forcing``,
-        ``_first_integrals``, ``_constraint_rows`` and, with constraints, ``_rhs_multipliers``) or ``"jax"`` (the NumPy
-        module's interface in ``jax.numpy``, jit-able and vmap-able) or ``"octave"`` (``.m`` function
-        files: ``<name>_parameters``, ``_mass_matrix``, ``_forcing``, ``_rhs``); docs/export.md.
-    directory : created (with the files) atomically; if it exists, it may hold only the
-        files of an earlier export of the same name, which are replaced.
+    eom : EquationsOfMotion
+        The equations of motion (`lagrangian.derive`).
+    target : str
+        ``"numpy"`` (one module, NumPy only: ``PARAMETERS``, ``STATE``, ``mass_matrix``, ``forcing``,
+        ``rhs`` batched over leading axes and, with constraints, ``CONSTRAINTS``, ``constraint_rows``
+        and ``rhs_multipliers``) or ``"c"`` (``<name>.h`` and ``<name>.c``, libm only:
+        ``<name>_rhs``, ``_rhs_k``, ``_constants``, ``_mass_matrix``, ``_forcing``,
+        ``_first_integrals``, ``_constraint_rows`` and, with constraints, ``_rhs_multipliers``) or
+        ``"jax"`` (the NumPy module's interface in ``jax.numpy``, jit-able and vmap-able) or
+        ``"octave"`` (``.m`` function files: ``<name>_parameters``, ``_mass_matrix``, ``_forcing``,
+        ``_rhs``); docs/export.md.
+    directory : str or PathLike
+        Created (with the files) atomically; if it exists, it may hold only the files of an earlier
+        export of the same name, which are replaced.
 
     Returns
     -------
-    The paths of the written files.
+    tuple of Path
+        The paths of the written files.
 
     Raises
     ------

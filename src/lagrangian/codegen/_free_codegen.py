@@ -34,12 +34,22 @@ __all__ = ["FreeSource", "generate_free_c"]
 class FreeSource:
     """The C source of a model with free bodies and the layout of what it reads and writes.
 
-    Attributes
+    Parameters
     ----------
-    source, key : the translation unit and its SHA-256 (the compile cache's key).
-    nq, nv : lengths of the position and velocity parts of the state; it has nq + nv + (free bodies) entries.
-    monitors, events : names, in the order of the C arrays.
-    constants : how many hoisted constants follow the parameters in ``p``.
+    source : str
+        The translation unit.
+    key : str
+        Its SHA-256 (the compile cache's key).
+    nq : int
+        The length of the position part of the state.
+    nv : int
+        The length of its velocity part; the state has nq + nv + (free bodies) entries.
+    monitors : tuple of str
+        The monitor names, in the order of the C arrays.
+    events : tuple of str
+        The event names, in the order of the C arrays.
+    constants : int
+        How many hoisted constants follow the parameters in ``p``.
     """
 
     source: str
@@ -185,7 +195,19 @@ def _defines(form: FloatingForm, events: Sequence[tuple[str, se.Basic]], params:
 
 
 def generate_free_c(form: FloatingForm, events: Sequence[tuple[str, se.Basic]] = ()) -> FreeSource:
-    """Generate the C translation unit of ``form`` (events: (name, g) in the state's symbols).
+    """Generate the C translation unit of ``form``.
+
+    Parameters
+    ----------
+    form : FloatingForm
+        The quaternion-state equations.
+    events : sequence of (str, SymEngine expression), optional
+        (name, g) in the state's symbols.
+
+    Returns
+    -------
+    FreeSource
+        The translation unit and its layout.
 
     Raises
     ------

@@ -171,18 +171,21 @@ def _shared_bias(eom: EquationsOfMotion) -> tuple[list[tuple[se.Symbol, se.Basic
 class MassForcesForm:
     """M and F as the C code evaluates them: exact rewritings that make them cheaper.
 
-    The attributes are expressions over the model's own symbols, plus the names below.
+    The fields are expressions over the model's own symbols, plus the names below.  Every sin/cos of
+    a sum of coordinates is expanded (`expand_angle_sums`).
 
-    Attributes
+    Parameters
     ----------
-    shared : (symbol, expression) of each body's γ⁰(G) and dσ⁰/dt components (`_shared_bias`),
-        to be computed first; M and F refer to the symbols.
-    M : the n*n entries row by row, grouped by their function of q (`collect_by_state`).
-    F : Q − Γ⁰, written with ``shared``.
-    constants : (``_k<j>``, expression of the parameters only) lifted out of all the above
-        (`Hoist`): computed once per parameter set, not per state.
-
-    Every sin/cos of a sum of coordinates is expanded (`expand_angle_sums`).
+    shared : tuple of (SymEngine Symbol, SymEngine expression)
+        (symbol, expression) of each body's γ⁰(G) and dσ⁰/dt components (`_shared_bias`), to be
+        computed first; M and F refer to the symbols.
+    M : tuple of SymEngine expressions
+        The n*n entries row by row, grouped by their function of q (`collect_by_state`).
+    F : tuple of SymEngine expressions
+        Q − Γ⁰, written with ``shared``.
+    constants : tuple of (SymEngine Symbol, SymEngine expression)
+        (``_k<j>``, expression of the parameters only) lifted out of all the above (`Hoist`):
+        computed once per parameter set, not per state.
     """
 
     shared: tuple[tuple[se.Symbol, se.Basic], ...]
@@ -192,7 +195,18 @@ class MassForcesForm:
 
 
 def mass_forces_form(eom: EquationsOfMotion) -> MassForcesForm:
-    """The package's C form of M and F (`MassForcesForm`): the in-package library and ``export --to c``."""
+    """The package's C form of M and F: the in-package library and ``export --to c``.
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+
+    Returns
+    -------
+    MassForcesForm
+        M and F rewritten for C.
+    """
     n = len(eom.q)
     state = (*eom.q, *eom.qd)
     # M's entries are sums over bodies of one function of q each: collect them.  F keeps

@@ -37,7 +37,18 @@ RUNTIME_FILES = ("solve_mass.c", "integrators.c", "cholesky.c", "dae.c", "sensit
 
 @cache
 def runtime_source(name: str) -> str:
-    """The text of the runtime file ``name`` (one of `RUNTIME_FILES`), whole."""
+    """The text of the runtime file ``name`` (one of `RUNTIME_FILES`), whole.
+
+    Parameters
+    ----------
+    name : str
+        One of `RUNTIME_FILES`.
+
+    Returns
+    -------
+    str
+        The file's text.
+    """
     if name not in RUNTIME_FILES:
         raise ValueError(f"`{name}` is not a runtime file; they are {', '.join(RUNTIME_FILES)}")
     return resources.files(__package__).joinpath("runtime").joinpath(name).read_text(encoding="utf-8")

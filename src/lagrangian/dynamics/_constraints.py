@@ -586,6 +586,18 @@ def admissible_integrals(eom, integrals: Sequence) -> tuple:
     row k); the energy (or Jacobi) integral only if the reactions do no work on the real
     motion: their power Σ_k λ_k (A_k q̇) = −Σ_k λ_k b_k vanishes when every b_k ≡ 0
     (time-independent, homogeneous constraints).
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        Equations with complementary constraints.
+    integrals : sequence of FirstIntegral
+        The first integrals of the unconstrained system.
+
+    Returns
+    -------
+    tuple of FirstIntegral
+        Those that still hold.
     """
     rows = eom.constraints
     if not rows:
@@ -611,17 +623,23 @@ def admissible_integrals(eom, integrals: Sequence) -> tuple:
 
 
 def multiplier_formulas(eom) -> tuple[se.Basic, ...] | None:
-    """λ(q, q̇, t) in closed form, from M q̈ = F + Aᵀλ and A q̈ + c = 0 (None when too large).
+    """The multipliers λ(q, q̇, t) in closed form, from M q̈ = F + Aᵀλ and A q̈ + c = 0 (None when too large).
 
     λ = (A M⁻¹ Aᵀ)⁻¹ (−c − A M⁻¹ F): solved symbolically only while n + m ≤
     `FORMULA_MAX_SIZE`; larger systems get their multipliers numerically along a motion.
     Public as ``lagrangian.dynamics.multiplier_formulas``; λ_k multiplies +A_ki (the pendulum
     in Cartesian coordinates: the rod's tension is −2 l λ, docs/constraints.md).
 
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+
     Returns
     -------
-    One formula per row of ``eom.constraints`` (in that order), or None without complementary
-    rows or beyond `FORMULA_MAX_SIZE`.
+    tuple of SymEngine expressions or None
+        One formula per row of ``eom.constraints`` (in that order), or None without complementary
+        rows or beyond `FORMULA_MAX_SIZE`.
     """
     rows = eom.constraints
     n, m = len(eom.q), len(rows)
@@ -645,11 +663,19 @@ def multiplier_formulas(eom) -> tuple[se.Basic, ...] | None:
 def reaction_efforts(eom) -> list[tuple[str, str, object, str | None, str | None]]:
     """The complementary reactions as efforts on the system, for the Newton–Euler theorems.
 
-    Items ``(constraint, what, value, at, owner)``: ``what`` is ``"force"`` (``value`` a
-    `Vector` applied at point ``at``; ``owner`` the body whose material point receives it at a
-    rolling contact, else None: the point's carrier), ``"couple"`` (on body ``owner``) or
-    ``"power"`` (``value`` the generalized forces Σ_k λ_k A_ki, for a reaction with no
-    physical form).
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+
+    Returns
+    -------
+    list of tuple
+        Items ``(constraint, what, value, at, owner)``: ``what`` is ``"force"`` (``value`` a
+        `Vector` applied at point ``at``; ``owner`` the body whose material point receives it at a
+        rolling contact, else None: the point's carrier), ``"couple"`` (on body ``owner``) or
+        ``"power"`` (``value`` the generalized forces Σ_k λ_k A_ki, for a reaction with no physical
+        form).
     """
     out: list[tuple[str, str, object, str | None, str | None]] = []
     forms = {c.name: c for c in eom.model.constraints}
@@ -780,7 +806,18 @@ class ConstraintInfo:
 
 
 def describe_constraints(eom) -> tuple[ConstraintInfo, ...]:
-    """Every declared constraint of ``eom.model``, principal and complementary, as `ConstraintInfo`."""
+    """Every declared constraint of ``eom.model``, principal and complementary, as `ConstraintInfo`.
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+
+    Returns
+    -------
+    tuple of ConstraintInfo
+        One per declared constraint.
+    """
     kin = eom.kinematics
     out = []
     for c in eom.model.constraints:

@@ -33,7 +33,19 @@ INERTIA_RTOL = 1e-9
 
 @dataclass(frozen=True, slots=True)
 class RigidInertia:
-    """The inertia matrix a body's dynamics uses: Π at ``point`` ("G" or a fixed point) in ``frame``."""
+    """The inertia matrix a body's dynamics uses: Π at ``point`` ("G" or a fixed point) in ``frame``.
+
+    Parameters
+    ----------
+    body : str
+        The body's name.
+    point : str
+        ``"G"`` or a fixed point.
+    frame : str
+        The frame whose basis the matrix is written in.
+    matrix : tuple of three tuples of three SymEngine expressions
+        Π at ``point``.
+    """
 
     body: str
     point: str
@@ -43,7 +55,19 @@ class RigidInertia:
 
 @dataclass(frozen=True, slots=True)
 class KineticEnergyTerm:
-    """T of one body or particle, with the theorem it came from."""
+    """T of one body or particle, with the theorem it came from.
+
+    Parameters
+    ----------
+    name : str
+        The body or particle.
+    formula : str
+        The theorem used: ``"fixed point"``, ``"König"`` or ``"particle"``.
+    expression : SymEngine expression
+        Its T.
+    inertia : RigidInertia, optional
+        The inertia used, for a body.
+    """
 
     name: str
     formula: str  # "fixed point", "König" or "particle"
@@ -70,6 +94,20 @@ def rigid_inertia(kin: Kinematics, body: Body) -> tuple[RigidInertia, Matrix3]:
     Checks that the given matrix is constant in the body (a frame other than the
     body's may be used only if the rotation between them leaves Π unchanged, as R2
     for the symmetric top) and that Π_G is physical for the parameter values given.
+
+    Parameters
+    ----------
+    kin : Kinematics
+        The model's kinematics.
+    body : Body
+        The body.
+
+    Returns
+    -------
+    inertia : RigidInertia
+        The inertia used for T.
+    inertia_G : tuple of three tuples of three SymEngine expressions
+        Π_G.
     """
     model = kin.model
     where = model.where("body", body.name)

@@ -70,21 +70,42 @@ class BaseState:
 class FloatingForm:
     """The quaternion-state equations of a model with free bodies, over named intermediates.
 
+    Parameters
+    ----------
+    model : Model
+        The model.
+    trees : tuple of FloatingTree
+        One per free body.
+    bases : tuple of BaseState
+        The `BaseState` of each free body.
+    positions : tuple of SymEngine Symbol
+        The position state symbols: per tree r, e, the joints' q.
+    velocities : tuple of SymEngine Symbol
+        The velocity state symbols: per tree v, ω, the joints' q̇; the generalized speeds of `M`.
+    intermediates : tuple of (SymEngine Symbol, SymEngine expression)
+        (name, expression) in the order of computation.
+    derivative : tuple of SymEngine expressions
+        The state's derivative ẏ, one expression per state symbol (positions, then velocities).
+    accelerations : tuple of SymEngine expressions
+        The time derivative of `velocities` (v̇, ω̇, q̈ per tree).
+    pivots : tuple of (SymEngine expression, SymEngine expression)
+        (D, diagonal entry) of every elimination: six per free body, one per joint.
+    M : tuple of tuples of SymEngine expressions
+        The mass matrix in `velocities` (composite-rigid-body algorithm).
+    monitors : tuple of (str, SymEngine expression)
+        (name, expression): the first integrals, then T and U.
+    integrals : tuple of str
+        The names of the monitors that are first integrals.
+    momentum : tuple of tuples of str
+        For each tree, the names of its σ_G components (for their drift scale).
+    energy_inputs : tuple of str
+        The inputs whose loads are the only non-conservative ones: E is a first integral while they
+        are off (0), the simulation's default; a run that gives one a value drops E from `integrals`.
+
     Attributes
     ----------
-    model, trees : the model and its `FloatingTree` per free body.
-    bases : the `BaseState` of each free body.
-    positions, velocities : the state symbols: per tree (r, e, the joints' q), then per tree (v, ω,
-        the joints' q̇).  ``velocities`` are the generalized speeds of `M`.
-    intermediates : (name, expression) in the order of computation.
-    derivative : ẏ, one expression per state symbol (positions, then velocities).
-    accelerations : the time derivative of `velocities` (v̇, ω̇, q̈ per tree).
-    pivots : (D, diagonal entry) of every elimination: six per free body, one per joint.
-    M : the mass matrix in `velocities` (composite-rigid-body algorithm).
-    monitors : (name, expression): the first integrals, then T and U.
-    integrals : the names of the monitors that are first integrals.
-    momentum : for each tree, the names of its σ_G components (for their drift scale).
-    joint_index : for each tree, the model coordinate index of each of its joints.
+    joint_index : tuple of tuples of int
+        For each tree, the model coordinate index of each of its joints.
     """
 
     model: Model
@@ -100,12 +121,21 @@ class FloatingForm:
     monitors: tuple[tuple[str, se.Basic], ...]
     integrals: tuple[str, ...]
     momentum: tuple[tuple[str, ...], ...]
-    #: The inputs whose loads are the only non-conservative ones: E is a first integral while they
-    #: are off (0), the simulation's default; a run that gives one a value drops E from `integrals`.
     energy_inputs: tuple[str, ...] = ()
 
     def needed(self, exprs: Sequence[se.Basic]) -> list[tuple[se.Symbol, se.Basic]]:
-        """The intermediates ``exprs`` depend on, in order."""
+        """The intermediates ``exprs`` depend on, in order.
+
+        Parameters
+        ----------
+        exprs : sequence of SymEngine expressions
+            Expressions in the intermediates' names.
+
+        Returns
+        -------
+        list of (SymEngine Symbol, SymEngine expression)
+            The intermediates needed, in the order of computation.
+        """
         position = {s: k for k, (s, _) in enumerate(self.intermediates)}
         keep: set[int] = set()
         stack = [position[s] for e in exprs for s in e.free_symbols if s in position]
@@ -337,6 +367,16 @@ class _TreeBuilder:
 
 def floating_form(model: Model) -> FloatingForm:
     """The `FloatingForm` of a model with free bodies (see the module docstring).
+
+    Parameters
+    ----------
+    model : Model
+        A model with free bodies.
+
+    Returns
+    -------
+    FloatingForm
+        Its quaternion-state equations.
 
     Raises
     ------

@@ -55,7 +55,32 @@ _ZERO_TYPE = type(_ZERO)
 
 @dataclass(frozen=True, slots=True)
 class LoadForces:
-    """What one load contributes: its Q_i, its virtual power, and its potential if it has one."""
+    """What one load contributes: its Q_i, its virtual power, and its potential if it has one.
+
+    Parameters
+    ----------
+    name : str
+        The load's name.
+    kind : str
+        Its kind: the load's class in lower case (``"gravity"``, ``"spring"``...), or
+        ``"generalized potential"``.
+    Q : tuple of SymEngine expressions
+        Its Q_i, one per coordinate.
+    virtual_power : SymEngine expression
+        Σ Q_i q_i*.
+    potential : SymEngine expression or None
+        U with Q_i = −∂U/∂q_i, or None when not conservative.
+    note : str
+        The virtual power its Q_i come from, for the report (``P* = C·Ω*``).
+    generalized : SymEngine expression, optional
+        A generalized potential U(q, q̇, t), affine in the rates, with Q_i = d/dt(∂U/∂q̇_i) − ∂U/∂q_i
+        (then ``potential`` is None: its Q_i are in Q_nc); None for every other load.
+    held : SymEngine expression, optional
+        For a load driven by declared inputs (then ``potential`` is None): the potential it derives
+        from while those inputs are held constant (−τ θ of a motor's torque τ), for the first
+        integrals of a run that holds them (`analysis.first_integrals` with
+        ``inputs={"tau": "constant"}``).
+    """
 
     name: str
     kind: str
@@ -63,12 +88,7 @@ class LoadForces:
     virtual_power: se.Basic  # Σ Q_i q_i*
     potential: se.Basic | None  # U with Q_i = −∂U/∂q_i, or None when not conservative
     note: str
-    #: A generalized potential U(q, q̇, t), affine in the rates, with Q_i = d/dt(∂U/∂q̇_i) − ∂U/∂q_i
-    #: (then ``potential`` is None: its Q_i are in Q_nc); None for every other load.
     generalized: se.Basic | None = None
-    #: For a load driven by declared inputs (then ``potential`` is None): the potential it derives from
-    #: while those inputs are held constant (−τ θ of a motor's torque τ), for the first integrals of a
-    #: run that holds them (`analysis.first_integrals` with ``inputs={"tau": "constant"}``).
     held: se.Basic | None = None
 
 
@@ -203,12 +223,25 @@ def _derives_from(kin: Kinematics, Q: tuple[se.Basic, ...], potential: se.Basic)
 
 def generalized_forces(kin: Kinematics, assumptions: Assumptions | None = None, *,
                        only: Sequence[int] | None = None) -> tuple[LoadForces, ...]:
-    """Q_i of every load of the model (or of the loads at indices ``only``), by virtual power,
-    with its potential when it has one.
+    """Compute Q_i of every load of the model (or of the loads at indices ``only``) by virtual power.
 
-    With ``assumptions`` (the model's declared signs and ranges), Q_i and the candidate
-    potential are simplified where a sign is proved: a spring from a wall at x = −L with
-    x ≥ −L gives −k x, not ``−k sgn(x + L)(|x + L| − L)`` (`lagrangian.model._assumptions`).
+    Each with its potential when it has one.
+
+    Parameters
+    ----------
+    kin : Kinematics
+        The model's kinematics.
+    assumptions : Assumptions, optional
+        The model's declared signs and ranges: Q_i and the candidate potential are then simplified
+        where a sign is proved: a spring from a wall at x = −L with x ≥ −L gives −k x, not
+        ``−k sgn(x + L)(|x + L| − L)`` (`lagrangian.model._assumptions`).
+    only : sequence of int, optional
+        The indices of the loads to compute; None: all.
+
+    Returns
+    -------
+    tuple of LoadForces
+        One per load, in the model's order.
     """
     out = []
     inputs = {p.symbol for p in kin.model.parameters if p.input}

@@ -72,7 +72,17 @@ def sliding_velocity(kin: Kinematics, load: CoulombFriction) -> Vector:
 
 @dataclass(frozen=True, slots=True)
 class SlidingDirection:
-    """v_s = w e at a contact with one sliding direction: e = ``frame``.``axis``, w = v_s·e (affine in q̇)."""
+    """The sliding velocity v_s = w e at a contact with one sliding direction.
+
+    Parameters
+    ----------
+    frame : str
+        The frame of e = ``frame``.``axis``.
+    axis : str
+        Its axis.
+    speed : SymEngine expression
+        The sliding speed w = v_s·e (affine in q̇).
+    """
 
     frame: str
     axis: str
@@ -95,6 +105,18 @@ def sliding_direction(kin: Kinematics, load: CoulombFriction) -> SlidingDirectio
     The frames are tried in the model's order (R0 first); the first one in which two of
     v_s's three components vanish identically gives e.  A contact whose v_s turns in every
     frame (a puck sliding freely on a plane) has no such axis.
+
+    Parameters
+    ----------
+    kin : Kinematics
+        The model's kinematics.
+    load : CoulombFriction
+        The friction load.
+
+    Returns
+    -------
+    SlidingDirection
+        The axis and the speed.
 
     Raises
     ------
@@ -154,8 +176,21 @@ def dissipation_function(kin: Kinematics, load: JointDamper) -> se.Basic:
 
 def friction_efforts(kin: Kinematics, load: Dissipation | JointDamper | CoulombFriction
                      ) -> list[tuple[str, Vector, str]] | None:
-    """The load as forces and couples, for the Newton–Euler check: ``("force", F, point)`` and
-    ``("couple", C, body or frame)`` items; None when it has no force form (a Rayleigh function)."""
+    """The load as forces and couples, for the Newton–Euler check.
+
+    Parameters
+    ----------
+    kin : Kinematics
+        The model's kinematics.
+    load : Dissipation or JointDamper or CoulombFriction
+        The load.
+
+    Returns
+    -------
+    list of tuple or None
+        ``("force", F, point)`` and ``("couple", C, body or frame)`` items; None when it has no force
+        form (a Rayleigh function).
+    """
     if isinstance(load, Dissipation):
         return None
     if isinstance(load, JointDamper):

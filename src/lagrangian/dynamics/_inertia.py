@@ -51,10 +51,24 @@ def mass_matrix_and_bias(
     that names them, so each is computed once and not once per coordinate (an n-link
     chain's Γ⁰ then costs O(n²) rather than O(n³) operations).
 
+    Parameters
+    ----------
+    kin : Kinematics
+        The model's kinematics.
+    inertias : dict of str to RigidInertia
+        The inertia each body's T uses.
+    share : callable, optional
+        Called on each body's γ⁰(G) and dσ⁰/dt (3-tuples of components), it returns what Γ⁰ is
+        built from — code generation passes a function that names them, so each is computed once
+        and not once per coordinate (an n-link chain's Γ⁰ then costs O(n²) rather than O(n³)
+        operations).
+
     Returns
     -------
-    M : n×n tuple of tuples, symmetric.
-    gamma0 : n-tuple.
+    M : tuple of tuples of SymEngine expressions
+        The n×n mass matrix, symmetric.
+    gamma0 : tuple of SymEngine expressions
+        Γ⁰, n entries.
     """
     n = kin.n
     M: list[list[list[se.Basic]]] = [[[] for _ in range(n)] for _ in range(n)]  # lists of terms, summed once at the end

@@ -98,6 +98,11 @@ class RelativeKinematics(Kinematics):
     ``omega(F)`` is Ω(F/R), ``position(P)`` is O'P.  The motion of R relative to R0 is in
     ``frame_omega`` Ω(R/R0), ``frame_omega_rate`` dΩ(R/R0)/dt and ``origin_acceleration``
     γ(O'/R0), all functions of t only.
+
+    Parameters
+    ----------
+    model : Model
+        A model with a reference frame.
     """
 
     frames: RelativeFrameTree
@@ -117,13 +122,35 @@ class RelativeKinematics(Kinematics):
         self.origin_acceleration = absolute.derivative(absolute.derivative(origin))
 
     def is_fixed(self, point: str) -> bool:
-        """True when V(P/R) is identically zero."""
+        """True when V(P/R) is identically zero.
+
+        Parameters
+        ----------
+        point : str
+            A point, body or particle name.
+
+        Returns
+        -------
+        bool
+            Whether the point is fixed in R.
+        """
         return point == self.reference.origin or all(
             se.expand(c) == 0 for comps in self.velocity(point).pieces.values() for c in comps)
 
 
 def rotating_frame(eom: EquationsOfMotion) -> bool:
-    """The equations of ``eom`` are written in a frame R that turns relative to R0 (Ω(R/R0) ≠ 0)."""
+    """Whether the equations of ``eom`` are written in a frame R that turns relative to R0 (Ω(R/R0) ≠ 0).
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+
+    Returns
+    -------
+    bool
+        True when R turns.
+    """
     kin = eom.kinematics
     return isinstance(kin, RelativeKinematics) and not kin.frame_omega.is_zero()
 
@@ -175,7 +202,18 @@ def _point_forces(kin: RelativeKinematics, point: str, mass: se.Basic) -> tuple[
 
 
 def inertial_torsors(kin: RelativeKinematics) -> tuple[InertialTorsor, ...]:
-    """The Coriolis and entrainment torsors of every body and particle (see the module docstring)."""
+    """The Coriolis and entrainment torsors of every body and particle (see the module docstring).
+
+    Parameters
+    ----------
+    kin : RelativeKinematics
+        The kinematics relative to R.
+
+    Returns
+    -------
+    tuple of InertialTorsor
+        One per body and particle.
+    """
     out = []
     for body in kin.model.bodies:
         _, pi = rigid_inertia(kin, body)  # Π_G in the basis of body.inertia.frame

@@ -57,8 +57,24 @@ _ZERO_TYPE = type(se.Integer(0))
 class LagrangeEquation:
     """L(q_i), with every term of the seed's layout.
 
-    ``lhs`` is Γ_i = d/dt(∂T/∂q̇_i) − ∂T/∂q_i and ``rhs`` is −∂U/∂q_i + Q_i(nc), plus
-    ``multiplier_terms`` Σ_k λ_k A_ki when the model keeps constraints complementary.
+    Parameters
+    ----------
+    coordinate : str
+        The coordinate q_i.
+    dT_dqd : SymEngine expression
+        ∂T/∂q̇_i.
+    dT_dq : SymEngine expression
+        ∂T/∂q_i.
+    dU_dq : SymEngine expression
+        ∂U_P/∂q_i.
+    Q_nc : SymEngine expression
+        Q_i of the non-conservative efforts.
+    lhs : SymEngine expression
+        Γ_i = d/dt(∂T/∂q̇_i) − ∂T/∂q_i.
+    rhs : SymEngine expression
+        −∂U/∂q_i + Q_i(nc), plus ``multiplier_terms`` when the model keeps constraints complementary.
+    multiplier_terms : SymEngine expression
+        Σ_k λ_k A_ki of the complementary rows (0 without).
     """
 
     coordinate: str
@@ -111,31 +127,52 @@ class _FromCourse:
 class EquationsOfMotion:
     """Everything `derive` finds for a model, as values to print, inspect and reuse.
 
-    Attributes
-    ----------
-    model, kinematics : the input and its kinematics (Ω, V, γ, V*).
-    q, qd, qdd, t : coordinate symbols q_i, q̇_i, q̈_i and the time.
-    T_terms : T(Σ/R0) body by body, with the theorem used; ``T`` is their sum.
-    inertias : the inertia matrix each body's T uses.
-    loads : Q_i of every load by virtual power, with its potential if conservative.
-    U : U_P(Σ/R0), the sum of the potentials of the conservative loads.
-    conservative : every load derives from a potential (Remarque 2); then ``L`` = T − U.
-    equations : the n Lagrange equations L(q_i) (Remarque 1: as many as coordinates).
-    M, F : the matrix form M(q, t) q̈ = F(q, q̇, t); M is n×n symmetric.
-    constraints : the rows of the complementary constraints (step 7), each ``expression = 0``
-        with its multiplier λ_k; then M q̈ = F + Aᵀλ and A q̈ + c = 0 (`dynamics._constraints`).
-    reactions : per complementary constraint, the force/moment its multipliers stand for.
-    assumptions : the signs proved from the model's declared signs and ranges and used to
-        simplify (x + L > 0 where x ≥ −L), each with how it was proved.
-    recursive : for a kinematic tree, M q̈ = F over named intermediates (`dynamics._recursive`),
-        which the compiled code uses; None when the course's derivation is the only one.
-    course : makes the course's derivation (`CourseForm`) when the fields above it are left None.
-    derived_with : the ``formulation`` `derive` made these equations with; None for equations
-        made otherwise (by hand, or changed with `dataclasses.replace`, which leaves it out).
-        With the model, it names the equations for the compile plans (`lagrangian.numerics._plans`).
-
     With a recursive form, `derive` leaves T_terms, inertias, loads, equations, M and F to
     ``course``, run on first use of any of them: compiling and simulating a robot need none.
+
+    Parameters
+    ----------
+    model : Model
+        The input.
+    kinematics : Kinematics
+        Its kinematics (Ω, V, γ, V*).
+    T_terms : tuple of KineticEnergyTerm
+        T(Σ/R0) body by body, with the theorem used; ``T`` is their sum.
+    inertias : dict of str to RigidInertia
+        The inertia matrix each body's T uses.
+    loads : tuple of LoadForces
+        Q_i of every load by virtual power, with its potential if conservative.
+    equations : tuple of LagrangeEquation
+        The n Lagrange equations L(q_i) (Remarque 1: as many as coordinates).
+    M : tuple of tuples of SymEngine expressions
+        The matrix M(q, t) of M q̈ = F(q, q̇, t), n×n symmetric.
+    F : tuple of SymEngine expressions
+        The right side F(q, q̇, t), n entries.
+    constraints : tuple of ConstraintRow
+        The rows of the complementary constraints (step 7), each ``expression = 0`` with its
+        multiplier λ_k; then M q̈ = F + Aᵀλ and A q̈ + c = 0 (`dynamics._constraints`).
+    reactions : tuple of ConstraintReaction
+        Per complementary constraint, the force/moment its multipliers stand for.
+    assumptions : tuple of SignFact
+        The signs the derivation proved from the model's declared signs and ranges and used to
+        simplify (x + L > 0 where x ≥ −L), each with how it was proved; `simulate` checks them along
+        the motion.
+    recursive : RecursiveForm, optional
+        For a kinematic tree, M q̈ = F over named intermediates (`dynamics._recursive`), which the
+        compiled code uses; None when the course's derivation is the only one.
+    course : callable, optional
+        Makes the course's derivation (`CourseForm`) when the fields above it are left out.
+
+    Attributes
+    ----------
+    q, qd, qdd : tuple of SymEngine Symbol
+        The coordinate symbols q_i, q̇_i, q̈_i.
+    t : SymEngine Symbol
+        The time.
+    derived_with : str or None
+        The ``formulation`` `derive` made these equations with; None for equations made otherwise
+        (by hand, or changed with `dataclasses.replace`, which leaves it out).  With the model, it
+        names the equations for the compile plans (`lagrangian.numerics._plans`).
     """
 
     model: Model
@@ -148,8 +185,6 @@ class EquationsOfMotion:
     F: tuple[se.Basic, ...] = _FromCourse()  # type: ignore[assignment]
     constraints: tuple[ConstraintRow, ...] = ()
     reactions: tuple[ConstraintReaction, ...] = ()
-    #: The signs the derivation proved from the declared assumptions and used to simplify
-    #: (`lagrangian.model._assumptions.SignFact`); `simulate` checks them along the motion.
     assumptions: tuple[SignFact, ...] = ()
     recursive: RecursiveForm | None = field(default=None, repr=False, compare=False)
     course: Callable[[], CourseForm] | None = field(default=None, repr=False, compare=False)
@@ -217,15 +252,15 @@ class EquationsOfMotion:
 
     @property
     def conservative(self) -> bool:
-        """Remarque 2: every given effort derives from a potential and every constraint is perfect and
-        principal — or complementary and scleronomic (`scleronomic`).
+        """Whether the system is conservative (Remarque 2), constraints included.
 
-        The engine's constraints are all perfect (ideal: their reactions do no virtual work, so
-        they enter as Σ_k λ_k A_ki).  A scleronomic complementary row (b_k ≡ 0, A_k free of t)
-        does no work along the motion either (λ_k A_k·q̇ = −λ_k b_k = 0), so the system keeps
-        its Lagrangian L = T − U_P, with d/dt(∂L/∂q̇_i) − ∂L/∂q_i = Σ_k λ_k A_ki (the constrained
-        form of Remarque 2; Goldstein, Classical Mechanics, §2.4).  A rheonomic row works on the
-        motion (power −λ_k b_k): the system is then not conservative.
+        Every given effort derives from a potential and every constraint is perfect and principal — or
+        complementary and scleronomic (`scleronomic`).  The engine's constraints are all perfect (ideal:
+        their reactions do no virtual work, so they enter as Σ_k λ_k A_ki).  A scleronomic complementary
+        row (b_k ≡ 0, A_k free of t) does no work along the motion either (λ_k A_k·q̇ = −λ_k b_k = 0), so
+        the system keeps its Lagrangian L = T − U_P, with d/dt(∂L/∂q̇_i) − ∂L/∂q_i = Σ_k λ_k A_ki (the
+        constrained form of Remarque 2; Goldstein, Classical Mechanics, §2.4).  A rheonomic row works on
+        the motion (power −λ_k b_k): the system is then not conservative.
         """
         return all(f.potential is not None for f in self.loads) and self.scleronomic
 
@@ -249,7 +284,7 @@ class EquationsOfMotion:
 
     @property
     def multipliers(self) -> tuple[se.Symbol, ...]:
-        """λ_k of the complementary constraint rows (empty without complementary constraints)."""
+        """The multipliers λ_k of the complementary constraint rows (empty without complementary constraints)."""
         return tuple(row.multiplier for row in self.constraints)
 
     @property
@@ -272,6 +307,18 @@ class EquationsOfMotion:
         The conversion is structural (no text is parsed, nothing is simplified).  The same form
         with the first integrals is ``lagrangian.sympy_equations(eom)``.  See `SympyEquations`
         and docs/interop.md.
+
+        Parameters
+        ----------
+        time_functions : bool, optional
+            With ``time_functions=True`` the coordinates are SymPy mechanics' ``dynamicsymbols`` θ(t) and
+            the rates Derivative(θ(t), t), Derivative(θ(t), (t, 2)); else plain symbols named as in the
+            model (``theta``, ``theta_dot``, ``theta_ddot``, the parameters).
+
+        Returns
+        -------
+        SympyEquations
+            M, F, the equations, T, U, L and the multipliers' formulas; its ``first_integrals`` is None.
         """
         from ._sympy_form import sympy_form  # SymPy loaded on use, not with the stage
 
@@ -334,13 +381,14 @@ def derive(model: Model, *, formulation: str = "auto") -> EquationsOfMotion:
 
     Parameters
     ----------
-    model : a checked `Model` (`load_model`, `parse_model` or `ModelBuilder.build`).
-    formulation : "auto" (default), "lagrange" or "recursive".  "recursive" also builds M and
-        F of a kinematic tree by the recursive multibody algorithms over named intermediates
-        (`dynamics._recursive`: what the compiled code then uses, linear in the number of
-        joints where the expanded entries swell); "auto" does so for trees with at least
-        `AUTO_MIN_DEPTH` moving rotations in series.  The course's equations are the same
-        in every case (on first use with a recursive form).
+    model : Model
+        A checked `Model` (`load_model`, `parse_model` or `ModelBuilder.build`).
+    formulation : {"auto", "lagrange", "recursive"}, optional
+        "recursive" also builds M and F of a kinematic tree by the recursive multibody algorithms
+        over named intermediates (`dynamics._recursive`: what the compiled code then uses, linear in
+        the number of joints where the expanded entries swell); "auto" (the default) does so for
+        trees with at least `AUTO_MIN_DEPTH` moving rotations in series.  The course's equations are
+        the same in every case (on first use with a recursive form).
 
     Returns
     -------

@@ -110,21 +110,34 @@ def _unit(axis: int, k: se.Basic) -> Vec:
 class RecursiveForm:
     """M q̈ = F, T, U and Hamilton's ∂(T − U)/∂q of a kinematic tree, over named intermediates.
 
-    Attributes
+    Parameters
     ----------
-    intermediates : (name, expression) in the order of computation; each expression holds
-        q, q̇, t, parameters and earlier names only.
-    M, F : n×n and n entries in those names.
-    T, U : kinetic energy and potential (gravity, plus the potentials of the other loads).
-    dL_dq : ∂T/∂q − ∂U_gravity/∂q + Q_i of the other loads, couples included (the right
-        side of ṗ in Hamilton's form, see `codegen._codegen`), in the names.
-    conservative : every load derives from a potential (then T + U is the energy integral).
-    loads : the Q_i of the loads the recursion does not handle (all but uniform gravity).
-    qdd : q̈ by the articulated-body algorithm (`_articulated`), in the names, when every
-        coordinate drives one joint of its own; else None (then q̈ solves M q̈ = F).
-    pivots : with ``qdd``, (D_j, M_jj) for each j: the articulated pivot and M's diagonal entry.
-    qdd_forward : with ``qdd``, the position in ``intermediates`` where its forward pass starts (what
-        comes before, the backward pass, is computed first: the C code splits there).
+    intermediates : tuple of (SymEngine Symbol, SymEngine expression)
+        (name, expression) in the order of computation; each expression holds q, q̇, t, parameters
+        and earlier names only.
+    M : tuple of tuples of SymEngine expressions
+        The n×n mass matrix, in those names.
+    F : tuple of SymEngine expressions
+        The n entries of F, in those names.
+    T : SymEngine expression
+        The kinetic energy.
+    U : SymEngine expression
+        The potential (gravity, plus the potentials of the other loads).
+    dL_dq : tuple of SymEngine expressions
+        ∂T/∂q − ∂U_gravity/∂q + Q_i of the other loads, couples included (the right side of ṗ in
+        Hamilton's form, see `codegen._codegen`), in the names.
+    conservative : bool
+        Every load derives from a potential (then T + U is the energy integral).
+    loads : tuple of LoadForces
+        The Q_i of the loads the recursion does not handle (all but uniform gravity).
+    qdd : tuple of SymEngine expressions, optional
+        The accelerations q̈ by the articulated-body algorithm (`_articulated`), in the names, when
+        every coordinate drives one joint of its own; else None (then q̈ solves M q̈ = F).
+    pivots : tuple of (SymEngine expression, SymEngine expression)
+        With ``qdd``, (D_j, M_jj) for each j: the articulated pivot and M's diagonal entry.
+    qdd_forward : int
+        With ``qdd``, the position in ``intermediates`` where its forward pass starts (what comes
+        before, the backward pass, is computed first: the C code splits there).
     """
 
     intermediates: tuple[tuple[se.Symbol, se.Basic], ...]
@@ -142,7 +155,17 @@ class RecursiveForm:
     def needed(self, exprs: Sequence[se.Basic], after: int = 0) -> list[tuple[se.Symbol, se.Basic]]:
         """The intermediates ``exprs`` depend on, in order (what a function that computes them must define).
 
-        With ``after``, only those at that position or later (the earlier ones are given).
+        Parameters
+        ----------
+        exprs : sequence of SymEngine expressions
+            Expressions in the names.
+        after : int, optional
+            With ``after``, only those at that position or later (the earlier ones are given).
+
+        Returns
+        -------
+        list of (SymEngine Symbol, SymEngine expression)
+            The intermediates needed, in the order of computation.
         """
         position = {s: k for k, (s, _) in enumerate(self.intermediates) if k >= after}
         keep: set[int] = set()
@@ -156,14 +179,38 @@ class RecursiveForm:
         return [self.intermediates[k] for k in sorted(keep)]
 
     def expand(self, exprs: Sequence[se.Basic]) -> list[se.Basic]:
-        """``exprs`` with every intermediate replaced by its expression (small systems: it swells)."""
+        """``exprs`` with every intermediate replaced by its expression (small systems: it swells).
+
+        Parameters
+        ----------
+        exprs : sequence of SymEngine expressions
+            Expressions in the names.
+
+        Returns
+        -------
+        list of SymEngine expressions
+            The same, in q, q̇, t and the parameters only.
+        """
         values: dict[se.Basic, se.Basic] = {}
         for s, e in self.needed(exprs):
             values[s] = e.xreplace(values)
         return [e.xreplace(values) for e in exprs]
 
     def evaluate(self, exprs: Sequence[se.Basic], values: dict[se.Basic, float]) -> list[float]:
-        """Numbers of ``exprs`` at ``values`` (every q, q̇, t and parameter symbol to a float)."""
+        """Evaluate ``exprs`` at ``values``.
+
+        Parameters
+        ----------
+        exprs : sequence of SymEngine expressions
+            Expressions in the names.
+        values : dict of SymEngine expression to float
+            Every q, q̇, t and parameter symbol to a float.
+
+        Returns
+        -------
+        list of float
+            The values of ``exprs``.
+        """
         known: dict[se.Basic, se.Basic] = {s: se.RealDouble(float(v)) for s, v in values.items()}
         for s, e in self.needed(exprs):
             known[s] = se.RealDouble(float(e.xreplace(known)))

@@ -47,25 +47,47 @@ def _no_rows() -> sympy.Matrix:
 class SympyEquations:
     """The equations of motion of one model in SymPy (see the module docstring).
 
-    Attributes
+    Parameters
     ----------
-    coordinates : the coordinate names q_i, in order.
-    t : the time symbol (``dynamicsymbols._t`` in the time-function form).
-    q, qd, qdd : the coordinates, rates and accelerations: symbols ``theta``, ``theta_dot``,
-        ``theta_ddot``, or θ(t), Derivative(θ(t), t), Derivative(θ(t), (t, 2)).
-    parameters : the model's parameter symbols, in declaration order; ``values`` their values
-        (symbol → number) where the model gives one, ready for ``subs`` or ``lambdify``.
-    M, F : M(q, t) q̈ = F(q, q̇, t) (+ Aᵀλ with complementary constraints): n×n and n×1 Matrix.
-    equations : one ``sympy.Eq`` per coordinate, L(q_i): Γ_i = −∂U/∂q_i + Q_i(nc) (+ Σ_k λ_k A_ki).
-    T, U : the kinetic energy T(Σ/R0) and the potential U_P (up to a constant).
-    L : T − U when the system is conservative (Remarque 2), else None.
-    multipliers : the λ_k of the complementary constraints; ``A`` the m×n matrix of their rows.
-    multiplier_formulas : λ_k name → λ_k(q, q̇, t) in closed form (empty when there is none,
-        or the system is too large for one: then λ is found along a motion).
-    time_functions : whether this is the ``dynamicsymbols`` form.
-    first_integrals : name → expression constant along every motion (K, H, E, p_x, ...), from
+    coordinates : tuple of str
+        The coordinate names q_i, in order.
+    t : SymPy Symbol
+        The time symbol (``dynamicsymbols._t`` in the time-function form).
+    q : tuple of SymPy expressions
+        The coordinates: symbols ``theta``, or θ(t).
+    qd : tuple of SymPy expressions
+        The rates: symbols ``theta_dot``, or Derivative(θ(t), t).
+    qdd : tuple of SymPy expressions
+        The accelerations: symbols ``theta_ddot``, or Derivative(θ(t), (t, 2)).
+    parameters : tuple of SymPy Symbol
+        The model's parameter symbols, in declaration order.
+    values : mapping of SymPy Symbol to float
+        Their values (symbol → number) where the model gives one, ready for ``subs`` or ``lambdify``.
+    M : sympy.Matrix
+        M(q, t), n×n, in M q̈ = F(q, q̇, t) (+ Aᵀλ with complementary constraints).
+    F : sympy.Matrix
+        F(q, q̇, t), n×1.
+    equations : tuple of sympy.Eq
+        One per coordinate, L(q_i): Γ_i = −∂U/∂q_i + Q_i(nc) (+ Σ_k λ_k A_ki).
+    T : SymPy expression
+        The kinetic energy T(Σ/R0).
+    U : SymPy expression
+        The potential U_P (up to a constant).
+    L : SymPy expression or None
+        T − U when the system is conservative (Remarque 2), else None.
+    first_integrals : mapping of str to SymPy expression, or None
+        Name → expression constant along every motion (K, H, E, p_x, ...), from
         ``lagrangian.sympy_equations(eom)``; None from ``eom.to_sympy()``, which does not look for them
         (finding them is the analysis stage's work, `lagrangian.first_integrals`).
+    multipliers : tuple of SymPy expressions
+        The λ_k of the complementary constraints.
+    A : sympy.Matrix
+        The m×n matrix of their rows.
+    multiplier_formulas : mapping of str to SymPy expression
+        The multipliers' formulas, λ_k name → λ_k(q, q̇, t) in closed form (empty when there is none, or the system is too large
+        for one: then λ is found along a motion).
+    time_functions : bool
+        Whether this is the ``dynamicsymbols`` form.
     """
 
     coordinates: tuple[str, ...]
@@ -99,7 +121,13 @@ class SympyEquations:
         return out.xreplace(self._replace) if self._replace else out
 
     def qdd_solved(self) -> sympy.Matrix:
-        """q̈ = M⁻¹ F (without complementary constraints), by LU: small systems only (it grows fast)."""
+        """Solve q̈ = M⁻¹ F (without complementary constraints), by LU: small systems only (it grows fast).
+
+        Returns
+        -------
+        sympy.Matrix
+            The accelerations q̈, n×1.
+        """
         return self.M.LUsolve(self.F)
 
 
@@ -116,6 +144,18 @@ def _convert(e: se.Basic) -> sympy.Basic:
 
 def sympy_form(eom: EquationsOfMotion, *, time_functions: bool = False) -> SympyEquations:
     """``eom.to_sympy()``: symbols named as in the model, or SymPy mechanics' ``dynamicsymbols``.
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+    time_functions : bool, optional
+        The ``dynamicsymbols`` form: θ(t) and its derivatives.
+
+    Returns
+    -------
+    SympyEquations
+        The equations in SymPy.
 
     Examples
     --------

@@ -36,13 +36,18 @@ COEFFICIENT_TOLERANCE = 1e-9
 class BaseParameters:
     """The base parameters of a regressor's columns (module docstring).
 
-    Attributes
+    Parameters
     ----------
-    names : the parameters, in the order of Y's columns.
-    independent : indices of the r columns Y₁ (each base parameter is led by one).
-    beta : β, shape (r, P − r): θ_b = θ[independent] + β θ[dependent].
-    dependent : indices of the other columns.
-    zero : indices of the columns that are zero (the parameter does not act at all).
+    names : tuple of str
+        The parameters, in the order of Y's columns.
+    independent : tuple of int
+        Indices of the r columns Y₁ (each base parameter is led by one).
+    dependent : tuple of int
+        Indices of the other columns.
+    beta : ndarray of shape (r, P − r)
+        The coefficients β: θ_b = θ[independent] + β θ[dependent].
+    zero : tuple of int
+        Indices of the columns that are zero (the parameter does not act at all).
     """
 
     names: tuple[str, ...]
@@ -60,7 +65,13 @@ class BaseParameters:
         return len(self.dependent) == 0
 
     def matrix(self) -> np.ndarray:
-        """K, shape (r, P): θ_b = K θ."""
+        """The matrix K of the base parameters, θ_b = K θ.
+
+        Returns
+        -------
+        ndarray of shape (r, P)
+            K.
+        """
         K = np.zeros((self.rank, len(self.names)))
         K[np.arange(self.rank), list(self.independent)] = 1.0
         if self.dependent:
@@ -68,14 +79,33 @@ class BaseParameters:
         return K
 
     def combination(self, k: int, digits: int = 6) -> str:
-        """Base parameter k as text: ``Izz_column + 0.09 m_upper_arm + mx_upper_arm``."""
+        """Base parameter k as text: ``Izz_column + 0.09 m_upper_arm + mx_upper_arm``.
+
+        Parameters
+        ----------
+        k : int
+            The base parameter's index.
+        digits : int, optional
+            Significant digits of the coefficients.
+
+        Returns
+        -------
+        str
+            The combination.
+        """
         return format_combination(self.names, self.matrix()[k], digits)
 
     def combinations(self, digits: int = 6) -> list[str]:
         return [self.combination(k, digits) for k in range(self.rank)]
 
     def alone(self) -> list[str]:
-        """The parameters identified on their own: a base parameter that no other enters."""
+        """The parameters identified on their own: a base parameter that no other enters.
+
+        Returns
+        -------
+        list of str
+            Their names.
+        """
         K = self.matrix()
         out = []
         for k, j in enumerate(self.independent):
@@ -108,6 +138,18 @@ def base_parameters(Y: np.ndarray, names: Sequence[str]) -> BaseParameters:
     kept before them (Gram–Schmidt with the same tolerance), so that the combinations do not depend
     on the states Y was evaluated at: each is led by its earliest parameter
     (``mx_upper_arm + 0.5 m_forearm``).  Should the two disagree, the pivots of the QR are kept.
+
+    Parameters
+    ----------
+    Y : ndarray of shape (rows, P)
+        The stacked regressor.
+    names : sequence of str
+        The parameters of its columns.
+
+    Returns
+    -------
+    BaseParameters
+        The base parameters.
     """
     Y = np.asarray(Y, dtype=float)
     P = Y.shape[1]

@@ -45,12 +45,18 @@ MAX_CSV_BYTES = 512 * 2**20
 class Measurements:
     """A measured record: ``t`` (N,) and each measured column (N,) by name.
 
-    Attributes
+    Parameters
     ----------
-    states : coordinate or rate name (``theta``, ``theta_dot``) → samples.
-    accelerations : coordinate name → measured q̈ samples (``theta_ddot`` columns).
-    inputs : input name → samples of the input applied.
-    source : what the record came from, for messages.
+    t : ndarray of shape (N,)
+        The sample times.
+    states : mapping of str to ndarray
+        Coordinate or rate name (``theta``, ``theta_dot``) → samples.
+    accelerations : mapping of str to ndarray
+        Coordinate name → measured q̈ samples (``theta_ddot`` columns).
+    inputs : mapping of str to ndarray
+        Input name → samples of the input applied.
+    source : str
+        What the record came from, for messages.
     """
 
     t: np.ndarray
@@ -68,14 +74,22 @@ def read_measurements(data, model: Model, *, columns: Sequence[str] | None = Non
 
     Parameters
     ----------
-    data : a `lagrangian.numerics.Trajectory`, an ``xarray.Dataset`` (a ``t`` or ``time``
-        coordinate, one variable per column), a path to a CSV file, or a mapping of ``"t"`` and
-        column names to 1-D arrays.
-    model : the model whose coordinates and inputs the columns name.
-    columns : the columns to use (``t`` is always used); default all of them, except, in a file that
+    data : Trajectory or xarray.Dataset or str or Path or mapping of str to array_like
+        A `lagrangian.numerics.Trajectory`, an ``xarray.Dataset`` (a ``t`` or ``time`` coordinate, one
+        variable per column), a path to a CSV file, or a mapping of ``"t"`` and column names to 1-D
+        arrays.
+    model : Model
+        The model whose coordinates and inputs the columns name.
+    columns : sequence of str, optional
+        The columns to use (``t`` is always used); default all of them, except, in a file that
         `lagrangian simulate` wrote, the columns it computes besides the states (T, U, first
-        integrals such as E or p_x, reactions ``R_...``, multipliers ``lambda_...``).  A Trajectory gives its
-        q, q̇ (and its input columns when it has any) unless ``columns`` says otherwise.
+        integrals such as E or p_x, reactions ``R_...``, multipliers ``lambda_...``).  A Trajectory
+        gives its q, q̇ (and its input columns when it has any) unless ``columns`` says otherwise.
+
+    Returns
+    -------
+    Measurements
+        The record, checked.
 
     Raises
     ------

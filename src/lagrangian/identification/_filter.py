@@ -24,7 +24,15 @@ __all__ = ["SavitzkyGolay"]
 
 @dataclass(frozen=True)
 class SavitzkyGolay:
-    """Local polynomial derivatives (module docstring): ``window`` samples (odd), degree ``order``."""
+    """Local polynomial derivatives (module docstring).
+
+    Parameters
+    ----------
+    window : int
+        The number of samples of each fit (odd).
+    order : int
+        The degree of the polynomial.
+    """
 
     window: int = 21
     order: int = 4
@@ -44,7 +52,24 @@ class SavitzkyGolay:
         return self.window // 2
 
     def derivatives(self, t: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(x, ẋ, ẍ) of the local fits at every sample; ``x`` of shape (N,) or (N, k)."""
+        """The local fits' values and derivatives (x, ẋ, ẍ) at every sample.
+
+        Parameters
+        ----------
+        t : ndarray of shape (N,)
+            The times.
+        x : ndarray of shape (N,) or (N, k)
+            The samples.
+
+        Returns
+        -------
+        x : ndarray
+            The smoothed samples.
+        xdot : ndarray
+            The first derivative ẋ.
+        xddot : ndarray
+            The second derivative ẍ.
+        """
         t = np.asarray(t, dtype=float)
         x = np.asarray(x, dtype=float)
         flat = x.reshape(len(t), -1)

@@ -67,31 +67,47 @@ def identify(
 
     Parameters
     ----------
-    source : a model file (TOML, or URDF: read with its links' inertial parameters as parameters,
+    source : str or Path or Model or EquationsOfMotion
+        A model file (TOML, or URDF: read with its links' inertial parameters as parameters,
         `load_urdf(..., inertial_parameters=True)`), a `Model` or an `EquationsOfMotion`.
-    data : the measurements: a `Trajectory`, an ``xarray.Dataset``, a CSV file or a dict of arrays,
-        keyed by ``t`` and the measured coordinates (``theta``), rates (``theta_dot``), accelerations
+    data : Trajectory or xarray.Dataset or str or Path or dict
+        The measurements: a `Trajectory`, an ``xarray.Dataset``, a CSV file or a dict of arrays, keyed
+        by ``t`` and the measured coordinates (``theta``), rates (``theta_dot``), accelerations
         (``theta_ddot``) and inputs (`lagrangian.identification.read_measurements`).
-    parameters : the names to fit.
-    route : ``"auto"``, ``"regressor"`` or ``"shooting"``.
-    values : values of the parameters not fitted (default the model's).
-    inputs : constant values of inputs that the data does not hold (an input acting on the model
-        must be measured or given here).
-    guess : first values of the fitted parameters for shooting (default the model's).
-    bounds : name → (lower, upper) for shooting (default: the declared signs, e.g. positive).
-    initial : first values of unmeasured initial coordinates and rates for shooting (default the
-        model's initial state).
-    columns : the data columns to use (default all).
-    noise : measured column → its noise standard deviation (shooting; default estimated).
-    derivatives : how q̇ and q̈ are estimated from q for the regressor (`SavitzkyGolay`).
-    shooting : segments, tolerances and evaluations of the shooting route (`Shooting`).
-    deficient : ``"error"`` (default) refuses parameters identifiable only in combinations, naming
-        the combinations; ``"base"`` estimates the combinations (the base parameters).
-    seed : seed of the random states that find the base parameters.
+    parameters : sequence of str
+        The names to fit.
+    route : {"auto", "regressor", "shooting"}, optional
+        How to fit.
+    values : mapping of str to float, optional
+        Values of the parameters not fitted (default the model's).
+    inputs : mapping of str to float, optional
+        Constant values of inputs that the data does not hold (an input acting on the model must be
+        measured or given here).
+    guess : mapping of str to float, optional
+        First values of the fitted parameters for shooting (default the model's).
+    bounds : mapping of str to (float, float), optional
+        Name → (lower, upper) for shooting (default: the declared signs, e.g. positive).
+    initial : mapping of str to float, optional
+        First values of unmeasured initial coordinates and rates for shooting (default the model's
+        initial state).
+    columns : sequence of str, optional
+        The data columns to use (default all).
+    noise : mapping of str to float, optional
+        Measured column → its noise standard deviation (shooting; default estimated).
+    derivatives : SavitzkyGolay, optional
+        How q̇ and q̈ are estimated from q for the regressor.
+    shooting : Shooting, optional
+        Segments, tolerances and evaluations of the shooting route.
+    deficient : {"error", "base"}, optional
+        ``"error"`` (default) refuses parameters identifiable only in combinations, naming the
+        combinations; ``"base"`` estimates the combinations (the base parameters).
+    seed : int, optional
+        Seed of the random states that find the base parameters.
 
     Returns
     -------
     Identification
+        The estimates, their standard errors and covariance, the residuals.
 
     Raises
     ------

@@ -50,12 +50,25 @@ LINEARITY_TOLERANCE = 1e-8
 
 
 class Regressor:
-    """r and Y = ∂r/∂θ of ``eom`` for the parameters ``fitted`` (module docstring), compiled.
+    """The residual r and its Jacobian Y = ∂r/∂θ of ``eom`` for the parameters ``fitted``, compiled.
+
+    See the module docstring.
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+    fitted : sequence of str
+        The parameters θ, in the order of Y's columns.
 
     Attributes
     ----------
-    n : coordinates; ``parameters`` : every parameter of the model (inputs included), the order of
-    a sample's ``p``; ``fitted`` : the θ, the order of Y's columns.
+    n : int
+        The number of coordinates.
+    parameters : tuple of str
+        Every parameter of the model (inputs included), the order of a sample's ``p``.
+    fitted : tuple of str
+        The θ, the order of Y's columns.
     """
 
     def __init__(self, eom: EquationsOfMotion, fitted: Sequence[str]) -> None:
@@ -97,6 +110,25 @@ class Regressor:
 
         ``y`` (N, 2n) holds (q, q̇), ``a`` (N, n) q̈, ``p`` the parameter values: shape
         (len(parameters),) for all the samples, or (N, len(parameters)) (measured inputs).
+
+        Parameters
+        ----------
+        t : ndarray of shape (N,)
+            The times.
+        y : ndarray of shape (N, 2n)
+            The states (q, q̇).
+        a : ndarray of shape (N, n)
+            The accelerations q̈.
+        p : ndarray
+            The parameter values: shape (len(parameters),) for all the samples, or (N, len(parameters))
+            (measured inputs).
+
+        Returns
+        -------
+        r : ndarray of shape (N, n)
+            The residuals.
+        Y : ndarray of shape (N, n, len(fitted))
+            Their Jacobian.
         """
         y = np.ascontiguousarray(y, dtype=float).reshape(-1, 2 * self.n)
         count = len(y)
@@ -117,6 +149,20 @@ class Regressor:
 
         Y is evaluated at ``samples`` random states for θ from ``p`` and for θ changed by random
         factors in [0.5, 2] (and shifted, for zeros); a column that moves is not affine.
+
+        Parameters
+        ----------
+        p : ndarray
+            The parameter values.
+        rng : numpy.random.Generator
+            The random states' generator.
+        samples : int, optional
+            The number of random states.
+
+        Returns
+        -------
+        list of str
+            Those parameters.
         """
         n = self.n
         y = rng.uniform(-1.5, 1.5, (samples, 2 * n))

@@ -15,7 +15,19 @@ __all__ = ["BaseEstimate", "Identification"]
 
 @dataclass(frozen=True)
 class BaseEstimate:
-    """One identifiable combination Σ c_j θ_j (a base parameter), its estimate and standard error."""
+    """One identifiable combination Σ c_j θ_j (a base parameter), its estimate and standard error.
+
+    Parameters
+    ----------
+    text : str
+        The combination, as text.
+    coefficients : mapping of str to float
+        Its coefficients c_j, by parameter.
+    estimate : float
+        Its estimate.
+    std : float
+        Its standard error.
+    """
 
     text: str
     coefficients: Mapping[str, float]
@@ -32,22 +44,46 @@ class Identification:
     combination with others has no estimate of its own: ``fit["m"]`` then raises an
     `IdentificationError` that names the combination, and ``fit.base`` holds every combination.
 
-    Attributes
+    Parameters
     ----------
-    route : ``"regressor"`` (linear least squares on Y(q, q̇, q̈) θ = −r₀) or ``"shooting"``
-        (nonlinear least squares on simulated motions, forward sensitivities for the Jacobian).
-    parameters : the parameters asked for.
-    estimates, std : name → value and standard error, for the parameters identified on their own.
-    base : the identifiable combinations (one per parameter when all are identifiable).
-    covariance, covariance_names : the covariance matrix of the estimated quantities (the
-        parameters, or the base combinations, then for shooting the initial states).
-    residuals : (N, k) the fit's residuals at ``t``, columns ``residual_names`` (the equations
-        M q̈ − F for the regressor, the measured columns for shooting), in the data's units.
-    sigma : residual column → its standard deviation at the optimum (the noise level).
-    initial : for shooting, the estimated state at the first sample (name → value).
-    status, iterations, condition : how the fit went; the condition number of the weighted
-        Jacobian (regressor or sensitivities) of the estimated quantities.
-    notes : what the user should know (samples left out, segments used...).
+    model_name : str
+        The model's name.
+    route : str
+        ``"regressor"`` (linear least squares on Y(q, q̇, q̈) θ = −r₀) or ``"shooting"`` (nonlinear
+        least squares on simulated motions, forward sensitivities for the Jacobian).
+    parameters : tuple of str
+        The parameters asked for.
+    estimates : mapping of str to float
+        Name → value, for the parameters identified on their own.
+    std : mapping of str to float
+        Name → standard error, likewise.
+    base : tuple of BaseEstimate
+        The identifiable combinations (one per parameter when all are identifiable).
+    covariance : ndarray
+        The covariance matrix of the estimated quantities (the parameters, or the base combinations,
+        then for shooting the initial states).
+    covariance_names : tuple of str
+        Its rows' names.
+    t : ndarray of shape (N,)
+        The sample times.
+    residuals : ndarray of shape (N, k)
+        The fit's residuals at ``t``, columns ``residual_names`` (the equations M q̈ − F for the
+        regressor, the measured columns for shooting), in the data's units.
+    residual_names : tuple of str
+        Their names.
+    sigma : mapping of str to float
+        Residual column → its standard deviation at the optimum (the noise level).
+    status : str
+        How the fit went.
+    iterations : int
+        The solver's iterations.
+    condition : float
+        The condition number of the weighted Jacobian (regressor or sensitivities) of the estimated
+        quantities.
+    initial : mapping of str to float
+        For shooting, the estimated state at the first sample (name → value).
+    notes : tuple of str
+        What the user should know (samples left out, segments used...).
     """
 
     model_name: str
@@ -95,7 +131,13 @@ class Identification:
         return all(name in self.estimates for name in self.parameters)
 
     def summary(self) -> str:
-        """A plain-text table: estimate ± standard error for each parameter or combination."""
+        """A plain-text table: estimate ± standard error for each parameter or combination.
+
+        Returns
+        -------
+        str
+            The table.
+        """
         lines = [f"identification of `{self.model_name}` ({self.route}): {self.status}"]
         width = max([len(b.text) for b in self.base] + [9])
         for b in self.base:
@@ -112,7 +154,13 @@ class Identification:
         return "\n".join(lines)
 
     def to_dict(self) -> dict[str, Any]:
-        """A JSON-ready document (schema ``lagrangian.identify/1``); what is not determined (NaN) is null."""
+        """A JSON-ready document (schema ``lagrangian.identify/1``); what is not determined (NaN) is null.
+
+        Returns
+        -------
+        dict of str to object
+            The document.
+        """
 
         def number(x: float) -> float | None:
             return float(x) if np.isfinite(x) else None

@@ -46,9 +46,19 @@ MAX_SEGMENTS = 20
 
 @dataclass(frozen=True)
 class Shooting:
-    """How `identify` simulates the record: ``segments`` (1: single shooting; None: about one per
-    `MIN_SEGMENT` samples, at most `MAX_SEGMENTS`), the integrator's ``rtol``/``atol``, at most
-    ``max_evaluations`` residual evaluations."""
+    """How `identify` simulates the record.
+
+    Parameters
+    ----------
+    segments : int, optional
+        1: single shooting; None: about one per `MIN_SEGMENT` samples, at most `MAX_SEGMENTS`.
+    rtol : float
+        The integrator's relative tolerance.
+    atol : float
+        Its absolute tolerance.
+    max_evaluations : int
+        The most residual evaluations.
+    """
 
     segments: int | None = None
     rtol: float = 1e-9

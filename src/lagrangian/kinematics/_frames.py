@@ -28,7 +28,20 @@ _ZERO_TYPE = type(_ZERO)
 
 
 def rotation_rate(rotation, rate: se.Basic) -> Components:
-    """Components of α̇ e in the child's basis, e the axis of ``rotation`` (a `Rotation`)."""
+    """The rotation rate α̇ e of ``rotation`` in the child's basis, e its axis.
+
+    Parameters
+    ----------
+    rotation : Rotation
+        The elementary rotation.
+    rate : SymEngine expression
+        The rate α̇ of its angle.
+
+    Returns
+    -------
+    tuple of three SymEngine expressions
+        The components of α̇ e in the child's basis.
+    """
     if rotation.elementary:
         comps = [_ZERO, _ZERO, _ZERO]
         comps[AXES[rotation.axis]] = rate
@@ -37,7 +50,15 @@ def rotation_rate(rotation, rate: se.Basic) -> Components:
 
 
 class FrameTree:
-    """Orientation data of every frame of a model, with cached conversions."""
+    """Orientation data of every frame of a model, with cached conversions.
+
+    Parameters
+    ----------
+    model : Model
+        The model whose frames it holds.
+    d_dt : TimeDerivative
+        The time derivative of expressions in q, q̇ and t.
+    """
 
     def __init__(self, model: Model, d_dt: TimeDerivative) -> None:
         self.frames = {f.name: f for f in model.frames}
@@ -88,7 +109,22 @@ class FrameTree:
         return tuple((ax, se.cos(an), se.sin(an)) for ax, an in merged if not is_structural_zero(an))
 
     def convert(self, comps: Components, src: str, dst: str) -> Components:
-        """Components in ``dst`` of the vector whose components in ``src`` are ``comps``."""
+        """Convert the components ``comps`` of a vector from the basis of ``src`` to that of ``dst``.
+
+        Parameters
+        ----------
+        comps : tuple of three SymEngine expressions
+            The components in ``src``.
+        src : str
+            The frame they are given in.
+        dst : str
+            The frame wanted.
+
+        Returns
+        -------
+        tuple of three SymEngine expressions
+            The components in ``dst``.
+        """
         if src == dst:
             return comps
         path = self._paths.get((src, dst))
@@ -99,7 +135,20 @@ class FrameTree:
         return comps
 
     def express(self, v: Vector, frame: str) -> Components:
-        """The three components of ``v`` in the basis of ``frame``."""
+        """The three components of ``v`` in the basis of ``frame``.
+
+        Parameters
+        ----------
+        v : Vector
+            The vector.
+        frame : str
+            The frame whose basis is wanted.
+
+        Returns
+        -------
+        tuple of three SymEngine expressions
+            The components.
+        """
         total: Components | None = None
         for src, comps in v:
             conv = self.convert(comps, src, frame)
@@ -114,6 +163,16 @@ class FrameTree:
         A vector along the rotation axis of F is the same vector in F's parent (a R.z = a R2.z
         when R comes from R2 by a rotation about z): differentiating it there gives the
         short expressions a student writes, with no angle of the final rotation in them.
+
+        Parameters
+        ----------
+        v : Vector
+            The vector.
+
+        Returns
+        -------
+        Vector
+            The same vector, its pieces in frames as high in the tree as they can be.
         """
         out: dict[str, Components] = {}
         moved = False
@@ -131,7 +190,18 @@ class FrameTree:
         return Vector._trusted(out) if moved else v
 
     def best_frame(self, *vectors: Vector) -> str:
-        """A frame in which to compute products of ``vectors``: the deepest one they use."""
+        """A frame in which to compute products of ``vectors``: the deepest one they use.
+
+        Parameters
+        ----------
+        *vectors : Vector
+            The vectors to be multiplied.
+
+        Returns
+        -------
+        str
+            The deepest frame they use.
+        """
         # The most used frame, the deepest among equals, the first met among those
         # (what max(frames, key=(count, depth)) gives on the list of their frames).
         if len(vectors) == 2:
@@ -170,7 +240,18 @@ class FrameTree:
 
     # -- angular velocity ------------------------------------------------------------------
     def omega(self, frame: str) -> Vector:
-        """Ω(frame/R0) = Σ α̇_k e_k along the chain from R0, one piece per rotation."""
+        """Ω(frame/R0) = Σ α̇_k e_k along the chain from R0, one piece per rotation.
+
+        Parameters
+        ----------
+        frame : str
+            The frame.
+
+        Returns
+        -------
+        Vector
+            Ω(frame/R0).
+        """
         if frame not in self._omega:
             f = self.frames[frame]
             if f.parent is None:
@@ -184,7 +265,20 @@ class FrameTree:
         return self._omega[frame]
 
     def omega_in(self, frame: str, basis: str) -> Components:
-        """Components of Ω(frame/R0) in the basis of ``basis`` (cached)."""
+        """The components of Ω(frame/R0) in the basis of ``basis`` (cached).
+
+        Parameters
+        ----------
+        frame : str
+            The frame whose rotation rate is wanted.
+        basis : str
+            The frame whose basis is wanted.
+
+        Returns
+        -------
+        tuple of three SymEngine expressions
+            The components.
+        """
         key = (frame, basis)
         if key not in self._omega_in:
             self._omega_in[key] = self.express(self.omega(frame), basis)
@@ -192,9 +286,21 @@ class FrameTree:
 
     # -- derivative of a vector with respect to R0 ------------------------------------------
     def derivative(self, v: Vector, *, accelerations: bool = True) -> Vector:
-        """d v/dt relative to R0:  Σ_F [ (d/dt of the components in F) + Ω(F/R0) ∧ v_F ].
+        """The derivative d v/dt relative to R0:  Σ_F [ (d/dt of the components in F) + Ω(F/R0) ∧ v_F ].
 
         (Formule de dérivation vectorielle: each piece is differentiated in its own frame.)
+
+        Parameters
+        ----------
+        v : Vector
+            The vector, a function of q, q̇ and t.
+        accelerations : bool, optional
+            False leaves out the terms in q̈ (the derivative of the rates is taken as zero).
+
+        Returns
+        -------
+        Vector
+            The derivative d v/dt relative to R0.
         """
         out: dict[str, Components] = {}
         d_dt = self.d_dt

@@ -24,11 +24,19 @@ _ZERO_TYPE = type(_ZERO)
 class Kinematics:
     """Everything kinematic about a `Model`, computed on demand and cached.
 
+    Parameters
+    ----------
+    model : Model
+        The model.
+
     Attributes
     ----------
-    q, qd, qdd : tuples of SymEngine symbols q_i, q̇_i, q̈_i in coordinate order.
-    t : the time symbol.
-    frames : the `FrameTree` (change of basis, Ω).
+    q, qd, qdd : tuple of SymEngine Symbol
+        The symbols q_i, q̇_i, q̈_i in coordinate order.
+    t : SymEngine Symbol
+        The time symbol.
+    frames : FrameTree
+        Change of basis and Ω.
     """
 
     def __init__(self, model: Model) -> None:
@@ -57,27 +65,73 @@ class Kinematics:
 
     # -- points ------------------------------------------------------------------------------
     def position(self, point: str) -> Vector:
-        """OP, the position of ``point`` from O (a body name means its centre of mass G)."""
+        """OP, the position of ``point`` from O (a body name means its centre of mass G).
+
+        Parameters
+        ----------
+        point : str
+            A point, body or particle name.
+
+        Returns
+        -------
+        Vector
+            OP.
+        """
         try:
             return self._points[point].position
         except KeyError:
             raise KinematicsError(f"unknown point `{point}`", fix="use a declared point, body or particle") from None
 
     def velocity(self, point: str) -> Vector:
-        """V(P/R0) = d OP/dt relative to R0."""
+        """V(P/R0) = d OP/dt relative to R0.
+
+        Parameters
+        ----------
+        point : str
+            A point, body or particle name.
+
+        Returns
+        -------
+        Vector
+            V(P/R0).
+        """
         if point not in self._velocity:
             self._velocity[point] = self.frames.derivative(self.position(point))
         return self._velocity[point]
 
     def acceleration(self, point: str, *, accelerations: bool = True) -> Vector:
-        """γ(P/R0); with ``accelerations=False`` the part free of q̈ (the q̈ part is Σ ∂V/∂q̇_j q̈_j)."""
+        """The acceleration γ(P/R0), whole or without its part in q̈.
+
+        Parameters
+        ----------
+        point : str
+            A point, body or particle name.
+        accelerations : bool, optional
+            With ``accelerations=False``, the part free of q̈ (the q̈ part is Σ ∂V/∂q̇_j q̈_j).
+
+        Returns
+        -------
+        Vector
+            The acceleration γ(P/R0), or its part free of q̈.
+        """
         key = (point, accelerations)
         if key not in self._acceleration:
             self._acceleration[key] = self.frames.derivative(self.velocity(point), accelerations=accelerations)
         return self._acceleration[key]
 
     def partial_velocities(self, point: str) -> tuple[Vector, ...]:
-        """(∂OP/∂q_i)_i = (∂V(P/R0)/∂q̇_i)_i, the coefficients of V*(P)."""
+        """The partial velocities (∂OP/∂q_i)_i = (∂V(P/R0)/∂q̇_i)_i, the coefficients of V*(P).
+
+        Parameters
+        ----------
+        point : str
+            A point, body or particle name.
+
+        Returns
+        -------
+        tuple of Vector
+            One per coordinate.
+        """
         if point not in self._partials:
             self._partials[point] = self._rate_partials(self.velocity(point))
         return self._partials[point]
@@ -98,25 +152,69 @@ class Kinematics:
         return tuple(Vector._trusted({f: tuple(c) for f, c in p.items()}) for p in pieces)
 
     def virtual_velocity(self, point: str) -> Vector:
-        """V*(P) = Σ_i ∂OP/∂q_i q_i*, with the virtual rates written ``<q>_star``."""
+        """V*(P) = Σ_i ∂OP/∂q_i q_i*, with the virtual rates written ``<q>_star``.
+
+        Parameters
+        ----------
+        point : str
+            A point, body or particle name.
+
+        Returns
+        -------
+        Vector
+            V*(P).
+        """
         out = Vector.zero()
         for partial, star in zip(self.partial_velocities(point), self.q_star, strict=True):
             out = out + partial * star
         return out
 
     def is_fixed(self, point: str) -> bool:
-        """True when V(P/R0) is identically zero."""
+        """True when V(P/R0) is identically zero.
+
+        Parameters
+        ----------
+        point : str
+            A point, body or particle name.
+
+        Returns
+        -------
+        bool
+            Whether the point is fixed in R0.
+        """
         return point == ORIGIN or all(
             se.expand(c) == 0 for comps in self.velocity(point).pieces.values() for c in comps
         )
 
     # -- rotation ----------------------------------------------------------------------------
     def omega(self, frame: str) -> Vector:
-        """Ω(frame/R0) as the sum of the rotation rates of its chain."""
+        """Ω(frame/R0) as the sum of the rotation rates of its chain.
+
+        Parameters
+        ----------
+        frame : str
+            The frame.
+
+        Returns
+        -------
+        Vector
+            Ω(frame/R0).
+        """
         return self.frames.omega(frame)
 
     def partial_omegas(self, frame: str) -> tuple[Vector, ...]:
-        """(∂Ω(frame/R0)/∂q̇_i)_i, the coefficients of the virtual rotation rate Ω*."""
+        """The partial rotation rates (∂Ω(frame/R0)/∂q̇_i)_i, the coefficients of the virtual rotation rate Ω*.
+
+        Parameters
+        ----------
+        frame : str
+            The frame.
+
+        Returns
+        -------
+        tuple of Vector
+            One per coordinate.
+        """
         if frame not in self._omega_partials:
             self._omega_partials[frame] = self._rate_partials(self.omega(frame))
         return self._omega_partials[frame]

@@ -28,7 +28,19 @@ __all__ = ["TimeDerivative"]
 
 @dataclass(frozen=True, slots=True)
 class TimeDerivative:
-    """d/dt for expressions in q, q̇ (and q̈ when ``accelerations`` is set) and t."""
+    """The derivative d/dt for expressions in q, q̇ (and q̈ when ``accelerations`` is set) and t.
+
+    Parameters
+    ----------
+    q : tuple of SymEngine Symbol
+        The coordinates q_i.
+    qd : tuple of SymEngine Symbol
+        Their rates q̇_i.
+    qdd : tuple of SymEngine Symbol
+        Their accelerations q̈_i.
+    t : SymEngine Symbol
+        The time.
+    """
 
     q: tuple[se.Symbol, ...]
     qd: tuple[se.Symbol, ...]
@@ -57,12 +69,24 @@ class TimeDerivative:
         return sum_of(terms)
 
     def many(self, exprs: Iterable[se.Basic], *, accelerations: bool = True) -> tuple[se.Basic, ...]:
-        """df/dt of each f of ``exprs`` by the chain rule, sharing the work on common subexpressions.
+        """The derivatives df/dt of each f of ``exprs`` by the chain rule, sharing the work on common subexpressions.
 
         Sums and products are differentiated term by term and factor by factor (product
         rule), powers with a constant exponent by the power rule, symbols by their rate;
         any other node (sin u, √u is a power, abs u...) goes to ``self`` (grouped form), so
         the result is the same function as ``self(f)``, in a form that keeps the products.
+
+        Parameters
+        ----------
+        exprs : iterable of SymEngine expressions
+            The expressions f.
+        accelerations : bool, optional
+            False takes the rates' derivatives q̈ as zero.
+
+        Returns
+        -------
+        tuple of SymEngine expressions
+            The derivatives, in order.
         """
         zero, one = _ZERO, se.Integer(1)
         rate: dict[se.Basic, se.Basic] = {self.t: one}

@@ -68,7 +68,22 @@ MAX_OPS = 200
 
 
 def sign_problem(name: str, sign: str | None, value: float | None) -> str | None:
-    """The message when ``value`` breaks the declared ``sign`` of parameter ``name`` (else None)."""
+    """The message when ``value`` breaks the declared ``sign`` of parameter ``name`` (else None).
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name.
+    sign : str or None
+        Its declared sign (``"positive"``...), or None.
+    value : float or None
+        The value given, or None.
+
+    Returns
+    -------
+    str or None
+        The message, or None when the value keeps the sign (or either is unknown).
+    """
     if sign is None or value is None or _TEST[sign](value):
         return None
     return f"parameter `{name}` is declared {sign} ({name} {SIGN_RELATIONS[sign]}), but its value is {value:g}"
@@ -76,6 +91,13 @@ def sign_problem(name: str, sign: str | None, value: float | None) -> str | None
 
 def check_sign(model: Model, values: Mapping[str, float]) -> None:
     """Refuse values (``--set``, `simulate(parameters=...)`) that break a declared sign.
+
+    Parameters
+    ----------
+    model : Model
+        The model whose parameters declare signs.
+    values : mapping of str to float
+        Parameter values by name.
 
     Raises
     ------
@@ -165,7 +187,18 @@ def read_range(asm: Assembler, raw: Raw, initial: float | None) -> tuple[se.Basi
 
 
 def range_text(bounds: tuple[se.Basic | None, se.Basic | None]) -> str:
-    """``[-0.5, 0.5]``, ``[-L, L]``, ``[0, inf)``."""
+    """Format a range as ``[-0.5, 0.5]``, ``[-L, L]``, ``[0, inf)``.
+
+    Parameters
+    ----------
+    bounds : tuple of (SymEngine expression or None, SymEngine expression or None)
+        The lower and upper bounds, None for an open side.
+
+    Returns
+    -------
+    str
+        The range in interval notation.
+    """
     lower, upper = (None if b is None else f"{float(b):g}" if not b.free_symbols else str(b) for b in bounds)
     return (f"[{lower}" if lower is not None else "(-inf") + ", " + (f"{upper}]" if upper is not None else "inf)")
 
@@ -179,6 +212,18 @@ class SignFact:
 
     ``general`` is True when it holds for every value allowed by the declared signs and ranges,
     False when it was proved at the declared parameter values only; ``reason`` says how.
+
+    Parameters
+    ----------
+    expression : SymEngine expression
+        The expression u.
+    sign : int
+        +1 for u ≥ 0, −1 for u ≤ 0.
+    general : bool
+        True when it holds for every value allowed by the declared signs and ranges, False when it
+        was proved at the declared parameter values only.
+    reason : str
+        How it was proved.
     """
 
     expression: se.Basic
@@ -197,7 +242,18 @@ class SignFact:
         return f"{self.expression} {self.relation} 0 ({self.reason})"
 
     def holds(self, value: float) -> bool:
-        """Whether a value of the expression obeys the fact."""
+        """Whether a value of the expression obeys the fact.
+
+        Parameters
+        ----------
+        value : float
+            A value of ``expression``.
+
+        Returns
+        -------
+        bool
+            True when the value has the proved sign (0 included).
+        """
         return self.sign * value >= 0
 
 
@@ -205,6 +261,11 @@ class Assumptions:
     """The declared signs and ranges of a model, and the simplifications they allow.
 
     ``facts`` lists, in order of first use, the `SignFact` each simplification relied on.
+
+    Parameters
+    ----------
+    model : Model
+        The model whose declared signs and ranges are used.
     """
 
     def __init__(self, model: Model) -> None:
@@ -230,7 +291,18 @@ class Assumptions:
 
     # -- simplification --------------------------------------------------------------------------
     def refine(self, e: se.Basic) -> se.Basic:
-        """``e`` with ``√(u²)^p``, ``|u|`` and ``sgn(u)`` resolved wherever the sign of u is proved (module docstring)."""
+        """Simplify ``√(u²)^p``, ``|u|`` and ``sgn(u)`` wherever the sign of u is proved (module docstring).
+
+        Parameters
+        ----------
+        e : SymEngine expression
+            The expression to simplify.
+
+        Returns
+        -------
+        SymEngine expression
+            ``e`` with those resolved.
+        """
         if not self.active or not isinstance(e, se.Basic) or not e.free_symbols:
             return e
         return self._walk(e)
@@ -269,7 +341,18 @@ class Assumptions:
 
     # -- signs -----------------------------------------------------------------------------------
     def sign(self, u: se.Basic) -> int | None:
-        """+1 when u ≥ 0 is proved, −1 when u ≤ 0, None when unknown (module docstring)."""
+        """The proved sign of u, if any (module docstring).
+
+        Parameters
+        ----------
+        u : SymEngine expression
+            The expression whose sign is asked.
+
+        Returns
+        -------
+        int or None
+            +1 when u ≥ 0 is proved, −1 when u ≤ 0, None when unknown.
+        """
         if u not in self._proofs:
             found = self._prove(u)
             fact = None if found is None else SignFact(u, *found)

@@ -64,7 +64,17 @@ _EXAMPLES = {
 
 @dataclass(frozen=True, slots=True)
 class ReactionSpec:
-    """Which physical efforts carry a constraint's reaction: a force at a point and/or a moment on a body."""
+    """Which physical efforts carry a constraint's reaction: a force at a point and/or a moment on a body.
+
+    Parameters
+    ----------
+    force_at : str, optional
+        The point where a reaction force acts.
+    moment_on : str, optional
+        The body on which a reaction moment acts.
+    frame : str
+        The frame whose axes the reaction's components are taken along.
+    """
 
     force_at: str | None = None
     moment_on: str | None = None
@@ -75,22 +85,38 @@ class ReactionSpec:
 class Constraint:
     """One declared constraint (see the module docstring).
 
-    Attributes
+    Parameters
     ----------
-    name : the declaration's name; multipliers are ``lambda_<name>`` (``lambda_<name>_<axis>`` per row).
-    form : ``"holonomic"``, ``"nonholonomic"``, ``"no_slip"`` or ``"coincide"``.
-    expression : f(q, t) (holonomic) or a·q̇ + b (nonholonomic), scalar or `Vector`; None for the point forms.
-    points : the contact point (no_slip) or the two points kept together (coincide).
-    body : the rolling body (no_slip).
-    frame : the basis whose axes give the scalar rows of a vector constraint.
-    principal : true when the choice of coordinates already satisfies it (no multiplier).
-    reaction : the physical efforts that carry its reaction, when declared.
-    axes : for a vector constraint, the indices (0, 1, 2) of the axes of ``frame`` whose rows are
-        kept; None keeps all three.  A wheel on the ground keeps its two tangential rows when its
-        normal row is the derivative of a holonomic contact constraint declared beside it.
-    restitution, friction, slip : of a ``unilateral`` constraint (a contact, gap ``expression`` ≥ 0):
-        Newton's coefficient e, the Coulomb coefficient μ (or None) and the sliding velocity w
-        (linear in the rates; None without friction).  See `lagrangian.model._unilateral`.
+    name : str
+        The declaration's name; multipliers are ``lambda_<name>`` (``lambda_<name>_<axis>`` per row).
+    form : str
+        ``"holonomic"``, ``"nonholonomic"``, ``"no_slip"``, ``"coincide"`` or ``"unilateral"``.
+    expression : SymEngine expression or Vector, optional
+        The function f(q, t) (holonomic) or a·q̇ + b (nonholonomic), scalar or `Vector`; None for the point forms.
+    points : tuple of str
+        The contact point (no_slip) or the two points kept together (coincide).
+    body : str, optional
+        The rolling body (no_slip).
+    frame : str
+        The basis whose axes give the scalar rows of a vector constraint.
+    principal : bool
+        True when the choice of coordinates already satisfies it (no multiplier).
+    reaction : ReactionSpec, optional
+        The physical efforts that carry its reaction, when declared.
+    description : str, optional
+        What it is, in words.
+    axes : tuple of int, optional
+        For a vector constraint, the indices (0, 1, 2) of the axes of ``frame`` whose rows are kept;
+        None keeps all three.  A wheel on the ground keeps its two tangential rows when its normal
+        row is the derivative of a holonomic contact constraint declared beside it.
+    restitution : SymEngine expression, optional
+        Of a ``unilateral`` constraint (a contact, gap ``expression`` ≥ 0): Newton's coefficient e.
+        See `lagrangian.model._unilateral`.
+    friction : SymEngine expression, optional
+        Of a ``unilateral`` constraint: the Coulomb coefficient μ, or None.
+    slip : SymEngine expression, optional
+        Of a ``unilateral`` constraint: the sliding velocity w (linear in the rates; None without
+        friction).
     """
 
     name: str

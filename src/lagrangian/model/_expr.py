@@ -74,7 +74,19 @@ _SPACE = re.compile(r"\s*")
 
 
 class ExpressionError(ValueError):
-    """A mistake in an expression, with the 1-based column it was found at."""
+    """A mistake in an expression, with the 1-based column it was found at.
+
+    Parameters
+    ----------
+    message : str
+        What was wrong.
+    column : int
+        The 1-based column of the mistake in the expression.
+    symbol : str, optional
+        The offending name, when there is one.
+    fix : str, optional
+        How to fix it.
+    """
 
     def __init__(self, message: str, column: int, *, symbol: str | None = None, fix: str | None = None):
         super().__init__(message)
@@ -395,10 +407,17 @@ def parse_expression(
 
     Parameters
     ----------
-    text : the expression, e.g. ``"a*R.z"`` or ``"m*g*l*(1 - cos(theta))"``.
-    names : the declared scalar names (parameters, coordinates, their rates, ``t``).
-    frames : the declared frame names, whose basis vectors ``F.x``, ``F.y``, ``F.z``
-        may be used.
+    text : str
+        The expression, e.g. ``"a*R.z"`` or ``"m*g*l*(1 - cos(theta))"``.
+    names : mapping of str to SymEngine expression
+        The declared scalar names (parameters, coordinates, their rates, ``t``).
+    frames : collection of str, optional
+        The declared frame names, whose basis vectors ``F.x``, ``F.y``, ``F.z`` may be used.
+
+    Returns
+    -------
+    SymEngine expression or Vector
+        The expression as written (a vector when it uses basis vectors).
 
     Raises
     ------

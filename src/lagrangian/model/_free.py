@@ -40,13 +40,18 @@ _ZERO_MOMENT = 1e-12
 class FreeJoint:
     """One free body's six coordinates.
 
-    Attributes
+    Parameters
     ----------
-    body : the body's name.
-    frames : the three frames of its orientation, from R0's child to the body's own frame.
-    translation : the coordinates x, y, z of its frame's origin along R0's x, y, z.
-    angles : the three Euler angles, in the order of the rotations.
-    sequence : the axes of the three rotations, each about the previous frame's axis (``"zxz"``).
+    body : str
+        The body's name.
+    frames : tuple of three str
+        The three frames of its orientation, from R0's child to the body's own frame.
+    translation : tuple of three str
+        The coordinates x, y, z of its frame's origin along R0's x, y, z.
+    angles : tuple of three str
+        The three Euler angles, in the order of the rotations.
+    sequence : str
+        The axes of the three rotations, each about the previous frame's axis (``"zxz"``).
     """
 
     body: str
@@ -151,7 +156,18 @@ def free_joint(model: Model, body: Body) -> FreeJoint:
 
 
 def free_joints(model: Model) -> tuple[FreeJoint, ...]:
-    """The `FreeJoint` of every body declared free, in declaration order (checked)."""
+    """The `FreeJoint` of every body declared free, in declaration order (checked).
+
+    Parameters
+    ----------
+    model : Model
+        A checked model.
+
+    Returns
+    -------
+    tuple of FreeJoint
+        One per free body.
+    """
     return tuple(free_joint(model, b) for b in model.bodies if b.free)
 
 
@@ -161,6 +177,18 @@ def inertia_problem(mass: float, inertia: np.ndarray) -> str | None:
     A free body translates and turns about every axis: its mass and each principal moment of
     inertia at G must be positive, else a row of its Newton–Euler equations reads 0 = 0 and its
     acceleration (or ω̇ about that axis) is not defined.
+
+    Parameters
+    ----------
+    mass : float
+        The body's mass.
+    inertia : ndarray of shape (3, 3)
+        Its inertia matrix at G.
+
+    Returns
+    -------
+    str or None
+        The reason, or None when the body can move freely.
     """
     if not (np.isfinite(mass) and mass > 0):
         return f"its mass is {mass:g}"

@@ -59,7 +59,17 @@ class NotFinite(ValueError):
 
 
 def real_value(value: object) -> float:
-    """``value`` (a Python number or a constant SymEngine expression) as a finite real float.
+    """Convert ``value`` (a Python number or a constant SymEngine expression) to a finite real float.
+
+    Parameters
+    ----------
+    value : object
+        A Python number or a constant SymEngine expression.
+
+    Returns
+    -------
+    float
+        The value.
 
     Raises
     ------
@@ -106,17 +116,35 @@ def real_value(value: object) -> float:
 
 
 def max_ops() -> int:
-    """`MAX_OPS`, or the whole number in ``$LAGRANGIAN_MAX_OPS`` when it is set (ASCII digits only)."""
+    """The largest size of equations allowed: `MAX_OPS`, or the number in ``$LAGRANGIAN_MAX_OPS``.
+
+    Returns
+    -------
+    int
+        `MAX_OPS`, or the whole number in ``$LAGRANGIAN_MAX_OPS`` when it is set (ASCII digits only).
+    """
     text = os.environ.get(MAX_OPS_VARIABLE, "").strip()
     return int(text) if text.isascii() and text.isdigit() and len(text) <= 18 else MAX_OPS
 
 
 def equations_size(named: dict[str, se.Basic], limit: int) -> tuple[int, str, int] | None:
-    """None when the expressions of ``named`` have at most ``limit`` operations together,
-    else ``(total, largest's name, largest's operations)``.
+    """Check the size of the expressions of ``named`` against ``limit`` operations in all.
 
     SymEngine counts in C++ (0.2 s for 10^7 operations), so the check costs little next to
     the derivation it guards.
+
+    Parameters
+    ----------
+    named : dict of str to SymEngine expression
+        The expressions, by name.
+    limit : int
+        The largest number of operations allowed together.
+
+    Returns
+    -------
+    tuple of (int, str, int) or None
+        None when the expressions have at most ``limit`` operations together, else ``(total,
+        largest's name, largest's operations)``.
     """
     total = se.count_ops(*named.values()) if named else 0
     if total <= limit:

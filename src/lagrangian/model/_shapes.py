@@ -303,7 +303,18 @@ class _Shape:
 
 
 def rotation_to(axis: np.ndarray) -> tuple[tuple[float, float, float], ...]:
-    """A rotation (columns: the new x, y, z) taking z to the unit ``axis`` by the shortest turn."""
+    """A rotation (columns: the new x, y, z) taking z to the unit ``axis`` by the shortest turn.
+
+    Parameters
+    ----------
+    axis : ndarray of shape (3,)
+        A unit vector.
+
+    Returns
+    -------
+    tuple of three tuples of three float
+        The rotation matrix.
+    """
     z = np.array([0.0, 0.0, 1.0])
     v = np.cross(z, axis)
     s, c = float(np.linalg.norm(v)), float(axis @ z)

@@ -39,5 +39,18 @@ class Text(str):
 
 
 def in_language(text: str | None, lang: str) -> str | None:
-    """``text`` in ``lang`` when it is a `Text` with that language, else ``text`` itself (a plain string)."""
+    """``text`` in ``lang`` when it is a `Text` with that language, else ``text`` itself (a plain string).
+
+    Parameters
+    ----------
+    text : str or None
+        A plain string, or a `Text` that holds one per language.
+    lang : str
+        The language, ``"en"`` or ``"fr"``.
+
+    Returns
+    -------
+    str or None
+        ``text`` in ``lang`` when it is a `Text` with that language, else ``text`` itself.
+    """
     return text.in_language(lang) if isinstance(text, Text) else text

@@ -66,6 +66,16 @@ def load_model(path: str | PathLike[str]) -> Model:
     A ``.urdf`` file is read by `lagrangian.model.urdf.load_urdf` (see ``docs/urdf.md``), so
     every command and function that takes a model file takes a robot's URDF too.
 
+    Parameters
+    ----------
+    path : str or PathLike
+        The model file.
+
+    Returns
+    -------
+    Model
+        The checked model.
+
     Raises
     ------
     ModelError
@@ -85,7 +95,20 @@ def load_model(path: str | PathLike[str]) -> Model:
 
 
 def parse_model(text: str, *, source: str | None = None) -> Model:
-    """Read a model from TOML ``text`` (``source`` names it in error messages)."""
+    """Read a model from TOML ``text`` (``source`` names it in error messages).
+
+    Parameters
+    ----------
+    text : str
+        A TOML model.
+    source : str, optional
+        Names the text in error messages.
+
+    Returns
+    -------
+    Model
+        The checked model.
+    """
     check_nesting(text, source)  # before tomllib, which recurses on nested arrays
     try:
         data = tomllib.loads(text)

@@ -27,6 +27,13 @@ def check_nesting(text: str, source: str | None) -> None:
     """Raise `ModelError` when arrays and inline tables in ``text`` nest deeper than `MAX_NESTING`.
 
     Text that is not valid TOML is left to the TOML reader, which says what is wrong.
+
+    Parameters
+    ----------
+    text : str
+        A TOML text.
+    source : str or None
+        Names the text in error messages.
     """
     depth, line, pos = 0, 1, 0
     while True:

@@ -40,7 +40,22 @@ def _rates_in(expr: se.Basic, rates: Mapping[se.Basic, str]) -> list[str]:
 
 
 def coefficient_values_error(name: str, e: float | None, mu: float | None) -> str | None:
-    """Why the values of e and μ are not physical (None when they are, or are unknown)."""
+    """Why the values of e and μ are not physical (None when they are, or are unknown).
+
+    Parameters
+    ----------
+    name : str
+        The constraint's name.
+    e : float or None
+        Newton's coefficient of restitution.
+    mu : float or None
+        The Coulomb coefficient μ.
+
+    Returns
+    -------
+    str or None
+        The reason, or None.
+    """
     if e is not None and not 0.0 <= e <= 1.0:
         return f"the restitution coefficient of contact `{name}` is e = {e:g}, outside [0, 1]"
     if mu is not None and not mu >= 0.0:

@@ -62,10 +62,16 @@ TIME = se.Symbol("t")
 class Location:
     """Where something was declared: a file and a 1-based line (either may be unknown).
 
-    ``keys`` optionally records, for the declaration's keys (``"mass"``, ``"inertia"``,
-    ...), the line of each and the 1-based column where its text value starts (0 when
-    unknown), so that an error can point at the offending key rather than the table.
-    It plays no part in comparisons.
+    Parameters
+    ----------
+    file : str, optional
+        The file, when known.
+    line : int, optional
+        The 1-based line of the declaration in ``file``, when known.
+    keys : tuple of (str, int, int)
+        For the declaration's keys (``"mass"``, ``"inertia"``, ...), the key, its line and the 1-based
+        column where its text value starts (0 when unknown), so that an error can point at the
+        offending key rather than the table.  It plays no part in comparisons.
     """
 
     file: str | None = None
@@ -73,14 +79,36 @@ class Location:
     keys: tuple[tuple[str, int, int], ...] = field(default=(), compare=False, repr=False)
 
     def of(self, key: str | None) -> Location:
-        """The location of ``key`` of this declaration (this location when unknown)."""
+        """The location of ``key`` of this declaration (this location when unknown).
+
+        Parameters
+        ----------
+        key : str or None
+            A key of the declaration (``"mass"``), or None.
+
+        Returns
+        -------
+        Location
+            The file and the line of ``key``; this location when the key's line is unknown.
+        """
         for name, line, _ in self.keys:
             if name == key:
                 return Location(self.file, line)
         return Location(self.file, self.line)
 
     def value_column(self, key: str | None) -> int | None:
-        """The column where the text value of ``key`` starts in the file, when known."""
+        """The column where the text value of ``key`` starts in the file, when known.
+
+        Parameters
+        ----------
+        key : str or None
+            A key of the declaration (``"mass"``), or None.
+
+        Returns
+        -------
+        int or None
+            The 1-based column, or None when unknown.
+        """
         for name, _, column in self.keys:
             if name == key:
                 return column or None
@@ -91,9 +119,24 @@ class Location:
 class Parameter:
     """A constant of the problem (mass, length, inertia...), with an optional value.
 
-    ``input`` marks a declared input u (``[inputs]``): a symbol used like a parameter,
-    typically the magnitude of a load (a motor torque), whose value is 0 (the input off)
-    unless given; linearization makes it a column of B.
+    Parameters
+    ----------
+    name : str
+        The symbol's name, as written in expressions.
+    value : float, optional
+        Its numeric value, when given.
+    unit : str, optional
+        Its unit, for display only.
+    description : str, optional
+        What it is, in words.
+    input : bool
+        Marks a declared input u (``[inputs]``): a symbol used like a parameter, typically the
+        magnitude of a load (a motor torque), whose value is 0 (the input off) unless given;
+        linearization makes it a column of B.
+    sign : str, optional
+        A declared sign assumption: ``"positive"``, ``"nonnegative"``, ``"negative"``,
+        ``"nonpositive"`` or None (`lagrangian.model._assumptions`): the derivation may simplify with
+        it, and a value that breaks it is refused.
     """
 
     name: str
@@ -101,9 +144,6 @@ class Parameter:
     unit: str | None = None
     description: str | None = None
     input: bool = False
-    #: A declared sign assumption: ``"positive"``, ``"nonnegative"``, ``"negative"``, ``"nonpositive"``
-    #: or None (`lagrangian.model._assumptions`): the derivation may simplify with it, and a value
-    #: that breaks it is refused.
     sign: str | None = None
 
     @property
@@ -115,8 +155,25 @@ class Parameter:
 class Coordinate:
     """A principal parameter q_i ("paramètre principal"), with q_i(0), q̇_i(0).
 
-    ``momentum`` names the first integral ∂T/∂q̇_i = cste when q_i turns out to be
-    cyclic (the seed calls those of ψ and φ ``K`` and ``H``).
+    Parameters
+    ----------
+    name : str
+        The coordinate's name, as written in expressions.
+    initial : float, optional
+        Its initial value q_i(0), when given.
+    rate : float, optional
+        Its initial rate q̇_i(0), when given.
+    momentum : str, optional
+        The name of the first integral ∂T/∂q̇_i = cste when q_i turns out to be cyclic (the seed
+        calls those of ψ and φ ``K`` and ``H``).
+    unit : str, optional
+        Its unit, for display only.
+    description : str, optional
+        What it is, in words.
+    range : tuple of (expression or None, expression or None), optional
+        The declared range [lower, upper] of q_i (constant expressions in the parameters; None for
+        an open side), or None: the derivation may simplify with it (``|x + L| = x + L`` when
+        x ≥ −L), and `simulate` warns when a motion leaves it (`lagrangian.model._assumptions`).
     """
 
     name: str
@@ -125,9 +182,6 @@ class Coordinate:
     momentum: str | None = None
     unit: str | None = None
     description: str | None = None
-    #: The declared range [lower, upper] of q_i (constant expressions in the parameters; None for
-    #: an open side), or None: the derivation may simplify with it (``|x + L| = x + L`` when
-    #: x ≥ −L), and `simulate` warns when a motion leaves it (`lagrangian.model._assumptions`).
     range: tuple[se.Basic | None, se.Basic | None] | None = None
 
     @property
@@ -136,12 +190,12 @@ class Coordinate:
 
     @property
     def rate_symbol(self) -> se.Symbol:
-        """q̇_i, spelled ``<name>_dot`` in expressions and in JSON."""
+        """The rate q̇_i, spelled ``<name>_dot`` in expressions and in JSON."""
         return se.Symbol(self.name + "_dot")
 
     @property
     def acceleration_symbol(self) -> se.Symbol:
-        """q̈_i, spelled ``<name>_ddot``."""
+        """The acceleration q̈_i, spelled ``<name>_ddot``."""
         return se.Symbol(self.name + "_ddot")
 
 
@@ -153,12 +207,21 @@ GENERAL_AXIS = "n"
 class Rotation:
     """A rotation of ``angle`` about the parent frame's ``axis`` (x, y or z), or about a constant axis n.
 
-    The child frame shares that axis with its parent, as in R0 →(ψ, z0)→ R1.  With
-    ``axis = "n"`` the axis is the constant unit vector ``direction`` = (n_x, n_y, n_z),
-    its components in the parent's basis — which are also its components in the child's,
-    the axis being common to both (the Earth turning about cos λ y0 + sin λ z0).  The
-    change of basis is then Rodrigues' formula, v ↦ cos α v + sin α n ∧ v + (1 − cos α)(n·v) n.
-    ``normalized`` records that the engine divided the given vector by its norm.
+    The child frame shares that axis with its parent, as in R0 →(ψ, z0)→ R1.
+
+    Parameters
+    ----------
+    angle : SymEngine expression
+        The angle of the rotation, an expression of the coordinates and t.
+    axis : str
+        ``"x"``, ``"y"`` or ``"z"``; or ``"n"``, the constant unit vector ``direction``.
+    direction : tuple of three SymEngine expressions, optional
+        With ``axis = "n"``: (n_x, n_y, n_z), the axis' components in the parent's basis — which are
+        also its components in the child's, the axis being common to both (the Earth turning about
+        cos λ y0 + sin λ z0).  The change of basis is then Rodrigues' formula,
+        v ↦ cos α v + sin α n ∧ v + (1 − cos α)(n·v) n.
+    normalized : bool
+        Records that the engine divided the given vector by its norm.
     """
 
     angle: se.Basic
@@ -190,8 +253,19 @@ class Rotation:
 class Frame:
     """A frame: its parent, the elementary rotation from it, and display names of its axes.
 
-    The Galilean frame R0 has no parent and no rotation.  A rotation sequence in a
-    model file becomes a chain of frames whose intermediate names start with ``_``.
+    A rotation sequence in a model file becomes a chain of frames whose intermediate names start
+    with ``_``.
+
+    Parameters
+    ----------
+    name : str
+        The frame's name.
+    parent : str or None
+        The frame it turns from; None for the Galilean frame R0.
+    rotation : Rotation or None
+        The elementary rotation from ``parent``; None for R0.
+    axes : tuple of three str
+        The display names of its axes (``"x1"``, ``"y1"``, ``"z1"``).
     """
 
     name: str
@@ -202,7 +276,15 @@ class Frame:
 
 @dataclass(frozen=True, slots=True)
 class Point:
-    """A named point P with its position vector OP from the origin O of R0."""
+    """A named point P with its position vector OP from the origin O of R0.
+
+    Parameters
+    ----------
+    name : str
+        The point's name.
+    position : Vector
+        OP, from the origin O of R0.
+    """
 
     name: str
     position: Vector
@@ -212,9 +294,15 @@ class Point:
 class Inertia:
     """Inertia matrix Π_P of a body at point ``at``, in the basis of ``frame``.
 
-    ``matrix[k][l]`` is the (k, l) entry of the operator, i.e. diagonal entries are
-    the moments of inertia and off-diagonal entries are minus the products of inertia.
-    ``at`` is a point name, or ``"G"`` for the centre of mass.
+    Parameters
+    ----------
+    at : str
+        A point name, or ``"G"`` for the centre of mass.
+    frame : str
+        The frame whose basis the matrix is written in.
+    matrix : tuple of three tuples of three SymEngine expressions
+        ``matrix[k][l]`` is the (k, l) entry of the operator, i.e. diagonal entries are the moments
+        of inertia and off-diagonal entries are minus the products of inertia.
     """
 
     at: str
@@ -226,15 +314,30 @@ class Inertia:
 class Body:
     """A rigid body S attached to ``frame``, with mass m, centre of mass G (OG) and inertia.
 
-    ``mass_given`` is False for a body whose G is fixed and whose mass the model leaves out
-    (a pulley on a fixed axle): ``mass`` is then 0, exact for everything the Lagrange
-    equations use — T = ½ Ω·Π_G·Ω and m g·∂OG/∂q_i = 0 whatever m — while the reactions,
-    which need it, refuse to be computed (`lagrangian.analysis.reactions`).
-
-    ``free`` marks a body declared free (six degrees of freedom: three translations of its
-    frame's origin along R0's axes and three Euler angles, checked by `lagrangian.model._free`):
-    the equations keep those coordinates, and `simulate` integrates its orientation as a unit
-    quaternion, which has no singular configuration (`lagrangian.numerics._free_simulate`).
+    Parameters
+    ----------
+    name : str
+        The body's name.
+    frame : str
+        The frame the body is fixed in.
+    mass : SymEngine expression
+        Its mass m.
+    center : Vector
+        OG, the position of its centre of mass from O.
+    inertia : Inertia
+        Its inertia operator, at a point and in a basis.
+    fixed_point : str, optional
+        A point of the body fixed in R0, when declared.
+    mass_given : bool
+        False for a body whose G is fixed and whose mass the model leaves out (a pulley on a fixed
+        axle): ``mass`` is then 0, exact for everything the Lagrange equations use —
+        T = ½ Ω·Π_G·Ω and m g·∂OG/∂q_i = 0 whatever m — while the reactions, which need it, refuse
+        to be computed (`lagrangian.analysis.reactions`).
+    free : bool
+        Marks a body declared free (six degrees of freedom: three translations of its frame's origin
+        along R0's axes and three Euler angles, checked by `lagrangian.model._free`): the equations
+        keep those coordinates, and `simulate` integrates its orientation as a unit quaternion, which
+        has no singular configuration (`lagrangian.numerics._free_simulate`).
     """
 
     name: str
@@ -249,7 +352,17 @@ class Body:
 
 @dataclass(frozen=True, slots=True)
 class Particle:
-    """A point mass m at position OP."""
+    """A point mass m at position OP.
+
+    Parameters
+    ----------
+    name : str
+        The particle's name.
+    mass : SymEngine expression
+        Its mass m.
+    position : Vector
+        OP, from the origin O of R0.
+    """
 
     name: str
     mass: se.Basic
@@ -259,7 +372,17 @@ class Particle:
 # -- loads ("efforts donnés") -------------------------------------------------------------
 @dataclass(frozen=True, slots=True)
 class Gravity:
-    """Uniform gravity g⃗ acting on ``on`` (body and particle names; all when empty)."""
+    """Uniform gravity g⃗ acting on ``on`` (body and particle names; all when empty).
+
+    Parameters
+    ----------
+    name : str
+        The load's name.
+    field : Vector
+        The field g⃗.
+    on : tuple of str
+        The bodies and particles it acts on; all of them when empty.
+    """
 
     name: str
     field: Vector
@@ -268,7 +391,17 @@ class Gravity:
 
 @dataclass(frozen=True, slots=True)
 class PointForce:
-    """A force F⃗ applied at point ``at``; it may depend on q, q̇ and t."""
+    """A force F⃗ applied at point ``at``; it may depend on q, q̇ and t.
+
+    Parameters
+    ----------
+    name : str
+        The load's name.
+    force : Vector
+        The force F⃗.
+    at : str
+        The point it is applied at.
+    """
 
     name: str
     force: Vector
@@ -277,7 +410,19 @@ class PointForce:
 
 @dataclass(frozen=True, slots=True)
 class Torque:
-    """A couple C⃗ on ``on`` (a body, or a frame: a massless link); with ``reaction_on``, −C⃗ acts on that body or frame."""
+    """A couple C⃗ on ``on`` (a body, or a frame: a massless link).
+
+    Parameters
+    ----------
+    name : str
+        The load's name.
+    torque : Vector
+        The couple C⃗.
+    on : str
+        The body or frame it acts on.
+    reaction_on : str, optional
+        A body or frame on which −C⃗ acts, when given.
+    """
 
     name: str
     torque: Vector
@@ -287,7 +432,19 @@ class Torque:
 
 @dataclass(frozen=True, slots=True)
 class Spring:
-    """A linear spring between two points: tension k(ℓ − ℓ0), potential ½k(ℓ − ℓ0)²."""
+    """A linear spring between two points: tension k(ℓ − ℓ0), potential ½k(ℓ − ℓ0)².
+
+    Parameters
+    ----------
+    name : str
+        The load's name.
+    ends : tuple of two str
+        The points it joins.
+    stiffness : SymEngine expression
+        The stiffness k.
+    rest_length : SymEngine expression
+        The rest length ℓ0.
+    """
 
     name: str
     ends: tuple[str, str]
@@ -297,7 +454,17 @@ class Spring:
 
 @dataclass(frozen=True, slots=True)
 class Damper:
-    """A linear viscous damper between two points: force c ℓ̇ along the line."""
+    """A linear viscous damper between two points: force c ℓ̇ along the line.
+
+    Parameters
+    ----------
+    name : str
+        The load's name.
+    ends : tuple of two str
+        The points it joins.
+    coefficient : SymEngine expression
+        The coefficient c.
+    """
 
     name: str
     ends: tuple[str, str]
@@ -306,7 +473,15 @@ class Damper:
 
 @dataclass(frozen=True, slots=True)
 class Potential:
-    """A given potential energy U(q, t) whose efforts are not otherwise described."""
+    """A given potential energy U(q, t) whose efforts are not otherwise described.
+
+    Parameters
+    ----------
+    name : str
+        The load's name.
+    energy : SymEngine expression
+        U(q, t).
+    """
 
     name: str
     energy: se.Basic
@@ -314,7 +489,15 @@ class Potential:
 
 @dataclass(frozen=True, slots=True)
 class GeneralizedForce:
-    """Given generalized-force components Q_i, coordinate name to expression."""
+    """Given generalized-force components Q_i, coordinate name to expression.
+
+    Parameters
+    ----------
+    name : str
+        The load's name.
+    components : tuple of (str, SymEngine expression)
+        Each coordinate's name with its component Q_i.
+    """
 
     name: str
     components: tuple[tuple[str, se.Basic], ...]
@@ -324,9 +507,16 @@ class GeneralizedForce:
 class Dissipation:
     """A Rayleigh dissipation function D(q, q̇, t): Q_i = −∂D/∂q̇_i (e.g. D = ½ c ẋ²).
 
-    ``joints`` names the coordinates whose joint the dissipation acts in (a URDF's ``<dynamics
-    damping>``: viscous friction in the joint of q_j, so that joint is not perfect); empty when D says
-    nothing of where it acts (air drag on a particle, say).
+    Parameters
+    ----------
+    name : str
+        The load's name.
+    function : SymEngine expression
+        D(q, q̇, t).
+    joints : tuple of str
+        The coordinates whose joint the dissipation acts in (a URDF's ``<dynamics damping>``: viscous
+        friction in the joint of q_j, so that joint is not perfect); empty when D says nothing of where
+        it acts (air drag on a particle, say).
     """
 
     name: str
@@ -338,7 +528,16 @@ class Dissipation:
 class JointDamper:
     """Viscous friction at the joint between ``bodies`` (S1, S2): the couple −c Ω(S2/S1) on S2, +c Ω(S2/S1) on S1.
 
-    Each of S1, S2 is a body or a frame; ``D = ½ c |Ω(S2/S1)|²`` is its dissipation function.
+    ``D = ½ c |Ω(S2/S1)|²`` is its dissipation function.
+
+    Parameters
+    ----------
+    name : str
+        The load's name.
+    bodies : tuple of two str
+        S1 and S2, each a body or a frame.
+    coefficient : SymEngine expression
+        The coefficient c.
     """
 
     name: str
@@ -350,14 +549,31 @@ class JointDamper:
 class CoulombFriction:
     """Dry (Coulomb) friction at a sliding contact point ``at``: ``|T| ≤ f N``, T opposite to the sliding velocity.
 
-    The sliding velocity is v_s = V(at) − ``surface_velocity`` (projected on the tangent
-    plane when the surface's unit ``normal`` is given); the friction force is the
-    regularised ``T = −f N v_s / √(|v_s|² + ε²)``, ε = ``regularization`` (a velocity).  With
-    ε = 0 (a literal zero) it is the exact law ``T = −f N v_s/|v_s|``, and `simulate` switches
-    between sliding and sticking by events (`lagrangian.numerics._stickslip`); the contact
-    then sticks while the tangential reaction it needs stays within f_s N,
-    f_s = ``static_coefficient`` (≥ f; None: f_s = f).
-    ``normal_force`` N is given (known from the given forces, e.g. m g cos α).
+    The sliding velocity is v_s = V(at) − ``surface_velocity`` (projected on the tangent plane when
+    the surface's unit ``normal`` is given); the friction force is the regularised
+    ``T = −f N v_s / √(|v_s|² + ε²)``.  With ε = 0 (a literal zero) it is the exact law
+    ``T = −f N v_s/|v_s|``, and `simulate` switches between sliding and sticking by events
+    (`lagrangian.numerics._stickslip`); the contact then sticks while the tangential reaction it
+    needs stays within f_s N.
+
+    Parameters
+    ----------
+    name : str
+        The load's name.
+    at : str
+        The contact point.
+    coefficient : SymEngine expression
+        The friction coefficient f.
+    normal_force : SymEngine expression
+        The normal force N, given (known from the given forces, e.g. m g cos α).
+    surface_velocity : Vector
+        The velocity of the surface the point slides on.
+    normal : Vector or None
+        The surface's unit normal, when given.
+    regularization : SymEngine expression
+        The regularization ε, a velocity.
+    static_coefficient : SymEngine expression, optional
+        The static coefficient f_s (≥ f); None: f_s = f.
     """
 
     name: str
@@ -389,14 +605,41 @@ SHAPE_KINDS = ("sphere", "cylinder", "disk", "box", "rod", "mesh")
 class Shape:
     """How a body or particle looks (``[shapes]`` of a model file, URDF ``<visual>``): no part in the dynamics.
 
-    The shape is fixed in ``frame``; its own axes are that frame's turned by ``rotation`` (a
-    constant 3×3 matrix whose columns are the shape's x, y, z in ``frame``'s basis; None: the
-    same axes) and its centre is at ``center`` (OP, from O).  Conventions of each kind, in the
-    shape's own axes: a ``cylinder``, ``disk`` or ``rod`` lies along z, centred on its centre;
-    a ``box`` has ``size`` along x, y, z; a ``mesh`` is drawn as its file gives it, times
-    ``scale``, its origin at the centre.  ``ends`` (a rod between two points) replaces
-    ``center`` and the axis when given.  ``on`` is the body or particle it belongs to, or a
-    frame (a URDF link fixed to the ground).  Sizes are expressions in the parameters.
+    Conventions of each kind, in the shape's own axes: a ``cylinder``, ``disk`` or ``rod`` lies along
+    z, centred on its centre; a ``box`` has ``size`` along x, y, z; a ``mesh`` is drawn as its file
+    gives it, times ``scale``, its origin at the centre.  Sizes are expressions in the parameters.
+
+    Parameters
+    ----------
+    on : str
+        The body or particle it belongs to, or a frame (a URDF link fixed to the ground).
+    kind : str
+        ``"sphere"``, ``"cylinder"``, ``"disk"``, ``"box"``, ``"rod"`` or ``"mesh"``.
+    frame : str
+        The frame the shape is fixed in.
+    center : Vector
+        Its centre, OP from O.
+    rotation : tuple of three tuples of three float, optional
+        A constant 3×3 matrix whose columns are the shape's x, y, z in ``frame``'s basis; None: the
+        same axes as ``frame``.
+    radius : SymEngine expression, optional
+        The radius of a sphere, cylinder, disk or rod.
+    length : SymEngine expression, optional
+        The length of a cylinder or rod (the thickness of a disk).
+    size : tuple of three SymEngine expressions, optional
+        The sides of a box along x, y, z.
+    ends : tuple of two str, optional
+        A rod between two points: replaces ``center`` and the axis when given.
+    mesh : str, optional
+        The mesh file (STL, OBJ or DAE).
+    scale : tuple of three float
+        The mesh's scale along x, y, z.
+    color : str, optional
+        Its colour, ``#rrggbb``.
+    opacity : float, optional
+        Its opacity, in [0, 1].
+    location : Location
+        Where it was declared.
     """
 
     on: str
@@ -423,8 +666,15 @@ class Shape:
 class Reference:
     """The equations are written relative to frame ``frame`` (R) of origin ``origin`` (O') — seed, Remarque 3.
 
-    R's rotation from R0 and the position OO' are prescribed functions of t (checked when
-    the model is built); the engine then adds the Coriolis and entrainment inertial forces.
+    R's rotation from R0 and the position OO' are prescribed functions of t (checked when the model
+    is built); the engine then adds the Coriolis and entrainment inertial forces.
+
+    Parameters
+    ----------
+    frame : str
+        The frame R.
+    origin : str
+        The point O'.
     """
 
     frame: str
@@ -440,9 +690,51 @@ class Reference:
 class Model:
     """A validated description of a system (Σ), ready for `lagrangian.derive`.
 
-    Build one with `load_model` (TOML file), `parse_model` (TOML text) or
-    `ModelBuilder` (Python).  ``frames`` starts with R0 and lists every parent before
-    its children; ``points`` starts with O.
+    Build one with `load_model` (TOML file), `parse_model` (TOML text) or `ModelBuilder` (Python).
+
+    Parameters
+    ----------
+    name : str
+        The model's name.
+    description : str
+        What it is, in words.
+    parameters : tuple of Parameter
+        The parameters and the inputs, in declaration order.
+    coordinates : tuple of Coordinate
+        The principal parameters q_i, in order.
+    frames : tuple of Frame
+        Starts with R0 and lists every parent before its children.
+    points : tuple of Point
+        Starts with O.
+    bodies : tuple of Body
+        The rigid bodies.
+    particles : tuple of Particle
+        The point masses.
+    loads : tuple of Load
+        The given efforts.
+    source : str, optional
+        The file it was read from, when there is one.
+    locations : mapping of (str, str) to Location
+        Where each declaration (kind, name) was made, for messages.
+    reference : Reference, optional
+        The frame the equations are written in; None: R0.
+    constraints : tuple of Constraint
+        Declared constraints, principal or complementary (`lagrangian.model._constraints`).
+    operating_point : tuple of (str, SymEngine expression)
+        The default point of linearization (``[operating_point]``): coordinate and
+        ``<coordinate>_dot`` names to constant expressions in the parameters, in file order.
+    independent_speeds : tuple of str
+        Independent speeds (``<coordinate>_dot`` names) chosen for the reduction, if given.
+    dependent_coordinates : tuple of str
+        Dependent coordinates eliminated by the holonomic constraints, if given.
+    title : str, optional
+        The report's title (``[model] title``, a `Text` when given per language); None: from ``name``.
+    controls : tuple of (str, SymEngine expression)
+        A control law per declared input (``[controls]``): input name → expression of t, the
+        coordinates, their rates and the parameters, in file order (`lagrangian.model._controls`).
+    shapes : tuple of Shape
+        How bodies and particles look (``[shapes]``, URDF ``<visual>``); what is not given is
+        inferred by `lagrangian.view3d` from the inertia and the points.
     """
 
     name: str
@@ -457,22 +749,12 @@ class Model:
     source: str | None = None
     locations: Mapping[tuple[str, str], Location] = field(default_factory=dict)
     reference: Reference | None = None  # None: the equations are written in R0
-    #: Declared constraints, principal or complementary (`lagrangian.model._constraints`).
     constraints: tuple[Constraint, ...] = ()
-    #: The default point of linearization (``[operating_point]``): coordinate and
-    #: ``<coordinate>_dot`` names to constant expressions in the parameters, in file order.
     operating_point: tuple[tuple[str, se.Basic], ...] = ()
-    #: Independent speeds (``<coordinate>_dot`` names) chosen for the reduction, if given.
     independent_speeds: tuple[str, ...] = ()
-    #: Dependent coordinates eliminated by the holonomic constraints, if given.
     dependent_coordinates: tuple[str, ...] = ()
-    #: The report's title (``[model] title``, a `Text` when given per language); None: from ``name``.
     title: str | None = None
-    #: A control law per declared input (``[controls]``): input name → expression of t, the
-    #: coordinates, their rates and the parameters, in file order (`lagrangian.model._controls`).
     controls: tuple[tuple[str, se.Basic], ...] = ()
-    #: How bodies and particles look (``[shapes]``, URDF ``<visual>``); what is not given is inferred
-    #: by `lagrangian.view3d` from the inertia and the points.
     shapes: tuple[Shape, ...] = ()
 
     def __post_init__(self) -> None:
@@ -507,7 +789,20 @@ class Model:
         return {p.name: p.value for p in self.parameters}
 
     def where(self, kind: str, name: str) -> Location:
-        """Where item ``name`` of ``kind`` (e.g. ``"body"``) was declared, if known."""
+        """Where item ``name`` of ``kind`` (e.g. ``"body"``) was declared, if known.
+
+        Parameters
+        ----------
+        kind : str
+            The kind of declaration: ``"body"``, ``"coordinate"``, ``"load"``...
+        name : str
+            Its name.
+
+        Returns
+        -------
+        Location
+            Its file and line; the model's file and no line when unknown.
+        """
         return self.locations.get((kind, name), Location(self.source, None))
 
 

@@ -105,15 +105,29 @@ def load_urdf(path: str | Path, *, damping: bool = True, inertial_parameters: bo
               floating_base: bool = False) -> Model:
     """Read the URDF file at ``path`` into a `Model` (see the module docstring).
 
-    ``damping=False`` leaves out the joints' ``<dynamics damping>`` (Pinocchio's ``aba``
-    ignores it too).  ``inertial_parameters=True`` declares each body's ten standard inertial
-    parameters (`INERTIAL_PARAMETERS`: m, m c, I_O in the body's frame, about its origin) as
-    parameters named ``m_<body>``, ``mx_<body>``, ..., ``Izz_<body>`` (`inertial_parameter_names`),
-    valued from the file, instead of numbers: the motion is the same, and the joint torques are
-    linear in them (identification).  ``floating_base=True`` makes the root link a free body (six
-    coordinates ``base_x, base_y, base_z, base_yaw, base_pitch, base_roll``), as a floating joint
-    from the world would.  What is skipped (transmissions, dry friction, ``<gazebo>``...) is said
-    by a `UrdfNote` warning each.
+    What is skipped (transmissions, dry friction, ``<gazebo>``...) is said by a `UrdfNote` warning each.
+
+    Parameters
+    ----------
+    path : str or Path
+        The URDF file.
+    damping : bool, optional
+        ``damping=False`` leaves out the joints' ``<dynamics damping>`` (Pinocchio's ``aba``
+        ignores it too).
+    inertial_parameters : bool, optional
+        ``inertial_parameters=True`` declares each body's ten standard inertial parameters
+        (`INERTIAL_PARAMETERS`: m, m c, I_O in the body's frame, about its origin) as parameters named
+        ``m_<body>``, ``mx_<body>``, ..., ``Izz_<body>`` (`inertial_parameter_names`), valued from the
+        file, instead of numbers: the motion is the same, and the joint torques are linear in them
+        (identification).
+    floating_base : bool, optional
+        ``floating_base=True`` makes the root link a free body (six coordinates ``base_x, base_y,
+        base_z, base_yaw, base_pitch, base_roll``), as a floating joint from the world would.
+
+    Returns
+    -------
+    Model
+        The robot, one coordinate per moving joint and one input ``tau_<joint>`` per actuated one.
 
     Raises
     ------
@@ -141,7 +155,26 @@ def load_urdf(path: str | Path, *, damping: bool = True, inertial_parameters: bo
 
 def parse_urdf(text: str | bytes, *, source: str | None = None, damping: bool = True,
                inertial_parameters: bool = False, floating_base: bool = False) -> Model:
-    """`load_urdf` of URDF ``text`` (``source`` names it in error messages)."""
+    """`load_urdf` of URDF ``text`` (``source`` names it in error messages).
+
+    Parameters
+    ----------
+    text : str or bytes
+        A URDF document.
+    source : str, optional
+        Names the text in error messages.
+    damping : bool, optional
+        As in `load_urdf`.
+    inertial_parameters : bool, optional
+        As in `load_urdf`.
+    floating_base : bool, optional
+        As in `load_urdf`.
+
+    Returns
+    -------
+    Model
+        The robot.
+    """
     return _Translation(_warn(read_urdf_text(text, source=source)), damping=damping,
                         inertial=inertial_parameters, floating_base=floating_base).model()
 

@@ -142,6 +142,11 @@ def turn_about(n: Components, c: se.Basic, s: se.Basic, v: Components) -> Compon
 class Vector:
     """An immutable sum of pieces ``{frame name: (c_x, c_y, c_z)}``.
 
+    Parameters
+    ----------
+    pieces : mapping of str to tuple of three SymEngine expressions, optional
+        Frame name to its components (c_x, c_y, c_z) in that frame's basis; None: the zero vector.
+
     Examples
     --------
     >>> import symengine as se
@@ -170,7 +175,20 @@ class Vector:
     # -- construction -------------------------------------------------------------
     @classmethod
     def basis(cls, frame: str, axis: str) -> Vector:
-        """The unit vector ``frame.axis`` (axis is ``x``, ``y`` or ``z``)."""
+        """The unit vector ``frame.axis`` (axis is ``x``, ``y`` or ``z``).
+
+        Parameters
+        ----------
+        frame : str
+            The frame's name.
+        axis : str
+            ``x``, ``y`` or ``z``.
+
+        Returns
+        -------
+        Vector
+            The unit vector.
+        """
         comps = [_ZERO, _ZERO, _ZERO]
         comps[AXES[axis]] = se.Integer(1)
         return cls({frame: tuple(comps)})
@@ -207,7 +225,13 @@ class Vector:
         return iter(self._pieces.items())
 
     def is_zero(self) -> bool:
-        """Structural test: no piece has a non-zero component."""
+        """Structural test: no piece has a non-zero component.
+
+        Returns
+        -------
+        bool
+            True when every component is structurally zero (a vector that simplifies to zero may say False).
+        """
         return not self._pieces
 
     def free_symbols(self) -> set[se.Symbol]:
@@ -252,7 +276,18 @@ class Vector:
         return self._map(lambda c: c / s)
 
     def map(self, fn: Callable[[se.Basic], se.Basic]) -> Vector:
-        """Apply ``fn`` to every component, piece by piece."""
+        """Apply ``fn`` to every component, piece by piece.
+
+        Parameters
+        ----------
+        fn : callable
+            Applied to each SymEngine component.
+
+        Returns
+        -------
+        Vector
+            The vector of the results.
+        """
         return Vector({f: tuple(fn(c) for c in comps) for f, comps in self._pieces.items()})
 
     def _map(self, fn: Callable[[se.Basic], se.Basic]) -> Vector:
@@ -261,7 +296,18 @@ class Vector:
                                 for f, comps in self._pieces.items()})
 
     def diff(self, symbol: se.Symbol) -> Vector:
-        """Component-wise partial derivative (the basis vectors are held fixed)."""
+        """Component-wise partial derivative (the basis vectors are held fixed).
+
+        Parameters
+        ----------
+        symbol : SymEngine Symbol
+            The variable.
+
+        Returns
+        -------
+        Vector
+            The derivative, the basis vectors held fixed.
+        """
         return self._map(lambda c: c.diff(symbol))
 
     def subs(self, mapping: Mapping[se.Basic, se.Basic]) -> Vector:

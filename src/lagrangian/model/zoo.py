@@ -25,7 +25,13 @@ LAGRANGE_TOP_TOML = _read("lagrange_top.toml")
 
 
 def lagrange_top() -> Model:
-    """The seed's worked example: the heavy symmetric top with a fixed point O."""
+    """The seed's worked example: the heavy symmetric top with a fixed point O.
+
+    Returns
+    -------
+    Model
+        The top, with its parameters' values and an initial state.
+    """
     return parse_model(LAGRANGE_TOP_TOML, source="<lagrange_top>")
 
 
@@ -56,6 +62,16 @@ def planar_chain(n: int) -> Model:
 
     Parameters ``m<k>`` = 1 kg, ``l<k>`` = 1 m and ``g`` = 9.81 m/s² have values, and
     the chain starts at rest with θ_k(0) = 0.5 rad, so the model can be simulated as is.
+
+    Parameters
+    ----------
+    n : int
+        The number of links.
+
+    Returns
+    -------
+    Model
+        The chain, ready to simulate.
 
     Examples
     --------
@@ -111,6 +127,16 @@ def spatial_chain(n: int) -> Model:
     Parameters ``m<k>`` = 1 kg, ``l<k>`` = 1 m and ``g`` = 9.81 m/s² have values; the
     chain starts at rest with α_k(0) = 0.4 rad and β_k(0) = 0.2 rad.
 
+    Parameters
+    ----------
+    n : int
+        The number of rods.
+
+    Returns
+    -------
+    Model
+        The chain, ready to simulate.
+
     Examples
     --------
     >>> [c.name for c in spatial_chain(2).coordinates]
@@ -155,6 +181,16 @@ def relative_chain(n: int) -> Model:
     intermediates grow linearly.  Same parameters (``m<k>``, ``l<k>``, ``g``) and values as
     `planar_chain`; at rest with φ_1(0) = 0.5 rad and the other angles 0 (the same start).
 
+    Parameters
+    ----------
+    n : int
+        The number of links.
+
+    Returns
+    -------
+    Model
+        The chain, ready to simulate.
+
     Examples
     --------
     >>> [c.name for c in relative_chain(2).coordinates]
@@ -198,6 +234,18 @@ def serial_arm(n: int, *, damping: bool = False) -> Model:
 
     Values: a_k = 0.3 m, m_k = 1 kg, (cx, cy, cz) = (0.02, −0.01, 0.15) m,
     (I1, I2, I3, P) = (0.010, 0.012, 0.004, 0.001) kg·m², g = 9.81 m/s²; q_k(0) = 0.3 rad.
+
+    Parameters
+    ----------
+    n : int
+        The number of joints.
+    damping : bool, optional
+        Adds a viscous joint damper of coefficient ``c<k>`` to each joint.
+
+    Returns
+    -------
+    Model
+        The arm, ready to simulate.
 
     Examples
     --------

@@ -184,7 +184,27 @@ _Loaded = TypeVar("_Loaded")
 
 def load_verified(source: str | Sequence[str], key: str, load: Callable[[Path], _Loaded], *,
                   flags: Sequence[str] = (), name: str | None = None, compilers: Compilers | None = None) -> _Loaded:
-    """``load(path)`` on the checked build of ``source``; on a load failure, rebuild once and load again.
+    """Run ``load(path)`` on the checked build of ``source``; on a load failure, rebuild once and load again.
+
+    Parameters
+    ----------
+    source : str or sequence of str
+        The C source, or its translation units.
+    key : str
+        The compile cache's key of the source.
+    load : callable
+        Loads the shared library at a path.
+    flags : sequence of str, optional
+        Extra compiler flags.
+    name : str, optional
+        A name for the library, in messages.
+    compilers : Compilers, optional
+        The compilers that may already be at work on some of the units (`Compilers.part`).
+
+    Returns
+    -------
+    object
+        What ``load`` returns.
 
     Raises
     ------

@@ -51,7 +51,18 @@ CHATTER_LENGTH, CHATTER_COUNT = 1e-12, 50
 
 
 def contact_model(source) -> Model | None:
-    """The `Model` of ``source`` (a path, `Model`, equations or compiled system) when it has unilateral contacts."""
+    """The `Model` of ``source`` (a path, `Model`, equations or compiled system) when it has unilateral contacts.
+
+    Parameters
+    ----------
+    source : str or Path or Model or EquationsOfMotion or CompiledSystem
+        A path, `Model`, equations or compiled system.
+
+    Returns
+    -------
+    Model or None
+        Its model when it has unilateral contacts, else None.
+    """
     if isinstance(source, (str, Path)):
         model = load_model(source)
     elif isinstance(source, Model):

@@ -46,13 +46,38 @@ LIFTOFF_RTOL = 1e-12
 
 @dataclass(frozen=True)
 class ContactEvent(Event):
-    """An event of a contact: ``kind`` is ``"impact"``, ``"liftoff"``, ``"touchdown"`` (closing without
-    bounce at zero speed) or ``"rest"`` (the accumulation point of impacts).
+    """An event of a contact: an impact, a lift-off, a touchdown or the rest after impacts.
 
-    For an impact, ``qd`` is q̇⁻ and ``qd_after`` q̇⁺; ``percussion`` the normal percussion P = ∫λ dt
-    over the impact (the multiplier's unit times a time), ``tangential`` the friction's; ``speed``
-    the normal velocity ġ⁻ before it; ``energy_before``/``energy_after`` E = T + U on either side.
-    For a lift-off, ``reaction`` is λ there (0 to the tolerance).
+    Parameters
+    ----------
+    name : str
+        The event's name.
+    t : float
+        Its time.
+    q : ndarray of shape (n,)
+        The coordinates there.
+    qd : ndarray of shape (n,)
+        The rates there (q̇⁻ for an impact).
+    kind : str
+        ``"impact"``, ``"liftoff"``, ``"touchdown"`` (closing without bounce at zero speed) or
+        ``"rest"`` (the accumulation point of impacts).
+    contact : str
+        The contact's name.
+    percussion : float
+        For an impact, the normal percussion P = ∫λ dt over the impact (the multiplier's unit times
+        a time).
+    tangential : float
+        For an impact, the friction's percussion.
+    speed : float
+        For an impact, the normal velocity ġ⁻ before it.
+    qd_after : ndarray, optional
+        For an impact, q̇⁺.
+    energy_before : float
+        E = T + U before an impact.
+    energy_after : float
+        E = T + U after it.
+    reaction : float
+        For a lift-off, λ there (0 to the tolerance).
     """
 
     kind: str = ""
@@ -66,7 +91,13 @@ class ContactEvent(Event):
     reaction: float = float("nan")
 
     def as_dict(self) -> dict:
-        """Plain values for JSON (the trajectory's metadata)."""
+        """Plain values for JSON (the trajectory's metadata).
+
+        Returns
+        -------
+        dict
+            Plain values for JSON (the trajectory's metadata).
+        """
         out: dict = {"name": self.name, "t": self.t, "kind": self.kind, "contact": self.contact}
         for key in ("percussion", "tangential", "speed", "energy_before", "energy_after", "reaction"):
             value = getattr(self, key)

@@ -60,6 +60,36 @@ def control_block(method: str, t_start: float, t_end: float, t_out: np.ndarray, 
     One place for it, so that `ensemble` starts each member exactly as `simulate` starts
     its run (same first step, same fixed step of ``gauss-legendre``; ``h`` overrides that
     step when `simulate` halves it).
+
+    Parameters
+    ----------
+    method : str
+        ``"dop853"`` or ``"gauss-legendre"``.
+    t_start : float
+        The start of the run.
+    t_end : float
+        Its end.
+    t_out : ndarray
+        The output times.
+    rtol : float
+        The relative tolerance.
+    atol : float
+        The absolute tolerance.
+    dt : float or None
+        A fixed step, or None.
+    max_step : float or None
+        The largest step, or None.
+    max_steps : int
+        The most steps.
+    h : float, optional
+        Overrides the fixed step of ``gauss-legendre``.
+    stiffness_check : bool, optional
+        Whether dop853 runs Hairer's stiffness test.
+
+    Returns
+    -------
+    ndarray
+        The control block, as the C integrators read it.
     """
     if dt is not None and not dt > 0:
         raise SimulationError(f"dt = {dt} must be positive.", fix="give a positive step, e.g. dt=1e-3")

@@ -65,16 +65,34 @@ def reaction_columns(eom: EquationsOfMotion) -> list[tuple[str, se.Basic]]:
 class ConstrainedSystem:
     """Numeric evaluators of a constrained model: parts, q̈ and λ, monitors, reactions.
 
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations (with ``eom.constraints``).
+    backend : {"auto", "c", "symengine"}, optional
+        Compiled C (when a compiler exists, "auto") or SymEngine's evaluation.
+    inputs : mapping of str to str, optional
+        Each declared input's regime (``"off"``, ``"constant"``, ``"varying"``) the integrals are
+        found for; off where not given.
+
     Attributes
     ----------
-    eom : the equations (with ``eom.constraints``).
-    n, m : coordinates and complementary rows.
-    rows : row names; ``holonomic`` : boolean mask of the holonomic rows.
-    monitors, reactions : names of the monitor and reaction columns.
-    integrals : the first integrals among the monitors.
-    backend : ``"c"`` or ``"symengine"``.
-    regime : each declared input's regime (``"off"``, ``"constant"``, ``"varying"``) the integrals were
-        found for (``inputs``; off where not given).
+    eom : EquationsOfMotion
+        The equations.
+    n, m : int
+        The numbers of coordinates and of complementary rows.
+    rows : tuple of str
+        The row names.
+    holonomic : ndarray of bool
+        The mask of the holonomic rows.
+    monitors, reactions : tuple of str
+        The names of the monitor and reaction columns.
+    integrals : tuple of FirstIntegral
+        The first integrals among the monitors.
+    backend : str
+        ``"c"`` or ``"symengine"``.
+    regime : dict of str to str
+        Each declared input's regime.
     """
 
     def __init__(self, eom: EquationsOfMotion, *, backend: str = "auto", inputs: Mapping[str, str] | None = None
@@ -121,7 +139,18 @@ class ConstrainedSystem:
 
     # -- values of the parameters -------------------------------------------------------------
     def parameter_vector(self, values: Mapping[str, float] | None = None) -> np.ndarray:
-        """The ``p`` array: the model's values overridden by ``values`` (errors as `CompiledSystem`'s)."""
+        """The ``p`` array: the model's values overridden by ``values`` (errors as `CompiledSystem`'s).
+
+        Parameters
+        ----------
+        values : mapping of str to float, optional
+            Parameter values by name.
+
+        Returns
+        -------
+        ndarray
+            The parameter vector.
+        """
         values = dict(values or {})
         unknown = sorted(set(values) - set(self.parameters))
         if unknown:
@@ -153,7 +182,24 @@ class ConstrainedSystem:
         return T, Y, single
 
     def parts(self, t, y, p: np.ndarray) -> tuple[np.ndarray, ...]:
-        """(M, F, A, c, g, f) at each state: M q̈ = F + Aᵀλ, A q̈ + c = 0, g = A q̇ + b, f = holonomic residuals."""
+        """The parts (M, F, A, c, g, f) at each state.
+
+        M q̈ = F + Aᵀλ, A q̈ + c = 0, g = A q̇ + b, f = the holonomic residuals.
+
+        Parameters
+        ----------
+        t : float or ndarray of shape (N,)
+            The time(s).
+        y : ndarray of shape (2n,) or (N, 2n)
+            The state(s) (q, q̇).
+        p : ndarray
+            The parameter vector.
+
+        Returns
+        -------
+        tuple of ndarray
+            M, F, A, c, g, f.
+        """
         T, Y, single = self._batch(t, y)
         N, n, m = len(Y), self.n, self.m
         if self._lib is not None:
@@ -172,7 +218,25 @@ class ConstrainedSystem:
         return tuple(a[0] for a in result) if single else result
 
     def rhs(self, t, y, p: np.ndarray, stab: Sequence[float] = (0.0, 0.0)) -> tuple[np.ndarray, np.ndarray]:
-        """(ẏ, λ) at each state, with Baumgarte rates ``stab`` = (α, β).
+        """The derivative ẏ and the multipliers λ at each state, with Baumgarte rates ``stab`` = (α, β).
+
+        Parameters
+        ----------
+        t : float or ndarray of shape (N,)
+            The time(s).
+        y : ndarray of shape (2n,) or (N, 2n)
+            The state(s) (q, q̇).
+        p : ndarray
+            The parameter vector.
+        stab : sequence of two float, optional
+            Baumgarte's rates (α, β).
+
+        Returns
+        -------
+        ydot : ndarray
+            The derivative ẏ = (q̇, q̈).
+        lam : ndarray
+            The multipliers λ.
 
         Raises
         ------
@@ -205,7 +269,22 @@ class ConstrainedSystem:
         return (dY[0], LAM[0]) if single else (dY, LAM)
 
     def monitor_values(self, t, y, p: np.ndarray) -> np.ndarray:
-        """First integrals, T, U at each state: shape (N, len(monitors))."""
+        """First integrals, T, U at each state: shape (N, len(monitors)).
+
+        Parameters
+        ----------
+        t : float or ndarray of shape (N,)
+            The time(s).
+        y : ndarray of shape (2n,) or (N, 2n)
+            The state(s) (q, q̇).
+        p : ndarray
+            The parameter vector.
+
+        Returns
+        -------
+        ndarray of shape (N, len(monitors))
+            The first integrals, T and U.
+        """
         T, Y, _ = self._batch(t, y)
         k = len(self.monitors)
         if self._lib is not None:
@@ -216,7 +295,24 @@ class ConstrainedSystem:
                           ).reshape(len(Y), k)
 
     def reaction_values(self, t, y, lam, p: np.ndarray) -> np.ndarray:
-        """Reaction components (`reaction_columns`) at each state and multipliers: shape (N, len(reactions))."""
+        """Reaction components (`reaction_columns`) at each state and multipliers: shape (N, len(reactions)).
+
+        Parameters
+        ----------
+        t : float or ndarray of shape (N,)
+            The time(s).
+        y : ndarray of shape (2n,) or (N, 2n)
+            The state(s) (q, q̇).
+        lam : ndarray
+            The multipliers at those states.
+        p : ndarray
+            The parameter vector.
+
+        Returns
+        -------
+        ndarray of shape (N, len(reactions))
+            The reaction components.
+        """
         T, Y, _ = self._batch(t, y)
         LAM = np.ascontiguousarray(np.asarray(lam, dtype=float).reshape(len(Y), self.m))
         k = len(self.reactions)

@@ -105,6 +105,16 @@ def flip_events(source) -> list[EventSpec]:
 
     ``g = |q| − π``, rising: the first time the arm goes over the top (the double pendulum's
     flip-time map is the first of these times).
+
+    Parameters
+    ----------
+    source : str or Path or Model or EquationsOfMotion or CompiledSystem
+        The model.
+
+    Returns
+    -------
+    list of EventSpec
+        One per angle coordinate.
     """
     eom = getattr(source, "eom", source)
     model = getattr(eom, "model", eom)
@@ -156,32 +166,72 @@ def ensemble(
 
     Parameters
     ----------
-    source : a model file path, a `Model`, an `EquationsOfMotion` or a `CompiledSystem`.
-    t_end, t_start : the time span, common to all members.
-    initial, parameters : the members: dicts of per-member arrays (scalars broadcast),
-        (members x names) arrays with ``initial_names``/``parameter_names``, or a `grid`
-        (given as either; its axes are sorted into state and parameters by name).
-    n_out, t_eval, method, rtol, atol, dt, max_step, max_steps, stiffness_check : as in `simulate`
-        (``method``: ``"dop853"`` or ``"gauss-legendre"``, the compiled integrators). The
-        summaries are taken over the output times. A member that dop853's stiffness test stops
-        gets the status ``stiff`` (its summaries cover the part computed); the others go on.
-    events : `EventSpec` items or expressions (``"theta_dot"``); their first time and their
-        count are kept per member; a terminal event ends the member (status ``stopped``).
-    keep : ``"summary"`` (default; memory independent of the number of members) or
-        ``"trajectories"`` (also the state at every output time, variable ``trajectory``).
-    workers : local threads (default: every core); ignored with ``scheduler``.
-    chunk_size : members per compiled call / Dask task (default: a few chunks per worker).
-    scheduler : a Dask scheduler address (``"tcp://host:8786"``) or a ``distributed.Client``.
-    out : a ``.zarr`` store (written as chunks finish) or a ``.nc`` file (written at the end).
-    resume : finish the pending members of an interrupted ``.zarr`` store.
-    progress : True for a bar on standard error, or a callable(fraction, members done).
-    backend : ``"c"`` (default: the compiled batch integrator) or ``"jax"`` (the JAX export's
-        rhs vmapped over a chunk and integrated by diffrax's Dopri8: the GPU route, see
-        `numerics._ensemble_jax`; no events or drift, no ``scheduler``, equal to the
-        C path to the tolerance).
-    inputs : as in `simulate` (numbers, expressions, tables, a `Feedback`; not Python functions),
-        the same for every member; or a sequence of `Feedback` values of one shape, one per member
-        (each member's own gains: the law is compiled once, the gains follow the parameters).
+    source : str or Path or Model or EquationsOfMotion or CompiledSystem
+        A model file path, a `Model`, an `EquationsOfMotion` or a `CompiledSystem`.
+    t_end : float
+        The end of the time span, common to all members.
+    t_start : float, optional
+        Its start.
+    initial : dict or array_like or Grid, optional
+        The members' initial values: a dict of per-member arrays (scalars broadcast), a (members x
+        names) array with ``initial_names``, or a `grid` (its axes are sorted into state and
+        parameters by name).
+    parameters : dict or array_like or Grid, optional
+        The members' parameter values, likewise (with ``parameter_names``).
+    initial_names : sequence of str, optional
+        The columns of an ``initial`` array.
+    parameter_names : sequence of str, optional
+        The columns of a ``parameters`` array.
+    n_out : int, optional
+        As in `simulate`; the summaries are taken over the output times.
+    t_eval : array_like, optional
+        As in `simulate`.
+    method : str, optional
+        ``"dop853"`` or ``"gauss-legendre"``, the compiled integrators.
+    rtol : float, optional
+        As in `simulate`.
+    atol : float, optional
+        As in `simulate`.
+    dt : float, optional
+        As in `simulate`.
+    max_step : float, optional
+        As in `simulate`.
+    max_steps : int, optional
+        As in `simulate`.
+    stiffness_check : bool, optional
+        As in `simulate`: a member that dop853's stiffness test stops gets the status ``stiff`` (its
+        summaries cover the part computed); the others go on.
+    events : sequence of EventSpec or str, optional
+        `EventSpec` items or expressions (``"theta_dot"``); their first time and their count are
+        kept per member; a terminal event ends the member (status ``stopped``).
+    keep : {"summary", "trajectories"}, optional
+        ``"summary"`` (default; memory independent of the number of members) or ``"trajectories"``
+        (also the state at every output time, variable ``trajectory``).
+    workers : int, optional
+        Local threads (default: every core); ignored with ``scheduler``.
+    chunk_size : int, optional
+        Members per compiled call / Dask task (default: a few chunks per worker).
+    scheduler : str or distributed.Client, optional
+        A Dask scheduler address (``"tcp://host:8786"``) or a ``distributed.Client``.
+    out : str or Path, optional
+        A ``.zarr`` store (written as chunks finish) or a ``.nc`` file (written at the end).
+    resume : bool, optional
+        Finish the pending members of an interrupted ``.zarr`` store.
+    progress : bool or callable, optional
+        True for a bar on standard error, or a callable(fraction, members done).
+    backend : {"c", "jax"}, optional
+        ``"c"`` (default: the compiled batch integrator) or ``"jax"`` (the JAX export's rhs vmapped
+        over a chunk and integrated by diffrax's Dopri8: the GPU route, see `numerics._ensemble_jax`;
+        no events or drift, no ``scheduler``, equal to the C path to the tolerance).
+    inputs : dict or Feedback or sequence of Feedback, optional
+        As in `simulate` (numbers, expressions, tables, a `Feedback`; not Python functions), the same
+        for every member; or a sequence of `Feedback` values of one shape, one per member (each
+        member's own gains: the law is compiled once, the gains follow the parameters).
+
+    Returns
+    -------
+    xarray.Dataset
+        One entry per member: its status, summaries, event times and counts (and trajectories).
 
     Raises
     ------
@@ -252,9 +302,19 @@ def _require(module: str, what: str) -> None:
 
 
 def connect_scheduler(scheduler):
-    """(client, opened): a ``distributed.Client`` for ``scheduler`` (an address, or a Client given back as is).
+    """A ``distributed.Client`` for ``scheduler`` (an address, or a Client given back as is).
 
-    ``opened`` says whether the client was opened here (the caller closes it then).
+    Parameters
+    ----------
+    scheduler : str or distributed.Client
+        A Dask scheduler address, or a client.
+
+    Returns
+    -------
+    client : distributed.Client
+        The client.
+    opened : bool
+        Whether the client was opened here (the caller closes it then).
 
     Raises
     ------

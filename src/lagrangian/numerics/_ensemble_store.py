@@ -253,6 +253,19 @@ def open_ensemble(path, *, load: bool = True):
     read when used), for stores larger than memory.  ``xarray.open_zarr`` /
     ``xarray.open_dataset`` read the same files as they are: one ``member`` dimension, the
     swept names as its coordinates.
+
+    Parameters
+    ----------
+    path : str or Path
+        The store or file.
+    load : bool, optional
+        ``load=False`` leaves a Zarr store's variables lazy when Dask is installed (they are read
+        when used), for stores larger than memory.
+
+    Returns
+    -------
+    xarray.Dataset
+        The ensemble.
     """
     import xarray as xr
 

@@ -46,6 +46,16 @@ def _metadata(traj: Trajectory) -> dict:
 def check_output_path(path: str | Path) -> Path:
     """Check, before a run, that ``path`` can take a trajectory: a known suffix, an existing, writable folder.
 
+    Parameters
+    ----------
+    path : str or Path
+        The file to be written.
+
+    Returns
+    -------
+    Path
+        The path.
+
     Raises
     ------
     OutputError
@@ -61,6 +71,18 @@ def check_output_path(path: str | Path) -> Path:
 
 def save_trajectory(traj: Trajectory, path: str | Path) -> Path:
     """Write ``traj`` to ``path`` (``.csv`` or ``.npz``); an older file there is replaced only on success.
+
+    Parameters
+    ----------
+    traj : Trajectory
+        The trajectory.
+    path : str or Path
+        The file to write.
+
+    Returns
+    -------
+    Path
+        The path written.
 
     Raises
     ------
@@ -112,6 +134,16 @@ def load_trajectory(path: str | Path) -> Trajectory:
 
     The file's metadata gives the coordinates, parameters, method and drift; nothing in it is
     executed (NPZ is read with ``allow_pickle=False``, CSV as numbers and one JSON line).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file to read.
+
+    Returns
+    -------
+    Trajectory
+        The trajectory it holds.
 
     Raises
     ------

@@ -54,14 +54,17 @@ def _sum(terms: list[se.Basic]) -> se.Basic:
 
 def forward_jacobian(definitions: Sequence[tuple[se.Symbol, se.Basic]], outputs: Sequence[se.Basic],
                      variables: Sequence[se.Symbol]) -> ForwardJacobian:
-    """∂outputs/∂variables through the named intermediates ``definitions`` (module docstring).
+    """The Jacobian ∂outputs/∂variables through the named intermediates ``definitions`` (module docstring).
 
     Parameters
     ----------
-    definitions : (symbol, expression) in the order of computation, each expression holding
-        earlier symbols and the variables (and other free symbols, held constant).
-    outputs : expressions over ``definitions`` and the variables.
-    variables : the symbols to differentiate with respect to.
+    definitions : sequence of (SymEngine Symbol, SymEngine expression)
+        (symbol, expression) in the order of computation, each expression holding earlier symbols
+        and the variables (and other free symbols, held constant).
+    outputs : sequence of SymEngine expressions
+        Expressions over ``definitions`` and the variables.
+    variables : sequence of SymEngine Symbol
+        The symbols to differentiate with respect to.
 
     Returns
     -------

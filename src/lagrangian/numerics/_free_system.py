@@ -54,11 +54,24 @@ def has_free_body(model: Model | None) -> bool:
 class FreeBodySystem:
     """The compiled quaternion-state equations of a model with free bodies (module docstring).
 
+    Parameters
+    ----------
+    model : Model
+        A model with free bodies.
+    events : sequence of (str, SymEngine expression), optional
+        (name, g) pairs in the state's symbols.
+
     Attributes
     ----------
-    model, form : the model and its `FloatingForm`.
-    nq, nv : the position and velocity parts of the state; ``width`` = nq + nv + (free bodies).
-    coordinates, parameters, monitors, integrals, events : names, in array order.
+    model : Model
+        The model.
+    form : FloatingForm
+        Its quaternion-state equations.
+    nq, nv : int
+        The lengths of the position and velocity parts of the state; ``width`` = nq + nv + (free
+        bodies).
+    coordinates, parameters, monitors, integrals, events : tuple of str
+        Names, in array order.
     """
 
     def __init__(self, model: Model, *, events: Sequence[tuple[str, se.Basic]] = ()) -> None:
@@ -90,8 +103,10 @@ class FreeBodySystem:
         self._layout()
         self._unused: frozenset[str] | None = None
         self._t1 = np.zeros(1)
-        #: No input law is compiled in: the route runs constant inputs only, given as parameters
-        #: (`_input_run.constant_inputs_only`), so the solvers see no breakpoints and no law block.
+        #: No input law is compiled in: the route runs constant inputs only.
+        #:
+        #: They are given as parameters (`_input_run.constant_inputs_only`), so the solvers see no
+        #: breakpoints and no law block.
         self.law = InputLaw()
 
     # -- where each model coordinate is in the state ------------------------------------------------
@@ -132,8 +147,21 @@ class FreeBodySystem:
         return self._unused
 
     def integrals_for(self, p: np.ndarray) -> tuple[str, ...]:
-        """The first integrals of a run with parameter values ``p``: without E when an input whose load
-        is not conservative has a value other than 0 (`FloatingForm.energy_inputs`)."""
+        """The first integrals of a run with parameter values ``p``.
+
+        Without E when an input whose load is not conservative has a value other than 0
+        (`FloatingForm.energy_inputs`).
+
+        Parameters
+        ----------
+        p : ndarray
+            The parameter vector.
+
+        Returns
+        -------
+        tuple of str
+            Their names.
+        """
         values = dict(zip(self.parameters, p[:len(self.parameters)], strict=True))
         if any(values.get(u, 0.0) != 0.0 for u in self.form.energy_inputs):
             return tuple(name for name in self.integrals if name != "E")
@@ -141,6 +169,16 @@ class FreeBodySystem:
 
     def parameter_vector(self, values: Mapping[str, float] | None = None) -> np.ndarray:
         """The ``p`` array (as `CompiledSystem.parameter_vector`), the free bodies' inertias checked.
+
+        Parameters
+        ----------
+        values : mapping of str to float, optional
+            Parameter values by name.
+
+        Returns
+        -------
+        ndarray
+            The parameter vector.
 
         Raises
         ------
@@ -192,14 +230,36 @@ class FreeBodySystem:
 
     # -- states ---------------------------------------------------------------------------------------
     def initial_state(self, initial: Mapping[str, float] | None = None) -> np.ndarray:
-        """The state from the model's initial values and rates (and ``initial``'s overrides)."""
+        """The state from the model's initial values and rates (and ``initial``'s overrides).
+
+        Parameters
+        ----------
+        initial : mapping of str to float, optional
+            Overrides of the initial values and rates, by name.
+
+        Returns
+        -------
+        ndarray of shape (width,)
+            The state.
+        """
         from ._setup import initial_state  # late: only `state_of` of a model's initial values needs it
 
         y = initial_state(SimpleNamespace(model=self.model), initial)  # (q, q̇) in the model's coordinates
         return self.state_of(y[None, :])[0]
 
     def state_of(self, Y: np.ndarray) -> np.ndarray:
-        """States (N, width) of rows (q, q̇) in the model's coordinates (N, 2n)."""
+        """Convert rows (q, q̇) in the model's coordinates (N, 2n) to states (N, width).
+
+        Parameters
+        ----------
+        Y : ndarray of shape (N, 2n)
+            The rows.
+
+        Returns
+        -------
+        ndarray of shape (N, width)
+            The states.
+        """
         Y = np.atleast_2d(np.asarray(Y, dtype=float))
         n = len(self.coordinates)
         q, qd = Y[:, :n], Y[:, n:]
@@ -216,12 +276,27 @@ class FreeBodySystem:
 
     def coordinates_of(self, Y: np.ndarray, dY: np.ndarray, start: np.ndarray, t: np.ndarray | None = None
                        ) -> tuple[np.ndarray, ...]:
-        """(q, q̇, q̈) in the model's coordinates along states Y with derivatives dY (N, width), at times t.
+        """The coordinates (q, q̇, q̈) in the model's coordinates along states Y with derivatives dY, at times t.
 
-        ``start`` (2n,) gives the branch and turn of the angles at the first row.  Each
-        body's angles come from its quaternion, on that branch, each turn followed from row to
-        row (`_euler.euler_from_matrix`); their rates and accelerations are NaN where
+        Each body's angles come from its quaternion, on the branch ``start`` gives, each turn followed
+        from row to row (`_euler.euler_from_matrix`); their rates and accelerations are NaN where
         ``|det J|`` < `SINGULAR` (within about 1e-9 rad of their singularity).
+
+        Parameters
+        ----------
+        Y : ndarray of shape (N, width)
+            The states.
+        dY : ndarray of shape (N, width)
+            Their derivatives.
+        start : ndarray of shape (2n,)
+            Gives the branch and turn of the angles at the first row.
+        t : ndarray of shape (N,), optional
+            The times.
+
+        Returns
+        -------
+        tuple of ndarray
+            The coordinates q, rates q̇ and accelerations q̈, each of shape (N, n).
         """
         n, N = len(self.coordinates), len(Y)
         q, qd, qdd = (np.empty((N, n)) for _ in range(3))
@@ -245,16 +320,49 @@ class FreeBodySystem:
         return q, qd, qdd
 
     def quaternion_norms(self, Y: np.ndarray) -> dict[str, np.ndarray]:
-        """The norm ``|e|`` of each free body's quaternion along states Y."""
+        """The norm ``|e|`` of each free body's quaternion along states Y.
+
+        Parameters
+        ----------
+        Y : ndarray of shape (N, width)
+            The states.
+
+        Returns
+        -------
+        dict of str to ndarray
+            By body.
+        """
         return {fj.body: np.linalg.norm(Y[:, oq + 3:oq + 7], axis=1) for fj, oq, *_ in self.blocks}
 
     def drift_records(self, Y: np.ndarray) -> dict[str, float]:
-        """The largest ``|1 − |e||`` before a projection, per free body, recorded in the state up to Y's last row."""
+        """The largest ``|1 − |e||`` before a projection, per free body, recorded in the state up to Y's last row.
+
+        Parameters
+        ----------
+        Y : ndarray of shape (N, width)
+            The states.
+
+        Returns
+        -------
+        dict of str to float
+            By body.
+        """
         return {fj.body: float(Y[-1, self.nq + self.nv + t]) if len(Y) else 0.0
                 for t, (fj, *_) in enumerate(self.blocks)}
 
     def extra_columns(self, Y: np.ndarray) -> dict[str, np.ndarray]:
-        """Each free body's quaternion (w, x, y, z) and ω (in its basis) along states Y."""
+        """Each free body's quaternion (w, x, y, z) and ω (in its basis) along states Y.
+
+        Parameters
+        ----------
+        Y : ndarray of shape (N, width)
+            The states.
+
+        Returns
+        -------
+        dict of str to ndarray
+            The columns, by name.
+        """
         out: dict[str, np.ndarray] = {}
         for fj, oq, ov, *_ in self.blocks:
             for k, part in enumerate("wxyz"):
@@ -272,7 +380,22 @@ class FreeBodySystem:
         return T, Y, single
 
     def rhs(self, t, y, p: np.ndarray) -> np.ndarray:
-        """ẏ at each state (the free bodies' v̇ in R0's basis, ω̇ in theirs, the joints' q̈)."""
+        """The derivative ẏ at each state (the free bodies' v̇ in R0's basis, ω̇ in theirs, the joints' q̈).
+
+        Parameters
+        ----------
+        t : float or ndarray of shape (N,)
+            The time(s).
+        y : ndarray of shape (width,) or (N, width)
+            The state(s).
+        p : ndarray
+            The parameter vector.
+
+        Returns
+        -------
+        ndarray
+            The derivative ẏ, of the shape of ``y``.
+        """
         T, Y, single = self._batch(t, y)
         out = np.empty_like(Y)
         status = self._lib.lg_eval_rhs(len(Y), _ptr(T), _ptr(Y), _ptr(p), _ptr(out))
@@ -284,12 +407,46 @@ class FreeBodySystem:
         return out[0] if single else out
 
     def rhs_c(self, t: float, y: np.ndarray, p: np.ndarray, out: np.ndarray) -> int:
-        """One state, no allocation (replaced by the `_fastcall` wrapper where it builds)."""
+        """One state, no allocation (replaced by the `_fastcall` wrapper where it builds).
+
+        Parameters
+        ----------
+        t : float
+            The time.
+        y : ndarray of shape (width,)
+            The state.
+        p : ndarray
+            The parameter vector.
+        out : ndarray of shape (width,)
+            Receives ẏ.
+
+        Returns
+        -------
+        int
+            The C status (0 = fine).
+        """
         self._t1[0] = t
         return self._lib.lg_eval_rhs(1, _ptr(self._t1), _ptr(y), _ptr(p), _ptr(out))
 
     def mass_forces(self, t, y, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """M (N, nv, nv) in the velocities (v, ω, q̇) and F = M ẏ_v, the generalized forces that give the motion."""
+        """The mass matrix M in the velocities (v, ω, q̇) and F = M ẏ_v, the generalized forces that give the motion.
+
+        Parameters
+        ----------
+        t : float or ndarray of shape (N,)
+            The time(s).
+        y : ndarray of shape (width,) or (N, width)
+            The state(s).
+        p : ndarray
+            The parameter vector.
+
+        Returns
+        -------
+        M : ndarray of shape (N, nv, nv)
+            The mass matrix.
+        F : ndarray of shape (N, nv)
+            The forces.
+        """
         T, Y, single = self._batch(t, y)
         M = np.empty((len(Y), self.nv, self.nv))
         F = np.empty((len(Y), self.nv))
@@ -312,10 +469,22 @@ class FreeBodySystem:
 
 
 def compile_free_system(source, *, events: Sequence[tuple[str, se.Basic]] = ()) -> FreeBodySystem:
-    """`FreeBodySystem` of a model with free bodies: a path, a `Model` or its `EquationsOfMotion`.
+    """The `FreeBodySystem` of a model with free bodies.
 
     ``simulate`` takes it as a source (and builds one by itself from a model with free bodies).
     Its `mass_forces` gives M and the forces in the velocities (v, ω, q̇), MuJoCo's for a free joint.
+
+    Parameters
+    ----------
+    source : str or Path or Model or EquationsOfMotion
+        A path, a `Model` or its `EquationsOfMotion`.
+    events : sequence of (str, SymEngine expression), optional
+        (name, g) pairs in the state's symbols.
+
+    Returns
+    -------
+    FreeBodySystem
+        The compiled system.
 
     Raises
     ------

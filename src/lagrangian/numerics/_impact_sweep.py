@@ -36,16 +36,26 @@ OUTCOMES = ("impacts", "bounces", "first_impact", "rest_time", "liftoffs", "ener
 class ImpactSweep:
     """What the contacts did at each point of a grid (module docstring).
 
-    Attributes
+    Parameters
     ----------
-    axes : name → values of each grid axis, in order; every outcome has the shape of the grid.
-    impacts : impacts resolved before t_end (simultaneous ones count once), up to the accumulation.
-    bounces : those whose approach speed ``|ġ⁻|`` was at least ``min_speed``.
-    first_impact : time of the first impact (NaN: none).
-    rest_time : t_∞, where an accumulation of impacts came to rest (NaN: none before t_end).
-    liftoffs : lift-offs of closed contacts.
-    energy_lost : Σ (E⁻ − E⁺) over the impacts and the accumulation.
-    status : "ok", or the error that stopped the member.
+    axes : mapping of str to ndarray
+        Name → values of each grid axis, in order; every outcome has the shape of the grid.
+    impacts : ndarray
+        Impacts resolved before t_end (simultaneous ones count once), up to the accumulation.
+    bounces : ndarray
+        Those whose approach speed ``|ġ⁻|`` was at least ``min_speed``.
+    first_impact : ndarray
+        The time of the first impact (NaN: none).
+    rest_time : ndarray
+        The time t_∞ where an accumulation of impacts came to rest (NaN: none before t_end).
+    liftoffs : ndarray
+        Lift-offs of closed contacts.
+    energy_lost : ndarray
+        Σ (E⁻ − E⁺) over the impacts and the accumulation.
+    status : ndarray
+        "ok", or the error that stopped the member.
+    min_speed : float
+        The approach speed from which an impact counts as a bounce.
     """
 
     axes: Mapping[str, np.ndarray]
@@ -63,7 +73,13 @@ class ImpactSweep:
         return tuple(len(v) for v in self.axes.values())
 
     def to_dataset(self) -> Any:
-        """The outcomes as an `xarray.Dataset` over the grid's axes (``pip install 'lagrangian[ensemble]'``)."""
+        """The outcomes as an `xarray.Dataset` over the grid's axes (``pip install 'lagrangian[ensemble]'``).
+
+        Returns
+        -------
+        xarray.Dataset
+            One variable per outcome, over the grid's axes.
+        """
         import xarray as xr
 
         dims = tuple(self.axes)
@@ -94,12 +110,27 @@ def impact_sweep(source, axes: Mapping[str, Sequence[float] | np.ndarray], t_end
 
     Parameters
     ----------
-    source : a model file, `Model` or its equations, with unilateral contacts.
-    axes : name → values; a name is a parameter, a coordinate or a rate (``z_dot``).
-    t_end : the end of each run.
-    parameters, initial : values for every member (not swept).
-    min_speed : the approach speed from which an impact counts as a bounce.
-    **options : `simulate`'s options for the contacts' route (``rtol``, ``atol``, ``rest``...).
+    source : str or Path or Model or EquationsOfMotion
+        A model file, `Model` or its equations, with unilateral contacts.
+    axes : mapping of str to sequence of float
+        Name → values; a name is a parameter, a coordinate or a rate (``z_dot``).
+    t_end : float
+        The end of each run.
+    parameters : mapping of str to float, optional
+        Parameter values for every member (not swept).
+    initial : mapping of str to float, optional
+        Initial values for every member (not swept).
+    min_speed : float, optional
+        The approach speed from which an impact counts as a bounce.
+    progress : bool, optional
+        True for a progress bar on standard error.
+    **options
+        `simulate`'s options for the contacts' route (``rtol``, ``atol``, ``rest``...).
+
+    Returns
+    -------
+    ImpactSweep
+        The outcomes over the grid.
 
     Raises
     ------

@@ -31,13 +31,16 @@ __all__ = ["Switch"]
 
 
 class Switch:
-    """Sources of one input in turn (module docstring): ``sources[0]`` before ``at[0]``, ``sources[k]``
-    from ``at[k − 1]`` on.
+    """Sources of one input in turn (module docstring): ``sources[0]`` before ``at[0]``, and so on.
+
+    ``sources[k]`` applies from ``at[k − 1]`` on.
 
     Parameters
     ----------
-    *sources : two or more sources, each what ``inputs=`` takes for one input (not a `Switch`).
-    at : the switching times (one fewer than the sources; a number for two sources), strictly
+    *sources : object
+        Two or more sources, each what ``inputs=`` takes for one input (not a `Switch`).
+    at : float or sequence of float
+        The switching times (one fewer than the sources; a number for two sources), strictly
         increasing and finite.
 
     Raises

@@ -68,9 +68,14 @@ class InputTable:
 
     Parameters
     ----------
-    t : shape (N,), N ≥ 2, strictly increasing finite times.
-    values : shape (N,), finite values.
-    interpolation : ``"zoh"``, ``"linear"`` (default), ``"quadratic"`` (N odd ≥ 3) or ``"cubic"``.
+    t : ndarray of shape (N,)
+        N ≥ 2 strictly increasing finite times.
+    values : ndarray of shape (N,)
+        Finite values.
+    interpolation : {"zoh", "linear", "quadratic", "cubic"}, optional
+        ``"zoh"``, ``"linear"`` (default), ``"quadratic"`` (N odd ≥ 3) or ``"cubic"``.
+    name : str, optional
+        Where the samples came from, for messages (``force in run.csv``).
 
     Raises
     ------
@@ -139,8 +144,26 @@ class InputTable:
     @classmethod
     def from_csv(cls, path: str | Path, column: str, *, time_column: str = "t",
                  interpolation: str = "linear") -> InputTable:
-        """The table of ``column`` against ``time_column`` in a CSV file with a header row (lines that
-        begin with ``#`` are comments: a trajectory written by ``save_trajectory`` or ``-o`` is read as it is).
+        """The table of ``column`` against ``time_column`` in a CSV file with a header row.
+
+        Lines that begin with ``#`` are comments: a trajectory written by ``save_trajectory`` or ``-o`` is
+        read as it is.
+
+        Parameters
+        ----------
+        path : str or Path
+            The CSV file.
+        column : str
+            The column of the values.
+        time_column : str, optional
+            The column of the times.
+        interpolation : {"zoh", "linear", "quadratic", "cubic"}, optional
+            How to read between the samples.
+
+        Returns
+        -------
+        InputTable
+            The table, named after the column and the file.
 
         Raises
         ------
@@ -186,8 +209,10 @@ class InputTable:
 
     @property
     def coefficients(self) -> np.ndarray:
-        """``"quadratic"``, ``"cubic"``: shape (N − 1, 4), piece k is c0 s³ + c1 s² + c2 s + c3 with
-        s = t − t_k; else empty."""
+        """The polynomial pieces of a ``"quadratic"`` or ``"cubic"`` table; else empty.
+
+        Shape (N − 1, 4): piece k is c0 s³ + c1 s² + c2 s + c3 with s = t − t_k.
+        """
         return self._coefficients
 
     def __call__(self, t: float | np.ndarray, window: float | None = None) -> np.ndarray:
@@ -211,7 +236,13 @@ class InputTable:
         return out
 
     def data(self) -> np.ndarray:
-        """The numbers the compiled code reads: times, values, then (quadratic, cubic) the coefficients."""
+        """The numbers the compiled code reads: times, values, then (quadratic, cubic) the coefficients.
+
+        Returns
+        -------
+        ndarray
+            Times, values, then (quadratic, cubic) the coefficients.
+        """
         return np.concatenate([self.t, self.values, self._coefficients.ravel()])
 
     def __repr__(self) -> str:

@@ -29,7 +29,13 @@ __all__ = ["Grid", "grid", "Members", "members"]
 
 @dataclass(frozen=True)
 class Grid:
-    """Named axes whose outer product is the set of members (see `grid`)."""
+    """Named axes whose outer product is the set of members (see `grid`).
+
+    Parameters
+    ----------
+    axes : tuple of (str, ndarray)
+        Each axis's name and values, in order.
+    """
 
     axes: tuple[tuple[str, np.ndarray], ...]
 
@@ -46,7 +52,13 @@ class Grid:
         return int(np.prod(self.shape, dtype=np.int64))
 
     def columns(self) -> dict[str, np.ndarray]:
-        """Each axis's value for every member, flattened in C order (the last axis fastest)."""
+        """Each axis's value for every member, flattened in C order (the last axis fastest).
+
+        Returns
+        -------
+        dict of str to ndarray
+            By axis name, one value per member.
+        """
         mesh = np.meshgrid(*(values for _, values in self.axes), indexing="ij")
         return {name: m.ravel() for (name, _), m in zip(self.axes, mesh, strict=True)}
 
@@ -57,6 +69,18 @@ def grid(**axes) -> Grid:
     Each keyword is a coordinate, a rate (``<coordinate>_dot``) or a parameter of the
     model, and its values a 1-D sequence of finite numbers; the members are every
     combination (C order: the last axis varies fastest).
+
+    Parameters
+    ----------
+    **axes : sequence of float
+        Each keyword is a coordinate, a rate (``<coordinate>_dot``) or a parameter of the model, and
+        its values a 1-D sequence of finite numbers; the members are every combination (C order: the
+        last axis varies fastest).
+
+    Returns
+    -------
+    Grid
+        The grid.
 
     Raises
     ------

@@ -53,10 +53,60 @@ DEFAULT_TOLERANCE_FACTOR, DEFAULT_TOLERANCE_CAP = 1e3, 1e-6
 class SimulationOptions:
     """Every option of `simulate`, checked once when made (`check_options`).
 
-    The fields are `simulate`'s keywords (see its docstring), plus three that only one route
-    honours: ``rest`` and ``max_phases`` (unilateral contacts, `_contact`) and ``max_switches``
-    (exact Coulomb friction, `_stickslip`); None leaves the route's default.  A route reads
-    the options it honours and refuses the others it cannot ignore (`_methods.ROUTES`).
+    The fields are `simulate`'s keywords, plus three that only one route honours (``rest``,
+    ``max_phases``, ``max_switches``); None leaves the route's default.  A route reads the options it
+    honours and refuses the others it cannot ignore (`_methods.ROUTES`).
+
+    Parameters
+    ----------
+    t_end : float
+        As in `simulate`.
+    t_start : float
+        As in `simulate`.
+    initial : mapping of str to float, optional
+        As in `simulate`.
+    parameters : mapping of str to float, optional
+        As in `simulate`.
+    method : str
+        As in `simulate`.
+    rtol : float
+        As in `simulate`.
+    atol : float
+        As in `simulate`.
+    dt : float, optional
+        As in `simulate`.
+    max_step : float, optional
+        As in `simulate`.
+    n_out : int, optional
+        As in `simulate`.
+    t_eval : array_like, optional
+        As in `simulate`.
+    events : sequence of EventSpec or str
+        As in `simulate`.
+    tolerance : float, optional
+        As in `simulate`.
+    max_steps : int
+        As in `simulate`.
+    progress : bool or callable
+        As in `simulate`.
+    backend : str
+        As in `simulate`.
+    stabilization : str, optional
+        As in `simulate`.
+    baumgarte : (float, float)
+        As in `simulate`.
+    stiffness_check : bool
+        As in `simulate`.
+    sensitivities : sequence of str or Sensitivities, optional
+        As in `simulate`.
+    inputs : dict or Feedback, optional
+        As in `simulate`.
+    rest : float, optional
+        Unilateral contacts only (`_contact`).
+    max_phases : int, optional
+        Unilateral contacts only (`_contact`).
+    max_switches : int, optional
+        Exact Coulomb friction only (`_stickslip`).
     """
 
     t_end: float
@@ -93,7 +143,18 @@ class SimulationOptions:
                                   fix="use " + ", ".join(STABILIZATIONS))
 
     def but(self, **changes: Any) -> SimulationOptions:
-        """The same options with ``changes`` (checked again)."""
+        """The same options with ``changes`` (checked again).
+
+        Parameters
+        ----------
+        **changes
+            Options to change, by name.
+
+        Returns
+        -------
+        SimulationOptions
+            The same options with ``changes`` (checked again).
+        """
         return dataclasses.replace(self, **changes)
 
 
@@ -103,6 +164,18 @@ def default_tolerance(method: str, rtol: float) -> float:
     min(1e3 rtol, 1e-6) for the adaptive methods (a drift a thousand times the local
     tolerance, or above a millionth, is accuracy lost, not round-off); 1e-6 for
     ``gauss-legendre``, whose energy error depends on dt, not on rtol.
+
+    Parameters
+    ----------
+    method : str
+        The integration method.
+    rtol : float
+        Its relative tolerance.
+
+    Returns
+    -------
+    float
+        The tolerance.
     """
     if method == "gauss-legendre":
         return DEFAULT_TOLERANCE_CAP

@@ -65,6 +65,18 @@ def reaction_history_along(eom: EquationsOfMotion, trajectory: Trajectory) -> di
 
     For such a motion, the reactions listed are those of the principal constraints, which
     every phase has (the stuck phase's own friction reaction is the ``friction_<load>`` column).
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+    trajectory : Trajectory
+        A simulated motion.
+
+    Returns
+    -------
+    dict of str to ReactionHistory
+        By reaction name.
     """
     phases = _phases(eom, trajectory)
     if phases is None:
@@ -82,7 +94,22 @@ def reaction_history_along(eom: EquationsOfMotion, trajectory: Trajectory) -> di
 
 def check_trajectory_along(eom: EquationsOfMotion, trajectory: Trajectory,
                            check: Callable = check_trajectory) -> TrajectoryResiduals:
-    """`analysis.check_trajectory`, phase by phase for a stick/slip motion (module docstring)."""
+    """`analysis.check_trajectory`, phase by phase for a stick/slip motion (module docstring).
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+    trajectory : Trajectory
+        A simulated motion.
+    check : callable, optional
+        The check run on each phase.
+
+    Returns
+    -------
+    TrajectoryResiduals
+        The residuals, phase after phase.
+    """
     phases = _phases(eom, trajectory)
     if phases is None:
         return check(eom, trajectory)

@@ -85,7 +85,28 @@ def _singular(t, Y: np.ndarray, bad: np.ndarray,
 
 
 def project(system: ConstrainedSystem, t: float, y: np.ndarray, p: np.ndarray, tol: float) -> tuple[np.ndarray, bool]:
-    """One state (2n,) projected (`project_many`)."""
+    """One state (2n,) projected (`project_many`).
+
+    Parameters
+    ----------
+    system : ConstrainedSystem
+        The constrained system.
+    t : float
+        The time.
+    y : ndarray of shape (2n,)
+        The state.
+    p : ndarray
+        The parameter vector.
+    tol : float
+        The tolerance on the constraints.
+
+    Returns
+    -------
+    y : ndarray of shape (2n,)
+        The projected state.
+    converged : bool
+        Whether the projection met ``tol``.
+    """
     Y, changed = project_many(system, t, y, p, tol)
     return Y[0], changed
 

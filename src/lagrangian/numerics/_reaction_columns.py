@@ -23,7 +23,20 @@ def _label(name: str) -> str:
 
 
 def reaction_columns_along(eom: EquationsOfMotion, trajectory: Trajectory) -> dict[str, np.ndarray]:
-    """Each reaction's force (and, when not zero, its moment) at every state, by R0 axis."""
+    """Each reaction's force (and, when not zero, its moment) at every state, by R0 axis.
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+    trajectory : Trajectory
+        A simulated motion.
+
+    Returns
+    -------
+    dict of str to ndarray
+        The columns, by name.
+    """
     axes = tuple(eom.model.frames[0].axes or ("x0", "y0", "z0"))
     columns: dict[str, np.ndarray] = {}
     for name, history in reaction_history_along(eom, trajectory).items():

@@ -68,14 +68,16 @@ INITIAL = "(t0)"
 class Sensitivities:
     """What ``simulate(..., sensitivities=...)`` differentiates the motion with respect to.
 
-    Attributes
+    Parameters
     ----------
-    names : parameters (``"l"``) and initial values (``"theta(t0)"``, ``"theta_dot(t0)"``).
-    in_error_norm : False (default): the step-size control looks at the state only, so the
-        state is the plain run's bit for bit and the sensitivities are the exact derivatives
-        of that numerical solution (consistent with it, which a Gauss–Newton fit needs); True:
-        the sensitivities must meet ``rtol``/``atol`` too (CVODES's default), at the cost of
-        more steps where they grow faster than the state.
+    names : tuple of str
+        Parameters (``"l"``) and initial values (``"theta(t0)"``, ``"theta_dot(t0)"``).
+    in_error_norm : bool
+        False (default): the step-size control looks at the state only, so the state is the plain
+        run's bit for bit and the sensitivities are the exact derivatives of that numerical solution
+        (consistent with it, which a Gauss–Newton fit needs); True: the sensitivities must meet
+        ``rtol``/``atol`` too (CVODES's default), at the cost of more steps where they grow faster
+        than the state.
     """
 
     names: tuple[str, ...]
@@ -88,7 +90,17 @@ class Sensitivities:
 
 @dataclass(frozen=True)
 class SensitivityColumn:
-    """One sensitivity: its name, and the parameter (index in ``p``) or state entry it is taken to."""
+    """One sensitivity: its name, and the parameter (index in ``p``) or state entry it is taken to.
+
+    Parameters
+    ----------
+    name : str
+        Its name.
+    parameter : int or None
+        The index in the model's parameters, or None for an initial value.
+    state : int or None
+        The index in y for an initial value.
+    """
 
     name: str
     parameter: int | None  # index in the model's parameters, or None for an initial value
@@ -148,9 +160,21 @@ def _names(params: Sequence) -> str:
 
 
 def inverse_dynamics(eom: EquationsOfMotion) -> tuple[list[tuple[se.Symbol, se.Basic]], list[se.Basic]]:
-    """(intermediates, r) with r = M a − F, a = q̈ as the symbols ``eom.qdd``: the inverse dynamics.
+    """The inverse dynamics r = M a − F, with a = q̈ as the symbols ``eom.qdd``.
 
     Over the recursive form's named intermediates where there is one (nothing expanded).
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+
+    Returns
+    -------
+    intermediates : list of (SymEngine Symbol, SymEngine expression)
+        The named intermediates, in order.
+    r : list of SymEngine expressions
+        M a − F.
     """
     rec = eom.recursive
     n = len(eom.q)
@@ -164,6 +188,14 @@ class SensitivitySystem:
 
     ``parameters``: the parameters that may be differentiated with respect to (their order is
     the order of J's last columns); initial values need nothing more.
+
+    Parameters
+    ----------
+    system : CompiledSystem
+        The compiled system.
+    parameters : sequence of str
+        The parameters that may be differentiated with respect to (their order is the order of J's
+        last columns); initial values need nothing more.
     """
 
     def __init__(self, system: CompiledSystem, parameters: Sequence[str]) -> None:
@@ -206,7 +238,24 @@ class SensitivitySystem:
         self.width = width
 
     def jacobian(self, t, y: np.ndarray, a: np.ndarray, p: np.ndarray) -> np.ndarray:
-        """J = ∂(F − M a)/∂(y, p_sel) at each point: shape (N, n, 2n + len(parameters))."""
+        """The Jacobian J = ∂(F − M a)/∂(y, p_sel) at each point.
+
+        Parameters
+        ----------
+        t : float or ndarray of shape (N,)
+            The time(s).
+        y : ndarray of shape (2n,) or (N, 2n)
+            The state(s).
+        a : ndarray of shape (n,) or (N, n)
+            The accelerations.
+        p : ndarray
+            The parameter vector.
+
+        Returns
+        -------
+        ndarray of shape (N, n, 2n + len(parameters))
+            J.
+        """
         Y = np.ascontiguousarray(np.atleast_2d(y), dtype=float)
         A = np.ascontiguousarray(np.atleast_2d(a), dtype=float)
         T = np.ascontiguousarray(np.broadcast_to(np.asarray(t, dtype=float), (len(Y),)))
@@ -219,10 +268,32 @@ class SensitivitySystem:
             = None, watch=None) -> SensitivityRun:
         """Integrate y and the ``columns`` from ``ctl[0]`` to ``t_end``, output at ``t_out``.
 
-        ``p`` is the extended parameter vector (`CompiledSystem.parameter_vector`); ``ctl`` the
-        control block (`_control.control_block`); ``inputs`` = (parameter indices, times (m,),
-        values (m, k)) of inputs set by linear interpolation at every evaluation.  ``watch`` wraps
-        the call (progress, Ctrl-C): a function taking the call and ``ctl``.
+        Parameters
+        ----------
+        p : ndarray
+            The extended parameter vector (`CompiledSystem.parameter_vector`).
+        y0 : ndarray of shape (2n,)
+            The initial state.
+        columns : sequence of SensitivityColumn
+            The sensitivities to integrate.
+        t_out : ndarray
+            The output times.
+        t_end : float
+            The end of the run.
+        ctl : ndarray
+            The control block (`_control.control_block`).
+        in_error_norm : bool, optional
+            Whether the sensitivities enter the step-size control.
+        inputs : (sequence of int, ndarray, ndarray), optional
+            (parameter indices, times (m,), values (m, k)) of inputs set by linear interpolation at
+            every evaluation.
+        watch : callable, optional
+            Wraps the call (progress, Ctrl-C): a function taking the call and ``ctl``.
+
+        Returns
+        -------
+        SensitivityRun
+            Output times, states, sensitivities and the C status.
         """
         n2 = 2 * self.n
         ns = len(columns)
@@ -284,7 +355,20 @@ _CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
 def sensitivity_system(system: CompiledSystem, parameters: Sequence[str]) -> SensitivitySystem:
-    """The `SensitivitySystem` of ``system`` for ``parameters``, built once per pair."""
+    """The `SensitivitySystem` of ``system`` for ``parameters``, built once per pair.
+
+    Parameters
+    ----------
+    system : CompiledSystem
+        The compiled system.
+    parameters : sequence of str
+        The parameters to differentiate with respect to.
+
+    Returns
+    -------
+    SensitivitySystem
+        The system, cached.
+    """
     mine = _CACHE.setdefault(system, {})
     key = tuple(parameters)
     if key not in mine:

@@ -34,6 +34,17 @@ class EventSpec:
     ``expression`` is text in the model's grammar (``"theta_dot"``, ``"theta - 0.3"``) or
     a SymEngine expression.  ``direction``: +1 only rising crossings, −1 only falling,
     0 both.  A ``terminal`` event stops the run at its first occurrence.
+
+    Parameters
+    ----------
+    name : str
+        The event's name.
+    expression : str or SymEngine expression
+        Text in the model's grammar (``"theta_dot"``, ``"theta - 0.3"``) or a SymEngine expression.
+    direction : int
+        +1 only rising crossings, −1 only falling, 0 both.
+    terminal : bool
+        A terminal event stops the run at its first occurrence.
     """
 
     name: str
@@ -77,9 +88,19 @@ def event_expressions(eom: EquationsOfMotion, events: Sequence[EventSpec | str])
 
 
 def initial_state(eom: EquationsOfMotion, initial: Mapping[str, float] | None = None) -> np.ndarray:
-    """y(t0) = (q(t0), q̇(t0)) from the model's ``initial``/``rate`` values and the overrides.
+    """The initial state y(t0) = (q(t0), q̇(t0)) from the model's ``initial``/``rate`` values and the overrides.
 
-    ``initial`` maps a coordinate name to q_i(t0) and ``<name>_dot`` to q̇_i(t0).
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+    initial : mapping of str to float, optional
+        Maps a coordinate name to q_i(t0) and ``<name>_dot`` to q̇_i(t0).
+
+    Returns
+    -------
+    ndarray of shape (2n,)
+        The state y(t0).
 
     Raises
     ------

@@ -74,43 +74,77 @@ def simulate(
 
     Parameters
     ----------
-    source : a model file path, a `Model`, an `EquationsOfMotion` or a `CompiledSystem`.
-    t_end, t_start : the time span (must increase).
-    initial : overrides of q_i(t0) (``"theta": 0.3``) and q̇_i(t0) (``"phi_dot": 80``).
-    parameters : overrides of the parameter values (``"g": 1.62``).
-    method : ``"dop853"``, ``"gauss-legendre"`` or a SciPy method name (`_ode`); the model's route
+    source : str or Path or Model or EquationsOfMotion or CompiledSystem
+        A model file path, a `Model`, an `EquationsOfMotion` or a `CompiledSystem`.
+    t_end : float
+        The end of the time span.
+    t_start : float, optional
+        Its start (the span must increase).
+    initial : mapping of str to float, optional
+        Overrides of q_i(t0) (``"theta": 0.3``) and q̇_i(t0) (``"phi_dot": 80``).
+    parameters : mapping of str to float, optional
+        Overrides of the parameter values (``"g": 1.62``).
+    method : str, optional
+        ``"dop853"``, ``"gauss-legendre"`` or a SciPy method name (`_ode`); the model's route
         (`_methods.ROUTES`) says which of them it runs.
-    rtol, atol : local error tolerances of the adaptive methods.
-    dt : fixed step. ``"gauss-legendre"``: default 1/10 of the output spacing, halved (at most
-        `GAUSS_HALVINGS` times, the run restarted) while its implicit stages do not converge; a dt smaller
-        than the spacing is rounded down so that a whole number of steps fills it, a larger
-        one is used as it is (the outputs are interpolated between steps). With ``"dop853"``
-        it switches to fixed steps.
-    n_out, t_eval : the output grid (default 1001 evenly spaced times).
-    events : `EventSpec` items or expression strings; each crossing is recorded.
-    tolerance : drift tolerance of the first integrals; a larger drift adds a warning.
-        Default: `default_tolerance` (min(1e3 rtol, 1e-6); 1e-6 for ``gauss-legendre``).
-    progress : True for a progress bar on standard error, or a callable(fraction, t),
-        called at most every 0.1 s (from a second thread for the built-in methods) and
-        once at the end. The result does not depend on it.
-    stabilization, baumgarte : for models with complementary constraints only, how the
-        drift from the constraints is controlled (``"projection"``, ``"baumgarte"``,
-        ``"both"``, ``"none"``) and Baumgarte's rates (α, β); see `numerics._dae_run`.
-    rest, max_phases : models with unilateral contacts only (`simulate_contact`).
-    max_switches : models with an exact Coulomb contact only (`simulate_stick_slip`).
-    stiffness_check : ``"dop853"`` only: Hairer's stiffness test (as in dop853.f), which stops
-        the run with a `SimulationError` once the step is limited by stability rather than
-        accuracy (h|λ| > 6.1 for 15 steps in a row), where an implicit method (``"Radau"``)
-        is the tool. False integrates a knowingly stiff problem explicitly all the same.
-    inputs : what the declared inputs do (`lagrangian.numerics._inputs`): a dict by input name of
-        numbers, expressions (``"2*sin(3*t)"``, ``"-k1*x - k2*x_dot"``), `InputTable` values, or
-        Python functions ``u(t, y)`` (the slow path); or a `Feedback` (``lagrangian.lqr``), the
-        closed loop compiled in.  Inputs not named follow the model's ``[controls]``, else stay
-        at their value (0).  The applied inputs are columns of the result (``traj.column("F")``).
-    sensitivities : parameter names and initial values (``["l", "m", "theta(t0)"]``, or a
+    rtol : float, optional
+        The relative local error tolerance of the adaptive methods.
+    atol : float, optional
+        Their absolute local error tolerance.
+    dt : float, optional
+        A fixed step.  ``"gauss-legendre"``: default 1/10 of the output spacing, halved (at most
+        `GAUSS_HALVINGS` times, the run restarted) while its implicit stages do not converge; a dt
+        smaller than the spacing is rounded down so that a whole number of steps fills it, a larger
+        one is used as it is (the outputs are interpolated between steps).  With ``"dop853"`` it
+        switches to fixed steps.
+    max_step : float, optional
+        The largest step the adaptive methods may take (for short events between output times).
+    n_out : int, optional
+        The number of evenly spaced output times (default 1001).
+    t_eval : array_like, optional
+        The output times, instead of ``n_out``.
+    events : sequence of EventSpec or str, optional
+        `EventSpec` items or expression strings; each crossing is recorded.
+    tolerance : float, optional
+        The drift tolerance of the first integrals; a larger drift adds a warning.  Default:
+        `default_tolerance` (min(1e3 rtol, 1e-6); 1e-6 for ``gauss-legendre``).
+    max_steps : int, optional
+        The most steps a run may take; reaching it stops the run with a `SimulationError`.
+    progress : bool or callable, optional
+        True for a progress bar on standard error, or a callable(fraction, t), called at most every
+        0.1 s (from a second thread for the built-in methods) and once at the end.  The result does
+        not depend on it.
+    backend : {"auto", "c", "symengine"}, optional
+        How a model is compiled when ``source`` is not yet a `CompiledSystem`: C when a compiler
+        exists ("auto"), or SymEngine's evaluation (no compiled integrators then).
+    stabilization : str, optional
+        For models with complementary constraints only, how the drift from the constraints is
+        controlled (``"projection"``, ``"baumgarte"``, ``"both"``, ``"none"``); see
+        `numerics._dae_run`.
+    baumgarte : (float, float), optional
+        Baumgarte's rates (α, β), with ``stabilization``.
+    stiffness_check : bool, optional
+        ``"dop853"`` only: Hairer's stiffness test (as in dop853.f), which stops the run with a
+        `SimulationError` once the step is limited by stability rather than accuracy (h|λ| > 6.1 for
+        15 steps in a row), where an implicit method (``"Radau"``) is the tool.  False integrates a
+        knowingly stiff problem explicitly all the same.
+    sensitivities : sequence of str or Sensitivities, optional
+        Parameter names and initial values (``["l", "m", "theta(t0)"]``, or a
         `lagrangian.numerics.Sensitivities`): ∂y(t)/∂x for each, integrated with the state
         (``dop853`` only; `numerics._sensitivity`), as the columns ``d(theta)/d(l)``...;
         ``trajectory.sensitivity("l")`` has shape (N, 2n).
+    inputs : dict or Feedback, optional
+        What the declared inputs do (`lagrangian.numerics._inputs`): a dict by input name of numbers,
+        expressions (``"2*sin(3*t)"``, ``"-k1*x - k2*x_dot"``), `InputTable` values, or Python
+        functions ``u(t, y)`` (the slow path); or a `Feedback` (``lagrangian.lqr``), the closed loop
+        compiled in.  Inputs not named follow the model's ``[controls]``, else stay at their value
+        (0).  The applied inputs are columns of the result (``traj.column("F")``).
+    rest : float, optional
+        Models with unilateral contacts only (`simulate_contact`).
+    max_phases : int, optional
+        Models with unilateral contacts only (`simulate_contact`).
+    max_switches : int, optional
+        Models with an exact Coulomb contact only (`simulate_stick_slip`).
 
     Returns
     -------
@@ -141,13 +175,17 @@ def simulate_contact(source, t_end: float, **options: Any) -> Trajectory:
 
     Parameters
     ----------
-    source : a model file, a `Model`, or its equations, with at least one ``unilateral`` constraint.
-    t_end, **options : as for `simulate`.  ``method`` must be ``"dop853"`` and ``dt`` None (phases
-        end at events), ``stabilization`` None or ``"projection"`` (the closed contacts are kept
-        by projection); and, for this route only: ``rest``, the last approach speed, relative to
-        the first of a geometric series of impacts, at which the accumulation is summed and the
-        contacts closed (default 1e-6; `_contact_switch`), ``max_phases``, the most smooth phases
-        a run may have (default 1 000 000).
+    source : str or Path or Model or EquationsOfMotion
+        A model file, a `Model`, or its equations, with at least one ``unilateral`` constraint.
+    t_end : float
+        The end of the time span.
+    **options
+        As for `simulate`.  ``method`` must be ``"dop853"`` and ``dt`` None (phases end at events),
+        ``stabilization`` None or ``"projection"`` (the closed contacts are kept by projection); and,
+        for this route only: ``rest``, the last approach speed, relative to the first of a geometric
+        series of impacts, at which the accumulation is summed and the contacts closed (default
+        1e-6; `_contact_switch`), ``max_phases``, the most smooth phases a run may have (default
+        1 000 000).
 
     Returns
     -------
@@ -169,11 +207,14 @@ def simulate_stick_slip(source, t_end: float, **options: Any) -> Trajectory:
 
     Parameters
     ----------
-    source : a model file, a `Model`, or its equations, whose contact has ``regularization = 0``.
-    t_end, **options : as for `simulate` (``dt`` and ``gauss-legendre`` are refused: the phases end
-        at events, not on a fixed grid); ``stabilization``, ``baumgarte``: the drift control of
-        the stuck phases; for this route only, ``max_switches``: the most phases a run may have
-        (default 100 000).
+    source : str or Path or Model or EquationsOfMotion
+        A model file, a `Model`, or its equations, whose contact has ``regularization = 0``.
+    t_end : float
+        The end of the time span.
+    **options
+        As for `simulate` (``dt`` and ``gauss-legendre`` are refused: the phases end at events, not
+        on a fixed grid); ``stabilization``, ``baumgarte``: the drift control of the stuck phases;
+        for this route only, ``max_switches``: the most phases a run may have (default 100 000).
 
     Returns
     -------

@@ -79,18 +79,41 @@ def _ptr(a: np.ndarray) -> int:
 class CompiledSystem:
     """Numeric M, F, q̈, monitors and events of one model (see the module docstring).
 
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+    integrals : sequence of FirstIntegral, optional
+        The first integrals to monitor; None: those `first_integrals` finds for the inputs' regimes.
+    events : sequence of (str, SymEngine expression), optional
+        (name, g) pairs; an event occurs where g(t, q, q̇) changes sign.
+    backend : {"auto", "c", "symengine"}, optional
+        Compiled C (when a compiler exists, "auto") or SymEngine's evaluation.
+    inputs : dict or Feedback or InputLaw, optional
+        The inputs' law compiled in, as `simulate` takes it; None: the model's ``[controls]``.
+    constant_inputs : sequence of str, optional
+        Inputs held at a value other than 0 by the parameters (so that their integrals are those of
+        a constant input).
+
     Attributes
     ----------
-    eom : the equations it was generated from.
-    n : number of coordinates; states are y = (q, q̇), shape (2n,) or (N, 2n).
-    coordinates, parameters, monitors, events : names, in array order.
-    integrals : the first integrals among the monitors.
-    backend : ``"c"`` or ``"symengine"``.
-    law : the inputs' `InputLaw` (`_inputs`); ``inputs`` the names of the inputs it drives, in
-        the order of `input_values`' columns.
-    regime : each declared input's regime (``"off"``, ``"constant"``, ``"varying"``) the
-        integrals were found for; ``constant_inputs`` names inputs held at a value other than 0
-        by the parameters (so that their integrals are those of a constant input).
+    eom : EquationsOfMotion
+        The equations it was generated from.
+    n : int
+        The number of coordinates; states are y = (q, q̇), shape (2n,) or (N, 2n).
+    coordinates, parameters, monitors, events : tuple of str
+        Names, in array order.
+    integrals : tuple of FirstIntegral
+        The first integrals among the monitors.
+    backend : str
+        ``"c"`` or ``"symengine"``.
+    law : InputLaw
+        The inputs' law (`_inputs`).
+    inputs : tuple of str
+        The names of the inputs it drives, in the order of `input_values`' columns.
+    regime : dict of str to str
+        Each declared input's regime (``"off"``, ``"constant"``, ``"varying"``) the integrals were
+        found for.
     """
 
     def __init__(self, eom: EquationsOfMotion, *, integrals: Sequence | None = None,
@@ -197,8 +220,7 @@ class CompiledSystem:
 
     @property
     def generated(self) -> GeneratedSource | None:
-        """The generated C of the library (`codegen.GeneratedSource`: source, units, key); None with the
-        SymEngine backend.
+        """The generated C of the library (`codegen.GeneratedSource`: source, units, key); None with SymEngine.
 
         When the system came from its plan (`_plans`), the C is generated again on first use, from
         these equations: the same functions as the library's, their subexpressions numbered alike,
@@ -218,6 +240,16 @@ class CompiledSystem:
     # -- parameter values -------------------------------------------------------------
     def parameter_vector(self, values: Mapping[str, float] | None = None) -> np.ndarray:
         """The ``p`` array: the model's values, overridden by ``values``.
+
+        Parameters
+        ----------
+        values : mapping of str to float, optional
+            Parameter values by name.
+
+        Returns
+        -------
+        ndarray
+            The parameter vector.
 
         Raises
         ------
@@ -266,8 +298,19 @@ class CompiledSystem:
         return out
 
     def law_block(self, p: np.ndarray) -> np.ndarray:
-        """The inputs' law's numbers in ``p`` (a view: its hint, ``[0]``, may be written); without C, the
-        hint alone (the law's numbers are in the law)."""
+        """The inputs' law's numbers in ``p``.
+
+        Parameters
+        ----------
+        p : ndarray
+            The parameter vector.
+
+        Returns
+        -------
+        ndarray
+            A view: its hint, ``[0]``, may be written; without C, the hint alone (the law's numbers are
+            in the law).
+        """
         if self._lib is None:
             return self._hint
         start = len(self.parameters) + self._constants
@@ -278,7 +321,22 @@ class CompiledSystem:
         return self._law_python(T, Y, p, None if np.isnan(hint) else hint)
 
     def input_values(self, t, y, p: np.ndarray) -> np.ndarray:
-        """The driven inputs (`inputs`) at each state: shape (N, len(inputs)), as the compiled law gives them."""
+        """The driven inputs (`inputs`) at each state: shape (N, len(inputs)), as the compiled law gives them.
+
+        Parameters
+        ----------
+        t : float or ndarray of shape (N,)
+            The time(s).
+        y : ndarray of shape (2n,) or (N, 2n)
+            The state(s) (q, q̇).
+        p : ndarray
+            The parameter vector.
+
+        Returns
+        -------
+        ndarray of shape (N, len(inputs))
+            The driven inputs, as the compiled law gives them.
+        """
         T, Y, single = self._batch(t, y, 2 * self.n)
         k = len(self.inputs)
         if not k:
@@ -316,7 +374,21 @@ class CompiledSystem:
         return T, Y, single
 
     def rhs(self, t, y, p: np.ndarray) -> np.ndarray:
-        """ẏ = (q̇, q̈) with q̈ solved from M q̈ = F; y of shape (2n,) or (N, 2n).
+        """The derivative ẏ = (q̇, q̈) with q̈ solved from M q̈ = F.
+
+        Parameters
+        ----------
+        t : float or ndarray of shape (N,)
+            The time(s).
+        y : ndarray of shape (2n,) or (N, 2n)
+            The state(s) (q, q̇).
+        p : ndarray
+            The parameter vector.
+
+        Returns
+        -------
+        ndarray
+            The derivative ẏ, of the shape of ``y``.
 
         Raises
         ------
@@ -342,12 +414,28 @@ class CompiledSystem:
         return out[0] if single else out
 
     def rhs_c(self, t: float, y: np.ndarray, p: np.ndarray, out: np.ndarray) -> int:
-        """One state, no allocation: ``out`` ← ẏ; returns the C status (0 = fine, 1 = M singular).
+        """One state, no allocation: ``out`` ← ẏ.
 
         For tight loops and benchmarks; arrays must be contiguous float64 and ``p`` the
         `parameter_vector`.  Where the `_fastcall` extension builds (the usual case), this
         method is replaced on the instance by its vectorcall wrapper, which also checks the
         arrays' type and length; this ctypes version is the fallback.
+
+        Parameters
+        ----------
+        t : float
+            The time.
+        y : ndarray of shape (2n,)
+            The state.
+        p : ndarray
+            The parameter vector.
+        out : ndarray of shape (2n,)
+            Receives ẏ.
+
+        Returns
+        -------
+        int
+            The C status: 0 = fine, 1 = M singular.
         """
         self._t1[0] = t
         return self._lib.lg_eval_rhs(1, _ptr(self._t1), _ptr(y), _ptr(p), _ptr(out))
@@ -358,6 +446,16 @@ class CompiledSystem:
         ``solve_ivp(f, (0, 10), y0, method="Radau", jac=f.jac)``; y = (q, q̇) in `coordinates`
         order, ``parameters`` override the model's values.  Each call returns a new array
         (never a reused buffer).  See `lagrangian.numerics._scipy_rhs.RhsFunction`.
+
+        Parameters
+        ----------
+        parameters : mapping of str to float, optional
+            Override the model's values.
+
+        Returns
+        -------
+        RhsFunction
+            ``f(t, y)``, with ``f.jac``.
 
         Raises
         ------
@@ -370,7 +468,24 @@ class CompiledSystem:
         return RhsFunction(self, parameters)
 
     def mass_forces(self, t, y, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """M (N, n, n) and F (N, n) at each state (no leading axis for a single state)."""
+        """M (N, n, n) and F (N, n) at each state (no leading axis for a single state).
+
+        Parameters
+        ----------
+        t : float or ndarray of shape (N,)
+            The time(s).
+        y : ndarray of shape (2n,) or (N, 2n)
+            The state(s) (q, q̇).
+        p : ndarray
+            The parameter vector.
+
+        Returns
+        -------
+        M : ndarray of shape (N, n, n)
+            The mass matrix (no leading axis for a single state).
+        F : ndarray of shape (N, n)
+            The right side.
+        """
         T, Y, single = self._batch(t, y, 2 * self.n)
         n = self.n
         if self._lib is not None:
@@ -384,11 +499,41 @@ class CompiledSystem:
         return (M[0], F[0]) if single else (M, F)
 
     def monitor_values(self, t, y, p: np.ndarray) -> np.ndarray:
-        """Monitors (first integrals, T, U) at each state: shape (N, len(monitors))."""
+        """The monitors (first integrals, T, U) at each state.
+
+        Parameters
+        ----------
+        t : float or ndarray of shape (N,)
+            The time(s).
+        y : ndarray of shape (2n,) or (N, 2n)
+            The state(s) (q, q̇).
+        p : ndarray
+            The parameter vector.
+
+        Returns
+        -------
+        ndarray of shape (N, len(monitors))
+            Their values.
+        """
         return self._eval_many(t, y, p, "lg_eval_monitors", len(self.monitors), "_se_mon")
 
     def event_values(self, t, y, p: np.ndarray) -> np.ndarray:
-        """Event functions at each state: shape (N, len(events))."""
+        """Event functions at each state: shape (N, len(events)).
+
+        Parameters
+        ----------
+        t : float or ndarray of shape (N,)
+            The time(s).
+        y : ndarray of shape (2n,) or (N, 2n)
+            The state(s) (q, q̇).
+        p : ndarray
+            The parameter vector.
+
+        Returns
+        -------
+        ndarray of shape (N, len(events))
+            The event functions' values.
+        """
         return self._eval_many(t, y, p, "lg_eval_events", len(self.events), "_se_ev")
 
     def _eval_many(self, t, y, p, c_name: str, width: int, se_name: str) -> np.ndarray:
@@ -438,9 +583,23 @@ def _rhs_failure(status: int, T: np.ndarray, Y: np.ndarray) -> SimulationError:
 
 def compile_system(eom: EquationsOfMotion, *, events: Sequence[tuple[str, se.Basic]] = (),
                    backend: str = "auto", inputs=None) -> CompiledSystem:
-    """`CompiledSystem` of ``eom`` (compiled C when a compiler exists, else SymEngine).
+    """The `CompiledSystem` of ``eom`` (compiled C when a compiler exists, else SymEngine).
 
-    ``inputs``: the inputs' law compiled in (a dict by input name or a `Feedback`, as `simulate`
-    takes it); None: the model's ``[controls]``, if any.
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+    events : sequence of (str, SymEngine expression), optional
+        (name, g) pairs; an event occurs where g(t, q, q̇) changes sign.
+    backend : {"auto", "c", "symengine"}, optional
+        Compiled C (when a compiler exists, "auto") or SymEngine's evaluation.
+    inputs : dict or Feedback, optional
+        The inputs' law compiled in (a dict by input name or a `Feedback`, as `simulate` takes it);
+        None: the model's ``[controls]``, if any.
+
+    Returns
+    -------
+    CompiledSystem
+        The numeric system.
     """
     return CompiledSystem(eom, events=events, backend=backend, inputs=inputs)

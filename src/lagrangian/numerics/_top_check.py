@@ -25,6 +25,15 @@ class SimulationCheck:
 
     ``rows``: (name, analysis value, simulated values, largest difference, unit);
     ``t_end``: the simulated time; ``note``: why nothing could be compared, if so.
+
+    Parameters
+    ----------
+    rows : tuple of (str, float, tuple of float, float, str)
+        (name, analysis value, simulated values, largest difference, unit).
+    t_end : float
+        The simulated time.
+    note : str
+        Why nothing could be compared, if so.
     """
 
     rows: tuple[tuple[str, float, tuple[float, ...], float, str], ...]
@@ -40,6 +49,22 @@ def simulation_check(eom: EquationsOfMotion, an: TopAnalysis, *, periods: float 
     θ2), located by the integrator's dense output; the period is the time between two
     θ1's; the mean precession is the precession angle gained over one period divided by it.
     Independent of the analysis: nothing but the equations of motion and the initial state.
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+    an : TopAnalysis
+        The analysis to compare with.
+    periods : float, optional
+        How many nutation periods to simulate.
+    rtol : float, optional
+        The integrator's tolerances.
+
+    Returns
+    -------
+    SimulationCheck
+        The two sets of numbers, side by side.
     """
     red = an.reduction
     nut = an.nutation

@@ -87,7 +87,19 @@ def conservation(monitors: Mapping[str, np.ndarray], integrals: Sequence[str], *
 
 @dataclass(frozen=True)
 class Event:
-    """One occurrence of an event: its name, its time and the state (q, q̇) there."""
+    """One occurrence of an event: its name, its time and the state (q, q̇) there.
+
+    Parameters
+    ----------
+    name : str
+        The event's name.
+    t : float
+        Its time.
+    q : ndarray of shape (n,)
+        The coordinates there.
+    qd : ndarray of shape (n,)
+        The rates there.
+    """
 
     name: str
     t: float
@@ -99,22 +111,60 @@ class Event:
 class Trajectory:
     """A simulated motion (see the module docstring for the layout).
 
-    Attributes
+    Parameters
     ----------
-    coordinates : names of q_1..q_n, in the model's order.
-    parameters : the parameter values used.
-    method : the integrator, e.g. ``"dop853"``.
-    steps, rhs_calls : accepted steps and right-hand-side evaluations.
-    integrals : names of the monitors that are first integrals (their drift is reported).
-    tolerance : the drift tolerance (asked for, or the method's default); `warnings` lists the
-        integrals that exceeded it.
-    events : the events that occurred, in time order.
-    conditioning : the smallest relative pivot of M met during the run (1 for a diagonal
-        M, 0 at a singular configuration); below 1e-6 a warning says accuracy may be lost.
-    extra : further columns (reactions, multipliers), name → shape (N,).
-    scales : the scale S of each first integral's drift (module docstring).
-    range_exits : where the motion left a declared range ``range = [a, b]`` of a coordinate, or
-        broke a sign the derivation simplified with (`lagrangian.numerics._ranges`).
+    model_name : str
+        The model's name.
+    coordinates : tuple of str
+        The names of q_1..q_n, in the model's order.
+    parameters : mapping of str to float
+        The parameter values used.
+    t : ndarray of shape (N,)
+        The output times.
+    q : ndarray of shape (N, n)
+        The coordinates q_i at each output.
+    qd : ndarray of shape (N, n)
+        The rates q̇_i at each output.
+    qdd : ndarray of shape (N, n)
+        The accelerations q̈_i at each output, from M q̈ = F.
+    monitors : mapping of str to ndarray
+        Name → shape (N,): every first integral of the model and ``T``, ``U``.
+    integrals : tuple of str
+        The names of the monitors that are first integrals (their drift is reported).
+    drift : mapping of str to float
+        The relative drift max|I(t) − I(t0)| / S of each first integral.
+    method : str
+        The integrator, e.g. ``"dop853"``.
+    steps : int
+        Accepted steps.
+    rhs_calls : int
+        Right-hand-side evaluations.
+    tolerance : float, optional
+        The drift tolerance (asked for, or the method's default); `warnings` lists the integrals that
+        exceeded it.
+    warnings : tuple of str
+        What the run warns about.
+    events : tuple of Event
+        The events that occurred, in time order.
+    status : str
+        ``"completed"``, or why the run stopped.
+    conditioning : float
+        The smallest relative pivot of M met during the run (1 for a diagonal M, 0 at a singular
+        configuration); below 1e-6 a warning says accuracy may be lost.
+    extra : mapping of str to ndarray
+        Further columns (reactions, multipliers), name → shape (N,).
+    scales : mapping of str to float
+        The scale S of each first integral's drift (module docstring).
+    range_exits : tuple of RangeExit
+        Where the motion left a declared coordinate range or broke a sign the derivation used
+        (`lagrangian.numerics._ranges.RangeExit`), each also in `warnings`.
+    sensitivity_names : tuple of str
+        The parameters and initial values (``"theta(t0)"``) whose sensitivities are in `extra`
+        (``simulate(..., sensitivities=...)``), in the order asked.
+    quaternion_drift : mapping of str to float
+        For a model with free bodies (integrated on unit quaternions, `numerics._free_simulate`):
+        body → the largest ``|1 − |e||`` of its quaternion e met along the run, before each
+        projection back on ``|e| = 1``.
     """
 
     model_name: str
@@ -137,14 +187,8 @@ class Trajectory:
     conditioning: float = 1.0
     extra: Mapping[str, np.ndarray] = field(default_factory=dict)
     scales: Mapping[str, float] = field(default_factory=dict)
-    #: Where the motion left a declared coordinate range or broke a sign the derivation used
-    #: (`lagrangian.numerics._ranges.RangeExit`), each also in `warnings`.
     range_exits: tuple[Any, ...] = ()
-    #: The parameters and initial values (``"theta(t0)"``) whose sensitivities are in `extra`
-    #: (``simulate(..., sensitivities=...)``), in the order asked.
     sensitivity_names: tuple[str, ...] = ()
-    #: For a model with free bodies (integrated on unit quaternions, `numerics._free_simulate`): body →
-    #: the largest ``|1 − |e||`` of its quaternion e met along the run, before each projection back on ``|e| = 1``.
     quaternion_drift: Mapping[str, float] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
@@ -158,8 +202,19 @@ class Trajectory:
         return len(self.t)
 
     def column(self, name: str) -> np.ndarray:
-        """One column by name: ``"t"``, a coordinate ``"theta"``, its rate ``"theta_dot"``,
-        its acceleration ``"theta_ddot"``, or a monitor (``"K"``, ``"E"``, ``"T"``...)."""
+        """One column by name.
+
+        Parameters
+        ----------
+        name : str
+            ``"t"``, a coordinate ``"theta"``, its rate ``"theta_dot"``, its acceleration
+            ``"theta_ddot"``, or a monitor (``"K"``, ``"E"``, ``"T"``...).
+
+        Returns
+        -------
+        ndarray of shape (N,)
+            The column.
+        """
         if name == "t":
             return self.t
         for suffix, array in (("_ddot", self.qdd), ("_dot", self.qd), ("", self.q)):
@@ -174,10 +229,20 @@ class Trajectory:
         raise KeyError(f"no column `{name}`; columns are {', '.join(self.columns())}")
 
     def sensitivity(self, name: str) -> np.ndarray:
-        """∂y(t)/∂x for the parameter or initial value ``name``: shape (N, 2n), y = (q, q̇).
+        """The sensitivity ∂y(t)/∂x for the parameter or initial value ``name``.
 
         Column i is ∂y_i/∂x at each output time, the columns ``d(theta)/d(l)``... of the table
         (``simulate(..., sensitivities=[...])``).
+
+        Parameters
+        ----------
+        name : str
+            A name of `sensitivity_names`.
+
+        Returns
+        -------
+        ndarray of shape (N, 2n)
+            ∂y/∂x, y = (q, q̇).
         """
         if name not in self.sensitivity_names:
             raise KeyError(f"no sensitivity to `{name}`; computed: {', '.join(self.sensitivity_names) or 'none'} "
@@ -186,16 +251,39 @@ class Trajectory:
         return np.column_stack([self.extra[f"d({s})/d({name})"] for s in states])
 
     def columns(self) -> list[str]:
-        """Every column name, in file order."""
+        """Every column name, in file order.
+
+        Returns
+        -------
+        list of str
+            The names.
+        """
         c = self.coordinates
         return ["t", *c, *(f"{x}_dot" for x in c), *(f"{x}_ddot" for x in c), *self.monitors, *self.extra]
 
     def table(self) -> np.ndarray:
-        """All columns as one (N, k) array, in the order of `columns`."""
+        """All columns as one (N, k) array, in the order of `columns`.
+
+        Returns
+        -------
+        ndarray of shape (N, k)
+            The table.
+        """
         return np.column_stack([self.column(name) for name in self.columns()]) + 0.0  # no "-0" in files
 
     def relative_drift(self, name: str) -> np.ndarray:
-        """``|I(t) − I(t0)| / S`` of the first integral ``name`` (module docstring); its maximum is ``drift[name]``."""
+        """The relative drift ``|I(t) − I(t0)| / S`` of the first integral ``name`` (module docstring).
+
+        Parameters
+        ----------
+        name : str
+            A first integral.
+
+        Returns
+        -------
+        ndarray of shape (N,)
+            The drift; its maximum is ``drift[name]``.
+        """
         values = self.monitors[name]
         scale = self.scales[name] if name in self.scales else drift_scale(values)
         return relative_drift(values, scale)
@@ -212,7 +300,13 @@ class Trajectory:
         return render(self, "latex")
 
     def drift_summary(self) -> str:
-        """E.g. ``"E relative drift 3.1e-12, K 1.0e-13, H 0"``."""
+        """The drift of each first integral in a line, e.g. ``"E relative drift 3.1e-12, K 1.0e-13, H 0"``.
+
+        Returns
+        -------
+        str
+            The line.
+        """
         parts = []
         for i, name in enumerate(self.integrals):
             value = self.drift[name]

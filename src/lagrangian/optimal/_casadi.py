@@ -178,11 +178,14 @@ def casadi_expressions(outputs: Sequence[se.Basic], symbols: Mapping[se.Basic, A
 
     Parameters
     ----------
-    outputs : SymEngine expressions (M's entries, F, a cost, a path constraint...).
-    symbols : each free symbol → what it stands for: a ``casadi.SX`` (a decision variable, a
-        parameter to identify) or a number (a known value, folded into the graph).
-    definitions : named intermediates ``(symbol, expression)``, each expression in the symbols of
-        ``symbols`` and of other definitions (a recursive form's, `RecursiveForm.needed`).
+    outputs : sequence of SymEngine expressions
+        M's entries, F, a cost, a path constraint...
+    symbols : mapping of SymEngine expression to object
+        Each free symbol → what it stands for: a ``casadi.SX`` (a decision variable, a parameter to
+        identify) or a number (a known value, folded into the graph).
+    definitions : sequence of (SymEngine Symbol, SymEngine expression), optional
+        Named intermediates ``(symbol, expression)``, each expression in the symbols of ``symbols``
+        and of other definitions (a recursive form's, `RecursiveForm.needed`).
 
     Returns
     -------

@@ -45,6 +45,16 @@ _KEY = re.compile(r"^\s*([A-Za-z0-9_\-]+|\"[^\"]*\")\s*=")
 def load_problem(path: str | Path) -> Problem:
     """Read the problem file at ``path`` (module docstring).
 
+    Parameters
+    ----------
+    path : str or Path
+        The problem file.
+
+    Returns
+    -------
+    Problem
+        The problem it states.
+
     Raises
     ------
     ProblemError

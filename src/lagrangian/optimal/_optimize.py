@@ -61,29 +61,51 @@ def optimize(source: Any, *, t_end: float | str | None = None, t_start: float | 
 
     Parameters
     ----------
-    source : a model file, a `Model`, an `EquationsOfMotion`, or a `Problem` (`load_problem`), whose
+    source : str or Path or Model or EquationsOfMotion or Problem
+        A model file, a `Model`, an `EquationsOfMotion`, or a `Problem` (`load_problem`), whose
         fields the other arguments given here replace (``parameters`` are merged with its own).
-    t_end : the final time, or ``"free"`` (then ``bounds["t_end"]`` bounds it).
-    t_start : the initial time (default 0).
-    initial, final : column → value at t0 and at the final time (numbers, or text such as ``"pi"``);
-        columns are ``x``, ``x_dot``, ``x_ddot``, the inputs and ``lambda_<row>``; a column not named is free.
-    bounds : column (or ``"t_end"``) → ``(low, high)``, None for no bound.
-    objective : ``"effort"`` (∫ Σ u² dt, the default), ``"time"``, or an `Objective` / mapping with
+    t_end : float or str, optional
+        The final time, or ``"free"`` (then ``bounds["t_end"]`` bounds it).
+    t_start : float, optional
+        The initial time (default 0).
+    initial : mapping of str to object, optional
+        Column → value at t0 (numbers, or text such as ``"pi"``); columns are ``x``, ``x_dot``,
+        ``x_ddot``, the inputs and ``lambda_<row>``; a column not named is free.
+    final : mapping of str to object, optional
+        Column → value at the final time, likewise.
+    bounds : mapping of str to (low, high), optional
+        Column (or ``"t_end"``) → ``(low, high)``, None for no bound.
+    objective : str or Objective or mapping, optional
+        ``"effort"`` (∫ Σ u² dt, the default), ``"time"``, or an `Objective` / mapping with
         ``effort``, ``time``, ``running``, ``terminal``, ``track``, ``track_weights``.
-    nodes : the mesh nodes N ≥ 2 (default 50).
-    method : ``"hermite-simpson"`` (default, fourth order), ``"trapezoidal"`` or ``"backward-euler"``.
-    path : path constraints, ``"x^2 + y^2 <= 1"``, ``"-1 <= x <= 1"`` (or expression → (low, high)).
-    parameters : overrides of the model's parameter values.
-    guess : ``"interpolate"`` (default), ``"simulate"``, a `Trajectory` or a mapping column → values
-        (a `Problem`'s own ``guess`` when not given).
-    warm_start : a previous result: its variables and multipliers when the problem has the same layout
+    nodes : int, optional
+        The mesh nodes N ≥ 2 (default 50).
+    method : str, optional
+        ``"hermite-simpson"`` (default, fourth order), ``"trapezoidal"`` or ``"backward-euler"``.
+    path : sequence of str or mapping, optional
+        Path constraints, ``"x^2 + y^2 <= 1"``, ``"-1 <= x <= 1"`` (or expression → (low, high)).
+    parameters : mapping of str to float, optional
+        Overrides of the model's parameter values.
+    guess : str or Trajectory or mapping, optional
+        ``"interpolate"`` (default), ``"simulate"``, a `Trajectory` or a mapping column → values (a
+        `Problem`'s own ``guess`` when not given).
+    warm_start : OptimalTrajectory, optional
+        A previous result: its variables and multipliers when the problem has the same layout
         (scheme, nodes, columns), else its motion as the guess.
-    tolerance, max_iterations, hessian : IPOPT's tol (1e-8), max_iter (3000), and ``"exact"`` (default)
-        or ``"limited-memory"``.
-    t_guess : the first guess of a free duration.
-    verify : replay the optimized inputs through an integrator (`Replay`); a replay error above
-        ``replay_tolerance`` adds a warning.
-    verbose : let IPOPT print its iterations.
+    tolerance : float, optional
+        IPOPT's tol (1e-8).
+    max_iterations : int, optional
+        IPOPT's max_iter (3000).
+    hessian : {"exact", "limited-memory"}, optional
+        ``"exact"`` (default) or ``"limited-memory"``.
+    t_guess : float, optional
+        The first guess of a free duration.
+    verify : bool, optional
+        Replay the optimized inputs through an integrator (`Replay`).
+    replay_tolerance : float, optional
+        A replay error above it adds a warning.
+    verbose : bool, optional
+        Let IPOPT print its iterations.
 
     Returns
     -------

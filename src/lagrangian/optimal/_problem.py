@@ -40,19 +40,25 @@ HESSIANS = ("exact", "limited-memory")
 
 @dataclass(frozen=True)
 class Objective:
-    """J = w_T T + ∫ (Σ w_i u_i² + L + Σ c_j (y_j − r_j(t))²) dt + Φ(final state) (module docstring).
+    """The objective J = w_T T + ∫ (Σ w_i u_i² + L + Σ c_j (y_j − r_j(t))²) dt + Φ(final state) (module docstring).
 
-    Attributes
+    Parameters
     ----------
-    effort : the weight w_i of ∫ u_i² dt: one number for every input, or input name → weight.
-    time : w_T, the weight of the duration T (a free final time).
-    running : L, an expression of t, the coordinates, their rates and accelerations, the inputs
-        and the parameters (text in the model grammar, or a SymEngine expression).
-    terminal : Φ, an expression of the same names at the final time (t is t_f there).
-    track : column name → the reference r_j(t) it should follow: a number, an expression of t
-        (text), a pair ``(times, values)`` of arrays (interpolated linearly) or a `Trajectory`
-        (its column of the same name).
-    track_weights : column name → c_j (default 1 for each tracked column).
+    effort : float or mapping of str to float
+        The weight w_i of ∫ u_i² dt: one number for every input, or input name → weight.
+    time : float
+        The weight w_T of the duration T (a free final time).
+    running : str or SymEngine expression, optional
+        L, an expression of t, the coordinates, their rates and accelerations, the inputs and the
+        parameters (text in the model grammar, or a SymEngine expression).
+    terminal : str or SymEngine expression, optional
+        Φ, an expression of the same names at the final time (t is t_f there).
+    track : mapping of str to object
+        Column name → the reference r_j(t) it should follow: a number, an expression of t (text), a
+        pair ``(times, values)`` of arrays (interpolated linearly) or a `Trajectory` (its column of
+        the same name).
+    track_weights : mapping of str to float
+        Column name → c_j (default 1 for each tracked column).
     """
 
     effort: float | Mapping[str, float] = 0.0
@@ -110,27 +116,47 @@ def objective_of(value: str | Objective | Mapping[str, Any]) -> Objective:
 class Problem:
     """What a user states: the model, the time span, the conditions, the bounds, the objective, the mesh.
 
-    Attributes
+    Parameters
     ----------
-    model : a model file path, a `Model` or an `EquationsOfMotion`.
-    t_end : the final time, or ``"free"`` (then T = t_end − t_start is a decision variable, bounded
-        by ``bounds["t_end"]`` and first guessed as ``t_guess``).
-    t_start : the initial time t0.
-    initial, final : column name → its value at t0 / at the final time: a number, or text in the
-        model grammar of the parameters (``"pi"``, ``"l/2"``).  A column not named is free there.
-    bounds : column name (or ``"t_end"``) → ``(low, high)``; None or ±inf for no bound.
-    objective : an `Objective`, ``"effort"``, ``"time"`` or a mapping of `Objective`'s fields.
-    nodes : N, the number of mesh nodes (N − 1 intervals of equal length), at least 2.
-    method : one of `METHODS`.
-    path : path constraints, each ``"expr <= high"``, ``"low <= expr <= high"``, ``"expr >= low"``
-        or ``"expr == value"`` (text), or a mapping expression → (low, high).
-    parameters : overrides of the model's parameter values.
-    tolerance, max_iterations, hessian : IPOPT's ``tol``, ``max_iter`` and Hessian
-        (``"exact"``, CasADi's exact second derivatives, or ``"limited-memory"``, a quasi-Newton one).
-    t_guess : the first guess of T when it is free.
-    guess : where IPOPT starts, ``"interpolate"`` or ``"simulate"`` (`lagrangian.optimize` also takes a
+    model : str or Path or Model or EquationsOfMotion
+        A model file path, a `Model` or an `EquationsOfMotion`.
+    t_end : float or str
+        The final time, or ``"free"`` (then T = t_end − t_start is a decision variable, bounded by
+        ``bounds["t_end"]`` and first guessed as ``t_guess``).
+    t_start : float
+        The initial time t0.
+    initial : mapping of str to object
+        Column name → its value at t0: a number, or text in the model grammar of the parameters
+        (``"pi"``, ``"l/2"``).  A column not named is free there.
+    final : mapping of str to object
+        Column name → its value at the final time, likewise.
+    bounds : mapping of str to (low, high)
+        Column name (or ``"t_end"``) → ``(low, high)``; None or ±inf for no bound.
+    objective : Objective or str or mapping
+        An `Objective`, ``"effort"``, ``"time"`` or a mapping of `Objective`'s fields.
+    nodes : int
+        N, the number of mesh nodes (N − 1 intervals of equal length), at least 2.
+    method : str
+        One of `METHODS`.
+    path : sequence of str or mapping
+        Path constraints, each ``"expr <= high"``, ``"low <= expr <= high"``, ``"expr >= low"`` or
+        ``"expr == value"`` (text), or a mapping expression → (low, high).
+    parameters : mapping of str to float
+        Overrides of the model's parameter values.
+    tolerance : float
+        IPOPT's ``tol``.
+    max_iterations : int
+        IPOPT's ``max_iter``.
+    hessian : str
+        IPOPT's Hessian: ``"exact"``, CasADi's exact second derivatives, or ``"limited-memory"``, a
+        quasi-Newton one.
+    t_guess : float, optional
+        The first guess of T when it is free.
+    guess : str
+        Where IPOPT starts, ``"interpolate"`` or ``"simulate"`` (`lagrangian.optimize` also takes a
         `Trajectory` or a mapping).
-    source : the problem file this came from (messages name it), or None.
+    source : str, optional
+        The problem file this came from (messages name it), or None.
     """
 
     model: Any

@@ -32,16 +32,24 @@ REPLAY_TOLERANCE = 1e-3
 class Replay:
     """The optimized inputs replayed through an integrator, from the optimum's initial state.
 
-    Attributes
+    Parameters
     ----------
-    t : the mesh nodes' times; ``y`` the replayed state (q, q̇) there, shape (N, 2n).
-    max_error : max over the nodes of ``|y_replayed − y_collocated|∞ / max(1, |y_collocated|∞)``, the whole
+    t : ndarray of shape (N,)
+        The mesh nodes' times.
+    y : ndarray of shape (N, 2n)
+        The replayed state (q, q̇) there.
+    max_error : float
+        Max over the nodes of ``|y_replayed − y_collocated|∞ / max(1, |y_collocated|∞)``, the whole
         span replayed from the initial state (open loop: an unstable motion amplifies any error).
-    final_error : ``|y_replayed(t_f) − y_collocated(t_f)|∞`` (state units): where the inputs really lead.
-    local_error : the same measure with each interval replayed from the optimum's state at its first
-        node: the scheme's own error, not amplified by an instability.
-    tolerance : `REPLAY_TOLERANCE` or the one asked for; ``within`` says whether local_error ≤ tolerance.
-    integrator : what ran it (``"simulate: DOP853 in C, rtol = atol = 1e-10"``) and how the inputs were read
+    final_error : float
+        ``|y_replayed(t_f) − y_collocated(t_f)|∞`` (state units): where the inputs really lead.
+    local_error : float
+        The same measure with each interval replayed from the optimum's state at its first node: the
+        scheme's own error, not amplified by an instability.
+    tolerance : float
+        `REPLAY_TOLERANCE` or the one asked for; ``within`` says whether local_error ≤ tolerance.
+    integrator : str
+        What ran it (``"simulate: DOP853 in C, rtol = atol = 1e-10"``) and how the inputs were read
         between the points (the scheme's `InputTable` kind).
     """
 
@@ -74,22 +82,45 @@ class Replay:
 
 @dataclass(frozen=True)
 class OptimalTrajectory(Trajectory):
-    """An optimal motion (module docstring).  Beyond `Trajectory`'s fields:
+    """An optimal motion (module docstring): a `Trajectory` with the optimization's own fields.
 
-    Attributes
+    Parameters
     ----------
-    inputs : the input names (each a column).
-    objective : J at the optimum.
-    success : IPOPT converged (``status == "optimal"``).
-    solver_status : IPOPT's return status; ``status`` is ours (``optimal``, ``acceptable``, ``infeasible``,
-        ``interrupted``, ``max_iterations``, ``failed``) and ``message`` says what it means.
-    iterations : IPOPT's iterations.
-    violation : the largest violation of a constraint or a bound (≤ the tolerance at an optimum).
-    nodes, t_end, free_time : the mesh (N nodes), the final time (chosen when free).
-    node_rows : the indices of the rows that are mesh nodes.
-    hessian, solver : the Hessian mode and the IPOPT build.
-    seconds : ``{"transcribe", "setup", "solve", "replay"}`` wall times.
-    replay : the `Replay`, or None when it was not run (``verify=False``, or no optimum).
+    model_name, coordinates, parameters, t, q, qd, qdd, monitors, integrals, drift, method, steps, rhs_calls, tolerance, warnings, events, status, conditioning, extra, scales, range_exits, sensitivity_names, quaternion_drift : as in Trajectory
+        `Trajectory`'s fields; ``status`` is ours (``optimal``, ``acceptable``, ``infeasible``,
+        ``interrupted``, ``max_iterations``, ``failed``).
+    inputs : tuple of str
+        The input names (each a column).
+    objective : float
+        J at the optimum.
+    success : bool
+        IPOPT converged (``status == "optimal"``).
+    solver_status : str
+        IPOPT's return status.
+    message : str
+        What ``status`` means.
+    iterations : int
+        IPOPT's iterations.
+    violation : float
+        The largest violation of a constraint or a bound (≤ the tolerance at an optimum).
+    nodes : int
+        The mesh's N nodes.
+    t_end : float
+        The final time (chosen when free).
+    free_time : bool
+        Whether the final time was free.
+    node_rows : ndarray of int
+        The indices of the rows that are mesh nodes.
+    hessian : str
+        The Hessian mode.
+    solver : str
+        The IPOPT build.
+    seconds : mapping of str to float
+        ``{"transcribe", "setup", "solve", "replay"}`` wall times.
+    replay : Replay, optional
+        The `Replay`, or None when it was not run (``verify=False``, or no optimum).
+    solution : mapping of str to object
+        The raw solution (primal, multipliers) and the layout it belongs to, for a warm start.
     """
 
     inputs: tuple[str, ...] = ()
@@ -107,26 +138,53 @@ class OptimalTrajectory(Trajectory):
     solver: str = ""
     seconds: Mapping[str, float] = field(default_factory=dict)
     replay: Replay | None = None
-    #: The raw solution (primal, multipliers) and the layout it belongs to, for a warm start.
     solution: Mapping[str, Any] = field(default_factory=dict, repr=False, compare=False)
 
     def input(self, name: str) -> np.ndarray:
-        """u(t) of the input ``name`` at every row (the same as ``column(name)``)."""
+        """The input u(t) of the input ``name`` at every row (the same as ``column(name)``).
+
+        Parameters
+        ----------
+        name : str
+            An input.
+
+        Returns
+        -------
+        ndarray of shape (N,)
+            Its values.
+        """
         return self.column(name)
 
     def input_table(self, name: str) -> InputTable:
-        """The input ``name`` between the collocation points as the scheme stands for it, an `InputTable`
-        that `simulate` reads (``"quadratic"`` for Hermite–Simpson, ``"linear"`` for trapezoidal, a
-        ``"zoh"`` of the right values for backward Euler): what the replay runs.
+        """The input ``name`` between the collocation points as the scheme stands for it: what the replay runs.
+
+        An `InputTable` that `simulate` reads (``"quadratic"`` for Hermite–Simpson, ``"linear"`` for
+        trapezoidal, a ``"zoh"`` of the right values for backward Euler).
 
         >>> # simulate(eom, 6.0, initial=..., inputs={"F": Switch(best.input_table("F"), feedback, at=2.0)})
+
+        Parameters
+        ----------
+        name : str
+            An input.
+
+        Returns
+        -------
+        InputTable
+            The table.
         """
         if name not in self.inputs:
             raise KeyError(f"`{name}` is not an input of this optimum (its inputs: {', '.join(self.inputs)})")
         return scheme(self.method).input_table(self.t, self.column(name))
 
     def summary(self) -> str:
-        """A few lines: status, objective, iterations, violation, replay."""
+        """A few lines: status, objective, iterations, violation, replay.
+
+        Returns
+        -------
+        str
+            The lines.
+        """
         lines = [f"{self.model_name}: {self.method}, {self.nodes} nodes, t from {self.t[0]:g} to {self.t[-1]:g}"
                  + (" (free final time)" if self.free_time else ""),
                  f"status: {self.status} — {self.message}",

@@ -39,7 +39,7 @@ def _from_engine(e: se.Basic) -> sympy.Basic:
 
 
 def to_sympy(e: se.Basic) -> sympy.Basic:
-    """SymEngine → SymPy (a structural conversion; no text is parsed), in its shortest form.
+    """Convert SymEngine → SymPy (a structural conversion; no text is parsed), in its shortest form.
 
     The derivation's own form is kept unless expanding and applying the trigonometric
     identities gives a strictly shorter expression: the seed's ½A(θ̇² + ψ̇² sin²θ) stays,
@@ -49,6 +49,16 @@ def to_sympy(e: se.Basic) -> sympy.Basic:
     m l² θ̈ − m l a ν² cos(ν t) sinθ.  Only small expressions get SymPy's expansion
     (`TIDY_MAX_OPS`): simplification only where it pays.  ``√(a²)`` is written ``|a|``, and ``a/|a|``
     ``sgn(a)``: exact Coulomb friction's −f N ẋ/√(ẋ²) prints as −f N sgn(ẋ) (`_signs`).
+
+    Parameters
+    ----------
+    e : SymEngine expression
+        The engine's expression.
+
+    Returns
+    -------
+    SymPy expression
+        The same value, in the shorter of its forms.
     """
     expr = _from_engine(e)
     ops = sympy.count_ops(expr)
@@ -194,7 +204,48 @@ class IntegralRow:
 
 @dataclass(frozen=True, slots=True)
 class CourseForm:
-    """Every step of the derivation, ready to print."""
+    """Every step of the derivation, ready to print.
+
+    Parameters
+    ----------
+    title : str
+        The model's title.
+    description : str
+        Its description.
+    coordinates : tuple of str
+        The coordinates, in order.
+    parameters : tuple of str
+        The parameters, in declaration order.
+    frames : tuple of FrameStep
+        The frames and their angular velocities.
+    virtual_velocities : tuple of (str, VectorRow)
+        V*(P) at the points that carry loads.
+    T : tuple of EnergyRow
+        T of each body and particle.
+    T_total : SymPy expression
+        T(Σ/R0).
+    U : tuple of EnergyRow
+        The potential of each conservative load.
+    U_total : SymPy expression
+        U_P(Σ/R0).
+    loads : tuple of LoadRow
+        The generalized forces of each load, by virtual power.
+    conservative : bool
+        Every given effort derives from a potential (Remarque 2).
+    L : SymPy expression or None
+        The Lagrangian T − U when conservative.
+    equations : tuple of EquationRow
+        The Lagrange equations L(q_i).
+    integrals : tuple of IntegralRow
+        The first integrals.
+    M : tuple of tuples of SymPy expressions
+        The mass matrix of M q̈ = F.
+    F : tuple of SymPy expressions
+        The right side F.
+    reference : str
+        The frame the equations are written in, as labels print it: T(Σ/R), Ω(F/R) (R0, or the
+        model's [reference] frame, with its origin when it is not O: ``R0(A)``).
+    """
 
     title: str
     description: str
@@ -213,13 +264,22 @@ class CourseForm:
     integrals: tuple[IntegralRow, ...]
     M: tuple[tuple[sympy.Basic, ...], ...]
     F: tuple[sympy.Basic, ...]
-    #: The frame the equations are written in, as labels print it: T(Σ/R), Ω(F/R) (R0, or the
-    #: model's [reference] frame, with its origin when it is not O: ``R0(A)``).
     reference: str = GALILEAN_FRAME
 
 
 def reference_label(model) -> str:
-    """The name of the frame the equations of ``model`` are written in: R0, R1, or ``R0(A)`` (origin A ≠ O)."""
+    """The name of the frame the equations of ``model`` are written in: R0, R1, or ``R0(A)`` (origin A ≠ O).
+
+    Parameters
+    ----------
+    model : Model
+        The model.
+
+    Returns
+    -------
+    str
+        R0, R1, or ``R0(A)`` (origin A ≠ O).
+    """
     ref = model.reference
     if ref is None or ref.is_galilean_frame:
         return GALILEAN_FRAME
@@ -273,6 +333,23 @@ def course_form(eom: EquationsOfMotion, integrals: tuple[FirstIntegral, ...], *,
     (`to_sympy` by default).  The report passes one that stands a summary in for an
     expression too long to print (`lagrangian.output._report.size`), so that a 40-link
     chain is collected in a fraction of a second rather than converted in full.
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+    integrals : tuple of FirstIntegral
+        The first integrals to list.
+    convert : callable, optional
+        Turns each engine expression into the SymPy expression that is printed (`to_sympy` by
+        default).  The report passes one that stands a summary in for an expression too long to
+        print (`lagrangian.output._report.size`), so that a 40-link chain is collected in a fraction
+        of a second rather than converted in full.
+
+    Returns
+    -------
+    CourseForm
+        Every step of the derivation.
     """
     model = eom.model
     kin = eom.kinematics

@@ -34,16 +34,27 @@ _RELATIONS = {sympy.StrictGreaterThan: ">", sympy.GreaterThan: "≥", sympy.Stri
 
 def equilibria_text(eom: EquationsOfMotion, found: Equilibria, verdicts: Sequence[Verdict] | None = None, *,
                     absent: Sequence[Equilibrium] = ()) -> str:
-    """What ``lagrangian equilibria`` prints: the rests ``found`` by `lagrangian.analysis.equilibria`, and where
-    it searched.
+    """What ``lagrangian equilibria`` prints: the rests ``found`` by `lagrangian.analysis.equilibria`.
+
+    And where it searched.
 
     Parameters
     ----------
-    eom : the equations the rests are of (their coordinates and parameters name the symbols).
-    found : from `lagrangian.analysis.equilibria`.
-    verdicts : each rest's `Verdict`, in the order of ``found`` (the CLI's from `linearize`); None: none shown.
-    absent : closed-form rests whose condition of existence does not hold at these values, each written with
-        its condition (``equilibria(..., all_branches=True)`` those with ``exists is False``).
+    eom : EquationsOfMotion
+        The equations the rests are of (their coordinates and parameters name the symbols).
+    found : Equilibria
+        From `lagrangian.analysis.equilibria`.
+    verdicts : sequence of Verdict, optional
+        Each rest's `Verdict`, in the order of ``found`` (the CLI's from `linearize`); None: none
+        shown.
+    absent : sequence of Equilibrium, optional
+        Closed-form rests whose condition of existence does not hold at these values, each written
+        with its condition (``equilibria(..., all_branches=True)`` those with ``exists is False``).
+
+    Returns
+    -------
+    str
+        The text.
 
     Examples
     --------

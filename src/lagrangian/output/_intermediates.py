@@ -22,12 +22,34 @@ __all__ = ["needed_intermediates", "render_intermediates"]
 
 
 def needed_intermediates(rec: RecursiveForm) -> list[tuple[se.Symbol, se.Basic]]:
-    """The intermediates T, U, M and F need, in computing order (the gradient's are left out)."""
+    """The intermediates T, U, M and F need, in computing order (the gradient's are left out).
+
+    Parameters
+    ----------
+    rec : RecursiveForm
+        The recursive form.
+
+    Returns
+    -------
+    list of (SymEngine Symbol, SymEngine expression)
+        The intermediates, in computing order.
+    """
     return rec.needed([rec.T, rec.U, *(e for row in rec.M for e in row), *rec.F])
 
 
 def render_intermediates(eom: EquationsOfMotion) -> str:
-    """T, U, M and F over the intermediates of ``eom.recursive``, then the intermediates (module docstring)."""
+    """T, U, M and F over the intermediates of ``eom.recursive``, then the intermediates (module docstring).
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        Equations with a recursive form.
+
+    Returns
+    -------
+    str
+        The text.
+    """
     rec = eom.recursive
     assert rec is not None, "a recursive form is needed"
     model = eom.model

@@ -42,6 +42,29 @@ def derive_document(form: CourseForm, *, parameters: dict[str, float | None],
     ``multipliers``, ``multiplier_terms`` and ``multiplier_formulas`` are added
     (`_constraints_json`); ``reference`` when the equations are written in a non-Galilean
     frame; ``energy_balance`` when no energy (or Jacobi) integral holds.
+
+    Parameters
+    ----------
+    form : CourseForm
+        The derivation.
+    parameters : dict of str to float or None
+        The parameter values.
+    initial : dict of str to dict of str to float or None
+        The initial values and rates, by coordinate.
+    source : str or None
+        The model file.
+    package_version : str
+        ``lagrangian.__version__``.
+    eom : EquationsOfMotion, optional
+        With a model that declares constraints, the optional keys ``constraints``,
+        ``multipliers``, ``multiplier_terms`` and ``multiplier_formulas`` are added
+        (`_constraints_json`); ``reference`` when the equations are written in a non-Galilean
+        frame; ``energy_balance`` when no energy (or Jacobi) integral holds.
+
+    Returns
+    -------
+    dict of str to object
+        The JSON object.
     """
     q = list(form.coordinates)
     doc = {

@@ -117,6 +117,18 @@ def render_latex(form: CourseForm, extra: Supplement | None = None) -> str:
     and their angular velocities (`_frames_latex`), the virtual velocities, T and U (`_energies_latex`), the
     generalized forces by virtual power (`_forces_latex`), the Lagrange equations (`_equations_latex`), the
     first integrals (`_integrals_latex`) and the matrix form M q̈ = F (`_matrix_latex`).
+
+    Parameters
+    ----------
+    form : CourseForm
+        The derivation.
+    extra : Supplement, optional
+        Adds steps 1 and 7 and the energy balance.
+
+    Returns
+    -------
+    str
+        The LaTeX document.
     """
     n = notation(form)
     out = _statement_latex(n, form, extra)

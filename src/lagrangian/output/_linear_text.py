@@ -94,14 +94,24 @@ def _vector(n: Notation, names: Sequence[str], prefix: str = "δ") -> str:
 
 
 def linear_text(lin: LinearModel, stability: Stability | None = None, modes: Modes | None = None) -> str:
-    """What ``lagrangian linearize`` prints: the linearized equations about the point, and the eigenvalues and
-    the verdict when no parameter is left symbolic.
+    """What ``lagrangian linearize`` prints: the linearized equations about the point, eigenvalues, verdict.
+
+    The eigenvalues and the verdict are shown when no parameter is left symbolic.
 
     Parameters
     ----------
-    lin : from `lagrangian.linearize`.
-    stability, modes : ``lin.stability()`` and ``lin.modes()``, computed here when not given and ``lin``
-        has no symbol left (with symbols left, the text says which values to give).
+    lin : LinearModel
+        From `lagrangian.linearize`.
+    stability : Stability, optional
+        ``lin.stability()``, computed here when not given and ``lin`` has no symbol left (with
+        symbols left, the text says which values to give).
+    modes : Modes, optional
+        ``lin.modes()``, likewise.
+
+    Returns
+    -------
+    str
+        The text.
 
     Examples
     --------
@@ -209,14 +219,25 @@ def _eigen_list(lam: np.ndarray) -> str:
 
 def modes_text(lin: LinearModel, stability: Stability | None = None, modes: Modes | None = None,
                **values: float) -> str:
-    """What ``lagrangian modes`` prints: the essential eigenvalues with ω, T, ζ and mode shapes; the
-    conservative pulsations; the verdict.
+    """What ``lagrangian modes`` prints: the essential modes, the conservative pulsations, the verdict.
+
+    The essential eigenvalues come with ω, T, ζ and mode shapes.
 
     Parameters
     ----------
-    lin : from `lagrangian.linearize`.
-    stability, modes : ``lin.stability(**values)`` and ``lin.modes(**values)``, computed here when not given.
-    **values : the parameters ``lin`` keeps symbolic, when ``stability`` or ``modes`` is computed here.
+    lin : LinearModel
+        From `lagrangian.linearize`.
+    stability : Stability, optional
+        ``lin.stability(**values)``, computed here when not given.
+    modes : Modes, optional
+        ``lin.modes(**values)``, computed here when not given.
+    **values : float
+        The parameters ``lin`` keeps symbolic, when ``stability`` or ``modes`` is computed here.
+
+    Returns
+    -------
+    str
+        The text.
     """
     stability = lin.stability(**values) if stability is None else stability
     modes = lin.modes(**values) if modes is None else modes
@@ -281,8 +302,22 @@ _CHANGES = {"stability lost": "stability lost (an eigenvalue crosses into Re λ 
 
 
 def sweep_text(lin: LinearModel, sweep: Sweep, unit: str = "") -> str:
-    """What ``lagrangian modes --sweep`` adds: where stability changes along the sweep
-    (`lagrangian.analysis.eigenvalue_sweep`), and the ranges of each verdict; ``unit`` is the parameter's."""
+    """What ``lagrangian modes --sweep`` adds: where stability changes along the sweep, and each verdict's ranges.
+
+    Parameters
+    ----------
+    lin : LinearModel
+        The linearization swept.
+    sweep : Sweep
+        From `lagrangian.analysis.eigenvalue_sweep`.
+    unit : str, optional
+        The parameter's unit.
+
+    Returns
+    -------
+    str
+        The text.
+    """
     n = _notation(lin)
     p = n.symbol(sweep.parameter)
     values = np.asarray(sweep.values, dtype=float)

@@ -81,14 +81,26 @@ def linearize_document(lin: Any, *, source: str | None, package_version: str,
 
     Parameters
     ----------
-    lin : a `lagrangian.analysis.LinearModel`.
-    source : the model file (or None).
-    package_version : ``lagrangian.__version__``.
-    stability, modes : `Stability` and `Modes` of ``lin`` (computed when None and ``lin`` has no
-        symbols left).
-    sweep : a `Sweep` (``modes --sweep``): adds the key ``sweep``.
-    modes_at : the values of the symbols at which ``stability`` and ``modes`` were computed (a
-        sweep's parameter at the model's value): adds the key ``modes_at``.
+    lin : LinearModel
+        A `lagrangian.analysis.LinearModel`.
+    source : str or None
+        The model file.
+    package_version : str
+        ``lagrangian.__version__``.
+    stability : Stability, optional
+        `Stability` of ``lin`` (computed when None and ``lin`` has no symbols left).
+    modes : Modes, optional
+        `Modes` of ``lin``, likewise.
+    sweep : Sweep, optional
+        A `Sweep` (``modes --sweep``): adds the key ``sweep``.
+    modes_at : dict of str to float, optional
+        The values of the symbols at which ``stability`` and ``modes`` were computed (a sweep's
+        parameter at the model's value): adds the key ``modes_at``.
+
+    Returns
+    -------
+    dict of str to object
+        The JSON object.
     """
     numeric = not lin.symbols
     model = lin.eom.model

@@ -173,21 +173,31 @@ class Notation:
 
     Parameters
     ----------
-    coordinates : coordinate names in model order.
-    parameters : parameter names in declaration order (sets the order of factors).
-    rewrite : applied to every expression before it is written (same value, another form).
-    names : symbols written otherwise than their name says, name → (text, LaTeX): the report writes
-        the multiplier ``lambda_length`` as λ, or λ_1 … λ_k when there are several.
+    coordinates : sequence of str
+        Coordinate names in model order.
+    parameters : sequence of str
+        Parameter names in declaration order (sets the order of factors).
+    rewrite : callable, optional
+        Rewrites an expression into the form to print, keeping its value (the report's
+        `display_form`); none by default.
+    names : mapping of str to (str, str)
+        Symbols written otherwise than their name says, name → (text, LaTeX): the report writes the
+        multiplier ``lambda_length`` as λ, or λ_1 … λ_k when there are several.
+    decimals : bool
+        Rationals with a finite decimal expansion written as decimals (17/250 → 0.068, not ⅓): a
+        URDF's numbers.
+    comma : bool
+        French: a decimal comma in numbers (0{,}068 in LaTeX), and floats to 6 significant digits
+        (else 12, a point).
+    _cache, _keys : dict
+        The renderer's caches, filled as it goes; not to be given.
     """
 
     coordinates: Sequence[str] = ()
     parameters: Sequence[str] = ()
-    #: Rewrites an expression into the form to print, keeping its value (the report's `display_form`); none by default.
     rewrite: Callable[[sympy.Basic], sympy.Basic] | None = None
     names: Mapping[str, tuple[str, str]] = field(default_factory=dict)
-    #: Rationals with a finite decimal expansion written as decimals (17/250 → 0.068, not ⅓): a URDF's numbers.
     decimals: bool = False
-    #: French: a decimal comma in numbers (0{,}068 in LaTeX), and floats to 6 significant digits (else 12, a point).
     comma: bool = False
     _cache: dict[tuple[str, str], str] = field(default_factory=dict, repr=False)
     _keys: dict[tuple[sympy.Basic, bool | None], tuple] = field(default_factory=dict, repr=False)
@@ -290,15 +300,52 @@ class Notation:
         return self.rewrite(e) if self.rewrite is not None else e
 
     def text(self, expr: sympy.Basic) -> str:
-        """Terminal text, e.g. ``½ A (θ̇² + ψ̇² sin²θ)``."""
+        """Write ``expr`` as terminal text, e.g. ``½ A (θ̇² + ψ̇² sin²θ)``.
+
+        Parameters
+        ----------
+        expr : SymPy expression
+            The expression.
+
+        Returns
+        -------
+        str
+            The text.
+        """
         return self._render(self._prepared(expr), latex=False)
 
     def latex(self, expr: sympy.Basic) -> str:
-        r"""LaTeX, e.g. ``\frac{1}{2} A \left(\dot{\theta}^{2} + \dot{\psi}^{2} \sin^{2}\theta\right)``."""
+        r"""Write ``expr`` in LaTeX.
+
+        E.g. ``\frac{1}{2} A \left(\dot{\theta}^{2} + \dot{\psi}^{2} \sin^{2}\theta\right)``.
+
+        Parameters
+        ----------
+        expr : SymPy expression
+            The expression.
+
+        Returns
+        -------
+        str
+            The LaTeX.
+        """
         return self._render(self._prepared(expr), latex=True)
 
     def sum(self, parts: Sequence[sympy.Basic], latex: bool = False) -> str:
-        """``parts`` written one after the other with their signs (e.g. T then U in T + U)."""
+        """Write ``parts`` one after the other with their signs (e.g. T then U in T + U).
+
+        Parameters
+        ----------
+        parts : sequence of SymPy expressions
+            The parts.
+        latex : bool, optional
+            LaTeX rather than text.
+
+        Returns
+        -------
+        str
+            The sum.
+        """
         minus = "-" if latex else "−"
         out = ""
         for k, p in enumerate(parts):
@@ -317,6 +364,18 @@ class Notation:
         The first term carries a sign only when negative; the others start with ``+`` or
         ``−`` (``-`` in LaTeX).  Joined with spaces they give the rendering of ``expr``;
         the report cuts long sums into lines with them.
+
+        Parameters
+        ----------
+        expr : SymPy expression
+            The sum.
+        latex : bool, optional
+            LaTeX rather than text.
+
+        Returns
+        -------
+        list of str
+            The terms.
         """
         e = self._prepared(expr)
         if not isinstance(e, sympy.Add):
@@ -329,6 +388,18 @@ class Notation:
         r"""A vector from (component, axis name) pairs: ``θ̇ u + ψ̇ sinθ w + (φ̇ + ψ̇ cosθ) z``.
 
         In LaTeX the axes carry arrows (``\vec{u}``); a digit suffix becomes a subscript (z0 → z_0).
+
+        Parameters
+        ----------
+        terms : sequence of (SymPy expression, str)
+            (component, axis name) pairs.
+        latex : bool, optional
+            LaTeX rather than text.
+
+        Returns
+        -------
+        str
+            The vector.
         """
         if not terms:
             return r"\vec{0}" if latex else "0"

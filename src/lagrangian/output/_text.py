@@ -105,15 +105,27 @@ class ReactionLine:
 class Supplement:
     """What ``derive`` prints besides the `CourseForm`.
 
-    Attributes
+    Parameters
     ----------
-    reference_omega : Ω(R/R0) of the reference frame R, when the equations are written in a
-        frame R that turns (None otherwise).
-    constraints : every declared constraint (steps 1 and 7).
-    multipliers : (λ_k, its formula λ(q, q̇, t), or None when not solved symbolically).
-    reactions : the reactions of the complementary constraints.
-    balance : the terms of dE/dt = P(non-conservative), E = T + U, when no energy (or Jacobi)
-        integral holds; None otherwise.  ``power`` is their sum.
+    reference_omega : VectorRow or None
+        Ω(R/R0) of the reference frame R, when the equations are written in a frame R that turns
+        (None otherwise).
+    constraints : tuple of ConstraintLine
+        Every declared constraint (steps 1 and 7).
+    multipliers : tuple of (str, SymPy expression or None)
+        (λ_k, its formula λ(q, q̇, t), or None when not solved symbolically).
+    reactions : tuple of ReactionLine
+        The reactions of the complementary constraints.
+    balance : tuple of PowerRow or None
+        The terms of dE/dt = P(non-conservative), E = T + U, when no energy (or Jacobi) integral
+        holds; None otherwise.
+    power : SymPy expression or None
+        Their sum.
+    declared : tuple of str
+        The declared signs and ranges (text).
+    used : tuple of (SymPy expression, str, str)
+        The signs the derivation used, as (expression, relation, reason):
+        `lagrangian.model._assumptions`.
     """
 
     reference_omega: VectorRow | None
@@ -122,8 +134,6 @@ class Supplement:
     reactions: tuple[ReactionLine, ...]
     balance: tuple[PowerRow, ...] | None
     power: sympy.Basic | None
-    #: The declared signs and ranges (text), and the signs the derivation used, as (expression,
-    #: relation, reason): `lagrangian.model._assumptions`.
     declared: tuple[str, ...] = ()
     used: tuple[tuple[sympy.Basic, str, str], ...] = ()
 
@@ -180,7 +190,20 @@ def _reaction_lines(eom: EquationsOfMotion) -> tuple[ReactionLine, ...]:
 
 
 def supplement(eom: EquationsOfMotion, form: CourseForm) -> Supplement:
-    """Collect what ``derive`` prints besides ``form`` (see `Supplement`)."""
+    """Collect what ``derive`` prints besides ``form`` (see `Supplement`).
+
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations.
+    form : CourseForm
+        Their derivation, collected.
+
+    Returns
+    -------
+    Supplement
+        The rest of what ``derive`` prints.
+    """
     kin = eom.kinematics
     reference_omega = (_vector_row(eom, kin.frame_omega)
                        if isinstance(kin, RelativeKinematics) and not kin.frame_omega.is_zero() else None)
@@ -342,6 +365,18 @@ def render_text(form: CourseForm, extra: Supplement | None = None) -> str:
     velocities (`_frames_text`), the virtual velocities, T and U (`_energies_text`), the generalized forces
     by virtual power (`_forces_text`), the Lagrange equations (`_equations_text`), the first integrals and
     the matrix form M q̈ = F (`_matrix_text`).
+
+    Parameters
+    ----------
+    form : CourseForm
+        The derivation.
+    extra : Supplement, optional
+        Adds steps 1 and 7 and the energy balance.
+
+    Returns
+    -------
+    str
+        The text.
     """
     n = notation(form)
     lines = _statement_text(n, form, extra)

@@ -29,8 +29,22 @@ DOT = "\u0307"  # combining dot above: psi_dot → ψ̇
 
 
 def simulation_check_text(check: SimulationCheck, eom: EquationsOfMotion) -> str:
-    """What ``lagrangian analyse --simulate`` adds: the analysis against a simulation
-    (`lagrangian.numerics.simulation_check`), value by value, with the largest difference."""
+    """What ``lagrangian analyse --simulate`` adds: the analysis against a simulation, value by value.
+
+    With the largest difference (`lagrangian.numerics.simulation_check`).
+
+    Parameters
+    ----------
+    check : SimulationCheck
+        The comparison.
+    eom : EquationsOfMotion
+        The equations (their notation).
+
+    Returns
+    -------
+    str
+        The text.
+    """
     n = Notation(eom.coordinates, [p.name for p in eom.model.parameters])
     lines = ["", (f"Check against a simulation (DOP853, rtol = atol = 1e-12, t from 0 to {_num(check.t_end)} s; "
                   "turning points located as events):")]
@@ -172,6 +186,18 @@ def _names_in_greek(n: Notation, coordinates: tuple[str, ...], text: str) -> str
 
 def top_analysis_text(an: TopAnalysis, eom: EquationsOfMotion) -> str:
     """What ``lagrangian analyse`` prints: `lagrangian.analysis.analyse_top`'s result in the course's notation.
+
+    Parameters
+    ----------
+    an : TopAnalysis
+        The analysis.
+    eom : EquationsOfMotion
+        The equations (their notation).
+
+    Returns
+    -------
+    str
+        The text.
 
     Examples
     --------

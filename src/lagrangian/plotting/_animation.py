@@ -73,12 +73,28 @@ def animate(trajectory: Trajectory, eom: EquationsOfMotion, path: str | Path, *,
 
     Parameters
     ----------
-    frames : number of frames, evenly spaced over the trajectory's time span.
-    fps : frames per second of the file.
-    size, dpi : figure size in inches and resolution (5 in × 80 dpi = 400 × 400 pixels).
-    view : ``"auto"`` (2D for a planar motion), ``"2d"`` or ``"3d"``.
-    trail : past frames of each centre of mass's path to show (default a third of them).
-    elev, azim : the 3D viewpoint in degrees.
+    trajectory : Trajectory
+        A simulated motion.
+    eom : EquationsOfMotion
+        Its equations.
+    path : str or Path
+        The file to write: ``.gif``, or ``.mp4`` when ffmpeg is installed.
+    frames : int, optional
+        The number of frames, evenly spaced over the trajectory's time span.
+    fps : float, optional
+        Frames per second of the file.
+    size : float, optional
+        The figure's size in inches (5 in × 80 dpi = 400 × 400 pixels).
+    dpi : float, optional
+        Its resolution.
+    view : {"auto", "2d", "3d"}, optional
+        ``"auto"`` (2D for a planar motion), ``"2d"`` or ``"3d"``.
+    trail : int, optional
+        Past frames of each centre of mass's path to show (default a third of them).
+    elev : float, optional
+        The 3D viewpoint's elevation, in degrees.
+    azim : float, optional
+        The 3D viewpoint's azimuth, in degrees.
 
     Returns
     -------

@@ -30,7 +30,17 @@ SAME_ANGLE = 1e-9
 
 @dataclass(frozen=True)
 class TurningAngles:
-    """θ1 ≤ θ2 (rad) and where they come from: ``"analysis"`` or ``"simulation"``."""
+    """The turning angles θ1 ≤ θ2 of the nutation and where they come from.
+
+    Parameters
+    ----------
+    theta1 : float
+        The smaller turning angle θ1, in rad.
+    theta2 : float
+        The larger turning angle θ2, in rad.
+    source : str
+        ``"analysis"`` or ``"simulation"``.
+    """
 
     theta1: float
     theta2: float
@@ -41,7 +51,18 @@ class TurningAngles:
         return self.caption_in("en")
 
     def caption_in(self, lang: str) -> str:
-        """Where θ1 and θ2 come from, in ``lang``."""
+        """Where θ1 and θ2 come from, in ``lang``.
+
+        Parameters
+        ----------
+        lang : {"en", "fr"}
+            The language.
+
+        Returns
+        -------
+        str
+            The caption.
+        """
         return words(lang)["roots" if self.source == "analysis" else "extremes"]
 
 
@@ -68,7 +89,22 @@ def _analysed(trajectory: Trajectory, eom: EquationsOfMotion, theta: np.ndarray)
 
 
 def turning_angles(trajectory: Trajectory, eom: EquationsOfMotion, theta: np.ndarray | None = None) -> TurningAngles:
-    """θ1, θ2 of the axis followed by `apex_path` (from the analysis when possible, else the run)."""
+    """The turning angles θ1, θ2 of the axis followed by `apex_path` (from the analysis when possible, else the run).
+
+    Parameters
+    ----------
+    trajectory : Trajectory
+        A simulated motion.
+    eom : EquationsOfMotion
+        Its equations.
+    theta : ndarray, optional
+        The axis' angle from z0 along the run, when already computed.
+
+    Returns
+    -------
+    TurningAngles
+        The turning angles and their source.
+    """
     if theta is None:
         theta = axis_angles(apex_path(trajectory, eom))[1]
     found = _analysed(trajectory, eom, theta)
@@ -85,6 +121,21 @@ def _axis_title(eom: EquationsOfMotion, body: str | None, axis: str | None, lang
 def plot_apex_sphere(trajectory: Trajectory, eom: EquationsOfMotion, *, body: str | None = None,
                      axis: str | None = None, ax: Any = None, lang: str = "en") -> Any:
     """The tip of a body axis on a wireframe unit sphere, in 3D, with the θ1 and θ2 circles.
+
+    Parameters
+    ----------
+    trajectory : Trajectory
+        A simulated motion.
+    eom : EquationsOfMotion
+        Its equations.
+    body : str, optional
+        The body whose axis is followed (default: `default_axis`).
+    axis : str, optional
+        ``"x"``, ``"y"`` or ``"z"`` of the body's frame.
+    ax : matplotlib 3D axes, optional
+        Axes to draw in; None: a new figure.
+    lang : {"en", "fr"}, optional
+        The language of the titles and labels.
 
     Returns
     -------
@@ -129,8 +180,25 @@ def plot_apex_sphere(trajectory: Trajectory, eom: EquationsOfMotion, *, body: st
 
 def plot_nutation(trajectory: Trajectory, eom: EquationsOfMotion, *, body: str | None = None,
                   axis: str | None = None, fig: Any = None, lang: str = "en") -> Any:
-    """The classic nutation figure: the tip seen from above z0 (polar: radius θ, angle ψ − 90°),
-    and θ against ψ, each with the θ1 and θ2 circles (lines).
+    """The classic nutation figure: the tip seen from above z0, and θ against ψ.
+
+    The tip is drawn in polar coordinates (radius θ, angle ψ − 90°); both panels show the θ1 and θ2
+    circles (lines).
+
+    Parameters
+    ----------
+    trajectory : Trajectory
+        A simulated motion.
+    eom : EquationsOfMotion
+        Its equations.
+    body : str, optional
+        The body whose axis is followed (default: `default_axis`).
+    axis : str, optional
+        ``"x"``, ``"y"`` or ``"z"`` of the body's frame.
+    fig : matplotlib.figure.Figure, optional
+        A figure to draw in; None: a new one.
+    lang : {"en", "fr"}, optional
+        The language of the titles and labels.
 
     Returns
     -------

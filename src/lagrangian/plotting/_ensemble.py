@@ -46,6 +46,18 @@ def _axes(ds) -> tuple[str, ...]:
 def plot_ensemble(ds, path: str | Path) -> Path:
     """Write the map (2 grid axes) or the min/max diagram (1 axis) of ``ds`` to ``path``.
 
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        An ensemble over a grid (`lagrangian.numerics.ensemble`).
+    path : str or Path
+        The image file.
+
+    Returns
+    -------
+    Path
+        The path written.
+
     Raises
     ------
     OutputError

@@ -173,6 +173,25 @@ def apex_path(trajectory: Trajectory, eom: EquationsOfMotion, body: str | None =
 
     ``body`` and ``axis`` (``"x"``, ``"y"`` or ``"z"`` of the body's frame) default to
     `default_axis`: for the top, z, whose Euler angles are (ψ, θ).
+
+    Parameters
+    ----------
+    trajectory : Trajectory
+        A simulated motion.
+    eom : EquationsOfMotion
+        Its equations.
+    body : str, optional
+        The body (default: `default_axis`'s).
+    axis : str, optional
+        ``"x"``, ``"y"`` or ``"z"`` of the body's frame (default: `default_axis`'s: for the top, z,
+        whose Euler angles are (ψ, θ)).
+    samples : Samples, optional
+        The frames' rotations along the run, when already computed.
+
+    Returns
+    -------
+    ndarray of shape (N, 3)
+        The tip, in R0 components.
     """
     name, default = default_axis(eom, body)
     axis = axis or default
@@ -183,10 +202,22 @@ def apex_path(trajectory: Trajectory, eom: EquationsOfMotion, body: str | None =
 
 
 def axis_angles(tip: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(ψ, θ) of unit vectors tip = (sinθ sinψ, −sinθ cosψ, cosθ), ψ unwrapped; each (N,).
+    """The angles (ψ, θ) of unit vectors tip = (sinθ sinψ, −sinθ cosψ, cosθ), ψ unwrapped.
 
     θ ∈ [0, π] is the angle from z0; ψ is the angle of the line of nodes ``u = z0 ∧ tip / |z0 ∧ tip|``
     from x0, the precession angle of the axis.
+
+    Parameters
+    ----------
+    tip : ndarray of shape (N, 3)
+        Unit vectors.
+
+    Returns
+    -------
+    psi : ndarray of shape (N,)
+        The precession angle ψ, unwrapped.
+    theta : ndarray of shape (N,)
+        The angle θ from z0.
     """
     theta = np.arccos(np.clip(tip[:, 2], -1.0, 1.0))
     psi = np.unwrap(np.arctan2(tip[:, 0], -tip[:, 1]))

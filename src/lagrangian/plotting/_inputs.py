@@ -29,7 +29,24 @@ def plot_inputs(trajectory: Trajectory, inputs: Sequence[str], *, fig: Any = Non
 
 def save_inputs_figure(trajectory: Trajectory, inputs: Sequence[str], directory: str | Path, *,
                        dpi: float = 110) -> Path:
-    """Write ``inputs.png`` (`plot_inputs`) into ``directory``, atomically."""
+    """Write ``inputs.png`` (`plot_inputs`) into ``directory``, atomically.
+
+    Parameters
+    ----------
+    trajectory : Trajectory
+        A simulated motion with input columns.
+    inputs : sequence of str
+        The inputs to draw.
+    directory : str or Path
+        The folder.
+    dpi : float, optional
+        The resolution.
+
+    Returns
+    -------
+    Path
+        The path written.
+    """
     path = Path(directory) / "inputs.png"
     fig = plot_inputs(trajectory, inputs)
     try:

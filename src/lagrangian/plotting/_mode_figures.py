@@ -42,7 +42,18 @@ def _parameter_label(eom: EquationsOfMotion, name: str) -> str:
 
 
 def plot_eigenvalue_sweep(sweep: Any, eom: EquationsOfMotion, *, fig: Any = None, lang: str = "en") -> Any:
-    """Re λ and Im λ of the essential eigenvalues against ``sweep.parameter`` (a `lagrangian.analysis.Sweep`).
+    """Draw Re λ and Im λ of the essential eigenvalues against ``sweep.parameter``.
+
+    Parameters
+    ----------
+    sweep : Sweep
+        A `lagrangian.analysis.Sweep`.
+    eom : EquationsOfMotion
+        The equations (their notation).
+    fig : matplotlib.figure.Figure, optional
+        A figure to draw in; None: a new one.
+    lang : {"en", "fr"}, optional
+        The language of the titles and labels.
 
     Returns
     -------
@@ -94,6 +105,17 @@ def _shapes(modes: Any) -> list[tuple[str, dict[str, float]]]:
 def plot_mode_shapes(modes: Any, eom: EquationsOfMotion, *, fig: Any = None, lang: str = "en") -> Any:
     """A bar chart per mode of its shape over the coordinates (a `lagrangian.analysis.Modes`).
 
+    Parameters
+    ----------
+    modes : Modes
+        A `lagrangian.analysis.Modes`.
+    eom : EquationsOfMotion
+        The equations (their notation).
+    fig : matplotlib.figure.Figure, optional
+        A figure to draw in; None: a new one.
+    lang : {"en", "fr"}, optional
+        The language of the titles and labels.
+
     Returns
     -------
     matplotlib.figure.Figure
@@ -123,10 +145,29 @@ def plot_mode_shapes(modes: Any, eom: EquationsOfMotion, *, fig: Any = None, lan
 
 def plot_bifurcation(diagram: Any, eom: EquationsOfMotion, coordinate: str | None = None, *, fig: Any = None,
                      lang: str = "en") -> Any:
-    """q* of each branch of equilibria against the parameter (a `lagrangian.analysis.BifurcationDiagram`):
-    solid where stable, dashed where unstable, dotted where the linearization does not decide; the
+    """Draw q* of each branch of equilibria against the parameter (a `lagrangian.analysis.BifurcationDiagram`).
+
+    Solid where stable, dashed where unstable, dotted where the linearization does not decide; the
     values where a branch appears or changes stability are dotted vertical lines (the bead on the
     rotating hoop: the pitchfork at Ω² = g/R).
+
+    Parameters
+    ----------
+    diagram : BifurcationDiagram
+        The diagram.
+    eom : EquationsOfMotion
+        The equations (their notation).
+    coordinate : str, optional
+        The coordinate drawn (default: the first).
+    fig : matplotlib.figure.Figure, optional
+        A figure to draw in; None: a new one.
+    lang : {"en", "fr"}, optional
+        The language of the titles and labels.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        One axes.
     """
     w = _WORDS.get(lang, _WORDS["en"])
     coordinate = coordinate or diagram.coordinates[0]

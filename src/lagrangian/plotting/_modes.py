@@ -25,6 +25,26 @@ def mode_trajectory(lin: LinearModel, index: int = 0, *, amplitude: float = 0.1,
 
     A real (non-oscillating) mode is drawn over the time its amplitude takes to change by e
     (or 1 s for a zero eigenvalue) times ``periods``.
+
+    Parameters
+    ----------
+    lin : LinearModel
+        The linearization.
+    index : int, optional
+        The mode, in `LinearModel.modes` order.
+    amplitude : float, optional
+        The largest coordinate amplitude ε.
+    periods : float, optional
+        How many periods to draw.
+    samples : int, optional
+        The number of output times.
+    **values : float
+        Values of the symbols ``lin`` keeps symbolic.
+
+    Returns
+    -------
+    Trajectory
+        The linear motion about the point.
     """
     md = lin.modes(**values)
     if not md.modes:

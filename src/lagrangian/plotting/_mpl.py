@@ -22,6 +22,27 @@ def new_figure(width: float, height: float, *, margins: tuple[float, float, floa
     titles whatever the figure's size.  A fixed layout rather than matplotlib's
     constrained layout, which draws the figure several times to find one: that halves the
     time a figure takes to save.
+
+    Parameters
+    ----------
+    width : float
+        In inches.
+    height : float
+        In inches.
+    margins : (float, float, float, float), optional
+        (left, right, bottom, top), in inches, so they hold the tick labels and titles whatever the
+        figure's size.
+    wspace : float, optional
+        The horizontal space between axes, relative to their width.
+    hspace : float, optional
+        The vertical space between axes, relative to their height.
+    dpi : float, optional
+        The resolution.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure.
     """
     require_matplotlib()
     from matplotlib.backends.backend_agg import FigureCanvasAgg

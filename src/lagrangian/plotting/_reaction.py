@@ -31,6 +31,18 @@ __all__ = ["reactions_along", "reaction_stem", "weight", "plot_reaction"]
 def reactions_along(trajectory: Trajectory, eom: EquationsOfMotion) -> dict[str, ReactionHistory]:
     """Every reaction of the ground (``"R_O"`` for a pin at O) along ``trajectory``, each force (N, 3).
 
+    Parameters
+    ----------
+    trajectory : Trajectory
+        A simulated motion.
+    eom : EquationsOfMotion
+        Its equations.
+
+    Returns
+    -------
+    dict of str to ReactionHistory
+        By reaction name.
+
     Raises
     ------
     OutputError
@@ -85,6 +97,17 @@ def _axis_tex(name: str) -> str:
 
 def plot_reaction(trajectory: Trajectory, eom: EquationsOfMotion, *, ax: Any = None, lang: str = "en") -> Any:
     """R(t) on (x0, y0, z0) and ``|R|`` for each reaction, with the weight's magnitude ``|P|`` for scale.
+
+    Parameters
+    ----------
+    trajectory : Trajectory
+        A simulated motion.
+    eom : EquationsOfMotion
+        Its equations.
+    ax : matplotlib axes, optional
+        Axes to draw in; None: a new figure.
+    lang : {"en", "fr"}, optional
+        The language of the titles and labels.
 
     Returns
     -------

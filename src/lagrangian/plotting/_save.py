@@ -53,9 +53,23 @@ def plot_trajectory(trajectory: Trajectory, eom: EquationsOfMotion, kind: str = 
     ``fig=`` (the others), ``body=`` and ``axis=`` (``apex_sphere``, ``nutation``), ``lang=``
     (``"en"``, the default, or ``"fr"``: the titles in the course's French).
 
+    Parameters
+    ----------
+    trajectory : Trajectory
+        A simulated motion.
+    eom : EquationsOfMotion
+        Its equations.
+    kind : str, optional
+        One of `KINDS`.
+    **options
+        Go to the figure's function: ``ax=`` (``apex_sphere``, ``reaction``), ``fig=`` (the
+        others), ``body=`` and ``axis=`` (``apex_sphere``, ``nutation``), ``lang=`` (``"en"``, the
+        default, or ``"fr"``: the titles in the course's French).
+
     Returns
     -------
     matplotlib.figure.Figure
+        The figure.
 
     Examples
     --------
@@ -125,6 +139,18 @@ def applicable_kinds(trajectory: Trajectory, eom: EquationsOfMotion) -> tuple[st
     The apex figures need a rigid body whose axis turns in 3D (the top; not a planar
     pendulum, whose rods stay on a great circle); the reaction needs every load in force
     form (`reactions_along`).
+
+    Parameters
+    ----------
+    trajectory : Trajectory
+        A simulated motion.
+    eom : EquationsOfMotion
+        Its equations.
+
+    Returns
+    -------
+    tuple of str
+        Figure kinds, in the order of `KINDS`.
     """
     kinds = ["time_series", "phase"]
     if eom.model.bodies and len(trajectory.t) >= 3 and _turns_in_3d(trajectory, eom):
@@ -146,6 +172,20 @@ def figure_name(kind: str, eom: EquationsOfMotion) -> str:
 def figure_caption(kind: str, eom: EquationsOfMotion, lang: str = "en") -> str:
     """A caption for the figure ``kind`` in ``lang`` (``"fr"``: the course's words), e.g. "Réaction R_O(t)".
 
+    Parameters
+    ----------
+    kind : str
+        One of `KINDS`.
+    eom : EquationsOfMotion
+        The equations.
+    lang : {"en", "fr"}, optional
+        The language.
+
+    Returns
+    -------
+    str
+        The caption.
+
     Examples
     --------
     >>> import lagrangian
@@ -160,7 +200,22 @@ def figure_caption(kind: str, eom: EquationsOfMotion, lang: str = "en") -> str:
 
 
 def save_figure(fig: Any, path: str | Path, *, dpi: float = 110) -> Path:
-    """Write ``fig`` to ``path`` atomically, in the format of its suffix."""
+    """Write ``fig`` to ``path`` atomically, in the format of its suffix.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    path : str or Path
+        The file to write.
+    dpi : float, optional
+        The resolution.
+
+    Returns
+    -------
+    Path
+        The path written.
+    """
     path = Path(path)
     fmt = path.suffix.lstrip(".").lower()
     if fmt not in IMAGE_FORMATS:
@@ -180,12 +235,26 @@ def save_plots(trajectory: Trajectory, eom: EquationsOfMotion, directory: str | 
 
     Parameters
     ----------
-    trajectory, eom : the run (`lagrangian.numerics.simulate`) and its equations.
-    directory : created when missing.
-    animation : also write ``animation.gif`` (or ``.mp4``, ``animation_format``).
-    formats : image formats of each figure (``"png"``, ``"svg"``, ``"pdf"``...).
-    kinds : the figures to write (default: `applicable_kinds`).
-    frames, fps : the animation's frame count and rate.
+    trajectory : Trajectory
+        The run (`lagrangian.numerics.simulate`).
+    eom : EquationsOfMotion
+        Its equations.
+    directory : str or Path
+        Created when missing.
+    animation : bool, optional
+        Also write ``animation.gif`` (or ``.mp4``, ``animation_format``).
+    formats : sequence of str, optional
+        Image formats of each figure (``"png"``, ``"svg"``, ``"pdf"``...).
+    kinds : sequence of str, optional
+        The figures to write (default: `applicable_kinds`).
+    frames : int, optional
+        The animation's frame count.
+    fps : float, optional
+        The animation's frame rate.
+    animation_format : {"gif", "mp4"}, optional
+        The animation's format.
+    dpi : float, optional
+        The figures' resolution.
 
     Returns
     -------

@@ -23,7 +23,18 @@ def _title(model: str, what: str, lang: str) -> str:
 
 
 def plot_time_series(trajectory: Trajectory, eom: EquationsOfMotion, *, fig: Any = None, lang: str = "en") -> Any:
-    """q_i(t) (left) and q̇_i(t) (right), one row per coordinate.
+    """Draw q_i(t) (left) and q̇_i(t) (right), one row per coordinate.
+
+    Parameters
+    ----------
+    trajectory : Trajectory
+        A simulated motion.
+    eom : EquationsOfMotion
+        Its equations.
+    fig : matplotlib.figure.Figure, optional
+        A figure to draw in; None: a new one.
+    lang : {"en", "fr"}, optional
+        The language of the titles and labels.
 
     Returns
     -------
@@ -51,6 +62,17 @@ def plot_time_series(trajectory: Trajectory, eom: EquationsOfMotion, *, fig: Any
 
 def plot_phase(trajectory: Trajectory, eom: EquationsOfMotion, *, fig: Any = None, lang: str = "en") -> Any:
     """Phase portraits (q_i, q̇_i), one panel per coordinate; the start is marked by a dot.
+
+    Parameters
+    ----------
+    trajectory : Trajectory
+        A simulated motion.
+    eom : EquationsOfMotion
+        Its equations.
+    fig : matplotlib.figure.Figure, optional
+        A figure to draw in; None: a new one.
+    lang : {"en", "fr"}, optional
+        The language of the titles and labels.
 
     Returns
     -------
@@ -80,9 +102,19 @@ def plot_phase(trajectory: Trajectory, eom: EquationsOfMotion, *, fig: Any = Non
 
 
 def relative_drift(trajectory: Trajectory, name: str) -> np.ndarray:
-    """The relative drift ``|I(t) − I(t0)| / S``, shape (N,), S the physical scale of the integral (`Trajectory.scales`).
+    """The relative drift ``|I(t) − I(t0)| / S``, S the physical scale of the integral (`Trajectory.scales`).
 
-    Its maximum is ``trajectory.drift[name]``, the conservation monitor of the run.
+    Parameters
+    ----------
+    trajectory : Trajectory
+        A simulated motion.
+    name : str
+        A first integral.
+
+    Returns
+    -------
+    ndarray of shape (N,)
+        The drift; its maximum is ``trajectory.drift[name]``, the conservation monitor of the run.
     """
     return trajectory.relative_drift(name)
 
@@ -93,6 +125,17 @@ def plot_drift(trajectory: Trajectory, eom: EquationsOfMotion | None = None, *, 
 
     A drift that is exactly zero at every sample (a first integral conserved to the last
     bit) cannot be drawn on a log scale; its legend entry says so.
+
+    Parameters
+    ----------
+    trajectory : Trajectory
+        A simulated motion.
+    eom : EquationsOfMotion, optional
+        Its equations (their notation).
+    fig : matplotlib.figure.Figure, optional
+        A figure to draw in; None: a new one.
+    lang : {"en", "fr"}, optional
+        The language of the titles and labels.
 
     Returns
     -------

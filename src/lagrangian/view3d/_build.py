@@ -43,8 +43,25 @@ _IDENTITY = (0.0, 0.0, 0.0, 1.0)
 
 @dataclass(frozen=True)
 class Motion:
-    """A run to draw: times (N,), q and q̇ (N, n) in the model's coordinate order, extra columns (reactions),
-    ``ghost`` (overlaid, translucent) or ``beside`` (drawn next to the main run)."""
+    """A run to draw: its times and states in the model's coordinate order, and how it is shown.
+
+    Parameters
+    ----------
+    label : str
+        The run's name.
+    t : ndarray of shape (N,)
+        The times.
+    q : ndarray of shape (N, n)
+        The coordinates.
+    qd : ndarray of shape (N, n)
+        The rates.
+    extra : mapping of str to ndarray
+        Extra columns (reactions).
+    ghost : bool
+        Overlaid, translucent.
+    beside : bool
+        Drawn next to the main run.
+    """
 
     label: str
     t: np.ndarray
@@ -168,6 +185,32 @@ def build_scene(model: Model, motions: Sequence[Motion], values: Mapping[str, fl
     The steps: the tracked points (`_add_tracks`), the parts drawn on each carrier (`_add_parts`), the
     links, triads and arcs between them, the points traced (`_traced`), the arrows, the framing, and the
     runs placed (`_runs`).
+
+    Parameters
+    ----------
+    model : Model
+        The model.
+    motions : sequence of Motion
+        The runs; the first is the main run (one state: at rest).
+    values : mapping of str to float
+        Every parameter's number.
+    title : str, optional
+        The scene's title (default: the model's name).
+    lang : {"en", "fr"}, optional
+        The language of the labels.
+    traces : sequence of str, optional
+        The points whose paths are drawn (default: the particles and the tips of the bodies that turn
+        about a point).
+    vectors : sequence of str, optional
+        The arrows shown at first (``"V(P)"`` a velocity, ``"R_O"`` a reaction column of the run, a
+        force's load name); every one available can be switched on in the viewer.
+    max_frames : int, optional
+        The most frame times.
+
+    Returns
+    -------
+    Scene
+        Everything to draw.
     """
     b = _Builder(model, values, motions, max_frames)
     _add_tracks(b, model)

@@ -40,7 +40,27 @@ def _math(name: str) -> str:
 
 
 class Renderer:
-    """A figure showing ``shape`` (a `Wireframe`) frame by frame; `rgba` gives a frame's pixels."""
+    """A figure showing ``shape`` (a `Wireframe`) frame by frame; `rgba` gives a frame's pixels.
+
+    Parameters
+    ----------
+    shape : Wireframe
+        What to draw.
+    title : str
+        The figure's title.
+    size : float
+        The figure's height in inches.
+    dpi : float
+        Its resolution.
+    trail : int
+        Past frames of each traced path to show.
+    elev : float
+        The 3D viewpoint's elevation, in degrees.
+    azim : float
+        The 3D viewpoint's azimuth, in degrees.
+    width : float, optional
+        The figure's width in inches (default: ``size``).
+    """
 
     def __init__(self, shape: Wireframe, *, title: str, size: float, dpi: float, trail: int,
                  elev: float, azim: float, width: float | None = None) -> None:
@@ -125,7 +145,18 @@ class Renderer:
         return [a for a, _ in self.moving] + [self.text]
 
     def rgba(self, i: int) -> np.ndarray:
-        """Frame ``i`` as an (H, W, 4) uint8 array, drawn by blitting."""
+        """Frame ``i`` as an (H, W, 4) uint8 array, drawn by blitting.
+
+        Parameters
+        ----------
+        i : int
+            The frame.
+
+        Returns
+        -------
+        ndarray of shape (H, W, 4), uint8
+            Its pixels.
+        """
         if self._background is None:
             for a in self._artists():
                 a.set_visible(False)
@@ -140,7 +171,13 @@ class Renderer:
         return np.array(self.canvas.buffer_rgba())
 
     def full(self, i: int) -> None:
-        """Set frame ``i`` for a writer that redraws the whole figure."""
+        """Set frame ``i`` for a writer that redraws the whole figure.
+
+        Parameters
+        ----------
+        i : int
+            The frame.
+        """
         self._set(i)
 
 

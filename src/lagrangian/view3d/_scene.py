@@ -138,7 +138,49 @@ class Run:
 
 @dataclass(frozen=True)
 class Scene:
-    """Everything drawn, at the frame times ``t`` (F,); see the module docstring."""
+    """Everything drawn, at the frame times ``t`` (F,); see the module docstring.
+
+    Parameters
+    ----------
+    title : str
+        The scene's title.
+    t : ndarray of shape (F,)
+        The frame times.
+    carriers : tuple of Carrier
+        The rigid things that move.
+    parts : tuple of Part
+        The shapes fixed to the carriers.
+    tracks : tuple of Track
+        The points followed in R0.
+    runs : tuple of Run
+        The poses and tracks of each run, per frame.
+    links : tuple of Link
+        Rods, springs and dampers between tracks.
+    triads : tuple of Triad
+        The frames shown as three axes.
+    arcs : tuple of Arc
+        The course's angles at the initial configuration.
+    arrows : tuple of Arrow
+        Vectors along the motion.
+    traces : tuple of int
+        The tracks whose paths are drawn.
+    up : (float, float, float)
+        The vertical, in R0.
+    axis_names : (str, str, str)
+        The names of R0's axes.
+    size : float
+        The scene's length L, what sizes without one of their own are fractions of.
+    centre : (float, float, float)
+        The centre of what is drawn.
+    radius : float
+        The radius of what is drawn.
+    view_direction : (float, float, float)
+        The direction the camera looks from.
+    lang : str
+        The language of the labels.
+    notes : tuple of str
+        What the view had to guess or leave out, in words.
+    """
 
     title: str
     t: np.ndarray
@@ -166,14 +208,36 @@ class Scene:
         return len(self.t) == 1
 
     def track(self, name: str) -> int:
-        """The index of the track ``name`` (a point, a body's name for its G, a particle, ``tip:S``)."""
+        """The index of the track ``name``.
+
+        Parameters
+        ----------
+        name : str
+            A point, a body's name for its G, a particle, ``tip:S``.
+
+        Returns
+        -------
+        int
+            Its index in ``tracks``.
+        """
         for k, tr in enumerate(self.tracks):
             if tr.name == name:
                 return k
         raise KeyError(f"no track {name!r}")
 
     def world(self, run: int = 0) -> np.ndarray:
-        """Each part's pose in R0 at each frame of ``run``: (F, parts, 4, 4) homogeneous matrices."""
+        """Each part's pose in R0 at each frame of ``run``.
+
+        Parameters
+        ----------
+        run : int, optional
+            The run.
+
+        Returns
+        -------
+        ndarray of shape (F, parts, 4, 4)
+            Homogeneous matrices.
+        """
         poses = self.runs[run].poses
         f = len(self.t)
         out = np.zeros((f, len(self.parts), 4, 4))

@@ -38,7 +38,26 @@ def still_by_browser(scene: Scene, *, width: int, height: int, time: float | Non
 
 def still_png(scene: Scene, *, width: int = 800, height: int = 600, time: float | None = None,
               browser: bool | None = None) -> bytes:
-    """A PNG of ``scene`` at ``time``: by Chromium when there is one (or ``browser=True``), else by matplotlib."""
+    """A PNG of ``scene`` at ``time``: by Chromium when there is one (or ``browser=True``), else by matplotlib.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+    width : int, optional
+        In pixels.
+    height : int, optional
+        In pixels.
+    time : float, optional
+        The time shown (default: the start).
+    browser : bool, optional
+        True forces Chromium, False matplotlib; None: Chromium when there is one.
+
+    Returns
+    -------
+    bytes
+        The PNG.
+    """
     if browser or (browser is None and find_chromium() is not None):
         if find_chromium() is None:
             raise OutputError("No Chromium is installed to photograph the view.",

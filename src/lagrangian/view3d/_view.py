@@ -31,18 +31,41 @@ __all__ = ["View", "at_rest", "motion_of", "view"]
 
 @dataclass(frozen=True)
 class View:
-    """A 3-D view: its `Scene` and how to show it (see the module docstring)."""
+    """A 3-D view: its `Scene` and how to show it (see the module docstring).
+
+    Parameters
+    ----------
+    scene : Scene
+        What is drawn.
+    """
 
     scene: Scene
 
     def html(self) -> str:
-        """One self-contained HTML page: three.js, the viewer and the scene inline; it requests nothing."""
+        """One self-contained HTML page: three.js, the viewer and the scene inline; it requests nothing.
+
+        Returns
+        -------
+        str
+            The page.
+        """
         from .html import page
 
         return page(self.scene)
 
     def save(self, path: str | os.PathLike[str]) -> Path:
-        """Write the page to ``path`` atomically (an older file is replaced only by a complete one)."""
+        """Write the page to ``path`` atomically (an older file is replaced only by a complete one).
+
+        Parameters
+        ----------
+        path : str or PathLike
+            The file to write.
+
+        Returns
+        -------
+        Path
+            The path written.
+        """
         path = Path(path)
         try:
             write_atomic(path, self.html())
@@ -53,8 +76,24 @@ class View:
         return path
 
     def png(self, *, width: int = 800, height: int = 600, time: float | None = None, browser: bool | None = None) -> bytes:
-        """A still picture at ``time`` (default the start): Chromium's screenshot of the page, else matplotlib's
-        drawing of the scene (``browser=False`` forces matplotlib, ``True`` Chromium)."""
+        """A still picture at ``time``: Chromium's screenshot of the page, else matplotlib's drawing of the scene.
+
+        Parameters
+        ----------
+        width : int, optional
+            In pixels.
+        height : int, optional
+            In pixels.
+        time : float, optional
+            The time shown (default: the start).
+        browser : bool, optional
+            ``browser=False`` forces matplotlib, ``True`` Chromium.
+
+        Returns
+        -------
+        bytes
+            The PNG.
+        """
         from ._still import still_png
 
         return still_png(self.scene, width=width, height=height, time=time, browser=browser)
@@ -107,17 +146,33 @@ def view(motion: Any, model: Any = None, *, ghosts: Sequence[Trajectory] = (), b
 
     Parameters
     ----------
-    motion : a `Trajectory` (then ``model`` is its model: a `Model`, an `EquationsOfMotion` or a model
-        file), or a model (`Model`, `EquationsOfMotion`, a file) to see at rest in its initial
-        configuration (``initial`` overrides q_i(0), q̇_i(0)).
-    ghosts : more trajectories of the same model drawn over the first, translucent (ensemble members).
-    beside : a trajectory drawn beside the first (an optimal trajectory beside its replay).
-    labels : names of the runs (default: the model's name; ghosts numbered).
-    traces : the points whose paths are drawn (point names, a body for its G, ``tip:BODY``); default:
-        the particles and the tips of the bodies that turn about a point (the top's apex).
-    vectors : the arrows shown at first: ``"V(P)"`` (velocity of P), ``"R_O"`` (a reaction column of
-        the trajectory), a force's load name; every one available can be switched on in the page.
-    parameters : parameter values (default: the trajectory's, else the model's).
+    motion : Trajectory or Model or EquationsOfMotion or str
+        A `Trajectory` (then ``model`` is its model), or a model (`Model`, `EquationsOfMotion`, a
+        file) to see at rest in its initial configuration.
+    model : Model or EquationsOfMotion or str, optional
+        With a trajectory, its model: a `Model`, an `EquationsOfMotion` or a model file.
+    ghosts : sequence of Trajectory, optional
+        More trajectories of the same model drawn over the first, translucent (ensemble members).
+    beside : Trajectory, optional
+        A trajectory drawn beside the first (an optimal trajectory beside its replay).
+    labels : sequence of str, optional
+        Names of the runs (default: the model's name; ghosts numbered).
+    traces : sequence of str, optional
+        The points whose paths are drawn (point names, a body for its G, ``tip:BODY``); default: the
+        particles and the tips of the bodies that turn about a point (the top's apex).
+    vectors : sequence of str, optional
+        The arrows shown at first: ``"V(P)"`` (velocity of P), ``"R_O"`` (a reaction column of the
+        trajectory), a force's load name; every one available can be switched on in the page.
+    parameters : mapping of str to float, optional
+        Parameter values (default: the trajectory's, else the model's).
+    initial : mapping of str to float, optional
+        At rest: overrides of q_i(0), q̇_i(0).
+    title : str, optional
+        The page's title (default: the model's name).
+    lang : {"en", "fr"}, optional
+        The language of the labels.
+    max_frames : int, optional
+        The most frame times.
 
     Returns
     -------

@@ -31,11 +31,32 @@ _BOX_EDGES = [(0, 1), (1, 3), (3, 2), (2, 0), (4, 5), (5, 7), (7, 6), (6, 4), (0
 class Wireframe:
     """Arrays over F frames, in R0 components (3D) or in the plane's (2D).
 
-    ``lines``: (name, colour, (F, k, d)) polylines (NaN rows break a polyline: a box's edges);
-    ``dots``: (name, colour, (F, d)); ``springs``: (F, 2, d); ``axes``: (F, 3, 2, d) a frame's three
-    axes; ``disks``: (colour, (F, m, d)) closed curves; ``spokes``: (F, 2, d); ``fixed``: (p, d);
-    ``trails``: (F, d) paths of the traced points; ``plane``: the 2 × 3 matrix whose rows are the
-    page's axes in R0 (2D), else None, with ``plane_names`` such as ("y0", "z0").
+    Parameters
+    ----------
+    t : ndarray of shape (F,)
+        The frame times.
+    lines : tuple of (str, str, ndarray)
+        (name, colour, (F, k, d)) polylines (NaN rows break a polyline: a box's edges).
+    dots : tuple of (str, str, ndarray)
+        (name, colour, (F, d)).
+    springs : tuple of ndarray
+        Each (F, 2, d).
+    fixed : ndarray of shape (p, d)
+        The fixed points.
+    axes : tuple of ndarray
+        Each (F, 3, 2, d): a frame's three axes.
+    disks : tuple of (str, ndarray)
+        (colour, (F, m, d)) closed curves.
+    spokes : tuple of ndarray
+        Each (F, 2, d).
+    plane : ndarray of shape (2, 3), optional
+        The matrix whose rows are the page's axes in R0 (2D), else None.
+    plane_names : (str, str)
+        Such as ("y0", "z0").
+    trails : tuple of ndarray
+        Each (F, d): the paths of the traced points.
+    axis_names : (str, str, str)
+        The names of R0's axes.
     """
 
     t: np.ndarray
@@ -56,7 +77,15 @@ class Wireframe:
         return 3 if self.plane is None else 2
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        """Lower and upper corners of everything drawn, each (d,)."""
+        """Lower and upper corners of everything drawn, each (d,).
+
+        Returns
+        -------
+        lower : ndarray of shape (d,)
+            The lower corner of everything drawn.
+        upper : ndarray of shape (d,)
+            The upper corner.
+        """
         d = self.dimension
         clouds = [a.reshape(-1, d) for _, _, a in self.lines] + [a for _, _, a in self.dots]
         clouds += [a.reshape(-1, d) for a in (*self.springs, *self.axes, *self.spokes)]
@@ -99,7 +128,22 @@ def _outline(kind: str, size: tuple[float, ...], mesh_vertices: np.ndarray | Non
 
 
 def wireframe(scene: Scene, *, view: str = "auto", run: int = 0) -> Wireframe:
-    """The outlines of ``scene`` at its frames (`Wireframe`); ``view`` ``"auto"`` (2D when planar), ``"2d"``, ``"3d"``."""
+    """The outlines of ``scene`` at its frames (`Wireframe`).
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+    view : {"auto", "2d", "3d"}, optional
+        ``"auto"`` (2D when planar), ``"2d"``, ``"3d"``.
+    run : int, optional
+        The run.
+
+    Returns
+    -------
+    Wireframe
+        The outlines.
+    """
     world = scene.world(run)
     points = scene.runs[run].points.astype(float) + np.array(scene.runs[run].offset)
     lines, dots, disks, spokes = [], [], [], []

@@ -28,6 +28,40 @@ class ExportedSymbols:
     The free symbols of ``M`` and ``F`` are replaced by ``_y<i>`` (y[i], the state), ``_p<k>``
     (p[k], the parameters) and ``_t``, so that no model name can clash with a name of the
     generated code (``numpy``, ``sin``, a C keyword).
+
+    Parameters
+    ----------
+    name : str
+        The model's name, for comments (printable, no comment terminators).
+    identifier : str
+        A C / Python identifier made from it.
+    version : str
+        The version of lagrangian that exported it.
+    coordinates : tuple of str
+        The coordinates' names.
+    state : tuple of str
+        The state's names (coordinates, then rates).
+    parameters : tuple of str
+        The parameters' names, in the order of p.
+    defaults : tuple of float or None
+        Their values in the model.
+    M : tuple of SymEngine expressions
+        The mass matrix row by row, n*n entries.
+    F : tuple of SymEngine expressions
+        The right side F.
+    y : tuple of SymEngine Symbol
+        The private state symbols.
+    p : tuple of SymEngine Symbol
+        The private parameter symbols.
+    t : SymEngine Symbol
+        The private time symbol.
+    rows : tuple of ExportedRow
+        The complementary rows (every target that exports them).
+    integrals : tuple of (str, SymEngine expression)
+        The C target's first integrals (name, expression), over the private symbols; empty for the
+        other targets.
+    fast : MassForcesForm, optional
+        The C target's M and F in the in-package form, over the private symbols.
     """
 
     name: str            # the model's name, for comments (printable, no comment terminators)
@@ -105,4 +139,15 @@ class AbstractTarget(abc.ABC):
 
     @abc.abstractmethod
     def files(self, symbols: ExportedSymbols) -> dict[str, str]:
-        """The text of each file of this target for ``symbols``, by file name."""
+        """The text of each file of this target for ``symbols``, by file name.
+
+        Parameters
+        ----------
+        symbols : ExportedSymbols
+            What to print.
+
+        Returns
+        -------
+        dict of str to str
+            The text of each file, by file name.
+        """

@@ -57,7 +57,20 @@ FORMATS = {"html": (".html", ".htm"), "tex": (".tex", ".latex"), "md": (".md", "
 
 
 def format_for(path: str | os.PathLike[str], default: str = "md") -> str:
-    """The format a file name asks for by its suffix (``default`` when it says nothing)."""
+    """The format a file name asks for by its suffix (``default`` when it says nothing).
+
+    Parameters
+    ----------
+    path : str or PathLike
+        The file name.
+    default : str, optional
+        The format when the suffix says nothing.
+
+    Returns
+    -------
+    str
+        ``"html"``, ``"tex"``, ``"md"`` or ``"pdf"``.
+    """
     suffix = Path(path).suffix.lower()
     for name, suffixes in FORMATS.items():
         if suffix in suffixes:
@@ -76,32 +89,83 @@ class Report:
     """A derivation report: ``document`` holds its content; `html`, `latex` and `markdown` write it.
 
     In Jupyter the report displays itself (``_repr_html_``).
+
+    Parameters
+    ----------
+    document : Document
+        The report's content.
+    eom : EquationsOfMotion
+        The equations it reports.
     """
 
     document: Document
     eom: EquationsOfMotion = field(repr=False)
 
     def html(self) -> str:
-        """One self-contained HTML page (MathML, images inline): opens offline in any browser."""
+        """One self-contained HTML page (MathML, images inline): opens offline in any browser.
+
+        Returns
+        -------
+        str
+            The page.
+        """
         return render_html(self.document, footer=_footer())
 
     def latex(self, figure_files: Sequence[str] | None = None) -> str:
-        """A LaTeX document; ``figure_files`` name the PNG files of the figures (see `save`)."""
+        """A LaTeX document; ``figure_files`` name the PNG files of the figures (see `save`).
+
+        Parameters
+        ----------
+        figure_files : sequence of str, optional
+            The PNG files of the figures (see `save`).
+
+        Returns
+        -------
+        str
+            The document.
+        """
         return render_tex(self.document, footer=_footer(), figures=figure_files)
 
     def markdown(self, figure_files: Sequence[str] | None = None) -> str:
-        """Markdown with GitHub's math syntax; ``figure_files`` name the PNG files of the figures (see `save`),
-        else they are data: URIs."""
+        """Markdown with GitHub's math syntax.
+
+        Parameters
+        ----------
+        figure_files : sequence of str, optional
+            The PNG files of the figures (see `save`); else they are data: URIs.
+
+        Returns
+        -------
+        str
+            The document.
+        """
         return render_markdown(self.document, footer=_footer(), figures=figure_files)
 
     def pdf(self) -> bytes:
-        """The PDF of the LaTeX report, compiled by pdflatex (or lualatex) installed on this machine."""
+        """The PDF of the LaTeX report, compiled by pdflatex (or lualatex) installed on this machine.
+
+        Returns
+        -------
+        bytes
+            The PDF.
+        """
         images = pictures(self.document)
         names = [f"report-figure-{k}.png" for k in range(1, len(images) + 1)]
         return compile_pdf(self.latex(names), {name: image.png for name, image in zip(names, images, strict=True)})
 
     def render(self, format: str) -> str:
-        """The report in ``format``: ``"html"``, ``"tex"`` or ``"md"`` (a PDF is bytes: `pdf` or `save`)."""
+        """The report in ``format``: ``"html"``, ``"tex"`` or ``"md"`` (a PDF is bytes: `pdf` or `save`).
+
+        Parameters
+        ----------
+        format : {"html", "tex", "md"}
+            The format.
+
+        Returns
+        -------
+        str
+            The report.
+        """
         if format == "pdf":
             raise OutputError("A PDF is not text: it is written to a file.", fix="give the file: -o report.pdf")
         if format == "html":
@@ -119,6 +183,18 @@ class Report:
         ``<name>-figure-<k>.png`` beside it, and refers to them by those relative names
         (``\\includegraphics``, ``![...](name-figure-1.png)``); HTML keeps them inline.
         A PDF is compiled from the LaTeX (`pdf`). A failure leaves any older file at ``path`` as it was.
+
+        Parameters
+        ----------
+        path : str or PathLike
+            The file to write.
+        format : {"html", "tex", "md", "pdf"}, optional
+            The format; None: from the suffix.
+
+        Returns
+        -------
+        Path
+            The path written.
         """
         path = Path(path)
         fmt = format or format_for(path)
@@ -200,25 +276,36 @@ def report(model: Model | EquationsOfMotion | str | os.PathLike[str], *, lang: s
 
     Parameters
     ----------
-    model : a model file, a `Model`, or its derivation (`lagrangian.derive`).
-    lang : ``"fr"`` (the course's French) or ``"en"``.
-    verification : the Newton–Euler cross-check to include: a `Verification`
-        (`lagrangian.analysis.verify`), ``True`` to compute it, or None to leave it out.
-    figures : figures to include (a simulation's plots): `ReportFigure`, PNG bytes, matplotlib
-        figures, or ``(caption, figure)`` pairs.
-    integrals : the first integrals (default: `lagrangian.first_integrals`).
-    source : how ``lagrangian derive`` names the model (a file, ``zoo:planar_chain:40``, ``""`` for the
-        seed's top), for the note on the equations too long to print in full (default: the model's file).
-    small_motions : adds the section "Petits mouvements au voisinage d'une position d'équilibre" /
-        "Small motions about an equilibrium": a `LinearModel` (`lagrangian.linearize`), a point
-        ``{"theta": 0}``, or True for the model's ``[operating_point]``; None (default) leaves it out.
-    view : the statement shows the system in 3-D in its initial configuration, frames, points and
-        angles labelled (`lagrangian.view3d`): interactive in HTML, a still picture in LaTeX and PDF
+    model : Model or EquationsOfMotion or str or PathLike
+        A model file, a `Model`, or its derivation (`lagrangian.derive`).
+    lang : {"fr", "en"}, optional
+        ``"fr"`` (the course's French) or ``"en"``.
+    verification : Verification or bool, optional
+        The Newton–Euler cross-check to include: a `Verification` (`lagrangian.analysis.verify`),
+        ``True`` to compute it, or None to leave it out.
+    figures : sequence, optional
+        Figures to include (a simulation's plots): `ReportFigure`, PNG bytes, matplotlib figures, or
+        ``(caption, figure)`` pairs.
+    integrals : sequence of FirstIntegral, optional
+        The first integrals (default: `lagrangian.first_integrals`).
+    source : str, optional
+        How ``lagrangian derive`` names the model (a file, ``zoo:planar_chain:40``, ``""`` for the
+        seed's top), for the note on the equations too long to print in full (default: the model's
+        file).
+    small_motions : LinearModel or mapping of str to float or bool, optional
+        Adds the section "Petits mouvements au voisinage d'une position d'équilibre" / "Small motions
+        about an equilibrium": a `LinearModel` (`lagrangian.linearize`), a point ``{"theta": 0}``, or
+        True for the model's ``[operating_point]``; None (default) leaves it out.
+    view : bool, optional
+        The statement shows the system in 3-D in its initial configuration, frames, points and angles
+        labelled (`lagrangian.view3d`): interactive in HTML, a still picture in LaTeX and PDF
         (headless Chromium's, else matplotlib's); left out of Markdown.  ``False`` leaves it out.
-    motion : a simulated `Trajectory` of the model, shown in 3-D at the head of the simulation's figures.
-    events : the events of a simulated motion (``trajectory.events``): for a model with unilateral
-        contacts, its impacts, lift-offs and rests are listed in the section on the theorem of percussions
-        (which every model with contacts has).
+    motion : Trajectory, optional
+        A simulated motion of the model, shown in 3-D at the head of the simulation's figures.
+    events : sequence of Event, optional
+        The events of a simulated motion (``trajectory.events``): for a model with unilateral
+        contacts, its impacts, lift-offs and rests are listed in the section on the theorem of
+        percussions (which every model with contacts has).
 
     Returns
     -------

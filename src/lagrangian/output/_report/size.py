@@ -77,7 +77,25 @@ def _terms(e: se.Basic) -> int:
 
 @dataclass
 class SizeGate:
-    """The converter the report hands to `course_form`: `to_sympy`, or a `Summary` for what is too long."""
+    """The converter the report hands to `course_form`: `to_sympy`, or a `Summary` for what is too long.
+
+    Parameters
+    ----------
+    terms_word : str
+        The word for "terms" in the report's language (⟨812 terms⟩).
+    long_word : str
+        The word for an expression too long, not a sum.
+    max_ops : int
+        The largest expression converted and printed in full.
+    budget : int
+        Operations converted in all before every further long expression is summarized.
+    used : int
+        Operations converted so far.
+    summaries : list of Summary
+        The summaries made so far.
+    _cache : dict
+        The conversions made, by expression; not to be given.
+    """
 
     terms_word: str
     long_word: str

@@ -27,7 +27,15 @@ __all__ = ["ReportFigure", "check_section", "simulation_section", "matrix_sectio
 
 @dataclass(frozen=True, slots=True)
 class ReportFigure:
-    """A figure for the report: PNG bytes and a caption (plain text)."""
+    """A figure for the report: PNG bytes and a caption (plain text).
+
+    Parameters
+    ----------
+    png : bytes
+        The PNG image.
+    caption : str
+        Its caption (plain text).
+    """
 
     png: bytes
     caption: str
