@@ -75,10 +75,6 @@ class SympyEquations:
         The potential U_P (up to a constant).
     L : SymPy expression or None
         T − U when the system is conservative (Remarque 2), else None.
-    first_integrals : mapping of str to SymPy expression, or None
-        Name → expression constant along every motion (K, H, E, p_x, ...), from
-        ``lagrangian.sympy_equations(eom)``; None from ``eom.to_sympy()``, which does not look for them
-        (finding them is the analysis stage's work, `lagrangian.first_integrals`).
     multipliers : tuple of SymPy expressions
         The λ_k of the complementary constraints.
     A : sympy.Matrix
@@ -88,6 +84,13 @@ class SympyEquations:
         for one: then λ is found along a motion).
     time_functions : bool
         Whether this is the ``dynamicsymbols`` form.
+    first_integrals : mapping of str to SymPy expression, or None
+        Name → expression constant along every motion (K, H, E, p_x, ...), from
+        ``lagrangian.sympy_equations(eom)``; None from ``eom.to_sympy()``, which does not look for them
+        (finding them is the analysis stage's work, `lagrangian.first_integrals`).
+    _replace : mapping of SymPy expression to SymPy expression, optional
+        The engine's symbols → this form's (θ → θ(t), θ_dot → Derivative(θ(t), t), ...): what
+        `convert` applies (set by `EquationsOfMotion.to_sympy`).
     """
 
     coordinates: tuple[str, ...]
@@ -108,7 +111,6 @@ class SympyEquations:
     multiplier_formulas: Mapping[str, sympy.Basic] = field(default_factory=dict)
     time_functions: bool = False
     first_integrals: Mapping[str, sympy.Basic] | None = None
-    # engine symbol → this form's (θ → θ(t), θ_dot → Derivative(θ(t), t), ...): what `convert` applies
     _replace: Mapping[sympy.Basic, sympy.Basic] = field(default_factory=dict, repr=False, compare=False)
 
     def convert(self, expr: se.Basic) -> sympy.Basic:
@@ -116,6 +118,16 @@ class SympyEquations:
 
         Converted as M, F and the equations are: structurally (no text parsed, nothing simplified),
         with this form's symbols (θ(t) and its derivatives when ``time_functions``).
+
+        Parameters
+        ----------
+        expr : SymEngine expression
+            An expression over the model's coordinates, rates, parameters and t.
+
+        Returns
+        -------
+        SymPy expression
+            The same expression in this form.
         """
         out = _convert(expr)
         return out.xreplace(self._replace) if self._replace else out

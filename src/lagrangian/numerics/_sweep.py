@@ -34,11 +34,15 @@ def sweep(source: Any, name: str, values: Sequence[float] | np.ndarray, **keywor
 
     Parameters
     ----------
-    source : a `LinearModel` that keeps ``name`` symbolic (``linearize(..., symbolic=(name,))``), or a
+    source : LinearModel, str, Path, Model or EquationsOfMotion
+        A `LinearModel` that keeps ``name`` symbolic (``linearize(..., symbolic=(name,))``), or a
         model with unilateral contacts: a file, a `Model` or its equations.
-    name : the swept parameter (for a contact model, also a coordinate or a rate: ``z``, ``z_dot``).
-    values : the values of ``name``.
-    **keywords : for a linearization, the values of its other symbolic parameters; for a contact model,
+    name : str
+        The swept parameter (for a contact model, also a coordinate or a rate: ``z``, ``z_dot``).
+    values : sequence of float or ndarray
+        The values of ``name``.
+    **keywords : object
+        For a linearization, the values of its other symbolic parameters; for a contact model,
         ``t_end`` (required) and `impact_sweep`'s keywords (``min_speed``, ``parameters``, ``initial``,
         `simulate`'s options).
 

@@ -218,6 +218,18 @@ def jupyter_repr(value: object, form: str) -> str:
 
     A subclass is drawn as its nearest base in `RENDERERS` (an `OptimalTrajectory` as a `Trajectory`).
 
+    Parameters
+    ----------
+    value : object
+        An equation, the equations of motion, a first integral, a linear model or a trajectory.
+    form : str
+        ``"latex"``, ``"markdown"`` or ``"html"``.
+
+    Returns
+    -------
+    str
+        What the value's ``_repr_<form>_`` gives Jupyter.
+
     Raises
     ------
     KeyError

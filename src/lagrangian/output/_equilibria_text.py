@@ -75,14 +75,23 @@ def equilibria_text(eom: EquationsOfMotion, found: Equilibria, verdicts: Sequenc
 
 
 def bifurcation_text(eom: EquationsOfMotion, diagram: BifurcationDiagram) -> str:
-    """What ``lagrangian equilibria --sweep`` prints: each closed-form branch of rests in ``diagram`` (from
-    `lagrangian.analysis.bifurcation`) and the parameter's values where it appears, disappears, gains or
-    loses stability, or its stability over the whole range when nothing changes.
+    """What ``lagrangian equilibria --sweep`` prints: the branches of rests along the parameter.
+
+    Each closed-form branch of rests in ``diagram`` (from `lagrangian.analysis.bifurcation`) and the
+    parameter's values where it appears, disappears, gains or loses stability, or its stability over
+    the whole range when nothing changes.
 
     Parameters
     ----------
-    eom : the equations the rests are of (their coordinates and parameters name the symbols).
-    diagram : from `lagrangian.analysis.bifurcation`.
+    eom : EquationsOfMotion
+        The equations the rests are of (their coordinates and parameters name the symbols).
+    diagram : BifurcationDiagram
+        From `lagrangian.analysis.bifurcation`.
+
+    Returns
+    -------
+    str
+        The text, one paragraph per branch.
 
     Examples
     --------

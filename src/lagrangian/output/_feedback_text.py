@@ -37,7 +37,8 @@ def feedback_text(fb: Feedback) -> str:
 
     Parameters
     ----------
-    fb : from `lagrangian.analysis.lqr` (or `Feedback.load`).
+    fb : Feedback
+        From `lagrangian.analysis.lqr` (or `Feedback.load`).
 
     Returns
     -------

@@ -20,6 +20,18 @@ __all__ = ["sympy_equations"]
 def sympy_equations(eom: EquationsOfMotion, *, time_functions: bool = False) -> SympyEquations:
     """``eom.to_sympy(time_functions=...)`` with the first integrals: ``first_integrals`` name → expression.
 
+    Parameters
+    ----------
+    eom : EquationsOfMotion
+        The equations (`lagrangian.derive`); their first integrals are found by `lagrangian.first_integrals`.
+    time_functions : bool, optional
+        The ``dynamicsymbols`` form: θ(t) and its derivatives, as in `EquationsOfMotion.to_sympy`.
+
+    Returns
+    -------
+    SympyEquations
+        The equations in SymPy, with ``first_integrals`` filled.
+
     Examples
     --------
     >>> import lagrangian, sympy

@@ -70,11 +70,15 @@ def verification_text(v: Verification, reactions: Sequence[Reaction] | Lagrangia
 
     Parameters
     ----------
-    v : from `lagrangian.analysis.verify`.
-    reactions : the reactions of the constraints (`lagrangian.analysis.reactions`), or the error that
+    v : Verification
+        From `lagrangian.analysis.verify`.
+    reactions : sequence of Reaction, or LagrangianError, optional
+        The reactions of the constraints (`lagrangian.analysis.reactions`), or the error that
         stopped them (a body without its mass), written as the reason they are not computed; None: no section.
-    along : the residuals along a simulated motion (`lagrangian.analysis.check_trajectory`); None: no section.
-    tolerance : the largest relative residual along the motion written as passing.
+    along : TrajectoryResiduals, optional
+        The residuals along a simulated motion (`lagrangian.analysis.check_trajectory`); None: no section.
+    tolerance : float, optional
+        The largest relative residual along the motion written as passing.
 
     Returns
     -------
@@ -108,9 +112,21 @@ def verification_text(v: Verification, reactions: Sequence[Reaction] | Lagrangia
 
 
 def verification_failure(v: Verification) -> str | None:
-    """The first Lagrange equation of ``v`` that disagrees with the theorems, in one sentence (what
-    ``lagrangian verify`` raises, exit code 5): the side that differs, both forms and their difference;
-    None when every equation agrees."""
+    """The first Lagrange equation of ``v`` that disagrees with the theorems, in one sentence.
+
+    What ``lagrangian verify`` raises (exit code 5): the side that differs, both forms and their
+    difference.
+
+    Parameters
+    ----------
+    v : Verification
+        From `lagrangian.analysis.verify`.
+
+    Returns
+    -------
+    str or None
+        The sentence; None when every equation agrees.
+    """
     failed = [c for c in v.checks if not c.agrees]
     if not failed:
         return None
