@@ -4,7 +4,7 @@ A generated function is straight-line code, one statement per line (`_cprint`). 
 allocation grows much faster than linearly with the length of such a function: the 30-joint
 arm's ``lg_aba_backward`` (6,565 statements) took 9.4 s of CPU as one function and 3.1 s in all
 cut into parts of 700 statements, none over 0.7 s; the whole library, 16-19 s in one compiler
-process, takes about 7 s of CPU in 29 units that run in parallel (`_compile`).
+process, takes about 6.5 s of CPU in 35 units that run in parallel (`numerics._compile`).
 
 A body longer than `MAX_STATEMENTS` becomes consecutive parts, each a C function of the same
 arguments plus ``lg_w``, an array on the caller's stack: a local that a later part reads is

@@ -330,7 +330,7 @@ class Compilers:
 
     A long model's parts (`codegen._cparts`) are handed over while the rest of its C is being
     generated (`part`, given to `codegen.generate_c` as ``on_unit``), so that the compilers work
-    while Python writes: for the 30-joint arm, about 2 s of generation beside some 6 s of compiling.
+    while Python writes: for the 30-joint arm, about 1.5 s of generation beside some 6.5 s of compiling.
     Each compiler is run by a worker thread, which waits on it without holding the interpreter.
     `build_shared` then asks for every unit (`object_of`: the one already compiled, or compiled
     now) and links.  The main unit, the last written and the longest to compile (the integrators,
