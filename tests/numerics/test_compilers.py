@@ -12,7 +12,7 @@ import lagrangian
 from lagrangian.codegen import COLD_UNIT, _cparts
 from lagrangian.errors import SimulationError
 from lagrangian.model.zoo import serial_arm
-from lagrangian.numerics import _compile, compile_system
+from lagrangian.numerics import _compile, _system, compile_system
 
 
 @pytest.fixture
@@ -49,7 +49,17 @@ def test_each_unit_is_compiled_once_the_parts_while_they_are_generated(private_c
         part(self, unit)
 
     monkeypatch.setattr(_compile.Compilers, "part", watched)
+    sought: list[int] = []
+    find = _system.tree_integrals
+
+    def integrals(*args, **kwargs):
+        sought.append(len(handed))  # how many parts were compiling when the integrals were sought
+        return find(*args, **kwargs)
+
+    monkeypatch.setattr(_system, "tree_integrals", integrals)
     system = compile_system(eom)
+    # M and F's parts went to the compilers before the first integrals were sought (lg_monitors needs them).
+    assert sought and sought[0] > 0
     units = system.generated.units
     compiles = [words for words in seen if "-c" in words]
     links = [words for words in seen if "-c" not in words and any(os.path.basename(w) == "unit0.o" for w in words)]

@@ -97,7 +97,7 @@ def monitor_expressions(eom: EquationsOfMotion, integrals: Sequence, *,
 
 def generate_c(
     eom: EquationsOfMotion,
-    integrals: Sequence = (),
+    integrals: Sequence | Callable[[], Sequence] = (),
     events: Sequence[tuple[str, se.Basic]] = (),
     law=None,
     *,
@@ -109,8 +109,10 @@ def generate_c(
     ----------
     eom : EquationsOfMotion
         The equations of motion (`lagrangian.derive`).
-    integrals : sequence of FirstIntegral, optional
-        The first integrals to monitor (`lagrangian.first_integrals`).
+    integrals : sequence of FirstIntegral, or callable, optional
+        The first integrals to monitor (`lagrangian.first_integrals`), or a function that finds them:
+        for a robot's recursive form it is called after M and F are written, so that a build
+        compiles their parts while the integrals are sought (`on_unit`).
     events : sequence of (str, SymEngine expression), optional
         (name, g) pairs; an event occurs where g(t, q, q̇) changes sign.
     law : LawCode, optional
@@ -197,7 +199,7 @@ def generate_c(
     F_out = [(f"F[{i}]", e) for i, e in enumerate(form.F)]
     S_out = [(f"const double _s{k}", e) for k, (_, e) in enumerate(form.shared)]
     constants = [(f"k[{j}]", expr) for j, (_, expr) in enumerate(form.constants)]
-    monitors = monitor_expressions(eom, integrals)
+    monitors = monitor_expressions(eom, integrals() if callable(integrals) else integrals)
     zero = se.Integer(0)
     rates_zero = {s: zero for s in eom.qd}
     b = [se.diff(eom.T, s).xreplace(rates_zero) for s in eom.qd]
@@ -217,7 +219,7 @@ def generate_c(
     ], function, law)
 
 
-def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence, events: Sequence[tuple[str, se.Basic]],
+def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence | Callable[[], Sequence], events: Sequence[tuple[str, se.Basic]],
                         named: dict, header: dict, function, law=None, parts: list[Part] | None = None
                         ) -> GeneratedSource:
     """`generate_c` for an ``eom`` with a recursive form: each function defines the intermediates it
@@ -237,7 +239,14 @@ def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence, events: Seq
     # Inputs are not hoisted: an input law (`numerics._input_code`) overwrites them state by state.
     hoist = Hoist([se.Symbol(p.name) for p in eom.model.parameters if not p.input])
     M = [rec.M[i][j] for i in range(n) for j in range(n)]
-    monitors = monitor_expressions(eom, integrals, recursive=True)
+    monitors: list[tuple[str, se.Basic]] = []
+
+    def monitor_outputs() -> list[tuple[str, se.Basic]]:
+        # Given as a function, the first integrals are found only now, after M and F are written:
+        # a build compiles M and F's parts meanwhile (`generate_c`).
+        monitors.extend(monitor_expressions(eom, integrals() if callable(integrals) else integrals, recursive=True))
+        return [(f"out[{k}]", e) for k, (_, e) in enumerate(monitors)]
+
     hoisted: dict[se.Basic, se.Basic] = {}
 
     def lifted(expr: se.Basic) -> se.Basic:
@@ -250,16 +259,18 @@ def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence, events: Seq
         defs = [(s, lifted(e)) for s, e in rec.needed([e for _, e in outputs])]
         return defs, [(target, lifted(e)) for target, e in outputs]
 
-    bodies = [
+    Outputs = list[tuple[str, se.Basic]]
+    bodies: list[tuple[str, Outputs | Callable[[], Outputs], str]] = [
         ("static void lg_mass_forces(double t, const double *y, const double *p, double *M, double *F)",
          [(f"M[{k}]", e) for k, e in enumerate(M)] + [(f"F[{i}]", e) for i, e in enumerate(rec.F)], "M q'' = F"),
         ("static void lg_monitors(double t, const double *y, const double *p, double *out)",
-         [(f"out[{k}]", e) for k, (_, e) in enumerate(monitors)], "a first integral"),
+         monitor_outputs, "a first integral"),
         ("static void lg_events(double t, const double *y, const double *p, double *g)",
          [(f"g[{k}]", e) for k, (_, e) in enumerate(events)], "an event function"),
         ("static void lg_hamilton_force(double t, const double *y, const double *p, double *g)",
          [(f"g[{i}]", e) for i, e in enumerate(rec.dL_dq)], "dT/dq - dU/dq + Q"),
     ]
+
     def written(signature: str, staged: tuple[list, list], what: str) -> str:
         # Each function is written as soon as its intermediates are found and lifted, so that the units
         # of its parts reach a build (`on_unit`) while the next function is being prepared.  The constants
@@ -271,7 +282,8 @@ def _generate_recursive(eom: EquationsOfMotion, integrals: Sequence, events: Seq
         defs, outs = staged
         return function(signature, outs, what, defs)
 
-    functions = [written(signature, with_intermediates(outputs), what) for signature, outputs, what in bodies]
+    functions = [written(signature, with_intermediates(outputs() if callable(outputs) else outputs), what)
+                 for signature, outputs, what in bodies]
     aba: list[str] = []
     if rec.qdd is not None:
         # The articulated-body algorithm: q'' in O(n), M neither formed nor factorised.  Its backward

@@ -398,7 +398,10 @@ class Compilers:
             if job is None:
                 return
             if job.future.set_running_or_notify_cancel():
-                job.future.set_result(self._compile(job))
+                try:
+                    job.future.set_result(self._compile(job))
+                except BaseException as exc:  # noqa: BLE001 - re-raised by the build from `future.result()`, not a hang
+                    job.future.set_exception(exc)
 
     def _compile(self, job: _Job) -> tuple[int, str, Path]:
         log = job.o_file.parent / f"{job.name}.log"

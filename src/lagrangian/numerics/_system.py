@@ -176,8 +176,9 @@ class CompiledSystem:
         The units of the long functions' parts are compiled as they are generated (`Compilers`).
         """
         with Compilers() as compilers:
-            generated = self._generated = generate_c(self.eom, self.first_integrals, self._events, law=self._code,
-                                                     on_unit=compilers.part)
+            # The integrals as a function: sought while M and F's parts compile.
+            generated = self._generated = generate_c(self.eom, lambda: self.first_integrals, self._events,
+                                                     law=self._code, on_unit=compilers.part)
             library = compile_library(generated.units, generated.key, compilers=compilers)
         integrals = tuple(fi.name for fi in self.first_integrals)
         monitors = tuple(name for name, _ in monitor_expressions(self.eom, self.first_integrals,
