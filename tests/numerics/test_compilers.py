@@ -125,3 +125,14 @@ def test_leaving_the_block_stops_the_compilers_still_running(tmp_path, monkeypat
     assert time.perf_counter() - start < 30
     assert all(process.poll() is not None for process in running)  # stopped, not left to finish
     assert not folder.exists()
+
+
+def test_a_fault_in_a_compiler_thread_reaches_the_build_instead_of_hanging_it(private_cache, monkeypatch):
+    def broken(self, job):
+        raise RuntimeError("a fault of the build's own code")
+
+    monkeypatch.setattr(_compile.Compilers, "_compile", broken)
+    with _compile.Compilers() as compilers:
+        compilers.part("int lg_part;\n")
+        with pytest.raises(RuntimeError, match="own code"):
+            compilers.object_of("int lg_part;\n", part=True).result(timeout=60)
