@@ -333,8 +333,8 @@ class Compilers:
     while Python writes: for the 30-joint arm, about 1.5 s of generation beside some 6.5 s of compiling.
     Each compiler is run by a worker thread, which waits on it without holding the interpreter.
     `build_shared` then asks for every unit (`object_of`: the one already compiled, or compiled
-    now) and links.  The main unit, the last written and the longest to compile (the integrators,
-    at -O2), goes before the parts still waiting, so that the build does not end on it alone.
+    now) and links.  The main unit, the last written and among the longest to compile (the
+    integrators, at -O2), goes before the parts still waiting, so that the build does not end on it alone.
     Leaving the ``with`` block stops the compilers still running and removes their files, whether
     the build was linked, found in the cache, or abandoned on an error.
 
@@ -427,8 +427,8 @@ class Compilers:
             self._closed = True
             for process in self._running:
                 process.kill()
-        for _ in self._workers:
-            self._waiting.put((-1, 0, None))  # before any job still waiting
+        for k, _ in enumerate(self._workers):
+            self._waiting.put((-1, k, None))  # before any job still waiting
         for worker in self._workers:
             worker.join()
         for future in self._objects.values():
